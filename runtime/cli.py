@@ -1,0 +1,275 @@
+"""The ``softplc`` command.
+
+    softplc check FILE...                    report diagnostics
+    softplc compile FILE... --emit-python    show the generated Python
+    softplc exec FILE... --cycles N          run a PROGRAM (or FUNCTION) in virtual
+                                             time and print its variables as JSON
+
+Exit codes (stable, scripts rely on them):
+    0  success
+    1  compile errors (or an input file that cannot be read)
+    2  usage error: bad option, unknown entry, bad --cycle-time
+    3  runtime fault in the ST program (message with ST file:line:col)
+    4  internal error in softplc itself (a bug; set SOFTPLC_DEBUG=1 for the traceback)
+
+Whatever the input, the user sees a message, never a Python traceback.
+"""
+from __future__ import annotations
+
+import json
+import os
+import re
+import sys
+import traceback
+from pathlib import Path
+from typing import Optional
+
+import click
+
+from .st.profile import DEFAULT, PROFILES
+
+EXIT_OK = 0
+EXIT_COMPILE = 1
+EXIT_USAGE = 2
+EXIT_FAULT = 3
+EXIT_INTERNAL = 4
+
+# ---------------------------------------------------------------- options
+
+
+class CycleTime(click.ParamType):
+    """A cycle time: '10ms', '1s', '1s500ms', 'T#10ms', or a bare number of
+    milliseconds. The virtual clock ticks in whole milliseconds (TIME
+    resolution), so a value must be a positive whole number of ms."""
+
+    name = "duration"
+    # IEC duration units, largest first, in nanoseconds.
+    _UNITS = {"d": 86_400_000_000_000, "h": 3_600_000_000_000, "m": 60_000_000_000,
+              "s": 1_000_000_000, "ms": 1_000_000, "us": 1_000, "ns": 1}
+    _PART = re.compile(r"(\d+(?:\.\d+)?)(ms|us|ns|d|h|m|s)")
+
+    def convert(self, value, param, ctx) -> int:
+        if isinstance(value, int):
+            return value
+        text = "".join(str(value).split()).lower().replace("_", "")
+        for prefix in ("time#", "t#"):
+            if text.startswith(prefix):
+                text = text[len(prefix):]
+                break
+        if text.isdigit():
+            ns = int(text) * 1_000_000
+        else:
+            ns = self._parse_units(text)
+            if ns is None:
+                self.fail(f"{value!r} is not a duration (examples: 10ms, 1s, T#250ms)",
+                          param, ctx)
+        if ns <= 0:
+            self.fail(f"{value!r}: the cycle time must be positive", param, ctx)
+        if ns % 1_000_000:
+            self.fail(f"{value!r}: the cycle time must be a whole number of milliseconds",
+                      param, ctx)
+        return ns // 1_000_000
+
+    def _parse_units(self, text: str) -> Optional[int]:
+        pos, total = 0, 0.0
+        while pos < len(text):
+            m = self._PART.match(text, pos)
+            if m is None:
+                return None
+            total += float(m.group(1)) * self._UNITS[m.group(2)]
+            pos = m.end()
+        return round(total) if text else None
+
+
+PROFILE_OPTION = click.option(
+    "--profile", type=click.Choice(list(PROFILES), case_sensitive=False),
+    default=DEFAULT.name, show_default=True,
+    help="Dialect: strict IEC 61131-3, CODESYS, TwinCAT or Schneider Unity/Control Expert.")
+
+FILES_ARGUMENT = click.argument(
+    "files", nargs=-1, required=True,
+    type=click.Path(exists=True, dir_okay=False, readable=True))
+
+
+# ---------------------------------------------------------------- helpers
+
+def _echo_err(text: str) -> None:
+    click.echo(text, err=True)
+
+
+def _report(diagnostics, sources) -> tuple[int, int]:
+    """Print every diagnostic (errors and warnings) to stderr; return the counts."""
+    errors = warnings = 0
+    for d in diagnostics:
+        _echo_err(d.format(sources))
+        if d.is_error:
+            errors += 1
+        else:
+            warnings += 1
+    return errors, warnings
+
+
+def _plural(n: int, word: str) -> str:
+    return f"{n} {word}" if n == 1 else f"{n} {word}s"
+
+
+def _summary(errors: int, warnings: int) -> None:
+    _echo_err(f"{_plural(errors, 'error')}, {_plural(warnings, 'warning')}")
+
+
+def _compile(files, profile: str):
+    """Compile or exit 1 with the diagnostics. Warnings go to stderr either way."""
+    from .st.diagnostics import CompileError
+    from .st.loader import compile_files
+
+    try:
+        prog = compile_files(list(files), profile=profile)
+    except CompileError as e:
+        errors, warnings = _report(e.diagnostics, e.sources)
+        _summary(errors, warnings)
+        sys.exit(EXIT_COMPILE)
+    except OSError as e:  # a file vanished or became unreadable after the check
+        _echo_err(f"softplc: cannot read {e.filename or 'input'}: {e.strerror or e}")
+        sys.exit(EXIT_COMPILE)
+    return prog
+
+
+# ---------------------------------------------------------------- commands
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(package_name="softplc", prog_name="softplc")
+def cli() -> None:
+    """softplc: IEC 61131-3 Structured Text compiled to Python.
+
+    Exit codes: 0 ok, 1 compile errors, 2 usage error, 3 runtime fault,
+    4 internal error.
+    """
+    # `softplc run CONFIG.toml` (the scan engine with I/O) joins this group later.
+
+
+@cli.command()
+@FILES_ARGUMENT
+@PROFILE_OPTION
+def check(files, profile: str) -> None:
+    """Check ST files and report errors and warnings with file:line:column."""
+    from .st.loader import check_files
+
+    diagnostics, sources = check_files(list(files), profile=profile)
+    errors, warnings = _report(diagnostics, sources)
+    _summary(errors, warnings)
+    sys.exit(EXIT_COMPILE if errors else EXIT_OK)
+
+
+@cli.command("compile")
+@FILES_ARGUMENT
+@click.option("--emit-python", is_flag=True,
+              help="Print the generated Python module (or write it with -o).")
+@click.option("-o", "--output-dir", type=click.Path(file_okay=False),
+              help="With --emit-python: write DIR/<stem of the first FILE>.py instead of printing.")
+@PROFILE_OPTION
+def compile_cmd(files, emit_python: bool, output_dir: Optional[str], profile: str) -> None:
+    """Compile ST files to Python; with --emit-python show the result."""
+    if output_dir and not emit_python:
+        raise click.UsageError("-o/--output-dir needs --emit-python")
+    prog = _compile(files, profile)
+    _report(prog.warnings, prog.sources)
+    if not emit_python:
+        _summary(0, len(prog.warnings))
+        return
+    if output_dir is None:
+        click.echo(prog.python_source, nl=not prog.python_source.endswith("\n"))
+        return
+    target = Path(output_dir) / (Path(files[0]).stem + ".py")
+    try:
+        target.parent.mkdir(parents=True, exist_ok=True)
+        target.write_text(prog.python_source, encoding="utf-8")
+    except OSError as e:
+        _echo_err(f"softplc: cannot write {target}: {e.strerror or e}")
+        sys.exit(EXIT_COMPILE)
+    _echo_err(f"wrote {target}")
+
+
+@cli.command("exec")
+@FILES_ARGUMENT
+@click.option("--entry", metavar="NAME",
+              help="PROGRAM or FUNCTION to run [default: the only PROGRAM in FILES].")
+@click.option("--cycles", type=click.IntRange(min=0), default=1, show_default=True,
+              help="Number of cycles to run.")
+@click.option("--cycle-time", type=CycleTime(), default="10ms", show_default=True,
+              help="Virtual time per cycle, whole milliseconds: 10ms, 1s, T#250ms.")
+@PROFILE_OPTION
+def exec_cmd(files, entry: Optional[str], cycles: int, cycle_time: int, profile: str) -> None:
+    """Run a PROGRAM for N cycles in virtual time and print its variables as
+    one JSON object; for a FUNCTION print {"return": value}."""
+    from .st.faults import STFault
+    from .st.valuejson import encode_instance, encode_value
+
+    prog = _compile(files, profile)
+    _report(prog.warnings, prog.sources)
+    entry = _pick_entry(prog.pous, entry)
+    try:
+        runner = prog.runner(entry, cycle_time_ms=cycle_time)
+    except KeyError:
+        raise click.UsageError(f"no PROGRAM or FUNCTION named {entry!r}") from None
+    try:
+        runner.run(cycles)
+    except STFault as e:
+        _echo_err(str(e))
+        sys.exit(EXIT_FAULT)
+    if runner.instance is not None:
+        result = encode_instance(runner.instance)
+    else:
+        result = {"return": encode_value(runner.result_type, runner.result)}
+    click.echo(json.dumps(result, indent=2, ensure_ascii=False))
+
+
+def _pick_entry(pous: dict, entry: Optional[str]) -> str:
+    """The --entry name as declared, checked against the user's POUs."""
+    if entry is None:
+        programs = [name for name, kind in pous.items() if kind == "PROGRAM"]
+        if len(programs) == 1:
+            return programs[0]
+        if not programs:
+            raise click.UsageError("the files declare no PROGRAM; name a FUNCTION with --entry")
+        raise click.UsageError(f"the files declare several PROGRAMs ({', '.join(programs)}); "
+                               "choose one with --entry")
+    for name, kind in pous.items():
+        if name.upper() == entry.upper():
+            if kind == "FUNCTION_BLOCK":
+                raise click.UsageError(f"{name} is a FUNCTION_BLOCK; --entry takes a PROGRAM "
+                                       "or a FUNCTION (call the block from a PROGRAM)")
+            return name
+    # Not a user POU: let the runner decide (library FUNCTIONs may be runnable).
+    return entry
+
+
+# ---------------------------------------------------------------- entry point
+
+def main(argv: Optional[list] = None) -> None:
+    """Console-script entry point: never lets a Python traceback reach the user."""
+    try:
+        # standalone_mode=False: we map click's exceptions to our exit codes
+        # ourselves (click would turn Ctrl-C into exit 1, our "compile error").
+        rc = cli.main(args=argv, prog_name="softplc", standalone_mode=False)
+    except click.ClickException as e:
+        e.show()
+        sys.exit(e.exit_code)  # UsageError and BadParameter: 2
+    except (click.Abort, KeyboardInterrupt):
+        _echo_err("softplc: interrupted")
+        sys.exit(130)
+    except BrokenPipeError:  # `softplc exec ... | head`: the reader left, nothing to say
+        sys.stderr.close()
+        sys.exit(EXIT_OK)
+    except Exception as e:  # a bug in softplc, not in the user's program
+        if os.environ.get("SOFTPLC_DEBUG"):
+            traceback.print_exc()
+        else:
+            _echo_err(f"softplc: internal error: {type(e).__name__}: {e}\n"
+                      "This is a bug in softplc; run again with SOFTPLC_DEBUG=1 "
+                      "for the traceback and report it.")
+        sys.exit(EXIT_INTERNAL)
+    sys.exit(rc if isinstance(rc, int) else EXIT_OK)  # --help and --version return 0
+
+
+if __name__ == "__main__":
+    main()

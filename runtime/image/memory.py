@@ -1,0 +1,177 @@
+"""The process image: %I, %Q and %M areas in memory, with both addressing
+models of DESIGN.md (chosen by the profile's ``addressing``):
+
+  'iec'       byte offsets (CODESYS): %MB5 = byte 5, %MW1 = bytes 2-3,
+              %MD1 = bytes 4-7, %ML1 = bytes 8-15, %MX2.3 = bit 3 of byte 2.
+  'schneider' word indices (Unity/Control Expert): %MW3250 = word 3250,
+              %MD3200 = words 3200 (low) and 3201 (high), %MW3250:X0 = bit 0
+              of that word, %MW3250:4 = the 4-word table 3250..3253; %M100
+              is bit 100 of a separate bit area, as on a Premium PLC.
+
+Words are little-endian in the image; drivers convert to bus byte order.
+Code generated for a located variable binds an accessor pair (get, set) once
+at load time, so an access is one call with no address arithmetic.
+"""
+from __future__ import annotations
+
+import struct
+
+from ..st.ast import LocatedAddress
+from ..st import types as T
+
+_FORMATS = {
+    (8, True): "<b", (8, False): "<B",
+    (16, True): "<h", (16, False): "<H",
+    (32, True): "<i", (32, False): "<I",
+    (64, True): "<q", (64, False): "<Q",
+}
+_SIZE_BITS = {"B": 8, "W": 16, "D": 32, "L": 64}
+
+
+class AddressError(ValueError):
+    pass
+
+
+class ProcessImage:
+    def __init__(self, addressing: str = "iec", size: int = 1 << 16) -> None:
+        if addressing not in ("iec", "schneider"):
+            raise ValueError(f"unknown addressing model {addressing!r}")
+        self.addressing = addressing
+        self.size = size
+        self.areas = {"I": bytearray(size), "Q": bytearray(size), "M": bytearray(size)}
+        # Schneider %Mi bits live apart from the %MW words.
+        self.mbits = bytearray(size)
+
+    # ------------------------------------------------------------ layout
+
+    def _bit_location(self, addr: LocatedAddress) -> tuple:
+        """(buffer, byte offset, bit) of a bit address."""
+        buf = self.areas[addr.area]
+        if addr.bit is not None:  # %MW3250:X0 -- bit of a word
+            word = addr.indices[0]
+            off = self._word_offset(word, 16)
+            return buf, off + addr.bit // 8, addr.bit % 8
+        if self.addressing == "schneider" and addr.area == "M" and len(addr.indices) == 1:
+            return self.mbits, addr.indices[0], None
+        if len(addr.indices) >= 2:
+            byte, bit = addr.indices[-2], addr.indices[-1]
+        else:
+            byte, bit = divmod(addr.indices[0], 8)
+        if not 0 <= bit <= 7:
+            raise AddressError(f"{addr.text}: bit number {bit} is not 0..7")
+        return buf, byte, bit
+
+    def _word_offset(self, index: int, bits: int) -> int:
+        if self.addressing == "schneider":
+            return 2 * index
+        return index * (bits // 8)
+
+    def byte_offset(self, addr: LocatedAddress) -> int:
+        bits = _SIZE_BITS[addr.size]
+        if self.addressing == "iec":
+            return addr.indices[-1] * (bits // 8) if len(addr.indices) == 1 else addr.indices[-1]
+        return 2 * addr.indices[-1] if bits >= 16 else addr.indices[-1]
+
+    def _check(self, offset: int, nbytes: int, addr: LocatedAddress) -> None:
+        if offset < 0 or offset + nbytes > self.size:
+            raise AddressError(f"{addr.text}: outside the {self.size}-byte %{addr.area} area")
+
+    # ------------------------------------------------------------ access
+
+    def accessor(self, addr: LocatedAddress, ty: T.ElementaryType) -> tuple:
+        """(get, set) closures for a scalar at addr read as type ty."""
+        if addr.size in ("", "X") or addr.bit is not None:
+            buf, byte, bit = self._bit_location(addr)
+            self._check(byte, 1, addr)
+            if bit is None:  # a whole-byte Schneider bit cell
+                def get_cell(buf=buf, i=byte):
+                    return buf[i] != 0
+
+                def set_cell(v, buf=buf, i=byte):
+                    buf[i] = 1 if v else 0
+                return get_cell, set_cell
+            mask = 1 << bit
+
+            def get_bit(buf=buf, i=byte, m=mask):
+                return buf[i] & m != 0
+
+            def set_bit(v, buf=buf, i=byte, m=mask):
+                if v:
+                    buf[i] |= m
+                else:
+                    buf[i] &= ~m & 0xFF
+            return get_bit, set_bit
+        bits = _SIZE_BITS[addr.size]
+        buf = self.areas[addr.area]
+        off = self.byte_offset(addr)
+        self._check(off, bits // 8, addr)
+        if ty.is_real:
+            fmt = "<f" if bits == 32 else "<d"
+            if struct.calcsize(fmt) != bits // 8:
+                raise AddressError(f"{addr.text}: {ty.name} does not fit a {bits}-bit address")
+        else:
+            signed = ty.category in (T.SIGNED, T.DURATION)
+            fmt = _FORMATS[(bits, signed)]
+        codec = struct.Struct(fmt)
+        unpack_from, pack_into = codec.unpack_from, codec.pack_into
+        mask = (1 << bits) - 1
+        half = 1 << (bits - 1)
+
+        if ty.is_real:
+            def get_real(buf=buf, off=off):
+                return unpack_from(buf, off)[0]
+
+            def set_real(v, buf=buf, off=off):
+                pack_into(buf, off, v)
+            return get_real, set_real
+
+        def get_int(buf=buf, off=off):
+            return unpack_from(buf, off)[0]
+
+        if fmt[1].islower():  # signed: wrap into range before packing
+            def set_int(v, buf=buf, off=off):
+                pack_into(buf, off, ((int(v) + half) & mask) - half)
+        else:
+            def set_int(v, buf=buf, off=off):
+                pack_into(buf, off, int(v) & mask)
+        return get_int, set_int
+
+    def table(self, addr: LocatedAddress, signed: bool = True) -> "WordTable":
+        """The Schneider word table %MWi:n as a list-like view."""
+        length = addr.table or 1
+        off = self._word_offset(addr.indices[-1], 16)
+        self._check(off, 2 * length, addr)
+        return WordTable(self.areas[addr.area], off, length, signed)
+
+
+class WordTable:
+    """A view on n consecutive 16-bit words of the image, indexed 0..n-1,
+    behaving like the Python list an ARRAY value is."""
+    __slots__ = ("buf", "offset", "length", "_codec")
+
+    def __init__(self, buf: bytearray, offset: int, length: int, signed: bool = True) -> None:
+        self.buf = buf
+        self.offset = offset
+        self.length = length
+        self._codec = struct.Struct("<h" if signed else "<H")
+
+    def __len__(self) -> int:
+        return self.length
+
+    def _at(self, i: int) -> int:
+        if not 0 <= i < self.length:
+            raise IndexError(f"word table index {i} outside 0..{self.length - 1}")
+        return self.offset + 2 * i
+
+    def __getitem__(self, i: int) -> int:
+        return self._codec.unpack_from(self.buf, self._at(i))[0]
+
+    def __setitem__(self, i: int, v: int) -> None:
+        bits = 0x8000 if self._codec.format == "<h" else 0
+        self._codec.pack_into(self.buf, self._at(i), ((int(v) + bits) & 0xFFFF) - bits)
+
+    def __iter__(self):
+        return (self[i] for i in range(self.length))
+
+    def __repr__(self) -> str:
+        return f"WordTable({list(self)})"

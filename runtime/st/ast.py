@@ -1,0 +1,415 @@
+"""Abstract syntax tree of Structured Text.
+
+The parser builds these nodes; the checker annotates expressions (``ty``) and
+symbols (``sym``); the code generator reads the annotated tree. Every node
+keeps the source position it came from so that diagnostics and runtime faults
+can point at ST, never at Python.
+
+Names are kept as written (``name``); lookups are case-insensitive, so the
+checker compares ``name.upper()``.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Optional, Union
+
+
+@dataclass(frozen=True, slots=True)
+class Pos:
+    """A source span: 1-based line and column of the first character, and of
+    the character after the last one (``end_*`` may equal start for a point)."""
+    file: str
+    line: int
+    col: int
+    end_line: int = 0
+    end_col: int = 0
+
+    def __str__(self) -> str:
+        return f"{self.file}:{self.line}:{self.col}"
+
+
+NOPOS = Pos("<builtin>", 0, 0)
+
+
+@dataclass(slots=True, eq=False)
+class Node:
+    pos: Pos = field(default=NOPOS, kw_only=True)
+
+
+# ---------------------------------------------------------------- expressions
+
+@dataclass(slots=True, eq=False)
+class Expr(Node):
+    # Set by the checker: the resolved type (runtime.st.types.Type).
+    ty: Any = field(default=None, kw_only=True, repr=False)
+    # Set by the checker when the value is known at compile time.
+    const: Any = field(default=None, kw_only=True, repr=False)
+
+
+@dataclass(slots=True, eq=False)
+class Literal(Expr):
+    """A literal with its parsed Python value.
+
+    kind is one of: 'int', 'real', 'bool', 'string', 'wstring', 'time',
+    'ltime', 'date', 'tod', 'dt', 'ldate', 'ltod', 'ldt'.
+    Values: int/real/bool as Python int/float/bool; strings decoded ($ escapes
+    resolved); every time and date kind as an int of NANOSECONDS (durations
+    for time/ltime; since midnight for tod/ltod; since 1970-01-01T00:00:00 for
+    date/dt/ldate/ldt). type_name is the explicit prefix of a typed literal
+    (``INT#5`` -> 'INT', ``T#5s`` -> None), upper-cased.
+    """
+    kind: str
+    value: Any
+    type_name: Optional[str] = None
+    c_hex: bool = False  # written C-style (0x1F); allowed by profile only
+
+
+@dataclass(slots=True, eq=False)
+class EnumLiteral(Expr):
+    """``Color#Red`` (type_name='Color') or a bare enumerator resolved later."""
+    type_name: Optional[str]
+    value_name: str
+
+
+@dataclass(slots=True, eq=False)
+class SchneiderAddress(Expr):
+    """Schneider exchange address ``ADR#0.1.SYS`` -> parts ('0', '1', 'SYS')."""
+    parts: tuple
+
+
+@dataclass(frozen=True, slots=True)
+class LocatedAddress:
+    """A direct address such as ``%IX0.3``, ``%MW3250``, ``%MW3250:X0``,
+    ``%MW3250:4``.
+
+    area: 'I', 'Q' or 'M'. size: 'X', 'B', 'W', 'D', 'L' or '' (no size
+    letter: a bit, ``%M100`` / ``%I0.1``). indices: the dotted numbers
+    (``%IX0.3`` -> (0, 3)). bit: the Schneider ``:Xn`` bit of a word.
+    table: the Schneider ``:n`` table length. text: the address as written,
+    for messages only (never pasted into generated code).
+    """
+    area: str
+    size: str
+    indices: tuple
+    bit: Optional[int] = None
+    table: Optional[int] = None
+    text: str = ""
+
+
+@dataclass(slots=True, eq=False)
+class Located(Expr):
+    addr: LocatedAddress
+
+
+@dataclass(slots=True, eq=False)
+class Name(Expr):
+    name: str
+    sym: Any = field(default=None, kw_only=True, repr=False)
+
+
+@dataclass(slots=True, eq=False)
+class Member(Expr):
+    """``base.name`` (struct field, FB instance variable, enum ``Type.Value``)."""
+    base: Expr
+    name: str
+    sym: Any = field(default=None, kw_only=True, repr=False)
+
+
+@dataclass(slots=True, eq=False)
+class BitAccess(Expr):
+    """``w.3`` or ``w.%X3``: bit 3 of a bit-string or integer variable."""
+    base: Expr
+    bit: Expr
+
+
+@dataclass(slots=True, eq=False)
+class Index(Expr):
+    """``a[i]`` or ``a[i, j]`` (one expression per dimension)."""
+    base: Expr
+    indices: list
+
+
+@dataclass(slots=True, eq=False)
+class Deref(Expr):
+    """``r^``"""
+    base: Expr
+
+
+@dataclass(slots=True, eq=False)
+class Unary(Expr):
+    op: str  # 'NOT', '-', '+'
+    operand: Expr
+
+
+@dataclass(slots=True, eq=False)
+class Binary(Expr):
+    """op: 'OR', 'OR_ELSE', 'XOR', 'AND', 'AND_THEN' ('&' is 'AND'), '=', '<>',
+    '<', '>', '<=', '>=', '+', '-', '*', '/', 'MOD', '**'."""
+    op: str
+    left: Expr
+    right: Expr
+    # Set by the checker when the operator is a library function (time and
+    # date arithmetic: TOD + TIME is ADD_TOD_TIME).
+    impl: Any = field(default=None, kw_only=True, repr=False)
+
+
+@dataclass(slots=True, eq=False)
+class Arg(Node):
+    """One call argument. name is None for a positional argument.
+    output=True for ``name => target`` (value is then the target expression,
+    or None for an output left unconnected). negated for ``NOT name => x``."""
+    name: Optional[str]
+    value: Optional[Expr]
+    output: bool = False
+    negated: bool = False
+
+
+@dataclass(slots=True, eq=False)
+class Call(Expr):
+    """A function call, or an FB instance call (as a statement)."""
+    callee: Expr  # Name, or Member for an instance inside a struct/FB
+    args: list
+    # Set by the checker: what is called (a Symbol/POU/builtin descriptor).
+    target: Any = field(default=None, kw_only=True, repr=False)
+
+
+# ---------------------------------------------------------------- types (syntax)
+
+@dataclass(slots=True, eq=False)
+class TypeSpec(Node):
+    pass
+
+
+@dataclass(slots=True, eq=False)
+class NamedType(TypeSpec):
+    name: str
+
+
+@dataclass(slots=True, eq=False)
+class StringTypeSpec(TypeSpec):
+    wide: bool
+    length: Optional[Expr] = None  # STRING[80] / STRING(80); None = default
+
+
+@dataclass(slots=True, eq=False)
+class ArrayTypeSpec(TypeSpec):
+    """ranges: list of (lo, hi) expression pairs, or None for ``*``
+    (variable-length array in VAR_IN_OUT)."""
+    ranges: list
+    elem: TypeSpec
+
+
+@dataclass(slots=True, eq=False)
+class StructTypeSpec(TypeSpec):
+    members: list  # VarDecl
+
+
+@dataclass(slots=True, eq=False)
+class EnumTypeSpec(TypeSpec):
+    """values: list of (name, Expr|None, Pos); base: explicit base type of a
+    typed enumeration ``(a, b) INT`` or ``INT (a := 1, b := 2)``."""
+    values: list
+    base: Optional[TypeSpec] = None
+
+
+@dataclass(slots=True, eq=False)
+class SubrangeTypeSpec(TypeSpec):
+    base: TypeSpec
+    lo: Expr
+    hi: Expr
+
+
+@dataclass(slots=True, eq=False)
+class RefTypeSpec(TypeSpec):
+    """REF_TO T (pointer=False) or POINTER TO T (pointer=True)."""
+    target: TypeSpec
+    pointer: bool = False
+
+
+# ---------------------------------------------------------------- initialisers
+
+@dataclass(slots=True, eq=False)
+class ArrayInit(Node):
+    """``[1, 2, 3(0)]`` -> items of (count Expr|None, initialiser)."""
+    items: list
+
+
+@dataclass(slots=True, eq=False)
+class StructInit(Node):
+    """``(a := 1, b := [1, 2])`` -> fields of (name, initialiser, Pos)."""
+    fields: list
+
+
+Initializer = Union[Expr, ArrayInit, StructInit]
+
+
+# ---------------------------------------------------------------- declarations
+
+@dataclass(slots=True, eq=False)
+class VarDecl(Node):
+    name: str
+    type: TypeSpec
+    init: Any = None  # Initializer or None
+    location: Optional[LocatedAddress] = None  # AT %...
+    pragmas: list = field(default_factory=list)
+
+
+@dataclass(slots=True, eq=False)
+class VarBlock(Node):
+    """kind: 'VAR', 'VAR_INPUT', 'VAR_OUTPUT', 'VAR_IN_OUT', 'VAR_GLOBAL',
+    'VAR_EXTERNAL', 'VAR_TEMP', 'VAR_STAT', 'VAR_CONFIG'."""
+    kind: str
+    decls: list
+    constant: bool = False
+    retain: bool = False
+    persistent: bool = False
+
+
+@dataclass(slots=True, eq=False)
+class TypeDecl(Node):
+    name: str
+    spec: TypeSpec
+    init: Any = None  # default initial value for the type
+    pragmas: list = field(default_factory=list)
+
+
+@dataclass(slots=True, eq=False)
+class POU(Node):
+    """kind: 'PROGRAM', 'FUNCTION', 'FUNCTION_BLOCK'."""
+    kind: str
+    name: str
+    var_blocks: list
+    body: list  # statements
+    return_type: Optional[TypeSpec] = None
+    pragmas: list = field(default_factory=list)
+    external: bool = False  # declared only (body provided natively)
+
+
+@dataclass(slots=True, eq=False)
+class TaskDecl(Node):
+    """TASK name (INTERVAL := T#10ms, PRIORITY := 1, SINGLE := x)."""
+    name: str
+    params: dict  # upper-cased param name -> Expr
+
+
+@dataclass(slots=True, eq=False)
+class ProgramConfig(Node):
+    """PROGRAM inst WITH task : Type (args);"""
+    name: str
+    type_name: str
+    task: Optional[str] = None
+    args: list = field(default_factory=list)  # Arg
+    retain: bool = False
+
+
+@dataclass(slots=True, eq=False)
+class Resource(Node):
+    name: str
+    on: Optional[str]
+    var_blocks: list
+    tasks: list
+    programs: list
+
+
+@dataclass(slots=True, eq=False)
+class Configuration(Node):
+    name: str
+    var_blocks: list
+    resources: list
+
+
+@dataclass(slots=True, eq=False)
+class SourceFile(Node):
+    """One parsed file. decls: POU, TypeDecl, VarBlock (top-level VAR_GLOBAL,
+    as a CODESYS GVL), Configuration."""
+    path: str
+    decls: list
+    # Statements outside any POU (a Schneider section pasted as is): wrapped
+    # by the parser into a PROGRAM named after the file.
+
+
+# ---------------------------------------------------------------- statements
+
+@dataclass(slots=True, eq=False)
+class Stmt(Node):
+    pragmas: list = field(default_factory=list, kw_only=True)
+
+
+@dataclass(slots=True, eq=False)
+class Assign(Stmt):
+    target: Expr
+    value: Expr
+    op: str = ":="  # ':=', 'S=', 'R=', 'REF='
+
+
+@dataclass(slots=True, eq=False)
+class CallStmt(Stmt):
+    call: Call
+
+
+@dataclass(slots=True, eq=False)
+class If(Stmt):
+    branches: list  # (cond Expr, body list)
+    else_body: Optional[list] = None
+
+
+@dataclass(slots=True, eq=False)
+class CaseRange(Node):
+    lo: Expr
+    hi: Expr
+
+
+@dataclass(slots=True, eq=False)
+class CaseBranch(Node):
+    labels: list  # Expr or CaseRange
+    body: list
+
+
+@dataclass(slots=True, eq=False)
+class Case(Stmt):
+    selector: Expr
+    branches: list  # CaseBranch
+    else_body: Optional[list] = None
+
+
+@dataclass(slots=True, eq=False)
+class For(Stmt):
+    var: Name
+    start: Expr
+    end: Expr
+    step: Optional[Expr]
+    body: list
+
+
+@dataclass(slots=True, eq=False)
+class While(Stmt):
+    cond: Expr
+    body: list
+
+
+@dataclass(slots=True, eq=False)
+class Repeat(Stmt):
+    body: list
+    cond: Expr
+
+
+@dataclass(slots=True, eq=False)
+class Exit(Stmt):
+    pass
+
+
+@dataclass(slots=True, eq=False)
+class Continue(Stmt):
+    pass
+
+
+@dataclass(slots=True, eq=False)
+class Return(Stmt):
+    pass
+
+
+@dataclass(slots=True, eq=False)
+class SetReset(Stmt):
+    """Schneider ``SET x;`` / ``RESET x;`` (kind 'SET' or 'RESET')."""
+    kind: str
+    target: Expr

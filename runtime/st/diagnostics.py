@@ -1,0 +1,108 @@
+"""Coded compiler diagnostics: file:line:column, message, source excerpt with a
+caret, and a hint. Every stage collects them instead of raising, so all the
+errors of a file are reported in one run.
+
+Code ranges (keep them stable, users search for them):
+  E001-E009  lexical and syntax (parser)
+  E010-E019  names and declarations
+  E020-E029  types and conversions
+  E030-E039  assignment targets
+  E040-E049  calls
+  E050-E059  arrays, indices, bit access
+  E060-E069  CASE
+  E070-E079  control flow
+  E080-E089  direct (located) addresses
+  E090-E099  configuration, resources, tasks
+  W1xx       warnings (same tens as the error they soften: W121 ~ E021)
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Iterable, Optional
+
+from .ast import Pos
+
+ERROR = "error"
+WARNING = "warning"
+
+
+@dataclass(slots=True)
+class Diagnostic:
+    code: str
+    message: str
+    pos: Pos
+    hint: Optional[str] = None
+    severity: str = ERROR
+
+    @property
+    def is_error(self) -> bool:
+        return self.severity == ERROR
+
+    def format(self, sources: Optional["SourceSet"] = None) -> str:
+        head = f"{self.pos.file}:{self.pos.line}:{self.pos.col}: {self.severity} {self.code}: {self.message}"
+        lines = [head]
+        text = sources.line(self.pos.file, self.pos.line) if sources else None
+        if text is not None:
+            shown = text.expandtabs(1).rstrip("\n")
+            lines.append(f"    {shown}")
+            start = max(self.pos.col, 1)
+            if self.pos.end_line == self.pos.line and self.pos.end_col > start:
+                width = self.pos.end_col - start
+            else:
+                width = 1
+            width = max(1, min(width, max(1, len(shown) - start + 1)))
+            lines.append("    " + " " * (start - 1) + "^" * width)
+        if self.hint:
+            lines.append(f"    hint: {self.hint}")
+        return "\n".join(lines)
+
+
+class SourceSet:
+    """The texts of the files being compiled, for excerpts in messages."""
+
+    def __init__(self) -> None:
+        self._texts: dict[str, list[str]] = {}
+
+    def add(self, path: str, text: str) -> None:
+        self._texts[path] = text.splitlines()
+
+    def line(self, path: str, line: int) -> Optional[str]:
+        lines = self._texts.get(path)
+        if lines is None or not (1 <= line <= len(lines)):
+            return None
+        return lines[line - 1]
+
+
+@dataclass
+class DiagnosticBag:
+    """Collects diagnostics of one compilation."""
+    items: list = field(default_factory=list)
+
+    def error(self, code: str, message: str, pos: Pos, hint: Optional[str] = None) -> None:
+        self.items.append(Diagnostic(code, message, pos, hint, ERROR))
+
+    def warning(self, code: str, message: str, pos: Pos, hint: Optional[str] = None) -> None:
+        self.items.append(Diagnostic(code, message, pos, hint, WARNING))
+
+    def extend(self, diags: Iterable[Diagnostic]) -> None:
+        self.items.extend(diags)
+
+    @property
+    def has_errors(self) -> bool:
+        return any(d.is_error for d in self.items)
+
+    def sorted(self) -> list:
+        return sorted(self.items, key=lambda d: (d.pos.file, d.pos.line, d.pos.col, d.code))
+
+
+class CompileError(Exception):
+    """Raised by the high-level API when a compilation has errors; carries
+    every diagnostic (errors and warnings) and the sources for formatting."""
+
+    def __init__(self, diagnostics: list, sources: Optional[SourceSet] = None) -> None:
+        self.diagnostics = diagnostics
+        self.sources = sources
+        super().__init__(self.format())
+
+    def format(self) -> str:
+        return "\n".join(d.format(self.sources) for d in self.diagnostics)

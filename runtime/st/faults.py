@@ -1,0 +1,84 @@
+"""Runtime faults of ST code, located in the ST source.
+
+Generated code raises ordinary Python exceptions (ZeroDivisionError from an
+integer division, RangeFault from a bounds check, AttributeError from a NULL
+reference ...). ``fault_from_exception`` turns any of them into an STFault by
+mapping the innermost frame of generated code back to the ST statement, so
+the engine never lets a Python exception escape.
+"""
+from __future__ import annotations
+
+from typing import Optional
+
+from .ast import Pos
+
+
+class STFault(Exception):
+    """A runtime fault with its ST location. kind is a short stable word
+    ('division', 'bounds', 'range', 'reference', 'watchdog', 'overflow',
+    'recursion', 'internal')."""
+
+    def __init__(self, kind: str, message: str, pos: Optional[Pos] = None) -> None:
+        self.kind = kind
+        self.message = message
+        self.pos = pos
+        super().__init__(str(self))
+
+    def __str__(self) -> str:
+        where = f"{self.pos}: " if self.pos else ""
+        return f"{where}runtime fault: {self.message}"
+
+
+class RangeFault(Exception):
+    """Raised by generated code for an array index or subrange violation."""
+
+    def __init__(self, kind: str, message: str) -> None:
+        self.kind = kind
+        super().__init__(message)
+
+
+class WatchdogFault(Exception):
+    """Raised by the cooperative watchdog check on a loop back-edge."""
+
+
+def out_of_bounds(index: int, lo: int, hi: int) -> int:
+    raise RangeFault("bounds", f"array index {index} is outside the bounds {lo}..{hi}")
+
+
+def out_of_range(value: int, lo: int, hi: int) -> int:
+    raise RangeFault("range", f"value {value} is outside the subrange {lo}..{hi}")
+
+
+def _classify(exc: BaseException) -> tuple:
+    if isinstance(exc, ZeroDivisionError):
+        return "division", "division by zero"
+    if isinstance(exc, RangeFault):
+        return exc.kind, str(exc)
+    if isinstance(exc, WatchdogFault):
+        return "watchdog", str(exc) or "watchdog: the cycle took too long (endless loop?)"
+    if isinstance(exc, (AttributeError, TypeError)) and "NoneType" in str(exc):
+        return "reference", "invalid reference: dereferenced a NULL REF_TO/POINTER"
+    if isinstance(exc, RecursionError):
+        return "recursion", "call depth exceeded (recursive calls are not supported)"
+    if isinstance(exc, OverflowError):
+        return "overflow", f"arithmetic overflow ({exc})"
+    return "internal", f"internal error {type(exc).__name__}: {exc}"
+
+
+def fault_from_exception(exc: BaseException, linemaps: dict) -> STFault:
+    """linemaps: generated-code filename -> {python line: ast.Pos}."""
+    if isinstance(exc, STFault):
+        return exc
+    kind, message = _classify(exc)
+    pos = None
+    tb = exc.__traceback__
+    while tb is not None:  # the innermost frame in generated code wins
+        lines = linemaps.get(tb.tb_frame.f_code.co_filename)
+        if lines is not None:
+            found = lines.get(tb.tb_lineno)
+            if found is not None:
+                pos = found
+        tb = tb.tb_next
+    fault = STFault(kind, message, pos)
+    fault.__cause__ = exc
+    return fault

@@ -1,0 +1,329 @@
+"""Parse, check, generate and load: the high-level API of the language core.
+
+    prog = compile_files(["plant.st"], profile="codesys")   # CompileError on errors
+    r = prog.runner("Main", cycle_time_ms=10)
+    r.run(100)                                              # STFault on a runtime fault
+
+The IEC standard function blocks (fblocks/iec/*.st) are compiled into every
+program; a user POU or type of the same name replaces the library one.
+"""
+from __future__ import annotations
+
+import builtins
+import itertools
+import time
+from importlib import resources
+from pathlib import Path
+from typing import Any, Optional
+
+from . import ast as A
+from . import refs, rtlib, values
+from . import types as T
+from .checker import Checker, CheckedProgram
+from .codegen import CodeGen, GeneratedModule
+from .diagnostics import CompileError, Diagnostic, DiagnosticBag, SourceSet
+from .faults import RangeFault, STFault, WatchdogFault, fault_from_exception, out_of_bounds, out_of_range
+from .parser import parse_source
+from .profile import Profile, get_profile
+from ..image.memory import ProcessImage
+
+_gen_counter = itertools.count(1)
+
+# The only builtins generated code may use.
+_BUILTINS = {name: getattr(builtins, name) for name in
+             ("range", "len", "abs", "max", "min", "float", "int", "property", "__build_class__",
+              "object", "bool")}
+
+
+def _library_sources() -> list:
+    """(path, text) of the ST libraries compiled into every program."""
+    out = []
+    for package in ("softplc.fblocks.iec",):
+        root = resources.files(package)
+        for entry in sorted(root.iterdir(), key=lambda p: p.name):
+            if entry.name.endswith(".st"):
+                out.append((f"<lib>/{package.rsplit('.', 1)[-1]}/{entry.name}", entry.read_text("utf-8")))
+    return out
+
+
+def _std_functions() -> dict:
+    from softplc.fblocks.iec.functions import STANDARD_FUNCTIONS
+    return STANDARD_FUNCTIONS
+
+
+def _read_sources(paths: list, texts: Optional[dict], diags: DiagnosticBag, sources: SourceSet) -> list:
+    files = []
+    for p in paths:
+        try:
+            text = Path(p).read_text(encoding="utf-8-sig")
+        except UnicodeDecodeError:
+            try:  # Windows tools still write Latin-1 ST files
+                text = Path(p).read_text(encoding="latin-1")
+            except OSError as exc:
+                diags.error("E000", f"cannot read the file: {exc.strerror or exc}", A.Pos(str(p), 1, 1))
+                continue
+        except OSError as exc:
+            diags.error("E000", f"cannot read the file: {exc.strerror or exc}", A.Pos(str(p), 1, 1))
+            continue
+        files.append((str(p), text))
+    for name, text in (texts or {}).items():
+        files.append((name, text))
+    parsed = []
+    for name, text in files:
+        sources.add(name, text)
+        parsed.append(parse_source(text, name, diags))
+    return parsed
+
+
+def _decl_names(sf: A.SourceFile) -> set:
+    return {d.name.upper() for d in sf.decls if isinstance(d, (A.POU, A.TypeDecl))}
+
+
+def _front_end(paths: list, profile: Profile, texts: Optional[dict]):
+    diags = DiagnosticBag()
+    sources = SourceSet()
+    user = _read_sources(paths, texts, diags, sources)
+    user_names = set().union(*(_decl_names(sf) for sf in user)) if user else set()
+    lib_diags = DiagnosticBag()
+    library = []
+    for name, text in _library_sources():
+        sources.add(name, text)
+        sf = parse_source(text, name, lib_diags)
+        sf.decls = [d for d in sf.decls
+                    if not (isinstance(d, (A.POU, A.TypeDecl)) and d.name.upper() in user_names)]
+        library.append(sf)
+    checker = Checker(profile, lib_diags if not user else diags, _std_functions())
+    checked = checker.run(library + user, library_files=tuple(sf.path for sf in library))
+    diags.extend(d for d in lib_diags.items if d.is_error)
+    return diags, sources, checked, user
+
+
+def check_files(paths: list, profile: str | Profile = "codesys", texts: Optional[dict] = None):
+    """Diagnostics of the files (errors and warnings, sorted) and their texts.
+    Never raises for problems in the sources."""
+    prof = get_profile(profile) if isinstance(profile, str) else profile
+    diags, sources, _, _ = _front_end(list(paths), prof, texts)
+    return diags.sorted(), sources
+
+
+def compile_files(paths: list, profile: str | Profile = "codesys", *,
+                  texts: Optional[dict] = None) -> "Program":
+    """Compile ST files (and/or in-memory texts: name -> source) into a
+    loadable Program. Raises CompileError with every diagnostic on errors."""
+    prof = get_profile(profile) if isinstance(profile, str) else profile
+    diags, sources, checked, user = _front_end(list(paths), prof, texts)
+    if diags.has_errors:
+        raise CompileError(diags.sorted(), sources)
+    gen = CodeGen(checked, prof).generate()
+    filename = f"<softplc-{next(_gen_counter)}>"
+    code = compile(gen.source, filename, "exec")
+    user_pous = {d.name: d.kind for sf in user for d in sf.decls if isinstance(d, A.POU)}
+    return Program(prof, checked, gen, code, filename, [d for d in diags.sorted() if not d.is_error],
+                   sources, user_pous)
+
+
+class ExecContext:
+    """What generated code reaches at run time: the task clock, the
+    watchdog, the process image and communication services."""
+
+    def __init__(self, image: ProcessImage, watchdog_s: float = 1.0) -> None:
+        self.now_ns = 0
+        self.image = image
+        self.watchdog_s = watchdog_s
+        self.deadline = float("inf")
+        self.comm = NoCommunication()
+
+    def time_ms(self) -> int:
+        return rtlib.wrap(T.TIME, self.now_ns // 1_000_000)
+
+    def time_ns(self) -> int:
+        return rtlib.wrap(T.LTIME, self.now_ns)
+
+    def arm_watchdog(self) -> None:
+        self.deadline = time.perf_counter() + self.watchdog_s
+
+    def check_watchdog(self) -> None:
+        if time.perf_counter() > self.deadline:
+            raise WatchdogFault(f"watchdog: the cycle ran longer than {self.watchdog_s * 1000:g} ms "
+                                "(endless loop?)")
+
+
+class NoCommunication:
+    """READ_VAR / WRITE_VAR without a configured bus: the exchange ends at
+    once with communication report 16#FF (network exchange error), as on a
+    PLC with no network module. The CANopen driver replaces this."""
+
+    def request(self, name: str, addr, obj: str, number: int, node: int, data, mgmt) -> bool:
+        mgmt[0] = mgmt[0] & ~1  # activity bit off: the exchange is over
+        mgmt[1] = (mgmt[1] & 0xFF00) | 0xFF
+        return False
+
+
+def _with_fields(obj, setters):
+    for attr, value in setters:
+        setattr(obj, attr, value)
+    return obj
+
+
+def _deref(ref):
+    if ref is None:
+        raise RangeFault("reference", "invalid reference: dereferenced a NULL REF_TO/POINTER")
+    return ref
+
+
+def _check_index(i: int, lo: int, hi: int) -> int:
+    if lo <= i <= hi:
+        return i - lo
+    return out_of_bounds(i, lo, hi)
+
+
+def _check_range(v: int, lo: int, hi: int) -> int:
+    if lo <= v <= hi:
+        return v
+    return out_of_range(v, lo, hi)
+
+
+def _for_range(start: int, end: int, step: int) -> range:
+    if step == 0:
+        raise RangeFault("range", "FOR loop with step 0 never ends")
+    return range(start, end + (1 if step > 0 else -1), step)
+
+
+class Program:
+    """A compiled set of POUs, ready to be instantiated by runners."""
+
+    def __init__(self, profile: Profile, checked: CheckedProgram, gen: GeneratedModule, code, filename: str,
+                 warnings: list, sources: SourceSet, user_pous: dict) -> None:
+        self.profile = profile
+        self.checked = checked
+        self.generated = gen
+        self.code = code
+        self.filename = filename
+        self.warnings: list[Diagnostic] = warnings
+        self.sources = sources
+        self.pous = user_pous
+        self.linemaps = {filename: gen.linemap}
+
+    @property
+    def python_source(self) -> str:
+        return self.generated.source
+
+    def pou(self, name: str):
+        for info in self.checked.pous:
+            if info.name.upper() == name.upper():
+                return info
+        raise KeyError(name)
+
+    def load(self, ctx: Optional[ExecContext] = None) -> dict:
+        """Execute the generated module in a fresh namespace bound to ctx;
+        returns the namespace (classes, functions, globals ``_G``)."""
+        ctx = ctx or ExecContext(ProcessImage(self.profile.addressing))
+        ns: dict[str, Any] = {
+            "__builtins__": _BUILTINS,
+            "__name__": "softplc_generated",
+            "_ctx": ctx,
+            "_f32": rtlib.f32, "_idiv": rtlib.idiv, "_imod": rtlib.imod, "_rdiv": rtlib.rdiv,
+            "_expt": rtlib.expt,
+            "_INF": float("inf"), "_NAN": float("nan"),
+            "_AttrRef": refs.AttrRef, "_ItemRef": refs.ItemRef, "_CellRef": refs.CellRef,
+            "_AccessorRef": refs.AccessorRef,
+            "_assign_into": values.assign_into, "_copy_value": values.copy_value,
+            "_with_fields": _with_fields, "_deref": _deref,
+            "_check_index": _check_index, "_check_range": _check_range, "_out_of_bounds": out_of_bounds,
+            "_for_range": _for_range,
+            "_time_ms": ctx.time_ms, "_time_ns": ctx.time_ns, "_watchdog": ctx.check_watchdog,
+            "_comm": lambda name, *args: ctx.comm.request(name, *args),
+        }
+        ns.update(self.generated.consts)
+        image = ctx.image
+        for idx, acc in self.generated.accessors.items():
+            if acc.type is None:
+                ns[f"_A{idx}t"] = image.table(acc.addr)
+            else:
+                get, set_ = image.accessor(acc.addr, acc.type)
+                ns[f"_A{idx}g"], ns[f"_A{idx}s"] = get, set_
+        exec(self.code, ns)
+        try:
+            ns["_G"] = ns["_Globals"]()
+        except Exception as exc:
+            raise fault_from_exception(exc, self.linemaps) from None
+        return ns
+
+    def runner(self, entry: str, cycle_time_ms: int = 10, ctx: Optional[ExecContext] = None) -> "Runner":
+        info = self.pou(entry)
+        if info.kind == "FUNCTION_BLOCK":
+            raise KeyError(f"{entry} is a FUNCTION_BLOCK; run a PROGRAM or a FUNCTION")
+        return Runner(self, info, cycle_time_ms, ctx)
+
+
+class Runner:
+    """Runs one PROGRAM (or calls one FUNCTION) cycle after cycle in virtual
+    time: the task clock advances by the cycle time after each cycle."""
+
+    def __init__(self, program: Program, info, cycle_time_ms: int, ctx: Optional[ExecContext]) -> None:
+        self.program = program
+        self.info = info
+        self.cycle_ns = int(cycle_time_ms * 1_000_000)
+        self.ctx = ctx or ExecContext(ProcessImage(program.profile.addressing))
+        self.ns = program.load(self.ctx)
+        self.instance = None
+        self.result = None
+        self.result_type = info.return_type
+        self.cycles = 0
+        if info.kind == "PROGRAM":
+            try:
+                self.instance = self.ns[info.pyname]()
+            except Exception as exc:
+                raise fault_from_exception(exc, program.linemaps) from None
+            self._call = self.instance
+        else:
+            fn = self.ns[info.pyname]
+            self._call = lambda: setattr(self, "result", fn())
+
+    @property
+    def now_ms(self) -> float:
+        return self.ctx.now_ns / 1_000_000
+
+    @property
+    def globals(self):
+        return self.ns["_G"]
+
+    def run(self, cycles: int = 1) -> None:
+        ctx = self.ctx
+        call = self._call
+        for _ in range(cycles):
+            ctx.arm_watchdog()
+            try:
+                call()
+            except Exception as exc:
+                raise fault_from_exception(exc, self.program.linemaps) from None
+            self.cycles += 1
+            ctx.now_ns += self.cycle_ns
+
+    def get(self, path: str):
+        """The value of a variable by its ST path, e.g. 'counter.CV' or 'G_speed'."""
+        parts = path.split(".")
+        holders = ((self.instance,) if self.instance is not None else ()) + (self.globals,)
+        cur = _MISSING
+        for holder in holders:
+            cur = _member(holder, parts[0])
+            if cur is not _MISSING:
+                break
+        if cur is _MISSING:
+            raise KeyError(path)
+        for part in parts[1:]:
+            cur = _member(cur, part)
+            if cur is _MISSING:
+                raise KeyError(path)
+        return cur
+
+
+_MISSING = object()
+
+
+def _member(obj, name: str):
+    """The value of the variable called name (case-insensitive) in obj."""
+    for st_name, attr, _ty, _section in getattr(type(obj), "_VARS_", ()):
+        if st_name.upper() == name.upper():
+            return getattr(obj, attr)
+    return _MISSING

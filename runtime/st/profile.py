@@ -1,0 +1,77 @@
+"""Dialect profiles: every difference between IEC, CODESYS/TwinCAT and
+Schneider Unity/Control Expert lives here, not in scattered flags.
+
+The checker, code generator and process image read the profile; nothing else
+decides dialect behaviour.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+
+@dataclass(frozen=True)
+class Profile:
+    name: str
+    # 'iec': byte-offset areas (%MW1 = bytes 2-3, %MD1 = bytes 4-7).
+    # 'schneider': word indices (%MD3200 overlaps %MW3200/%MW3201; %M are
+    # separate bits; %MW3250:X0 bit 0; %MW3250:4 a 4-word table).
+    addressing: str
+    # AND / OR evaluate their right operand only when needed. CODESYS and
+    # TwinCAT evaluate both (AND_THEN / OR_ELSE short-circuit); so does
+    # strict IEC here. Only matters when the right side calls a function.
+    short_circuit: bool
+    # An implicit narrowing conversion (DINT -> INT, LREAL -> REAL,
+    # signed <-> unsigned of the same size) is an 'error' or a 'warning'.
+    narrowing: str
+    # AND/OR/XOR/NOT on integer types act bit-wise (CODESYS allows it; IEC
+    # wants ANY_BIT).
+    bitwise_on_integers: bool
+    # Integers and bit strings of the same size mix freely (INT := WORD).
+    int_bits_mix: bool
+    # C-style 0x literals (the Schneider manual's examples use them).
+    c_hex_literals: bool
+    # Length of a STRING declared without one.
+    default_string_length: int = 80
+
+
+IEC = Profile(
+    name="iec",
+    addressing="iec",
+    short_circuit=False,
+    narrowing="error",
+    bitwise_on_integers=False,
+    int_bits_mix=False,
+    c_hex_literals=False,
+)
+
+CODESYS = Profile(
+    name="codesys",
+    addressing="iec",
+    short_circuit=False,
+    narrowing="warning",
+    bitwise_on_integers=True,
+    int_bits_mix=True,
+    c_hex_literals=False,
+)
+
+TWINCAT = replace(CODESYS, name="twincat")
+
+SCHNEIDER = Profile(
+    name="schneider",
+    addressing="schneider",
+    short_circuit=False,
+    narrowing="error",
+    bitwise_on_integers=True,
+    int_bits_mix=True,
+    c_hex_literals=True,
+)
+
+PROFILES = {p.name: p for p in (IEC, CODESYS, TWINCAT, SCHNEIDER)}
+DEFAULT = CODESYS
+
+
+def get_profile(name: str) -> Profile:
+    try:
+        return PROFILES[name.lower()]
+    except KeyError:
+        raise KeyError(f"unknown profile {name!r}; choose one of {', '.join(PROFILES)}") from None

@@ -1,0 +1,70 @@
+"""References to scalar storage: what REF(), ADR() and VAR_IN_OUT pass for an
+elementary variable. Aggregates (arrays, structs, FB instances) are Python
+objects already, so a reference to one is the object itself."""
+from __future__ import annotations
+
+
+class AttrRef:
+    """A variable held as an attribute of an instance (or of the globals)."""
+    __slots__ = ("obj", "attr")
+
+    def __init__(self, obj, attr: str) -> None:
+        self.obj = obj
+        self.attr = attr
+
+    def get(self):
+        return getattr(self.obj, self.attr)
+
+    def set(self, value) -> None:
+        setattr(self.obj, self.attr, value)
+
+    def __eq__(self, other) -> bool:
+        return isinstance(other, AttrRef) and other.obj is self.obj and other.attr == self.attr
+
+    def __hash__(self) -> int:
+        return hash((id(self.obj), self.attr))
+
+
+class ItemRef:
+    """An element of an array (a Python list, or an image table view)."""
+    __slots__ = ("seq", "index")
+
+    def __init__(self, seq, index: int) -> None:
+        self.seq = seq
+        self.index = index
+
+    def get(self):
+        return self.seq[self.index]
+
+    def set(self, value) -> None:
+        self.seq[self.index] = value
+
+    def __eq__(self, other) -> bool:
+        return isinstance(other, ItemRef) and other.seq is self.seq and other.index == self.index
+
+    def __hash__(self) -> int:
+        return hash((id(self.seq), self.index))
+
+
+class CellRef:
+    """A standalone cell: the local variable of a FUNCTION passed on by
+    reference, written back when the callee returns."""
+    __slots__ = ("value",)
+
+    def __init__(self, value) -> None:
+        self.value = value
+
+    def get(self):
+        return self.value
+
+    def set(self, value) -> None:
+        self.value = value
+
+
+class AccessorRef:
+    """A direct address in the process image, through its get/set pair."""
+    __slots__ = ("get", "set")
+
+    def __init__(self, getter, setter) -> None:
+        self.get = getter
+        self.set = setter

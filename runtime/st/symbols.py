@@ -1,0 +1,77 @@
+"""What the checker knows about declared things, shared with the code
+generator: variables, POUs and resolved calls. Python names are derived here
+from validated identifiers only (``pyname``), never from raw source text."""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from typing import Any, Optional
+
+from .types import FBType, Type
+
+_IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
+
+
+def pyname(prefix: str, st_name: str) -> str:
+    """A Python identifier for an ST name: a fixed prefix plus the lower-cased
+    name (ST names are case-insensitive). Refuses anything that is not a plain
+    identifier, so no source text can reach generated code unchecked."""
+    if not _IDENT.match(st_name):
+        raise ValueError(f"not an identifier: {st_name!r}")
+    return f"{prefix}{st_name.lower()}"
+
+
+@dataclass(eq=False)
+class VarSymbol:
+    name: str
+    section: str  # VAR, VAR_INPUT, VAR_OUTPUT, VAR_IN_OUT, VAR_TEMP, VAR_GLOBAL, VAR_EXTERNAL, VAR_STAT, RETURN
+    type: Type
+    pos: Any
+    pyname: str
+    owner: Optional["POUInfo"] = None  # None for a global
+    constant: bool = False
+    retain: bool = False
+    persistent: bool = False
+    location: Any = None  # ast.LocatedAddress
+    init: Any = None  # AST initialiser
+    init_value: Any = None  # evaluated initial value plan (see checker.init_value)
+    const_value: Any = None  # compile-time value of a CONSTANT
+    boxed: bool = False  # FUNCTION local whose reference is taken: kept in a CellRef
+
+    @property
+    def is_global(self) -> bool:
+        return self.owner is None
+
+
+@dataclass(eq=False)
+class POUInfo:
+    name: str
+    kind: str  # PROGRAM, FUNCTION, FUNCTION_BLOCK
+    node: Any  # ast.POU
+    pyname: str
+    vars: dict = field(default_factory=dict)  # UPPER -> VarSymbol, declaration order
+    return_type: Optional[Type] = None
+    result: Optional[VarSymbol] = None  # the FUNCTION's result variable
+    fbtype: Optional[FBType] = None
+    library: bool = False  # from fblocks (not the user's files)
+    native: Any = None  # Python implementation of an external POU
+
+    def params(self, *sections: str) -> list:
+        return [v for v in self.vars.values() if v.section in sections]
+
+
+@dataclass(eq=False)
+class CallInfo:
+    """A checked call. kind: 'function' (user FUNCTION), 'fb' (instance
+    call), 'std' (standard library function), 'builtin' (TIME, LTIME, REF,
+    ADR, SIZEOF), 'comm' (Schneider READ_VAR / WRITE_VAR)."""
+    kind: str
+    pou: Optional[POUInfo] = None
+    func: Any = None  # StdFunc for 'std'; builtin name for 'builtin' and 'comm'
+    instance: Any = None  # the instance expression for 'fb'
+    inputs: list = field(default_factory=list)  # (VarSymbol, Expr) in call order
+    inouts: list = field(default_factory=list)  # (VarSymbol, Expr lvalue)
+    outputs: list = field(default_factory=list)  # (VarSymbol, Expr lvalue, negated)
+    args: list = field(default_factory=list)  # std/builtin: argument Exprs in parameter order
+    rtypes: tuple = ()  # std typed: (result type, arg types...)
+    param_types: list = field(default_factory=list)  # std: the type each arg is converted to

@@ -1,0 +1,389 @@
+"""ST types and how their values are represented in Python.
+
+Value representation (the contract between checker, code generator, the
+runtime library and the JSON encoder):
+
+  BOOL                                  bool
+  SINT..LINT, USINT..ULINT, BYTE..LWORD int, wrapped to the type on store
+  REAL                                  float, rounded to IEEE-754 binary32 on store
+  LREAL                                 float
+  TIME                                  int milliseconds, signed 32 bit (CODESYS TIME
+                                        resolution; IEC allows negative durations)
+  LTIME                                 int nanoseconds, signed 64 bit
+  DATE, DT                              int seconds since 1970-01-01 (DATE at midnight)
+  TOD                                   int milliseconds since midnight
+  LDATE, LDT                            int nanoseconds since 1970-01-01
+  LTOD                                  int nanoseconds since midnight
+  STRING[n] / WSTRING[n]                str, truncated to n characters on store
+  enumeration                           int (the enumerator's value)
+  subrange                              int, checked on store
+  ARRAY                                 list (nested list per dimension), bounds kept here
+  STRUCT, FUNCTION_BLOCK                an instance of the generated class
+  REF_TO / POINTER TO                   None (NULL) or a reference object
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Optional
+
+
+class Type:
+    name: str = "?"
+
+    # classification helpers; overridden where true
+    is_elementary = False
+    is_array = False
+    is_struct = False
+    is_fb = False
+    is_enum = False
+    is_ref = False
+    is_string = False
+
+    @property
+    def is_aggregate(self) -> bool:
+        """Values that are Python objects mutated in place (value semantics
+        are kept by copying into the target on assignment)."""
+        return self.is_array or self.is_struct or self.is_fb
+
+    def __str__(self) -> str:
+        return self.name
+
+
+# ---------------------------------------------------------------- elementary
+
+# categories
+BOOLCAT = "bool"
+SIGNED = "signed"
+UNSIGNED = "unsigned"
+BITS = "bits"
+REALCAT = "real"
+DURATION = "duration"
+DATECAT = "date"
+TODCAT = "tod"
+DTCAT = "dt"
+
+
+@dataclass(frozen=True, eq=False)
+class ElementaryType(Type):
+    name: str
+    category: str
+    bits: int
+    # integer range (ints and bit strings); for time types the raw int range
+    lo: Optional[int] = None
+    hi: Optional[int] = None
+    # unit of the int representation of time/date types, in nanoseconds
+    unit_ns: int = 0
+
+    is_elementary = True
+
+    @property
+    def is_integer(self) -> bool:
+        return self.category in (SIGNED, UNSIGNED)
+
+    @property
+    def is_bits(self) -> bool:
+        return self.category == BITS
+
+    @property
+    def is_intlike(self) -> bool:
+        """Stored as a wrapped int: integers and bit strings (not BOOL)."""
+        return self.category in (SIGNED, UNSIGNED, BITS)
+
+    @property
+    def is_real(self) -> bool:
+        return self.category == REALCAT
+
+    @property
+    def is_bool(self) -> bool:
+        return self.category == BOOLCAT
+
+    @property
+    def is_time(self) -> bool:
+        return self.category in (DURATION, DATECAT, TODCAT, DTCAT)
+
+
+def _signed(name: str, bits: int) -> ElementaryType:
+    return ElementaryType(name, SIGNED, bits, -(1 << (bits - 1)), (1 << (bits - 1)) - 1)
+
+
+def _unsigned(name: str, bits: int, cat: str = UNSIGNED) -> ElementaryType:
+    return ElementaryType(name, cat, bits, 0, (1 << bits) - 1)
+
+
+BOOL = ElementaryType("BOOL", BOOLCAT, 1, 0, 1)
+SINT = _signed("SINT", 8)
+INT = _signed("INT", 16)
+DINT = _signed("DINT", 32)
+LINT = _signed("LINT", 64)
+USINT = _unsigned("USINT", 8)
+UINT = _unsigned("UINT", 16)
+UDINT = _unsigned("UDINT", 32)
+ULINT = _unsigned("ULINT", 64)
+BYTE = _unsigned("BYTE", 8, BITS)
+WORD = _unsigned("WORD", 16, BITS)
+DWORD = _unsigned("DWORD", 32, BITS)
+LWORD = _unsigned("LWORD", 64, BITS)
+REAL = ElementaryType("REAL", REALCAT, 32)
+LREAL = ElementaryType("LREAL", REALCAT, 64)
+TIME = ElementaryType("TIME", DURATION, 32, -(1 << 31), (1 << 31) - 1, unit_ns=1_000_000)
+LTIME = ElementaryType("LTIME", DURATION, 64, -(1 << 63), (1 << 63) - 1, unit_ns=1)
+DATE = ElementaryType("DATE", DATECAT, 32, 0, (1 << 32) - 1, unit_ns=1_000_000_000)
+TOD = ElementaryType("TIME_OF_DAY", TODCAT, 32, 0, (1 << 32) - 1, unit_ns=1_000_000)
+DT = ElementaryType("DATE_AND_TIME", DTCAT, 32, 0, (1 << 32) - 1, unit_ns=1_000_000_000)
+LDATE = ElementaryType("LDATE", DATECAT, 64, 0, (1 << 64) - 1, unit_ns=1)
+LTOD = ElementaryType("LTIME_OF_DAY", TODCAT, 64, 0, (1 << 64) - 1, unit_ns=1)
+LDT = ElementaryType("LDATE_AND_TIME", DTCAT, 64, 0, (1 << 64) - 1, unit_ns=1)
+
+ELEMENTARY: dict[str, ElementaryType] = {
+    t.name: t
+    for t in (BOOL, SINT, INT, DINT, LINT, USINT, UINT, UDINT, ULINT, BYTE, WORD, DWORD,
+              LWORD, REAL, LREAL, TIME, LTIME, DATE, TOD, DT, LDATE, LTOD, LDT)
+}
+# Short spellings.
+ELEMENTARY["TOD"] = TOD
+ELEMENTARY["DT"] = DT
+ELEMENTARY["LTOD"] = LTOD
+ELEMENTARY["LDT"] = LDT
+
+
+# ---------------------------------------------------------------- strings
+
+@dataclass(frozen=True, eq=False)
+class StringType(Type):
+    length: int
+    wide: bool = False
+
+    is_string = True
+
+    @property
+    def name(self) -> str:  # type: ignore[override]
+        base = "WSTRING" if self.wide else "STRING"
+        return f"{base}[{self.length}]"
+
+    def same(self, other: "Type") -> bool:
+        return isinstance(other, StringType) and other.wide == self.wide
+
+
+# ---------------------------------------------------------------- derived
+
+@dataclass(eq=False)
+class EnumType(Type):
+    name: str
+    values: dict  # UPPER name -> int, in declaration order
+    spelled: dict  # UPPER name -> name as declared
+    base: ElementaryType = INT
+    is_enum = True
+
+    def name_of(self, value: int) -> Optional[str]:
+        for k, v in self.values.items():
+            if v == value:
+                return self.spelled[k]
+        return None
+
+
+@dataclass(eq=False)
+class SubrangeType(Type):
+    base: ElementaryType
+    lo: int
+    hi: int
+
+    @property
+    def name(self) -> str:  # type: ignore[override]
+        return f"{self.base.name}({self.lo}..{self.hi})"
+
+
+@dataclass(eq=False)
+class AliasType(Type):
+    """TYPE Speed : REAL; END_TYPE -- resolved away by ``resolve``."""
+    name: str
+    target: Type
+
+
+@dataclass(eq=False)
+class ArrayType(Type):
+    dims: list  # [(lo, hi)], or [None] per '*' dimension
+    elem: Type
+    is_array = True
+
+    @property
+    def name(self) -> str:  # type: ignore[override]
+        rng = ", ".join("*" if d is None else f"{d[0]}..{d[1]}" for d in self.dims)
+        return f"ARRAY[{rng}] OF {self.elem.name}"
+
+    @property
+    def variable_length(self) -> bool:
+        return any(d is None for d in self.dims)
+
+
+@dataclass(eq=False)
+class StructField:
+    name: str  # as declared
+    type: Type
+    init: Any = None  # AST initialiser or None
+    pyname: str = ""
+    init_value: Any = None  # evaluated by the checker (see Checker.init_value)
+
+
+@dataclass(eq=False)
+class StructType(Type):
+    name: str
+    fields: dict = field(default_factory=dict)  # UPPER -> StructField
+    pyclass: str = ""  # name of the generated class
+    is_struct = True
+
+
+@dataclass(eq=False)
+class RefType(Type):
+    target: Type
+    pointer: bool = False
+    is_ref = True
+
+    @property
+    def name(self) -> str:  # type: ignore[override]
+        return ("POINTER TO " if self.pointer else "REF_TO ") + self.target.name
+
+
+@dataclass(eq=False)
+class FBType(Type):
+    """A FUNCTION_BLOCK (or PROGRAM) type; pou is the checker's POU info."""
+    name: str
+    pou: Any = None
+    is_fb = True
+
+
+@dataclass(frozen=True, eq=False)
+class SchneiderAddrType(Type):
+    name: str = "ADR#"
+
+
+@dataclass(frozen=True, eq=False)
+class NullType(Type):
+    name: str = "NULL"
+
+
+ADDR = SchneiderAddrType()
+NULL = NullType()
+
+
+def resolve(t: Type) -> Type:
+    """Follow aliases."""
+    while isinstance(t, AliasType):
+        t = t.target
+    return t
+
+
+def base_elementary(t: Type) -> Optional[ElementaryType]:
+    """The elementary type a value of t is stored as (enum -> its base,
+    subrange -> its base), or None for strings and aggregates."""
+    t = resolve(t)
+    if isinstance(t, ElementaryType):
+        return t
+    if isinstance(t, SubrangeType):
+        return t.base
+    if isinstance(t, EnumType):
+        return t.base
+    return None
+
+
+# ---------------------------------------------------------------- generics
+
+INTEGERS = (SINT, INT, DINT, LINT, USINT, UINT, UDINT, ULINT)
+BITSTRINGS = (BOOL, BYTE, WORD, DWORD, LWORD)
+REALS = (REAL, LREAL)
+
+
+def is_generic_member(t: Type, generic: str) -> bool:
+    """Whether type t belongs to the IEC generic type ``generic``
+    (ANY, ANY_DERIVED, ANY_ELEMENTARY, ANY_MAGNITUDE, ANY_NUM, ANY_REAL,
+    ANY_INT, ANY_SIGNED, ANY_UNSIGNED, ANY_BIT, ANY_STRING, ANY_DATE,
+    ANY_DURATION, ANY_CHARS)."""
+    t = resolve(t)
+    g = generic.upper()
+    if g == "ANY":
+        return True
+    if isinstance(t, SubrangeType):
+        t = t.base
+    if g == "ANY_DERIVED":
+        return not t.is_elementary and not t.is_string
+    if g in ("ANY_STRING", "ANY_CHARS"):
+        return t.is_string
+    if g == "ANY_ELEMENTARY":
+        return t.is_elementary or t.is_string
+    if not isinstance(t, ElementaryType):
+        return False
+    c = t.category
+    if g == "ANY_MAGNITUDE":
+        return c in (SIGNED, UNSIGNED, REALCAT, DURATION)
+    if g == "ANY_NUM":
+        return c in (SIGNED, UNSIGNED, REALCAT)
+    if g == "ANY_REAL":
+        return c == REALCAT
+    if g == "ANY_INT":
+        return c in (SIGNED, UNSIGNED)
+    if g == "ANY_SIGNED":
+        return c == SIGNED
+    if g == "ANY_UNSIGNED":
+        return c == UNSIGNED
+    if g == "ANY_BIT":
+        return c in (BOOLCAT, BITS)
+    if g == "ANY_DATE":
+        return c in (DATECAT, TODCAT, DTCAT)
+    if g == "ANY_DURATION":
+        return c == DURATION
+    raise ValueError(f"unknown generic type {generic}")
+
+
+GENERICS = ("ANY", "ANY_DERIVED", "ANY_ELEMENTARY", "ANY_MAGNITUDE", "ANY_NUM", "ANY_REAL",
+            "ANY_INT", "ANY_SIGNED", "ANY_UNSIGNED", "ANY_BIT", "ANY_STRING", "ANY_DATE",
+            "ANY_DURATION", "ANY_CHARS")
+
+
+# ---------------------------------------------------------------- implicit conversion
+# IEC 61131-3 (3rd ed.) Figure 11: implicit conversions that lose nothing.
+_WIDEN: dict[str, tuple] = {
+    "SINT": ("INT", "DINT", "LINT", "REAL", "LREAL"),
+    "INT": ("DINT", "LINT", "REAL", "LREAL"),
+    "DINT": ("LINT", "LREAL"),
+    "LINT": (),
+    "USINT": ("UINT", "UDINT", "ULINT", "INT", "DINT", "LINT", "REAL", "LREAL"),
+    "UINT": ("UDINT", "ULINT", "DINT", "LINT", "REAL", "LREAL"),
+    "UDINT": ("ULINT", "LINT", "LREAL"),
+    "ULINT": (),
+    "BOOL": ("BYTE", "WORD", "DWORD", "LWORD"),
+    "BYTE": ("WORD", "DWORD", "LWORD"),
+    "WORD": ("DWORD", "LWORD"),
+    "DWORD": ("LWORD",),
+    "LWORD": (),
+    "REAL": ("LREAL",),
+    "LREAL": (),
+    "TIME": ("LTIME",),
+    "LTIME": (),
+    "DATE": ("LDATE",),
+    "TIME_OF_DAY": ("LTIME_OF_DAY",),
+    "DATE_AND_TIME": ("LDATE_AND_TIME",),
+    "LDATE": (),
+    "LTIME_OF_DAY": (),
+    "LDATE_AND_TIME": (),
+}
+
+
+def widens_to(src: ElementaryType, dst: ElementaryType) -> bool:
+    """True when src converts implicitly and losslessly to dst (IEC Fig. 11)."""
+    return src is dst or dst.name in _WIDEN.get(src.name, ())
+
+
+def int_fits(t: ElementaryType, value: int) -> bool:
+    return t.lo is not None and t.lo <= value <= t.hi
+
+
+def smallest_common(a: ElementaryType, b: ElementaryType) -> Optional[ElementaryType]:
+    """The smallest elementary type both widen to (for a binary operation),
+    or None if there is none."""
+    if widens_to(a, b):
+        return b
+    if widens_to(b, a):
+        return a
+    for cand in (INT, DINT, LINT, UINT, UDINT, ULINT, WORD, DWORD, LWORD, REAL, LREAL, LTIME):
+        if widens_to(a, cand) and widens_to(b, cand):
+            return cand
+    return None

@@ -1,0 +1,314 @@
+"""The softplc command, run as a subprocess the way a user runs it."""
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[1]
+CONVEYOR = REPO / "st_programs" / "conveyor.st"
+
+GOOD = """\
+PROGRAM Counter
+VAR
+    n : INT;
+    total : DINT;
+    running : BOOL;
+    ratio : REAL;
+    t0 : TIME;
+    up : TIME;
+END_VAR
+n := n + 1;
+total := total + n;
+running := n < 3;
+ratio := INT_TO_REAL(n) / 4.0;
+IF n = 1 THEN
+    t0 := TIME();
+END_IF
+up := TIME() - t0;
+END_PROGRAM
+"""
+
+BROKEN = """\
+PROGRAM Broken
+VAR
+    x : INT;
+END_VAR
+x := undeclared + 1;
+END_PROGRAM
+"""
+
+WARNS = """\
+PROGRAM Narrow
+VAR
+    big : DINT := 5;
+    small : INT;
+END_VAR
+small := big;
+END_PROGRAM
+"""
+
+DIV_ZERO = """\
+PROGRAM Divide
+VAR
+    a : INT := 10;
+    b : INT;
+    c : INT;
+END_VAR
+c := a / b;
+END_PROGRAM
+"""
+
+FUNC = """\
+FUNCTION Twice : INT
+VAR_INPUT
+    x : INT := 21;
+END_VAR
+Twice := x * 2;
+END_FUNCTION
+"""
+
+TWO_PROGRAMS = """\
+PROGRAM First
+VAR a : INT; END_VAR
+a := 1;
+END_PROGRAM
+PROGRAM Second
+VAR b : INT; END_VAR
+b := 2;
+END_PROGRAM
+"""
+
+
+def softplc(*args, cwd=None):
+    """Run `python -m softplc.runtime.cli ARGS` (the same main() as the
+    console script), without stdin, as CI does."""
+    env = dict(os.environ, PYTHONIOENCODING="utf-8")
+    env.pop("SOFTPLC_DEBUG", None)
+    return subprocess.run([sys.executable, "-m", "softplc.runtime.cli", *map(str, args)],
+                          capture_output=True, text=True, stdin=subprocess.DEVNULL,
+                          cwd=cwd, env=env, timeout=120)
+
+
+@pytest.fixture
+def st(tmp_path):
+    def write(name, text):
+        path = tmp_path / name
+        path.write_text(text, encoding="utf-8")
+        return path
+    return write
+
+
+def no_traceback(proc):
+    assert "Traceback" not in proc.stderr and "Traceback" not in proc.stdout
+
+
+# ---------------------------------------------------------------- check
+
+def test_check_ok(st):
+    proc = softplc("check", st("good.st", GOOD))
+    assert proc.returncode == 0, proc.stderr
+    assert "0 errors, 0 warnings" in proc.stderr
+
+
+def test_check_broken_file(st):
+    path = st("broken.st", BROKEN)
+    proc = softplc("check", path)
+    assert proc.returncode == 1
+    no_traceback(proc)
+    first = proc.stderr.splitlines()[0]
+    assert first.startswith(f"{path}:5:6: error E")     # file:line:col: error CODE
+    assert "undeclared" in proc.stderr
+    assert "x := undeclared + 1;" in proc.stderr        # the source excerpt
+    assert "1 error" in proc.stderr.splitlines()[-1]
+
+
+def test_check_reports_warnings_but_succeeds(st):
+    proc = softplc("check", st("narrow.st", WARNS), "--profile", "codesys")
+    assert proc.returncode == 0
+    assert ": warning W" in proc.stderr
+    assert proc.stderr.splitlines()[-1].startswith("0 errors, ")
+
+
+def test_check_profile_changes_severity(st):
+    proc = softplc("check", st("narrow.st", WARNS), "--profile", "iec")
+    assert proc.returncode == 1
+    assert ": error E" in proc.stderr
+
+
+def test_check_syntax_error(st):
+    proc = softplc("check", st("syntax.st", "PROGRAM p\nVAR x : INT; END_VAR\nx := ;\nEND_PROGRAM\n"))
+    assert proc.returncode == 1
+    no_traceback(proc)
+    assert "syntax.st:3:" in proc.stderr
+
+
+def test_check_binary_garbage(st, tmp_path):
+    path = tmp_path / "garbage.st"
+    path.write_bytes(b"\xff\xfe\x00\x81PROGRAM\x00")
+    proc = softplc("check", path)
+    assert proc.returncode in (1, 2)
+    no_traceback(proc)
+    assert "garbage.st" in proc.stderr
+
+
+def test_missing_file_is_a_usage_error(tmp_path):
+    proc = softplc("check", tmp_path / "nope.st")
+    assert proc.returncode == 2
+    no_traceback(proc)
+    assert "nope.st" in proc.stderr
+
+
+def test_unknown_profile_is_a_usage_error(st):
+    proc = softplc("check", st("good.st", GOOD), "--profile", "siemens")
+    assert proc.returncode == 2
+    assert "siemens" in proc.stderr
+
+
+# ---------------------------------------------------------------- compile
+
+def test_emit_python_to_stdout_compiles(st):
+    proc = softplc("compile", st("good.st", GOOD), "--emit-python")
+    assert proc.returncode == 0, proc.stderr
+    compile(proc.stdout, "good.py", "exec")
+
+
+def test_emit_python_to_directory(st, tmp_path):
+    out = tmp_path / "out"
+    proc = softplc("compile", st("good.st", GOOD), "--emit-python", "-o", out)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout == ""
+    compile((out / "good.py").read_text(encoding="utf-8"), "good.py", "exec")
+
+
+def test_compile_errors_exit_1(st):
+    proc = softplc("compile", st("broken.st", BROKEN), "--emit-python")
+    assert proc.returncode == 1
+    no_traceback(proc)
+    assert "broken.st:5:6" in proc.stderr
+    assert proc.stdout == ""
+
+
+def test_output_dir_needs_emit_python(st, tmp_path):
+    proc = softplc("compile", st("good.st", GOOD), "-o", tmp_path)
+    assert proc.returncode == 2
+
+
+# ---------------------------------------------------------------- exec
+
+def test_exec_program(st):
+    proc = softplc("exec", st("good.st", GOOD), "--cycles", "4")
+    assert proc.returncode == 0, proc.stderr
+    out = json.loads(proc.stdout)
+    assert out["n"] == 4
+    assert out["total"] == 1 + 2 + 3 + 4
+    assert out["running"] is False
+    assert out["ratio"] == 1.0
+    assert out["up"].upper().startswith("T#")
+
+
+def test_exec_default_is_one_cycle(st):
+    out = json.loads(softplc("exec", st("good.st", GOOD)).stdout)
+    assert out["n"] == 1
+
+
+@pytest.mark.parametrize("cycle_time, up", [
+    (None, "T#20ms"), ("10ms", "T#20ms"), ("T#1s", "T#2s"), ("250", "T#500ms"),
+    ("1m", "T#2m"), ("time#1s500ms", "T#3s"),
+])
+def test_exec_cycle_time(st, cycle_time, up):
+    # Three cycles: the clock moves two cycle times from the first to the last.
+    options = [] if cycle_time is None else ["--cycle-time", cycle_time]
+    proc = softplc("exec", st("good.st", GOOD), "--cycles", "3", *options)
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads(proc.stdout)["up"] == up
+
+
+@pytest.mark.parametrize("bad", ["fast", "500us", "0ms", "-5ms", "1.5ms"])
+def test_exec_bad_cycle_time(st, bad):
+    proc = softplc("exec", st("good.st", GOOD), "--cycle-time", bad)
+    assert proc.returncode == 2, bad
+    no_traceback(proc)
+    assert "--cycle-time" in proc.stderr
+
+
+def test_exec_function(st):
+    proc = softplc("exec", st("twice.st", FUNC), "--entry", "twice")
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads(proc.stdout) == {"return": 42}
+
+
+def test_exec_needs_entry_without_single_program(st):
+    proc = softplc("exec", st("twice.st", FUNC))
+    assert proc.returncode == 2
+    proc = softplc("exec", st("two.st", TWO_PROGRAMS))
+    assert proc.returncode == 2
+    assert "First" in proc.stderr and "Second" in proc.stderr
+    proc = softplc("exec", st("two.st", TWO_PROGRAMS), "--entry", "SECOND")
+    assert proc.returncode == 0
+    assert json.loads(proc.stdout) == {"b": 2}
+
+
+def test_exec_unknown_entry(st):
+    proc = softplc("exec", st("good.st", GOOD), "--entry", "NoSuchThing")
+    assert proc.returncode == 2
+    no_traceback(proc)
+    assert "NoSuchThing" in proc.stderr
+
+
+def test_exec_runtime_fault_exits_3_with_st_location(st):
+    path = st("divide.st", DIV_ZERO)
+    proc = softplc("exec", path)
+    assert proc.returncode == 3
+    no_traceback(proc)
+    assert f"{path}:7:" in proc.stderr
+    assert "division by zero" in proc.stderr
+    assert proc.stdout == ""
+
+
+def test_exec_compile_error_exits_1(st):
+    proc = softplc("exec", st("broken.st", BROKEN))
+    assert proc.returncode == 1
+    no_traceback(proc)
+
+
+def test_exec_example_plant():
+    proc = softplc("exec", CONVEYOR, "--cycles", "200", cwd=REPO)
+    assert proc.returncode == 0, proc.stderr
+    out = json.loads(proc.stdout)
+    assert out["batches"] == 1
+    assert out["state"] == "Idle"
+    assert out["partCounter"]["CV"] == out["batchSize"] == 8
+    assert out["motor"]["starts"] == 1
+    assert out["motor"]["run"] is False
+    assert all(t.upper().startswith("T#") for t in out["partAt"])
+
+
+# ---------------------------------------------------------------- the command itself
+
+def test_usage_errors():
+    assert softplc().returncode in (0, 2)          # bare command: help
+    proc = softplc("frobnicate")
+    assert proc.returncode == 2
+    proc = softplc("exec")                         # no FILE
+    assert proc.returncode == 2
+    no_traceback(proc)
+
+
+def test_help_and_version():
+    proc = softplc("--help")
+    assert proc.returncode == 0
+    for command in ("check", "compile", "exec"):
+        assert command in proc.stdout
+    assert softplc("--version").returncode == 0
+
+
+def test_console_script_is_installed():
+    script = Path(sys.executable).with_name("softplc")
+    if not script.exists():
+        pytest.skip("console script not installed next to this Python")
+    proc = subprocess.run([str(script), "--help"], capture_output=True, text=True,
+                          stdin=subprocess.DEVNULL, timeout=60)
+    assert proc.returncode == 0 and "exec" in proc.stdout
