@@ -202,25 +202,38 @@ def exec_cmd(files, entry: Optional[str], cycles: int, cycle_time: int, profile:
     """Run a PROGRAM for N cycles in virtual time and print its variables as
     one JSON object; for a FUNCTION print {"return": value}."""
     from .st.faults import STFault
-    from .st.valuejson import encode_instance, encode_value
 
     prog = _compile(files, profile)
     _report(prog.warnings, prog.sources)
     entry = _pick_entry(prog.pous, entry)
     try:
         runner = prog.runner(entry, cycle_time_ms=cycle_time)
-    except KeyError:
-        raise click.UsageError(f"no PROGRAM or FUNCTION named {entry!r}") from None
-    try:
         runner.run(cycles)
-    except STFault as e:
+    except KeyError as e:
+        # The loader's message says more than the bare name (e.g. "is a FUNCTION_BLOCK").
+        detail = e.args[0] if e.args and e.args[0] != entry else f"no PROGRAM or FUNCTION named {entry!r}"
+        raise click.UsageError(str(detail)) from None
+    except STFault as e:  # also raised by initialisation, before the first cycle
         _echo_err(str(e))
         sys.exit(EXIT_FAULT)
-    if runner.instance is not None:
-        result = encode_instance(runner.instance)
-    else:
-        result = {"return": encode_value(runner.result_type, runner.result)}
-    click.echo(json.dumps(result, indent=2, ensure_ascii=False))
+    click.echo(json.dumps(_exec_result(runner), indent=2, ensure_ascii=False))
+
+
+def _exec_result(runner) -> dict:
+    """What `exec` prints: a PROGRAM's variables (and the global variables,
+    under the key VAR_GLOBAL, which no variable can be called), or a
+    FUNCTION's return value."""
+    from .st.valuejson import encode_instance, encode_value
+
+    if runner.instance is None:
+        if runner.result is None:  # --cycles 0: the function was never called
+            return {"return": None}
+        return {"return": encode_value(runner.result_type, runner.result)}
+    result = encode_instance(runner.instance)
+    globals_ = encode_instance(runner.globals)
+    if globals_:
+        result["VAR_GLOBAL"] = globals_
+    return result
 
 
 def _pick_entry(pous: dict, entry: Optional[str]) -> str:

@@ -251,6 +251,35 @@ def test_exec_needs_entry_without_single_program(st):
     assert json.loads(proc.stdout) == {"b": 2}
 
 
+GLOBALS = """\
+VAR_GLOBAL
+    gCount : INT;
+END_VAR
+FUNCTION_BLOCK Blinker
+VAR_OUTPUT on : BOOL; END_VAR
+on := NOT on;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR_EXTERNAL gCount : INT; END_VAR
+VAR b : Blinker; END_VAR
+gCount := gCount + 1;
+b();
+END_PROGRAM
+"""
+
+
+def test_exec_shows_globals_and_nested_blocks(st):
+    proc = softplc("exec", st("globals.st", GLOBALS), "--cycles", "3")
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads(proc.stdout) == {"b": {"on": True}, "VAR_GLOBAL": {"gCount": 3}}
+
+
+def test_exec_function_block_entry_is_a_usage_error(st):
+    proc = softplc("exec", st("globals.st", GLOBALS), "--entry", "Blinker")
+    assert proc.returncode == 2
+    assert "FUNCTION_BLOCK" in proc.stderr
+
+
 def test_exec_unknown_entry(st):
     proc = softplc("exec", st("good.st", GOOD), "--entry", "NoSuchThing")
     assert proc.returncode == 2

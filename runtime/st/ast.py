@@ -263,6 +263,8 @@ class VarBlock(Node):
     constant: bool = False
     retain: bool = False
     persistent: bool = False
+    # {attribute 'qualified_only'} before a VAR_GLOBAL block (CODESYS GVL).
+    pragmas: list = field(default_factory=list)
 
 
 @dataclass(slots=True, eq=False)

@@ -93,6 +93,7 @@ class Checker:
         self.structs: list = []
         self.configs: list = []
         self.library_files: set = set()
+        self._inited: set = set()  # ids of VarSymbols whose initial value is checked
 
     # ================================================================ driver
 
@@ -117,6 +118,8 @@ class Checker:
             for f in st.fields.values():
                 if f.init is not None:
                     f.init_value = self.init_value(f.type, f.init, _Scope(None), f"{st.name}.{f.name}")
+                else:
+                    f.init_value = T.declared_default(f.type)
         for sym in self.globals.values():
             self._check_var_init(sym, _Scope(None))
         for pou in self.pous.values():
@@ -200,6 +203,14 @@ class Checker:
                     return None
                 ty = T.AliasType(decl.name, target)
             self.types[key] = ty
+            if decl.init is not None:
+                plan = self.init_value(ty, decl.init, _Scope(None), decl.name)
+                if isinstance(ty, T.EnumType):
+                    ty.default = plan
+                elif isinstance(ty, T.AliasType):
+                    ty.init_value = plan
+                else:
+                    self.d.error("E024", f"a STRUCT takes its initial values in its fields", decl.init.pos)
             return ty
         finally:
             self._resolving.discard(key)
@@ -233,8 +244,10 @@ class Checker:
             nxt += 1
         return et
 
-    def type_of(self, spec: A.TypeSpec) -> Optional[T.Type]:
-        """Resolve a type as written; reports and returns None when unknown."""
+    def type_of(self, spec: A.TypeSpec, scope: Optional[_Scope] = None) -> Optional[T.Type]:
+        """Resolve a type as written; reports and returns None when unknown.
+        scope decides which CONSTANTs bounds and lengths may use."""
+        scope = scope or _Scope(None)
         if isinstance(spec, A.NamedType):
             key = spec.name.upper()
             if key in T.ELEMENTARY:
@@ -262,7 +275,7 @@ class Checker:
         if isinstance(spec, A.StringTypeSpec):
             n = self.profile.default_string_length
             if spec.length is not None:
-                v = self._const_int(spec.length, _Scope(None), "a string length")
+                v = self._const_int(spec.length, scope, "a string length")
                 if v is not None:
                     if v < 1 or v > 65535:
                         self.d.error("E022", f"string length {v} is not within 1..65535", spec.length.pos)
@@ -270,7 +283,7 @@ class Checker:
                         n = v
             return T.StringType(n, spec.wide)
         if isinstance(spec, A.ArrayTypeSpec):
-            elem = self.type_of(spec.elem)
+            elem = self.type_of(spec.elem, scope)
             if elem is None:
                 return None
             dims = []
@@ -278,8 +291,8 @@ class Checker:
                 if rng is None:
                     dims.append(None)
                     continue
-                lo = self._const_int(rng[0], _Scope(None), "an array bound")
-                hi = self._const_int(rng[1], _Scope(None), "an array bound")
+                lo = self._const_int(rng[0], scope, "an array bound")
+                hi = self._const_int(rng[1], scope, "an array bound")
                 if lo is None or hi is None:
                     return None
                 if hi < lo:
@@ -292,13 +305,13 @@ class Checker:
                 dims.append((lo, hi))
             return T.ArrayType(dims, elem)
         if isinstance(spec, A.SubrangeTypeSpec):
-            base = self.type_of(spec.base)
+            base = self.type_of(spec.base, scope)
             be = T.base_elementary(base) if base is not None else None
             if be is None or not be.is_integer:
                 self.d.error("E020", "a subrange needs an integer base type", spec.pos)
                 return None
-            lo = self._const_int(spec.lo, _Scope(None), "a subrange bound")
-            hi = self._const_int(spec.hi, _Scope(None), "a subrange bound")
+            lo = self._const_int(spec.lo, scope, "a subrange bound")
+            hi = self._const_int(spec.hi, scope, "a subrange bound")
             if lo is None or hi is None:
                 return None
             if not (T.int_fits(be, lo) and T.int_fits(be, hi)) or hi < lo:
@@ -306,7 +319,7 @@ class Checker:
                 return None
             return T.SubrangeType(be, lo, hi)
         if isinstance(spec, A.RefTypeSpec):
-            target = self.type_of(spec.target)
+            target = self.type_of(spec.target, scope)
             if target is None:
                 return None
             return T.RefType(target, spec.pointer)
@@ -322,7 +335,7 @@ class Checker:
     # ================================================================ declarations
 
     def _make_var(self, decl: A.VarDecl, block: A.VarBlock, owner: Optional[POUInfo]) -> Optional[VarSymbol]:
-        ty = self.type_of(decl.type)
+        ty = self.type_of(decl.type, _Scope(owner))
         if ty is None:
             return None
         section = block.kind
@@ -339,6 +352,10 @@ class Checker:
                         location=decl.location, init=decl.init)
         if decl.location is not None:
             self._check_location_type(sym)
+        if sym.constant:
+            # a CONSTANT may size the arrays and strings declared after it
+            self._check_var_init(sym, _Scope(owner))
+            self._inited.add(id(sym))
         return sym
 
     def _declare_globals(self, block: A.VarBlock) -> None:
@@ -431,8 +448,10 @@ class Checker:
     # ================================================================ initial values
 
     def _check_var_init(self, sym: VarSymbol, scope: _Scope) -> None:
+        if id(sym) in self._inited:
+            return
         if sym.init is None:
-            sym.init_value = None
+            sym.init_value = T.declared_default(sym.type)
             if sym.constant:
                 sym.const_value = self.default_value(sym.type)
             return
@@ -448,7 +467,7 @@ class Checker:
         if isinstance(ty, T.StringType):
             return ""
         if isinstance(ty, T.EnumType):
-            return next(iter(ty.values.values()), 0)
+            return ty.default if ty.default is not None else next(iter(ty.values.values()), 0)
         if isinstance(ty, T.SubrangeType):
             return ty.lo if not ty.lo <= 0 <= ty.hi else 0
         return None
@@ -762,6 +781,12 @@ class Checker:
         """Report unless a value of type src may be stored into dst
         implicitly (IEC 61131-3 Fig. 11, softened by the profile)."""
         s, d = T.resolve(src), T.resolve(dst)
+        de0 = T.base_elementary(d)
+        if isinstance(e.const, int) and not isinstance(e.const, bool) and de0 is not None \
+                and de0.is_intlike and self._is_flexible(e) and not T.int_fits(de0, e.const):
+            self.d.error("E022", f"{e.const} does not fit {de0.name} ({de0.lo}..{de0.hi})", e.pos,
+                         "use a larger type or a typed literal that wraps explicitly")
+            return False
         if self._same_type(s, d):
             return True
         if isinstance(d, T.RefType):
@@ -1004,9 +1029,9 @@ class Checker:
         if key == "NULL":
             e.const = None
             return T.NULL
-        names = list(self.globals)
+        names = [g.name for g in self.globals.values()]
         if pou is not None:
-            names += list(pou.vars)
+            names += [v.name for v in pou.vars.values()]
         self.d.error("E010", f"unknown name '{e.name}'", e.pos, self._suggest(key, names)
                      or "declare it in a VAR block")
         return None
@@ -1225,8 +1250,10 @@ class Checker:
         elif isinstance(l, T.StringType) and isinstance(r, T.StringType):
             ok = l.wide == r.wide
         elif isinstance(l, T.RefType) or isinstance(r, T.RefType):
-            ok = e.op in ("=", "<>") and (isinstance(l, (T.RefType, T.NullType)) and
-                                          isinstance(r, (T.RefType, T.NullType)))
+            # r = 0 / r <> 0 is how CODESYS and TwinCAT test for NULL
+            def refish(t, side):
+                return isinstance(t, (T.RefType, T.NullType)) or side.const == 0
+            ok = e.op in ("=", "<>") and refish(l, e.left) and refish(r, e.right)
         else:
             le, re_ = T.base_elementary(l), T.base_elementary(r)
             if le is not None and re_ is not None:
@@ -1556,7 +1583,8 @@ class Checker:
             names = [p[0].upper() for p in params]
             if func.extensible:  # IN1, IN2, ... beyond the fixed ones
                 base = names[-1].rstrip("0123456789")
-                i = len(names)
+                digits = names[-1][len(base):]
+                i = int(digits) + 1 if digits else len(names)
                 while True:
                     nxt = f"{base}{i}"
                     if nxt in by_name and nxt not in names:
@@ -1622,6 +1650,9 @@ class Checker:
                 var = spec.split(":", 1)[0]
                 if var not in bindings:
                     bindings[var] = t  # only literals: their own type
+        for var, bound in list(bindings.items()):
+            gen = next(sp.split(":", 1)[1] for sp in specs if sp.startswith(var + ":"))
+            bindings[var] = self._generic_fit(bound, gen)
         # 3) check membership and convertibility
         param_types: list = []
         for i, (a, spec, t) in enumerate(zip(args, specs, arg_types)):
@@ -1636,6 +1667,7 @@ class Checker:
                 self.check_convertible(arg_types[i], want, a, f"the argument of {func.name}")
                 param_types.append(want)
             elif spec.upper() in T.GENERICS:
+                t = self._generic_fit(t, spec)
                 if not T.is_generic_member(t, spec):
                     self.d.error("E020", f"{func.name}: argument {i + 1} is {t}, expected {spec}", a.pos)
                     return None
@@ -1669,6 +1701,21 @@ class Checker:
             except Exception:  # not foldable; evaluated at run time
                 e.const = None
         return rty
+
+    def _generic_fit(self, t: T.Type, generic: str) -> T.Type:
+        """The type an argument of type t takes for a generic parameter:
+        itself when it is a member; an integer widens into ANY_REAL (SQRT(i),
+        as CODESYS accepts); a bit string counts as ANY_INT where the profile
+        mixes them (SHL(w, BYTE#2))."""
+        if T.is_generic_member(t, generic):
+            return t
+        te = T.base_elementary(t)
+        g = generic.upper()
+        if te is not None and te.is_intlike and g == "ANY_REAL":
+            return T.REAL if T.widens_to(te, T.REAL) else T.LREAL
+        if te is not None and te.is_bits and g in ("ANY_INT", "ANY_UNSIGNED") and self.profile.int_bits_mix:
+            return {8: T.USINT, 16: T.UINT, 32: T.UDINT, 64: T.ULINT}[te.bits]
+        return t
 
     _FOLDABLE_PREFIXES = ("ABS", "SQRT", "MAX", "MIN", "LIMIT", "SEL", "MUX", "SHL", "SHR", "ROL", "ROR",
                           "LEN", "CONCAT", "LEFT", "RIGHT", "MID", "TRUNC", "EXPT", "MOVE")

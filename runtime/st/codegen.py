@@ -193,6 +193,9 @@ class CodeGen:
     # ------------------------------------------------------------ initial values
 
     def _default_code(self, ty: T.Type) -> str:
+        declared = T.declared_default(ty)
+        if declared is not None:
+            return self._aggregate_expr(ty, declared) if T.resolve(ty).is_aggregate else _literal(declared)
         t = T.resolve(ty)
         if isinstance(t, T.ElementaryType):
             return "False" if t.is_bool else ("0.0" if t.is_real else "0")

@@ -828,10 +828,7 @@ def _time_from_ns_unit(src_unit: int, d: ElementaryType) -> Callable[[int], int]
         f = du // src_unit
 
         def scale_down(v: int) -> int:
-            q = v // f
-            if q < 0 and q * f != v:  # toward zero
-                q += 1
-            return w(q)
+            return w(idiv(v, f))  # toward zero
         return scale_down
     if c == DATECAT:
         per_day = _DAY_NS // du
@@ -898,7 +895,7 @@ def make_converter(src: Type, dst: Type) -> Callable:
                                       time/date as literal ('T#1s500ms')
       STRING -> x                     parses the literal forms of x (blanks
                                       around allowed, 'INT#5', '16#FF',
-                                      'T#1s'), invalid -> 0 / FALSE / ''
+                                      'T#1s'); invalid text gives 0 / FALSE
       WSTRING -> STRING               characters beyond Latin-1 -> '?'
     """
     sk, s = _classify(src)

@@ -28,7 +28,7 @@ from typing import Any, Optional
 
 
 class Type:
-    name: str = "?"
+    # every subclass provides ``name`` (a field or a property)
 
     # classification helpers; overridden where true
     is_elementary = False
@@ -172,6 +172,7 @@ class EnumType(Type):
     values: dict  # UPPER name -> int, in declaration order
     spelled: dict  # UPPER name -> name as declared
     base: ElementaryType = INT
+    default: Optional[int] = None  # TYPE E : (a, b) := b; -- else the first value
     is_enum = True
 
     def name_of(self, value: int) -> Optional[str]:
@@ -194,9 +195,11 @@ class SubrangeType(Type):
 
 @dataclass(eq=False)
 class AliasType(Type):
-    """TYPE Speed : REAL; END_TYPE -- resolved away by ``resolve``."""
+    """TYPE Speed : REAL := 1.5; END_TYPE -- resolved away by ``resolve``;
+    init_value is the type's own initial value plan, if declared."""
     name: str
     target: Type
+    init_value: Any = None
 
 
 @dataclass(eq=False)
@@ -270,6 +273,18 @@ def resolve(t: Type) -> Type:
     while isinstance(t, AliasType):
         t = t.target
     return t
+
+
+def declared_default(t: Type) -> Any:
+    """The initial value plan a derived type declares for itself (the
+    nearest alias with one, or an enumeration's default), else None."""
+    while isinstance(t, AliasType):
+        if t.init_value is not None:
+            return t.init_value
+        t = t.target
+    if isinstance(t, EnumType):
+        return t.default
+    return None
 
 
 def base_elementary(t: Type) -> Optional[ElementaryType]:

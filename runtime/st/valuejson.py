@@ -106,8 +106,11 @@ def _shortest_binary32(x: float) -> float:
         return x
     for digits in range(1, 10):  # 9 digits always round-trip a binary32
         y = float(f"{x:.{digits}g}")
-        if struct.pack("<f", y) == want:
-            return y
+        try:
+            if struct.pack("<f", y) == want:
+                return y
+        except OverflowError:  # rounded up past the largest REAL (4e38)
+            continue
     return x
 
 

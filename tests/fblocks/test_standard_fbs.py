@@ -284,3 +284,21 @@ def test_bistables(fb, set_name, reset_name, both):
     assert b.step(s=True, r=True)["q"] is both
     b.step(s=False, r=False)
     assert b["q"] is both                    # keeps what it had
+
+
+def test_user_pou_replaces_a_standard_block():
+    text = """
+    FUNCTION_BLOCK TON
+    VAR_INPUT IN : BOOL; END_VAR
+    VAR_OUTPUT Q : BOOL; END_VAR
+    Q := NOT IN;
+    END_FUNCTION_BLOCK
+    PROGRAM p
+    VAR t : TON; q : BOOL; END_VAR
+    t(IN := FALSE); q := t.Q;
+    END_PROGRAM
+    """
+    prog = compile_files([], texts={"shadow.st": text})
+    r = prog.runner("p")
+    r.run(1)
+    assert {n: getattr(r.instance, py) for n, py, _t, _s in type(r.instance)._VARS_}["q"] is True

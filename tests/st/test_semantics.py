@@ -83,7 +83,7 @@ def test_array_with_non_zero_lower_bound_and_two_dimensions():
                "FOR i := -2 TO 2 DO FOR j := 1 TO 3 DO a[i, j] := i * 10 + j; END_FOR END_FOR\n"
                "s := a[-2, 1] + a[2, 3];")
     r = run_st(src)
-    assert r.get("s") == -21 + 23
+    assert r.get("s") == -19 + 23
     assert r.get("a")[0][0] == -19 and r.get("a")[4][2] == 23
 
 
@@ -261,3 +261,11 @@ def test_watchdog_stops_an_endless_loop():
         r.run(1)
     assert err.value.kind == "watchdog" and err.value.pos.line == 5
     assert r.get("n") > 0
+
+
+def test_standard_functions_accept_what_codesys_accepts():
+    src = prog("i : INT := 16; r : REAL; s : DINT; w : WORD := 16#0081; n : BYTE := 1; m : INT;",
+               "r := SQRT(i); s := ADD(IN1 := 1, IN2 := 2, IN3 := 3); w := ROL(w, n);"
+               " m := MUX(K := 2, IN0 := 10, IN1 := 20, IN2 := 30);")
+    r = run_st(src)
+    assert r.get("r") == 4.0 and r.get("s") == 6 and r.get("w") == 0x0102 and r.get("m") == 30

@@ -1,0 +1,1207 @@
+"""Structured Text source -> ``ast.SourceFile``.
+
+    sf = parse_source(text, path, diags)
+
+Never raises: every problem becomes a coded diagnostic in ``diags``
+(E001 syntax, E002 invalid character, E003 invalid literal, E004
+unterminated comment/string/pragma, E005 structural, E009 internal) and the
+result holds whatever could be parsed.
+
+How it works:
+  1. ``_strip_comments`` blanks out comments (nested ``(* *)``, ``//``,
+     ``/* */``) and pragmas ``{...}`` with spaces, keeping every line and
+     column where it was, and collects the pragmas.
+  2. lark (LALR, contextual lexer) parses; the ``_Builder`` callbacks run
+     inside the parser and build the ``ast`` nodes directly (no parse tree).
+  3. The token loop is ours (lark's interactive parser), so a syntax error
+     does not end the parse: ``_Parse._recover`` inserts a missing token or
+     skips to a synchronising token (';', END_*, THEN, ...) and pops the
+     parser stack until it fits, then parsing goes on. Errors within three
+     tokens of the previous one are not reported (they are its echoes).
+  4. Pragmas are attached to the item that follows them.
+"""
+from __future__ import annotations
+
+import difflib
+import os
+import re
+import threading
+from bisect import bisect_left
+from pathlib import Path
+from typing import Optional
+
+from lark import Lark, Token
+from lark.exceptions import UnexpectedCharacters, UnexpectedToken
+from lark.lexer import PatternStr
+from lark.parsers.lalr_analysis import Shift
+
+from . import ast
+from .diagnostics import DiagnosticBag
+from .literals import (LiteralError, parse_based, parse_c_hex, parse_hash_literal, parse_int,
+                       parse_real, parse_string)
+
+__all__ = ["parse_source"]
+
+MAX_ERRORS = 100
+# Parser stack depth (~3-5 entries per nesting level) beyond which the input
+# is refused: later stages walk the tree recursively.
+MAX_STACK = 1200
+
+# Keywords reserved everywhere: the lexer never turns them into names, so a
+# misplaced END_IF is reported as such. The others (SET, RESET, AT, ON, WITH,
+# TASK, RETAIN, CONSTANT, ...) are keywords only where the grammar expects
+# them and ordinary names elsewhere (rs(SET := x), VAR on : BOOL; END_VAR).
+_RESERVED = frozenset("""
+    PROGRAM END_PROGRAM FUNCTION END_FUNCTION FUNCTION_BLOCK END_FUNCTION_BLOCK TYPE END_TYPE
+    STRUCT END_STRUCT ARRAY STRING WSTRING REF_TO VAR VAR_INPUT VAR_OUTPUT VAR_IN_OUT VAR_GLOBAL
+    VAR_EXTERNAL VAR_TEMP VAR_STAT VAR_CONFIG END_VAR END_CONFIGURATION END_RESOURCE
+    IF THEN ELSIF ELSE END_IF CASE OF END_CASE FOR TO BY DO END_FOR WHILE END_WHILE REPEAT UNTIL
+    END_REPEAT EXIT CONTINUE RETURN AND AND_THEN OR OR_ELSE XOR NOT MOD TRUE FALSE
+""".split())
+
+
+class _PostLex:
+    """Only here for ``always_accept``: the names and reserved keywords every
+    lexer state must know."""
+
+    def __init__(self, always_accept: tuple) -> None:
+        self.always_accept = always_accept
+
+    def process(self, stream):
+        return stream
+
+
+# ---------------------------------------------------------------- comments and pragmas
+
+_COMMENT_START = re.compile(r"\(\*|\*\)|/\*|//|\{|'|\"")
+_NESTED = re.compile(r"\(\*|\*\)")
+_STRING_AT = {"'": re.compile(r"'(?:[^'$\n]|\$[^\n])*'"), '"': re.compile(r'"(?:[^"$\n]|\$[^\n])*"')}
+_NOT_NEWLINE = re.compile(r"[^\n]")
+
+
+def _line_col(text: str, offset: int) -> tuple:
+    line = text.count("\n", 0, offset) + 1
+    return line, offset - (text.rfind("\n", 0, offset) + 1) + 1
+
+
+class _Pragma:
+    __slots__ = ("text", "line", "col", "end_line", "end_col")
+
+    def __init__(self, text: str, start: tuple, end: tuple) -> None:
+        self.text = text
+        self.line, self.col = start
+        self.end_line, self.end_col = end
+
+
+def _strip_comments(text: str, error) -> tuple:
+    """Return (text with comments and pragmas blanked, [_Pragma]).
+    ``error(code, message, offset, end_offset, hint)`` reports a problem."""
+    if not any(c in text for c in "(/{*"):
+        return text, []
+    pieces, pragmas = [], []
+    done = pos = 0  # text[:done] is in pieces; scanning resumes at pos
+    while True:
+        m = _COMMENT_START.search(text, pos)
+        if m is None:
+            break
+        start, what = m.start(), m.group()
+        if what in ("'", '"'):
+            s = _STRING_AT[what].match(text, start)
+            pos = s.end() if s else start + 1  # the lexer reports unterminated strings
+            continue
+        if what == "*)":
+            error("E001", "'*)' without a matching '(*'", start, start + 2,
+                  "remove it, or open the comment with '(*'")
+            end = start + 2
+        elif what == "//":
+            nl = text.find("\n", start)
+            end = len(text) if nl < 0 else nl
+        elif what == "/*":
+            close = text.find("*/", start + 2)
+            if close < 0:
+                error("E004", "unterminated comment: '/*' is never closed", start, start + 2, "close it with '*/'")
+                end = len(text)
+            else:
+                end = close + 2
+        elif what == "{":
+            close = text.find("}", start + 1)
+            if close < 0:
+                error("E004", "unterminated pragma: '{' is never closed", start, start + 1, "close it with '}'")
+                end = len(text)
+            else:
+                end = close + 1
+                pragmas.append(_Pragma(text[start + 1:close].strip(), _line_col(text, start), _line_col(text, end)))
+        else:  # "(*", nested
+            depth, p = 1, start + 2
+            while depth:
+                n = _NESTED.search(text, p)
+                if n is None:
+                    break
+                depth += 1 if n.group() == "(*" else -1
+                p = n.end()
+            if depth:
+                error("E004", "unterminated comment: '(*' is never closed", start, start + 2,
+                      "(* *) comments nest: every '(*' inside needs its own '*)'")
+                end = len(text)
+            else:
+                end = p
+        pieces.append(text[done:start])
+        pieces.append(_NOT_NEWLINE.sub(" ", text[start:end]))
+        done = pos = end
+    pieces.append(text[done:])
+    return "".join(pieces), pragmas
+
+
+# ---------------------------------------------------------------- located addresses
+
+_LOCATED = re.compile(r"%([IQM])([XBWDL]?)(?:([\d.]+)(?::(X?)(\d+))?|\*)", re.I | re.A)
+
+
+def parse_located(text: str) -> ast.LocatedAddress:
+    """``%IX0.3`` / ``%MW3250:X0`` / ``%MW3250:4`` / ``%I*`` (token text)."""
+    m = _LOCATED.fullmatch(text)
+    area, size, idx, bit_x, num = m.groups()
+    indices = tuple(int(i) for i in idx.split(".")) if idx else ()
+    bit = table = None
+    if num is not None:
+        if bit_x:
+            bit = int(num)
+        else:
+            table = int(num)
+    return ast.LocatedAddress(area.upper(), size.upper(), indices, bit, table, text)
+
+
+def _identifier_from_path(path: str) -> str:
+    """The PROGRAM name for a file of bare statements: 'ltmr/write-sdo.st' -> 'write_sdo'."""
+    stem = re.sub(r"[^A-Za-z0-9_]+", "_", Path(path).stem)
+    stem = re.sub(r"_{2,}", "_", stem).strip("_")
+    if not stem:
+        return "main"
+    return "_" + stem if stem[0].isdigit() else stem
+
+
+# ---------------------------------------------------------------- AST builder
+
+_BINARY_OPS = {"OR": "OR", "OR_ELSE": "OR_ELSE", "XOR": "XOR", "AND": "AND", "AMP": "AND",
+               "AND_THEN": "AND_THEN", "EQ": "=", "NE": "<>", "LT": "<", "GT": ">", "LE": "<=",
+               "GE": ">=", "PLUS": "+", "MINUS": "-", "STAR": "*", "SLASH": "/", "MOD": "MOD",
+               "POW": "**"}
+_UNARY_OPS = {"MINUS": "-", "PLUS": "+", "NOT": "NOT"}
+_ASSIGN_OPS = {"ASSIGN": ":=", "S_ASSIGN": "S=", "R_ASSIGN": "R=", "REF_ASSIGN": "REF="}
+_NAME_TYPES = frozenset(("NAME", "SET", "RESET"))
+
+
+def _start(x) -> tuple:
+    if isinstance(x, Token):
+        return x.line, x.column
+    return x.pos.line, x.pos.col
+
+
+def _end(x) -> tuple:
+    if isinstance(x, Token):
+        return x.end_line, x.end_column
+    return x.pos.end_line, x.pos.end_col
+
+
+class _Builder:
+    """lark callbacks (run inside the parser): children -> ast nodes.
+
+    One instance serves every parse (lark binds the callbacks once); ``begin``
+    gives it the state of the current parse, which ``_LOCK`` keeps unique."""
+
+    file = "<source>"
+    ctx: "_Parse"
+
+    def begin(self, ctx: "_Parse") -> None:
+        self.ctx = ctx
+        self.file = ctx.path
+
+    # -- positions
+    def _tpos(self, t: Token) -> ast.Pos:
+        return ast.Pos(self.file, t.line, t.column, t.end_line, t.end_column)
+
+    def _span(self, first, last) -> ast.Pos:
+        return ast.Pos(self.file, *_start(first), *_end(last))
+
+    def _literal_error(self, e: LiteralError, tok: Token) -> None:
+        self.ctx.report("E003", e.message, self._tpos(tok), e.hint, always=True)
+
+    # -- top level
+    def source(self, c):
+        decls = []
+        for d in c:
+            if isinstance(d, list):
+                decls.extend(d)
+            else:
+                decls.append(d)
+                if isinstance(d, ast.VarBlock) and d.kind != "VAR_GLOBAL":
+                    self.ctx.report("E005", f"{d.kind} block outside a POU", d.pos,
+                                    "only VAR_GLOBAL blocks (a global variable list) stand on their own")
+        return ast.SourceFile(self.ctx.path, decls, pos=ast.Pos(self.file, 1, 1))
+
+    def bare_source(self, c):
+        body = [s for s in c if s is not None]
+        pou = ast.POU("PROGRAM", _identifier_from_path(self.ctx.path), [], body,
+                      pos=self._span(body[0], body[-1]) if body else ast.Pos(self.file, 1, 1))
+        return ast.SourceFile(self.ctx.path, [pou], pos=ast.Pos(self.file, 1, 1))
+
+    def _pou(self, kind: str, c) -> ast.POU:
+        var_blocks = [x for x in c if isinstance(x, ast.VarBlock)]
+        body = next(x for x in c if isinstance(x, list))
+        ret = c[2] if kind == "FUNCTION" else None
+        pou = ast.POU(kind, c[1].value, var_blocks, body, return_type=ret, pos=self._span(c[0], c[-1]))
+        # Where the header ends: a pragma before this point belongs to the POU.
+        first = var_blocks[0] if var_blocks else body[0] if body else c[-1]
+        self.ctx.pou_headers.append((pou, _start(c[0]), _start(first)))
+        self.ctx.items.append(pou)
+        return pou
+
+    def program(self, c):
+        return self._pou("PROGRAM", c)
+
+    def function(self, c):
+        return self._pou("FUNCTION", c)
+
+    def function_block(self, c):
+        return self._pou("FUNCTION_BLOCK", c)
+
+    def fb_inherit(self, c):
+        self.ctx.diags.warning("W101", f"{c[0].value.upper()} is ignored: inheritance and interfaces are not supported",
+                               self._span(c[0], c[-1]),
+                               "declare the inherited variables in this block instead")
+        return None
+
+    def body(self, c):
+        return [s for s in c if s is not None]
+
+    # -- declarations
+    def var_block(self, c):
+        kind = c[0].type
+        quals = {t.type for t in c if isinstance(t, Token)}
+        decls = []
+        for d in c:
+            if isinstance(d, list):
+                decls.extend(d)
+        if kind != "VAR_CONFIG":
+            for d in decls:
+                if "." in d.name:
+                    self.ctx.report("E005", f"'{d.name}': a qualified name is only allowed in VAR_CONFIG", d.pos,
+                                    "declare a plain name here")
+        blk = ast.VarBlock(kind, decls, constant="CONSTANT" in quals,
+                           retain="RETAIN" in quals or "PERSISTENT" in quals,
+                           persistent="PERSISTENT" in quals, pos=self._span(c[0], c[-1]))
+        self.ctx.items.append(blk)
+        return blk
+
+    def var_name(self, c):
+        return ".".join(t.value for t in c), c[0], c[-1]
+
+    def var_decl(self, c):
+        # var_name tuples..., LOCATED|None, type, init|None
+        *names, loc, spec, init = c
+        location = parse_located(loc.value) if loc is not None else None
+        end = init if init is not None else spec
+        out = []
+        for name, first, _ in names:
+            d = ast.VarDecl(name, spec, init, location, pos=self._span(first, end))
+            self.ctx.items.append(d)
+            out.append(d)
+        return out
+
+    def unnamed_var_decl(self, c):
+        loc, spec, init = c
+        # 'AT %QW1 : WORD;': the address is the name (it cannot clash with an identifier).
+        d = ast.VarDecl(loc.value, spec, init, parse_located(loc.value),
+                        pos=self._span(loc, init if init is not None else spec))
+        self.ctx.items.append(d)
+        return [d]
+
+    def type_block(self, c):
+        return [d for d in c if isinstance(d, ast.TypeDecl)]
+
+    def type_decl(self, c):
+        name, spec = c[0], c[1]
+        init = c[2] if len(c) > 2 else None
+        d = ast.TypeDecl(name.value, spec, init, pos=self._span(name, init if init is not None else spec))
+        self.ctx.items.append(d)
+        return d
+
+    def named_type(self, c):
+        return ast.NamedType(c[0].value, pos=self._tpos(c[0]))
+
+    def string_type(self, c):
+        return ast.StringTypeSpec(c[0].type == "WSTRING", c[2] if len(c) > 1 else None,
+                                  pos=self._span(c[0], c[-1]))
+
+    def array_type(self, c):
+        ranges = [r for r in c[2:-1] if not isinstance(r, Token)]
+        return ast.ArrayTypeSpec(ranges, c[-1], pos=self._span(c[0], c[-1]))
+
+    def array_range(self, c):
+        return None if len(c) == 1 else (c[0], c[1])
+
+    def ref_type(self, c):
+        return ast.RefTypeSpec(c[-1], pointer=c[0].type == "POINTER", pos=self._span(c[0], c[-1]))
+
+    def subrange_type(self, c):
+        base = ast.NamedType(c[0].value, pos=self._tpos(c[0]))
+        return ast.SubrangeTypeSpec(base, c[2], c[3], pos=self._span(c[0], c[-1]))
+
+    def enum_type(self, c):
+        return ast.EnumTypeSpec([v for v in c if isinstance(v, tuple)], pos=self._span(c[0], c[-1]))
+
+    def based_enum_type(self, c):
+        base = ast.NamedType(c[0].value, pos=self._tpos(c[0]))
+        return ast.EnumTypeSpec([v for v in c if isinstance(v, tuple)], base, pos=self._span(c[0], c[-1]))
+
+    def typed_enum_type(self, c):
+        return ast.EnumTypeSpec([v for v in c if isinstance(v, tuple)], c[-1], pos=self._span(c[0], c[-1]))
+
+    def enum_value(self, c):
+        return c[0].value, c[1], self._span(c[0], c[1] if c[1] is not None else c[0])
+
+    def struct_type(self, c):
+        members = []
+        for d in c[1:-1]:
+            members.extend(d)
+        return ast.StructTypeSpec(members, pos=self._span(c[0], c[-1]))
+
+    def array_init(self, c):
+        items = [x if isinstance(x, tuple) else (None, x) for x in c[1:-1]]
+        return ast.ArrayInit(items, pos=self._span(c[0], c[-1]))
+
+    def repeat_item(self, c):
+        count = self.int_lit(c[:1])
+        return count, c[2]
+
+    def struct_init(self, c):
+        return ast.StructInit(list(c[1:-1]), pos=self._span(c[0], c[-1]))
+
+    def field_init(self, c):
+        name, init = c
+        return name.value, init, self._span(name, init)
+
+    # -- configuration
+    def configuration(self, c):
+        blocks = [x for x in c if isinstance(x, ast.VarBlock)]
+        resources = [x for x in c if isinstance(x, ast.Resource)]
+        tasks = [x for x in c if isinstance(x, ast.TaskDecl)]
+        programs = [x for x in c if isinstance(x, ast.ProgramConfig)]
+        if tasks or programs:
+            # A configuration without RESOURCE has one implicit resource.
+            resources.append(ast.Resource(c[1].value, None, [], tasks, programs, pos=self._span(c[0], c[-1])))
+        return ast.Configuration(c[1].value, blocks, resources, pos=self._span(c[0], c[-1]))
+
+    def resource(self, c):
+        names = [t for t in c[1:3] if isinstance(t, Token) and t.type in _NAME_TYPES]
+        return ast.Resource(names[0].value, names[1].value if len(names) > 1 else None,
+                            [x for x in c if isinstance(x, ast.VarBlock)],
+                            [x for x in c if isinstance(x, ast.TaskDecl)],
+                            [x for x in c if isinstance(x, ast.ProgramConfig)],
+                            pos=self._span(c[0], c[-1]))
+
+    def task_decl(self, c):
+        params = {}
+        for p in c[3:-1]:
+            if p is not None:
+                params[p[0].upper()] = p[1]
+        return ast.TaskDecl(c[1].value, params, pos=self._span(c[0], c[-1]))
+
+    def task_param(self, c):
+        return c[0].value, c[1]
+
+    def program_config(self, c):
+        # PROGRAM, RETAIN|NON_RETAIN|None, names (instance, [task], type), LPAR|None, args|None, RPAR|None
+        names = [t for t in c[2:] if isinstance(t, Token) and t.type in _NAME_TYPES]
+        args = next((x for x in c if isinstance(x, list)), [])
+        last = next((x for x in reversed(c) if x is not None), c[0])
+        return ast.ProgramConfig(names[0].value, names[-1].value, names[1].value if len(names) == 3 else None,
+                                 args, retain=c[1] is not None and c[1].type == "RETAIN",
+                                 pos=self._span(c[0], last))
+
+    # -- statements
+    def _add_stmt(self, node):
+        self.ctx.items.append(node)
+        return node
+
+    def assign_stmt(self, c):
+        target, op, value = c
+        return self._add_stmt(ast.Assign(target, value, _ASSIGN_OPS[op.type], pos=self._span(target, value)))
+
+    def call_stmt(self, c):
+        call = c[0]
+        if not isinstance(call, ast.Call):
+            self.ctx.report("E001", "an expression alone is not a statement", call.pos,
+                            "assign it with ':=' or, to call a function block, add the argument list: fb();")
+            return None
+        return self._add_stmt(ast.CallStmt(call, pos=call.pos))
+
+    def set_stmt(self, c):
+        return self._add_stmt(ast.SetReset(c[0].type, c[1], pos=self._span(c[0], c[1])))
+
+    def empty_stmt(self, c):
+        return None
+
+    def if_stmt(self, c):
+        branches = [(c[1], c[2])] + [b for b in c[3:-2]]
+        return self._add_stmt(ast.If(branches, c[-2], pos=self._span(c[0], c[-1])))
+
+    def elsif_part(self, c):
+        return c[0], c[1]
+
+    def case_stmt(self, c):
+        return self._add_stmt(ast.Case(c[1], list(c[2:-2]), c[-2], pos=self._span(c[0], c[-1])))
+
+    def case_branch(self, c):
+        labels, body = c[:-1], c[-1]
+        return ast.CaseBranch(labels, body, pos=self._span(labels[0], body[-1] if body else labels[-1]))
+
+    def case_range(self, c):
+        return ast.CaseRange(c[0], c[1], pos=self._span(c[0], c[1]))
+
+    def label_name(self, c):
+        t = c[0]
+        parts = t.value.split(".")
+        if len(parts) == 1 and parts[0].upper() in ("TRUE", "FALSE"):
+            return ast.Literal("bool", parts[0].upper() == "TRUE", pos=self._tpos(t))
+        node = ast.Name(parts[0], pos=ast.Pos(self.file, t.line, t.column, t.line, t.column + len(parts[0])))
+        col = t.column + len(parts[0]) + 1
+        for p in parts[1:]:
+            col += len(p)
+            node = ast.Member(node, p, pos=ast.Pos(self.file, t.line, t.column, t.line, col))
+            col += 1
+        return node
+
+    def for_stmt(self, c):
+        var = ast.Name(c[1].value, pos=self._tpos(c[1]))
+        return self._add_stmt(ast.For(var, c[2], c[3], c[4], c[5], pos=self._span(c[0], c[-1])))
+
+    def while_stmt(self, c):
+        return self._add_stmt(ast.While(c[1], c[2], pos=self._span(c[0], c[-1])))
+
+    def repeat_stmt(self, c):
+        return self._add_stmt(ast.Repeat(c[1], c[2], pos=self._span(c[0], c[-1])))
+
+    def exit_stmt(self, c):
+        return self._add_stmt(ast.Exit(pos=self._tpos(c[0])))
+
+    def continue_stmt(self, c):
+        return self._add_stmt(ast.Continue(pos=self._tpos(c[0])))
+
+    def return_stmt(self, c):
+        return self._add_stmt(ast.Return(pos=self._tpos(c[0])))
+
+    # -- expressions
+    def binary(self, c):
+        left, op, right = c
+        lp, rp = left.pos, right.pos
+        return ast.Binary(_BINARY_OPS[op.type], left, right,
+                          pos=ast.Pos(self.file, lp.line, lp.col, rp.end_line, rp.end_col))
+
+    def unary(self, c):
+        op, operand = c
+        return ast.Unary(_UNARY_OPS[op.type], operand, pos=self._span(op, operand))
+
+    def paren(self, c):
+        return c[1]
+
+    def int_lit(self, c):
+        t = c[0]
+        try:
+            value = parse_int(t.value)
+        except LiteralError as e:
+            self._literal_error(e, t)
+            value = 0
+        return ast.Literal("int", value, pos=ast.Pos(self.file, t.line, t.column, t.end_line, t.end_column))
+
+    def real_lit(self, c):
+        try:
+            value = parse_real(c[0].value)
+        except LiteralError as e:
+            self._literal_error(e, c[0])
+            value = 0.0
+        return ast.Literal("real", value, pos=self._tpos(c[0]))
+
+    def based_lit(self, c):
+        try:
+            value = parse_based(c[0].value)
+        except LiteralError as e:
+            self._literal_error(e, c[0])
+            value = 0
+        return ast.Literal("int", value, pos=self._tpos(c[0]))
+
+    def c_hex_lit(self, c):
+        try:
+            value = parse_c_hex(c[0].value)
+        except LiteralError as e:
+            self._literal_error(e, c[0])
+            value = 0
+        return ast.Literal("int", value, c_hex=True, pos=self._tpos(c[0]))
+
+    def hash_lit(self, c):
+        try:
+            node = parse_hash_literal(c[0].value)
+        except LiteralError as e:
+            self._literal_error(e, c[0])
+            node = ast.Literal("int", 0)
+        node.pos = self._tpos(c[0])
+        return node
+
+    def string_lit(self, c):
+        t = c[0]
+        try:
+            value = parse_string(t.value)
+        except LiteralError as e:
+            self._literal_error(e, t)
+            value = ""
+        return ast.Literal("wstring" if t.type == "WSTRING_LIT" else "string", value, pos=self._tpos(t))
+
+    def bool_lit(self, c):
+        return ast.Literal("bool", c[0].type == "TRUE", pos=self._tpos(c[0]))
+
+    def name(self, c):
+        t = c[0]
+        return ast.Name(t.value, pos=ast.Pos(self.file, t.line, t.column, t.end_line, t.end_column))
+
+    def located(self, c):
+        return ast.Located(parse_located(c[0].value), pos=self._tpos(c[0]))
+
+    def member(self, c):
+        base, t = c
+        return ast.Member(base, t.value, pos=self._span(base, t))
+
+    def bit_access(self, c):
+        base, t = c
+        bit = int(t.value[2:]) if t.type == "BIT_REF" else parse_int(t.value)
+        return ast.BitAccess(base, ast.Literal("int", bit, pos=self._tpos(t)), pos=self._span(base, t))
+
+    def index(self, c):
+        return ast.Index(c[0], list(c[2:-1]), pos=self._span(c[0], c[-1]))
+
+    def deref(self, c):
+        return ast.Deref(c[0], pos=self._span(c[0], c[1]))
+
+    def call(self, c):
+        return ast.Call(c[0], c[2], pos=self._span(c[0], c[3]))
+
+    def arg_list(self, c):
+        return [a if isinstance(a, ast.Arg) else ast.Arg(None, a, pos=a.pos) for a in c if a is not None]
+
+    def named_arg(self, c):
+        return ast.Arg(c[0].value, c[1], pos=self._span(c[0], c[1]))
+
+    def output_arg(self, c):
+        name, arrow, target = c
+        return ast.Arg(name.value, target, output=True, pos=self._span(name, target if target is not None else arrow))
+
+    def negated_output_arg(self, c):
+        _, name, _, target = c
+        return ast.Arg(name.value, target, output=True, negated=True, pos=self._span(c[0], target))
+
+
+# ---------------------------------------------------------------- the lark parser, built once
+
+def _cache_file() -> Optional[str]:
+    """lark's grammar-analysis cache (0.03 s to load instead of 0.5 s to
+    build) in the user's own cache directory, never a shared /tmp file:
+    lark loads it with pickle."""
+    try:
+        base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+        d = os.path.join(base, "softplc")
+        os.makedirs(d, exist_ok=True)
+        import lark
+        return os.path.join(d, f"st-grammar-lark{lark.__version__}.cache")
+    except Exception:
+        return None
+
+
+def _build_parser() -> Lark:
+    grammar = (Path(__file__).with_name("grammar.lark")).read_text(encoding="utf-8")
+    names = re.findall(r'^([A-Z_]+)(?:\.\d+)?:\s*"([A-Z_]+)"i\s*$', grammar, re.M)
+    always = ("NAME",) + tuple(term for term, word in names if word in _RESERVED) + tuple(
+        w for w in ("THEN", "ELSIF", "OF", "TO", "BY", "DO", "UNTIL"))
+    options = dict(parser="lalr", lexer="contextual", maybe_placeholders=True, g_regex_flags=re.ASCII,
+                   transformer=_BUILDER, postlex=_PostLex(always))
+    cache = _cache_file()
+    if cache:
+        try:
+            return Lark(grammar, cache=cache, **options)
+        except Exception:
+            pass
+    return Lark(grammar, **options)
+
+
+_BUILDER = _Builder()
+_LARK = _build_parser()
+_LOCK = threading.Lock()
+_STATES = _LARK.parser.parser.parser.parse_table.states
+_END_STATE = _LARK.parser.parser.parser.parse_table.end_states["start"]
+_TERMINALS = {t.name: t for t in _LARK.terminals}
+_ROOT_LEXER = _LARK.parser.lexer.lexer.root_lexer if hasattr(_LARK.parser.lexer, "lexer") else _LARK.parser.lexer.root_lexer
+
+
+def _aliased_child(rule) -> Optional[int]:
+    """Index of the child whose list lark's child filter reuses (and extends)
+    for the rule's result: the first kept symbol, when it is inlined."""
+    for i, sym in enumerate(rule.expansion):
+        if sym.is_term and sym.filter_out:
+            continue
+        return i if not sym.is_term and sym.name.startswith("_") else None
+    return None
+
+
+_ALIASED = {id(arg): _aliased_child(arg) for row in _STATES.values() for kind, arg in row.values()
+            if kind is not Shift and _aliased_child(arg) is not None}
+
+
+def _keyword(name: str) -> str:
+    """Terminal name -> how it is written ('SEMICOLON' -> ';', 'END_IF' -> 'END_IF')."""
+    t = _TERMINALS.get(name)
+    if t is not None and isinstance(t.pattern, PatternStr):
+        return t.pattern.value.upper()
+    return name
+
+
+_TERM_BY_TEXT = {_keyword(n): n for n in _TERMINALS if isinstance(_TERMINALS[n].pattern, PatternStr)}
+SEMI = _TERM_BY_TEXT[";"]
+_FRIENDLY = {"NAME": "a name", "LABEL_NAME": "a name", "INT": "a number", "REAL": "a number",
+             "BASED_INT": "a number", "C_HEX": "a number", "HASH_LIT": "a typed literal",
+             "STRING_LIT": "a string", "WSTRING_LIT": "a string", "LOCATED": "a direct address",
+             "BIT_REF": "a bit number", "S_ASSIGN": "S=", "R_ASSIGN": "R=", "REF_ASSIGN": "REF=",
+             "$END": "end of file"}
+
+# Block openers -> their closer, for "END_IF expected to close the IF at line 3".
+_CLOSERS = {"IF": "END_IF", "CASE": "END_CASE", "FOR": "END_FOR", "WHILE": "END_WHILE",
+            "REPEAT": "END_REPEAT", "PROGRAM": "END_PROGRAM", "FUNCTION": "END_FUNCTION",
+            "FUNCTION_BLOCK": "END_FUNCTION_BLOCK", "TYPE": "END_TYPE", "STRUCT": "END_STRUCT",
+            "CONFIGURATION": "END_CONFIGURATION", "RESOURCE": "END_RESOURCE",
+            **{k: "END_VAR" for k in ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_GLOBAL",
+                                      "VAR_EXTERNAL", "VAR_TEMP", "VAR_STAT", "VAR_CONFIG")}}
+# Tokens a broken region is skipped to before parsing resumes.
+_SYNC = frozenset([SEMI, "_ELSE", "ELSIF", "UNTIL", "THEN", "DO", "OF", "IF", "CASE", "FOR", "WHILE",
+                   "REPEAT", "EXIT", "CONTINUE", "RETURN", "TYPE", "CONFIGURATION", "FUNCTION",
+                   "FUNCTION_BLOCK", "PROGRAM"] + list(_CLOSERS) + list(set(_CLOSERS.values())))
+# Tokens tried as "the one that is missing", in this order.
+_INSERTABLE = [SEMI, "COMMA", "THEN", "DO", "OF", "RPAR", "RSQB", "END_IF", "END_CASE", "END_FOR", "END_WHILE",
+               "END_VAR", "END_STRUCT", "END_TYPE", "END_FUNCTION_BLOCK", "END_FUNCTION", "END_PROGRAM",
+               "END_RESOURCE", "END_CONFIGURATION"]
+_CLOSING = [c for c in _INSERTABLE if c.startswith("END_")] + ["RPAR", "RSQB", SEMI, "THEN", "DO", "OF"]
+_KEYWORDS = sorted(k for k in _TERM_BY_TEXT if k.isidentifier())
+_UNSUPPORTED = {"METHOD": "methods", "END_METHOD": "methods", "PROPERTY": "properties",
+                "END_PROPERTY": "properties", "INTERFACE": "interfaces", "END_INTERFACE": "interfaces",
+                "ACTION": "actions", "END_ACTION": "actions", "NAMESPACE": "namespaces",
+                "VAR_ACCESS": "VAR_ACCESS blocks"}
+# Characters that can start some token; a run of others is one E002.
+_INVALID_RUN = re.compile(r"[^A-Za-z0-9_\s%'\"()\[\];:,.=<>+\-*/&^#]+")
+
+
+class _TooDeep(Exception):
+    pass
+
+
+class _Rejected(Exception):
+    """The parser does not accept this token here."""
+
+    def __init__(self, token: Token) -> None:
+        super().__init__(token)
+        self.token = token
+
+
+class _GiveUp(Exception):
+    pass
+
+
+def _simulate(stack: list, ttype: str) -> Optional[list]:
+    """The state stack after feeding a token of type ttype (reductions and
+    the shift), or None if the parser would reject it. Nothing is built."""
+    stack = list(stack)
+    while True:
+        action = _STATES[stack[-1]].get(ttype)
+        if action is None:
+            return None
+        kind, arg = action
+        if kind is Shift:
+            stack.append(arg)
+            return stack
+        size = len(arg.expansion)
+        if size:
+            del stack[-size:]
+        stack.append(_STATES[stack[-1]][arg.origin.name][1])
+        if ttype == "$END" and stack[-1] == _END_STATE:
+            return stack
+
+
+class _Parse:
+    """One run of the parser over one file."""
+
+    def __init__(self, text: str, path: str, diags: DiagnosticBag) -> None:
+        self.raw = text
+        self.path = path
+        self.diags = diags
+        self.items: list = []        # nodes a pragma can attach to
+        self.pou_headers: list = []  # (POU, start, header end)
+        self.errors = 0
+        self.calm = 0                # tokens to shift before the next error is reported
+        self.comment_trouble = False
+        self.last: Optional[Token] = None
+
+    # -- diagnostics
+    def report(self, code: str, message: str, pos: ast.Pos, hint: Optional[str] = None,
+               always: bool = False) -> None:
+        if self.calm and not always:
+            return
+        self.errors += 1
+        if self.errors > MAX_ERRORS:
+            raise _GiveUp
+        self.diags.error(code, message, pos, hint)
+
+    def _pos_at(self, line: int, col: int, end_line: int = 0, end_col: int = 0) -> ast.Pos:
+        return ast.Pos(self.path, line, col, end_line or line, end_col or col + 1)
+
+    def _tok_pos(self, t: Token) -> ast.Pos:
+        if t.type == "$END":
+            return self._eof_pos()
+        return ast.Pos(self.path, t.line, t.column, t.end_line, t.end_column)
+
+    def _eof_pos(self) -> ast.Pos:
+        line, col = _line_col(self.raw, len(self.raw))
+        return ast.Pos(self.path, line, col, line, col)
+
+    # -- driver
+    def run(self) -> ast.SourceFile:
+        text = self.raw[1:] if self.raw.startswith("\ufeff") else self.raw
+        if text is not self.raw:  # keep columns: the BOM becomes a space
+            text = " " + text
+
+        def comment_error(code, message, start, end, hint):
+            self.comment_trouble = self.comment_trouble or code == "E004"
+            self.report(code, message, ast.Pos(self.path, *_line_col(text, start), *_line_col(text, end)),
+                        hint, always=True)
+
+        clean, pragmas = _strip_comments(text, comment_error)
+        self.text = clean
+        _BUILDER.begin(self)
+        ip = _LARK.parse_interactive(clean)
+        self.pstate = ip.parser_state
+        self.lexer = ip.lexer_thread
+        self.state_stack = self.pstate.state_stack
+        self.value_stack = self.pstate.value_stack
+        self.callbacks = self.pstate.parse_conf.callbacks
+        try:
+            result = self._drive()
+        except _GiveUp:
+            self.diags.error("E001", f"too many errors; stopped after {MAX_ERRORS}", self._eof_pos())
+            result = None
+        except _TooDeep as e:
+            tok = e.args[0]
+            self.report("E005", "nesting too deep", self._tok_pos(tok),
+                        "split the expression or statement into smaller parts", always=True)
+            result = None
+        if not isinstance(result, ast.SourceFile):
+            result = ast.SourceFile(self.path, [], pos=ast.Pos(self.path, 1, 1))
+        if pragmas:
+            self._attach(pragmas)
+        return result
+
+    def _drive(self):
+        lexer, feed, stack = self.lexer, self._feed, self.state_stack
+        pstate = self.pstate
+        while True:
+            last = self.last
+            try:
+                for tok in lexer.lex(pstate):
+                    feed(tok)
+                    last = tok
+                    if self.calm:
+                        self.calm -= 1
+                    if len(stack) > MAX_STACK:
+                        raise _TooDeep(tok)
+                self.last = last
+                return self._feed_or_recover(self._end_token())
+            except UnexpectedCharacters as e:
+                self.last = last
+                self._bad_characters(e)
+            except (_Rejected, UnexpectedToken) as e:
+                self.last = last
+                result = self._recover(e.token)
+                if result is not None:
+                    return result
+
+    def _feed(self, token: Token, is_end: bool = False):
+        """lark's ParserState.feed_token, plus an undo: LALR may reduce
+        before it notices that the token does not fit (a statement list
+        into a body, say); on rejection those reductions are taken back so
+        that recovery sees the stack as it was."""
+        states, values, callbacks = self.state_stack, self.value_stack, self.callbacks
+        undo = None
+        while True:
+            action = _STATES[states[-1]].get(token.type)
+            if action is None:
+                if undo:
+                    for popped_states, popped_values, alias, length in reversed(undo):
+                        states.pop()
+                        values.pop()
+                        if alias is not None:
+                            del popped_values[alias].children[length:]
+                        states.extend(popped_states)
+                        values.extend(popped_values)
+                raise _Rejected(token)
+            kind, arg = action
+            if kind is Shift:
+                states.append(arg)
+                values.append(token)
+                return None
+            size = len(arg.expansion)
+            if size:
+                children, popped = values[-size:], states[-size:]
+                del states[-size:]
+                del values[-size:]
+            else:
+                children, popped = [], []
+            if undo is None:
+                undo = []
+            # lark's LALR child filter extends an inlined first child's list
+            # in place; remember its length so that undo can cut it back.
+            alias = _ALIASED.get(id(arg))
+            undo.append((popped, children, alias, len(children[alias].children) if alias is not None else 0))
+            value = callbacks[arg](children)
+            goto = _STATES[states[-1]][arg.origin.name][1]
+            states.append(goto)
+            values.append(value)
+            if is_end and goto == _END_STATE:
+                return value
+
+    def _end_token(self) -> Token:
+        last = self.last
+        return Token.new_borrow_pos("$END", "", last) if last else Token("$END", "", 0, 1, 1, 1, 1)
+
+    def _bad_characters(self, e: UnexpectedCharacters) -> None:
+        """The lexer is stuck at e.pos_in_stream: an unterminated string, or
+        characters no token starts with."""
+        text, p = self.text, e.pos_in_stream
+        ch = text[p]
+        line_ctr = self.lexer.state.line_ctr
+        if ch in "'\"":
+            # Unterminated string: take it to the end of the line (but leave
+            # a final ';' alone), feed it as a string and carry on.
+            nl = text.find("\n", p)
+            eol = len(text) if nl < 0 else nl
+            end = eol
+            stripped = text[p:eol].rstrip()
+            if stripped.endswith(";") and len(stripped) > 1:
+                end = p + len(stripped) - 1
+            value = text[p:end].rstrip()
+            self.report("E004", "unterminated string", self._pos_at(e.line, e.column, e.line, e.column + len(value)),
+                        f"close it with {ch} on the same line; write {ch} inside it as ${ch}", always=True)
+            line_ctr.feed(text[p:p + len(value)])
+            tok = Token("WSTRING_LIT" if ch == '"' else "STRING_LIT", value + ch, p, e.line, e.column,
+                        e.line, e.column + len(value))
+            self._feed_or_recover(tok)
+            return
+        m = _INVALID_RUN.match(text, p)
+        run = m.group() if m else ch
+        if ch == "%":
+            msg, hint = "invalid direct address", "direct addresses look like %IX0.1, %QW4, %MW100, %MD3200, %MW3250:X0"
+        elif ch == "#":
+            msg, hint = "unexpected '#'", "typed literals are written without spaces: INT#5, T#1s, Color#Red"
+        elif not run.isascii():
+            msg = f"invalid character '{run[0]}'"
+            hint = ("identifiers may only use ASCII letters, digits and '_'" if run[0].isalpha()
+                    else "only ASCII is allowed outside strings and comments")
+        else:
+            msg, hint = f"invalid character {run[0]!r}", None
+        self.report("E002", msg, self._pos_at(e.line, e.column, e.line, e.column + len(run)), hint)
+        self.calm = 3
+        line_ctr.feed(run)
+
+    def _feed_or_recover(self, tok: Token):
+        """Feed one token outside the main loop; returns the parse result
+        if tok ended the file."""
+        try:
+            result = self._feed(tok, tok.type == "$END")
+        except _Rejected:
+            return self._recover(tok)
+        self.last = tok
+        if self.calm:
+            self.calm -= 1
+        return result
+
+    # -- error recovery
+    def _open_blocks(self):
+        """Unclosed block keywords on the parser stack, innermost first."""
+        for v in reversed(self.value_stack):
+            if isinstance(v, Token) and v.type in _CLOSERS:
+                yield v
+
+    def _expected(self) -> set:
+        return {t for t in _STATES[self.state_stack[-1]] if t.isupper()}
+
+    def _describe(self, tok: Token) -> str:
+        if tok.type == "$END":
+            return "end of file"
+        if tok.type in _TERM_BY_TEXT.values() and tok.value.isidentifier():
+            return tok.value.upper()
+        return f"'{tok.value}'"
+
+    def _recover(self, tok: Token):
+        """Report the error at tok and get the parser going again: a special
+        case, one inserted token, or skipping to a synchronising token.
+        Returns the parse result when recovery reached the end of the file."""
+        prev = self.last
+        if tok.type == "$END":
+            self._eof_error()
+            self.calm = 3
+            return self._finish(tok)
+        special = self._special_case(tok, prev)
+        if special is not False:
+            return special
+        for cand in self._insertable(tok):
+            self._missing(cand, tok, prev)
+            self.calm = 1
+            at = prev or tok
+            self._feed(Token(cand, _keyword(cand), None, at.end_line, at.end_column, at.end_line, at.end_column))
+            return self._feed_or_recover(tok)
+        self._generic_error(tok, prev)
+        self.calm = 3
+        return self._resync(tok)
+
+    def _insertable(self, tok: Token):
+        """The token types whose insertion before tok would let it fit."""
+        stack = self.state_stack
+        for cand in _INSERTABLE:
+            after = _simulate(stack, cand)
+            if after is None or _simulate(after, tok.type) is None:
+                continue
+            # 'x y := 1': not "missing ';'" after a name that cannot be a statement.
+            if cand == SEMI and "ASSIGN" in self._expected() and not isinstance(self.value_stack[-1], ast.Call):
+                continue
+            yield cand
+            return
+
+    def _special_case(self, tok: Token, prev: Optional[Token]):
+        """Errors with a known cause and a tailored recovery. Returns False
+        when tok is not one of them, else what _recover returns."""
+        value = tok.value.upper()
+        if tok.type in ("_ELSE", "ELSIF"):
+            for v in reversed(self.value_stack):
+                if isinstance(v, Token) and v.type in ("IF", "CASE", "_ELSE"):
+                    if v.type != "_ELSE":
+                        break
+                    what = "duplicate ELSE" if tok.type == "_ELSE" else "ELSIF after ELSE"
+                    self.report("E005", what, self._tok_pos(tok), f"the ELSE at line {v.line} must be the last branch")
+                    self.calm = 1
+                    # Drop it (and an ELSIF's condition): what follows joins the ELSE branch.
+                    return self._skip_through("THEN") if tok.type == "ELSIF" else None
+        if tok.type == "EQ" and "ASSIGN" in self._expected():
+            self.report("E001", "'=' compares; use ':=' to assign", self._tok_pos(tok), "':=' assigns, '=' compares")
+            self.calm = 1
+            return self._feed_or_recover(Token.new_borrow_pos("ASSIGN", ":=", tok))
+        word = value if value in _UNSUPPORTED else None
+        if word is None and prev is not None and prev.type == "NAME" and prev.value.upper() in _UNSUPPORTED:
+            word = prev.value.upper()
+        if word is not None:
+            at = tok if word == value else prev
+            self.report("E001", f"{word}: {_UNSUPPORTED[word]} are not supported", self._tok_pos(at),
+                        "write the logic as a FUNCTION or FUNCTION_BLOCK")
+            self.calm = 1
+            self._unshift(prev if word != value else None)
+            end = word if word.startswith("END_") else "END_" + word
+            return self._skip_through("NAME", end) if word != end else None
+        if prev is not None and prev.type == "NAME" and "ASSIGN" in self._expected():
+            if prev.value.upper() == "JMP":
+                self.report("E001", "JMP is not supported", self._tok_pos(prev),
+                            "JMP and labels are not supported; use a loop or CASE")
+                self.calm = 1
+                self._unshift(prev)
+                return self._skip_through(SEMI)
+            if tok.type == "COLON":
+                self.report("E001", f"label '{prev.value}:' is not supported", self._tok_pos(prev),
+                            "JMP and labels are not supported; use a loop or CASE")
+                self.calm = 1
+                self._unshift(prev)
+                return None
+        return False
+
+    def _unshift(self, tok: Optional[Token]) -> None:
+        """Take tok (just shifted) back off the stack."""
+        values = self.value_stack
+        if tok is not None and values and values[-1] is tok:
+            values.pop()
+            self.state_stack.pop()
+
+    def _skip_through(self, ttype: str, value: Optional[str] = None):
+        """Drop tokens up to and including the first of type ttype (and
+        value, upper-cased), then let parsing go on."""
+        while True:
+            t = self._next_token()
+            if t.type == "$END":
+                return self._finish(t)
+            if t.type == ttype and (value is None or t.value.upper() == value):
+                return None
+
+    def _missing(self, cand: str, tok: Token, prev: Optional[Token]) -> None:
+        text = _keyword(cand)
+        if cand in _CLOSERS.values():
+            opener = next((b for b in self._open_blocks() if _CLOSERS[b.type] == cand), None)
+            where = f" to close the {opener.type} at line {opener.line}" if opener else ""
+            self.report("E001", f"{text} expected{where}, found {self._describe(tok)}", self._tok_pos(tok),
+                        f"add {text} before {self._describe(tok)}")
+            return
+        # Point at where the token is missing: just after the previous one.
+        pos = self._pos_at(prev.end_line, prev.end_column) if prev is not None else self._tok_pos(tok)
+        hint = {SEMI: "missing ';' after the statement?",
+                "COMMA": "separate arguments, names and values with ','"}.get(cand)
+        self.report("E001", f"missing '{text}' before {self._describe(tok)}", pos, hint)
+
+    def _eof_error(self) -> None:
+        if self.comment_trouble:
+            return  # the unterminated comment already explains it
+        opener = next(self._open_blocks(), None)
+        hint = (f"{_CLOSERS[opener.type]} expected to close the {opener.type} at line {opener.line}"
+                if opener is not None else "the last statement is incomplete")
+        self.report("E001", "unexpected end of file", self._eof_pos(), hint)
+
+    def _generic_error(self, tok: Token, prev: Optional[Token]) -> None:
+        expected = self._expected()
+        hint = None
+        if tok.type in _CLOSERS.values() or tok.type in ("_ELSE", "ELSIF"):
+            opener = next(self._open_blocks(), None)
+            if opener is not None:
+                hint = f"{_CLOSERS[opener.type]} expected to close the {opener.type} at line {opener.line}"
+        if hint is None:
+            hint = self._did_you_mean(tok, prev)
+        if hint is None and "INT" in expected and "NAME" in expected:
+            hint = "an expression (a value or a variable) is missing here"
+        if hint is None:
+            shown = sorted({_FRIENDLY.get(t, _keyword(t)) for t in expected if not t.startswith("__")})
+            if 0 < len(shown) <= 6:
+                hint = "expected " + ", ".join(s if s.startswith("a ") else f"'{s}'" for s in shown)
+        self.report("E001", f"unexpected {self._describe(tok)}", self._tok_pos(tok), hint)
+
+    @staticmethod
+    def _did_you_mean(tok: Token, prev: Optional[Token]) -> Optional[str]:
+        """A misspelt keyword (ELSEIF, ENDIF, VAR_INPUTS) lexes as a name."""
+        for t in (tok, prev):
+            if t is not None and t.type == "NAME" and len(t.value) > 2:
+                close = difflib.get_close_matches(t.value.upper(), _KEYWORDS, n=1, cutoff=0.8)
+                if close:
+                    return f"did you mean {close[0]}?"
+        return None
+
+    def _resync(self, tok: Token):
+        """Panic mode: skip to a synchronising token, pop the parser stack
+        until that token fits, feed it. tok is the offending token.
+        Errors on the next tokens are echoes of this one: ``calm``."""
+        while True:
+            if tok.type == "$END":
+                return self._finish(tok)
+            if tok.type == SEMI:
+                # The end of the broken statement or declaration: recover
+                # within the innermost open block, at the ';' or just after.
+                if self._pop_for(tok, bounded=True) or self._pop_to_item_boundary():
+                    self.calm = 2
+                    return self._feed_or_recover(tok) if _simulate(self.state_stack, SEMI) else None
+            elif tok.type in _SYNC and self._pop_for(tok):
+                self.calm = 3
+                return self._feed_or_recover(tok)
+            tok = self._next_token()
+
+    def _pop_to_item_boundary(self) -> bool:
+        """Pop what was parsed of the current item (declaration, statement)
+        of the innermost block: to where the block's closer would fit."""
+        opener = next(self._open_blocks(), None)
+        if opener is None:
+            return False
+        closer = "UNTIL" if opener.type == "REPEAT" else _CLOSERS[opener.type]
+        return self._pop_for(Token(closer, closer), bounded=True)
+
+    def _pop_for(self, tok: Token, bounded: bool = False) -> bool:
+        """Pop the fewest states so that tok is accepted, first without
+        leaving the innermost open block, then (unless bounded) anywhere.
+        False if it fits nowhere (the stack is then unchanged)."""
+        stack, values = self.state_stack, self.value_stack
+        floor = 1
+        for i in range(len(values) - 1, -1, -1):
+            v = values[i]
+            if isinstance(v, Token) and v.type in _CLOSERS:
+                floor = i + 2  # stack[i + 1] is the state after the opener values[i]
+                break
+        for lowest in ((floor,) if bounded else (floor, 1)):
+            for depth in range(len(stack), lowest - 1, -1):
+                if _simulate(stack[:depth], tok.type) is not None:
+                    del stack[depth:]
+                    del values[depth - 1:]
+                    return True
+        return False
+
+    def _next_token(self) -> Token:
+        """The next token, by the lexer that knows every terminal (used while
+        skipping, when the parser state says nothing useful)."""
+        state, text = self.lexer.state, self.text
+        while True:
+            try:
+                tok = _ROOT_LEXER.next_token(state)
+            except EOFError:
+                return self._end_token()
+            except UnexpectedCharacters as e:
+                p = e.pos_in_stream
+                if text[p] in "'\"":  # unterminated string: skip the line
+                    nl = text.find("\n", p)
+                    state.line_ctr.feed(text[p:len(text) if nl < 0 else nl])
+                else:
+                    m = _INVALID_RUN.match(text, p)
+                    state.line_ctr.feed(m.group() if m else text[p])
+                continue
+            self.last = tok
+            return tok
+
+    def _finish(self, end: Token):
+        """At the end of the file: close what is open by inserting the
+        missing closers (already reported), or else drop the unfinished
+        part; then accept."""
+        stack = self.state_stack
+        previous = None
+        for _ in range(MAX_STACK):
+            if _simulate(stack, "$END") is not None:
+                break
+            # Closers first; ';' (always welcome in a statement list) only
+            # when nothing else fits, and never twice in a row.
+            cand = next((c for c in _CLOSING if c != previous and _simulate(stack, c) is not None), None)
+            if cand is None:
+                break
+            self._feed(Token(cand, _keyword(cand), None, end.line, end.column, end.line, end.column))
+            previous = cand
+        if _simulate(stack, "$END") is None:
+            self._pop_for(end)
+        return self._feed(end, True)
+
+    # -- pragmas
+    def _attach(self, pragmas: list) -> None:
+        items = sorted(self.items, key=lambda n: (n.pos.line, n.pos.col))
+        starts = [(n.pos.line, n.pos.col) for n in items]
+        for p in pragmas:
+            end = (p.end_line, p.end_col)
+            target = None
+            for pou, start, header_end in self.pou_headers:
+                if start < end <= header_end:
+                    target = pou
+                    break
+            if target is None:
+                i = bisect_left(starts, end)
+                if i == len(items):
+                    continue  # nothing follows: a trailing pragma has no item
+                target = items[i]
+            target.pragmas.append(p.text)
+            if isinstance(target, ast.POU) and p.text.lower() == "external":
+                target.external = True
+
+
+def parse_source(text: str, path: str, diags: DiagnosticBag) -> ast.SourceFile:
+    """Parse one ST file. Never raises; problems go into diags."""
+    try:
+        with _LOCK:
+            return _Parse(text, path, diags).run()
+    except Exception as e:  # a bug here must not become a traceback for the user
+        diags.error("E009", f"internal parser error: {type(e).__name__}: {e}", ast.Pos(str(path), 1, 1),
+                    "please report this with the source file")
+        return ast.SourceFile(str(path), [], pos=ast.Pos(str(path), 1, 1))

@@ -1,0 +1,131 @@
+"""Declarations: CONFIGURATION/RESOURCE/TASK, type forms, located variables."""
+from __future__ import annotations
+
+import struct
+
+from softplc.runtime.st.loader import compile_files
+
+from .conftest import codes, run_st
+
+CONFIG = """
+PROGRAM Fast
+VAR_INPUT limit : INT; END_VAR
+VAR n : INT; END_VAR
+n := n + 1; IF n > limit THEN n := 0; END_IF
+END_PROGRAM
+PROGRAM Slow
+END_PROGRAM
+CONFIGURATION Plant
+  VAR_GLOBAL g_limit : INT := 3; END_VAR
+  RESOURCE Cpu ON PLC
+    TASK T_fast (INTERVAL := T#10ms, PRIORITY := 1);
+    TASK T_slow (INTERVAL := T#100ms, PRIORITY := 5);
+    PROGRAM fast1 WITH T_fast : Fast (limit := g_limit);
+    PROGRAM slow1 WITH T_slow : Slow;
+  END_RESOURCE
+END_CONFIGURATION
+"""
+
+
+def test_configuration_tasks_and_program_instances_are_checked_and_exposed():
+    prog = compile_files([], texts={"cfg.st": CONFIG})
+    [cfg] = prog.checked.configurations
+    assert cfg.name == "Plant"
+    assert [(t["name"], t["interval_ms"], t["priority"]) for t in cfg.tasks] == \
+        [("T_fast", 10.0, 1), ("T_slow", 100.0, 5)]
+    assert [(p["name"], p["type"].name, p["task"]) for p in cfg.programs] == \
+        [("fast1", "Fast", "T_fast"), ("slow1", "Slow", "T_slow")]
+    assert [p.name for p, _ in cfg.programs[0]["binding"].inputs] == ["limit"]
+
+
+def test_configuration_errors():
+    bad = CONFIG.replace("WITH T_slow : Slow", "WITH T_none : Slow").replace(
+        "PRIORITY := 5", "PRIORITY := 300").replace("Fast (limit", "Fats (limit")
+    assert sorted(codes(bad)) == ["E091", "E092", "E093"]
+
+
+def test_aliases_typed_enums_subranges_and_struct_defaults():
+    src = """
+TYPE
+  Speed : REAL := 1.5;
+  Level : INT (0..10);
+  State : (Off, Starting := 10, Running) DINT;
+  Axis : STRUCT pos : LREAL := 2.5; state : State := State#Running; name : STRING[8] := 'x1'; END_STRUCT;
+END_TYPE
+PROGRAM main
+VAR v : Speed; lv : Level := 5; st : State; ax : Axis; n : DINT; END_VAR
+n := ax.state;
+st := State#Starting;
+END_PROGRAM
+"""
+    r = run_st(src)
+    assert r.get("v") == 1.5 and r.get("lv") == 5 and r.get("st") == 10
+    assert r.get("ax.pos") == 2.5 and r.get("ax.name") == "x1" and r.get("n") == 11
+
+
+def test_pragmas_are_kept_on_the_ast():
+    from softplc.runtime.st.diagnostics import DiagnosticBag
+    from softplc.runtime.st.parser import parse_source
+    sf = parse_source("{attribute 'hide'}\nPROGRAM p\nVAR {attribute 'x'} a : INT; END_VAR\nEND_PROGRAM\n",
+                      "p.st", DiagnosticBag())
+    pou = sf.decls[0]
+    assert any("hide" in p for p in pou.pragmas)
+
+
+def test_iec_located_variables_share_the_byte_image():
+    src = """
+PROGRAM main
+VAR
+  w AT %MW1 : WORD;
+  lo AT %MB2 : BYTE;
+  hi AT %MB3 : BYTE;
+  bit9 AT %MX3.1 : BOOL;
+  d AT %MD1 : DINT;
+END_VAR
+w := 16#0201;
+d := -2;
+END_PROGRAM
+"""
+    r = run_st(src)
+    m = r.ctx.image.areas["M"]
+    assert (r.get("lo"), r.get("hi"), r.get("bit9")) == (1, 2, True)  # %MW1 is bytes 2-3, little-endian
+    assert struct.unpack_from("<i", m, 4)[0] == -2  # %MD1 is bytes 4-7
+
+
+def test_schneider_word_model_of_the_ltmr_manual():
+    # DOCA0132DE, "Beispiel für ein Schreibe-SDO": %MD3200 overlaps %MW3200/%MW3201
+    src = """
+PROGRAM main
+VAR lo : INT; hi : INT; busy : BOOL; END_VAR
+%MD3200 := 16#00032007;
+%MW3202 := 50;
+lo := %MW3200; hi := %MW3201;
+%MW3250 := 1;
+busy := %MW3250:X0;
+SET %M100;
+END_PROGRAM
+"""
+    r = run_st(src, profile="schneider")
+    assert (r.get("lo"), r.get("hi"), r.get("busy")) == (0x2007, 0x0003, True)
+    assert r.ctx.image.mbits[100] == 1
+
+
+def test_the_ltmr_manual_examples_run_verbatim():
+    prog = compile_files(["st_programs/ltmr_write_sdo.st", "st_programs/ltmr_read_sdo.st"],
+                         profile="schneider")
+    for name, idx_word, request_bit, mgmt, timeout_word, index in (
+            ("ltmr_write_sdo", 3200, 100, 3250, 3253, 0x00032007),
+            ("ltmr_read_sdo", 3220, 101, 3260, 3263, 0x00032004)):
+        runner = prog.runner(name)
+        calls = []
+        runner.ctx.comm.request = lambda *args: calls.append(args) or True
+        image = runner.ctx.image
+        image.mbits[request_bit] = 1  # the user's request bit
+        runner.run(1)
+        assert struct.unpack_from("<i", image.areas["M"], 2 * idx_word)[0] == index
+        assert struct.unpack_from("<h", image.areas["M"], 2 * timeout_word)[0] == 2
+        assert image.mbits[request_bit] == 0  # RESET %M100 / %M101
+        [(fn, addr, obj, number, node, data, table)] = calls
+        assert (fn, addr, obj, number, node) == (name[5:].split("_")[0].upper() + "_VAR", ("0", "1", "SYS"),
+                                                 "SDO", index, 40)
+        assert len(data) == 1 and len(table) == 4
