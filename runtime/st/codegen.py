@@ -68,6 +68,9 @@ class _Fn:
         self.pou = pou
         self.self_name = self_name
         self.loop_kinds: list = []  # 'for', 'while', 'repeat' (with its cond code)
+        # FOR variables currently read from the Python loop local:
+        # id(VarSymbol) -> (local name, lowest value, highest value or None if unknown)
+        self.for_locals: dict = {}
 
     @property
     def is_function(self) -> bool:
@@ -488,6 +491,7 @@ class CodeGen:
                 self.emit(f"if {self.ex(cond)}: break")
             self._leave_loop("continue")
         elif isinstance(s, A.Return):
+            self._store_loop_locals()
             if self.fn.is_function:
                 self._function_epilogue()
             else:
@@ -499,10 +503,17 @@ class CodeGen:
 
     def _leave_loop(self, word: str) -> None:
         kind, data = self.fn.loop_kinds[-1]
-        if kind == "for" and word == "break":
-            var, cur = data
-            self.emit_store(var, cur, var.ty, None)
+        if kind == "for" and word == "break" and data[2]:
+            var, cur, _local = data
+            self.emit_store(var, cur, var.ty, None, trusted=True)
         self.emit(word)
+
+    def _store_loop_locals(self) -> None:
+        """Before RETURN inside FOR loops: give the variables their values."""
+        for kind, data in self.fn.loop_kinds:
+            if kind == "for" and data[2]:
+                var, cur, _local = data
+                self.emit_store(var, cur, var.ty, None, trusted=True)
 
     def _watchdog_tick(self, counter: str) -> None:
         # cooperative watchdog: a cheap counter, the clock is read every 1024 passes
@@ -545,6 +556,7 @@ class CodeGen:
         end = self.ex(s.end)
         it = self.tmp("i")
         rng = self.tmp("r")
+        step = None
         if s.step is None or isinstance(s.step.const, int):
             step = 1 if s.step is None else s.step.const
             stop = f"{end} + 1" if step > 0 else f"{end} - 1"
@@ -553,16 +565,34 @@ class CodeGen:
             self.emit(f"{rng} = _for_range({start}, {end}, {self.ex(s.step)})")
         self.emit(f"for {it} in {rng}:")
         self.indent += 1
-        self.emit_store(var, it, vty, None, trusted=True)
-        self.fn.loop_kinds.append(("for", (var, it)))
+        local = self._loop_local_ok(var.sym, s.body)
+        if local:
+            lo_hi = None
+            if step is not None and isinstance(s.start.const, int) and isinstance(s.end.const, int):
+                lo_hi = (min(s.start.const, s.end.const), max(s.start.const, s.end.const))
+            self.fn.for_locals[id(var.sym)] = (it, lo_hi)
+        else:
+            self.emit_store(var, it, vty, None, trusted=True)
+        self.fn.loop_kinds.append(("for", (var, it, local)))
         self._body(s.body)
         self.fn.loop_kinds.pop()
+        self.fn.for_locals.pop(id(var.sym), None)
         self.indent -= 1
         self.emit("else:")
         self.indent += 1
         # IEC: after the loop the variable holds the first value past the end
         self.emit_store(var, f"{rng}.start + len({rng}) * {rng}.step", vty, None)
         self.indent -= 1
+
+    def _loop_local_ok(self, sym: Any, body: list) -> bool:
+        """May the body read the FOR variable from the Python loop local?
+        Only when nothing in it can observe the stored variable: a local of
+        this POU (not global, located or by reference) and no call and no
+        REF/ADR in the body."""
+        if not isinstance(sym, VarSymbol) or sym.owner is None or sym.location is not None \
+                or sym.section == "VAR_IN_OUT" or sym.boxed:
+            return False
+        return not any(isinstance(n, A.Call) for n in A.walk(body))
 
     # ------------------------------------------------------------ assignment
 
@@ -737,6 +767,9 @@ class CodeGen:
     def _read_name(self, sym: Any) -> str:
         if not isinstance(sym, VarSymbol):
             raise NotImplementedError("name without a variable")
+        loop_local = self.fn.for_locals.get(id(sym))
+        if loop_local is not None:
+            return loop_local[0]
         if sym.location is not None:
             return f"_A{self.accessor(sym.location, T.base_elementary(sym.type))}g()"
         if sym.owner is None:
@@ -767,6 +800,12 @@ class CodeGen:
         if isinstance(ix.const, int):
             return str(ix.const - lo)
         code = self.ex(ix)
+        if isinstance(ix, A.Name):
+            loop_local = self.fn.for_locals.get(id(ix.sym))
+            if loop_local is not None and loop_local[1] is not None \
+                    and lo <= loop_local[1][0] and loop_local[1][1] <= hi:
+                # the FOR range lies inside the bounds: no check needed
+                return f"{code} - {lo}" if lo else code
         if re.fullmatch(r"[A-Za-z_][A-Za-z0-9_.]*", code):
             off = f"{code} - {lo}" if lo else code
             return f"({off} if {lo} <= {code} <= {hi} else _out_of_bounds({code}, {lo}, {hi}))"

@@ -30,7 +30,7 @@ from bisect import bisect_left
 from pathlib import Path
 from typing import Optional
 
-from lark import Lark, Token
+from lark import Lark, Token, Tree
 from lark.exceptions import UnexpectedCharacters, UnexpectedToken
 from lark.lexer import PatternStr
 from lark.parsers.lalr_analysis import Shift
@@ -973,10 +973,15 @@ class _Parse:
             if after is None or _simulate(after, tok.type) is None:
                 continue
             # 'x y := 1': not "missing ';'" after a name that cannot be a statement.
-            if cand == SEMI and "ASSIGN" in self._expected() and not isinstance(self.value_stack[-1], ast.Call):
+            if cand == SEMI and "ASSIGN" in self._expected() and self._bare_target():
                 continue
             yield cand
             return
+
+    def _bare_target(self) -> bool:
+        """Is the top of the stack a name or expression that is not a call?"""
+        top = self.value_stack[-1] if self.value_stack else None
+        return isinstance(top, (Token, Tree)) or (isinstance(top, ast.Expr) and not isinstance(top, ast.Call))
 
     def _special_case(self, tok: Token, prev: Optional[Token]):
         """Errors with a known cause and a tailored recovery. Returns False
@@ -1007,6 +1012,13 @@ class _Parse:
             self._unshift(prev if word != value else None)
             end = word if word.startswith("END_") else "END_" + word
             return self._skip_through("NAME", end) if word != end else None
+        if tok.type == "LABEL_NAME" and re.match(r"\s*:", self.text[tok.end_pos:]):
+            # In a statement list the lexer offers LABEL_NAME (a case label
+            # could follow a statement), so 'lbl:' arrives as one.
+            self.report("E001", f"label '{tok.value}:' is not supported", self._tok_pos(tok),
+                        "JMP and labels are not supported; use a loop or CASE")
+            self.calm = 1
+            return self._skip_through("COLON")
         if prev is not None and prev.type == "NAME" and "ASSIGN" in self._expected():
             if prev.value.upper() == "JMP":
                 self.report("E001", "JMP is not supported", self._tok_pos(prev),
@@ -1037,6 +1049,7 @@ class _Parse:
             if t.type == "$END":
                 return self._finish(t)
             if t.type == ttype and (value is None or t.value.upper() == value):
+                self.calm = 0  # a clean cut: what follows is new
                 return None
 
     def _missing(self, cand: str, tok: Token, prev: Optional[Token]) -> None:
