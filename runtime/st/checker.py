@@ -1425,7 +1425,7 @@ class Checker:
                          or "declare it as a FUNCTION")
             self._check_args_loosely(e, scope)
             return None
-        if isinstance(callee, A.Member):
+        if isinstance(callee, (A.Member, A.Index)):  # inst.sub(...), timers[i](...)
             return self._fb_call(e, callee, scope, as_statement)
         self.d.error("E043", "this cannot be called", e.pos)
         return None
@@ -1558,6 +1558,8 @@ class Checker:
 
     def _mark_boxed(self, e: A.Expr, scope: _Scope) -> None:
         """A FUNCTION local passed by reference lives in a cell."""
+        if isinstance(e, A.Name) and isinstance(e.sym, VarSymbol):
+            e.sym.address_taken = True
         if isinstance(e, A.Name) and isinstance(e.sym, VarSymbol) and e.sym.owner is not None \
                 and e.sym.owner.kind == "FUNCTION" and not T.resolve(e.sym.type).is_aggregate:
             e.sym.boxed = True

@@ -311,10 +311,10 @@ class CodeGen:
         self.emit("")
         self.emit(f"class {pou.pyname}:")
         self.indent += 1
-        stored = [v for v in pou.vars.values() if v.location is None]
+        stored = [v for v in pou.vars.values() if v.location is None and not self._temp_local(v)]
         located = [v for v in pou.vars.values() if v.location is not None]
         self.emit(f"__slots__ = ({''.join(repr(v.pyname) + ', ' for v in stored)})")
-        meta = [(v.name, v.pyname, v.type, v.section) for v in pou.vars.values()]
+        meta = [(v.name, v.pyname, v.type, v.section) for v in pou.vars.values() if not self._temp_local(v)]
         self.emit(f"_VARS_ = {self._vars_meta(meta)}")
         for v in located:
             idx = self.accessor(v.location, T.base_elementary(v.type))
@@ -333,6 +333,8 @@ class CodeGen:
             if v.section == "VAR_IN_OUT":
                 self.emit(f"self.{v.pyname} = None")
                 continue
+            if self._temp_local(v):
+                continue
             self._emit_init(f"self.{v.pyname}", v.type, v.init_value)
         self.indent -= 1
         self._assign_copy_methods(pou.pyname, [(v.pyname, v.type) for v in stored])
@@ -345,12 +347,20 @@ class CodeGen:
         self.indent -= 1
         self.indent -= 1
 
+    @staticmethod
+    def _temp_local(v: VarSymbol) -> bool:
+        """A VAR_TEMP of a PROGRAM or FB lives in a Python local of the body
+        (it starts afresh every call) unless a reference to it is taken."""
+        return v.section == "VAR_TEMP" and not v.address_taken and v.owner is not None \
+            and v.owner.kind != "FUNCTION"
+
     def _temps_init(self, pou: POUInfo) -> None:
         """VAR_TEMP is re-initialised on every call (IEC)."""
         for v in pou.vars.values():
             if v.section == "VAR_TEMP":
                 self.pos = v.pos
-                self._emit_init(f"self.{v.pyname}", v.type, v.init_value)
+                target = v.pyname if self._temp_local(v) else f"self.{v.pyname}"
+                self._emit_init(target, v.type, v.init_value)
 
     def _function(self, pou: POUInfo) -> None:
         self.pos = pou.node.pos
@@ -586,13 +596,11 @@ class CodeGen:
 
     def _loop_local_ok(self, sym: Any, body: list) -> bool:
         """May the body read the FOR variable from the Python loop local?
-        Only when nothing in it can observe the stored variable: a local of
-        this POU (not global, located or by reference) and no call and no
-        REF/ADR in the body."""
-        if not isinstance(sym, VarSymbol) or sym.owner is None or sym.location is not None \
-                or sym.section == "VAR_IN_OUT" or sym.boxed:
-            return False
-        return not any(isinstance(n, A.Call) for n in A.walk(body))
+        Only when nothing else can observe the stored variable: a local of
+        this POU that is not located, global, or reached by any reference
+        (REF, ADR, VAR_IN_OUT, =>); the body itself may not assign it (E072)."""
+        return isinstance(sym, VarSymbol) and sym.owner is not None and sym.location is None \
+            and sym.section != "VAR_IN_OUT" and not sym.boxed and not sym.address_taken
 
     # ------------------------------------------------------------ assignment
 
@@ -646,15 +654,77 @@ class CodeGen:
             return self._converter(se, de, code)
         if se.is_bool:
             return f"int({code})"
-        # integer-like to integer-like: wrap unless the source range fits
-        if se.lo is not None and de.lo is not None and de.lo <= se.lo and se.hi <= de.hi \
-                and self._is_stored_value(e):
+        # integer-like to integer-like: wrap unless the value provably fits
+        rng = self._value_range(e)
+        if rng is not None and de.lo is not None and de.lo <= rng[0] and rng[1] <= de.hi:
             return code
         return self.wrap(de, code)
 
     def _is_stored_value(self, e: Optional[A.Expr]) -> bool:
-        """A value read from storage already has its type's representation."""
-        return e is not None and isinstance(e, (A.Name, A.Member, A.Index, A.Deref, A.Located, A.BitAccess))
+        """A value read from storage already has its type's representation;
+        so do MIN/MAX/LIMIT/SEL/MOVE of such values."""
+        if e is None:
+            return False
+        if isinstance(e, (A.Name, A.Member, A.Index, A.Deref, A.Located, A.BitAccess)) or e.const is not None:
+            return True
+        if isinstance(e, A.Call) and isinstance(e.target, CallInfo) and e.target.kind == "std" \
+                and e.target.func.name in ("MIN", "MAX", "LIMIT", "SEL", "MOVE"):
+            args = e.target.args[1:] if e.target.func.name == "SEL" else e.target.args
+            return all(self._is_stored_value(a) for a in args)
+        return False
+
+    _WRAPPING_FUNCS = ("SHL", "SHR", "ROL", "ROR")
+
+    def _value_range(self, e: Optional[A.Expr]) -> Optional[tuple]:
+        """(lowest, highest) an integer expression can have, or None if
+        unknown: lets a store skip the wrap when the value cannot leave the
+        target's range (interval arithmetic over the operators)."""
+        if e is None:
+            return None
+        if isinstance(e.const, int) and not isinstance(e.const, bool):
+            return (e.const, e.const)
+        if isinstance(e, A.Name):
+            loop_local = self.fn.for_locals.get(id(e.sym))
+            if loop_local is not None and loop_local[1] is not None:
+                return loop_local[1]
+        be = T.base_elementary(e.ty) if e.ty is not None else None
+        if be is None or not be.is_intlike:
+            return None
+        if self._is_stored_value(e) and not isinstance(e, A.Call):
+            return (be.lo, be.hi)
+        if isinstance(e, A.Binary):
+            lr, rr = self._value_range(e.left), self._value_range(e.right)
+            if lr is None or rr is None:
+                return None
+            op = e.op
+            if op == "+":
+                return (lr[0] + rr[0], lr[1] + rr[1])
+            if op == "-":
+                return (lr[0] - rr[1], lr[1] - rr[0])
+            if op == "*":
+                ps = [a * b for a in lr for b in rr]
+                return (min(ps), max(ps))
+            if op == "AND":
+                nonneg = [r for r in (lr, rr) if r[0] >= 0]
+                return (0, min(r[1] for r in nonneg)) if nonneg else None
+            if op in ("OR", "XOR") and lr[0] >= 0 and rr[0] >= 0:
+                return (0, (1 << max(lr[1], rr[1]).bit_length()) - 1)
+            if op == "MOD" and rr[0] == rr[1] and rr[0] > 0:
+                # the remainder has the dividend's sign and is smaller than the divisor
+                return (0 if lr[0] >= 0 else -(rr[0] - 1), rr[0] - 1)
+            if op == "/" and rr[0] == rr[1] and rr[0] > 0 and lr[0] >= 0:
+                return (lr[0] // rr[0], lr[1] // rr[0])
+            return None
+        if isinstance(e, A.Call) and isinstance(e.target, CallInfo) and e.target.kind == "std":
+            name = e.target.func.name
+            if name in self._WRAPPING_FUNCS or ("_TO_" in name and "BCD" not in name):
+                return (be.lo, be.hi)  # these always return a wrapped value of their type
+            if name in ("MIN", "MAX", "LIMIT", "SEL", "MOVE"):
+                args = e.target.args[1:] if name == "SEL" else e.target.args
+                rs = [self._value_range(a) for a in args]
+                if None not in rs:
+                    return (min(r[0] for r in rs), max(r[1] for r in rs))
+        return None
 
     def _converter(self, se: T.ElementaryType, de: T.ElementaryType, code: str) -> str:
         fn = rtlib.make_converter(se, de)
@@ -704,6 +774,9 @@ class CodeGen:
             return
         if sym.owner is None:
             self.emit(f"_G.{sym.pyname} = {code}")
+            return
+        if self._temp_local(sym) and sym.owner is self.fn.pou:
+            self.emit(f"{sym.pyname} = {code}")
             return
         if self.fn.is_function and sym.owner is self.fn.pou:
             if sym.section == "VAR_IN_OUT":
@@ -775,6 +848,8 @@ class CodeGen:
         if sym.owner is None:
             return f"_G.{sym.pyname}"
         aggregate = T.resolve(sym.type).is_aggregate
+        if self._temp_local(sym) and sym.owner is self.fn.pou:
+            return sym.pyname
         if self.fn.is_function and sym.owner is self.fn.pou:
             if sym.section == "VAR_IN_OUT" and not aggregate:
                 return f"{sym.pyname}.get()"
@@ -800,16 +875,15 @@ class CodeGen:
         if isinstance(ix.const, int):
             return str(ix.const - lo)
         code = self.ex(ix)
-        if isinstance(ix, A.Name):
-            loop_local = self.fn.for_locals.get(id(ix.sym))
-            if loop_local is not None and loop_local[1] is not None \
-                    and lo <= loop_local[1][0] and loop_local[1][1] <= hi:
-                # the FOR range lies inside the bounds: no check needed
-                return f"{code} - {lo}" if lo else code
+        rng = self._value_range(ix)
+        if rng is not None and lo <= rng[0] and rng[1] <= hi:
+            # the index provably lies inside the bounds (a FOR range, say): no check
+            return f"{code} - {lo}" if lo else code
         if re.fullmatch(r"[A-Za-z_][A-Za-z0-9_.]*", code):
             off = f"{code} - {lo}" if lo else code
             return f"({off} if {lo} <= {code} <= {hi} else _out_of_bounds({code}, {lo}, {hi}))"
-        return f"_check_index({code}, {lo}, {hi})"
+        t = self.tmp("x")  # the condition runs first and binds the index once
+        return f"({t} - {lo} if {lo} <= ({t} := {code}) <= {hi} else _out_of_bounds({t}, {lo}, {hi}))"
 
     def _unary(self, e: A.Unary) -> str:
         v = self.ex(e.operand)
@@ -845,6 +919,15 @@ class CodeGen:
                     return f"({l} {'and' if op == 'AND' else 'or'} {r})"
                 return f"({l} {'&' if op == 'AND' else '|'} {r})"
             return f"({l} {'&' if op == 'AND' else '|' if op == 'OR' else '^'} {r})"
+        divisor = e.right.const
+        if op in ("/", "MOD") and be.is_intlike and isinstance(divisor, int) and divisor > 0 \
+                and not isinstance(divisor, bool):
+            pyop = "//" if op == "/" else "%"
+            lr = self._value_range(e.left)
+            if lr is not None and lr[0] >= 0:
+                return f"({l} {pyop} {divisor})"
+            t = self.tmp("d")  # truncate toward zero / sign of the dividend (IEC)
+            return f"({t} {pyop} {divisor} if ({t} := {l}) >= 0 else -(-{t} {pyop} {divisor}))"
         if op == "/":
             if be.is_intlike:
                 return f"_idiv({l}, {r})"
@@ -879,9 +962,9 @@ class CodeGen:
             return self._function_call(info)
         if info.kind == "builtin":
             if info.func == "TIME":
-                return "_time_ms()"
+                return "_NOW_MS"  # the task clock, set once per cycle by the runner
             if info.func == "LTIME":
-                return "_time_ns()"
+                return "_NOW_NS"
             if info.func in ("REF", "ADR"):
                 return self.ref_code(info.args[0])
             return _literal(e.const)
@@ -905,10 +988,79 @@ class CodeGen:
             return f"({args[2]} if {args[0]} else {args[1]})"
         if name == "MOVE" and len(args) == 1:
             return args[0]
+        if name == "LIMIT" and rty is not None and (rty.is_intlike or rty.is_real):
+            return f"max(min({args[1]}, {args[2]}), {args[0]})"  # IEC: MAX(MIN(IN, MX), MN)
+        inline = self._inline_shift(info, args) or self._inline_conversion(info, args)
+        if inline is not None:
+            return inline
         fn = self.const(func.impl)
         if func.typed:
             return f"{fn}({self.const(info.rtypes)}, {', '.join(args)})"
         return f"{fn}({', '.join(args)})"
+
+    def _inline_shift(self, info: CallInfo, args: list) -> Optional[str]:
+        """SHL/SHR/ROL/ROR of an unsigned bit string by a constant count."""
+        name = info.func.name
+        if name not in self._WRAPPING_FUNCS:
+            return None
+        t = T.base_elementary(info.rtypes[0])
+        n = info.args[1].const
+        if t is None or not t.is_bits:
+            return None
+        w, mask = t.bits, (1 << t.bits) - 1
+        if n is None and name in ("SHL", "SHR"):
+            nr = self._value_range(info.args[1])
+            xr = self._value_range(info.args[0])
+            if nr is not None and 0 <= nr[0] and nr[1] < w and xr is not None and 0 <= xr[0] \
+                    and xr[1] <= mask:
+                return f"({args[0]} << {args[1]} & {mask})" if name == "SHL" else f"({args[0]} >> {args[1]})"
+            return None
+        if not isinstance(n, int) or isinstance(n, bool) or n < 0:
+            return None
+        x = args[0]
+        xr = self._value_range(info.args[0])
+        in_range = xr is not None and 0 <= xr[0] and xr[1] <= mask
+        if not in_range:
+            x = f"({x} & {mask})"
+        if name in ("ROL", "ROR"):
+            n %= w
+            if n == 0:
+                return x
+            if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_.]*", x):
+                tmp = self.tmp("s")
+                first, x = f"({tmp} := {x})", tmp
+            else:
+                first = x
+            a, b = ("<<", ">>") if name == "ROL" else (">>", "<<")
+            return f"(({first} {a} {n} | {x} {b} {w - n}) & {mask})"
+        if n >= w:
+            return "0"
+        if name == "SHL":
+            return f"({x} << {n} & {mask})"
+        return f"({x} >> {n})"
+
+    def _inline_conversion(self, info: CallInfo, args: list) -> Optional[str]:
+        """<T>_TO_<U> between integer/bit-string types and into REAL/LREAL."""
+        func = info.func
+        if func.typed or "_TO_" not in func.name or "BCD" in func.name or len(func.params) != 1:
+            return None
+        src = T.ELEMENTARY.get(func.params[0][1].upper())
+        dst = T.base_elementary(info.rtypes[0])
+        if src is None or dst is None or not src.is_intlike:
+            return None
+        x = args[0]
+        if dst.is_intlike:
+            xr = self._value_range(info.args[0])
+            if xr is not None and dst.lo <= xr[0] and xr[1] <= dst.hi:
+                return x
+            return self.wrap(dst, x)
+        xr = self._value_range(info.args[0])
+        if dst is T.LREAL and src.bits <= 32 or dst is T.REAL and T.widens_to(src, T.REAL) \
+                or dst is T.REAL and xr is not None and -(1 << 24) <= xr[0] and xr[1] <= 1 << 24:
+            return f"float({x})"  # exact: the integer fits the mantissa
+        if dst is T.REAL and src.bits <= 53:
+            return f"_f32({x})"  # one rounding, as the integer converts to double exactly
+        return None
 
     def _function_call(self, info: CallInfo) -> str:
         pou = info.pou
@@ -940,8 +1092,8 @@ class CodeGen:
             self.emit(self.ex(e))
             return
         inst = self.ex(info.instance)
-        if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_.]*", inst):
-            t = self.tmp("fb")
+        if info.inputs or info.inouts or info.outputs or not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_.]*", inst):
+            t = self.tmp("fb")  # an instance never changes identity: look it up once
             self.emit(f"{t} = {inst}")
             inst = t
         for p, a in info.inputs:

@@ -132,6 +132,16 @@ class ExecContext:
         self.watchdog_s = watchdog_s
         self.deadline = float("inf")
         self.comm = NoCommunication()
+        self.namespaces: list = []  # loaded modules that read the clock
+
+    def set_time(self, now_ns: int) -> None:
+        """Set the task clock. TIME() and LTIME() are constant within a cycle,
+        so the loaded modules get the value once instead of a call per use."""
+        self.now_ns = now_ns
+        ms, ns = self.time_ms(), self.time_ns()
+        for namespace in self.namespaces:
+            namespace["_NOW_MS"] = ms
+            namespace["_NOW_NS"] = ns
 
     def time_ms(self) -> int:
         return rtlib.wrap(T.TIME, self.now_ns // 1_000_000)
@@ -231,7 +241,7 @@ class Program:
             "_with_fields": _with_fields, "_deref": _deref,
             "_check_index": _check_index, "_check_range": _check_range, "_out_of_bounds": out_of_bounds,
             "_for_range": _for_range,
-            "_time_ms": ctx.time_ms, "_time_ns": ctx.time_ns, "_watchdog": ctx.check_watchdog,
+            "_watchdog": ctx.check_watchdog,
             "_comm": lambda name, *args: ctx.comm.request(name, *args),
         }
         ns.update(self.generated.consts)
@@ -242,6 +252,8 @@ class Program:
             else:
                 get, set_ = image.accessor(acc.addr, acc.type)
                 ns[f"_A{idx}g"], ns[f"_A{idx}s"] = get, set_
+        ctx.namespaces.append(ns)
+        ctx.set_time(ctx.now_ns)
         exec(self.code, ns)
         try:
             ns["_G"] = ns["_Globals"]()
@@ -298,7 +310,7 @@ class Runner:
             except Exception as exc:
                 raise fault_from_exception(exc, self.program.linemaps) from None
             self.cycles += 1
-            ctx.now_ns += self.cycle_ns
+            ctx.set_time(ctx.now_ns + self.cycle_ns)
 
     def get(self, path: str):
         """The value of a variable by its ST path, e.g. 'counter.CV' or 'G_speed'."""

@@ -37,6 +37,7 @@ class VarSymbol:
     init_value: Any = None  # evaluated initial value plan (see checker.init_value)
     const_value: Any = None  # compile-time value of a CONSTANT
     boxed: bool = False  # FUNCTION local whose reference is taken: kept in a CellRef
+    address_taken: bool = False  # REF/ADR, VAR_IN_OUT or => reaches it: others may read it
 
     @property
     def is_global(self) -> bool:
