@@ -50,11 +50,17 @@ _REAL = re.compile(r"\d[\d_]*(?:\.\d[\d_]*)?(?:e[-+]?\d+)?", re.I | re.A)
 
 # ---------------------------------------------------------------- numbers
 
+MAX_DIGITS = 128  # LWORD in base 2 is 64; more is a typo (and Python's int() has limits)
+
+
 def _check_underscores(digits: str, text: str) -> str:
     if not digits or digits.startswith("_") or digits.endswith("_") or "__" in digits:
         raise LiteralError(f"invalid number '{text}'",
                            "an underscore may only stand between two digits")
-    return digits.replace("_", "")
+    digits = digits.replace("_", "")
+    if len(digits) > MAX_DIGITS:
+        raise LiteralError(f"number too long ({len(digits)} digits)")
+    return digits
 
 
 def parse_int(text: str) -> int:

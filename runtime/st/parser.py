@@ -2,22 +2,22 @@
 
     sf = parse_source(text, path, diags)
 
-Never raises: every problem becomes a coded diagnostic in ``diags``
-(E001 syntax, E002 invalid character, E003 invalid literal, E004
-unterminated comment/string/pragma, E005 structural, E009 internal) and the
-result holds whatever could be parsed.
+Never raises: every problem becomes a coded diagnostic in ``diags`` (E001
+syntax, E002 invalid character, E003 invalid literal, E004 unterminated
+comment/string/pragma, E005 structural, E009 internal; W101 ignored
+EXTENDS/IMPLEMENTS) and the result holds whatever could be parsed.
 
 How it works:
-  1. ``_strip_comments`` blanks out comments (nested ``(* *)``, ``//``,
-     ``/* */``) and pragmas ``{...}`` with spaces, keeping every line and
-     column where it was, and collects the pragmas.
-  2. lark (LALR, contextual lexer) parses; the ``_Builder`` callbacks run
-     inside the parser and build the ``ast`` nodes directly (no parse tree).
-  3. The token loop is ours (lark's interactive parser), so a syntax error
-     does not end the parse: ``_Parse._recover`` inserts a missing token or
-     skips to a synchronising token (';', END_*, THEN, ...) and pops the
-     parser stack until it fits, then parsing goes on. Errors within three
-     tokens of the previous one are not reported (they are its echoes).
+  1. lexer.strip_comments blanks out comments and pragmas, keeping every
+     line and column; lexer.Lexer cuts the rest into tokens.
+  2. The LALR(1) table comes from lark (grammar.lark, built once per
+     process; the analysis is cached). The token loop is ours: ``_feed``
+     runs the table and calls the ``_Builder`` callbacks, which build the
+     ``ast`` nodes directly (no parse tree).
+  3. A syntax error does not end the parse: ``_recover`` inserts a missing
+     token, handles a known mistake, or skips to a synchronising token
+     (';', END_*, THEN, ...) and pops the stack until it fits. Errors right
+     after another one are its echoes and are not reported (``calm``).
   4. Pragmas are attached to the item that follows them.
 """
 from __future__ import annotations
@@ -30,27 +30,31 @@ from bisect import bisect_left
 from pathlib import Path
 from typing import Optional
 
-from lark import Lark, Token, Tree
-from lark.exceptions import UnexpectedCharacters, UnexpectedToken
+from lark import Lark, Tree
 from lark.lexer import PatternStr
+from lark.parse_tree_builder import ExpandSingleChild
 from lark.parsers.lalr_analysis import Shift
 
 from . import ast
 from .diagnostics import DiagnosticBag
+from .lexer import INVALID_RUN, Lexer, Tok, line_col, strip_comments
 from .literals import (LiteralError, parse_based, parse_c_hex, parse_hash_literal, parse_int,
                        parse_real, parse_string)
 
-__all__ = ["parse_source"]
+__all__ = ["parse_source", "parse_located"]
 
 MAX_ERRORS = 100
-# Parser stack depth (~3-5 entries per nesting level) beyond which the input
-# is refused: later stages walk the tree recursively.
-MAX_STACK = 1200
+# Limits beyond which the input is refused (E005): later stages walk the
+# tree recursively, and generated Python has limits of its own (100 levels
+# of indentation, 200 nested parentheses). The parser stack grows by 1-4
+# entries per nesting level (a parenthesis, a unary operator, IF in IF);
+# a chain a + b + c ... makes a tree as deep as it is long.
+MAX_STACK = 300
+MAX_OPERATORS = 1000
 
-# Keywords reserved everywhere: the lexer never turns them into names, so a
-# misplaced END_IF is reported as such. The others (SET, RESET, AT, ON, WITH,
-# TASK, RETAIN, CONSTANT, ...) are keywords only where the grammar expects
-# them and ordinary names elsewhere (rs(SET := x), VAR on : BOOL; END_VAR).
+# Keywords reserved everywhere: never names, so a misplaced END_IF is
+# reported as such. The others (SET, RESET, AT, ON, WITH, TASK, RETAIN,
+# CONSTANT, POINTER, ...) are keywords only where the grammar expects them.
 _RESERVED = frozenset("""
     PROGRAM END_PROGRAM FUNCTION END_FUNCTION FUNCTION_BLOCK END_FUNCTION_BLOCK TYPE END_TYPE
     STRUCT END_STRUCT ARRAY STRING WSTRING REF_TO VAR VAR_INPUT VAR_OUTPUT VAR_IN_OUT VAR_GLOBAL
@@ -59,108 +63,15 @@ _RESERVED = frozenset("""
     END_REPEAT EXIT CONTINUE RETURN AND AND_THEN OR OR_ELSE XOR NOT MOD TRUE FALSE
 """.split())
 
-
-class _PostLex:
-    """Only here for ``always_accept``: the names and reserved keywords every
-    lexer state must know."""
-
-    def __init__(self, always_accept: tuple) -> None:
-        self.always_accept = always_accept
-
-    def process(self, stream):
-        return stream
-
-
-# ---------------------------------------------------------------- comments and pragmas
-
-_COMMENT_START = re.compile(r"\(\*|\*\)|/\*|//|\{|'|\"")
-_NESTED = re.compile(r"\(\*|\*\)")
-_STRING_AT = {"'": re.compile(r"'(?:[^'$\n]|\$[^\n])*'"), '"': re.compile(r'"(?:[^"$\n]|\$[^\n])*"')}
-_NOT_NEWLINE = re.compile(r"[^\n]")
-
-
-def _line_col(text: str, offset: int) -> tuple:
-    line = text.count("\n", 0, offset) + 1
-    return line, offset - (text.rfind("\n", 0, offset) + 1) + 1
-
-
-class _Pragma:
-    __slots__ = ("text", "line", "col", "end_line", "end_col")
-
-    def __init__(self, text: str, start: tuple, end: tuple) -> None:
-        self.text = text
-        self.line, self.col = start
-        self.end_line, self.end_col = end
-
-
-def _strip_comments(text: str, error) -> tuple:
-    """Return (text with comments and pragmas blanked, [_Pragma]).
-    ``error(code, message, offset, end_offset, hint)`` reports a problem."""
-    if not any(c in text for c in "(/{*"):
-        return text, []
-    pieces, pragmas = [], []
-    done = pos = 0  # text[:done] is in pieces; scanning resumes at pos
-    while True:
-        m = _COMMENT_START.search(text, pos)
-        if m is None:
-            break
-        start, what = m.start(), m.group()
-        if what in ("'", '"'):
-            s = _STRING_AT[what].match(text, start)
-            pos = s.end() if s else start + 1  # the lexer reports unterminated strings
-            continue
-        if what == "*)":
-            error("E001", "'*)' without a matching '(*'", start, start + 2,
-                  "remove it, or open the comment with '(*'")
-            end = start + 2
-        elif what == "//":
-            nl = text.find("\n", start)
-            end = len(text) if nl < 0 else nl
-        elif what == "/*":
-            close = text.find("*/", start + 2)
-            if close < 0:
-                error("E004", "unterminated comment: '/*' is never closed", start, start + 2, "close it with '*/'")
-                end = len(text)
-            else:
-                end = close + 2
-        elif what == "{":
-            close = text.find("}", start + 1)
-            if close < 0:
-                error("E004", "unterminated pragma: '{' is never closed", start, start + 1, "close it with '}'")
-                end = len(text)
-            else:
-                end = close + 1
-                pragmas.append(_Pragma(text[start + 1:close].strip(), _line_col(text, start), _line_col(text, end)))
-        else:  # "(*", nested
-            depth, p = 1, start + 2
-            while depth:
-                n = _NESTED.search(text, p)
-                if n is None:
-                    break
-                depth += 1 if n.group() == "(*" else -1
-                p = n.end()
-            if depth:
-                error("E004", "unterminated comment: '(*' is never closed", start, start + 2,
-                      "(* *) comments nest: every '(*' inside needs its own '*)'")
-                end = len(text)
-            else:
-                end = p
-        pieces.append(text[done:start])
-        pieces.append(_NOT_NEWLINE.sub(" ", text[start:end]))
-        done = pos = end
-    pieces.append(text[done:])
-    return "".join(pieces), pragmas
-
-
-# ---------------------------------------------------------------- located addresses
-
 _LOCATED = re.compile(r"%([IQM])([XBWDL]?)(?:([\d.]+)(?::(X?)(\d+))?|\*)", re.I | re.A)
 
 
 def parse_located(text: str) -> ast.LocatedAddress:
-    """``%IX0.3`` / ``%MW3250:X0`` / ``%MW3250:4`` / ``%I*`` (token text)."""
-    m = _LOCATED.fullmatch(text)
-    area, size, idx, bit_x, num = m.groups()
+    """``%IX0.3`` / ``%MW3250:X0`` / ``%MW3250:4`` / ``%I*`` (a LOCATED token).
+    Raises LiteralError for absurdly long numbers."""
+    area, size, idx, bit_x, num = _LOCATED.fullmatch(text).groups()
+    if any(len(n) > 18 for n in (idx or "").split(".") + [num or ""]):
+        raise LiteralError(f"invalid direct address '{text}': number too long")
     indices = tuple(int(i) for i in idx.split(".")) if idx else ()
     bit = table = None
     if num is not None:
@@ -186,19 +97,22 @@ _BINARY_OPS = {"OR": "OR", "OR_ELSE": "OR_ELSE", "XOR": "XOR", "AND": "AND", "AM
                "AND_THEN": "AND_THEN", "EQ": "=", "NE": "<>", "LT": "<", "GT": ">", "LE": "<=",
                "GE": ">=", "PLUS": "+", "MINUS": "-", "STAR": "*", "SLASH": "/", "MOD": "MOD",
                "POW": "**"}
+_PRECEDENCE = {"OR": 1, "OR_ELSE": 1, "XOR": 2, "AND": 3, "AMP": 3, "AND_THEN": 3, "EQ": 4, "NE": 4,
+               "LT": 5, "GT": 5, "LE": 5, "GE": 5, "PLUS": 6, "MINUS": 6, "STAR": 7, "SLASH": 7, "MOD": 7,
+               "POW": 8}
 _UNARY_OPS = {"MINUS": "-", "PLUS": "+", "NOT": "NOT"}
 _ASSIGN_OPS = {"ASSIGN": ":=", "S_ASSIGN": "S=", "R_ASSIGN": "R=", "REF_ASSIGN": "REF="}
 _NAME_TYPES = frozenset(("NAME", "SET", "RESET"))
 
 
 def _start(x) -> tuple:
-    if isinstance(x, Token):
+    if isinstance(x, Tok):
         return x.line, x.column
     return x.pos.line, x.pos.col
 
 
 def _end(x) -> tuple:
-    if isinstance(x, Token):
+    if isinstance(x, Tok):
         return x.end_line, x.end_column
     return x.pos.end_line, x.pos.end_col
 
@@ -217,13 +131,13 @@ class _Builder:
         self.file = ctx.path
 
     # -- positions
-    def _tpos(self, t: Token) -> ast.Pos:
+    def _tpos(self, t: Tok) -> ast.Pos:
         return ast.Pos(self.file, t.line, t.column, t.end_line, t.end_column)
 
     def _span(self, first, last) -> ast.Pos:
         return ast.Pos(self.file, *_start(first), *_end(last))
 
-    def _literal_error(self, e: LiteralError, tok: Token) -> None:
+    def _literal_error(self, e: LiteralError, tok: Tok) -> None:
         self.ctx.report("E003", e.message, self._tpos(tok), e.hint, always=True)
 
     # -- top level
@@ -277,7 +191,7 @@ class _Builder:
     # -- declarations
     def var_block(self, c):
         kind = c[0].type
-        quals = {t.type for t in c if isinstance(t, Token)}
+        quals = {t.type for t in c if isinstance(t, Tok)}
         decls = []
         for d in c:
             if isinstance(d, list):
@@ -288,7 +202,7 @@ class _Builder:
                     self.ctx.report("E005", f"'{d.name}': a qualified name is only allowed in VAR_CONFIG", d.pos,
                                     "declare a plain name here")
         blk = ast.VarBlock(kind, decls, constant="CONSTANT" in quals,
-                           retain="RETAIN" in quals or "PERSISTENT" in quals,
+                           retain="RETAIN" in quals,
                            persistent="PERSISTENT" in quals, pos=self._span(c[0], c[-1]))
         self.ctx.items.append(blk)
         return blk
@@ -299,7 +213,7 @@ class _Builder:
     def var_decl(self, c):
         # var_name tuples..., LOCATED|None, type, init|None
         *names, loc, spec, init = c
-        location = parse_located(loc.value) if loc is not None else None
+        location = self._address(loc) if loc is not None else None
         end = init if init is not None else spec
         out = []
         for name, first, _ in names:
@@ -310,8 +224,10 @@ class _Builder:
 
     def unnamed_var_decl(self, c):
         loc, spec, init = c
-        # 'AT %QW1 : WORD;': the address is the name (it cannot clash with an identifier).
-        d = ast.VarDecl(loc.value, spec, init, parse_located(loc.value),
+        # 'AT %QW1 : WORD;' gets a name from the address: '__at_QW1' (IEC
+        # names cannot have '__', so it cannot clash with a declared one).
+        name = "__at_" + re.sub(r"\W", "_", loc.value[1:].replace("*", "star"))
+        d = ast.VarDecl(name, spec, init, self._address(loc),
                         pos=self._span(loc, init if init is not None else spec))
         self.ctx.items.append(d)
         return [d]
@@ -334,7 +250,7 @@ class _Builder:
                                   pos=self._span(c[0], c[-1]))
 
     def array_type(self, c):
-        ranges = [r for r in c[2:-1] if not isinstance(r, Token)]
+        ranges = [r for r in c[2:-1] if not isinstance(r, Tok)]
         return ast.ArrayTypeSpec(ranges, c[-1], pos=self._span(c[0], c[-1]))
 
     def array_range(self, c):
@@ -393,7 +309,7 @@ class _Builder:
         return ast.Configuration(c[1].value, blocks, resources, pos=self._span(c[0], c[-1]))
 
     def resource(self, c):
-        names = [t for t in c[1:3] if isinstance(t, Token) and t.type in _NAME_TYPES]
+        names = [t for t in c[1:3] if isinstance(t, Tok) and t.type in _NAME_TYPES]
         return ast.Resource(names[0].value, names[1].value if len(names) > 1 else None,
                             [x for x in c if isinstance(x, ast.VarBlock)],
                             [x for x in c if isinstance(x, ast.TaskDecl)],
@@ -412,7 +328,7 @@ class _Builder:
 
     def program_config(self, c):
         # PROGRAM, RETAIN|NON_RETAIN|None, names (instance, [task], type), LPAR|None, args|None, RPAR|None
-        names = [t for t in c[2:] if isinstance(t, Token) and t.type in _NAME_TYPES]
+        names = [t for t in c[2:] if isinstance(t, Tok) and t.type in _NAME_TYPES]
         args = next((x for x in c if isinstance(x, list)), [])
         last = next((x for x in reversed(c) if x is not None), c[0])
         return ast.ProgramConfig(names[0].value, names[-1].value, names[1].value if len(names) == 3 else None,
@@ -462,8 +378,6 @@ class _Builder:
     def label_name(self, c):
         t = c[0]
         parts = t.value.split(".")
-        if len(parts) == 1 and parts[0].upper() in ("TRUE", "FALSE"):
-            return ast.Literal("bool", parts[0].upper() == "TRUE", pos=self._tpos(t))
         node = ast.Name(parts[0], pos=ast.Pos(self.file, t.line, t.column, t.line, t.column + len(parts[0])))
         col = t.column + len(parts[0]) + 1
         for p in parts[1:]:
@@ -492,18 +406,42 @@ class _Builder:
         return self._add_stmt(ast.Return(pos=self._tpos(c[0])))
 
     # -- expressions
-    def binary(self, c):
-        left, op, right = c
-        lp, rp = left.pos, right.pos
-        return ast.Binary(_BINARY_OPS[op.type], left, right,
-                          pos=ast.Pos(self.file, lp.line, lp.col, rp.end_line, rp.end_col))
+    def expr(self, c):
+        """operand, op, operand, ... -> Binary nodes by IEC precedence
+        (all operators associate to the left)."""
+        file = self.file
+        if len(c) > 2 * MAX_OPERATORS:
+            self.ctx.report("E005", f"expression too long (more than {MAX_OPERATORS} operators)",
+                            self._span(c[0], c[-1]), "split it, using intermediate variables", always=True)
+            return c[0]
+        operands, ops = [c[0]], []
+
+        def combine():
+            op, right = ops.pop(), operands.pop()
+            left = operands.pop()
+            lp, rp = left.pos, right.pos
+            operands.append(ast.Binary(_BINARY_OPS[op.type], left, right,
+                                       pos=ast.Pos(file, lp.line, lp.col, rp.end_line, rp.end_col)))
+
+        for i in range(1, len(c), 2):
+            op = c[i]
+            rank = _PRECEDENCE[op.type]
+            while ops and _PRECEDENCE[ops[-1].type] >= rank:
+                combine()
+            ops.append(op)
+            operands.append(c[i + 1])
+        while ops:
+            combine()
+        return operands[0]
 
     def unary(self, c):
         op, operand = c
         return ast.Unary(_UNARY_OPS[op.type], operand, pos=self._span(op, operand))
 
     def paren(self, c):
-        return c[1]
+        node = c[1]  # no node of its own; the inner one spans the parentheses
+        node.pos = self._span(c[0], c[2])
+        return node
 
     def int_lit(self, c):
         t = c[0]
@@ -563,8 +501,15 @@ class _Builder:
         t = c[0]
         return ast.Name(t.value, pos=ast.Pos(self.file, t.line, t.column, t.end_line, t.end_column))
 
+    def _address(self, t: Tok) -> ast.LocatedAddress:
+        try:
+            return parse_located(t.value)
+        except LiteralError as e:
+            self._literal_error(e, t)
+            return ast.LocatedAddress("M", "", (0,), text=t.value)
+
     def located(self, c):
-        return ast.Located(parse_located(c[0].value), pos=self._tpos(c[0]))
+        return ast.Located(self._address(c[0]), pos=self._tpos(c[0]))
 
     def member(self, c):
         base, t = c
@@ -572,8 +517,9 @@ class _Builder:
 
     def bit_access(self, c):
         base, t = c
-        bit = int(t.value[2:]) if t.type == "BIT_REF" else parse_int(t.value)
-        return ast.BitAccess(base, ast.Literal("int", bit, pos=self._tpos(t)), pos=self._span(base, t))
+        if t.type == "BIT_REF":  # %X3
+            t = Tok("INT", t.value[2:], t.start_pos + 2, t.line, t.column + 2)
+        return ast.BitAccess(base, self.int_lit([t]), pos=self._span(base, t))
 
     def index(self, c):
         return ast.Index(c[0], list(c[2:-1]), pos=self._span(c[0], c[-1]))
@@ -599,77 +545,102 @@ class _Builder:
         return ast.Arg(name.value, target, output=True, negated=True, pos=self._span(c[0], target))
 
 
-# ---------------------------------------------------------------- the lark parser, built once
+# ---------------------------------------------------------------- the grammar, built once
 
 def _cache_file() -> Optional[str]:
-    """lark's grammar-analysis cache (0.03 s to load instead of 0.5 s to
-    build) in the user's own cache directory, never a shared /tmp file:
-    lark loads it with pickle."""
+    """Where lark caches its grammar analysis (0.03 s to load instead of
+    0.5 s to build): the user's own cache directory, never a shared /tmp
+    file, since lark loads it with pickle."""
     try:
-        base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-        d = os.path.join(base, "softplc")
-        os.makedirs(d, exist_ok=True)
         import lark
-        return os.path.join(d, f"st-grammar-lark{lark.__version__}.cache")
+        base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+        directory = os.path.join(base, "softplc")
+        os.makedirs(directory, exist_ok=True)
+        return os.path.join(directory, f"st-grammar-lark{lark.__version__}.cache")
     except Exception:
         return None
 
 
-def _build_parser() -> Lark:
-    grammar = (Path(__file__).with_name("grammar.lark")).read_text(encoding="utf-8")
-    names = re.findall(r'^([A-Z_]+)(?:\.\d+)?:\s*"([A-Z_]+)"i\s*$', grammar, re.M)
-    always = ("NAME",) + tuple(term for term, word in names if word in _RESERVED) + tuple(
-        w for w in ("THEN", "ELSIF", "OF", "TO", "BY", "DO", "UNTIL"))
-    options = dict(parser="lalr", lexer="contextual", maybe_placeholders=True, g_regex_flags=re.ASCII,
-                   transformer=_BUILDER, postlex=_PostLex(always))
+def _build_lark() -> Lark:
+    grammar = Path(__file__).with_name("grammar.lark").read_text(encoding="utf-8")
+    # lark's lexer is never run (lexer.Lexer is used); 'basic' is the cheapest to set up.
+    options = dict(parser="lalr", lexer="basic", maybe_placeholders=True, g_regex_flags=re.ASCII,
+                   transformer=_BUILDER)
     cache = _cache_file()
     if cache:
         try:
             return Lark(grammar, cache=cache, **options)
         except Exception:
-            pass
+            pass  # an unwritable or broken cache: build without it
     return Lark(grammar, **options)
 
 
+class _Reduce:
+    """A reduce action, prepared for _Parse._feed: how many values it takes,
+    the callback (None: the value passes through, a ?rule with one child),
+    the rule's name (for the goto) and ``alias``: the child whose list lark's
+    child filter reuses and extends in place (undo cuts it back)."""
+    __slots__ = ("size", "callback", "origin", "alias")
+
+    def __init__(self, rule, callback) -> None:
+        self.size = len(rule.expansion)
+        passthrough = isinstance(callback, ExpandSingleChild) and self.size == 1
+        self.callback = None if passthrough else callback
+        self.origin = str(rule.origin.name)  # lark's names may be Token (slow to compare)
+        self.alias = None
+        for i, sym in enumerate(rule.expansion):
+            if not (sym.is_term and sym.filter_out):
+                if not sym.is_term and sym.name.startswith("_"):
+                    self.alias = i
+                break
+
+
+def _prepare_table(lark: Lark) -> dict:
+    """lark's LALR table as {state: {symbol: next state (int) | _Reduce}}."""
+    callbacks = lark.parse_interactive("").parser_state.parse_conf.callbacks
+    reduces: dict = {}
+    rows: dict = {}
+    for state, actions in lark.parser.parser.parser.parse_table.states.items():
+        row = rows[state] = {}
+        for symbol, (kind, arg) in actions.items():
+            symbol = str(symbol)
+            if kind is Shift:
+                row[symbol] = arg
+            else:
+                if id(arg) not in reduces:
+                    reduces[id(arg)] = _Reduce(arg, callbacks[arg])
+                row[symbol] = reduces[id(arg)]
+    return rows
+
+
 _BUILDER = _Builder()
-_LARK = _build_parser()
-_LOCK = threading.Lock()
-_STATES = _LARK.parser.parser.parser.parse_table.states
+_LARK = _build_lark()
+_LOCK = threading.Lock()  # _BUILDER holds the state of one parse at a time
+_ROWS = _prepare_table(_LARK)
+_START_STATE = _LARK.parser.parser.parser.parse_table.start_states["start"]
 _END_STATE = _LARK.parser.parser.parser.parse_table.end_states["start"]
 _TERMINALS = {t.name: t for t in _LARK.terminals}
-_ROOT_LEXER = _LARK.parser.lexer.lexer.root_lexer if hasattr(_LARK.parser.lexer, "lexer") else _LARK.parser.lexer.root_lexer
+_LEXER = Lexer(_TERMINALS, _RESERVED)
 
 
-def _aliased_child(rule) -> Optional[int]:
-    """Index of the child whose list lark's child filter reuses (and extends)
-    for the rule's result: the first kept symbol, when it is inlined."""
-    for i, sym in enumerate(rule.expansion):
-        if sym.is_term and sym.filter_out:
-            continue
-        return i if not sym.is_term and sym.name.startswith("_") else None
-    return None
-
-
-_ALIASED = {id(arg): _aliased_child(arg) for row in _STATES.values() for kind, arg in row.values()
-            if kind is not Shift and _aliased_child(arg) is not None}
-
-
-def _keyword(name: str) -> str:
-    """Terminal name -> how it is written ('SEMICOLON' -> ';', 'END_IF' -> 'END_IF')."""
+def _spelling(name: str) -> str:
+    """Terminal name -> how it is written ('SEMICOLON' -> ';', '_ELSE' -> 'ELSE')."""
     t = _TERMINALS.get(name)
     if t is not None and isinstance(t.pattern, PatternStr):
         return t.pattern.value.upper()
     return name
 
 
-_TERM_BY_TEXT = {_keyword(n): n for n in _TERMINALS if isinstance(_TERMINALS[n].pattern, PatternStr)}
-SEMI = _TERM_BY_TEXT[";"]
+_KEYWORD_TERMINALS = frozenset(n for n, t in _TERMINALS.items()
+                               if isinstance(t.pattern, PatternStr) and t.pattern.value.isidentifier())
+SEMI = _LEXER.punct[";"]
+COMMA = _LEXER.punct[","]
+COLON = _LEXER.punct[":"]
 _FRIENDLY = {"NAME": "a name", "LABEL_NAME": "a name", "INT": "a number", "REAL": "a number",
              "BASED_INT": "a number", "C_HEX": "a number", "HASH_LIT": "a typed literal",
              "STRING_LIT": "a string", "WSTRING_LIT": "a string", "LOCATED": "a direct address",
              "BIT_REF": "a bit number", "S_ASSIGN": "S=", "R_ASSIGN": "R=", "REF_ASSIGN": "REF=",
              "$END": "end of file"}
-
 # Block openers -> their closer, for "END_IF expected to close the IF at line 3".
 _CLOSERS = {"IF": "END_IF", "CASE": "END_CASE", "FOR": "END_FOR", "WHILE": "END_WHILE",
             "REPEAT": "END_REPEAT", "PROGRAM": "END_PROGRAM", "FUNCTION": "END_FUNCTION",
@@ -677,59 +648,72 @@ _CLOSERS = {"IF": "END_IF", "CASE": "END_CASE", "FOR": "END_FOR", "WHILE": "END_
             "CONFIGURATION": "END_CONFIGURATION", "RESOURCE": "END_RESOURCE",
             **{k: "END_VAR" for k in ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_GLOBAL",
                                       "VAR_EXTERNAL", "VAR_TEMP", "VAR_STAT", "VAR_CONFIG")}}
+_VAR_KINDS = frozenset(k for k, v in _CLOSERS.items() if v == "END_VAR")
 # Tokens a broken region is skipped to before parsing resumes.
 _SYNC = frozenset([SEMI, "_ELSE", "ELSIF", "UNTIL", "THEN", "DO", "OF", "IF", "CASE", "FOR", "WHILE",
-                   "REPEAT", "EXIT", "CONTINUE", "RETURN", "TYPE", "CONFIGURATION", "FUNCTION",
-                   "FUNCTION_BLOCK", "PROGRAM"] + list(_CLOSERS) + list(set(_CLOSERS.values())))
+                   "REPEAT", "EXIT", "CONTINUE", "RETURN", *_CLOSERS, *_CLOSERS.values()])
 # Tokens tried as "the one that is missing", in this order.
-_INSERTABLE = [SEMI, "COMMA", "THEN", "DO", "OF", "RPAR", "RSQB", "END_IF", "END_CASE", "END_FOR", "END_WHILE",
-               "END_VAR", "END_STRUCT", "END_TYPE", "END_FUNCTION_BLOCK", "END_FUNCTION", "END_PROGRAM",
-               "END_RESOURCE", "END_CONFIGURATION"]
+_INSERTABLE = [SEMI, COMMA, "THEN", "DO", "OF", "RPAR", "RSQB", "END_IF", "END_CASE", "END_FOR",
+               "END_WHILE", "END_VAR", "END_STRUCT", "END_TYPE", "END_FUNCTION_BLOCK", "END_FUNCTION",
+               "END_PROGRAM", "END_RESOURCE", "END_CONFIGURATION"]
+# At the end of the file: closers first; ';' only when nothing else fits.
 _CLOSING = [c for c in _INSERTABLE if c.startswith("END_")] + ["RPAR", "RSQB", SEMI, "THEN", "DO", "OF"]
-_KEYWORDS = sorted(k for k in _TERM_BY_TEXT if k.isidentifier())
+_KEYWORDS = sorted(_spelling(n) for n in _KEYWORD_TERMINALS)
 _UNSUPPORTED = {"METHOD": "methods", "END_METHOD": "methods", "PROPERTY": "properties",
                 "END_PROPERTY": "properties", "INTERFACE": "interfaces", "END_INTERFACE": "interfaces",
                 "ACTION": "actions", "END_ACTION": "actions", "NAMESPACE": "namespaces",
-                "VAR_ACCESS": "VAR_ACCESS blocks"}
-# Characters that can start some token; a run of others is one E002.
-_INVALID_RUN = re.compile(r"[^A-Za-z0-9_\s%'\"()\[\];:,.=<>+\-*/&^#]+")
+                "END_NAMESPACE": "namespaces", "VAR_ACCESS": "VAR_ACCESS blocks"}
 
 
 class _TooDeep(Exception):
     pass
 
 
-class _Rejected(Exception):
-    """The parser does not accept this token here."""
-
-    def __init__(self, token: Token) -> None:
-        super().__init__(token)
-        self.token = token
-
-
 class _GiveUp(Exception):
     pass
 
 
-def _simulate(stack: list, ttype: str) -> Optional[list]:
+class _Rejected(Exception):
+    """The parser does not accept this token here."""
+
+
+def _simulate(stack: list, ttype: str, reduced: Optional[list] = None) -> Optional[list]:
     """The state stack after feeding a token of type ttype (reductions and
-    the shift), or None if the parser would reject it. Nothing is built."""
+    the shift), or None if the parser would reject it. Nothing is built;
+    the names of the rules reduced on the way go into ``reduced``."""
     stack = list(stack)
     while True:
-        action = _STATES[stack[-1]].get(ttype)
+        action = _ROWS[stack[-1]].get(ttype)
         if action is None:
             return None
-        kind, arg = action
-        if kind is Shift:
-            stack.append(arg)
+        if action.__class__ is int:
+            stack.append(action)
             return stack
-        size = len(arg.expansion)
-        if size:
-            del stack[-size:]
-        stack.append(_STATES[stack[-1]][arg.origin.name][1])
+        if action.size:
+            del stack[-action.size:]
+        if reduced is not None:
+            reduced.append(action.origin)
+        stack.append(_ROWS[stack[-1]][action.origin])
         if ttype == "$END" and stack[-1] == _END_STATE:
             return stack
 
+
+def _is_bare(value) -> bool:
+    """A parser stack value that is a name or expression but not a call:
+    followed by ';' it would make a bogus call statement."""
+    return isinstance(value, (Tok, Tree)) or (isinstance(value, ast.Expr) and not isinstance(value, ast.Call))
+
+
+def _synthetic(ttype: str, at: Tok, after: bool = True) -> Tok:
+    """A token the parser is given by recovery, placed just after (or on) at."""
+    value = "" if ttype == "$END" else _spelling(ttype)
+    t = Tok(ttype, value, at.end_pos if after else at.start_pos, at.line,
+            at.end_column if after else at.column)
+    t.end_column = t.column  # it takes no room in the text
+    return t
+
+
+# ---------------------------------------------------------------- one parse
 
 class _Parse:
     """One run of the parser over one file."""
@@ -743,7 +727,11 @@ class _Parse:
         self.errors = 0
         self.calm = 0                # tokens to shift before the next error is reported
         self.comment_trouble = False
-        self.last: Optional[Token] = None
+        self.skipping = False        # recovery is reading tokens: no parser context
+        self.strays: dict = {}       # END_* whose block recovery dropped -> how many
+        self.last: Optional[Tok] = None
+        self.state_stack = [_START_STATE]
+        self.value_stack: list = []
 
     # -- diagnostics
     def report(self, code: str, message: str, pos: ast.Pos, hint: Optional[str] = None,
@@ -755,46 +743,39 @@ class _Parse:
             raise _GiveUp
         self.diags.error(code, message, pos, hint)
 
-    def _pos_at(self, line: int, col: int, end_line: int = 0, end_col: int = 0) -> ast.Pos:
-        return ast.Pos(self.path, line, col, end_line or line, end_col or col + 1)
+    def _pos_at(self, line: int, col: int, end_col: int = 0) -> ast.Pos:
+        return ast.Pos(self.path, line, col, line, end_col or col + 1)
 
-    def _tok_pos(self, t: Token) -> ast.Pos:
+    def _tok_pos(self, t: Tok) -> ast.Pos:
         if t.type == "$END":
             return self._eof_pos()
-        return ast.Pos(self.path, t.line, t.column, t.end_line, t.end_column)
+        return ast.Pos(self.path, t.line, t.column, t.line, t.end_column)
 
     def _eof_pos(self) -> ast.Pos:
-        line, col = _line_col(self.raw, len(self.raw))
+        line, col = line_col(self.raw, len(self.raw))
         return ast.Pos(self.path, line, col, line, col)
 
     # -- driver
     def run(self) -> ast.SourceFile:
-        text = self.raw[1:] if self.raw.startswith("\ufeff") else self.raw
-        if text is not self.raw:  # keep columns: the BOM becomes a space
-            text = " " + text
+        if self.raw.startswith("\ufeff"):
+            self.raw = self.raw[1:]  # a BOM: editors do not show it as a column
+        text = self.raw
 
         def comment_error(code, message, start, end, hint):
             self.comment_trouble = self.comment_trouble or code == "E004"
-            self.report(code, message, ast.Pos(self.path, *_line_col(text, start), *_line_col(text, end)),
+            self.report(code, message, ast.Pos(self.path, *line_col(text, start), *line_col(text, end)),
                         hint, always=True)
 
-        clean, pragmas = _strip_comments(text, comment_error)
-        self.text = clean
+        self.text, pragmas = strip_comments(text, comment_error)
         _BUILDER.begin(self)
-        ip = _LARK.parse_interactive(clean)
-        self.pstate = ip.parser_state
-        self.lexer = ip.lexer_thread
-        self.state_stack = self.pstate.state_stack
-        self.value_stack = self.pstate.value_stack
-        self.callbacks = self.pstate.parse_conf.callbacks
+        self.tokens = _LEXER.tokens(self.text, self._accepts, self._bad_characters)
         try:
             result = self._drive()
         except _GiveUp:
             self.diags.error("E001", f"too many errors; stopped after {MAX_ERRORS}", self._eof_pos())
             result = None
         except _TooDeep as e:
-            tok = e.args[0]
-            self.report("E005", "nesting too deep", self._tok_pos(tok),
+            self.report("E005", "nesting too deep", self._tok_pos(e.args[0]),
                         "split the expression or statement into smaller parts", always=True)
             result = None
         if not isinstance(result, ast.SourceFile):
@@ -803,118 +784,74 @@ class _Parse:
             self._attach(pragmas)
         return result
 
+    def _accepts(self) -> Optional[dict]:
+        return None if self.skipping else _ROWS[self.state_stack[-1]]
+
     def _drive(self):
-        lexer, feed, stack = self.lexer, self._feed, self.state_stack
-        pstate = self.pstate
-        while True:
-            last = self.last
+        feed, stack = self._feed, self.state_stack
+        for tok in self.tokens:
             try:
-                for tok in lexer.lex(pstate):
-                    feed(tok)
-                    last = tok
-                    if self.calm:
-                        self.calm -= 1
-                    if len(stack) > MAX_STACK:
-                        raise _TooDeep(tok)
-                self.last = last
-                return self._feed_or_recover(self._end_token())
-            except UnexpectedCharacters as e:
-                self.last = last
-                self._bad_characters(e)
-            except (_Rejected, UnexpectedToken) as e:
-                self.last = last
-                result = self._recover(e.token)
+                feed(tok)
+            except _Rejected:
+                result = self._recover(tok)
                 if result is not None:
                     return result
+                continue
+            self.last = tok
+            if self.calm:
+                self.calm -= 1
+            if len(stack) > MAX_STACK:
+                raise _TooDeep(tok)
+        return self._feed_or_recover(self._end_token())
 
-    def _feed(self, token: Token, is_end: bool = False):
-        """lark's ParserState.feed_token, plus an undo: LALR may reduce
-        before it notices that the token does not fit (a statement list
-        into a body, say); on rejection those reductions are taken back so
-        that recovery sees the stack as it was."""
-        states, values, callbacks = self.state_stack, self.value_stack, self.callbacks
+    def _feed(self, token: Tok, is_end: bool = False):
+        """lark's ParserState.feed_token on the prepared table, plus an undo:
+        LALR may reduce before it notices that the token does not fit (a
+        statement list into a body, say); on rejection those reductions are
+        taken back, so that recovery sees the stack as it was."""
+        states, values = self.state_stack, self.value_stack
+        ttype = token.type
         undo = None
         while True:
-            action = _STATES[states[-1]].get(token.type)
-            if action is None:
-                if undo:
-                    for popped_states, popped_values, alias, length in reversed(undo):
-                        states.pop()
-                        values.pop()
-                        if alias is not None:
-                            del popped_values[alias].children[length:]
-                        states.extend(popped_states)
-                        values.extend(popped_values)
-                raise _Rejected(token)
-            kind, arg = action
-            if kind is Shift:
-                states.append(arg)
+            action = _ROWS[states[-1]].get(ttype)
+            if action.__class__ is int:
+                states.append(action)
                 values.append(token)
                 return None
-            size = len(arg.expansion)
+            if action is None:
+                if undo:
+                    self._undo(undo)
+                raise _Rejected
+            size = action.size
             if size:
                 children, popped = values[-size:], states[-size:]
                 del states[-size:]
                 del values[-size:]
             else:
                 children, popped = [], []
+            alias = action.alias
             if undo is None:
                 undo = []
-            # lark's LALR child filter extends an inlined first child's list
-            # in place; remember its length so that undo can cut it back.
-            alias = _ALIASED.get(id(arg))
             undo.append((popped, children, alias, len(children[alias].children) if alias is not None else 0))
-            value = callbacks[arg](children)
-            goto = _STATES[states[-1]][arg.origin.name][1]
+            callback = action.callback
+            value = children[0] if callback is None else callback(children)
+            goto = _ROWS[states[-1]][action.origin]
             states.append(goto)
             values.append(value)
             if is_end and goto == _END_STATE:
                 return value
 
-    def _end_token(self) -> Token:
-        last = self.last
-        return Token.new_borrow_pos("$END", "", last) if last else Token("$END", "", 0, 1, 1, 1, 1)
+    def _undo(self, undo: list) -> None:
+        states, values = self.state_stack, self.value_stack
+        for popped_states, popped_values, alias, length in reversed(undo):
+            states.pop()
+            values.pop()
+            if alias is not None:
+                del popped_values[alias].children[length:]
+            states.extend(popped_states)
+            values.extend(popped_values)
 
-    def _bad_characters(self, e: UnexpectedCharacters) -> None:
-        """The lexer is stuck at e.pos_in_stream: an unterminated string, or
-        characters no token starts with."""
-        text, p = self.text, e.pos_in_stream
-        ch = text[p]
-        line_ctr = self.lexer.state.line_ctr
-        if ch in "'\"":
-            # Unterminated string: take it to the end of the line (but leave
-            # a final ';' alone), feed it as a string and carry on.
-            nl = text.find("\n", p)
-            eol = len(text) if nl < 0 else nl
-            end = eol
-            stripped = text[p:eol].rstrip()
-            if stripped.endswith(";") and len(stripped) > 1:
-                end = p + len(stripped) - 1
-            value = text[p:end].rstrip()
-            self.report("E004", "unterminated string", self._pos_at(e.line, e.column, e.line, e.column + len(value)),
-                        f"close it with {ch} on the same line; write {ch} inside it as ${ch}", always=True)
-            line_ctr.feed(text[p:p + len(value)])
-            tok = Token("WSTRING_LIT" if ch == '"' else "STRING_LIT", value + ch, p, e.line, e.column,
-                        e.line, e.column + len(value))
-            self._feed_or_recover(tok)
-            return
-        m = _INVALID_RUN.match(text, p)
-        run = m.group() if m else ch
-        if ch == "%":
-            msg, hint = "invalid direct address", "direct addresses look like %IX0.1, %QW4, %MW100, %MD3200, %MW3250:X0"
-        elif ch == "#":
-            msg, hint = "unexpected '#'", "typed literals are written without spaces: INT#5, T#1s, Color#Red"
-        elif not run.isascii():
-            msg = f"invalid character '{run[0]}'"
-            hint = ("identifiers may only use ASCII letters, digits and '_'" if run[0].isalpha()
-                    else "only ASCII is allowed outside strings and comments")
-        else:
-            msg, hint = f"invalid character {run[0]!r}", None
-        self.report("E002", msg, self._pos_at(e.line, e.column, e.line, e.column + len(run)), hint)
-        self.calm = 3
-        line_ctr.feed(run)
-
-    def _feed_or_recover(self, tok: Token):
+    def _feed_or_recover(self, tok: Tok):
         """Feed one token outside the main loop; returns the parse result
         if tok ended the file."""
         try:
@@ -926,24 +863,79 @@ class _Parse:
             self.calm -= 1
         return result
 
+    def _end_token(self) -> Tok:
+        line, col = line_col(self.text, len(self.text))
+        return Tok("$END", "", len(self.text), line, col)
+
+    def _next_token(self) -> Tok:
+        """The next token, read without parser context (while skipping)."""
+        self.skipping = True
+        try:
+            tok = next(self.tokens, None)
+        finally:
+            self.skipping = False
+        if tok is None:
+            return self._end_token()
+        self.last = tok
+        return tok
+
+    def _bad_characters(self, offset: int, line: int, col: int) -> tuple:
+        """The lexer is stuck at offset: an unterminated string, or characters
+        no token starts with. Returns (offset to go on from, token or None)."""
+        text = self.text
+        ch = text[offset]
+        if ch in "'\"":
+            # Take the string to the end of the line (but leave a final ';'
+            # alone) and go on as if it were closed.
+            nl = text.find("\n", offset)
+            rest = text[offset:len(text) if nl < 0 else nl].rstrip()
+            if rest.endswith(";") and len(rest) > 1:
+                rest = rest[:-1].rstrip()
+            self.report("E004", "unterminated string", self._pos_at(line, col, col + len(rest)),
+                        f"close it with {ch} on the same line; inside a string write {ch} as ${ch}", always=True)
+            kind = "WSTRING_LIT" if ch == '"' else "STRING_LIT"
+            tok = Tok(kind, rest + ch, offset, line, col)
+            tok.end_column = col + len(rest)
+            self.calm = max(self.calm, 2)  # the rest of this line is guesswork
+            return offset + len(rest), tok
+        m = INVALID_RUN.match(text, offset)
+        run = m.group() if m else ch
+        if ch == "%":
+            message, hint = "invalid direct address", "direct addresses look like %IX0.1, %QW4, %MD3200, %MW3250:X0"
+        elif ch == "#":
+            message, hint = "unexpected '#'", "typed literals are written without spaces: INT#5, T#1s, Color#Red"
+        elif not run[0].isascii():
+            message = f"invalid character '{run[0]}'"
+            hint = ("identifiers may only use ASCII letters, digits and '_'" if run[0].isalpha()
+                    else "only ASCII is allowed outside strings and comments")
+        else:
+            message, hint = f"invalid character {run[0]!r}", None
+        if not self.skipping:
+            self.report("E002", message, self._pos_at(line, col, col + len(run)), hint)
+            self.calm = max(self.calm, 3)
+        return offset + len(run), None
+
     # -- error recovery
     def _open_blocks(self):
         """Unclosed block keywords on the parser stack, innermost first."""
         for v in reversed(self.value_stack):
-            if isinstance(v, Token) and v.type in _CLOSERS:
+            if isinstance(v, Tok) and v.type in _CLOSERS:
                 yield v
 
     def _expected(self) -> set:
-        return {t for t in _STATES[self.state_stack[-1]] if t.isupper()}
+        """The token types that fit here. Not just the row's keys: LALR
+        merges states, so a row may offer tokens a later state refuses."""
+        stack = self.state_stack
+        return {t for t in _ROWS[stack[-1]] if t.isupper() and _simulate(stack, t) is not None}
 
-    def _describe(self, tok: Token) -> str:
+    def _describe(self, tok: Tok) -> str:
         if tok.type == "$END":
             return "end of file"
-        if tok.type in _TERM_BY_TEXT.values() and tok.value.isidentifier():
+        if tok.type in _KEYWORD_TERMINALS:
             return tok.value.upper()
         return f"'{tok.value}'"
 
-    def _recover(self, tok: Token):
+    def _recover(self, tok: Tok):
         """Report the error at tok and get the parser going again: a special
         case, one inserted token, or skipping to a synchronising token.
         Returns the parse result when recovery reached the end of the file."""
@@ -952,55 +944,62 @@ class _Parse:
             self._eof_error()
             self.calm = 3
             return self._finish(tok)
+        if self.strays.get(tok.type):
+            self.strays[tok.type] -= 1  # the END_* of a block lost in an earlier error
+            return None
         special = self._special_case(tok, prev)
         if special is not False:
             return special
         for cand in self._insertable(tok):
             self._missing(cand, tok, prev)
-            self.calm = 1
-            at = prev or tok
-            self._feed(Token(cand, _keyword(cand), None, at.end_line, at.end_column, at.end_line, at.end_column))
+            self.calm = max(self.calm, 1)
+            self._feed(_synthetic(cand, prev) if prev is not None else _synthetic(cand, tok, after=False))
             return self._feed_or_recover(tok)
         self._generic_error(tok, prev)
         self.calm = 3
         return self._resync(tok)
 
-    def _insertable(self, tok: Token):
+    def _insertable(self, tok: Tok):
         """The token types whose insertion before tok would let it fit."""
         stack = self.state_stack
         for cand in _INSERTABLE:
             after = _simulate(stack, cand)
-            if after is None or _simulate(after, tok.type) is None:
+            reduced: list = []
+            if after is None or _simulate(after, tok.type, reduced) is None:
                 continue
             # 'x y := 1': not "missing ';'" after a name that cannot be a statement.
-            if cand == SEMI and "ASSIGN" in self._expected() and self._bare_target():
+            if cand == SEMI and "call_stmt" in reduced and self.value_stack and _is_bare(self.value_stack[-1]):
                 continue
             yield cand
             return
 
-    def _bare_target(self) -> bool:
-        """Is the top of the stack a name or expression that is not a call?"""
-        top = self.value_stack[-1] if self.value_stack else None
-        return isinstance(top, (Token, Tree)) or (isinstance(top, ast.Expr) and not isinstance(top, ast.Call))
-
-    def _special_case(self, tok: Token, prev: Optional[Token]):
+    def _special_case(self, tok: Tok, prev: Optional[Tok]):
         """Errors with a known cause and a tailored recovery. Returns False
         when tok is not one of them, else what _recover returns."""
         value = tok.value.upper()
         if tok.type in ("_ELSE", "ELSIF"):
             for v in reversed(self.value_stack):
-                if isinstance(v, Token) and v.type in ("IF", "CASE", "_ELSE"):
+                if isinstance(v, Tok) and v.type in ("IF", "CASE", "_ELSE"):
                     if v.type != "_ELSE":
                         break
                     what = "duplicate ELSE" if tok.type == "_ELSE" else "ELSIF after ELSE"
                     self.report("E005", what, self._tok_pos(tok), f"the ELSE at line {v.line} must be the last branch")
-                    self.calm = 1
+                    self.calm = max(self.calm, 1)
                     # Drop it (and an ELSIF's condition): what follows joins the ELSE branch.
                     return self._skip_through("THEN") if tok.type == "ELSIF" else None
+        if tok.type in _VAR_KINDS:
+            opener = next(self._open_blocks(), None)
+            if opener is not None and opener.type in ("PROGRAM", "FUNCTION", "FUNCTION_BLOCK"):
+                self.report("E005", f"{_spelling(tok.type)} block after the statements", self._tok_pos(tok),
+                            "declare variables before the first statement of the POU")
+                self.calm = max(self.calm, 1)
+                return self._skip_through("END_VAR")
         if tok.type == "EQ" and "ASSIGN" in self._expected():
             self.report("E001", "'=' compares; use ':=' to assign", self._tok_pos(tok), "':=' assigns, '=' compares")
-            self.calm = 1
-            return self._feed_or_recover(Token.new_borrow_pos("ASSIGN", ":=", tok))
+            self.calm = max(self.calm, 1)
+            assign = Tok("ASSIGN", ":=", tok.start_pos, tok.line, tok.column)
+            assign.end_column = tok.end_column
+            return self._feed_or_recover(assign)
         word = value if value in _UNSUPPORTED else None
         if word is None and prev is not None and prev.type == "NAME" and prev.value.upper() in _UNSUPPORTED:
             word = prev.value.upper()
@@ -1008,33 +1007,33 @@ class _Parse:
             at = tok if word == value else prev
             self.report("E001", f"{word}: {_UNSUPPORTED[word]} are not supported", self._tok_pos(at),
                         "write the logic as a FUNCTION or FUNCTION_BLOCK")
-            self.calm = 1
+            self.calm = max(self.calm, 1)
             self._unshift(prev if word != value else None)
             end = word if word.startswith("END_") else "END_" + word
             return self._skip_through("NAME", end) if word != end else None
-        if tok.type == "LABEL_NAME" and re.match(r"\s*:", self.text[tok.end_pos:]):
+        if tok.type == "LABEL_NAME" and re.compile(r"\s*:").match(self.text, tok.end_pos):
             # In a statement list the lexer offers LABEL_NAME (a case label
             # could follow a statement), so 'lbl:' arrives as one.
             self.report("E001", f"label '{tok.value}:' is not supported", self._tok_pos(tok),
                         "JMP and labels are not supported; use a loop or CASE")
-            self.calm = 1
-            return self._skip_through("COLON")
+            self.calm = max(self.calm, 1)
+            return self._skip_through(COLON)
         if prev is not None and prev.type == "NAME" and "ASSIGN" in self._expected():
             if prev.value.upper() == "JMP":
                 self.report("E001", "JMP is not supported", self._tok_pos(prev),
                             "JMP and labels are not supported; use a loop or CASE")
-                self.calm = 1
+                self.calm = max(self.calm, 1)
                 self._unshift(prev)
                 return self._skip_through(SEMI)
-            if tok.type == "COLON":
+            if tok.type == COLON:
                 self.report("E001", f"label '{prev.value}:' is not supported", self._tok_pos(prev),
                             "JMP and labels are not supported; use a loop or CASE")
-                self.calm = 1
+                self.calm = max(self.calm, 1)
                 self._unshift(prev)
                 return None
         return False
 
-    def _unshift(self, tok: Optional[Token]) -> None:
+    def _unshift(self, tok: Optional[Tok]) -> None:
         """Take tok (just shifted) back off the stack."""
         values = self.value_stack
         if tok is not None and values and values[-1] is tok:
@@ -1052,8 +1051,8 @@ class _Parse:
                 self.calm = 0  # a clean cut: what follows is new
                 return None
 
-    def _missing(self, cand: str, tok: Token, prev: Optional[Token]) -> None:
-        text = _keyword(cand)
+    def _missing(self, cand: str, tok: Tok, prev: Optional[Tok]) -> None:
+        text = _spelling(cand)
         if cand in _CLOSERS.values():
             opener = next((b for b in self._open_blocks() if _CLOSERS[b.type] == cand), None)
             where = f" to close the {opener.type} at line {opener.line}" if opener else ""
@@ -1063,7 +1062,7 @@ class _Parse:
         # Point at where the token is missing: just after the previous one.
         pos = self._pos_at(prev.end_line, prev.end_column) if prev is not None else self._tok_pos(tok)
         hint = {SEMI: "missing ';' after the statement?",
-                "COMMA": "separate arguments, names and values with ','"}.get(cand)
+                COMMA: "separate arguments, names and values with ','"}.get(cand)
         self.report("E001", f"missing '{text}' before {self._describe(tok)}", pos, hint)
 
     def _eof_error(self) -> None:
@@ -1074,7 +1073,7 @@ class _Parse:
                 if opener is not None else "the last statement is incomplete")
         self.report("E001", "unexpected end of file", self._eof_pos(), hint)
 
-    def _generic_error(self, tok: Token, prev: Optional[Token]) -> None:
+    def _generic_error(self, tok: Tok, prev: Optional[Tok]) -> None:
         expected = self._expected()
         hint = None
         if tok.type in _CLOSERS.values() or tok.type in ("_ELSE", "ELSIF"):
@@ -1083,25 +1082,33 @@ class _Parse:
                 hint = f"{_CLOSERS[opener.type]} expected to close the {opener.type} at line {opener.line}"
         if hint is None:
             hint = self._did_you_mean(tok, prev)
-        if hint is None and "INT" in expected and "NAME" in expected:
+        if hint is None and {"INT", "NAME", "LPAR", "NOT"} <= expected:
             hint = "an expression (a value or a variable) is missing here"
+        if hint is None and {"ARRAY", "STRING", "NAME"} <= expected:
+            hint = "a type (INT, STRING[20], ARRAY[1..3] OF REAL, a type name, ...) is missing here"
         if hint is None:
-            shown = sorted({_FRIENDLY.get(t, _keyword(t)) for t in expected if not t.startswith("__")})
+            # Only the closer of the innermost block (the table merges states
+            # of VAR and STRUCT, say, and offers both END_VAR and END_STRUCT).
+            opener = next(self._open_blocks(), None)
+            closer = _CLOSERS[opener.type] if opener is not None else None
+            shown = sorted({_FRIENDLY.get(t, _spelling(t)) for t in expected
+                            if not t.startswith("__") and (not t.startswith("END_") or t == closer)})
             if 0 < len(shown) <= 6:
                 hint = "expected " + ", ".join(s if s.startswith("a ") else f"'{s}'" for s in shown)
         self.report("E001", f"unexpected {self._describe(tok)}", self._tok_pos(tok), hint)
 
-    @staticmethod
-    def _did_you_mean(tok: Token, prev: Optional[Token]) -> Optional[str]:
+    def _did_you_mean(self, tok: Tok, prev: Optional[Tok]) -> Optional[str]:
         """A misspelt keyword (ELSEIF, ENDIF, VAR_INPUTS) lexes as a name."""
         for t in (tok, prev):
             if t is not None and t.type == "NAME" and len(t.value) > 2:
                 close = difflib.get_close_matches(t.value.upper(), _KEYWORDS, n=1, cutoff=0.8)
-                if close:
+                if close and close[0] != t.value.upper():
+                    # A misspelt FOR leaves its END_FOR without a block.
+                    self._lost_opener(Tok(_LEXER.keywords[close[0]], close[0], 0, 0, 0))
                     return f"did you mean {close[0]}?"
         return None
 
-    def _resync(self, tok: Token):
+    def _resync(self, tok: Tok):
         """Panic mode: skip to a synchronising token, pop the parser stack
         until that token fits, feed it. tok is the offending token.
         Errors on the next tokens are echoes of this one: ``calm``."""
@@ -1110,65 +1117,75 @@ class _Parse:
                 return self._finish(tok)
             if tok.type == SEMI:
                 # The end of the broken statement or declaration: recover
-                # within the innermost open block, at the ';' or just after.
-                if self._pop_for(tok, bounded=True) or self._pop_to_item_boundary():
-                    self.calm = 2
-                    return self._feed_or_recover(tok) if _simulate(self.state_stack, SEMI) else None
+                # within the innermost open block, where the ';' ends what
+                # was parsed, or else by dropping the broken item with it.
+                if self._pop_for(tok, bounded=True, fits=self._semicolon_ends_item):
+                    self.calm = 0  # a clean cut: what follows is new
+                    return self._feed_or_recover(tok)
+                if self._pop_to_item_boundary():
+                    self.calm = 0
+                    return None
             elif tok.type in _SYNC and self._pop_for(tok):
                 self.calm = 3
                 return self._feed_or_recover(tok)
+            self._lost_opener(tok)
             tok = self._next_token()
+
+    def _semicolon_ends_item(self, depth: int) -> bool:
+        """Would ';' at this stack depth end a statement or declaration, not
+        make an empty statement, nor a lone name into a call statement?"""
+        after = _simulate(self.state_stack[:depth], SEMI)
+        if after is None:
+            return False
+        reduced: list = []
+        _simulate(after, "NAME", reduced)  # a statement may follow: what does ';' complete?
+        if "empty_stmt" in reduced:
+            return False
+        return not ("call_stmt" in reduced and depth >= 2 and _is_bare(self.value_stack[depth - 2]))
 
     def _pop_to_item_boundary(self) -> bool:
         """Pop what was parsed of the current item (declaration, statement)
         of the innermost block: to where the block's closer would fit."""
         opener = next(self._open_blocks(), None)
-        if opener is None:
-            return False
-        closer = "UNTIL" if opener.type == "REPEAT" else _CLOSERS[opener.type]
-        return self._pop_for(Token(closer, closer), bounded=True)
+        if opener is None:  # top level, or a file of bare statements
+            closer = "$END"
+        else:
+            closer = "UNTIL" if opener.type == "REPEAT" else _CLOSERS[opener.type]
+        return self._pop_for(Tok(closer, closer, 0, 0, 0), bounded=True)
 
-    def _pop_for(self, tok: Token, bounded: bool = False) -> bool:
-        """Pop the fewest states so that tok is accepted, first without
-        leaving the innermost open block, then (unless bounded) anywhere.
-        False if it fits nowhere (the stack is then unchanged)."""
+    def _pop_for(self, tok: Tok, bounded: bool = False, fits=None) -> bool:
+        """Pop the fewest states so that tok is accepted (or fits(depth)
+        says yes), first without leaving the innermost open block, then
+        (unless bounded) anywhere. False if it fits nowhere (the stack is
+        then unchanged)."""
         stack, values = self.state_stack, self.value_stack
+        if fits is None:
+            def fits(depth):
+                return _simulate(stack[:depth], tok.type) is not None
         floor = 1
         for i in range(len(values) - 1, -1, -1):
             v = values[i]
-            if isinstance(v, Token) and v.type in _CLOSERS:
+            if isinstance(v, Tok) and v.type in _CLOSERS:
                 floor = i + 2  # stack[i + 1] is the state after the opener values[i]
                 break
         for lowest in ((floor,) if bounded else (floor, 1)):
             for depth in range(len(stack), lowest - 1, -1):
-                if _simulate(stack[:depth], tok.type) is not None:
+                if fits(depth):
+                    for v in values[depth - 1:]:
+                        self._lost_opener(v)
                     del stack[depth:]
                     del values[depth - 1:]
                     return True
         return False
 
-    def _next_token(self) -> Token:
-        """The next token, by the lexer that knows every terminal (used while
-        skipping, when the parser state says nothing useful)."""
-        state, text = self.lexer.state, self.text
-        while True:
-            try:
-                tok = _ROOT_LEXER.next_token(state)
-            except EOFError:
-                return self._end_token()
-            except UnexpectedCharacters as e:
-                p = e.pos_in_stream
-                if text[p] in "'\"":  # unterminated string: skip the line
-                    nl = text.find("\n", p)
-                    state.line_ctr.feed(text[p:len(text) if nl < 0 else nl])
-                else:
-                    m = _INVALID_RUN.match(text, p)
-                    state.line_ctr.feed(m.group() if m else text[p])
-                continue
-            self.last = tok
-            return tok
+    def _lost_opener(self, tok) -> None:
+        """A block keyword dropped by recovery: its END_* will come without
+        it and is then not worth another error."""
+        if isinstance(tok, Tok) and tok.type in _CLOSERS:
+            closer = _CLOSERS[tok.type]
+            self.strays[closer] = self.strays.get(closer, 0) + 1
 
-    def _finish(self, end: Token):
+    def _finish(self, end: Tok):
         """At the end of the file: close what is open by inserting the
         missing closers (already reported), or else drop the unfinished
         part; then accept."""
@@ -1182,7 +1199,7 @@ class _Parse:
             cand = next((c for c in _CLOSING if c != previous and _simulate(stack, c) is not None), None)
             if cand is None:
                 break
-            self._feed(Token(cand, _keyword(cand), None, end.line, end.column, end.line, end.column))
+            self._feed(_synthetic(cand, end, after=False))
             previous = cand
         if _simulate(stack, "$END") is None:
             self._pop_for(end)
@@ -1190,6 +1207,9 @@ class _Parse:
 
     # -- pragmas
     def _attach(self, pragmas: list) -> None:
+        """Each pragma goes to the item (POU, type, variable block or
+        declaration, statement) that follows it; one between a POU's name
+        and its first declaration goes to the POU ({external}, attributes)."""
         items = sorted(self.items, key=lambda n: (n.pos.line, n.pos.col))
         starts = [(n.pos.line, n.pos.col) for n in items]
         for p in pragmas:
@@ -1210,7 +1230,8 @@ class _Parse:
 
 
 def parse_source(text: str, path: str, diags: DiagnosticBag) -> ast.SourceFile:
-    """Parse one ST file. Never raises; problems go into diags."""
+    """Parse one ST file into an ``ast.SourceFile``. Never raises; every
+    problem goes into diags."""
     try:
         with _LOCK:
             return _Parse(text, path, diags).run()

