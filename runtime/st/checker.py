@@ -17,6 +17,7 @@ from . import types as T
 from .diagnostics import DiagnosticBag
 from .profile import Profile
 from .symbols import CallInfo, POUInfo, VarSymbol, pyname
+from ..image.memory import AddressError, ProcessImage
 
 BUILTINS = ("TIME", "LTIME", "REF", "ADR", "SIZEOF")
 COMM_FUNCS = ("READ_VAR", "WRITE_VAR")
@@ -94,6 +95,7 @@ class Checker:
         self.configs: list = []
         self.library_files: set = set()
         self._inited: set = set()  # ids of VarSymbols whose initial value is checked
+        self._image_probe = ProcessImage(profile.addressing)  # to validate direct addresses
 
     # ================================================================ driver
 
@@ -380,7 +382,7 @@ class Checker:
             rt = self.type_of(node.return_type) if node.return_type is not None else None
             pou.return_type = rt
             if rt is not None:
-                pou.result = VarSymbol(pou.name, "RETURN", rt, node.pos, "v__result", pou)
+                pou.result = VarSymbol(pou.name, "RETURN", rt, node.pos, "r_result", pou)
         elif node.return_type is not None:
             self.d.error("E011", f"a {pou.kind} has no return type", node.return_type.pos)
         allowed = {
@@ -444,6 +446,8 @@ class Checker:
             self.d.error("E081", f"{addr.text} is a {want}-bit address; '{sym.name}' is {sym.type}",
                          sym.pos, "declare a type of the address size (X: BOOL, B: BYTE/SINT, "
                          "W: WORD/INT, D: DWORD/DINT/REAL, L: LWORD/LINT/LREAL)")
+        else:
+            self._address_fits(addr, ty, sym.pos)
 
     # ================================================================ initial values
 
@@ -495,7 +499,8 @@ class Checker:
         ety = self.expr(init, scope, expected=ty)
         if ety is None:
             return None
-        self.check_convertible(ety, ty, init, f"the initial value of '{what}'")
+        if not self.check_convertible(ety, ty, init, f"the initial value of '{what}'"):
+            return None
         if init.const is None and not isinstance(rty, T.RefType):
             self.d.error("E024", f"the initial value of '{what}' is not a constant expression", init.pos,
                          "use literals and CONSTANTs here, or assign the value in the code")
@@ -821,7 +826,7 @@ class Checker:
                          "the types must be the same")
             return False
         if isinstance(d, T.SubrangeType):
-            if e.const is not None and not (d.lo <= e.const <= d.hi):
+            if isinstance(e.const, int) and not (d.lo <= e.const <= d.hi):
                 self.d.error("E022", f"{e.const} is outside {d} in {what}", e.pos)
                 return False
             return self.check_convertible(src, d.base, e, what)
@@ -1137,7 +1142,27 @@ class Checker:
             return None
         return T.BOOL
 
+    def _address_fits(self, addr: A.LocatedAddress, ty: Optional[T.ElementaryType], pos: A.Pos) -> bool:
+        """Report (E082) a direct address outside the process image."""
+        try:
+            if ty is None:
+                self._image_probe.table(addr)
+            else:
+                self._image_probe.accessor(addr, ty)
+        except AddressError as exc:
+            self.d.error("E082", str(exc), pos, "the image areas are "
+                         f"{self._image_probe.size // 1024} KiB each")
+            return False
+        return True
+
     def _located(self, e: A.Located) -> Optional[T.Type]:
+        ty = self._located_type(e)
+        if ty is not None and not self._address_fits(e.addr, T.base_elementary(ty)
+                                                     if e.addr.table is None else None, e.pos):
+            return None
+        return ty
+
+    def _located_type(self, e: A.Located) -> Optional[T.Type]:
         a = e.addr
         schneider = self.profile.addressing == "schneider"
         if (a.bit is not None or a.table is not None) and not schneider:

@@ -387,9 +387,9 @@ class CodeGen:
             if v.boxed and v.section == "VAR_INPUT":
                 self.emit(f"{v.pyname} = _CellRef({v.pyname})")
         if pou.result is not None:
-            self.emit(f"v__result = {self._default_code(pou.return_type)}")
+            self.emit(f"r_result = {self._default_code(pou.return_type)}")
             if pou.result.boxed:
-                self.emit("v__result = _CellRef(v__result)")
+                self.emit("r_result = _CellRef(r_result)")
         for v in pou.vars.values():
             if v.section in ("VAR", "VAR_OUTPUT", "VAR_TEMP", "VAR_STAT"):
                 self.pos = v.pos
@@ -406,7 +406,7 @@ class CodeGen:
             val = f"{v.pyname}.value" if v.boxed else v.pyname
             self.emit(f"if _o_{v.pyname} is not None: _o_{v.pyname}.set({val})")
         if pou.result is not None:
-            self.emit("return v__result.value" if pou.result.boxed else "return v__result")
+            self.emit("return r_result.value" if pou.result.boxed else "return r_result")
         else:
             self.emit("return False")
 
@@ -562,8 +562,9 @@ class CodeGen:
     def _for(self, s: A.For) -> None:
         var = s.var
         vty = var.ty
-        start = self.ex(s.start)
-        end = self.ex(s.end)
+        # bounds convert to the variable's type (FOR i := 1 TO r, r REAL: a W121 narrowing)
+        start = self.coerce(self.ex(s.start), s.start.ty, vty, s.start)
+        end = self.coerce(self.ex(s.end), s.end.ty, vty, s.end)
         it = self.tmp("i")
         rng = self.tmp("r")
         step = None
@@ -572,7 +573,8 @@ class CodeGen:
             stop = f"{end} + 1" if step > 0 else f"{end} - 1"
             self.emit(f"{rng} = range({start}, {stop}{'' if step == 1 else f', {step}'})")
         else:
-            self.emit(f"{rng} = _for_range({start}, {end}, {self.ex(s.step)})")
+            step_code = self.coerce(self.ex(s.step), s.step.ty, vty, s.step)
+            self.emit(f"{rng} = _for_range({start}, {end}, {step_code})")
         self.emit(f"for {it} in {rng}:")
         self.indent += 1
         local = self._loop_local_ok(var.sym, s.body)

@@ -71,12 +71,12 @@ def parse_int(text: str) -> int:
 def parse_based(text: str) -> int:
     """``16#FF``, ``2#1010_1010``, ``8#17``."""
     base_s, _, digits = text.partition("#")
+    if base_s not in ("2", "8", "16"):
+        raise LiteralError(f"invalid base '{base_s}' in '{text}'", "the base is 2, 8 or 16: 2#1010, 8#17, 16#FF")
     base = int(base_s)
-    if base not in (2, 8, 16):
-        raise LiteralError(f"invalid base {base} in '{text}'", "the base is 2, 8 or 16: 2#1010, 8#17, 16#FF")
     digits = _check_underscores(digits, text)
     for ch in digits.upper():
-        if _DIGITS.index(ch) >= base:
+        if _DIGITS.find(ch) not in range(base):
             raise LiteralError(f"digit '{ch}' is not valid in base {base} ('{text}')")
     return int(digits, base)
 
@@ -272,3 +272,24 @@ def parse_hash_literal(text: str) -> HashValue:
     if upper in _STRING_TYPES:
         raise LiteralError(f"invalid {upper} literal '{text}'", f"{upper}#'text'")
     return ast.Literal(num_kind, value, type_name=upper)
+
+
+# ---------------------------------------------------------------- direct addresses
+
+_LOCATED = re.compile(r"%([IQM])([XBWDL]?)(?:([\d.]+)(?::(X?)(\d+))?|\*)", re.I | re.A)
+
+
+def parse_located(text: str) -> ast.LocatedAddress:
+    """``%IX0.3`` / ``%MW3250:X0`` / ``%MW3250:4`` / ``%I*`` (a LOCATED token).
+    Raises LiteralError for absurdly long numbers."""
+    area, size, idx, bit_x, num = _LOCATED.fullmatch(text).groups()
+    if any(len(n) > 18 for n in (idx or "").split(".") + [num or ""]):
+        raise LiteralError(f"invalid direct address '{text}': number too long")
+    indices = tuple(int(i) for i in idx.split(".")) if idx else ()
+    bit = table = None
+    if num is not None:
+        if bit_x:
+            bit = int(num)
+        else:
+            table = int(num)
+    return ast.LocatedAddress(area.upper(), size.upper(), indices, bit, table, text)

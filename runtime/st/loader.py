@@ -98,11 +98,36 @@ def _front_end(paths: list, profile: Profile, texts: Optional[dict]):
     return diags, sources, checked, user
 
 
+def _back_end(checked: CheckedProgram, prof: Profile, diags: DiagnosticBag, where: A.Pos):
+    """Generate and compile the Python module; CPython's own limits (20
+    nested loops, 200 nested parentheses) become diagnostic E009.
+    Returns (GeneratedModule, code object, filename), or None on E009."""
+    gen = CodeGen(checked, prof).generate()
+    filename = f"<softplc-{next(_gen_counter)}>"
+    try:
+        return gen, compile(gen.source, filename, "exec"), filename
+    except (SyntaxError, RecursionError, MemoryError) as exc:
+        line = getattr(exc, "lineno", None)
+        diags.error("E009", "the program is nested too deeply for the Python compiler "
+                    f"({getattr(exc, 'msg', None) or type(exc).__name__})",
+                    (gen.linemap.get(line) if line else None) or where,
+                    "move inner loops or long expressions into FUNCTIONs or intermediate variables")
+        return None
+
+
+def _first_position(paths: list, texts: Optional[dict]) -> A.Pos:
+    names = [str(p) for p in paths] + list(texts or {})
+    return A.Pos(names[0] if names else "<input>", 1, 1)
+
+
 def check_files(paths: list, profile: str | Profile = "codesys", texts: Optional[dict] = None):
     """Diagnostics of the files (errors and warnings, sorted) and their texts.
-    Never raises for problems in the sources."""
+    Never raises for problems in the sources. Reports exactly what
+    compile_files would: the back end runs too when the front end is clean."""
     prof = get_profile(profile) if isinstance(profile, str) else profile
-    diags, sources, _, _ = _front_end(list(paths), prof, texts)
+    diags, sources, checked, _ = _front_end(list(paths), prof, texts)
+    if not diags.has_errors:
+        _back_end(checked, prof, diags, _first_position(paths, texts))
     return diags.sorted(), sources
 
 
@@ -112,11 +137,10 @@ def compile_files(paths: list, profile: str | Profile = "codesys", *,
     loadable Program. Raises CompileError with every diagnostic on errors."""
     prof = get_profile(profile) if isinstance(profile, str) else profile
     diags, sources, checked, user = _front_end(list(paths), prof, texts)
-    if diags.has_errors:
+    built = None if diags.has_errors else _back_end(checked, prof, diags, _first_position(paths, texts))
+    if built is None:
         raise CompileError(diags.sorted(), sources)
-    gen = CodeGen(checked, prof).generate()
-    filename = f"<softplc-{next(_gen_counter)}>"
-    code = compile(gen.source, filename, "exec")
+    gen, code, filename = built
     user_pous = {d.name: d.kind for sf in user for d in sf.decls if isinstance(d, A.POU)}
     return Program(prof, checked, gen, code, filename, [d for d in diags.sorted() if not d.is_error],
                    sources, user_pous)

@@ -30,7 +30,7 @@ from bisect import bisect_left
 from pathlib import Path
 from typing import Optional
 
-from lark import Lark, Tree
+from lark import Lark
 from lark.lexer import PatternStr
 from lark.parse_tree_builder import ExpandSingleChild
 from lark.parsers.lalr_analysis import Shift
@@ -39,9 +39,9 @@ from . import ast
 from .diagnostics import DiagnosticBag
 from .lexer import INVALID_RUN, Lexer, Tok, line_col, strip_comments
 from .literals import (LiteralError, parse_based, parse_c_hex, parse_hash_literal, parse_int,
-                       parse_real, parse_string)
+                       parse_located, parse_real, parse_string)
 
-__all__ = ["parse_source", "parse_located"]
+__all__ = ["parse_source"]
 
 MAX_ERRORS = 100
 # Limits beyond which the input is refused (E005): later stages walk the
@@ -62,25 +62,6 @@ _RESERVED = frozenset("""
     IF THEN ELSIF ELSE END_IF CASE OF END_CASE FOR TO BY DO END_FOR WHILE END_WHILE REPEAT UNTIL
     END_REPEAT EXIT CONTINUE RETURN AND AND_THEN OR OR_ELSE XOR NOT MOD TRUE FALSE
 """.split())
-
-_LOCATED = re.compile(r"%([IQM])([XBWDL]?)(?:([\d.]+)(?::(X?)(\d+))?|\*)", re.I | re.A)
-
-
-def parse_located(text: str) -> ast.LocatedAddress:
-    """``%IX0.3`` / ``%MW3250:X0`` / ``%MW3250:4`` / ``%I*`` (a LOCATED token).
-    Raises LiteralError for absurdly long numbers."""
-    area, size, idx, bit_x, num = _LOCATED.fullmatch(text).groups()
-    if any(len(n) > 18 for n in (idx or "").split(".") + [num or ""]):
-        raise LiteralError(f"invalid direct address '{text}': number too long")
-    indices = tuple(int(i) for i in idx.split(".")) if idx else ()
-    bit = table = None
-    if num is not None:
-        if bit_x:
-            bit = int(num)
-        else:
-            table = int(num)
-    return ast.LocatedAddress(area.upper(), size.upper(), indices, bit, table, text)
-
 
 def _identifier_from_path(path: str) -> str:
     """The PROGRAM name for a file of bare statements: 'ltmr/write-sdo.st' -> 'write_sdo'."""
@@ -141,16 +122,19 @@ class _Builder:
         self.ctx.report("E003", e.message, self._tpos(tok), e.hint, always=True)
 
     # -- top level
+    # Constructs that parse but cannot stand are reported and left out of
+    # the tree, so later stages only ever see well-formed declarations.
     def source(self, c):
         decls = []
         for d in c:
             if isinstance(d, list):
                 decls.extend(d)
+            elif isinstance(d, ast.VarBlock) and d.kind != "VAR_GLOBAL":
+                self.ctx.report("E005", f"{d.kind} block outside a POU", d.pos,
+                                "only VAR_GLOBAL blocks (a global variable list) stand on their own"
+                                + (", VAR_CONFIG goes into a CONFIGURATION" if d.kind == "VAR_CONFIG" else ""))
             else:
                 decls.append(d)
-                if isinstance(d, ast.VarBlock) and d.kind != "VAR_GLOBAL":
-                    self.ctx.report("E005", f"{d.kind} block outside a POU", d.pos,
-                                    "only VAR_GLOBAL blocks (a global variable list) stand on their own")
         return ast.SourceFile(self.ctx.path, decls, pos=ast.Pos(self.file, 1, 1))
 
     def bare_source(self, c):
@@ -192,20 +176,27 @@ class _Builder:
     def var_block(self, c):
         kind = c[0].type
         quals = {t.type for t in c if isinstance(t, Tok)}
-        decls = []
-        for d in c:
-            if isinstance(d, list):
-                decls.extend(d)
-        if kind != "VAR_CONFIG":
-            for d in decls:
-                if "." in d.name:
-                    self.ctx.report("E005", f"'{d.name}': a qualified name is only allowed in VAR_CONFIG", d.pos,
-                                    "declare a plain name here")
+        decls = self._plain_names([d for group in c if isinstance(group, list) for d in group],
+                                  dotted_ok=kind == "VAR_CONFIG")
         blk = ast.VarBlock(kind, decls, constant="CONSTANT" in quals,
                            retain="RETAIN" in quals,
                            persistent="PERSISTENT" in quals, pos=self._span(c[0], c[-1]))
         self.ctx.items.append(blk)
         return blk
+
+    def _plain_names(self, decls: list, dotted_ok: bool = False) -> list:
+        """The declarations without those of a dotted name (inst.x), which
+        only VAR_CONFIG may have: reported and dropped."""
+        if dotted_ok:
+            return decls
+        kept = []
+        for d in decls:
+            if "." in d.name:
+                self.ctx.report("E005", f"'{d.name}': a qualified name is only allowed in VAR_CONFIG", d.pos,
+                                "declare a plain name here")
+            else:
+                kept.append(d)
+        return kept
 
     def var_name(self, c):
         return ".".join(t.value for t in c), c[0], c[-1]
@@ -224,8 +215,9 @@ class _Builder:
 
     def unnamed_var_decl(self, c):
         loc, spec, init = c
-        # 'AT %QW1 : WORD;' gets a name from the address: '__at_QW1' (IEC
-        # names cannot have '__', so it cannot clash with a declared one).
+        # 'AT %QW1 : WORD;' gets a name from the address, '__at_QW1': an
+        # identifier for later stages, unlikely to be declared as well (IEC
+        # names cannot have '__'; if one is, it is a duplicate declaration).
         name = "__at_" + re.sub(r"\W", "_", loc.value[1:].replace("*", "star"))
         d = ast.VarDecl(name, spec, init, self._address(loc),
                         pos=self._span(loc, init if init is not None else spec))
@@ -277,9 +269,7 @@ class _Builder:
         return c[0].value, c[1], self._span(c[0], c[1] if c[1] is not None else c[0])
 
     def struct_type(self, c):
-        members = []
-        for d in c[1:-1]:
-            members.extend(d)
+        members = self._plain_names([d for group in c[1:-1] for d in group])
         return ast.StructTypeSpec(members, pos=self._span(c[0], c[-1]))
 
     def array_init(self, c):
@@ -578,12 +568,14 @@ def _build_lark() -> Lark:
 class _Reduce:
     """A reduce action, prepared for _Parse._feed: how many values it takes,
     the callback (None: the value passes through, a ?rule with one child),
-    the rule's name (for the goto) and ``alias``: the child whose list lark's
-    child filter reuses and extends in place (undo cuts it back)."""
-    __slots__ = ("size", "callback", "origin", "alias")
+    the rule's name (for the goto), its symbols (to redo the states when a
+    reduction is undone) and ``alias``: the child whose list lark's child
+    filter reuses and extends in place (undo cuts it back)."""
+    __slots__ = ("size", "callback", "origin", "symbols", "alias")
 
     def __init__(self, rule, callback) -> None:
         self.size = len(rule.expansion)
+        self.symbols = tuple(str(sym.name) for sym in rule.expansion)
         passthrough = isinstance(callback, ExpandSingleChild) and self.size == 1
         self.callback = None if passthrough else callback
         self.origin = str(rule.origin.name)  # lark's names may be Token (slow to compare)
@@ -633,9 +625,9 @@ def _spelling(name: str) -> str:
 
 _KEYWORD_TERMINALS = frozenset(n for n, t in _TERMINALS.items()
                                if isinstance(t.pattern, PatternStr) and t.pattern.value.isidentifier())
-SEMI = _LEXER.punct[";"]
-COMMA = _LEXER.punct[","]
-COLON = _LEXER.punct[":"]
+_SEMI = _LEXER.punct[";"]
+_COMMA = _LEXER.punct[","]
+_COLON = _LEXER.punct[":"]
 _FRIENDLY = {"NAME": "a name", "LABEL_NAME": "a name", "INT": "a number", "REAL": "a number",
              "BASED_INT": "a number", "C_HEX": "a number", "HASH_LIT": "a typed literal",
              "STRING_LIT": "a string", "WSTRING_LIT": "a string", "LOCATED": "a direct address",
@@ -648,16 +640,17 @@ _CLOSERS = {"IF": "END_IF", "CASE": "END_CASE", "FOR": "END_FOR", "WHILE": "END_
             "CONFIGURATION": "END_CONFIGURATION", "RESOURCE": "END_RESOURCE",
             **{k: "END_VAR" for k in ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_GLOBAL",
                                       "VAR_EXTERNAL", "VAR_TEMP", "VAR_STAT", "VAR_CONFIG")}}
+_CLOSER_TYPES = frozenset(_CLOSERS.values())
 _VAR_KINDS = frozenset(k for k, v in _CLOSERS.items() if v == "END_VAR")
 # Tokens a broken region is skipped to before parsing resumes.
-_SYNC = frozenset([SEMI, "_ELSE", "ELSIF", "UNTIL", "THEN", "DO", "OF", "IF", "CASE", "FOR", "WHILE",
+_SYNC = frozenset([_SEMI, "_ELSE", "ELSIF", "UNTIL", "THEN", "DO", "OF", "IF", "CASE", "FOR", "WHILE",
                    "REPEAT", "EXIT", "CONTINUE", "RETURN", *_CLOSERS, *_CLOSERS.values()])
 # Tokens tried as "the one that is missing", in this order.
-_INSERTABLE = [SEMI, COMMA, "THEN", "DO", "OF", "RPAR", "RSQB", "END_IF", "END_CASE", "END_FOR",
+_INSERTABLE = [_SEMI, _COMMA, "THEN", "DO", "OF", "RPAR", "RSQB", "END_IF", "END_CASE", "END_FOR",
                "END_WHILE", "END_VAR", "END_STRUCT", "END_TYPE", "END_FUNCTION_BLOCK", "END_FUNCTION",
                "END_PROGRAM", "END_RESOURCE", "END_CONFIGURATION"]
 # At the end of the file: closers first; ';' only when nothing else fits.
-_CLOSING = [c for c in _INSERTABLE if c.startswith("END_")] + ["RPAR", "RSQB", SEMI, "THEN", "DO", "OF"]
+_CLOSING = [c for c in _INSERTABLE if c.startswith("END_")] + ["RPAR", "RSQB", _SEMI, "THEN", "DO", "OF"]
 _KEYWORDS = sorted(_spelling(n) for n in _KEYWORD_TERMINALS)
 _UNSUPPORTED = {"METHOD": "methods", "END_METHOD": "methods", "PROPERTY": "properties",
                 "END_PROPERTY": "properties", "INTERFACE": "interfaces", "END_INTERFACE": "interfaces",
@@ -666,11 +659,11 @@ _UNSUPPORTED = {"METHOD": "methods", "END_METHOD": "methods", "PROPERTY": "prope
 
 
 class _TooDeep(Exception):
-    pass
+    """The nesting limit (MAX_STACK) is reached; args: the token."""
 
 
 class _GiveUp(Exception):
-    pass
+    """MAX_ERRORS reported: the rest of the file is not worth reading."""
 
 
 class _Rejected(Exception):
@@ -701,13 +694,12 @@ def _simulate(stack: list, ttype: str, reduced: Optional[list] = None) -> Option
 def _is_bare(value) -> bool:
     """A parser stack value that is a name or expression but not a call:
     followed by ';' it would make a bogus call statement."""
-    return isinstance(value, (Tok, Tree)) or (isinstance(value, ast.Expr) and not isinstance(value, ast.Call))
+    return isinstance(value, Tok) or (isinstance(value, ast.Expr) and not isinstance(value, ast.Call))
 
 
 def _synthetic(ttype: str, at: Tok, after: bool = True) -> Tok:
     """A token the parser is given by recovery, placed just after (or on) at."""
-    value = "" if ttype == "$END" else _spelling(ttype)
-    t = Tok(ttype, value, at.end_pos if after else at.start_pos, at.line,
+    t = Tok(ttype, _spelling(ttype), at.end_pos if after else at.start_pos, at.line,
             at.end_column if after else at.column)
     t.end_column = t.column  # it takes no room in the text
     return t
@@ -735,8 +727,12 @@ class _Parse:
 
     # -- diagnostics
     def report(self, code: str, message: str, pos: ast.Pos, hint: Optional[str] = None,
-               always: bool = False) -> None:
-        if self.calm and not always:
+               always: bool = False, calm: int = 0) -> None:
+        """Add an error, unless it is an echo of the previous one (``always``
+        overrides). ``calm``: errors at that many next tokens are echoes."""
+        quiet = self.calm and not always
+        self.calm = max(self.calm, calm)
+        if quiet:
             return
         self.errors += 1
         if self.errors > MAX_ERRORS:
@@ -824,15 +820,15 @@ class _Parse:
                 raise _Rejected
             size = action.size
             if size:
-                children, popped = values[-size:], states[-size:]
+                children = values[-size:]
                 del states[-size:]
                 del values[-size:]
             else:
-                children, popped = [], []
-            alias = action.alias
+                children = []
             if undo is None:
                 undo = []
-            undo.append((popped, children, alias, len(children[alias].children) if alias is not None else 0))
+            alias = action.alias
+            undo.append((action, children) if alias is None else (action, children, len(children[alias].children)))
             callback = action.callback
             value = children[0] if callback is None else callback(children)
             goto = _ROWS[states[-1]][action.origin]
@@ -843,13 +839,15 @@ class _Parse:
 
     def _undo(self, undo: list) -> None:
         states, values = self.state_stack, self.value_stack
-        for popped_states, popped_values, alias, length in reversed(undo):
+        for entry in reversed(undo):
+            action, children = entry[0], entry[1]
             states.pop()
             values.pop()
-            if alias is not None:
-                del popped_values[alias].children[length:]
-            states.extend(popped_states)
-            values.extend(popped_values)
+            if len(entry) == 3:
+                del children[action.alias].children[entry[2]:]
+            for symbol in action.symbols:  # the states the children were shifted with
+                states.append(_ROWS[states[-1]][symbol])
+            values.extend(children)
 
     def _feed_or_recover(self, tok: Tok):
         """Feed one token outside the main loop; returns the parse result
@@ -892,11 +890,11 @@ class _Parse:
             if rest.endswith(";") and len(rest) > 1:
                 rest = rest[:-1].rstrip()
             self.report("E004", "unterminated string", self._pos_at(line, col, col + len(rest)),
-                        f"close it with {ch} on the same line; inside a string write {ch} as ${ch}", always=True)
+                        f"close it with {ch} on the same line; inside a string write {ch} as ${ch}",
+                        always=True, calm=2)  # the rest of the line is guesswork
             kind = "WSTRING_LIT" if ch == '"' else "STRING_LIT"
             tok = Tok(kind, rest + ch, offset, line, col)
             tok.end_column = col + len(rest)
-            self.calm = max(self.calm, 2)  # the rest of this line is guesswork
             return offset + len(rest), tok
         m = INVALID_RUN.match(text, offset)
         run = m.group() if m else ch
@@ -911,16 +909,26 @@ class _Parse:
         else:
             message, hint = f"invalid character {run[0]!r}", None
         if not self.skipping:
-            self.report("E002", message, self._pos_at(line, col, col + len(run)), hint)
-            self.calm = max(self.calm, 3)
+            self.report("E002", message, self._pos_at(line, col, col + len(run)), hint, calm=3)
         return offset + len(run), None
 
     # -- error recovery
-    def _open_blocks(self):
-        """Unclosed block keywords on the parser stack, innermost first."""
-        for v in reversed(self.value_stack):
-            if isinstance(v, Tok) and v.type in _CLOSERS:
-                yield v
+    def _open_blocks(self, with_index: bool = False):
+        """Unclosed block keywords on the parser stack, innermost first (with
+        their index in the value stack if asked). A block whose END_* is
+        already there (END_PROGRAM waiting for an optional ';') is closed."""
+        values = self.value_stack
+        closed = []
+        for i in range(len(values) - 1, -1, -1):
+            v = values[i]
+            if isinstance(v, Tok):
+                if v.type in _CLOSER_TYPES:
+                    closed.append(v.type)
+                elif v.type in _CLOSERS:
+                    if closed and closed[-1] == _CLOSERS[v.type]:
+                        closed.pop()
+                    else:
+                        yield (i, v) if with_index else v
 
     def _expected(self) -> set:
         """The token types that fit here. Not just the row's keys: LALR
@@ -942,7 +950,6 @@ class _Parse:
         prev = self.last
         if tok.type == "$END":
             self._eof_error()
-            self.calm = 3
             return self._finish(tok)
         if self.strays.get(tok.type):
             self.strays[tok.type] -= 1  # the END_* of a block lost in an earlier error
@@ -952,11 +959,9 @@ class _Parse:
             return special
         for cand in self._insertable(tok):
             self._missing(cand, tok, prev)
-            self.calm = max(self.calm, 1)
             self._feed(_synthetic(cand, prev) if prev is not None else _synthetic(cand, tok, after=False))
             return self._feed_or_recover(tok)
         self._generic_error(tok, prev)
-        self.calm = 3
         return self._resync(tok)
 
     def _insertable(self, tok: Tok):
@@ -968,7 +973,7 @@ class _Parse:
             if after is None or _simulate(after, tok.type, reduced) is None:
                 continue
             # 'x y := 1': not "missing ';'" after a name that cannot be a statement.
-            if cand == SEMI and "call_stmt" in reduced and self.value_stack and _is_bare(self.value_stack[-1]):
+            if cand == _SEMI and "call_stmt" in reduced and self.value_stack and _is_bare(self.value_stack[-1]):
                 continue
             yield cand
             return
@@ -983,20 +988,17 @@ class _Parse:
                     if v.type != "_ELSE":
                         break
                     what = "duplicate ELSE" if tok.type == "_ELSE" else "ELSIF after ELSE"
-                    self.report("E005", what, self._tok_pos(tok), f"the ELSE at line {v.line} must be the last branch")
-                    self.calm = max(self.calm, 1)
+                    self.report("E005", what, self._tok_pos(tok), f"the ELSE at line {v.line} must be the last branch", calm=1)
                     # Drop it (and an ELSIF's condition): what follows joins the ELSE branch.
                     return self._skip_through("THEN") if tok.type == "ELSIF" else None
         if tok.type in _VAR_KINDS:
             opener = next(self._open_blocks(), None)
             if opener is not None and opener.type in ("PROGRAM", "FUNCTION", "FUNCTION_BLOCK"):
                 self.report("E005", f"{_spelling(tok.type)} block after the statements", self._tok_pos(tok),
-                            "declare variables before the first statement of the POU")
-                self.calm = max(self.calm, 1)
+                            "declare variables before the first statement of the POU", calm=1)
                 return self._skip_through("END_VAR")
         if tok.type == "EQ" and "ASSIGN" in self._expected():
-            self.report("E001", "'=' compares; use ':=' to assign", self._tok_pos(tok), "':=' assigns, '=' compares")
-            self.calm = max(self.calm, 1)
+            self.report("E001", "'=' compares; use ':=' to assign", self._tok_pos(tok), "':=' assigns, '=' compares", calm=1)
             assign = Tok("ASSIGN", ":=", tok.start_pos, tok.line, tok.column)
             assign.end_column = tok.end_column
             return self._feed_or_recover(assign)
@@ -1006,8 +1008,7 @@ class _Parse:
         if word is not None:
             at = tok if word == value else prev
             self.report("E001", f"{word}: {_UNSUPPORTED[word]} are not supported", self._tok_pos(at),
-                        "write the logic as a FUNCTION or FUNCTION_BLOCK")
-            self.calm = max(self.calm, 1)
+                        "write the logic as a FUNCTION or FUNCTION_BLOCK", calm=1)
             self._unshift(prev if word != value else None)
             end = word if word.startswith("END_") else "END_" + word
             return self._skip_through("NAME", end) if word != end else None
@@ -1015,20 +1016,17 @@ class _Parse:
             # In a statement list the lexer offers LABEL_NAME (a case label
             # could follow a statement), so 'lbl:' arrives as one.
             self.report("E001", f"label '{tok.value}:' is not supported", self._tok_pos(tok),
-                        "JMP and labels are not supported; use a loop or CASE")
-            self.calm = max(self.calm, 1)
-            return self._skip_through(COLON)
+                        "JMP and labels are not supported; use a loop or CASE", calm=1)
+            return self._skip_through(_COLON)
         if prev is not None and prev.type == "NAME" and "ASSIGN" in self._expected():
             if prev.value.upper() == "JMP":
                 self.report("E001", "JMP is not supported", self._tok_pos(prev),
-                            "JMP and labels are not supported; use a loop or CASE")
-                self.calm = max(self.calm, 1)
+                            "JMP and labels are not supported; use a loop or CASE", calm=1)
                 self._unshift(prev)
-                return self._skip_through(SEMI)
-            if tok.type == COLON:
+                return self._skip_through(_SEMI)
+            if tok.type == _COLON:
                 self.report("E001", f"label '{prev.value}:' is not supported", self._tok_pos(prev),
-                            "JMP and labels are not supported; use a loop or CASE")
-                self.calm = max(self.calm, 1)
+                            "JMP and labels are not supported; use a loop or CASE", calm=1)
                 self._unshift(prev)
                 return None
         return False
@@ -1057,13 +1055,15 @@ class _Parse:
             opener = next((b for b in self._open_blocks() if _CLOSERS[b.type] == cand), None)
             where = f" to close the {opener.type} at line {opener.line}" if opener else ""
             self.report("E001", f"{text} expected{where}, found {self._describe(tok)}", self._tok_pos(tok),
-                        f"add {text} before {self._describe(tok)}")
+                        f"add {text} before {self._describe(tok)}", calm=1)
             return
         # Point at where the token is missing: just after the previous one.
         pos = self._pos_at(prev.end_line, prev.end_column) if prev is not None else self._tok_pos(tok)
-        hint = {SEMI: "missing ';' after the statement?",
-                COMMA: "separate arguments, names and values with ','"}.get(cand)
-        self.report("E001", f"missing '{text}' before {self._describe(tok)}", pos, hint)
+        opener = next(self._open_blocks(), None)
+        item = "declaration" if opener is not None and opener.type in ("TYPE", "STRUCT", *_VAR_KINDS) else "statement"
+        hint = {_SEMI: f"missing ';' after the {item}?",
+                _COMMA: "separate arguments, names and values with ','"}.get(cand)
+        self.report("E001", f"missing '{text}' before {self._describe(tok)}", pos, hint, calm=1)
 
     def _eof_error(self) -> None:
         if self.comment_trouble:
@@ -1082,6 +1082,8 @@ class _Parse:
                 hint = f"{_CLOSERS[opener.type]} expected to close the {opener.type} at line {opener.line}"
         if hint is None:
             hint = self._did_you_mean(tok, prev)
+        if hint is None and self._between_pous():
+            hint = "outside a POU: PROGRAM, FUNCTION, FUNCTION_BLOCK, TYPE, VAR_GLOBAL or CONFIGURATION"
         if hint is None and {"INT", "NAME", "LPAR", "NOT"} <= expected:
             hint = "an expression (a value or a variable) is missing here"
         if hint is None and {"ARRAY", "STRING", "NAME"} <= expected:
@@ -1095,7 +1097,7 @@ class _Parse:
                             if not t.startswith("__") and (not t.startswith("END_") or t == closer)})
             if 0 < len(shown) <= 6:
                 hint = "expected " + ", ".join(s if s.startswith("a ") else f"'{s}'" for s in shown)
-        self.report("E001", f"unexpected {self._describe(tok)}", self._tok_pos(tok), hint)
+        self.report("E001", f"unexpected {self._describe(tok)}", self._tok_pos(tok), hint, calm=3)
 
     def _did_you_mean(self, tok: Tok, prev: Optional[Tok]) -> Optional[str]:
         """A misspelt keyword (ELSEIF, ENDIF, VAR_INPUTS) lexes as a name."""
@@ -1115,7 +1117,7 @@ class _Parse:
         while True:
             if tok.type == "$END":
                 return self._finish(tok)
-            if tok.type == SEMI:
+            if tok.type == _SEMI and not self._between_pous():
                 # The end of the broken statement or declaration: recover
                 # within the innermost open block, where the ';' ends what
                 # was parsed, or else by dropping the broken item with it.
@@ -1131,10 +1133,22 @@ class _Parse:
             self._lost_opener(tok)
             tok = self._next_token()
 
+    def _between_pous(self) -> bool:
+        """Is the broken part outside any POU, where ';' ends nothing (in a
+        file of POUs, not of bare statements)? Then recovery waits for the
+        next PROGRAM, FUNCTION, TYPE, VAR_GLOBAL ..."""
+        if next(self._open_blocks(), None) is not None:
+            return False
+        stack = self.state_stack
+        for depth in range(len(stack), 0, -1):
+            if _simulate(stack[:depth], "$END") is not None:
+                return _simulate(stack[:depth], "PROGRAM") is not None
+        return False
+
     def _semicolon_ends_item(self, depth: int) -> bool:
         """Would ';' at this stack depth end a statement or declaration, not
         make an empty statement, nor a lone name into a call statement?"""
-        after = _simulate(self.state_stack[:depth], SEMI)
+        after = _simulate(self.state_stack[:depth], _SEMI)
         if after is None:
             return False
         reduced: list = []
@@ -1162,12 +1176,9 @@ class _Parse:
         if fits is None:
             def fits(depth):
                 return _simulate(stack[:depth], tok.type) is not None
-        floor = 1
-        for i in range(len(values) - 1, -1, -1):
-            v = values[i]
-            if isinstance(v, Tok) and v.type in _CLOSERS:
-                floor = i + 2  # stack[i + 1] is the state after the opener values[i]
-                break
+        innermost = next(self._open_blocks(with_index=True), None)
+        # stack[i + 1] is the state after the opener values[i]: keep it.
+        floor = innermost[0] + 2 if innermost is not None else 1
         for lowest in ((floor,) if bounded else (floor, 1)):
             for depth in range(len(stack), lowest - 1, -1):
                 if fits(depth):

@@ -84,12 +84,17 @@ def generate(lines: int) -> str:
 def main() -> None:
     lines = int(sys.argv[1]) if len(sys.argv) > 1 else 10_000
     text = generate(lines)
-    diags = DiagnosticBag()
-    t0 = time.perf_counter()
-    sf = parse_source(text, "bench.st", diags)
-    dt = time.perf_counter() - t0
-    assert not diags.items, [d.format() for d in diags.items[:3]]
-    print(f"parsed {text.count(chr(10))} lines ({len(text)} chars, {len(sf.decls)} POUs) in {dt * 1000:.0f} ms")
+    for run in ("first", "best of 5"):
+        wall = cpu = float("inf")
+        for _ in range(1 if run == "first" else 5):
+            diags = DiagnosticBag()
+            w0, c0 = time.perf_counter(), time.process_time()
+            sf = parse_source(text, "bench.st", diags)
+            wall = min(wall, time.perf_counter() - w0)
+            cpu = min(cpu, time.process_time() - c0)
+            assert not diags.items, [d.format() for d in diags.items[:3]]
+        print(f"{run:9s}: parsed {text.count(chr(10))} lines ({len(text)} chars, {len(sf.decls)} POUs) "
+              f"in {wall * 1000:.0f} ms wall, {cpu * 1000:.0f} ms CPU")
 
 
 if __name__ == "__main__":

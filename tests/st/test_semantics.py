@@ -297,3 +297,9 @@ END_PROGRAM
 """
     r = run_st(src, cycles=3, cycle_time_ms=10)  # at the third cycle 20 ms have passed
     assert r.get("done") == 2
+
+
+def test_for_bounds_convert_to_the_loop_variables_type():
+    # found by the fuzzer: a REAL bound is a W121 narrowing in CODESYS and must still run
+    r = run_st(prog("i : INT; n : INT; hi : REAL := 3.6;", "FOR i := 1 TO hi DO n := n + 1; END_FOR"))
+    assert r.get("n") == 4  # 3.6 rounds to 4, as REAL_TO_INT does

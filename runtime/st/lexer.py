@@ -1,0 +1,226 @@
+"""Structured Text tokens, for the parser in parser.py.
+
+Two passes:
+
+``strip_comments`` blanks comments (nested ``(* *)``, ``//``, ``/* */``) and
+pragmas ``{...}`` out with spaces, keeping every line and column where it
+was, and collects the pragmas. Nested comments are beyond a regular lexer.
+
+``Lexer.tokens`` cuts the rest into ``Tok``s with one compiled regular
+expression made from the terminals of grammar.lark. It is contextual the way
+ST needs: it asks the parser which token types the current state accepts
+(``accepts``) to decide
+
+  * soft keywords: SET, RESET, AT, ON, TASK, RETAIN, ... are keywords only
+    where the grammar expects them and names elsewhere (``rs(SET := x)``);
+    reserved keywords (IF, END_IF, ...) are keywords everywhere;
+  * ``LABEL_NAME``: a name followed by ':', ',' or '..' where a CASE label
+    may stand (a label can follow a statement, LALR sees one token);
+  * ``S=`` / ``R=`` / ``REF=`` after an assignment target;
+  * ``w.0.1``: after '.', digits are a bit number, never the real 0.1.
+
+lark's contextual lexer could do most of this (with a postlexer for the
+reserved words); this one is about twice as fast, and speed matters here.
+"""
+from __future__ import annotations
+
+import re
+from typing import Callable, Iterator, Optional
+
+from lark.lexer import PatternStr
+
+
+class Tok:
+    """A token. Tokens never span lines (strings and comments cannot), so
+    the end is on the start line. Fields match lark's Token."""
+    __slots__ = ("type", "value", "start_pos", "line", "column", "end_column")
+
+    def __init__(self, type: str, value: str, start_pos: int, line: int, column: int) -> None:
+        self.type = type
+        self.value = value
+        self.start_pos = start_pos
+        self.line = line
+        self.column = column
+        self.end_column = column + len(value)
+
+    @property
+    def end_line(self) -> int:
+        return self.line
+
+    @property
+    def end_pos(self) -> int:
+        return self.start_pos + len(self.value)
+
+    def __repr__(self) -> str:
+        return f"Tok({self.type}, {self.value!r}, {self.line}:{self.column})"
+
+
+# ---------------------------------------------------------------- comments and pragmas
+
+class Pragma:
+    """``{text}``: where it was and what was inside the braces (stripped)."""
+    __slots__ = ("text", "line", "col", "end_line", "end_col")
+
+    def __init__(self, text: str, start: tuple, end: tuple) -> None:
+        self.text = text
+        self.line, self.col = start
+        self.end_line, self.end_col = end
+
+
+_COMMENT_START = re.compile(r"\(\*|\*\)|/\*|//|\{|'|\"")
+_NESTED = re.compile(r"\(\*|\*\)")
+_STRING_AT = {"'": re.compile(r"'(?:[^'$\n]|\$[^\n])*'"), '"': re.compile(r'"(?:[^"$\n]|\$[^\n])*"')}
+_NOT_NEWLINE = re.compile(r"[^\n]")
+
+
+def line_col(text: str, offset: int) -> tuple:
+    """1-based (line, column) of a character offset."""
+    line = text.count("\n", 0, offset) + 1
+    return line, offset - (text.rfind("\n", 0, offset) + 1) + 1
+
+
+def strip_comments(text: str, error: Callable) -> tuple:
+    """Return (text with comments and pragmas blanked, [Pragma]).
+    ``error(code, message, start_offset, end_offset, hint)`` reports a problem."""
+    if not any(c in text for c in "(/{*"):
+        return text, []
+    pieces, pragmas = [], []
+    done = pos = 0  # text[:done] is in pieces; the scan resumes at pos
+    while True:
+        m = _COMMENT_START.search(text, pos)
+        if m is None:
+            break
+        start, what = m.start(), m.group()
+        if what in ("'", '"'):
+            s = _STRING_AT[what].match(text, start)
+            pos = s.end() if s else start + 1  # the lexer reports unterminated strings
+            continue
+        if what == "*)":
+            error("E001", "'*)' without a matching '(*'", start, start + 2,
+                  "remove it, or open the comment with '(*'")
+            end = start + 2
+        elif what == "//":
+            nl = text.find("\n", start)
+            end = len(text) if nl < 0 else nl
+        elif what == "/*":
+            close = text.find("*/", start + 2)
+            if close < 0:
+                error("E004", "unterminated comment: '/*' is never closed", start, start + 2, "close it with '*/'")
+                end = len(text)
+            else:
+                end = close + 2
+        elif what == "{":
+            close = text.find("}", start + 1)
+            if close < 0:
+                error("E004", "unterminated pragma: '{' is never closed", start, start + 1, "close it with '}'")
+                end = len(text)
+            else:
+                end = close + 1
+                pragmas.append(Pragma(text[start + 1:close].strip(), line_col(text, start), line_col(text, end)))
+        else:  # "(*": comments nest
+            depth, p = 1, start + 2
+            while depth:
+                n = _NESTED.search(text, p)
+                if n is None:
+                    break
+                depth += 1 if n.group() == "(*" else -1
+                p = n.end()
+            if depth:
+                error("E004", "unterminated comment: '(*' is never closed", start, start + 2,
+                      "(* *) comments nest: every '(*' inside needs its own '*)'")
+                end = len(text)
+            else:
+                end = p
+        pieces.append(text[done:start])
+        pieces.append(_NOT_NEWLINE.sub(" ", text[start:end]))
+        done = pos = end
+    pieces.append(text[done:])
+    return "".join(pieces), pragmas
+
+
+# ---------------------------------------------------------------- tokens
+
+_WHITESPACE = "[ \t\f\r\n\v]*"
+_SKIP_WHITESPACE = re.compile(_WHITESPACE)
+# Characters that can start some token; a run of others is one E002.
+INVALID_RUN = re.compile(r"[^A-Za-z0-9_\s%'\"()\[\];:,.=<>+\-*/&^#]+")
+# Regular-expression terminals, in the order they are tried (first match
+# wins, so a longer form comes before its prefix: HASH_LIT before NAME,
+# REAL before INT). Others are tried only where the parser accepts them.
+_ORDER = ("HASH_LIT", "C_HEX", "BASED_INT", "REAL", "INT", "LOCATED", "BIT_REF", "NAME",
+          "STRING_LIT", "WSTRING_LIT")
+_CONTEXTUAL = ("S_ASSIGN", "R_ASSIGN", "REF_ASSIGN", "LABEL_NAME")
+
+
+class Lexer:
+    """Built once from the grammar's terminals; ``tokens`` runs per text."""
+
+    def __init__(self, terminals: dict, reserved: frozenset) -> None:
+        self.keywords: dict = {}  # 'END_IF' -> terminal name
+        punct: dict = {}          # ':=' -> terminal name
+        for name, t in terminals.items():
+            if isinstance(t.pattern, PatternStr):
+                value = t.pattern.value.upper()
+                (self.keywords if value.isidentifier() else punct)[value] = name
+        self.reserved = frozenset(n for v, n in self.keywords.items() if v in reserved)
+        self.punct = punct
+        groups = [f"(?P<{n}>{terminals[n].pattern.to_regexp()})" for n in _ORDER]
+        groups.append("(?P<PUNCT>" + "|".join(re.escape(p) for p in sorted(punct, key=len, reverse=True)) + ")")
+        self.master = re.compile(_WHITESPACE + "(?:" + "|".join(groups) + ")", re.ASCII)
+        self.contextual = [(n, re.compile(terminals[n].pattern.to_regexp(), re.ASCII)) for n in _CONTEXTUAL]
+        self.int_re = re.compile(terminals["INT"].pattern.to_regexp(), re.ASCII)
+
+    def tokens(self, text: str, accepts: Callable[[], Optional[dict]], bad: Callable) -> Iterator[Tok]:
+        """The tokens of text (comments already blanked). accepts() gives
+        the token types the parser takes next (None: any, while skipping).
+        bad(offset, line, column) is called where no token starts and
+        returns (offset to go on from, token to yield or None)."""
+        match, keywords, reserved, punct = self.master.match, self.keywords, self.reserved, self.punct
+        pos, line, line_start, n = 0, 1, 0, len(text)
+        while True:
+            m = match(text, pos)
+            if m is None:
+                start = _SKIP_WHITESPACE.match(text, pos).end()
+                kind = value = None
+            else:
+                kind = m.lastgroup
+                start = m.start(kind)
+            newlines = text.count("\n", pos, start)
+            if newlines:
+                line += newlines
+                line_start = text.rfind("\n", pos, start) + 1
+            if m is None:
+                if start >= n:
+                    return
+                pos, tok = bad(start, line, start - line_start + 1)
+                if tok is not None:
+                    yield tok
+                continue
+            value = m.group(kind)
+            pos = m.end()
+            if kind == "PUNCT":
+                kind = punct[value]
+            elif kind == "NAME":
+                kw = keywords.get(value.upper())
+                if kw is None or kw not in reserved:
+                    row = accepts()
+                    if row is None:
+                        kind = kw or kind
+                    else:
+                        for name, regex in self.contextual:
+                            if name in row:
+                                cm = regex.match(text, start)
+                                if cm:
+                                    kind, value, pos = name, cm.group(), cm.end()
+                                    break
+                        else:
+                            if kw is not None and kw in row:
+                                kind = kw
+                else:
+                    kind = kw
+            elif kind == "REAL":
+                row = accepts()
+                if row is not None and "REAL" not in row and "INT" in row:
+                    value = self.int_re.match(text, start).group()  # w.0.1: bit 0, then .1
+                    kind, pos = "INT", start + len(value)
+            yield Tok(kind, value, start, line, start - line_start + 1)
