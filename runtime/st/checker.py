@@ -1143,7 +1143,13 @@ class Checker:
         return T.BOOL
 
     def _address_fits(self, addr: A.LocatedAddress, ty: Optional[T.ElementaryType], pos: A.Pos) -> bool:
-        """Report (E082) a direct address outside the process image."""
+        """Report (E082) a direct address outside the process image, and
+        (E083) a CODESYS placeholder address %I* that nothing maps."""
+        if not addr.indices:
+            self.d.error("E083", f"{addr.text} is an unconfigured address", pos,
+                         "give the full address (e.g. %IX0.0); mapping %I* through VAR_CONFIG "
+                         "is not supported")
+            return False
         try:
             if ty is None:
                 self._image_probe.table(addr)
