@@ -433,38 +433,27 @@ class _Builder:
         node.pos = self._span(c[0], c[2])
         return node
 
-    def int_lit(self, c):
-        t = c[0]
+    def _number(self, token, parse, kind: str, fallback, **extra) -> ast.Literal:
+        """A numeric literal; a malformed one is reported (E003) and read as
+        the fallback so that checking goes on."""
         try:
-            value = parse_int(t.value)
+            value = parse(token.value)
         except LiteralError as e:
-            self._literal_error(e, t)
-            value = 0
-        return ast.Literal("int", value, pos=ast.Pos(self.file, t.line, t.column, t.end_line, t.end_column))
+            self._literal_error(e, token)
+            value = fallback
+        return ast.Literal(kind, value, pos=self._tpos(token), **extra)
+
+    def int_lit(self, c):
+        return self._number(c[0], parse_int, "int", 0)
 
     def real_lit(self, c):
-        try:
-            value = parse_real(c[0].value)
-        except LiteralError as e:
-            self._literal_error(e, c[0])
-            value = 0.0
-        return ast.Literal("real", value, pos=self._tpos(c[0]))
+        return self._number(c[0], parse_real, "real", 0.0)
 
     def based_lit(self, c):
-        try:
-            value = parse_based(c[0].value)
-        except LiteralError as e:
-            self._literal_error(e, c[0])
-            value = 0
-        return ast.Literal("int", value, pos=self._tpos(c[0]))
+        return self._number(c[0], parse_based, "int", 0)
 
     def c_hex_lit(self, c):
-        try:
-            value = parse_c_hex(c[0].value)
-        except LiteralError as e:
-            self._literal_error(e, c[0])
-            value = 0
-        return ast.Literal("int", value, c_hex=True, pos=self._tpos(c[0]))
+        return self._number(c[0], parse_c_hex, "int", 0, c_hex=True)
 
     def hash_lit(self, c):
         try:

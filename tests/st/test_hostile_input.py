@@ -18,6 +18,9 @@ import sys
 import tokenize
 
 import pytest
+
+from softplc.runtime.st.rtlib import iec_literal
+from softplc.runtime.st.types import StringType
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -92,24 +95,9 @@ def assert_inert(prog, strings: tuple = ()) -> ast.Module:
 
 
 def st_quote(s: str, quote: str = "'") -> str:
-    """An ST string literal whose value is s ($-escapes)."""
-    out = []
-    for ch in s:
-        if ch == quote:
-            out.append("$" + quote)
-        elif ch == "$":
-            out.append("$$")
-        elif ch == "\n":
-            out.append("$N")
-        elif ch == "\r":
-            out.append("$R")
-        elif ch == "\t":
-            out.append("$T")
-        elif ord(ch) < 32 or ord(ch) == 127:
-            out.append(f"${ord(ch):02X}" if quote == "'" else f"${ord(ch):04X}")
-        else:
-            out.append(ch)
-    return quote + "".join(out) + quote
+    """An ST string literal whose value is s ($-escapes), as the runtime
+    library writes one (its round trip through the parser is what is tested)."""
+    return iec_literal(StringType(max(len(s), 1), wide=quote == '"'), s)
 
 
 class _FakeProgram:
