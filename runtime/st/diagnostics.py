@@ -3,7 +3,9 @@ caret, and a hint. Every stage collects them instead of raising, so all the
 errors of a file are reported in one run.
 
 Code ranges (keep them stable, users search for them):
-  E001-E009  lexical and syntax (parser)
+  E001-E005  lexical and syntax (parser)
+  E006       nested beyond the Python compiler's limits (code generator)
+  E009       internal error (a bug in softplc; the input is reported, not lost)
   E010-E019  names and declarations
   E020-E029  types and conversions
   E030-E039  assignment targets

@@ -100,15 +100,15 @@ def _front_end(paths: list, profile: Profile, texts: Optional[dict]):
 
 def _back_end(checked: CheckedProgram, prof: Profile, diags: DiagnosticBag, where: A.Pos):
     """Generate and compile the Python module; CPython's own limits (20
-    nested loops, 200 nested parentheses) become diagnostic E009.
-    Returns (GeneratedModule, code object, filename), or None on E009."""
+    nested loops, 200 nested parentheses) become diagnostic E006.
+    Returns (GeneratedModule, code object, filename), or None on E006."""
     gen = CodeGen(checked, prof).generate()
     filename = f"<softplc-{next(_gen_counter)}>"
     try:
         return gen, compile(gen.source, filename, "exec"), filename
     except (SyntaxError, RecursionError, MemoryError) as exc:
         line = getattr(exc, "lineno", None)
-        diags.error("E009", "the program is nested too deeply for the Python compiler "
+        diags.error("E006", "the program is nested too deeply for the Python compiler "
                     f"({getattr(exc, 'msg', None) or type(exc).__name__})",
                     (gen.linemap.get(line) if line else None) or where,
                     "move inner loops or long expressions into FUNCTIONs or intermediate variables")

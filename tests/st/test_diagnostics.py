@@ -132,3 +132,10 @@ def test_c_style_hex_only_in_the_schneider_profile():
     src = prog("d : DINT;", "d := 0x00032007;")
     assert codes(src, "codesys") == ["E026"]
     assert codes(src, "schneider") == []
+
+
+def test_nesting_beyond_the_python_compilers_limits_is_e006_at_the_st_location():
+    body = "WHILE FALSE DO\n" * 21 + "x := 1;\n" + "END_WHILE\n" * 21
+    ds = diagnostics(prog("x : INT;", body))
+    assert [d.code for d in ds] == ["E006"]
+    assert ds[0].pos.line >= 5 and "FUNCTION" in ds[0].hint
