@@ -416,19 +416,3 @@ class SetReset(Stmt):
     kind: str
     target: Expr
 
-
-def walk(root):
-    """Every node below root (a node or a list of them), depth first."""
-    stack = [root]
-    while stack:
-        item = stack.pop()
-        if isinstance(item, (list, tuple)):
-            stack.extend(item)
-        elif isinstance(item, Node):
-            yield item
-            for name in getattr(type(item), "__dataclass_fields__", ()):
-                if name in ("ty", "const", "sym", "target", "impl", "pos"):
-                    continue
-                value = getattr(item, name)
-                if isinstance(value, (Node, list, tuple)):
-                    stack.append(value)

@@ -341,9 +341,6 @@ class Checker:
         if ty is None:
             return None
         section = block.kind
-        if owner is not None and owner.kind == "FUNCTION" and isinstance(T.resolve(ty), T.FBType) \
-                and section not in ("VAR_IN_OUT",):
-            pass  # FB instances inside a FUNCTION are re-created on each call (CODESYS semantics)
         if isinstance(T.resolve(ty), T.ArrayType) and T.resolve(ty).variable_length \
                 and section != "VAR_IN_OUT":
             self.d.error("E050", "ARRAY[*] is only allowed for VAR_IN_OUT", decl.pos)
@@ -859,14 +856,8 @@ class Checker:
         if isinstance(value, bool) or se.is_bool:
             return de.is_bool
         if isinstance(value, int) and se.is_intlike:
-            if de.is_intlike:
-                if T.int_fits(de, value):
-                    return True
-                self.d.error("E022", f"{value} does not fit {de.name} "
-                             f"({de.lo}..{de.hi})", e.pos,
-                             "use a larger type or a typed literal that wraps explicitly")
-                return True  # reported already
-            return de.is_real
+            # an integer that does not fit was reported (E022) by check_convertible
+            return T.int_fits(de, value) if de.is_intlike else de.is_real
         if isinstance(value, float) and se.is_real:
             return de.is_real
         return False
@@ -880,8 +871,6 @@ class Checker:
             return e.op in ("-", "+") and self._is_flexible(e.operand)
         if isinstance(e, A.Binary):
             return self._is_flexible(e.left) and self._is_flexible(e.right)
-        if isinstance(e, A.Name) and isinstance(e.sym, VarSymbol):
-            return False
         return False
 
     def _enum_example(self, t: T.Type) -> str:
@@ -1097,9 +1086,6 @@ class Checker:
                 return None
             e.sym = v
             return v.type
-        if isinstance(b, T.ElementaryType) and b.is_intlike and e.name.isdigit():
-            self.d.error("E053", "bit access", e.pos)
-            return None
         self.d.error("E013", f"{bty} has no members", e.pos)
         return None
 
@@ -1554,9 +1540,7 @@ class Checker:
                 vty = self.expr(a.value, scope)
                 if vty is None:
                     continue
-                if not self._is_lvalue_expr(a.value) or (isinstance(a.value, A.Located)
-                                                         and a.value.addr.table is None
-                                                         and False):
+                if not self._is_lvalue_expr(a.value):
                     self.d.error("E042", f"VAR_IN_OUT '{param.name}' needs a variable, not an expression",
                                  a.value.pos, "pass a variable: it is passed by reference")
                     continue
@@ -1750,11 +1734,11 @@ class Checker:
             return {8: T.USINT, 16: T.UINT, 32: T.UDINT, 64: T.ULINT}[te.bits]
         return t
 
-    _FOLDABLE_PREFIXES = ("ABS", "SQRT", "MAX", "MIN", "LIMIT", "SEL", "MUX", "SHL", "SHR", "ROL", "ROR",
+    _FOLDABLE_NAMES = ("ABS", "SQRT", "MAX", "MIN", "LIMIT", "SEL", "MUX", "SHL", "SHR", "ROL", "ROR",
                           "LEN", "CONCAT", "LEFT", "RIGHT", "MID", "TRUNC", "EXPT", "MOVE")
 
     def _foldable(self, func) -> bool:
-        return "_TO_" in func.name or func.name.startswith("TO_") or func.name in self._FOLDABLE_PREFIXES
+        return "_TO_" in func.name or func.name.startswith("TO_") or func.name in self._FOLDABLE_NAMES
 
     def _call_impl(self, func, info: CallInfo, values: list) -> Any:
         if func.typed:

@@ -12,6 +12,7 @@ exception in generated code is reported at the ST file:line:column.
 """
 from __future__ import annotations
 
+import itertools
 import math
 import re
 from dataclasses import dataclass, field
@@ -141,9 +142,6 @@ class CodeGen:
                 linemap[i] = pos
         return GeneratedModule("\n".join(text_lines) + "\n", self.consts, self.accessors, linemap, classes)
 
-    def _vars_meta(self, entries: list) -> str:
-        return self.const(tuple(entries))
-
     # ------------------------------------------------------------ structs
 
     def _struct_class(self, st: T.StructType) -> None:
@@ -155,7 +153,7 @@ class CodeGen:
         slots = [f.pyname for f in st.fields.values()]
         self.emit(f"__slots__ = ({''.join(repr(s) + ', ' for s in slots)})")
         meta = [(f.name, f.pyname, f.type, "FIELD") for f in st.fields.values()]
-        self.emit(f"_VARS_ = {self._vars_meta(meta)}")
+        self.emit(f"_VARS_ = {self.const(tuple(meta))}")
         self.emit("")
         self.emit("def __init__(self):")
         self.indent += 1
@@ -254,21 +252,19 @@ class CodeGen:
     def _runs(codes: list) -> str:
         """A list display with runs compressed: [0] * 100 + [1, 2]."""
         parts = []
-        i = 0
-        while i < len(codes):
-            j = i
-            while j < len(codes) and codes[j] == codes[i]:
-                j += 1
-            if j - i >= 4:
-                parts.append(f"[{codes[i]}] * {j - i}")
+        loose: list = []  # short runs gather into one display
+        for code, run in itertools.groupby(codes):
+            n = len(list(run))
+            if n >= 4:
+                if loose:
+                    parts.append("[" + ", ".join(loose) + "]")
+                    loose = []
+                parts.append(f"[{code}] * {n}")
             else:
-                if parts and parts[-1].startswith("[") and not parts[-1].endswith(f"] * {0}") \
-                        and " * " not in parts[-1]:
-                    parts[-1] = parts[-1][:-1] + ", " + ", ".join(codes[i:j]) + "]"
-                else:
-                    parts.append("[" + ", ".join(codes[i:j]) + "]")
-            i = j
-        return " + ".join(parts) if parts else "[]"
+                loose += [code] * n
+        if loose or not parts:
+            parts.append("[" + ", ".join(loose) + "]")
+        return " + ".join(parts)
 
     def _aggregate_expr(self, ty: T.Type, plan: Any) -> str:
         """An expression building an aggregate with an initial value plan."""
@@ -315,7 +311,7 @@ class CodeGen:
         located = [v for v in pou.vars.values() if v.location is not None]
         self.emit(f"__slots__ = ({''.join(repr(v.pyname) + ', ' for v in stored)})")
         meta = [(v.name, v.pyname, v.type, v.section) for v in pou.vars.values() if not self._temp_local(v)]
-        self.emit(f"_VARS_ = {self._vars_meta(meta)}")
+        self.emit(f"_VARS_ = {self.const(tuple(meta))}")
         for v in located:
             idx = self.accessor(v.location, T.base_elementary(v.type))
             self.emit(f"{v.pyname} = property(lambda self: _A{idx}g())")
@@ -420,7 +416,7 @@ class CodeGen:
         self.indent += 1
         self.emit(f"__slots__ = ({''.join(repr(g.pyname) + ', ' for g in stored)})")
         meta = [(g.name, g.pyname, g.type, "VAR_GLOBAL") for g in gl]
-        self.emit(f"_VARS_ = {self._vars_meta(meta)}")
+        self.emit(f"_VARS_ = {self.const(tuple(meta))}")
         for g in gl:
             if g.location is not None:
                 idx = self.accessor(g.location, T.base_elementary(g.type))
