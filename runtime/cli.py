@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import json
 import os
-import re
 import sys
 import traceback
 from pathlib import Path
@@ -26,6 +25,7 @@ from typing import Optional
 
 import click
 
+from .durations import EXAMPLES, parse_duration_ns
 from .st.profile import DEFAULT, PROFILES
 
 EXIT_OK = 0
@@ -43,42 +43,19 @@ class CycleTime(click.ParamType):
     resolution), so a value must be a positive whole number of ms."""
 
     name = "duration"
-    # IEC duration units, largest first, in nanoseconds.
-    _UNITS = {"d": 86_400_000_000_000, "h": 3_600_000_000_000, "m": 60_000_000_000,
-              "s": 1_000_000_000, "ms": 1_000_000, "us": 1_000, "ns": 1}
-    _PART = re.compile(r"(\d+(?:\.\d+)?)(ms|us|ns|d|h|m|s)")
 
     def convert(self, value, param, ctx) -> int:
         if isinstance(value, int):
             return value
-        text = "".join(str(value).split()).lower().replace("_", "")
-        for prefix in ("time#", "t#"):
-            if text.startswith(prefix):
-                text = text[len(prefix):]
-                break
-        if text.isdigit():
-            ns = int(text) * 1_000_000
-        else:
-            ns = self._parse_units(text)
-            if ns is None:
-                self.fail(f"{value!r} is not a duration (examples: 10ms, 1s, T#250ms)",
-                          param, ctx)
+        ns = parse_duration_ns(value)
+        if ns is None:
+            self.fail(f"{value!r} is not a duration (examples: {EXAMPLES})", param, ctx)
         if ns <= 0:
             self.fail(f"{value!r}: the cycle time must be positive", param, ctx)
         if ns % 1_000_000:
             self.fail(f"{value!r}: the cycle time must be a whole number of milliseconds",
                       param, ctx)
         return ns // 1_000_000
-
-    def _parse_units(self, text: str) -> Optional[int]:
-        pos, total = 0, 0.0
-        while pos < len(text):
-            m = self._PART.match(text, pos)
-            if m is None:
-                return None
-            total += float(m.group(1)) * self._UNITS[m.group(2)]
-            pos = m.end()
-        return round(total) if text else None
 
 
 PROFILE_OPTION = click.option(
@@ -144,7 +121,6 @@ def cli() -> None:
     Exit codes: 0 ok, 1 compile errors, 2 usage error, 3 runtime fault,
     4 internal error.
     """
-    # `softplc run CONFIG.toml` (the scan engine with I/O) joins this group later.
 
 
 @cli.command()
@@ -230,7 +206,7 @@ def _exec_result(runner) -> dict:
             return {"return": None}
         return {"return": encode_value(runner.result_type, runner.result)}
     result = encode_instance(runner.instance)
-    globals_ = encode_instance(runner.globals)
+    globals_ = encode_instance(runner.globals, skip=runner.program.library_globals)
     if globals_:
         result["VAR_GLOBAL"] = globals_
     return result
@@ -254,6 +230,58 @@ def _pick_entry(pous: dict, entry: Optional[str]) -> str:
             return name
     # Not a user POU: let the runner decide (library FUNCTIONs may be runnable).
     return entry
+
+
+class Duration(click.ParamType):
+    """A positive duration of engine time: 30s, 1m30s, 500ms, T#2s."""
+
+    name = "duration"
+
+    def convert(self, value, param, ctx) -> int:
+        if isinstance(value, int):
+            return value
+        ns = parse_duration_ns(value)
+        if ns is None or ns <= 0:
+            self.fail(f"{value!r} is not a positive duration (examples: {EXAMPLES})", param, ctx)
+        return ns
+
+
+@cli.command("run")
+@click.argument("config", required=False, type=click.Path(dir_okay=False))
+@click.option("--virtual-time", is_flag=True,
+              help="Run on the virtual clock: jump from deadline to deadline (no waiting).")
+@click.option("--duration", type=Duration(), metavar="DURATION",
+              help="Stop after this much engine time (30s, 1m, T#500ms).")
+@click.option("--cycles", type=click.IntRange(min=1), metavar="N", help="Stop after N scans.")
+@click.option("--watch", "watch", multiple=True, metavar="VAR",
+              help="Show VAR in the status line and the trace: Instance.var, a global, or an "
+                   "address such as %QW1. Repeat the option or separate names with commas.")
+@click.option("--trace", type=click.Path(dir_okay=False), metavar="FILE.csv",
+              help="Write the watched values every scan to a CSV file.")
+@click.option("--final-json", type=click.Path(dir_okay=False, allow_dash=True), metavar="FILE",
+              help="At the end, write every program's variables as JSON (as `exec` prints them; - for stdout).")
+@click.option("--cold", "start_mode", flag_value="cold",
+              help="Cold start: every variable initialised, the retain file ignored.")
+@click.option("--warm", "start_mode", flag_value="warm",
+              help="Warm start: RETAIN and PERSISTENT variables restored (the default unless the "
+                   "config says start = \"cold\").")
+def run_cmd(config: Optional[str], virtual_time: bool, duration: Optional[int], cycles: Optional[int],
+            watch: tuple, trace: Optional[str], final_json: Optional[str], start_mode: Optional[str]) -> None:
+    """Run the PLC: the tasks of CONFIG (a TOML file; without it the embedded
+    default example) until Ctrl-C, SIGTERM, --duration or --cycles.
+
+    SIGUSR1 (or typing `restart` on a terminal) restarts tasks stopped by a
+    runtime fault. Exit codes: 0 stopped cleanly, 1 compile errors, 2 bad
+    configuration or option, 3 a runtime fault happened during the run.
+    """
+    from .launch import run_plc
+
+    if duration is not None and cycles is not None:
+        raise click.UsageError("give --duration or --cycles, not both")
+    paths = [p.strip() for item in watch for p in item.split(",") if p.strip()]
+    sys.exit(run_plc(config, virtual_time=virtual_time, duration_ns=duration, cycles=cycles,
+                     watch=paths, trace=trace, final_json=final_json, start_mode=start_mode,
+                     report_compile_errors=lambda e: _summary(*_report(e.diagnostics, e.sources))))
 
 
 # ---------------------------------------------------------------- entry point

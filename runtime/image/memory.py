@@ -10,14 +10,20 @@ models of DESIGN.md (chosen by the profile's ``addressing``):
 
 Words are little-endian in the image; drivers convert to bus byte order.
 Code generated for a located variable binds an accessor pair (get, set) once
-at load time, so an access is one call with no address arithmetic.
+at load time, so an access is one call with no address arithmetic. Beside
+that hot path: region() gives a driver the bytes an address covers, read()
+and write() reach one value by address string (--watch, forcing, tests), and
+outputs_view() is the image drivers see while outputs are held safe. Address
+syntax and default types are in address.py.
 """
 from __future__ import annotations
 
 import struct
+from typing import Optional
 
 from ..st.ast import LocatedAddress
 from ..st import types as T
+from .address import AddressError, SIZE_BITS as _SIZE_BITS, check_address, check_type, default_type, parse_address
 
 _FORMATS = {
     (8, True): "<b", (8, False): "<B",
@@ -25,11 +31,8 @@ _FORMATS = {
     (32, True): "<i", (32, False): "<I",
     (64, True): "<q", (64, False): "<Q",
 }
-_SIZE_BITS = {"B": 8, "W": 16, "D": 32, "L": 64}
 
-
-class AddressError(ValueError):
-    pass
+__all__ = ["AddressError", "ProcessImage", "WordTable"]
 
 
 class ProcessImage:
@@ -74,7 +77,8 @@ class ProcessImage:
 
     def _check(self, offset: int, nbytes: int, addr: LocatedAddress) -> None:
         if offset < 0 or offset + nbytes > self.size:
-            raise AddressError(f"{addr.text}: outside the {self.size}-byte %{addr.area} area")
+            span = f"byte {offset}" if nbytes == 1 else f"bytes {offset}..{offset + nbytes - 1}"
+            raise AddressError(f"{addr.text} ({span}) is outside the {self.size}-byte %{addr.area} area")
 
     # ------------------------------------------------------------ access
 
@@ -142,6 +146,106 @@ class ProcessImage:
         off = self._word_offset(addr.indices[-1], 16)
         self._check(off, 2 * length, addr)
         return WordTable(self.areas[addr.area], off, length, signed)
+
+    def region(self, addr: LocatedAddress) -> tuple:
+        """(area letter, byte offset, byte count) covered by a byte, word,
+        double or long word address or a ``:n`` word table: what a driver
+        copies. Bit addresses are refused, as drivers move whole bytes."""
+        check_address(addr, self.addressing)
+        if addr.bit is not None or addr.size in ("", "X"):
+            raise AddressError(f"{addr.text} is a bit; drivers copy whole bytes: give the byte or "
+                               f"word that holds it (e.g. %{addr.area}B0, %{addr.area}W0)")
+        if addr.table is not None:
+            off, nbytes = self._word_offset(addr.indices[0], 16), 2 * addr.table
+        else:
+            off, nbytes = self.byte_offset(addr), _SIZE_BITS[addr.size] // 8
+        self._check(off, nbytes, addr)
+        return addr.area, off, nbytes
+
+    # ------------------------------------------------------------ views and watching
+
+    def outputs_view(self, q_bytes: bytearray) -> "ProcessImage":
+        """An image sharing this one's %I and %M areas (and %M bits) whose %Q
+        area is q_bytes: the engine hands it to the drivers' write_outputs
+        while the outputs are held at their safe values."""
+        if len(q_bytes) != self.size:
+            raise ValueError(f"the %Q area of a view must have {self.size} bytes, not {len(q_bytes)}")
+        view = object.__new__(ProcessImage)
+        view.addressing = self.addressing
+        view.size = self.size
+        view.areas = {"I": self.areas["I"], "Q": q_bytes, "M": self.areas["M"]}
+        view.mbits = self.mbits
+        return view
+
+    def _resolve(self, where) -> LocatedAddress:
+        if isinstance(where, LocatedAddress):
+            check_address(where, self.addressing)
+            return where
+        return parse_address(where, self.addressing)
+
+    def read(self, where, ty: Optional[T.ElementaryType] = None):
+        """The value at an address ('%QW0', '%MW3250:X0' or a LocatedAddress)
+        read as ty (default: address.default_type; pass T.REAL for a float
+        in a %MD). A ``:n`` table reads as a list of n words."""
+        addr = self._resolve(where)
+        ty = ty or default_type(addr)
+        check_type(addr, ty)
+        if addr.table is not None:
+            return list(self.table(addr, signed=ty.category == T.SIGNED))
+        return self.accessor(addr, ty)[0]()
+
+    def write(self, where, value, ty: Optional[T.ElementaryType] = None) -> None:
+        """Store value at an address (see read). Integers must fit the
+        address's size, signed or unsigned (-1 or 16#FFFF into a word);
+        a ``:n`` table takes a sequence of n words."""
+        addr = self._resolve(where)
+        ty = ty or default_type(addr)
+        check_type(addr, ty)
+        if addr.table is not None:
+            values = _word_list(addr, value)
+            table = self.table(addr, signed=ty.category == T.SIGNED)
+            for i, v in enumerate(values):
+                table[i] = v
+            return
+        self.accessor(addr, ty)[1](_checked_value(addr, ty, value))
+
+
+def _checked_value(addr: LocatedAddress, ty: T.ElementaryType, value):
+    """value if it is of the kind ty stores; a clear ValueError if not, so a
+    forced value is never silently truncated or wrapped."""
+    if ty.is_bool:
+        if isinstance(value, bool) or value in (0, 1):
+            return bool(value)
+        raise ValueError(f"{addr.text} is a BOOL: write TRUE/FALSE or 1/0, not {value!r}")
+    if ty.is_real:
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            return float(value)
+        raise ValueError(f"{addr.text} holds a {ty.name}: write a number, not {value!r}")
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise ValueError(f"{addr.text} holds a {ty.name}: write an integer, not {value!r}")
+    return _fits(addr, ty.bits, value)
+
+
+def _fits(addr: LocatedAddress, bits: int, value: int) -> int:
+    lo, hi = -(1 << (bits - 1)), (1 << bits) - 1
+    if not lo <= value <= hi:
+        raise ValueError(f"{addr.text}: {value} does not fit {bits} bits ({lo}..{hi})")
+    return value
+
+
+def _word_list(addr: LocatedAddress, value) -> list:
+    try:
+        values = list(value)
+    except TypeError:
+        raise ValueError(f"{addr.text} is a table of {addr.table} words: write a list of "
+                         f"{addr.table} integers, not {value!r}") from None
+    if len(values) != addr.table:
+        raise ValueError(f"{addr.text} is a table of {addr.table} words, not {len(values)}")
+    for v in values:
+        if isinstance(v, bool) or not isinstance(v, int):
+            raise ValueError(f"{addr.text}: table words are integers, not {v!r}")
+        _fits(addr, 16, v)
+    return values
 
 
 class WordTable:

@@ -38,7 +38,7 @@ _BUILTINS = {name: getattr(builtins, name) for name in
 def _library_sources() -> list:
     """(path, text) of the ST libraries compiled into every program."""
     out = []
-    for package in ("softplc.fblocks.iec",):
+    for package in ("softplc.fblocks.iec", "softplc.fblocks.system"):
         root = resources.files(package)
         for entry in sorted(root.iterdir(), key=lambda p: p.name):
             if entry.name.endswith(".st"):
@@ -237,6 +237,9 @@ class Program:
         self.sources = sources
         self.pous = user_pous
         self.linemaps = {filename: gen.linemap}
+        # Globals the libraries declare (PLC_DIAG): not the user's state.
+        self.library_globals = frozenset(g.name for g in checked.globals
+                                         if g.pos is not None and g.pos.file.startswith("<lib>/"))
 
     @property
     def python_source(self) -> str:
@@ -338,28 +341,33 @@ class Runner:
 
     def get(self, path: str):
         """The value of a variable by its ST path, e.g. 'counter.CV' or 'G_speed'."""
-        parts = path.split(".")
-        holders = ((self.instance,) if self.instance is not None else ()) + (self.globals,)
-        cur = _MISSING
-        for holder in holders:
-            cur = _member(holder, parts[0])
-            if cur is not _MISSING:
-                break
-        if cur is _MISSING:
+        roots = ((self.instance,) if self.instance is not None else ()) + (self.globals,)
+        holder, attr, _ty = locate(path, roots)
+        return getattr(holder, attr)
+
+
+def locate(path: str, roots) -> tuple:
+    """(holder, attribute, Type) of the variable at an ST path such as
+    'motor.speed' (dotted names, no indices; case-insensitive), looked up in each root object in turn (a program
+    instance, then the globals). KeyError(path) if there is none."""
+    parts = path.split(".")
+    for root in roots:
+        found = _member(root, parts[0])
+        if found is not None:
+            break
+    else:
+        raise KeyError(path)
+    for part in parts[1:]:
+        holder, attr, _ty = found
+        found = _member(getattr(holder, attr), part)
+        if found is None:
             raise KeyError(path)
-        for part in parts[1:]:
-            cur = _member(cur, part)
-            if cur is _MISSING:
-                raise KeyError(path)
-        return cur
-
-
-_MISSING = object()
+    return found
 
 
 def _member(obj, name: str):
-    """The value of the variable called name (case-insensitive) in obj."""
-    for st_name, attr, _ty, _section in getattr(type(obj), "_VARS_", ()):
+    """(obj, attribute, Type) of the variable called name (case-insensitive) in obj, or None."""
+    for st_name, attr, ty, _section in getattr(type(obj), "_VARS_", ()):
         if st_name.upper() == name.upper():
-            return getattr(obj, attr)
-    return _MISSING
+            return obj, attr, ty
+    return None

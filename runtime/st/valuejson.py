@@ -63,12 +63,13 @@ def encode_value(t: T.Type, v: Any) -> Any:
     return None if v is None else str(v)
 
 
-def encode_instance(obj: Any) -> dict:
+def encode_instance(obj: Any, skip: frozenset = frozenset()) -> dict:
     """A PROGRAM, FUNCTION_BLOCK instance or STRUCT value as a dict of its
-    variables (name as declared -> encoded value), in declaration order."""
+    variables (name as declared -> encoded value), in declaration order;
+    variables named in skip are left out."""
     out: dict[str, Any] = {}
     for st_name, pyname, vtype, section in type(obj)._VARS_:
-        if section in SKIPPED_SECTIONS:
+        if section in SKIPPED_SECTIONS or st_name in skip:
             continue
         out[st_name] = encode_value(vtype, getattr(obj, pyname))
     return out

@@ -1,0 +1,54 @@
+"""Durations as people write them in a command line or a config file:
+'10ms', '1s500ms', '2.5s', 'T#250ms', 'TIME#1h', or a bare number of
+milliseconds. One parser serves the CLI and the TOML configuration, so both
+accept the same spellings."""
+from __future__ import annotations
+
+import re
+from typing import Optional
+
+# IEC duration units, largest first, in nanoseconds.
+UNITS_NS = {"d": 86_400_000_000_000, "h": 3_600_000_000_000, "m": 60_000_000_000,
+            "s": 1_000_000_000, "ms": 1_000_000, "us": 1_000, "ns": 1}
+_PART = re.compile(r"(\d+(?:\.\d+)?)(ms|us|ns|d|h|m|s)")
+
+EXAMPLES = "10ms, 1s, 1s500ms, T#250ms"
+
+
+def parse_duration_ns(value) -> Optional[int]:
+    """The duration in nanoseconds, or None if value is not a duration.
+    A bare number (int or digit string) means milliseconds."""
+    if isinstance(value, bool):
+        return None
+    if isinstance(value, int):
+        return value * 1_000_000
+    if isinstance(value, float):
+        return round(value * 1_000_000)
+    if not isinstance(value, str):
+        return None
+    text = "".join(value.split()).lower().replace("_", "")
+    for prefix in ("time#", "t#"):
+        if text.startswith(prefix):
+            text = text[len(prefix):]
+            break
+    if text.isdigit():
+        return int(text) * 1_000_000
+    pos, total = 0, 0.0
+    while pos < len(text):
+        m = _PART.match(text, pos)
+        if m is None:
+            return None
+        total += float(m.group(1)) * UNITS_NS[m.group(2)]
+        pos = m.end()
+    return round(total) if text else None
+
+
+def format_duration_ns(ns: int) -> str:
+    """A short human form: 10ms, 1.5s, 250us."""
+    if ns % 1_000_000_000 == 0:
+        return f"{ns // 1_000_000_000}s"
+    if ns >= 1_000_000_000:
+        return f"{ns / 1e9:g}s"
+    if ns % 1_000_000 == 0 or ns >= 1_000_000:
+        return f"{ns / 1e6:g}ms"
+    return f"{ns / 1e3:g}us"

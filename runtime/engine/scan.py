@@ -1,0 +1,403 @@
+"""The scan engine: one scan = read inputs, run the due tasks in priority
+order, write outputs (DESIGN.md). Everything here runs in one thread, the
+scan thread; drivers do their bus work in their own threads and meet the
+scan only in read_inputs / write_outputs.
+
+    engine = Engine(program, tasks, clock=VirtualClock())
+    engine.start()                 # instances, retained values, drivers
+    engine.run(duration_ns=10**9)  # or cycles=N; returns, the engine stays usable
+    engine.stop()                  # outputs safe, retain saved, drivers closed
+
+A runtime fault in a task (division by zero, bounds, watchdog ...) stops
+that task, or every task with on_fault="plc"; from that tick on the drivers
+are handed the safe output values, and the engine goes on serving: inputs
+are read, the other tasks run (on_fault="task"), PLC_DIAG tells programs,
+until restart() brings the faulted tasks back.
+"""
+from __future__ import annotations
+
+import logging
+import time
+from dataclasses import dataclass
+from typing import Callable, Optional
+
+from ..image.memory import ProcessImage
+from ..image.address import default_type
+from ..st import types as T
+from ..st.faults import STFault, fault_from_exception
+from ..st.loader import ExecContext, Program, locate
+from ..st.valuejson import encode_instance
+from . import retain as R
+from .clock import VirtualClock
+from .diag import DiagVariable
+from .stats import TaskStats
+
+log = logging.getLogger("softplc.engine")
+
+ON_FAULT = ("task", "plc")
+START_MODES = ("warm", "cold")
+
+
+class EngineError(Exception):
+    """The engine cannot start: the message says where and what to change."""
+
+
+@dataclass
+class FaultRecord:
+    task: str
+    fault: STFault
+    time_ns: int
+    cycle: int
+
+    def __str__(self) -> str:
+        return f"task {self.task}: {self.fault}"
+
+
+class Task:
+    """A task at run time: its configuration, program instances, next release and statistics."""
+
+    def __init__(self, spec, order: int) -> None:
+        self.spec = spec
+        self.name = spec.name
+        self.order = order
+        self.interval_ns = spec.interval_ns  # None: freewheeling
+        self.pause_ns = spec.pause_ns
+        self.priority = spec.priority
+        self.watchdog_ns = spec.watchdog_ns
+        self.sensitivity = spec.sensitivity
+        # The cooperative check on loop back-edges faults a single cycle at
+        # once when it runs longer than time x sensitivity (as CODESYS).
+        self.budget_s = float("inf") if spec.watchdog_ns is None else \
+            spec.watchdog_ns * spec.sensitivity / 1e9
+        self.instances: list = []  # (instance name, POUInfo, object)
+        self.calls: list = []
+        self.next_ns = 0
+        self.late_cycles = 0  # consecutive cycles longer than the watchdog time
+        self.fault: Optional[STFault] = None
+        self.stats = TaskStats()
+
+    def describe(self) -> str:
+        every = f"every {self.interval_ns / 1e6:g} ms" if self.interval_ns is not None else \
+            f"freewheeling (pause {self.pause_ns / 1e6:g} ms)"
+        wd = "no watchdog" if self.watchdog_ns is None else \
+            f"watchdog {self.watchdog_ns / 1e6:g} ms x{self.sensitivity}"
+        names = ", ".join(name for name, _info, _obj in self.instances)
+        return f"task {self.name}: {every}, priority {self.priority}, {wd}: {names}"
+
+
+class Engine:
+    def __init__(self, program: Program, tasks: list, *, clock=None, image: Optional[ProcessImage] = None,
+                 drivers=(), on_fault: str = "task", safe_outputs=(), retain_store=None,
+                 retain_period_ns: int = 1_000_000_000, start_mode: str = "warm") -> None:
+        if on_fault not in ON_FAULT:
+            raise ValueError(f"on_fault must be one of {ON_FAULT}")
+        if start_mode not in START_MODES:
+            raise ValueError(f"start_mode must be one of {START_MODES}")
+        self.program = program
+        self.clock = clock if clock is not None else VirtualClock()
+        self.image = image if image is not None else ProcessImage(program.profile.addressing)
+        self.ctx = ExecContext(self.image)
+        self.drivers = list(drivers)
+        self.on_fault = on_fault
+        self.start_mode = start_mode
+        self.retain_store = retain_store
+        self.retain_period_ns = retain_period_ns
+        ordered = sorted(enumerate(tasks), key=lambda it: (it[1].priority, it[0]))
+        self.tasks = [Task(spec, order) for order, spec in ordered]
+        self.safe_q = self._safe_area(safe_outputs)
+        self._safe_view = self.image.outputs_view(self.safe_q)
+        self.outputs_safe = False
+        self.faults: list[FaultRecord] = []
+        self.restarts = 0
+        self.cycle = 0  # ticks since start
+        self.started = False
+        self.stopped = False
+        self.after_tick: list[Callable] = []  # called with the engine after the outputs are written
+        self.restore_report = None
+        self._stop_requested = False
+        self._restart_requested = False
+        self._next_retain_ns = 0
+        self._retain_plan: list = []
+        self.ns: dict = {}
+        self.instances: dict = {}  # instance name (upper) -> (name, POUInfo, object)
+        self.diag: Optional[DiagVariable] = None
+
+    # ------------------------------------------------------------ set-up
+
+    def _safe_area(self, safe_outputs) -> bytearray:
+        """The %Q bytes the drivers get while outputs are held safe: 0 except
+        the configured values."""
+        scratch = ProcessImage(self.image.addressing, self.image.size)
+        for item in safe_outputs:
+            addr, value = item.address, item.value
+            ty = default_type(addr)
+            if isinstance(value, float) and addr.size in ("D", "L"):
+                ty = T.REAL if addr.size == "D" else T.LREAL
+            scratch.write(addr, value, ty)  # ValueError for a value the address cannot hold
+        return scratch.areas["Q"]
+
+    def start(self) -> None:
+        """Instantiate the programs, restore retained values, start the drivers.
+        Raises STFault when an initial value faults, EngineError otherwise."""
+        if self.started:
+            return
+        self.ns = self.program.load(self.ctx)
+        for task in self.tasks:
+            for inst in task.spec.programs:
+                key = inst.instance.upper()
+                if key in self.instances:
+                    raise EngineError(f"{inst.key}: program instance {inst.instance} is assigned twice")
+                info = self.program.pou(inst.program)
+                self.instances[key] = (inst.instance, info, None)
+                task.instances.append((inst.instance, info, None))
+        self._instantiate(self.tasks)
+        self.diag = DiagVariable(self.ns["_G"])
+        self._retain_plan = self._plan_retain()
+        if self.retain_store is not None:
+            data, warning = self.retain_store.load()
+            if warning:
+                log.warning("%s", warning)
+            self.restore_report = R.restore(self._retain_plan, data, self.start_mode)
+            self._log_restore(self.restore_report)
+        self.diag.set(StartMode=self.start_mode)
+        started = []
+        try:
+            for driver in self.drivers:
+                driver.start()
+                started.append(driver)
+        except Exception:
+            for driver in started:
+                driver.stop()
+            raise
+        now = self.clock.now_ns()
+        for task in self.tasks:
+            task.next_ns = now
+        self._next_retain_ns = now + self.retain_period_ns
+        self.started = True
+        for task in self.tasks:
+            log.info("%s", task.describe())
+
+    def _instantiate(self, tasks: list) -> None:
+        """Fresh program instances for tasks (initial values run here)."""
+        for task in tasks:
+            fresh = []
+            for name, info, _old in task.instances:
+                try:
+                    obj = self.ns[info.pyname]()
+                except Exception as exc:
+                    raise fault_from_exception(exc, self.program.linemaps) from None
+                fresh.append((name, info, obj))
+                self.instances[name.upper()] = (name, info, obj)
+            task.instances = fresh
+            task.calls = [obj for _name, _info, obj in fresh]
+
+    def _plan_retain(self) -> list:
+        return R.plan_retain(self.program.checked,
+                             {name: (info, obj) for name, info, obj in self.instances.values()},
+                             self.ns["_G"])
+
+    def _log_restore(self, report) -> None:
+        if report.restored:
+            log.info("%s start: %d retained variable(s) restored", report.mode, len(report.restored))
+        for path, reason in report.dropped:
+            log.warning("%s start: %s initialised: %s", report.mode, path, reason)
+
+    # ------------------------------------------------------------ running
+
+    def run(self, cycles: Optional[int] = None, duration_ns: Optional[int] = None) -> int:
+        """Scan until cycles ticks ran, the engine clock passed duration_ns
+        from now, or request_stop(). Returns the number of ticks run."""
+        if not self.started:
+            self.start()
+        clock = self.clock
+        end_ns = None if duration_ns is None else clock.now_ns() + duration_ns
+        ran = 0
+        while not self._stop_requested and (cycles is None or ran < cycles):
+            release = self.next_release()
+            if end_ns is not None and release >= end_ns:
+                clock.sleep_until(end_ns)
+                break
+            clock.sleep_until(release)
+            self.tick()
+            ran += 1
+        return ran
+
+    def next_release(self) -> int:
+        """When the next task is due. A task stopped by a fault keeps its
+        release grid, so the engine goes on ticking (serving the drivers) at
+        the same moments as before."""
+        return min(task.next_ns for task in self.tasks)
+
+    def tick(self) -> None:
+        """One scan at the clock's current time."""
+        if self._restart_requested:
+            self._restart_requested = False
+            self.restart()
+        now = self.clock.now_ns()
+        self.ctx.set_time(now)
+        image = self.image
+        for driver in self.drivers:
+            driver.read_inputs(image)
+        for task in self.tasks:
+            if task.next_ns <= now:
+                if task.fault is None:
+                    self._run_task(task)
+                else:
+                    self._release_next(task, task.next_ns)
+        out = self._safe_view if self.outputs_safe else image
+        for driver in self.drivers:
+            driver.write_outputs(out)
+        self.cycle += 1
+        if now >= self._next_retain_ns and self.retain_store is not None:
+            self._next_retain_ns = now + self.retain_period_ns
+            self.save_retain()
+        for callback in self.after_tick:
+            callback(self)
+
+    def _run_task(self, task: Task) -> None:
+        clock = self.clock
+        released = task.next_ns
+        start_ns = clock.now_ns()
+        counter = time.perf_counter_ns
+        t0 = counter()
+        self.ctx.deadline = t0 * 1e-9 + task.budget_s
+        try:
+            for call in task.calls:
+                call()
+        except Exception as exc:
+            self._fault(task, fault_from_exception(exc, self.program.linemaps))
+            return
+        exec_ns = counter() - t0
+        task.stats.record(exec_ns, start_ns - released)
+        if task.watchdog_ns is not None:
+            if exec_ns > task.watchdog_ns:
+                task.late_cycles += 1
+                if task.late_cycles >= task.sensitivity:
+                    self._fault(task, STFault(
+                        "watchdog", f"watchdog: {task.late_cycles} cycle(s) in a row longer than "
+                        f"{task.watchdog_ns / 1e6:g} ms (last {exec_ns / 1e6:.3f} ms)"))
+            else:
+                task.late_cycles = 0
+        self._release_next(task, released)
+
+    def _release_next(self, task: Task, released: int) -> None:
+        end = self.clock.now_ns()
+        if task.interval_ns is None:
+            task.next_ns = end + task.pause_ns
+            return
+        nxt = released + task.interval_ns
+        if nxt <= end:  # ran past the next release: skip what was missed
+            missed = (end - nxt) // task.interval_ns + 1
+            if task.fault is None:
+                task.stats.overruns += missed
+            nxt += missed * task.interval_ns
+        task.next_ns = nxt
+
+    # ------------------------------------------------------------ faults
+
+    def _fault(self, task: Task, fault: STFault) -> None:
+        now = self.clock.now_ns()
+        task.fault = fault
+        task.stats.faults += 1
+        record = FaultRecord(task.name, fault, now, self.cycle)
+        self.faults.append(record)
+        log.error("task %s stopped by a runtime fault: %s", task.name, fault)
+        if self.on_fault == "plc":
+            for other in self.tasks:
+                if other.fault is None:
+                    other.fault = fault
+            log.error("on_fault = plc: every task is stopped")
+        if not self.outputs_safe:
+            log.warning("outputs are held at their safe values until a restart")
+        self.outputs_safe = True
+        self.diag.set(Faulted=True, OutputsSafe=True, FaultCount=len(self.faults), FaultTask=task.name,
+                      FaultKind=fault.kind, FaultText=fault.message,
+                      FaultWhere=str(fault.pos) if fault.pos else "")
+
+    def faulted_tasks(self) -> list:
+        return [t for t in self.tasks if t.fault is not None]
+
+    def request_restart(self) -> None:
+        """Ask for restart() at the next tick; safe from a signal handler or another thread."""
+        self._restart_requested = True
+
+    def restart(self) -> bool:
+        """Bring the faulted tasks back: their program instances start afresh
+        with their RETAIN and PERSISTENT values kept (a warm start of those
+        instances; global variables keep their values). False if no task was
+        faulted."""
+        faulted = self.faulted_tasks()
+        if not faulted:
+            return False
+        carried = R.capture(self._retain_plan, self.clock.now_ns(), self.cycle)
+        self._instantiate(faulted)
+        self._retain_plan = self._plan_retain()
+        R.restore(self._retain_plan, carried, "warm")
+        for task in faulted:  # they run again at their next release
+            task.fault = None
+            task.late_cycles = 0
+        self.outputs_safe = False
+        self.restarts += 1
+        self.diag.set(Faulted=False, OutputsSafe=False, Restarts=self.restarts)
+        log.warning("restarted task(s) %s; outputs live again", ", ".join(t.name for t in faulted))
+        return True
+
+    # ------------------------------------------------------------ stopping
+
+    def request_stop(self) -> None:
+        """Make run() return after the current tick; safe from a signal handler."""
+        self._stop_requested = True
+
+    def stop(self) -> None:
+        """Outputs to their safe values, retained data saved, drivers closed."""
+        if self.stopped or not self.started:
+            return
+        self.stopped = True
+        self.outputs_safe = True
+        for driver in self.drivers:
+            driver.write_outputs(self._safe_view)
+        if self.retain_store is not None:
+            self.save_retain()
+            self.retain_store.close()
+        for driver in self.drivers:
+            driver.stop()
+
+    def save_retain(self) -> None:
+        if self._retain_plan:
+            self.retain_store.submit(R.capture(self._retain_plan, self.clock.now_ns(), self.cycle))
+
+    # ------------------------------------------------------------ inspection
+
+    def variable(self, path: str):
+        """(holder, attribute, Type) of 'Instance.var.field' or 'GlobalVar.field'."""
+        first, _, rest = path.partition(".")
+        entry = self.instances.get(first.upper())
+        if entry is not None and rest:
+            return locate(rest, (entry[2],))
+        return locate(path, (self.ns["_G"],))
+
+    def get(self, path: str):
+        """The value of a variable ('Main.count', 'G_total') or of a direct address ('%QW0')."""
+        if path.startswith("%"):
+            return self.image.read(path)
+        holder, attr, _ty = self.variable(path)
+        return getattr(holder, attr)
+
+    def set(self, path: str, value) -> None:
+        """Force a variable (tests and simulators; no type conversion)."""
+        if path.startswith("%"):
+            self.image.write(path, value)
+            return
+        holder, attr, _ty = self.variable(path)
+        setattr(holder, attr, value)
+
+    def dump(self) -> dict:
+        """Every program instance's variables and the globals, as `softplc exec` prints them."""
+        out = {name: encode_instance(obj) for name, _info, obj in self.instances.values()}
+        globals_ = encode_instance(self.ns["_G"], skip=self.program.library_globals)
+        if globals_:
+            out["VAR_GLOBAL"] = globals_
+        return out
+
+    def now_ns(self) -> int:
+        return self.clock.now_ns()

@@ -1,0 +1,62 @@
+"""The driver interface: how a bus driver meets the scan.
+
+A driver owns its bus and does all bus work in its own thread (or asyncio
+loop). It meets the scan thread only in two short, non-blocking calls:
+
+    read_inputs(image)    at cycle start: copy the newest input data the bus
+                          thread has published into the image's %I area
+    write_outputs(image)  at cycle end: copy the %Q data the bus should send
+                          from the image into the driver's own buffer
+
+Both run in the scan thread and must never wait on the bus: they swap or copy
+buffers under a lock that the bus thread holds only as long as a copy takes
+(the double buffer of DESIGN.md). The image handed to write_outputs may be
+the engine's safe-output view (its %Q area holds the configured safe values
+while a task is faulted or the PLC stops); a driver does not know or care.
+
+Life cycle, all called from the engine's thread:
+
+    start()   open the bus, start the bus thread; may raise DriverError
+    status()  DriverStatus: ok or not, and a short text for the status line
+    stop()    the last write_outputs has happened; close the bus, join the thread
+
+A lost bus is reported through status() (ok=False, message) and recovered by
+the driver itself; it never raises from read_inputs / write_outputs.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..image.memory import ProcessImage
+
+
+class DriverError(Exception):
+    """A driver cannot start (bad port, missing interface ...)."""
+
+
+@dataclass(frozen=True)
+class DriverStatus:
+    ok: bool = True
+    message: str = ""
+
+
+class Driver:
+    """Base class of bus drivers (see the module docstring)."""
+
+    #: the config section and name, for messages: "loopback[0]", "canopen"
+    name: str = "driver"
+
+    def start(self) -> None:
+        pass
+
+    def read_inputs(self, image: ProcessImage) -> None:
+        raise NotImplementedError
+
+    def write_outputs(self, image: ProcessImage) -> None:
+        raise NotImplementedError
+
+    def status(self) -> DriverStatus:
+        return DriverStatus()
+
+    def stop(self) -> None:
+        pass

@@ -1,0 +1,228 @@
+"""`softplc run`, as a user runs it: the embedded default, configs from
+files, watch/trace/final JSON, config and compile errors, signals, and the
+retain file surviving SIGKILL."""
+from __future__ import annotations
+
+import csv
+import json
+import os
+import random
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from softplc.runtime.engine.retain import read_file
+
+REPO = Path(__file__).resolve().parents[1]
+
+
+def _env():
+    env = dict(os.environ, PYTHONIOENCODING="utf-8")
+    env.pop("SOFTPLC_DEBUG", None)
+    return env
+
+
+def softplc(*args, cwd=None, timeout=120):
+    return subprocess.run([sys.executable, "-m", "softplc.runtime.cli", *map(str, args)],
+                          capture_output=True, text=True, stdin=subprocess.DEVNULL, cwd=cwd,
+                          env=_env(), timeout=timeout)
+
+
+def spawn(*args, cwd=None):
+    return subprocess.Popen([sys.executable, "-m", "softplc.runtime.cli", *map(str, args)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, stdin=subprocess.DEVNULL,
+                            text=True, cwd=cwd, env=_env())
+
+
+def wait_for_line(proc, needle: str, limit_s: float = 60) -> list:
+    """Read the process's stderr until a line contains needle; the lines read.
+    The limit only stops a broken test from hanging, it decides nothing."""
+    lines = []
+    deadline = time.monotonic() + limit_s
+    while time.monotonic() < deadline:
+        line = proc.stderr.readline()
+        if not line:
+            break
+        lines.append(line)
+        if needle in line:
+            return lines
+    proc.kill()
+    raise AssertionError(f"never saw {needle!r}; stderr so far:\n{''.join(lines)}")
+
+
+def write_config(tmp_path, text: str, programs: dict) -> Path:
+    for name, source in programs.items():
+        (tmp_path / name).write_text(source)
+    cfg = tmp_path / "plant.toml"
+    cfg.write_text(text)
+    return cfg
+
+
+# ---------------------------------------------------------------- the embedded default
+
+def test_default_example_runs_in_virtual_time(tmp_path):
+    out = tmp_path / "final.json"
+    proc = softplc("run", "--virtual-time", "--duration", "10s", "--final-json", out)
+    assert proc.returncode == 0, proc.stderr
+    final = json.loads(out.read_text())
+    assert set(final) == {"Conveyor", "Panel"}
+    # START is pressed at 0.1 s and 5.1 s; each batch of 8 parts is done well within 5 s.
+    assert final["Conveyor"]["batches"] == 2
+    assert final["Conveyor"]["state"] == "Idle"
+    assert "stopped after 1000 scans" in proc.stderr
+
+
+def test_watch_and_trace_sample_every_scan(tmp_path):
+    trace = tmp_path / "trace.csv"
+    proc = softplc("run", "--virtual-time", "--cycles", "300", "--watch", "Conveyor.state,Conveyor.speedOut",
+                   "--watch", "%QX0.0", "--watch", "Panel.speedPercent", "--trace", trace)
+    assert proc.returncode == 0, proc.stderr
+    rows = list(csv.DictReader(trace.open()))
+    assert len(rows) == 300
+    assert list(rows[0]) == ["time_ms", "cycle", "Conveyor.state", "Conveyor.speedOut", "%QX0.0",
+                             "Panel.speedPercent"]
+    assert [float(r["time_ms"]) for r in rows[:3]] == [0.0, 10.0, 20.0]
+    running = [r for r in rows if r["%QX0.0"] == "1"]
+    assert running, "the belt never ran"
+    # The panel (100 ms task) sees the speed one loopback scan after the conveyor wrote it.
+    full = [r for r in rows if r["Conveyor.speedOut"] == "1000"]
+    assert full and any(float(r["Panel.speedPercent"]) == 100.0 for r in rows)
+    # The status line at the end names the watched values.
+    assert "Conveyor.state=" in proc.stderr and "%QX0.0=" in proc.stderr
+
+
+def test_final_json_to_stdout_matches_exec_encoding():
+    proc = softplc("run", "--virtual-time", "--cycles", "200", "--final-json", "-")
+    assert proc.returncode == 0, proc.stderr
+    final = json.loads(proc.stdout)
+    conveyor = final["Conveyor"]
+    assert conveyor["partCounter"]["CV"] == conveyor["batchSize"] == 8
+    assert all(t.startswith("T#") for t in conveyor["partAt"])
+
+
+# ---------------------------------------------------------------- errors
+
+def test_config_error_names_file_and_key(tmp_path):
+    cfg = write_config(tmp_path, '[plc]\nprograms = ["p.st"]\n[[task]]\nname = "T"\ninterval = "fast"\n'
+                       'programs = ["Main"]\n', {"p.st": "PROGRAM Main\nEND_PROGRAM\n"})
+    proc = softplc("run", cfg, "--virtual-time", "--cycles", "1")
+    assert proc.returncode == 2
+    assert f"{cfg}: task[0].interval: expected a duration" in proc.stderr
+    assert "Traceback" not in proc.stderr
+
+
+def test_unknown_program_in_a_task(tmp_path):
+    cfg = write_config(tmp_path, '[plc]\nprograms = ["p.st"]\n[[task]]\nname = "T"\ninterval = "10ms"\n'
+                       'programs = ["Mian"]\n', {"p.st": "PROGRAM Main\nEND_PROGRAM\n"})
+    proc = softplc("run", cfg, "--virtual-time", "--cycles", "1")
+    assert proc.returncode == 2
+    assert "task[0].programs[0]: 'Mian' is not a PROGRAM" in proc.stderr
+    assert "did you mean 'Main'?" in proc.stderr
+
+
+def test_compile_error_gives_st_location(tmp_path):
+    cfg = write_config(tmp_path, '[plc]\nprograms = ["p.st"]\n',
+                       {"p.st": "PROGRAM Main\nVAR x : INT; END_VAR\nx := TRUE;\nEND_PROGRAM\n"})
+    proc = softplc("run", cfg, "--virtual-time", "--cycles", "1")
+    assert proc.returncode == 1
+    assert "p.st:3:6: error" in proc.stderr
+
+
+def test_unknown_watch_variable(tmp_path):
+    proc = softplc("run", "--virtual-time", "--cycles", "1", "--watch", "Conveyor.nope")
+    assert proc.returncode == 2
+    assert "--watch: no variable 'Conveyor.nope'" in proc.stderr
+
+
+def test_runtime_fault_exit_code_and_message(tmp_path):
+    cfg = write_config(tmp_path, '[plc]\nprograms = ["p.st"]\n', {"p.st": (
+        "PROGRAM Main\nVAR n, d : INT; END_VAR\nn := n + 1;\nIF n = 3 THEN\n    n := n / d;\nEND_IF\n"
+        "END_PROGRAM\n")})
+    out = tmp_path / "final.json"
+    proc = softplc("run", cfg, "--virtual-time", "--cycles", "10", "--final-json", out)
+    assert proc.returncode == 3, proc.stderr
+    assert "task MainTask stopped by a runtime fault: " in proc.stderr
+    assert "p.st:5:5: runtime fault: division by zero" in proc.stderr
+    assert json.loads(out.read_text())["Main"]["n"] == 3
+
+
+# ---------------------------------------------------------------- signals and retain
+
+COUNTER = """
+PROGRAM Counter
+VAR RETAIN
+    count : UDINT;
+END_VAR
+VAR
+    since_start : UDINT;
+END_VAR
+count := count + 1;
+since_start := since_start + 1;
+END_PROGRAM
+"""
+
+
+def _retain_config(tmp_path, period="50ms") -> Path:
+    return write_config(tmp_path, f'[plc]\nprograms = ["counter.st"]\n[retain]\nfile = "counter.retain"\n'
+                        f'period = "{period}"\n[[task]]\nname = "Main"\ninterval = "10ms"\n'
+                        'programs = ["Counter"]\n', {"counter.st": COUNTER})
+
+
+def test_sigterm_stops_cleanly_and_saves_retain(tmp_path):
+    cfg = _retain_config(tmp_path, period="1h")  # only the final save can write the file
+    out = tmp_path / "final.json"
+    proc = spawn("run", cfg, "--final-json", out)
+    wait_for_line(proc, "running;")  # after the first scan
+    proc.send_signal(signal.SIGTERM)
+    _stdout, stderr = proc.communicate(timeout=60)
+    assert proc.returncode == 0, stderr
+    final = json.loads(out.read_text())["Counter"]
+    saved = read_file(tmp_path / "counter.retain")
+    assert saved.vars["Counter.count"]["value"] == final["count"] >= 1
+
+
+def test_sigusr1_restarts_a_faulted_task(tmp_path):
+    cfg = write_config(tmp_path, '[plc]\nprograms = ["p.st"]\n', {"p.st": (
+        "PROGRAM Main\nVAR n, d : INT; END_VAR\nn := n + 1;\nIF n = 3 THEN\n    n := n / d;\nEND_IF\n"
+        "END_PROGRAM\n")})
+    proc = spawn("run", cfg)
+    wait_for_line(proc, "stopped by a runtime fault")
+    proc.send_signal(signal.SIGUSR1)
+    wait_for_line(proc, "restarted task(s) MainTask")
+    proc.send_signal(signal.SIGINT)
+    _stdout, stderr = proc.communicate(timeout=60)
+    assert proc.returncode == 3  # a fault happened during the run
+
+
+def test_retain_survives_sigkill_repeatedly(tmp_path):
+    """kill -9 at arbitrary moments: the retain file is always whole and
+    valid, and each warm start continues from what it holds."""
+    cfg = _retain_config(tmp_path)
+    retain = tmp_path / "counter.retain"
+    rng = random.Random(7)
+    previous = 0
+    for _round in range(5):
+        proc = spawn("run", cfg, "--virtual-time")
+        wait_for_line(proc, "running;")
+        # Let it write a few times, then kill wherever it is (maybe mid-write).
+        deadline = time.monotonic() + 30
+        while time.monotonic() < deadline:
+            data = read_file(retain) if retain.exists() else None
+            if data is not None and data.vars["Counter.count"]["value"] > previous + 20:
+                break
+        time.sleep(rng.uniform(0, 0.05))
+        proc.send_signal(signal.SIGKILL)
+        proc.wait(timeout=30)
+        data = read_file(retain)  # raises if the file is torn or the checksum is wrong
+        count = data.vars["Counter.count"]["value"]
+        assert count > previous
+        previous = count
+    # A warm start continues from the file; a cold start does not.
+    warm = softplc("run", cfg, "--virtual-time", "--cycles", "1", "--final-json", "-")
+    assert json.loads(warm.stdout)["Counter"]["count"] == previous + 1, warm.stderr
+    cold = softplc("run", cfg, "--virtual-time", "--cycles", "1", "--cold", "--final-json", "-")
+    assert json.loads(cold.stdout)["Counter"]["count"] == 1
