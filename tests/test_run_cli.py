@@ -32,10 +32,28 @@ def softplc(*args, cwd=None, timeout=120):
                           env=_env(), timeout=timeout)
 
 
+_SPAWNED: list = []
+
+
+@pytest.fixture(autouse=True)
+def _no_orphans():
+    """A failing test must not leave a PLC running (and eating a core)."""
+    yield
+    while _SPAWNED:
+        proc = _SPAWNED.pop()
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait(timeout=30)
+        for stream in (proc.stdout, proc.stderr):
+            stream.close()
+
+
 def spawn(*args, cwd=None):
-    return subprocess.Popen([sys.executable, "-m", "softplc.runtime.cli", *map(str, args)],
+    proc = subprocess.Popen([sys.executable, "-m", "softplc.runtime.cli", *map(str, args)],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, stdin=subprocess.DEVNULL,
                             text=True, cwd=cwd, env=_env())
+    _SPAWNED.append(proc)
+    return proc
 
 
 def wait_for_line(proc, needle: str, limit_s: float = 60) -> list:
@@ -214,6 +232,7 @@ def test_retain_survives_sigkill_repeatedly(tmp_path):
             data = read_file(retain) if retain.exists() else None
             if data is not None and data.vars["Counter.count"]["value"] > previous + 20:
                 break
+            time.sleep(0.01)
         time.sleep(rng.uniform(0, 0.05))
         proc.send_signal(signal.SIGKILL)
         proc.wait(timeout=30)

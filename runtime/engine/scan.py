@@ -118,6 +118,7 @@ class Engine:
         self._restart_requested = False
         self._next_retain_ns = 0
         self._retain_plan: list = []
+        self._retain_error: Optional[str] = None
         self.ns: dict = {}
         self.instances: dict = {}  # instance name (upper) -> (name, POUInfo, object)
         self.diag: Optional[DiagVariable] = None
@@ -363,8 +364,17 @@ class Engine:
             driver.stop()
 
     def save_retain(self) -> None:
-        if self._retain_plan:
-            self.retain_store.submit(R.capture(self._retain_plan, self.clock.now_ns(), self.cycle))
+        if not self._retain_plan:
+            return
+        store = self.retain_store
+        store.submit(R.capture(self._retain_plan, self.clock.now_ns(), self.cycle))
+        # The writer thread reports a failed write here; say it once, not every period.
+        if store.last_error != self._retain_error:
+            self._retain_error = store.last_error
+            if store.last_error:
+                log.error("%s (retrying every period)", store.last_error)
+            else:
+                log.info("the retain file is written again")
 
     # ------------------------------------------------------------ inspection
 

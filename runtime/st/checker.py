@@ -351,11 +351,29 @@ class Checker:
                         location=decl.location, init=decl.init)
         if decl.location is not None:
             self._check_location_type(sym)
+        if block.retain or block.persistent:
+            self._check_retained(sym, block)
         if sym.constant:
             # a CONSTANT may size the arrays and strings declared after it
             self._check_var_init(sym, _Scope(owner))
             self._inited.add(id(sym))
         return sym
+
+    def _check_retained(self, sym: VarSymbol, block: A.VarBlock) -> None:
+        """W111 where RETAIN/PERSISTENT cannot keep anything: the engine
+        retains a variable's own storage only (runtime/engine/retain.py)."""
+        if sym.section in ("VAR_IN_OUT", "VAR_EXTERNAL"):
+            what = f"a {sym.section} (it refers to a variable declared elsewhere)"
+        elif sym.section == "VAR_TEMP" or (sym.owner is not None and sym.owner.kind == "FUNCTION"):
+            what = "a temporary variable (it holds nothing between calls)"
+        elif sym.location is not None:
+            what = "a located variable (its value is the process image's)"
+        else:
+            return
+        qualifier = "PERSISTENT" if block.persistent else "RETAIN"
+        self.d.warning("W111", f"{qualifier} has no effect on {sym.name}, {what}", sym.pos,
+                       f"remove {qualifier}; to keep the value, copy it into a VAR {qualifier} "
+                       "variable of a PROGRAM or FUNCTION_BLOCK")
 
     def _declare_globals(self, block: A.VarBlock) -> None:
         if block.kind not in ("VAR_GLOBAL", "VAR_CONFIG"):

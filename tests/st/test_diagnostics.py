@@ -139,3 +139,12 @@ def test_nesting_beyond_the_python_compilers_limits_is_e006_at_the_st_location()
     ds = diagnostics(prog("x : INT;", body))
     assert [d.code for d in ds] == ["E006"]
     assert ds[0].pos.line >= 5 and "FUNCTION" in ds[0].hint
+
+
+def test_retain_where_nothing_can_be_kept_is_a_warning():
+    src = ("FUNCTION F : INT\nVAR RETAIN t : INT; END_VAR\nF := t;\nEND_FUNCTION\n"
+           "PROGRAM main\nVAR RETAIN\n    kept : INT;\n    x AT %MW4 : INT;\nEND_VAR\n"
+           "VAR_TEMP PERSISTENT\n    tmp : INT;\nEND_VAR\nkept := F() + x + tmp;\nEND_PROGRAM\n")
+    found = [(d.code, d.pos.line, d.message.split(",")[0]) for d in diagnostics(src)]
+    assert found == [("W111", 2, "RETAIN has no effect on t"), ("W111", 8, "RETAIN has no effect on x"),
+                     ("W111", 11, "PERSISTENT has no effect on tmp")]
