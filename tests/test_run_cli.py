@@ -165,6 +165,7 @@ def test_runtime_fault_exit_code_and_message(tmp_path):
     assert proc.returncode == 3, proc.stderr
     assert "task MainTask stopped by a runtime fault: " in proc.stderr
     assert "p.st:5:5: runtime fault: division by zero" in proc.stderr
+    assert "MainTask FAULT:" in proc.stderr and "faults=1 outputs SAFE" in proc.stderr  # the status line
     assert json.loads(out.read_text())["Main"]["n"] == 3
 
 

@@ -267,6 +267,7 @@ class Engine:
                 call()
         except Exception as exc:
             self._fault(task, fault_from_exception(exc, self.program.linemaps))
+            self._release_next(task, released)  # keep the grid: no second tick at this time
             return
         exec_ns = counter() - t0
         task.stats.record(exec_ns, start_ns - released)

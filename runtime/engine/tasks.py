@@ -14,10 +14,9 @@ from __future__ import annotations
 import difflib
 from typing import Optional
 
-from ..config import ProgramInstance, TaskConfig, default_watchdog_ns
+from ..config import DEFAULT_PAUSE_NS, ProgramInstance, TaskConfig, default_watchdog_ns
 
 DEFAULT_INTERVAL_NS = 10_000_000  # CODESYS's MainTask: 10 ms
-DEFAULT_PAUSE_NS = 1_000_000
 
 
 class TaskSetupError(Exception):
