@@ -105,7 +105,7 @@ def main() -> None:
     eng = engine_jitter(program, args.seconds)
     print(f"  softplc engine  : p50 {eng['p50_us']:.0f} us, p99 {eng['p99_us']:.0f} us, "
           f"max {eng['max_us']:.0f} us ({eng['n']} cycles)  [target p99 <= 100 us]")
-    print(f"  ratio p99 engine/sleep: {eng['p99_us'] / max(base['p99_us'], 1e-9):.2f}")
+    print(f"  ratio p99 engine/sleep: {eng['p99_us'] / max(base['p99_us'], 1e-9):.3g}")
 
 
 if __name__ == "__main__":
