@@ -8,7 +8,6 @@ import threading
 from typing import Optional, TextIO
 
 from ..image.address import parse_address
-from ..st import types as T
 from ..st.valuejson import encode_value
 
 

@@ -12,7 +12,6 @@ previous cycle ended.
 from __future__ import annotations
 
 import difflib
-from typing import Optional
 
 from ..config import DEFAULT_PAUSE_NS, ProgramInstance, TaskConfig, default_watchdog_ns
 
