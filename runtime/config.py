@@ -45,7 +45,7 @@ from pydantic import BaseModel, ConfigDict, Field, PlainValidator, ValidationErr
     model_validator
 from pydantic_core import PydanticCustomError
 
-from .durations import parse_duration_ns
+from .durations import EXAMPLES as DURATION_EXAMPLES, parse_duration_ns
 from .image import address as _address
 from .st.ast import LocatedAddress
 from .st.profile import DEFAULT as _DEFAULT_PROFILE, PROFILES
@@ -55,7 +55,6 @@ __all__ = [
     "PlcConfig", "load_config", "config_from_dict", "default_config_path", "default_watchdog_ns",
 ]
 
-DURATION_EXAMPLES = "10ms, 1s, T#250ms"
 DEFAULT_PAUSE_NS = 1_000_000
 DEFAULT_RETAIN_PERIOD_NS = 1_000_000_000
 PRIORITY_MAX = 31

@@ -17,6 +17,8 @@ import pytest
 
 from softplc.runtime.engine.retain import read_file
 
+from .test_cli import softplc
+
 REPO = Path(__file__).resolve().parents[1]
 
 
@@ -24,12 +26,6 @@ def _env():
     env = dict(os.environ, PYTHONIOENCODING="utf-8")
     env.pop("SOFTPLC_DEBUG", None)
     return env
-
-
-def softplc(*args, cwd=None, timeout=120):
-    return subprocess.run([sys.executable, "-m", "softplc.runtime.cli", *map(str, args)],
-                          capture_output=True, text=True, stdin=subprocess.DEVNULL, cwd=cwd,
-                          env=_env(), timeout=timeout)
 
 
 _SPAWNED: list = []

@@ -4,17 +4,18 @@ struct a program reads to see the engine's state. Written only on events
 from __future__ import annotations
 
 from ..st import types as T
+from ..st.loader import locate
 
 
 class DiagVariable:
     def __init__(self, globals_obj) -> None:
-        self._struct = None
         self._fields: dict = {}  # field name (upper) -> (attr, max length or None)
-        for st_name, attr, _ty, _section in type(globals_obj)._VARS_:
-            if st_name.upper() == "PLC_DIAG":
-                self._struct = getattr(globals_obj, attr)
-        if self._struct is None:  # a user global of the same name replaced it
+        try:
+            holder, attr, _ty = locate("PLC_DIAG", (globals_obj,))
+        except KeyError:  # not loaded with the system library
+            self._struct = None
             return
+        self._struct = getattr(holder, attr)
         for st_name, attr, ty, _section in type(self._struct)._VARS_:
             t = T.resolve(ty)
             self._fields[st_name.upper()] = (attr, t.length if isinstance(t, T.StringType) else None)
