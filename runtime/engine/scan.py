@@ -98,6 +98,10 @@ class Engine:
         self.image = image if image is not None else ProcessImage(program.profile.addressing)
         self.ctx = ExecContext(self.image)
         self.drivers = list(drivers)
+        for driver in self.drivers:
+            if driver.comm is not None:   # READ_VAR / WRITE_VAR go to the (first) bus that serves them
+                self.ctx.comm = driver.comm
+                break
         self.on_fault = on_fault
         self.start_mode = start_mode
         self.retain_store = retain_store
@@ -170,6 +174,8 @@ class Engine:
             for driver in started:
                 driver.stop()
             raise
+        for driver in self.drivers:
+            driver.bind_program(self.ns["_G"])
         now = self.clock.now_ns()
         for task in self.tasks:
             task.next_ns = now
@@ -237,6 +243,11 @@ class Engine:
         now = self.clock.now_ns()
         self.ctx.set_time(now)
         image = self.image
+        if self.clock.virtual:
+            # Virtual time: the bus work due by now happens first, in this
+            # thread, so the inputs read below are the same on every run.
+            for driver in self.drivers:
+                driver.advance_to(now)
         for driver in self.drivers:
             driver.read_inputs(image)
         for task in self.tasks:

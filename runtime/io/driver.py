@@ -17,6 +17,13 @@ while a task is faulted or the PLC stops); a driver does not know or care.
 Life cycle, all called from the engine's thread:
 
     start()   open the bus, start the bus thread; may raise DriverError
+    bind_program(globals)
+              the program's global variables, for drivers that publish
+              diagnostics to it (written in read_inputs, like inputs)
+    advance_to(now_ns)
+              virtual time only, at each tick before read_inputs: do all the
+              bus work due by now_ns (periodic frames, timeouts) and return
+              when the bus is quiet, so every run of a sequence is the same
     status()  DriverStatus: ok or not, and a short text for the status line
     stop()    the last write_outputs has happened; close the bus, join the thread
 
@@ -45,9 +52,19 @@ class Driver:
 
     #: the config section and name, for messages: "loopback[0]", "canopen"
     name: str = "driver"
+    #: the service behind READ_VAR / WRITE_VAR (ExecContext.comm), for a
+    #: driver that offers one (the CANopen master); None otherwise
+    comm = None
 
     def start(self) -> None:
         pass
+
+    def advance_to(self, now_ns: int) -> None:
+        pass
+
+    def bind_program(self, globals_obj) -> None:
+        """The loaded program's globals, once after start-up: a driver that
+        shows diagnostics to the program (CANOPEN_NODE ...) keeps them."""
 
     def read_inputs(self, image: ProcessImage) -> None:
         raise NotImplementedError

@@ -1860,7 +1860,9 @@ class Checker:
                              "table such as %MW3250:4 or an ARRAY OF INT", vals[i].pos)
             elif i == 5 and t.dims[0] is not None and t.dims[0][1] - t.dims[0][0] + 1 < 4:
                 self.d.error("E020", f"{key}: the management table needs 4 words", vals[i].pos)
-        e.target = CallInfo("comm", func=key, args=vals)
+        # The runtime stores words into the tables (reports, received data):
+        # it needs to know whether an ARRAY's elements are signed (INT) or not.
+        e.target = CallInfo("comm", func=key, args=vals, rtypes=tuple(tys))
         return T.BOOL
 
     # ================================================================ configuration

@@ -968,7 +968,8 @@ class CodeGen:
             return _literal(e.const)
         if info.kind == "comm":
             args = ", ".join(self.ex(a) for a in info.args)
-            return f"_comm({self.const(info.func)}, {args})"
+            signed = [T.base_elementary(T.resolve(t).elem).category == T.SIGNED for t in info.rtypes[4:6]]
+            return f"_comm({self.const(info.func)}, {args}, {signed[0]}, {signed[1]})"
         raise NotImplementedError(info.kind)
 
     _INLINE_2 = {"MAX": "max", "MIN": "min"}

@@ -38,7 +38,8 @@ _BUILTINS = {name: getattr(builtins, name) for name in
 def _library_sources() -> list:
     """(path, text) of the ST libraries compiled into every program."""
     out = []
-    for package in ("softplc.fblocks.iec", "softplc.fblocks.system"):
+    for package in ("softplc.fblocks.iec", "softplc.fblocks.system", "softplc.fblocks.comm",
+                    "softplc.fblocks.vendor"):
         root = resources.files(package)
         for entry in sorted(root.iterdir(), key=lambda p: p.name):
             if entry.name.endswith(".st"):
@@ -187,7 +188,8 @@ class NoCommunication:
     once with communication report 16#FF (network exchange error), as on a
     PLC with no network module. The CANopen driver replaces this."""
 
-    def request(self, name: str, addr, obj: str, number: int, node: int, data, mgmt) -> bool:
+    def request(self, name: str, addr, obj: str, number: int, node: int, data, mgmt,
+                data_signed: bool = True, mgmt_signed: bool = True) -> bool:
         mgmt[0] = mgmt[0] & ~1  # activity bit off: the exchange is over
         mgmt[1] = (mgmt[1] & 0xFF00) | 0xFF
         return False

@@ -125,7 +125,8 @@ def test_the_ltmr_manual_examples_run_verbatim():
         assert struct.unpack_from("<i", image.areas["M"], 2 * idx_word)[0] == index
         assert struct.unpack_from("<h", image.areas["M"], 2 * timeout_word)[0] == 2
         assert image.mbits[request_bit] == 0  # RESET %M100 / %M101
-        [(fn, addr, obj, number, node, data, table)] = calls
+        [(fn, addr, obj, number, node, data, table, data_signed, table_signed)] = calls
         assert (fn, addr, obj, number, node) == (name[5:].split("_")[0].upper() + "_VAR", ("0", "1", "SYS"),
                                                  "SDO", index, 40)
         assert len(data) == 1 and len(table) == 4
+        assert data_signed and table_signed  # %MW tables hold INT words

@@ -1,0 +1,106 @@
+"""CANopen (CiA 301) numbers the LTMR manual uses or leaves out: SDO abort
+codes, NMT commands and states, the pre-defined COB-IDs, PDO mapping
+entries. The manual's own abort table is manual 001 §3.3 (L720-754); the
+NMT, heartbeat and COB-ID numbers are CiA 301's (digest 001, A22)."""
+from __future__ import annotations
+
+ABORT_TOGGLE = 0x05030000
+ABORT_TIMEOUT = 0x05040000
+ABORT_BAD_COMMAND = 0x05040001
+ABORT_ACCESS = 0x06010000
+ABORT_WRITE_ONLY = 0x06010001
+ABORT_READ_ONLY = 0x06010002
+ABORT_NO_OBJECT = 0x06020000
+ABORT_NOT_MAPPABLE = 0x06040041
+ABORT_PDO_LENGTH = 0x06040042
+ABORT_HARDWARE = 0x06060000
+ABORT_LENGTH = 0x06070010
+ABORT_NO_SUBINDEX = 0x06090011
+ABORT_VALUE_RANGE = 0x06090030
+ABORT_VALUE_HIGH = 0x06090031
+ABORT_VALUE_LOW = 0x06090032
+ABORT_MAX_BELOW_MIN = 0x06090036
+ABORT_GENERAL = 0x08000000
+ABORT_DEVICE_STATE = 0x08000022
+
+ABORT_CODES = {
+    # manual 001 §3.3 (L720-754), texts as printed
+    ABORT_TOGGLE: "Segmented transfer: the toggle bit has not been alternated",
+    ABORT_TIMEOUT: "The SDO protocol timed out",
+    ABORT_BAD_COMMAND: "The request code is not valid or is unknown",
+    ABORT_ACCESS: "An access trip has occurred during access to the parameter",
+    ABORT_WRITE_ONLY: "Tried to perform a read request on a parameter with write-only access rights",
+    ABORT_READ_ONLY: "Tried to perform a write request on a parameter with read-only access rights",
+    ABORT_NO_OBJECT: "The index sent in the request refers to an object that does not exist in the object "
+                     "dictionary",
+    ABORT_NOT_MAPPABLE: "PDO object mapping: the parameter cannot be mapped to the PDO",
+    ABORT_PDO_LENGTH: "PDO object mapping: the number or length of the parameters to be mapped would exceed "
+                      "the maximum PDO length",
+    ABORT_NO_SUBINDEX: "The sub-index sent in the request does not exist",
+    ABORT_VALUE_RANGE: "Value range of parameter exceeded (only for write access)",
+    ABORT_VALUE_HIGH: "Value of parameter written too high",
+    ABORT_VALUE_LOW: "Value of parameter written too low",
+    ABORT_MAX_BELOW_MIN: "The parameter maximum value is less than its minimum value",
+    ABORT_GENERAL: "A general detected error occurred",
+    # CiA 301, not in the manual
+    ABORT_HARDWARE: "Access failed because of a hardware error",
+    ABORT_LENGTH: "Data type does not match, length of service parameter does not match",
+    ABORT_DEVICE_STATE: "Data cannot be transferred or stored because of the present device state",
+}
+
+
+def abort_text(code: int) -> str:
+    return ABORT_CODES.get(code, f"unknown abort code 0x{code:08X}")
+
+
+# NMT command specifiers (CiA 301; the manual names the services only, manual 001 L75-90)
+NMT_START = 0x01
+NMT_STOP = 0x02
+NMT_PRE_OPERATIONAL = 0x80
+NMT_RESET_NODE = 0x81
+NMT_RESET_COMMUNICATION = 0x82
+
+# NMT states as a heartbeat / boot-up frame carries them (CiA 301)
+STATE_BOOTUP = 0x00
+STATE_STOPPED = 0x04
+STATE_OPERATIONAL = 0x05
+STATE_PRE_OPERATIONAL = 0x7F
+STATE_NAMES = {STATE_BOOTUP: "boot-up", STATE_STOPPED: "stopped", STATE_OPERATIONAL: "operational",
+               STATE_PRE_OPERATIONAL: "pre-operational"}
+
+# The pre-defined connection set (manual 001 §1.3 gives the factory values of the LTMR's OD)
+COB_NMT = 0x000
+COB_SYNC = 0x080
+
+
+def cob_emcy(node: int) -> int:
+    return 0x080 + node
+
+
+def cob_tpdo(k: int, node: int) -> int:
+    return 0x180 + 0x100 * (k - 1) + node
+
+
+def cob_rpdo(k: int, node: int) -> int:
+    return 0x200 + 0x100 * (k - 1) + node
+
+
+def cob_sdo_tx(node: int) -> int:
+    return 0x580 + node
+
+
+def cob_sdo_rx(node: int) -> int:
+    return 0x600 + node
+
+
+def cob_heartbeat(node: int) -> int:
+    return 0x700 + node
+
+
+def mapping_entry(index: int, subindex: int, bits: int) -> int:
+    """A PDO mapping entry (0x16xx/0x1Axx sub n): index, sub-index, length in bits."""
+    return (index << 16) | (subindex << 8) | bits
+
+
+def split_mapping_entry(value: int) -> tuple:
+    return (value >> 16) & 0xFFFF, (value >> 8) & 0xFF, value & 0xFF

@@ -1,0 +1,73 @@
+"""What every simulated device shares: it is a peer on a bus, started,
+advanced and stopped with the engine.
+
+A simulator rides on the driver interface (runtime/io/driver.py) so the
+engine needs no second list: it reads and writes no process image, but it
+starts and stops with the drivers, and in virtual time the engine advances
+it at each tick like a driver. In real time it runs its own service thread.
+
+    sim = SomeDevice(..., clock=clock, pump=pump)   # pump: virtual time only
+    sim.start()
+    sim.advance_to(t)    # virtual time: the device model runs up to t and
+                         # every frame it sent is delivered
+    sim.stop()
+
+A subclass implements service(now_ns): the device's own time-driven
+behaviour (a motor model, heartbeats, timeouts), called with a monotonic
+time that never goes backwards.
+"""
+from __future__ import annotations
+
+from typing import Optional
+
+from ..image.memory import ProcessImage
+from ..io.canbus import BusPump, PeriodicService
+from ..io.driver import Driver
+
+
+class SimulatedDevice(Driver):
+    #: real time: how often service() runs
+    service_period_s = 0.001
+
+    def __init__(self, name: str, *, clock, pump: Optional[BusPump] = None) -> None:
+        self.name = name
+        self.clock = clock
+        self.pump = pump
+        self._service: Optional[PeriodicService] = None
+
+    # the device's own behaviour ------------------------------------------
+
+    def service(self, now_ns: int) -> None:
+        raise NotImplementedError
+
+    def open(self) -> None:
+        """Connect to the bus (subclasses); called by start()."""
+
+    def close(self) -> None:
+        """Leave the bus (subclasses); called by stop()."""
+
+    # life cycle -------------------------------------------------------------
+
+    def start(self) -> None:
+        self.open()
+        if not self.clock.virtual:
+            self._service = PeriodicService(f"sim {self.name}", self.clock, self.service,
+                                            self.service_period_s)
+            self._service.start()
+
+    def advance_to(self, now_ns: int) -> None:
+        self.service(now_ns)
+        if self.pump is not None:
+            self.pump.settle()
+
+    def stop(self) -> None:
+        if self._service is not None:
+            self._service.stop()
+            self._service = None
+        self.close()
+
+    def read_inputs(self, image: ProcessImage) -> None:
+        pass
+
+    def write_outputs(self, image: ProcessImage) -> None:
+        pass
