@@ -28,14 +28,16 @@ ABORT_CODES = {
     ABORT_TOGGLE: "Segmented transfer: the toggle bit has not been alternated",
     ABORT_TIMEOUT: "The SDO protocol timed out",
     ABORT_BAD_COMMAND: "The request code is not valid or is unknown",
-    ABORT_ACCESS: "An access trip has occurred during access to the parameter",
+    ABORT_ACCESS: "An access trip has occurred during access to the parameter (for example, a write request on "
+                  "a read-only parameter)",
     ABORT_WRITE_ONLY: "Tried to perform a read request on a parameter with write-only access rights",
     ABORT_READ_ONLY: "Tried to perform a write request on a parameter with read-only access rights",
     ABORT_NO_OBJECT: "The index sent in the request refers to an object that does not exist in the object "
                      "dictionary",
-    ABORT_NOT_MAPPABLE: "PDO object mapping: the parameter cannot be mapped to the PDO",
+    ABORT_NOT_MAPPABLE: "PDO object mapping: the parameter cannot be mapped to the PDO; this detected error occurs "
+                        "when writing to the 0x1600, 0x1A00, 0x1605, and 0x1A05 parameters (PDO mappings)",
     ABORT_PDO_LENGTH: "PDO object mapping: the number or length of the parameters to be mapped would exceed "
-                      "the maximum PDO length",
+                      "the maximum PDO length.",
     ABORT_NO_SUBINDEX: "The sub-index sent in the request does not exist",
     ABORT_VALUE_RANGE: "Value range of parameter exceeded (only for write access)",
     ABORT_VALUE_HIGH: "Value of parameter written too high",
@@ -46,7 +48,20 @@ ABORT_CODES = {
     ABORT_HARDWARE: "Access failed because of a hardware error",
     ABORT_LENGTH: "Data type does not match, length of service parameter does not match",
     ABORT_DEVICE_STATE: "Data cannot be transferred or stored because of the present device state",
+    0x05040005: "Out of memory",
+    0x06040043: "General parameter incompatibility",
+    0x06040047: "General internal incompatibility in the device",
+    0x06070012: "Data type does not match, length of service parameter too high",
+    0x06070013: "Data type does not match, length of service parameter too low",
+    0x060A0023: "Resource not available: SDO connection",
+    0x08000020: "Data cannot be transferred or stored to the application",
+    0x08000021: "Data cannot be transferred or stored to the application because of local control",
 }
+
+# The 15 codes the LTMR manual lists (manual 001 L720-754); PKW errors use the same codes
+MANUAL_ABORT_CODES = (ABORT_TOGGLE, ABORT_TIMEOUT, ABORT_BAD_COMMAND, ABORT_ACCESS, ABORT_WRITE_ONLY,
+                      ABORT_READ_ONLY, ABORT_NO_OBJECT, ABORT_NOT_MAPPABLE, ABORT_PDO_LENGTH, ABORT_NO_SUBINDEX,
+                      ABORT_VALUE_RANGE, ABORT_VALUE_HIGH, ABORT_VALUE_LOW, ABORT_MAX_BELOW_MIN, ABORT_GENERAL)
 
 
 def abort_text(code: int) -> str:
@@ -104,3 +119,10 @@ def mapping_entry(index: int, subindex: int, bits: int) -> int:
 
 def split_mapping_entry(value: int) -> tuple:
     return (value >> 16) & 0xFFFF, (value >> 8) & 0xFF, value & 0xFF
+
+
+def heartbeat_consumer_entry(producer_node: int, time_ms: int) -> int:
+    """A 0x1016 sub-entry: bits 16-23 producer node-ID, bits 0-15 time in ms (manual 001 L957)."""
+    if not (1 <= producer_node <= 127 and 0 <= time_ms <= 0xFFFF):
+        raise ValueError(f"heartbeat consumer entry: node {producer_node} (1-127), time {time_ms} ms (0-65535)")
+    return (producer_node << 16) | time_ms

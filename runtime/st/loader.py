@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import builtins
 import itertools
+import re
 import time
 from importlib import resources
 from pathlib import Path
@@ -35,11 +36,21 @@ _BUILTINS = {name: getattr(builtins, name) for name in
               "object", "bool")}
 
 
-def _library_sources() -> list:
-    """(path, text) of the ST libraries compiled into every program."""
+# Compiled into every program: the standard blocks and PLC_DIAG.
+_ALWAYS = ("softplc.fblocks.iec", "softplc.fblocks.system")
+# Compiled in only when a program names something they declare (and then
+# with the library files those name in turn): the communication and device
+# blocks. A program that never mentions LTMR_CONTROL does not pay for it,
+# and a user POU that replaces a standard block (its own TON) cannot break a
+# device block it does not use.
+_ON_DEMAND = ("softplc.fblocks.comm", "softplc.fblocks.vendor")
+_WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+
+
+def _library_sources(packages=_ALWAYS + _ON_DEMAND) -> list:
+    """(path, text) of the ST library files of packages."""
     out = []
-    for package in ("softplc.fblocks.iec", "softplc.fblocks.system", "softplc.fblocks.comm",
-                    "softplc.fblocks.vendor"):
+    for package in packages:
         root = resources.files(package)
         for entry in sorted(root.iterdir(), key=lambda p: p.name):
             if entry.name.endswith(".st"):
@@ -47,12 +58,42 @@ def _library_sources() -> list:
     return out
 
 
+def _declared(sf: A.SourceFile) -> set:
+    """Every name a library file declares: POUs, types and globals."""
+    names = _decl_names(sf)
+    for d in sf.decls:
+        if isinstance(d, A.VarBlock):
+            names.update(v.name.upper() for v in d.decls)
+    return names
+
+
+def _needed_library(library: list, user_words: set) -> list:
+    """The always-compiled files, and the on-demand ones that the user's
+    words (or an already needed library file's words) name."""
+    on_demand = {f"<lib>/{p.rsplit('.', 1)[-1]}/" for p in _ON_DEMAND}
+    needed = [(sf, text) for sf, text in library if not sf.path.startswith(tuple(on_demand))]
+    pending = [(sf, text, _declared(sf)) for sf, text in library if sf.path.startswith(tuple(on_demand))]
+    words = set(user_words)
+    grew = True
+    while grew:
+        grew = False
+        for item in list(pending):
+            sf, text, names = item
+            if names & words:
+                needed.append((sf, text))
+                pending.remove(item)
+                words.update(w.upper() for w in _WORD.findall(text))
+                grew = True
+    return [sf for sf, _text in needed]
+
+
 def _std_functions() -> dict:
     from softplc.fblocks.iec.functions import STANDARD_FUNCTIONS
     return STANDARD_FUNCTIONS
 
 
-def _read_sources(paths: list, texts: Optional[dict], diags: DiagnosticBag, sources: SourceSet) -> list:
+def _read_sources(paths: list, texts: Optional[dict], diags: DiagnosticBag, sources: SourceSet) -> tuple:
+    """(parsed files, the set of words in them, upper case)."""
     files = []
     for p in paths:
         try:
@@ -70,10 +111,12 @@ def _read_sources(paths: list, texts: Optional[dict], diags: DiagnosticBag, sour
     for name, text in (texts or {}).items():
         files.append((name, text))
     parsed = []
+    words: set = set()
     for name, text in files:
         sources.add(name, text)
         parsed.append(parse_source(text, name, diags))
-    return parsed
+        words.update(w.upper() for w in _WORD.findall(text))
+    return parsed, words
 
 
 def _decl_names(sf: A.SourceFile) -> set:
@@ -83,16 +126,17 @@ def _decl_names(sf: A.SourceFile) -> set:
 def _front_end(paths: list, profile: Profile, texts: Optional[dict]):
     diags = DiagnosticBag()
     sources = SourceSet()
-    user = _read_sources(paths, texts, diags, sources)
+    user, user_words = _read_sources(paths, texts, diags, sources)
     user_names = set().union(*(_decl_names(sf) for sf in user)) if user else set()
     lib_diags = DiagnosticBag()
-    library = []
+    parsed = []
     for name, text in _library_sources():
         sources.add(name, text)
         sf = parse_source(text, name, lib_diags)
         sf.decls = [d for d in sf.decls
                     if not (isinstance(d, (A.POU, A.TypeDecl)) and d.name.upper() in user_names)]
-        library.append(sf)
+        parsed.append((sf, text))
+    library = _needed_library(parsed, user_words)
     checker = Checker(profile, lib_diags if not user else diags, _std_functions())
     checked = checker.run(library + user, library_files=tuple(sf.path for sf in library))
     diags.extend(d for d in lib_diags.items if d.is_error)
