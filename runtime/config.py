@@ -53,6 +53,8 @@ from .st.profile import DEFAULT as _DEFAULT_PROFILE, PROFILES
 __all__ = [
     "ConfigError", "ProgramInstance", "TaskConfig", "RetainConfig", "SafeOutput", "LoopbackLink",
     "PlcConfig", "load_config", "config_from_dict", "default_config_path", "default_watchdog_ns",
+    "CanBusConfig", "PdoEntryConfig", "PdoConfig", "SdoWriteConfig", "CanopenNodeConfig", "CanopenConfig",
+    "SimConfig",
 ]
 
 DEFAULT_PAUSE_NS = 1_000_000
@@ -132,6 +134,82 @@ class LoopbackLink:
 
 
 @dataclass
+class CanBusConfig:
+    name: str
+    interface: str                   # any python-can interface name
+    channel: str
+    bitrate: int
+    options: dict                    # passed to python-can
+    key: str                         # "can[0]"
+
+
+@dataclass
+class PdoEntryConfig:
+    index: int
+    subindex: int
+    address: LocatedAddress
+    key: str                         # "canopen.node[0].tpdo[0].map[1]"
+
+
+@dataclass
+class PdoConfig:
+    number: int
+    transmission: int                # 0..240, 254, 255
+    inhibit_us: int
+    event_ms: int
+    configure: bool                  # the master writes the mapping at boot
+    entries: list[PdoEntryConfig]
+    key: str
+
+
+@dataclass
+class SdoWriteConfig:
+    index: int
+    subindex: int
+    value: int
+    size: Optional[int]              # bytes; None: from the EDS
+    key: str
+
+
+@dataclass
+class CanopenNodeConfig:
+    name: str
+    node_id: int
+    eds: Path
+    mandatory: bool
+    heartbeat_ms: int                # the node's producer time (0 = none)
+    heartbeat_timeout_ms: int        # the master's consumer timeout (0 = not watched)
+    master_timeout_ms: int           # the node's consumer time for the master (0 = none)
+    sdo: list[SdoWriteConfig]
+    tpdo: list[PdoConfig]
+    rpdo: list[PdoConfig]
+    key: str
+
+
+@dataclass
+class CanopenConfig:
+    bus: str
+    node_id: int
+    heartbeat_ms: int
+    sync_us: int
+    sdo_timeout_ms: int
+    boot_timeout_ms: int
+    retry_ms: int
+    nodes: list[CanopenNodeConfig]
+    key: str = "canopen"
+
+
+@dataclass
+class SimConfig:
+    type: str
+    name: str
+    bus: str
+    node_id: int
+    registers: dict
+    key: str
+
+
+@dataclass
 class PlcConfig:
     path: Optional[Path]             # the file as given; None when built from a dict alone
     base_dir: Path                   # relative paths in the file resolve against it
@@ -143,6 +221,9 @@ class PlcConfig:
     retain: Optional[RetainConfig] = None
     safe_outputs: list[SafeOutput] = field(default_factory=list)
     loopback: list[LoopbackLink] = field(default_factory=list)
+    can: list[CanBusConfig] = field(default_factory=list)
+    canopen: Optional[CanopenConfig] = None
+    sims: list[SimConfig] = field(default_factory=list)
     raw: dict = field(default_factory=dict)   # the parsed TOML, for sections added later
 
 
@@ -361,7 +442,95 @@ def _data_file(value, info: ValidationInfo) -> Path:
     return resolved
 
 
+def _duration_or_off(value) -> int:
+    """A duration in ns, or 0 for "0ms" / false (switched off)."""
+    if value is False:
+        return 0
+    ns = _duration_ns(value)
+    if ns is None or ns < 0:
+        raise _fail(f"a duration such as {DURATION_EXAMPLES}, or false", value)
+    return ns
+
+
+CAN_BITRATES = (10_000, 20_000, 50_000, 125_000, 250_000, 500_000, 800_000, 1_000_000)
+
+
+def _bitrate(value) -> int:
+    if isinstance(value, int) and not isinstance(value, bool) and value in CAN_BITRATES:
+        return value
+    raise _fail("a CANopen bitrate: " + ", ".join(str(b) for b in CAN_BITRATES), value)
+
+
+def _text(what: str):
+    def check(value) -> str:
+        if isinstance(value, str) and value.strip():
+            return value
+        if isinstance(value, int) and not isinstance(value, bool):
+            return str(value)
+        raise _fail(what, value)
+    return PlainValidator(check)
+
+
+_OBJECT = re.compile(r"(?:0x)?([0-9A-Fa-f]{1,4}):(?:0x)?([0-9A-Fa-f]{1,2})")
+
+
+def _object(value) -> tuple:
+    """ "2004:06" (hex index : hex sub-index) -> (0x2004, 0x06)."""
+    m = _OBJECT.fullmatch(value.strip()) if isinstance(value, str) else None
+    if m is None:
+        raise _fail('an object "index:subindex" in hex such as "2004:06"', value)
+    return int(m.group(1), 16), int(m.group(2), 16)
+
+
+def _transmission(value) -> int:
+    if isinstance(value, int) and not isinstance(value, bool) and (0 <= value <= 240 or value in (254, 255)):
+        return value
+    raise _fail("a PDO transmission type: 0..240, 254 or 255", value)
+
+
+def _eds_file(value, info: ValidationInfo) -> Path:
+    """A shipped EDS by name ("ltmr", "fc280": io_config/eds/<name>.eds) or
+    the path of an .eds file relative to the config file."""
+    if not isinstance(value, str) or not value.strip():
+        raise _fail('a shipped EDS name such as "ltmr" or the path of an .eds file', value)
+    if re.fullmatch(r"[A-Za-z0-9_]+", value):
+        shipped = resources.files("softplc.io_config") / "eds" / f"{value.lower()}.eds"
+        if not shipped.is_file():
+            names = sorted(p.name[:-4] for p in (resources.files("softplc.io_config") / "eds").iterdir()
+                           if p.name.endswith(".eds"))
+            raise PydanticCustomError("config", "no shipped EDS called {name} (there are: {names})",
+                                      {"name": repr(value), "names": ", ".join(names)})
+        return Path(str(shipped))
+    resolved = Path(os.path.normpath(info.context["base_dir"] / Path(value).expanduser()))
+    if not resolved.is_file():
+        raise PydanticCustomError("config", "no such file: {path} (relative paths start at the "
+                                  "config file's directory)", {"path": str(resolved)})
+    return resolved
+
+
+def _sdo_size(value) -> int:
+    if value in (1, 2, 4) and not isinstance(value, bool):
+        return value
+    raise _fail("1, 2 or 4 (bytes)", value)
+
+
+def _registers(value) -> dict:
+    """{ "682" = 2 } -> {682: 2}: register numbers as keys, 16-bit values."""
+    if not isinstance(value, dict):
+        raise _fail('a table of register = value such as { "682" = 2 }', value)
+    out = {}
+    for key, v in value.items():
+        if not (isinstance(key, str) and key.isdigit()):
+            raise _fail('register numbers in decimal as keys, such as "682"', key)
+        if not (isinstance(v, int) and not isinstance(v, bool) and 0 <= v <= 0xFFFF):
+            raise _fail(f"a register value 0..65535 for register {key}", v)
+        out[int(key)] = v
+    return out
+
+
 Duration = Annotated[int, PlainValidator(_duration)]
+DurationOrOff = Annotated[int, PlainValidator(_duration_or_off)]
+ObjectRef = Annotated[tuple, PlainValidator(_object)]
 Watchdog = Annotated[Any, PlainValidator(_watchdog)]
 StFile = Annotated[Path, PlainValidator(_st_file)]
 
@@ -432,12 +601,79 @@ class _Loopback(_Model):
     nbytes: Annotated[int, _int_range(1)] = Field(alias="bytes", description="an integer >= 1")
 
 
+class _Can(_Model):
+    name: Annotated[str, _identifier("a bus name")] = Field("can0", description='a bus name such as "can0"')
+    interface: Annotated[str, _text('a python-can interface such as "socketcan", "pcan" or "virtual"')] = \
+        Field(description='a python-can interface such as "socketcan", "pcan" or "virtual"')
+    channel: Annotated[str, _text('a channel such as "can0"')] = Field(description='a channel such as "can0"')
+    bitrate: Annotated[int, PlainValidator(_bitrate)] = Field(250_000, description="a CANopen bitrate")
+    options: dict[str, Any] = Field(default_factory=dict, description="a table of python-can options")
+
+
+class _PdoEntry(_Model):
+    object: ObjectRef = Field(description='an object "index:subindex" in hex such as "2004:06"')
+    address: Any = Field(description='an image address such as "%IW100"')
+
+
+class _Pdo(_Model):
+    number: Annotated[int, _int_range(1, 512)] = Field(description="a PDO number 1..512")
+    transmission: Annotated[int, PlainValidator(_transmission)] = Field(255, description="0..240, 254 or 255")
+    inhibit: DurationOrOff = Field(0, description="a duration such as 5ms")
+    event: DurationOrOff = Field(0, description="a duration such as 500ms")
+    configure: bool = Field(True, description="true or false")
+    map: list[_PdoEntry] = Field(min_length=1, max_length=8, description='an array of 1 to 8 '
+                                 '{ object = "2004:06", address = "%IW100" } tables')
+
+
+class _SdoWrite(_Model):
+    object: ObjectRef = Field(description='an object "index:subindex" in hex such as "2007:21"')
+    value: Annotated[int, _int_range(-(1 << 31), (1 << 32) - 1)] = Field(description="an integer")
+    size: Optional[Annotated[int, PlainValidator(_sdo_size)]] = Field(None, description="1, 2 or 4")
+
+
+class _Node(_Model):
+    name: Annotated[str, _identifier("a node name")] = Field(description='a node name such as "motor"')
+    id: Annotated[int, _int_range(1, 127)] = Field(description="a node id 1..127")
+    eds: Annotated[Path, PlainValidator(_eds_file)] = Field(description='"ltmr", "fc280" or an .eds file')
+    mandatory: bool = Field(True, description="true or false")
+    heartbeat: DurationOrOff = Field(100_000_000, description="a duration such as 100ms, or false")
+    heartbeat_timeout: Optional[DurationOrOff] = Field(None, description="a duration such as 300ms")
+    master_timeout: Optional[DurationOrOff] = Field(None, description="a duration such as 500ms, or false")
+    sdo: list[_SdoWrite] = Field(default_factory=list, description='an array of { object = "2007:21", '
+                                                                   'value = 2 } tables')
+    tpdo: list[_Pdo] = Field(default_factory=list, description="[[canopen.node.tpdo]] tables")
+    rpdo: list[_Pdo] = Field(default_factory=list, description="[[canopen.node.rpdo]] tables")
+
+
+class _Canopen(_Model):
+    bus: Optional[Annotated[str, _identifier("a bus name")]] = Field(None, description='a [[can]] name')
+    node_id: Annotated[int, _int_range(1, 127)] = Field(127, description="a node id 1..127")
+    heartbeat: DurationOrOff = Field(100_000_000, description="a duration such as 100ms, or false")
+    sync: DurationOrOff = Field(0, description="a duration such as 10ms, or false")
+    sdo_timeout: Duration = Field(500_000_000, description="a duration such as 500ms")
+    boot_timeout: Duration = Field(2_000_000_000, description="a duration such as 2s")
+    retry: Duration = Field(1_000_000_000, description="a duration such as 1s")
+    node: list[_Node] = Field(default_factory=list, description="[[canopen.node]] tables")
+
+
+class _Sim(_Model):
+    type: Annotated[str, _choice(("ltmr",))] = Field(description="'ltmr'")
+    name: Optional[Annotated[str, _identifier("a simulator name")]] = Field(None, description="a name")
+    bus: Optional[Annotated[str, _identifier("a bus name")]] = Field(None, description='a [[can]] name')
+    node_id: Annotated[int, _int_range(1, 127)] = Field(description="a node id 1..127")
+    registers: Annotated[dict, PlainValidator(_registers)] = Field(
+        default_factory=dict, description='a table such as { "682" = 2 }')
+
+
 class _Root(_Model):
     plc: _Plc = Field(description='a [plc] table with at least programs = ["file.st"]')
     retain: Optional[_Retain] = Field(None, description="a [retain] table")
     task: list[_Task] = Field(default_factory=list, description="[[task]] tables")
     outputs: Optional[_Outputs] = Field(None, description="an [outputs] table")
     loopback: list[_Loopback] = Field(default_factory=list, description="[[loopback]] tables")
+    can: list[_Can] = Field(default_factory=list, description="[[can]] tables")
+    canopen: Optional[_Canopen] = Field(None, description="a [canopen] table")
+    sim: list[_Sim] = Field(default_factory=list, description="[[sim]] tables")
 
 
 # ====================================================================== pydantic errors -> messages
@@ -562,6 +798,9 @@ class _Relations:
         links = data.get("loopback")
         if isinstance(links, list):
             self._loopback(links)
+        self.pdo_entries: dict = {}   # loc of a map entry -> LocatedAddress
+        self.buses: dict = {}         # loc of a bus reference -> bus name
+        self._can(data)
 
     def error(self, loc: tuple, message: str) -> None:
         self.errors.append((loc, message))
@@ -715,6 +954,140 @@ class _Relations:
                 self.loopback.append(LoopbackLink(ends["from"], ends["to"], nbytes, _key(here)))
 
 
+    # ---------------------------------------------------------------- CAN, CANopen, simulators
+
+    def _can(self, data: dict) -> None:
+        buses = data.get("can") if isinstance(data.get("can"), list) else []
+        names: dict = {}
+        for i, bus in enumerate(buses):
+            name = bus.get("name", "can0") if isinstance(bus, dict) else None
+            if _is_ident(name):
+                first = names.setdefault(name, i)
+                if first != i:
+                    self.error(("can", i, "name"), f"duplicate bus name '{name}' (can[{first}] has it)")
+        canopen = data.get("canopen")
+        if isinstance(canopen, dict):
+            self._bus_ref(("canopen",), canopen, names)
+            self._canopen(canopen)
+        sims = data.get("sim") if isinstance(data.get("sim"), list) else []
+        taken: dict = {}
+        for i, sim in enumerate(sims):
+            if not isinstance(sim, dict):
+                continue
+            bus = self._bus_ref(("sim", i), sim, names)
+            node = sim.get("node_id")
+            if bus is not None and isinstance(node, int):
+                first = taken.setdefault((bus, node), i)
+                if first != i:
+                    self.error(("sim", i, "node_id"), f"sim[{first}] already is node {node} on bus '{bus}'")
+
+    def _bus_ref(self, here: tuple, table: dict, names: dict) -> Optional[str]:
+        """The [[can]] bus a section uses: its bus key, or the only bus."""
+        bus = table.get("bus")
+        if bus is None:
+            if len(names) == 1:
+                bus = next(iter(names))
+            else:
+                self.error(here, "needs a [[can]] bus" if not names else
+                           f"there are several [[can]] buses; say which: bus = \"{next(iter(names))}\"")
+                return None
+        elif isinstance(bus, str) and bus not in names:
+            self.error(here + ("bus",), f"no [[can]] bus called '{bus}' (there are: {', '.join(names) or 'none'})")
+            return None
+        self.buses[here] = bus
+        return bus
+
+    def _canopen(self, canopen: dict) -> None:
+        master = canopen.get("node_id", 127)
+        master_hb = _duration_or_off_quiet(canopen.get("heartbeat", "100ms"))
+        nodes = canopen.get("node") if isinstance(canopen.get("node"), list) else []
+        ids: dict = {}
+        names: dict = {}
+        used: list = []   # (area, start, end, loc): image bytes the PDOs write or read
+        for i, node in enumerate(nodes):
+            if not isinstance(node, dict):
+                continue
+            here = ("canopen", "node", i)
+            nid, name = node.get("id"), node.get("name")
+            if isinstance(nid, int):
+                if nid == master:
+                    self.error(here + ("id",), f"{nid} is the master's own node_id")
+                first = ids.setdefault(nid, i)
+                if first != i:
+                    self.error(here + ("id",), f"duplicate node id {nid} (canopen.node[{first}] has it)")
+            if _is_ident(name):
+                first = names.setdefault(name.upper(), i)
+                if first != i:
+                    self.error(here + ("name",), f"duplicate node name '{name}' (canopen.node[{first}] has it)")
+            hb = _duration_or_off_quiet(node.get("heartbeat", "100ms"))
+            timeout = node.get("heartbeat_timeout")
+            if timeout is not None and hb is not None and hb > 0:
+                t = _duration_or_off_quiet(timeout)
+                if t is not None and 0 < t <= hb:
+                    self.error(here + ("heartbeat_timeout",), "must be longer than the node's heartbeat")
+            mt = node.get("master_timeout")
+            if mt not in (None, False) and master_hb is not None:
+                t = _duration_or_off_quiet(mt)
+                if t and master_hb == 0:
+                    self.error(here + ("master_timeout",), "the master produces no heartbeat "
+                                                           "([canopen] heartbeat is off)")
+                elif t and t <= master_hb:
+                    self.error(here + ("master_timeout",), "must be longer than the master's heartbeat")
+            for direction, area in (("tpdo", "I"), ("rpdo", "Q")):
+                pdos = node.get(direction) if isinstance(node.get(direction), list) else []
+                numbers: dict = {}
+                for j, pdo in enumerate(pdos):
+                    if not isinstance(pdo, dict):
+                        continue
+                    number = pdo.get("number")
+                    if isinstance(number, int):
+                        first = numbers.setdefault(number, j)
+                        if first != j:
+                            self.error(here + (direction, j, "number"),
+                                       f"duplicate {direction.upper()} {number} ({direction}[{first}] has it)")
+                    entries = pdo.get("map") if isinstance(pdo.get("map"), list) else []
+                    for k, entry in enumerate(entries):
+                        if isinstance(entry, dict) and "address" in entry:
+                            self._pdo_address(here + (direction, j, "map", k), entry["address"], area, used)
+
+    def _probe(self):
+        if getattr(self, "_probe_image", None) is None:
+            from .image.memory import ProcessImage
+            self._probe_image = ProcessImage(self.addressing or "iec")
+        return self._probe_image
+
+    def _pdo_address(self, loc: tuple, text, area: str, used: list) -> None:
+        addr = self._address(loc + ("address",), text, f"%{area}W100, %{area}X10.0")
+        if addr is None:
+            return
+        kind = "a TPDO maps to %I inputs" if area == "I" else "an RPDO maps to %Q outputs"
+        if addr.area != area:
+            self.error(loc + ("address",), f"{kind} (got {_area_name(addr)})")
+            return
+        if addr.table is not None:
+            self.error(loc + ("address",), f"expected a bit, byte, word, dword or lword address (got '{addr.text}')")
+            return
+        self.pdo_entries[loc] = addr
+        if addr.bit is not None or addr.size in ("", "X"):
+            return
+        try:
+            _a, start, n = self._probe().region(addr)
+        except ValueError:
+            return
+        for other_area, o_start, o_end, other in used:
+            if other_area == area and start < o_end and o_start < start + n:
+                self.error(loc + ("address",), f"{addr.text} overlaps {_key(other)}")
+                return
+        used.append((area, start, start + n, loc + ("address",)))
+
+
+def _duration_or_off_quiet(value) -> Optional[int]:
+    try:
+        return _duration_or_off(value)
+    except PydanticCustomError:
+        return None
+
+
 def _area_name(addr: LocatedAddress) -> str:
     return f"'{addr.text}', " + {"I": "an input", "Q": "an output", "M": "a memory address"}[addr.area]
 
@@ -739,7 +1112,42 @@ def _build(model: _Root, rel: _Relations, data: dict, path: Optional[Path], base
             priority=t.priority, watchdog_ns=watchdog, sensitivity=t.sensitivity,
             programs=programs, key=key))
     retain = RetainConfig(model.retain.file, model.retain.period) if model.retain is not None else None
+    can = [CanBusConfig(b.name, b.interface, b.channel, b.bitrate, dict(b.options), f"can[{i}]")
+           for i, b in enumerate(model.can)]
+    canopen = _build_canopen(model.canopen, rel) if model.canopen is not None else None
+    sims = [SimConfig(sim.type, sim.name or f"{sim.type}{sim.node_id}", rel.buses[("sim", i)], sim.node_id,
+                      dict(sim.registers), f"sim[{i}]") for i, sim in enumerate(model.sim)]
     return PlcConfig(
         path=path, base_dir=base_dir, profile=model.plc.profile, programs=list(model.plc.programs),
         on_fault=model.plc.on_fault, start=model.plc.start, tasks=tasks, retain=retain,
-        safe_outputs=rel.safe_outputs, loopback=rel.loopback, raw=data)
+        safe_outputs=rel.safe_outputs, loopback=rel.loopback, can=can, canopen=canopen, sims=sims, raw=data)
+
+
+def _ms(ns: int) -> int:
+    return round(ns / 1_000_000)
+
+
+def _build_canopen(c: _Canopen, rel: _Relations) -> CanopenConfig:
+    nodes = []
+    for i, n in enumerate(c.node):
+        key = f"canopen.node[{i}]"
+
+        def pdos(direction: str, items: list) -> list:
+            out = []
+            for j, p in enumerate(items):
+                here = ("canopen", "node", i, direction, j)
+                entries = [PdoEntryConfig(e.object[0], e.object[1], rel.pdo_entries[here + ("map", k)],
+                                          f"{key}.{direction}[{j}].map[{k}]")
+                           for k, e in enumerate(p.map)]
+                out.append(PdoConfig(p.number, p.transmission, round(p.inhibit / 1000), _ms(p.event),
+                                     p.configure, entries, f"{key}.{direction}[{j}]"))
+            return out
+        heartbeat = _ms(n.heartbeat)
+        timeout = _ms(n.heartbeat_timeout) if n.heartbeat_timeout is not None else 3 * heartbeat
+        master_timeout = _ms(n.master_timeout) if n.master_timeout is not None else 5 * _ms(c.heartbeat)
+        sdo = [SdoWriteConfig(w.object[0], w.object[1], w.value, w.size, f"{key}.sdo[{k}]")
+               for k, w in enumerate(n.sdo)]
+        nodes.append(CanopenNodeConfig(n.name, n.id, n.eds, n.mandatory, heartbeat, timeout, master_timeout,
+                                       sdo, pdos("tpdo", n.tpdo), pdos("rpdo", n.rpdo), key))
+    return CanopenConfig(rel.buses[("canopen",)], c.node_id, _ms(c.heartbeat), round(c.sync / 1000),
+                         _ms(c.sdo_timeout), _ms(c.boot_timeout), _ms(c.retry), nodes)

@@ -305,10 +305,10 @@ def test_unknown_key_without_suggestion(tmp_path):
         ("plc.colour", "unknown key (expected one of profile, programs, on_fault, start)")
 
 
-@pytest.mark.parametrize("section", ["canopen", "modbus", "mpu2s"])
+@pytest.mark.parametrize("section", ["modbus", "mpu2s"])
 def test_later_sections_are_unknown_for_now(tmp_path, section):
     assert error(tmp_path, PLC + f"[{section}]\nx = 1\n") == \
-        (section, "unknown key (expected one of plc, retain, task, outputs, loopback)")
+        (section, "unknown key (expected one of plc, retain, task, outputs, loopback, can, canopen, sim)")
 
 
 def test_unknown_section_suggestion(tmp_path):
@@ -679,7 +679,7 @@ def test_several_errors_reported_together(tmp_path):
         '{ instance = "Main2", program = "Main" }',
         f'{path}: outputs.safe."%IX0.0": expected a %Q output address (got \'%IX0.0\', an input)',
         f'{path}: outputs.safe."%QW2": expected an integer for a word address (got true)',
-        f"{path}: canopen: unknown key (expected one of plc, retain, task, outputs, loopback)",
+        f"{path}: canopen.bus: no [[can]] bus called 'can0' (there are: none)",
     ]
 
 

@@ -83,10 +83,15 @@ def test_default_example_runs_in_virtual_time(tmp_path):
     proc = softplc("run", "--virtual-time", "--duration", "10s", "--final-json", out)
     assert proc.returncode == 0, proc.stderr
     final = json.loads(out.read_text())
-    assert set(final) == {"Conveyor", "Panel"}
+    assert set(final) == {"Conveyor", "Panel", "Motor"}
     # START is pressed at 0.1 s and 5.1 s; each batch of 8 parts is done well within 5 s.
     assert final["Conveyor"]["batches"] == 2
     assert final["Conveyor"]["state"] == "Idle"
+    # The LTMR on the simulated CANopen bus: forward at 0 s, reverse at 4 s, forward at 8 s,
+    # and trip register 1 read by READ_VAR every 2 s without an error.
+    assert "canopen: node motor (40) operational" in proc.stderr
+    assert final["Motor"]["starts"] == 3 and final["Motor"]["trips"] == 0
+    assert final["Motor"]["reads"] == 4 and final["Motor"]["readErrors"] == 0
     assert "stopped after 1000 scans" in proc.stderr
 
 

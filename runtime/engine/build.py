@@ -6,6 +6,8 @@ from __future__ import annotations
 from typing import Optional
 
 from ..config import PlcConfig
+from ..io.canbus import BusPump, BusSettings
+from ..io.canopen_master import CanopenDriver
 from ..io.loopback import LoopbackDriver
 from ..st.loader import compile_files
 from ..st.profile import get_profile
@@ -15,13 +17,32 @@ from .scan import Engine
 from .tasks import plan_tasks
 
 
-def make_drivers(config: PlcConfig) -> list:
+def make_drivers(config: PlcConfig, clock=None, pump: Optional[BusPump] = None) -> list:
+    """The drivers and simulated devices of config, in the order the engine
+    serves them: simulators first (in virtual time they move on to the
+    tick's time before the master reads the bus), then the bus drivers.
+    pump: the virtual-time BusPump every CAN endpoint shares (None: real time)."""
     addressing = get_profile(config.profile).addressing
-    drivers = []
+    clock = clock if clock is not None else RealClock()
+    buses = {bus.name: bus for bus in config.can}
+    drivers = [make_simulator(sim, buses[sim.bus], clock, pump) for sim in config.sims]
+    if config.canopen is not None:
+        drivers.append(CanopenDriver(config.canopen, buses[config.canopen.bus], clock=clock, pump=pump,
+                                     addressing=addressing))
     if config.loopback:
         drivers.append(LoopbackDriver("loopback", [(link.source, link.target, link.nbytes)
                                                    for link in config.loopback], addressing))
     return drivers
+
+
+def make_simulator(sim, bus, clock, pump):
+    """A simulated device of a [[sim]] table on its [[can]] bus."""
+    settings = BusSettings(bus.interface, str(bus.channel), bus.bitrate, dict(bus.options))
+    if sim.type == "ltmr":
+        from ..sim.ltmr import LtmrSimulator
+        return LtmrSimulator(sim.node_id, settings=settings, clock=clock, pump=pump, name=sim.name,
+                             registers=dict(sim.registers))
+    raise ValueError(f"{sim.key}.type: no simulator called {sim.type!r}")
 
 
 def build_engine(config: PlcConfig, *, virtual_time: bool = False, start_mode: Optional[str] = None,
@@ -34,9 +55,11 @@ def build_engine(config: PlcConfig, *, virtual_time: bool = False, start_mode: O
     where = str(config.path) if config.path else "<config>"
     tasks = plan_tasks(program, config.tasks, where)
     retain_store = RetainStore(config.retain.file) if config.retain else None
+    clock = VirtualClock() if virtual_time else RealClock()
+    pump = BusPump() if virtual_time else None
     return Engine(program, tasks,
-                  clock=VirtualClock() if virtual_time else RealClock(),
-                  drivers=make_drivers(config),
+                  clock=clock,
+                  drivers=make_drivers(config, clock, pump),
                   on_fault=config.on_fault,
                   safe_outputs=config.safe_outputs,
                   retain_store=retain_store,

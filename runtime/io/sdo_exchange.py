@@ -138,7 +138,9 @@ class SdoWorker:
         if node is None:
             node = canopen.RemoteNode(node_id, canopen.ObjectDictionary())
             self.network.add_node(node)
-        node.sdo.MAX_RETRIES = 0  # the timeout is the program's; no silent second wait
+        # canopen counts attempts here: 1 = no second try, so the timeout is
+        # the program's (0 would loop for ever in canopen 2.4)
+        node.sdo.MAX_RETRIES = 1
         return node.sdo
 
     def _run(self) -> None:

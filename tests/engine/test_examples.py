@@ -42,7 +42,8 @@ def test_default_panel_sees_the_conveyor_through_the_loopback():
         lamp_lit |= engine.get("Panel.runLamp")
     engine.stop()
     assert lamp_lit
-    assert engine.drivers[0].exchanges == engine.cycle + 1  # every scan, and the safe outputs at stop
+    loopback = next(d for d in engine.drivers if d.name == "loopback")
+    assert loopback.exchanges == engine.cycle + 1  # every scan, and the safe outputs at stop
     # What the drivers were last given is the [outputs] safe table of default.toml.
-    engine.drivers[0].read_inputs(engine.image)
+    loopback.read_inputs(engine.image)
     assert [engine.get(a) for a in ("%IX0.0", "%IX0.1", "%IX0.3", "%IW1")] == [False, False, True, 0]
