@@ -84,7 +84,12 @@ class Plant:
         return self.engine.clock.now_ns() / MS
 
     def run_ms(self, ms: float) -> None:
+        """Move virtual time on by ms (scanning at each release before the end)."""
         self.engine.run(duration_ns=round(ms * MS))
+
+    def scan(self, n: int = 1) -> None:
+        """Exactly n scans, whatever time they take."""
+        self.engine.run(cycles=n)
 
     def run_until(self, predicate, limit_ms: float, what: str) -> float:
         """Scan until predicate() holds; the virtual time it took, in ms."""
