@@ -13,36 +13,7 @@ section 7.2, section 2.5).
 """
 from __future__ import annotations
 
-from softplc.runtime.st.loader import compile_files, locate
-
-CYCLE_MS = 10
-
-# fblocks/comm and fblocks/vendor are compiled into every program
-# (runtime/st/loader.py, _library_sources): a bench needs no other source.
-LIBRARY_SOURCES: list = []
-
-
-class Bench:
-    """One PROGRAM around one block, stepped a cycle at a time; variables
-    are read and written by ST path ('m.Control1', 's1')."""
-
-    def __init__(self, decls: str, body: str) -> None:
-        text = f"PROGRAM bench\nVAR\n{decls}\nEND_VAR\n{body}\nEND_PROGRAM\n"
-        program = compile_files(LIBRARY_SOURCES, texts={"bench.st": text})
-        self.runner = program.runner("bench", cycle_time_ms=CYCLE_MS)
-
-    def __getitem__(self, path: str):
-        return self.runner.get(path)
-
-    def __setitem__(self, path: str, value) -> None:
-        holder, attr, _type = locate(path, (self.runner.instance,))
-        setattr(holder, attr, value)
-
-    def step(self, cycles: int = 1, **inputs) -> "Bench":
-        for name, value in inputs.items():
-            self[name] = value
-        self.runner.run(cycles)
-        return self
+from .st_bench import Bench
 
 
 CONTROL_DECLS = """

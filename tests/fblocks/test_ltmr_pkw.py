@@ -16,36 +16,7 @@ from __future__ import annotations
 
 import pytest
 
-from softplc.runtime.st.loader import compile_files, locate
-
-CYCLE_MS = 10
-
-# fblocks/comm and fblocks/vendor are compiled into every program
-# (runtime/st/loader.py, _library_sources): a bench needs no other source.
-LIBRARY_SOURCES: list = []
-
-
-class Bench:
-    """One PROGRAM around one block, stepped a cycle at a time; variables
-    are read and written by ST path ('p.Out2', 'in2')."""
-
-    def __init__(self, decls: str, body: str, profile: str = "codesys") -> None:
-        text = f"PROGRAM bench\nVAR\n{decls}\nEND_VAR\n{body}\nEND_PROGRAM\n"
-        program = compile_files(LIBRARY_SOURCES, profile=profile, texts={"bench.st": text})
-        self.runner = program.runner("bench", cycle_time_ms=CYCLE_MS)
-
-    def __getitem__(self, path: str):
-        return self.runner.get(path)
-
-    def __setitem__(self, path: str, value) -> None:
-        holder, attr, _type = locate(path, (self.runner.instance,))
-        setattr(holder, attr, value)
-
-    def step(self, cycles: int = 1, **inputs) -> "Bench":
-        for name, value in inputs.items():
-            self[name] = value
-        self.runner.run(cycles)
-        return self
+from .st_bench import Bench
 
 
 PKW_DECLS = """
