@@ -12,8 +12,19 @@ The file::
                    watchdog, sensitivity, programs           (zero or more)
     [outputs]      safe = { "%QX0.0" = false, ... }          (optional)
     [[loopback]]   from, to, bytes                           (zero or more)
+    [[can]]        name, interface, channel, bitrate, options (zero or more)
+    [canopen]      bus, node_id, heartbeat, sync, sdo_timeout, boot_timeout,
+                   retry                                     (optional)
+    [[canopen.node]]  name, id, eds, mandatory, heartbeat,
+                   heartbeat_timeout, master_timeout, sdo,
+                   [[...tpdo]] / [[...rpdo]] (number, transmission, inhibit,
+                   event, configure, map)                    (zero or more)
+    [[sim]]        type, name, bus, node_id, registers       (zero or more)
 
-io_config/examples/ has one commented example per section.
+io_config/examples/ has one commented example per section (canopen.toml for
+[[can]], [canopen] and [[sim]]). Durations are written as everywhere else
+("100ms", "T#1s", false for none where that makes sense) and stored in the
+unit their field names (heartbeat_ms, sync_us ...).
 
 Validation is two passes over the parsed TOML, and both run whatever the
 other finds, so a file's errors are all reported at once, one per line:
@@ -22,7 +33,10 @@ other finds, so a file's errors are all reported at once, one per line:
      the type and range of every value, each error at its key path;
   2. relations pydantic cannot see per value: interval vs freewheeling vs
      pause, unique task and instance names, safe outputs (the value type
-     depends on the address), loopback addresses.
+     depends on the address), loopback addresses; the CAN side: bus
+     references, unique node ids and names, heartbeat times against each
+     other, PDO addresses (they depend on the profile) and their overlaps,
+     SDO values against their size.
 
 Every message names the file, the key path and what was expected::
 
@@ -52,9 +66,8 @@ from .st.profile import DEFAULT as _DEFAULT_PROFILE, PROFILES
 
 __all__ = [
     "ConfigError", "ProgramInstance", "TaskConfig", "RetainConfig", "SafeOutput", "LoopbackLink",
-    "PlcConfig", "load_config", "config_from_dict", "default_config_path", "default_watchdog_ns",
     "CanBusConfig", "PdoEntryConfig", "PdoConfig", "SdoWriteConfig", "CanopenNodeConfig", "CanopenConfig",
-    "SimConfig",
+    "SimConfig", "PlcConfig", "load_config", "config_from_dict", "default_config_path", "default_watchdog_ns",
 ]
 
 DEFAULT_PAUSE_NS = 1_000_000
@@ -136,10 +149,10 @@ class LoopbackLink:
 @dataclass
 class CanBusConfig:
     name: str
-    interface: str                   # any python-can interface name
+    interface: str                   # a python-can interface name: socketcan, pcan, virtual ...
     channel: str
-    bitrate: int
-    options: dict                    # passed to python-can
+    bitrate: int                     # bit/s
+    options: dict                    # more keyword arguments for python-can
     key: str                         # "can[0]"
 
 
@@ -147,19 +160,19 @@ class CanBusConfig:
 class PdoEntryConfig:
     index: int
     subindex: int
-    address: LocatedAddress
+    address: LocatedAddress          # %I (TPDO) or %Q (RPDO): a bit, byte, word, dword or lword
     key: str                         # "canopen.node[0].tpdo[0].map[1]"
 
 
 @dataclass
 class PdoConfig:
-    number: int
-    transmission: int                # 0..240, 254, 255
-    inhibit_us: int
-    event_ms: int
-    configure: bool                  # the master writes the mapping at boot
+    number: int                      # 1..512
+    transmission: int                # 0..240 (SYNC), 254, 255 (event-driven)
+    inhibit_us: int                  # 0: none
+    event_ms: int                    # 0: none
+    configure: bool                  # the master writes mapping and parameters at boot
     entries: list[PdoEntryConfig]
-    key: str
+    key: str                         # "canopen.node[0].tpdo[0]"
 
 
 @dataclass
@@ -167,31 +180,31 @@ class SdoWriteConfig:
     index: int
     subindex: int
     value: int
-    size: Optional[int]              # bytes; None: from the EDS
-    key: str
+    size: Optional[int]              # bytes (1, 2, 4); None: the EDS says
+    key: str                         # "canopen.node[0].sdo[0]"
 
 
 @dataclass
 class CanopenNodeConfig:
     name: str
     node_id: int
-    eds: Path
+    eds: Path                        # absolute
     mandatory: bool
-    heartbeat_ms: int                # the node's producer time (0 = none)
-    heartbeat_timeout_ms: int        # the master's consumer timeout (0 = not watched)
-    master_timeout_ms: int           # the node's consumer time for the master (0 = none)
-    sdo: list[SdoWriteConfig]
+    heartbeat_ms: int                # the node's producer time, its 0x1017 (0: none)
+    heartbeat_timeout_ms: int        # the master's consumer timeout for it (0: not watched)
+    master_timeout_ms: int           # its 0x1016:01 consumer time for the master (0: none)
+    sdo: list[SdoWriteConfig]        # boot-time writes, in order
     tpdo: list[PdoConfig]
     rpdo: list[PdoConfig]
-    key: str
+    key: str                         # "canopen.node[0]"
 
 
 @dataclass
 class CanopenConfig:
-    bus: str
-    node_id: int
-    heartbeat_ms: int
-    sync_us: int
+    bus: str                         # the name of a CanBusConfig
+    node_id: int                     # the master's own node id
+    heartbeat_ms: int                # the master's producer period (0: none)
+    sync_us: int                     # SYNC period (0: no SYNC)
     sdo_timeout_ms: int
     boot_timeout_ms: int
     retry_ms: int
@@ -201,12 +214,12 @@ class CanopenConfig:
 
 @dataclass
 class SimConfig:
-    type: str
+    type: str                        # "ltmr"
     name: str
-    bus: str
+    bus: str                         # the name of a CanBusConfig
     node_id: int
-    registers: dict
-    key: str
+    registers: dict[int, int]        # initial register values
+    key: str                         # "sim[0]"
 
 
 @dataclass
@@ -239,6 +252,13 @@ def default_config_path() -> Path:
     """The embedded default configuration (io_config/default.toml, installed
     as package data of softplc.io_config)."""
     return Path(os.fspath(resources.files("softplc.io_config").joinpath("default.toml")))
+
+
+def _shipped_eds() -> dict:
+    """name -> absolute path of the EDS files installed with the package
+    (io_config/eds/<name>.eds): what a node's eds = "ltmr" names."""
+    folder = Path(os.fspath(resources.files("softplc.io_config").joinpath("eds")))
+    return {p.stem.lower(): p for p in sorted(folder.glob("*.eds"))}
 
 
 # ====================================================================== loading
@@ -442,97 +462,162 @@ def _data_file(value, info: ValidationInfo) -> Path:
     return resolved
 
 
-def _duration_or_off(value) -> int:
-    """A duration in ns, or 0 for "0ms" / false (switched off)."""
-    if value is False:
-        return 0
-    ns = _duration_ns(value)
-    if ns is None or ns < 0:
-        raise _fail(f"a duration such as {DURATION_EXAMPLES}, or false", value)
-    return ns
+Duration = Annotated[int, PlainValidator(_duration)]
+Watchdog = Annotated[Any, PlainValidator(_watchdog)]
+StFile = Annotated[Path, PlainValidator(_st_file)]
 
 
+# ---------------------------------------------------------------- CAN and CANopen values
+
+# manual 001 L183-205 (Network Port Baud Rate Setting): the CANopen rates.
 CAN_BITRATES = (10_000, 20_000, 50_000, 125_000, 250_000, 500_000, 800_000, 1_000_000)
+DEFAULT_BITRATE = 250_000            # manual 001 L206: the LTMR's factory setting
+NODE_ID_MAX = 127                    # manual 001 L163: "an address from 1 to 127"
+U16_MAX = 0xFFFF
+PDO_ENTRIES_MAX = 8                  # manual 001 L117: a PDO carries 8 bytes
+PDO_BITS_MAX = 64
+SIM_TYPES = ("ltmr",)
+DEFAULT_HEARTBEAT_MS = 100           # the master's and a node's, unless the file says
+
+_UNIT_NS = {"ms": 1_000_000, "us": 1_000}
+
+
+def _duration_in(unit: str, *, off: Optional[str] = None, most: Optional[tuple] = None):
+    """A duration as a whole number of unit ("ms" or "us"), rounded from the
+    nanoseconds parse_duration_ns gives. off: what 0 / "0ms" / false means
+    (None: they are refused); most: (largest value, why) where the bus
+    carries the value in a field of fixed width."""
+    per = _UNIT_NS[unit]
+    or_off = f", or false for {off}" if off else ""
+
+    def check(value) -> int:
+        if value is False and off:
+            return 0
+        ns = _duration_ns(value)
+        if ns is None or ns < 0 or (ns == 0 and not off):
+            kind = "a duration" if off else "a duration > 0"
+            raise _fail(f"{kind} such as {DURATION_EXAMPLES}{or_off}", value)
+        count = round(ns / per)
+        if ns > 0 and count == 0:
+            raise _fail(f"a duration of at least 1{unit}{or_off}", value)
+        if most is not None and count > most[0]:
+            raise _fail(f"a duration of at most {most[0]}{unit} ({most[1]}){or_off}", value)
+        return count
+    return check
+
+
+# The checks are kept as functions too: _Relations compares the values.
+_master_heartbeat = _duration_in("ms", off="no heartbeat")
+_sync_period = _duration_in("us", off="no SYNC", most=(0xFFFF_FFFF, "0x1006 holds microseconds in 32 bits"))
+_timeout_ms = _duration_in("ms")
+# manual 001 L964: 0x1017 Producer Heartbeat Time, Unsigned 16, unit 1 ms.
+_node_heartbeat = _duration_in("ms", off="no heartbeat", most=(U16_MAX, "0x1017 holds ms in 16 bits"))
+_heartbeat_timeout = _duration_in("ms", off="not watching it")
+# manual 001 L957: 0x1016:01 bits 0-15 = heartbeat time, unit 1 ms.
+_master_timeout = _duration_in("ms", off="the node not watching the master",
+                               most=(U16_MAX, "0x1016:01 holds ms in 16 bits"))
+# manual 001 L1365: TPDO inhibit time, Unsigned 16, unit 0.1 ms.
+_inhibit = _duration_in("us", off="none", most=(U16_MAX * 100, "the inhibit time is 16 bits of 100us"))
+# Event timer: Unsigned 16 in ms, as CiA 301 says; manual 001 L1379 says
+# 0.1 ms, which digest 001 A7 resolves for CiA (ms).
+_event = _duration_in("ms", off="none", most=(U16_MAX, "the event timer is 16 bits of ms"))
+
+
+def _duration_field(check):
+    return Annotated[int, PlainValidator(check)]
+
+
+def _quiet(check, value):
+    """check(value), or None when pass 1 refuses the value (it reports it)."""
+    try:
+        return check(value)
+    except PydanticCustomError:
+        return None
 
 
 def _bitrate(value) -> int:
     if isinstance(value, int) and not isinstance(value, bool) and value in CAN_BITRATES:
         return value
-    raise _fail("a CANopen bitrate: " + ", ".join(str(b) for b in CAN_BITRATES), value)
+    raise _fail("one of the CANopen bitrates " + ", ".join(str(b) for b in CAN_BITRATES), value)
 
 
-def _text(what: str):
+def _text(expected: str):
+    """A non-empty string; an integer is taken as its decimal text (channel = 0)."""
     def check(value) -> str:
         if isinstance(value, str) and value.strip():
-            return value
+            return value.strip()
         if isinstance(value, int) and not isinstance(value, bool):
             return str(value)
-        raise _fail(what, value)
+        raise _fail(expected, value)
     return PlainValidator(check)
 
 
-_OBJECT = re.compile(r"(?:0x)?([0-9A-Fa-f]{1,4}):(?:0x)?([0-9A-Fa-f]{1,2})")
+def _nonempty(expected: str):
+    def check(value) -> str:
+        if isinstance(value, str) and value.strip():
+            return value.strip()
+        raise _fail(expected, value)
+    return PlainValidator(check)
+
+
+_OBJECT = re.compile(r"(?:0x)?([0-9A-F]{1,4}):(?:0x)?([0-9A-F]{1,2})", re.A | re.I)
 
 
 def _object(value) -> tuple:
-    """ "2004:06" (hex index : hex sub-index) -> (0x2004, 0x06)."""
+    """'2004:06' or '0x2004:06' (hex index : hex sub-index) -> (0x2004, 0x06)."""
     m = _OBJECT.fullmatch(value.strip()) if isinstance(value, str) else None
     if m is None:
-        raise _fail('an object "index:subindex" in hex such as "2004:06"', value)
+        raise _fail('an object "index:subindex" in hex, such as "2004:06"', value)
     return int(m.group(1), 16), int(m.group(2), 16)
 
 
 def _transmission(value) -> int:
+    # manual 001 L1114: asynchronous (255), synchronously cyclic (1-240),
+    # synchronously acyclic (0); CiA 301 adds 254 (event-driven, manufacturer).
     if isinstance(value, int) and not isinstance(value, bool) and (0 <= value <= 240 or value in (254, 255)):
         return value
-    raise _fail("a PDO transmission type: 0..240, 254 or 255", value)
+    raise _fail("a transmission type 0..240, 254 or 255", value)
 
 
-def _eds_file(value, info: ValidationInfo) -> Path:
-    """A shipped EDS by name ("ltmr", "fc280": io_config/eds/<name>.eds) or
-    the path of an .eds file relative to the config file."""
-    if not isinstance(value, str) or not value.strip():
-        raise _fail('a shipped EDS name such as "ltmr" or the path of an .eds file', value)
-    if re.fullmatch(r"[A-Za-z0-9_]+", value):
-        shipped = resources.files("softplc.io_config") / "eds" / f"{value.lower()}.eds"
-        if not shipped.is_file():
-            names = sorted(p.name[:-4] for p in (resources.files("softplc.io_config") / "eds").iterdir()
-                           if p.name.endswith(".eds"))
-            raise PydanticCustomError("config", "no shipped EDS called {name} (there are: {names})",
-                                      {"name": repr(value), "names": ", ".join(names)})
-        return Path(str(shipped))
-    resolved = Path(os.path.normpath(info.context["base_dir"] / Path(value).expanduser()))
-    if not resolved.is_file():
-        raise PydanticCustomError("config", "no such file: {path} (relative paths start at the "
-                                  "config file's directory)", {"path": str(resolved)})
-    return resolved
+def _integer(value) -> int:
+    if isinstance(value, int) and not isinstance(value, bool):
+        return value
+    raise _fail("an integer", value)
 
 
 def _sdo_size(value) -> int:
-    if value in (1, 2, 4) and not isinstance(value, bool):
+    if isinstance(value, int) and not isinstance(value, bool) and value in (1, 2, 4):
         return value
-    raise _fail("1, 2 or 4 (bytes)", value)
+    raise _fail("a size in bytes: 1, 2 or 4", value)
 
 
-def _registers(value) -> dict:
-    """{ "682" = 2 } -> {682: 2}: register numbers as keys, 16-bit values."""
-    if not isinstance(value, dict):
-        raise _fail('a table of register = value such as { "682" = 2 }', value)
-    out = {}
-    for key, v in value.items():
-        if not (isinstance(key, str) and key.isdigit()):
-            raise _fail('register numbers in decimal as keys, such as "682"', key)
-        if not (isinstance(v, int) and not isinstance(v, bool) and 0 <= v <= 0xFFFF):
-            raise _fail(f"a register value 0..65535 for register {key}", v)
-        out[int(key)] = v
-    return out
+def _eds_file(value, info: ValidationInfo) -> Path:
+    """A shipped EDS by name ("ltmr": io_config/eds/ltmr.eds, installed with
+    the package) or the path of an EDS file relative to the config file."""
+    shipped = _shipped_eds()
+    names = ", ".join(f"'{n}'" for n in shipped)
+    if not isinstance(value, str) or not value.strip():
+        raise _fail(f"a shipped EDS name ({names}) or the path of an .eds file", value)
+    text = value.strip()
+    if re.fullmatch(r"[A-Za-z0-9_-]+", text):      # a name, not a path
+        if text.lower() in shipped:
+            return shipped[text.lower()]
+        close = difflib.get_close_matches(text.lower(), list(shipped), n=1)
+        hint = f"; did you mean '{close[0]}'?" if close else ""
+        raise PydanticCustomError("config", "expected a shipped EDS name ({names}) or the path of an .eds "
+                                  "file (got {got}{hint})",
+                                  {"names": names, "got": _got(value), "hint": hint})
+    resolved = Path(os.path.normpath(info.context["base_dir"] / Path(text).expanduser()))
+    if not resolved.exists():
+        raise PydanticCustomError("config", "no such file: {path} (relative paths start at the "
+                                  "config file's directory)", {"path": str(resolved)})
+    if not resolved.is_file():
+        raise PydanticCustomError("config", "not a file: {path}", {"path": str(resolved)})
+    return resolved
 
 
-Duration = Annotated[int, PlainValidator(_duration)]
-DurationOrOff = Annotated[int, PlainValidator(_duration_or_off)]
-ObjectRef = Annotated[tuple, PlainValidator(_object)]
-Watchdog = Annotated[Any, PlainValidator(_watchdog)]
-StFile = Annotated[Path, PlainValidator(_st_file)]
+NodeId = Annotated[int, _int_range(1, NODE_ID_MAX)]
+BusName = Annotated[str, _identifier("a bus name")]
 
 
 # ====================================================================== schema
@@ -601,68 +686,83 @@ class _Loopback(_Model):
     nbytes: Annotated[int, _int_range(1)] = Field(alias="bytes", description="an integer >= 1")
 
 
+_INTERFACE = 'a python-can interface such as "socketcan", "pcan" or "virtual"'
+
+
 class _Can(_Model):
-    name: Annotated[str, _identifier("a bus name")] = Field("can0", description='a bus name such as "can0"')
-    interface: Annotated[str, _text('a python-can interface such as "socketcan", "pcan" or "virtual"')] = \
-        Field(description='a python-can interface such as "socketcan", "pcan" or "virtual"')
-    channel: Annotated[str, _text('a channel such as "can0"')] = Field(description='a channel such as "can0"')
-    bitrate: Annotated[int, PlainValidator(_bitrate)] = Field(250_000, description="a CANopen bitrate")
-    options: dict[str, Any] = Field(default_factory=dict, description="a table of python-can options")
+    name: BusName = Field("can0", description='a bus name such as "can0"')
+    interface: Annotated[str, _nonempty(_INTERFACE)] = Field(description=_INTERFACE)
+    channel: Annotated[str, _text('a channel such as "can0" or "PCAN_USBBUS1"')] = Field(
+        description='a channel such as "can0" or "PCAN_USBBUS1"')
+    bitrate: Annotated[int, PlainValidator(_bitrate)] = Field(DEFAULT_BITRATE,
+                                                              description="a CANopen bitrate")
+    options: dict[str, Any] = Field(
+        default_factory=dict, description="a table of python-can options, such as { fd = false }")
 
 
 class _PdoEntry(_Model):
-    object: ObjectRef = Field(description='an object "index:subindex" in hex such as "2004:06"')
-    address: Any = Field(description='an image address such as "%IW100"')
+    object: Annotated[tuple, PlainValidator(_object)] = Field(
+        description='an object "index:subindex" in hex, such as "2004:06"')
+    address: Any = Field(description='an image address such as "%IW0" for a TPDO, "%QW0" for an RPDO')
 
 
 class _Pdo(_Model):
-    number: Annotated[int, _int_range(1, 512)] = Field(description="a PDO number 1..512")
+    number: Annotated[int, _int_range(1, 512)] = Field(description="a PDO number from 1 to 512")
     transmission: Annotated[int, PlainValidator(_transmission)] = Field(255, description="0..240, 254 or 255")
-    inhibit: DurationOrOff = Field(0, description="a duration such as 5ms")
-    event: DurationOrOff = Field(0, description="a duration such as 500ms")
+    inhibit: _duration_field(_inhibit) = Field(0, description="a duration such as 10ms")
+    event: _duration_field(_event) = Field(0, description="a duration such as 500ms")
     configure: bool = Field(True, description="true or false")
-    map: list[_PdoEntry] = Field(min_length=1, max_length=8, description='an array of 1 to 8 '
-                                 '{ object = "2004:06", address = "%IW100" } tables')
+    map: list[_PdoEntry] = Field(
+        min_length=1, max_length=PDO_ENTRIES_MAX,
+        description=f'an array of 1 to {PDO_ENTRIES_MAX} {{ object = "2004:06", address = "%IW0" }} tables; '
+                    "a PDO carries 8 bytes")
 
 
 class _SdoWrite(_Model):
-    object: ObjectRef = Field(description='an object "index:subindex" in hex such as "2007:21"')
-    value: Annotated[int, _int_range(-(1 << 31), (1 << 32) - 1)] = Field(description="an integer")
+    object: Annotated[tuple, PlainValidator(_object)] = Field(
+        description='an object "index:subindex" in hex, such as "2007:21"')
+    value: Annotated[int, PlainValidator(_integer)] = Field(description="an integer")
     size: Optional[Annotated[int, PlainValidator(_sdo_size)]] = Field(None, description="1, 2 or 4")
 
 
 class _Node(_Model):
-    name: Annotated[str, _identifier("a node name")] = Field(description='a node name such as "motor"')
-    id: Annotated[int, _int_range(1, 127)] = Field(description="a node id 1..127")
-    eds: Annotated[Path, PlainValidator(_eds_file)] = Field(description='"ltmr", "fc280" or an .eds file')
+    name: Annotated[str, _identifier("a node name")] = Field(description='a node name such as "motor1"')
+    id: NodeId = Field(description=f"a node id from 1 to {NODE_ID_MAX}")
+    eds: Annotated[Path, PlainValidator(_eds_file)] = Field(
+        description='a shipped EDS name such as "ltmr" or the path of an .eds file')
     mandatory: bool = Field(True, description="true or false")
-    heartbeat: DurationOrOff = Field(100_000_000, description="a duration such as 100ms, or false")
-    heartbeat_timeout: Optional[DurationOrOff] = Field(None, description="a duration such as 300ms")
-    master_timeout: Optional[DurationOrOff] = Field(None, description="a duration such as 500ms, or false")
-    sdo: list[_SdoWrite] = Field(default_factory=list, description='an array of { object = "2007:21", '
-                                                                   'value = 2 } tables')
+    heartbeat: _duration_field(_node_heartbeat) = Field(DEFAULT_HEARTBEAT_MS,
+                                                        description="a duration such as 100ms, or false")
+    heartbeat_timeout: Optional[_duration_field(_heartbeat_timeout)] = Field(
+        None, description="a duration such as 300ms, or false")
+    master_timeout: Optional[_duration_field(_master_timeout)] = Field(
+        None, description="a duration such as 500ms, or false")
+    sdo: list[_SdoWrite] = Field(default_factory=list,
+                                 description='an array of { object = "2007:21", value = 2 } tables')
     tpdo: list[_Pdo] = Field(default_factory=list, description="[[canopen.node.tpdo]] tables")
     rpdo: list[_Pdo] = Field(default_factory=list, description="[[canopen.node.rpdo]] tables")
 
 
 class _Canopen(_Model):
-    bus: Optional[Annotated[str, _identifier("a bus name")]] = Field(None, description='a [[can]] name')
-    node_id: Annotated[int, _int_range(1, 127)] = Field(127, description="a node id 1..127")
-    heartbeat: DurationOrOff = Field(100_000_000, description="a duration such as 100ms, or false")
-    sync: DurationOrOff = Field(0, description="a duration such as 10ms, or false")
-    sdo_timeout: Duration = Field(500_000_000, description="a duration such as 500ms")
-    boot_timeout: Duration = Field(2_000_000_000, description="a duration such as 2s")
-    retry: Duration = Field(1_000_000_000, description="a duration such as 1s")
+    bus: Optional[BusName] = Field(None, description="the name of a [[can]] bus")
+    node_id: NodeId = Field(NODE_ID_MAX, description=f"a node id from 1 to {NODE_ID_MAX}")
+    heartbeat: _duration_field(_master_heartbeat) = Field(DEFAULT_HEARTBEAT_MS,
+                                                          description="a duration such as 100ms, or false")
+    sync: _duration_field(_sync_period) = Field(0, description="a duration such as 10ms, or false")
+    sdo_timeout: _duration_field(_timeout_ms) = Field(500, description="a duration such as 500ms")
+    boot_timeout: _duration_field(_timeout_ms) = Field(2000, description="a duration such as 2s")
+    retry: _duration_field(_timeout_ms) = Field(1000, description="a duration such as 1s")
     node: list[_Node] = Field(default_factory=list, description="[[canopen.node]] tables")
 
 
 class _Sim(_Model):
-    type: Annotated[str, _choice(("ltmr",))] = Field(description="'ltmr'")
-    name: Optional[Annotated[str, _identifier("a simulator name")]] = Field(None, description="a name")
-    bus: Optional[Annotated[str, _identifier("a bus name")]] = Field(None, description='a [[can]] name')
-    node_id: Annotated[int, _int_range(1, 127)] = Field(description="a node id 1..127")
-    registers: Annotated[dict, PlainValidator(_registers)] = Field(
-        default_factory=dict, description='a table such as { "682" = 2 }')
+    type: Annotated[str, _choice(SIM_TYPES)] = Field(description=" or ".join(f"'{t}'" for t in SIM_TYPES))
+    name: Optional[Annotated[str, _identifier("a simulator name")]] = Field(
+        None, description='a simulator name such as "ltmr40"')
+    bus: Optional[BusName] = Field(None, description="the name of a [[can]] bus")
+    node_id: NodeId = Field(description=f"a node id from 1 to {NODE_ID_MAX}")
+    registers: dict[str, Annotated[int, _int_range(0, U16_MAX)]] = Field(
+        default_factory=dict, description='a table of register = value, such as { "682" = 2 }')
 
 
 class _Root(_Model):
@@ -740,6 +840,8 @@ def _translate(err: dict) -> tuple:
         return loc, f"expected {described or 'an array'} (got {_got(value)})"
     if kind == "too_short":
         return loc, f"expected {described or 'at least one entry'} (got an empty array)"
+    if kind == "too_long":
+        return loc, f"expected {described or 'fewer entries'} (got {len(value)} entries)"
     if kind == "bool_type":
         return loc, f"expected true or false (got {_got(value)})"
     return loc, f"{err['msg']} (got {_got(value)})"
@@ -760,16 +862,23 @@ def _key(loc: tuple) -> str:
 
 def _in_file_order(errors: list, data: dict) -> list:
     """Sort errors by section (as they appear in the file), then by array
-    index; stable, so the order within an entry is the schema's."""
-    order = {name: i for i, name in enumerate(data)}
-
-    def rank(item):
+    entry, down to nested arrays such as canopen.node[0].tpdo[1].map[2];
+    stable, so the order within one table is the schema's."""
+    def rank(item) -> tuple:
         loc = item[0]
-        if not loc:
-            return (-1, -1)
-        first = order.get(loc[0], len(order))
-        index = loc[1] if len(loc) > 1 and isinstance(loc[1], int) else -1
-        return (first, index)
+        out: list = []
+        here: Any = data
+        for i, part in enumerate(loc):
+            if isinstance(part, int):
+                out.append(part)
+                here = here[part] if isinstance(here, list) and part < len(here) else None
+                continue
+            table = here if isinstance(here, dict) else {}
+            if i == 0 or (i + 1 < len(loc) and isinstance(loc[i + 1], int)):
+                # a section or an array: where the file has it
+                out.append(list(table).index(part) if part in table else len(table))
+            here = table.get(part)
+        return tuple(out)
     return sorted(errors, key=rank)
 
 
@@ -779,12 +888,15 @@ def _in_file_order(errors: list, data: dict) -> list:
 class _Relations:
     """The checks between values, on the raw data, tolerant of values that
     pass 1 refuses (it reports those). Also parses the safe outputs and the
-    loopback links (addresses depend on the profile)."""
+    loopback links and the PDO addresses (addresses depend on the profile),
+    and resolves the bus each CANopen master and simulator is on."""
 
     def __init__(self, data: dict, base_dir: Path) -> None:
         self.errors: list = []
         self.safe_outputs: list = []
         self.loopback: list = []
+        self.pdo_addresses: dict = {}   # loc of a PDO map entry -> LocatedAddress
+        self.bus_of: dict = {}          # ("canopen",) or ("sim", i) -> the [[can]] name it uses
         plc = data.get("plc") if isinstance(data.get("plc"), dict) else {}
         profile = plc.get("profile", _DEFAULT_PROFILE.name)
         profile = PROFILES.get(profile.lower()) if isinstance(profile, str) else None
@@ -798,9 +910,7 @@ class _Relations:
         links = data.get("loopback")
         if isinstance(links, list):
             self._loopback(links)
-        self.pdo_entries: dict = {}   # loc of a map entry -> LocatedAddress
-        self.buses: dict = {}         # loc of a bus reference -> bus name
-        self._can(data)
+        self._can_side(data)
 
     def error(self, loc: tuple, message: str) -> None:
         self.errors.append((loc, message))
@@ -954,138 +1064,307 @@ class _Relations:
                 self.loopback.append(LoopbackLink(ends["from"], ends["to"], nbytes, _key(here)))
 
 
-    # ---------------------------------------------------------------- CAN, CANopen, simulators
+    # ---------------------------------------------------------------- CAN buses, CANopen, simulators
 
-    def _can(self, data: dict) -> None:
+    def _can_side(self, data: dict) -> None:
         buses = data.get("can") if isinstance(data.get("can"), list) else []
+        names = self._bus_names(buses)
+        canopen = data.get("canopen")
+        master = None
+        if isinstance(canopen, dict):
+            bus = self._bus_of(("canopen",), canopen, names, len(buses), "the CANopen master")
+            node_id = canopen.get("node_id", NODE_ID_MAX)
+            master = (bus, node_id if _in_range(node_id, 1, NODE_ID_MAX) else None)
+            self._canopen(canopen, master[1])
+        sims = data.get("sim")
+        if isinstance(sims, list):
+            self._sims(sims, names, len(buses), master)
+
+    def _bus_names(self, buses: list) -> dict:
+        """NAME (upper case) -> the name as written, of the buses with a valid name."""
         names: dict = {}
         for i, bus in enumerate(buses):
-            name = bus.get("name", "can0") if isinstance(bus, dict) else None
-            if _is_ident(name):
-                first = names.setdefault(name, i)
-                if first != i:
-                    self.error(("can", i, "name"), f"duplicate bus name '{name}' (can[{first}] has it)")
-        canopen = data.get("canopen")
-        if isinstance(canopen, dict):
-            self._bus_ref(("canopen",), canopen, names)
-            self._canopen(canopen)
-        sims = data.get("sim") if isinstance(data.get("sim"), list) else []
-        taken: dict = {}
-        for i, sim in enumerate(sims):
-            if not isinstance(sim, dict):
+            if not isinstance(bus, dict):
                 continue
-            bus = self._bus_ref(("sim", i), sim, names)
-            node = sim.get("node_id")
-            if bus is not None and isinstance(node, int):
-                first = taken.setdefault((bus, node), i)
-                if first != i:
-                    self.error(("sim", i, "node_id"), f"sim[{first}] already is node {node} on bus '{bus}'")
-
-    def _bus_ref(self, here: tuple, table: dict, names: dict) -> Optional[str]:
-        """The [[can]] bus a section uses: its bus key, or the only bus."""
-        bus = table.get("bus")
-        if bus is None:
-            if len(names) == 1:
-                bus = next(iter(names))
+            name = bus.get("name", "can0")
+            if not _is_ident(name):
+                continue   # pass 1 reports it
+            first = names.get(name.upper())
+            if first is None:
+                names[name.upper()] = (name, i)
+            elif "name" in bus:
+                self.error(("can", i, "name"), f"duplicate bus name '{name}' (can[{first[1]}] has it; "
+                                               "names are case-insensitive)")
             else:
-                self.error(here, "needs a [[can]] bus" if not names else
-                           f"there are several [[can]] buses; say which: bus = \"{next(iter(names))}\"")
-                return None
-        elif isinstance(bus, str) and bus not in names:
-            self.error(here + ("bus",), f"no [[can]] bus called '{bus}' (there are: {', '.join(names) or 'none'})")
+                self.error(("can", i), f"duplicate bus name '{name}' (the default; can[{first[1]}] has it): "
+                                       "give each [[can]] its own name")
+        return {upper: name for upper, (name, _i) in names.items()}
+
+    def _bus_of(self, here: tuple, table: dict, names: dict, count: int, what: str) -> Optional[str]:
+        """The [[can]] bus a [canopen] or [[sim]] table uses: its bus key, or
+        the only bus. None (and perhaps an error) when there is none."""
+        bus = table.get("bus")
+        listed = ", ".join(f"'{n}'" for n in names.values())
+        if count == 0:
+            self.error(here, f"{what} needs a [[can]] bus (the file has none): add a [[can]] table with "
+                             "interface and channel")
             return None
-        self.buses[here] = bus
+        if bus is None:
+            if count == 1 and len(names) == 1:
+                bus = next(iter(names.values()))
+            elif count > 1:
+                self.error(here + ("bus",), f"required key missing: the file has several [[can]] buses "
+                                            f"(expected one of {listed})")
+                return None
+            else:
+                return None   # the only bus has a bad name: pass 1 reports it
+        elif not _is_ident(bus):
+            return None       # pass 1 reports it
+        elif bus.upper() in names:
+            bus = names[bus.upper()]
+        else:
+            if len(names) == count:   # every bus has a valid name, so this one is unknown
+                self.error(here + ("bus",), f"expected one of {listed}, the [[can]] buses (got '{bus}')")
+            return None
+        self.bus_of[here] = bus
         return bus
 
-    def _canopen(self, canopen: dict) -> None:
-        master = canopen.get("node_id", 127)
-        master_hb = _duration_or_off_quiet(canopen.get("heartbeat", "100ms"))
-        nodes = canopen.get("node") if isinstance(canopen.get("node"), list) else []
+    def _canopen(self, canopen: dict, master_id: Optional[int]) -> None:
+        nodes = canopen.get("node")
+        if not isinstance(nodes, list):
+            return
+        master_heartbeat = _quiet(_master_heartbeat, canopen.get("heartbeat", DEFAULT_HEARTBEAT_MS))
         ids: dict = {}
         names: dict = {}
-        used: list = []   # (area, start, end, loc): image bytes the PDOs write or read
+        claimed = self._loopback_targets()
         for i, node in enumerate(nodes):
             if not isinstance(node, dict):
                 continue
             here = ("canopen", "node", i)
-            nid, name = node.get("id"), node.get("name")
-            if isinstance(nid, int):
-                if nid == master:
-                    self.error(here + ("id",), f"{nid} is the master's own node_id")
-                first = ids.setdefault(nid, i)
-                if first != i:
-                    self.error(here + ("id",), f"duplicate node id {nid} (canopen.node[{first}] has it)")
+            node_id, name = node.get("id"), node.get("name")
+            if _in_range(node_id, 1, NODE_ID_MAX):
+                if node_id == master_id:
+                    self.error(here + ("id",), f"{node_id} is the master's own node id (canopen.node_id)")
+                elif node_id in ids:
+                    self.error(here + ("id",), f"duplicate node id {node_id} ({_key(ids[node_id])} has it)")
+                else:
+                    ids[node_id] = here
             if _is_ident(name):
-                first = names.setdefault(name.upper(), i)
-                if first != i:
-                    self.error(here + ("name",), f"duplicate node name '{name}' (canopen.node[{first}] has it)")
-            hb = _duration_or_off_quiet(node.get("heartbeat", "100ms"))
-            timeout = node.get("heartbeat_timeout")
-            if timeout is not None and hb is not None and hb > 0:
-                t = _duration_or_off_quiet(timeout)
-                if t is not None and 0 < t <= hb:
-                    self.error(here + ("heartbeat_timeout",), "must be longer than the node's heartbeat")
-            mt = node.get("master_timeout")
-            if mt not in (None, False) and master_hb is not None:
-                t = _duration_or_off_quiet(mt)
-                if t and master_hb == 0:
-                    self.error(here + ("master_timeout",), "the master produces no heartbeat "
-                                                           "([canopen] heartbeat is off)")
-                elif t and t <= master_hb:
-                    self.error(here + ("master_timeout",), "must be longer than the master's heartbeat")
-            for direction, area in (("tpdo", "I"), ("rpdo", "Q")):
-                pdos = node.get(direction) if isinstance(node.get(direction), list) else []
-                numbers: dict = {}
-                for j, pdo in enumerate(pdos):
-                    if not isinstance(pdo, dict):
-                        continue
-                    number = pdo.get("number")
-                    if isinstance(number, int):
-                        first = numbers.setdefault(number, j)
-                        if first != j:
-                            self.error(here + (direction, j, "number"),
-                                       f"duplicate {direction.upper()} {number} ({direction}[{first}] has it)")
-                    entries = pdo.get("map") if isinstance(pdo.get("map"), list) else []
-                    for k, entry in enumerate(entries):
-                        if isinstance(entry, dict) and "address" in entry:
-                            self._pdo_address(here + (direction, j, "map", k), entry["address"], area, used)
+                first = names.setdefault(name.upper(), here)
+                if first != here:
+                    self.error(here + ("name",), f"duplicate node name '{name}' ({_key(first)} has it; "
+                                                 "names are case-insensitive)")
+            self._heartbeats(here, node, canopen, master_heartbeat)
+            for direction in ("tpdo", "rpdo"):
+                if isinstance(node.get(direction), list):
+                    self._pdos(here, direction, node[direction], claimed)
+            if isinstance(node.get("sdo"), list):
+                self._sdo_values(here, node["sdo"])
+
+    def _heartbeats(self, here: tuple, node: dict, canopen: dict, master_heartbeat: Optional[int]) -> None:
+        """The node's heartbeat against the master's timeout for it, and the
+        master's heartbeat against the node's timeout for the master."""
+        heartbeat = _quiet(_node_heartbeat, node.get("heartbeat", DEFAULT_HEARTBEAT_MS))
+        timeout = _quiet(_heartbeat_timeout, node.get("heartbeat_timeout"))
+        if heartbeat is not None and timeout:   # given and not off
+            if heartbeat == 0:
+                self.error(here + ("heartbeat_timeout",), "only meaningful with a heartbeat (this node has "
+                                                          f"heartbeat = {_got(node['heartbeat'])})")
+            elif timeout <= heartbeat:
+                self.error(here + ("heartbeat_timeout",),
+                           f"expected a duration longer than the node's heartbeat ({heartbeat}ms), or false "
+                           f"for not watching it (got {_got(node['heartbeat_timeout'])})")
+        if master_heartbeat is None:
+            return
+        if "master_timeout" in node:
+            timeout = _quiet(_master_timeout, node["master_timeout"])
+            if not timeout:
+                return        # off, or refused by pass 1
+            if master_heartbeat == 0:
+                self.error(here + ("master_timeout",), "only meaningful when the master sends a heartbeat "
+                                                       f"(canopen.heartbeat = {_got(canopen['heartbeat'])})")
+            elif timeout <= master_heartbeat:
+                self.error(here + ("master_timeout",),
+                           f"expected a duration longer than canopen.heartbeat ({master_heartbeat}ms), or "
+                           f"false for the node not watching the master (got {_got(node['master_timeout'])})")
+        elif master_heartbeat and _default_master_timeout(master_heartbeat) <= master_heartbeat:
+            self.error(here, f"the default master_timeout, 5 x canopen.heartbeat at most {U16_MAX}ms, is not "
+                             f"longer than canopen.heartbeat ({master_heartbeat}ms): give master_timeout, or "
+                             "false")
+
+    def _pdos(self, here: tuple, direction: str, pdos: list, claimed: list) -> None:
+        """PDO numbers unique per direction, and the image addresses of the
+        entries: %I for a TPDO, %Q for an RPDO, no two overlapping."""
+        numbers: dict = {}
+        area = "I" if direction == "tpdo" else "Q"
+        for j, pdo in enumerate(pdos):
+            if not isinstance(pdo, dict):
+                continue
+            at = here + (direction, j)
+            number = pdo.get("number")
+            if _in_range(number, 1, 512):
+                first = numbers.setdefault(number, at)
+                if first != at:
+                    self.error(at + ("number",), f"duplicate {direction.upper()} number {number} "
+                                                 f"({_key(first)} has it)")
+            entries = pdo.get("map")
+            if not isinstance(entries, list):
+                continue
+            bits = 0
+            for k, entry in enumerate(entries):
+                if isinstance(entry, dict) and "address" in entry:
+                    addr = self._pdo_address(at + ("map", k, "address"), entry["address"], area, claimed)
+                    if addr is not None:
+                        self.pdo_addresses[at + ("map", k)] = addr
+                        bits += _bit_count(addr)
+            if bits > PDO_BITS_MAX and len(entries) <= PDO_ENTRIES_MAX:   # else pass 1 says too many
+                self.error(at + ("map",), f"the addresses hold {bits} bits; a PDO carries at most "
+                                          f"{PDO_BITS_MAX} (8 bytes)")
+
+    def _pdo_address(self, loc: tuple, text, area: str, claimed: list) -> Optional[LocatedAddress]:
+        addr = self._address(loc, text, f"%{area}W0, %{area}X0.0")
+        if addr is None:
+            return None
+        kind = "a TPDO's entries go to %I inputs" if area == "I" else "an RPDO's entries come from %Q outputs"
+        if addr.area != area:
+            self.error(loc, f"expected a %{area} address: {kind} (got {_area_name(addr)})")
+            return None
+        if addr.table is not None:
+            self.error(loc, f"expected a bit, byte, word, dword or lword address (got '{addr.text}', a word "
+                            "table): map one object per address")
+            return None
+        span = self._image_bits(loc, addr)
+        if span is None:
+            return None
+        first, last = span
+        for other_area, other_first, other_last, other_loc, other_text in claimed:
+            if other_area == area and first <= other_last and other_first <= last:
+                self.error(loc, f"'{addr.text}' overlaps {_key(other_loc)} ({other_text})")
+                return addr
+        claimed.append((area, first, last, loc, f"'{addr.text}'"))
+        return addr
 
     def _probe(self):
+        """A process image laid out as the profile's, for where addresses fall."""
         if getattr(self, "_probe_image", None) is None:
             from .image.memory import ProcessImage
             self._probe_image = ProcessImage(self.addressing or "iec")
         return self._probe_image
 
-    def _pdo_address(self, loc: tuple, text, area: str, used: list) -> None:
-        addr = self._address(loc + ("address",), text, f"%{area}W100, %{area}X10.0")
-        if addr is None:
-            return
-        kind = "a TPDO maps to %I inputs" if area == "I" else "an RPDO maps to %Q outputs"
-        if addr.area != area:
-            self.error(loc + ("address",), f"{kind} (got {_area_name(addr)})")
-            return
-        if addr.table is not None:
-            self.error(loc + ("address",), f"expected a bit, byte, word, dword or lword address (got '{addr.text}')")
-            return
-        self.pdo_entries[loc] = addr
+    def _image_bits(self, loc: tuple, addr: LocatedAddress) -> Optional[tuple]:
+        """(first, last) bit of its area that addr covers, or None (and an
+        error) outside the image. The layout is memory.py's: bytes for the
+        IEC model, words for Schneider; bit n of byte b is bit 8b + n."""
+        image = self._probe()
         if addr.bit is not None or addr.size in ("", "X"):
-            return
+            if addr.bit is not None:     # %IW3:X2 (Schneider): a bit of a word
+                word = image.byte_offset(LocatedAddress(addr.area, "W", addr.indices, None, None, addr.text))
+                bit = 8 * word + addr.bit
+            elif len(addr.indices) >= 2:
+                bit = 8 * addr.indices[-2] + addr.indices[-1]
+            else:
+                bit = addr.indices[0]
+            if bit >= 8 * image.size:
+                self.error(loc, f"'{addr.text}' is outside the {image.size}-byte %{addr.area} area")
+                return None
+            return bit, bit
         try:
-            _a, start, n = self._probe().region(addr)
-        except ValueError:
+            _area, offset, nbytes = image.region(addr)
+        except ValueError as exc:
+            self.error(loc, str(exc))
+            return None
+        return 8 * offset, 8 * (offset + nbytes) - 1
+
+    def _loopback_targets(self) -> list:
+        """The %I bytes the loopback links write, which no TPDO may write too."""
+        claimed = []
+        for i, link in enumerate(self.loopback):
+            try:
+                _area, offset, _n = self._probe().region(link.target)
+            except ValueError:
+                continue
+            claimed.append(("I", 8 * offset, 8 * (offset + link.nbytes) - 1, ("loopback", i, "to"),
+                            f"'{link.target.text}', {link.nbytes} byte{'s' if link.nbytes > 1 else ''}"))
+        return claimed
+
+    def _sdo_values(self, here: tuple, writes: list) -> None:
+        for k, write in enumerate(writes):
+            if not isinstance(write, dict):
+                continue
+            value, size = write.get("value"), write.get("size")
+            if _in_range(value, None, None) and size in (1, 2, 4) and not isinstance(size, bool):
+                lo, hi = -(1 << (8 * size - 1)), (1 << (8 * size)) - 1
+                if not lo <= value <= hi:
+                    self.error(here + ("sdo", k, "value"), f"expected an integer from {lo} to {hi} for "
+                                                           f"size = {size} (got {value})")
+
+    def _sims(self, sims: list, names: dict, count: int, master: Optional[tuple]) -> None:
+        """Simulators: on a bus, not two on one node id of a bus, not on the
+        master's node id; unique names. A simulator may share a node id with
+        a [[canopen.node]]: it is that node."""
+        at_node: dict = {}
+        sim_names: dict = {}
+        for i, sim in enumerate(sims):
+            if not isinstance(sim, dict):
+                continue
+            here = ("sim", i)
+            bus = self._bus_of(here, sim, names, count, "a simulated device")
+            node_id = sim.get("node_id")
+            if bus is not None and _in_range(node_id, 1, NODE_ID_MAX):
+                if master is not None and master == (bus, node_id):
+                    self.error(here + ("node_id",), f"{node_id} is the CANopen master's own node id on bus "
+                                                    f"'{bus}' (canopen.node_id)")
+                elif (bus, node_id) in at_node:
+                    self.error(here + ("node_id",), f"duplicate node id {node_id} on bus '{bus}' "
+                                                    f"({_key(at_node[bus, node_id])} has it)")
+                else:
+                    at_node[bus, node_id] = here
+            self._sim_name(here, sim, sim_names)
+            registers = sim.get("registers")
+            if isinstance(registers, dict):
+                for number in registers:
+                    if not _register_number(number):
+                        self.error(here + ("registers", number), f"expected a register number from 0 to "
+                                   f'{U16_MAX} in decimal, such as "682" (got {_got(number)})')
+
+    def _sim_name(self, here: tuple, sim: dict, names: dict) -> None:
+        if "name" in sim:
+            name = sim["name"]
+            if not _is_ident(name):
+                return        # pass 1 reports it
+            first = names.setdefault(name.upper(), here)
+            if first != here:
+                self.error(here + ("name",), f"duplicate simulator name '{name}' ({_key(first)} has it; "
+                                             "names are case-insensitive)")
             return
-        for other_area, o_start, o_end, other in used:
-            if other_area == area and start < o_end and o_start < start + n:
-                self.error(loc + ("address",), f"{addr.text} overlaps {_key(other)}")
-                return
-        used.append((area, start, start + n, loc + ("address",)))
+        kind, node_id = sim.get("type"), sim.get("node_id")
+        if isinstance(kind, str) and kind.lower() in SIM_TYPES and _in_range(node_id, 1, NODE_ID_MAX):
+            name = f"{kind.lower()}{node_id}"
+            first = names.setdefault(name.upper(), here)
+            if first != here:
+                self.error(here, f"duplicate simulator name '{name}', the default <type><node_id> "
+                                 f"({_key(first)} has it): give one a name")
 
 
-def _duration_or_off_quiet(value) -> Optional[int]:
-    try:
-        return _duration_or_off(value)
-    except PydanticCustomError:
-        return None
+def _in_range(value, lo: Optional[int], hi: Optional[int]) -> bool:
+    """An integer (not a bool) within lo..hi (None: unbounded)."""
+    return isinstance(value, int) and not isinstance(value, bool) and (lo is None or value >= lo) \
+        and (hi is None or value <= hi)
+
+
+def _register_number(key) -> bool:
+    return isinstance(key, str) and key.isascii() and key.isdigit() and int(key) <= U16_MAX
+
+
+def _bit_count(addr: LocatedAddress) -> int:
+    if addr.bit is not None or addr.size in ("", "X"):
+        return 1
+    return _address.SIZE_BITS[addr.size]
+
+
+def _default_master_timeout(master_heartbeat_ms: int) -> int:
+    """5 heartbeats of the master, within what 0x1016:01 holds."""
+    return min(5 * master_heartbeat_ms, U16_MAX)
 
 
 def _area_name(addr: LocatedAddress) -> str:
@@ -1115,39 +1394,48 @@ def _build(model: _Root, rel: _Relations, data: dict, path: Optional[Path], base
     can = [CanBusConfig(b.name, b.interface, b.channel, b.bitrate, dict(b.options), f"can[{i}]")
            for i, b in enumerate(model.can)]
     canopen = _build_canopen(model.canopen, rel) if model.canopen is not None else None
-    sims = [SimConfig(sim.type, sim.name or f"{sim.type}{sim.node_id}", rel.buses[("sim", i)], sim.node_id,
-                      dict(sim.registers), f"sim[{i}]") for i, sim in enumerate(model.sim)]
+    sims = [SimConfig(type=sim.type, name=sim.name or f"{sim.type}{sim.node_id}", bus=rel.bus_of["sim", i],
+                      node_id=sim.node_id, registers={int(r): v for r, v in sim.registers.items()},
+                      key=f"sim[{i}]")
+            for i, sim in enumerate(model.sim)]
     return PlcConfig(
         path=path, base_dir=base_dir, profile=model.plc.profile, programs=list(model.plc.programs),
         on_fault=model.plc.on_fault, start=model.plc.start, tasks=tasks, retain=retain,
         safe_outputs=rel.safe_outputs, loopback=rel.loopback, can=can, canopen=canopen, sims=sims, raw=data)
 
 
-def _ms(ns: int) -> int:
-    return round(ns / 1_000_000)
-
-
 def _build_canopen(c: _Canopen, rel: _Relations) -> CanopenConfig:
     nodes = []
     for i, n in enumerate(c.node):
         key = f"canopen.node[{i}]"
+        if n.heartbeat_timeout is not None:
+            heartbeat_timeout = n.heartbeat_timeout
+        else:
+            heartbeat_timeout = 3 * n.heartbeat          # 0 when the node sends none
+        if n.master_timeout is not None:
+            master_timeout = n.master_timeout
+        else:
+            master_timeout = _default_master_timeout(c.heartbeat) if c.heartbeat else 0
+        nodes.append(CanopenNodeConfig(
+            name=n.name, node_id=n.id, eds=n.eds, mandatory=n.mandatory, heartbeat_ms=n.heartbeat,
+            heartbeat_timeout_ms=heartbeat_timeout, master_timeout_ms=master_timeout,
+            sdo=[SdoWriteConfig(w.object[0], w.object[1], w.value, w.size, f"{key}.sdo[{k}]")
+                 for k, w in enumerate(n.sdo)],
+            tpdo=_build_pdos(n.tpdo, ("canopen", "node", i, "tpdo"), rel),
+            rpdo=_build_pdos(n.rpdo, ("canopen", "node", i, "rpdo"), rel),
+            key=key))
+    return CanopenConfig(bus=rel.bus_of["canopen",], node_id=c.node_id, heartbeat_ms=c.heartbeat,
+                         sync_us=c.sync, sdo_timeout_ms=c.sdo_timeout, boot_timeout_ms=c.boot_timeout,
+                         retry_ms=c.retry, nodes=nodes)
 
-        def pdos(direction: str, items: list) -> list:
-            out = []
-            for j, p in enumerate(items):
-                here = ("canopen", "node", i, direction, j)
-                entries = [PdoEntryConfig(e.object[0], e.object[1], rel.pdo_entries[here + ("map", k)],
-                                          f"{key}.{direction}[{j}].map[{k}]")
-                           for k, e in enumerate(p.map)]
-                out.append(PdoConfig(p.number, p.transmission, round(p.inhibit / 1000), _ms(p.event),
-                                     p.configure, entries, f"{key}.{direction}[{j}]"))
-            return out
-        heartbeat = _ms(n.heartbeat)
-        timeout = _ms(n.heartbeat_timeout) if n.heartbeat_timeout is not None else 3 * heartbeat
-        master_timeout = _ms(n.master_timeout) if n.master_timeout is not None else 5 * _ms(c.heartbeat)
-        sdo = [SdoWriteConfig(w.object[0], w.object[1], w.value, w.size, f"{key}.sdo[{k}]")
-               for k, w in enumerate(n.sdo)]
-        nodes.append(CanopenNodeConfig(n.name, n.id, n.eds, n.mandatory, heartbeat, timeout, master_timeout,
-                                       sdo, pdos("tpdo", n.tpdo), pdos("rpdo", n.rpdo), key))
-    return CanopenConfig(rel.buses[("canopen",)], c.node_id, _ms(c.heartbeat), round(c.sync / 1000),
-                         _ms(c.sdo_timeout), _ms(c.boot_timeout), _ms(c.retry), nodes)
+
+def _build_pdos(pdos: list, here: tuple, rel: _Relations) -> list:
+    out = []
+    for j, p in enumerate(pdos):
+        at = here + (j,)
+        entries = [PdoEntryConfig(e.object[0], e.object[1], rel.pdo_addresses[at + ("map", k)],
+                                  _key(at + ("map", k)))
+                   for k, e in enumerate(p.map)]
+        out.append(PdoConfig(number=p.number, transmission=p.transmission, inhibit_us=p.inhibit,
+                             event_ms=p.event, configure=p.configure, entries=entries, key=_key(at)))
+    return out

@@ -9,12 +9,14 @@ from pathlib import Path
 import pytest
 
 from softplc.runtime.config import (
-    ConfigError, LoopbackLink, PlcConfig, ProgramInstance, RetainConfig, SafeOutput, TaskConfig,
+    CanBusConfig, CanopenConfig, CanopenNodeConfig, ConfigError, LoopbackLink, PdoConfig, PdoEntryConfig,
+    PlcConfig, ProgramInstance, RetainConfig, SafeOutput, SdoWriteConfig, SimConfig, TaskConfig,
     config_from_dict, default_config_path, load_config)
 from softplc.runtime.st.ast import LocatedAddress
 
 REPO = Path(__file__).resolve().parents[1]
 EXAMPLES = REPO / "io_config" / "examples"
+EDS = REPO / "io_config" / "eds"
 ST = REPO / "st_programs"
 
 MS = 1_000_000
@@ -113,6 +115,36 @@ def test_example_loopback():
     assert [(t.name, t.programs[0].program) for t in cfg.tasks] == [("Main", "Echo")]
 
 
+def test_example_canopen():
+    cfg = load_config(EXAMPLES / "canopen.toml")
+    assert cfg.programs == [ST / "ltmr_motor.st"]
+    assert cfg.can == [CanBusConfig("can0", "virtual", "softplc-example-canopen", 250_000, {}, "can[0]")]
+    key = "canopen.node[0]"
+
+    def entries(pdo: str, *pairs) -> list:
+        return [PdoEntryConfig(index, sub, addr(text), f"{key}.{pdo}.map[{k}]")
+                for k, (index, sub, text) in enumerate(pairs)]
+    assert cfg.canopen == CanopenConfig(
+        bus="can0", node_id=127, heartbeat_ms=100, sync_us=50_000, sdo_timeout_ms=500, boot_timeout_ms=2000,
+        retry_ms=1000, key="canopen", nodes=[CanopenNodeConfig(
+            name="motor", node_id=40, eds=EDS / "ltmr.eds", mandatory=True, heartbeat_ms=100,
+            heartbeat_timeout_ms=300, master_timeout_ms=500, key=key,
+            sdo=[SdoWriteConfig(0x2007, 0x21, 2, None, f"{key}.sdo[0]"),
+                 SdoWriteConfig(0x1029, 0x01, 0, 1, f"{key}.sdo[1]")],
+            tpdo=[PdoConfig(1, 255, 0, 0, False, entries("tpdo[0]", (0x2004, 0x06, "%IW100"),
+                                                         (0x2004, 0x07, "%IW101"), (0x2004, 0x08, "%IW102"),
+                                                         (0x2004, 0x0A, "%IW103")), f"{key}.tpdo[0]"),
+                  PdoConfig(2, 255, 10_000, 1000, True, entries("tpdo[1]", (0x2004, 0x02, "%IW104"),
+                                                                (0x2004, 0x0B, "%IW105")), f"{key}.tpdo[1]"),
+                  PdoConfig(3, 1, 0, 0, True, entries("tpdo[2]", (0x2004, 0x10, "%IW106"),
+                                                      (0x2004, 0x11, "%IW107")), f"{key}.tpdo[2]")],
+            rpdo=[PdoConfig(1, 255, 0, 0, False, entries("rpdo[0]", (0x2008, 0x05, "%QW100"),
+                                                         (0x2008, 0x04, "%QW101"), (0x2008, 0x01, "%QW102")),
+                            f"{key}.rpdo[0]")])])
+    assert cfg.sims == [SimConfig("ltmr", "ltmr40", "can0", 40, {682: 0}, "sim[0]")]
+    assert cfg.safe_outputs == [SafeOutput(addr("%QW100"), 0, 'outputs.safe."%QW100"')]
+
+
 @pytest.mark.parametrize("name", sorted(p.name for p in EXAMPLES.glob("*.toml")))
 def test_every_example_loads_and_its_programs_compile(name):
     """The ST files compile without a warning and declare every PROGRAM the
@@ -129,7 +161,7 @@ def test_every_example_loads_and_its_programs_compile(name):
 
 def test_examples_cover_every_section():
     assert sorted(p.name for p in EXAMPLES.glob("*.toml")) == \
-        ["faults.toml", "loopback.toml", "retain.toml", "tasks.toml"]
+        ["canopen.toml", "faults.toml", "loopback.toml", "retain.toml", "tasks.toml"]
 
 
 def test_default_config_path():
@@ -639,6 +671,545 @@ def test_loopback_errors(tmp_path):
     ]
 
 
+# ====================================================================== [[can]], [canopen], [[sim]]
+#
+# Numbers from the LTMR CANopen manual (001, English) where it sets them:
+# node ids 1..127 (L163), the bitrates (L183-205, 250 kBaud the factory
+# setting, L206), 0x1016:01 and 0x1017 in 16 bits of ms (L957, L964), the
+# TPDO inhibit time in 16 bits of 100 us (L1365), 8 bytes per PDO (L117).
+
+CAN = '[[can]]\ninterface = "virtual"\nchannel = "plant"\n'
+NODE = '[[canopen.node]]\nname = "motor"\nid = 40\neds = "ltmr"\n'
+SIM = '[[sim]]\ntype = "ltmr"\nnode_id = 40\n'
+CANOPEN_BITRATES = [10_000, 20_000, 50_000, 125_000, 250_000, 500_000, 800_000, 1_000_000]
+
+
+def plant(master: str = "", node: str = "", *tables: str) -> str:
+    """One bus, [canopen] with master keys, one node with node keys, then tables."""
+    return PLC + CAN + "[canopen]\n" + master + NODE + node + "".join(tables)
+
+
+def pdo(direction: str, number: int, *entries, keys: str = "") -> str:
+    mapped = ", ".join(f'{{ object = "{o}", address = "{a}" }}' for o, a in entries)
+    return f"[[canopen.node.{direction}]]\nnumber = {number}\n{keys}map = [{mapped}]\n"
+
+
+def test_canopen_defaults(tmp_path):
+    cfg = load(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IW0")), pdo("rpdo", 1, ("2008:05", "%QW0")),
+                               SIM))
+    assert cfg.can == [CanBusConfig("can0", "virtual", "plant", 250_000, {}, "can[0]")]
+    key = "canopen.node[0]"
+    assert cfg.canopen == CanopenConfig(
+        bus="can0", node_id=127, heartbeat_ms=100, sync_us=0, sdo_timeout_ms=500, boot_timeout_ms=2000,
+        retry_ms=1000, key="canopen", nodes=[CanopenNodeConfig(
+            name="motor", node_id=40, eds=EDS / "ltmr.eds", mandatory=True, heartbeat_ms=100,
+            heartbeat_timeout_ms=300, master_timeout_ms=500, sdo=[], key=key,
+            tpdo=[PdoConfig(1, 255, 0, 0, True, [PdoEntryConfig(0x2004, 0x06, addr("%IW0"),
+                                                                f"{key}.tpdo[0].map[0]")], f"{key}.tpdo[0]")],
+            rpdo=[PdoConfig(1, 255, 0, 0, True, [PdoEntryConfig(0x2008, 0x05, addr("%QW0"),
+                                                                f"{key}.rpdo[0].map[0]")], f"{key}.rpdo[0]")])])
+    assert cfg.sims == [SimConfig("ltmr", "ltmr40", "can0", 40, {}, "sim[0]")]
+
+
+def test_file_without_can_sections(tmp_path):
+    cfg = load(tmp_path, PLC)
+    assert (cfg.can, cfg.canopen, cfg.sims) == ([], None, [])
+
+
+def test_can_buses(tmp_path):
+    cfg = load(tmp_path, PLC + CAN + '[[can]]\nname = "Line2"\ninterface = "socketcan"\nchannel = 1\n'
+                               'bitrate = 1000000\noptions = { fd = false, receive_own_messages = true }\n'
+                               '[canopen]\nbus = "LINE2"\n'
+                               '[[sim]]\ntype = "ltmr"\nnode_id = 3\nbus = "can0"\n'
+                               '[[sim]]\ntype = "LTMR"\nname = "spare"\nnode_id = 3\nbus = "line2"\n')
+    assert cfg.can == [CanBusConfig("can0", "virtual", "plant", 250_000, {}, "can[0]"),
+                       CanBusConfig("Line2", "socketcan", "1", 1_000_000,
+                                    {"fd": False, "receive_own_messages": True}, "can[1]")]
+    # bus names are case-insensitive; the configuration carries the name as the [[can]] writes it
+    assert cfg.canopen.bus == "Line2" and cfg.canopen.nodes == []
+    assert [(s.name, s.bus, s.node_id) for s in cfg.sims] == [("ltmr3", "can0", 3), ("spare", "Line2", 3)]
+
+
+@pytest.mark.parametrize("bitrate", CANOPEN_BITRATES)
+def test_canopen_bitrates(tmp_path, bitrate):
+    assert load(tmp_path, PLC + CAN + f"bitrate = {bitrate}\n").can[0].bitrate == bitrate
+
+
+@pytest.mark.parametrize("written, got", [("100000", "100000"), ('"250k"', "'250k'"), ("true", "true"),
+                                          ("250000.0", "250000.0")])
+def test_other_bitrates_are_refused(tmp_path, written, got):
+    assert error(tmp_path, PLC + CAN + f"bitrate = {written}\n") == \
+        ("can[0].bitrate", "expected one of the CANopen bitrates 10000, 20000, 50000, 125000, 250000, 500000, "
+                           f"800000, 1000000 (got {got})")
+
+
+def test_can_required_keys_and_types(tmp_path):
+    assert errors(tmp_path, PLC + '[[can]]\nname = "can0"\n') == [
+        ("can[0].interface", 'required key missing (expected a python-can interface such as "socketcan", '
+                             '"pcan" or "virtual")'),
+        ("can[0].channel", 'required key missing (expected a channel such as "can0" or "PCAN_USBBUS1")')]
+    assert errors(tmp_path, PLC + '[[can]]\nname = "0can"\ninterface = " "\nchannel = true\noptions = 3\n'
+                                  'bitrat = 1\n') == [
+        ("can[0].name", "expected a bus name: an IEC identifier (letters, digits, _; not starting with a "
+                        "digit) (got '0can')"),
+        ("can[0].interface", 'expected a python-can interface such as "socketcan", "pcan" or "virtual" '
+                             "(got ' ')"),
+        ("can[0].channel", "expected a channel such as \"can0\" or \"PCAN_USBBUS1\" (got true)"),
+        ("can[0].options", "expected a table of python-can options, such as { fd = false } (got 3)"),
+        ("can[0].bitrat", "unknown key (did you mean 'bitrate'?)")]
+    assert error(tmp_path, PLC + '[can]\ninterface = "virtual"\nchannel = "x"\n') == \
+        ("can", "expected [[can]] tables (got a table)")
+
+
+def test_duplicate_bus_names(tmp_path):
+    assert error(tmp_path, PLC + CAN + '[[can]]\nname = "CAN0"\ninterface = "virtual"\nchannel = "b"\n') == \
+        ("can[1].name", "duplicate bus name 'CAN0' (can[0] has it; names are case-insensitive)")
+    assert error(tmp_path, PLC + CAN + CAN) == \
+        ("can[1]", "duplicate bus name 'can0' (the default; can[0] has it): give each [[can]] its own name")
+
+
+def test_canopen_and_sims_need_a_bus(tmp_path):
+    assert errors(tmp_path, PLC + "[canopen]\n" + SIM) == [
+        ("canopen", "the CANopen master needs a [[can]] bus (the file has none): add a [[can]] table with "
+                    "interface and channel"),
+        ("sim[0]", "a simulated device needs a [[can]] bus (the file has none): add a [[can]] table with "
+                   "interface and channel")]
+
+
+def test_several_buses_need_a_bus_key(tmp_path):
+    two = CAN + '[[can]]\nname = "can1"\ninterface = "virtual"\nchannel = "b"\n'
+    assert errors(tmp_path, PLC + two + "[canopen]\n" + SIM) == [
+        ("canopen.bus", "required key missing: the file has several [[can]] buses (expected one of 'can0', "
+                        "'can1')"),
+        ("sim[0].bus", "required key missing: the file has several [[can]] buses (expected one of 'can0', "
+                       "'can1')")]
+    assert errors(tmp_path, PLC + two + '[canopen]\nbus = "can2"\n' + SIM + 'bus = "can_1"\n') == [
+        ("canopen.bus", "expected one of 'can0', 'can1', the [[can]] buses (got 'can2')"),
+        ("sim[0].bus", "expected one of 'can0', 'can1', the [[can]] buses (got 'can_1')")]
+
+
+# ---------------------------------------------------------------- [canopen] durations
+
+
+@pytest.mark.parametrize("written, field, value", [
+    ('heartbeat = "250ms"', "heartbeat_ms", 250),
+    ("heartbeat = false", "heartbeat_ms", 0),
+    ('heartbeat = "0ms"', "heartbeat_ms", 0),
+    ('heartbeat = "1.4ms"', "heartbeat_ms", 1),          # rounded to whole ms
+    ('heartbeat = "1.6ms"', "heartbeat_ms", 2),
+    ('sync = "2.5ms"', "sync_us", 2500),                 # SYNC in microseconds
+    ('sync = "T#100us"', "sync_us", 100),
+    ("sync = false", "sync_us", 0),
+    ('sdo_timeout = "1s"', "sdo_timeout_ms", 1000),
+    ("boot_timeout = 3000", "boot_timeout_ms", 3000),    # a bare number is ms
+    ('retry = "1.5s"', "retry_ms", 1500),
+])
+def test_master_durations(tmp_path, written, field, value):
+    cfg = load(tmp_path, PLC + CAN + f"[canopen]\n{written}\n")
+    assert getattr(cfg.canopen, field) == value
+
+
+@pytest.mark.parametrize("written, message", [
+    ('sdo_timeout = "0ms"', "expected a duration > 0 such as 10ms, 1s, T#250ms (got '0ms')"),
+    ("sdo_timeout = false", "expected a duration > 0 such as 10ms, 1s, T#250ms (got false)"),
+    ('retry = "0.4ms"', "expected a duration of at least 1ms (got '0.4ms')"),
+    ("heartbeat = true", "expected a duration such as 10ms, 1s, T#250ms, or false for no heartbeat (got true)"),
+    ('heartbeat = "-5ms"', "expected a duration such as 10ms, 1s, T#250ms, or false for no heartbeat "
+                           "(got '-5ms')"),
+    ('heartbeat = "0.4ms"', "expected a duration of at least 1ms, or false for no heartbeat (got '0.4ms')"),
+    ('sync = "soon"', "expected a duration such as 10ms, 1s, T#250ms, or false for no SYNC (got 'soon')"),
+    ('sync = "0.4us"', "expected a duration of at least 1us, or false for no SYNC (got '0.4us')"),
+])
+def test_master_durations_refused(tmp_path, written, message):
+    assert error(tmp_path, PLC + CAN + f"[canopen]\n{written}\n") == (f"canopen.{written.split()[0]}", message)
+
+
+# ---------------------------------------------------------------- heartbeats
+
+
+def test_node_heartbeat_defaults(tmp_path):
+    def times(master: str, node: str) -> tuple:
+        n = load(tmp_path, plant(master, node)).canopen.nodes[0]
+        return n.heartbeat_ms, n.heartbeat_timeout_ms, n.master_timeout_ms
+    assert times("", "") == (100, 300, 500)                                     # 3 x 100, 5 x 100
+    assert times('heartbeat = "50ms"\n', 'heartbeat = "200ms"\n') == (200, 600, 250)
+    assert times("", 'heartbeat = "1s"\nheartbeat_timeout = "1.5s"\nmaster_timeout = "150ms"\n') == \
+        (1000, 1500, 150)
+    assert times("", "heartbeat = false\n") == (0, 0, 500)                      # nothing to watch
+    assert times("", 'heartbeat = "0ms"\n') == (0, 0, 500)
+    assert times("", "heartbeat_timeout = false\n") == (100, 0, 500)           # sent, not watched
+    assert times("heartbeat = false\n", "") == (100, 300, 0)                   # no master heartbeat to watch
+    assert times("", "master_timeout = false\n") == (100, 300, 0)
+    assert times('heartbeat = "20s"\n', "") == (100, 300, 65535)   # not 5 x 20 s: 0x1016:01 holds 65.535 s
+
+
+def test_heartbeat_words_of_the_manual(tmp_path):
+    """Digest 001 §7.2 (derived from manual 001 L957/L964): the master 0x7F
+    watched at 500 ms is 0x1016:01 = 0x007F01F4; a producer time of 1000 ms
+    is 0x1017 = 0x03E8."""
+    node = load(tmp_path, plant("node_id = 127\n", 'heartbeat = "1s"\nmaster_timeout = "500ms"\n')).canopen
+    assert (node.node_id << 16) | node.nodes[0].master_timeout_ms == 0x007F01F4
+    assert node.nodes[0].heartbeat_ms == 0x03E8
+
+
+def test_heartbeat_fields_of_16_bits(tmp_path):
+    n = load(tmp_path, plant("", 'heartbeat = "65535ms"\nheartbeat_timeout = "70s"\nmaster_timeout = 65535\n'))
+    assert (n.canopen.nodes[0].heartbeat_ms, n.canopen.nodes[0].master_timeout_ms) == (65535, 65535)
+    assert errors(tmp_path, plant("", 'heartbeat = "65.536s"\nmaster_timeout = "1min"\n')) == [
+        ("canopen.node[0].heartbeat", "expected a duration of at most 65535ms (0x1017 holds ms in 16 bits), or "
+                                      "false for no heartbeat (got '65.536s')"),
+        ("canopen.node[0].master_timeout", "expected a duration such as 10ms, 1s, T#250ms, or false for the "
+                                           "node not watching the master (got '1min')")]
+    assert error(tmp_path, plant("", 'master_timeout = "66s"\n')) == \
+        ("canopen.node[0].master_timeout", "expected a duration of at most 65535ms (0x1016:01 holds ms in 16 "
+                                           "bits), or false for the node not watching the master (got '66s')")
+
+
+def test_heartbeat_timeout_must_outlast_the_heartbeat(tmp_path):
+    assert error(tmp_path, plant("", 'heartbeat = "100ms"\nheartbeat_timeout = "100ms"\n')) == \
+        ("canopen.node[0].heartbeat_timeout", "expected a duration longer than the node's heartbeat (100ms), "
+                                              "or false for not watching it (got '100ms')")
+    assert error(tmp_path, plant("", "heartbeat = false\nheartbeat_timeout = \"300ms\"\n")) == \
+        ("canopen.node[0].heartbeat_timeout", "only meaningful with a heartbeat (this node has "
+                                              "heartbeat = false)")
+
+
+def test_master_timeout_must_outlast_the_masters_heartbeat(tmp_path):
+    assert error(tmp_path, plant('heartbeat = "200ms"\n', 'master_timeout = "150ms"\n')) == \
+        ("canopen.node[0].master_timeout", "expected a duration longer than canopen.heartbeat (200ms), or "
+                                           "false for the node not watching the master (got '150ms')")
+    assert error(tmp_path, plant('heartbeat = "0ms"\n', 'master_timeout = "500ms"\n')) == \
+        ("canopen.node[0].master_timeout", "only meaningful when the master sends a heartbeat "
+                                           "(canopen.heartbeat = '0ms')")
+    assert error(tmp_path, plant('heartbeat = "65535ms"\n')) == \
+        ("canopen.node[0]", "the default master_timeout, 5 x canopen.heartbeat at most 65535ms, is not longer "
+                            "than canopen.heartbeat (65535ms): give master_timeout, or false")
+
+
+# ---------------------------------------------------------------- nodes
+
+
+def test_node_ids(tmp_path):
+    assert load(tmp_path, plant("node_id = 1\n").replace("id = 40", "id = 127")).canopen.nodes[0].node_id == 127
+    assert errors(tmp_path, plant("node_id = 0\n").replace("id = 40", "id = 128")) == [
+        ("canopen.node_id", "expected an integer from 1 to 127 (got 0)"),
+        ("canopen.node[0].id", "expected an integer from 1 to 127 (got 128)")]
+    assert error(tmp_path, plant("node_id = 40\n")) == \
+        ("canopen.node[0].id", "40 is the master's own node id (canopen.node_id)")
+    assert errors(tmp_path, plant("", "", NODE.replace('"motor"', '"Pump"'), NODE.replace("40", "41"))) == [
+        ("canopen.node[1].id", "duplicate node id 40 (canopen.node[0] has it)"),
+        ("canopen.node[2].name", "duplicate node name 'motor' (canopen.node[0] has it; names are "
+                                 "case-insensitive)")]
+
+
+def test_node_required_keys(tmp_path):
+    assert errors(tmp_path, PLC + CAN + "[canopen]\n[[canopen.node]]\nmandatory = 1\n") == [
+        ("canopen.node[0].name", 'required key missing (expected a node name such as "motor1")'),
+        ("canopen.node[0].id", "required key missing (expected a node id from 1 to 127)"),
+        ("canopen.node[0].eds", 'required key missing (expected a shipped EDS name such as "ltmr" or the path '
+                                "of an .eds file)"),
+        ("canopen.node[0].mandatory", "expected true or false (got 1)")]
+
+
+def test_node_mandatory(tmp_path):
+    assert load(tmp_path, plant("", "mandatory = false\n")).canopen.nodes[0].mandatory is False
+
+
+@pytest.mark.parametrize("written, path", [('"ltmr"', EDS / "ltmr.eds"), ('"LTMR"', EDS / "ltmr.eds"),
+                                           ('"fc280"', EDS / "fc280.eds")])
+def test_shipped_eds(tmp_path, written, path):
+    text = plant("", "").replace('eds = "ltmr"', f"eds = {written}")
+    assert load(tmp_path, text).canopen.nodes[0].eds == path
+
+
+def test_eds_files(tmp_path):
+    (tmp_path / "devices").mkdir()
+    (tmp_path / "devices" / "motor.eds").write_text((EDS / "ltmr.eds").read_text())
+    text = plant("", "").replace('eds = "ltmr"', 'eds = "devices/motor.eds"')
+    assert load(tmp_path, text).canopen.nodes[0].eds == tmp_path / "devices" / "motor.eds"
+    for written, message in [
+        ('"ltmx"', "expected a shipped EDS name ('fc280', 'ltmr') or the path of an .eds file (got 'ltmx'; did "
+                   "you mean 'ltmr'?)"),
+        ('"vfd"', "expected a shipped EDS name ('fc280', 'ltmr') or the path of an .eds file (got 'vfd')"),
+        ("7", "expected a shipped EDS name ('fc280', 'ltmr') or the path of an .eds file (got 7)"),
+        ('"devices/pump.eds"', f"no such file: {tmp_path / 'devices' / 'pump.eds'} (relative paths start at "
+                               "the config file's directory)"),
+        ('"devices/"', f"not a file: {tmp_path / 'devices'}"),
+    ]:
+        assert error(tmp_path, plant("", "").replace('eds = "ltmr"', f"eds = {written}")) == \
+            ("canopen.node[0].eds", message)
+
+
+# ---------------------------------------------------------------- boot-time SDO writes
+
+
+def test_sdo_writes(tmp_path):
+    cfg = load(tmp_path, plant("", 'sdo = [{ object = "2007:21", value = 2 }, { object = "0x1017:0", '
+                                   'value = 1000, size = 2 }, { object = "1:1", value = -1, size = 4 }, '
+                                   '{ object = "2004:6a", value = 4294967295, size = 4 }]\n'))
+    assert cfg.canopen.nodes[0].sdo == [
+        SdoWriteConfig(0x2007, 0x21, 2, None, "canopen.node[0].sdo[0]"),
+        SdoWriteConfig(0x1017, 0x00, 1000, 2, "canopen.node[0].sdo[1]"),
+        SdoWriteConfig(0x0001, 0x01, -1, 4, "canopen.node[0].sdo[2]"),
+        SdoWriteConfig(0x2004, 0x6A, 4294967295, 4, "canopen.node[0].sdo[3]")]
+
+
+@pytest.mark.parametrize("written", ['"2004.06"', '"12004:06"', '"2004:123"', '"2004:"', '":06"', '"x2004:06"',
+                                     '"2004:0G"', '""', "0x2004"])
+def test_bad_objects(tmp_path, written):
+    got = written.replace('"', "'") if written.startswith('"') else "8196"
+    assert error(tmp_path, plant("", f"sdo = [{{ object = {written}, value = 1 }}]\n")) == \
+        ("canopen.node[0].sdo[0].object", f'expected an object "index:subindex" in hex, such as "2004:06" '
+                                          f"(got {got})")
+
+
+@pytest.mark.parametrize("size, value, fits", [
+    (1, 255, True), (1, -128, True), (1, 256, False), (1, -129, False),
+    (2, 65535, True), (2, -32768, True), (2, 65536, False),
+    (4, 4294967295, True), (4, -2147483648, True), (4, 4294967296, False)])
+def test_sdo_value_must_fit_its_size(tmp_path, size, value, fits):
+    text = plant("", f'sdo = [{{ object = "2007:21", value = {value}, size = {size} }}]\n')
+    if fits:
+        assert load(tmp_path, text).canopen.nodes[0].sdo[0].value == value
+    else:
+        lo, hi = -(1 << (8 * size - 1)), (1 << (8 * size)) - 1
+        assert error(tmp_path, text) == \
+            ("canopen.node[0].sdo[0].value", f"expected an integer from {lo} to {hi} for size = {size} "
+                                             f"(got {value})")
+
+
+def test_sdo_write_errors(tmp_path):
+    assert errors(tmp_path, plant("", 'sdo = [{ object = "2007:21" }, { object = "2007:21", value = "2", '
+                                      'size = 3 }, { object = "2007:21", value = 1.5, bytes = 2 }]\n')) == [
+        ("canopen.node[0].sdo[0].value", "required key missing (expected an integer)"),
+        ("canopen.node[0].sdo[1].value", "expected an integer (got '2')"),
+        ("canopen.node[0].sdo[1].size", "expected a size in bytes: 1, 2 or 4 (got 3)"),
+        ("canopen.node[0].sdo[2].value", "expected an integer (got 1.5)"),
+        ("canopen.node[0].sdo[2].bytes", "unknown key (expected one of object, value, size)")]
+
+
+# ---------------------------------------------------------------- PDOs
+
+
+def test_pdo_parameters(tmp_path):
+    cfg = load(tmp_path, plant(
+        "", "",
+        pdo("tpdo", 2, ("2004:02", "%IW4"), keys='transmission = 0\ninhibit = "150us"\nevent = "2.5s"\n'
+                                                 "configure = false\n"),
+        pdo("tpdo", 512, ("2004:0b", "%IW5"), keys="transmission = 240\n"),
+        pdo("rpdo", 2, ("2008:05", "%QW4"), keys='transmission = 254\ninhibit = "6553.5ms"\nevent = 65535\n')))
+    node = cfg.canopen.nodes[0]
+    assert [(p.number, p.transmission, p.inhibit_us, p.event_ms, p.configure) for p in node.tpdo + node.rpdo] \
+        == [(2, 0, 150, 2500, False), (512, 240, 0, 0, True), (2, 254, 6_553_500, 65535, True)]
+    assert node.tpdo[1].entries == \
+        [PdoEntryConfig(0x2004, 0x0B, addr("%IW5"), "canopen.node[0].tpdo[1].map[0]")]
+
+
+@pytest.mark.parametrize("keys, key, message", [
+    ("transmission = 241\n", "transmission", "expected a transmission type 0..240, 254 or 255 (got 241)"),
+    ("transmission = 253\n", "transmission", "expected a transmission type 0..240, 254 or 255 (got 253)"),
+    ("transmission = -1\n", "transmission", "expected a transmission type 0..240, 254 or 255 (got -1)"),
+    ('inhibit = "6553.6ms"\n', "inhibit", "expected a duration of at most 6553500us (the inhibit time is 16 "
+                                          "bits of 100us), or false for none (got '6553.6ms')"),
+    ('event = "65.536s"\n', "event", "expected a duration of at most 65535ms (the event timer is 16 bits of "
+                                     "ms), or false for none (got '65.536s')"),
+    ("configure = 1\n", "configure", "expected true or false (got 1)"),
+    ("mapping = 1\n", "mapping", "unknown key (did you mean 'map'?)"),
+])
+def test_pdo_parameters_refused(tmp_path, keys, key, message):
+    assert error(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IW0"), keys=keys))) == \
+        (f"canopen.node[0].tpdo[0].{key}", message)
+
+
+def test_pdo_numbers(tmp_path):
+    text = plant("", "", pdo("tpdo", 0, ("2004:06", "%IW0")), pdo("rpdo", 513, ("2008:05", "%QW0")))
+    assert errors(tmp_path, text) == [
+        ("canopen.node[0].tpdo[0].number", "expected an integer from 1 to 512 (got 0)"),
+        ("canopen.node[0].rpdo[0].number", "expected an integer from 1 to 512 (got 513)")]
+    # unique per direction per node: TPDO1 and RPDO1 are two PDOs, and so are two nodes' TPDO1
+    second = NODE.replace('"motor"', '"pump"').replace("40", "41")
+    cfg = load(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IW0")), pdo("rpdo", 1, ("2008:05", "%QW0")),
+                               second, pdo("tpdo", 1, ("2004:06", "%IW1"))))
+    assert [len(n.tpdo) for n in cfg.canopen.nodes] == [1, 1]
+    text = plant("", "", pdo("tpdo", 1, ("2004:06", "%IW0")), pdo("tpdo", 1, ("2004:07", "%IW1")))
+    assert error(tmp_path, text) == \
+        ("canopen.node[0].tpdo[1].number", "duplicate TPDO number 1 (canopen.node[0].tpdo[0] has it)")
+
+
+def test_pdo_carries_eight_bytes(tmp_path):
+    nine = [(f"2004:{k:02X}", f"%IB{k}") for k in range(9)]
+    eight_words = [(f"2004:{k:02X}", f"%IW{k}") for k in range(5)]
+    assert error(tmp_path, plant("", "", pdo("tpdo", 1, *nine))) == \
+        ("canopen.node[0].tpdo[0].map", 'expected an array of 1 to 8 { object = "2004:06", address = "%IW0" } '
+                                        "tables; a PDO carries 8 bytes (got 9 entries)")
+    assert load(tmp_path, plant("", "", pdo("tpdo", 1, *nine[:8]))).canopen.nodes[0].tpdo[0].entries[7].key == \
+        "canopen.node[0].tpdo[0].map[7]"
+    assert error(tmp_path, plant("", "", pdo("tpdo", 1, *eight_words))) == \
+        ("canopen.node[0].tpdo[0].map", "the addresses hold 80 bits; a PDO carries at most 64 (8 bytes)")
+    assert error(tmp_path, plant("", "", pdo("tpdo", 1))) == \
+        ("canopen.node[0].tpdo[0].map", 'expected an array of 1 to 8 { object = "2004:06", address = "%IW0" } '
+                                        "tables; a PDO carries 8 bytes (got an empty array)")
+
+
+def test_pdo_bit_addresses(tmp_path):
+    cfg = load(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IX0.0"), ("2004:07", "%IX0.1"),
+                                           ("2004:08", "%IB1"))))
+    assert [e.address for e in cfg.canopen.nodes[0].tpdo[0].entries] == \
+        [addr("%IX0.0"), addr("%IX0.1"), addr("%IB1")]
+    cfg = load(tmp_path, plant("", "", pdo("rpdo", 1, ("2008:05", "%QW3:X2"), ("2008:06", "%QW3:X3"),
+                                           ("2008:07", "%QW4"))).replace(PLC, PLC + 'profile = "schneider"\n'))
+    assert [e.address.text for e in cfg.canopen.nodes[0].rpdo[0].entries] == ["%QW3:X2", "%QW3:X3", "%QW4"]
+
+
+@pytest.mark.parametrize("direction, address, message", [
+    ("tpdo", "%QW0", "expected a %I address: a TPDO's entries go to %I inputs (got '%QW0', an output)"),
+    ("tpdo", "%MW0", "expected a %I address: a TPDO's entries go to %I inputs (got '%MW0', a memory address)"),
+    ("rpdo", "%IW0", "expected a %Q address: an RPDO's entries come from %Q outputs (got '%IW0', an input)"),
+    ("tpdo", "IW0", "expected a direct address such as %IW0, %IX0.0 (got 'IW0')"),
+    ("rpdo", "%QX0.8", "bit number 8 is not 0..7"),
+    ("tpdo", "%IW40000", "%IW40000 (bytes 80000..80001) is outside the 65536-byte %I area"),
+    ("tpdo", "%IX70000.0", "'%IX70000.0' is outside the 65536-byte %I area"),
+])
+def test_pdo_addresses_refused(tmp_path, direction, address, message):
+    obj = "2004:06" if direction == "tpdo" else "2008:05"
+    assert error(tmp_path, plant("", "", pdo(direction, 1, (obj, address)))) == \
+        (f"canopen.node[0].{direction}[0].map[0].address", message)
+
+
+def test_pdo_word_tables_refused(tmp_path):
+    text = plant("", "", pdo("tpdo", 1, ("2004:06", "%IW3:4"))).replace(PLC, PLC + 'profile = "schneider"\n')
+    assert error(tmp_path, text) == \
+        ("canopen.node[0].tpdo[0].map[0].address", "expected a bit, byte, word, dword or lword address (got "
+                                                   "'%IW3:4', a word table): map one object per address")
+
+
+def test_pdo_entries_may_not_overlap(tmp_path):
+    key = "canopen.node[0].tpdo[0].map"
+    assert error(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IW0"), ("2004:07", "%IB1")))) == \
+        (f"{key}[1].address", f"'%IB1' overlaps {key}[0].address ('%IW0')")
+    assert error(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IX1.3"), ("2004:07", "%IW0")))) == \
+        (f"{key}[1].address", f"'%IW0' overlaps {key}[0].address ('%IX1.3')")
+    assert error(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%ID1"), ("2004:07", "%IW3")))) == \
+        (f"{key}[1].address", f"'%IW3' overlaps {key}[0].address ('%ID1')")     # %ID1 = bytes 4-7, %IW3 = 6-7
+    # neighbours do not overlap, and %I and %Q are different areas
+    cfg = load(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IW0"), ("2004:07", "%IB2"),
+                                           ("2004:08", "%IX3.0"), ("2004:09", "%IX3.1")),
+                               pdo("rpdo", 1, ("2008:05", "%QW0"))))
+    assert len(cfg.canopen.nodes[0].tpdo[0].entries) == 4
+
+
+def test_pdos_may_not_overlap_each_other(tmp_path):
+    second = NODE.replace('"motor"', '"pump"').replace("40", "41")
+    text = plant("", "", pdo("tpdo", 1, ("2004:06", "%IW100")), pdo("rpdo", 1, ("2008:05", "%QW100")),
+                 second, pdo("tpdo", 1, ("2004:06", "%IB201")), pdo("rpdo", 1, ("2008:05", "%QD50")))
+    assert errors(tmp_path, text) == [
+        ("canopen.node[1].tpdo[0].map[0].address",
+         "'%IB201' overlaps canopen.node[0].tpdo[0].map[0].address ('%IW100')"),
+        ("canopen.node[1].rpdo[0].map[0].address",
+         "'%QD50' overlaps canopen.node[0].rpdo[0].map[0].address ('%QW100')")]
+
+
+def test_pdos_may_not_overlap_a_loopback_target(tmp_path):
+    loopback = '[[loopback]]\nfrom = "%QB0"\nto = "%IB10"\nbytes = 4\n'
+    assert error(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IW6")), loopback)) == \
+        ("canopen.node[0].tpdo[0].map[0].address", "'%IW6' overlaps loopback[0].to ('%IB10', 4 bytes)")
+    # %IW7 (bytes 14-15) is past the link's bytes 10-13; an RPDO may read what a link reads
+    cfg = load(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IW7")), pdo("rpdo", 1, ("2008:05", "%QW0")),
+                               loopback))
+    assert cfg.loopback[0].nbytes == 4 and len(cfg.canopen.nodes[0].tpdo) == 1
+
+
+def test_pdo_entry_errors(tmp_path):
+    assert errors(tmp_path, plant("", "", pdo("tpdo", 1).replace("map = []", 'map = [{ object = "2004:06" }, '
+                                                                  '{ address = "%IW0", obj = 1 }, 3]'))) == [
+        ("canopen.node[0].tpdo[0].map[0].address", 'required key missing (expected an image address such as '
+                                                   '"%IW0" for a TPDO, "%QW0" for an RPDO)'),
+        ("canopen.node[0].tpdo[0].map[1].object", 'required key missing (expected an object "index:subindex" '
+                                                  'in hex, such as "2004:06")'),
+        ("canopen.node[0].tpdo[0].map[1].obj", "unknown key (did you mean 'object'?)"),
+        ("canopen.node[0].tpdo[0].map[2]", "expected a table (got 3)")]
+
+
+# ---------------------------------------------------------------- [[sim]]
+
+
+def test_sims(tmp_path):
+    cfg = load(tmp_path, PLC + CAN + '[[sim]]\ntype = "LTMR"\nnode_id = 40\n'
+                                     'registers = { "682" = 2, "0652" = 50 }\n'
+                                     '[[sim]]\ntype = "ltmr"\nname = "spare"\nbus = "can0"\nnode_id = 41\n')
+    assert cfg.sims == [SimConfig("ltmr", "ltmr40", "can0", 40, {682: 2, 652: 50}, "sim[0]"),
+                        SimConfig("ltmr", "spare", "can0", 41, {}, "sim[1]")]
+    assert cfg.canopen is None      # a simulator needs no master in this PLC
+
+
+def test_sim_is_the_canopen_node(tmp_path):
+    """A simulator may have the node id of a [[canopen.node]]: it is that node."""
+    cfg = load(tmp_path, plant("", "", SIM))
+    assert cfg.sims[0].node_id == cfg.canopen.nodes[0].node_id == 40
+
+
+def test_sim_node_ids(tmp_path):
+    other = '[[can]]\nname = "can1"\ninterface = "virtual"\nchannel = "b"\n'
+    assert error(tmp_path, PLC + CAN + SIM + SIM + 'name = "second"\n') == \
+        ("sim[1].node_id", "duplicate node id 40 on bus 'can0' (sim[0] has it)")
+    cfg = load(tmp_path, PLC + CAN + other + SIM + 'bus = "can0"\n' + SIM + 'bus = "can1"\nname = "other"\n')
+    assert [(s.bus, s.node_id) for s in cfg.sims] == [("can0", 40), ("can1", 40)]
+    assert error(tmp_path, plant("", "", SIM.replace("40", "127"))) == \
+        ("sim[0].node_id", "127 is the CANopen master's own node id on bus 'can0' (canopen.node_id)")
+    assert errors(tmp_path, PLC + CAN + '[[sim]]\ntype = "fc281"\nnode_id = 0\n[[sim]]\nnode_id = 2\n') == [
+        ("sim[0].type", "expected one of 'ltmr' (got 'fc281')"),
+        ("sim[0].node_id", "expected an integer from 1 to 127 (got 0)"),
+        ("sim[1].type", "required key missing (expected 'ltmr')")]
+
+
+def test_sim_names(tmp_path):
+    other = '[[can]]\nname = "can1"\ninterface = "virtual"\nchannel = "b"\n'
+    assert error(tmp_path, PLC + CAN + other + SIM + 'bus = "can0"\n' + SIM + 'bus = "can1"\n') == \
+        ("sim[1]", "duplicate simulator name 'ltmr40', the default <type><node_id> (sim[0] has it): give one "
+                   "a name")
+    assert error(tmp_path, PLC + CAN + SIM + 'name = "A"\n' + SIM.replace("40", "41") + 'name = "a"\n') == \
+        ("sim[1].name", "duplicate simulator name 'a' (sim[0] has it; names are case-insensitive)")
+    assert error(tmp_path, PLC + CAN + SIM + 'name = "ltmr 40"\n') == \
+        ("sim[0].name", "expected a simulator name: an IEC identifier (letters, digits, _; not starting with a "
+                        "digit) (got 'ltmr 40')")
+
+
+def test_sim_registers(tmp_path):
+    assert errors(tmp_path, PLC + CAN + SIM + 'registers = { "682" = 70000, "abc" = 1, "70000" = 1, "7" = -1, '
+                                              '"8" = true }\n') == [
+        ('sim[0].registers.682', "expected an integer from 0 to 65535 (got 70000)"),
+        ('sim[0].registers.7', "expected an integer from 0 to 65535 (got -1)"),
+        ('sim[0].registers.8', "expected an integer from 0 to 65535 (got true)"),
+        ('sim[0].registers.abc', "expected a register number from 0 to 65535 in decimal, such as \"682\" "
+                                 "(got 'abc')"),
+        ('sim[0].registers.70000', "expected a register number from 0 to 65535 in decimal, such as \"682\" "
+                                   "(got '70000')")]
+    assert error(tmp_path, PLC + CAN + SIM + "registers = [682, 2]\n") == \
+        ("sim[0].registers", 'expected a table of register = value, such as { "682" = 2 } (got an array)')
+
+
+def test_can_sections_errors_reported_together(tmp_path):
+    path = write(tmp_path, PLC + '[[can]]\ninterface = "virtual"\nchannel = "a"\nbitrate = 1\n'
+                                 '[canopen]\nnode_id = 40\nheartbeat = "0ms"\n'
+                                 + NODE + 'master_timeout = "1s"\n'
+                                 + pdo("tpdo", 1, ("2004:06", "%QW0"), ("20x4:06", "%IW0"))
+                                 + SIM.replace("40", "0"))
+    with pytest.raises(ConfigError) as info:
+        load_config(path)
+    assert str(info.value).splitlines() == [
+        f"{path}: can[0].bitrate: expected one of the CANopen bitrates 10000, 20000, 50000, 125000, 250000, "
+        "500000, 800000, 1000000 (got 1)",
+        f"{path}: canopen.node[0].id: 40 is the master's own node id (canopen.node_id)",
+        f"{path}: canopen.node[0].master_timeout: only meaningful when the master sends a heartbeat "
+        "(canopen.heartbeat = '0ms')",
+        f"{path}: canopen.node[0].tpdo[0].map[0].address: expected a %I address: a TPDO's entries go to %I "
+        "inputs (got '%QW0', an output)",
+        f'{path}: canopen.node[0].tpdo[0].map[1].object: expected an object "index:subindex" in hex, such as '
+        "\"2004:06\" (got '20x4:06')",
+        f"{path}: sim[0].node_id: expected an integer from 1 to 127 (got 0)",
+    ]
+
+
 # ====================================================================== all at once
 
 
@@ -679,7 +1250,8 @@ def test_several_errors_reported_together(tmp_path):
         '{ instance = "Main2", program = "Main" }',
         f'{path}: outputs.safe."%IX0.0": expected a %Q output address (got \'%IX0.0\', an input)',
         f'{path}: outputs.safe."%QW2": expected an integer for a word address (got true)',
-        f"{path}: canopen.bus: no [[can]] bus called 'can0' (there are: none)",
+        f"{path}: canopen: the CANopen master needs a [[can]] bus (the file has none): add a [[can]] "
+        "table with interface and channel",
     ]
 
 
