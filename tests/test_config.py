@@ -3,7 +3,9 @@ expected dataclasses, and every malformed file names the file, the key and
 what was expected -- all of a file's errors at once."""
 from __future__ import annotations
 
+import os
 import textwrap
+from importlib import resources
 from pathlib import Path
 
 import pytest
@@ -16,7 +18,8 @@ from softplc.runtime.st.ast import LocatedAddress
 
 REPO = Path(__file__).resolve().parents[1]
 EXAMPLES = REPO / "io_config" / "examples"
-EDS = REPO / "io_config" / "eds"
+# where eds = "ltmr" resolves: the installed package (the source tree in a development install)
+EDS = Path(os.fspath(resources.files("softplc.io_config").joinpath("eds")))
 ST = REPO / "st_programs"
 
 MS = 1_000_000
