@@ -91,7 +91,8 @@ def _us(ns: float) -> str:
 
 
 def status_line(engine, watch: Optional[Watch] = None) -> str:
-    """One line: time, ticks, per task cycle times / jitter / overruns, faults, watched values."""
+    """One line: time, ticks, per task cycle times / jitter / overruns, faults,
+    the drivers' status, watched values."""
     parts = [f"t={engine.clock.now_ns() / 1e9:.2f}s", f"cycles={engine.cycle}"]
     for task in engine.tasks:
         s = task.stats
@@ -99,6 +100,10 @@ def status_line(engine, watch: Optional[Watch] = None) -> str:
         parts.append(f"{task.name}{state}: {_us(s.last_ns)}/{_us(s.mean_ns)}/{_us(s.max_ns)} "
                      f"jitter {_us(s.jitter_max_ns)} overruns {s.overruns}")
     parts.append(f"faults={len(engine.faults)}" + (" outputs SAFE" if engine.outputs_safe else ""))
+    for driver in engine.drivers:   # a bus driver's word on its bus: "canopen: 1/1 up"
+        status = driver.status()
+        if status.message:
+            parts.append(status.message if status.ok else f"{status.message} (!)")
     if watch is not None and watch.paths:
         parts.append(" ".join(f"{p}={v}" for p, v in watch.shown()))
     return " | ".join(parts)

@@ -194,7 +194,11 @@ class CanopenDriver(Driver):
                 self._next_sync_ns = now_ns + c.sync_us * 1000
                 sync = True
             for node in self.nodes.values():
-                self._act(node, node.sup.tick(now_ns))
+                before = node.sup.state
+                action = node.sup.tick(now_ns)
+                if node.sup.state != before and node.sup.state in (NodeState.MISSING, NodeState.LOST):
+                    log.warning("canopen: node %s (%d): %s", node.cfg.name, node.cfg.node_id, node.sup.message)
+                self._act(node, action)
             self._send_rpdos(now_ns, sync=sync)
             if sync:
                 self._send(COB_SYNC, b"")

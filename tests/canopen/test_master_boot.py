@@ -2,6 +2,7 @@
 manager does (CiA 301/302), against the simulated LTMR on the virtual bus."""
 from __future__ import annotations
 
+from softplc.runtime.engine.monitor import status_line
 from softplc.runtime.io.canopen_node import NodeState
 from softplc.runtime.io.canbus import BusSettings
 from softplc.runtime.sim.ltmr import LtmrSimulator
@@ -74,6 +75,7 @@ def test_heartbeat_loss_is_seen_by_the_program_and_the_node_recovers_by_itself(p
     assert plant.master.node_state(40) == NodeState.LOST
     assert not plant.master.status().ok
     assert "heartbeat lost" in plant.master.status().message
+    assert "canopen: 0/1 up; motor (40): heartbeat lost" in status_line(plant.engine)   # what the operator sees
     sim.plug()
     plant.run_until(lambda: plant.get("Watch.operational"), 2000, "node 40 operational again")
     assert plant.master.status().ok
