@@ -443,7 +443,12 @@ def _st_file(value, info: ValidationInfo) -> Path:
     """An existing ST file, relative to the config file's directory."""
     if not isinstance(value, str) or not value.strip():
         raise _fail('the path of an ST file such as "../st_programs/conveyor.st"', value)
-    resolved = Path(os.path.normpath(info.context["base_dir"] / Path(value).expanduser()))
+    return _existing_file(value, info)
+
+
+def _existing_file(text: str, info: ValidationInfo) -> Path:
+    """text as an existing file, relative to the config file's directory."""
+    resolved = Path(os.path.normpath(info.context["base_dir"] / Path(text).expanduser()))
     if not resolved.exists():
         raise PydanticCustomError("config", "no such file: {path} (relative paths start at the "
                                   "config file's directory)", {"path": str(resolved)})
@@ -607,13 +612,7 @@ def _eds_file(value, info: ValidationInfo) -> Path:
         raise PydanticCustomError("config", "expected a shipped EDS name ({names}) or the path of an .eds "
                                   "file (got {got}{hint})",
                                   {"names": names, "got": _got(value), "hint": hint})
-    resolved = Path(os.path.normpath(info.context["base_dir"] / Path(text).expanduser()))
-    if not resolved.exists():
-        raise PydanticCustomError("config", "no such file: {path} (relative paths start at the "
-                                  "config file's directory)", {"path": str(resolved)})
-    if not resolved.is_file():
-        raise PydanticCustomError("config", "not a file: {path}", {"path": str(resolved)})
-    return resolved
+    return _existing_file(text, info)
 
 
 NodeId = Annotated[int, _int_range(1, NODE_ID_MAX)]
