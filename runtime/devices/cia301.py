@@ -86,6 +86,11 @@ STATE_NAMES = {STATE_BOOTUP: "boot-up", STATE_STOPPED: "stopped", STATE_OPERATIO
 # The pre-defined connection set (manual 001 §1.3 gives the factory values of the LTMR's OD)
 COB_NMT = 0x000
 COB_SYNC = 0x080
+COB_ID_INVALID = 1 << 31     # bit 31 of a PDO / EMCY COB-ID: does not exist / not valid
+
+# PDO k's communication and mapping parameters are at these indices + k - 1
+RPDO_COMM, RPDO_MAP = 0x1400, 0x1600
+TPDO_COMM, TPDO_MAP = 0x1800, 0x1A00
 
 
 def cob_emcy(node: int) -> int:

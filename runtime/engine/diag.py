@@ -5,6 +5,7 @@ CANopen master). Written only when something changed, so the scan pays
 (almost) nothing for them."""
 from __future__ import annotations
 
+from ..io.canopen_node import NodeState
 from ..st import types as T
 from ..st.loader import locate
 
@@ -65,7 +66,6 @@ class CanopenDiag:
 
     def update(self, snapshot, master: dict) -> None:
         """snapshot: (node id, version, node) for every configured node."""
-        from ..io.canopen_node import NodeState
         self._master.set(**master)
         for node_id, version, node in snapshot:
             if self._seen.get(node_id) == version or node_id >= len(self._nodes):

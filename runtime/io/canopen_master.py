@@ -23,19 +23,16 @@ from typing import Optional
 
 import canopen
 
-from ..devices.cia301 import (COB_NMT, COB_SYNC, NMT_RESET_COMMUNICATION, NMT_START, STATE_OPERATIONAL,
-                              cob_heartbeat)
+from ..devices.cia301 import (COB_ID_INVALID, COB_NMT, COB_SYNC, NMT_RESET_COMMUNICATION, NMT_START,
+                              STATE_OPERATIONAL, cob_emcy, cob_heartbeat)
 from ..image.memory import ProcessImage
 from .canbus import BusSettings, CanEndpoint, PeriodicService, open_bus
 from .canopen_node import Emergency, NodeState, NodeSupervisor
-from .canopen_pdo import COB_ID_INVALID, PdoBinding, TxSchedule, default_cob_id
+from .canopen_pdo import PdoBinding, TxSchedule, default_cob_id
 from .driver import Driver, DriverError, DriverStatus
 from .sdo_exchange import SchneiderSdoService, SdoJob, SdoWorker
 
 log = logging.getLogger(__name__)
-
-_EMCY_BASE = 0x080
-_HEARTBEAT_BASE = 0x700
 
 
 class _EndpointNetwork(canopen.Network):
@@ -81,6 +78,8 @@ class CanopenDriver(Driver):
         self.nodes: dict[int, _Node] = {}
         for ncfg in config.nodes:
             self.nodes[ncfg.node_id] = self._prepare(ncfg, probe)
+        self._by_heartbeat = {cob_heartbeat(n): node for n, node in self.nodes.items()}
+        self._by_emcy = {cob_emcy(n): node for n, node in self.nodes.items()}
         self._lock = threading.RLock()
         self._tpdo_by_cob: dict[int, PdoBinding] = {}
         self._rx_fresh: dict[PdoBinding, bytes] = {}
@@ -99,7 +98,6 @@ class CanopenDriver(Driver):
                                         default_timeout_s=config.sdo_timeout_ms / 1000,
                                         object_size=self._object_size,
                                         available=lambda: self._bus_ok)
-        self.rx_frames = 0      # TPDOs taken into the image
         self.rx_short = 0       # TPDOs shorter than their mapping (dropped)
         self._diag = None
 
@@ -252,18 +250,16 @@ class CanopenDriver(Driver):
                     self.rx_short += 1
                 else:
                     self._rx_fresh[binding] = data
-            elif _HEARTBEAT_BASE < can_id <= _HEARTBEAT_BASE + 127 and data:
-                node = self.nodes.get(can_id - _HEARTBEAT_BASE)
-                if node is not None:
-                    self._act(node, node.sup.heartbeat(data[0], now))
-            elif _EMCY_BASE < can_id <= _EMCY_BASE + 127 and data:
-                node = self.nodes.get(can_id - _EMCY_BASE)
-                if node is not None:
-                    padded = data + bytes(8 - len(data))
-                    emcy = Emergency(int.from_bytes(padded[0:2], "little"), padded[2], padded[3:8], now)
-                    node.sup.emergency(emcy)
-                    log.warning("canopen: node %s (%d) emergency 0x%04X, error register 0x%02X, data %s",
-                                node.cfg.name, node.cfg.node_id, emcy.code, emcy.register, emcy.data.hex(" "))
+            elif can_id in self._by_heartbeat and data:
+                node = self._by_heartbeat[can_id]
+                self._act(node, node.sup.heartbeat(data[0], now))
+            elif can_id in self._by_emcy and data:
+                node = self._by_emcy[can_id]
+                padded = data + bytes(8 - len(data))
+                emcy = Emergency(int.from_bytes(padded[0:2], "little"), padded[2], padded[3:8], now)
+                node.sup.emergency(emcy)
+                log.warning("canopen: node %s (%d) emergency 0x%04X, error register 0x%02X, data %s",
+                            node.cfg.name, node.cfg.node_id, emcy.code, emcy.register, emcy.data.hex(" "))
         self.network.notify(can_id, data, msg.timestamp)
 
     def _act(self, node: _Node, action: Optional[str]) -> None:
@@ -372,7 +368,6 @@ class CanopenDriver(Driver):
             snapshot = [(n.cfg.node_id, n.sup.version, n) for n in self.nodes.values()]
         for binding, data in fresh.items():
             binding.unpack(data, image)
-        self.rx_frames += len(fresh)
         self.comm.collect()
         if self._diag is not None:
             self._diag.update(snapshot, self._master_view())

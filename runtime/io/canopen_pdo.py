@@ -18,22 +18,19 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Optional
 
+from ..devices.cia301 import RPDO_COMM, RPDO_MAP, TPDO_COMM, TPDO_MAP, cob_rpdo, cob_tpdo, mapping_entry
 from ..image.memory import ProcessImage
 from ..st import types as T
 from .driver import DriverError
 
 _SIZE_BITS = {"B": 8, "W": 16, "D": 32, "L": 64}
-TPDO_COMM_BASE, TPDO_MAP_BASE = 0x1800, 0x1A00   # CiA 301: TPDO k at base + k - 1
-RPDO_COMM_BASE, RPDO_MAP_BASE = 0x1400, 0x1600
-COB_ID_INVALID = 0x8000_0000                     # CiA 301: bit 31 = PDO does not exist / not valid
 
 
 def default_cob_id(direction: str, number: int, node_id: int) -> int:
     """The CiA 301 pre-defined connection set: PDO 1..4 only."""
-    base = {"tpdo": 0x180, "rpdo": 0x200}[direction]
     if not 1 <= number <= 4:
         raise ValueError(f"PDO {number} has no pre-defined COB-ID; the node must be configured with one")
-    return base + 0x100 * (number - 1) + node_id
+    return (cob_tpdo if direction == "tpdo" else cob_rpdo)(number, node_id)
 
 
 @dataclass(frozen=True)
@@ -50,7 +47,7 @@ class MappedEntry:
     @property
     def mapping_value(self) -> int:
         """The 32-bit mapping entry written to 0x16xx / 0x1Axx (CiA 301)."""
-        return (self.index << 16) | (self.subindex << 8) | self.bits
+        return mapping_entry(self.index, self.subindex, self.bits)
 
 
 class PdoBinding:
@@ -73,11 +70,11 @@ class PdoBinding:
 
     @property
     def comm_index(self) -> int:
-        return (TPDO_COMM_BASE if self.direction == "tpdo" else RPDO_COMM_BASE) + self.number - 1
+        return (TPDO_COMM if self.direction == "tpdo" else RPDO_COMM) + self.number - 1
 
     @property
     def map_index(self) -> int:
-        return (TPDO_MAP_BASE if self.direction == "tpdo" else RPDO_MAP_BASE) + self.number - 1
+        return (TPDO_MAP if self.direction == "tpdo" else RPDO_MAP) + self.number - 1
 
     @classmethod
     def from_config(cls, cfg, direction: str, od, probe: ProcessImage) -> "PdoBinding":

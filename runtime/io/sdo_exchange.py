@@ -82,10 +82,6 @@ class SdoJob:
     error: str = ""
     on_done: Optional[Callable[["SdoJob"], None]] = field(default=None, repr=False)
 
-    @property
-    def ok(self) -> bool:
-        return self.done and not self.abort_code and not self.error
-
     def describe(self) -> str:
         what = "write" if self.data is not None else "read"
         return f"SDO {what} {self.index:04X}:{self.subindex:02X} of node {self.node_id}"

@@ -49,10 +49,10 @@ from canopen.objectdictionary import ODArray, ODVariable
 from canopen.sdo import SdoAbortedError
 
 from ..devices.cia301 import (ABORT_DEVICE_STATE, ABORT_NO_SUBINDEX, ABORT_NOT_MAPPABLE, ABORT_PDO_LENGTH,
-                              ABORT_VALUE_RANGE, COB_NMT, COB_SYNC, NMT_PRE_OPERATIONAL,
-                              NMT_RESET_COMMUNICATION, NMT_RESET_NODE, NMT_START, NMT_STOP, STATE_BOOTUP,
-                              STATE_OPERATIONAL, STATE_PRE_OPERATIONAL, STATE_STOPPED, cob_emcy,
-                              cob_heartbeat, split_mapping_entry)
+                              ABORT_VALUE_RANGE, COB_ID_INVALID, COB_NMT, COB_SYNC, NMT_PRE_OPERATIONAL,
+                              NMT_RESET_COMMUNICATION, NMT_RESET_NODE, NMT_START, NMT_STOP, RPDO_COMM, RPDO_MAP,
+                              STATE_BOOTUP, STATE_OPERATIONAL, STATE_PRE_OPERATIONAL, STATE_STOPPED, TPDO_COMM,
+                              TPDO_MAP, cob_emcy, cob_heartbeat, split_mapping_entry)
 from ..io.canbus import BusSettings, CanEndpoint, open_bus
 from .base import SimulatedDevice
 
@@ -70,11 +70,8 @@ EMCY_COB_ID = 0x1014
 CONSUMER_HEARTBEAT = 0x1016
 PRODUCER_HEARTBEAT = 0x1017
 ERROR_BEHAVIOUR = 0x1029
-RPDO_COMM, RPDO_MAP = 0x1400, 0x1600
-TPDO_COMM, TPDO_MAP = 0x1800, 0x1A00
 PDO_SLOTS = 512                      # CiA 301: up to 512 RPDOs and 512 TPDOs
 
-COB_ID_INVALID = 1 << 31             # PDO / EMCY COB-ID bit 31: does not exist / not valid
 COB_ID_EXTENDED = 1 << 29            # 29-bit identifier: the LTMR is CAN 2.0A only (manual 001 §1.1)
 PDO_MAX_BITS = 64
 
