@@ -10,6 +10,7 @@ program; a user POU or type of the same name replaces the library one.
 from __future__ import annotations
 
 import builtins
+import functools
 import itertools
 import re
 import time
@@ -67,24 +68,32 @@ def _declared(sf: A.SourceFile) -> set:
     return names
 
 
-def _needed_library(library: list, user_words: set) -> list:
-    """The always-compiled files, and the on-demand ones that the user's
-    words (or an already needed library file's words) name."""
-    on_demand = {f"<lib>/{p.rsplit('.', 1)[-1]}/" for p in _ON_DEMAND}
-    needed = [(sf, text) for sf, text in library if not sf.path.startswith(tuple(on_demand))]
-    pending = [(sf, text, _declared(sf)) for sf, text in library if sf.path.startswith(tuple(on_demand))]
+@functools.lru_cache(maxsize=None)
+def _library_index(name: str, text: str) -> tuple:
+    """(names the file declares, words it uses) of an on-demand library file,
+    parsed once per process: the choice of files then costs no parsing."""
+    return (frozenset(_declared(parse_source(text, name, DiagnosticBag()))),
+            frozenset(w.upper() for w in _WORD.findall(text)))
+
+
+def _needed_library(files: list, user_words: set) -> list:
+    """(path, text) of the always-compiled files, and of the on-demand ones
+    that the user's words (or an already needed library file's words) name."""
+    on_demand = tuple(f"<lib>/{p.rsplit('.', 1)[-1]}/" for p in _ON_DEMAND)
+    needed = [f for f in files if not f[0].startswith(on_demand)]
+    pending = [f for f in files if f[0].startswith(on_demand)]
     words = set(user_words)
     grew = True
     while grew:
         grew = False
-        for item in list(pending):
-            sf, text, names = item
-            if names & words:
-                needed.append((sf, text))
-                pending.remove(item)
-                words.update(w.upper() for w in _WORD.findall(text))
+        for name, text in list(pending):
+            declared, used = _library_index(name, text)
+            if declared & words:
+                needed.append((name, text))
+                pending.remove((name, text))
+                words |= used
                 grew = True
-    return [sf for sf, _text in needed]
+    return needed
 
 
 def _std_functions() -> dict:
@@ -129,14 +138,13 @@ def _front_end(paths: list, profile: Profile, texts: Optional[dict]):
     user, user_words = _read_sources(paths, texts, diags, sources)
     user_names = set().union(*(_decl_names(sf) for sf in user)) if user else set()
     lib_diags = DiagnosticBag()
-    parsed = []
-    for name, text in _library_sources():
+    library = []
+    for name, text in _needed_library(_library_sources(), user_words):
         sources.add(name, text)
         sf = parse_source(text, name, lib_diags)
         sf.decls = [d for d in sf.decls
                     if not (isinstance(d, (A.POU, A.TypeDecl)) and d.name.upper() in user_names)]
-        parsed.append((sf, text))
-    library = _needed_library(parsed, user_words)
+        library.append(sf)
     checker = Checker(profile, lib_diags if not user else diags, _std_functions())
     checked = checker.run(library + user, library_files=tuple(sf.path for sf in library))
     diags.extend(d for d in lib_diags.items if d.is_error)
