@@ -19,10 +19,16 @@ The file::
                    heartbeat_timeout, master_timeout, sdo,
                    [[...tpdo]] / [[...rpdo]] (number, transmission, inhibit,
                    event, configure, map)                    (zero or more)
-    [[sim]]        type, name, bus, node_id, registers       (zero or more)
+    [[modbus]]     name, transport (rtu | tcp), device, baud, parity,
+                   stop_bits, data_bits, frame_gap, host, port, timeout,
+                   retries, reconnect, reconnect_max          (zero or more)
+    [[modbus.channel]]  name, unit, function, offset, count, write_offset,
+                   write_count, read_to, write_from, trigger, period, edge
+    [[sim]]        type, name, registers; CAN devices: bus, node_id;
+                   Modbus devices: modbus, unit               (zero or more)
 
 io_config/examples/ has one commented example per section (canopen.toml for
-[[can]], [canopen] and [[sim]]). Durations are written as everywhere else
+[[can]], [canopen] and [[sim]], modbus.toml for [[modbus]]). Durations are written as everywhere else
 ("100ms", "T#1s", false for none where that makes sense) and stored in the
 unit their field names (heartbeat_ms, sync_us ...).
 
@@ -67,7 +73,7 @@ from .st.profile import DEFAULT as _DEFAULT_PROFILE, PROFILES
 __all__ = [
     "ConfigError", "ProgramInstance", "TaskConfig", "RetainConfig", "SafeOutput", "LoopbackLink",
     "CanBusConfig", "PdoEntryConfig", "PdoConfig", "SdoWriteConfig", "CanopenNodeConfig", "CanopenConfig",
-    "SimConfig", "PlcConfig", "load_config", "config_from_dict", "default_config_path", "default_watchdog_ns",
+    "ModbusChannelConfig", "ModbusConnectionConfig", "SimConfig", "PlcConfig", "load_config", "config_from_dict", "default_config_path", "default_watchdog_ns",
 ]
 
 DEFAULT_PAUSE_NS = 1_000_000
@@ -213,13 +219,61 @@ class CanopenConfig:
 
 
 @dataclass
-class SimConfig:
-    type: str                        # "ltmr"
+class ModbusChannelConfig:
     name: str
-    bus: str                         # the name of a CanBusConfig
-    node_id: int
+    connection: str                  # the name of its ModbusConnectionConfig
+    unit: int                        # the slave's unit id
+    function: int                    # 1, 2, 3, 4, 5, 6, 15, 16, 23
+    offset: int                      # PDU address: the read, or the write of a write-only function
+    count: int                       # registers or bits read (or written by a write-only function)
+    write_offset: int                # function 23: the write
+    write_count: int                 # function 23
+    read_to: Optional[LocatedAddress]        # %I / %M: where read data lands
+    write_from: Optional[LocatedAddress]     # %Q / %M: what is written
+    trigger: str                     # "cyclic" | "change" | "edge"
+    period_ns: int                   # cyclic period; the wait after a failure for the others
+    edge: Optional[LocatedAddress]   # trigger "edge": a BOOL address
+    key: str                         # "modbus[0].channel[1]"
+
+    @property
+    def address(self):               # the read address for Channel
+        return self.read_to
+
+    @property
+    def write_address(self):
+        return self.write_from
+
+
+@dataclass
+class ModbusConnectionConfig:
+    name: str
+    transport: str                   # "rtu" | "tcp"
+    device: str                      # rtu: serial port, or "sim" (a NullModem to the [[sim]] drives)
+    baud: int
+    parity: str                      # "N" | "E" | "O"
+    stop_bits: int
+    data_bits: int
+    frame_gap_us: Optional[int]      # None: 3.5 characters (modbus_link.frame_gap)
+    host: str                        # tcp
+    port: int                        # tcp; 0 with simulated slaves: any free port
+    timeout_ms: int
+    retries: int
+    reconnect_ms: int
+    reconnect_max_ms: int
+    channels: list[ModbusChannelConfig]
+    key: str                         # "modbus[0]"
+
+
+@dataclass
+class SimConfig:
+    type: str                        # "ltmr", or an Eaton drive: "da1", "db1", "dc1", "de1", "de11"
+    name: str
+    bus: Optional[str]               # CAN devices: the name of a CanBusConfig
+    node_id: Optional[int]           # CAN devices
     registers: dict[int, int]        # initial register values
     key: str                         # "sim[0]"
+    modbus: Optional[str] = None     # Modbus devices: the name of a ModbusConnectionConfig
+    unit: Optional[int] = None       # Modbus devices: unit id
 
 
 @dataclass
@@ -237,6 +291,7 @@ class PlcConfig:
     can: list[CanBusConfig] = field(default_factory=list)
     canopen: Optional[CanopenConfig] = None
     sims: list[SimConfig] = field(default_factory=list)
+    modbus: list[ModbusConnectionConfig] = field(default_factory=list)
     raw: dict = field(default_factory=dict)   # the parsed TOML, for sections added later
 
 
@@ -481,7 +536,15 @@ NODE_ID_MAX = 127                    # manual 001 L163: "an address from 1 to 12
 U16_MAX = 0xFFFF
 PDO_ENTRIES_MAX = 8                  # manual 001 L117: a PDO carries 8 bytes
 PDO_BITS_MAX = 64
-SIM_TYPES = ("ltmr",)
+CAN_SIM_TYPES = ("ltmr",)
+MODBUS_SIM_TYPES = ("da1", "db1", "dc1", "de1", "de11")     # manual 002: the Eaton PowerXL families
+SIM_TYPES = CAN_SIM_TYPES + MODBUS_SIM_TYPES
+MODBUS_FUNCTIONS = (1, 2, 3, 4, 5, 6, 15, 16, 23)
+MODBUS_READS = (1, 2, 3, 4, 23)
+MODBUS_WRITES = (5, 6, 15, 16, 23)
+MODBUS_BITS = (1, 2, 5, 15)
+MODBUS_SIM_DEVICE = "sim"
+MODBUS_UNIT_MAX = 247                # Modbus over serial line 2.2: 1..247 (0 = broadcast)
 DEFAULT_HEARTBEAT_MS = 100           # the master's and a node's, unless the file says
 
 _UNIT_NS = {"ms": 1_000_000, "us": 1_000}
@@ -614,6 +677,25 @@ def _eds_file(value, info: ValidationInfo) -> Path:
                                   {"names": names, "got": _got(value), "hint": hint})
     return _existing_file(text, info)
 
+
+def _choice_int(options):
+    def check(value) -> int:
+        if isinstance(value, int) and not isinstance(value, bool) and value in options:
+            return value
+        raise _fail("one of " + ", ".join(map(str, options)), value)
+    return PlainValidator(check)
+
+
+def _choice_upper(options):
+    def check(value) -> str:
+        if isinstance(value, str) and value.upper() in options:
+            return value.upper()
+        raise _fail("one of " + ", ".join(f"'{o}'" for o in options), value)
+    return PlainValidator(check)
+
+
+MODBUS_BAUDS = (1200, 2400, 4800, 9600, 19200, 38400, 57600, 115200)
+_frame_gap = _duration_in("us", most=(1_000_000, "at most 1s"))
 
 NodeId = Annotated[int, _int_range(1, NODE_ID_MAX)]
 BusName = Annotated[str, _identifier("a bus name")]
@@ -754,12 +836,63 @@ class _Canopen(_Model):
     node: list[_Node] = Field(default_factory=list, description="[[canopen.node]] tables")
 
 
+_DEVICE = 'a serial port such as "/dev/ttyUSB0", or "sim" for the simulated drives of [[sim]]'
+
+
+class _ModbusChannel(_Model):
+    name: Optional[Annotated[str, _identifier("a channel name")]] = Field(
+        None, description='a channel name such as "drive_status"')
+    unit: Annotated[int, _int_range(0, MODBUS_UNIT_MAX)] = Field(
+        description=f"a unit id from 1 to {MODBUS_UNIT_MAX} (0: broadcast write)")
+    function: Annotated[int, _choice_int(MODBUS_FUNCTIONS)] = Field(
+        description="a function code: " + ", ".join(map(str, MODBUS_FUNCTIONS)))
+    offset: Annotated[int, _int_range(0, U16_MAX)] = Field(
+        description="a PDU address from 0 to 65535 (Eaton ID n is offset n-1)")
+    count: Annotated[int, _int_range(1, 2000)] = Field(1, description="an integer from 1 to 2000")
+    write_offset: Optional[Annotated[int, _int_range(0, U16_MAX)]] = Field(
+        None, description="a PDU address from 0 to 65535")
+    write_count: Optional[Annotated[int, _int_range(1, 121)]] = Field(
+        None, description="an integer from 1 to 121")
+    read_to: Any = Field(None, description='an %I or %M address such as "%IW100"')
+    write_from: Any = Field(None, description='a %Q or %M address such as "%QW100"')
+    trigger: Annotated[str, _choice(("cyclic", "change", "edge"))] = Field(
+        "cyclic", description="'cyclic', 'change' or 'edge'")
+    period: _duration_field(_timeout_ms) = Field(100, description="a duration such as 100ms")
+    edge: Any = Field(None, description='a BOOL address such as "%QX10.0"')
+
+
+class _Modbus(_Model):
+    name: Annotated[str, _identifier("a connection name")] = Field(
+        "modbus0", description='a connection name such as "drives"')
+    transport: Annotated[str, _choice(("rtu", "tcp"))] = Field(description="'rtu' or 'tcp'")
+    device: Optional[Annotated[str, _nonempty(_DEVICE)]] = Field(None, description=_DEVICE)
+    baud: Annotated[int, _choice_int(MODBUS_BAUDS)] = Field(
+        19200, description="a baud rate: " + ", ".join(map(str, MODBUS_BAUDS)))
+    parity: Annotated[str, _choice_upper(("N", "E", "O"))] = Field("N", description="'N', 'E' or 'O'")
+    stop_bits: Annotated[int, _choice_int((1, 2))] = Field(1, description="1 or 2")
+    data_bits: Annotated[int, _choice_int((7, 8))] = Field(8, description="7 or 8")
+    frame_gap: Optional[_duration_field(_frame_gap)] = Field(
+        None, description="a duration such as 2ms (default: 3.5 characters)")
+    host: Optional[Annotated[str, _nonempty('a host such as "192.168.0.20"')]] = Field(
+        None, description='a host such as "192.168.0.20"')
+    port: Optional[Annotated[int, _int_range(0, U16_MAX)]] = Field(None, description="a TCP port such as 502")
+    timeout: _duration_field(_timeout_ms) = Field(200, description="a duration such as 200ms")
+    retries: Annotated[int, _int_range(0, 10)] = Field(1, description="an integer from 0 to 10")
+    reconnect: _duration_field(_timeout_ms) = Field(1000, description="a duration such as 1s")
+    reconnect_max: _duration_field(_timeout_ms) = Field(10_000, description="a duration such as 10s")
+    channel: list[_ModbusChannel] = Field(default_factory=list, description="[[modbus.channel]] tables")
+
+
 class _Sim(_Model):
     type: Annotated[str, _choice(SIM_TYPES)] = Field(description=" or ".join(f"'{t}'" for t in SIM_TYPES))
     name: Optional[Annotated[str, _identifier("a simulator name")]] = Field(
         None, description='a simulator name such as "ltmr40"')
     bus: Optional[BusName] = Field(None, description="the name of a [[can]] bus")
-    node_id: NodeId = Field(description=f"a node id from 1 to {NODE_ID_MAX}")
+    node_id: Optional[NodeId] = Field(None, description=f"a node id from 1 to {NODE_ID_MAX}")
+    modbus: Optional[Annotated[str, _identifier("a connection name")]] = Field(
+        None, description="the name of a [[modbus]] connection")
+    unit: Optional[Annotated[int, _int_range(1, MODBUS_UNIT_MAX)]] = Field(
+        None, description=f"a unit id from 1 to {MODBUS_UNIT_MAX}")
     registers: dict[str, Annotated[int, _int_range(0, U16_MAX)]] = Field(
         default_factory=dict, description='a table of register = value, such as { "682" = 2 }')
 
@@ -773,6 +906,7 @@ class _Root(_Model):
     can: list[_Can] = Field(default_factory=list, description="[[can]] tables")
     canopen: Optional[_Canopen] = Field(None, description="a [canopen] table")
     sim: list[_Sim] = Field(default_factory=list, description="[[sim]] tables")
+    modbus: list[_Modbus] = Field(default_factory=list, description="[[modbus]] tables")
 
 
 # ====================================================================== pydantic errors -> messages
@@ -884,7 +1018,166 @@ def _in_file_order(errors: list, data: dict) -> list:
 # ====================================================================== relations
 
 
-class _Relations:
+class _ModbusRelations:
+    """The [[modbus]] checks of _Relations (mixed in)."""
+
+    def _modbus_side(self, data: dict) -> None:
+        conns = data.get("modbus")
+        if not isinstance(conns, list):
+            return
+        for i, conn in enumerate(conns):
+            if not isinstance(conn, dict):
+                continue
+            here = ("modbus", i)
+            name = conn.get("name", "modbus0")
+            if _is_ident(name):
+                first = self.modbus_names.get(name.upper())
+                if first is None:
+                    self.modbus_names[name.upper()] = (i, conn)
+                else:
+                    self.error(here + (("name",) if "name" in conn else ()),
+                               f"duplicate connection name '{name}' (modbus[{first[0]}] has it; names are "
+                               "case-insensitive)" + ("" if "name" in conn else ": give each [[modbus]] a name"))
+            transport = conn.get("transport")
+            transport = transport.lower() if isinstance(transport, str) else None
+            if transport == "rtu":
+                if "device" not in conn:
+                    self.error(here, f"required key missing: device ({_DEVICE})")
+                for key in ("host", "port"):
+                    if key in conn:
+                        self.error(here + (key,), "only for transport = 'tcp' (this connection is 'rtu')")
+            elif transport == "tcp":
+                for key in ("device", "baud", "parity", "stop_bits", "data_bits", "frame_gap"):
+                    if key in conn:
+                        self.error(here + (key,), "only for transport = 'rtu' (this connection is 'tcp')")
+            channels = conn.get("channel")
+            if isinstance(channels, list):
+                self._modbus_channels(here, channels)
+
+    def _modbus_channels(self, here: tuple, channels: list) -> None:
+        names: dict = {}
+        for j, ch in enumerate(channels):
+            if not isinstance(ch, dict):
+                continue
+            at = here + ("channel", j)
+            name = ch.get("name")
+            if _is_ident(name):
+                first = names.setdefault(name.upper(), j)
+                if first != j:
+                    self.error(at + ("name",), f"duplicate channel name '{name}' (channel[{first}] has it)")
+            fc = ch.get("function")
+            if fc not in MODBUS_FUNCTIONS or isinstance(fc, bool):
+                continue   # pass 1 reports it
+            reads, writes, bits = fc in MODBUS_READS, fc in MODBUS_WRITES, fc in MODBUS_BITS
+            count = ch.get("count", 1)
+            limit = {1: 2000, 2: 2000, 3: 125, 4: 125, 5: 1, 6: 1, 15: 1968, 16: 123, 23: 125}[fc]
+            if _in_range(count, 1, None) and count > limit:
+                self.error(at + ("count",), f"function {fc} carries at most {limit} "
+                                            f"{'bits' if bits else 'registers'} (got {count})")
+            if fc == 23:
+                for key in ("write_offset", "write_count"):
+                    if key not in ch:
+                        self.error(at, f"required key missing: {key} (function 23 writes and reads)")
+            else:
+                for key in ("write_offset", "write_count"):
+                    if key in ch:
+                        self.error(at + (key,), "only for function 23 (offset and count give the block)")
+            wc = ch.get("write_count", count) if fc == 23 else count
+            self._channel_address(at, ch, "read_to", reads, ("I", "M"), count if reads else 0, bits)
+            self._channel_address(at, ch, "write_from", writes, ("Q", "M"), wc if writes else 0, bits)
+            trigger = ch.get("trigger", "cyclic")
+            trigger = trigger.lower() if isinstance(trigger, str) else None
+            if trigger == "change" and not writes:
+                self.error(at + ("trigger",), f"'change' watches the data to write; function {fc} only reads "
+                                              "(use 'cyclic' or 'edge')")
+            if trigger == "edge":
+                if "edge" not in ch:
+                    self.error(at, 'required key missing: edge (the BOOL whose rising edge triggers, such '
+                                   'as "%QX10.0")')
+                else:
+                    addr = self._address(at + ("edge",), ch["edge"], "%QX10.0, %MX2.0")
+                    if addr is not None and addr.bit is None and addr.size not in ("", "X"):
+                        self.error(at + ("edge",), f"expected a BOOL (bit) address such as %QX10.0 "
+                                                   f"(got '{addr.text}')")
+                    elif addr is not None:
+                        self.modbus_addresses[at + ("edge",)] = addr
+            elif "edge" in ch:
+                self.error(at + ("edge",), "only for trigger = 'edge'")
+            if ch.get("unit") == 0 and reads:
+                self.error(at + ("unit",), "unit 0 is the broadcast address: nobody answers, so only "
+                                           "writes can go to it")
+
+    def _channel_address(self, at: tuple, ch: dict, key: str, needed: bool, areas: tuple, count: int,
+                         bits: bool) -> None:
+        what = "reads into" if key == "read_to" else "writes from"
+        if not needed:
+            if key in ch:
+                self.error(at + (key,), f"function {ch.get('function')} does not use {key}")
+            return
+        if key not in ch:
+            self.error(at, f"required key missing: {key} (the image address the channel {what})")
+            return
+        examples = f"%{areas[0]}W100, %MW20"
+        addr = self._address(at + (key,), ch[key], examples)
+        if addr is None:
+            return
+        if addr.area not in areas:
+            self.error(at + (key,), f"expected an address in {' or '.join('%' + a for a in areas)} "
+                                    f"(got {_area_name(addr)})")
+            return
+        try:
+            _area, offset, _n = self._probe().region(addr)
+        except ValueError as exc:
+            self.error(at + (key,), str(exc))
+            return
+        nbytes = (count + 7) // 8 if bits else 2 * count
+        if offset + nbytes > self._probe().size:
+            self.error(at + (key,), f"{count} {'bits' if bits else 'registers'} from {addr.text} run past the "
+                                    f"end of the %{addr.area} area")
+            return
+        self.modbus_addresses[at + (key,)] = addr
+
+    def _modbus_sim(self, here: tuple, sim: dict, units: dict) -> None:
+        """An Eaton drive on a [[modbus]] connection: RTU with device = "sim"
+        or TCP on 127.0.0.1; one drive per unit id."""
+        for key in ("bus", "node_id"):
+            if key in sim:
+                self.error(here + (key,), "only for a CAN device; a Modbus device has modbus and unit")
+        if "unit" not in sim:
+            self.error(here, "required key missing: unit (the drive's Modbus address)")
+        conn = sim.get("modbus")
+        if conn is None:
+            if len(self.modbus_names) == 1:
+                conn = next(iter(self.modbus_names.values()))[1].get("name", "modbus0")
+            else:
+                self.error(here, "required key missing: modbus (the [[modbus]] connection the drive is on)"
+                           if self.modbus_names else "a simulated drive needs a [[modbus]] connection "
+                           "(the file has none)")
+                return
+        elif not _is_ident(conn):
+            return
+        entry = self.modbus_names.get(conn.upper())
+        if entry is None:
+            self.error(here + ("modbus",), f"expected one of {', '.join(repr(t.get('name', 'modbus0')) for _i, t in self.modbus_names.values())}, "
+                                           f"the [[modbus]] connections (got '{conn}')")
+            return
+        index, table = entry
+        self.sim_connection[here] = table.get("name", "modbus0")
+        transport = str(table.get("transport", "")).lower()
+        if transport == "rtu" and table.get("device") != MODBUS_SIM_DEVICE:
+            self.error(here + ("modbus",), f"modbus[{index}] is a serial line to real devices; a simulated "
+                                           f'drive needs device = "{MODBUS_SIM_DEVICE}" there')
+        if transport == "tcp" and table.get("host", "127.0.0.1") not in ("127.0.0.1", "localhost"):
+            self.error(here + ("modbus",), f"modbus[{index}] goes to {table.get('host')}; a simulated drive "
+                                           "listens on 127.0.0.1 only")
+        unit = sim.get("unit")
+        if _in_range(unit, 1, None):
+            first = units.setdefault((index, unit), here)
+            if first != here:
+                self.error(here + ("unit",), f"duplicate unit {unit} on modbus[{index}] ({_key(first)} has it)")
+
+
+class _Relations(_ModbusRelations):
     """The checks between values, on the raw data, tolerant of values that
     pass 1 refuses (it reports those). Also parses the safe outputs and the
     loopback links and the PDO addresses (addresses depend on the profile),
@@ -896,6 +1189,7 @@ class _Relations:
         self.loopback: list = []
         self.pdo_addresses: dict = {}   # loc of a PDO map entry -> LocatedAddress
         self.bus_of: dict = {}          # ("canopen",) or ("sim", i) -> the [[can]] name it uses
+        self.sim_connection: dict = {}  # ("sim", i) -> the [[modbus]] name a simulated drive is on
         plc = data.get("plc") if isinstance(data.get("plc"), dict) else {}
         profile = plc.get("profile", _DEFAULT_PROFILE.name)
         profile = PROFILES.get(profile.lower()) if isinstance(profile, str) else None
@@ -909,6 +1203,9 @@ class _Relations:
         links = data.get("loopback")
         if isinstance(links, list):
             self._loopback(links)
+        self.modbus_addresses: dict = {}   # loc of a channel address key -> LocatedAddress
+        self.modbus_names: dict = {}       # NAME (upper) -> the [[modbus]] table, of valid names
+        self._modbus_side(data)
         self._can_side(data)
 
     def error(self, loc: tuple, message: str) -> None:
@@ -1303,10 +1600,22 @@ class _Relations:
         a [[canopen.node]]: it is that node."""
         at_node: dict = {}
         sim_names: dict = {}
+        units: dict = {}
         for i, sim in enumerate(sims):
             if not isinstance(sim, dict):
                 continue
             here = ("sim", i)
+            kind = sim.get("type")
+            if isinstance(kind, str) and kind.lower() in MODBUS_SIM_TYPES:
+                self._modbus_sim(here, sim, units)
+                self._sim_name(here, sim, sim_names)
+                continue
+            for key in ("modbus", "unit"):
+                if key in sim:
+                    self.error(here + (key,), f"only for a Modbus device ({', '.join(MODBUS_SIM_TYPES)}); "
+                                              "a CAN device has bus and node_id")
+            if "node_id" not in sim:
+                self.error(here, "required key missing: node_id (a CAN device's node id)")
             bus = self._bus_of(here, sim, names, count, "a simulated device")
             node_id = sim.get("node_id")
             if bus is not None and _in_range(node_id, 1, NODE_ID_MAX):
@@ -1337,7 +1646,13 @@ class _Relations:
                                              "names are case-insensitive)")
             return
         kind, node_id = sim.get("type"), sim.get("node_id")
-        if isinstance(kind, str) and kind.lower() in SIM_TYPES and _in_range(node_id, 1, NODE_ID_MAX):
+        if isinstance(kind, str) and kind.lower() in MODBUS_SIM_TYPES and _in_range(sim.get("unit"), 1, None):
+            name = f"{kind.lower()}_{sim['unit']}"
+            first = names.setdefault(name.upper(), here)
+            if first != here:
+                self.error(here, f"duplicate simulator name '{name}', the default <type>_<unit> "
+                                 f"({_key(first)} has it): give one a name")
+        elif isinstance(kind, str) and kind.lower() in SIM_TYPES and _in_range(node_id, 1, NODE_ID_MAX):
             name = f"{kind.lower()}{node_id}"
             first = names.setdefault(name.upper(), here)
             if first != here:
@@ -1393,14 +1708,19 @@ def _build(model: _Root, rel: _Relations, data: dict, path: Optional[Path], base
     can = [CanBusConfig(b.name, b.interface, b.channel, b.bitrate, dict(b.options), f"can[{i}]")
            for i, b in enumerate(model.can)]
     canopen = _build_canopen(model.canopen, rel) if model.canopen is not None else None
-    sims = [SimConfig(type=sim.type, name=sim.name or f"{sim.type}{sim.node_id}", bus=rel.bus_of["sim", i],
-                      node_id=sim.node_id, registers={int(r): v for r, v in sim.registers.items()},
-                      key=f"sim[{i}]")
-            for i, sim in enumerate(model.sim)]
+    sims = []
+    for i, sim in enumerate(model.sim):
+        modbus_device = sim.type in MODBUS_SIM_TYPES
+        default_name = f"{sim.type}_{sim.unit}" if modbus_device else f"{sim.type}{sim.node_id}"
+        sims.append(SimConfig(type=sim.type, name=sim.name or default_name, bus=rel.bus_of.get(("sim", i)),
+                              node_id=sim.node_id, registers={int(r): v for r, v in sim.registers.items()},
+                              key=f"sim[{i}]", modbus=rel.sim_connection.get(("sim", i)), unit=sim.unit))
+    modbus = [_build_modbus(i, m, rel) for i, m in enumerate(model.modbus)]
     return PlcConfig(
         path=path, base_dir=base_dir, profile=model.plc.profile, programs=list(model.plc.programs),
         on_fault=model.plc.on_fault, start=model.plc.start, tasks=tasks, retain=retain,
-        safe_outputs=rel.safe_outputs, loopback=rel.loopback, can=can, canopen=canopen, sims=sims, raw=data)
+        safe_outputs=rel.safe_outputs, loopback=rel.loopback, can=can, canopen=canopen, sims=sims,
+        modbus=modbus, raw=data)
 
 
 def _build_canopen(c: _Canopen, rel: _Relations) -> CanopenConfig:
@@ -1426,6 +1746,25 @@ def _build_canopen(c: _Canopen, rel: _Relations) -> CanopenConfig:
     return CanopenConfig(bus=rel.bus_of["canopen",], node_id=c.node_id, heartbeat_ms=c.heartbeat,
                          sync_us=c.sync, sdo_timeout_ms=c.sdo_timeout, boot_timeout_ms=c.boot_timeout,
                          retry_ms=c.retry, nodes=nodes)
+
+
+def _build_modbus(i: int, m: _Modbus, rel: _Relations) -> ModbusConnectionConfig:
+    key = f"modbus[{i}]"
+    channels = []
+    for j, c in enumerate(m.channel):
+        at = ("modbus", i, "channel", j)
+        channels.append(ModbusChannelConfig(
+            name=c.name or f"{m.name}_{j}", connection=m.name, unit=c.unit, function=c.function,
+            offset=c.offset, count=c.count, write_offset=c.write_offset or 0,
+            write_count=c.write_count or 0, read_to=rel.modbus_addresses.get(at + ("read_to",)),
+            write_from=rel.modbus_addresses.get(at + ("write_from",)), trigger=c.trigger,
+            period_ns=c.period * 1_000_000, edge=rel.modbus_addresses.get(at + ("edge",)), key=_key(at)))
+    return ModbusConnectionConfig(
+        name=m.name, transport=m.transport, device=m.device or "", baud=m.baud, parity=m.parity,
+        stop_bits=m.stop_bits, data_bits=m.data_bits, frame_gap_us=m.frame_gap,
+        host=m.host or "127.0.0.1", port=m.port if m.port is not None else 502, timeout_ms=m.timeout,
+        retries=m.retries, reconnect_ms=m.reconnect, reconnect_max_ms=m.reconnect_max,
+        channels=channels, key=key)
 
 
 def _build_pdos(pdos: list, here: tuple, rel: _Relations) -> list:

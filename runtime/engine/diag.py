@@ -1,7 +1,8 @@
 """The engine's side of the diagnostic globals a program reads:
 PLC_DIAG (fblocks/system/plc_diag.st, the engine's own state) and
 CANOPEN_NODE / CANOPEN_MASTER (fblocks/comm/canopen_diag.st, filled by the
-CANopen master). Written only when something changed, so the scan pays
+CANopen master) and MODBUS_CHANNEL (fblocks/comm/modbus.st, filled by the
+Modbus master). Written only when something changed, so the scan pays
 (almost) nothing for them."""
 from __future__ import annotations
 
@@ -80,3 +81,24 @@ class CanopenDiag:
                 EmcyCode=emcy.code if emcy else 0, EmcyRegister=emcy.register if emcy else 0,
                 EmcyData=int.from_bytes(emcy.data[:4], "little") if emcy else 0,
                 Message=sup.message if sup.state != NodeState.OPERATIONAL else "")
+
+
+class ModbusDiag:
+    """MODBUS_CHANNEL[i], from the Modbus master's channels
+    (runtime/io/modbus_channel.py)."""
+
+    def __init__(self, globals_obj) -> None:
+        channels = _global(globals_obj, "MODBUS_CHANNEL")
+        self._channels = [StructWriter(s) for s in channels] if channels is not None else []
+        self._seen: dict = {}   # index -> (version, connection ok) written
+
+    def update(self, snapshot) -> None:
+        """snapshot: (index, Channel.snapshot(), connection ok) per channel."""
+        for index, (version, ok, last_error, requests, errors, response_ms, message), link_ok in snapshot:
+            if index >= len(self._channels) or self._seen.get(index) == (version, link_ok):
+                continue
+            self._seen[index] = (version, link_ok)
+            self._channels[index].set(
+                Configured=True, Ok=ok, Error=requests > 0 and not ok, ConnectionOk=link_ok,
+                LastError=last_error, Requests=requests, Errors=errors, ResponseTime=response_ms,
+                Message=message)

@@ -102,6 +102,9 @@ class Engine:
             if driver.comm is not None:   # READ_VAR / WRITE_VAR go to the (first) bus that serves them
                 self.ctx.comm = driver.comm
                 break
+        for driver in self.drivers:
+            if driver.modbus is not None:   # MODBUS_EXCHANGE goes to the Modbus master
+                self.ctx.modbus = driver.modbus
         self.on_fault = on_fault
         self.start_mode = start_mode
         self.retain_store = retain_store

@@ -55,6 +55,8 @@ class Driver:
     #: the service behind READ_VAR / WRITE_VAR (ExecContext.comm), for a
     #: driver that offers one (the CANopen master); None otherwise
     comm = None
+    #: the service behind MODBUS_EXCHANGE (ExecContext.modbus): the Modbus master's
+    modbus = None
 
     def start(self) -> None:
         pass

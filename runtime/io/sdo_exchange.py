@@ -195,7 +195,7 @@ class _Exchange:
         self.job = job
 
 
-def _store(table, i: int, value: int, signed: bool) -> None:
+def store_word(table, i: int, value: int, signed: bool) -> None:
     """A 16-bit value into a table element, as the element's type holds it."""
     value &= 0xFFFF
     if signed and value >= 0x8000:
@@ -232,8 +232,8 @@ class SchneiderSdoService:
         if m0 & 1:
             return False          # the previous exchange is still running: start nothing
         exchange = _Exchange(data, mgmt, data_signed, mgmt_signed, None)
-        _store(mgmt, 0, ((((m0 >> 8) + 1) & 0xFF) << 8) | 1, mgmt_signed)
-        _store(mgmt, 1, 0, mgmt_signed)
+        store_word(mgmt, 0, ((((m0 >> 8) + 1) & 0xFF) << 8) | 1, mgmt_signed)
+        store_word(mgmt, 1, 0, mgmt_signed)
         index, subindex = int(number) & 0xFFFF, (int(number) >> 16) & 0xFF
         if str(obj).upper() != "SDO" or not 1 <= int(node) <= 127:
             self._finish(exchange, COMM_BAD_ADDRESS)
@@ -288,8 +288,8 @@ class SchneiderSdoService:
             received = job.received
             room = 2 * len(ex.data)
             for i in range(min(len(ex.data), (len(received) + 1) // 2)):
-                _store(ex.data, i, int.from_bytes(received[2 * i:2 * i + 2], "little"), ex.data_signed)
-            _store(ex.mgmt, 3, min(len(received), room), ex.mgmt_signed)
+                store_word(ex.data, i, int.from_bytes(received[2 * i:2 * i + 2], "little"), ex.data_signed)
+            store_word(ex.mgmt, 3, min(len(received), room), ex.mgmt_signed)
             self._finish(ex, COMM_DONE, OP_TRUNCATED if len(received) > room else OP_POSITIVE)
         else:
             self._finish(ex, COMM_DONE, OP_POSITIVE)
@@ -297,8 +297,8 @@ class SchneiderSdoService:
     @staticmethod
     def _finish(ex: _Exchange, comm: int, op: int = OP_POSITIVE, abort_code: int = 0) -> None:
         mgmt, signed = ex.mgmt, ex.mgmt_signed
-        _store(mgmt, 1, (op << 8) | comm, signed)
+        store_word(mgmt, 1, (op << 8) | comm, signed)
         if len(mgmt) >= 6:
-            _store(mgmt, 4, abort_code & 0xFFFF, signed)
-            _store(mgmt, 5, abort_code >> 16, signed)
-        _store(mgmt, 0, int(mgmt[0]) & ~3, signed)   # activity (and cancel) off: the exchange is over
+            store_word(mgmt, 4, abort_code & 0xFFFF, signed)
+            store_word(mgmt, 5, abort_code >> 16, signed)
+        store_word(mgmt, 0, int(mgmt[0]) & ~3, signed)   # activity (and cancel) off: the exchange is over

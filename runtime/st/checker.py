@@ -20,7 +20,7 @@ from .symbols import CallInfo, POUInfo, VarSymbol, pyname
 from ..image.memory import AddressError, ProcessImage
 
 BUILTINS = ("TIME", "LTIME", "REF", "ADR", "SIZEOF")
-COMM_FUNCS = ("READ_VAR", "WRITE_VAR")
+COMM_FUNCS = ("READ_VAR", "WRITE_VAR", "MODBUS_EXCHANGE")
 
 _TIME_KIND = {
     "time": T.TIME, "ltime": T.LTIME, "date": T.DATE, "tod": T.TOD, "dt": T.DT,
@@ -1448,6 +1448,8 @@ class Checker:
                                  f"declare an instance (inst : {pou.name};) and call inst(...)")
                 self._check_args_loosely(e, scope)
                 return None
+            if key == "MODBUS_EXCHANGE":
+                return self._modbus_call(e, key, scope)
             if key in COMM_FUNCS:
                 return self._comm_call(e, key, scope)
             if key in BUILTINS:
@@ -1862,6 +1864,42 @@ class Checker:
                 self.d.error("E020", f"{key}: the management table needs 4 words", vals[i].pos)
         # The runtime stores words into the tables (reports, received data):
         # it needs to know whether an ARRAY's elements are signed (INT) or not.
+        e.target = CallInfo("comm", func=key, args=vals, rtypes=tuple(tys))
+        return T.BOOL
+
+    _MODBUS_ARGS = ("CONNECTION", "UNIT", "FUNCTION", "READ_OFFSET", "READ_COUNT", "WRITE_OFFSET",
+                    "WRITE_COUNT", "SEND", "RECEIVE", "MGMT")
+
+    def _modbus_call(self, e: A.Call, key: str, scope: _Scope) -> Optional[T.Type]:
+        """MODBUS_EXCHANGE (runtime/io/modbus_exchange.py), the primitive under
+        MODBUS_REQUEST: a connection name, six integers, then the send,
+        receive and management word tables."""
+        args = e.args
+        wants = self._MODBUS_ARGS
+        if len(args) != len(wants) or any(a.name is not None or a.value is None for a in args):
+            self.d.error("E041", f"{key} takes {len(wants)} positional arguments", e.pos,
+                         f"{key}({', '.join(wants)}); or use the MODBUS_REQUEST block")
+            self._check_args_loosely(e, scope)
+            return None
+        vals = [a.value for a in args]
+        tys = [self.expr(v, scope) for v in vals]
+        if any(t is None for t in tys):
+            return None
+        if not isinstance(T.resolve(tys[0]), T.StringType):
+            self.d.error("E020", f"{key}: CONNECTION is the name of a [[modbus]] connection, a STRING",
+                         vals[0].pos)
+        for i in range(1, 7):
+            be = T.base_elementary(tys[i])
+            if be is None or not be.is_intlike:
+                self.d.error("E020", f"{key}: {wants[i]} (argument {i + 1}) must be an integer", vals[i].pos)
+        for i in (7, 8, 9):
+            t = T.resolve(tys[i])
+            if not (isinstance(t, T.ArrayType) and len(t.dims) == 1 and
+                    T.base_elementary(t.elem) is not None and T.base_elementary(t.elem).bits == 16):
+                self.d.error("E020", f"{key}: {wants[i]} (argument {i + 1}) must be an ARRAY OF WORD "
+                             "(or INT/UINT)", vals[i].pos)
+            elif i == 9 and t.dims[0] is not None and t.dims[0][1] - t.dims[0][0] + 1 < 4:
+                self.d.error("E020", f"{key}: the management table needs 4 words", vals[i].pos)
         e.target = CallInfo("comm", func=key, args=vals, rtypes=tuple(tys))
         return T.BOOL
 

@@ -968,8 +968,10 @@ class CodeGen:
             return _literal(e.const)
         if info.kind == "comm":
             args = ", ".join(self.ex(a) for a in info.args)
-            signed = [T.base_elementary(T.resolve(t).elem).category == T.SIGNED for t in info.rtypes[4:6]]
-            return f"_comm({self.const(info.func)}, {args}, {signed[0]}, {signed[1]})"
+            # the runtime stores words into the tables: it needs each table's signedness
+            signed = [T.base_elementary(T.resolve(t).elem).category == T.SIGNED for t in info.rtypes
+                      if isinstance(T.resolve(t), T.ArrayType)]
+            return f"_comm({self.const(info.func)}, {args}, {', '.join(map(str, signed))})"
         raise NotImplementedError(info.kind)
 
     _INLINE_2 = {"MAX": "max", "MIN": "min"}

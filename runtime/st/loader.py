@@ -209,6 +209,7 @@ class ExecContext:
         self.watchdog_s = watchdog_s
         self.deadline = float("inf")
         self.comm = NoCommunication()
+        self.modbus = NoModbus()    # MODBUS_EXCHANGE; the Modbus master replaces it
         self.namespaces: list = []  # loaded modules that read the clock
 
     def set_time(self, now_ns: int) -> None:
@@ -244,6 +245,18 @@ class NoCommunication:
                 data_signed: bool = True, mgmt_signed: bool = True) -> bool:
         mgmt[0] = mgmt[0] & ~1  # activity bit off: the exchange is over
         mgmt[1] = (mgmt[1] & 0xFF00) | 0xFF
+        return False
+
+
+class NoModbus:
+    """MODBUS_EXCHANGE without a [[modbus]] connection: the exchange ends at
+    once with result 16#A5, REQUEST_FAILED_TO_SEND (runtime/io/modbus_link.py).
+    The Modbus master replaces this."""
+
+    def request(self, name: str, connection, unit, function, read_offset, read_count, write_offset,
+                write_count, send, receive, mgmt, *signed) -> bool:
+        mgmt[0] = mgmt[0] & ~1
+        mgmt[1] = 0xA5
         return False
 
 
@@ -323,7 +336,7 @@ class Program:
             "_check_index": _check_index, "_check_range": _check_range, "_out_of_bounds": out_of_bounds,
             "_for_range": _for_range,
             "_watchdog": ctx.check_watchdog,
-            "_comm": lambda name, *args: ctx.comm.request(name, *args),
+            "_comm": lambda name, *args: (ctx.modbus if name == "MODBUS_EXCHANGE" else ctx.comm).request(name, *args),
         }
         ns.update(self.generated.consts)
         image = ctx.image
