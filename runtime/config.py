@@ -884,7 +884,8 @@ class _Modbus(_Model):
 
 
 class _Sim(_Model):
-    type: Annotated[str, _choice(SIM_TYPES)] = Field(description=" or ".join(f"'{t}'" for t in SIM_TYPES))
+    type: Annotated[str, _choice(SIM_TYPES)] = Field(
+        description=", ".join(f"'{t}'" for t in SIM_TYPES[:-1]) + f" or '{SIM_TYPES[-1]}'")
     name: Optional[Annotated[str, _identifier("a simulator name")]] = Field(
         None, description='a simulator name such as "ltmr40"')
     bus: Optional[BusName] = Field(None, description="the name of a [[can]] bus")

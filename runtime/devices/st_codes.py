@@ -37,10 +37,10 @@ def _constants(module, prefix: str) -> list:
             if name.startswith(prefix) and isinstance(value, int) and not isinstance(value, enum.Enum)]
 
 
-def st_string(text: str) -> str:
+def st_string(text: str, length: int = TEXT_LENGTH) -> str:
     """A single-quoted ST string literal ($ and ' escaped)."""
-    if len(text) > TEXT_LENGTH:
-        raise ValueError(f"text longer than STRING[{TEXT_LENGTH}]: {text!r}")
+    if len(text) > length:
+        raise ValueError(f"text longer than STRING[{length}]: {text!r}")
     return "'" + text.replace("$", "$$").replace("'", "$'") + "'"
 
 
