@@ -375,7 +375,9 @@ class Engine:
         if self.retain_store is not None:
             self.save_retain()
             self.retain_store.close()
-        for driver in self.drivers:
+        # bus drivers before the simulated devices they talk to (build.make_drivers
+        # lists those first), so no master reports its devices going away
+        for driver in reversed(self.drivers):
             driver.stop()
 
     def save_retain(self) -> None:
