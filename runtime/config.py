@@ -28,7 +28,8 @@ The file::
                    Modbus devices: modbus, unit               (zero or more)
 
 io_config/examples/ has one commented example per section (canopen.toml for
-[[can]], [canopen] and [[sim]], modbus.toml for [[modbus]]). Durations are written as everywhere else
+[[can]], [canopen] and [[sim]], modbus_rtu.toml and modbus_tcp.toml for
+[[modbus]]). Durations are written as everywhere else
 ("100ms", "T#1s", false for none where that makes sense) and stored in the
 unit their field names (heartbeat_ms, sync_us ...).
 
@@ -42,7 +43,9 @@ other finds, so a file's errors are all reported at once, one per line:
      depends on the address), loopback addresses; the CAN side: bus
      references, unique node ids and names, heartbeat times against each
      other, PDO addresses (they depend on the profile) and their overlaps,
-     SDO values against their size.
+     SDO values against their size; the Modbus side: the keys each
+     transport takes, channel addresses and counts per function code,
+     triggers, and simulated drives on a line that can reach them.
 
 Every message names the file, the key path and what was expected::
 
@@ -234,14 +237,6 @@ class ModbusChannelConfig:
     period_ns: int                   # cyclic period; the wait after a failure for the others
     edge: Optional[LocatedAddress]   # trigger "edge": a BOOL address
     key: str                         # "modbus[0].channel[1]"
-
-    @property
-    def address(self):               # the read address for Channel
-        return self.read_to
-
-    @property
-    def write_address(self):
-        return self.write_from
 
 
 @dataclass
@@ -1065,16 +1060,17 @@ class _ModbusRelations:
             if _is_ident(name):
                 first = names.setdefault(name.upper(), j)
                 if first != j:
-                    self.error(at + ("name",), f"duplicate channel name '{name}' (channel[{first}] has it)")
+                    self.error(at + ("name",), f"duplicate channel name '{name}' (channel[{first}] has it; "
+                                               "names are case-insensitive)")
             fc = ch.get("function")
             if fc not in MODBUS_FUNCTIONS or isinstance(fc, bool):
                 continue   # pass 1 reports it
             reads, writes, bits = fc in MODBUS_READS, fc in MODBUS_WRITES, fc in MODBUS_BITS
             count = ch.get("count", 1)
             limit = {1: 2000, 2: 2000, 3: 125, 4: 125, 5: 1, 6: 1, 15: 1968, 16: 123, 23: 125}[fc]
-            if _in_range(count, 1, None) and count > limit:
-                self.error(at + ("count",), f"function {fc} carries at most {limit} "
-                                            f"{'bits' if bits else 'registers'} (got {count})")
+            if _in_range(count, 1, 2000) and count > limit:    # above 2000: pass 1 reports it
+                what = ("bit" if bits else "register") + ("s" if limit > 1 else "")
+                self.error(at + ("count",), f"function {fc} carries at most {limit} {what} (got {count})")
             if fc == 23:
                 for key in ("write_offset", "write_count"):
                     if key not in ch:
@@ -1610,6 +1606,7 @@ class _Relations(_ModbusRelations):
             if isinstance(kind, str) and kind.lower() in MODBUS_SIM_TYPES:
                 self._modbus_sim(here, sim, units)
                 self._sim_name(here, sim, sim_names)
+                self._sim_registers(here, sim)
                 continue
             for key in ("modbus", "unit"):
                 if key in sim:
@@ -1629,12 +1626,15 @@ class _Relations(_ModbusRelations):
                 else:
                     at_node[bus, node_id] = here
             self._sim_name(here, sim, sim_names)
-            registers = sim.get("registers")
-            if isinstance(registers, dict):
-                for number in registers:
-                    if not _register_number(number):
-                        self.error(here + ("registers", number), f"expected a register number from 0 to "
-                                   f'{U16_MAX} in decimal, such as "682" (got {_got(number)})')
+            self._sim_registers(here, sim)
+
+    def _sim_registers(self, here: tuple, sim: dict) -> None:
+        registers = sim.get("registers")
+        if isinstance(registers, dict):
+            for number in registers:
+                if not _register_number(number):
+                    self.error(here + ("registers", number), f"expected a register number from 0 to "
+                               f'{U16_MAX} in decimal, such as "682" (got {_got(number)})')
 
     def _sim_name(self, here: tuple, sim: dict, names: dict) -> None:
         if "name" in sim:

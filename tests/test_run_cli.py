@@ -83,7 +83,7 @@ def test_default_example_runs_in_virtual_time(tmp_path):
     proc = softplc("run", "--virtual-time", "--duration", "10s", "--final-json", out)
     assert proc.returncode == 0, proc.stderr
     final = json.loads(out.read_text())
-    assert set(final) == {"Conveyor", "Panel", "Motor"}
+    assert set(final) == {"Conveyor", "Panel", "Motor", "Drive"}
     # START is pressed at 0.1 s and 5.1 s; each batch of 8 parts is done well within 5 s.
     assert final["Conveyor"]["batches"] == 2
     assert final["Conveyor"]["state"] == "Idle"
@@ -92,6 +92,13 @@ def test_default_example_runs_in_virtual_time(tmp_path):
     assert "canopen: node motor (40) operational" in proc.stderr
     assert final["Motor"]["starts"] == 3 and final["Motor"]["trips"] == 0
     assert final["Motor"]["reads"] == 4 and final["Motor"]["readErrors"] == 0
+    # The DA1 on Modbus RTU: at 40 Hz after 4 s, held 2 s, then reversing through zero
+    # (80 Hz at 10 Hz/s) when the run ends; every exchange answered.
+    drive = final["Drive"]
+    assert drive["state"] == "RunReverse" and drive["faults"] == 0 and drive["MonitorOk"]
+    assert drive["drive"]["MODEL"] == "DA1" and not drive["drive"]["ERROR"]
+    assert drive["drive"]["EXCHANGES"] > 400 and drive["AccelRamp"] == 50
+    assert "modbus: 1 up" in proc.stderr
     assert "stopped after 1000 scans" in proc.stderr
 
 

@@ -21,7 +21,7 @@ import sys
 from pathlib import Path
 
 from . import eaton
-from .st_codes import st_string
+from .st_codes import st_string, write_generated
 
 ST_FILE = Path(__file__).resolve().parents[2] / "fblocks" / "vendor" / "eaton_codes.st"
 FAULT_TEXT_LENGTH = 120     # the longest cause in Tabelle 11 is 87 characters
@@ -92,10 +92,7 @@ def render() -> str:
 
 
 def main(argv=None) -> int:
-    target = Path(argv[0]) if argv else ST_FILE
-    target.write_text(render(), encoding="utf-8", newline="\n")
-    print(f"wrote {target}")
-    return 0
+    return write_generated(render(), ST_FILE, argv)
 
 
 if __name__ == "__main__":

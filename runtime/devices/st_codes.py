@@ -131,11 +131,16 @@ def render() -> str:
     return "\n".join(lines) + "\n"
 
 
-def main(argv=None) -> int:
-    target = Path(argv[0]) if argv else ST_FILE
-    target.write_text(render(), encoding="utf-8", newline="\n")
+def write_generated(text: str, default: Path, argv) -> int:
+    """The generators' command line: write text to argv[0], or to the shipped file."""
+    target = Path(argv[0]) if argv else default
+    target.write_text(text, encoding="utf-8", newline="\n")
     print(f"wrote {target}")
     return 0
+
+
+def main(argv=None) -> int:
+    return write_generated(render(), ST_FILE, argv)
 
 
 if __name__ == "__main__":

@@ -10,6 +10,7 @@ from typing import Optional
 from ..config import PlcConfig
 from ..io.canbus import BusPump, BusSettings
 from ..io.canopen_master import CanopenDriver
+from ..io.driver import DriverError
 from ..io.loopback import LoopbackDriver
 from ..io.modbus_master import ModbusDriver
 from ..st.loader import compile_files
@@ -55,7 +56,11 @@ def make_modbus_drives(config: PlcConfig, clock) -> list:
         for sim in config.sims:
             if sim.modbus == conn.name:
                 family = Family.DE1 if sim.type == "de11" else Family[sim.type.upper()]
-                drives[sim.unit] = EatonDriveModel(family, de11=sim.type == "de11", registers=dict(sim.registers))
+                try:
+                    drives[sim.unit] = EatonDriveModel(family, de11=sim.type == "de11",
+                                                       registers=dict(sim.registers))
+                except ValueError as exc:    # a register the drive does not have
+                    raise DriverError(f"{config.path or '<config>'}: {sim.key}.registers: {exc}") from None
         if not drives:
             continue
         if conn.transport == "tcp":

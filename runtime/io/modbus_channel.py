@@ -1,8 +1,8 @@
 """A Modbus channel, as CODESYS has them: one request to one slave, repeated
 on a trigger, between a register (or coil) block and the process image.
 
-    function 1, 2, 3, 4   read  -> `address` (%I or %M) at the start of a cycle
-    function 5, 6, 15, 16 write <- `write_address` (%Q or %M) after a cycle
+    function 1, 2, 3, 4   read  -> `read_to` (%I or %M) at the start of a cycle
+    function 5, 6, 15, 16 write <- `write_from` (%Q or %M) after a cycle
     function 23           both in one transaction
 
 Registers lie in the image as consecutive 16-bit words (little-endian bytes,
@@ -53,9 +53,9 @@ class Channel:
         self.reads, self.writes, self.bits = FUNCTIONS[cfg.function]
         self._lock = threading.Lock()
         self.stats = ChannelStats()
-        self._read_span = self._span(image, cfg.address, cfg.count) if self.reads else None
+        self._read_span = self._span(image, cfg.read_to, cfg.count) if self.reads else None
         write_count = cfg.write_count if cfg.function == 23 else cfg.count
-        self._write_span = self._span(image, cfg.write_address, write_count) if self.writes else None
+        self._write_span = self._span(image, cfg.write_from, write_count) if self.writes else None
         self._write_count = write_count
         self._staged: Optional[bytes] = None     # the last bytes the program left to write
         self._sent: Optional[bytes] = None       # the bytes of the last good write

@@ -26,7 +26,7 @@ import enum
 import logging
 import time
 from dataclasses import dataclass, field
-from typing import Callable, Optional
+from typing import Optional
 
 from pymodbus.client import ModbusSerialClient, ModbusTcpClient
 from pymodbus.exceptions import ConnectionException, ModbusException, ModbusIOException
@@ -149,9 +149,8 @@ class ModbusLink:
     """One connection; see the module docstring. Not thread-safe by design:
     one owner calls transact()."""
 
-    def __init__(self, settings: LinkSettings, *, trace: Optional[Callable[[bool, bytes], None]] = None) -> None:
+    def __init__(self, settings: LinkSettings) -> None:
         self.settings = settings
-        self._trace = trace
         self._client = None
         self._next_attempt_ns = 0
         self._backoff_s = settings.reconnect_s
@@ -168,17 +167,12 @@ class ModbusLink:
 
     def _new_client(self):
         s = self.settings
-        trace = self._traced if self._trace is not None else None
         if s.transport == "tcp":
             return ModbusTcpClient(s.host, port=s.port, timeout=s.timeout_s, retries=s.retries,
-                                   reconnect_delay=0, trace_packet=trace)
+                                   reconnect_delay=0)
         return ModbusSerialClient(s.device, baudrate=s.baud, parity=s.parity, stopbits=s.stop_bits,
                                   bytesize=s.data_bits, timeout=s.timeout_s, retries=s.retries,
-                                  reconnect_delay=0, trace_packet=trace)
-
-    def _traced(self, sending: bool, data: bytes) -> bytes:
-        self._trace(sending, bytes(data))
-        return data
+                                  reconnect_delay=0)
 
     def try_connect(self, now_ns: int) -> bool:
         """Connected, or connect now unless the back-off says wait."""

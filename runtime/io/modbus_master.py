@@ -116,8 +116,7 @@ class ConnectionWorker:
 class ModbusDriver(Driver):
     """Driver for all [[modbus]] connections (one instance per engine)."""
 
-    def __init__(self, connections: list, addressing: str, *, clock,
-                 trace: Optional[Callable[[str, bool, bytes], None]] = None) -> None:
+    def __init__(self, connections: list, addressing: str, *, clock) -> None:
         self.name = "modbus"
         image = ProcessImage(addressing)     # the layout, for the channels' byte spans
         self.clock = clock
@@ -131,8 +130,7 @@ class ModbusDriver(Driver):
                 except Exception as exc:
                     raise DriverError(str(exc)) from None
             self.channels.extend(channels)
-            wire = (lambda sending, data, name=cfg.name: trace(name, sending, data)) if trace else None
-            self.workers[cfg.name] = ConnectionWorker(ModbusLink(link_settings(cfg), trace=wire), channels, clock)
+            self.workers[cfg.name] = ConnectionWorker(ModbusLink(link_settings(cfg)), channels, clock)
         self.modbus = ModbusExchangeService(self._submit)
         self._diag = None
         self._seen: dict = {}

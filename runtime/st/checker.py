@@ -1855,13 +1855,8 @@ class Checker:
                 self.d.error("E020", f"{key}: the {wants[i]} (argument {i + 1}) must be an integer",
                              vals[i].pos)
         for i in (4, 5):
-            t = T.resolve(tys[i])
-            if not (isinstance(t, T.ArrayType) and len(t.dims) == 1 and
-                    T.base_elementary(t.elem) is not None and T.base_elementary(t.elem).bits == 16):
-                self.d.error("E020", f"{key}: the {wants[i]} table (argument {i + 1}) must be a word "
-                             "table such as %MW3250:4 or an ARRAY OF INT", vals[i].pos)
-            elif i == 5 and t.dims[0] is not None and t.dims[0][1] - t.dims[0][0] + 1 < 4:
-                self.d.error("E020", f"{key}: the management table needs 4 words", vals[i].pos)
+            self._word_table_arg(key, tys[i], vals[i], f"the {wants[i]} table (argument {i + 1}) must be a "
+                                 "word table such as %MW3250:4 or an ARRAY OF INT", management=i == 5)
         # The runtime stores words into the tables (reports, received data):
         # it needs to know whether an ARRAY's elements are signed (INT) or not.
         e.target = CallInfo("comm", func=key, args=vals, rtypes=tuple(tys))
@@ -1893,15 +1888,19 @@ class Checker:
             if be is None or not be.is_intlike:
                 self.d.error("E020", f"{key}: {wants[i]} (argument {i + 1}) must be an integer", vals[i].pos)
         for i in (7, 8, 9):
-            t = T.resolve(tys[i])
-            if not (isinstance(t, T.ArrayType) and len(t.dims) == 1 and
-                    T.base_elementary(t.elem) is not None and T.base_elementary(t.elem).bits == 16):
-                self.d.error("E020", f"{key}: {wants[i]} (argument {i + 1}) must be an ARRAY OF WORD "
-                             "(or INT/UINT)", vals[i].pos)
-            elif i == 9 and t.dims[0] is not None and t.dims[0][1] - t.dims[0][0] + 1 < 4:
-                self.d.error("E020", f"{key}: the management table needs 4 words", vals[i].pos)
+            self._word_table_arg(key, tys[i], vals[i], f"{wants[i]} (argument {i + 1}) must be an ARRAY OF "
+                                 "WORD (or INT/UINT)", management=i == 9)
         e.target = CallInfo("comm", func=key, args=vals, rtypes=tuple(tys))
         return T.BOOL
+
+    def _word_table_arg(self, key: str, ty, value, message: str, management: bool) -> None:
+        """A one-dimensional table of 16-bit words; a management table has at least 4."""
+        t = T.resolve(ty)
+        if not (isinstance(t, T.ArrayType) and len(t.dims) == 1 and
+                T.base_elementary(t.elem) is not None and T.base_elementary(t.elem).bits == 16):
+            self.d.error("E020", f"{key}: {message}", value.pos)
+        elif management and t.dims[0] is not None and t.dims[0][1] - t.dims[0][0] + 1 < 4:
+            self.d.error("E020", f"{key}: the management table needs 4 words", value.pos)
 
     # ================================================================ configuration
 

@@ -3,7 +3,6 @@ simulated drives over TCP (several units on one connection)."""
 from __future__ import annotations
 
 import re
-from pathlib import Path
 
 import pytest
 
@@ -155,3 +154,13 @@ def test_a_failing_channel_does_not_disturb_the_others(plants, tmp_path):
     assert plant.channel(1, "Error") and plant.channel(0, "Ok")
     assert "no answer from unit 7" in plant.channel(1, "Message")
     assert not plant.master.status().ok and "absent" in plant.master.status().message
+
+
+def test_a_simulated_drive_refuses_a_register_it_does_not_have(tmp_path):
+    from softplc.runtime.config import config_from_dict
+    from softplc.runtime.engine.build import build_engine
+    from softplc.runtime.io.driver import DriverError
+    data = plant_config(tmp_path, "PROGRAM T\nEND_PROGRAM\n", program="T",
+                        sims=[{"type": "da1", "unit": 1, "registers": {"5": 3}}])
+    with pytest.raises(DriverError, match=r"plant.toml: sim\[0\].registers: DA1 has no register 5"):
+        build_engine(config_from_dict(data, tmp_path / "plant.toml"), virtual_time=True)
