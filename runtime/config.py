@@ -70,6 +70,8 @@ from pydantic_core import PydanticCustomError
 
 from .durations import EXAMPLES as DURATION_EXAMPLES, parse_duration_ns
 from .image import address as _address
+from .io.modbus_functions import FUNCTIONS as MODBUS_FUNCTION_KINDS, READ_LIMIT as MODBUS_READ_LIMIT, \
+    WRITE_LIMIT as MODBUS_WRITE_LIMIT
 from .st.ast import LocatedAddress
 from .st.profile import DEFAULT as _DEFAULT_PROFILE, PROFILES
 
@@ -534,10 +536,7 @@ PDO_BITS_MAX = 64
 CAN_SIM_TYPES = ("ltmr",)
 MODBUS_SIM_TYPES = ("da1", "db1", "dc1", "de1", "de11")     # manual 002: the Eaton PowerXL families
 SIM_TYPES = CAN_SIM_TYPES + MODBUS_SIM_TYPES
-MODBUS_FUNCTIONS = (1, 2, 3, 4, 5, 6, 15, 16, 23)
-MODBUS_READS = (1, 2, 3, 4, 23)
-MODBUS_WRITES = (5, 6, 15, 16, 23)
-MODBUS_BITS = (1, 2, 5, 15)
+MODBUS_FUNCTIONS = tuple(MODBUS_FUNCTION_KINDS)
 MODBUS_SIM_DEVICE = "sim"
 MODBUS_UNIT_MAX = 247                # Modbus over serial line 2.2: 1..247 (0 = broadcast)
 DEFAULT_HEARTBEAT_MS = 100           # the master's and a node's, unless the file says
@@ -1065,9 +1064,9 @@ class _ModbusRelations:
             fc = ch.get("function")
             if fc not in MODBUS_FUNCTIONS or isinstance(fc, bool):
                 continue   # pass 1 reports it
-            reads, writes, bits = fc in MODBUS_READS, fc in MODBUS_WRITES, fc in MODBUS_BITS
+            reads, writes, bits = MODBUS_FUNCTION_KINDS[fc]
             count = ch.get("count", 1)
-            limit = {1: 2000, 2: 2000, 3: 125, 4: 125, 5: 1, 6: 1, 15: 1968, 16: 123, 23: 125}[fc]
+            limit = MODBUS_READ_LIMIT[fc] if reads else MODBUS_WRITE_LIMIT[fc]
             if _in_range(count, 1, 2000) and count > limit:    # above 2000: pass 1 reports it
                 what = ("bit" if bits else "register") + ("s" if limit > 1 else "")
                 self.error(at + ("count",), f"function {fc} carries at most {limit} {what} (got {count})")

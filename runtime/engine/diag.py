@@ -92,6 +92,11 @@ class ModbusDiag:
         self._channels = [StructWriter(s) for s in channels] if channels is not None else []
         self._seen: dict = {}   # index -> (version, connection ok) written
 
+    @property
+    def active(self) -> bool:
+        """The program declares MODBUS_CHANNEL (it names something of modbus.st)."""
+        return bool(self._channels)
+
     def update(self, snapshot) -> None:
         """snapshot: (index, Channel.snapshot(), connection ok) per channel."""
         for index, (version, ok, last_error, requests, errors, response_ms, message), link_ok in snapshot:

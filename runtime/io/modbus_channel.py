@@ -29,7 +29,8 @@ from typing import Optional
 from ..image.memory import ProcessImage
 from ..st import types as T
 from .modbus_exchange import pack_bits
-from .modbus_link import FUNCTIONS, ModbusError, Outcome, Transaction, error_text
+from .modbus_functions import FUNCTIONS
+from .modbus_link import ModbusError, Outcome, Transaction, error_text
 
 
 class ChannelStats:

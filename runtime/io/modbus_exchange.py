@@ -26,7 +26,8 @@ from __future__ import annotations
 import threading
 from typing import Callable, Optional
 
-from .modbus_link import FUNCTIONS, ModbusError, Outcome, Transaction, check_request
+from .modbus_functions import FUNCTIONS, check_request
+from .modbus_link import ModbusError, Outcome, Transaction
 from .sdo_exchange import store_word
 
 
@@ -68,13 +69,12 @@ class ModbusExchangeService:
         m0 = int(mgmt[0]) & 0xFFFF
         if m0 & 1:
             return False
-        bits = FUNCTIONS.get(int(function), (False, False, False))[2]
+        function, read_count, write_count = int(function), int(read_count), int(write_count)
+        reads, writes, bits = FUNCTIONS.get(function, (False, False, False))
         ex = _Exchange(receive, mgmt, receive_signed, mgmt_signed, bits)
         store_word(mgmt, 0, ((((m0 >> 8) + 1) & 0xFF) << 8) | 1, mgmt_signed)
         for i in (1, 2, 3):
             store_word(mgmt, i, 0, mgmt_signed)
-        function, read_count, write_count = int(function), int(read_count), int(write_count)
-        reads, writes, _ = FUNCTIONS.get(function, (False, False, False))
         problem = check_request(function, read_count, write_count if writes else 0)
         room = 16 * len(receive) if bits else len(receive)
         send_room = 16 * len(send) if bits else len(send)

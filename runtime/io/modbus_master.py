@@ -55,7 +55,6 @@ class ConnectionWorker:
         self._wake = threading.Event()
         self._thread: Optional[threading.Thread] = None
         self._running = False
-        self.transactions = 0
 
     def submit(self, tx: Transaction, done: Callable[[Outcome], None]) -> None:
         self._requests.append((tx, done))
@@ -68,11 +67,9 @@ class ConnectionWorker:
         self.link.try_connect(now_ns)
         while self._requests:
             tx, done = self._requests.popleft()
-            self.transactions += 1
             done(self.link.transact(tx, now_ns))
         for ch in self.channels:
             if ch.due(now_ns):
-                self.transactions += 1
                 ch.complete(self.link.transact(ch.transaction(), now_ns), now_ns)
 
     def _next_wait_s(self, now_ns: int) -> float:
@@ -133,7 +130,6 @@ class ModbusDriver(Driver):
             self.workers[cfg.name] = ConnectionWorker(ModbusLink(link_settings(cfg)), channels, clock)
         self.modbus = ModbusExchangeService(self._submit)
         self._diag = None
-        self._seen: dict = {}
 
     def _submit(self, connection: str, tx: Transaction, done) -> bool:
         worker = self.workers.get(connection)
@@ -159,7 +155,9 @@ class ModbusDriver(Driver):
 
     def bind_program(self, globals_obj) -> None:
         from ..engine.diag import ModbusDiag   # the engine knows how ST structs look
-        self._diag = ModbusDiag(globals_obj)
+        diag = ModbusDiag(globals_obj)
+        # a program that does not read MODBUS_CHANNEL costs no snapshot per cycle
+        self._diag = diag if diag.active else None
 
     # scan side ----------------------------------------------------------------
 
