@@ -107,7 +107,7 @@ def exchange_loop(driver: ModbusDriver, polls: list):
     send, receive, mgmt = [0] * 125, [0] * 125, [0] * 4
 
     def run(k: int) -> None:
-        request, collect = driver.modbus.request, driver.modbus.collect
+        request, collect = driver.exchange.request, driver.exchange.collect
         for _ in range(k):
             if not request("MODBUS_EXCHANGE", CONNECTION, UNIT, FUNCTION, OFFSET, COUNT, 0, 0,
                            send, receive, mgmt):

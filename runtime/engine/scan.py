@@ -98,13 +98,9 @@ class Engine:
         self.image = image if image is not None else ProcessImage(program.profile.addressing)
         self.ctx = ExecContext(self.image)
         self.drivers = list(drivers)
-        for driver in self.drivers:
-            if driver.comm is not None:   # READ_VAR / WRITE_VAR go to the (first) bus that serves them
-                self.ctx.comm = driver.comm
-                break
-        for driver in self.drivers:
-            if driver.modbus is not None:   # MODBUS_EXCHANGE goes to the Modbus master
-                self.ctx.modbus = driver.modbus
+        for driver in self.drivers:   # a native function's service: the first driver's that offers it
+            for name, service in driver.services.items():
+                self.ctx.services.setdefault(name, service)
         self.on_fault = on_fault
         self.start_mode = start_mode
         self.retain_store = retain_store

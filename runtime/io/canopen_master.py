@@ -30,7 +30,7 @@ from .canbus import BusSettings, CanEndpoint, PeriodicService, open_bus
 from .canopen_node import Emergency, NodeState, NodeSupervisor
 from .canopen_pdo import PdoBinding, TxSchedule, default_cob_id
 from .driver import Driver, DriverError, DriverStatus
-from .sdo_exchange import SchneiderSdoService, SdoJob, SdoWorker
+from .sdo_exchange import SERVICE as SDO_SERVICE, SchneiderSdoService, SdoJob, SdoWorker
 
 log = logging.getLogger(__name__)
 
@@ -94,10 +94,11 @@ class CanopenDriver(Driver):
         self.network: Optional[_EndpointNetwork] = None
         self.worker: Optional[SdoWorker] = None
         self._service: Optional[PeriodicService] = None
-        self.comm = SchneiderSdoService(self._submit_exchange,
+        self.sdo_service = SchneiderSdoService(self._submit_exchange,
                                         default_timeout_s=config.sdo_timeout_ms / 1000,
                                         object_size=self._object_size,
                                         available=lambda: self._bus_ok)
+        self.services = {SDO_SERVICE: self.sdo_service}
         self.rx_short = 0       # TPDOs shorter than their mapping (dropped)
         self._diag = None
 
@@ -368,7 +369,7 @@ class CanopenDriver(Driver):
             snapshot = [(n.cfg.node_id, n.sup.version, n) for n in self.nodes.values()]
         for binding, data in fresh.items():
             binding.unpack(data, image)
-        self.comm.collect()
+        self.sdo_service.collect()
         if self._diag is not None:
             self._diag.update(snapshot, self._master_view())
 

@@ -52,11 +52,9 @@ class Driver:
 
     #: the config section and name, for messages: "loopback[0]", "canopen"
     name: str = "driver"
-    #: the service behind READ_VAR / WRITE_VAR (ExecContext.comm), for a
-    #: driver that offers one (the CANopen master); None otherwise
-    comm = None
-    #: the service behind MODBUS_EXCHANGE (ExecContext.modbus): the Modbus master's
-    modbus = None
+    #: the services this driver offers to native functions (st/native.py),
+    #: by service name: the engine binds them to the program's ExecContext
+    services: dict = {}
 
     def start(self) -> None:
         pass

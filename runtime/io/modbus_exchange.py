@@ -29,6 +29,7 @@ from typing import Callable, Optional
 from .modbus_functions import FUNCTIONS, check_request
 from .modbus_link import ModbusError, Outcome, Transaction
 from .sdo_exchange import store_word
+from ..st.native import ANY_INT, STRING, WORDS, NativeFunction, Param
 
 
 def unpack_bits(words, count: int) -> list:
@@ -128,3 +129,31 @@ class ModbusExchangeService:
         store_word(mgmt, 3, min(int(outcome.response_s * 1000), 0xFFFF), signed)
         store_word(mgmt, 0, int(mgmt[0]) & ~1, signed)
 
+
+
+class NoModbus:
+    """MODBUS_EXCHANGE without a [[modbus]] connection: the exchange ends at
+    once with result 16#A5, REQUEST_FAILED_TO_SEND (modbus_link.ModbusError).
+    The Modbus master's service replaces this."""
+
+    def request(self, name: str, connection, unit, function, read_offset, read_count, write_offset,
+                write_count, send, receive, mgmt, *signed) -> bool:
+        mgmt[0] = mgmt[0] & ~1
+        mgmt[1] = int(ModbusError.REQUEST_FAILED_TO_SEND)
+        return False
+
+
+#: the ExecContext service of MODBUS_EXCHANGE (ModbusExchangeService)
+SERVICE = "modbus.exchange"
+_ARGS = ("CONNECTION", "UNIT", "FUNCTION", "READ_OFFSET", "READ_COUNT", "WRITE_OFFSET", "WRITE_COUNT",
+         "SEND", "RECEIVE", "MGMT")
+_TABLE = "an ARRAY OF WORD (or INT/UINT)"
+
+MODBUS_EXCHANGE = NativeFunction(
+    "MODBUS_EXCHANGE",
+    (Param("CONNECTION", STRING, "CONNECTION", "the name of a [[modbus]] connection, a STRING"),
+     *(Param(name, ANY_INT, name) for name in _ARGS[1:7]),
+     Param("SEND", WORDS, "SEND", _TABLE), Param("RECEIVE", WORDS, "RECEIVE", _TABLE),
+     Param("MGMT", WORDS, "MGMT", _TABLE, min_words=4)),
+    service=SERVICE, fallback=NoModbus(),
+    usage=f"MODBUS_EXCHANGE({', '.join(_ARGS)}); or use the MODBUS_REQUEST block")

@@ -25,7 +25,7 @@ from typing import Callable, Optional
 from ..image.memory import ProcessImage
 from .driver import Driver, DriverError, DriverStatus
 from .modbus_channel import Channel
-from .modbus_exchange import ModbusExchangeService
+from .modbus_exchange import SERVICE as EXCHANGE_SERVICE, ModbusExchangeService
 from .modbus_link import LinkSettings, ModbusLink, Outcome, Transaction
 
 log = logging.getLogger(__name__)
@@ -128,7 +128,8 @@ class ModbusDriver(Driver):
                     raise DriverError(str(exc)) from None
             self.channels.extend(channels)
             self.workers[cfg.name] = ConnectionWorker(ModbusLink(link_settings(cfg)), channels, clock)
-        self.modbus = ModbusExchangeService(self._submit)
+        self.exchange = ModbusExchangeService(self._submit)
+        self.services = {EXCHANGE_SERVICE: self.exchange}
         self._diag = None
 
     def _submit(self, connection: str, tx: Transaction, done) -> bool:
@@ -164,7 +165,7 @@ class ModbusDriver(Driver):
     def read_inputs(self, image: ProcessImage) -> None:
         for ch in self.channels:
             ch.publish(image)
-        self.modbus.collect()
+        self.exchange.collect()
         if self._diag is not None:
             self._diag.update([(i, ch.snapshot(), self.workers[ch.cfg.connection].link.connected)
                                for i, ch in enumerate(self.channels)])

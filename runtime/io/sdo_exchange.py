@@ -39,6 +39,7 @@ import canopen
 from canopen.sdo.exceptions import SdoAbortedError, SdoCommunicationError
 
 from ..devices.cia301 import ABORT_TIMEOUT, abort_text
+from ..st.native import ADDRESS, ANY_INT, STRING, WORDS, NativeFunction, Param
 
 log = logging.getLogger(__name__)
 
@@ -302,3 +303,38 @@ class SchneiderSdoService:
             store_word(mgmt, 4, abort_code & 0xFFFF, signed)
             store_word(mgmt, 5, abort_code >> 16, signed)
         store_word(mgmt, 0, int(mgmt[0]) & ~3, signed)   # activity (and cancel) off: the exchange is over
+
+
+class NoCommunication:
+    """READ_VAR / WRITE_VAR without a configured bus: the exchange ends at
+    once with communication report 16#FF (network exchange error), as on a
+    PLC with no network module. The CANopen master's service replaces this."""
+
+    def request(self, name: str, addr, obj: str, number: int, node: int, data, mgmt,
+                data_signed: bool = True, mgmt_signed: bool = True) -> bool:
+        mgmt[0] = mgmt[0] & ~1  # activity bit off: the exchange is over
+        mgmt[1] = (mgmt[1] & 0xFF00) | COMM_NETWORK_ERROR
+        return False
+
+
+#: the ExecContext service of READ_VAR / WRITE_VAR (SchneiderSdoService)
+SERVICE = "canopen.sdo"
+
+_TABLE = "a word table such as %MW3250:4 or an ARRAY OF INT"
+
+
+def _schneider(name: str) -> NativeFunction:
+    """READ_VAR / WRITE_VAR with the argument order of the LTMR manual's
+    examples (DOCA0132DE, 'Beispiel für ein Schreibe-SDO')."""
+    return NativeFunction(
+        name,
+        (Param("address", ADDRESS), Param("object", STRING, expect="the object type, a string such as 'SDO'"),
+         Param("number", ANY_INT, "the number"), Param("node", ANY_INT, "the node"),
+         Param("data", WORDS, "the data table", _TABLE),
+         Param("management", WORDS, "the management table", _TABLE, min_words=4)),
+        service=SERVICE, fallback=NoCommunication(),
+        usage=f"{name}(ADR#0.1.SYS, 'SDO', %MD<index/subindex>, <node id>, %MW<data>:<n>, %MW<management>:4)")
+
+
+READ_VAR = _schneider("READ_VAR")
+WRITE_VAR = _schneider("WRITE_VAR")

@@ -13,14 +13,15 @@ from typing import Any, Optional
 
 from . import ast as A
 from . import rtlib
+from . import native
 from . import types as T
 from .diagnostics import DiagnosticBag
+from .native import NativeFunction
 from .profile import Profile
 from .symbols import CallInfo, POUInfo, VarSymbol, pyname
 from ..image.memory import AddressError, ProcessImage
 
 BUILTINS = ("TIME", "LTIME", "REF", "ADR", "SIZEOF")
-COMM_FUNCS = ("READ_VAR", "WRITE_VAR", "MODBUS_EXCHANGE")
 
 _TIME_KIND = {
     "time": T.TIME, "ltime": T.LTIME, "date": T.DATE, "tod": T.TOD, "dt": T.DT,
@@ -81,10 +82,12 @@ class _Scope:
 
 
 class Checker:
-    def __init__(self, profile: Profile, diags: DiagnosticBag, std_functions: dict) -> None:
+    def __init__(self, profile: Profile, diags: DiagnosticBag, std_functions: dict,
+                 natives: Optional[dict] = None) -> None:
         self.profile = profile
         self.d = diags
         self.std = std_functions
+        self.natives: dict = natives or {}  # UPPER -> native.NativeFunction
         self.type_decls: dict = {}  # UPPER -> TypeDecl
         self.types: dict = {}  # UPPER -> Type (resolved)
         self._resolving: set = set()
@@ -1448,10 +1451,9 @@ class Checker:
                                  f"declare an instance (inst : {pou.name};) and call inst(...)")
                 self._check_args_loosely(e, scope)
                 return None
-            if key == "MODBUS_EXCHANGE":
-                return self._modbus_call(e, key, scope)
-            if key in COMM_FUNCS:
-                return self._comm_call(e, key, scope)
+            native = self.natives.get(key)
+            if native is not None:
+                return self._native_call(e, native, scope)
             if key in BUILTINS:
                 return self._builtin_call(e, key, scope)
             func = self.std.get(key)
@@ -1829,78 +1831,41 @@ class Checker:
             return 8
         return None
 
-    def _comm_call(self, e: A.Call, key: str, scope: _Scope) -> Optional[T.Type]:
-        """Schneider READ_VAR / WRITE_VAR with the argument order of the LTMR
-        manual's examples (DOCA0132DE, 'Beispiel für ein Schreibe-SDO'):
-        (ADR#.., 'SDO', %MD index/subindex, node, data table, management table)."""
+    def _native_call(self, e: A.Call, fn: NativeFunction, scope: _Scope) -> Optional[T.Type]:
+        """A call of a native function (st/native.py): positional arguments
+        checked against the declaration's parameter kinds."""
         args = e.args
-        if len(args) != 6 or any(a.name is not None or a.value is None for a in args):
-            self.d.error("E041", f"{key} takes 6 positional arguments", e.pos,
-                         f"{key}(ADR#0.1.SYS, 'SDO', %MD<index/subindex>, <node id>, "
-                         "%MW<data>:<n>, %MW<management>:4)")
-            self._check_args_loosely(e, scope)
-            return None
-        vals = [a.value for a in args]
-        wants = ("address", "object", "number", "node", "data", "management")
-        tys = [self.expr(v, scope) for v in vals]
-        if any(t is None for t in tys):
-            return None
-        if not isinstance(tys[0], T.SchneiderAddrType):
-            self.d.error("E020", f"{key}: argument 1 must be an ADR#... address", vals[0].pos)
-        if not isinstance(T.resolve(tys[1]), T.StringType):
-            self.d.error("E020", f"{key}: argument 2 is the object type, a string such as 'SDO'", vals[1].pos)
-        for i in (2, 3):
-            be = T.base_elementary(tys[i])
-            if be is None or not be.is_intlike:
-                self.d.error("E020", f"{key}: the {wants[i]} (argument {i + 1}) must be an integer",
-                             vals[i].pos)
-        for i in (4, 5):
-            self._word_table_arg(key, tys[i], vals[i], f"the {wants[i]} table (argument {i + 1}) must be a "
-                                 "word table such as %MW3250:4 or an ARRAY OF INT", management=i == 5)
-        # The runtime stores words into the tables (reports, received data):
-        # it needs to know whether an ARRAY's elements are signed (INT) or not.
-        e.target = CallInfo("comm", func=key, args=vals, rtypes=tuple(tys))
-        return T.BOOL
-
-    _MODBUS_ARGS = ("CONNECTION", "UNIT", "FUNCTION", "READ_OFFSET", "READ_COUNT", "WRITE_OFFSET",
-                    "WRITE_COUNT", "SEND", "RECEIVE", "MGMT")
-
-    def _modbus_call(self, e: A.Call, key: str, scope: _Scope) -> Optional[T.Type]:
-        """MODBUS_EXCHANGE (runtime/io/modbus_exchange.py), the primitive under
-        MODBUS_REQUEST: a connection name, six integers, then the send,
-        receive and management word tables."""
-        args = e.args
-        wants = self._MODBUS_ARGS
-        if len(args) != len(wants) or any(a.name is not None or a.value is None for a in args):
-            self.d.error("E041", f"{key} takes {len(wants)} positional arguments", e.pos,
-                         f"{key}({', '.join(wants)}); or use the MODBUS_REQUEST block")
+        if len(args) != len(fn.params) or any(a.name is not None or a.value is None for a in args):
+            self.d.error("E041", f"{fn.name} takes {len(fn.params)} positional arguments", e.pos, fn.usage)
             self._check_args_loosely(e, scope)
             return None
         vals = [a.value for a in args]
         tys = [self.expr(v, scope) for v in vals]
         if any(t is None for t in tys):
             return None
-        if not isinstance(T.resolve(tys[0]), T.StringType):
-            self.d.error("E020", f"{key}: CONNECTION is the name of a [[modbus]] connection, a STRING",
-                         vals[0].pos)
-        for i in range(1, 7):
-            be = T.base_elementary(tys[i])
-            if be is None or not be.is_intlike:
-                self.d.error("E020", f"{key}: {wants[i]} (argument {i + 1}) must be an integer", vals[i].pos)
-        for i in (7, 8, 9):
-            self._word_table_arg(key, tys[i], vals[i], f"{wants[i]} (argument {i + 1}) must be an ARRAY OF "
-                                 "WORD (or INT/UINT)", management=i == 9)
-        e.target = CallInfo("comm", func=key, args=vals, rtypes=tuple(tys))
-        return T.BOOL
+        for i, (param, ty, value) in enumerate(zip(fn.params, tys, vals)):
+            if not self._native_arg_fits(param, ty):
+                self.d.error("E020", f"{fn.name}: {param.label(i + 1)} must be {param.expected}", value.pos)
+            elif param.kind == native.WORDS and param.min_words:
+                dims = T.resolve(ty).dims[0]
+                if dims is not None and dims[1] - dims[0] + 1 < param.min_words:
+                    self.d.error("E020", f"{fn.name}: {param.label(i + 1)} needs {param.min_words} words",
+                                 value.pos)
+        e.target = CallInfo("native", func=fn, args=vals, rtypes=tuple(tys))
+        return T.ELEMENTARY[fn.result]
 
-    def _word_table_arg(self, key: str, ty, value, message: str, management: bool) -> None:
-        """A one-dimensional table of 16-bit words; a management table has at least 4."""
-        t = T.resolve(ty)
-        if not (isinstance(t, T.ArrayType) and len(t.dims) == 1 and
-                T.base_elementary(t.elem) is not None and T.base_elementary(t.elem).bits == 16):
-            self.d.error("E020", f"{key}: {message}", value.pos)
-        elif management and t.dims[0] is not None and t.dims[0][1] - t.dims[0][0] + 1 < 4:
-            self.d.error("E020", f"{key}: the management table needs 4 words", value.pos)
+    @staticmethod
+    def _native_arg_fits(param: native.Param, ty: T.Type) -> bool:
+        if param.kind == native.ADDRESS:
+            return isinstance(ty, T.SchneiderAddrType)
+        if param.kind == native.STRING:
+            return isinstance(T.resolve(ty), T.StringType)
+        if param.kind == native.ANY_INT:
+            be = T.base_elementary(ty)
+            return be is not None and be.is_intlike
+        t = T.resolve(ty)   # WORDS: a one-dimensional table of 16-bit words
+        return isinstance(t, T.ArrayType) and len(t.dims) == 1 and \
+            T.base_elementary(t.elem) is not None and T.base_elementary(t.elem).bits == 16
 
     # ================================================================ configuration
 

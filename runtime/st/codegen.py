@@ -966,12 +966,12 @@ class CodeGen:
             if info.func in ("REF", "ADR"):
                 return self.ref_code(info.args[0])
             return _literal(e.const)
-        if info.kind == "comm":
+        if info.kind == "native":
             args = ", ".join(self.ex(a) for a in info.args)
-            # the runtime stores words into the tables: it needs each table's signedness
+            # the service stores words into the tables: it needs each table's signedness (st/native.py)
             signed = [T.base_elementary(T.resolve(t).elem).category == T.SIGNED for t in info.rtypes
                       if isinstance(T.resolve(t), T.ArrayType)]
-            return f"_comm({self.const(info.func)}, {args}, {', '.join(map(str, signed))})"
+            return f"_native({self.const(info.func)}, {args}, {', '.join(map(str, signed))})"
         raise NotImplementedError(info.kind)
 
     _INLINE_2 = {"MAX": "max", "MIN": "min"}

@@ -101,6 +101,12 @@ def _std_functions() -> dict:
     return STANDARD_FUNCTIONS
 
 
+def _natives() -> dict:
+    from softplc.runtime.io.modbus_exchange import MODBUS_EXCHANGE
+    from softplc.runtime.io.sdo_exchange import READ_VAR, WRITE_VAR
+    return {fn.name: fn for fn in (READ_VAR, WRITE_VAR, MODBUS_EXCHANGE)}
+
+
 def _read_sources(paths: list, texts: Optional[dict], diags: DiagnosticBag, sources: SourceSet) -> tuple:
     """(parsed files, the set of words in them, upper case)."""
     files = []
@@ -145,7 +151,7 @@ def _front_end(paths: list, profile: Profile, texts: Optional[dict]):
         sf.decls = [d for d in sf.decls
                     if not (isinstance(d, (A.POU, A.TypeDecl)) and d.name.upper() in user_names)]
         library.append(sf)
-    checker = Checker(profile, lib_diags if not user else diags, _std_functions())
+    checker = Checker(profile, lib_diags if not user else diags, _std_functions(), _natives())
     checked = checker.run(library + user, library_files=tuple(sf.path for sf in library))
     diags.extend(d for d in lib_diags.items if d.is_error)
     return diags, sources, checked, user
@@ -208,8 +214,8 @@ class ExecContext:
         self.image = image
         self.watchdog_s = watchdog_s
         self.deadline = float("inf")
-        self.comm = NoCommunication()
-        self.modbus = NoModbus()    # MODBUS_EXCHANGE; the Modbus master replaces it
+        # native function services (st/native.py) by name, bound by the drivers
+        self.services: dict = {}
         self.namespaces: list = []  # loaded modules that read the clock
 
     def set_time(self, now_ns: int) -> None:
@@ -220,6 +226,11 @@ class ExecContext:
         for namespace in self.namespaces:
             namespace["_NOW_MS"] = ms
             namespace["_NOW_NS"] = ns
+
+    def call_native(self, fn, *args):
+        """A native function call: to the service bound under its name, or
+        the declaration's fallback when no driver offers one."""
+        return self.services.get(fn.service, fn.fallback).request(fn.name, *args)
 
     def time_ms(self) -> int:
         return rtlib.wrap(T.TIME, self.now_ns // 1_000_000)
@@ -234,30 +245,6 @@ class ExecContext:
         if time.perf_counter() > self.deadline:
             raise WatchdogFault(f"watchdog: the cycle ran longer than {self.watchdog_s * 1000:g} ms "
                                 "(endless loop?)")
-
-
-class NoCommunication:
-    """READ_VAR / WRITE_VAR without a configured bus: the exchange ends at
-    once with communication report 16#FF (network exchange error), as on a
-    PLC with no network module. The CANopen driver replaces this."""
-
-    def request(self, name: str, addr, obj: str, number: int, node: int, data, mgmt,
-                data_signed: bool = True, mgmt_signed: bool = True) -> bool:
-        mgmt[0] = mgmt[0] & ~1  # activity bit off: the exchange is over
-        mgmt[1] = (mgmt[1] & 0xFF00) | 0xFF
-        return False
-
-
-class NoModbus:
-    """MODBUS_EXCHANGE without a [[modbus]] connection: the exchange ends at
-    once with result 16#A5, REQUEST_FAILED_TO_SEND (runtime/io/modbus_link.py).
-    The Modbus master replaces this."""
-
-    def request(self, name: str, connection, unit, function, read_offset, read_count, write_offset,
-                write_count, send, receive, mgmt, *signed) -> bool:
-        mgmt[0] = mgmt[0] & ~1
-        mgmt[1] = 0xA5
-        return False
 
 
 def _with_fields(obj, setters):
@@ -336,7 +323,7 @@ class Program:
             "_check_index": _check_index, "_check_range": _check_range, "_out_of_bounds": out_of_bounds,
             "_for_range": _for_range,
             "_watchdog": ctx.check_watchdog,
-            "_comm": lambda name, *args: (ctx.modbus if name == "MODBUS_EXCHANGE" else ctx.comm).request(name, *args),
+            "_native": ctx.call_native,
         }
         ns.update(self.generated.consts)
         image = ctx.image

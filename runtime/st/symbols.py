@@ -65,10 +65,10 @@ class POUInfo:
 class CallInfo:
     """A checked call. kind: 'function' (user FUNCTION), 'fb' (instance
     call), 'std' (standard library function), 'builtin' (TIME, LTIME, REF,
-    ADR, SIZEOF), 'comm' (Schneider READ_VAR / WRITE_VAR)."""
+    ADR, SIZEOF), 'native' (a native function, st/native.py)."""
     kind: str
     pou: Optional[POUInfo] = None
-    func: Any = None  # StdFunc for 'std'; builtin name for 'builtin' and 'comm'
+    func: Any = None  # StdFunc for 'std'; builtin name for 'builtin'; NativeFunction for 'native'
     instance: Any = None  # the instance expression for 'fb'
     inputs: list = field(default_factory=list)  # (VarSymbol, Expr) in call order
     inouts: list = field(default_factory=list)  # (VarSymbol, Expr lvalue)

@@ -281,7 +281,7 @@ def test_the_libraries_compile_in_every_profile_without_warnings(profile):
 
 def test_sdo_blocks_without_a_canopen_master_end_in_error_with_the_report():
     # No bus configured: READ_VAR / WRITE_VAR end at once with communication
-    # report 16#FF, network exchange error (runtime/st/loader.py NoCommunication).
+    # report 16#FF, network exchange error (NoCommunication, the fallback of READ_VAR without a bus).
     b = Bench(SDO_DECLS + "execute : BOOL;", SDO_BODY).step(execute=True)
     for fb in ("rd", "wr"):
         assert (b[f"{fb}.BUSY"], b[f"{fb}.DONE"], b[f"{fb}.ERROR"]) == (False, False, True)

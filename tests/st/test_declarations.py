@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import struct
 
+from softplc.runtime.io.sdo_exchange import SERVICE as SDO_SERVICE
 from softplc.runtime.st.loader import compile_files
 
 from .conftest import codes, run_st
@@ -118,7 +119,13 @@ def test_the_ltmr_manual_examples_run_verbatim():
             ("ltmr_read_sdo", 3220, 101, 3260, 3263, 0x00032004)):
         runner = prog.runner(name)
         calls = []
-        runner.ctx.comm.request = lambda *args: calls.append(args) or True
+
+        class Recorder:   # stands in for the CANopen master's SDO service
+            def request(self, *args):
+                calls.append(args)
+                return True
+
+        runner.ctx.services[SDO_SERVICE] = Recorder()
         image = runner.ctx.image
         image.mbits[request_bit] = 1  # the user's request bit
         runner.run(1)
