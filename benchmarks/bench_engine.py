@@ -21,7 +21,7 @@ import time
 from softplc.runtime.config import ProgramInstance, TaskConfig
 from softplc.runtime.engine.clock import RealClock, VirtualClock
 from softplc.runtime.engine.scan import Engine
-from softplc.runtime.st.loader import compile_files
+from softplc.runtime.program import compile_files
 
 EMPTY = "PROGRAM Empty\nEND_PROGRAM\n"
 MS = 1_000_000

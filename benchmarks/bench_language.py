@@ -27,11 +27,11 @@ import tempfile
 import time
 from pathlib import Path
 
-from softplc.runtime.st import loader
+from softplc.runtime.program import compile as loader
 from softplc.runtime.st.checker import Checker
 from softplc.runtime.st.codegen import CodeGen
 from softplc.runtime.st.diagnostics import DiagnosticBag
-from softplc.runtime.st.loader import compile_files
+from softplc.runtime.program import compile_files
 from softplc.runtime.st.parser import parse_source
 from softplc.runtime.st.profile import get_profile
 
@@ -669,7 +669,7 @@ def bench_front_end(repeats: int) -> dict:
             t1 = time.perf_counter()
             library = [parse_source(lt, ln, DiagnosticBag()) for ln, lt in library_texts]
             t2 = time.perf_counter()
-            checked = Checker(profile, diags, loader._std_functions()).run(
+            checked = Checker(profile, diags, loader._std_functions(), loader._natives()).run(
                 library + [user], library_files=tuple(sf.path for sf in library))
             t3 = time.perf_counter()
             gen = CodeGen(checked, profile).generate()

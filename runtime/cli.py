@@ -97,7 +97,7 @@ def _summary(errors: int, warnings: int) -> None:
 def _compile(files, profile: str):
     """Compile or exit 1 with the diagnostics. Warnings go to stderr either way."""
     from .st.diagnostics import CompileError
-    from .st.loader import compile_files
+    from .program import compile_files
 
     try:
         prog = compile_files(list(files), profile=profile)
@@ -128,7 +128,7 @@ def cli() -> None:
 @PROFILE_OPTION
 def check(files, profile: str) -> None:
     """Check ST files and report errors and warnings with file:line:column."""
-    from .st.loader import check_files
+    from .program import check_files
 
     diagnostics, sources = check_files(list(files), profile=profile)
     errors, warnings = _report(diagnostics, sources)

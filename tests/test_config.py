@@ -152,7 +152,7 @@ def test_example_canopen():
 def test_every_example_loads_and_its_programs_compile(name):
     """The ST files compile without a warning and declare every PROGRAM the
     tasks name."""
-    from softplc.runtime.st.loader import check_files, compile_files
+    from softplc.runtime.program import check_files, compile_files
     cfg = load_config(EXAMPLES / name)
     diags, _ = check_files([str(p) for p in cfg.programs], profile=cfg.profile)
     assert [d.format() for d in diags] == []

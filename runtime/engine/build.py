@@ -13,7 +13,7 @@ from ..io.canopen_master import CanopenDriver
 from ..io.driver import DriverError
 from ..io.loopback import LoopbackDriver
 from ..io.modbus_master import ModbusDriver
-from ..st.loader import compile_files
+from ..program import compile_files
 from ..st.profile import get_profile
 from .clock import RealClock, VirtualClock
 from .retain import RetainStore

@@ -25,7 +25,7 @@ from ..image.memory import ProcessImage
 from ..image.address import default_type
 from ..st import types as T
 from ..st.faults import STFault, fault_from_exception
-from ..st.loader import ExecContext, Program, locate
+from ..program import ExecContext, Program, locate
 from ..st.valuejson import encode_instance
 from . import retain as R
 from .clock import VirtualClock

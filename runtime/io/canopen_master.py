@@ -360,7 +360,7 @@ class CanopenDriver(Driver):
     # ------------------------------------------------------------ the scan side
 
     def bind_program(self, globals_obj) -> None:
-        from ..engine.diag import CanopenDiag   # the engine knows how ST structs look
+        from .canopen_diag import CanopenDiag
         self._diag = CanopenDiag(globals_obj)
 
     def read_inputs(self, image: ProcessImage) -> None:

@@ -155,7 +155,7 @@ class ModbusDriver(Driver):
             worker.stop()
 
     def bind_program(self, globals_obj) -> None:
-        from ..engine.diag import ModbusDiag   # the engine knows how ST structs look
+        from .modbus_diag import ModbusDiag
         diag = ModbusDiag(globals_obj)
         # a program that does not read MODBUS_CHANNEL costs no snapshot per cycle
         self._diag = diag if diag.active else None

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import difflib
 from dataclasses import dataclass, field
-from typing import Any, Optional
+from typing import Any, Optional, Protocol
 
 from . import ast as A
 from . import rtlib
@@ -19,7 +19,6 @@ from .diagnostics import DiagnosticBag
 from .native import NativeFunction
 from .profile import Profile
 from .symbols import CallInfo, POUInfo, VarSymbol, pyname
-from ..image.memory import AddressError, ProcessImage
 
 BUILTINS = ("TIME", "LTIME", "REF", "ADR", "SIZEOF")
 
@@ -71,6 +70,17 @@ def const_as(value: Any, src: T.Type, dst: T.Type) -> Any:
     return value
 
 
+class AddressSpace(Protocol):
+    """Where direct addresses are checked: a process image laid out for the
+    profile's addressing model (runtime/image/memory.ProcessImage). Both
+    calls raise ValueError for an address outside it."""
+    size: int
+
+    def table(self, addr: A.LocatedAddress) -> Any: ...
+
+    def accessor(self, addr: A.LocatedAddress, ty: T.ElementaryType) -> Any: ...
+
+
 class _Scope:
     """Where an expression is checked: the POU (or None for global
     initialisers) and the loop nesting for EXIT/CONTINUE."""
@@ -83,7 +93,7 @@ class _Scope:
 
 class Checker:
     def __init__(self, profile: Profile, diags: DiagnosticBag, std_functions: dict,
-                 natives: Optional[dict] = None) -> None:
+                 natives: Optional[dict] = None, image: Optional[AddressSpace] = None) -> None:
         self.profile = profile
         self.d = diags
         self.std = std_functions
@@ -98,7 +108,7 @@ class Checker:
         self.configs: list = []
         self.library_files: set = set()
         self._inited: set = set()  # ids of VarSymbols whose initial value is checked
-        self._image_probe = ProcessImage(profile.addressing)  # to validate direct addresses
+        self._image_probe = image  # to validate direct addresses (None: not checked)
 
     # ================================================================ driver
 
@@ -1157,12 +1167,14 @@ class Checker:
                          "give the full address (e.g. %IX0.0); mapping %I* through VAR_CONFIG "
                          "is not supported")
             return False
+        if self._image_probe is None:
+            return True
         try:
             if ty is None:
                 self._image_probe.table(addr)
             else:
                 self._image_probe.accessor(addr, ty)
-        except AddressError as exc:
+        except ValueError as exc:   # the image's AddressError
             self.d.error("E082", str(exc), pos, "the image areas are "
                          f"{self._image_probe.size // 1024} KiB each")
             return False

@@ -14,7 +14,7 @@ from softplc.runtime.config import config_from_dict
 from softplc.runtime.engine.build import build_engine
 from softplc.runtime.io.canbus import BusSettings, CanEndpoint, open_bus
 from softplc.runtime.sim.ltmr import LtmrSimulator
-from softplc.runtime.st.loader import locate
+from softplc.runtime.program import locate
 
 MS = 1_000_000
 _channels = itertools.count()

@@ -4,7 +4,7 @@ program)."""
 from __future__ import annotations
 
 from softplc.runtime.devices import ltmr, st_codes
-from softplc.runtime.st.loader import compile_files
+from softplc.runtime.program import compile_files
 
 PROGRAM = """
 PROGRAM main

@@ -8,7 +8,7 @@ from softplc.runtime.engine.clock import VirtualClock
 from softplc.runtime.engine.scan import Engine
 from softplc.runtime.config import default_watchdog_ns
 from softplc.runtime.image.address import parse_address
-from softplc.runtime.st.loader import compile_files
+from softplc.runtime.program import compile_files
 
 MS = 1_000_000
 

@@ -2,7 +2,7 @@
 a time on the runner's virtual clock; variables read and written by ST path."""
 from __future__ import annotations
 
-from softplc.runtime.st.loader import compile_files, locate
+from softplc.runtime.program import compile_files, locate
 
 CYCLE_MS = 10
 

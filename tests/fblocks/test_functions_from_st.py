@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 from softplc.fblocks.iec.functions import STANDARD_FUNCTIONS
-from softplc.runtime.st.loader import compile_files
+from softplc.runtime.program import compile_files
 
 # a representative argument type for each generic family
 _GENERIC_REP = {

@@ -7,7 +7,7 @@ the default 10 ms cycle, TIME() advances 10 ms from one call to the next.
 """
 import pytest
 
-from softplc.runtime.st.loader import compile_files
+from softplc.runtime.program import compile_files
 
 CYCLE_MS = 10
 

@@ -11,7 +11,7 @@ import pytest
 from softplc.runtime.image.address import parse_address
 from softplc.runtime.image.memory import AddressError, ProcessImage
 from softplc.runtime.st import types as T
-from softplc.runtime.st.loader import ExecContext, compile_files
+from softplc.runtime.program import ExecContext, compile_files
 
 REPO = Path(__file__).resolve().parents[2]
 # DOCA0132DE-01, shared/manuals/000_97161f374cfc3d02.txt L997-L1014 (write)

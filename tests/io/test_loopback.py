@@ -8,7 +8,7 @@ from softplc.runtime.image.address import parse_address
 from softplc.runtime.image.memory import ProcessImage
 from softplc.runtime.io.driver import Driver, DriverError
 from softplc.runtime.io.loopback import LoopbackDriver
-from softplc.runtime.st.loader import ExecContext, compile_files
+from softplc.runtime.program import ExecContext, compile_files
 
 
 def scan(driver, image, program_step, cycles):

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import pytest
 
-from softplc.runtime.st.loader import check_files, compile_files
+from softplc.runtime.program import check_files, compile_files
 
 
 def run_st(source: str, cycles: int = 1, entry: str = "main", profile: str = "codesys",

@@ -24,7 +24,7 @@ from hypothesis import strategies as st  # noqa: E402
 
 from softplc.runtime.st.diagnostics import CompileError, Diagnostic  # noqa: E402
 from softplc.runtime.st.faults import STFault  # noqa: E402
-from softplc.runtime.st.loader import check_files, compile_files  # noqa: E402
+from softplc.runtime.program import check_files, compile_files  # noqa: E402
 
 _SCALE = int(os.environ.get("SOFTPLC_FUZZ_EXAMPLES", "0"))
 

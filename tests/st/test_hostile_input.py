@@ -25,7 +25,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from softplc.runtime.st.diagnostics import CompileError
-from softplc.runtime.st.loader import check_files, compile_files
+from softplc.runtime.program import check_files, compile_files
 
 # ---------------------------------------------------------------- helpers
 

@@ -253,7 +253,7 @@ def test_function_entry_returns_its_result():
 
 
 def test_watchdog_stops_an_endless_loop():
-    from softplc.runtime.st.loader import compile_files
+    from softplc.runtime.program import compile_files
     prog_ = compile_files([], texts={"w.st": prog("n : DINT;", "WHILE TRUE DO n := n + 1; END_WHILE")})
     r = prog_.runner("main")
     r.ctx.watchdog_s = 0.02

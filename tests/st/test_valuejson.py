@@ -134,7 +134,7 @@ END_PROGRAM
 
 @pytest.fixture(scope="module")
 def dump():
-    from softplc.runtime.st.loader import compile_files
+    from softplc.runtime.program import compile_files
 
     prog = compile_files([], texts={"main.st": PROGRAM})
     runner = prog.runner("Main")

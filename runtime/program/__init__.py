@@ -1,0 +1,19 @@
+"""A program: ST files compiled with the libraries they use, loaded into a
+namespace bound to a process image and run cycle by cycle.
+
+    from softplc.runtime.program import compile_files
+    prog = compile_files(["plant.st"], profile="codesys")   # CompileError on errors
+    r = prog.runner("Main", cycle_time_ms=10)
+    r.run(100)                                              # STFault on a runtime fault
+    r.get("counter.CV")
+
+Public names: compile_files, check_files, Program, Runner, ExecContext,
+locate, global_variable, StructWriter.
+"""
+from .compile import check_files, compile_files
+from .context import ExecContext
+from .loaded import Program, Runner
+from .variables import StructWriter, global_variable, locate
+
+__all__ = ["ExecContext", "Program", "Runner", "StructWriter", "check_files", "compile_files", "global_variable",
+           "locate"]

@@ -1,0 +1,200 @@
+"""Compiling: the user's ST files and the libraries they need, through the
+compile side (st/: parse, check, generate) into a loadable Program.
+
+    prog = compile_files(["plant.st"], profile="codesys")   # CompileError on errors
+    r = prog.runner("Main", cycle_time_ms=10)
+    r.run(100)                                              # STFault on a runtime fault
+
+The IEC standard function blocks (fblocks/iec/*.st) and PLC_DIAG are
+compiled into every program; a user POU or type of the same name replaces
+the library one. The communication and device libraries are compiled in
+only when a program names something they declare.
+"""
+from __future__ import annotations
+
+import functools
+import itertools
+import re
+from importlib import resources
+from pathlib import Path
+from typing import Optional
+
+from ..image.memory import ProcessImage
+from ..st import ast as A
+from ..st.checker import Checker, CheckedProgram
+from ..st.codegen import CodeGen
+from ..st.diagnostics import CompileError, DiagnosticBag, SourceSet
+from ..st.parser import parse_source
+from ..st.profile import Profile, get_profile
+from .loaded import Program
+
+_gen_counter = itertools.count(1)
+
+
+# Compiled into every program: the standard blocks and PLC_DIAG.
+_ALWAYS = ("softplc.fblocks.iec", "softplc.fblocks.system")
+# Compiled in only when a program names something they declare (and then
+# with the library files those name in turn): the communication and device
+# blocks. A program that never mentions LTMR_CONTROL does not pay for it,
+# and a user POU that replaces a standard block (its own TON) cannot break a
+# device block it does not use.
+_ON_DEMAND = ("softplc.fblocks.comm", "softplc.fblocks.vendor")
+_WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+
+
+def _library_sources(packages=_ALWAYS + _ON_DEMAND) -> list:
+    """(path, text) of the ST library files of packages."""
+    out = []
+    for package in packages:
+        root = resources.files(package)
+        for entry in sorted(root.iterdir(), key=lambda p: p.name):
+            if entry.name.endswith(".st"):
+                out.append((f"<lib>/{package.rsplit('.', 1)[-1]}/{entry.name}", entry.read_text("utf-8")))
+    return out
+
+
+def _declared(sf: A.SourceFile) -> set:
+    """Every name a library file declares: POUs, types and globals."""
+    names = _decl_names(sf)
+    for d in sf.decls:
+        if isinstance(d, A.VarBlock):
+            names.update(v.name.upper() for v in d.decls)
+    return names
+
+
+@functools.lru_cache(maxsize=None)
+def _library_index(name: str, text: str) -> tuple:
+    """(names the file declares, words it uses) of an on-demand library file,
+    parsed once per process: the choice of files then costs no parsing."""
+    return (frozenset(_declared(parse_source(text, name, DiagnosticBag()))),
+            frozenset(w.upper() for w in _WORD.findall(text)))
+
+
+def _needed_library(files: list, user_words: set) -> list:
+    """(path, text) of the always-compiled files, and of the on-demand ones
+    that the user's words (or an already needed library file's words) name."""
+    on_demand = tuple(f"<lib>/{p.rsplit('.', 1)[-1]}/" for p in _ON_DEMAND)
+    needed = [f for f in files if not f[0].startswith(on_demand)]
+    pending = [f for f in files if f[0].startswith(on_demand)]
+    words = set(user_words)
+    grew = True
+    while grew:
+        grew = False
+        for name, text in list(pending):
+            declared, used = _library_index(name, text)
+            if declared & words:
+                needed.append((name, text))
+                pending.remove((name, text))
+                words |= used
+                grew = True
+    return needed
+
+
+def _std_functions() -> dict:
+    from ...fblocks.iec.functions import STANDARD_FUNCTIONS
+    return STANDARD_FUNCTIONS
+
+
+def _natives() -> dict:
+    from ..io.modbus_exchange import MODBUS_EXCHANGE
+    from ..io.sdo_exchange import READ_VAR, WRITE_VAR
+    return {fn.name: fn for fn in (READ_VAR, WRITE_VAR, MODBUS_EXCHANGE)}
+
+
+def _read_sources(paths: list, texts: Optional[dict], diags: DiagnosticBag, sources: SourceSet) -> tuple:
+    """(parsed files, the set of words in them, upper case)."""
+    files = []
+    for p in paths:
+        try:
+            text = Path(p).read_text(encoding="utf-8-sig")
+        except UnicodeDecodeError:
+            try:  # Windows tools still write Latin-1 ST files
+                text = Path(p).read_text(encoding="latin-1")
+            except OSError as exc:
+                diags.error("E000", f"cannot read the file: {exc.strerror or exc}", A.Pos(str(p), 1, 1))
+                continue
+        except OSError as exc:
+            diags.error("E000", f"cannot read the file: {exc.strerror or exc}", A.Pos(str(p), 1, 1))
+            continue
+        files.append((str(p), text))
+    for name, text in (texts or {}).items():
+        files.append((name, text))
+    parsed = []
+    words: set = set()
+    for name, text in files:
+        sources.add(name, text)
+        parsed.append(parse_source(text, name, diags))
+        words.update(w.upper() for w in _WORD.findall(text))
+    return parsed, words
+
+
+def _decl_names(sf: A.SourceFile) -> set:
+    return {d.name.upper() for d in sf.decls if isinstance(d, (A.POU, A.TypeDecl))}
+
+
+def _front_end(paths: list, profile: Profile, texts: Optional[dict]):
+    diags = DiagnosticBag()
+    sources = SourceSet()
+    user, user_words = _read_sources(paths, texts, diags, sources)
+    user_names = set().union(*(_decl_names(sf) for sf in user)) if user else set()
+    lib_diags = DiagnosticBag()
+    library = []
+    for name, text in _needed_library(_library_sources(), user_words):
+        sources.add(name, text)
+        sf = parse_source(text, name, lib_diags)
+        sf.decls = [d for d in sf.decls
+                    if not (isinstance(d, (A.POU, A.TypeDecl)) and d.name.upper() in user_names)]
+        library.append(sf)
+    checker = Checker(profile, lib_diags if not user else diags, _std_functions(), _natives(),
+                      ProcessImage(profile.addressing))
+    checked = checker.run(library + user, library_files=tuple(sf.path for sf in library))
+    diags.extend(d for d in lib_diags.items if d.is_error)
+    return diags, sources, checked, user
+
+
+def _back_end(checked: CheckedProgram, prof: Profile, diags: DiagnosticBag, where: A.Pos):
+    """Generate and compile the Python module; CPython's own limits (20
+    nested loops, 200 nested parentheses) become diagnostic E006.
+    Returns (GeneratedModule, code object, filename), or None on E006."""
+    gen = CodeGen(checked, prof).generate()
+    filename = f"<softplc-{next(_gen_counter)}>"
+    try:
+        return gen, compile(gen.source, filename, "exec"), filename
+    except (SyntaxError, RecursionError, MemoryError) as exc:
+        line = getattr(exc, "lineno", None)
+        diags.error("E006", "the program is nested too deeply for the Python compiler "
+                    f"({getattr(exc, 'msg', None) or type(exc).__name__})",
+                    (gen.linemap.get(line) if line else None) or where,
+                    "move inner loops or long expressions into FUNCTIONs or intermediate variables")
+        return None
+
+
+def _first_position(paths: list, texts: Optional[dict]) -> A.Pos:
+    names = [str(p) for p in paths] + list(texts or {})
+    return A.Pos(names[0] if names else "<input>", 1, 1)
+
+
+def check_files(paths: list, profile: str | Profile = "codesys", texts: Optional[dict] = None):
+    """Diagnostics of the files (errors and warnings, sorted) and their texts.
+    Never raises for problems in the sources. Reports exactly what
+    compile_files would: the back end runs too when the front end is clean."""
+    prof = get_profile(profile) if isinstance(profile, str) else profile
+    diags, sources, checked, _ = _front_end(list(paths), prof, texts)
+    if not diags.has_errors:
+        _back_end(checked, prof, diags, _first_position(paths, texts))
+    return diags.sorted(), sources
+
+
+def compile_files(paths: list, profile: str | Profile = "codesys", *,
+                  texts: Optional[dict] = None) -> "Program":
+    """Compile ST files (and/or in-memory texts: name -> source) into a
+    loadable Program. Raises CompileError with every diagnostic on errors."""
+    prof = get_profile(profile) if isinstance(profile, str) else profile
+    diags, sources, checked, user = _front_end(list(paths), prof, texts)
+    built = None if diags.has_errors else _back_end(checked, prof, diags, _first_position(paths, texts))
+    if built is None:
+        raise CompileError(diags.sorted(), sources)
+    gen, code, filename = built
+    user_pous = {d.name: d.kind for sf in user for d in sf.decls if isinstance(d, A.POU)}
+    return Program(prof, checked, gen, code, filename, [d for d in diags.sorted() if not d.is_error],
+                   sources, user_pous)

@@ -1,0 +1,174 @@
+"""A compiled program: loaded into a namespace bound to an ExecContext, its
+POUs instantiated, run cycle by cycle."""
+from __future__ import annotations
+
+import builtins
+from typing import Any, Optional
+
+from ..image.memory import ProcessImage
+from ..st import refs, rtlib, values
+from ..st.checker import CheckedProgram
+from ..st.codegen import GeneratedModule
+from ..st.diagnostics import Diagnostic, SourceSet
+from ..st.faults import RangeFault, fault_from_exception, out_of_bounds, out_of_range
+from ..st.profile import Profile
+from .context import ExecContext
+from .variables import locate
+
+# The only builtins generated code may use.
+_BUILTINS = {name: getattr(builtins, name) for name in
+             ("range", "len", "abs", "max", "min", "float", "int", "property", "__build_class__",
+              "object", "bool")}
+
+
+def _with_fields(obj, setters):
+    for attr, value in setters:
+        setattr(obj, attr, value)
+    return obj
+
+
+def _deref(ref):
+    if ref is None:
+        raise RangeFault("reference", "invalid reference: dereferenced a NULL REF_TO/POINTER")
+    return ref
+
+
+def _check_index(i: int, lo: int, hi: int) -> int:
+    if lo <= i <= hi:
+        return i - lo
+    return out_of_bounds(i, lo, hi)
+
+
+def _check_range(v: int, lo: int, hi: int) -> int:
+    if lo <= v <= hi:
+        return v
+    return out_of_range(v, lo, hi)
+
+
+def _for_range(start: int, end: int, step: int) -> range:
+    if step == 0:
+        raise RangeFault("range", "FOR loop with step 0 never ends")
+    return range(start, end + (1 if step > 0 else -1), step)
+
+
+class Program:
+    """A compiled set of POUs, ready to be instantiated by runners."""
+
+    def __init__(self, profile: Profile, checked: CheckedProgram, gen: GeneratedModule, code, filename: str,
+                 warnings: list, sources: SourceSet, user_pous: dict) -> None:
+        self.profile = profile
+        self.checked = checked
+        self.generated = gen
+        self.code = code
+        self.filename = filename
+        self.warnings: list[Diagnostic] = warnings
+        self.sources = sources
+        self.pous = user_pous
+        self.linemaps = {filename: gen.linemap}
+        # Globals the libraries declare (PLC_DIAG): not the user's state.
+        self.library_globals = frozenset(g.name for g in checked.globals
+                                         if g.pos is not None and g.pos.file.startswith("<lib>/"))
+
+    @property
+    def python_source(self) -> str:
+        return self.generated.source
+
+    def pou(self, name: str):
+        for info in self.checked.pous:
+            if info.name.upper() == name.upper():
+                return info
+        raise KeyError(name)
+
+    def load(self, ctx: Optional[ExecContext] = None) -> dict:
+        """Execute the generated module in a fresh namespace bound to ctx;
+        returns the namespace (classes, functions, globals ``_G``)."""
+        ctx = ctx or ExecContext(ProcessImage(self.profile.addressing))
+        ns: dict[str, Any] = {
+            "__builtins__": _BUILTINS,
+            "__name__": "softplc_generated",
+            "_ctx": ctx,
+            "_f32": rtlib.f32, "_idiv": rtlib.idiv, "_imod": rtlib.imod, "_rdiv": rtlib.rdiv,
+            "_expt": rtlib.expt,
+            "_INF": float("inf"), "_NAN": float("nan"),
+            "_AttrRef": refs.AttrRef, "_ItemRef": refs.ItemRef, "_CellRef": refs.CellRef,
+            "_AccessorRef": refs.AccessorRef,
+            "_assign_into": values.assign_into, "_copy_value": values.copy_value,
+            "_with_fields": _with_fields, "_deref": _deref,
+            "_check_index": _check_index, "_check_range": _check_range, "_out_of_bounds": out_of_bounds,
+            "_for_range": _for_range,
+            "_watchdog": ctx.check_watchdog,
+            "_native": ctx.call_native,
+        }
+        ns.update(self.generated.consts)
+        image = ctx.image
+        for idx, acc in self.generated.accessors.items():
+            if acc.type is None:
+                ns[f"_A{idx}t"] = image.table(acc.addr)
+            else:
+                get, set_ = image.accessor(acc.addr, acc.type)
+                ns[f"_A{idx}g"], ns[f"_A{idx}s"] = get, set_
+        ctx.namespaces.append(ns)
+        ctx.set_time(ctx.now_ns)
+        exec(self.code, ns)
+        try:
+            ns["_G"] = ns["_Globals"]()
+        except Exception as exc:
+            raise fault_from_exception(exc, self.linemaps) from None
+        return ns
+
+    def runner(self, entry: str, cycle_time_ms: int = 10, ctx: Optional[ExecContext] = None) -> "Runner":
+        info = self.pou(entry)
+        if info.kind == "FUNCTION_BLOCK":
+            raise KeyError(f"{entry} is a FUNCTION_BLOCK; run a PROGRAM or a FUNCTION")
+        return Runner(self, info, cycle_time_ms, ctx)
+
+
+class Runner:
+    """Runs one PROGRAM (or calls one FUNCTION) cycle after cycle in virtual
+    time: the task clock advances by the cycle time after each cycle."""
+
+    def __init__(self, program: Program, info, cycle_time_ms: int, ctx: Optional[ExecContext]) -> None:
+        self.program = program
+        self.info = info
+        self.cycle_ns = int(cycle_time_ms * 1_000_000)
+        self.ctx = ctx or ExecContext(ProcessImage(program.profile.addressing))
+        self.ns = program.load(self.ctx)
+        self.instance = None
+        self.result = None
+        self.result_type = info.return_type
+        self.cycles = 0
+        if info.kind == "PROGRAM":
+            try:
+                self.instance = self.ns[info.pyname]()
+            except Exception as exc:
+                raise fault_from_exception(exc, program.linemaps) from None
+            self._call = self.instance
+        else:
+            fn = self.ns[info.pyname]
+            self._call = lambda: setattr(self, "result", fn())
+
+    @property
+    def now_ms(self) -> float:
+        return self.ctx.now_ns / 1_000_000
+
+    @property
+    def globals(self):
+        return self.ns["_G"]
+
+    def run(self, cycles: int = 1) -> None:
+        ctx = self.ctx
+        call = self._call
+        for _ in range(cycles):
+            ctx.arm_watchdog()
+            try:
+                call()
+            except Exception as exc:
+                raise fault_from_exception(exc, self.program.linemaps) from None
+            self.cycles += 1
+            ctx.set_time(ctx.now_ns + self.cycle_ns)
+
+    def get(self, path: str):
+        """The value of a variable by its ST path, e.g. 'counter.CV' or 'G_speed'."""
+        roots = ((self.instance,) if self.instance is not None else ()) + (self.globals,)
+        holder, attr, _ty = locate(path, roots)
+        return getattr(holder, attr)

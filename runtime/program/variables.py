@@ -1,0 +1,73 @@
+"""Program variables by their ST names: locate a variable at a dotted path
+(--watch, tests, forcing) and set the fields of a diagnostic struct the
+runtime fills (PLC_DIAG and the drivers' diagnostics)."""
+from __future__ import annotations
+
+from ..st import types as T
+
+
+def locate(path: str, roots) -> tuple:
+    """(holder, attribute, Type) of the variable at an ST path such as
+    'motor.speed' (dotted names, no indices; case-insensitive), looked up in each root object in turn (a program
+    instance, then the globals). KeyError(path) if there is none."""
+    parts = path.split(".")
+    for root in roots:
+        found = _member(root, parts[0])
+        if found is not None:
+            break
+    else:
+        raise KeyError(path)
+    for part in parts[1:]:
+        holder, attr, _ty = found
+        found = _member(getattr(holder, attr), part)
+        if found is None:
+            raise KeyError(path)
+    return found
+
+
+def _member(obj, name: str):
+    """(obj, attribute, Type) of the variable called name (case-insensitive) in obj, or None."""
+    for st_name, attr, ty, _section in getattr(type(obj), "_VARS_", ()):
+        if st_name.upper() == name.upper():
+            return obj, attr, ty
+    return None
+
+
+def global_variable(globals_obj, name: str):
+    """The global variable called name, or None when the program was not
+    loaded with the library that declares it."""
+    try:
+        holder, attr, _ty = locate(name, (globals_obj,))
+    except KeyError:
+        return None
+    return getattr(holder, attr)
+
+
+class StructWriter:
+    """Sets the fields of one ST struct instance by their ST names (a
+    STRING field cut to its length); does nothing for a None struct."""
+
+    def __init__(self, struct) -> None:
+        self._struct = struct
+        self._fields: dict = {}  # field name (upper) -> (attr, max length or None)
+        if struct is None:
+            return
+        for st_name, attr, ty, _section in type(struct)._VARS_:
+            t = T.resolve(ty)
+            self._fields[st_name.upper()] = (attr, t.length if isinstance(t, T.StringType) else None)
+
+    def set(self, **values) -> None:
+        if self._struct is None:
+            return
+        for name, value in values.items():
+            entry = self._fields.get(name.upper())
+            if entry is None:
+                continue
+            attr, length = entry
+            if length is not None:
+                value = str(value)[:length]
+            setattr(self._struct, attr, value)
+
+    def get(self, name: str):
+        entry = self._fields.get(name.upper())
+        return None if entry is None else getattr(self._struct, entry[0])
