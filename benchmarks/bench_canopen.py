@@ -30,10 +30,11 @@ import canopen
 from softplc.runtime.config import config_from_dict
 from softplc.runtime.engine.clock import RealClock
 from softplc.runtime.image.memory import ProcessImage
-from softplc.runtime.io.canbus import BusSettings, CanEndpoint, open_bus
-from softplc.runtime.io.canopen_master import CanopenDriver
-from softplc.runtime.io.sdo_exchange import SdoJob
-from softplc.runtime.sim.ltmr import LtmrSimulator
+from softplc.runtime.io.can import settings_of
+from softplc.runtime.io.can.bus import BusSettings, CanEndpoint, open_bus
+from softplc.runtime.io.canopen.master import CanopenDriver
+from softplc.runtime.io.canopen.sdo import SdoJob
+from softplc.runtime.devices.ltmr.sim import LtmrSimulator
 
 CHANNEL = "bench-canopen"
 TPDO1 = 0x1A8
@@ -139,7 +140,7 @@ def main() -> None:
     cfg = _config()
     clock = RealClock()
     sim = LtmrSimulator(40, settings=BusSettings("virtual", CHANNEL), clock=clock)
-    driver = CanopenDriver(cfg.canopen, cfg.can[0], clock=clock)
+    driver = CanopenDriver(cfg.canopen, settings_of(cfg.can[0]), clock=clock)
     sim.start()
     driver.start()
     try:

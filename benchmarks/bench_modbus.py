@@ -2,7 +2,7 @@
 baseline measured in the same run against the same server, in real time.
 
 The server is the simulated Eaton DA1 drive (unit 1; a pymodbus TCP server
-on a free port of 127.0.0.1, runtime/sim/eaton_drive.py); every request is
+on a free port of 127.0.0.1, runtime/io/modbus/line.py); every request is
 FC03, 6 holding registers from offset 5 (IDs 6..11). Client and server share
 one process, so the CPU time per transaction includes the server's share.
 
@@ -39,14 +39,14 @@ import time
 from pymodbus.client import ModbusTcpClient
 
 from softplc.runtime.config import ModbusChannelConfig, ModbusConnectionConfig
-from softplc.runtime.devices.eaton import Family
+from softplc.runtime.devices.eaton.registers import Family
 from softplc.runtime.engine.clock import RealClock
 from softplc.runtime.image.address import parse_address
 from softplc.runtime.image.memory import ProcessImage
-from softplc.runtime.io.modbus_link import LinkSettings, ModbusLink, Transaction
-from softplc.runtime.io.modbus_master import ModbusDriver
-from softplc.runtime.sim.eaton_drive import EatonDriveSimulator
-from softplc.runtime.sim.eaton_drive_model import EatonDriveModel
+from softplc.runtime.io.modbus.link import LinkSettings, ModbusLink, Transaction
+from softplc.runtime.io.modbus.master import ModbusDriver
+from softplc.runtime.io.modbus.line import SimulatedModbusLine
+from softplc.runtime.devices.eaton.model import EatonDriveModel
 
 HOST = "127.0.0.1"         # loopback only
 UNIT, FUNCTION, OFFSET, COUNT = 1, 3, 5, 6
@@ -230,7 +230,7 @@ def main() -> None:
     n, seconds = (1000, 0.5) if args.quick else (5000, 2.0)
     clock = RealClock()
     port = _free_port()
-    sim = EatonDriveSimulator("bench", {UNIT: EatonDriveModel(Family.DA1)}, clock=clock,
+    sim = SimulatedModbusLine("bench", {UNIT: EatonDriveModel(Family.DA1)}, clock=clock,
                               transport="tcp", host=HOST, port=port)
     sim.start()
     try:

@@ -55,7 +55,7 @@ def run_plc(config: Optional[str], *, virtual_time: bool, duration_ns: Optional[
     from .engine.scan import EngineError
     from .engine.tasks import TaskSetupError
     from .image.memory import AddressError
-    from .io.driver import DriverError
+    from .plugin.driver import DriverError
     from .st.diagnostics import CompileError
     from .st.faults import STFault
 

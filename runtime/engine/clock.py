@@ -6,12 +6,20 @@ RealClock    the wall (monotonic) clock: sleeps until shortly before a
              wake-up from sleep is late by 50 µs .. several ms on a loaded PC
              while a spin on perf_counter is late by about a microsecond.
 VirtualClock jumps straight to the next deadline: a 10-minute sequence runs
-             in milliseconds and always the same way. Simulators of later
-             issues read the same clock.
+             in milliseconds and always the same way. Simulators read the
+             same clock.
+PeriodicService  a real-time thread that serves a bus or a simulated
+             device every period on a clock (in virtual time the engine
+             advances them at each tick instead).
 """
 from __future__ import annotations
 
+import logging
+import threading
 import time
+from typing import Callable, Optional
+
+log = logging.getLogger(__name__)
 
 DEFAULT_SPIN_NS = 1_000_000  # DESIGN.md: spin the last ~1 ms
 
@@ -48,3 +56,38 @@ class RealClock:
             time.sleep((remaining - self.spin_ns) / 1e9)
         while counter() < target:
             pass
+
+
+class PeriodicService:
+    """Real time: calls service(now_ns) every period_s from its own daemon
+    thread, now_ns read from the engine's clock. (In virtual time the engine
+    calls advance_to at each tick instead, and no thread runs.) An exception
+    in service is logged and the loop goes on: a peer on a bus must survive
+    a bad frame or a bug in one step."""
+
+    def __init__(self, name: str, clock, service: Callable[[int], None], period_s: float = 0.001) -> None:
+        self.name = name
+        self.clock = clock
+        self.service = service
+        self.period_s = period_s
+        self._stop = threading.Event()
+        self._thread: Optional[threading.Thread] = None
+
+    def start(self) -> None:
+        self._stop.clear()
+        self._thread = threading.Thread(target=self._run, name=self.name, daemon=True)
+        self._thread.start()
+
+    def stop(self) -> None:
+        self._stop.set()
+        if self._thread is not None:
+            self._thread.join(timeout=2.0)
+            self._thread = None
+
+    def _run(self) -> None:
+        while not self._stop.is_set():
+            try:
+                self.service(self.clock.now_ns())
+            except Exception:
+                log.exception("%s: service step failed", self.name)
+            self._stop.wait(self.period_s)

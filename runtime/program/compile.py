@@ -19,7 +19,9 @@ from importlib import resources
 from pathlib import Path
 from typing import Optional
 
+from ...fblocks.iec.functions import STANDARD_FUNCTIONS
 from ..image.memory import ProcessImage
+from ..plugin.registry import registry
 from ..st import ast as A
 from ..st.checker import Checker, CheckedProgram
 from ..st.codegen import CodeGen
@@ -33,24 +35,33 @@ _gen_counter = itertools.count(1)
 
 # Compiled into every program: the standard blocks and PLC_DIAG.
 _ALWAYS = ("softplc.fblocks.iec", "softplc.fblocks.system")
-# Compiled in only when a program names something they declare (and then
-# with the library files those name in turn): the communication and device
-# blocks. A program that never mentions LTMR_CONTROL does not pay for it,
-# and a user POU that replaces a standard block (its own TON) cannot break a
-# device block it does not use.
-_ON_DEMAND = ("softplc.fblocks.comm", "softplc.fblocks.vendor")
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 
-def _library_sources(packages=_ALWAYS + _ON_DEMAND) -> list:
-    """(path, text) of the ST library files of packages."""
+def _always_sources() -> list:
+    """(name, text) of the ST files compiled into every program."""
     out = []
-    for package in packages:
+    for package in _ALWAYS:
         root = resources.files(package)
         for entry in sorted(root.iterdir(), key=lambda p: p.name):
             if entry.name.endswith(".st"):
                 out.append((f"<lib>/{package.rsplit('.', 1)[-1]}/{entry.name}", entry.read_text("utf-8")))
     return out
+
+
+def _on_demand_sources() -> list:
+    """(name, text) of the ST files of every registered bus and device,
+    compiled in only when a program names something they declare (and then
+    with the library files those name in turn). A program that never
+    mentions a device's block does not pay for it, and a user POU that
+    replaces a standard block (its own TON) cannot break a device block it
+    does not use."""
+    return sorted((lib.name, lib.read_text()) for lib in registry().libraries())
+
+
+def _library_sources() -> list:
+    """(name, text) of every ST library file: always compiled, then on demand."""
+    return _always_sources() + _on_demand_sources()
 
 
 def _declared(sf: A.SourceFile) -> set:
@@ -70,12 +81,11 @@ def _library_index(name: str, text: str) -> tuple:
             frozenset(w.upper() for w in _WORD.findall(text)))
 
 
-def _needed_library(files: list, user_words: set) -> list:
-    """(path, text) of the always-compiled files, and of the on-demand ones
+def _needed_library(always: list, on_demand: list, user_words: set) -> list:
+    """(name, text) of the always-compiled files, and of the on-demand ones
     that the user's words (or an already needed library file's words) name."""
-    on_demand = tuple(f"<lib>/{p.rsplit('.', 1)[-1]}/" for p in _ON_DEMAND)
-    needed = [f for f in files if not f[0].startswith(on_demand)]
-    pending = [f for f in files if f[0].startswith(on_demand)]
+    needed = list(always)
+    pending = list(on_demand)
     words = set(user_words)
     grew = True
     while grew:
@@ -91,14 +101,11 @@ def _needed_library(files: list, user_words: set) -> list:
 
 
 def _std_functions() -> dict:
-    from ...fblocks.iec.functions import STANDARD_FUNCTIONS
     return STANDARD_FUNCTIONS
 
 
 def _natives() -> dict:
-    from ..io.modbus_exchange import MODBUS_EXCHANGE
-    from ..io.sdo_exchange import READ_VAR, WRITE_VAR
-    return {fn.name: fn for fn in (READ_VAR, WRITE_VAR, MODBUS_EXCHANGE)}
+    return registry().natives()
 
 
 def _read_sources(paths: list, texts: Optional[dict], diags: DiagnosticBag, sources: SourceSet) -> tuple:
@@ -139,7 +146,7 @@ def _front_end(paths: list, profile: Profile, texts: Optional[dict]):
     user_names = set().union(*(_decl_names(sf) for sf in user)) if user else set()
     lib_diags = DiagnosticBag()
     library = []
-    for name, text in _needed_library(_library_sources(), user_words):
+    for name, text in _needed_library(_always_sources(), _on_demand_sources(), user_words):
         sources.add(name, text)
         sf = parse_source(text, name, lib_diags)
         sf.decls = [d for d in sf.decls

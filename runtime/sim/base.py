@@ -1,7 +1,7 @@
 """What every simulated device shares: it is a peer on a bus, started,
 advanced and stopped with the engine.
 
-A simulator rides on the driver interface (runtime/io/driver.py) so the
+A simulator rides on the driver interface (runtime/plugin/driver.py) so the
 engine needs no second list: it reads and writes no process image, but it
 starts and stops with the drivers, and in virtual time the engine advances
 it at each tick like a driver. In real time it runs its own service thread.
@@ -18,18 +18,24 @@ time that never goes backwards.
 """
 from __future__ import annotations
 
-from typing import Optional
+from typing import Optional, Protocol
 
 from ..image.memory import ProcessImage
-from ..io.canbus import BusPump, PeriodicService
-from ..io.driver import Driver
+from ..engine.clock import PeriodicService
+from ..plugin.driver import Driver
+
+
+class Pump(Protocol):
+    """Virtual time: what delivers the frames in flight (a CAN BusPump)."""
+
+    def settle(self) -> object: ...
 
 
 class SimulatedDevice(Driver):
     #: real time: how often service() runs
     service_period_s = 0.001
 
-    def __init__(self, name: str, *, clock, pump: Optional[BusPump] = None) -> None:
+    def __init__(self, name: str, *, clock, pump: Optional[Pump] = None) -> None:
         self.name = name
         self.clock = clock
         self.pump = pump

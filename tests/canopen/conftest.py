@@ -12,8 +12,8 @@ import pytest
 
 from softplc.runtime.config import config_from_dict
 from softplc.runtime.engine.build import build_engine
-from softplc.runtime.io.canbus import BusSettings, CanEndpoint, open_bus
-from softplc.runtime.sim.ltmr import LtmrSimulator
+from softplc.runtime.io.can.bus import BusSettings, CanEndpoint, open_bus
+from softplc.runtime.devices.ltmr.sim import LtmrSimulator
 from softplc.runtime.program import locate
 
 MS = 1_000_000

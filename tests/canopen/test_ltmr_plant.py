@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from softplc.runtime.devices import ltmr
+from softplc.runtime.devices.ltmr import registers as ltmr
 
 ROOT = Path(__file__).resolve().parents[2]
 MOTOR = (ROOT / "st_programs" / "ltmr_motor.st").read_text()

@@ -6,7 +6,7 @@ from __future__ import annotations
 import struct
 from pathlib import Path
 
-from softplc.runtime.devices import ltmr
+from softplc.runtime.devices.ltmr import registers as ltmr
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = [ROOT / "st_programs" / "ltmr_write_sdo.st", ROOT / "st_programs" / "ltmr_read_sdo.st"]

@@ -12,9 +12,8 @@ from __future__ import annotations
 
 import pytest
 
-from softplc.runtime.devices import eaton
-from softplc.runtime.devices.eaton import (COMM_TIMEOUT_CODES, CommLossReaction, ControlWord,
-                                           Da1CommLossAction, Family, StatusWord)
+from softplc.runtime.devices.eaton import registers as eaton
+from softplc.runtime.devices.eaton.registers import COMM_TIMEOUT_CODES, CommLossReaction, ControlWord, Da1CommLossAction, Family, StatusWord
 
 DA1, DB1, DC1, DE1 = Family.DA1, Family.DB1, Family.DC1, Family.DE1
 

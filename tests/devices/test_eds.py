@@ -1,6 +1,6 @@
 """The shipped EDS files: they load with the canopen stack, carry the LTMR
 manual's factory values (manual 001 §4, digest 001 §4) and register map, and
-are exactly what runtime/devices/eds.py generates."""
+are exactly what runtime/io/canopen/eds.py generates."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -10,41 +10,32 @@ import pytest
 from canopen.objectdictionary import datatypes
 from canopen.sdo.exceptions import SdoAbortedError
 
-from softplc.runtime.devices import eds, ltmr
-from softplc.runtime.devices.cia301 import ABORT_NO_OBJECT, ABORT_NO_SUBINDEX, ABORT_READ_ONLY
+from softplc.runtime.devices import fc280 as fc280_device, ltmr as ltmr_device
+from softplc.runtime.io.canopen import eds
+from softplc.runtime.plugin.registry import registry
+from softplc.runtime.devices.ltmr import registers as ltmr
+from softplc.runtime.io.canopen.cia301 import ABORT_NO_OBJECT, ABORT_NO_SUBINDEX, ABORT_READ_ONLY
 
 EDS_DIR = Path(__file__).resolve().parents[2] / "io_config" / "eds"
 LTMR_EDS = EDS_DIR / "ltmr.eds"
 FC280_EDS = EDS_DIR / "fc280.eds"
 
-
 @pytest.fixture(scope="module")
 def od():
     return canopen.import_od(str(LTMR_EDS), node_id=40)
 
-
-@pytest.mark.parametrize("name", sorted(eds.SHIPPED))
-def test_shipped_file_is_what_the_generator_writes(name):
-    # regenerate with: python -m softplc.runtime.devices.eds
-    assert (EDS_DIR / name).read_text(encoding="ascii") == eds.render(eds.SHIPPED[name]())
-
-
-def test_generator_entry_point_writes_both_files(tmp_path):
-    assert eds.main([str(tmp_path)]) == 0
-    for name in eds.SHIPPED:
-        assert (tmp_path / name).read_bytes() == (EDS_DIR / name).read_bytes()
-
+def test_the_shipped_files_are_the_devices_eds():
+    assert registry().files("eds") == {"ltmr": ltmr_device.EDS, "fc280": fc280_device.EDS}
+    assert ltmr_device.EDS.path == LTMR_EDS and fc280_device.EDS.path == FC280_EDS
 
 def test_the_file_says_where_it_comes_from():
     head = LTMR_EDS.read_text(encoding="ascii").splitlines()[:3]
     assert any("DOCA0132" in line for line in head)
     assert any("not Schneider Electric's EDS file" in line for line in head)
 
-
 def test_examples_of_the_brief(od):
     assert ltmr.REGISTERS[652].name in od[0x2007][3].name
     assert od[0x1800][1].default == 0x1A8
-
 
 def test_pdo_mappings_as_printed(od):
     # 0x1600 (L1186-1221), 0x1A00 (L1513-1548), 0x1603, 0x1A03
@@ -55,7 +46,6 @@ def test_pdo_mappings_as_printed(od):
     for index in (0x1601, 0x1602, 0x1A01, 0x1A02):
         assert [od[index][s].default for s in range(5)] == [0, 0, 0, 0, 0]
     assert all(od[index][0].access_type == "rw" for index in (0x1600, 0x1A00, 0x1603))
-
 
 def test_pdo_communication_factory_values(od):
     node = 40
@@ -68,7 +58,6 @@ def test_pdo_communication_factory_values(od):
         assert [od[index][s].default for s in (0, 3, 4, 5)] == [5, 0, 0, 0]
     assert all(od[index][0].default == 2 for index in range(0x1400, 0x1404))
 
-
 def test_communication_objects(od):
     assert od[0x1018][1].default == 0x0300005A and od[0x1018][2].default == 0x30
     assert od[0x1018][3].default == 0x00010001 and od[0x1018][0].default == 4
@@ -79,7 +68,6 @@ def test_communication_objects(od):
     assert od[0x1004][0].default == 0x00040004
     assert (od[0x1008].default, od[0x1009].default, od[0x100A].default) == ("LTM", "M1.0-ES1.0", "V01.01")
     assert od[0x1003][0].access_type == "rw" and len([s for s in od[0x1003]]) == 6
-
 
 def test_every_register_is_a_sub_entry(od):
     for reg, register in ltmr.REGISTERS.items():
@@ -93,7 +81,6 @@ def test_every_register_is_a_sub_entry(od):
         assert entry.pdo_mappable == (index in (0x2004, 0x2007, 0x2008))
         assert entry.default == ltmr.FACTORY_SETTINGS.get(reg, 0)
 
-
 def test_forbidden_registers_are_absent_and_sub0_is_the_highest_sub_index(od):
     assert 0x62 not in od[0x2000] and 0x4B not in od[0x2004] and 0x0B not in od[0x2008]
     for first, last, index in ltmr.REGISTER_BLOCKS:
@@ -101,18 +88,15 @@ def test_forbidden_registers_are_absent_and_sub0_is_the_highest_sub_index(od):
         assert od[index][0].default == max(subs)
     assert od[0x2004][0].default == 0x4A and od[0x200D][0].default == 0xC8
 
-
 def test_reserved_read_write_registers_accept_only_zero(od):
     # "Reserved, in Read/Write tables, means that you must write 0 in these variables."
     assert (od[0x2008][0x04].min, od[0x2008][0x04].max) == (0, 0)      # 703, RPDO1 word 2 (A2)
     assert od[0x2007][0x21].max == 5                                    # 682 fallback strategy 0-5
 
-
 def test_pkw_objects(od):
     assert [od[0x3000][s].access_type for s in (1, 2, 3, 4)] == ["rw", "rw", "ro", "ro"]
     assert all(od[0x3000][s].data_type == datatypes.UNSIGNED32 and od[0x3000][s].pdo_mappable
                for s in (1, 2, 3, 4))
-
 
 def test_a_canopen_slave_serving_the_file_answers_with_the_manual_abort_codes(od):
     node = canopen.LocalNode(40, od)
@@ -129,7 +113,6 @@ def test_a_canopen_slave_serving_the_file_answers_with_the_manual_abort_codes(od
     assert node.sdo[0x2007][3].raw == 50
     assert node.sdo[0x2006][0x02].raw == ltmr.GeneralConfig1.CONFIG_VIA_NETWORK    # factory 601
 
-
 def test_fc280_skeleton_loads():
     od = canopen.import_od(str(FC280_EDS), node_id=5)
     assert od[0x1000].default == 0x00010192                 # frequency converter, DSP 402
@@ -142,7 +125,6 @@ def test_fc280_skeleton_loads():
     assert od[0x1600][1].default == 0x26900010
     text = FC280_EDS.read_text(encoding="ascii")
     assert "Placeholders" in text and "not Danfoss's EDS file" in text
-
 
 def test_writer_rejects_what_an_eds_cannot_hold():
     with pytest.raises(ValueError):

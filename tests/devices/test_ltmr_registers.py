@@ -10,10 +10,9 @@ from __future__ import annotations
 
 import pytest
 
-from softplc.runtime.devices import ltmr
-from softplc.runtime.devices.cia301 import split_mapping_entry
-from softplc.runtime.devices.ltmr import (ForbiddenRegisterError, REGISTERS, UnmappedRegisterError,
-                                          object_to_register, register_to_object)
+from softplc.runtime.devices.ltmr import registers as ltmr
+from softplc.runtime.io.canopen.cia301 import split_mapping_entry
+from softplc.runtime.devices.ltmr.registers import ForbiddenRegisterError, REGISTERS, UnmappedRegisterError, object_to_register, register_to_object
 
 MANUAL_ROWS = (
     (0, 34, '2000:03', '2000:28', '(Not significant)', '', ''),  # L2288

@@ -6,9 +6,8 @@ import datetime as dt
 
 import pytest
 
-from softplc.runtime.devices import ltmr
-from softplc.runtime.devices.ltmr import (AlarmRegister1, Control1, Control2, FallbackStrategy, GeneralConfig1,
-                                          OperatingMode, ResetMode, Status1, Status2, TripRegister1)
+from softplc.runtime.devices.ltmr import registers as ltmr
+from softplc.runtime.devices.ltmr.registers import AlarmRegister1, Control1, Control2, FallbackStrategy, GeneralConfig1, OperatingMode, ResetMode, Status1, Status2, TripRegister1
 
 # ---------------------------------------------------------------------------
 # DT_DateTime (L1866-1966)

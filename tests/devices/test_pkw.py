@@ -6,10 +6,11 @@ from __future__ import annotations
 import canopen
 import pytest
 
-from softplc.runtime.devices import pkw
-from softplc.runtime.devices.cia301 import ABORT_VALUE_RANGE
-from softplc.runtime.devices.eds import ltmr_eds, render
-from softplc.runtime.devices.pkw import PkwWords
+from softplc.runtime.devices.ltmr import pkw
+from softplc.runtime.io.canopen.cia301 import ABORT_VALUE_RANGE
+from softplc.runtime.devices.ltmr.eds import ltmr_eds
+from softplc.runtime.io.canopen.eds import render
+from softplc.runtime.devices.ltmr.pkw import PkwWords
 
 # (description, word 1, function, sub-index, (word 3, word 4), word 2 with T=0, word 2 with T=1)
 WORD2_TABLE = [

@@ -6,7 +6,7 @@ from __future__ import annotations
 import pytest
 
 from softplc.runtime.image.address import parse_address
-from softplc.runtime.io.loopback import LoopbackDriver
+from softplc.runtime.io.loopback.driver import LoopbackDriver
 
 from .conftest import MS, compile_st, safe, task
 

@@ -8,8 +8,8 @@ import threading
 import can
 import pytest
 
-from softplc.runtime.io.canbus import BusPump, BusSettings, CanEndpoint, open_bus
-from softplc.runtime.io.driver import DriverError
+from softplc.runtime.io.can.bus import BusPump, BusSettings, CanEndpoint, open_bus
+from softplc.runtime.plugin.driver import DriverError
 
 _channels = itertools.count()
 

@@ -2,8 +2,8 @@
 sends an RPDO, step by step in time."""
 from __future__ import annotations
 
-from softplc.runtime.io.canopen_node import NodeState, NodeSupervisor
-from softplc.runtime.io.canopen_pdo import TxSchedule
+from softplc.runtime.io.canopen.node import NodeState, NodeSupervisor
+from softplc.runtime.io.canopen.pdo import TxSchedule
 
 MS = 1_000_000
 

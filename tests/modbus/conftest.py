@@ -10,8 +10,8 @@ import pytest
 
 from softplc.runtime.config import config_from_dict
 from softplc.runtime.engine.build import build_engine
-from softplc.runtime.io.modbus_master import ModbusDriver
-from softplc.runtime.sim.eaton_drive import EatonDriveSimulator
+from softplc.runtime.io.modbus.master import ModbusDriver
+from softplc.runtime.io.modbus.line import SimulatedModbusLine
 from softplc.runtime.st.valuejson import encode_value
 
 MS = 1_000_000
@@ -55,11 +55,11 @@ class Plant:
         self.config = config_from_dict(data, tmp_path / "plant.toml")
         self.engine = build_engine(self.config, virtual_time=True)
         self.master = next(d for d in self.engine.drivers if isinstance(d, ModbusDriver))
-        self.line = next(d for d in self.engine.drivers if isinstance(d, EatonDriveSimulator))
+        self.line = next(d for d in self.engine.drivers if isinstance(d, SimulatedModbusLine))
         self.engine.start()
 
     def drive(self, unit: int = 1):
-        return self.line.drive(unit)
+        return self.line.unit(unit)
 
     @property
     def now_ms(self) -> float:

@@ -6,8 +6,8 @@ from __future__ import annotations
 
 import pytest
 
-from softplc.runtime.devices import eaton
-from softplc.runtime.io.modbus_link import ModbusError
+from softplc.runtime.devices.eaton import registers as eaton
+from softplc.runtime.io.modbus.link import ModbusError
 
 from .conftest import DRIVE_PROGRAM, plant_config
 from .test_drive_sequence import MONITOR

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from softplc.runtime.devices import eaton
+from softplc.runtime.devices.eaton import registers as eaton
 
 from .conftest import DRIVE_PROGRAM, plant_config
 

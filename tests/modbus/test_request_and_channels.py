@@ -6,8 +6,8 @@ import re
 
 import pytest
 
-from softplc.runtime.devices import eaton
-from softplc.runtime.io.modbus_link import ModbusError
+from softplc.runtime.devices.eaton import registers as eaton
+from softplc.runtime.io.modbus.link import ModbusError
 
 from .conftest import REPO, plant_config
 
@@ -159,7 +159,7 @@ def test_a_failing_channel_does_not_disturb_the_others(plants, tmp_path):
 def test_a_simulated_drive_refuses_a_register_it_does_not_have(tmp_path):
     from softplc.runtime.config import config_from_dict
     from softplc.runtime.engine.build import build_engine
-    from softplc.runtime.io.driver import DriverError
+    from softplc.runtime.plugin.driver import DriverError
     data = plant_config(tmp_path, "PROGRAM T\nEND_PROGRAM\n", program="T",
                         sims=[{"type": "da1", "unit": 1, "registers": {"5": 3}}])
     with pytest.raises(DriverError, match=r"plant.toml: sim\[0\].registers: DA1 has no register 5"):

@@ -10,8 +10,8 @@ import itertools
 import pytest
 
 from softplc.runtime.engine.clock import VirtualClock
-from softplc.runtime.io.canbus import BusPump, BusSettings, CanEndpoint, open_bus
-from softplc.runtime.sim.ltmr import LtmrSimulator
+from softplc.runtime.io.can.bus import BusPump, BusSettings, CanEndpoint, open_bus
+from softplc.runtime.devices.ltmr.sim import LtmrSimulator
 
 MS = 1_000_000
 MASTER_NODE = 0x7F

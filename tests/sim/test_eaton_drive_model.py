@@ -6,9 +6,9 @@ from __future__ import annotations
 
 import pytest
 
-import softplc.runtime.devices.eaton as eaton
-from softplc.runtime.devices.eaton import ControlWord as CW, Family, StatusWord as SW
-from softplc.runtime.sim.eaton_drive_model import EatonDriveModel, ModbusRefusal
+from softplc.runtime.devices.eaton import registers as eaton
+from softplc.runtime.devices.eaton.registers import ControlWord as CW, Family, StatusWord as SW
+from softplc.runtime.devices.eaton.model import EatonDriveModel, ModbusRefusal
 
 S = 1_000_000_000
 POLL = 100_000_000          # the master's telegram period while "polling"

@@ -9,11 +9,9 @@ import math
 
 import pytest
 
-from softplc.runtime.devices import ltmr
-from softplc.runtime.devices.ltmr import (AlarmEnable1, AlarmRegister1, Control1, Control2, FallbackStrategy,
-                                          OperatingMode, ResetMode, Status1, Status2, TripEnable1,
-                                          TripRegister1)
-from softplc.runtime.sim.ltmr_model import LtmrModel
+from softplc.runtime.devices.ltmr import registers as ltmr
+from softplc.runtime.devices.ltmr.registers import AlarmEnable1, AlarmRegister1, Control1, Control2, FallbackStrategy, OperatingMode, ResetMode, Status1, Status2, TripEnable1, TripRegister1
+from softplc.runtime.devices.ltmr.model import LtmrModel
 
 S = 1_000_000_000
 FORWARD, REVERSE, RESET, SELF_TEST, LOW_SPEED = (Control1.RUN_FORWARD, Control1.RUN_REVERSE, Control1.TRIP_RESET,

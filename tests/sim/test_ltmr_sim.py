@@ -9,14 +9,10 @@ import threading
 import canopen
 import pytest
 
-from softplc.runtime.devices import ltmr, pkw
-from softplc.runtime.devices.cia301 import (ABORT_ACCESS, ABORT_BAD_COMMAND, ABORT_DEVICE_STATE, ABORT_NO_OBJECT,
-                                            ABORT_NO_SUBINDEX, ABORT_NOT_MAPPABLE, ABORT_READ_ONLY,
-                                            ABORT_VALUE_RANGE, NMT_PRE_OPERATIONAL, NMT_START, NMT_STOP,
-                                            STATE_OPERATIONAL, STATE_PRE_OPERATIONAL, STATE_STOPPED)
-from softplc.runtime.devices.ltmr import (FallbackStrategy, OperatingMode, ResetMode, Status1, Status2,
-                                          TripEnable1, TripRegister1)
-from softplc.runtime.sim.ltmr import shipped_eds
+from softplc.runtime.devices.ltmr import registers as ltmr, pkw
+from softplc.runtime.io.canopen.cia301 import ABORT_ACCESS, ABORT_BAD_COMMAND, ABORT_DEVICE_STATE, ABORT_NO_OBJECT, ABORT_NO_SUBINDEX, ABORT_NOT_MAPPABLE, ABORT_READ_ONLY, ABORT_VALUE_RANGE, NMT_PRE_OPERATIONAL, NMT_START, NMT_STOP, STATE_OPERATIONAL, STATE_PRE_OPERATIONAL, STATE_STOPPED
+from softplc.runtime.devices.ltmr.registers import FallbackStrategy, OperatingMode, ResetMode, Status1, Status2, TripEnable1, TripRegister1
+from softplc.runtime.devices.ltmr.sim import shipped_eds
 
 from .conftest import MS, abort_frame, write_ok
 

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import struct
 
-from softplc.runtime.io.sdo_exchange import SERVICE as SDO_SERVICE
+from softplc.runtime.io.canopen.sdo import SERVICE as SDO_SERVICE
 from softplc.runtime.program import compile_files
 
 from .conftest import codes, run_st

@@ -1,0 +1,172 @@
+"""Reading a configuration file: TOML, then the two passes over the
+sections of the core and of every registered bus, then the PlcConfig the
+engine is built from.
+
+    cfg = load_config("io_config/plant.toml")     # PlcConfig, or ConfigError
+    cfg.tasks, cfg.sims, cfg.can, cfg.modbus ...  # a bus's section by its key
+
+Pass 1 validates the whole document against one pydantic model composed of
+the sections' models; pass 2 runs each section's relations on the raw data
+(config/relations.py). Both run whatever the other finds, so a file's
+errors are all reported at once, in file order.
+"""
+from __future__ import annotations
+
+import os
+import re
+import tomllib
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+from typing import Any, Optional
+
+from pydantic import Field, ValidationError, create_model
+
+from ..plugin.registry import Registry, registry
+from .errors import ConfigError, in_file_order, key_text, translate
+from .plc import CORE_SECTIONS, RetainConfig, SafeOutput, TaskConfig
+from .relations import Relations
+from .section import Section
+from .sims import SimConfig, SimSection
+from .values import Model, got
+
+
+@dataclass
+class PlcConfig:
+    path: Optional[Path]             # the file as given; None when built from a dict alone
+    base_dir: Path                   # relative paths in the file resolve against it
+    profile: str
+    programs: list[Path]             # the ST files, absolute
+    on_fault: str                    # "task" | "plc"
+    start: str                       # "warm" | "cold"
+    tasks: list[TaskConfig] = field(default_factory=list)
+    retain: Optional[RetainConfig] = None
+    safe_outputs: list[SafeOutput] = field(default_factory=list)
+    sims: list[SimConfig] = field(default_factory=list)
+    #: the buses' sections by TOML key (cfg.can is cfg.sections["can"])
+    sections: dict[str, Any] = field(default_factory=dict)
+    raw: dict = field(default_factory=dict)   # the parsed TOML
+
+    def __getattr__(self, name: str) -> Any:
+        sections = self.__dict__.get("sections")
+        if sections is not None and name in sections:
+            return sections[name]
+        raise AttributeError(f"{type(self).__name__} has no attribute or section {name!r}")
+
+
+def default_config_path() -> Path:
+    """The embedded default configuration (io_config/default.toml, installed
+    as package data of softplc.io_config)."""
+    return Path(os.fspath(resources.files("softplc.io_config").joinpath("default.toml")))
+
+
+def load_config(path) -> PlcConfig:
+    """Read, parse and validate a configuration file. Raises ConfigError."""
+    label = str(path)
+    path = Path(path)
+    try:
+        data = path.read_bytes()
+    except FileNotFoundError:
+        raise ConfigError(label, [("", "no such configuration file")]) from None
+    except IsADirectoryError:
+        raise ConfigError(label, [("", "is a directory, not a configuration file")]) from None
+    except OSError as exc:
+        raise ConfigError(label, [("", f"cannot read the configuration file: {exc.strerror or exc}")]) \
+            from None
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ConfigError(label, [("", f"not UTF-8 text (byte {exc.start}); a TOML file is UTF-8")]) \
+            from None
+    try:
+        parsed = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        message, position = _toml_error(str(exc), text)
+        raise ConfigError(label, [("", f"invalid TOML: {message}")], position=position) from None
+    return config_from_dict(parsed, path)
+
+
+_TOML_AT = re.compile(r"\s*\(at line (\d+), column (\d+)\)$")
+_TOML_AT_END = re.compile(r"\s*\(at end of document\)$")
+
+
+def _toml_error(message: str, text: str) -> tuple:
+    """tomllib's message without its position suffix, and (line, column)."""
+    m = _TOML_AT.search(message)
+    if m:
+        return message[:m.start()], (int(m.group(1)), int(m.group(2)))
+    m = _TOML_AT_END.search(message)
+    if m:
+        lines = text.split("\n")
+        return message[:m.start()] + " at the end of the file", (len(lines), len(lines[-1]) + 1)
+    return message, None
+
+
+class _Document:
+    """The sections of a configuration and the pass-1 model of the whole
+    document, for one state of the registry."""
+
+    def __init__(self, reg: Registry) -> None:
+        self.version = reg.version
+        self.sims = SimSection(reg)
+        bus_sections = [s for bus in reg.buses for s in bus.sections]
+        # the document's keys in this order ("expected one of plc, retain ..."); the
+        # simulated devices are checked last, when the buses they sit on are known
+        self.sections: list[Section] = [*CORE_SECTIONS, self.sims, *bus_sections]
+        self.check_order: list[Section] = [*CORE_SECTIONS, *bus_sections, self.sims]
+        fields: dict[str, Any] = {}
+        for section in self.sections:
+            annotation: Any = list[section.model] if section.many else Optional[section.model]
+            if section.key == "plc":
+                fields[section.key] = (section.model, Field(description=section.description))
+            elif section.many:
+                fields[section.key] = (annotation, Field(default_factory=list, description=section.description))
+            else:
+                fields[section.key] = (annotation, Field(None, description=section.description))
+        self.root = create_model("Document", __base__=Model, **fields)
+
+
+_document: Optional[_Document] = None
+
+
+def _current_document() -> _Document:
+    global _document
+    reg = registry()
+    if _document is None or _document.version != reg.version:
+        _document = _Document(reg)
+    return _document
+
+
+def config_from_dict(data: dict, path=None, *, base_dir=None) -> PlcConfig:
+    """Validate already-parsed configuration data (tests; the command line
+    without a config file). path names the file in messages and, unless
+    base_dir is given, its directory is where relative paths resolve (the
+    current directory without a path). Raises ConfigError."""
+    label = str(path) if path is not None else "<configuration>"
+    if base_dir is None:
+        base_dir = Path(path).parent if path is not None else Path.cwd()
+    base_dir = Path(os.path.abspath(base_dir))
+    if not isinstance(data, dict):
+        raise ConfigError(label, [("", f"expected a TOML document (got {got(data)})")])
+    doc = _current_document()
+    errors: list = []
+    model = None
+    try:
+        model = doc.root.model_validate(data, context={"base_dir": base_dir})
+    except ValidationError as exc:
+        errors.extend(translate(doc.root, err) for err in exc.errors())
+    ctx = Relations(data, base_dir)
+    for section in doc.check_order:
+        section.check(data.get(section.key), ctx)
+    errors.extend(ctx.errors)
+    if errors:
+        errors = in_file_order(errors, data)
+        raise ConfigError(label, [(key_text(loc), message) for loc, message in errors])
+    assert model is not None
+    built = {s.key: s.build(getattr(model, s.key), ctx) for s in doc.check_order}
+    plc = built.pop("plc")
+    core = {"retain": built.pop("retain"), "tasks": built.pop("task"), "safe_outputs": built.pop("outputs"),
+            "sims": built.pop("sim")}
+    return PlcConfig(path=Path(path) if path is not None else None, base_dir=base_dir, profile=plc.profile,
+                     programs=list(plc.programs), on_fault=plc.on_fault, start=plc.start, sections=built,
+                     raw=data, **core)

@@ -1,0 +1,98 @@
+"""Pass 2 of a configuration: the checks between values that pydantic
+cannot see per value, run on the raw TOML data whatever pass 1 found, so
+every error of a file is reported at once.
+
+A Relations object is handed to each section's check (config/section.py):
+it collects the errors, parses direct addresses for the profile of the
+file (addresses depend on the addressing model), tells where an address
+falls in the process image, keeps the %I bits that something already
+writes (so two writers of one input are reported), and holds each
+section's parsed results for its build (``state``).
+"""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any, Optional
+
+from ..image import address as _address
+from ..image.memory import ProcessImage
+from ..st.ast import LocatedAddress
+from ..st.profile import DEFAULT as _DEFAULT_PROFILE, PROFILES
+from .values import got
+
+
+class Relations:
+    def __init__(self, data: dict, base_dir: Path) -> None:
+        self.data = data
+        self.base_dir = base_dir
+        self.errors: list = []
+        #: a section's parsed results for its build, by section key
+        self.state: dict[str, Any] = {}
+        #: image bits written from the bus side: (area, first bit, last bit, loc, text)
+        self.claimed: list = []
+        self._probe_image: Optional[ProcessImage] = None
+        plc = data.get("plc") if isinstance(data.get("plc"), dict) else {}
+        profile = plc.get("profile", _DEFAULT_PROFILE.name)
+        profile = PROFILES.get(profile.lower()) if isinstance(profile, str) else None
+        self.addressing = profile.addressing if profile is not None else None
+
+    def error(self, loc: tuple, message: str) -> None:
+        self.errors.append((loc, message))
+
+    # ---------------------------------------------------------------- addresses
+
+    def address(self, loc: tuple, text, examples: str) -> Optional[LocatedAddress]:
+        if not isinstance(text, str):
+            self.error(loc, f"expected a direct address such as {examples} (got {got(text)})")
+            return None
+        try:
+            return _address.parse_address(text, self.addressing)
+        except ValueError as exc:   # AddressError, and LiteralError should one slip through
+            message = str(exc)
+            if "is not a direct address" in message:
+                message = f"expected a direct address such as {examples} (got {got(text)})"
+            else:   # drop the address the key already names
+                prefix = text.strip().upper() + ": "
+                message = message[len(prefix):] if message.startswith(prefix) else message
+            self.error(loc, message)
+            return None
+
+    def probe(self) -> ProcessImage:
+        """A process image laid out as the profile's, for where addresses fall."""
+        if self._probe_image is None:
+            self._probe_image = ProcessImage(self.addressing or "iec")
+        return self._probe_image
+
+    def image_bits(self, loc: tuple, addr: LocatedAddress) -> Optional[tuple]:
+        """(first, last) bit of its area that addr covers, or None (and an
+        error) outside the image. The layout is memory.py's: bytes for the
+        IEC model, words for Schneider; bit n of byte b is bit 8b + n."""
+        image = self.probe()
+        if addr.bit is not None or addr.size in ("", "X"):
+            if addr.bit is not None:     # %IW3:X2 (Schneider): a bit of a word
+                word = image.byte_offset(LocatedAddress(addr.area, "W", addr.indices, None, None, addr.text))
+                bit = 8 * word + addr.bit
+            elif len(addr.indices) >= 2:
+                bit = 8 * addr.indices[-2] + addr.indices[-1]
+            else:
+                bit = addr.indices[0]
+            if bit >= 8 * image.size:
+                self.error(loc, f"'{addr.text}' is outside the {image.size}-byte %{addr.area} area")
+                return None
+            return bit, bit
+        try:
+            _area, offset, nbytes = image.region(addr)
+        except ValueError as exc:
+            self.error(loc, str(exc))
+            return None
+        return 8 * offset, 8 * (offset + nbytes) - 1
+
+    def claim(self, area: str, first: int, last: int, loc: tuple, text: str) -> Optional[tuple]:
+        """Bits first..last of an area are written by what loc configures:
+        (loc, text) of an earlier claim they overlap (then nothing is
+        claimed), or None."""
+        for other_area, other_first, other_last, other_loc, other_text in self.claimed:
+            if other_area == area and first <= other_last and other_first <= last:
+                return other_loc, other_text
+        self.claimed.append((area, first, last, loc, text))
+        return None

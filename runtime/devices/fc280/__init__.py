@@ -1,0 +1,18 @@
+"""The Danfoss VLT Midi Drive FC 280 on CANopen (manual 003, digest 003).
+So far only its EDS skeleton (eds.py -> io_config/eds/fc280.eds), so that a
+[[canopen.node]] can name eds = "fc280".
+
+Public names: DEVICE.
+"""
+from __future__ import annotations
+
+from ...io.canopen.eds import render as render_eds
+from ...plugin.seams import Device, GeneratedFile, PackageFile
+from .eds import fc280_eds
+
+EDS = PackageFile("softplc.io_config", "eds/fc280.eds")
+
+DEVICE = Device(name="fc280", order=30, files={"eds": {"fc280": EDS}},
+                generated=(GeneratedFile(EDS, lambda: render_eds(fc280_eds()), encoding="ascii"),))
+
+__all__ = ["DEVICE"]

@@ -1,0 +1,39 @@
+"""The Schneider TeSys T LTMR motor management controller on CANopen
+(manuals 000 German, 001 English; digests 000/001).
+
+    registers.py  the register map, bits, data types and codes (manual 001 §5-6)
+    pkw.py        the PKW codec on PDO4
+    st_codes.py   fblocks/vendor/ltmr_codes.st from those tables
+    eds.py        io_config/eds/ltmr.eds from those tables
+    model.py      the motor and thermal model, trips and resets, fallback
+    sim.py        the simulated LTMR: a CANopen slave on a [[can]] bus
+ST blocks: fblocks/vendor/ltmr.st (LTMR_CONTROL, LTMR_PKW).
+
+Public names: DEVICE, LtmrSimulator.
+"""
+from __future__ import annotations
+
+from ...io.can import CanSimContext
+from ...io.canopen.eds import render as render_eds
+from ...plugin.seams import Device, GeneratedFile, PackageFile, StLibrary
+from ...sim.options import RegisterPresets
+from . import st_codes
+from .eds import ltmr_eds
+from .sim import LtmrSimulator
+
+EDS = PackageFile("softplc.io_config", "eds/ltmr.eds")
+
+
+def _simulator(sim, ctx: CanSimContext) -> LtmrSimulator:
+    return LtmrSimulator(sim.at.node_id, settings=ctx.settings, clock=ctx.clock, pump=ctx.pump, name=sim.name,
+                         registers=dict(sim.options.registers))
+
+
+DEVICE = Device(
+    name="ltmr", order=10, bus="can", sim_types=("ltmr",), sim_options=RegisterPresets, simulator=_simulator,
+    libraries=(StLibrary("softplc.fblocks.vendor", "ltmr.st"), StLibrary("softplc.fblocks.vendor", "ltmr_codes.st")),
+    files={"eds": {"ltmr": EDS}},
+    generated=(GeneratedFile(PackageFile("softplc.fblocks.vendor", "ltmr_codes.st"), st_codes.render),
+               GeneratedFile(EDS, lambda: render_eds(ltmr_eds()), encoding="ascii")))
+
+__all__ = ["DEVICE", "LtmrSimulator"]

@@ -1,0 +1,58 @@
+"""CAN: the [[can]] buses every CAN protocol shares (bus.py: python-can
+endpoints, the virtual-time BusPump), and the simulated devices that sit
+on them as CAN nodes ([[sim]] with bus and node_id).
+
+A device that simulates a CAN node gets ``simulator(sim, CanSimContext)``
+called: sim.at is its CanNode, the context has the bus settings, the clock
+and (virtual time) the pump its endpoint must use.
+
+Public names: BUS, BusPump, BusSettings, CanEndpoint, CanNode, CanBusConfig,
+CanSimContext, open_bus, pump_of, settings_of.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Optional
+
+from ...plugin.registry import registry
+from ...plugin.seams import BuildContext, Bus, Contribution
+from .bus import BusPump, BusSettings, CanEndpoint, open_bus
+from .config import CanAttachment, CanBusConfig, CanNode, CanSection
+
+
+@dataclass
+class CanSimContext:
+    settings: BusSettings
+    clock: Any
+    pump: Optional[BusPump]
+
+
+def settings_of(bus: CanBusConfig) -> BusSettings:
+    return BusSettings(bus.interface, str(bus.channel), bus.bitrate, dict(bus.options))
+
+
+def pump_of(ctx: BuildContext) -> Optional[BusPump]:
+    """The BusPump every CAN endpoint of one engine shares in virtual time
+    (None in real time: each endpoint has its receive thread)."""
+    if "can.pump" not in ctx.shared:
+        ctx.shared["can.pump"] = BusPump() if ctx.virtual else None
+    return ctx.shared["can.pump"]
+
+
+def _build(config, ctx: BuildContext) -> Contribution:
+    buses = {bus.name: bus for bus in config.can}
+    devices = registry().sim_types()
+    sims = []
+    for sim in config.sims:
+        device = devices[sim.type]
+        if device.bus != BUS.name:
+            continue
+        context = CanSimContext(settings_of(buses[sim.at.bus]), ctx.clock, pump_of(ctx))
+        sims.append(device.simulator(sim, context))
+    return Contribution(simulators=sims)
+
+
+BUS = Bus(name="can", order=20, sections=(CanSection(),), attachment=CanAttachment(), build=_build)
+
+__all__ = ["BUS", "BusPump", "BusSettings", "CanBusConfig", "CanEndpoint", "CanNode", "CanSimContext", "open_bus",
+           "pump_of", "settings_of"]

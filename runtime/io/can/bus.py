@@ -1,0 +1,230 @@
+"""CAN endpoints: one node's connection to a CAN bus, shared by every CAN
+protocol (the CANopen master, the simulated devices, plain-CAN devices such
+as the MPU2-S later).
+
+An endpoint owns one python-can bus object and hands every received frame to
+its handlers, in order. Who calls the handlers depends on the clock:
+
+    real time       a can.Notifier thread per endpoint, as on a plant PC
+    virtual time    a BusPump shared by every endpoint of the engine: the
+                    engine's thread delivers all pending frames at each tick
+                    (BusPump.settle), so a sequence runs the same way every
+                    time and no frame is still in flight when inputs are read
+
+Everything above the endpoint (canopen's Network, the simulators) is the same
+code in both modes.
+
+    bus = open_bus(BusSettings("virtual", "plant", 250_000))
+    ep = CanEndpoint(bus, name="master", pump=pump)   # pump=None: real time
+    ep.add_handler(lambda msg: ...)
+    ep.start(); ep.send(0x000, b"\\x01\\x28"); ep.stop()
+
+An endpoint can be unplugged (a cut cable, a device switched off): it then
+drops frames both ways until plugged again. Tests and the simulators use it.
+"""
+from __future__ import annotations
+
+import logging
+import threading
+import time
+from dataclasses import dataclass, field
+from typing import Callable, Optional
+
+import can
+
+from ...plugin.driver import DriverError
+
+log = logging.getLogger(__name__)
+
+Handler = Callable[[can.Message], None]
+
+
+@dataclass(frozen=True)
+class BusSettings:
+    """What python-can needs to open a bus. Nothing is hard-coded: any
+    interface python-can knows (socketcan, pcan, kvaser, ixxat, vector,
+    virtual ...), with its channel, bitrate and interface-specific options."""
+    interface: str
+    channel: str
+    bitrate: int = 250_000
+    options: dict = field(default_factory=dict)
+
+    def describe(self) -> str:
+        return f"{self.interface} channel {self.channel!r} at {self.bitrate // 1000} kbit/s"
+
+
+def open_bus(settings: BusSettings) -> can.BusABC:
+    """A python-can bus, or DriverError naming the interface and the reason."""
+    try:
+        return can.Bus(interface=settings.interface, channel=settings.channel,
+                       bitrate=settings.bitrate, **settings.options)
+    except (can.CanError, OSError, ValueError, ImportError, NotImplementedError) as exc:
+        raise DriverError(f"cannot open CAN bus ({settings.describe()}): {exc}") from None
+
+
+class CanEndpoint:
+    def __init__(self, bus: can.BusABC, *, name: str = "", pump: Optional["BusPump"] = None) -> None:
+        self.bus = bus
+        self.name = name
+        self.pump = pump
+        self.connected = True
+        self.sent = 0            # frames handed to the bus
+        self.received = 0        # frames handed to the handlers
+        self.send_errors = 0
+        self.last_error = ""
+        self._handlers: list[Handler] = []
+        self._notifier: Optional[can.Notifier] = None
+        self._started = False
+
+    # ------------------------------------------------------------ set-up
+
+    def add_handler(self, handler: Handler) -> None:
+        self._handlers.append(handler)
+
+    def start(self) -> None:
+        if self._started:
+            return
+        self._started = True
+        if self.pump is not None:
+            self.pump.register(self)
+        else:
+            self._notifier = can.Notifier(self.bus, [self._dispatch], timeout=0.1)
+
+    def stop(self) -> None:
+        """Stop receiving and close the bus."""
+        if not self._started:
+            return
+        self._started = False
+        if self.pump is not None:
+            self.pump.unregister(self)
+        if self._notifier is not None:
+            self._notifier.stop(timeout=1.0)
+            self._notifier = None
+        try:
+            self.bus.shutdown()
+        except Exception as exc:  # a bus that dies on close has nothing more to lose
+            log.debug("%s: bus shutdown: %s", self.name, exc)
+
+    def reopen(self, bus: can.BusABC) -> None:
+        """Swap in a freshly opened bus after the old one failed (adapter
+        unplugged, interface down): the handlers stay, the counters go on."""
+        old = self.bus
+        if self._notifier is not None:
+            self._notifier.stop(timeout=0.5)
+            self._notifier = None
+        try:
+            old.shutdown()
+        except Exception as exc:
+            log.debug("%s: shutting the failed bus down: %s", self.name, exc)
+        self.bus = bus
+        if self._started and self.pump is None:
+            self._notifier = can.Notifier(self.bus, [self._dispatch], timeout=0.1)
+
+    # ------------------------------------------------------------ frames
+
+    def send(self, can_id: int, data=b"", *, remote: bool = False) -> bool:
+        """Put one frame on the bus. False when it was not sent (unplugged,
+        bus error); the error is counted and kept in last_error, never raised,
+        because a lost bus must not stop the thread that sends."""
+        if not self.connected:
+            return False
+        msg = can.Message(arbitration_id=can_id, data=bytes(data), is_extended_id=can_id > 0x7FF,
+                          is_remote_frame=remote, dlc=len(data) if not remote else 0)
+        try:
+            self.bus.send(msg)
+        except (can.CanError, OSError) as exc:
+            self.send_errors += 1
+            self.last_error = str(exc)
+            return False
+        self.sent += 1
+        return True
+
+    def poll(self) -> bool:
+        """Pumped endpoints: receive one waiting frame, if any, and hand it
+        to the handlers. True when a frame was taken from the bus."""
+        try:
+            msg = self.bus.recv(timeout=0)
+        except (can.CanError, OSError) as exc:
+            self.last_error = str(exc)
+            return False
+        if msg is None:
+            return False
+        self._dispatch(msg)
+        return True
+
+    def _dispatch(self, msg: can.Message) -> None:
+        if not self.connected or msg.is_error_frame:
+            return
+        self.received += 1
+        for handler in self._handlers:
+            try:
+                handler(msg)
+            except Exception:  # one bad handler must not starve the others
+                log.exception("%s: handler failed on frame 0x%03X", self.name, msg.arbitration_id)
+
+
+class BusPump:
+    """Virtual time: the engine's thread delivers the frames of every
+    registered endpoint until the bus is quiet.
+
+    "Quiet" means no endpoint has a frame waiting and no registered worker
+    is busy. Workers (the CANopen master's SDO thread) may block on a reply
+    that only the pump can deliver, so settle() keeps pumping while any of
+    them is busy, giving them the CPU between rounds. A worker that never
+    finishes (a bug) is reported after limit_s of real time instead of
+    hanging the engine."""
+
+    def __init__(self) -> None:
+        self._endpoints: list[CanEndpoint] = []
+        self._busy: list[Callable[[], bool]] = []
+        self._lock = threading.Lock()
+
+    def register(self, endpoint: CanEndpoint) -> None:
+        with self._lock:
+            self._endpoints.append(endpoint)
+
+    def unregister(self, endpoint: CanEndpoint) -> None:
+        with self._lock:
+            if endpoint in self._endpoints:
+                self._endpoints.remove(endpoint)
+
+    def add_busy(self, check: Callable[[], bool]) -> None:
+        with self._lock:
+            self._busy.append(check)
+
+    def remove_busy(self, check: Callable[[], bool]) -> None:
+        with self._lock:
+            if check in self._busy:
+                self._busy.remove(check)
+
+    def pump_once(self) -> int:
+        """Deliver every frame waiting now; returns how many."""
+        with self._lock:
+            endpoints = list(self._endpoints)
+        moved = 0
+        for endpoint in endpoints:
+            while endpoint.poll():
+                moved += 1
+        return moved
+
+    def settle(self, limit_s: float = 10.0) -> bool:
+        """Pump until quiet. False (and a log line) if still busy after limit_s."""
+        deadline = time.monotonic() + limit_s
+        idle_rounds = 0
+        while True:
+            moved = self.pump_once()
+            with self._lock:
+                busy = any(check() for check in self._busy)
+            if moved == 0 and not busy:
+                # A worker may have just finished and sent a last frame;
+                # one more empty round proves the bus is quiet.
+                idle_rounds += 1
+                if idle_rounds >= 2:
+                    return True
+                continue
+            idle_rounds = 0
+            if moved == 0:
+                if time.monotonic() > deadline:
+                    log.error("CAN bus not quiet after %.1f s: a worker is stuck", limit_s)
+                    return False
+                time.sleep(0.0001)  # let the busy worker run

@@ -1,0 +1,401 @@
+"""[canopen]: the CANopen master on a [[can]] bus and its nodes
+([[canopen.node]] with the EDS, heartbeats, boot-time SDO writes and the
+PDO maps to image addresses); io_config/examples/canopen.toml shows every
+key. Limits come from the LTMR manual (001) and CiA 301."""
+from __future__ import annotations
+
+import difflib
+import re
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Annotated, Any, Optional
+
+from pydantic import Field, PlainValidator, ValidationInfo
+from pydantic_core import PydanticCustomError
+
+from ...config.errors import key_text
+from ...config.relations import Relations
+from ...config.section import Section
+from ...config.values import (U16_MAX, Model, area_name, bit_count, duration_field, duration_in, existing_file,
+                              fail, got, identifier, in_range, int_range, integer, is_ident, quiet)
+from ...plugin.registry import registry
+from ...st.ast import LocatedAddress
+from ..can.config import NODE_ID_MAX, BusName, NodeId, bus_of, can_state, claim_node
+
+PDO_ENTRIES_MAX = 8                  # manual 001 L117: a PDO carries 8 bytes
+PDO_BITS_MAX = 64
+DEFAULT_HEARTBEAT_MS = 100           # the master's and a node's, unless the file says
+
+
+@dataclass
+class PdoEntryConfig:
+    index: int
+    subindex: int
+    address: LocatedAddress          # %I (TPDO) or %Q (RPDO): a bit, byte, word, dword or lword
+    key: str                         # "canopen.node[0].tpdo[0].map[1]"
+
+
+@dataclass
+class PdoConfig:
+    number: int                      # 1..512
+    transmission: int                # 0..240 (SYNC), 254, 255 (event-driven)
+    inhibit_us: int                  # 0: none
+    event_ms: int                    # 0: none
+    configure: bool                  # the master writes mapping and parameters at boot
+    entries: list[PdoEntryConfig]
+    key: str                         # "canopen.node[0].tpdo[0]"
+
+
+@dataclass
+class SdoWriteConfig:
+    index: int
+    subindex: int
+    value: int
+    size: Optional[int]              # bytes (1, 2, 4); None: the EDS says
+    key: str                         # "canopen.node[0].sdo[0]"
+
+
+@dataclass
+class CanopenNodeConfig:
+    name: str
+    node_id: int
+    eds: Path                        # absolute
+    mandatory: bool
+    heartbeat_ms: int                # the node's producer time, its 0x1017 (0: none)
+    heartbeat_timeout_ms: int        # the master's consumer timeout for it (0: not watched)
+    master_timeout_ms: int           # its 0x1016:01 consumer time for the master (0: none)
+    sdo: list[SdoWriteConfig]        # boot-time writes, in order
+    tpdo: list[PdoConfig]
+    rpdo: list[PdoConfig]
+    key: str                         # "canopen.node[0]"
+
+
+@dataclass
+class CanopenConfig:
+    bus: str                         # the name of a CanBusConfig
+    node_id: int                     # the master's own node id
+    heartbeat_ms: int                # the master's producer period (0: none)
+    sync_us: int                     # SYNC period (0: no SYNC)
+    sdo_timeout_ms: int
+    boot_timeout_ms: int
+    retry_ms: int
+    nodes: list[CanopenNodeConfig]
+    key: str = "canopen"
+
+
+# ---------------------------------------------------------------- values
+
+# The checks are kept as functions too: _Relations compares the values.
+_master_heartbeat = duration_in("ms", off="no heartbeat")
+_sync_period = duration_in("us", off="no SYNC", most=(0xFFFF_FFFF, "0x1006 holds microseconds in 32 bits"))
+_timeout_ms = duration_in("ms")
+# manual 001 L964: 0x1017 Producer Heartbeat Time, Unsigned 16, unit 1 ms.
+_node_heartbeat = duration_in("ms", off="no heartbeat", most=(U16_MAX, "0x1017 holds ms in 16 bits"))
+_heartbeat_timeout = duration_in("ms", off="not watching it")
+# manual 001 L957: 0x1016:01 bits 0-15 = heartbeat time, unit 1 ms.
+_master_timeout = duration_in("ms", off="the node not watching the master",
+                               most=(U16_MAX, "0x1016:01 holds ms in 16 bits"))
+# manual 001 L1365: TPDO inhibit time, Unsigned 16, unit 0.1 ms.
+_inhibit = duration_in("us", off="none", most=(U16_MAX * 100, "the inhibit time is 16 bits of 100us"))
+# Event timer: Unsigned 16 in ms, as CiA 301 says; manual 001 L1379 says
+# 0.1 ms, which digest 001 A7 resolves for CiA (ms).
+_event = duration_in("ms", off="none", most=(U16_MAX, "the event timer is 16 bits of ms"))
+
+
+_OBJECT = re.compile(r"(?:0x)?([0-9A-F]{1,4}):(?:0x)?([0-9A-F]{1,2})", re.A | re.I)
+
+
+def _object(value) -> tuple:
+    """'2004:06' or '0x2004:06' (hex index : hex sub-index) -> (0x2004, 0x06)."""
+    m = _OBJECT.fullmatch(value.strip()) if isinstance(value, str) else None
+    if m is None:
+        raise fail('an object "index:subindex" in hex, such as "2004:06"', value)
+    return int(m.group(1), 16), int(m.group(2), 16)
+
+
+def _transmission(value) -> int:
+    # manual 001 L1114: asynchronous (255), synchronously cyclic (1-240),
+    # synchronously acyclic (0); CiA 301 adds 254 (event-driven, manufacturer).
+    if isinstance(value, int) and not isinstance(value, bool) and (0 <= value <= 240 or value in (254, 255)):
+        return value
+    raise fail("a transmission type 0..240, 254 or 255", value)
+
+
+def _sdo_size(value) -> int:
+    if isinstance(value, int) and not isinstance(value, bool) and value in (1, 2, 4):
+        return value
+    raise fail("a size in bytes: 1, 2 or 4", value)
+
+
+def _eds_file(value, info: ValidationInfo) -> Path:
+    """A shipped EDS by name ("ltmr": io_config/eds/ltmr.eds, installed with
+    the package) or the path of an EDS file relative to the config file."""
+    shipped = dict(sorted(registry().files("eds").items()))
+    names = ", ".join(f"'{n}'" for n in shipped)
+    if not isinstance(value, str) or not value.strip():
+        raise fail(f"a shipped EDS name ({names}) or the path of an .eds file", value)
+    text = value.strip()
+    if re.fullmatch(r"[A-Za-z0-9_-]+", text):      # a name, not a path
+        if text.lower() in shipped:
+            return shipped[text.lower()].path
+        close = difflib.get_close_matches(text.lower(), list(shipped), n=1)
+        hint = f"; did you mean '{close[0]}'?" if close else ""
+        raise PydanticCustomError("config", "expected a shipped EDS name ({names}) or the path of an .eds "
+                                  "file (got {got}{hint})",
+                                  {"names": names, "got": got(value), "hint": hint})
+    return existing_file(text, info)
+
+
+def _default_master_timeout(master_heartbeat_ms: int) -> int:
+    """5 heartbeats of the master, within what 0x1016:01 holds."""
+    return min(5 * master_heartbeat_ms, U16_MAX)
+
+
+# ---------------------------------------------------------------- pass 1
+
+
+class _PdoEntry(Model):
+    object: Annotated[tuple, PlainValidator(_object)] = Field(
+        description='an object "index:subindex" in hex, such as "2004:06"')
+    address: Any = Field(description='an image address such as "%IW0" for a TPDO, "%QW0" for an RPDO')
+
+
+class _Pdo(Model):
+    number: Annotated[int, int_range(1, 512)] = Field(description="a PDO number from 1 to 512")
+    transmission: Annotated[int, PlainValidator(_transmission)] = Field(255, description="0..240, 254 or 255")
+    inhibit: duration_field(_inhibit) = Field(0, description="a duration such as 10ms")
+    event: duration_field(_event) = Field(0, description="a duration such as 500ms")
+    configure: bool = Field(True, description="true or false")
+    map: list[_PdoEntry] = Field(
+        min_length=1, max_length=PDO_ENTRIES_MAX,
+        description=f'an array of 1 to {PDO_ENTRIES_MAX} {{ object = "2004:06", address = "%IW0" }} tables; '
+                    "a PDO carries 8 bytes")
+
+
+class _SdoWrite(Model):
+    object: Annotated[tuple, PlainValidator(_object)] = Field(
+        description='an object "index:subindex" in hex, such as "2007:21"')
+    value: Annotated[int, PlainValidator(integer)] = Field(description="an integer")
+    size: Optional[Annotated[int, PlainValidator(_sdo_size)]] = Field(None, description="1, 2 or 4")
+
+
+class _Node(Model):
+    name: Annotated[str, identifier("a node name")] = Field(description='a node name such as "motor1"')
+    id: NodeId = Field(description=f"a node id from 1 to {NODE_ID_MAX}")
+    eds: Annotated[Path, PlainValidator(_eds_file)] = Field(
+        description='a shipped EDS name such as "ltmr" or the path of an .eds file')
+    mandatory: bool = Field(True, description="true or false")
+    heartbeat: duration_field(_node_heartbeat) = Field(DEFAULT_HEARTBEAT_MS,
+                                                        description="a duration such as 100ms, or false")
+    heartbeat_timeout: Optional[duration_field(_heartbeat_timeout)] = Field(
+        None, description="a duration such as 300ms, or false")
+    master_timeout: Optional[duration_field(_master_timeout)] = Field(
+        None, description="a duration such as 500ms, or false")
+    sdo: list[_SdoWrite] = Field(default_factory=list,
+                                 description='an array of { object = "2007:21", value = 2 } tables')
+    tpdo: list[_Pdo] = Field(default_factory=list, description="[[canopen.node.tpdo]] tables")
+    rpdo: list[_Pdo] = Field(default_factory=list, description="[[canopen.node.rpdo]] tables")
+
+
+class _Canopen(Model):
+    bus: Optional[BusName] = Field(None, description="the name of a [[can]] bus")
+    node_id: NodeId = Field(NODE_ID_MAX, description=f"a node id from 1 to {NODE_ID_MAX}")
+    heartbeat: duration_field(_master_heartbeat) = Field(DEFAULT_HEARTBEAT_MS,
+                                                          description="a duration such as 100ms, or false")
+    sync: duration_field(_sync_period) = Field(0, description="a duration such as 10ms, or false")
+    sdo_timeout: duration_field(_timeout_ms) = Field(500, description="a duration such as 500ms")
+    boot_timeout: duration_field(_timeout_ms) = Field(2000, description="a duration such as 2s")
+    retry: duration_field(_timeout_ms) = Field(1000, description="a duration such as 1s")
+    node: list[_Node] = Field(default_factory=list, description="[[canopen.node]] tables")
+
+
+# ---------------------------------------------------------------- pass 2
+
+
+class CanopenSection(Section):
+    key = "canopen"
+    model = _Canopen
+    description = "a [canopen] table"
+
+    def check(self, value: Any, ctx: Relations) -> None:
+        ctx.state[self.key] = {"pdo_addresses": {}}
+        if not isinstance(value, dict):
+            return
+        bus = bus_of(("canopen",), value, ctx, "the CANopen master")
+        node_id = value.get("node_id", NODE_ID_MAX)
+        master_id = node_id if in_range(node_id, 1, NODE_ID_MAX) else None
+        if bus is not None and master_id is not None:
+            claim_node(ctx, bus, master_id, ("canopen", "node_id"),
+                       f"the CANopen master's own node id on bus '{bus}' (canopen.node_id)")
+        self._nodes(value, master_id, ctx)
+
+    def _nodes(self, canopen: dict, master_id: Optional[int], ctx: Relations) -> None:
+        nodes = canopen.get("node")
+        if not isinstance(nodes, list):
+            return
+        master_heartbeat = quiet(_master_heartbeat, canopen.get("heartbeat", DEFAULT_HEARTBEAT_MS))
+        ids: dict = {}
+        names: dict = {}
+        for i, node in enumerate(nodes):
+            if not isinstance(node, dict):
+                continue
+            here = ("canopen", "node", i)
+            node_id, name = node.get("id"), node.get("name")
+            if in_range(node_id, 1, NODE_ID_MAX):
+                if node_id == master_id:
+                    ctx.error(here + ("id",), f"{node_id} is the master's own node id (canopen.node_id)")
+                elif node_id in ids:
+                    ctx.error(here + ("id",), f"duplicate node id {node_id} ({key_text(ids[node_id])} has it)")
+                else:
+                    ids[node_id] = here
+            if is_ident(name):
+                first = names.setdefault(name.upper(), here)
+                if first != here:
+                    ctx.error(here + ("name",), f"duplicate node name '{name}' ({key_text(first)} has it; "
+                                                 "names are case-insensitive)")
+            self._heartbeats(here, node, canopen, master_heartbeat, ctx)
+            for direction in ("tpdo", "rpdo"):
+                if isinstance(node.get(direction), list):
+                    self._pdos(here, direction, node[direction], ctx)
+            if isinstance(node.get("sdo"), list):
+                self._sdo_values(here, node["sdo"], ctx)
+
+    @staticmethod
+    def _heartbeats(here: tuple, node: dict, canopen: dict, master_heartbeat: Optional[int], ctx: Relations) -> None:
+        """The node's heartbeat against the master's timeout for it, and the
+        master's heartbeat against the node's timeout for the master."""
+        heartbeat = quiet(_node_heartbeat, node.get("heartbeat", DEFAULT_HEARTBEAT_MS))
+        timeout = quiet(_heartbeat_timeout, node.get("heartbeat_timeout"))
+        if heartbeat is not None and timeout:   # given and not off
+            if heartbeat == 0:
+                ctx.error(here + ("heartbeat_timeout",), "only meaningful with a heartbeat (this node has "
+                                                          f"heartbeat = {got(node['heartbeat'])})")
+            elif timeout <= heartbeat:
+                ctx.error(here + ("heartbeat_timeout",),
+                           f"expected a duration longer than the node's heartbeat ({heartbeat}ms), or false "
+                           f"for not watching it (got {got(node['heartbeat_timeout'])})")
+        if master_heartbeat is None:
+            return
+        if "master_timeout" in node:
+            timeout = quiet(_master_timeout, node["master_timeout"])
+            if not timeout:
+                return        # off, or refused by pass 1
+            if master_heartbeat == 0:
+                ctx.error(here + ("master_timeout",), "only meaningful when the master sends a heartbeat "
+                                                       f"(canopen.heartbeat = {got(canopen['heartbeat'])})")
+            elif timeout <= master_heartbeat:
+                ctx.error(here + ("master_timeout",),
+                           f"expected a duration longer than canopen.heartbeat ({master_heartbeat}ms), or "
+                           f"false for the node not watching the master (got {got(node['master_timeout'])})")
+        elif master_heartbeat and _default_master_timeout(master_heartbeat) <= master_heartbeat:
+            ctx.error(here, f"the default master_timeout, 5 x canopen.heartbeat at most {U16_MAX}ms, is not "
+                             f"longer than canopen.heartbeat ({master_heartbeat}ms): give master_timeout, or "
+                             "false")
+
+    def _pdos(self, here: tuple, direction: str, pdos: list, ctx: Relations) -> None:
+        """PDO numbers unique per direction, and the image addresses of the
+        entries: %I for a TPDO, %Q for an RPDO, no two overlapping."""
+        numbers: dict = {}
+        area = "I" if direction == "tpdo" else "Q"
+        for j, pdo in enumerate(pdos):
+            if not isinstance(pdo, dict):
+                continue
+            at = here + (direction, j)
+            number = pdo.get("number")
+            if in_range(number, 1, 512):
+                first = numbers.setdefault(number, at)
+                if first != at:
+                    ctx.error(at + ("number",), f"duplicate {direction.upper()} number {number} "
+                                                 f"({key_text(first)} has it)")
+            entries = pdo.get("map")
+            if not isinstance(entries, list):
+                continue
+            bits = 0
+            for k, entry in enumerate(entries):
+                if isinstance(entry, dict) and "address" in entry:
+                    addr = self._pdo_address(at + ("map", k, "address"), entry["address"], area, ctx)
+                    if addr is not None:
+                        ctx.state[self.key]["pdo_addresses"][at + ("map", k)] = addr
+                        bits += bit_count(addr)
+            if bits > PDO_BITS_MAX and len(entries) <= PDO_ENTRIES_MAX:   # else pass 1 says too many
+                ctx.error(at + ("map",), f"the addresses hold {bits} bits; a PDO carries at most "
+                                          f"{PDO_BITS_MAX} (8 bytes)")
+
+    @staticmethod
+    def _pdo_address(loc: tuple, text, area: str, ctx: Relations) -> Optional[LocatedAddress]:
+        addr = ctx.address(loc, text, f"%{area}W0, %{area}X0.0")
+        if addr is None:
+            return None
+        kind = "a TPDO's entries go to %I inputs" if area == "I" else "an RPDO's entries come from %Q outputs"
+        if addr.area != area:
+            ctx.error(loc, f"expected a %{area} address: {kind} (got {area_name(addr)})")
+            return None
+        if addr.table is not None:
+            ctx.error(loc, f"expected a bit, byte, word, dword or lword address (got '{addr.text}', a word "
+                            "table): map one object per address")
+            return None
+        span = ctx.image_bits(loc, addr)
+        if span is None:
+            return None
+        first, last = span
+        overlap = ctx.claim(area, first, last, loc, f"'{addr.text}'")
+        if overlap is not None:
+            ctx.error(loc, f"'{addr.text}' overlaps {key_text(overlap[0])} ({overlap[1]})")
+        return addr
+
+    @staticmethod
+    def _sdo_values(here: tuple, writes: list, ctx: Relations) -> None:
+        for k, write in enumerate(writes):
+            if not isinstance(write, dict):
+                continue
+            value, size = write.get("value"), write.get("size")
+            if in_range(value, None, None) and size in (1, 2, 4) and not isinstance(size, bool):
+                lo, hi = -(1 << (8 * size - 1)), (1 << (8 * size)) - 1
+                if not lo <= value <= hi:
+                    ctx.error(here + ("sdo", k, "value"), f"expected an integer from {lo} to {hi} for "
+                                                           f"size = {size} (got {value})")
+
+    def build(self, model: Any, ctx: Relations) -> Optional[CanopenConfig]:
+        if model is None:
+            return None
+        return _build_canopen(model, ctx)
+
+
+# ---------------------------------------------------------------- build
+
+
+def _build_canopen(c: _Canopen, ctx: Relations) -> CanopenConfig:
+    nodes = []
+    for i, n in enumerate(c.node):
+        key = f"canopen.node[{i}]"
+        if n.heartbeat_timeout is not None:
+            heartbeat_timeout = n.heartbeat_timeout
+        else:
+            heartbeat_timeout = 3 * n.heartbeat          # 0 when the node sends none
+        if n.master_timeout is not None:
+            master_timeout = n.master_timeout
+        else:
+            master_timeout = _default_master_timeout(c.heartbeat) if c.heartbeat else 0
+        nodes.append(CanopenNodeConfig(
+            name=n.name, node_id=n.id, eds=n.eds, mandatory=n.mandatory, heartbeat_ms=n.heartbeat,
+            heartbeat_timeout_ms=heartbeat_timeout, master_timeout_ms=master_timeout,
+            sdo=[SdoWriteConfig(w.object[0], w.object[1], w.value, w.size, f"{key}.sdo[{k}]")
+                 for k, w in enumerate(n.sdo)],
+            tpdo=_build_pdos(n.tpdo, ("canopen", "node", i, "tpdo"), ctx),
+            rpdo=_build_pdos(n.rpdo, ("canopen", "node", i, "rpdo"), ctx),
+            key=key))
+    return CanopenConfig(bus=can_state(ctx).bus_of["canopen",], node_id=c.node_id, heartbeat_ms=c.heartbeat,
+                         sync_us=c.sync, sdo_timeout_ms=c.sdo_timeout, boot_timeout_ms=c.boot_timeout,
+                         retry_ms=c.retry, nodes=nodes)
+
+
+def _build_pdos(pdos: list, here: tuple, ctx: Relations) -> list:
+    out = []
+    for j, p in enumerate(pdos):
+        at = here + (j,)
+        entries = [PdoEntryConfig(e.object[0], e.object[1], ctx.state["canopen"]["pdo_addresses"][at + ("map", k)],
+                                  key_text(at + ("map", k)))
+                   for k, e in enumerate(p.map)]
+        out.append(PdoConfig(number=p.number, transmission=p.transmission, inhibit_us=p.inhibit,
+                             event_ms=p.event, configure=p.configure, entries=entries, key=key_text(at)))
+    return out

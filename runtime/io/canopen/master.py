@@ -1,0 +1,407 @@
+"""The CANopen master: a driver (plugin/driver.py) that boots the configured nodes
+as a CANopen manager does, maps their PDOs into the process image every
+cycle, produces heartbeat and SYNC, watches the nodes' heartbeats and
+emergencies, and serves READ_VAR / WRITE_VAR over SDO.
+
+Threads (real time): the endpoint's receive thread hands frames to
+_on_frame; a service thread (service(), every millisecond) sends what is
+due (heartbeat, SYNC, RPDOs) and moves the node state machines on; one
+worker thread runs every SDO transfer (sdo_exchange.SdoWorker). The scan
+thread only swaps buffers in read_inputs / write_outputs. In virtual time
+the engine's thread does the receiving and the servicing in advance_to(),
+and the BusPump waits for the SDO worker, so runs repeat exactly.
+
+Nothing in here knows a device: an LTMR, an FC 280 or any node with an EDS
+is just a NodeConfig. Plain-CAN devices (the MPU2-S) can share the bus
+through the same CanEndpoint (add_handler), which this driver exposes.
+"""
+from __future__ import annotations
+
+import logging
+import threading
+from typing import Optional
+
+import canopen
+
+from .cia301 import COB_ID_INVALID, COB_NMT, COB_SYNC, NMT_RESET_COMMUNICATION, NMT_START, STATE_OPERATIONAL, cob_emcy, cob_heartbeat
+from ...image.memory import ProcessImage
+from ...engine.clock import PeriodicService
+from ..can.bus import BusSettings, CanEndpoint, open_bus
+from .node import Emergency, NodeState, NodeSupervisor
+from .pdo import PdoBinding, TxSchedule, default_cob_id
+from ...plugin.driver import Driver, DriverError, DriverStatus
+from .sdo import SERVICE as SDO_SERVICE, SchneiderSdoService, SdoJob, SdoWorker
+
+log = logging.getLogger(__name__)
+
+
+class _EndpointNetwork(canopen.Network):
+    """canopen's Network, sending through our endpoint (so an unplugged or
+    failed bus is handled in one place) instead of owning a bus."""
+
+    def __init__(self, endpoint: CanEndpoint) -> None:
+        super().__init__(bus=None)
+        self.endpoint = endpoint
+
+    def send_message(self, can_id: int, data: bytes, remote: bool = False) -> None:
+        if not self.endpoint.send(can_id, bytes(data), remote=remote):
+            # canopen's SDO client then waits for its timeout, as on a real bus
+            log.debug("frame 0x%03X not sent: %s", can_id, self.endpoint.last_error or "unplugged")
+
+
+class _Node:
+    """What the master keeps per configured node."""
+
+    def __init__(self, cfg, od, supervisor: NodeSupervisor, tpdos: list, rpdos: list, sdo_writes: list) -> None:
+        self.cfg = cfg
+        self.od = od
+        self.sup = supervisor
+        self.tpdos: list[PdoBinding] = tpdos
+        self.rpdos: list[tuple[PdoBinding, TxSchedule]] = rpdos
+        self.sdo_writes = sdo_writes     # (index, subindex, bytes, key)
+
+
+class CanopenDriver(Driver):
+    name = "canopen"
+
+    def __init__(self, config, settings: BusSettings, *, clock, pump=None, addressing: str = "iec",
+                 image_size: Optional[int] = None) -> None:
+        """config: a CanopenConfig (config.py); settings: its bus's.
+        DriverError (naming the config key) for a node that cannot work:
+        an EDS that does not load, a PDO entry the EDS does not have ..."""
+        self.config = config
+        self.settings = settings
+        self.clock = clock
+        self.pump = pump
+        self.node_id = config.node_id
+        probe = ProcessImage(addressing) if image_size is None else ProcessImage(addressing, image_size)
+        self.nodes: dict[int, _Node] = {}
+        for ncfg in config.nodes:
+            self.nodes[ncfg.node_id] = self._prepare(ncfg, probe)
+        self._by_heartbeat = {cob_heartbeat(n): node for n, node in self.nodes.items()}
+        self._by_emcy = {cob_emcy(n): node for n, node in self.nodes.items()}
+        self._lock = threading.RLock()
+        self._tpdo_by_cob: dict[int, PdoBinding] = {}
+        self._rx_fresh: dict[PdoBinding, bytes] = {}
+        self._tx_data: dict[PdoBinding, bytes] = {}
+        self._next_heartbeat_ns = 0
+        self._next_sync_ns = 0
+        self._next_reopen_ns = 0
+        self._bus_ok = False
+        self._bus_error = ""
+        self._started = False
+        self.endpoint: Optional[CanEndpoint] = None
+        self.network: Optional[_EndpointNetwork] = None
+        self.worker: Optional[SdoWorker] = None
+        self._service: Optional[PeriodicService] = None
+        self.sdo_service = SchneiderSdoService(self._submit_exchange,
+                                        default_timeout_s=config.sdo_timeout_ms / 1000,
+                                        object_size=self._object_size,
+                                        available=lambda: self._bus_ok)
+        self.services = {SDO_SERVICE: self.sdo_service}
+        self.rx_short = 0       # TPDOs shorter than their mapping (dropped)
+        self._diag = None
+
+    def _prepare(self, ncfg, probe: ProcessImage) -> _Node:
+        try:
+            od = canopen.import_od(str(ncfg.eds), ncfg.node_id)
+        except Exception as exc:
+            raise DriverError(f"{ncfg.key}.eds: cannot load {ncfg.eds}: {exc}") from None
+        c = self.config
+        sup = NodeSupervisor(ncfg.name, ncfg.node_id, mandatory=ncfg.mandatory,
+                             heartbeat_timeout_ns=ncfg.heartbeat_timeout_ms * 1_000_000,
+                             boot_timeout_ns=c.boot_timeout_ms * 1_000_000, retry_ns=c.retry_ms * 1_000_000)
+        tpdos = [PdoBinding.from_config(p, "tpdo", od, probe) for p in ncfg.tpdo]
+        rpdos = [(b, TxSchedule(b.transmission, b.inhibit_us, b.event_ms))
+                 for b in (PdoBinding.from_config(p, "rpdo", od, probe) for p in ncfg.rpdo)]
+        writes = []
+        for w in ncfg.sdo:
+            size = w.size
+            var = od.get_variable(w.index, w.subindex)
+            if size is None:
+                if var is None or not var.fixed_size:
+                    raise DriverError(f"{w.key}: {w.index:04X}:{w.subindex:02X} is not in the EDS; give its "
+                                      "size in bytes (size = 1, 2 or 4)")
+                size = len(var) // 8
+            if not 0 <= w.value < (1 << (8 * size)) and not -(1 << (8 * size - 1)) <= w.value < 0:
+                raise DriverError(f"{w.key}: {w.value} does not fit in {size} byte(s)")
+            writes.append((w.index, w.subindex, (w.value & ((1 << (8 * size)) - 1)).to_bytes(size, "little"),
+                           w.key))
+        return _Node(ncfg, od, sup, tpdos, rpdos, writes)
+
+    # ------------------------------------------------------------ life cycle
+
+    def start(self) -> None:
+        bus = open_bus(self.settings)
+        self.endpoint = CanEndpoint(bus, name="canopen master", pump=self.pump)
+        self.network = _EndpointNetwork(self.endpoint)
+        for node in self.nodes.values():
+            self.network.add_node(canopen.RemoteNode(node.cfg.node_id, node.od))
+        self.endpoint.add_handler(self._on_frame)
+        self.worker = SdoWorker(self.network)
+        self.worker.start()
+        if self.pump is not None:
+            self.pump.add_busy(self.worker.busy)
+        self.endpoint.start()
+        self._bus_ok = True
+        self._started = True
+        log.info("canopen: master node %d on %s, %d node(s) configured", self.node_id,
+                 self.settings.describe(), len(self.nodes))
+        if not self.clock.virtual:
+            self._service = PeriodicService("canopen service", self.clock, self.service, 0.001)
+            self._service.start()
+
+    def stop(self) -> None:
+        if not self._started:
+            return
+        if self._service is not None:
+            self._service.stop()
+            self._service = None
+        # The last write_outputs (the safe values) goes out before the bus closes.
+        self._send_rpdos(self.clock.now_ns(), sync=False, force=True)
+        if self.pump is not None:
+            self.pump.settle()
+            self.pump.remove_busy(self.worker.busy)
+        self.worker.stop()
+        self.endpoint.stop()
+        self._started = False
+
+    def advance_to(self, now_ns: int) -> None:
+        self.service(now_ns)
+        if self.pump is not None:
+            self.pump.settle()
+            # What the settle delivered (boot-ups, finished configurations)
+            # may call for frames now, not a tick later.
+            self.service(now_ns)
+            self.pump.settle()
+
+    # ------------------------------------------------------------ the bus side
+
+    def service(self, now_ns: int) -> None:
+        """Send what is due and move the node state machines on."""
+        with self._lock:
+            c = self.config
+            if not self._bus_ok:
+                if now_ns < self._next_reopen_ns:
+                    return
+                self._reopen(now_ns)
+            if c.heartbeat_ms and now_ns >= self._next_heartbeat_ns:
+                self._next_heartbeat_ns = now_ns + c.heartbeat_ms * 1_000_000
+                self._send(cob_heartbeat(self.node_id), bytes([STATE_OPERATIONAL]))
+            sync = False
+            if c.sync_us and now_ns >= self._next_sync_ns:
+                self._next_sync_ns = now_ns + c.sync_us * 1000
+                sync = True
+            for node in self.nodes.values():
+                before = node.sup.state
+                action = node.sup.tick(now_ns)
+                if node.sup.state != before and node.sup.state in (NodeState.MISSING, NodeState.LOST):
+                    log.warning("canopen: node %s (%d): %s", node.cfg.name, node.cfg.node_id, node.sup.message)
+                self._act(node, action)
+            self._send_rpdos(now_ns, sync=sync)
+            if sync:
+                self._send(COB_SYNC, b"")
+
+    def _reopen(self, now_ns: int) -> None:
+        """The bus failed: open it again (every retry time until it works)."""
+        self._next_reopen_ns = now_ns + self.config.retry_ms * 1_000_000
+        try:
+            self.endpoint.reopen(open_bus(self.settings))
+        except DriverError as exc:
+            if exc.args[0] != self._bus_error:
+                log.error("canopen: %s", exc)
+            self._bus_error = exc.args[0]
+            return
+        log.warning("canopen: bus reopened (%s)", self.settings.describe())
+        self._bus_ok = True
+        self._bus_error = ""
+
+    def _send(self, can_id: int, data: bytes) -> None:
+        if self.endpoint.send(can_id, data) or not self.endpoint.connected or not self._bus_ok:
+            return
+        log.error("canopen: cannot send on %s: %s; reopening it every %d ms", self.settings.describe(),
+                  self.endpoint.last_error, self.config.retry_ms)
+        self._bus_ok = False
+        self._bus_error = self.endpoint.last_error
+        self._next_reopen_ns = self.clock.now_ns() + self.config.retry_ms * 1_000_000
+
+    def _send_rpdos(self, now_ns: int, *, sync: bool, force: bool = False) -> None:
+        with self._lock:
+            for node in self.nodes.values():
+                if node.sup.state != NodeState.OPERATIONAL:
+                    continue
+                for binding, schedule in node.rpdos:
+                    data = self._tx_data.get(binding)
+                    if data is None or binding.cob_id is None:
+                        continue
+                    if force and data == schedule.last_sent:
+                        continue
+                    if force or schedule.due(data, now_ns, sync):
+                        self._send(binding.cob_id, data)
+                        schedule.sent(data, now_ns)
+
+    def _on_frame(self, msg) -> None:
+        """Every received frame (receive thread, or the pump in virtual time)."""
+        can_id, data = msg.arbitration_id, bytes(msg.data)
+        now = self.clock.now_ns()
+        with self._lock:
+            binding = self._tpdo_by_cob.get(can_id)
+            if binding is not None:
+                if len(data) < binding.nbytes:
+                    self.rx_short += 1
+                else:
+                    self._rx_fresh[binding] = data
+            elif can_id in self._by_heartbeat and data:
+                node = self._by_heartbeat[can_id]
+                self._act(node, node.sup.heartbeat(data[0], now))
+            elif can_id in self._by_emcy and data:
+                node = self._by_emcy[can_id]
+                padded = data + bytes(8 - len(data))
+                emcy = Emergency(int.from_bytes(padded[0:2], "little"), padded[2], padded[3:8], now)
+                node.sup.emergency(emcy)
+                log.warning("canopen: node %s (%d) emergency 0x%04X, error register 0x%02X, data %s",
+                            node.cfg.name, node.cfg.node_id, emcy.code, emcy.register, emcy.data.hex(" "))
+        self.network.notify(can_id, data, msg.timestamp)
+
+    def _act(self, node: _Node, action: Optional[str]) -> None:
+        """Carry out what a node's state machine asked for (lock held)."""
+        if action is None:
+            return
+        nid = node.cfg.node_id
+        if action == "reset":
+            log.info("canopen: node %s (%d): reset communication%s", node.cfg.name, nid,
+                     f" ({node.sup.message})" if node.sup.message else "")
+            self._send(COB_NMT, bytes([NMT_RESET_COMMUNICATION, nid]))
+        elif action == "configure":
+            self.worker.submit_task(lambda: self._configure(node))
+        elif action == "start":
+            for binding, schedule in node.rpdos:
+                schedule.reset()
+            self._send(COB_NMT, bytes([NMT_START, nid]))
+            log.info("canopen: node %s (%d) operational", node.cfg.name, nid)
+
+    # ------------------------------------------------------------ boot-time configuration (worker)
+
+    def _configure(self, node: _Node) -> None:
+        """The node booted: write its heartbeat, its SDO list and its PDOs,
+        then read back the PDO COB-IDs. Runs in the SDO worker."""
+        cfg = node.cfg
+        timeout = self.config.sdo_timeout_ms / 1000
+        steps = [(0x1017, 0, cfg.heartbeat_ms.to_bytes(2, "little"), f"{cfg.key}.heartbeat")]
+        if cfg.master_timeout_ms:
+            value = (self.node_id << 16) | cfg.master_timeout_ms
+            steps.append((0x1016, 1, value.to_bytes(4, "little"), f"{cfg.key}.master_timeout"))
+        steps.extend(node.sdo_writes)
+        error = ""
+        try:
+            for index, sub, data, key in steps:
+                self._sdo(node, index, sub, data, key, timeout)
+            for binding in node.tpdos + [b for b, _s in node.rpdos]:
+                self._configure_pdo(node, binding, timeout)
+        except _ConfigFailed as exc:
+            error = str(exc)
+            log.error("canopen: node %s (%d): %s", cfg.name, cfg.node_id, error)
+        now = self.clock.now_ns()
+        with self._lock:
+            if not error:
+                self._tpdo_by_cob = {c: b for c, b in self._tpdo_by_cob.items() if b not in node.tpdos}
+                self._tpdo_by_cob.update((b.cob_id, b) for b in node.tpdos)
+            self._act(node, node.sup.configured(not error, error, now))
+
+    def _sdo(self, node: _Node, index: int, sub: int, data: Optional[bytes], key: str, timeout: float) -> bytes:
+        job = SdoJob(node.cfg.node_id, index, sub, data, timeout)
+        self.worker.transfer(job)
+        if job.error:
+            raise _ConfigFailed(f"{key}: {job.error}")
+        return job.received
+
+    def _configure_pdo(self, node: _Node, b: PdoBinding, timeout: float) -> None:
+        """CiA 301 PDO (re)mapping: invalidate, clear, write the entries, set
+        their number, set the parameters, validate. configure = false only
+        reads the COB-ID the node uses."""
+        nid = node.cfg.node_id
+        raw = self._sdo(node, b.comm_index, 1, None, f"{b.key}: read COB-ID", timeout)
+        cob = int.from_bytes(raw[:4].ljust(4, b"\0"), "little")
+        if not b.configure:
+            if cob & COB_ID_INVALID:
+                raise _ConfigFailed(f"{b.key}: the node's {b.direction.upper()} {b.number} is not valid "
+                                    f"(COB-ID 0x{cob:08X}); set configure = true")
+            b.cob_id = cob & 0x7FF
+            return
+        if cob & 0x7FF == 0:
+            cob = default_cob_id(b.direction, b.number, nid)
+        cob_id = cob & 0x7FF
+        what = f"{b.key}"
+        self._sdo(node, b.comm_index, 1, (cob_id | COB_ID_INVALID).to_bytes(4, "little"), what, timeout)
+        self._sdo(node, b.map_index, 0, b"\0", what, timeout)
+        for i, e in enumerate(b.entries, start=1):
+            self._sdo(node, b.map_index, i, e.mapping_value.to_bytes(4, "little"), e.key, timeout)
+        self._sdo(node, b.map_index, 0, bytes([len(b.entries)]), what, timeout)
+        self._sdo(node, b.comm_index, 2, bytes([b.transmission]), f"{b.key}.transmission", timeout)
+        comm = node.od.get(b.comm_index)
+        if b.inhibit_us and comm is not None and 3 in comm:
+            self._sdo(node, b.comm_index, 3, (b.inhibit_us // 100).to_bytes(2, "little"), f"{b.key}.inhibit",
+                      timeout)
+        if b.event_ms and comm is not None and 5 in comm:
+            self._sdo(node, b.comm_index, 5, b.event_ms.to_bytes(2, "little"), f"{b.key}.event", timeout)
+        self._sdo(node, b.comm_index, 1, cob_id.to_bytes(4, "little"), what, timeout)
+        b.cob_id = cob_id
+
+    # ------------------------------------------------------------ READ_VAR / WRITE_VAR
+
+    def _submit_exchange(self, job: SdoJob) -> None:
+        self.worker.submit(job)
+
+    def _object_size(self, node_id: int, index: int, subindex: int) -> Optional[int]:
+        node = self.nodes.get(node_id)
+        var = node.od.get_variable(index, subindex) if node is not None else None
+        return len(var) // 8 if var is not None and var.fixed_size else None
+
+    # ------------------------------------------------------------ the scan side
+
+    def bind_program(self, globals_obj) -> None:
+        from .diag import CanopenDiag
+        self._diag = CanopenDiag(globals_obj)
+
+    def read_inputs(self, image: ProcessImage) -> None:
+        with self._lock:
+            fresh, self._rx_fresh = self._rx_fresh, {}
+            snapshot = [(n.cfg.node_id, n.sup.version, n) for n in self.nodes.values()]
+        for binding, data in fresh.items():
+            binding.unpack(data, image)
+        self.sdo_service.collect()
+        if self._diag is not None:
+            self._diag.update(snapshot, self._master_view())
+
+    def _master_view(self) -> dict:
+        ep = self.endpoint
+        return {"BusOk": self._bus_ok,
+                "NodesConfigured": len(self.nodes),
+                "NodesOperational": sum(n.sup.state == NodeState.OPERATIONAL for n in self.nodes.values()),
+                "FramesReceived": ep.received if ep else 0,
+                "FramesSent": ep.sent if ep else 0,
+                "SendErrors": ep.send_errors if ep else 0}
+
+    def write_outputs(self, image: ProcessImage) -> None:
+        packed = {binding: binding.pack(image) for node in self.nodes.values() for binding, _s in node.rpdos}
+        with self._lock:
+            self._tx_data.update(packed)
+
+    def status(self) -> DriverStatus:
+        if not self._bus_ok:
+            return DriverStatus(False, f"canopen: bus down ({self._bus_error})")
+        bad = [n for n in self.nodes.values() if n.cfg.mandatory and n.sup.state != NodeState.OPERATIONAL]
+        up = sum(n.sup.state == NodeState.OPERATIONAL for n in self.nodes.values())
+        if bad:
+            n = bad[0]
+            why = n.sup.message or n.sup.state.name.lower()
+            return DriverStatus(False, f"canopen: {up}/{len(self.nodes)} up; {n.cfg.name} ({n.cfg.node_id}): {why}")
+        return DriverStatus(True, f"canopen: {up}/{len(self.nodes)} up")
+
+    def node_state(self, node_id: int) -> NodeState:
+        return self.nodes[node_id].sup.state
+
+
+class _ConfigFailed(Exception):
+    pass
+

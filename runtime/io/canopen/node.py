@@ -1,0 +1,122 @@
+"""One slave as the CANopen manager sees it: its boot-up, its heartbeat, its
+emergencies. A small state machine driven by frames and by time, with no
+bus access of its own: it returns what to do, the master does it.
+
+    INIT ──reset communication──> BOOTING ──boot-up──> CONFIGURING ──SDO writes ok──> OPERATIONAL
+      ^                             │ no boot-up           │ SDO error                   │ heartbeat lost
+      └──── retry time later ─── MISSING / CONFIG_ERROR <──┘                            v
+      └──── a heartbeat or boot-up again, or retry time later ──────────────────────── LOST
+
+A node in OPERATIONAL whose heartbeat reports another NMT state (it fell to
+pre-operational after it lost the master, it was reset) is booted again.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import IntEnum
+from typing import Optional
+
+from .cia301 import STATE_BOOTUP, STATE_OPERATIONAL, STATE_NAMES
+
+
+class NodeState(IntEnum):
+    """As CANOPEN_NODE[n].State shows it to the program (fblocks/comm/canopen_diag.st)."""
+    UNKNOWN = 0
+    BOOTING = 1          # reset communication sent, waiting for the boot-up
+    CONFIGURING = 2      # boot-up seen, SDO configuration running
+    OPERATIONAL = 3      # started, heartbeat (if any) arriving
+    MISSING = 4          # no boot-up within the boot timeout
+    LOST = 5             # heartbeat stopped, or the node left OPERATIONAL
+    CONFIG_ERROR = 6     # an SDO write of the configuration failed
+
+
+@dataclass
+class Emergency:
+    code: int            # the EMCY error code (0 = error reset / no error)
+    register: int        # error register (0x1001)
+    data: bytes          # manufacturer-specific bytes
+    time_ns: int
+
+
+class NodeSupervisor:
+    def __init__(self, name: str, node_id: int, *, mandatory: bool, heartbeat_timeout_ns: int,
+                 boot_timeout_ns: int, retry_ns: int) -> None:
+        self.name = name
+        self.node_id = node_id
+        self.mandatory = mandatory
+        self.heartbeat_timeout_ns = heartbeat_timeout_ns
+        self.boot_timeout_ns = boot_timeout_ns
+        self.retry_ns = retry_ns
+        self.state = NodeState.UNKNOWN
+        self.nmt_state: Optional[int] = None     # last state byte of its heartbeat
+        self.deadline_ns: Optional[int] = None   # boot-up wait, heartbeat watch or retry
+        self.boots = 0                           # boot-ups seen
+        self.emergencies = 0
+        self.last_emcy: Optional[Emergency] = None
+        self.message = ""
+        self.version = 0                         # bumped on every change the program can see
+
+    def _enter(self, state: NodeState, deadline_ns: Optional[int], message: str = "") -> None:
+        self.state = state
+        self.deadline_ns = deadline_ns
+        self.message = message
+        self.version += 1
+
+    # ------------------------------------------------------------ events -> actions
+    # Each returns the action the master must take: None, "reset", "configure", "start".
+
+    def tick(self, now_ns: int) -> Optional[str]:
+        if self.state == NodeState.UNKNOWN:
+            self._enter(NodeState.BOOTING, now_ns + self.boot_timeout_ns)
+            return "reset"
+        if self.deadline_ns is None or now_ns < self.deadline_ns:
+            return None
+        if self.state == NodeState.BOOTING:
+            self._enter(NodeState.MISSING, now_ns + self.retry_ns,
+                        f"no boot-up within {self.boot_timeout_ns // 1_000_000} ms")
+        elif self.state == NodeState.OPERATIONAL:
+            self._enter(NodeState.LOST, now_ns + self.retry_ns,
+                        f"heartbeat lost (none for {self.heartbeat_timeout_ns // 1_000_000} ms)")
+        elif self.state in (NodeState.MISSING, NodeState.LOST, NodeState.CONFIG_ERROR):
+            self._enter(NodeState.BOOTING, now_ns + self.boot_timeout_ns)
+            return "reset"
+        return None
+
+    def heartbeat(self, state_byte: int, now_ns: int) -> Optional[str]:
+        state_byte &= 0x7F
+        if state_byte != self.nmt_state:
+            self.nmt_state = state_byte
+            self.version += 1
+        if state_byte == STATE_BOOTUP:
+            self.boots += 1
+            if self.state == NodeState.CONFIGURING:
+                return None   # a second boot-up while configuring: the running writes decide
+            self._enter(NodeState.CONFIGURING, None)
+            return "configure"
+        if self.state == NodeState.OPERATIONAL:
+            if state_byte != STATE_OPERATIONAL:
+                self._enter(NodeState.BOOTING, now_ns + self.boot_timeout_ns,
+                            f"node reported {STATE_NAMES.get(state_byte, hex(state_byte))}")
+                return "reset"
+            if self.heartbeat_timeout_ns:
+                self.deadline_ns = now_ns + self.heartbeat_timeout_ns
+        elif self.state in (NodeState.LOST, NodeState.MISSING):
+            # It is back (it never booted again: a cable was cut): boot it afresh.
+            self._enter(NodeState.BOOTING, now_ns + self.boot_timeout_ns)
+            return "reset"
+        return None
+
+    def configured(self, ok: bool, message: str, now_ns: int) -> Optional[str]:
+        if self.state != NodeState.CONFIGURING:
+            return None
+        if not ok:
+            self._enter(NodeState.CONFIG_ERROR, now_ns + self.retry_ns, message)
+            return None
+        self._enter(NodeState.OPERATIONAL,
+                    now_ns + self.heartbeat_timeout_ns if self.heartbeat_timeout_ns else None)
+        return "start"
+
+    def emergency(self, emcy: Emergency) -> None:
+        self.emergencies += 1
+        self.last_emcy = emcy
+        self.version += 1

@@ -1,0 +1,165 @@
+"""Simulated devices on one Modbus line: a real pymodbus server (RTU on a
+pseudo-terminal cable, or TCP on 127.0.0.1) whose units are device models
+(SimulatedUnit: an Eaton drive of devices/eaton, a test's relay ...).
+
+    line = SimulatedModbusLine("drives", {1: model}, clock=clock, transport="rtu")
+    line.master_port         # the serial port the master opens (a NullModem end)
+    line.start()
+    line.unit(1)             # the model at unit 1
+    line.silent = True       # every unit on the line stops answering
+    line.cable.cut()         # RTU: the line itself is cut
+
+What the line does, as a real RS-485 line or TCP gateway does:
+  * a request to a unit that is not on the line gets no answer; a frame with
+    a bad CRC is dropped by pymodbus's framer, so the unit stays silent;
+  * a function code the unit does not have (its ``functions``) is refused
+    with exception 01; a unit refuses a request with ModbusRefusal(code);
+  * address 0 is a broadcast: every unit executes it, none answers;
+  * every request addressed to a unit goes to its telegram() first (a
+    communication-loss watchdog restarts there).
+The models run on the engine's clock: virtual time moves them at each tick
+(advance_to), real time every millisecond (the service thread).
+"""
+from __future__ import annotations
+
+import asyncio
+import threading
+from typing import Optional
+
+from pymodbus.constants import ExcCodes
+from pymodbus.datastore import ModbusServerContext
+from pymodbus.exceptions import NoSuchIdException
+from pymodbus.framer import FramerType
+from pymodbus.server import ModbusSerialServer, ModbusTcpServer
+
+from ...plugin.driver import DriverError
+from ...sim.base import SimulatedDevice
+from ...sim.null_modem import NullModem
+from .unit import ModbusRefusal, SimulatedUnit
+
+SIM_HOSTS = ("127.0.0.1", "localhost")
+
+
+class _Line(ModbusServerContext):
+    """pymodbus's datastore interface, answered by the line's units."""
+
+    def __init__(self, sim: "SimulatedModbusLine") -> None:   # no super(): no pymodbus datastore
+        self.old_simulator = True     # pymodbus then calls async_getValues/async_setValues itself
+        self.simdevices = []
+        self._sim = sim
+
+    async def async_getValues(self, device_id: int, func_code: int, address: int, count: int = 1):
+        return self._sim.serve(device_id, func_code, address, count=count)
+
+    async def async_setValues(self, device_id: int, func_code: int, address: int, values):
+        return self._sim.serve(device_id, func_code, address, values=list(values))
+
+    def device_ids(self):
+        return list(self._sim.units)
+
+
+class SimulatedModbusLine(SimulatedDevice):
+    def __init__(self, name: str, units: dict, *, clock, transport: str = "rtu", host: str = "127.0.0.1",
+                 port: int = 0, baud: int = 115200, parity: str = "N", stop_bits: int = 1) -> None:
+        super().__init__(name, clock=clock)
+        if transport == "tcp" and host not in SIM_HOSTS:
+            raise DriverError(f"sim {name}: a simulated device listens on 127.0.0.1 only, not {host}")
+        self.units: dict[int, SimulatedUnit] = dict(units)
+        self.transport = transport
+        self.host, self.port = host, port
+        self._serial = dict(baudrate=baud, parity=parity, stopbits=stop_bits)
+        self.cable: Optional[NullModem] = NullModem(f"sim {name} cable") if transport == "rtu" else None
+        self.master_port = self.cable.master_port if self.cable else None
+        self.silent = False
+        self.requests = 0
+        self._lock = threading.Lock()
+        self._loop: Optional[asyncio.AbstractEventLoop] = None
+        self._server = None
+        self._thread: Optional[threading.Thread] = None
+
+    def unit(self, unit: int):
+        """The model at a unit id."""
+        return self.units[unit]
+
+    # ---------------------------------------------------------------- requests (server thread)
+
+    def serve(self, unit: int, function: int, address: int, *, count: int = 0, values=None):
+        """One datastore access of pymodbus: a list of registers, None after a
+        good write, or an ExcCodes refusal."""
+        model = self.units.get(unit)
+        if model is None:
+            raise NoSuchIdException(f"unit {unit} is not on this line")    # pymodbus stays silent
+        if function not in model.functions:
+            return ExcCodes.ILLEGAL_FUNCTION
+        now = self.clock.now_ns()
+        with self._lock:
+            model.telegram(now)
+            self.requests += 1
+            try:
+                if values is None:
+                    return model.serve_read(address, count, now)
+                model.serve_write(address, values, now)
+                return None
+            except ModbusRefusal as refusal:
+                return ExcCodes(refusal.code)
+
+    def _trace(self, sending: bool, data: bytes) -> bytes:
+        if self.silent and not sending:
+            return b""          # the request never reaches the units: no answer
+        return data
+
+    # ---------------------------------------------------------------- device behaviour
+
+    def service(self, now_ns: int) -> None:
+        with self._lock:
+            for model in self.units.values():
+                model.advance(now_ns)
+
+    def open(self) -> None:
+        started = threading.Event()
+        failure: list = []
+
+        def run() -> None:
+            loop = asyncio.new_event_loop()
+            self._loop = loop
+            asyncio.set_event_loop(loop)
+            try:
+                loop.run_until_complete(self._serve(started))
+            except Exception as exc:     # reported to start() below
+                failure.append(exc)
+                started.set()
+            finally:
+                loop.close()
+
+        self._thread = threading.Thread(target=run, name=f"sim {self.name}", daemon=True)
+        self._thread.start()
+        if not started.wait(5) or failure:
+            raise DriverError(f"sim {self.name}: the Modbus server did not start"
+                              + (f": {failure[0]}" if failure else ""))
+
+    async def _serve(self, started: threading.Event) -> None:
+        line = _Line(self)
+        if self.transport == "tcp":
+            self._server = ModbusTcpServer(line, address=(self.host, self.port), ignore_missing_devices=True,
+                                           broadcast_enable=True, trace_packet=self._trace)
+        else:
+            self._server = ModbusSerialServer(line, framer=FramerType.RTU, port=self.cable.slave_port,
+                                              ignore_missing_devices=True, broadcast_enable=True,
+                                              trace_packet=self._trace, **self._serial)
+        await self._server.serve_forever(background=True)
+        started.set()
+        await self._server.serving
+
+    def close(self) -> None:
+        if self._server is not None and self._loop is not None:
+            future = asyncio.run_coroutine_threadsafe(self._server.shutdown(), self._loop)
+            try:
+                future.result(timeout=5)
+            except Exception:      # already down
+                pass
+        if self._thread is not None:
+            self._thread.join(timeout=5)
+        self._server = self._thread = None
+        if self.cable is not None:
+            self.cable.close()
+            self.cable = None

@@ -1,0 +1,186 @@
+"""The Modbus master: every [[modbus]] connection of a configuration, its
+channels (runtime/io/modbus/channel.py) and the program's MODBUS_EXCHANGE
+requests (runtime/io/modbus/exchange.py), as one driver.
+
+Each connection has one owner of its pymodbus client (link.py):
+  real time     a worker thread per connection runs whatever is due (queued
+                requests first, then channels in configuration order) and
+                sleeps until the next due time or until the scan wakes it;
+  virtual time  no thread: at each tick the engine's thread runs everything
+                due by then (advance_to), so the answers are in the image of
+                the same tick and a sequence always runs the same way. A slave
+                that does not answer costs real time (the timeout), never
+                virtual time.
+
+The program sees each channel in MODBUS_CHANNEL[i] (i = the channel's place
+in the file, counted over all connections; fblocks/comm/modbus.st).
+"""
+from __future__ import annotations
+
+import collections
+import logging
+import threading
+from typing import Callable, Optional
+
+from ...image.memory import ProcessImage
+from ...plugin.driver import Driver, DriverError, DriverStatus
+from .channel import Channel
+from .exchange import SERVICE as EXCHANGE_SERVICE, ModbusExchangeService
+from .link import LinkSettings, ModbusLink, Outcome, Transaction
+
+log = logging.getLogger(__name__)
+
+#: real time: the longest a worker sleeps without looking at its channels
+IDLE_WAIT_S = 0.05
+
+
+def link_settings(cfg) -> LinkSettings:
+    """LinkSettings of a ModbusConnectionConfig (runtime/config/)."""
+    return LinkSettings(
+        name=cfg.name, transport=cfg.transport, host=cfg.host, port=cfg.port, device=cfg.device,
+        baud=cfg.baud, parity=cfg.parity, stop_bits=cfg.stop_bits, data_bits=cfg.data_bits,
+        frame_gap_s=None if cfg.frame_gap_us is None else cfg.frame_gap_us / 1e6,
+        timeout_s=cfg.timeout_ms / 1000, retries=cfg.retries,
+        reconnect_s=cfg.reconnect_ms / 1000, reconnect_max_s=cfg.reconnect_max_ms / 1000)
+
+
+class ConnectionWorker:
+    """The owner of one link: runs its requests and due channels."""
+
+    def __init__(self, link: ModbusLink, channels: list, clock) -> None:
+        self.link = link
+        self.channels = channels
+        self.clock = clock
+        self._requests: collections.deque = collections.deque()
+        self._wake = threading.Event()
+        self._thread: Optional[threading.Thread] = None
+        self._running = False
+
+    def submit(self, tx: Transaction, done: Callable[[Outcome], None]) -> None:
+        self._requests.append((tx, done))
+        self._wake.set()
+
+    def wake(self) -> None:
+        self._wake.set()
+
+    def run_due(self, now_ns: int) -> None:
+        self.link.try_connect(now_ns)
+        while self._requests:
+            tx, done = self._requests.popleft()
+            done(self.link.transact(tx, now_ns))
+        for ch in self.channels:
+            if ch.due(now_ns):
+                ch.complete(self.link.transact(ch.transaction(), now_ns), now_ns)
+
+    def _next_wait_s(self, now_ns: int) -> float:
+        dues = [d for d in (ch.next_due_ns() for ch in self.channels) if d is not None]
+        if not dues:
+            return IDLE_WAIT_S
+        return min(IDLE_WAIT_S, max(0.0, (min(dues) - now_ns) / 1e9))
+
+    # real time ------------------------------------------------------------
+
+    def start_thread(self) -> None:
+        self._running = True
+        self._thread = threading.Thread(target=self._loop, name=f"modbus {self.link.settings.name}",
+                                        daemon=True)
+        self._thread.start()
+
+    def _loop(self) -> None:
+        try:
+            while self._running:
+                self.run_due(self.clock.now_ns())
+                wait = self._next_wait_s(self.clock.now_ns())
+                if wait > 0 and not self._requests:
+                    self._wake.wait(wait)
+                self._wake.clear()
+        except Exception:   # a bug must not die silently in a thread
+            log.exception("modbus %s: worker failed", self.link.settings.name)
+            self.link.message = "worker failed (see the log)"
+        finally:
+            self.link.close()
+
+    def stop(self) -> None:
+        self._running = False
+        self._wake.set()
+        if self._thread is not None:
+            self._thread.join(timeout=5)
+            self._thread = None
+        else:
+            self.link.close()
+
+
+class ModbusDriver(Driver):
+    """Driver for all [[modbus]] connections (one instance per engine)."""
+
+    def __init__(self, connections: list, addressing: str, *, clock) -> None:
+        self.name = "modbus"
+        image = ProcessImage(addressing)     # the layout, for the channels' byte spans
+        self.clock = clock
+        self.channels: list[Channel] = []
+        self.workers: dict[str, ConnectionWorker] = {}
+        for cfg in connections:
+            channels = []
+            for ch_cfg in cfg.channels:
+                try:
+                    channels.append(Channel(ch_cfg, image))
+                except Exception as exc:
+                    raise DriverError(str(exc)) from None
+            self.channels.extend(channels)
+            self.workers[cfg.name] = ConnectionWorker(ModbusLink(link_settings(cfg)), channels, clock)
+        self.exchange = ModbusExchangeService(self._submit)
+        self.services = {EXCHANGE_SERVICE: self.exchange}
+        self._diag = None
+
+    def _submit(self, connection: str, tx: Transaction, done) -> bool:
+        worker = self.workers.get(connection)
+        if worker is None:
+            return False
+        worker.submit(tx, done)
+        return True
+
+    # life cycle -------------------------------------------------------------
+
+    def start(self) -> None:
+        if not self.clock.virtual:
+            for worker in self.workers.values():
+                worker.start_thread()
+
+    def advance_to(self, now_ns: int) -> None:
+        for worker in self.workers.values():
+            worker.run_due(now_ns)
+
+    def stop(self) -> None:
+        for worker in self.workers.values():
+            worker.stop()
+
+    def bind_program(self, globals_obj) -> None:
+        from .diag import ModbusDiag
+        diag = ModbusDiag(globals_obj)
+        # a program that does not read MODBUS_CHANNEL costs no snapshot per cycle
+        self._diag = diag if diag.active else None
+
+    # scan side ----------------------------------------------------------------
+
+    def read_inputs(self, image: ProcessImage) -> None:
+        for ch in self.channels:
+            ch.publish(image)
+        self.exchange.collect()
+        if self._diag is not None:
+            self._diag.update([(i, ch.snapshot(), self.workers[ch.cfg.connection].link.connected)
+                               for i, ch in enumerate(self.channels)])
+
+    def write_outputs(self, image: ProcessImage) -> None:
+        for ch in self.channels:
+            if ch.stage(image):
+                self.workers[ch.cfg.connection].wake()
+
+    def status(self) -> DriverStatus:
+        down = [w.link for w in self.workers.values() if not w.link.connected]
+        failing = [ch.name for ch in self.channels if ch.stats.requests and not ch.stats.ok]
+        if down:
+            return DriverStatus(False, "modbus: " + "; ".join(f"{l.settings.name} {l.message}" for l in down))
+        if failing:
+            return DriverStatus(False, f"modbus: {len(failing)}/{len(self.channels)} channels failing "
+                                       f"({', '.join(failing[:3])})")
+        return DriverStatus(True, f"modbus: {len(self.workers)} up")

@@ -1,0 +1,144 @@
+"""The registry: the buses and devices this installation knows.
+
+They are found through Python entry points, read once per process:
+
+    [project.entry-points."softplc.buses"]
+    canopen = "softplc.runtime.io.canopen:BUS"
+
+    [project.entry-points."softplc.devices"]
+    ltmr = "softplc.runtime.devices.ltmr:DEVICE"
+
+so a package installed beside softplc adds a device (or a bus) by naming
+its ``Device`` (or ``Bus``) in its own pyproject. The configuration, the
+compiler and the engine ask the registry and name no bus or device
+themselves. Tests add one for a while with ``extended(...)``.
+
+Order is each plugin's ``order`` (then its name): it decides the order of
+configuration checks, of drivers in the scan and of types in messages.
+"""
+from __future__ import annotations
+
+from collections.abc import Iterator
+from contextlib import contextmanager
+from importlib import metadata
+
+from ..st.native import NativeFunction
+from .seams import Bus, Device, GeneratedFile, PackageFile, StLibrary
+
+BUS_GROUP = "softplc.buses"
+DEVICE_GROUP = "softplc.devices"
+
+
+class PluginError(Exception):
+    """A bus or device that cannot be registered (a name used twice, an
+    entry point that does not load)."""
+
+
+class Registry:
+    def __init__(self) -> None:
+        self._buses: dict[str, Bus] = {}
+        self._devices: dict[str, Device] = {}
+        #: bumped at every change, for caches of what is derived from the registry
+        self.version = 0
+
+    # ---------------------------------------------------------------- contents
+
+    @property
+    def buses(self) -> list[Bus]:
+        return sorted(self._buses.values(), key=lambda p: (p.order, p.name))
+
+    @property
+    def devices(self) -> list[Device]:
+        return sorted(self._devices.values(), key=lambda p: (p.order, p.name))
+
+    def bus(self, name: str) -> Bus:
+        return self._buses[name]
+
+    def add(self, plugin: Bus | Device) -> None:
+        if isinstance(plugin, Bus):
+            table: dict = self._buses
+        elif isinstance(plugin, Device):
+            table = self._devices
+            taken = self.sim_types()
+            for sim_type in plugin.sim_types:
+                if sim_type in taken:
+                    raise PluginError(f"device {plugin.name}: sim type {sim_type!r} is device "
+                                      f"{taken[sim_type].name}'s")
+        else:
+            raise PluginError(f"not a Bus or a Device: {plugin!r}")
+        if plugin.name in table:
+            raise PluginError(f"two plugins are called {plugin.name!r}")
+        table[plugin.name] = plugin
+        self.version += 1
+
+    def remove(self, plugin: Bus | Device) -> None:
+        table: dict = self._buses if isinstance(plugin, Bus) else self._devices
+        if table.get(plugin.name) is plugin:
+            del table[plugin.name]
+            self.version += 1
+
+    # ---------------------------------------------------------------- what the core asks
+
+    def _plugins(self) -> list:
+        return [*self.buses, *self.devices]
+
+    def natives(self) -> dict[str, NativeFunction]:
+        """Every native function, by ST name (upper case)."""
+        out: dict[str, NativeFunction] = {}
+        for plugin in self._plugins():
+            for fn in plugin.natives:
+                if fn.name in out:
+                    raise PluginError(f"{plugin.name}: native function {fn.name} is declared twice")
+                out[fn.name] = fn
+        return out
+
+    def libraries(self) -> list[StLibrary]:
+        """The ST files of every bus and device (compiled on demand)."""
+        return [lib for plugin in self._plugins() for lib in plugin.libraries]
+
+    def sim_types(self) -> dict[str, Device]:
+        """[[sim]] type -> the device that simulates it, in registry order."""
+        return {t: device for device in self.devices for t in device.sim_types}
+
+    def files(self, kind: str) -> dict[str, PackageFile]:
+        """The files of a kind the devices ship, by name: files("eds")["ltmr"]."""
+        return {name: f for device in self.devices for name, f in device.files.get(kind, {}).items()}
+
+    def generated(self) -> list[GeneratedFile]:
+        return [g for device in self.devices for g in device.generated]
+
+
+_registry: Registry | None = None
+
+
+def registry() -> Registry:
+    """The process's registry, with every installed entry point loaded."""
+    global _registry
+    if _registry is None:
+        reg = Registry()
+        for group in (BUS_GROUP, DEVICE_GROUP):
+            for ep in metadata.entry_points(group=group):
+                try:
+                    plugin = ep.load()
+                except Exception as exc:
+                    raise PluginError(f"entry point {ep.name} = {ep.value!r} ({group}) does not load: "
+                                      f"{type(exc).__name__}: {exc}") from exc
+                reg.add(plugin)
+        _registry = reg
+    return _registry
+
+
+@contextmanager
+def extended(*plugins: Bus | Device) -> Iterator[Registry]:
+    """The process's registry with plugins added until the block ends, as
+    if they were installed (tests; an application embedding softplc)."""
+    reg = registry()
+    added = []
+    try:
+        for plugin in plugins:
+            reg.add(plugin)
+            added.append(plugin)
+        yield reg
+    finally:
+        for plugin in reversed(added):
+            reg.remove(plugin)

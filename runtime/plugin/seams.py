@@ -1,0 +1,127 @@
+"""What a bus or a device plugs into softplc: the shapes of the seams.
+
+A bus (a driver package, runtime/io/<bus>/) declares a ``Bus``:
+
+    sections      its configuration sections (config.Section subclasses:
+                  a pydantic model for pass 1, relations for pass 2, and the
+                  dataclasses the driver reads)
+    attachment    how a simulated device sits on it: the [[sim]] keys that
+                  place a device there (a CAN node id, a Modbus unit ...)
+    natives       ST functions its services execute (st/native.py)
+    libraries     ST files with its blocks and diagnostic structs, compiled
+                  into a program that names something they declare
+    build         the drivers and simulators for a configuration
+                  (Contribution): drivers exchange with the process image at
+                  the cycle boundary, offer their services, publish their
+                  diagnostics, and stop in the order they are listed
+
+A device (runtime/devices/<device>/) declares a ``Device``: the [[sim]] types
+it simulates and their own keys, the simulator factory its bus calls, its ST
+libraries and native functions, the files it ships (an EDS by name) and the
+files generated from its manual tables. Its codec (registers, words, codes)
+is the package's own modules; nothing else needs to know them.
+
+Both are found through the registry (registry.py): Python entry points in
+the groups ``softplc.buses`` and ``softplc.devices``, so an installed package
+adds one with no change to softplc.
+"""
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+from ..st.native import NativeFunction
+
+
+@dataclass(frozen=True)
+class StLibrary:
+    """An ST file installed as package data: ``StLibrary("softplc.fblocks.comm",
+    "sdo.st")``. Diagnostics name it <lib>/<last package part>/<file>."""
+    package: str
+    file: str
+
+    @property
+    def name(self) -> str:
+        return f"<lib>/{self.package.rsplit('.', 1)[-1]}/{self.file}"
+
+    def read_text(self) -> str:
+        return resources.files(self.package).joinpath(self.file).read_text("utf-8")
+
+
+@dataclass(frozen=True)
+class PackageFile:
+    """A file installed with a package, such as a shipped EDS."""
+    package: str
+    file: str
+
+    @property
+    def path(self) -> Path:
+        return Path(os.fspath(resources.files(self.package).joinpath(self.file)))
+
+
+@dataclass(frozen=True)
+class GeneratedFile:
+    """A shipped file written from a device's tables: ``render()`` gives its
+    text. A test compares every one with its generator, and
+    ``python -m softplc.runtime.devices`` rewrites them."""
+    target: PackageFile
+    render: Callable[[], str]
+    encoding: str = "utf-8"
+
+
+@dataclass
+class BuildContext:
+    """What a bus's build gets besides the configuration: the engine's clock
+    (virtual or real), the profile's addressing model, the configuration
+    file for messages, and a dict the buses of one engine share (a
+    virtual-time pump every CAN endpoint uses ...)."""
+    clock: Any
+    addressing: str
+    where: str = "<config>"
+    shared: dict = field(default_factory=dict)
+
+    @property
+    def virtual(self) -> bool:
+        return bool(self.clock.virtual)
+
+
+@dataclass
+class Contribution:
+    """A bus's part of an engine. simulators: simulated devices (started
+    first, advanced first at each tick, stopped last); drivers: the bus
+    drivers, in the order they meet the scan (and stop in reverse)."""
+    simulators: list = field(default_factory=list)
+    drivers: list = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class Bus:
+    name: str
+    #: where it comes among the buses (lower first; equal: by name): the order
+    #: of configuration checks and of drivers in the scan
+    order: int = 100
+    sections: tuple = ()                        # config.Section instances
+    attachment: Any = None                      # config.Attachment, or None: no simulated devices
+    natives: tuple[NativeFunction, ...] = ()
+    libraries: tuple[StLibrary, ...] = ()
+    build: Callable[[Any, BuildContext], Contribution] | None = None   # (PlcConfig, context)
+
+
+@dataclass(frozen=True)
+class Device:
+    name: str
+    #: where it comes among the devices (lower first; equal: by name): the
+    #: order of [[sim]] types in messages
+    order: int = 100
+    bus: str = ""                               # the bus its simulators attach to
+    sim_types: tuple[str, ...] = ()             # [[sim]] type values it simulates
+    sim_options: Any = None                     # config.SimOptions subclass: its own [[sim]] keys
+    simulator: Callable[..., Any] | None = None  # (SimConfig, the bus's context) -> a simulator
+    natives: tuple[NativeFunction, ...] = ()
+    libraries: tuple[StLibrary, ...] = ()
+    files: Mapping[str, Mapping[str, PackageFile]] = field(default_factory=dict)  # kind -> name -> file
+    generated: tuple[GeneratedFile, ...] = ()
