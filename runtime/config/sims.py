@@ -55,7 +55,7 @@ class SimSection(Section):
         fields: dict[str, Any] = {
             "type": (Annotated[str, choice(types)], Field(description=listed)),
             "name": (Optional[Annotated[str, identifier("a simulator name")]],
-                     Field(None, description='a simulator name such as "ltmr40"')),
+                     Field(None, description='a simulator name such as "motor_sim"')),
         }
         models = list(self.attachments.values()) + [d.sim_options for d in self.registry.devices if d.sim_options]
         for owner in models:
