@@ -19,10 +19,18 @@ REPO = Path(__file__).resolve().parents[2]
 DRIVE_PROGRAM = REPO / "st_programs" / "eaton_drive.st"
 
 
+# Answers cross a socket or a pseudo-terminal in real time even on the virtual
+# clock. The timeout must outlast the slowest answer of a loaded machine (a
+# drive that answers never waits for it), and tests that make a drive silent
+# pass SILENT_TIMEOUT, so that the many requests that then time out cost
+# little real time.
+TIMEOUT = "500ms"
+SILENT_TIMEOUT = "30ms"
+
+
 def connection(transport: str, **extra) -> dict:
-    """A [[modbus]] table named "drives" to the simulated drives; short
-    timeouts, so a silent drive costs little real time."""
-    table = {"name": "drives", "transport": transport, "timeout": "30ms", "retries": 0, "reconnect": "100ms",
+    """A [[modbus]] table named "drives" to the simulated drives."""
+    table = {"name": "drives", "transport": transport, "timeout": TIMEOUT, "retries": 0, "reconnect": "100ms",
              "reconnect_max": "400ms"}
     table.update({"device": "sim", "baud": 115200} if transport == "rtu" else {"port": 0})
     table.update(extra)

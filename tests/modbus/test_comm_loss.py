@@ -9,7 +9,7 @@ import pytest
 from softplc.runtime.devices.eaton import registers as eaton
 from softplc.runtime.io.modbus.link import ModbusError
 
-from .conftest import DRIVE_PROGRAM, plant_config
+from .conftest import DRIVE_PROGRAM, SILENT_TIMEOUT, plant_config
 from .test_drive_sequence import MONITOR
 
 SIGNAL_LOST = "No valid Modbus telegram received within the set time"
@@ -30,7 +30,7 @@ def test_line_lost_drive_trips_master_recovers(plants, tmp_path, transport):
     plant = plants(plant_config(tmp_path, [DRIVE_PROGRAM], transport=transport,
                                 program={"instance": "Drive", "program": "EatonDrive"},
                                 sims=[{"type": "da1", "unit": 1, "registers": {"505": 20, "506": 0}}],
-                                channels=[MONITOR], interval="50ms"))
+                                channels=[MONITOR], interval="50ms", timeout=SILENT_TIMEOUT))
     drive = plant.drive(1)
     plant.run_until(lambda: plant["Drive.state"] == "HoldForward", 6000, step_ms=50)
     mend = silent_line(plant, transport)
@@ -67,7 +67,8 @@ def test_no_answer_before_the_timeout_is_no_trip(plants, tmp_path):
     """P5-05 = 5 (0.5 s): a line silent for 0.4 s leaves the drive running."""
     plant = plants(plant_config(tmp_path, [DRIVE_PROGRAM], transport="tcp",
                                 program={"instance": "Drive", "program": "EatonDrive"},
-                                sims=[{"type": "da1", "unit": 1, "registers": {"505": 5}}], interval="50ms"))
+                                sims=[{"type": "da1", "unit": 1, "registers": {"505": 5}}], interval="50ms",
+                                timeout=SILENT_TIMEOUT))
     plant.run_until(lambda: plant["Drive.state"] == "HoldForward", 6000, step_ms=50)
     mend = silent_line(plant, "tcp")
     plant.run_ms(400)

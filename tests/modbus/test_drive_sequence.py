@@ -23,11 +23,7 @@ def drive_plant(plants, tmp_path, transport, sim_type="da1", **extra):
 def test_start_ramp_reverse_stop(plants, tmp_path, transport):
     # RTU costs a few ms of real time per transaction: a slower task keeps the test short
     tick = 10 if transport == "tcp" else 50
-    # The answers cross a pseudo-terminal or a socket in real time even on the
-    # virtual clock: the 30 ms timeout of the other tests (short, for the silent
-    # drives they make) could expire on a loaded machine and fail the last
-    # assertion (no channel error). A drive that answers never waits for it.
-    plant = drive_plant(plants, tmp_path, transport, interval=f"{tick}ms", timeout="2s", retries=1)
+    plant = drive_plant(plants, tmp_path, transport, interval=f"{tick}ms")
     drive = plant.drive(1)
     plant.run_until(lambda: plant["Drive.state"] == "RunForward", 500)
     assert plant["Drive.drive.MODEL"] == "DA1" and plant["Drive.drive.FAMILY"] == eaton.Family.DA1
