@@ -542,6 +542,7 @@ def test_load_removes_temp_files_and_keeps_earlier_corrupt_files(tmp_path):
     assert RetainStore(path, threaded=False).load() == (read_file(path), None)
 
 
+@pytest.mark.realtime  # kills a writer at real moments
 def test_file_stays_whole_when_the_writer_is_killed(tmp_path):
     """A real process writes the file in a tight loop and is killed with
     SIGKILL at varied moments; the file always reads back whole, with its

@@ -3,6 +3,8 @@ intervals, several program instances per task, freewheeling tasks, and IEC
 timers reading the clock of the task they run in."""
 from __future__ import annotations
 
+import pytest
+
 from softplc.runtime.engine.clock import RealClock
 
 from .conftest import MS, task
@@ -137,6 +139,7 @@ def test_timers_read_the_clock_of_their_task(engines):
     assert (e.get("doneAt10"), e.get("doneAt20"), e.get("doneAt30")) == (50, 60, 60)
 
 
+@pytest.mark.realtime  # on the real clock
 def test_real_clock_runs_the_same_schedule():
     # Counts only: how late the real clock is never decides this test.
     from .conftest import make_engine

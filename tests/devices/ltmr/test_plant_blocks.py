@@ -2,7 +2,12 @@
 through the CANopen master and the simulated LTMR (node 40)."""
 from __future__ import annotations
 
+import pytest
+
 from softplc.runtime.devices.ltmr import registers as ltmr, pkw
+
+# whole plants over seconds of virtual time, answers crossing sockets in real time
+pytestmark = pytest.mark.slow
 
 # PDO4 carries the PKW objects 0x3000:01..04 (U32 each; manual 001 §2.5). CANopen
 # and the image are both little-endian, so 3000:01 in %QD55 is word 1 in %QW110 and

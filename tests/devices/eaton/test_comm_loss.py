@@ -9,8 +9,11 @@ import pytest
 from softplc.runtime.devices.eaton import registers as eaton
 from softplc.runtime.io.modbus.link import ModbusError
 
-from .conftest import DRIVE_PROGRAM, SILENT_TIMEOUT, plant_config
+from ...io.modbus.plant import DRIVE_PROGRAM, SILENT_TIMEOUT, plant_config
 from .test_drive_sequence import MONITOR
+
+# whole plants over seconds of virtual time, answers crossing sockets in real time
+pytestmark = pytest.mark.slow
 
 SIGNAL_LOST = "No valid Modbus telegram received within the set time"
 

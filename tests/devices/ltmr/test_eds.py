@@ -16,7 +16,7 @@ from softplc.runtime.plugin.registry import registry
 from softplc.runtime.devices.ltmr import registers as ltmr
 from softplc.runtime.io.canopen.cia301 import ABORT_NO_OBJECT, ABORT_NO_SUBINDEX, ABORT_READ_ONLY
 
-EDS_DIR = Path(__file__).resolve().parents[2] / "io_config" / "eds"
+EDS_DIR = Path(__file__).resolve().parents[3] / "io_config" / "eds"
 LTMR_EDS = EDS_DIR / "ltmr.eds"
 FC280_EDS = EDS_DIR / "fc280.eds"
 

@@ -9,7 +9,7 @@ import pytest
 from softplc.runtime.devices.eaton import registers as eaton
 from softplc.runtime.io.modbus.link import ModbusError
 
-from .conftest import REPO, plant_config
+from .plant import REPO, plant_config
 
 REQUESTS = """
 PROGRAM P

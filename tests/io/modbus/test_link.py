@@ -3,7 +3,7 @@ byte on a real serial line: the master's RTU requests and the simulated
 drive's answers as they crossed the pseudo-terminal cable."""
 from __future__ import annotations
 
-from .conftest import plant_config
+from .plant import plant_config
 
 # M1/M2: read ID 6 (status word) of unit 1; the drive answers 0 (a DA1 that is
 # stopped with its STO open: no bit set, no fault). M3: write 1 to ID 1

@@ -19,6 +19,9 @@ from softplc.runtime.engine.retain import read_file
 
 from .test_cli import softplc
 
+# each test starts softplc in a process of its own
+pytestmark = pytest.mark.slow
+
 REPO = Path(__file__).resolve().parents[1]
 
 
@@ -199,6 +202,7 @@ def _retain_config(tmp_path, period="50ms") -> Path:
                         'programs = ["Counter"]\n', {"counter.st": COUNTER})
 
 
+@pytest.mark.realtime  # the real clock runs the PLC
 def test_sigterm_stops_cleanly_and_saves_retain(tmp_path):
     cfg = _retain_config(tmp_path, period="1h")  # only the final save can write the file
     out = tmp_path / "final.json"
@@ -212,6 +216,7 @@ def test_sigterm_stops_cleanly_and_saves_retain(tmp_path):
     assert saved.vars["Counter.count"]["value"] == final["count"] >= 1
 
 
+@pytest.mark.realtime  # the real clock runs the PLC
 def test_sigusr1_restarts_a_faulted_task(tmp_path):
     cfg = write_config(tmp_path, '[plc]\nprograms = ["p.st"]\n', {"p.st": (
         "PROGRAM Main\nVAR n, d : INT; END_VAR\nn := n + 1;\nIF n = 3 THEN\n    n := n / d;\nEND_IF\n"
@@ -225,6 +230,7 @@ def test_sigusr1_restarts_a_faulted_task(tmp_path):
     assert proc.returncode == 3  # a fault happened during the run
 
 
+@pytest.mark.realtime  # the real clock runs the PLC
 def test_retain_survives_sigkill_repeatedly(tmp_path):
     """kill -9 at arbitrary moments: the retain file is always whole and
     valid, and each warm start continues from what it holds."""

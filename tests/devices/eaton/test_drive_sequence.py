@@ -7,7 +7,10 @@ import pytest
 
 from softplc.runtime.devices.eaton import registers as eaton
 
-from .conftest import DRIVE_PROGRAM, plant_config
+from ...io.modbus.plant import DRIVE_PROGRAM, plant_config
+
+# whole plants over seconds of virtual time, answers crossing sockets in real time
+pytestmark = pytest.mark.slow
 
 MONITOR = {"name": "drive_monitor", "unit": 1, "function": 3, "offset": 5, "count": 5, "read_to": "%IW200",
            "period": "100ms"}

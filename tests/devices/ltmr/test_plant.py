@@ -2,11 +2,16 @@
 master to the simulated LTMR on the virtual bus, in virtual time."""
 from __future__ import annotations
 
+import pytest
+
 from pathlib import Path
 
 from softplc.runtime.devices.ltmr import registers as ltmr
 
-ROOT = Path(__file__).resolve().parents[2]
+# whole plants over seconds of virtual time, answers crossing sockets in real time
+pytestmark = pytest.mark.slow
+
+ROOT = Path(__file__).resolve().parents[3]
 MOTOR = (ROOT / "st_programs" / "ltmr_motor.st").read_text()
 
 

@@ -14,7 +14,7 @@ from softplc.runtime.io.canopen.cia301 import ABORT_ACCESS, ABORT_BAD_COMMAND, A
 from softplc.runtime.devices.ltmr.registers import FallbackStrategy, OperatingMode, ResetMode, Status1, Status2, TripEnable1, TripRegister1
 from softplc.runtime.devices.ltmr.sim import shipped_eds
 
-from .conftest import MS, abort_frame, write_ok
+from ...io.canopen.bench import MS, abort_frame, write_ok
 
 NODE = 40
 TPDO1, RPDO1, TPDO4, RPDO4, EMCY, HEARTBEAT = 0x1A8, 0x228, 0x4A8, 0x528, 0x0A8, 0x728

@@ -7,7 +7,10 @@ import pytest
 from softplc.runtime.config import default_config_path, load_config
 from softplc.runtime.engine.build import build_engine
 
-from .conftest import MS
+from ..io.modbus.plant import MS
+
+# whole plants over seconds of virtual time, answers crossing sockets in real time
+pytestmark = pytest.mark.slow
 
 
 def test_drive_and_motor_run_side_by_side():

@@ -15,7 +15,7 @@ from softplc.runtime.io.modbus.line import SimulatedModbusLine
 from softplc.runtime.st.valuejson import encode_value
 
 MS = 1_000_000
-REPO = Path(__file__).resolve().parents[2]
+REPO = Path(__file__).resolve().parents[3]
 DRIVE_PROGRAM = REPO / "st_programs" / "eaton_drive.st"
 
 

@@ -8,7 +8,7 @@ from pathlib import Path
 
 from softplc.runtime.devices.ltmr import registers as ltmr
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 EXAMPLES = [ROOT / "st_programs" / "ltmr_write_sdo.st", ROOT / "st_programs" / "ltmr_read_sdo.st"]
 NO_PDOS = [{"name": "motor", "id": 40, "eds": "ltmr", "heartbeat": "100ms"}]
 
