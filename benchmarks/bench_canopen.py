@@ -28,13 +28,13 @@ import can
 import canopen
 
 from softplc.runtime.config import config_from_dict
+from softplc.runtime.devices.ltmr.sim import LtmrSimulator
 from softplc.runtime.engine.clock import RealClock
 from softplc.runtime.image.memory import ProcessImage
 from softplc.runtime.io.can import settings_of
 from softplc.runtime.io.can.bus import BusSettings, CanEndpoint, open_bus
 from softplc.runtime.io.canopen.master import CanopenDriver
 from softplc.runtime.io.canopen.sdo import SdoJob
-from softplc.runtime.devices.ltmr.sim import LtmrSimulator
 
 CHANNEL = "bench-canopen"
 TPDO1 = 0x1A8

@@ -28,10 +28,10 @@ import time
 from pathlib import Path
 
 from softplc.runtime.program import compile as loader
+from softplc.runtime.program import compile_files
 from softplc.runtime.st.checker import Checker
 from softplc.runtime.st.codegen import CodeGen
 from softplc.runtime.st.diagnostics import DiagnosticBag
-from softplc.runtime.program import compile_files
 from softplc.runtime.st.parser import parse_source
 from softplc.runtime.st.profile import get_profile
 
@@ -576,7 +576,7 @@ def generate_st(target_lines: int, seed: int = 61131) -> str:
              "bits.7 := faultTimer.Q;",
              "statusWord := SHL(BYTE_TO_WORD(bits), 8) OR INT_TO_WORD(moves.CV);",
              "axis.status := statusWord;",
-             f"END_FUNCTION_BLOCK", "")
+             "END_FUNCTION_BLOCK", "")
 
         # --- a function block: filter with WHILE / REPEAT --------------
         fb2 = f"FB_Filter{n}"

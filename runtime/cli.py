@@ -21,7 +21,6 @@ import os
 import sys
 import traceback
 from pathlib import Path
-from typing import Optional
 
 import click
 
@@ -96,8 +95,8 @@ def _summary(errors: int, warnings: int) -> None:
 
 def _compile(files, profile: str):
     """Compile or exit 1 with the diagnostics. Warnings go to stderr either way."""
-    from .st.diagnostics import CompileError
     from .program import compile_files
+    from .st.diagnostics import CompileError
 
     try:
         prog = compile_files(list(files), profile=profile)
@@ -143,7 +142,7 @@ def check(files, profile: str) -> None:
 @click.option("-o", "--output-dir", type=click.Path(file_okay=False),
               help="With --emit-python: write DIR/<stem of the first FILE>.py instead of printing.")
 @PROFILE_OPTION
-def compile_cmd(files, emit_python: bool, output_dir: Optional[str], profile: str) -> None:
+def compile_cmd(files, emit_python: bool, output_dir: str | None, profile: str) -> None:
     """Compile ST files to Python; with --emit-python show the result."""
     if output_dir and not emit_python:
         raise click.UsageError("-o/--output-dir needs --emit-python")
@@ -174,7 +173,7 @@ def compile_cmd(files, emit_python: bool, output_dir: Optional[str], profile: st
 @click.option("--cycle-time", type=CycleTime(), default="10ms", show_default=True,
               help="Virtual time per cycle, whole milliseconds: 10ms, 1s, T#250ms.")
 @PROFILE_OPTION
-def exec_cmd(files, entry: Optional[str], cycles: int, cycle_time: int, profile: str) -> None:
+def exec_cmd(files, entry: str | None, cycles: int, cycle_time: int, profile: str) -> None:
     """Run a PROGRAM for N cycles in virtual time and print its variables as
     one JSON object; for a FUNCTION print {"return": value}."""
     from .st.faults import STFault
@@ -212,7 +211,7 @@ def _exec_result(runner) -> dict:
     return result
 
 
-def _pick_entry(pous: dict, entry: Optional[str]) -> str:
+def _pick_entry(pous: dict, entry: str | None) -> str:
     """The --entry name as declared, checked against the user's POUs."""
     if entry is None:
         programs = [name for name, kind in pous.items() if kind == "PROGRAM"]
@@ -265,8 +264,8 @@ class Duration(click.ParamType):
 @click.option("--warm", "start_mode", flag_value="warm",
               help="Warm start: RETAIN and PERSISTENT variables restored (the default unless the "
                    "config says start = \"cold\").")
-def run_cmd(config: Optional[str], virtual_time: bool, duration: Optional[int], cycles: Optional[int],
-            watch: tuple, trace: Optional[str], final_json: Optional[str], start_mode: Optional[str]) -> None:
+def run_cmd(config: str | None, virtual_time: bool, duration: int | None, cycles: int | None,
+            watch: tuple, trace: str | None, final_json: str | None, start_mode: str | None) -> None:
     """Run the PLC: the tasks of CONFIG (a TOML file; without it the embedded
     default example) until Ctrl-C, SIGTERM, --duration or --cycles.
 
@@ -286,7 +285,7 @@ def run_cmd(config: Optional[str], virtual_time: bool, duration: Optional[int], 
 
 # ---------------------------------------------------------------- entry point
 
-def main(argv: Optional[list] = None) -> None:
+def main(argv: list | None = None) -> None:
     """Console-script entry point: never lets a Python traceback reach the user."""
     try:
         # standalone_mode=False: we map click's exceptions to our exit codes

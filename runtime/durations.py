@@ -5,7 +5,6 @@ accept the same spellings."""
 from __future__ import annotations
 
 import re
-from typing import Optional
 
 # IEC duration units, largest first, in nanoseconds.
 UNITS_NS = {"d": 86_400_000_000_000, "h": 3_600_000_000_000, "m": 60_000_000_000,
@@ -15,7 +14,7 @@ _PART = re.compile(r"(\d+(?:\.\d+)?)(ms|us|ns|d|h|m|s)")
 EXAMPLES = "10ms, 1s, T#250ms"  # what error messages suggest
 
 
-def parse_duration_ns(value) -> Optional[int]:
+def parse_duration_ns(value) -> int | None:
     """The duration in nanoseconds, or None if value is not a duration.
     A bare number (int or digit string) means milliseconds."""
     if isinstance(value, bool):

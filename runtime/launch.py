@@ -11,9 +11,9 @@ import logging
 import signal
 import sys
 import threading
+from collections.abc import Callable
 from contextlib import ExitStack
 from pathlib import Path
-from typing import Callable, Optional
 
 EXIT_OK, EXIT_COMPILE, EXIT_CONFIG, EXIT_FAULT = 0, 1, 2, 3
 
@@ -46,8 +46,8 @@ def _fail(message: str, code: int) -> int:
     return code
 
 
-def run_plc(config: Optional[str], *, virtual_time: bool, duration_ns: Optional[int], cycles: Optional[int],
-            watch: list, trace: Optional[str], final_json: Optional[str], start_mode: Optional[str],
+def run_plc(config: str | None, *, virtual_time: bool, duration_ns: int | None, cycles: int | None,
+            watch: list, trace: str | None, final_json: str | None, start_mode: str | None,
             report_compile_errors: Callable) -> int:
     from .config import ConfigError, default_config_path, load_config
     from .engine.build import build_engine

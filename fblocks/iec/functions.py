@@ -33,8 +33,8 @@ runtime/st/rtlib.py; the ones made here:
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable, Optional
 
 from softplc.runtime.st import rtlib
 from softplc.runtime.st import types as T
@@ -64,7 +64,7 @@ def _def(name: str, params, ret: str, impl: Callable, extensible: bool = False,
     STANDARD_FUNCTIONS[name] = StdFunc(name, tuple(params), ret, impl, extensible, typed)
 
 
-def _elem(t: T.Type) -> Optional[T.ElementaryType]:
+def _elem(t: T.Type) -> T.ElementaryType | None:
     return T.base_elementary(t) if t is not None else None
 
 

@@ -24,8 +24,16 @@ relations (pass 2), values (single values), errors (ConfigError, messages).
 """
 from .errors import ConfigError
 from .load import PlcConfig, config_from_dict, default_config_path, load_config
-from .plc import (DEFAULT_PAUSE_NS, DEFAULT_RETAIN_PERIOD_NS, PRIORITY_MAX, ProgramInstance, RetainConfig, SafeOutput,
-                  TaskConfig, default_watchdog_ns)
+from .plc import (
+                  DEFAULT_PAUSE_NS,
+                  DEFAULT_RETAIN_PERIOD_NS,
+                  PRIORITY_MAX,
+                  ProgramInstance,
+                  RetainConfig,
+                  SafeOutput,
+                  TaskConfig,
+                  default_watchdog_ns,
+)
 from .section import Attachment, Section, SimOptions
 from .sims import SimConfig
 

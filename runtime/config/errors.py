@@ -7,7 +7,7 @@ from __future__ import annotations
 import difflib
 import re
 import typing
-from typing import Any, Optional
+from typing import Any
 
 from pydantic import BaseModel
 
@@ -20,7 +20,7 @@ class ConfigError(Exception):
     errors: (key path or "", message) pairs, in file order. position:
     (line, column) of a TOML syntax error, else None."""
 
-    def __init__(self, file: str, errors: list, *, position: Optional[tuple] = None) -> None:
+    def __init__(self, file: str, errors: list, *, position: tuple | None = None) -> None:
         self.file = str(file)
         self.errors = list(errors)
         self.position = position
@@ -47,7 +47,7 @@ def _keys(model: type) -> dict:
     return {(f.alias or name): f for name, f in model.model_fields.items()}
 
 
-def _model_in(annotation) -> Optional[type]:
+def _model_in(annotation) -> type | None:
     if isinstance(annotation, type) and issubclass(annotation, BaseModel):
         return annotation
     for arg in typing.get_args(annotation):
@@ -57,7 +57,7 @@ def _model_in(annotation) -> Optional[type]:
     return None
 
 
-def _model_at(root: type, loc: tuple) -> Optional[type]:
+def _model_at(root: type, loc: tuple) -> type | None:
     """The model of the table at loc (() is the document)."""
     model = root
     for part in loc:

@@ -18,7 +18,7 @@ import tomllib
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
-from typing import Any, Optional
+from typing import Any
 
 from pydantic import Field, ValidationError, create_model
 
@@ -33,14 +33,14 @@ from .values import Model, got
 
 @dataclass
 class PlcConfig:
-    path: Optional[Path]             # the file as given; None when built from a dict alone
+    path: Path | None             # the file as given; None when built from a dict alone
     base_dir: Path                   # relative paths in the file resolve against it
     profile: str
     programs: list[Path]             # the ST files, absolute
     on_fault: str                    # "task" | "plc"
     start: str                       # "warm" | "cold"
     tasks: list[TaskConfig] = field(default_factory=list)
-    retain: Optional[RetainConfig] = None
+    retain: RetainConfig | None = None
     safe_outputs: list[SafeOutput] = field(default_factory=list)
     sims: list[SimConfig] = field(default_factory=list)
     #: the buses' sections by TOML key (cfg.can is cfg.sections["can"])
@@ -116,7 +116,7 @@ class _Document:
         self.check_order: list[Section] = [*CORE_SECTIONS, *bus_sections, self.sims]
         fields: dict[str, Any] = {}
         for section in self.sections:
-            annotation: Any = list[section.model] if section.many else Optional[section.model]
+            annotation: Any = list[section.model] if section.many else section.model | None
             if section.key == "plc":
                 fields[section.key] = (section.model, Field(description=section.description))
             elif section.many:
@@ -126,7 +126,7 @@ class _Document:
         self.root = create_model("Document", __base__=Model, **fields)
 
 
-_document: Optional[_Document] = None
+_document: _Document | None = None
 
 
 def _current_document() -> _Document:

@@ -5,19 +5,32 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Annotated, Any, Optional, Union
+from typing import Annotated, Any
 
 from pydantic import Field, PlainValidator, model_validator
 
 from ..durations import EXAMPLES as DURATION_EXAMPLES
 from ..image import address as _address
 from ..st.ast import LocatedAddress
-from ..st.profile import DEFAULT as _DEFAULT_PROFILE, PROFILES
+from ..st.profile import DEFAULT as _DEFAULT_PROFILE
+from ..st.profile import PROFILES
 from .errors import key_text
 from .relations import Relations
 from .section import Section
-from .values import (Duration, Model, StFile, Watchdog, area_name, choice, data_file, fail, got, identifier,
-                     int_range, is_ident)
+from .values import (
+    Duration,
+    Model,
+    StFile,
+    Watchdog,
+    area_name,
+    choice,
+    data_file,
+    fail,
+    got,
+    identifier,
+    int_range,
+    is_ident,
+)
 
 DEFAULT_PAUSE_NS = 1_000_000
 DEFAULT_RETAIN_PERIOD_NS = 1_000_000_000
@@ -34,10 +47,10 @@ class ProgramInstance:
 @dataclass
 class TaskConfig:
     name: str
-    interval_ns: Optional[int]       # None: freewheeling
+    interval_ns: int | None       # None: freewheeling
     pause_ns: int                    # freewheeling: the gap after a cycle
     priority: int                    # 0 (highest) .. 31
-    watchdog_ns: Optional[int]       # None: no watchdog
+    watchdog_ns: int | None       # None: no watchdog
     sensitivity: int                 # overruns in a row before the watchdog fires
     programs: list[ProgramInstance]
     key: str                         # "task[0]", for messages
@@ -52,11 +65,11 @@ class RetainConfig:
 @dataclass
 class SafeOutput:
     address: LocatedAddress
-    value: Union[bool, int, float]   # bool for a bit address
+    value: bool | int | float   # bool for a bit address
     key: str                         # 'outputs.safe."%QX0.0"'
 
 
-def default_watchdog_ns(interval_ns: Optional[int]) -> int:
+def default_watchdog_ns(interval_ns: int | None) -> int:
     """Watchdog time when a task gives none: ten intervals but at least
     100 ms for a cyclic task; 1 s for a freewheeling one."""
     if interval_ns is None:
@@ -103,12 +116,12 @@ class _ProgramEntry(Model):
 
 class _Task(Model):
     name: Annotated[str, identifier("a task name")] = Field(description='a task name such as "Fast"')
-    interval: Optional[Duration] = Field(None, description=f"a duration such as {DURATION_EXAMPLES}")
+    interval: Duration | None = Field(None, description=f"a duration such as {DURATION_EXAMPLES}")
     freewheeling: bool = Field(False, description="true or false")
-    pause: Optional[Duration] = Field(None, description=f"a duration such as {DURATION_EXAMPLES}")
+    pause: Duration | None = Field(None, description=f"a duration such as {DURATION_EXAMPLES}")
     priority: Annotated[int, int_range(0, PRIORITY_MAX)] = Field(
         1, description=f"an integer from 0 to {PRIORITY_MAX}")
-    watchdog: Optional[Watchdog] = Field(None, description="a duration, or false")
+    watchdog: Watchdog | None = Field(None, description="a duration, or false")
     sensitivity: Annotated[int, int_range(1)] = Field(1, description="an integer >= 1")
     programs: list[_ProgramEntry] = Field(
         min_length=1, description='an array of PROGRAM names or { instance = "...", program = "..." } '
@@ -189,7 +202,7 @@ class RetainSection(Section):
     model = _Retain
     description = "a [retain] table"
 
-    def build(self, model: Any, ctx: Relations) -> Optional[RetainConfig]:
+    def build(self, model: Any, ctx: Relations) -> RetainConfig | None:
         return RetainConfig(model.file, model.period) if model is not None else None
 
 
@@ -256,7 +269,7 @@ class OutputsSection(Section):
                 outputs.append(SafeOutput(addr, checked[0], key_text(loc)))
 
     @staticmethod
-    def _safe_value(loc: tuple, addr: LocatedAddress, value, ctx: Relations) -> Optional[tuple]:
+    def _safe_value(loc: tuple, addr: LocatedAddress, value, ctx: Relations) -> tuple | None:
         if addr.bit is not None or addr.size in ("", "X"):
             if isinstance(value, bool):
                 return (value,)

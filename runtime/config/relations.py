@@ -12,12 +12,13 @@ section's parsed results for its build (``state``).
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any, Optional
+from typing import Any
 
 from ..image import address as _address
 from ..image.memory import ProcessImage
 from ..st.ast import LocatedAddress
-from ..st.profile import DEFAULT as _DEFAULT_PROFILE, PROFILES
+from ..st.profile import DEFAULT as _DEFAULT_PROFILE
+from ..st.profile import PROFILES
 from .values import got
 
 
@@ -30,7 +31,7 @@ class Relations:
         self.state: dict[str, Any] = {}
         #: image bits written from the bus side: (area, first bit, last bit, loc, text)
         self.claimed: list = []
-        self._probe_image: Optional[ProcessImage] = None
+        self._probe_image: ProcessImage | None = None
         plc = data.get("plc") if isinstance(data.get("plc"), dict) else {}
         profile = plc.get("profile", _DEFAULT_PROFILE.name)
         profile = PROFILES.get(profile.lower()) if isinstance(profile, str) else None
@@ -41,7 +42,7 @@ class Relations:
 
     # ---------------------------------------------------------------- addresses
 
-    def address(self, loc: tuple, text, examples: str) -> Optional[LocatedAddress]:
+    def address(self, loc: tuple, text, examples: str) -> LocatedAddress | None:
         if not isinstance(text, str):
             self.error(loc, f"expected a direct address such as {examples} (got {got(text)})")
             return None
@@ -63,7 +64,7 @@ class Relations:
             self._probe_image = ProcessImage(self.addressing or "iec")
         return self._probe_image
 
-    def image_bits(self, loc: tuple, addr: LocatedAddress) -> Optional[tuple]:
+    def image_bits(self, loc: tuple, addr: LocatedAddress) -> tuple | None:
         """(first, last) bit of its area that addr covers, or None (and an
         error) outside the image. The layout is memory.py's: bytes for the
         IEC model, words for Schneider; bit n of byte b is bit 8b + n."""
@@ -87,7 +88,7 @@ class Relations:
             return None
         return 8 * offset, 8 * (offset + nbytes) - 1
 
-    def claim(self, area: str, first: int, last: int, loc: tuple, text: str) -> Optional[tuple]:
+    def claim(self, area: str, first: int, last: int, loc: tuple, text: str) -> tuple | None:
         """Bits first..last of an area are written by what loc configures:
         (loc, text) of an earlier claim they overlap (then nothing is
         claimed), or None."""

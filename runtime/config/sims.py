@@ -14,7 +14,7 @@ A key of another bus's devices is refused with what this device has.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Annotated, Any, Optional
+from typing import Annotated, Any
 
 from pydantic import Field, create_model
 
@@ -54,7 +54,7 @@ class SimSection(Section):
         listed = " or ".join([", ".join(quoted[:-1]), quoted[-1]]) if len(quoted) > 1 else "".join(quoted)
         fields: dict[str, Any] = {
             "type": (Annotated[str, choice(types)], Field(description=listed)),
-            "name": (Optional[Annotated[str, identifier("a simulator name")]],
+            "name": (Annotated[str, identifier("a simulator name")] | None,
                      Field(None, description='a simulator name such as "motor_sim"')),
         }
         models = list(self.attachments.values()) + [d.sim_options for d in self.registry.devices if d.sim_options]
@@ -62,7 +62,7 @@ class SimSection(Section):
             model = owner.model if isinstance(owner, Attachment) else owner
             for name, info in model.model_fields.items():
                 if name not in fields:
-                    fields[name] = (Optional[info.annotation], Field(None, description=info.description))
+                    fields[name] = (info.annotation | None, Field(None, description=info.description))
         return create_model("Sim", __base__=Model, **fields)
 
     def _device_of(self, sim: dict):

@@ -8,12 +8,13 @@ import difflib
 import os
 import re
 from pathlib import Path
-from typing import Annotated, Any, Optional
+from typing import Annotated, Any
 
 from pydantic import BaseModel, ConfigDict, PlainValidator, ValidationInfo
 from pydantic_core import PydanticCustomError
 
-from ..durations import EXAMPLES as DURATION_EXAMPLES, parse_duration_ns
+from ..durations import EXAMPLES as DURATION_EXAMPLES
+from ..durations import parse_duration_ns
 from ..image import address as _address
 from ..st.ast import LocatedAddress
 
@@ -45,7 +46,7 @@ def fail(expected: str, value) -> PydanticCustomError:
                                {"expected": expected, "got": got(value)})
 
 
-def duration_ns(value) -> Optional[int]:
+def duration_ns(value) -> int | None:
     try:
         return parse_duration_ns(value)
     except (OverflowError, ValueError):   # inf, nan
@@ -84,7 +85,7 @@ def watchdog(value):
     return ns
 
 
-def int_range(lo: int, hi: Optional[int] = None):
+def int_range(lo: int, hi: int | None = None):
     def check(value) -> int:
         if isinstance(value, int) and not isinstance(value, bool) and value >= lo \
                 and (hi is None or value <= hi):
@@ -162,7 +163,7 @@ StFile = Annotated[Path, PlainValidator(st_file)]
 UNIT_NS = {"ms": 1_000_000, "us": 1_000}
 
 
-def duration_in(unit: str, *, off: Optional[str] = None, most: Optional[tuple] = None):
+def duration_in(unit: str, *, off: str | None = None, most: tuple | None = None):
     """A duration as a whole number of unit ("ms" or "us"), rounded from the
     nanoseconds parse_duration_ns gives. off: what 0 / "0ms" / false means
     (None: they are refused); most: (largest value, why) where the bus
@@ -239,7 +240,7 @@ def choice_upper(options):
     return PlainValidator(check)
 
 
-def in_range(value, lo: Optional[int], hi: Optional[int]) -> bool:
+def in_range(value, lo: int | None, hi: int | None) -> bool:
     """An integer (not a bool) within lo..hi (None: unbounded)."""
     return isinstance(value, int) and not isinstance(value, bool) and (lo is None or value >= lo) \
         and (hi is None or value <= hi)

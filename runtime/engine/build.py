@@ -3,8 +3,6 @@ tasks, let every registered bus make its drivers and simulated devices, and
 make the retain store. Names no bus and no device: the registry does."""
 from __future__ import annotations
 
-from typing import Optional
-
 from ..config import PlcConfig
 from ..plugin.registry import registry
 from ..plugin.seams import BuildContext
@@ -34,7 +32,7 @@ def make_drivers(config: PlcConfig, clock=None) -> list:
     return simulators + drivers
 
 
-def build_engine(config: PlcConfig, *, virtual_time: bool = False, start_mode: Optional[str] = None,
+def build_engine(config: PlcConfig, *, virtual_time: bool = False, start_mode: str | None = None,
                  program=None) -> Engine:
     """An Engine for config, not started. Raises CompileError for errors in
     the ST files and TaskSetupError for tasks that cannot run. program: an

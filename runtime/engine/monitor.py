@@ -5,7 +5,7 @@ from __future__ import annotations
 import csv
 import json
 import threading
-from typing import Optional, TextIO
+from typing import TextIO
 
 from ..image.address import parse_address
 from ..st.valuejson import encode_value
@@ -90,7 +90,7 @@ def _us(ns: float) -> str:
     return f"{ns / 1e3:.0f}us" if ns < 10_000_000 else f"{ns / 1e6:.1f}ms"
 
 
-def status_line(engine, watch: Optional[Watch] = None) -> str:
+def status_line(engine, watch: Watch | None = None) -> str:
     """One line: time, ticks, per task cycle times / jitter / overruns, faults,
     the drivers' status, watched values."""
     parts = [f"t={engine.clock.now_ns() / 1e9:.2f}s", f"cycles={engine.cycle}"]
@@ -114,7 +114,7 @@ class StatusReporter:
     never waits on a terminal: rewritten in place 4 times a second on a
     terminal, a plain line every `every_s` seconds otherwise (logs)."""
 
-    def __init__(self, engine, stream: TextIO, watch: Optional[Watch], tty: bool,
+    def __init__(self, engine, stream: TextIO, watch: Watch | None, tty: bool,
                  every_s: float = 5.0) -> None:
         self.engine = engine
         self.stream = stream

@@ -44,10 +44,11 @@ import hashlib
 import json
 import os
 import threading
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from operator import attrgetter
 from pathlib import Path
-from typing import Any, Callable, Optional
+from typing import Any
 
 from ..st import types as T
 
@@ -280,7 +281,7 @@ class RetainedVar:
             self.encode = None if enc is _NO_DATA else enc
 
 
-def _kind(sym) -> Optional[str]:
+def _kind(sym) -> str | None:
     if sym.persistent:
         return PERSISTENT  # RETAIN PERSISTENT counts as PERSISTENT
     if sym.retain:
@@ -372,7 +373,7 @@ class RestoreReport:
     layout_matched: bool
 
 
-def restore(plan, data: Optional[RetainData], mode: str) -> RestoreReport:
+def restore(plan, data: RetainData | None, mode: str) -> RestoreReport:
     """Write saved values into the live instances by the start-mode rules
     (module docstring). In a warm start every planned variable is either in
     ``restored`` or in ``dropped`` with the reason; a cold start lists
@@ -480,7 +481,7 @@ def _fsync_dir(directory: Path) -> None:
         os.close(fd)
 
 
-def read_file(path: Path) -> Optional[RetainData]:
+def read_file(path: Path) -> RetainData | None:
     """The data in a retain file; None if there is no file; RetainFileError
     if it is not a valid retain file."""
     path = Path(path)
@@ -554,13 +555,13 @@ class RetainStore:
         self.threaded = threaded
         self.writes = 0  # successful writes
         self.errors = 0  # failed writes
-        self.last_error: Optional[str] = None  # the last failure; None after a success
+        self.last_error: str | None = None  # the last failure; None after a success
         self._cond = threading.Condition()
-        self._pending: Optional[RetainData] = None
-        self._failed: Optional[RetainData] = None  # data of the last failed write, not yet superseded
+        self._pending: RetainData | None = None
+        self._failed: RetainData | None = None  # data of the last failed write, not yet superseded
         self._busy = False
         self._closed = False
-        self._thread: Optional[threading.Thread] = None
+        self._thread: threading.Thread | None = None
         if threaded:
             self._thread = threading.Thread(target=self._run, name=f"retain-writer {self.path.name}",
                                             daemon=True)

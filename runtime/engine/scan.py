@@ -18,14 +18,14 @@ from __future__ import annotations
 
 import logging
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable, Optional
 
-from ..image.memory import ProcessImage
 from ..image.address import default_type
+from ..image.memory import ProcessImage
+from ..program import ExecContext, Program, locate
 from ..st import types as T
 from ..st.faults import STFault, fault_from_exception
-from ..program import ExecContext, Program, locate
 from ..st.valuejson import encode_instance
 from . import retain as R
 from .clock import VirtualClock
@@ -73,7 +73,7 @@ class Task:
         self.calls: list = []
         self.next_ns = 0
         self.late_cycles = 0  # consecutive cycles longer than the watchdog time
-        self.fault: Optional[STFault] = None
+        self.fault: STFault | None = None
         self.stats = TaskStats()
 
     def describe(self) -> str:
@@ -86,7 +86,7 @@ class Task:
 
 
 class Engine:
-    def __init__(self, program: Program, tasks: list, *, clock=None, image: Optional[ProcessImage] = None,
+    def __init__(self, program: Program, tasks: list, *, clock=None, image: ProcessImage | None = None,
                  drivers=(), on_fault: str = "task", safe_outputs=(), retain_store=None,
                  retain_period_ns: int = 1_000_000_000, start_mode: str = "warm") -> None:
         if on_fault not in ON_FAULT:
@@ -121,10 +121,10 @@ class Engine:
         self._restart_requested = False
         self._next_retain_ns = 0
         self._retain_plan: list = []
-        self._retain_error: Optional[str] = None
+        self._retain_error: str | None = None
         self.ns: dict = {}
         self.instances: dict = {}  # instance name (upper) -> (name, POUInfo, object)
-        self.diag: Optional[DiagVariable] = None
+        self.diag: DiagVariable | None = None
 
     # ------------------------------------------------------------ set-up
 
@@ -210,7 +210,7 @@ class Engine:
 
     # ------------------------------------------------------------ running
 
-    def run(self, cycles: Optional[int] = None, duration_ns: Optional[int] = None) -> int:
+    def run(self, cycles: int | None = None, duration_ns: int | None = None) -> int:
         """Scan until cycles ticks ran, the engine clock passed duration_ns
         from now, or request_stop(). Returns the number of ticks run."""
         if not self.started:

@@ -12,7 +12,6 @@ model) is the business of memory.ProcessImage:
 from __future__ import annotations
 
 import re
-from typing import Optional
 
 from ..st import literals
 from ..st import types as T
@@ -32,7 +31,7 @@ class AddressError(ValueError):
     """A direct address that is malformed, or that the image cannot hold."""
 
 
-def parse_address(text: str, addressing: Optional[str] = None) -> LocatedAddress:
+def parse_address(text: str, addressing: str | None = None) -> LocatedAddress:
     """Parse one direct address (case-insensitive, surrounding blanks
     allowed). With ``addressing`` ('iec' or 'schneider') the forms that model
     lacks are refused too (see check_model). Raises AddressError."""
@@ -52,7 +51,7 @@ def parse_address(text: str, addressing: Optional[str] = None) -> LocatedAddress
     return addr
 
 
-def check_address(addr: LocatedAddress, addressing: Optional[str] = None) -> None:
+def check_address(addr: LocatedAddress, addressing: str | None = None) -> None:
     """Refuse what no addressing model allows (the checker's E080 rules:
     :Xn and :n only after a word, bits 0..15 of a word, 0..7 of a byte), and
     with ``addressing`` also what that model lacks (check_model)."""

@@ -19,11 +19,11 @@ syntax and default types are in address.py.
 from __future__ import annotations
 
 import struct
-from typing import Optional
 
-from ..st.ast import LocatedAddress
 from ..st import types as T
-from .address import AddressError, SIZE_BITS as _SIZE_BITS, check_address, check_type, default_type, parse_address
+from ..st.ast import LocatedAddress
+from .address import SIZE_BITS as _SIZE_BITS
+from .address import AddressError, check_address, check_type, default_type, parse_address
 
 _FORMATS = {
     (8, True): "<b", (8, False): "<B",
@@ -140,7 +140,7 @@ class ProcessImage:
                 pack_into(buf, off, int(v) & mask)
         return get_int, set_int
 
-    def table(self, addr: LocatedAddress, signed: bool = True) -> "WordTable":
+    def table(self, addr: LocatedAddress, signed: bool = True) -> WordTable:
         """The Schneider word table %MWi:n as a list-like view."""
         length = addr.table or 1
         off = self._word_offset(addr.indices[-1], 16)
@@ -164,7 +164,7 @@ class ProcessImage:
 
     # ------------------------------------------------------------ views and watching
 
-    def outputs_view(self, q_bytes: bytearray) -> "ProcessImage":
+    def outputs_view(self, q_bytes: bytearray) -> ProcessImage:
         """An image sharing this one's %I and %M areas (and %M bits) whose %Q
         area is q_bytes: the engine hands it to the drivers' write_outputs
         while the outputs are held at their safe values."""
@@ -183,7 +183,7 @@ class ProcessImage:
             return where
         return parse_address(where, self.addressing)
 
-    def read(self, where, ty: Optional[T.ElementaryType] = None):
+    def read(self, where, ty: T.ElementaryType | None = None):
         """The value at an address ('%QW0', '%MW3250:X0' or a LocatedAddress)
         read as ty (default: address.default_type; pass T.REAL for a float
         in a %MD). A ``:n`` table reads as a list of n words."""
@@ -194,7 +194,7 @@ class ProcessImage:
             return list(self.table(addr, signed=ty.category == T.SIGNED))
         return self.accessor(addr, ty)[0]()
 
-    def write(self, where, value, ty: Optional[T.ElementaryType] = None) -> None:
+    def write(self, where, value, ty: T.ElementaryType | None = None) -> None:
         """Store value at an address (see read). Integers must fit the
         address's size, signed or unsigned (-1 or 16#FFFF into a word);
         a ``:n`` table takes a sequence of n words."""

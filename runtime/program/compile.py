@@ -17,13 +17,12 @@ import itertools
 import re
 from importlib import resources
 from pathlib import Path
-from typing import Optional
 
 from ...fblocks.iec.functions import STANDARD_FUNCTIONS
 from ..image.memory import ProcessImage
 from ..plugin.registry import registry
 from ..st import ast as A
-from ..st.checker import Checker, CheckedProgram
+from ..st.checker import CheckedProgram, Checker
 from ..st.codegen import CodeGen
 from ..st.diagnostics import CompileError, DiagnosticBag, SourceSet
 from ..st.parser import parse_source
@@ -73,7 +72,7 @@ def _declared(sf: A.SourceFile) -> set:
     return names
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _library_index(name: str, text: str) -> tuple:
     """(names the file declares, words it uses) of an on-demand library file,
     parsed once per process: the choice of files then costs no parsing."""
@@ -108,7 +107,7 @@ def _natives() -> dict:
     return registry().natives()
 
 
-def _read_sources(paths: list, texts: Optional[dict], diags: DiagnosticBag, sources: SourceSet) -> tuple:
+def _read_sources(paths: list, texts: dict | None, diags: DiagnosticBag, sources: SourceSet) -> tuple:
     """(parsed files, the set of words in them, upper case)."""
     files = []
     for p in paths:
@@ -139,7 +138,7 @@ def _decl_names(sf: A.SourceFile) -> set:
     return {d.name.upper() for d in sf.decls if isinstance(d, (A.POU, A.TypeDecl))}
 
 
-def _front_end(paths: list, profile: Profile, texts: Optional[dict]):
+def _front_end(paths: list, profile: Profile, texts: dict | None):
     diags = DiagnosticBag()
     sources = SourceSet()
     user, user_words = _read_sources(paths, texts, diags, sources)
@@ -176,12 +175,12 @@ def _back_end(checked: CheckedProgram, prof: Profile, diags: DiagnosticBag, wher
         return None
 
 
-def _first_position(paths: list, texts: Optional[dict]) -> A.Pos:
+def _first_position(paths: list, texts: dict | None) -> A.Pos:
     names = [str(p) for p in paths] + list(texts or {})
     return A.Pos(names[0] if names else "<input>", 1, 1)
 
 
-def check_files(paths: list, profile: str | Profile = "codesys", texts: Optional[dict] = None):
+def check_files(paths: list, profile: str | Profile = "codesys", texts: dict | None = None):
     """Diagnostics of the files (errors and warnings, sorted) and their texts.
     Never raises for problems in the sources. Reports exactly what
     compile_files would: the back end runs too when the front end is clean."""
@@ -193,7 +192,7 @@ def check_files(paths: list, profile: str | Profile = "codesys", texts: Optional
 
 
 def compile_files(paths: list, profile: str | Profile = "codesys", *,
-                  texts: Optional[dict] = None) -> "Program":
+                  texts: dict | None = None) -> Program:
     """Compile ST files (and/or in-memory texts: name -> source) into a
     loadable Program. Raises CompileError with every diagnostic on errors."""
     prof = get_profile(profile) if isinstance(profile, str) else profile

@@ -3,7 +3,7 @@ POUs instantiated, run cycle by cycle."""
 from __future__ import annotations
 
 import builtins
-from typing import Any, Optional
+from typing import Any
 
 from ..image.memory import ProcessImage
 from ..st import refs, rtlib, values
@@ -79,7 +79,7 @@ class Program:
                 return info
         raise KeyError(name)
 
-    def load(self, ctx: Optional[ExecContext] = None) -> dict:
+    def load(self, ctx: ExecContext | None = None) -> dict:
         """Execute the generated module in a fresh namespace bound to ctx;
         returns the namespace (classes, functions, globals ``_G``)."""
         ctx = ctx or ExecContext(ProcessImage(self.profile.addressing))
@@ -116,7 +116,7 @@ class Program:
             raise fault_from_exception(exc, self.linemaps) from None
         return ns
 
-    def runner(self, entry: str, cycle_time_ms: int = 10, ctx: Optional[ExecContext] = None) -> "Runner":
+    def runner(self, entry: str, cycle_time_ms: int = 10, ctx: ExecContext | None = None) -> Runner:
         info = self.pou(entry)
         if info.kind == "FUNCTION_BLOCK":
             raise KeyError(f"{entry} is a FUNCTION_BLOCK; run a PROGRAM or a FUNCTION")
@@ -127,7 +127,7 @@ class Runner:
     """Runs one PROGRAM (or calls one FUNCTION) cycle after cycle in virtual
     time: the task clock advances by the cycle time after each cycle."""
 
-    def __init__(self, program: Program, info, cycle_time_ms: int, ctx: Optional[ExecContext]) -> None:
+    def __init__(self, program: Program, info, cycle_time_ms: int, ctx: ExecContext | None) -> None:
         self.program = program
         self.info = info
         self.cycle_ns = int(cycle_time_ms * 1_000_000)

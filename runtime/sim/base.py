@@ -18,10 +18,10 @@ time that never goes backwards.
 """
 from __future__ import annotations
 
-from typing import Optional, Protocol
+from typing import Protocol
 
-from ..image.memory import ProcessImage
 from ..engine.clock import PeriodicService
+from ..image.memory import ProcessImage
 from ..plugin.driver import Driver
 
 
@@ -35,11 +35,11 @@ class SimulatedDevice(Driver):
     #: real time: how often service() runs
     service_period_s = 0.001
 
-    def __init__(self, name: str, *, clock, pump: Optional[Pump] = None) -> None:
+    def __init__(self, name: str, *, clock, pump: Pump | None = None) -> None:
         self.name = name
         self.clock = clock
         self.pump = pump
-        self._service: Optional[PeriodicService] = None
+        self._service: PeriodicService | None = None
 
     # the device's own behaviour ------------------------------------------
 

@@ -5,10 +5,18 @@ from __future__ import annotations
 
 import pytest
 
-from softplc.runtime.config import config_from_dict, ConfigError, default_config_path, load_config, ProgramInstance, RetainConfig, SafeOutput, TaskConfig
+from softplc.runtime.config import (
+    ConfigError,
+    ProgramInstance,
+    RetainConfig,
+    SafeOutput,
+    TaskConfig,
+    config_from_dict,
+    default_config_path,
+    load_config,
+)
 
 from .support import EXAMPLES, MS, PROG, REPO, ST, addr, write
-
 
 # ====================================================================== examples
 

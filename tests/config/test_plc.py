@@ -2,13 +2,13 @@
 [outputs]; every malformed value names the key and what was expected."""
 from __future__ import annotations
 
-import pytest
 import textwrap
 
-from softplc.runtime.config import ConfigError, load_config, PlcConfig, ProgramInstance, RetainConfig, TaskConfig
+import pytest
+
+from softplc.runtime.config import ConfigError, PlcConfig, ProgramInstance, RetainConfig, TaskConfig, load_config
 
 from .support import DURATION, MS, PLC, PROG, error, errors, load, write
-
 
 # ====================================================================== [plc]
 

@@ -4,12 +4,11 @@ from __future__ import annotations
 
 import pytest
 
-from softplc.runtime.config import ConfigError, load_config, SimConfig
+from softplc.runtime.config import ConfigError, SimConfig, load_config
 from softplc.runtime.io.can import CanNode
 from softplc.runtime.sim.options import Registers
 
 from .support import CAN, NODE, PLC, SIM, error, errors, load, pdo, plant, write
-
 
 # ---------------------------------------------------------------- [[sim]]
 

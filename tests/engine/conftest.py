@@ -3,10 +3,9 @@ from __future__ import annotations
 
 import pytest
 
-from softplc.runtime.config import ProgramInstance, SafeOutput, TaskConfig
+from softplc.runtime.config import ProgramInstance, SafeOutput, TaskConfig, default_watchdog_ns
 from softplc.runtime.engine.clock import VirtualClock
 from softplc.runtime.engine.scan import Engine
-from softplc.runtime.config import default_watchdog_ns
 from softplc.runtime.image.address import parse_address
 from softplc.runtime.program import compile_files
 

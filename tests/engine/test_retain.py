@@ -18,8 +18,8 @@ import pytest
 from softplc.runtime.engine import retain as R
 from softplc.runtime.engine.retain import RetainData, RetainFileError, RetainStore, read_file, write_file
 from softplc.runtime.image.memory import ProcessImage
-from softplc.runtime.st import rtlib
 from softplc.runtime.program import ExecContext, compile_files
+from softplc.runtime.st import rtlib
 
 from .retain_child import block as child_block
 

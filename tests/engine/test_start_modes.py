@@ -101,7 +101,8 @@ def test_retained_data_is_never_older_than_the_period(tmp_path):
 
 
 def test_restart_after_a_fault_keeps_retain_values(tmp_path):
-    src = V1.replace("scratch := scratch + 1;", "scratch := scratch + 1;\nIF count = 5 THEN scratch := 1 / (count - 5); END_IF")
+    src = V1.replace("scratch := scratch + 1;",
+                     "scratch := scratch + 1;\nIF count = 5 THEN scratch := 1 / (count - 5); END_IF")
     e = make_engine(compile_st(src), [task("Main", 10, "Line")])
     e.run(duration_ns=100 * MS)
     assert e.faults and e.get("Line.count") == 5

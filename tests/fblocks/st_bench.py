@@ -20,7 +20,7 @@ class Bench:
         holder, attr, _type = locate(path, (self.runner.instance,))
         setattr(holder, attr, value)
 
-    def step(self, cycles: int = 1, **inputs) -> "Bench":
+    def step(self, cycles: int = 1, **inputs) -> Bench:
         for name, value in inputs.items():
             self[name] = value
         self.runner.run(cycles)

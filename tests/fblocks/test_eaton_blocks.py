@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from softplc.runtime.devices.eaton import registers as eaton, st_codes as eaton_st_codes
+from softplc.runtime.devices.eaton import registers as eaton
+from softplc.runtime.devices.eaton import st_codes as eaton_st_codes
 
 from .st_bench import Bench
 

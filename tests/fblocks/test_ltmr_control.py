@@ -15,7 +15,6 @@ from __future__ import annotations
 
 from .st_bench import Bench
 
-
 CONTROL_DECLS = """
     m : LTMR_CONTROL;
     fwd : BOOL; rev : BOOL; reset : BOOL; low : BOOL; selftest : BOOL;

@@ -18,7 +18,6 @@ import pytest
 
 from .st_bench import Bench
 
-
 PKW_DECLS = """
     p : LTMR_PKW;
     execute : BOOL; write : BOOL; byObject : BOOL; double : BOOL;

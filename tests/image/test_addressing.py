@@ -10,8 +10,8 @@ import pytest
 
 from softplc.runtime.image.address import parse_address
 from softplc.runtime.image.memory import AddressError, ProcessImage
-from softplc.runtime.st import types as T
 from softplc.runtime.program import ExecContext, compile_files
+from softplc.runtime.st import types as T
 
 REPO = Path(__file__).resolve().parents[2]
 # DOCA0132DE-01, shared/manuals/000_97161f374cfc3d02.txt L997-L1014 (write)

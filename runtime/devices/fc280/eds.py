@@ -2,8 +2,21 @@
 003 ([M] manual, [P] placeholder)."""
 from __future__ import annotations
 
-from ...io.canopen.eds import (INTEGER16, INTEGER32, UNSIGNED8, UNSIGNED16, UNSIGNED32, VISIBLE_STRING, EdsFile, Entry,
-                               compound, pdo_communication, pdo_mapping, sdo_server, var)
+from ...io.canopen.eds import (
+    INTEGER16,
+    INTEGER32,
+    UNSIGNED8,
+    UNSIGNED16,
+    UNSIGNED32,
+    VISIBLE_STRING,
+    EdsFile,
+    Entry,
+    compound,
+    pdo_communication,
+    pdo_mapping,
+    sdo_server,
+    var,
+)
 
 # ---------------------------------------------------------------------------
 # Danfoss FC 280 skeleton (digest 003; [M] manual, [P] placeholder)

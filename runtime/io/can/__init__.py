@@ -12,7 +12,7 @@ CanSimContext, open_bus, pump_of, settings_of.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Optional
+from typing import Any
 
 from ...plugin.registry import registry
 from ...plugin.seams import BuildContext, Bus, Contribution
@@ -24,14 +24,14 @@ from .config import CanAttachment, CanBusConfig, CanNode, CanSection
 class CanSimContext:
     settings: BusSettings
     clock: Any
-    pump: Optional[BusPump]
+    pump: BusPump | None
 
 
 def settings_of(bus: CanBusConfig) -> BusSettings:
     return BusSettings(bus.interface, str(bus.channel), bus.bitrate, dict(bus.options))
 
 
-def pump_of(ctx: BuildContext) -> Optional[BusPump]:
+def pump_of(ctx: BuildContext) -> BusPump | None:
     """The BusPump every CAN endpoint of one engine shares in virtual time
     (None in real time: each endpoint has its receive thread)."""
     if "can.pump" not in ctx.shared:

@@ -27,8 +27,8 @@ from __future__ import annotations
 import logging
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable, Optional
 
 import can
 
@@ -63,7 +63,7 @@ def open_bus(settings: BusSettings) -> can.BusABC:
 
 
 class CanEndpoint:
-    def __init__(self, bus: can.BusABC, *, name: str = "", pump: Optional["BusPump"] = None) -> None:
+    def __init__(self, bus: can.BusABC, *, name: str = "", pump: BusPump | None = None) -> None:
         self.bus = bus
         self.name = name
         self.pump = pump
@@ -73,7 +73,7 @@ class CanEndpoint:
         self.send_errors = 0
         self.last_error = ""
         self._handlers: list[Handler] = []
-        self._notifier: Optional[can.Notifier] = None
+        self._notifier: can.Notifier | None = None
         self._started = False
 
     # ------------------------------------------------------------ set-up

@@ -11,7 +11,7 @@ on one ([[sim]] keys bus and node_id).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Annotated, Any, Optional
+from typing import Annotated, Any
 
 from pydantic import Field, PlainValidator
 
@@ -83,7 +83,7 @@ def can_state(ctx: Relations) -> _State:
     return state
 
 
-def bus_of(here: tuple, table: dict, ctx: Relations, what: str) -> Optional[str]:
+def bus_of(here: tuple, table: dict, ctx: Relations, what: str) -> str | None:
     """The [[can]] bus a table uses ([canopen], [[sim]]): its bus key, or the
     only bus. None (and perhaps an error) when there is none."""
     state = can_state(ctx)
@@ -155,8 +155,8 @@ class CanSection(Section):
 
 
 class _CanNodeKeys(Model):
-    bus: Optional[BusName] = Field(None, description="the name of a [[can]] bus")
-    node_id: Optional[NodeId] = Field(None, description=f"a node id from 1 to {NODE_ID_MAX}")
+    bus: BusName | None = Field(None, description="the name of a [[can]] bus")
+    node_id: NodeId | None = Field(None, description=f"a node id from 1 to {NODE_ID_MAX}")
 
 
 class CanAttachment(Attachment):
@@ -182,7 +182,7 @@ class CanAttachment(Attachment):
             ctx.error(here + ("node_id",), f"duplicate node id {node_id} on bus '{bus}' "
                                            f"({key_text(taken[0])} has it)")
 
-    def name(self, sim_type: str, sim: dict) -> Optional[str]:
+    def name(self, sim_type: str, sim: dict) -> str | None:
         node_id = sim.get("node_id")
         return f"{sim_type}{node_id}" if in_range(node_id, 1, NODE_ID_MAX) else None
 

@@ -8,7 +8,7 @@ import difflib
 import re
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Annotated, Any, Optional
+from typing import Annotated, Any
 
 from pydantic import Field, PlainValidator, ValidationInfo
 from pydantic_core import PydanticCustomError
@@ -16,8 +16,23 @@ from pydantic_core import PydanticCustomError
 from ...config.errors import key_text
 from ...config.relations import Relations
 from ...config.section import Section
-from ...config.values import (U16_MAX, Model, area_name, bit_count, duration_field, duration_in, existing_file,
-                              fail, got, identifier, in_range, int_range, integer, is_ident, quiet)
+from ...config.values import (
+    U16_MAX,
+    Model,
+    area_name,
+    bit_count,
+    duration_field,
+    duration_in,
+    existing_file,
+    fail,
+    got,
+    identifier,
+    in_range,
+    int_range,
+    integer,
+    is_ident,
+    quiet,
+)
 from ...plugin.registry import registry
 from ...st.ast import LocatedAddress
 from ..can.config import NODE_ID_MAX, BusName, NodeId, bus_of, can_state, claim_node
@@ -51,7 +66,7 @@ class SdoWriteConfig:
     index: int
     subindex: int
     value: int
-    size: Optional[int]              # bytes (1, 2, 4); None: the EDS says
+    size: int | None              # bytes (1, 2, 4); None: the EDS says
     key: str                         # "canopen.node[0].sdo[0]"
 
 
@@ -176,7 +191,7 @@ class _SdoWrite(Model):
     object: Annotated[tuple, PlainValidator(_object)] = Field(
         description='an object "index:subindex" in hex, such as "2007:21"')
     value: Annotated[int, PlainValidator(integer)] = Field(description="an integer")
-    size: Optional[Annotated[int, PlainValidator(_sdo_size)]] = Field(None, description="1, 2 or 4")
+    size: Annotated[int, PlainValidator(_sdo_size)] | None = Field(None, description="1, 2 or 4")
 
 
 class _Node(Model):
@@ -187,9 +202,9 @@ class _Node(Model):
     mandatory: bool = Field(True, description="true or false")
     heartbeat: duration_field(_node_heartbeat) = Field(DEFAULT_HEARTBEAT_MS,
                                                         description="a duration such as 100ms, or false")
-    heartbeat_timeout: Optional[duration_field(_heartbeat_timeout)] = Field(
+    heartbeat_timeout: duration_field(_heartbeat_timeout) | None = Field(
         None, description="a duration such as 300ms, or false")
-    master_timeout: Optional[duration_field(_master_timeout)] = Field(
+    master_timeout: duration_field(_master_timeout) | None = Field(
         None, description="a duration such as 500ms, or false")
     sdo: list[_SdoWrite] = Field(default_factory=list,
                                  description='an array of { object = "2007:21", value = 2 } tables')
@@ -198,7 +213,7 @@ class _Node(Model):
 
 
 class _Canopen(Model):
-    bus: Optional[BusName] = Field(None, description="the name of a [[can]] bus")
+    bus: BusName | None = Field(None, description="the name of a [[can]] bus")
     node_id: NodeId = Field(NODE_ID_MAX, description=f"a node id from 1 to {NODE_ID_MAX}")
     heartbeat: duration_field(_master_heartbeat) = Field(DEFAULT_HEARTBEAT_MS,
                                                           description="a duration such as 100ms, or false")
@@ -229,7 +244,7 @@ class CanopenSection(Section):
                        f"the CANopen master's own node id on bus '{bus}' (canopen.node_id)")
         self._nodes(value, master_id, ctx)
 
-    def _nodes(self, canopen: dict, master_id: Optional[int], ctx: Relations) -> None:
+    def _nodes(self, canopen: dict, master_id: int | None, ctx: Relations) -> None:
         nodes = canopen.get("node")
         if not isinstance(nodes, list):
             return
@@ -261,7 +276,7 @@ class CanopenSection(Section):
                 self._sdo_values(here, node["sdo"], ctx)
 
     @staticmethod
-    def _heartbeats(here: tuple, node: dict, canopen: dict, master_heartbeat: Optional[int], ctx: Relations) -> None:
+    def _heartbeats(here: tuple, node: dict, canopen: dict, master_heartbeat: int | None, ctx: Relations) -> None:
         """The node's heartbeat against the master's timeout for it, and the
         master's heartbeat against the node's timeout for the master."""
         heartbeat = quiet(_node_heartbeat, node.get("heartbeat", DEFAULT_HEARTBEAT_MS))
@@ -322,7 +337,7 @@ class CanopenSection(Section):
                                           f"{PDO_BITS_MAX} (8 bytes)")
 
     @staticmethod
-    def _pdo_address(loc: tuple, text, area: str, ctx: Relations) -> Optional[LocatedAddress]:
+    def _pdo_address(loc: tuple, text, area: str, ctx: Relations) -> LocatedAddress | None:
         addr = ctx.address(loc, text, f"%{area}W0, %{area}X0.0")
         if addr is None:
             return None
@@ -355,7 +370,7 @@ class CanopenSection(Section):
                     ctx.error(here + ("sdo", k, "value"), f"expected an integer from {lo} to {hi} for "
                                                            f"size = {size} (got {value})")
 
-    def build(self, model: Any, ctx: Relations) -> Optional[CanopenConfig]:
+    def build(self, model: Any, ctx: Relations) -> CanopenConfig | None:
         if model is None:
             return None
         return _build_canopen(model, ctx)

@@ -3,7 +3,8 @@ the program sees them, filled by the CANopen master. Written only when
 something changed, so the scan pays (almost) nothing for them."""
 from __future__ import annotations
 
-from ...program import StructWriter, global_variable as _global
+from ...program import StructWriter
+from ...program import global_variable as _global
 from .node import NodeState
 
 

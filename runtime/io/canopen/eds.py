@@ -12,7 +12,6 @@ byte for byte (devices: `python -m softplc.runtime.devices` rewrites them).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Optional, Union
 
 # CiA 301 data type codes
 BOOLEAN = 0x0001
@@ -27,7 +26,7 @@ VISIBLE_STRING = 0x0009
 _OBJECT_TYPES = {"VAR": 0x7, "ARRAY": 0x8, "RECORD": 0x9}
 _ACCESS = ("ro", "rw", "wo", "const")
 
-Default = Union[int, str, None]   # an int, "$NODEID+0x180", or the text of a string object
+Default = int | str | None   # an int, "$NODEID+0x180", or the text of a string object
 
 @dataclass(frozen=True)
 class Entry:
@@ -37,8 +36,8 @@ class Entry:
     access: str = "ro"
     default: Default = 0
     pdo_mapping: bool = False
-    low: Optional[int] = None
-    high: Optional[int] = None
+    low: int | None = None
+    high: int | None = None
 
     def __post_init__(self):
         if self.access not in _ACCESS:
@@ -50,7 +49,7 @@ class EdsObject:
     index: int
     name: str
     kind: str = "VAR"                 # VAR, ARRAY or RECORD
-    entry: Optional[Entry] = None     # VAR only
+    entry: Entry | None = None     # VAR only
     members: tuple = ()               # ARRAY/RECORD: ((subindex, Entry), ...)
 
     def __post_init__(self):
@@ -75,7 +74,7 @@ def var(index: int, name: str, data_type: int, access: str = "ro", default: Defa
     return EdsObject(index, name, "VAR", entry=Entry(name, data_type, access, default, **extra))
 
 
-def compound(index: int, name: str, members, kind: str = "RECORD", sub0: Optional[Entry] = None) -> EdsObject:
+def compound(index: int, name: str, members, kind: str = "RECORD", sub0: Entry | None = None) -> EdsObject:
     """An ARRAY or RECORD. Without an explicit `sub0`, sub-index 0 is the
     read-only UNSIGNED8 "highest sub-index supported"."""
     members = tuple(members)

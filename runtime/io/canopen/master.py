@@ -19,18 +19,27 @@ from __future__ import annotations
 
 import logging
 import threading
-from typing import Optional
 
 import canopen
 
-from .cia301 import COB_ID_INVALID, COB_NMT, COB_SYNC, NMT_RESET_COMMUNICATION, NMT_START, STATE_OPERATIONAL, cob_emcy, cob_heartbeat
-from ...image.memory import ProcessImage
 from ...engine.clock import PeriodicService
+from ...image.memory import ProcessImage
+from ...plugin.driver import Driver, DriverError, DriverStatus
 from ..can.bus import BusSettings, CanEndpoint, open_bus
+from .cia301 import (
+    COB_ID_INVALID,
+    COB_NMT,
+    COB_SYNC,
+    NMT_RESET_COMMUNICATION,
+    NMT_START,
+    STATE_OPERATIONAL,
+    cob_emcy,
+    cob_heartbeat,
+)
 from .node import Emergency, NodeState, NodeSupervisor
 from .pdo import PdoBinding, TxSchedule, default_cob_id
-from ...plugin.driver import Driver, DriverError, DriverStatus
-from .sdo import SERVICE as SDO_SERVICE, SchneiderSdoService, SdoJob, SdoWorker
+from .sdo import SERVICE as SDO_SERVICE
+from .sdo import SchneiderSdoService, SdoJob, SdoWorker
 
 log = logging.getLogger(__name__)
 
@@ -65,7 +74,7 @@ class CanopenDriver(Driver):
     name = "canopen"
 
     def __init__(self, config, settings: BusSettings, *, clock, pump=None, addressing: str = "iec",
-                 image_size: Optional[int] = None) -> None:
+                 image_size: int | None = None) -> None:
         """config: a CanopenConfig (config.py); settings: its bus's.
         DriverError (naming the config key) for a node that cannot work:
         an EDS that does not load, a PDO entry the EDS does not have ..."""
@@ -90,10 +99,10 @@ class CanopenDriver(Driver):
         self._bus_ok = False
         self._bus_error = ""
         self._started = False
-        self.endpoint: Optional[CanEndpoint] = None
-        self.network: Optional[_EndpointNetwork] = None
-        self.worker: Optional[SdoWorker] = None
-        self._service: Optional[PeriodicService] = None
+        self.endpoint: CanEndpoint | None = None
+        self.network: _EndpointNetwork | None = None
+        self.worker: SdoWorker | None = None
+        self._service: PeriodicService | None = None
         self.sdo_service = SchneiderSdoService(self._submit_exchange,
                                         default_timeout_s=config.sdo_timeout_ms / 1000,
                                         object_size=self._object_size,
@@ -263,7 +272,7 @@ class CanopenDriver(Driver):
                             node.cfg.name, node.cfg.node_id, emcy.code, emcy.register, emcy.data.hex(" "))
         self.network.notify(can_id, data, msg.timestamp)
 
-    def _act(self, node: _Node, action: Optional[str]) -> None:
+    def _act(self, node: _Node, action: str | None) -> None:
         """Carry out what a node's state machine asked for (lock held)."""
         if action is None:
             return
@@ -275,7 +284,7 @@ class CanopenDriver(Driver):
         elif action == "configure":
             self.worker.submit_task(lambda: self._configure(node))
         elif action == "start":
-            for binding, schedule in node.rpdos:
+            for _binding, schedule in node.rpdos:
                 schedule.reset()
             self._send(COB_NMT, bytes([NMT_START, nid]))
             log.info("canopen: node %s (%d) operational", node.cfg.name, nid)
@@ -308,7 +317,7 @@ class CanopenDriver(Driver):
                 self._tpdo_by_cob.update((b.cob_id, b) for b in node.tpdos)
             self._act(node, node.sup.configured(not error, error, now))
 
-    def _sdo(self, node: _Node, index: int, sub: int, data: Optional[bytes], key: str, timeout: float) -> bytes:
+    def _sdo(self, node: _Node, index: int, sub: int, data: bytes | None, key: str, timeout: float) -> bytes:
         job = SdoJob(node.cfg.node_id, index, sub, data, timeout)
         self.worker.transfer(job)
         if job.error:
@@ -352,7 +361,7 @@ class CanopenDriver(Driver):
     def _submit_exchange(self, job: SdoJob) -> None:
         self.worker.submit(job)
 
-    def _object_size(self, node_id: int, index: int, subindex: int) -> Optional[int]:
+    def _object_size(self, node_id: int, index: int, subindex: int) -> int | None:
         node = self.nodes.get(node_id)
         var = node.od.get_variable(index, subindex) if node is not None else None
         return len(var) // 8 if var is not None and var.fixed_size else None

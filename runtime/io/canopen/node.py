@@ -14,9 +14,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from enum import IntEnum
-from typing import Optional
 
-from .cia301 import STATE_BOOTUP, STATE_OPERATIONAL, STATE_NAMES
+from .cia301 import STATE_BOOTUP, STATE_NAMES, STATE_OPERATIONAL
 
 
 class NodeState(IntEnum):
@@ -48,15 +47,15 @@ class NodeSupervisor:
         self.boot_timeout_ns = boot_timeout_ns
         self.retry_ns = retry_ns
         self.state = NodeState.UNKNOWN
-        self.nmt_state: Optional[int] = None     # last state byte of its heartbeat
-        self.deadline_ns: Optional[int] = None   # boot-up wait, heartbeat watch or retry
+        self.nmt_state: int | None = None     # last state byte of its heartbeat
+        self.deadline_ns: int | None = None   # boot-up wait, heartbeat watch or retry
         self.boots = 0                           # boot-ups seen
         self.emergencies = 0
-        self.last_emcy: Optional[Emergency] = None
+        self.last_emcy: Emergency | None = None
         self.message = ""
         self.version = 0                         # bumped on every change the program can see
 
-    def _enter(self, state: NodeState, deadline_ns: Optional[int], message: str = "") -> None:
+    def _enter(self, state: NodeState, deadline_ns: int | None, message: str = "") -> None:
         self.state = state
         self.deadline_ns = deadline_ns
         self.message = message
@@ -65,7 +64,7 @@ class NodeSupervisor:
     # ------------------------------------------------------------ events -> actions
     # Each returns the action the master must take: None, "reset", "configure", "start".
 
-    def tick(self, now_ns: int) -> Optional[str]:
+    def tick(self, now_ns: int) -> str | None:
         if self.state == NodeState.UNKNOWN:
             self._enter(NodeState.BOOTING, now_ns + self.boot_timeout_ns)
             return "reset"
@@ -82,7 +81,7 @@ class NodeSupervisor:
             return "reset"
         return None
 
-    def heartbeat(self, state_byte: int, now_ns: int) -> Optional[str]:
+    def heartbeat(self, state_byte: int, now_ns: int) -> str | None:
         state_byte &= 0x7F
         if state_byte != self.nmt_state:
             self.nmt_state = state_byte
@@ -106,7 +105,7 @@ class NodeSupervisor:
             return "reset"
         return None
 
-    def configured(self, ok: bool, message: str, now_ns: int) -> Optional[str]:
+    def configured(self, ok: bool, message: str, now_ns: int) -> str | None:
         if self.state != NodeState.CONFIGURING:
             return None
         if not ok:

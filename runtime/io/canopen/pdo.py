@@ -16,12 +16,11 @@ time, event timer, SYNC) is TxSchedule.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Optional
 
-from .cia301 import RPDO_COMM, RPDO_MAP, TPDO_COMM, TPDO_MAP, cob_rpdo, cob_tpdo, mapping_entry
 from ...image.memory import ProcessImage
-from ...st import types as T
 from ...plugin.driver import DriverError
+from ...st import types as T
+from .cia301 import RPDO_COMM, RPDO_MAP, TPDO_COMM, TPDO_MAP, cob_rpdo, cob_tpdo, mapping_entry
 
 _SIZE_BITS = {"B": 8, "W": 16, "D": 32, "L": 64}
 
@@ -41,7 +40,7 @@ class MappedEntry:
     bit_offset: int        # in the frame
     address: object        # LocatedAddress
     area: str
-    byte_offset: Optional[int]   # in the image area; None for a bit address
+    byte_offset: int | None   # in the image area; None for a bit address
     key: str
 
     @property
@@ -64,7 +63,7 @@ class PdoBinding:
         self.configure = configure
         self.key = key
         self.nbytes = (sum(e.bits for e in entries) + 7) // 8
-        self.cob_id: Optional[int] = None     # read from the node at boot
+        self.cob_id: int | None = None     # read from the node at boot
         self._byte_copies = all(e.bits % 8 == 0 and e.bit_offset % 8 == 0 and e.byte_offset is not None
                                 for e in entries)
 
@@ -77,7 +76,7 @@ class PdoBinding:
         return (TPDO_MAP if self.direction == "tpdo" else RPDO_MAP) + self.number - 1
 
     @classmethod
-    def from_config(cls, cfg, direction: str, od, probe: ProcessImage) -> "PdoBinding":
+    def from_config(cls, cfg, direction: str, od, probe: ProcessImage) -> PdoBinding:
         """Resolve a config PdoConfig against the node's object dictionary.
         DriverError names the config key of anything that cannot work."""
         entries = []
@@ -172,8 +171,8 @@ class TxSchedule:
         self.transmission = transmission
         self.inhibit_ns = inhibit_us * 1000
         self.event_ns = event_ms * 1_000_000
-        self.last_sent: Optional[bytes] = None
-        self.last_ns: Optional[int] = None
+        self.last_sent: bytes | None = None
+        self.last_ns: int | None = None
         self._syncs = 0
 
     def reset(self) -> None:

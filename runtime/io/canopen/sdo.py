@@ -32,14 +32,14 @@ from __future__ import annotations
 import logging
 import queue
 import threading
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable, Optional
 
 import canopen
 from canopen.sdo.exceptions import SdoAbortedError, SdoCommunicationError
 
-from .cia301 import ABORT_TIMEOUT, abort_text
 from ...st.native import ADDRESS, ANY_INT, STRING, WORDS, NativeFunction, Param
+from .cia301 import ABORT_TIMEOUT, abort_text
 
 log = logging.getLogger(__name__)
 
@@ -73,7 +73,7 @@ class SdoJob:
     node_id: int
     index: int
     subindex: int
-    data: Optional[bytes]
+    data: bytes | None
     timeout_s: float
     # results, set by the worker
     done: bool = False
@@ -81,7 +81,7 @@ class SdoJob:
     abort_code: int = 0           # from the node, or ABORT_TIMEOUT
     timed_out: bool = False
     error: str = ""
-    on_done: Optional[Callable[["SdoJob"], None]] = field(default=None, repr=False)
+    on_done: Callable[[SdoJob], None] | None = field(default=None, repr=False)
 
     def describe(self) -> str:
         what = "write" if self.data is not None else "read"
@@ -99,7 +99,7 @@ class SdoWorker:
         self._queue: queue.Queue = queue.Queue()
         self._pending = 0
         self._lock = threading.Lock()
-        self._thread: Optional[threading.Thread] = None
+        self._thread: threading.Thread | None = None
         self._clients: dict = {}
 
     def start(self) -> None:
@@ -188,7 +188,7 @@ class SdoWorker:
 class _Exchange:
     """A READ_VAR / WRITE_VAR in progress: the program's tables and the job."""
 
-    def __init__(self, data, mgmt, data_signed: bool, mgmt_signed: bool, job: Optional[SdoJob]) -> None:
+    def __init__(self, data, mgmt, data_signed: bool, mgmt_signed: bool, job: SdoJob | None) -> None:
         self.data = data
         self.mgmt = mgmt
         self.data_signed = data_signed
@@ -218,7 +218,7 @@ class SchneiderSdoService:
     the EDS size in bytes of an object, or None."""
 
     def __init__(self, submit: Callable[[SdoJob], None], *, default_timeout_s: float,
-                 object_size: Callable[[int, int, int], Optional[int]] = lambda n, i, s: None,
+                 object_size: Callable[[int, int, int], int | None] = lambda n, i, s: None,
                  available: Callable[[], bool] = lambda: True) -> None:
         self._submit = submit
         self.default_timeout_s = default_timeout_s

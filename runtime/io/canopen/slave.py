@@ -42,15 +42,39 @@ import logging
 import struct
 import threading
 from dataclasses import dataclass, field
-from typing import Optional
 
 import canopen
 from canopen.objectdictionary import ODArray, ODVariable
 from canopen.sdo import SdoAbortedError
 
-from .cia301 import ABORT_DEVICE_STATE, ABORT_NO_SUBINDEX, ABORT_NOT_MAPPABLE, ABORT_PDO_LENGTH, ABORT_VALUE_RANGE, COB_ID_INVALID, COB_NMT, COB_SYNC, NMT_PRE_OPERATIONAL, NMT_RESET_COMMUNICATION, NMT_RESET_NODE, NMT_START, NMT_STOP, RPDO_COMM, RPDO_MAP, STATE_BOOTUP, STATE_OPERATIONAL, STATE_PRE_OPERATIONAL, STATE_STOPPED, TPDO_COMM, TPDO_MAP, cob_emcy, cob_heartbeat, split_mapping_entry
-from ..can.bus import BusSettings, CanEndpoint, open_bus
 from ...sim.base import SimulatedDevice
+from ..can.bus import BusSettings, CanEndpoint, open_bus
+from .cia301 import (
+    ABORT_DEVICE_STATE,
+    ABORT_NO_SUBINDEX,
+    ABORT_NOT_MAPPABLE,
+    ABORT_PDO_LENGTH,
+    ABORT_VALUE_RANGE,
+    COB_ID_INVALID,
+    COB_NMT,
+    COB_SYNC,
+    NMT_PRE_OPERATIONAL,
+    NMT_RESET_COMMUNICATION,
+    NMT_RESET_NODE,
+    NMT_START,
+    NMT_STOP,
+    RPDO_COMM,
+    RPDO_MAP,
+    STATE_BOOTUP,
+    STATE_OPERATIONAL,
+    STATE_PRE_OPERATIONAL,
+    STATE_STOPPED,
+    TPDO_COMM,
+    TPDO_MAP,
+    cob_emcy,
+    cob_heartbeat,
+    split_mapping_entry,
+)
 
 log = logging.getLogger(__name__)
 
@@ -133,8 +157,8 @@ class _Pdo:
 
 @dataclass
 class _TpdoState:
-    last_data: Optional[bytes] = None
-    last_sent_ns: Optional[int] = None
+    last_data: bytes | None = None
+    last_sent_ns: int | None = None
     sync_count: int = 0
     pending: bool = False            # send at the next opportunity, changed or not
 
@@ -144,7 +168,7 @@ class _Consumer:
     """One heartbeat consumer entry of 0x1016."""
     producer: int
     timeout_ns: int
-    last_ns: Optional[int] = None    # None: not monitoring yet (CiA 301: starts with the first heartbeat)
+    last_ns: int | None = None    # None: not monitoring yet (CiA 301: starts with the first heartbeat)
     lost: bool = False
 
 
@@ -158,7 +182,7 @@ class SimulatedCanopenSlave(SimulatedDevice):
     """See the module docstring."""
 
     def __init__(self, node_id: int, *, eds, settings: BusSettings, clock, pump=None,
-                 name: Optional[str] = None) -> None:
+                 name: str | None = None) -> None:
         if not 1 <= node_id <= 127:
             raise ValueError(f"CANopen node id {node_id} is not in 1..127")
         super().__init__(name or f"canopen slave {node_id}", clock=clock, pump=pump)
@@ -168,17 +192,17 @@ class SimulatedCanopenSlave(SimulatedDevice):
         self.node = _SlaveNode(node_id, self.od)
         self.node.add_read_callback(self._on_sdo_read)
         self.node.add_write_callback(self._on_sdo_write)
-        self.endpoint: Optional[CanEndpoint] = None
-        self.network: Optional[_SlaveNetwork] = None
+        self.endpoint: CanEndpoint | None = None
+        self.network: _SlaveNetwork | None = None
         self._lock = threading.RLock()
         self._state = STATE_BOOTUP
         self._now = 0
         self._local_writes = 0                  # > 0 while write() runs: the device's own access
-        self._tables: Optional[_PdoTables] = None
+        self._tables: _PdoTables | None = None
         self._tpdo_state: dict[int, _TpdoState] = {}
         self._sync_rpdos: dict[int, tuple] = {}  # RPDO number -> (pdo, data) waiting for SYNC
-        self._consumers: Optional[list[_Consumer]] = None
-        self._heartbeat_due: Optional[int] = None
+        self._consumers: list[_Consumer] | None = None
+        self._heartbeat_due: int | None = None
         self._written: list[int] = []           # objects written, for _flush_writes
 
     # ------------------------------------------------------------------ hooks
@@ -579,7 +603,7 @@ class SimulatedCanopenSlave(SimulatedDevice):
             self._tables = tables
         return self._tables
 
-    def _read_pdo(self, comm: int, mapping: int, number: int) -> Optional[_Pdo]:
+    def _read_pdo(self, comm: int, mapping: int, number: int) -> _Pdo | None:
         if comm not in self.od or mapping not in self.od:
             return None
         cob = self._value(comm, 1)
@@ -694,7 +718,7 @@ class SimulatedCanopenSlave(SimulatedDevice):
 
     # ------------------------------------------------------------------ OD storage
 
-    def _variable_or_none(self, index: int, subindex: int) -> Optional[ODVariable]:
+    def _variable_or_none(self, index: int, subindex: int) -> ODVariable | None:
         obj = self.od.get(index)
         if obj is None:
             return None

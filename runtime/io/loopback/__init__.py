@@ -6,7 +6,7 @@ Public names: BUS, LoopbackDriver, LoopbackLink.
 """
 from __future__ import annotations
 
-from ...plugin.seams import Bus, BuildContext, Contribution
+from ...plugin.seams import BuildContext, Bus, Contribution
 from .config import LoopbackLink, LoopbackSection
 from .driver import LoopbackDriver
 

@@ -21,13 +21,13 @@ write_outputs the inputs read as zeros (a bus that has sent nothing yet).
 from __future__ import annotations
 
 import threading
+from collections.abc import Iterable
 from dataclasses import dataclass
-from typing import Iterable, Optional
 
 from ...image.address import AddressError, parse_address
 from ...image.memory import ProcessImage
-from ...st.ast import LocatedAddress
 from ...plugin.driver import Driver, DriverError, DriverStatus
+from ...st.ast import LocatedAddress
 
 
 @dataclass(frozen=True)
@@ -43,7 +43,7 @@ class Link:
 
 class LoopbackDriver(Driver):
     def __init__(self, name: str, links: Iterable, addressing: str = "iec",
-                 size: Optional[int] = None) -> None:
+                 size: int | None = None) -> None:
         """links: (source, target, nbytes) with addresses as strings or
         LocatedAddress; nbytes None copies the source address's own width
         (2 for %QW0, 8 for %QW0:4). addressing and size are those of the

@@ -76,8 +76,8 @@ def _build(config, ctx: BuildContext) -> Contribution:
                         drivers=[ModbusDriver(connections, ctx.addressing, clock=ctx.clock)])
 
 
-BUS = Bus(name="modbus", order=40, sections=(ModbusSection(),), attachment=ModbusAttachment(), natives=(MODBUS_EXCHANGE,),
-          libraries=(StLibrary("softplc.fblocks.comm", "modbus.st"),), build=_build)
+BUS = Bus(name="modbus", order=40, sections=(ModbusSection(),), attachment=ModbusAttachment(),
+          natives=(MODBUS_EXCHANGE,), libraries=(StLibrary("softplc.fblocks.comm", "modbus.st"),), build=_build)
 
 __all__ = ["BUS", "ModbusChannelConfig", "ModbusConnectionConfig", "ModbusDriver", "ModbusRefusal",
            "ModbusSimContext", "ModbusUnit", "SimulatedModbusLine", "SimulatedUnit"]

@@ -24,7 +24,6 @@ under the channel's lock for as long as a copy takes.
 from __future__ import annotations
 
 import threading
-from typing import Optional
 
 from ...image.memory import ProcessImage
 from ...st import types as T
@@ -58,13 +57,13 @@ class Channel:
         write_count = cfg.write_count if cfg.function == 23 else cfg.count
         self._write_span = self._span(image, cfg.write_from, write_count) if self.writes else None
         self._write_count = write_count
-        self._staged: Optional[bytes] = None     # the last bytes the program left to write
-        self._sent: Optional[bytes] = None       # the bytes of the last good write
+        self._staged: bytes | None = None     # the last bytes the program left to write
+        self._sent: bytes | None = None       # the bytes of the last good write
         self._pending = cfg.trigger == "change"
         self._edge_was = False
-        self._fresh: Optional[bytes] = None      # read data not yet in the image
+        self._fresh: bytes | None = None      # read data not yet in the image
         self._next_due_ns = 0
-        self._in_flight: Optional[bytes] = None
+        self._in_flight: bytes | None = None
 
     def _span(self, image: ProcessImage, addr, count: int) -> tuple:
         area, offset, _n = image.region(addr)
@@ -114,7 +113,7 @@ class Channel:
                 return False
             return self.cfg.trigger == "cyclic" or self._pending
 
-    def next_due_ns(self) -> Optional[int]:
+    def next_due_ns(self) -> int | None:
         """When a cyclic channel (or one that failed) is next due; None: on a trigger."""
         with self._lock:
             if self.cfg.trigger == "cyclic" or self._pending:

@@ -6,18 +6,32 @@ unit); io_config/examples/modbus_rtu.toml and modbus_tcp.toml show every key.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Annotated, Any, Optional
+from typing import Annotated, Any
 
 from pydantic import Field
 
 from ...config.errors import key_text
 from ...config.relations import Relations
 from ...config.section import Attachment, Section
-from ...config.values import (U16_MAX, Model, area_name, choice, choice_int, choice_upper, duration_field,
-                              duration_in, identifier, in_range, int_range, is_ident, nonempty)
+from ...config.values import (
+    U16_MAX,
+    Model,
+    area_name,
+    choice,
+    choice_int,
+    choice_upper,
+    duration_field,
+    duration_in,
+    identifier,
+    in_range,
+    int_range,
+    is_ident,
+    nonempty,
+)
 from ...st.ast import LocatedAddress
-from .functions import FUNCTIONS as MODBUS_FUNCTION_KINDS, READ_LIMIT as MODBUS_READ_LIMIT, \
-    WRITE_LIMIT as MODBUS_WRITE_LIMIT
+from .functions import FUNCTIONS as MODBUS_FUNCTION_KINDS
+from .functions import READ_LIMIT as MODBUS_READ_LIMIT
+from .functions import WRITE_LIMIT as MODBUS_WRITE_LIMIT
 
 MODBUS_FUNCTIONS = tuple(MODBUS_FUNCTION_KINDS)
 MODBUS_BAUDS = (1200, 2400, 4800, 9600, 19200, 38400, 57600, 115200)
@@ -38,11 +52,11 @@ class ModbusChannelConfig:
     count: int                       # registers or bits read (or written by a write-only function)
     write_offset: int                # function 23: the write
     write_count: int                 # function 23
-    read_to: Optional[LocatedAddress]        # %I / %M: where read data lands
-    write_from: Optional[LocatedAddress]     # %Q / %M: what is written
+    read_to: LocatedAddress | None        # %I / %M: where read data lands
+    write_from: LocatedAddress | None     # %Q / %M: what is written
     trigger: str                     # "cyclic" | "change" | "edge"
     period_ns: int                   # cyclic period; the wait after a failure for the others
-    edge: Optional[LocatedAddress]   # trigger "edge": a BOOL address
+    edge: LocatedAddress | None   # trigger "edge": a BOOL address
     key: str                         # "modbus[0].channel[1]"
 
 
@@ -55,7 +69,7 @@ class ModbusConnectionConfig:
     parity: str                      # "N" | "E" | "O"
     stop_bits: int
     data_bits: int
-    frame_gap_us: Optional[int]      # None: 3.5 characters (link.frame_gap)
+    frame_gap_us: int | None      # None: 3.5 characters (link.frame_gap)
     host: str                        # tcp
     port: int                        # tcp; 0 with simulated slaves: any free port
     timeout_ms: int
@@ -91,7 +105,7 @@ class ModbusUnit:
 
 
 class _ModbusChannel(Model):
-    name: Optional[Annotated[str, identifier("a channel name")]] = Field(
+    name: Annotated[str, identifier("a channel name")] | None = Field(
         None, description='a channel name such as "drive_status"')
     unit: Annotated[int, int_range(0, MODBUS_UNIT_MAX)] = Field(
         description=f"a unit id from 1 to {MODBUS_UNIT_MAX} (0: broadcast write)")
@@ -100,9 +114,9 @@ class _ModbusChannel(Model):
     offset: Annotated[int, int_range(0, U16_MAX)] = Field(
         description="a PDU address from 0 to 65535 (Eaton ID n is offset n-1)")
     count: Annotated[int, int_range(1, 2000)] = Field(1, description="an integer from 1 to 2000")
-    write_offset: Optional[Annotated[int, int_range(0, U16_MAX)]] = Field(
+    write_offset: Annotated[int, int_range(0, U16_MAX)] | None = Field(
         None, description="a PDU address from 0 to 65535")
-    write_count: Optional[Annotated[int, int_range(1, 121)]] = Field(
+    write_count: Annotated[int, int_range(1, 121)] | None = Field(
         None, description="an integer from 1 to 121")
     read_to: Any = Field(None, description='an %I or %M address such as "%IW100"')
     write_from: Any = Field(None, description='a %Q or %M address such as "%QW100"')
@@ -116,17 +130,17 @@ class _Modbus(Model):
     name: Annotated[str, identifier("a connection name")] = Field(
         "modbus0", description='a connection name such as "drives"')
     transport: Annotated[str, choice(("rtu", "tcp"))] = Field(description="'rtu' or 'tcp'")
-    device: Optional[Annotated[str, nonempty(_DEVICE)]] = Field(None, description=_DEVICE)
+    device: Annotated[str, nonempty(_DEVICE)] | None = Field(None, description=_DEVICE)
     baud: Annotated[int, choice_int(MODBUS_BAUDS)] = Field(
         19200, description="a baud rate: " + ", ".join(map(str, MODBUS_BAUDS)))
     parity: Annotated[str, choice_upper(("N", "E", "O"))] = Field("N", description="'N', 'E' or 'O'")
     stop_bits: Annotated[int, choice_int((1, 2))] = Field(1, description="1 or 2")
     data_bits: Annotated[int, choice_int((7, 8))] = Field(8, description="7 or 8")
-    frame_gap: Optional[duration_field(_frame_gap)] = Field(
+    frame_gap: duration_field(_frame_gap) | None = Field(
         None, description="a duration such as 2ms (default: 3.5 characters)")
-    host: Optional[Annotated[str, nonempty('a host such as "192.168.0.20"')]] = Field(
+    host: Annotated[str, nonempty('a host such as "192.168.0.20"')] | None = Field(
         None, description='a host such as "192.168.0.20"')
-    port: Optional[Annotated[int, int_range(0, U16_MAX)]] = Field(None, description="a TCP port such as 502")
+    port: Annotated[int, int_range(0, U16_MAX)] | None = Field(None, description="a TCP port such as 502")
     timeout: duration_field(_timeout_ms) = Field(200, description="a duration such as 200ms")
     retries: Annotated[int, int_range(0, 10)] = Field(1, description="an integer from 0 to 10")
     reconnect: duration_field(_timeout_ms) = Field(1000, description="a duration such as 1s")
@@ -270,9 +284,9 @@ class ModbusSection(Section):
 
 
 class _ModbusUnitKeys(Model):
-    modbus: Optional[Annotated[str, identifier("a connection name")]] = Field(
+    modbus: Annotated[str, identifier("a connection name")] | None = Field(
         None, description="the name of a [[modbus]] connection")
-    unit: Optional[Annotated[int, int_range(1, MODBUS_UNIT_MAX)]] = Field(
+    unit: Annotated[int, int_range(1, MODBUS_UNIT_MAX)] | None = Field(
         None, description=f"a unit id from 1 to {MODBUS_UNIT_MAX}")
 
 
@@ -303,8 +317,8 @@ class ModbusAttachment(Attachment):
             return
         entry = state.names.get(conn.upper())
         if entry is None:
-            ctx.error(here + ("modbus",), f"expected one of {', '.join(repr(t.get('name', 'modbus0')) for _i, t in state.names.values())}, "
-                                           f"the [[modbus]] connections (got '{conn}')")
+            listed = ", ".join(repr(t.get("name", "modbus0")) for _i, t in state.names.values())
+            ctx.error(here + ("modbus",), f"expected one of {listed}, the [[modbus]] connections (got '{conn}')")
             return
         index, table = entry
         state.sim_connection[here] = table.get("name", "modbus0")
@@ -321,7 +335,7 @@ class ModbusAttachment(Attachment):
             if first != here:
                 ctx.error(here + ("unit",), f"duplicate unit {unit} on modbus[{index}] ({key_text(first)} has it)")
 
-    def name(self, sim_type: str, sim: dict) -> Optional[str]:
+    def name(self, sim_type: str, sim: dict) -> str | None:
         unit = sim.get("unit")
         return f"{sim_type}_{unit}" if in_range(unit, 1, None) else None
 

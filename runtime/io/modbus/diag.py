@@ -2,7 +2,8 @@
 filled by the Modbus master. Written only when something changed."""
 from __future__ import annotations
 
-from ...program import StructWriter, global_variable as _global
+from ...program import StructWriter
+from ...program import global_variable as _global
 
 
 class ModbusDiag:

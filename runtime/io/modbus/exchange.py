@@ -24,12 +24,12 @@ A call while word 0 bit 0 is set starts nothing and returns FALSE.
 from __future__ import annotations
 
 import threading
-from typing import Callable, Optional
+from collections.abc import Callable
 
+from ...st.native import ANY_INT, STRING, WORDS, NativeFunction, Param
+from ..canopen.sdo import store_word
 from .functions import FUNCTIONS, check_request
 from .link import ModbusError, Outcome, Transaction
-from ..canopen.sdo import store_word
-from ...st.native import ANY_INT, STRING, WORDS, NativeFunction, Param
 
 
 def unpack_bits(words, count: int) -> list:
@@ -51,7 +51,7 @@ class _Exchange:
         self.receive_signed = receive_signed
         self.mgmt_signed = mgmt_signed
         self.bits = bits
-        self.outcome: Optional[Outcome] = None     # set by the worker
+        self.outcome: Outcome | None = None     # set by the worker
 
 
 class ModbusExchangeService:

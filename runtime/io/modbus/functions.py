@@ -3,8 +3,6 @@ Pure data, no pymodbus: the configuration checks channels against it, the
 link and MODBUS_EXCHANGE check requests with it."""
 from __future__ import annotations
 
-from typing import Optional
-
 # Function codes the master speaks: code -> (reads, writes, bits)
 FUNCTIONS = {
     1: (True, False, True),      # Read Coils
@@ -22,7 +20,7 @@ READ_LIMIT = {1: 2000, 2: 2000, 3: 125, 4: 125, 23: 125}
 WRITE_LIMIT = {5: 1, 6: 1, 15: 1968, 16: 123, 23: 121}
 
 
-def check_request(function: int, count: int, write_count: int) -> Optional[str]:
+def check_request(function: int, count: int, write_count: int) -> str | None:
     """Why a request cannot be sent, or None."""
     if function not in FUNCTIONS:
         return f"function code {function} is not one of {', '.join(map(str, FUNCTIONS))}"

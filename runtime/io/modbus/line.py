@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import asyncio
 import threading
-from typing import Optional
 
 from pymodbus.constants import ExcCodes
 from pymodbus.datastore import ModbusServerContext
@@ -43,7 +42,7 @@ SIM_HOSTS = ("127.0.0.1", "localhost")
 class _Line(ModbusServerContext):
     """pymodbus's datastore interface, answered by the line's units."""
 
-    def __init__(self, sim: "SimulatedModbusLine") -> None:   # no super(): no pymodbus datastore
+    def __init__(self, sim: SimulatedModbusLine) -> None:   # no super(): no pymodbus datastore
         self.old_simulator = True     # pymodbus then calls async_getValues/async_setValues itself
         self.simdevices = []
         self._sim = sim
@@ -68,14 +67,14 @@ class SimulatedModbusLine(SimulatedDevice):
         self.transport = transport
         self.host, self.port = host, port
         self._serial = dict(baudrate=baud, parity=parity, stopbits=stop_bits)
-        self.cable: Optional[NullModem] = NullModem(f"sim {name} cable") if transport == "rtu" else None
+        self.cable: NullModem | None = NullModem(f"sim {name} cable") if transport == "rtu" else None
         self.master_port = self.cable.master_port if self.cable else None
         self.silent = False
         self.requests = 0
         self._lock = threading.Lock()
-        self._loop: Optional[asyncio.AbstractEventLoop] = None
+        self._loop: asyncio.AbstractEventLoop | None = None
         self._server = None
-        self._thread: Optional[threading.Thread] = None
+        self._thread: threading.Thread | None = None
 
     def unit(self, unit: int):
         """The model at a unit id."""

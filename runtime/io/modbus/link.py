@@ -26,7 +26,6 @@ import enum
 import logging
 import time
 from dataclasses import dataclass, field
-from typing import Optional
 
 from pymodbus.client import ModbusSerialClient, ModbusTcpClient
 from pymodbus.exceptions import ConnectionException, ModbusException, ModbusIOException
@@ -81,7 +80,7 @@ class LinkSettings:
     parity: str = "N"
     stop_bits: int = 1
     data_bits: int = 8
-    frame_gap_s: Optional[float] = None     # None: 3.5 characters (see frame_gap)
+    frame_gap_s: float | None = None     # None: 3.5 characters (see frame_gap)
     timeout_s: float = 0.1
     retries: int = 1                 # requests sent again after a timeout
     reconnect_s: float = 1.0

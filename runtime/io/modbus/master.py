@@ -20,12 +20,13 @@ from __future__ import annotations
 import collections
 import logging
 import threading
-from typing import Callable, Optional
+from collections.abc import Callable
 
 from ...image.memory import ProcessImage
 from ...plugin.driver import Driver, DriverError, DriverStatus
 from .channel import Channel
-from .exchange import SERVICE as EXCHANGE_SERVICE, ModbusExchangeService
+from .exchange import SERVICE as EXCHANGE_SERVICE
+from .exchange import ModbusExchangeService
 from .link import LinkSettings, ModbusLink, Outcome, Transaction
 
 log = logging.getLogger(__name__)
@@ -53,7 +54,7 @@ class ConnectionWorker:
         self.clock = clock
         self._requests: collections.deque = collections.deque()
         self._wake = threading.Event()
-        self._thread: Optional[threading.Thread] = None
+        self._thread: threading.Thread | None = None
         self._running = False
 
     def submit(self, tx: Transaction, done: Callable[[Outcome], None]) -> None:
@@ -179,7 +180,7 @@ class ModbusDriver(Driver):
         down = [w.link for w in self.workers.values() if not w.link.connected]
         failing = [ch.name for ch in self.channels if ch.stats.requests and not ch.stats.ok]
         if down:
-            return DriverStatus(False, "modbus: " + "; ".join(f"{l.settings.name} {l.message}" for l in down))
+            return DriverStatus(False, "modbus: " + "; ".join(f"{link.settings.name} {link.message}" for link in down))
         if failing:
             return DriverStatus(False, f"modbus: {len(failing)}/{len(self.channels)} channels failing "
                                        f"({', '.join(failing[:3])})")

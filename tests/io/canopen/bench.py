@@ -9,9 +9,9 @@ import itertools
 
 import pytest
 
+from softplc.runtime.devices.ltmr.sim import LtmrSimulator
 from softplc.runtime.engine.clock import VirtualClock
 from softplc.runtime.io.can.bus import BusPump, BusSettings, CanEndpoint, open_bus
-from softplc.runtime.devices.ltmr.sim import LtmrSimulator
 
 MS = 1_000_000
 MASTER_NODE = 0x7F

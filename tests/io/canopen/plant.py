@@ -11,9 +11,9 @@ from pathlib import Path
 import pytest
 
 from softplc.runtime.config import config_from_dict
+from softplc.runtime.devices.ltmr.sim import LtmrSimulator
 from softplc.runtime.engine.build import build_engine
 from softplc.runtime.io.can.bus import BusSettings, CanEndpoint, open_bus
-from softplc.runtime.devices.ltmr.sim import LtmrSimulator
 from softplc.runtime.program import locate
 
 MS = 1_000_000

@@ -11,7 +11,32 @@ import canopen.nmt
 import pytest
 
 from softplc.runtime.io.canopen import cia301
-from softplc.runtime.io.canopen.cia301 import ABORT_CODES, COB_NMT, COB_SYNC, MANUAL_ABORT_CODES, NMT_PRE_OPERATIONAL, NMT_RESET_COMMUNICATION, NMT_RESET_NODE, NMT_START, NMT_STOP, STATE_BOOTUP, STATE_NAMES, STATE_OPERATIONAL, STATE_PRE_OPERATIONAL, STATE_STOPPED, abort_text, cob_emcy, cob_heartbeat, cob_rpdo, cob_sdo_rx, cob_sdo_tx, cob_tpdo, heartbeat_consumer_entry, mapping_entry, split_mapping_entry
+from softplc.runtime.io.canopen.cia301 import (
+    ABORT_CODES,
+    COB_NMT,
+    COB_SYNC,
+    MANUAL_ABORT_CODES,
+    NMT_PRE_OPERATIONAL,
+    NMT_RESET_COMMUNICATION,
+    NMT_RESET_NODE,
+    NMT_START,
+    NMT_STOP,
+    STATE_BOOTUP,
+    STATE_NAMES,
+    STATE_OPERATIONAL,
+    STATE_PRE_OPERATIONAL,
+    STATE_STOPPED,
+    abort_text,
+    cob_emcy,
+    cob_heartbeat,
+    cob_rpdo,
+    cob_sdo_rx,
+    cob_sdo_tx,
+    cob_tpdo,
+    heartbeat_consumer_entry,
+    mapping_entry,
+    split_mapping_entry,
+)
 
 # manual 001 L720-754, copied
 MANUAL_ABORT_TABLE = {

@@ -8,9 +8,15 @@ from __future__ import annotations
 
 import pytest
 
-from softplc.runtime.config import load_config, SafeOutput, SimConfig
+from softplc.runtime.config import SafeOutput, SimConfig, load_config
 from softplc.runtime.io.can import CanBusConfig, CanNode
-from softplc.runtime.io.canopen.config import CanopenConfig, CanopenNodeConfig, PdoConfig, PdoEntryConfig, SdoWriteConfig
+from softplc.runtime.io.canopen.config import (
+    CanopenConfig,
+    CanopenNodeConfig,
+    PdoConfig,
+    PdoEntryConfig,
+    SdoWriteConfig,
+)
 from softplc.runtime.sim.options import Registers
 
 from ...config.support import CAN, EDS, EXAMPLES, NODE, PLC, ST, addr, error, errors, load, pdo, plant

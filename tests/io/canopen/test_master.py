@@ -2,10 +2,10 @@
 manager does (CiA 301/302), against the simulated LTMR on the virtual bus."""
 from __future__ import annotations
 
-from softplc.runtime.engine.monitor import status_line
-from softplc.runtime.io.canopen.node import NodeState
-from softplc.runtime.io.can.bus import BusSettings
 from softplc.runtime.devices.ltmr.sim import LtmrSimulator
+from softplc.runtime.engine.monitor import status_line
+from softplc.runtime.io.can.bus import BusSettings
+from softplc.runtime.io.canopen.node import NodeState
 
 WATCH = """
 PROGRAM Watch

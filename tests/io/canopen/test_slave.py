@@ -8,7 +8,23 @@ import importlib.resources
 
 import pytest
 
-from softplc.runtime.io.canopen.cia301 import ABORT_DEVICE_STATE, ABORT_NO_OBJECT, ABORT_NO_SUBINDEX, ABORT_NOT_MAPPABLE, ABORT_PDO_LENGTH, ABORT_READ_ONLY, ABORT_VALUE_RANGE, NMT_PRE_OPERATIONAL, NMT_RESET_COMMUNICATION, NMT_RESET_NODE, NMT_START, NMT_STOP, STATE_OPERATIONAL, STATE_PRE_OPERATIONAL, STATE_STOPPED
+from softplc.runtime.io.canopen.cia301 import (
+    ABORT_DEVICE_STATE,
+    ABORT_NO_OBJECT,
+    ABORT_NO_SUBINDEX,
+    ABORT_NOT_MAPPABLE,
+    ABORT_PDO_LENGTH,
+    ABORT_READ_ONLY,
+    ABORT_VALUE_RANGE,
+    NMT_PRE_OPERATIONAL,
+    NMT_RESET_COMMUNICATION,
+    NMT_RESET_NODE,
+    NMT_START,
+    NMT_STOP,
+    STATE_OPERATIONAL,
+    STATE_PRE_OPERATIONAL,
+    STATE_STOPPED,
+)
 from softplc.runtime.io.canopen.slave import SimulatedCanopenSlave
 
 from .bench import MS, abort_frame, write_ok

@@ -6,8 +6,8 @@ import pytest
 
 from softplc.runtime.image.address import parse_address
 from softplc.runtime.image.memory import ProcessImage
-from softplc.runtime.plugin.driver import Driver, DriverError
 from softplc.runtime.io.loopback.driver import LoopbackDriver
+from softplc.runtime.plugin.driver import Driver, DriverError
 from softplc.runtime.program import ExecContext, compile_files
 
 

@@ -10,8 +10,8 @@ import pytest
 
 from softplc.runtime.config import config_from_dict
 from softplc.runtime.engine.build import build_engine
-from softplc.runtime.io.modbus.master import ModbusDriver
 from softplc.runtime.io.modbus.line import SimulatedModbusLine
+from softplc.runtime.io.modbus.master import ModbusDriver
 from softplc.runtime.st.valuejson import encode_value
 
 MS = 1_000_000

@@ -4,13 +4,12 @@ from __future__ import annotations
 
 import pytest
 
-from softplc.runtime.config import ConfigError, load_config, SimConfig
+from softplc.runtime.config import ConfigError, SimConfig, load_config
 from softplc.runtime.io.can import CanNode
 from softplc.runtime.io.modbus import ModbusChannelConfig, ModbusConnectionConfig, ModbusUnit
 from softplc.runtime.sim.options import Registers
 
 from ...config.support import CAN, EXAMPLES, MS, PLC, SIM, ST, addr, error, errors, load, write
-
 
 # ====================================================================== [[modbus]], [[modbus.channel]]
 #

@@ -144,8 +144,8 @@ def test_a_failing_channel_does_not_disturb_the_others(plants, tmp_path):
         {"name": "good", "unit": 1, "function": 3, "offset": 5, "count": 1, "read_to": "%IW0", "period": "50ms"},
         {"name": "absent", "unit": 7, "function": 3, "offset": 5, "count": 1, "read_to": "%IW2", "period": "50ms"},
     ]
-    plant = plants(plant_config(tmp_path, "PROGRAM T\nVAR ok : BOOL; END_VAR\nok := MODBUS_CHANNEL[1].Error;\nEND_PROGRAM\n", program="T", channels=channels,
-                                transport="rtu"))
+    source = "PROGRAM T\nVAR ok : BOOL; END_VAR\nok := MODBUS_CHANNEL[1].Error;\nEND_PROGRAM\n"
+    plant = plants(plant_config(tmp_path, source, program="T", channels=channels, transport="rtu"))
     plant.run_ms(500)
     good, absent = plant.master.channels
     assert good.stats.requests == 10 and good.stats.errors == 0
