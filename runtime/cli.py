@@ -25,6 +25,7 @@ from pathlib import Path
 import click
 
 from .durations import EXAMPLES, parse_duration_ns
+from .plugin.registry import PluginError
 from .st.profile import DEFAULT, PROFILES
 
 EXIT_OK = 0
@@ -297,6 +298,10 @@ def main(argv: list | None = None) -> None:
     except (click.Abort, KeyboardInterrupt):
         _echo_err("softplc: interrupted")
         sys.exit(130)
+    except PluginError as e:  # an installed bus or device package that cannot be used
+        _echo_err(f"softplc: {e}\nThe package that declares it is broken or does not fit this softplc: "
+                  "upgrade it or uninstall it.")
+        sys.exit(EXIT_USAGE)
     except BrokenPipeError:  # `softplc exec ... | head`: the reader left, nothing to say
         sys.stderr.close()
         sys.exit(EXIT_OK)

@@ -18,7 +18,7 @@ from typing import Annotated, Any
 
 from pydantic import Field, create_model
 
-from ..plugin.registry import Registry
+from ..plugin.registry import PluginError, Registry
 from .errors import key_text
 from .relations import Relations
 from .section import Attachment, Section
@@ -44,6 +44,10 @@ class SimSection(Section):
         self.registry = registry
         self.types = registry.sim_types()            # type -> Device
         self.attachments = {bus.name: bus.attachment for bus in registry.buses if bus.attachment is not None}
+        for device in registry.devices:
+            if device.sim_types and device.bus not in self.attachments:
+                raise PluginError(f"device {device.name}: its simulators sit on bus {device.bus!r}, which is not "
+                                  "registered or takes no simulated devices")
         self.model = self._model()
 
     def _model(self) -> type[Model]:

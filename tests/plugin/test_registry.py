@@ -121,6 +121,13 @@ def test_names_are_unique():
     assert [device.name for device in registry().devices] == ["ltmr", "eaton", "fc280"]
 
 
+def test_a_device_on_a_bus_that_is_not_there(tmp_path):
+    with extended(Device(name="lost", bus="profibus", sim_types=("lost",))), \
+            pytest.raises(PluginError, match="device lost: its simulators sit on bus 'profibus', which is not "
+                                             "registered or takes no simulated devices"):
+        config_from_dict(plant(tmp_path), tmp_path / "plant.toml")
+
+
 def test_an_installed_package_is_found_through_its_entry_point(tmp_path):
     """What `pip install` of a package declaring the entry point leaves on
     the path: a .dist-info with entry_points.txt. softplc run finds the relay
@@ -142,3 +149,18 @@ def test_an_installed_package_is_found_through_its_entry_point(tmp_path):
     assert done.returncode == 0, done.stderr
     final = json.loads(done.stdout)
     assert final["Switch"]["closed"] is True and final["Switch"]["error"] is False
+
+
+def test_a_broken_installed_package_is_named_not_a_traceback(tmp_path):
+    dist = tmp_path / "site" / "softplc_broken-1.0.dist-info"
+    dist.mkdir(parents=True)
+    (dist / "METADATA").write_text("Metadata-Version: 2.1\nName: softplc-broken\nVersion: 1.0\n")
+    (dist / "entry_points.txt").write_text("[softplc.devices]\nbroken = no_such_module:DEVICE\n")
+    (tmp_path / "p.st").write_text("PROGRAM P\nEND_PROGRAM\n")
+    env = {"PYTHONPATH": f"{tmp_path / 'site'}:{REPO}", "PATH": "/usr/bin:/bin"}
+    done = subprocess.run([sys.executable, "-m", "softplc.runtime.cli", "check", str(tmp_path / "p.st")],
+                          capture_output=True, text=True, env=env, timeout=120)
+    assert done.returncode == 2
+    assert done.stderr.startswith("softplc: entry point broken = 'no_such_module:DEVICE' (softplc.devices) does "
+                                  "not load: ModuleNotFoundError")
+    assert "Traceback" not in done.stderr
