@@ -38,7 +38,7 @@ import time
 
 from pymodbus.client import ModbusTcpClient
 
-from softplc.runtime.config import ModbusChannelConfig, ModbusConnectionConfig
+from softplc.runtime.io.modbus import ModbusChannelConfig, ModbusConnectionConfig
 from softplc.runtime.devices.eaton.model import EatonDriveModel
 from softplc.runtime.devices.eaton.registers import Family
 from softplc.runtime.engine.clock import RealClock
