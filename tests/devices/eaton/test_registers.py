@@ -12,8 +12,12 @@ from __future__ import annotations
 
 import pytest
 
+from softplc.runtime.devices.eaton import faults as eaton_faults
+from softplc.runtime.devices.eaton import parameters as eaton_parameters
 from softplc.runtime.devices.eaton import registers as eaton
-from softplc.runtime.devices.eaton.registers import COMM_TIMEOUT_CODES, CommLossReaction, ControlWord, Da1CommLossAction, Family, StatusWord
+from softplc.runtime.devices.eaton import settings as eaton_settings
+from softplc.runtime.devices.eaton.registers import ControlWord, Family, StatusWord
+from softplc.runtime.devices.eaton.settings import COMM_TIMEOUT_CODES, CommLossReaction, Da1CommLossAction
 
 DA1, DB1, DC1, DE1 = Family.DA1, Family.DB1, Family.DC1, Family.DE1
 
@@ -99,8 +103,8 @@ def test_m2_read_status_word_response():
     assert value == 0
     assert eaton.status_flags(value) == StatusWord(0)
     assert StatusWord.READY not in eaton.status_flags(value)
-    assert eaton.fault_number(value) == eaton.FAULT_NONE
-    assert eaton.fault_text(eaton.fault_number(value)) == "No fault"
+    assert eaton.fault_number(value) == eaton_faults.FAULT_NONE
+    assert eaton_faults.fault_text(eaton.fault_number(value)) == "No fault"
 
 
 @pytest.mark.parametrize("text", [
@@ -273,7 +277,7 @@ MANUAL_FAULT_NUMBERS = (0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16
 
 
 def test_fault_numbers_are_those_of_the_table():
-    assert tuple(sorted(eaton.FAULTS)) == MANUAL_FAULT_NUMBERS
+    assert tuple(sorted(eaton_faults.FAULTS)) == MANUAL_FAULT_NUMBERS
 
 
 @pytest.mark.parametrize("code, words, display", [
@@ -287,27 +291,27 @@ def test_fault_numbers_are_those_of_the_table():
     (74, "table overflow", "PLC-05"),               # L916
 ])
 def test_fault_texts(code, words, display):
-    assert words.lower() in eaton.fault_text(code).lower()
-    assert eaton.fault_display(code) == display
+    assert words.lower() in eaton_faults.fault_text(code).lower()
+    assert eaton_faults.fault_display(code) == display
 
 
 @pytest.mark.parametrize("code", [27, 28, 36, 45, 54, 62, 75, 255])
 def test_numbers_missing_from_the_table_are_unknown(code):
-    assert eaton.fault_text(code) == f"unknown fault number {code}"
-    assert eaton.fault_display(code) == ""
+    assert eaton_faults.fault_text(code) == f"unknown fault number {code}"
+    assert eaton_faults.fault_display(code) == ""
 
 
 def test_fault_families_as_printed():
-    assert eaton.FAULTS[1].families == {DA1, DB1, DC1, DE1}      # L860
-    assert eaton.FAULTS[19].families == {DA1, DB1, DC1}          # L878
-    assert eaton.FAULTS[24].families == {DA1}                    # L890
-    assert eaton.FAULTS[50].families == {DA1, DB1, DC1}          # L906 (no DE1, A20)
-    assert DC1 in eaton.FAULTS[15].families                      # L874 names DC1 in its text (A20)
+    assert eaton_faults.FAULTS[1].families == {DA1, DB1, DC1, DE1}      # L860
+    assert eaton_faults.FAULTS[19].families == {DA1, DB1, DC1}          # L878
+    assert eaton_faults.FAULTS[24].families == {DA1}                    # L890
+    assert eaton_faults.FAULTS[50].families == {DA1, DB1, DC1}          # L906 (no DE1, A20)
+    assert DC1 in eaton_faults.FAULTS[15].families                      # L874 names DC1 in its text (A20)
 
 
 def test_comm_loss_fault_is_the_modbus_timeout():
-    assert eaton.COMM_LOSS_FAULT == 50
-    assert "Modbus" in eaton.fault_text(eaton.COMM_LOSS_FAULT)
+    assert eaton_faults.COMM_LOSS_FAULT == 50
+    assert "Modbus" in eaton_faults.fault_text(eaton_faults.COMM_LOSS_FAULT)
 
 
 # ---------------------------------------------------------------------------
@@ -330,31 +334,31 @@ def test_comm_loss_fault_is_the_modbus_timeout():
     ("P9-41", 941),     # L1525
 ])
 def test_da1_parameter_registers(number, register):
-    assert eaton.parameter_register(DA1, number) == register
+    assert eaton_parameters.parameter_register(DA1, number) == register
     group, index = int(number[1]), int(number[3:])
-    assert eaton.da1_parameter_register(group, index) == register
+    assert eaton_parameters.da1_parameter_register(group, index) == register
 
 
 @pytest.mark.parametrize("number", ["P1-15", "P2-41", "P3-19", "P4-14", "P5-18", "P6-31", "P7-18",
                                     "P8-14", "P9-42", "P1-00"])
 def test_da1_numbers_the_table_does_not_have(number):
     with pytest.raises(ValueError, match="not in the DA1 parameter table"):
-        eaton.parameter_register(DA1, number)
+        eaton_parameters.parameter_register(DA1, number)
 
 
 @pytest.mark.parametrize("number", ["P-01", "P10-01", "P1-001", "101", "P1.01"])
 def test_da1_numbers_of_the_wrong_form(number):
     with pytest.raises(ValueError, match="DA1 parameters are named"):
-        eaton.parameter_register(DA1, number)
+        eaton_parameters.parameter_register(DA1, number)
 
 
 def test_da1_p0_values_are_not_in_the_formula():
     with pytest.raises(ValueError, match="monitor_registers"):
-        eaton.parameter_register(DA1, "P0-01")
+        eaton_parameters.parameter_register(DA1, "P0-01")
 
 
 def test_every_da1_table_row_follows_group_times_100_plus_index():
-    rows = eaton.PARAMETERS[DA1]
+    rows = eaton_parameters.PARAMETERS[DA1]
     assert len(rows) == 203     # P1-01..P1-14, P2 40, P3 18, P4 13, P5 17, P6 30, P7 17, P8 13, P9 41
     for row in rows:
         group, index = int(row.number[1]), int(row.number[3:])
@@ -382,8 +386,8 @@ def test_every_da1_table_row_follows_group_times_100_plus_index():
     (DE1, "P-48", 176),     # L1957
 ])
 def test_compact_parameter_registers(family, number, register):
-    assert eaton.parameter_register(family, number) == register
-    assert eaton.compact_parameter_register(family, int(number[2:])) == register
+    assert eaton_parameters.parameter_register(family, number) == register
+    assert eaton_parameters.compact_parameter_register(family, int(number[2:])) == register
 
 
 @pytest.mark.parametrize("family, number", [
@@ -393,18 +397,18 @@ def test_compact_parameter_registers(family, number, register):
 ])
 def test_compact_numbers_the_table_does_not_have(family, number):
     with pytest.raises(ValueError, match=f"not in the {family.name} parameter table"):
-        eaton.parameter_register(family, number)
+        eaton_parameters.parameter_register(family, number)
 
 
 @pytest.mark.parametrize("family", [DB1, DC1, DE1])
 def test_compact_families_have_no_grouped_numbers(family):
     with pytest.raises(ValueError, match="named P-<n>"):
-        eaton.parameter_register(family, "P1-01")
+        eaton_parameters.parameter_register(family, "P1-01")
 
 
 def test_da1_has_no_compact_numbers():
     with pytest.raises(ValueError):
-        eaton.compact_parameter_register(DA1, 1)
+        eaton_parameters.compact_parameter_register(DA1, 1)
 
 
 @pytest.mark.parametrize("number, register", [
@@ -414,30 +418,30 @@ def test_da1_has_no_compact_numbers():
     ("P-58", 184),      # L1974: not 186 (A16)
 ])
 def test_de11_parameters(number, register):
-    assert eaton.parameter_register(DE1, number, de11=True) == register
+    assert eaton_parameters.parameter_register(DE1, number, de11=True) == register
 
 
 def test_de11_keeps_the_de1_parameters():
-    assert eaton.parameter_register(DE1, "P-48", de11=True) == 176
+    assert eaton_parameters.parameter_register(DE1, "P-48", de11=True) == 176
 
 
 @pytest.mark.parametrize("family", [DB1, DC1, DE1])
 def test_every_compact_table_row_is_128_plus_n(family):
-    for row in eaton.PARAMETERS[family]:
+    for row in eaton_parameters.PARAMETERS[family]:
         assert row.register == 128 + int(row.number[2:]), row
 
 
 def test_de11_rows_are_128_plus_n_but_for_p57_p58():
-    off_rule = {row.number: row.register for row in eaton.DE11_PARAMETERS
+    off_rule = {row.number: row.register for row in eaton_parameters.DE11_PARAMETERS
                 if row.register != 128 + int(row.number[2:])}
     assert off_rule == {"P-57": 183, "P-58": 184}
 
 
 def test_table_sizes():
-    assert len(eaton.PARAMETERS[DB1]) == 67     # P-01..P-68 without 52, 53, 57-59; 3 shared registers
-    assert len(eaton.PARAMETERS[DC1]) == 73     # + P-52, P-53, P-57, P-58, P-69, P-70
-    assert len(eaton.PARAMETERS[DE1]) == 48     # P-01..P-48
-    assert len(eaton.DE11_PARAMETERS) == 7
+    assert len(eaton_parameters.PARAMETERS[DB1]) == 67     # P-01..P-68 without 52, 53, 57-59; 3 shared registers
+    assert len(eaton_parameters.PARAMETERS[DC1]) == 73     # + P-52, P-53, P-57, P-58, P-69, P-70
+    assert len(eaton_parameters.PARAMETERS[DE1]) == 48     # P-01..P-48
+    assert len(eaton_parameters.DE11_PARAMETERS) == 7
 
 
 # ---------------------------------------------------------------------------
@@ -445,7 +449,7 @@ def test_table_sizes():
 # ---------------------------------------------------------------------------
 
 def rows(family, number, **kw):
-    return eaton.parameter_rows(family, number, **kw)
+    return eaton_parameters.parameter_rows(family, number, **kw)
 
 
 @pytest.mark.parametrize("family, number, raw, value, unit", [
@@ -505,30 +509,30 @@ def test_process_data_and_parameters_count_hertz_differently():
     assert eaton.SPEED.to_raw(50.0) == 500                       # L792
     assert eaton.PARAMETER_FREQUENCY.to_raw(50.0) == 3000        # L1287
     assert eaton.frequency_parameter_to_speed_raw(3000) == 500
-    assert eaton.DE1_FIXED_FREQUENCIES["FF1"][3] == 20.0
+    assert eaton_settings.DE1_FIXED_FREQUENCIES["FF1"][3] == 20.0
     assert eaton.PARAMETER_FREQUENCY.to_raw(20.0) == 1200
 
 
 @pytest.mark.parametrize("family, number, mode", [
-    (DA1, "P1-01", eaton.RUN),      # L1287
-    (DA1, "P1-12", eaton.STOP),     # L1298
-    (DA1, "P4-01", eaton.STOP),     # L1371
-    (DB1, "P-01", eaton.RUN),       # L1631
-    (DB1, "P-12", eaton.STOP),      # L1647
-    (DE1, "P-01", eaton.STOP),      # L1905 (A33)
-    (DE1, "P-13", eaton.RO),        # L1922
-    (DA1, "P3-14", eaton.RESERVED),     # L1366
-    (DA1, "P9-32", eaton.RESERVED),     # L1516
+    (DA1, "P1-01", eaton_parameters.RUN),      # L1287
+    (DA1, "P1-12", eaton_parameters.STOP),     # L1298
+    (DA1, "P4-01", eaton_parameters.STOP),     # L1371
+    (DB1, "P-01", eaton_parameters.RUN),       # L1631
+    (DB1, "P-12", eaton_parameters.STOP),      # L1647
+    (DE1, "P-01", eaton_parameters.STOP),      # L1905 (A33)
+    (DE1, "P-13", eaton_parameters.RO),        # L1922
+    (DA1, "P3-14", eaton_parameters.RESERVED),     # L1366
+    (DA1, "P9-32", eaton_parameters.RESERVED),     # L1516
 ])
 def test_parameter_modes(family, number, mode):
     row = rows(family, number)[0]
     assert row.mode == mode
-    assert row.writable == (mode in (eaton.RUN, eaton.STOP))
-    assert row.writable_in_run == (mode == eaton.RUN)
+    assert row.writable == (mode in (eaton_parameters.RUN, eaton_parameters.STOP))
+    assert row.writable_in_run == (mode == eaton_parameters.RUN)
 
 
 def test_signed_parameters():
-    assert rows(DA1, "P2-29")[0].format == eaton.S16             # L1336, -500.0 .. +500.0 %
+    assert rows(DA1, "P2-29")[0].format == eaton_parameters.S16             # L1336, -500.0 .. +500.0 %
     assert eaton.to_signed16(0xFFFF) == -1
     assert eaton.from_signed16(-5000) == 0xEC78                  # P2-35 lower limit -5000 (L1342)
     assert eaton.to_signed16(0xEC78) == -5000
@@ -629,10 +633,10 @@ def test_da1_user_registers():
 # ---------------------------------------------------------------------------
 
 def test_data_format_codes():
-    assert eaton.DATA_FORMATS[0] == ("N", 1)    # N-1 (L379)
-    assert eaton.DATA_FORMATS[1] == ("N", 2)    # N-2
-    assert eaton.DATA_FORMATS[2] == ("O", 1)    # O-1
-    assert eaton.DATA_FORMATS[3] == ("E", 1)    # E-1
+    assert eaton_settings.DATA_FORMATS[0] == ("N", 1)    # N-1 (L379)
+    assert eaton_settings.DATA_FORMATS[1] == ("N", 2)    # N-2
+    assert eaton_settings.DATA_FORMATS[2] == ("O", 1)    # O-1
+    assert eaton_settings.DATA_FORMATS[3] == ("E", 1)    # E-1
 
 
 @pytest.mark.parametrize("family, code, baud", [
@@ -642,11 +646,11 @@ def test_data_format_codes():
     (DE1, 0, 9600), (DE1, 3, 57600),            # P-35, 0 printed "960 Bit/s" (L437, A6)
 ])
 def test_baud_rate_codes(family, code, baud):
-    assert eaton.SERIAL_SETTINGS[family].baud_codes[code] == baud
+    assert eaton_settings.SERIAL_SETTINGS[family].baud_codes[code] == baud
 
 
 def test_db1_dc1_baud_codes_start_at_2():
-    assert set(eaton.SERIAL_SETTINGS[DB1].baud_codes) == {2, 3, 4, 5, 6}     # L399 (A4)
+    assert set(eaton_settings.SERIAL_SETTINGS[DB1].baud_codes) == {2, 3, 4, 5, 6}     # L399 (A4)
 
 
 @pytest.mark.parametrize("family, address, baud, data_format, baud_factory, format_factory", [
@@ -656,24 +660,26 @@ def test_db1_dc1_baud_codes_start_at_2():
     (DE1, "P-47", "P-35", "P-48", 4, 1),        # L437, L446-447 (A1, A5)
 ])
 def test_serial_settings(family, address, baud, data_format, baud_factory, format_factory):
-    settings = eaton.SERIAL_SETTINGS[family]
+    settings = eaton_settings.SERIAL_SETTINGS[family]
     assert (settings.address, settings.baud_rate, settings.data_format) == (address, baud, data_format)
     assert (settings.baud_factory, settings.data_format_factory) == (baud_factory, format_factory)
-    eaton.parameter_register(family, settings.address)      # every one is in its table
+    eaton_parameters.parameter_register(family, settings.address)      # every one is in its table
 
 
 def test_address_registers():
-    assert eaton.parameter_register(DA1, eaton.SERIAL_SETTINGS[DA1].address) == 501     # L377
-    assert eaton.parameter_register(DE1, eaton.SERIAL_SETTINGS[DE1].address) == 175     # L446
-    assert eaton.parameter_register(DE1, eaton.DE1_PDP_ADDRESS) == 162                  # L1943
+    assert eaton_parameters.parameter_register(DA1, eaton_settings.SERIAL_SETTINGS[DA1].address) == 501     # L377
+    assert eaton_parameters.parameter_register(DE1, eaton_settings.SERIAL_SETTINGS[DE1].address) == 175     # L446
+    assert eaton_parameters.parameter_register(DE1, eaton_settings.DE1_PDP_ADDRESS) == 162                  # L1943
 
 
 def test_da1_comm_loss_parameters():
-    assert eaton.parameter_register(DA1, eaton.DA1_COMM_TIMEOUT) == 505         # L387
-    assert eaton.parameter_register(DA1, eaton.DA1_COMM_LOSS_ACTION) == 506     # L388
-    assert eaton.DA1_COMM_TIMEOUT_SCALE.to_value(eaton.DA1_COMM_TIMEOUT_MAX) == 5.0     # "0.0 - 5.0" (L1395)
-    assert eaton.DA1_COMM_TIMEOUT_SCALE.to_value(eaton.DA1_COMM_TIMEOUT_FACTORY) == 2.0     # WE "2" (A7)
-    assert eaton.DA1_COMM_LOSS_ACTION_FACTORY == 0                              # WE 0 (L388)
+    assert eaton_parameters.parameter_register(DA1, eaton_settings.DA1_COMM_TIMEOUT) == 505         # L387
+    assert eaton_parameters.parameter_register(DA1, eaton_settings.DA1_COMM_LOSS_ACTION) == 506     # L388
+    assert eaton_settings.DA1_COMM_TIMEOUT_SCALE.to_value(
+        eaton_settings.DA1_COMM_TIMEOUT_MAX) == 5.0                                     # "0.0 - 5.0" (L1395)
+    assert eaton_settings.DA1_COMM_TIMEOUT_SCALE.to_value(
+        eaton_settings.DA1_COMM_TIMEOUT_FACTORY) == 2.0                                 # WE "2" (A7)
+    assert eaton_settings.DA1_COMM_LOSS_ACTION_FACTORY == 0                              # WE 0 (L388)
 
 
 @pytest.mark.parametrize("value, name", [
@@ -684,7 +690,7 @@ def test_da1_comm_loss_parameters():
 ])
 def test_da1_comm_loss_actions(value, name):
     assert Da1CommLossAction(value).name == name        # L388
-    assert eaton.parameter_register(DA1, "P2-08") == 208
+    assert eaton_parameters.parameter_register(DA1, "P2-08") == 208
 
 
 @pytest.mark.parametrize("code, timeout_ms, reaction", [
@@ -705,25 +711,25 @@ def test_comm_timeout_codes(code, timeout_ms, reaction):
 def test_comm_timeout_parameters_and_factory_codes():
     assert set(COMM_TIMEOUT_CODES) == set(range(9))
     for family in (DB1, DC1, DE1):
-        assert eaton.parameter_register(family, eaton.COMM_TIMEOUT_PARAMETER[family]) == 164
-    assert COMM_TIMEOUT_CODES[eaton.COMM_TIMEOUT_FACTORY_CODE[DC1]].timeout_ms == 3000    # "3000 ms" (A8)
-    assert eaton.COMM_TIMEOUT_FACTORY_CODE[DE1] == 0                                      # WE 0 (L445)
+        assert eaton_parameters.parameter_register(family, eaton_settings.COMM_TIMEOUT_PARAMETER[family]) == 164
+    assert COMM_TIMEOUT_CODES[eaton_settings.COMM_TIMEOUT_FACTORY_CODE[DC1]].timeout_ms == 3000    # "3000 ms" (A8)
+    assert eaton_settings.COMM_TIMEOUT_FACTORY_CODE[DE1] == 0                                      # WE 0 (L445)
 
 
 def test_second_loss_action_parameters():
-    assert eaton.parameter_register(DA1, eaton.COMM_LOSS_ACTION_PARAMETERS[DA1]) == 516     # L1406
-    assert eaton.parameter_register(DC1, eaton.COMM_LOSS_ACTION_PARAMETERS[DC1]) == 181     # L1848
-    assert eaton.parameter_register(DE1, eaton.COMM_LOSS_ACTION_PARAMETERS[DE1]) == 168     # L1949
-    assert DB1 not in eaton.COMM_LOSS_ACTION_PARAMETERS
+    assert eaton_parameters.parameter_register(DA1, eaton_settings.COMM_LOSS_ACTION_PARAMETERS[DA1]) == 516     # L1406
+    assert eaton_parameters.parameter_register(DC1, eaton_settings.COMM_LOSS_ACTION_PARAMETERS[DC1]) == 181     # L1848
+    assert eaton_parameters.parameter_register(DE1, eaton_settings.COMM_LOSS_ACTION_PARAMETERS[DE1]) == 168     # L1949
+    assert DB1 not in eaton_settings.COMM_LOSS_ACTION_PARAMETERS
 
 
 def test_modbus_control_sources():
-    assert eaton.MODBUS_CONTROL_SOURCES[DA1] == (4,)        # P1-12 = 4 (L376)
-    assert eaton.MODBUS_CONTROL_SOURCES[DC1] == (3, 4)      # P-12 = 3, 4 (L413)
-    assert eaton.MODBUS_CONTROL_SOURCES[DE1] == (3,)        # P-12 = 3 (L436)
-    assert eaton.parameter_register(DA1, eaton.CONTROL_SOURCE_PARAMETER[DA1]) == 112
-    assert eaton.parameter_register(DE1, eaton.CONTROL_SOURCE_PARAMETER[DE1]) == 140
-    assert eaton.parameter_register(DA1, eaton.DA1_FIELDBUS_RAMP_CONTROL) == 507     # L389
+    assert eaton_parameters.MODBUS_CONTROL_SOURCES[DA1] == (4,)        # P1-12 = 4 (L376)
+    assert eaton_parameters.MODBUS_CONTROL_SOURCES[DC1] == (3, 4)      # P-12 = 3, 4 (L413)
+    assert eaton_parameters.MODBUS_CONTROL_SOURCES[DE1] == (3,)        # P-12 = 3 (L436)
+    assert eaton_parameters.parameter_register(DA1, eaton_parameters.CONTROL_SOURCE_PARAMETER[DA1]) == 112
+    assert eaton_parameters.parameter_register(DE1, eaton_parameters.CONTROL_SOURCE_PARAMETER[DE1]) == 140
+    assert eaton_parameters.parameter_register(DA1, eaton_parameters.DA1_FIELDBUS_RAMP_CONTROL) == 507     # L389
 
 
 # ---------------------------------------------------------------------------
@@ -731,10 +737,10 @@ def test_modbus_control_sources():
 # ---------------------------------------------------------------------------
 
 def test_drive_variants():
-    assert eaton.DRIVE_VARIANTS[0] == ("kW", 3, 3)      # L970
-    assert eaton.DRIVE_VARIANTS[4] == ("kW", 1, 3)      # L974
-    assert eaton.DRIVE_VARIANTS[7] == ("HP", 1, 1)      # L977
-    assert list(eaton.DRIVE_VARIANT_VALUES[DB1]) == [0, 1, 2, 3, 4, 5]     # Table 14 (L1002-1007)
+    assert eaton_settings.DRIVE_VARIANTS[0] == ("kW", 3, 3)      # L970
+    assert eaton_settings.DRIVE_VARIANTS[4] == ("kW", 1, 3)      # L974
+    assert eaton_settings.DRIVE_VARIANTS[7] == ("HP", 1, 1)      # L977
+    assert list(eaton_settings.DRIVE_VARIANT_VALUES[DB1]) == [0, 1, 2, 3, 4, 5]     # Table 14 (L1002-1007)
 
 
 @pytest.mark.parametrize("family, frame, unit, index, power", [
@@ -748,13 +754,13 @@ def test_drive_variants():
     (DE1, "FS2", "HP", 4, 7.5),      # L1076
 ])
 def test_rated_power(family, frame, unit, index, power):
-    kw, hp = eaton.RATED_POWER[family][frame]
+    kw, hp = eaton_settings.RATED_POWER[family][frame]
     assert (kw if unit == "kW" else hp)[index] == power
 
 
 def test_da1_rating_id_fields():
     """P0-29 Rating ID: bits 0-3 power index, 4-7 unit, 8-11 voltage index, 12-15 frame size (L1216-1219)."""
-    assert eaton.decode_da1_rating_id(0x7215) == (5, 1, 2, 7)
+    assert eaton_settings.decode_da1_rating_id(0x7215) == (5, 1, 2, 7)
 
 
 # ---------------------------------------------------------------------------
@@ -768,13 +774,13 @@ def test_da1_rating_id_fields():
     (False, True, True, False),     # L, H = REV, Bit1 = 1 -> FWD
 ])
 def test_de1_direction_table(di1, di2, control_reverse, reverse):
-    assert eaton.de1_reverse(di1, di2, control_reverse) is reverse      # L606-609
+    assert eaton_settings.de1_reverse(di1, di2, control_reverse) is reverse      # L606-609
 
 
 @pytest.mark.parametrize("di1, di2", [(False, False), (True, True)])
 def test_de1_direction_outside_the_table(di1, di2):
     with pytest.raises(ValueError, match="Tabelle 9"):
-        eaton.de1_reverse(di1, di2, False)
+        eaton_settings.de1_reverse(di1, di2, False)
 
 
 @pytest.mark.parametrize("name, ff0, ff1, number, hz, register", [
@@ -784,5 +790,5 @@ def test_de1_direction_outside_the_table(di1, di2):
     ("FF4", True, True, "P-23", 50.0, 151),       # L628
 ])
 def test_de1_fixed_frequencies(name, ff0, ff1, number, hz, register):
-    assert eaton.DE1_FIXED_FREQUENCIES[name] == (ff0, ff1, number, hz)
-    assert eaton.parameter_register(DE1, number) == register       # L1929-1932
+    assert eaton_settings.DE1_FIXED_FREQUENCIES[name] == (ff0, ff1, number, hz)
+    assert eaton_parameters.parameter_register(DE1, number) == register       # L1929-1932
