@@ -40,7 +40,10 @@ from canopen.sdo import SdoAbortedError
 
 from . import pkw
 from ...io.canopen.cia301 import ABORT_ACCESS, ABORT_BAD_COMMAND, ABORT_DEVICE_STATE, ABORT_NO_OBJECT, ABORT_NO_SUBINDEX, ABORT_READ_ONLY, ABORT_VALUE_HIGH, ABORT_VALUE_LOW, ABORT_VALUE_RANGE, STATE_BOOTUP, STATE_OPERATIONAL
-from .registers import BIT_NOTES, CANOPEN_BAUD_CODES, GENERAL_CONFIG2_RESET_MODE_MASK, PKW_INDEX, REG_GENERAL_CONFIG_2, REG_NETWORK_BAUD_RATE, REG_NETWORK_FALLBACK, REG_NETWORK_PORT_STATUS, REG_NODE_ADDRESS, REG_OPERATING_MODE, REG_TRIP_CLASS, REG_TRIP_CODE, REGISTER_BLOCKS, REGISTERS, RPDO_MAPPABLE_INDICES, TPDO_MAPPABLE_INDICES, FallbackStrategy, ForbiddenRegisterError, NetworkPortStatus, OperatingMode, ResetMode, UnmappedRegisterError, fallback_allowed, object_to_register, pkw_read_only, register_to_object
+from .bits import GENERAL_CONFIG2_RESET_MODE_MASK, NetworkPortStatus
+from .codes import CANOPEN_BAUD_CODES, FallbackStrategy, OperatingMode, ResetMode, fallback_allowed
+from .profile import PKW_INDEX, RPDO_MAPPABLE_INDICES, TPDO_MAPPABLE_INDICES, pkw_read_only
+from .registers import BIT_NOTES, REG_GENERAL_CONFIG_2, REG_NETWORK_BAUD_RATE, REG_NETWORK_FALLBACK, REG_NETWORK_PORT_STATUS, REG_NODE_ADDRESS, REG_OPERATING_MODE, REG_TRIP_CLASS, REG_TRIP_CODE, REGISTER_BLOCKS, REGISTERS, ForbiddenRegisterError, UnmappedRegisterError, object_to_register, register_to_object
 from ...io.can.bus import BusSettings
 from ...io.canopen.slave import SimulatedCanopenSlave
 from .model import LtmrModel

@@ -13,6 +13,7 @@ from canopen.sdo.exceptions import SdoAbortedError
 from softplc.runtime.devices import fc280 as fc280_device, ltmr as ltmr_device
 from softplc.runtime.io.canopen import eds
 from softplc.runtime.plugin.registry import registry
+from softplc.runtime.devices.ltmr import bits as ltmr_bits
 from softplc.runtime.devices.ltmr import registers as ltmr
 from softplc.runtime.io.canopen.cia301 import ABORT_NO_OBJECT, ABORT_NO_SUBINDEX, ABORT_READ_ONLY
 
@@ -81,7 +82,7 @@ def test_every_register_is_a_sub_entry(od):
         assert entry.access_type == register.access
         assert entry.data_type == (datatypes.INTEGER16 if register.type == "Int" else datatypes.UNSIGNED16)
         assert entry.pdo_mappable == (index in (0x2004, 0x2007, 0x2008))
-        assert entry.default == ltmr.FACTORY_SETTINGS.get(reg, 0)
+        assert entry.default == ltmr_bits.FACTORY_SETTINGS.get(reg, 0)
 
 def test_forbidden_registers_are_absent_and_sub0_is_the_highest_sub_index(od):
     assert 0x62 not in od[0x2000] and 0x4B not in od[0x2004] and 0x0B not in od[0x2008]
@@ -113,7 +114,7 @@ def test_a_canopen_slave_serving_the_file_answers_with_the_manual_abort_codes(od
     assert err.value.code == ABORT_NO_OBJECT
     node.set_data(0x2007, 0x03, (50).to_bytes(2, "little"), check_writable=True)   # FLC1 := 50 %
     assert node.sdo[0x2007][3].raw == 50
-    assert node.sdo[0x2006][0x02].raw == ltmr.GeneralConfig1.CONFIG_VIA_NETWORK    # factory 601
+    assert node.sdo[0x2006][0x02].raw == ltmr_bits.GeneralConfig1.CONFIG_VIA_NETWORK    # factory 601
 
 def test_fc280_skeleton_loads():
     od = canopen.import_od(str(FC280_EDS), node_id=5)
