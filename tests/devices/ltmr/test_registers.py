@@ -10,9 +10,7 @@ from __future__ import annotations
 
 import pytest
 
-from softplc.runtime.devices.ltmr import profile as ltmr_profile
 from softplc.runtime.devices.ltmr import registers as ltmr
-from softplc.runtime.io.canopen.cia301 import split_mapping_entry
 from softplc.runtime.devices.ltmr.registers import ForbiddenRegisterError, REGISTERS, UnmappedRegisterError, object_to_register, register_to_object
 
 MANUAL_ROWS = (
@@ -655,16 +653,6 @@ def test_register_constants_name_the_right_registers():
     }
     for reg, name in expected.items():
         assert REGISTERS[reg].name == name
-
-
-def test_pdo1_defaults_name_registers_704_703_700_and_455_456_457_459():
-    # A2: RPDO1 word 2 is 2008:04 = 703 (printed "Reg [706]"), reserved either way
-    rx = [object_to_register(*split_mapping_entry(e)[:2]) for e in ltmr_profile.RPDO1_DEFAULT]
-    assert rx == [704, 703, 700] and REGISTERS[703].kind == REGISTERS[706].kind == "reserved"
-    # A1: TPDO1 word 4 is 2004:0A = 459 I/O status (the overview table says 458)
-    tx = [object_to_register(*split_mapping_entry(e)[:2]) for e in ltmr_profile.TPDO1_DEFAULT]
-    assert tx == [455, 456, 457, 459]
-    assert all(split_mapping_entry(e)[2] == 16 for e in ltmr_profile.RPDO1_DEFAULT + ltmr_profile.TPDO1_DEFAULT)
 
 
 def test_register_labels_are_unique_ascii():
