@@ -102,6 +102,15 @@ ILLEGAL_DATA_ADDRESS = 2
 ILLEGAL_DATA_VALUE = 3
 
 
+def _scale(row: eaton_parameters.Parameter) -> eaton.Scale:
+    """The linear scale of a parameter the model computes with (every one
+    _NAMES names has one); ValueError for a row whose scaling is not one."""
+    scale = row.scale
+    if scale is None:
+        raise ValueError(f"{row.number} {row.name}: {row.scaling!r} is not one linear scale")
+    return scale
+
+
 def _allowed_values(row: eaton_parameters.Parameter):
     """(lowest, highest) or a set of the raw values a parameter row accepts,
     None where its printed range is not a plain integer one."""
@@ -164,15 +173,15 @@ class EatonDriveModel:
 
     # ------------------------------------------------------------------ defaults
 
-    def _name(self, key: str) -> str | None:
-        return _NAMES[self.family].get(key)
+    def _name(self, key: str) -> str:
+        return _NAMES[self.family][key]
 
     def _row(self, number: str, keyword: str = "") -> eaton_parameters.Parameter:
         """The table row of a parameter; of a shared register (DB1/DC1 P-36)
         the field whose name contains keyword."""
         rows = eaton_parameters.parameter_rows(self.family, number, de11=self.de11)
         if len(rows) > 1:
-            rows = [r for r in rows if keyword.lower() in r.name.lower()]
+            rows = tuple(r for r in rows if keyword.lower() in r.name.lower())
         return rows[0]
 
     def _param(self, number: str, keyword: str = "") -> int:
@@ -185,7 +194,7 @@ class EatonDriveModel:
 
     def _set_scaled(self, key: str, value) -> None:
         row = self._row(self._name(key))
-        self._set_param(row.number, row.scale.to_raw(value))
+        self._set_param(row.number, _scale(row).to_raw(value))
 
     def _defaults(self) -> None:
         """Simulator defaults: Modbus control, 0..50 Hz, 5 s ramps, the comm
@@ -516,7 +525,7 @@ class EatonDriveModel:
 
     def _hz(self, key: str) -> Fraction:
         row = self._row(self._name(key))
-        return row.scale.step * row.extract(self._regs[row.register])
+        return _scale(row).step * row.extract(self._regs[row.register])
 
     def _setpoint(self) -> Fraction:
         """ID 2 in 0.1 Hz (L792) limited to f-min..f-max (L784-790); FF1
@@ -548,7 +557,7 @@ class EatonDriveModel:
                 return eaton.da1_ramp_scale(frame)
             except ValueError:
                 return eaton.da1_ramp_scale(DA1_FRAME_SIZE)
-        return self._row(self._name("quick")).scale
+        return _scale(self._row(self._name("quick")))
 
     def _bus_ramps(self) -> bool:
         """ID 4 replaces both ramps: DA1 P5-07 = 1 (L389), DB1/DC1 P-12 = 4 (L397, L413)."""
@@ -566,7 +575,7 @@ class EatonDriveModel:
             row = self._row(self._name("quick"))
             return self._quick_scale().step * row.extract(self._regs[row.register])
         row = self._row(self._name(key))
-        return row.scale.step * row.extract(self._regs[row.register])
+        return _scale(row).step * row.extract(self._regs[row.register])
 
     def _rate(self, key: str) -> Fraction | None:
         """Hz per ns; None = no ramp (a ramp time of 0 or an f-max of 0). A
@@ -595,7 +604,7 @@ class EatonDriveModel:
                 limit, rate = target, self._rate("accel")
             distance = abs(limit - out)
             needed = Fraction(0) if rate is None else distance / rate
-            if needed <= dt:
+            if rate is None or needed <= dt:        # no ramp: there at once
                 self._out = limit
                 dt -= needed
             else:
@@ -642,7 +651,7 @@ class EatonDriveModel:
         rated_hz = self._rated_hz()
         load = min(speed / rated_hz, Fraction(2)) if rated_hz else Fraction(0)
         if self._modulating:
-            rated_a = self._row(self._name("current")).scale.step * self._param(self._name("current"))
+            rated_a = _scale(self._row(self._name("current"))).step * self._param(self._name("current"))
             current = rated_a * (MAGNETISING_CURRENT_RATIO + (1 - MAGNETISING_CURRENT_RATIO) * load)
             torque = 100 * load
         else:
@@ -657,4 +666,4 @@ class EatonDriveModel:
 
     def _rated_hz(self) -> Fraction:
         row = self._row(self._name("frequency"))
-        return row.scale.step * row.extract(self._regs[row.register])
+        return _scale(row).step * row.extract(self._regs[row.register])

@@ -53,7 +53,8 @@ def decode_datetime(words) -> _dt.datetime:
                  hour=_from_bcd(hour_minute >> 8, "hour"), minute=_from_bcd(hour_minute & 0xFF, "minute"),
                  second=_from_bcd(seconds_word >> 8, "second"))
     try:
-        value = _dt.datetime(**parts)
+        value = _dt.datetime(parts["year"], parts["month"], parts["day"],
+                             parts["hour"], parts["minute"], parts["second"])
     except ValueError as exc:
         raise ValueError(f"DT_DateTime {parts} is not a valid date and time: {exc}") from None
     if not DATETIME_MIN <= value <= DATETIME_MAX:

@@ -323,7 +323,7 @@ class LtmrModel:
             if self.t_ns >= now_ns:
                 break
             dt = min(now_ns - self.t_ns, MAX_STEP_NS)
-            if self.starting:
+            if self._start_end_ns is not None and self.starting:
                 dt = min(dt, self._start_end_ns - self.t_ns)     # the inrush ends on time
             self._heat(dt)
             self.t_ns += dt
@@ -349,7 +349,7 @@ class LtmrModel:
     # ------------------------------------------------------------------ commands -> outputs
 
     def _apply_commands(self) -> None:
-        now = self.t_ns
+        now = self.t_ns or 0
         control = self.registers[REG_CONTROL_1]
         rising = control & ~self._previous_control
         self._previous_control = control
@@ -463,7 +463,7 @@ class LtmrModel:
         if strategy == FallbackStrategy.HOLD:
             return self._held
         if strategy == FallbackStrategy.RUN:       # two-step only: as if the run command stayed
-            return self._two_step(True, self.t_ns)
+            return self._two_step(True, self.t_ns or 0)
         if strategy == FallbackStrategy.BOTH_ON:
             return True, True
         if strategy == FallbackStrategy.LO1_ON:
@@ -481,7 +481,7 @@ class LtmrModel:
         self.lo1, self.lo2 = bool(lo1), bool(lo2)
         after = self._motor_output()
         if after and after != before:              # a (new) start: inrush
-            self._start_end_ns = self.t_ns + START_DURATION_NS
+            self._start_end_ns = (self.t_ns or 0) + START_DURATION_NS
             self._running_since_ns = self.t_ns
             self._count_udint(REG_MOTOR_STARTS_COUNT)
         elif not after:

@@ -76,7 +76,9 @@ class LtmrSimulator(SimulatedCanopenSlave):
             super().__init__(node_id, eds=str(path), settings=settings, clock=clock, pump=pump,
                              name=name or f"ltmr {node_id}")
         self.product_code = product_code
-        identity = self.od[PRODUCT_CODE_OBJECT[0]][PRODUCT_CODE_OBJECT[1]]
+        identity = self.od.get_variable(*PRODUCT_CODE_OBJECT)
+        if identity is None:
+            raise KeyError(f"the EDS has no product code 0x{PRODUCT_CODE_OBJECT[0]:04X}:{PRODUCT_CODE_OBJECT[1]:02X}")
         identity.default = product_code                        # L1034-1050
         if identity.value is not None:
             identity.value = product_code

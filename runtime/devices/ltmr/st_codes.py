@@ -68,7 +68,7 @@ def _enum_lines() -> list:
 
 def _case_branches(function: str, codes: dict) -> list:
     """CASE branches, consecutive codes with the same text joined into a range (100..104)."""
-    runs = []
+    runs: list[list[int]] = []
     for code in sorted(codes):
         if runs and runs[-1][1] == code - 1 and codes[runs[-1][0]] == codes[code]:
             runs[-1][1] = code
