@@ -150,7 +150,7 @@ class EatonDriveModel:
             readable.update(eaton.DA1_USER_REGISTERS)
             self._writable.update(eaton.DA1_USER_REGISTERS)
         # the written process data read back as written (simulator choice)
-        self._regs = {r: 0 for r in readable | self._writable | set(self._rows)}
+        self._regs = dict.fromkeys(readable | self._writable | set(self._rows), 0)
         self._defaults()
         for number, value in (registers or {}).items():
             if number not in self._regs:

@@ -144,14 +144,14 @@ class Scale:
     unit: str = ""
 
     @classmethod
-    def of(cls, raw: int, value, unit: str = "") -> "Scale":
+    def of(cls, raw: int, value, unit: str = "") -> Scale:
         """Scale.of(3000, "50.0", "Hz") for "3000 ≙ 50.0 Hz"."""
         return cls(Fraction(str(value)) / raw, unit)
 
     _NOTATION = re.compile(r"^(-?\d+) ≙ (-?\d+(?:\.\d+)?) ?([^≙]*)$")
 
     @classmethod
-    def parse(cls, text: str) -> "Scale | None":
+    def parse(cls, text: str) -> Scale | None:
         """The scale of a table's "Skalierung" cell when it is one linear
         "raw ≙ value unit"; None for anything else (codes, special values,
         frame-size dependent steps, an empty cell)."""

@@ -17,11 +17,9 @@ test regenerates the file and compares it with the shipped one.
 """
 from __future__ import annotations
 
-from pathlib import Path
-
+from ..st_text import st_string, vendor_file
 from . import faults as eaton_faults
 from . import registers as eaton
-from ..st_text import st_string, vendor_file
 
 ST_FILE = vendor_file("eaton_codes.st")
 FAULT_TEXT_LENGTH = 120     # the longest cause in Tabelle 11 is 87 characters

@@ -141,7 +141,7 @@ TRIP_CODES = {
     65: "Expansion module communication detected error",
     66: "Stuck reset button",
     67: "Logic function detected error",
-    **{code: "Network port internal detected error" for code in range(100, 105)},   # printed "100-104"
+    **dict.fromkeys(range(100, 105), "Network port internal detected error"),   # printed "100-104"
     109: "Network port comm detected error",
     111: "Fast device replacement trip",
     555: "Network port configuration detected error",

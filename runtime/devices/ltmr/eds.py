@@ -2,8 +2,21 @@
 of manual 001 (registers.py, bits.py) and its communication profile (profile.py)."""
 from __future__ import annotations
 
-from ...io.canopen.eds import (INTEGER16, UNSIGNED8, UNSIGNED16, UNSIGNED32, VISIBLE_STRING, EdsFile, EdsObject,
-                               Entry, compound, pdo_communication, pdo_mapping, sdo_server, var)
+from ...io.canopen.eds import (
+    INTEGER16,
+    UNSIGNED8,
+    UNSIGNED16,
+    UNSIGNED32,
+    VISIBLE_STRING,
+    EdsFile,
+    EdsObject,
+    Entry,
+    compound,
+    pdo_communication,
+    pdo_mapping,
+    sdo_server,
+    var,
+)
 from . import bits as ltmr_bits
 from . import profile as ltmr_profile
 from . import registers as ltmr

@@ -17,7 +17,6 @@ one.
 from __future__ import annotations
 
 import enum
-from pathlib import Path
 
 from ..st_text import st_string, vendor_file
 from . import bits as ltmr_bits

@@ -10,8 +10,10 @@ from softplc.runtime.devices.eaton import faults as eaton_faults
 from softplc.runtime.devices.eaton import parameters as eaton_parameters
 from softplc.runtime.devices.eaton import registers as eaton
 from softplc.runtime.devices.eaton import settings as eaton_settings
-from softplc.runtime.devices.eaton.registers import ControlWord as CW, Family, StatusWord as SW
 from softplc.runtime.devices.eaton.model import EatonDriveModel, ModbusRefusal
+from softplc.runtime.devices.eaton.registers import ControlWord as CW
+from softplc.runtime.devices.eaton.registers import Family
+from softplc.runtime.devices.eaton.registers import StatusWord as SW
 
 S = 1_000_000_000
 POLL = 100_000_000          # the master's telegram period while "polling"

@@ -6,7 +6,15 @@ import pytest
 
 from softplc.runtime.devices.ltmr import bits as ltmr_bits
 from softplc.runtime.devices.ltmr import registers as ltmr
-from softplc.runtime.devices.ltmr.bits import AlarmRegister1, Control1, Control2, GeneralConfig1, Status1, Status2, TripRegister1
+from softplc.runtime.devices.ltmr.bits import (
+    AlarmRegister1,
+    Control1,
+    Control2,
+    GeneralConfig1,
+    Status1,
+    Status2,
+    TripRegister1,
+)
 
 # ---------------------------------------------------------------------------
 # Bits (register tables)

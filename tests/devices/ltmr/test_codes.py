@@ -17,7 +17,8 @@ def test_operating_modes():
     assert [m.value for m in OperatingMode] == list(range(2, 12))
     assert OperatingMode.TWO_STEP_3W == 9 and OperatingMode.REVERSER_2W == 6
     assert ltmr_codes.is_custom_logic(256) and ltmr_codes.is_custom_logic(511)
-    assert not ltmr_codes.is_custom_logic(255) and not ltmr_codes.is_custom_logic(512) and not ltmr_codes.is_custom_logic(11)
+    assert not ltmr_codes.is_custom_logic(255) and not ltmr_codes.is_custom_logic(512) \
+        and not ltmr_codes.is_custom_logic(11)
 
 
 OVERLOAD, INDEPENDENT, REVERSER, TWO_STEP, TWO_SPEED, CUSTOM = 2, 5, 6, 9, 10, 300
@@ -92,7 +93,7 @@ MANUAL_ALARM_CODES = {
 
 def test_trip_codes_as_printed_with_100_104_expanded():
     expected = dict(MANUAL_TRIP_CODES)
-    expected.update({code: "Network port internal detected error" for code in range(100, 105)})   # "100-104"
+    expected.update(dict.fromkeys(range(100, 105), "Network port internal detected error"))   # "100-104"
     assert ltmr_codes.TRIP_CODES == expected
 
 
@@ -102,7 +103,8 @@ def test_alarm_codes_as_printed():
 
 def test_code_texts():
     assert ltmr_codes.trip_text(ltmr_codes.TRIP_THERMAL_OVERLOAD) == "Thermal overload"
-    assert ltmr_codes.trip_text(ltmr_codes.TRIP_TEST) == "Test" and ltmr_codes.alarm_text(10) == "HMI port"   # same number, two meanings
+    assert ltmr_codes.trip_text(ltmr_codes.TRIP_TEST) == "Test" \
+        and ltmr_codes.alarm_text(10) == "HMI port"                   # same number, two meanings
     assert ltmr_codes.trip_text(ltmr_codes.TRIP_NETWORK_COMM) == "Network port comm detected error"
     assert ltmr_codes.alarm_text(ltmr_codes.ALARM_NETWORK_COMM) == "Network port comm loss"
     assert ltmr_codes.alarm_text(ltmr_codes.ALARM_THERMAL_OVERLOAD) == "Thermal overload"

@@ -59,7 +59,8 @@ def test_invalid_datetime_words_are_errors(words, why):
 
 
 def test_datetime_drops_fractions_of_a_second():
-    assert ltmr_datatypes.encode_datetime(dt.datetime(2008, 9, 4, 7, 50, 32, 999_000)) == (0x3200, 0x0750, 0x0904, 0x2008)
+    assert ltmr_datatypes.encode_datetime(dt.datetime(2008, 9, 4, 7, 50, 32, 999_000)) \
+        == (0x3200, 0x0750, 0x0904, 0x2008)
 
 
 # ---------------------------------------------------------------------------
@@ -80,7 +81,8 @@ def test_commercial_reference_round_trip_and_limits():
     words = ltmr_datatypes.encode_commercial_reference("LTMR08CFM")
     assert len(words) == 6 and words[0] == 0x4C54
     assert ltmr_datatypes.decode_commercial_reference(words) == "LTMR08CFM"
-    assert ltmr_datatypes.decode_commercial_reference(ltmr_datatypes.encode_commercial_reference("ABCDEFGHIJKL")) == "ABCDEFGHIJKL"
+    assert ltmr_datatypes.decode_commercial_reference(
+        ltmr_datatypes.encode_commercial_reference("ABCDEFGHIJKL")) == "ABCDEFGHIJKL"
     with pytest.raises(ValueError):
         ltmr_datatypes.encode_commercial_reference("ABCDEFGHIJKLM")
     with pytest.raises(ValueError):
@@ -112,7 +114,8 @@ def test_udint_other_word_order():
 
 def test_signed_registers():
     assert ltmr_datatypes.int16(0xFFF6) == -10         # 472 controller internal temperature -10 °C
-    assert ltmr_datatypes.int16(0x7FFF) == 32767 and ltmr_datatypes.int16(0x8000) == -32768 and ltmr_datatypes.int16(25) == 25
+    assert ltmr_datatypes.int16(0x7FFF) == 32767 and ltmr_datatypes.int16(0x8000) == -32768 \
+        and ltmr_datatypes.int16(25) == 25
     assert ltmr_datatypes.dint_from_registers(0xFFFF, 0xFFFE) == -2
     assert ltmr.REGISTERS[472].type == "Int" and ltmr.REGISTERS[472].signed
 

@@ -10,12 +10,13 @@ import pytest
 from canopen.objectdictionary import datatypes
 from canopen.sdo.exceptions import SdoAbortedError
 
-from softplc.runtime.devices import fc280 as fc280_device, ltmr as ltmr_device
-from softplc.runtime.io.canopen import eds
-from softplc.runtime.plugin.registry import registry
+from softplc.runtime.devices import fc280 as fc280_device
+from softplc.runtime.devices import ltmr as ltmr_device
 from softplc.runtime.devices.ltmr import bits as ltmr_bits
 from softplc.runtime.devices.ltmr import registers as ltmr
+from softplc.runtime.io.canopen import eds
 from softplc.runtime.io.canopen.cia301 import ABORT_NO_OBJECT, ABORT_NO_SUBINDEX, ABORT_READ_ONLY
+from softplc.runtime.plugin.registry import registry
 
 EDS_DIR = Path(__file__).resolve().parents[3] / "io_config" / "eds"
 LTMR_EDS = EDS_DIR / "ltmr.eds"
@@ -70,7 +71,7 @@ def test_communication_objects(od):
     assert (od[0x100C].default, od[0x100D].default) == (0, 0)
     assert od[0x1004][0].default == 0x00040004
     assert (od[0x1008].default, od[0x1009].default, od[0x100A].default) == ("LTM", "M1.0-ES1.0", "V01.01")
-    assert od[0x1003][0].access_type == "rw" and len([s for s in od[0x1003]]) == 6
+    assert od[0x1003][0].access_type == "rw" and len(list(od[0x1003])) == 6
 
 def test_every_register_is_a_sub_entry(od):
     for reg, register in ltmr.REGISTERS.items():
@@ -86,7 +87,7 @@ def test_every_register_is_a_sub_entry(od):
 
 def test_forbidden_registers_are_absent_and_sub0_is_the_highest_sub_index(od):
     assert 0x62 not in od[0x2000] and 0x4B not in od[0x2004] and 0x0B not in od[0x2008]
-    for first, last, index in ltmr.REGISTER_BLOCKS:
+    for _first, _last, index in ltmr.REGISTER_BLOCKS:
         subs = [s for s in od[index] if s]
         assert od[index][0].default == max(subs)
     assert od[0x2004][0].default == 0x4A and od[0x200D][0].default == 0xC8

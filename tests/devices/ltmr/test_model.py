@@ -12,7 +12,16 @@ import pytest
 from softplc.runtime.devices.ltmr import codes as ltmr_codes
 from softplc.runtime.devices.ltmr import datatypes as ltmr_datatypes
 from softplc.runtime.devices.ltmr import registers as ltmr
-from softplc.runtime.devices.ltmr.bits import AlarmEnable1, AlarmRegister1, Control1, Control2, Status1, Status2, TripEnable1, TripRegister1
+from softplc.runtime.devices.ltmr.bits import (
+    AlarmEnable1,
+    AlarmRegister1,
+    Control1,
+    Control2,
+    Status1,
+    Status2,
+    TripEnable1,
+    TripRegister1,
+)
 from softplc.runtime.devices.ltmr.codes import FallbackStrategy, OperatingMode, ResetMode
 from softplc.runtime.devices.ltmr.model import LtmrModel
 

@@ -2,9 +2,9 @@
 master to the simulated LTMR on the virtual bus, in virtual time."""
 from __future__ import annotations
 
-import pytest
-
 from pathlib import Path
+
+import pytest
 
 from softplc.runtime.devices.ltmr import bits as ltmr_bits
 from softplc.runtime.devices.ltmr import codes as ltmr_codes

@@ -13,10 +13,25 @@ from softplc.runtime.devices.ltmr import bits as ltmr_bits
 from softplc.runtime.devices.ltmr import codes as ltmr_codes
 from softplc.runtime.devices.ltmr import pkw
 from softplc.runtime.devices.ltmr import registers as ltmr
-from softplc.runtime.io.canopen.cia301 import ABORT_ACCESS, ABORT_BAD_COMMAND, ABORT_DEVICE_STATE, ABORT_NO_OBJECT, ABORT_NO_SUBINDEX, ABORT_NOT_MAPPABLE, ABORT_READ_ONLY, ABORT_VALUE_RANGE, NMT_PRE_OPERATIONAL, NMT_START, NMT_STOP, STATE_OPERATIONAL, STATE_PRE_OPERATIONAL, STATE_STOPPED
 from softplc.runtime.devices.ltmr.bits import Status1, Status2, TripEnable1, TripRegister1
 from softplc.runtime.devices.ltmr.codes import FallbackStrategy, OperatingMode, ResetMode
 from softplc.runtime.devices.ltmr.sim import shipped_eds
+from softplc.runtime.io.canopen.cia301 import (
+    ABORT_ACCESS,
+    ABORT_BAD_COMMAND,
+    ABORT_DEVICE_STATE,
+    ABORT_NO_OBJECT,
+    ABORT_NO_SUBINDEX,
+    ABORT_NOT_MAPPABLE,
+    ABORT_READ_ONLY,
+    ABORT_VALUE_RANGE,
+    NMT_PRE_OPERATIONAL,
+    NMT_START,
+    NMT_STOP,
+    STATE_OPERATIONAL,
+    STATE_PRE_OPERATIONAL,
+    STATE_STOPPED,
+)
 
 from ...io.canopen.bench import MS, abort_frame, write_ok
 
