@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import pytest
 
+from softplc.runtime.devices.eaton import faults as eaton_faults
+from softplc.runtime.devices.eaton import parameters as eaton_parameters
 from softplc.runtime.devices.eaton import registers as eaton
 from softplc.runtime.devices.eaton import st_codes as eaton_st_codes
 
@@ -27,9 +29,9 @@ def bench():
 def _every_parameter():
     for id17, (family, model) in eaton.DEVICE_IDENTIFICATION.items():
         de11 = model == "DE11"
-        rows = eaton.PARAMETERS[family] + (eaton.DE11_PARAMETERS if de11 else ())
+        rows = eaton_parameters.PARAMETERS[family] + (eaton_parameters.DE11_PARAMETERS if de11 else ())
         for number in sorted({row.number for row in rows}):
-            yield id17, number, eaton.parameter_register(family, number, de11=de11)
+            yield id17, number, eaton_parameters.parameter_register(family, number, de11=de11)
 
 
 def test_parameter_names_give_the_manuals_registers(bench):
@@ -65,8 +67,8 @@ def test_unknown_id17_is_family_0(bench):
 @pytest.mark.parametrize("code", [4, 50, 25, 74])
 def test_fault_texts(bench, code):
     bench.step(code=code)
-    assert bench["text"] == eaton.fault_text(code)
-    assert bench["display"] == eaton.fault_display(code)
+    assert bench["text"] == eaton_faults.fault_text(code)
+    assert bench["display"] == eaton_faults.fault_display(code)
 
 
 def test_unknown_fault_number(bench):

@@ -1,9 +1,12 @@
 """Eaton PowerXL DA1, DB1, DC1 drives and DE1 speed starter on Modbus RTU
 (manual 002, digest 002).
 
-    registers.py  families (ID 17), process data and scaling, control and
-                  status words, faults, parameter registers, comm-loss settings
-    st_codes.py   fblocks/vendor/eaton_codes.st from those tables
+    registers.py  families (ID 17), addressing, scaling, process data and
+                  monitor values, control and status words
+    faults.py     the fault numbers of Tabelle 11
+    parameters.py the parameter tables (Tabellen 20-24) and their registers
+    settings.py   serial line, comm loss, drive variants and ratings, DE1 terminals
+    st_codes.py   fblocks/vendor/eaton_codes.st from registers.py and faults.py
     model.py      a drive as a Modbus slave sees it: ramps, faults, watchdog
 ST blocks: fblocks/vendor/eaton.st (DA1_DRIVE, EATON_PARAMETER). Simulated
 drives are units of a simulated Modbus line ([[sim]] type da1 ... de11).

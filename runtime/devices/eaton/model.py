@@ -13,10 +13,10 @@ entry point takes the time in nanoseconds and the model integrates up to it.
 The Modbus server wrapper calls telegram(now) for every request addressed to
 this unit, then read/write; it raises ModbusRefusal's code as the exception
 response (io/modbus/unit.py). Everything about registers, scales and codes
-comes from registers.py; the behaviour from manual 002
-(shared/manuals/002_a23ab2a6587941cb.txt, "L<n>") and its digest
-(shared/digests/002_eaton_modbus.md, "§", ambiguities "A<n>"). Where the
-manual is silent the code says "simulator choice".
+comes from registers.py, faults.py, parameters.py and settings.py; the
+behaviour from manual 002 (shared/manuals/002_a23ab2a6587941cb.txt, "L<n>")
+and its digest (shared/digests/002_eaton_modbus.md, "§", ambiguities "A<n>").
+Where the manual is silent the code says "simulator choice".
 
 Motion: the output frequency moves linearly at the ramp rate, integrated
 exactly in rational arithmetic, split at the instants where something
@@ -30,7 +30,10 @@ import re
 from fractions import Fraction
 
 from ...io.modbus.unit import ModbusRefusal
+from . import faults as eaton_faults
+from . import parameters as eaton_parameters
 from . import registers as eaton
+from . import settings as eaton_settings
 from .registers import ControlWord, Family, StatusWord
 
 S = 1_000_000_000
@@ -70,7 +73,7 @@ HEATSINK_TEMPERATURE_C = 30         # monitor register 24
 # proportional to speed (a fan-like load), power = rated power x torque x speed.
 MAGNETISING_CURRENT_RATIO = Fraction(3, 10)
 
-# Parameters the model acts on, by parameter number (eaton.parameter_register
+# Parameters the model acts on, by parameter number (eaton_parameters.parameter_register
 # finds their registers). DE1 has no quick-stop ramp: simulator choice, it
 # uses its deceleration ramp P-04. DB1/DC1 P-13 "Letzter Fehler" (L1648)
 # shows the last fault; the DA1 has it in P0-13, without a register.
@@ -99,10 +102,19 @@ ILLEGAL_DATA_ADDRESS = 2
 ILLEGAL_DATA_VALUE = 3
 
 
-def _allowed_values(row: eaton.Parameter):
+def _scale(row: eaton_parameters.Parameter) -> eaton.Scale:
+    """The linear scale of a parameter the model computes with (every one
+    _NAMES names has one); ValueError for a row whose scaling is not one."""
+    scale = row.scale
+    if scale is None:
+        raise ValueError(f"{row.number} {row.name}: {row.scaling!r} is not one linear scale")
+    return scale
+
+
+def _allowed_values(row: eaton_parameters.Parameter):
     """(lowest, highest) or a set of the raw values a parameter row accepts,
     None where its printed range is not a plain integer one."""
-    if row.scaling not in ("", eaton.ONE):
+    if row.scaling not in ("", eaton_parameters.ONE):
         return None
     text = row.range
     if match := _SPAN.match(text):
@@ -122,7 +134,7 @@ class EatonDriveModel:
     def __init__(self, family: Family, *, de11: bool = False, registers: dict[int, int] | None = None) -> None:
         self.family = Family(family)
         self.de11 = bool(de11) and self.family is Family.DE1
-        rows = eaton.PARAMETERS[self.family] + (eaton.DE11_PARAMETERS if self.de11 else ())
+        rows = eaton_parameters.PARAMETERS[self.family] + (eaton_parameters.DE11_PARAMETERS if self.de11 else ())
         self._rows: dict[int, list] = {}
         for row in rows:
             self._rows.setdefault(row.register, []).append(row)
@@ -138,7 +150,7 @@ class EatonDriveModel:
             readable.update(eaton.DA1_USER_REGISTERS)
             self._writable.update(eaton.DA1_USER_REGISTERS)
         # the written process data read back as written (simulator choice)
-        self._regs = {r: 0 for r in readable | self._writable | set(self._rows)}
+        self._regs = dict.fromkeys(readable | self._writable | set(self._rows), 0)
         self._defaults()
         for number, value in (registers or {}).items():
             if number not in self._regs:
@@ -146,7 +158,7 @@ class EatonDriveModel:
             self._regs[number] = int(value) & 0xFFFF
 
         self._di1 = True
-        self.fault = eaton.FAULT_NONE
+        self.fault = eaton_faults.FAULT_NONE
         self._now: int | None = None
         self._out = Fraction(0)             # output frequency in Hz, negative = reverse
         self._modulating = False            # the output stage is on (status RUNNING)
@@ -161,15 +173,15 @@ class EatonDriveModel:
 
     # ------------------------------------------------------------------ defaults
 
-    def _name(self, key: str) -> str | None:
-        return _NAMES[self.family].get(key)
+    def _name(self, key: str) -> str:
+        return _NAMES[self.family][key]
 
-    def _row(self, number: str, keyword: str = "") -> eaton.Parameter:
+    def _row(self, number: str, keyword: str = "") -> eaton_parameters.Parameter:
         """The table row of a parameter; of a shared register (DB1/DC1 P-36)
         the field whose name contains keyword."""
-        rows = eaton.parameter_rows(self.family, number, de11=self.de11)
+        rows = eaton_parameters.parameter_rows(self.family, number, de11=self.de11)
         if len(rows) > 1:
-            rows = [r for r in rows if keyword.lower() in r.name.lower()]
+            rows = tuple(r for r in rows if keyword.lower() in r.name.lower())
         return rows[0]
 
     def _param(self, number: str, keyword: str = "") -> int:
@@ -182,19 +194,20 @@ class EatonDriveModel:
 
     def _set_scaled(self, key: str, value) -> None:
         row = self._row(self._name(key))
-        self._set_param(row.number, row.scale.to_raw(value))
+        self._set_param(row.number, _scale(row).to_raw(value))
 
     def _defaults(self) -> None:
         """Simulator defaults: Modbus control, 0..50 Hz, 5 s ramps, the comm
         timeout at its factory value. Parameters not named here are 0."""
         family = self.family
-        self._set_param(eaton.CONTROL_SOURCE_PARAMETER[family], eaton.MODBUS_CONTROL_SOURCES[family][0])
+        self._set_param(eaton_parameters.CONTROL_SOURCE_PARAMETER[family],
+                        eaton_parameters.MODBUS_CONTROL_SOURCES[family][0])
         for key, value in (("f_max", DEFAULT_F_MAX_HZ), ("f_min", DEFAULT_F_MIN_HZ), ("accel", DEFAULT_RAMP_S),
                            ("decel", DEFAULT_RAMP_S), ("ff1", DEFAULT_FIXED_FREQUENCY_1_HZ),
                            ("voltage", DEFAULT_MOTOR_VOLTAGE_V), ("current", DEFAULT_MOTOR_CURRENT_A),
                            ("frequency", DEFAULT_MOTOR_FREQUENCY_HZ), ("speed", DEFAULT_MOTOR_SPEED_RPM)):
             self._set_scaled(key, value)
-        serial = eaton.SERIAL_SETTINGS[family]
+        serial = eaton_settings.SERIAL_SETTINGS[family]
         self._set_param(serial.address, DEFAULT_UNIT_ADDRESS, "adress")
         self._set_param(serial.baud_rate, serial.baud_factory, "baud")
         if serial.data_format_factory is not None:
@@ -204,17 +217,19 @@ class EatonDriveModel:
                                                 | DA1_POWER_INDEX)     # P0-29 Rating ID (L1216-1219)
             self._set_param(self._name("quick"), self._quick_scale().to_raw(DEFAULT_QUICK_STOP_S))
             self._set_scaled("ff8", DEFAULT_FIXED_FREQUENCY_8_HZ)
-            self._set_param(eaton.DA1_COMM_TIMEOUT, eaton.DA1_COMM_TIMEOUT_FACTORY)      # 2.0 s (L387, A7)
-            self._set_param(eaton.DA1_COMM_LOSS_ACTION, eaton.DA1_COMM_LOSS_ACTION_FACTORY)  # trip (L388)
+            self._set_param(eaton_settings.DA1_COMM_TIMEOUT,
+                            eaton_settings.DA1_COMM_TIMEOUT_FACTORY)        # 2.0 s (L387, A7)
+            self._set_param(eaton_settings.DA1_COMM_LOSS_ACTION,
+                            eaton_settings.DA1_COMM_LOSS_ACTION_FACTORY)    # trip (L388)
         else:
             self._regs[eaton.REG_DRIVE_TYPE] = DRIVE_VARIANT
             if family is not Family.DE1:
                 self._set_scaled("quick", DEFAULT_QUICK_STOP_S)
             # DB1/DC1 code 4 "t 3000 ms" (L400, L423, A8), DE1 0 = off (L445)
-            self._set_param(eaton.COMM_TIMEOUT_PARAMETER[family], eaton.COMM_TIMEOUT_FACTORY_CODE[family],
-                            "timeout")
+            self._set_param(eaton_settings.COMM_TIMEOUT_PARAMETER[family],
+                            eaton_settings.COMM_TIMEOUT_FACTORY_CODE[family], "timeout")
             if family is Family.DE1:
-                self._set_param(eaton.DE1_PDP_ADDRESS, DEFAULT_UNIT_ADDRESS)
+                self._set_param(eaton_settings.DE1_PDP_ADDRESS, DEFAULT_UNIT_ADDRESS)
         self._regs[eaton.REG_POWER_RATING] = POWER_RATING_KW
         self._regs[eaton.REG_VOLTAGE_LEVEL] = VOLTAGE_LEVEL_V
         self._regs[eaton.REG_SOFTWARE_VERSION_CONTROL] = SOFTWARE_VERSION_CONTROL
@@ -265,7 +280,8 @@ class EatonDriveModel:
     @property
     def bus_control(self) -> bool:
         """The control source (P1-12 / P-12) is Modbus."""
-        return self._param(eaton.CONTROL_SOURCE_PARAMETER[self.family]) in eaton.MODBUS_CONTROL_SOURCES[self.family]
+        source = self._param(eaton_parameters.CONTROL_SOURCE_PARAMETER[self.family])
+        return source in eaton_parameters.MODBUS_CONTROL_SOURCES[self.family]
 
     @property
     def comm_lost(self) -> bool:
@@ -284,8 +300,8 @@ class EatonDriveModel:
             raise ValueError(f"{self.family.name} has no register {number}") from None
 
     def trip(self, fault: int) -> None:
-        """Inject a fault of eaton.FAULTS at the last advanced time."""
-        if fault not in eaton.FAULTS or fault == eaton.FAULT_NONE:
+        """Inject a fault of eaton_faults.FAULTS at the last advanced time."""
+        if fault not in eaton_faults.FAULTS or fault == eaton_faults.FAULT_NONE:
             raise ValueError(f"{fault} is not a fault number of Tabelle 11")
         self._set_fault(fault)
         self._publish()
@@ -363,11 +379,11 @@ class EatonDriveModel:
                 raise ModbusRefusal(ILLEGAL_DATA_VALUE, f"{name} {row.number} {row.name} can only be written "
                                                         "while the drive is stopped")
             field = row.extract(value)
-            if row.format == eaton.S16:
+            if row.format == eaton_parameters.S16:
                 field = eaton.to_signed16(field)
             allowed = _allowed_values(row)
-            if row.number == eaton.DA1_COMM_TIMEOUT and self.family is Family.DA1:
-                allowed = (0, eaton.DA1_COMM_TIMEOUT_MAX)       # "0.0 - 5.0" s (L1395)
+            if row.number == eaton_settings.DA1_COMM_TIMEOUT and self.family is Family.DA1:
+                allowed = (0, eaton_settings.DA1_COMM_TIMEOUT_MAX)       # "0.0 - 5.0" s (L1395)
             if isinstance(allowed, tuple):
                 ok = allowed[0] <= field <= allowed[1]
             else:
@@ -399,17 +415,17 @@ class EatonDriveModel:
         None when off. The watchdog runs only while the drive takes its
         commands from Modbus (simulator choice)."""
         if self.family is Family.DA1:
-            raw = self._param(eaton.DA1_COMM_TIMEOUT)
-            if raw == eaton.DA1_COMM_TIMEOUT_OFF:
+            raw = self._param(eaton_settings.DA1_COMM_TIMEOUT)
+            if raw == eaton_settings.DA1_COMM_TIMEOUT_OFF:
                 return None
-            ns = int(eaton.DA1_COMM_TIMEOUT_SCALE.step * raw * S)
-            action = self._param(eaton.DA1_COMM_LOSS_ACTION)
+            ns = int(eaton_settings.DA1_COMM_TIMEOUT_SCALE.step * raw * S)
+            action = self._param(eaton_settings.DA1_COMM_LOSS_ACTION)
             try:
-                return ns, eaton.Da1CommLossAction(action)
+                return ns, eaton_settings.Da1CommLossAction(action)
             except ValueError:
-                return ns, eaton.Da1CommLossAction.TRIP
-        code = self._param(eaton.COMM_TIMEOUT_PARAMETER[self.family], "timeout")
-        timeout = eaton.COMM_TIMEOUT_CODES.get(code)
+                return ns, eaton_settings.Da1CommLossAction.TRIP
+        code = self._param(eaton_settings.COMM_TIMEOUT_PARAMETER[self.family], "timeout")
+        timeout = eaton_settings.COMM_TIMEOUT_CODES.get(code)
         if timeout is None or timeout.timeout_ms is None:
             return None
         return timeout.timeout_ms * 1_000_000, timeout.reaction
@@ -424,17 +440,17 @@ class EatonDriveModel:
         """No valid telegram within the timeout (L387-388, L400, L423, L445)."""
         self._comm_lost = True
         _, reaction = self._comm_timeout()
-        action = eaton.Da1CommLossAction
-        if reaction in (action.TRIP, eaton.CommLossReaction.TRIP):
+        action = eaton_settings.Da1CommLossAction
+        if reaction in (action.TRIP, eaton_settings.CommLossReaction.TRIP):
             # trips whether running or not (the manual sets no condition; simulator choice)
-            self._set_fault(eaton.COMM_LOSS_FAULT)
+            self._set_fault(eaton_faults.COMM_LOSS_FAULT)
         elif reaction is action.RAMP_STOP_THEN_TRIP:
             if self._modulating:
                 self._trip_at_standstill = True
                 self._stop(quick=False)
             else:
-                self._set_fault(eaton.COMM_LOSS_FAULT)
-        elif reaction in (action.RAMP_STOP_NO_FAULT, eaton.CommLossReaction.RAMP_TO_ZERO):
+                self._set_fault(eaton_faults.COMM_LOSS_FAULT)
+        elif reaction in (action.RAMP_STOP_NO_FAULT, eaton_settings.CommLossReaction.RAMP_TO_ZERO):
             # ramps to standstill on the deceleration ramp (simulator choice) and stays there
             self._stop(quick=False)
         elif reaction is action.FIXED_FREQUENCY_8:
@@ -465,7 +481,7 @@ class EatonDriveModel:
         if rising & ControlWord.FAULT_RESET and self.fault:
             # every fault's cause is gone once reset is asked for: injected faults are events, and a
             # comm-loss fault is reset by a telegram, which restored the connection
-            self.fault = eaton.FAULT_NONE
+            self.fault = eaton_faults.FAULT_NONE
         if cw & ControlWord.COAST or self.fault or not self._di1:
             self._run_request = False
             self._coast()
@@ -509,7 +525,7 @@ class EatonDriveModel:
 
     def _hz(self, key: str) -> Fraction:
         row = self._row(self._name(key))
-        return row.scale.step * row.extract(self._regs[row.register])
+        return _scale(row).step * row.extract(self._regs[row.register])
 
     def _setpoint(self) -> Fraction:
         """ID 2 in 0.1 Hz (L792) limited to f-min..f-max (L784-790); FF1
@@ -536,20 +552,21 @@ class EatonDriveModel:
 
     def _quick_scale(self) -> eaton.Scale:
         if self.family is Family.DA1:     # P2-25 counts by frame size (L1332)
-            frame = eaton.decode_da1_rating_id(self._regs[eaton.REG_DRIVE_TYPE]).frame_size
+            frame = eaton_settings.decode_da1_rating_id(self._regs[eaton.REG_DRIVE_TYPE]).frame_size
             try:
                 return eaton.da1_ramp_scale(frame)
             except ValueError:
                 return eaton.da1_ramp_scale(DA1_FRAME_SIZE)
-        return self._row(self._name("quick")).scale
+        return _scale(self._row(self._name("quick")))
 
     def _bus_ramps(self) -> bool:
         """ID 4 replaces both ramps: DA1 P5-07 = 1 (L389), DB1/DC1 P-12 = 4 (L397, L413)."""
         if self.family is Family.DA1:
-            return self._param(eaton.DA1_FIELDBUS_RAMP_CONTROL) == 1
+            return self._param(eaton_parameters.DA1_FIELDBUS_RAMP_CONTROL) == 1
         if self.family is Family.DE1:
             return False
-        return self._param(eaton.CONTROL_SOURCE_PARAMETER[self.family]) == eaton.DB1_DC1_MODBUS_RAMPS_SOURCE
+        source = self._param(eaton_parameters.CONTROL_SOURCE_PARAMETER[self.family])
+        return source == eaton_parameters.DB1_DC1_MODBUS_RAMPS_SOURCE
 
     def _ramp_s(self, key: str) -> Fraction:
         if key != "quick" and self._bus_ramps():
@@ -558,7 +575,7 @@ class EatonDriveModel:
             row = self._row(self._name("quick"))
             return self._quick_scale().step * row.extract(self._regs[row.register])
         row = self._row(self._name(key))
-        return row.scale.step * row.extract(self._regs[row.register])
+        return _scale(row).step * row.extract(self._regs[row.register])
 
     def _rate(self, key: str) -> Fraction | None:
         """Hz per ns; None = no ramp (a ramp time of 0 or an f-max of 0). A
@@ -587,7 +604,7 @@ class EatonDriveModel:
                 limit, rate = target, self._rate("accel")
             distance = abs(limit - out)
             needed = Fraction(0) if rate is None else distance / rate
-            if needed <= dt:
+            if rate is None or needed <= dt:        # no ramp: there at once
                 self._out = limit
                 dt -= needed
             else:
@@ -601,7 +618,7 @@ class EatonDriveModel:
         trip = self._trip_at_standstill
         self._coast()
         if trip:
-            self._set_fault(eaton.COMM_LOSS_FAULT)      # P5-06 = 1: ramps down, then trips (L388)
+            self._set_fault(eaton_faults.COMM_LOSS_FAULT)      # P5-06 = 1: ramps down, then trips (L388)
 
     # ------------------------------------------------------------------ registers
 
@@ -634,7 +651,7 @@ class EatonDriveModel:
         rated_hz = self._rated_hz()
         load = min(speed / rated_hz, Fraction(2)) if rated_hz else Fraction(0)
         if self._modulating:
-            rated_a = self._row(self._name("current")).scale.step * self._param(self._name("current"))
+            rated_a = _scale(self._row(self._name("current"))).step * self._param(self._name("current"))
             current = rated_a * (MAGNETISING_CURRENT_RATIO + (1 - MAGNETISING_CURRENT_RATIO) * load)
             torque = 100 * load
         else:
@@ -649,4 +666,4 @@ class EatonDriveModel:
 
     def _rated_hz(self) -> Fraction:
         row = self._row(self._name("frequency"))
-        return row.scale.step * row.extract(self._regs[row.register])
+        return _scale(row).step * row.extract(self._regs[row.register])

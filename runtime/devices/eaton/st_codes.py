@@ -1,4 +1,4 @@
-"""The Eaton PowerXL numbers for ST programs, generated from eaton.py.
+"""The Eaton PowerXL numbers for ST programs, generated from registers.py and faults.py.
 
     python -m softplc.runtime.devices    # rewrites fblocks/vendor/eaton_codes.st (and the others)
 
@@ -17,10 +17,9 @@ test regenerates the file and compares it with the shipped one.
 """
 from __future__ import annotations
 
-from pathlib import Path
-
-from . import registers as eaton
 from ..st_text import st_string, vendor_file
+from . import faults as eaton_faults
+from . import registers as eaton
 
 ST_FILE = vendor_file("eaton_codes.st")
 FAULT_TEXT_LENGTH = 120     # the longest cause in Tabelle 11 is 87 characters
@@ -47,11 +46,11 @@ def render() -> str:
         "(*",
         "    EATON_* -- Eaton PowerXL DA1/DB1/DC1/DE1 numbers and texts for ST programs.",
         "",
-        "    GENERATED from runtime/devices/eaton/registers.py by runtime/devices/eaton/st_codes.py.",
+        "    GENERATED from runtime/devices/eaton/registers.py and faults.py by runtime/devices/eaton/st_codes.py.",
         "    Do not edit: change the Python tables, then run",
         "        python -m softplc.runtime.devices",
         "",
-        "    Source of every number: the PowerXL Modbus RTU manual (002), cited in eaton.py.",
+        "    Source of every number: the PowerXL Modbus RTU manual (002), cited in those modules.",
         "    Registers are the manual's IDs, counted from 1; on the wire ID n is offset n-1.",
         "        IF (status AND EATON_SW_FAULT) <> 0 THEN text := EATON_FAULT_TEXT(code); END_IF;",
         "*)",
@@ -61,7 +60,7 @@ def render() -> str:
         "    (* ID 6 status word, bits 0-7 (L831-850); bits 8-15 hold the fault number *)",
         *(f"    EATON_SW_{m.name} : WORD := 16#{int(m):04X};" for m in eaton.StatusWord),
         f"    EATON_FAULT_SHIFT : UINT := {eaton.FAULT_NUMBER_SHIFT};",
-        f"    EATON_COMM_LOSS_FAULT : UINT := {eaton.COMM_LOSS_FAULT};",
+        f"    EATON_COMM_LOSS_FAULT : UINT := {eaton_faults.COMM_LOSS_FAULT};",
         f"    EATON_MAX_REGISTERS_PER_READ : UINT := {eaton.MAX_REGISTERS_PER_READ};",
         "    (* register numbers (IDs) *)",
         *(f"    EATON_{name} : UINT := {value};" for name, value in vars(eaton).items()
@@ -72,11 +71,11 @@ def render() -> str:
         "END_VAR",
         "",
         *_case_function("EATON_FAULT_TEXT", f"STRING[{FAULT_TEXT_LENGTH}]", "Code", "UINT",
-                        [(f.number, st_string(f.text, FAULT_TEXT_LENGTH)) for f in eaton.FAULTS.values()],
+                        [(f.number, st_string(f.text, FAULT_TEXT_LENGTH)) for f in eaton_faults.FAULTS.values()],
                         st_string("unknown fault number"), "the cause of a fault number (Tabelle 11)"),
         "",
         *_case_function("EATON_FAULT_DISPLAY", "STRING[80]", "Code", "UINT",
-                        [(f.number, st_string(f.display)) for f in eaton.FAULTS.values()],
+                        [(f.number, st_string(f.display)) for f in eaton_faults.FAULTS.values()],
                         "''", "the drive's display code of a fault number"),
         "",
         *_case_function("EATON_FAMILY", "USINT", "Id17", "WORD",

@@ -1,7 +1,11 @@
 """The Schneider TeSys T LTMR motor management controller on CANopen
 (manuals 000 German, 001 English; digests 000/001).
 
-    registers.py  the register map, bits, data types and codes (manual 001 §5-6)
+    registers.py  the register map and the registers' CANopen objects (manual 001 §5-6)
+    bits.py       the bits of the status, control, trip, alarm and configuration words
+    codes.py      enumerations (operating mode, fallback, reset mode ...), trip and alarm codes
+    datatypes.py  DT_DateTime, DT_CommercialReference, two-word and signed values
+    profile.py    the communication profile: PDO defaults, PKW object, identity (manual 001 §4)
     pkw.py        the PKW codec on PDO4
     st_codes.py   fblocks/vendor/ltmr_codes.st from those tables
     eds.py        io_config/eds/ltmr.eds from those tables

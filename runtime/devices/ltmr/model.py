@@ -37,9 +37,75 @@ Within one step the current is constant and the exponential is exact.
 from __future__ import annotations
 
 import math
-from typing import Optional
 
-from .registers import ALARM_NETWORK_COMM, ALARM_THERMAL_OVERLOAD, FACTORY_SETTINGS, GENERAL_CONFIG2_RESET_MODE_MASK, REG_ALARM_CODE, REG_ALARM_ENABLE_1, REG_ALARM_REGISTER_1, REG_AVERAGE_CURRENT, REG_AVERAGE_CURRENT_RATIO, REG_CONTROL_1, REG_CONTROL_2, REG_CONTROL_SETTING, REG_FLC1, REG_FLC2, REG_FLC_MAX, REG_GENERAL_CONFIG_1, REG_GENERAL_CONFIG_2, REG_IO_STATUS, REG_L1_CURRENT, REG_L1_CURRENT_RATIO, REG_L2_CURRENT, REG_L2_CURRENT_RATIO, REG_L3_CURRENT, REG_L3_CURRENT_RATIO, REG_LOGIC_INPUTS, REG_LOGIC_OUTPUTS, REG_MIN_WAIT_TIME, REG_MOTOR_STARTS_COUNT, REG_NETWORK_FALLBACK, REG_OPERATING_MODE, REG_STATUS_1, REG_STATUS_2, REG_THERMAL_ALARM_THRESHOLD, REG_THERMAL_CAPACITY, REG_THERMAL_RESET_THRESHOLD, REG_TIME_TO_TRIP, REG_TRIP_CLASS, REG_TRIP_CODE, REG_TRIP_ENABLE_1, REG_TRIP_REGISTER_1, REG_TRIP_REGISTER_2, REGISTERS, STATUS1_CURRENT_SHIFT, TRIP_NETWORK_COMM, TRIP_TEST, TRIP_THERMAL_OVERLOAD, AlarmEnable1, AlarmRegister1, Control1, Control2, FallbackStrategy, GeneralConfig1, OperatingMode, ResetMode, Status1, Status2, TripEnable1, TripRegister1, current_ratio_field, encode_commercial_reference, fallback_allowed, is_valid_operating_mode, udint_from_registers, udint_to_registers
+from .bits import (
+    FACTORY_SETTINGS,
+    GENERAL_CONFIG2_RESET_MODE_MASK,
+    STATUS1_CURRENT_SHIFT,
+    AlarmEnable1,
+    AlarmRegister1,
+    Control1,
+    Control2,
+    GeneralConfig1,
+    Status1,
+    Status2,
+    TripEnable1,
+    TripRegister1,
+    current_ratio_field,
+)
+from .codes import (
+    ALARM_NETWORK_COMM,
+    ALARM_THERMAL_OVERLOAD,
+    TRIP_NETWORK_COMM,
+    TRIP_TEST,
+    TRIP_THERMAL_OVERLOAD,
+    FallbackStrategy,
+    OperatingMode,
+    ResetMode,
+    fallback_allowed,
+    is_valid_operating_mode,
+)
+from .datatypes import encode_commercial_reference, udint_from_registers, udint_to_registers
+from .registers import (
+    REG_ALARM_CODE,
+    REG_ALARM_ENABLE_1,
+    REG_ALARM_REGISTER_1,
+    REG_AVERAGE_CURRENT,
+    REG_AVERAGE_CURRENT_RATIO,
+    REG_CONTROL_1,
+    REG_CONTROL_2,
+    REG_CONTROL_SETTING,
+    REG_FLC1,
+    REG_FLC2,
+    REG_FLC_MAX,
+    REG_GENERAL_CONFIG_1,
+    REG_GENERAL_CONFIG_2,
+    REG_IO_STATUS,
+    REG_L1_CURRENT,
+    REG_L1_CURRENT_RATIO,
+    REG_L2_CURRENT,
+    REG_L2_CURRENT_RATIO,
+    REG_L3_CURRENT,
+    REG_L3_CURRENT_RATIO,
+    REG_LOGIC_INPUTS,
+    REG_LOGIC_OUTPUTS,
+    REG_MIN_WAIT_TIME,
+    REG_MOTOR_STARTS_COUNT,
+    REG_NETWORK_FALLBACK,
+    REG_OPERATING_MODE,
+    REG_STATUS_1,
+    REG_STATUS_2,
+    REG_THERMAL_ALARM_THRESHOLD,
+    REG_THERMAL_CAPACITY,
+    REG_THERMAL_RESET_THRESHOLD,
+    REG_TIME_TO_TRIP,
+    REG_TRIP_CLASS,
+    REG_TRIP_CODE,
+    REG_TRIP_ENABLE_1,
+    REG_TRIP_REGISTER_1,
+    REG_TRIP_REGISTER_2,
+    REGISTERS,
+)
 
 S = 1_000_000_000
 
@@ -116,7 +182,7 @@ _IO_INPUTS = 0x0FFF                # 459 bits 0-11 = inputs 1..12 (L3579)
 def default_registers() -> dict:
     """Every register of the map at 0, then the manual's factory settings,
     then the simulator's choices above."""
-    registers = {reg: 0 for reg in REGISTERS}
+    registers = dict.fromkeys(REGISTERS, 0)
     registers.update(FACTORY_SETTINGS)
     for i, word in enumerate(encode_commercial_reference(DEFAULT_COMMERCIAL_REFERENCE)):
         registers[REG_COMMERCIAL_REFERENCE + i] = word
@@ -143,7 +209,7 @@ def default_registers() -> dict:
 
 
 class LtmrModel:
-    def __init__(self, registers: Optional[dict] = None, *, load_percent: float = DEFAULT_LOAD_PERCENT) -> None:
+    def __init__(self, registers: dict | None = None, *, load_percent: float = DEFAULT_LOAD_PERCENT) -> None:
         self.registers = default_registers()
         for reg, value in (registers or {}).items():
             self.registers[int(reg)] = int(value) & 0xFFFF
@@ -151,11 +217,11 @@ class LtmrModel:
         self.thermal = 0.0                  # θ, fraction of the trip level
         self.lo1 = False
         self.lo2 = False
-        self.fallback: Optional[FallbackStrategy] = None   # applied after a network communication loss
+        self.fallback: FallbackStrategy | None = None   # applied after a network communication loss
         self.comm_lost = False
-        self.t_ns: Optional[int] = None
-        self._start_end_ns: Optional[int] = None    # end of the inrush of the running start
-        self._running_since_ns: Optional[int] = None
+        self.t_ns: int | None = None
+        self._start_end_ns: int | None = None    # end of the inrush of the running start
+        self._running_since_ns: int | None = None
         self._selected = 0                  # reverser / two-speed: 1 = LO1, 2 = LO2, 0 = none
         self._last_selected = 0
         self._lockout_until_ns = 0          # motor transition timeout 541 after a stop
@@ -320,7 +386,7 @@ class LtmrModel:
             if self.t_ns >= now_ns:
                 break
             dt = min(now_ns - self.t_ns, MAX_STEP_NS)
-            if self.starting:
+            if self._start_end_ns is not None and self.starting:
                 dt = min(dt, self._start_end_ns - self.t_ns)     # the inrush ends on time
             self._heat(dt)
             self.t_ns += dt
@@ -346,7 +412,7 @@ class LtmrModel:
     # ------------------------------------------------------------------ commands -> outputs
 
     def _apply_commands(self) -> None:
-        now = self.t_ns
+        now = self.t_ns or 0
         control = self.registers[REG_CONTROL_1]
         rising = control & ~self._previous_control
         self._previous_control = control
@@ -460,7 +526,7 @@ class LtmrModel:
         if strategy == FallbackStrategy.HOLD:
             return self._held
         if strategy == FallbackStrategy.RUN:       # two-step only: as if the run command stayed
-            return self._two_step(True, self.t_ns)
+            return self._two_step(True, self.t_ns or 0)
         if strategy == FallbackStrategy.BOTH_ON:
             return True, True
         if strategy == FallbackStrategy.LO1_ON:
@@ -478,7 +544,7 @@ class LtmrModel:
         self.lo1, self.lo2 = bool(lo1), bool(lo2)
         after = self._motor_output()
         if after and after != before:              # a (new) start: inrush
-            self._start_end_ns = self.t_ns + START_DURATION_NS
+            self._start_end_ns = (self.t_ns or 0) + START_DURATION_NS
             self._running_since_ns = self.t_ns
             self._count_udint(REG_MOTOR_STARTS_COUNT)
         elif not after:

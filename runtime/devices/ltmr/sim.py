@@ -34,16 +34,46 @@ from __future__ import annotations
 
 import contextlib
 import importlib.resources
-from typing import Optional
 
 from canopen.sdo import SdoAbortedError
 
-from . import pkw
-from ...io.canopen.cia301 import ABORT_ACCESS, ABORT_BAD_COMMAND, ABORT_DEVICE_STATE, ABORT_NO_OBJECT, ABORT_NO_SUBINDEX, ABORT_READ_ONLY, ABORT_VALUE_HIGH, ABORT_VALUE_LOW, ABORT_VALUE_RANGE, STATE_BOOTUP, STATE_OPERATIONAL
-from .registers import BIT_NOTES, CANOPEN_BAUD_CODES, GENERAL_CONFIG2_RESET_MODE_MASK, PKW_INDEX, REG_GENERAL_CONFIG_2, REG_NETWORK_BAUD_RATE, REG_NETWORK_FALLBACK, REG_NETWORK_PORT_STATUS, REG_NODE_ADDRESS, REG_OPERATING_MODE, REG_TRIP_CLASS, REG_TRIP_CODE, REGISTER_BLOCKS, REGISTERS, RPDO_MAPPABLE_INDICES, TPDO_MAPPABLE_INDICES, FallbackStrategy, ForbiddenRegisterError, NetworkPortStatus, OperatingMode, ResetMode, UnmappedRegisterError, fallback_allowed, object_to_register, pkw_read_only, register_to_object
 from ...io.can.bus import BusSettings
+from ...io.canopen.cia301 import (
+    ABORT_ACCESS,
+    ABORT_BAD_COMMAND,
+    ABORT_DEVICE_STATE,
+    ABORT_NO_OBJECT,
+    ABORT_NO_SUBINDEX,
+    ABORT_READ_ONLY,
+    ABORT_VALUE_HIGH,
+    ABORT_VALUE_LOW,
+    ABORT_VALUE_RANGE,
+    STATE_BOOTUP,
+    STATE_OPERATIONAL,
+)
 from ...io.canopen.slave import SimulatedCanopenSlave
+from . import pkw
+from .bits import GENERAL_CONFIG2_RESET_MODE_MASK, NetworkPortStatus
+from .codes import CANOPEN_BAUD_CODES, FallbackStrategy, OperatingMode, ResetMode, fallback_allowed
 from .model import LtmrModel
+from .profile import PKW_INDEX, RPDO_MAPPABLE_INDICES, TPDO_MAPPABLE_INDICES, pkw_read_only
+from .registers import (
+    BIT_NOTES,
+    REG_GENERAL_CONFIG_2,
+    REG_NETWORK_BAUD_RATE,
+    REG_NETWORK_FALLBACK,
+    REG_NETWORK_PORT_STATUS,
+    REG_NODE_ADDRESS,
+    REG_OPERATING_MODE,
+    REG_TRIP_CLASS,
+    REG_TRIP_CODE,
+    REGISTER_BLOCKS,
+    REGISTERS,
+    ForbiddenRegisterError,
+    UnmappedRegisterError,
+    object_to_register,
+    register_to_object,
+)
 
 # A22: the manual gives no EMCY content; the simulator's choice
 EMCY_TRIP = 0x1000              # CiA 301 "generic error"
@@ -66,14 +96,16 @@ class LtmrSimulator(SimulatedCanopenSlave):
     #: A21 leaves the abort code of a note A/B/C violation open; this one by default
     note_abort = ABORT_DEVICE_STATE
 
-    def __init__(self, node_id: int = 40, *, settings: BusSettings, clock, pump=None, name: Optional[str] = None,
-                 product_code: int = 0x30, registers: Optional[dict] = None, eds=None) -> None:
+    def __init__(self, node_id: int = 40, *, settings: BusSettings, clock, pump=None, name: str | None = None,
+                 product_code: int = 0x30, registers: dict | None = None, eds=None) -> None:
         pkw_read_only(product_code)                         # ValueError for an unknown product code
         with shipped_eds() if eds is None else contextlib.nullcontext(eds) as path:
             super().__init__(node_id, eds=str(path), settings=settings, clock=clock, pump=pump,
                              name=name or f"ltmr {node_id}")
         self.product_code = product_code
-        identity = self.od[PRODUCT_CODE_OBJECT[0]][PRODUCT_CODE_OBJECT[1]]
+        identity = self.od.get_variable(*PRODUCT_CODE_OBJECT)
+        if identity is None:
+            raise KeyError(f"the EDS has no product code 0x{PRODUCT_CODE_OBJECT[0]:04X}:{PRODUCT_CODE_OBJECT[1]:02X}")
         identity.default = product_code                        # L1034-1050
         if identity.value is not None:
             identity.value = product_code

@@ -1,4 +1,4 @@
-"""The LTMR numbers for ST programs, generated from ltmr.py and pkw.py.
+"""The LTMR numbers for ST programs, generated from registers.py, bits.py, codes.py and pkw.py.
 
     python -m softplc.runtime.devices    # rewrites fblocks/vendor/ltmr_codes.st (and the others)
 
@@ -17,10 +17,12 @@ one.
 from __future__ import annotations
 
 import enum
-from pathlib import Path
 
 from ..st_text import st_string, vendor_file
-from . import pkw, registers as ltmr
+from . import bits as ltmr_bits
+from . import codes as ltmr_codes
+from . import pkw
+from . import registers as ltmr
 
 ST_FILE = vendor_file("ltmr_codes.st")
 TEXT_LENGTH = 80
@@ -44,19 +46,19 @@ def _title(cls) -> str:
 
 def _flag_lines() -> list:
     lines = []
-    for flags in _members_in_order(ltmr, enum.IntFlag):
+    for flags in _members_in_order(ltmr_bits, enum.IntFlag):
         lines.append(f"    (* {_title(flags)} *)")
         for member in flags:
             lines.append(f"    LTMR_{flags.__name__.upper()}_{member.name} : WORD := 16#{int(member):04X};")
-        if flags is ltmr.Status1:
-            lines.append(f"    LTMR_STATUS1_CURRENT_SHIFT : UINT := {ltmr.STATUS1_CURRENT_SHIFT};")
-            lines.append(f"    LTMR_STATUS1_CURRENT_MASK : WORD := 16#{ltmr.STATUS1_CURRENT_MASK:04X};")
+        if flags is ltmr_bits.Status1:
+            lines.append(f"    LTMR_STATUS1_CURRENT_SHIFT : UINT := {ltmr_bits.STATUS1_CURRENT_SHIFT};")
+            lines.append(f"    LTMR_STATUS1_CURRENT_MASK : WORD := 16#{ltmr_bits.STATUS1_CURRENT_MASK:04X};")
     return lines
 
 
 def _enum_lines() -> list:
     lines = []
-    for values in _members_in_order(ltmr, enum.IntEnum):
+    for values in _members_in_order(ltmr_codes, enum.IntEnum):
         lines.append(f"    (* {_title(values)} *)")
         for member in values:
             lines.append(f"    LTMR_{values.__name__.upper()}_{member.name} : UINT := {int(member)};")
@@ -65,7 +67,7 @@ def _enum_lines() -> list:
 
 def _case_branches(function: str, codes: dict) -> list:
     """CASE branches, consecutive codes with the same text joined into a range (100..104)."""
-    runs = []
+    runs: list[list[int]] = []
     for code in sorted(codes):
         if runs and runs[-1][1] == code - 1 and codes[runs[-1][0]] == codes[code]:
             runs[-1][1] = code
@@ -94,11 +96,11 @@ def render() -> str:
         "(*",
         "    LTMR_* -- TeSys T LTMR numbers and texts for ST programs.",
         "",
-        "    GENERATED from runtime/devices/ltmr/registers.py and runtime/devices/ltmr/pkw.py by",
+        "    GENERATED from runtime/devices/ltmr/registers.py, bits.py, codes.py and pkw.py by",
         "    runtime/devices/ltmr/st_codes.py. Do not edit: change the Python tables, then run",
         "        python -m softplc.runtime.devices",
         "",
-        "    Source of every number: the LTMR CANopen manual (DOCA0132EN), cited in ltmr.py.",
+        "    Source of every number: the LTMR CANopen manual (DOCA0132EN), cited in those modules.",
         "        IF (status1 AND LTMR_STATUS1_RUNNING) <> 0 THEN ... END_IF;",
         "        text := LTMR_TRIP_TEXT(tripCode);",
         "*)",
@@ -111,14 +113,14 @@ def render() -> str:
         "    (* register numbers *)",
         *(f"    LTMR_{name} : UINT := {value};" for name, value in _constants(ltmr, "REG_")),
         "    (* trip codes (DT_FaultCode) and alarm codes (DT_WarningCode) *)",
-        *(f"    LTMR_{name} : UINT := {value};" for name, value in _constants(ltmr, "TRIP_")),
-        *(f"    LTMR_{name} : UINT := {value};" for name, value in _constants(ltmr, "ALARM_")),
+        *(f"    LTMR_{name} : UINT := {value};" for name, value in _constants(ltmr_codes, "TRIP_")),
+        *(f"    LTMR_{name} : UINT := {value};" for name, value in _constants(ltmr_codes, "ALARM_")),
         "END_VAR",
         "",
-        *_text_function("LTMR_TRIP_TEXT", ltmr.TRIP_CODES, "unknown trip code",
+        *_text_function("LTMR_TRIP_TEXT", ltmr_codes.TRIP_CODES, "unknown trip code",
                         "text of a trip code, register 451 and the trip history (DT_FaultCode)"),
         "",
-        *_text_function("LTMR_ALARM_TEXT", ltmr.ALARM_CODES, "unknown alarm code",
+        *_text_function("LTMR_ALARM_TEXT", ltmr_codes.ALARM_CODES, "unknown alarm code",
                         "text of an alarm code, register 460 (DT_WarningCode)"),
     ]
     return "\n".join(lines) + "\n"

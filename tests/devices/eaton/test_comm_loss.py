@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from softplc.runtime.devices.eaton import registers as eaton
+from softplc.runtime.devices.eaton import faults as eaton_faults
 from softplc.runtime.io.modbus.link import ModbusError
 
 from ...io.modbus.plant import DRIVE_PROGRAM, SILENT_TIMEOUT, plant_config
@@ -50,7 +50,7 @@ def test_line_lost_drive_trips_master_recovers(plants, tmp_path, transport):
     # the drive runs on for its 2.0 s, then trips with fault 50
     plant.run_until(lambda: drive.fault != 0, 2500, step_ms=50)
     assert 1950 <= plant.now_ms - lost_at <= 2100
-    assert drive.fault == eaton.COMM_LOSS_FAULT and not drive.running
+    assert drive.fault == eaton_faults.COMM_LOSS_FAULT and not drive.running
     assert plant.engine.faults == []               # the engine never stopped
     errors_before = plant.channel(0, "Errors")
     assert errors_before >= 10
@@ -58,7 +58,7 @@ def test_line_lost_drive_trips_master_recovers(plants, tmp_path, transport):
     plant.run_until(lambda: plant.channel(0, "Ok") and plant["Drive.drive.CONNECTED"], 2000, step_ms=50)
     assert plant.channel(0, "ConnectionOk")
     # the program sees fault 50 and resets it, then the sequence starts again
-    plant.run_until(lambda: plant["Drive.drive.FAULT_CODE"] == eaton.COMM_LOSS_FAULT, 500, step_ms=50)
+    plant.run_until(lambda: plant["Drive.drive.FAULT_CODE"] == eaton_faults.COMM_LOSS_FAULT, 500, step_ms=50)
     assert plant["Drive.drive.FAULT_TEXT"] == SIGNAL_LOST
     plant.run_until(lambda: plant["Drive.state"] == "RunForward", 3000, step_ms=50)
     assert drive.fault == 0 and plant["Drive.faults"] == 1

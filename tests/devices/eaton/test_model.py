@@ -6,9 +6,14 @@ from __future__ import annotations
 
 import pytest
 
+from softplc.runtime.devices.eaton import faults as eaton_faults
+from softplc.runtime.devices.eaton import parameters as eaton_parameters
 from softplc.runtime.devices.eaton import registers as eaton
-from softplc.runtime.devices.eaton.registers import ControlWord as CW, Family, StatusWord as SW
+from softplc.runtime.devices.eaton import settings as eaton_settings
 from softplc.runtime.devices.eaton.model import EatonDriveModel, ModbusRefusal
+from softplc.runtime.devices.eaton.registers import ControlWord as CW
+from softplc.runtime.devices.eaton.registers import Family
+from softplc.runtime.devices.eaton.registers import StatusWord as SW
 
 S = 1_000_000_000
 POLL = 100_000_000          # the master's telegram period while "polling"
@@ -34,7 +39,7 @@ class Master:
         return self.drive.read(register, count, self.t)
 
     def param(self, number: str, value: int) -> None:
-        self.write(eaton.parameter_register(self.family, number), value)
+        self.write(eaton_parameters.parameter_register(self.family, number), value)
 
     def run(self, hz: float, bits: int = RUN) -> None:
         self.write(eaton.REG_SPEED_SETPOINT, eaton.speed_setpoint_raw(hz))
@@ -125,7 +130,7 @@ def test_setpoint_is_limited_to_f_max_and_f_min():
 
 
 def test_ramp_position_does_not_depend_on_the_step_size():
-    timeout_off = {eaton.parameter_register(Family.DA1, eaton.DA1_COMM_TIMEOUT): 0}
+    timeout_off = {eaton_parameters.parameter_register(Family.DA1, eaton_settings.DA1_COMM_TIMEOUT): 0}
     fine, coarse = (EatonDriveModel(Family.DA1, registers=timeout_off) for _ in range(2))
     for drive in (fine, coarse):
         drive.write(eaton.REG_SPEED_SETPOINT, [437], 0)
@@ -249,7 +254,7 @@ def test_da1_trips_after_p5_05_without_telegrams():
     master.wait(1.9, poll=False)
     assert master.drive.running
     master.wait(0.2, poll=False)
-    assert master.drive.fault == eaton.COMM_LOSS_FAULT and not master.drive.running
+    assert master.drive.fault == eaton_faults.COMM_LOSS_FAULT and not master.drive.running
     assert master.drive.status() >> 8 == 50
     assert master.drive.status() & 0xFF == SW.FAULT | SW.ZERO_SPEED | SW.HARDWARE_ENABLE
     master.write(eaton.REG_CONTROL_WORD, RESET)         # telegrams are back: the reset works
@@ -257,26 +262,26 @@ def test_da1_trips_after_p5_05_without_telegrams():
 
 
 @pytest.mark.parametrize("action, at_4_5s, at_7_1s, fault", [
-    (eaton.Da1CommLossAction.TRIP, 0.0, 0.0, 50),
-    (eaton.Da1CommLossAction.RAMP_STOP_THEN_TRIP, 25.0, 0.0, 50),
-    (eaton.Da1CommLossAction.RAMP_STOP_NO_FAULT, 25.0, 0.0, 0),
-    (eaton.Da1CommLossAction.FIXED_FREQUENCY_8, 25.0, 10.0, 0),
+    (eaton_settings.Da1CommLossAction.TRIP, 0.0, 0.0, 50),
+    (eaton_settings.Da1CommLossAction.RAMP_STOP_THEN_TRIP, 25.0, 0.0, 50),
+    (eaton_settings.Da1CommLossAction.RAMP_STOP_NO_FAULT, 25.0, 0.0, 0),
+    (eaton_settings.Da1CommLossAction.FIXED_FREQUENCY_8, 25.0, 10.0, 0),
 ])
 def test_da1_comm_loss_actions(action, at_4_5s, at_7_1s, fault):
     master = at_50hz(Family.DA1)
-    master.param(eaton.DA1_COMM_LOSS_ACTION, action)
+    master.param(eaton_settings.DA1_COMM_LOSS_ACTION, action)
     master.param("P2-08", eaton.PARAMETER_FREQUENCY.to_raw(10.0))
     master.wait(4.5, poll=False)            # loss at 2.0 s, then 2.5 s of a 5 s ramp from 50 Hz
     assert master.drive.actual_hz == at_4_5s
     master.wait(2.6, poll=False)
     assert master.drive.actual_hz == at_7_1s
     assert master.drive.fault == fault
-    assert master.drive.running == (action is eaton.Da1CommLossAction.FIXED_FREQUENCY_8)
+    assert master.drive.running == (action is eaton_settings.Da1CommLossAction.FIXED_FREQUENCY_8)
 
 
 def test_da1_after_a_no_fault_ramp_stop_run_needs_a_new_edge():
     master = at_50hz(Family.DA1)
-    master.param(eaton.DA1_COMM_LOSS_ACTION, eaton.Da1CommLossAction.RAMP_STOP_NO_FAULT)
+    master.param(eaton_settings.DA1_COMM_LOSS_ACTION, eaton_settings.Da1CommLossAction.RAMP_STOP_NO_FAULT)
     master.wait(10.0, poll=False)
     assert not master.drive.running and master.flags == IDLE
     master.write(eaton.REG_CONTROL_WORD, RUN)       # the PLC is back, RUN still set
@@ -290,7 +295,7 @@ def test_da1_after_a_no_fault_ramp_stop_run_needs_a_new_edge():
 
 def test_da1_fixed_frequency_8_ends_when_telegrams_return():
     master = at_50hz(Family.DA1)
-    master.param(eaton.DA1_COMM_LOSS_ACTION, eaton.Da1CommLossAction.FIXED_FREQUENCY_8)
+    master.param(eaton_settings.DA1_COMM_LOSS_ACTION, eaton_settings.Da1CommLossAction.FIXED_FREQUENCY_8)
     master.wait(8.0, poll=False)
     assert master.drive.actual_hz == 10.0           # default P2-08 of the simulator
     master.wait(5.0)
@@ -299,13 +304,13 @@ def test_da1_fixed_frequency_8_ends_when_telegrams_return():
 
 def test_da1_p5_05_zero_switches_the_watchdog_off():
     master = at_50hz(Family.DA1)
-    master.param(eaton.DA1_COMM_TIMEOUT, 0)
+    master.param(eaton_settings.DA1_COMM_TIMEOUT, 0)
     master.wait(60.0, poll=False)
     assert master.drive.running and master.drive.fault == 0
 
 
 def _set_timeout_code(master: Master, code: int) -> None:
-    row = next(r for r in eaton.parameter_rows(master.family, "P-36") if "Timeout" in r.name)
+    row = next(r for r in eaton_parameters.parameter_rows(master.family, "P-36") if "Timeout" in r.name)
     master.write(row.register, row.insert(master.drive.register(row.register), code))
 
 
@@ -335,7 +340,7 @@ def test_compact_factory_timeouts(family, factory_trips_after):
     master.wait(2.99, poll=False)
     assert master.drive.running
     master.wait(0.02, poll=False)
-    assert master.drive.fault == (0 if factory_trips_after is None else eaton.COMM_LOSS_FAULT)
+    assert master.drive.fault == (0 if factory_trips_after is None else eaton_faults.COMM_LOSS_FAULT)
 
 
 @pytest.mark.parametrize("family", [Family.DA1, Family.DB1])
@@ -347,16 +352,16 @@ def test_no_watchdog_before_the_first_telegram(family):
     assert drive.running and drive.fault == 0
     drive.telegram(60 * S)
     drive.advance(64 * S)
-    assert drive.fault == eaton.COMM_LOSS_FAULT
+    assert drive.fault == eaton_faults.COMM_LOSS_FAULT
 
 
 # ---------------------------------------------------------------- ramps and control source
 
 
 @pytest.mark.parametrize("family, switch, on, off", [
-    (Family.DA1, eaton.DA1_FIELDBUS_RAMP_CONTROL, 1, 0),      # P5-07 (L389)
-    (Family.DB1, "P-12", eaton.DB1_DC1_MODBUS_RAMPS_SOURCE, 3),    # L397
-    (Family.DC1, "P-12", eaton.DB1_DC1_MODBUS_RAMPS_SOURCE, 3),    # L413
+    (Family.DA1, eaton_parameters.DA1_FIELDBUS_RAMP_CONTROL, 1, 0),      # P5-07 (L389)
+    (Family.DB1, "P-12", eaton_parameters.DB1_DC1_MODBUS_RAMPS_SOURCE, 3),    # L397
+    (Family.DC1, "P-12", eaton_parameters.DB1_DC1_MODBUS_RAMPS_SOURCE, 3),    # L413
 ])
 def test_id4_ramp_time_only_with_the_bus_ramp_switch(family, switch, on, off):
     for value, expected in ((off, 250), (on, 125)):
@@ -374,7 +379,7 @@ def test_id4_ramp_time_only_with_the_bus_ramp_switch(family, switch, on, off):
 @pytest.mark.parametrize("family", ALL)
 def test_run_is_ignored_when_the_control_source_is_not_modbus(family):
     master = Master(family)
-    master.param(eaton.CONTROL_SOURCE_PARAMETER[family], 0)     # terminal control
+    master.param(eaton_parameters.CONTROL_SOURCE_PARAMETER[family], 0)     # terminal control
     master.run(50.0)
     master.wait(2.0)
     assert not master.drive.running
@@ -412,7 +417,7 @@ def test_refused_writes(family, stop_only, reserved):
         with pytest.raises(ModbusRefusal) as refusal:
             master.param(reserved, 1)
         assert refusal.value.code == 2
-    register = eaton.parameter_register(family, stop_only)
+    register = eaton_parameters.parameter_register(family, stop_only)
     value = master.drive.register(register)
     master.write(register, value)                   # stopped: accepted
     master.run(50.0)
@@ -420,7 +425,7 @@ def test_refused_writes(family, stop_only, reserved):
     with pytest.raises(ModbusRefusal) as refusal:
         master.write(register, value)
     assert refusal.value.code == 3
-    accel = eaton.parameter_register(family, "P1-03" if family is Family.DA1 else "P-03")
+    accel = eaton_parameters.parameter_register(family, "P1-03" if family is Family.DA1 else "P-03")
     master.write(accel, master.drive.register(accel))      # a RUN parameter while running: accepted
 
 
@@ -436,8 +441,8 @@ def test_block_write_over_the_missing_register_3_changes_nothing(family):
 def test_out_of_range_values_are_refused():
     master = Master(Family.DA1)
     for register, value in ((eaton.REG_RAMP_TIME, 60001), (eaton.REG_TORQUE_SETPOINT, 2001),
-                            (eaton.parameter_register(Family.DA1, eaton.DA1_COMM_LOSS_ACTION), 4),
-                            (eaton.parameter_register(Family.DA1, eaton.DA1_COMM_TIMEOUT), 51)):
+                            (eaton_parameters.parameter_register(Family.DA1, eaton_settings.DA1_COMM_LOSS_ACTION), 4),
+                            (eaton_parameters.parameter_register(Family.DA1, eaton_settings.DA1_COMM_TIMEOUT), 51)):
         with pytest.raises(ModbusRefusal) as refusal:
             master.write(register, value)
         assert refusal.value.code == 3

@@ -10,11 +10,13 @@ import pytest
 from canopen.objectdictionary import datatypes
 from canopen.sdo.exceptions import SdoAbortedError
 
-from softplc.runtime.devices import fc280 as fc280_device, ltmr as ltmr_device
-from softplc.runtime.io.canopen import eds
-from softplc.runtime.plugin.registry import registry
+from softplc.runtime.devices import fc280 as fc280_device
+from softplc.runtime.devices import ltmr as ltmr_device
+from softplc.runtime.devices.ltmr import bits as ltmr_bits
 from softplc.runtime.devices.ltmr import registers as ltmr
+from softplc.runtime.io.canopen import eds
 from softplc.runtime.io.canopen.cia301 import ABORT_NO_OBJECT, ABORT_NO_SUBINDEX, ABORT_READ_ONLY
+from softplc.runtime.plugin.registry import registry
 
 EDS_DIR = Path(__file__).resolve().parents[3] / "io_config" / "eds"
 LTMR_EDS = EDS_DIR / "ltmr.eds"
@@ -69,7 +71,7 @@ def test_communication_objects(od):
     assert (od[0x100C].default, od[0x100D].default) == (0, 0)
     assert od[0x1004][0].default == 0x00040004
     assert (od[0x1008].default, od[0x1009].default, od[0x100A].default) == ("LTM", "M1.0-ES1.0", "V01.01")
-    assert od[0x1003][0].access_type == "rw" and len([s for s in od[0x1003]]) == 6
+    assert od[0x1003][0].access_type == "rw" and len(list(od[0x1003])) == 6
 
 def test_every_register_is_a_sub_entry(od):
     for reg, register in ltmr.REGISTERS.items():
@@ -81,11 +83,11 @@ def test_every_register_is_a_sub_entry(od):
         assert entry.access_type == register.access
         assert entry.data_type == (datatypes.INTEGER16 if register.type == "Int" else datatypes.UNSIGNED16)
         assert entry.pdo_mappable == (index in (0x2004, 0x2007, 0x2008))
-        assert entry.default == ltmr.FACTORY_SETTINGS.get(reg, 0)
+        assert entry.default == ltmr_bits.FACTORY_SETTINGS.get(reg, 0)
 
 def test_forbidden_registers_are_absent_and_sub0_is_the_highest_sub_index(od):
     assert 0x62 not in od[0x2000] and 0x4B not in od[0x2004] and 0x0B not in od[0x2008]
-    for first, last, index in ltmr.REGISTER_BLOCKS:
+    for _first, _last, index in ltmr.REGISTER_BLOCKS:
         subs = [s for s in od[index] if s]
         assert od[index][0].default == max(subs)
     assert od[0x2004][0].default == 0x4A and od[0x200D][0].default == 0xC8
@@ -113,7 +115,7 @@ def test_a_canopen_slave_serving_the_file_answers_with_the_manual_abort_codes(od
     assert err.value.code == ABORT_NO_OBJECT
     node.set_data(0x2007, 0x03, (50).to_bytes(2, "little"), check_writable=True)   # FLC1 := 50 %
     assert node.sdo[0x2007][3].raw == 50
-    assert node.sdo[0x2006][0x02].raw == ltmr.GeneralConfig1.CONFIG_VIA_NETWORK    # factory 601
+    assert node.sdo[0x2006][0x02].raw == ltmr_bits.GeneralConfig1.CONFIG_VIA_NETWORK    # factory 601
 
 def test_fc280_skeleton_loads():
     od = canopen.import_od(str(FC280_EDS), node_id=5)

@@ -9,8 +9,20 @@ import math
 
 import pytest
 
+from softplc.runtime.devices.ltmr import codes as ltmr_codes
+from softplc.runtime.devices.ltmr import datatypes as ltmr_datatypes
 from softplc.runtime.devices.ltmr import registers as ltmr
-from softplc.runtime.devices.ltmr.registers import AlarmEnable1, AlarmRegister1, Control1, Control2, FallbackStrategy, OperatingMode, ResetMode, Status1, Status2, TripEnable1, TripRegister1
+from softplc.runtime.devices.ltmr.bits import (
+    AlarmEnable1,
+    AlarmRegister1,
+    Control1,
+    Control2,
+    Status1,
+    Status2,
+    TripEnable1,
+    TripRegister1,
+)
+from softplc.runtime.devices.ltmr.codes import FallbackStrategy, OperatingMode, ResetMode
 from softplc.runtime.devices.ltmr.model import LtmrModel
 
 S = 1_000_000_000
@@ -53,7 +65,7 @@ def _status1(model) -> int:
 
 
 def _udint(model, reg) -> int:
-    return ltmr.udint_from_registers(model.registers[reg], model.registers[reg + 1])
+    return ltmr_datatypes.udint_from_registers(model.registers[reg], model.registers[reg + 1])
 
 
 def _class_trip_seconds(trip_class: int, multiple: float, iu: float = 1.125) -> float:
@@ -131,7 +143,7 @@ def test_a_class_n_relay_trips_after_n_seconds_at_7_2_flc_from_cold(trip_class):
     clock.run(0.01)
     assert model.tripped                                          # at N s (10 ms resolution)
     assert model.registers[ltmr.REG_THERMAL_CAPACITY] == 100
-    assert model.registers[ltmr.REG_TRIP_CODE] == ltmr.TRIP_THERMAL_OVERLOAD                      # 451 = 4
+    assert model.registers[ltmr.REG_TRIP_CODE] == ltmr_codes.TRIP_THERMAL_OVERLOAD                      # 451 = 4
     assert model.registers[ltmr.REG_TRIP_REGISTER_1] & TripRegister1.THERMAL_OVERLOAD            # 452 bit 3
     assert _status1(model) & (Status1.TRIP | Status1.TRIPPED) == Status1.TRIP | Status1.TRIPPED
     assert not _status1(model) & Status1.READY
@@ -178,7 +190,7 @@ def test_the_thermal_alarm_comes_at_the_alarm_threshold_when_enabled():
     _command(model, FORWARD)
     clock.run_until(lambda: model.registers[ltmr.REG_THERMAL_CAPACITY] >= 85, 60)   # 609 = 85 %
     clock.run(0.01)
-    assert model.registers[ltmr.REG_ALARM_CODE] == ltmr.ALARM_THERMAL_OVERLOAD               # 460 = 4
+    assert model.registers[ltmr.REG_ALARM_CODE] == ltmr_codes.ALARM_THERMAL_OVERLOAD               # 460 = 4
     assert model.registers[ltmr.REG_ALARM_REGISTER_1] & AlarmRegister1.THERMAL_OVERLOAD     # 461 bit 3
     assert _status1(model) & Status1.ALARM
     assert not model.tripped
@@ -283,7 +295,7 @@ def test_self_test_trips_with_code_10_when_enabled():
     clock.run(2)
     _command(model, FORWARD | SELF_TEST)
     clock.run(0.01)
-    assert model.registers[ltmr.REG_TRIP_CODE] == ltmr.TRIP_TEST                 # 10
+    assert model.registers[ltmr.REG_TRIP_CODE] == ltmr_codes.TRIP_TEST                 # 10
     assert model.registers[ltmr.REG_TRIP_REGISTER_1] & TripRegister1.TEST        # 452 bit 9
     assert not model.lo1
     assert model.reset_authorized
@@ -423,9 +435,9 @@ def test_communication_loss_alarm_and_trip_109_when_enabled():
     clock.run(2)
     model.network_lost()
     clock.run(0.01)
-    assert model.registers[ltmr.REG_ALARM_CODE] == ltmr.ALARM_NETWORK_COMM                  # 460 = 109
+    assert model.registers[ltmr.REG_ALARM_CODE] == ltmr_codes.ALARM_NETWORK_COMM                  # 460 = 109
     assert model.registers[ltmr.REG_ALARM_REGISTER_1] & AlarmRegister1.NETWORK_PORT        # 461 bit 15
-    assert model.registers[ltmr.REG_TRIP_CODE] == ltmr.TRIP_NETWORK_COMM                    # 451 = 109
+    assert model.registers[ltmr.REG_TRIP_CODE] == ltmr_codes.TRIP_NETWORK_COMM                    # 451 = 109
     assert model.registers[ltmr.REG_TRIP_REGISTER_1] & TripRegister1.NETWORK_PORT          # 452 bit 15
     model.network_restored()
     clock.run(0.01)

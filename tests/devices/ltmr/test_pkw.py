@@ -7,10 +7,10 @@ import canopen
 import pytest
 
 from softplc.runtime.devices.ltmr import pkw
-from softplc.runtime.io.canopen.cia301 import ABORT_VALUE_RANGE
 from softplc.runtime.devices.ltmr.eds import ltmr_eds
-from softplc.runtime.io.canopen.eds import render
 from softplc.runtime.devices.ltmr.pkw import PkwWords
+from softplc.runtime.io.canopen.cia301 import ABORT_VALUE_RANGE
+from softplc.runtime.io.canopen.eds import render
 
 # (description, word 1, function, sub-index, (word 3, word 4), word 2 with T=0, word 2 with T=1)
 WORD2_TABLE = [

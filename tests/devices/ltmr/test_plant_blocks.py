@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from softplc.runtime.devices.ltmr import registers as ltmr, pkw
+from softplc.runtime.devices.ltmr import pkw
+from softplc.runtime.devices.ltmr import registers as ltmr
 
 # whole plants over seconds of virtual time, answers crossing sockets in real time
 pytestmark = pytest.mark.slow

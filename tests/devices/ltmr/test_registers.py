@@ -11,8 +11,13 @@ from __future__ import annotations
 import pytest
 
 from softplc.runtime.devices.ltmr import registers as ltmr
-from softplc.runtime.io.canopen.cia301 import split_mapping_entry
-from softplc.runtime.devices.ltmr.registers import ForbiddenRegisterError, REGISTERS, UnmappedRegisterError, object_to_register, register_to_object
+from softplc.runtime.devices.ltmr.registers import (
+    REGISTERS,
+    ForbiddenRegisterError,
+    UnmappedRegisterError,
+    object_to_register,
+    register_to_object,
+)
 
 MANUAL_ROWS = (
     (0, 34, '2000:03', '2000:28', '(Not significant)', '', ''),  # L2288
@@ -36,7 +41,8 @@ MANUAL_ROWS = (
     (81, 81, '2000:52', '2000:52', 'Ulnt', 'Current range max (x 0.1 A)', ''),  # L2375
     (82, 94, '2000:53', '2000:58', '(Not significant)', '', ''),  # L2380
     (95, 95, '2000:60', '2000:60', 'Ulnt', 'Load CT ratio (x 0.1 A)', ''),  # L2384
-    (96, 96, '2000:61', '2000:61', 'Ulnt', 'Full load current max (maximum FLC range, FLC = Full Load Current) (x 0.1 A)', ''),  # L2389
+    (96, 96, '2000:61', '2000:61', 'Ulnt',
+     'Full load current max (maximum FLC range, FLC = Full Load Current) (x 0.1 A)', ''),  # L2389
     (97, 99, '2000:62', '2000:64', 'Ulnt', '(Forbidden)', ''),  # L2394
     (100, 101, '2001:01', '2001:02', '(Not significant)', '', ''),  # L2434
     (102, 102, '2001:03', '2001:03', 'Ulnt', 'Ground current trips count', ''),  # L2438
@@ -216,7 +222,8 @@ MANUAL_ROWS = (
     (428, 429, '2003:81', '2003:82', 'UDlnt', 'Ground current n-4 (mA)', ''),  # L3378
     (430, 430, '2003:83', '2003:83', 'Ulnt', 'Motor temperature sensor degree n-4 (°C)', ''),  # L3383
     (450, 450, '2004:01', '2004:01', 'Ulnt', 'Minimum wait time (s)', ''),  # L3412
-    (451, 451, '2004:02', '2004:02', 'Ulnt', 'Trip code (code of the last trip, or of the trip that takes priority) DT_FaultCode', ''),  # L3417
+    (451, 451, '2004:02', '2004:02', 'Ulnt',
+     'Trip code (code of the last trip, or of the trip that takes priority) DT_FaultCode', ''),  # L3417
     (452, 452, '2004:03', '2004:03', 'Word', 'Trip register 1', ''),  # L3423
     (453, 453, '2004:04', '2004:04', 'Word', 'Trip register 2', ''),  # L3459
     (454, 454, '2004:05', '2004:05', 'Word', 'Trip register 3', ''),  # L3507
@@ -269,7 +276,10 @@ MANUAL_ROWS = (
     (515, 515, '2004:42', '2004:42', 'Word', 'Phase imbalances register', ''),  # L3978
     (516, 523, '2004:43', '2004:4A', 'UInt', '(Reserved)', '1'),  # L4001
     (524, 539, '2004:4B', '2004:5A', 'UInt', '(Forbidden)', '1'),  # L4006
-    (540, 540, '2005:01', '2005:01', 'UInt', 'Motor operating mode: 2 = 2-wire overload 3 = 3-wire overload 4 = 2-wire independent 5 = 3-wire independent 6 = 2-wire reverser 7 = 3-wire reverser 8 = 2-wire 2-step 9 = 3-wire 2-step 10 = 2-wire 2-speed 11 = 3-wire 2-speed 256-511 = Custom logic program (0-255)', 'B'),  # L4030
+    (540, 540, '2005:01', '2005:01', 'UInt',
+     'Motor operating mode: 2 = 2-wire overload 3 = 3-wire overload 4 = 2-wire independent 5 = 3-wire '
+     'independent 6 = 2-wire reverser 7 = 3-wire reverser 8 = 2-wire 2-step 9 = 3-wire 2-step 10 = 2-wire '
+     '2-speed 11 = 3-wire 2-speed 256-511 = Custom logic program (0-255)', 'B'),  # L4030
     (541, 541, '2005:02', '2005:02', 'UInt', 'Motor transition timeout (s)', ''),  # L4035
     (542, 544, '2005:03', '2005:05', '(Reserved)', '', ''),  # L4040
     (545, 545, '2005:06', '2005:06', 'Word', 'Controller AC inputs setting register', ''),  # L4044
@@ -385,7 +395,8 @@ MANUAL_ROWS = (
     (695, 695, '2007:2E', '2007:2E', 'Ulnt', 'Network port baud rate setting (Baud) DT_ExtBaudRate', ''),  # L4885
     (696, 696, '2007:2F', '2007:2F', 'Ulnt', 'Network port address setting', ''),  # L4890
     (697, 699, '2007:30', '2007:32', 'Word', '(Not significant)', ''),  # L4895
-    (700, 700, '2008:01', '2008:01', 'Word', 'Register available to remotely write commands that can be processed in a specific custom logic', ''),  # L4908
+    (700, 700, '2008:01', '2008:01', 'Word',
+     'Register available to remotely write commands that can be processed in a specific custom logic', ''),  # L4908
     (701, 703, '2008:02', '2008:04', '(Reserved)', '', ''),  # L4913
     (704, 704, '2008:05', '2008:05', 'Word', 'Control register 1', ''),  # L4917
     (705, 705, '2008:06', '2008:06', 'Word', 'Control register 2', ''),  # L4938
@@ -589,7 +600,7 @@ def test_unlisted_registers_are_not_significant():
 
 def test_access_by_table():
     # §5.3: 0-539 read-only tables, 540-799 read/write; the custom logic tables are headed read-only
-    assert {REGISTERS[r].access for r in range(0, 540)} == {"ro"}
+    assert {REGISTERS[r].access for r in range(540)} == {"ro"}
     assert {REGISTERS[r].access for r in range(540, 800)} == {"rw"}
     assert {REGISTERS[r].access for r in range(1200, 1400)} == {"ro"}
     assert REGISTERS[704].writable and not REGISTERS[455].writable and not REGISTERS[799].writable
@@ -654,16 +665,6 @@ def test_register_constants_name_the_right_registers():
     }
     for reg, name in expected.items():
         assert REGISTERS[reg].name == name
-
-
-def test_pdo1_defaults_name_registers_704_703_700_and_455_456_457_459():
-    # A2: RPDO1 word 2 is 2008:04 = 703 (printed "Reg [706]"), reserved either way
-    rx = [object_to_register(*split_mapping_entry(e)[:2]) for e in ltmr.RPDO1_DEFAULT]
-    assert rx == [704, 703, 700] and REGISTERS[703].kind == REGISTERS[706].kind == "reserved"
-    # A1: TPDO1 word 4 is 2004:0A = 459 I/O status (the overview table says 458)
-    tx = [object_to_register(*split_mapping_entry(e)[:2]) for e in ltmr.TPDO1_DEFAULT]
-    assert tx == [455, 456, 457, 459]
-    assert all(split_mapping_entry(e)[2] == 16 for e in ltmr.RPDO1_DEFAULT + ltmr.TPDO1_DEFAULT)
 
 
 def test_register_labels_are_unique_ascii():

@@ -9,10 +9,29 @@ import threading
 import canopen
 import pytest
 
-from softplc.runtime.devices.ltmr import registers as ltmr, pkw
-from softplc.runtime.io.canopen.cia301 import ABORT_ACCESS, ABORT_BAD_COMMAND, ABORT_DEVICE_STATE, ABORT_NO_OBJECT, ABORT_NO_SUBINDEX, ABORT_NOT_MAPPABLE, ABORT_READ_ONLY, ABORT_VALUE_RANGE, NMT_PRE_OPERATIONAL, NMT_START, NMT_STOP, STATE_OPERATIONAL, STATE_PRE_OPERATIONAL, STATE_STOPPED
-from softplc.runtime.devices.ltmr.registers import FallbackStrategy, OperatingMode, ResetMode, Status1, Status2, TripEnable1, TripRegister1
+from softplc.runtime.devices.ltmr import bits as ltmr_bits
+from softplc.runtime.devices.ltmr import codes as ltmr_codes
+from softplc.runtime.devices.ltmr import pkw
+from softplc.runtime.devices.ltmr import registers as ltmr
+from softplc.runtime.devices.ltmr.bits import Status1, Status2, TripEnable1, TripRegister1
+from softplc.runtime.devices.ltmr.codes import FallbackStrategy, OperatingMode, ResetMode
 from softplc.runtime.devices.ltmr.sim import shipped_eds
+from softplc.runtime.io.canopen.cia301 import (
+    ABORT_ACCESS,
+    ABORT_BAD_COMMAND,
+    ABORT_DEVICE_STATE,
+    ABORT_NO_OBJECT,
+    ABORT_NO_SUBINDEX,
+    ABORT_NOT_MAPPABLE,
+    ABORT_READ_ONLY,
+    ABORT_VALUE_RANGE,
+    NMT_PRE_OPERATIONAL,
+    NMT_START,
+    NMT_STOP,
+    STATE_OPERATIONAL,
+    STATE_PRE_OPERATIONAL,
+    STATE_STOPPED,
+)
 
 from ...io.canopen.bench import MS, abort_frame, write_ok
 
@@ -141,7 +160,7 @@ def test_note_a_motor_off_note_b_configuration_mode_note_c_no_trip(bench):
     assert bench.sdo_write(NODE, 0x2005, 0x01, OperatingMode.OVERLOAD_2W, 2) == write_ok(0x2005, 0x01)
     assert sim.register(ltmr.REG_OPERATING_MODE) == OperatingMode.OVERLOAD_2W
     # 602 bits 0-2 reset mode (note C) while tripped; its other bits are free
-    sim.set_register(ltmr.REG_TRIP_CODE, ltmr.TRIP_TEST)
+    sim.set_register(ltmr.REG_TRIP_CODE, ltmr_codes.TRIP_TEST)
     general2 = sim.register(ltmr.REG_GENERAL_CONFIG_2)
     manual = (general2 & ~0x7) | ResetMode.MANUAL
     assert bench.sdo_write(NODE, 0x2006, 0x03, manual, 2) == abort_frame(0x2006, 0x03, ABORT_DEVICE_STATE)
@@ -299,7 +318,7 @@ def test_pkw_write_error_leaves_the_register_alone(bench):
     [response] = _pkw(bench, request)
     # digest §2.5: "Error response to register request, abort 0x06090030": words 3-4 = 0x0609 0x0030
     assert (response.function, response.w3, response.w4) == (pkw.ERROR, 0x0609, 0x0030)
-    assert sim.register(682) == ltmr.FallbackStrategy.OFF
+    assert sim.register(682) == ltmr_codes.FallbackStrategy.OFF
 
 
 def test_pkw_is_read_only_on_the_local_configuration_variant(bench):
@@ -344,8 +363,8 @@ def test_heartbeat_loss_applies_the_fallback_of_682(bench, strategy, mode, outpu
     assert sim.nmt_state == STATE_PRE_OPERATIONAL                  # 0x1029:01 = 0
     assert (sim.lo1, sim.lo2) == outputs
     assert sim.register(ltmr.REG_STATUS_2) & Status2.NETWORK_COMM_LOSS          # 456 bit 8
-    assert sim.register(ltmr.REG_ALARM_CODE) == ltmr.ALARM_NETWORK_COMM         # 632 bit 15 (default on)
-    assert not sim.register(ltmr.REG_NETWORK_PORT_STATUS) & ltmr.NetworkPortStatus.COMMUNICATING
+    assert sim.register(ltmr.REG_ALARM_CODE) == ltmr_codes.ALARM_NETWORK_COMM         # 632 bit 15 (default on)
+    assert not sim.register(ltmr.REG_NETWORK_PORT_STATUS) & ltmr_bits.NetworkPortStatus.COMMUNICATING
 
 
 def test_communication_comes_back_then_the_next_rpdo_ends_the_fallback(bench):
@@ -360,8 +379,8 @@ def test_communication_comes_back_then_the_next_rpdo_ends_the_fallback(bench):
     bench.run_ms(10)
     assert not sim.register(ltmr.REG_STATUS_2) & Status2.NETWORK_COMM_LOSS
     assert sim.register(ltmr.REG_ALARM_CODE) == 0
-    assert sim.register(ltmr.REG_NETWORK_PORT_STATUS) == ltmr.NetworkPortStatus.CONNECTED | \
-        ltmr.NetworkPortStatus.COMMUNICATING
+    assert sim.register(ltmr.REG_NETWORK_PORT_STATUS) == ltmr_bits.NetworkPortStatus.CONNECTED | \
+        ltmr_bits.NetworkPortStatus.COMMUNICATING
     assert not sim.lo1                                            # the fallback holds until an RPDO
     status2 = int.from_bytes(bench.frames_with(TPDO1)[-1][2:4], "little")
     assert not status2 & Status2.NETWORK_COMM_LOSS                # TPDO1 on entering Operational
@@ -400,13 +419,13 @@ def test_network_port_trip_109_stays_until_reset_and_sends_an_emcy(bench):
                    {ltmr.REG_TRIP_ENABLE_1: TripEnable1.NETWORK_PORT | TripEnable1.THERMAL_OVERLOAD})
     bench.master_heartbeat_ms = 0
     bench.run_ms(600)
-    assert sim.register(ltmr.REG_TRIP_CODE) == ltmr.TRIP_NETWORK_COMM
+    assert sim.register(ltmr.REG_TRIP_CODE) == ltmr_codes.TRIP_NETWORK_COMM
     assert sim.register(ltmr.REG_TRIP_REGISTER_1) & TripRegister1.NETWORK_PORT
     assert bench.frames_with(EMCY)[-1] == bytes.fromhex("00 10 01 6D 00 00 00 00")    # A22: 0x1000, 109
     bench.master_heartbeat_ms = 100
     bench.nmt(NMT_START, NODE)
     bench.run_ms(200)
-    assert sim.register(ltmr.REG_TRIP_CODE) == ltmr.TRIP_NETWORK_COMM
+    assert sim.register(ltmr.REG_TRIP_CODE) == ltmr_codes.TRIP_NETWORK_COMM
     bench.send(RPDO1, "08 00 00 00 00 00")                       # remote reset
     bench.run_ms(10)
     assert sim.register(ltmr.REG_TRIP_CODE) == 0
@@ -420,7 +439,7 @@ def test_an_overload_trips_with_code_4_and_an_emcy_then_a_remote_reset(bench):
     bench.clear()
     sim.set_load(400)
     bench.run_until(lambda: sim.register(ltmr.REG_TRIP_CODE) != 0, 60_000, "thermal trip")
-    assert sim.register(ltmr.REG_TRIP_CODE) == ltmr.TRIP_THERMAL_OVERLOAD
+    assert sim.register(ltmr.REG_TRIP_CODE) == ltmr_codes.TRIP_THERMAL_OVERLOAD
     assert sim.register(ltmr.REG_TRIP_REGISTER_1) & TripRegister1.THERMAL_OVERLOAD
     assert not sim.lo1
     assert bench.frames_with(EMCY) == [bytes.fromhex("00 10 01 04 00 00 00 00")]   # A22 choice
@@ -449,7 +468,7 @@ def test_manual_reset_mode_needs_the_button(bench):
     bench.run_until(lambda: sim.register(455) & Status1.RESET_AUTHORIZED, 300_000, "reset authorized")
     bench.send(RPDO1, "08 00 00 00 00 00")
     bench.run_ms(10)
-    assert sim.register(ltmr.REG_TRIP_CODE) == ltmr.TRIP_THERMAL_OVERLOAD
+    assert sim.register(ltmr.REG_TRIP_CODE) == ltmr_codes.TRIP_THERMAL_OVERLOAD
     sim.press_reset()
     bench.run_ms(10)
     assert sim.register(ltmr.REG_TRIP_CODE) == 0
@@ -459,7 +478,7 @@ def test_self_test_by_rpdo(bench):
     sim = _operational(bench)
     bench.send(RPDO1, "20 00 00 00 00 00")                       # 704 bit 5
     bench.run_ms(10)
-    assert sim.register(ltmr.REG_TRIP_CODE) == ltmr.TRIP_TEST     # 10
+    assert sim.register(ltmr.REG_TRIP_CODE) == ltmr_codes.TRIP_TEST     # 10
     assert sim.register(ltmr.REG_TRIP_REGISTER_1) & TripRegister1.TEST   # 452 bit 9
     assert bench.frames_with(EMCY)[-1] == bytes.fromhex("00 10 01 0A 00 00 00 00")
 
@@ -486,7 +505,7 @@ def test_a_trip_outlives_a_reset_communication_and_is_reported_again(bench):
     bench.send(0x000, "82 28")                                    # NMT reset communication
     bench.run_ms(10)
     assert bench.frames_with(HEARTBEAT) == [b"\x00"]
-    assert sim.register(ltmr.REG_TRIP_CODE) == ltmr.TRIP_TEST
+    assert sim.register(ltmr.REG_TRIP_CODE) == ltmr_codes.TRIP_TEST
     assert bench.frames_with(EMCY) == [bytes.fromhex("00 10 01 0A 00 00 00 00")]
     assert sim.read(0x1001) == 0x01
 
@@ -551,7 +570,7 @@ def test_canopens_sdo_client_works_against_the_simulator(bench):
     assert hardware == b"M1.0-ES1.0"
     assert mapped == [(0x2004, 0x02), (0x2004, 0x10)]
     assert sim.register(ltmr.REG_FLC1) == 50
-    sim.set_register(ltmr.REG_TRIP_CODE, ltmr.TRIP_THERMAL_OVERLOAD)
+    sim.set_register(ltmr.REG_TRIP_CODE, ltmr_codes.TRIP_THERMAL_OVERLOAD)
     bench.clear()
     bench.nmt(NMT_START, NODE)
     assert bench.frames_with(0x2A8) == [bytes.fromhex("04 00 00 00")]

@@ -3,7 +3,8 @@ usable from a running ST program (the vendor library is compiled into every
 program)."""
 from __future__ import annotations
 
-from softplc.runtime.devices.ltmr import registers as ltmr, st_codes
+from softplc.runtime.devices.ltmr import registers as ltmr
+from softplc.runtime.devices.ltmr import st_codes
 from softplc.runtime.program import compile_files
 
 PROGRAM = """
