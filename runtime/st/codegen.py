@@ -20,6 +20,7 @@ from typing import Any, Optional
 
 from . import ast as A
 from . import types as T
+from . import ranges as R
 from . import rtlib
 from .checker import CheckedProgram, const_as
 from .profile import Profile
@@ -69,9 +70,10 @@ class _Fn:
         self.pou = pou
         self.self_name = self_name
         self.loop_kinds: list = []  # 'for', 'while', 'repeat' (with its cond code)
-        # FOR variables currently read from the Python loop local:
-        # id(VarSymbol) -> (local name, lowest value, highest value or None if unknown)
+        # FOR variables currently read from the Python loop local: id(VarSymbol) -> local name
         self.for_locals: dict = {}
+        # ... and of those the (lowest, highest) value when the bounds are constant
+        self.loop_ranges: dict = {}
 
     @property
     def is_function(self) -> bool:
@@ -575,16 +577,17 @@ class CodeGen:
         self.indent += 1
         local = self._loop_local_ok(var.sym, s.body)
         if local:
-            lo_hi = None
+            self.fn.for_locals[id(var.sym)] = it
             if step is not None and isinstance(s.start.const, int) and isinstance(s.end.const, int):
-                lo_hi = (min(s.start.const, s.end.const), max(s.start.const, s.end.const))
-            self.fn.for_locals[id(var.sym)] = (it, lo_hi)
+                self.fn.loop_ranges[id(var.sym)] = (min(s.start.const, s.end.const),
+                                                    max(s.start.const, s.end.const))
         else:
             self.emit_store(var, it, vty, None, trusted=True)
         self.fn.loop_kinds.append(("for", (var, it, local)))
         self._body(s.body)
         self.fn.loop_kinds.pop()
         self.fn.for_locals.pop(id(var.sym), None)
+        self.fn.loop_ranges.pop(id(var.sym), None)
         self.indent -= 1
         self.emit("else:")
         self.indent += 1
@@ -642,7 +645,7 @@ class CodeGen:
             return code if se.is_bool else f"({code} != 0)"
         if de.is_real:
             if se.is_real:
-                if de is T.LREAL or (se is T.REAL and self._is_stored_value(e)):
+                if de is T.LREAL or (se is T.REAL and R.is_stored_value(e)):
                     return code
                 return f"_f32({code})"
             if se.is_bool or se.is_intlike:
@@ -653,76 +656,13 @@ class CodeGen:
         if se.is_bool:
             return f"int({code})"
         # integer-like to integer-like: wrap unless the value provably fits
-        rng = self._value_range(e)
-        if rng is not None and de.lo is not None and de.lo <= rng[0] and rng[1] <= de.hi:
+        if R.fits(de, self._range(e)):
             return code
         return self.wrap(de, code)
 
-    def _is_stored_value(self, e: Optional[A.Expr]) -> bool:
-        """A value read from storage already has its type's representation;
-        so do MIN/MAX/LIMIT/SEL/MOVE of such values."""
-        if e is None:
-            return False
-        if isinstance(e, (A.Name, A.Member, A.Index, A.Deref, A.Located, A.BitAccess)) or e.const is not None:
-            return True
-        if isinstance(e, A.Call) and isinstance(e.target, CallInfo) and e.target.kind == "std" \
-                and e.target.func.name in ("MIN", "MAX", "LIMIT", "SEL", "MOVE"):
-            args = e.target.args[1:] if e.target.func.name == "SEL" else e.target.args
-            return all(self._is_stored_value(a) for a in args)
-        return False
-
-    _WRAPPING_FUNCS = ("SHL", "SHR", "ROL", "ROR")
-
-    def _value_range(self, e: Optional[A.Expr]) -> Optional[tuple]:
-        """(lowest, highest) an integer expression can have, or None if
-        unknown: lets a store skip the wrap when the value cannot leave the
-        target's range (interval arithmetic over the operators)."""
-        if e is None:
-            return None
-        if isinstance(e.const, int) and not isinstance(e.const, bool):
-            return (e.const, e.const)
-        if isinstance(e, A.Name):
-            loop_local = self.fn.for_locals.get(id(e.sym))
-            if loop_local is not None and loop_local[1] is not None:
-                return loop_local[1]
-        be = T.base_elementary(e.ty) if e.ty is not None else None
-        if be is None or not be.is_intlike:
-            return None
-        if self._is_stored_value(e) and not isinstance(e, A.Call):
-            return (be.lo, be.hi)
-        if isinstance(e, A.Binary):
-            lr, rr = self._value_range(e.left), self._value_range(e.right)
-            if lr is None or rr is None:
-                return None
-            op = e.op
-            if op == "+":
-                return (lr[0] + rr[0], lr[1] + rr[1])
-            if op == "-":
-                return (lr[0] - rr[1], lr[1] - rr[0])
-            if op == "*":
-                ps = [a * b for a in lr for b in rr]
-                return (min(ps), max(ps))
-            if op == "AND":
-                nonneg = [r for r in (lr, rr) if r[0] >= 0]
-                return (0, min(r[1] for r in nonneg)) if nonneg else None
-            if op in ("OR", "XOR") and lr[0] >= 0 and rr[0] >= 0:
-                return (0, (1 << max(lr[1], rr[1]).bit_length()) - 1)
-            if op == "MOD" and rr[0] == rr[1] and rr[0] > 0:
-                # the remainder has the dividend's sign and is smaller than the divisor
-                return (0 if lr[0] >= 0 else -(rr[0] - 1), rr[0] - 1)
-            if op == "/" and rr[0] == rr[1] and rr[0] > 0 and lr[0] >= 0:
-                return (lr[0] // rr[0], lr[1] // rr[0])
-            return None
-        if isinstance(e, A.Call) and isinstance(e.target, CallInfo) and e.target.kind == "std":
-            name = e.target.func.name
-            if name in self._WRAPPING_FUNCS or ("_TO_" in name and "BCD" not in name):
-                return (be.lo, be.hi)  # these always return a wrapped value of their type
-            if name in ("MIN", "MAX", "LIMIT", "SEL", "MOVE"):
-                args = e.target.args[1:] if name == "SEL" else e.target.args
-                rs = [self._value_range(a) for a in args]
-                if None not in rs:
-                    return (min(r[0] for r in rs), max(r[1] for r in rs))
-        return None
+    def _range(self, e: Optional[A.Expr]) -> Optional[R.Range]:
+        """What range analysis knows of an integer expression here (ranges.py)."""
+        return R.value_range(e, self.fn.loop_ranges)
 
     def _converter(self, se: T.ElementaryType, de: T.ElementaryType, code: str) -> str:
         fn = rtlib.make_converter(se, de)
@@ -840,7 +780,7 @@ class CodeGen:
             raise NotImplementedError("name without a variable")
         loop_local = self.fn.for_locals.get(id(sym))
         if loop_local is not None:
-            return loop_local[0]
+            return loop_local
         if sym.location is not None:
             return f"_A{self.accessor(sym.location, T.base_elementary(sym.type))}g()"
         if sym.owner is None:
@@ -873,8 +813,7 @@ class CodeGen:
         if isinstance(ix.const, int):
             return str(ix.const - lo)
         code = self.ex(ix)
-        rng = self._value_range(ix)
-        if rng is not None and lo <= rng[0] and rng[1] <= hi:
+        if R.within(self._range(ix), lo, hi):
             # the index provably lies inside the bounds (a FOR range, say): no check
             return f"{code} - {lo}" if lo else code
         if re.fullmatch(r"[A-Za-z_][A-Za-z0-9_.]*", code):
@@ -921,7 +860,7 @@ class CodeGen:
         if op in ("/", "MOD") and be.is_intlike and isinstance(divisor, int) and divisor > 0 \
                 and not isinstance(divisor, bool):
             pyop = "//" if op == "/" else "%"
-            lr = self._value_range(e.left)
+            lr = self._range(e.left)
             if lr is not None and lr[0] >= 0:
                 return f"({l} {pyop} {divisor})"
             t = self.tmp("d")  # truncate toward zero / sign of the dividend (IEC)
@@ -1002,7 +941,7 @@ class CodeGen:
     def _inline_shift(self, info: CallInfo, args: list) -> Optional[str]:
         """SHL/SHR/ROL/ROR of an unsigned bit string by a constant count."""
         name = info.func.name
-        if name not in self._WRAPPING_FUNCS:
+        if name not in R.WRAPPING_FUNCS:
             return None
         t = T.base_elementary(info.rtypes[0])
         n = info.args[1].const
@@ -1010,18 +949,13 @@ class CodeGen:
             return None
         w, mask = t.bits, (1 << t.bits) - 1
         if n is None and name in ("SHL", "SHR"):
-            nr = self._value_range(info.args[1])
-            xr = self._value_range(info.args[0])
-            if nr is not None and 0 <= nr[0] and nr[1] < w and xr is not None and 0 <= xr[0] \
-                    and xr[1] <= mask:
+            if R.within(self._range(info.args[1]), 0, w - 1) and R.within(self._range(info.args[0]), 0, mask):
                 return f"({args[0]} << {args[1]} & {mask})" if name == "SHL" else f"({args[0]} >> {args[1]})"
             return None
         if not isinstance(n, int) or isinstance(n, bool) or n < 0:
             return None
         x = args[0]
-        xr = self._value_range(info.args[0])
-        in_range = xr is not None and 0 <= xr[0] and xr[1] <= mask
-        if not in_range:
+        if not R.within(self._range(info.args[0]), 0, mask):
             x = f"({x} & {mask})"
         if name in ("ROL", "ROR"):
             n %= w
@@ -1051,13 +985,11 @@ class CodeGen:
             return None
         x = args[0]
         if dst.is_intlike:
-            xr = self._value_range(info.args[0])
-            if xr is not None and dst.lo <= xr[0] and xr[1] <= dst.hi:
+            if R.fits(dst, self._range(info.args[0])):
                 return x
             return self.wrap(dst, x)
-        xr = self._value_range(info.args[0])
         if dst is T.LREAL and src.bits <= 32 or dst is T.REAL and T.widens_to(src, T.REAL) \
-                or dst is T.REAL and xr is not None and -(1 << 24) <= xr[0] and xr[1] <= 1 << 24:
+                or dst is T.REAL and R.within(self._range(info.args[0]), -(1 << 24), 1 << 24):
             return f"float({x})"  # exact: the integer fits the mantissa
         if dst is T.REAL and src.bits <= 53:
             return f"_f32({x})"  # one rounding, as the integer converts to double exactly
