@@ -15,6 +15,7 @@ from . import ast as A
 from . import rtlib
 from . import native
 from . import types as T
+from .conversions import check_implicit, common_type, const_as, generic_fit, is_flexible, same_type
 from .diagnostics import DiagnosticBag
 from .native import NativeFunction
 from .profile import Profile
@@ -45,29 +46,6 @@ class CheckedProgram:
     structs: list  # StructType in declaration order
     configurations: list  # ConfigInfo
     types: dict  # UPPER -> Type
-
-
-def const_as(value: Any, src: T.Type, dst: T.Type) -> Any:
-    """A folded constant converted to the representation of dst."""
-
-    d = T.resolve(dst)
-    if isinstance(d, T.StringType):
-        return value[: d.length] if isinstance(value, str) else value
-    de = T.base_elementary(d)
-    se = T.base_elementary(src)
-    if de is None or se is None:
-        return value
-    if de.is_real:
-        return rtlib.f32(float(value)) if de is T.REAL else float(value)
-    if de.is_bool:
-        return bool(value)
-    if de.is_intlike or de.is_time:
-        if se.is_real:
-            value = rtlib.round_half_away(value)
-        if se.is_time and de.is_time and se.unit_ns != de.unit_ns:
-            value = value * se.unit_ns // de.unit_ns
-        return rtlib.wrap(de, int(value)) if (de.is_intlike or de.category == T.DURATION) else int(value)
-    return value
 
 
 class AddressSpace(Protocol):
@@ -437,7 +415,7 @@ class Checker:
                                      "declare it in a VAR_GLOBAL block (a GVL or the CONFIGURATION)")
                         continue
                     ty = self.type_of(decl.type)
-                    if ty is not None and not self._same_type(ty, g.type):
+                    if ty is not None and not same_type(ty, g.type):
                         self.d.error("E020", f"VAR_EXTERNAL '{decl.name}' is {ty}, the global is {g.type}",
                                      decl.pos)
                     if g.constant and not block.constant:
@@ -535,10 +513,7 @@ class Checker:
             return None
         if isinstance(rty, T.RefType):
             return None
-        return self._const_as(init.const, ety, ty)
-
-    def _const_as(self, value: Any, src: T.Type, dst: T.Type) -> Any:
-        return const_as(value, src, dst)
+        return const_as(init.const, ety, ty)
 
     def _array_init(self, ty: T.ArrayType, init: A.ArrayInit, scope: _Scope, what: str) -> Any:
         if ty.variable_length:
@@ -656,7 +631,7 @@ class Checker:
             rt = T.resolve(tty)
             if not isinstance(rt, T.RefType):
                 self.d.error("E020", "REF= needs a REF_TO target", s.target.pos)
-            elif not self._same_type(rt.target, vty):
+            elif not same_type(rt.target, vty):
                 self.d.error("E020", f"REF= of {vty} into {tty}", s.value.pos)
             elif not self._is_lvalue_expr(s.value):
                 self.d.error("E031", "REF= needs a variable on the right", s.value.pos)
@@ -793,123 +768,10 @@ class Checker:
         e = T.base_elementary(ty)
         return e is not None and e.is_bool and not isinstance(T.resolve(ty), T.EnumType)
 
-    def _same_type(self, a: T.Type, b: T.Type) -> bool:
-        a, b = T.resolve(a), T.resolve(b)
-        if a is b:
-            return True
-        if isinstance(a, T.StringType) and isinstance(b, T.StringType):
-            return a.wide == b.wide
-        if isinstance(a, T.ArrayType) and isinstance(b, T.ArrayType):
-            if len(a.dims) != len(b.dims) or not self._same_type(a.elem, b.elem):
-                return False
-            return all(x is None or y is None or (x[1] - x[0]) == (y[1] - y[0])
-                       for x, y in zip(a.dims, b.dims))
-        if isinstance(a, T.RefType) and isinstance(b, T.RefType):
-            return self._same_type(a.target, b.target)
-        if isinstance(a, T.SubrangeType) and isinstance(b, T.SubrangeType):
-            return a.base is b.base and a.lo == b.lo and a.hi == b.hi
-        return False
-
     def check_convertible(self, src: T.Type, dst: T.Type, e: A.Expr, what: str) -> bool:
         """Report unless a value of type src may be stored into dst
-        implicitly (IEC 61131-3 Fig. 11, softened by the profile)."""
-        s, d = T.resolve(src), T.resolve(dst)
-        de0 = T.base_elementary(d)
-        if isinstance(e.const, int) and not isinstance(e.const, bool) and de0 is not None \
-                and de0.is_intlike and self._is_flexible(e) and not T.int_fits(de0, e.const):
-            self.d.error("E022", f"{e.const} does not fit {de0.name} ({de0.lo}..{de0.hi})", e.pos,
-                         "use a larger type or a typed literal that wraps explicitly")
-            return False
-        if self._same_type(s, d):
-            return True
-        if isinstance(d, T.RefType):
-            if isinstance(s, T.NullType) or (isinstance(s, T.RefType) and
-                                             (self._same_type(s.target, d.target) or
-                                              (d.pointer and isinstance(T.resolve(d.target), T.ElementaryType)
-                                               and T.resolve(d.target) is T.BYTE))):
-                return True
-            if e.const == 0 and isinstance(s, T.ElementaryType) and s.is_intlike:
-                return True
-            self.d.error("E020", f"cannot use {src} as {dst} in {what}", e.pos,
-                         "take a reference with REF(variable) or ADR(variable)")
-            return False
-        if isinstance(d, T.EnumType) or isinstance(s, T.EnumType):
-            if isinstance(d, T.ElementaryType) and isinstance(s, T.EnumType) and self.profile.int_bits_mix \
-                    and d.is_intlike and T.widens_to(s.base, d):
-                return True
-            self.d.error("E020", f"cannot use {src} as {dst} in {what}", e.pos,
-                         f"use an enumerator of {dst}, e.g. {self._enum_example(d)}"
-                         if isinstance(d, T.EnumType) else "enumerations convert only explicitly")
-            return False
-        if isinstance(d, T.StringType):
-            if isinstance(s, T.StringType) and s.wide == d.wide:
-                return True
-            self.d.error("E020", f"cannot use {src} as {dst} in {what}", e.pos,
-                         "convert explicitly, e.g. INT_TO_STRING(x)" if not isinstance(s, T.StringType)
-                         else "use WSTRING_TO_STRING / STRING_TO_WSTRING")
-            return False
-        se, de = T.base_elementary(s), T.base_elementary(d)
-        if se is None or de is None:
-            self.d.error("E020", f"cannot use {src} as {dst} in {what}", e.pos,
-                         "the types must be the same")
-            return False
-        if isinstance(d, T.SubrangeType):
-            if isinstance(e.const, int) and not (d.lo <= e.const <= d.hi):
-                self.d.error("E022", f"{e.const} is outside {d} in {what}", e.pos)
-                return False
-            return self.check_convertible(src, d.base, e, what)
-        # a constant that fits is always fine (untyped literals adapt)
-        if e.const is not None and self._const_fits(e.const, se, de, e):
-            return True
-        if T.widens_to(se, de):
-            return True
-        if self.profile.int_bits_mix and se.is_intlike and de.is_intlike and se.bits <= de.bits:
-            return True
-        lossy = (se.is_intlike or se.is_real) and (de.is_intlike or de.is_real) or \
-            (se.category == T.DURATION and de.category == T.DURATION)
-        if lossy:
-            msg = f"implicit conversion from {src} to {dst} in {what} may lose data"
-            hint = f"convert explicitly: {se.name}_TO_{de.name}(...)"
-            if self.profile.narrowing == "error":
-                self.d.error("E021", msg, e.pos, hint)
-                return False
-            self.d.warning("W121", msg, e.pos, hint)
-            return True
-        hint = f"convert explicitly: {se.name}_TO_{de.name}(...)"
-        if de.is_bool and se.is_intlike:
-            hint = "compare it instead, e.g. x <> 0"
-        self.d.error("E020", f"cannot use {src} as {dst} in {what}", e.pos, hint)
-        return False
-
-    def _const_fits(self, value: Any, se: T.ElementaryType, de: T.ElementaryType, e: A.Expr) -> bool:
-        if not self._is_flexible(e):
-            return False
-        if isinstance(value, bool) or se.is_bool:
-            return de.is_bool
-        if isinstance(value, int) and se.is_intlike:
-            # an integer that does not fit was reported (E022) by check_convertible
-            return T.int_fits(de, value) if de.is_intlike else de.is_real
-        if isinstance(value, float) and se.is_real:
-            return de.is_real
-        return False
-
-    def _is_flexible(self, e: A.Expr) -> bool:
-        """An untyped numeric literal (or a constant expression of them) that
-        takes the type its context needs."""
-        if isinstance(e, A.Literal):
-            return e.type_name is None and e.kind in ("int", "real", "bool")
-        if isinstance(e, A.Unary):
-            return e.op in ("-", "+") and self._is_flexible(e.operand)
-        if isinstance(e, A.Binary):
-            return self._is_flexible(e.left) and self._is_flexible(e.right)
-        return False
-
-    def _enum_example(self, t: T.Type) -> str:
-        t = T.resolve(t)
-        if isinstance(t, T.EnumType) and t.values:
-            k = next(iter(t.values))
-            return f"{t.name}#{t.spelled[k]}"
-        return ""
+        implicitly (the rule: conversions.check_implicit)."""
+        return check_implicit(src, dst, e, what, self.profile, self.d)
 
     # ================================================================ expressions
 
@@ -1239,7 +1101,7 @@ class Checker:
             return None
         if c is not None:
             e.const = -c if e.op == "-" else c
-            if self._is_flexible(e.operand) and e.op == "-" and isinstance(c, int) and expected is None:
+            if is_flexible(e.operand) and e.op == "-" and isinstance(c, int) and expected is None:
                 # -32768 is an INT literal, not the negation of a DINT
                 for cand in (T.INT, T.DINT, T.LINT):
                     if T.int_fits(cand, -c):
@@ -1252,10 +1114,10 @@ class Checker:
     def _binary(self, e: A.Binary, scope: _Scope, expected: Optional[T.Type]) -> Optional[T.Type]:
         op = e.op
         lt = self.expr(e.left, scope)
-        rt = self.expr(e.right, scope, expected=lt if self._is_flexible(e.right) else None)
+        rt = self.expr(e.right, scope, expected=lt if is_flexible(e.right) else None)
         if lt is None or rt is None:
             return None
-        if self._is_flexible(e.left) and not self._is_flexible(e.right):
+        if is_flexible(e.left) and not is_flexible(e.right):
             lt = self.expr(e.left, scope, expected=rt)
             if lt is None:
                 return None
@@ -1327,17 +1189,7 @@ class Checker:
 
     def _common(self, le: T.ElementaryType, re_: T.ElementaryType, e: A.Expr,
                 report: bool = True) -> Optional[T.ElementaryType]:
-        a, b = le, re_
-        if self.profile.int_bits_mix:
-            # integers and bit strings mix (CODESYS): treat bits as unsigned
-            to_u = {T.BYTE: T.USINT, T.WORD: T.UINT, T.DWORD: T.UDINT, T.LWORD: T.ULINT}
-            if a.is_bits and b.is_bits:
-                return a if a.bits >= b.bits else b
-            if a.is_bits and b.is_integer:
-                a = to_u.get(a, a)
-            if b.is_bits and a.is_integer:
-                b = to_u.get(b, b)
-        c = T.smallest_common(a, b)
+        c = common_type(le, re_, self.profile)
         if c is None and report:
             self.d.error("E020", f"no common type for {le} and {re_}", e.pos,
                          f"convert one side explicitly, e.g. {le.name}_TO_{re_.name}(...)")
@@ -1600,10 +1452,10 @@ class Checker:
     def _inout_compatible(self, arg: T.Type, param: T.Type) -> bool:
         a, p = T.resolve(arg), T.resolve(param)
         if isinstance(p, T.ArrayType) and isinstance(a, T.ArrayType) and p.variable_length:
-            return len(a.dims) == len(p.dims) and self._same_type(a.elem, p.elem)
+            return len(a.dims) == len(p.dims) and same_type(a.elem, p.elem)
         if isinstance(p, T.StringType) and isinstance(a, T.StringType):
             return a.wide == p.wide
-        return self._same_type(a, p)
+        return same_type(a, p)
 
     def _mark_boxed(self, e: A.Expr, scope: _Scope) -> None:
         """A FUNCTION local passed by reference lives in a cell."""
@@ -1690,7 +1542,7 @@ class Checker:
             if ":" not in spec:
                 continue
             var, gen = spec.split(":", 1)
-            if self._is_flexible(a):
+            if is_flexible(a):
                 continue
             cur = bindings.get(var)
             bindings[var] = t if cur is None else self._unify(cur, t, e)
@@ -1703,7 +1555,7 @@ class Checker:
                     bindings[var] = t  # only literals: their own type
         for var, bound in list(bindings.items()):
             gen = next(sp.split(":", 1)[1] for sp in specs if sp.startswith(var + ":"))
-            bindings[var] = self._generic_fit(bound, gen)
+            bindings[var] = generic_fit(bound, gen, self.profile)
         # 3) check membership and convertibility
         param_types: list = []
         for i, (a, spec, t) in enumerate(zip(args, specs, arg_types)):
@@ -1713,12 +1565,12 @@ class Checker:
                 if not T.is_generic_member(want, gen):
                     self.d.error("E020", f"{func.name}: {want} is not {gen}", a.pos)
                     return None
-                if self._is_flexible(a):
+                if is_flexible(a):
                     arg_types[i] = self.expr(a, scope, expected=want)
                 self.check_convertible(arg_types[i], want, a, f"the argument of {func.name}")
                 param_types.append(want)
             elif spec.upper() in T.GENERICS:
-                t = self._generic_fit(t, spec)
+                t = generic_fit(t, spec, self.profile)
                 if not T.is_generic_member(t, spec):
                     self.d.error("E020", f"{func.name}: argument {i + 1} is {t}, expected {spec}", a.pos)
                     return None
@@ -1753,21 +1605,6 @@ class Checker:
                 e.const = None
         return rty
 
-    def _generic_fit(self, t: T.Type, generic: str) -> T.Type:
-        """The type an argument of type t takes for a generic parameter:
-        itself when it is a member; an integer widens into ANY_REAL (SQRT(i),
-        as CODESYS accepts); a bit string counts as ANY_INT where the profile
-        mixes them (SHL(w, BYTE#2))."""
-        if T.is_generic_member(t, generic):
-            return t
-        te = T.base_elementary(t)
-        g = generic.upper()
-        if te is not None and te.is_intlike and g == "ANY_REAL":
-            return T.REAL if T.widens_to(te, T.REAL) else T.LREAL
-        if te is not None and te.is_bits and g in ("ANY_INT", "ANY_UNSIGNED") and self.profile.int_bits_mix:
-            return {8: T.USINT, 16: T.UINT, 32: T.UDINT, 64: T.ULINT}[te.bits]
-        return t
-
     _FOLDABLE_NAMES = ("ABS", "SQRT", "MAX", "MIN", "LIMIT", "SEL", "MUX", "SHL", "SHR", "ROL", "ROR",
                           "LEN", "CONCAT", "LEFT", "RIGHT", "MID", "TRUNC", "EXPT", "MOVE")
 
@@ -1780,7 +1617,7 @@ class Checker:
         return func.impl(*values)
 
     def _unify(self, a: T.Type, b: T.Type, e: A.Expr) -> Optional[T.Type]:
-        if self._same_type(a, b):
+        if same_type(a, b):
             return a
         ae, be = T.base_elementary(a), T.base_elementary(b)
         if isinstance(T.resolve(a), T.StringType) and isinstance(T.resolve(b), T.StringType):

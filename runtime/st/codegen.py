@@ -19,10 +19,11 @@ from dataclasses import dataclass, field
 from typing import Any, Optional
 
 from . import ast as A
+from . import conversions as C
 from . import types as T
 from . import ranges as R
 from . import rtlib
-from .checker import CheckedProgram, const_as
+from .checker import CheckedProgram
 from .profile import Profile
 from .symbols import CallInfo, POUInfo, VarSymbol
 
@@ -623,39 +624,32 @@ class CodeGen:
 
     def coerce(self, code: str, src: T.Type, dst: T.Type, e: Optional[A.Expr]) -> str:
         """Convert a value of type src to the representation of dst on store
-        (wrap integers, round REAL to 32 bits, truncate strings)."""
+        (wrap integers, round REAL to 32 bits, truncate strings): what
+        happens is conversions.store_step's decision, written here."""
+        if e is not None and e.const is not None and C.stores_literal(dst):
+            return _literal(C.const_as(e.const, src, dst))
+        step = C.store_step(src, dst, e)
+        if step == C.KEEP:
+            return code
         d = T.resolve(dst)
-        s = T.resolve(src) if src is not None else d
-        if e is not None and e.const is not None and not isinstance(d, (T.RefType,)) \
-                and (T.base_elementary(d) is not None or isinstance(d, T.StringType)):
-            return _literal(const_as(e.const, src, dst))
-        if isinstance(d, T.StringType):
-            if isinstance(s, T.StringType) and s.length <= d.length:
-                return code
+        if step == C.TRUNCATE and isinstance(d, T.StringType):
             return f"({code})[:{d.length}]"
-        if isinstance(d, T.SubrangeType):
+        if step == C.CHECK_RANGE and isinstance(d, T.SubrangeType):
             return f"_check_range({self.coerce(code, src, d.base, e)}, {d.lo}, {d.hi})"
-        de = T.base_elementary(d)
-        se = T.base_elementary(s)
-        if de is None or se is None:
-            return code
-        if isinstance(d, T.EnumType) or isinstance(s, T.EnumType) and de is se:
-            return code
-        if de.is_bool:
-            return code if se.is_bool else f"({code} != 0)"
-        if de.is_real:
-            if se.is_real:
-                if de is T.LREAL or (se is T.REAL and R.is_stored_value(e)):
-                    return code
-                return f"_f32({code})"
-            if se.is_bool or se.is_intlike:
-                return f"float({code})" if de is T.LREAL else f"_f32({code})"
-            return self._converter(se, de, code)
-        if se.is_real or (se.is_time and se.unit_ns != de.unit_ns) or se.is_time != de.is_time:
-            return self._converter(se, de, code)
-        if se.is_bool:
+        if step == C.TO_BOOL:
+            return f"({code} != 0)"
+        if step == C.TO_INT:
             return f"int({code})"
-        # integer-like to integer-like: wrap unless the value provably fits
+        if step == C.TO_FLOAT:
+            return f"float({code})"
+        if step == C.TO_F32:
+            return f"_f32({code})"
+        de = T.base_elementary(d)
+        se = T.base_elementary(T.resolve(src) if src is not None else d)
+        assert de is not None and se is not None  # store_step answers KEEP otherwise
+        if step == C.CONVERT:
+            return self._converter(se, de, code)
+        # WRAP, unless the value provably fits
         if R.fits(de, self._range(e)):
             return code
         return self.wrap(de, code)
@@ -736,12 +730,7 @@ class CodeGen:
             r = T.resolve(e.ty)
             be = T.base_elementary(r)
             if be is not None or isinstance(r, T.StringType):
-                v = e.const
-                if be is not None and be.is_real:
-                    v = rtlib.f32(float(v)) if be is T.REAL else float(v)
-                elif be is not None and be.is_bool:
-                    v = bool(v)
-                return _literal(v)
+                return _literal(C.const_repr(e.const, be) if be is not None else e.const)
         if isinstance(e, A.Name):
             return self._read_name(e.sym)
         if isinstance(e, A.Member):
@@ -988,7 +977,7 @@ class CodeGen:
             if R.fits(dst, self._range(info.args[0])):
                 return x
             return self.wrap(dst, x)
-        if dst is T.LREAL and src.bits <= 32 or dst is T.REAL and T.widens_to(src, T.REAL) \
+        if dst is T.LREAL and src.bits <= 32 or dst is T.REAL and C.widens_to(src, T.REAL) \
                 or dst is T.REAL and R.within(self._range(info.args[0]), -(1 << 24), 1 << 24):
             return f"float({x})"  # exact: the integer fits the mantissa
         if dst is T.REAL and src.bits <= 53:

@@ -353,52 +353,6 @@ GENERICS = ("ANY", "ANY_DERIVED", "ANY_ELEMENTARY", "ANY_MAGNITUDE", "ANY_NUM", 
             "ANY_DURATION", "ANY_CHARS")
 
 
-# ---------------------------------------------------------------- implicit conversion
-# IEC 61131-3 (3rd ed.) Figure 11: implicit conversions that lose nothing.
-_WIDEN: dict[str, tuple] = {
-    "SINT": ("INT", "DINT", "LINT", "REAL", "LREAL"),
-    "INT": ("DINT", "LINT", "REAL", "LREAL"),
-    "DINT": ("LINT", "LREAL"),
-    "LINT": (),
-    "USINT": ("UINT", "UDINT", "ULINT", "INT", "DINT", "LINT", "REAL", "LREAL"),
-    "UINT": ("UDINT", "ULINT", "DINT", "LINT", "REAL", "LREAL"),
-    "UDINT": ("ULINT", "LINT", "LREAL"),
-    "ULINT": (),
-    "BOOL": ("BYTE", "WORD", "DWORD", "LWORD"),
-    "BYTE": ("WORD", "DWORD", "LWORD"),
-    "WORD": ("DWORD", "LWORD"),
-    "DWORD": ("LWORD",),
-    "LWORD": (),
-    "REAL": ("LREAL",),
-    "LREAL": (),
-    "TIME": ("LTIME",),
-    "LTIME": (),
-    "DATE": ("LDATE",),
-    "TIME_OF_DAY": ("LTIME_OF_DAY",),
-    "DATE_AND_TIME": ("LDATE_AND_TIME",),
-    "LDATE": (),
-    "LTIME_OF_DAY": (),
-    "LDATE_AND_TIME": (),
-}
-
-
-def widens_to(src: ElementaryType, dst: ElementaryType) -> bool:
-    """True when src converts implicitly and losslessly to dst (IEC Fig. 11)."""
-    return src is dst or dst.name in _WIDEN.get(src.name, ())
-
-
 def int_fits(t: ElementaryType, value: int) -> bool:
+    """Whether value is one of integer type t's values."""
     return t.lo is not None and t.lo <= value <= t.hi
-
-
-def smallest_common(a: ElementaryType, b: ElementaryType) -> Optional[ElementaryType]:
-    """The smallest elementary type both widen to (for a binary operation),
-    or None if there is none."""
-    if widens_to(a, b):
-        return b
-    if widens_to(b, a):
-        return a
-    for cand in (INT, DINT, LINT, UINT, UDINT, ULINT, WORD, DWORD, LWORD, REAL, LREAL, LTIME):
-        if widens_to(a, cand) and widens_to(b, cand):
-            return cand
-    return None
