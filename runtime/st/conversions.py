@@ -1,5 +1,4 @@
-"""Implicit conversions: which value may be stored into which type, and what
-the store does to it.
+"""Implicit conversions: which value may go into which type, and how.
 
 The one rule (IEC 61131-3 Fig. 11, softened by the profile), read by both
 sides of the compiler:

@@ -1,12 +1,12 @@
-"""Range analysis: the lowest and highest value an integer expression of the
-checked AST can have, so that generated code may skip a wrap or a check.
+"""Range analysis: the interval an integer expression of the checked AST takes.
 
 Interval arithmetic over the annotated AST (``Expr.ty``, ``Expr.const``,
 ``Call.target``): a value read from storage lies within its type; a sum of
 two bounded values within the sum of the bounds; and so on. The code
 generator asks before a store (``fits``: no wrap), an index (no bounds
-check), a shift or an explicit conversion; an unknown range means "do the
-full work". Pure functions: nothing here changes the AST.
+check), a shift or an explicit conversion, and skips the wrap or check
+when the answer allows; an unknown range means "do the full work". Pure
+functions: nothing here changes the AST.
 """
 from __future__ import annotations
 
