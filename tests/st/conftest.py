@@ -11,6 +11,12 @@ from softplc.runtime.st.parser import parse_source
 from softplc.runtime.st.profile import get_profile
 
 
+def prog(decls: str, body: str) -> str:
+    """A PROGRAM main with the declarations decls (in one VAR block) and
+    the statements body; its first statement is on line 5."""
+    return f"PROGRAM main\nVAR\n{decls}\nEND_VAR\n{body}\nEND_PROGRAM\n"
+
+
 def run_st(source: str, cycles: int = 1, entry: str = "main", profile: str = "codesys",
            cycle_time_ms: int = 10, name: str = "test.st"):
     """Compile source, run entry for `cycles` cycles in virtual time and

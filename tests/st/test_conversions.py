@@ -11,6 +11,8 @@ from softplc.runtime.st import types as T
 from softplc.runtime.st.diagnostics import DiagnosticBag
 from softplc.runtime.st.profile import CODESYS, IEC, get_profile
 
+from .conftest import codes, prog
+
 SUB = T.SubrangeType(T.INT, 1, 3)
 COLOUR = T.EnumType("Colour", {"RED": 0, "GREEN": 1}, {"RED": "Red", "GREEN": "Green"})
 
@@ -150,3 +152,23 @@ def test_what_a_store_does_to_the_value(src, dst, e, step):
 def test_constants_are_stored_as_literals_except_references():
     assert C.stores_literal(T.INT) and C.stores_literal(T.StringType(5)) and C.stores_literal(COLOUR)
     assert not C.stores_literal(T.RefType(T.INT)) and not C.stores_literal(T.ArrayType([(0, 1)], T.INT))
+
+
+# ---------------------------------------------------------------- in programs
+
+def test_narrowing_is_an_error_in_iec_and_a_warning_in_codesys():
+    src = prog("d : DINT := 100000; i : INT; r : REAL; l : LREAL;", "i := d; r := l;")
+    assert codes(src, "iec") == ["E021", "E021"]
+    assert codes(src, "codesys") == ["W121", "W121"]
+
+
+def test_widening_is_silent():
+    src = prog("s : SINT; i : INT; d : DINT; r : REAL; l : LREAL; u : USINT; w : WORD; b : BYTE;",
+               "i := s; d := i; l := r; r := i; i := u; w := b; l := d;")
+    assert codes(src, "iec") == []
+
+
+def test_literal_out_of_range_for_its_type():
+    assert codes(prog("x : SINT := 200;", "")) == ["E022"]
+    assert codes(prog("x : INT;", "x := 70000;")) == ["E022"]
+    assert codes(prog("x : USINT;", "x := -1;")) == ["E022"]
