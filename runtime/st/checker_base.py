@@ -12,7 +12,7 @@ is declared at the end of CheckerBase, for the type checker.
 from __future__ import annotations
 
 import difflib
-from typing import TYPE_CHECKING, Any, Optional, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
 from . import ast as A
 from . import types as T
@@ -40,7 +40,7 @@ class Scope:
     """Where an expression is checked: the POU (or None for global
     initialisers) and the loop nesting for EXIT/CONTINUE."""
 
-    def __init__(self, pou: Optional[POUInfo]) -> None:
+    def __init__(self, pou: POUInfo | None) -> None:
         self.pou = pou
         self.loops = 0
         self.for_vars: list = []  # VarSymbols of enclosing FOR loops
@@ -50,7 +50,7 @@ class CheckerBase:
     """The checker's state; the parts add the checks (see the module docstring)."""
 
     def __init__(self, profile: Profile, diags: DiagnosticBag, std_functions: dict,
-                 natives: Optional[dict] = None, image: Optional[AddressSpace] = None) -> None:
+                 natives: dict | None = None, image: AddressSpace | None = None) -> None:
         self.profile = profile
         self.d = diags
         self.std = std_functions
@@ -76,7 +76,7 @@ class CheckerBase:
         implicitly (the rule: conversions.check_implicit)."""
         return check_implicit(src, dst, e, what, self.profile, self.d)
 
-    def _suggest(self, key: str, names: list) -> Optional[str]:
+    def _suggest(self, key: str, names: list) -> str | None:
         close = difflib.get_close_matches(key, [n.upper() for n in names], n=1, cutoff=0.75)
         if close:
             return f"did you mean '{self._spelled(close[0], names)}'?"
@@ -92,34 +92,34 @@ class CheckerBase:
     if TYPE_CHECKING:
         # Implemented by the parts: what one part calls of another.
         # checker_types
-        def type_of(self, spec: A.TypeSpec, scope: Optional[Scope] = None) -> Optional[T.Type]: ...
+        def type_of(self, spec: A.TypeSpec, scope: Scope | None = None) -> T.Type | None: ...
 
         # checker_decls
         def init_value(self, ty: T.Type, init: Any, scope: Scope, what: str) -> Any: ...
 
-        def _const_int(self, e: A.Expr, scope: Scope, what: str) -> Optional[int]: ...
+        def _const_int(self, e: A.Expr, scope: Scope, what: str) -> int | None: ...
 
         # checker_exprs
-        def expr(self, e: A.Expr, scope: Scope, expected: Optional[T.Type] = None) -> Optional[T.Type]: ...
+        def expr(self, e: A.Expr, scope: Scope, expected: T.Type | None = None) -> T.Type | None: ...
 
-        def _address_fits(self, addr: A.LocatedAddress, ty: Optional[T.ElementaryType], pos: A.Pos) -> bool: ...
+        def _address_fits(self, addr: A.LocatedAddress, ty: T.ElementaryType | None, pos: A.Pos) -> bool: ...
 
         # checker_operators
-        def _unary(self, e: A.Unary, scope: Scope, expected: Optional[T.Type]) -> Optional[T.Type]: ...
+        def _unary(self, e: A.Unary, scope: Scope, expected: T.Type | None) -> T.Type | None: ...
 
-        def _binary(self, e: A.Binary, scope: Scope, expected: Optional[T.Type]) -> Optional[T.Type]: ...
+        def _binary(self, e: A.Binary, scope: Scope, expected: T.Type | None) -> T.Type | None: ...
 
         def _common(self, le: T.ElementaryType, re_: T.ElementaryType, e: A.Expr,
-                    report: bool = True) -> Optional[T.ElementaryType]: ...
+                    report: bool = True) -> T.ElementaryType | None: ...
 
         # checker_stmts
-        def lvalue(self, e: A.Expr, scope: Scope) -> Optional[T.Type]: ...
+        def lvalue(self, e: A.Expr, scope: Scope) -> T.Type | None: ...
 
         def _is_lvalue_expr(self, e: A.Expr) -> bool: ...
 
         def _check_writable(self, e: A.Expr, scope: Scope) -> None: ...
 
         # checker_calls
-        def call(self, e: A.Call, scope: Scope, as_statement: bool) -> Optional[T.Type]: ...
+        def call(self, e: A.Call, scope: Scope, as_statement: bool) -> T.Type | None: ...
 
         def _bind_args(self, e: A.Call, pou: POUInfo, info: CallInfo, scope: Scope, is_fb: bool) -> None: ...

@@ -6,7 +6,7 @@ native functions (st/native.py).
 """
 from __future__ import annotations
 
-from typing import Any, Optional
+from typing import Any
 
 from . import ast as A
 from . import native
@@ -20,7 +20,7 @@ from .symbols import CallInfo, POUInfo, VarSymbol
 class CallChecks(CheckerBase):
     """Binding and typing every kind of call."""
 
-    def call(self, e: A.Call, scope: Scope, as_statement: bool) -> Optional[T.Type]:
+    def call(self, e: A.Call, scope: Scope, as_statement: bool) -> T.Type | None:
         callee = e.callee
         if isinstance(callee, A.Name):
             key = callee.name.upper()
@@ -67,7 +67,7 @@ class CallChecks(CheckerBase):
             if a.value is not None:
                 self.expr(a.value, scope)
 
-    def _fb_call(self, e: A.Call, inst: A.Expr, scope: Scope, as_statement: bool) -> Optional[T.Type]:
+    def _fb_call(self, e: A.Call, inst: A.Expr, scope: Scope, as_statement: bool) -> T.Type | None:
         ity = self.expr(inst, scope)
         if ity is None:
             self._check_args_loosely(e, scope)
@@ -92,7 +92,7 @@ class CallChecks(CheckerBase):
             return f"{self._describe(e.base)}.{e.name}"
         return "expression"
 
-    def _user_function_call(self, e: A.Call, pou: POUInfo, scope: Scope) -> Optional[T.Type]:
+    def _user_function_call(self, e: A.Call, pou: POUInfo, scope: Scope) -> T.Type | None:
         info = CallInfo("function", pou=pou)
         self._bind_args(e, pou, info, scope, is_fb=False)
         e.target = info
@@ -196,7 +196,7 @@ class CallChecks(CheckerBase):
 
     # ---------------------------------------------------------------- standard functions
 
-    def _std_args(self, e: A.Call, func, scope: Scope) -> Optional[list]:
+    def _std_args(self, e: A.Call, func, scope: Scope) -> list | None:
         """Match the call's arguments to the parameters of a standard
         function; returns the argument expressions in parameter order."""
         params = list(func.params)
@@ -248,7 +248,7 @@ class CallChecks(CheckerBase):
             return None
         return out
 
-    def _std_call(self, e: A.Call, func, scope: Scope) -> Optional[T.Type]:
+    def _std_call(self, e: A.Call, func, scope: Scope) -> T.Type | None:
         args = self._std_args(e, func, scope)
         if args is None:
             self._check_args_loosely(e, scope)
@@ -277,7 +277,7 @@ class CallChecks(CheckerBase):
             bindings[var] = t if cur is None else self._unify(cur, t, e)
             if bindings[var] is None:
                 return None
-        for a, spec, t in zip(args, specs, arg_types):
+        for _a, spec, t in zip(args, specs, arg_types):
             if ":" in spec:
                 var = spec.split(":", 1)[0]
                 if var not in bindings:
@@ -345,7 +345,7 @@ class CallChecks(CheckerBase):
             return func.impl(info.rtypes, *values)
         return func.impl(*values)
 
-    def _unify(self, a: T.Type, b: T.Type, e: A.Expr) -> Optional[T.Type]:
+    def _unify(self, a: T.Type, b: T.Type, e: A.Expr) -> T.Type | None:
         if same_type(a, b):
             return a
         ae, be = T.base_elementary(a), T.base_elementary(b)
@@ -359,8 +359,8 @@ class CallChecks(CheckerBase):
 
     # ---------------------------------------------------------------- builtins
 
-    def _builtin_call(self, e: A.Call, key: str, scope: Scope) -> Optional[T.Type]:
-        args = [a for a in e.args]
+    def _builtin_call(self, e: A.Call, key: str, scope: Scope) -> T.Type | None:
+        args = list(e.args)
         if key in ("TIME", "LTIME"):
             if args:
                 self.d.error("E041", f"{key}() takes no arguments", e.pos,
@@ -388,7 +388,7 @@ class CallChecks(CheckerBase):
             return None
         return T.RefType(ty, pointer=(key == "ADR"))
 
-    def _sizeof(self, ty: T.Type) -> Optional[int]:
+    def _sizeof(self, ty: T.Type) -> int | None:
         t = T.resolve(ty)
         if isinstance(t, T.ElementaryType):
             return max(1, t.bits // 8)
@@ -411,7 +411,7 @@ class CallChecks(CheckerBase):
 
     # ---------------------------------------------------------------- native functions
 
-    def _native_call(self, e: A.Call, fn: NativeFunction, scope: Scope) -> Optional[T.Type]:
+    def _native_call(self, e: A.Call, fn: NativeFunction, scope: Scope) -> T.Type | None:
         """A call of a native function (st/native.py): positional arguments
         checked against the declaration's parameter kinds."""
         args = e.args

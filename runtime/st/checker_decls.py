@@ -6,7 +6,7 @@ the code generator emits (init_value).
 """
 from __future__ import annotations
 
-from typing import Any, Optional
+from typing import Any
 
 from . import ast as A
 from . import types as T
@@ -18,7 +18,7 @@ from .symbols import POUInfo, VarSymbol, pyname
 class DeclChecks(CheckerBase):
     """Variable declarations and initial values."""
 
-    def _make_var(self, decl: A.VarDecl, block: A.VarBlock, owner: Optional[POUInfo]) -> Optional[VarSymbol]:
+    def _make_var(self, decl: A.VarDecl, block: A.VarBlock, owner: POUInfo | None) -> VarSymbol | None:
         ty = self.type_of(decl.type, Scope(owner))
         if ty is None:
             return None
@@ -246,7 +246,7 @@ class DeclChecks(CheckerBase):
             out[k] = self.init_value(fields[k][1], fval, scope, f"{what}.{fields[k][0]}")
         return ("struct", out)
 
-    def _const_int(self, e: A.Expr, scope: Scope, what: str) -> Optional[int]:
+    def _const_int(self, e: A.Expr, scope: Scope, what: str) -> int | None:
         ty = self.expr(e, scope)
         if ty is None:
             return None

@@ -6,8 +6,6 @@ checker_operators, calls in checker_calls.
 """
 from __future__ import annotations
 
-from typing import Optional
-
 from . import ast as A
 from . import types as T
 from .checker_base import BUILTINS, CheckerBase, Scope
@@ -22,7 +20,7 @@ _SECTIONS_READABLE_OUTSIDE = ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT")
 class ExprChecks(CheckerBase):
     """Typing and folding expressions."""
 
-    def expr(self, e: A.Expr, scope: Scope, expected: Optional[T.Type] = None) -> Optional[T.Type]:
+    def expr(self, e: A.Expr, scope: Scope, expected: T.Type | None = None) -> T.Type | None:
         try:
             ty = self._expr(e, scope, expected)
         except RecursionError:
@@ -31,7 +29,7 @@ class ExprChecks(CheckerBase):
         e.ty = ty
         return ty
 
-    def _expr(self, e: A.Expr, scope: Scope, expected: Optional[T.Type]) -> Optional[T.Type]:
+    def _expr(self, e: A.Expr, scope: Scope, expected: T.Type | None) -> T.Type | None:
         if isinstance(e, A.Literal):
             return self._literal(e, expected)
         if isinstance(e, A.Name):
@@ -66,7 +64,7 @@ class ExprChecks(CheckerBase):
         self.d.error("E005", "unsupported expression", e.pos)
         return None
 
-    def _literal(self, e: A.Literal, expected: Optional[T.Type]) -> Optional[T.Type]:
+    def _literal(self, e: A.Literal, expected: T.Type | None) -> T.Type | None:
         v = e.value
         if e.c_hex and not self.profile.c_hex_literals:
             self.d.error("E026", "C-style hexadecimal literal", e.pos,
@@ -129,7 +127,7 @@ class ExprChecks(CheckerBase):
                          "use the L-type (LTIME, LDT ...) for larger values")
         return v
 
-    def _name(self, e: A.Name, scope: Scope, expected: Optional[T.Type]) -> Optional[T.Type]:
+    def _name(self, e: A.Name, scope: Scope, expected: T.Type | None) -> T.Type | None:
         key = e.name.upper()
         pou = scope.pou
         sym = None
@@ -170,7 +168,7 @@ class ExprChecks(CheckerBase):
                      or "declare it in a VAR block")
         return None
 
-    def _enum_literal(self, e: A.EnumLiteral, expected: Optional[T.Type]) -> Optional[T.Type]:
+    def _enum_literal(self, e: A.EnumLiteral, expected: T.Type | None) -> T.Type | None:
         if e.type_name is None:
             fake = A.Name(e.value_name, pos=e.pos)
             return self._name(fake, Scope(None), expected)
@@ -189,7 +187,7 @@ class ExprChecks(CheckerBase):
         e.const = v
         return ty
 
-    def _member(self, e: A.Member, scope: Scope) -> Optional[T.Type]:
+    def _member(self, e: A.Member, scope: Scope) -> T.Type | None:
         # Type.Value (CODESYS qualified enumerator)
         if isinstance(e.base, A.Name):
             key = e.base.name.upper()
@@ -220,7 +218,7 @@ class ExprChecks(CheckerBase):
                              self._suggest(key, [k for k, s in b.pou.vars.items()
                                                  if s.section in _SECTIONS_READABLE_OUTSIDE]))
                 return None
-            if v.section not in ("VAR_INPUT", "VAR_OUTPUT") and not (scope.pou is b.pou):
+            if v.section not in ("VAR_INPUT", "VAR_OUTPUT") and scope.pou is not b.pou:
                 self.d.error("E013", f"'{v.name}' is internal to {b.name}", e.pos,
                              "only VAR_INPUT and VAR_OUTPUT are visible outside a block")
                 return None
@@ -229,7 +227,7 @@ class ExprChecks(CheckerBase):
         self.d.error("E013", f"{bty} has no members", e.pos)
         return None
 
-    def _index(self, e: A.Index, scope: Scope) -> Optional[T.Type]:
+    def _index(self, e: A.Index, scope: Scope) -> T.Type | None:
         bty = self.expr(e.base, scope)
         for ix in e.indices:
             ity = self.expr(ix, scope)
@@ -254,7 +252,7 @@ class ExprChecks(CheckerBase):
                 self.d.error("E051", f"index {ix.const} is outside {dim[0]}..{dim[1]}", ix.pos)
         return b.elem
 
-    def _bit_access(self, e: A.BitAccess, scope: Scope) -> Optional[T.Type]:
+    def _bit_access(self, e: A.BitAccess, scope: Scope) -> T.Type | None:
         bty = self.expr(e.base, scope)
         self.expr(e.bit, scope)
         if bty is None:
@@ -268,7 +266,7 @@ class ExprChecks(CheckerBase):
             return None
         return T.BOOL
 
-    def _address_fits(self, addr: A.LocatedAddress, ty: Optional[T.ElementaryType], pos: A.Pos) -> bool:
+    def _address_fits(self, addr: A.LocatedAddress, ty: T.ElementaryType | None, pos: A.Pos) -> bool:
         """Report (E082) a direct address outside the process image, and
         (E083) a CODESYS placeholder address %I* that nothing maps."""
         if not addr.indices:
@@ -289,14 +287,14 @@ class ExprChecks(CheckerBase):
             return False
         return True
 
-    def _located(self, e: A.Located) -> Optional[T.Type]:
+    def _located(self, e: A.Located) -> T.Type | None:
         ty = self._located_type(e)
         if ty is not None and not self._address_fits(e.addr, T.base_elementary(ty)
                                                      if e.addr.table is None else None, e.pos):
             return None
         return ty
 
-    def _located_type(self, e: A.Located) -> Optional[T.Type]:
+    def _located_type(self, e: A.Located) -> T.Type | None:
         a = e.addr
         schneider = self.profile.addressing == "schneider"
         if (a.bit is not None or a.table is not None) and not schneider:

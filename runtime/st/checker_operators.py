@@ -5,7 +5,7 @@ result when the operands are constant.
 """
 from __future__ import annotations
 
-from typing import Any, Optional
+from typing import Any
 
 from . import ast as A
 from . import rtlib
@@ -18,7 +18,7 @@ from .symbols import CallInfo
 class OperatorChecks(CheckerBase):
     """Typing and folding operators."""
 
-    def _unary(self, e: A.Unary, scope: Scope, expected: Optional[T.Type]) -> Optional[T.Type]:
+    def _unary(self, e: A.Unary, scope: Scope, expected: T.Type | None) -> T.Type | None:
         ty = self.expr(e.operand, scope, expected)
         if ty is None:
             return None
@@ -51,7 +51,7 @@ class OperatorChecks(CheckerBase):
     def _wrap_const(self, t: T.ElementaryType, v: int) -> int:
         return rtlib.wrap(t, v)
 
-    def _binary(self, e: A.Binary, scope: Scope, expected: Optional[T.Type]) -> Optional[T.Type]:
+    def _binary(self, e: A.Binary, scope: Scope, expected: T.Type | None) -> T.Type | None:
         op = e.op
         lt = self.expr(e.left, scope)
         rt = self.expr(e.right, scope, expected=lt if is_flexible(e.right) else None)
@@ -67,7 +67,7 @@ class OperatorChecks(CheckerBase):
             return self._comparison(e, lt, rt)
         return self._arithmetic(e, lt, rt, expected)
 
-    def _logical(self, e: A.Binary, lt: T.Type, rt: T.Type) -> Optional[T.Type]:
+    def _logical(self, e: A.Binary, lt: T.Type, rt: T.Type) -> T.Type | None:
         le, re_ = T.base_elementary(lt), T.base_elementary(rt)
         if le is not None and re_ is not None and le.is_bool and re_.is_bool:
             ty = T.BOOL
@@ -94,20 +94,20 @@ class OperatorChecks(CheckerBase):
     def _bitwise_ok(self, t: T.ElementaryType) -> bool:
         return t.is_bool or t.is_bits or (t.is_integer and self.profile.bitwise_on_integers)
 
-    def _comparison(self, e: A.Binary, lt: T.Type, rt: T.Type) -> Optional[T.Type]:
-        l, r = T.resolve(lt), T.resolve(rt)
+    def _comparison(self, e: A.Binary, lt: T.Type, rt: T.Type) -> T.Type | None:
+        lres, rres = T.resolve(lt), T.resolve(rt)
         ok = False
-        if isinstance(l, T.EnumType) or isinstance(r, T.EnumType):
-            ok = l is r
-        elif isinstance(l, T.StringType) and isinstance(r, T.StringType):
-            ok = l.wide == r.wide
-        elif isinstance(l, T.RefType) or isinstance(r, T.RefType):
+        if isinstance(lres, T.EnumType) or isinstance(rres, T.EnumType):
+            ok = lres is rres
+        elif isinstance(lres, T.StringType) and isinstance(rres, T.StringType):
+            ok = lres.wide == rres.wide
+        elif isinstance(lres, T.RefType) or isinstance(rres, T.RefType):
             # r = 0 / r <> 0 is how CODESYS and TwinCAT test for NULL
             def refish(t, side):
                 return isinstance(t, (T.RefType, T.NullType)) or side.const == 0
-            ok = e.op in ("=", "<>") and refish(l, e.left) and refish(r, e.right)
+            ok = e.op in ("=", "<>") and refish(lres, e.left) and refish(rres, e.right)
         else:
-            le, re_ = T.base_elementary(l), T.base_elementary(r)
+            le, re_ = T.base_elementary(lres), T.base_elementary(rres)
             if le is not None and re_ is not None:
                 if le.is_bool and re_.is_bool:
                     ok = True
@@ -120,7 +120,7 @@ class OperatorChecks(CheckerBase):
                          "convert one side so both have the same type")
             return None
         lc, rc = e.left.const, e.right.const
-        if lc is not None and rc is not None and not isinstance(l, T.RefType):
+        if lc is not None and rc is not None and not isinstance(lres, T.RefType):
             import operator
             fn = {"=": operator.eq, "<>": operator.ne, "<": operator.lt, ">": operator.gt,
                   "<=": operator.le, ">=": operator.ge}[e.op]
@@ -128,14 +128,14 @@ class OperatorChecks(CheckerBase):
         return T.BOOL
 
     def _common(self, le: T.ElementaryType, re_: T.ElementaryType, e: A.Expr,
-                report: bool = True) -> Optional[T.ElementaryType]:
+                report: bool = True) -> T.ElementaryType | None:
         c = common_type(le, re_, self.profile)
         if c is None and report:
             self.d.error("E020", f"no common type for {le} and {re_}", e.pos,
                          f"convert one side explicitly, e.g. {le.name}_TO_{re_.name}(...)")
         return c
 
-    def _arithmetic(self, e: A.Binary, lt: T.Type, rt: T.Type, expected: Optional[T.Type]) -> Optional[T.Type]:
+    def _arithmetic(self, e: A.Binary, lt: T.Type, rt: T.Type, expected: T.Type | None) -> T.Type | None:
         op = e.op
         le, re_ = T.base_elementary(lt), T.base_elementary(rt)
         if le is None or re_ is None or isinstance(T.resolve(lt), T.EnumType) \
@@ -188,7 +188,7 @@ class OperatorChecks(CheckerBase):
             self.d.error("E022", "constant expression overflows", e.pos)
         return None
 
-    def _time_arith(self, e: A.Binary, le: T.ElementaryType, re_: T.ElementaryType) -> Optional[T.Type]:
+    def _time_arith(self, e: A.Binary, le: T.ElementaryType, re_: T.ElementaryType) -> T.Type | None:
         op = e.op
         cat = (le.category, re_.category)
         name = None

@@ -5,8 +5,6 @@ lvalues and whether they are writable (CONSTANT, inputs, FB outputs).
 """
 from __future__ import annotations
 
-from typing import Optional
-
 from . import ast as A
 from . import types as T
 from .checker_base import CheckerBase, Scope
@@ -133,7 +131,7 @@ class StmtChecks(CheckerBase):
         if s.else_body:
             self._stmts(s.else_body, scope)
 
-    def _case_label(self, e: A.Expr, sty: T.Type, scope: Scope) -> Optional[int]:
+    def _case_label(self, e: A.Expr, sty: T.Type, scope: Scope) -> int | None:
         ty = self.expr(e, scope, expected=sty)
         if ty is None:
             return None
@@ -166,7 +164,7 @@ class StmtChecks(CheckerBase):
     def _is_lvalue_expr(self, e: A.Expr) -> bool:
         return isinstance(e, (A.Name, A.Member, A.Index, A.Deref, A.BitAccess, A.Located))
 
-    def lvalue(self, e: A.Expr, scope: Scope) -> Optional[T.Type]:
+    def lvalue(self, e: A.Expr, scope: Scope) -> T.Type | None:
         ty = self.expr(e, scope)
         if ty is None:
             return None

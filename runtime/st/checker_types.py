@@ -6,8 +6,6 @@ subranges, REF_TO, and the STRUCT and enumeration declarations.
 """
 from __future__ import annotations
 
-from typing import Optional
-
 from . import ast as A
 from . import types as T
 from .checker_base import CheckerBase, Scope
@@ -49,7 +47,7 @@ class TypeChecks(CheckerBase):
             return True
         return False
 
-    def _resolve_named_type(self, key: str, pos: A.Pos) -> Optional[T.Type]:
+    def _resolve_named_type(self, key: str, pos: A.Pos) -> T.Type | None:
         if key in self.types:
             return self.types[key]
         decl = self.type_decls.get(key)
@@ -89,7 +87,7 @@ class TypeChecks(CheckerBase):
                 elif isinstance(ty, T.AliasType):
                     ty.init_value = plan
                 else:
-                    self.d.error("E024", f"a STRUCT takes its initial values in its fields", decl.init.pos)
+                    self.d.error("E024", "a STRUCT takes its initial values in its fields", decl.init.pos)
             return ty
         finally:
             self._resolving.discard(key)
@@ -123,7 +121,7 @@ class TypeChecks(CheckerBase):
             nxt += 1
         return et
 
-    def type_of(self, spec: A.TypeSpec, scope: Optional[Scope] = None) -> Optional[T.Type]:
+    def type_of(self, spec: A.TypeSpec, scope: Scope | None = None) -> T.Type | None:
         """Resolve a type as written; reports and returns None when unknown.
         scope decides which CONSTANTs bounds and lengths may use."""
         scope = scope or Scope(None)

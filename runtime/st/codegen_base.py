@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Optional
+from typing import TYPE_CHECKING, Any
 
 from . import ast as A
 from . import ranges as R
@@ -53,7 +53,7 @@ class Accessor:
 class FnState:
     """Per-body state: how variables are reached from the code being emitted."""
 
-    def __init__(self, pou: Optional[POUInfo], self_name: str = "self") -> None:
+    def __init__(self, pou: POUInfo | None, self_name: str = "self") -> None:
         self.pou = pou
         self.self_name = self_name
         self.loop_kinds: list = []  # 'for', 'while', 'repeat' (with its cond code)
@@ -76,7 +76,7 @@ class CodeGenBase:
         self.profile = profile
         self.out: list = []  # (text, pos)
         self.indent = 0
-        self.pos: Optional[A.Pos] = None
+        self.pos: A.Pos | None = None
         self.consts: dict = {}
         self._const_ids: dict = {}
         self.accessors: dict = {}
@@ -100,7 +100,7 @@ class CodeGenBase:
         self._const_ids[key] = name
         return name
 
-    def accessor(self, addr: A.LocatedAddress, ty: Optional[T.ElementaryType]) -> int:
+    def accessor(self, addr: A.LocatedAddress, ty: T.ElementaryType | None) -> int:
         key = (addr.area, addr.size, addr.indices, addr.bit, addr.table, ty.name if ty else None)
         if key not in self._acc_keys:
             idx = len(self.accessors)
@@ -108,7 +108,7 @@ class CodeGenBase:
             self._acc_keys[key] = idx
         return self._acc_keys[key]
 
-    def _range(self, e: Optional[A.Expr]) -> Optional[R.Range]:
+    def _range(self, e: A.Expr | None) -> R.Range | None:
         """What range analysis knows of an integer expression here (ranges.py)."""
         return R.value_range(e, self.fn.loop_ranges)
 
@@ -136,9 +136,9 @@ class CodeGenBase:
         # codegen_stmts
         def _body(self, stmts: list) -> None: ...
 
-        def coerce(self, code: str, src: T.Type, dst: T.Type, e: Optional[A.Expr]) -> str: ...
+        def coerce(self, code: str, src: T.Type, dst: T.Type, e: A.Expr | None) -> str: ...
 
-        def emit_store(self, target: A.Expr, value_code: str, value_ty: T.Type, value_expr: Optional[A.Expr],
+        def emit_store(self, target: A.Expr, value_code: str, value_ty: T.Type, value_expr: A.Expr | None,
                        trusted: bool = False) -> None: ...
 
         # codegen_exprs

@@ -8,7 +8,6 @@ native functions.
 from __future__ import annotations
 
 import re
-from typing import Optional
 
 from . import ast as A
 from . import conversions as C
@@ -69,7 +68,7 @@ class CallGen(CodeGenBase):
             return f"{fn}({self.const(info.rtypes)}, {', '.join(args)})"
         return f"{fn}({', '.join(args)})"
 
-    def _inline_shift(self, info: CallInfo, args: list) -> Optional[str]:
+    def _inline_shift(self, info: CallInfo, args: list) -> str | None:
         """SHL/SHR/ROL/ROR of an unsigned bit string by a constant count."""
         name = info.func.name
         if name not in R.WRAPPING_FUNCS:
@@ -105,7 +104,7 @@ class CallGen(CodeGenBase):
             return f"({x} << {n} & {mask})"
         return f"({x} >> {n})"
 
-    def _inline_conversion(self, info: CallInfo, args: list) -> Optional[str]:
+    def _inline_conversion(self, info: CallInfo, args: list) -> str | None:
         """<T>_TO_<U> between integer/bit-string types and into REAL/LREAL."""
         func = info.func
         if func.typed or "_TO_" not in func.name or "BCD" in func.name or len(func.params) != 1:

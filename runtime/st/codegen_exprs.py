@@ -8,7 +8,7 @@ reference objects REF, ADR, VAR_IN_OUT and => pass.
 from __future__ import annotations
 
 import re
-from typing import Any, Optional
+from typing import Any
 
 from . import ast as A
 from . import conversions as C
@@ -91,7 +91,7 @@ class ExprGen(CodeGenBase):
             code += f"[{self._index_code(ix, dim)}]"
         return code
 
-    def _index_code(self, ix: A.Expr, dim: Optional[tuple]) -> str:
+    def _index_code(self, ix: A.Expr, dim: tuple | None) -> str:
         if dim is None:  # ARRAY[*]: Python's own check, but no negative wrap-around
             return f"_check_index({self.ex(ix)}, 0, 1 << 62)"
         lo, hi = dim
@@ -127,40 +127,40 @@ class ExprGen(CodeGenBase):
         if e.impl is not None:
             info: CallInfo = e.impl
             return self._std_invoke(info, [self.ex(e.left), self.ex(e.right)])
-        l, r = self.ex(e.left), self.ex(e.right)
+        lhs, rhs = self.ex(e.left), self.ex(e.right)
         if op in self._CMP:
-            return f"({l} {self._CMP[op]} {r})"
+            return f"({lhs} {self._CMP[op]} {rhs})"
         be = T.base_elementary(e.ty)
         if op in ("AND_THEN", "OR_ELSE"):
-            return f"({l} {'and' if op == 'AND_THEN' else 'or'} {r})"
+            return f"({lhs} {'and' if op == 'AND_THEN' else 'or'} {rhs})"
         if op in ("AND", "OR", "XOR"):
             if be.is_bool:
                 if op == "XOR":
-                    return f"({l} != {r})"
+                    return f"({lhs} != {rhs})"
                 if self.profile.short_circuit or not self._has_call(e.right):
-                    return f"({l} {'and' if op == 'AND' else 'or'} {r})"
-                return f"({l} {'&' if op == 'AND' else '|'} {r})"
-            return f"({l} {'&' if op == 'AND' else '|' if op == 'OR' else '^'} {r})"
+                    return f"({lhs} {'and' if op == 'AND' else 'or'} {rhs})"
+                return f"({lhs} {'&' if op == 'AND' else '|'} {rhs})"
+            return f"({lhs} {'&' if op == 'AND' else '|' if op == 'OR' else '^'} {rhs})"
         divisor = e.right.const
         if op in ("/", "MOD") and be.is_intlike and isinstance(divisor, int) and divisor > 0 \
                 and not isinstance(divisor, bool):
             pyop = "//" if op == "/" else "%"
             lr = self._range(e.left)
             if lr is not None and lr[0] >= 0:
-                return f"({l} {pyop} {divisor})"
+                return f"({lhs} {pyop} {divisor})"
             t = self.tmp("d")  # truncate toward zero / sign of the dividend (IEC)
-            return f"({t} {pyop} {divisor} if ({t} := {l}) >= 0 else -(-{t} {pyop} {divisor}))"
+            return f"({t} {pyop} {divisor} if ({t} := {lhs}) >= 0 else -(-{t} {pyop} {divisor}))"
         if op == "/":
             if be.is_intlike:
-                return f"_idiv({l}, {r})"
+                return f"_idiv({lhs}, {rhs})"
             if isinstance(e.right.const, (int, float)) and e.right.const != 0:
-                return f"({l} / {r})"
-            return f"_rdiv({l}, {r})"
+                return f"({lhs} / {rhs})"
+            return f"_rdiv({lhs}, {rhs})"
         if op == "MOD":
-            return f"_imod({l}, {r})"
+            return f"_imod({lhs}, {rhs})"
         if op == "**":
-            return f"_expt({l}, {r})"
-        return f"({l} {op} {r})"
+            return f"_expt({lhs}, {rhs})"
+        return f"({lhs} {op} {rhs})"
 
     def _has_call(self, e: A.Expr) -> bool:
         if isinstance(e, A.Call):

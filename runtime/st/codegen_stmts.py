@@ -8,7 +8,7 @@ decides, written in Python).
 from __future__ import annotations
 
 import re
-from typing import Any, Optional
+from typing import Any
 
 from . import ast as A
 from . import conversions as C
@@ -203,7 +203,7 @@ class StmtGen(CodeGenBase):
             return
         self.emit_store(s.target, self.ex(s.value), s.value.ty, s.value)
 
-    def coerce(self, code: str, src: T.Type, dst: T.Type, e: Optional[A.Expr]) -> str:
+    def coerce(self, code: str, src: T.Type, dst: T.Type, e: A.Expr | None) -> str:
         """Convert a value of type src to the representation of dst on store
         (wrap integers, round REAL to 32 bits, truncate strings): what
         happens is conversions.store_step's decision, written here."""
@@ -239,7 +239,7 @@ class StmtGen(CodeGenBase):
         fn = rtlib.make_converter(se, de)
         return f"{self.const(fn)}({code})"
 
-    def emit_store(self, target: A.Expr, value_code: str, value_ty: T.Type, value_expr: Optional[A.Expr],
+    def emit_store(self, target: A.Expr, value_code: str, value_ty: T.Type, value_expr: A.Expr | None,
                    trusted: bool = False) -> None:
         """target := value, with the conversion to the target's type."""
         tty = target.ty

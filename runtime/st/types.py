@@ -24,7 +24,7 @@ runtime library and the JSON encoder):
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Optional
+from typing import Any
 
 
 class Type:
@@ -69,8 +69,8 @@ class ElementaryType(Type):
     category: str
     bits: int
     # integer range (ints and bit strings); for time types the raw int range
-    lo: Optional[int] = None
-    hi: Optional[int] = None
+    lo: int | None = None
+    hi: int | None = None
     # unit of the int representation of time/date types, in nanoseconds
     unit_ns: int = 0
 
@@ -160,7 +160,7 @@ class StringType(Type):
         base = "WSTRING" if self.wide else "STRING"
         return f"{base}[{self.length}]"
 
-    def same(self, other: "Type") -> bool:
+    def same(self, other: Type) -> bool:
         return isinstance(other, StringType) and other.wide == self.wide
 
 
@@ -172,10 +172,10 @@ class EnumType(Type):
     values: dict  # UPPER name -> int, in declaration order
     spelled: dict  # UPPER name -> name as declared
     base: ElementaryType = INT
-    default: Optional[int] = None  # TYPE E : (a, b) := b; -- else the first value
+    default: int | None = None  # TYPE E : (a, b) := b; -- else the first value
     is_enum = True
 
-    def name_of(self, value: int) -> Optional[str]:
+    def name_of(self, value: int) -> str | None:
         for k, v in self.values.items():
             if v == value:
                 return self.spelled[k]
@@ -287,7 +287,7 @@ def declared_default(t: Type) -> Any:
     return None
 
 
-def base_elementary(t: Type) -> Optional[ElementaryType]:
+def base_elementary(t: Type) -> ElementaryType | None:
     """The elementary type a value of t is stored as (enum -> its base,
     subrange -> its base), or None for strings and aggregates."""
     t = resolve(t)

@@ -61,15 +61,15 @@ END_PROGRAM
 def test_the_ltmr_manual_examples_run_verbatim():
     prog = compile_files(["st_programs/ltmr_write_sdo.st", "st_programs/ltmr_read_sdo.st"],
                          profile="schneider")
-    for name, idx_word, request_bit, mgmt, timeout_word, index in (
+    for name, idx_word, request_bit, _mgmt, timeout_word, index in (
             ("ltmr_write_sdo", 3200, 100, 3250, 3253, 0x00032007),
             ("ltmr_read_sdo", 3220, 101, 3260, 3263, 0x00032004)):
         runner = prog.runner(name)
         calls = []
 
         class Recorder:   # stands in for the CANopen master's SDO service
-            def request(self, *args):
-                calls.append(args)
+            def request(self, *args, _calls=calls):
+                _calls.append(args)
                 return True
 
         runner.ctx.services[SDO_SERVICE] = Recorder()
