@@ -48,7 +48,8 @@ class Checker(TypeChecks, DeclChecks, ExprChecks, OperatorChecks, StmtChecks, Ca
             self._collect(sf)
         for key in list(self.type_decls):
             self._resolve_named_type(key, self.type_decls[key].pos)
-        global_blocks = [(b, None) for sf in files for b in sf.decls if isinstance(b, A.VarBlock)]
+        global_blocks: list[tuple[A.VarBlock, A.Configuration | None]] = [
+            (b, None) for sf in files for b in sf.decls if isinstance(b, A.VarBlock)]
         for sf in files:
             for decl in sf.decls:
                 if isinstance(decl, A.Configuration):

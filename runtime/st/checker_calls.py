@@ -259,7 +259,7 @@ class CallChecks(CheckerBase):
         # 1) type every argument; untyped literals wait for their type variable
         arg_types: list = []
         for a, spec in zip(args, specs):
-            exp = T.ELEMENTARY.get(spec.upper()) if ":" not in spec else None
+            exp: T.Type | None = T.ELEMENTARY.get(spec.upper()) if ":" not in spec else None
             if spec.upper() in ("STRING", "WSTRING"):
                 exp = T.StringType(self.profile.default_string_length, spec.upper() == "WSTRING")
             arg_types.append(self.expr(a, scope, expected=exp))
@@ -349,8 +349,9 @@ class CallChecks(CheckerBase):
         if same_type(a, b):
             return a
         ae, be = T.base_elementary(a), T.base_elementary(b)
-        if isinstance(T.resolve(a), T.StringType) and isinstance(T.resolve(b), T.StringType):
-            return a if T.resolve(a).length >= T.resolve(b).length else b
+        ra, rb = T.resolve(a), T.resolve(b)
+        if isinstance(ra, T.StringType) and isinstance(rb, T.StringType):
+            return a if ra.length >= rb.length else b
         if ae is not None and be is not None and not isinstance(T.resolve(a), T.EnumType):
             c = self._common(ae, be, e)
             return c
@@ -393,7 +394,7 @@ class CallChecks(CheckerBase):
         if isinstance(t, T.ElementaryType):
             return max(1, t.bits // 8)
         if isinstance(t, (T.EnumType, T.SubrangeType)):
-            return max(1, T.base_elementary(t).bits // 8)
+            return max(1, t.base.bits // 8)
         if isinstance(t, T.StringType):
             return (t.length + 1) * (2 if t.wide else 1)
         if isinstance(t, T.ArrayType) and not t.variable_length:
@@ -404,7 +405,8 @@ class CallChecks(CheckerBase):
             return None if es is None else n * es
         if isinstance(t, T.StructType):
             sizes = [self._sizeof(f.type) for f in t.fields.values()]
-            return None if None in sizes else sum(sizes)
+            known = [s for s in sizes if s is not None]
+            return None if len(known) < len(sizes) else sum(known)
         if isinstance(t, T.RefType):
             return 8
         return None
@@ -420,14 +422,16 @@ class CallChecks(CheckerBase):
             self._check_args_loosely(e, scope)
             return None
         vals = [a.value for a in args]
-        tys = [self.expr(v, scope) for v in vals]
-        if any(t is None for t in tys):
+        found = [self.expr(v, scope) for v in vals]
+        tys = [t for t in found if t is not None]
+        if len(tys) < len(found):
             return None
         for i, (param, ty, value) in enumerate(zip(fn.params, tys, vals)):
+            table = T.resolve(ty)
             if not self._native_arg_fits(param, ty):
                 self.d.error("E020", f"{fn.name}: {param.label(i + 1)} must be {param.expected}", value.pos)
-            elif param.kind == native.WORDS and param.min_words:
-                dims = T.resolve(ty).dims[0]
+            elif param.kind == native.WORDS and param.min_words and isinstance(table, T.ArrayType):
+                dims = table.dims[0]
                 if dims is not None and dims[1] - dims[0] + 1 < param.min_words:
                     self.d.error("E020", f"{fn.name}: {param.label(i + 1)} needs {param.min_words} words",
                                  value.pos)
@@ -444,5 +448,7 @@ class CallChecks(CheckerBase):
             be = T.base_elementary(ty)
             return be is not None and be.is_intlike
         t = T.resolve(ty)   # WORDS: a one-dimensional table of 16-bit words
-        return isinstance(t, T.ArrayType) and len(t.dims) == 1 and \
-            T.base_elementary(t.elem) is not None and T.base_elementary(t.elem).bits == 16
+        if not isinstance(t, T.ArrayType) or len(t.dims) != 1:
+            return False
+        elem = T.base_elementary(t.elem)
+        return elem is not None and elem.bits == 16

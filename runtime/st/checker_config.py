@@ -41,9 +41,9 @@ class ConfigChecks(CheckerBase):
                     p = pname.upper()
                     if p == "INTERVAL":
                         ty = self.expr(pexpr, Scope(None), expected=T.TIME)
-                        if ty is not None and T.base_elementary(ty) is not None and \
-                                T.base_elementary(ty).category == T.DURATION and pexpr.const is not None:
-                            task["interval_ms"] = pexpr.const * T.base_elementary(ty).unit_ns / 1e6
+                        be = T.base_elementary(ty) if ty is not None else None
+                        if be is not None and be.category == T.DURATION and pexpr.const is not None:
+                            task["interval_ms"] = pexpr.const * be.unit_ns / 1e6
                             if task["interval_ms"] <= 0:
                                 self.d.error("E091", "a task INTERVAL must be positive", pexpr.pos)
                         else:

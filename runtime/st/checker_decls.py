@@ -23,8 +23,8 @@ class DeclChecks(CheckerBase):
         if ty is None:
             return None
         section = block.kind
-        if isinstance(T.resolve(ty), T.ArrayType) and T.resolve(ty).variable_length \
-                and section != "VAR_IN_OUT":
+        rty = T.resolve(ty)
+        if isinstance(rty, T.ArrayType) and rty.variable_length and section != "VAR_IN_OUT":
             self.d.error("E050", "ARRAY[*] is only allowed for VAR_IN_OUT", decl.pos)
             return None
         prefix = "v_" if owner is not None else "g_"
@@ -215,9 +215,10 @@ class DeclChecks(CheckerBase):
         for count_expr, value in init.items:
             count = 1
             if count_expr is not None:
-                count = self._const_int(count_expr, scope, "a repetition count")
-                if count is None or count < 0:
+                n = self._const_int(count_expr, scope, "a repetition count")
+                if n is None or n < 0:
                     return None
+                count = n
             plan = self.init_value(ty.elem, value, scope, what) if value is not None else None
             flat.extend([plan] * count)
         if len(flat) > total:

@@ -83,22 +83,22 @@ class ExprChecks(CheckerBase):
                 return exp
             return T.StringType(max(len(v), 1), wide)
         if e.type_name is not None:
-            ty = T.ELEMENTARY.get(e.type_name)
-            if ty is None:
+            typed = T.ELEMENTARY.get(e.type_name)
+            if typed is None:
                 self.d.error("E012", f"unknown type '{e.type_name}' in typed literal", e.pos)
                 return None
-            if ty.is_bool:
+            if typed.is_bool:
                 if e.kind == "bool" or (e.kind == "int" and v in (0, 1)):
                     e.const = bool(v)
-                    return ty
-            elif ty.is_real and e.kind in ("int", "real"):
+                    return typed
+            elif typed.is_real and e.kind in ("int", "real"):
                 e.const = float(v)
-                return ty
-            elif ty.is_intlike and e.kind == "int":
-                if not T.int_fits(ty, v):
-                    self.d.error("E022", f"{v} does not fit {ty.name} ({ty.lo}..{ty.hi})", e.pos)
+                return typed
+            elif typed.is_intlike and e.kind == "int":
+                if not T.int_fits(typed, v):
+                    self.d.error("E022", f"{v} does not fit {typed.name} ({typed.lo}..{typed.hi})", e.pos)
                 e.const = v
-                return ty
+                return typed
             self.d.error("E003", f"{e.type_name}# does not take this literal", e.pos)
             return None
         if e.kind == "bool":
@@ -122,7 +122,7 @@ class ExprChecks(CheckerBase):
 
     def _time_repr(self, ty: T.ElementaryType, ns: int, e: A.Expr) -> int:
         v = ns // ty.unit_ns if ns >= 0 else -((-ns) // ty.unit_ns)
-        if ty.lo is not None and not (ty.lo <= v <= ty.hi):
+        if ty.lo is not None and ty.hi is not None and not (ty.lo <= v <= ty.hi):
             self.d.error("E022", f"the literal is outside the range of {ty.name}", e.pos,
                          "use the L-type (LTIME, LDT ...) for larger values")
         return v

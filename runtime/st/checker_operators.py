@@ -75,9 +75,10 @@ class OperatorChecks(CheckerBase):
             self.d.error("E023", f"{e.op} needs BOOL operands", e.pos)
             return None
         elif le is not None and re_ is not None and self._bitwise_ok(le) and self._bitwise_ok(re_):
-            ty = self._common(le, re_, e)
-            if ty is None:
+            common = self._common(le, re_, e)
+            if common is None:
                 return None
+            ty = common
         else:
             self.d.error("E023", f"{e.op} needs BOOL or bit-string operands, not {lt} and {rt}", e.pos,
                          "compare numbers first, e.g. (x > 0) AND (y > 0)")
@@ -155,9 +156,10 @@ class OperatorChecks(CheckerBase):
             if le.is_real:
                 ty = le
         else:
-            ty = self._common(le, re_, e)
-            if ty is None:
+            common = self._common(le, re_, e)
+            if common is None:
                 return None
+            ty = common
         if op == "MOD" and not ty.is_intlike:
             self.d.error("E023", "MOD needs integers", e.pos, "use x - TRUNC(x / y) * y for REAL")
             return None

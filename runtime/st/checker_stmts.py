@@ -102,8 +102,8 @@ class StmtChecks(CheckerBase):
                 self._stmts(br.body, scope)
             return
         se = T.resolve(sty)
-        if not (isinstance(se, T.EnumType) or (T.base_elementary(se) is not None
-                                                and T.base_elementary(se).is_intlike)):
+        sbase = T.base_elementary(se)
+        if not (isinstance(se, T.EnumType) or (sbase is not None and sbase.is_intlike)):
             self.d.error("E060", f"CASE needs an integer or enumeration selector, not {sty}",
                          s.selector.pos)
         seen: list = []  # (lo, hi, pos)
@@ -184,7 +184,7 @@ class StmtChecks(CheckerBase):
             if sym.constant:
                 self.d.error("E030", f"'{sym.name}' is a CONSTANT", e.pos,
                              "remove CONSTANT from its declaration or assign another variable")
-            elif sym.section == "VAR_INPUT" and sym.owner is scope.pou:
+            elif sym.section == "VAR_INPUT" and sym.owner is not None and sym.owner is scope.pou:
                 self.d.error("E030", f"'{sym.name}' is an input of {sym.owner.name} and cannot be "
                              "assigned inside it", e.pos, "copy it into a local VAR and change that")
             elif sym in scope.for_vars:

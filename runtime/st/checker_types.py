@@ -69,9 +69,11 @@ class TypeChecks(CheckerBase):
                         self.d.error("E011", f"field '{m.name}' is declared twice", m.pos)
                         continue
                     fty = self.type_of(m.type)
-                    st.fields[fkey] = T.StructField(m.name, fty, m.init, pyname("f_", m.name))
+                    # an unknown field type (reported, E012) stays None: uses of the field report no more
+                    st.fields[fkey] = T.StructField(m.name, fty,  # type: ignore[arg-type]
+                                                    m.init, pyname("f_", m.name))
                 self.structs.append(st)
-                ty = st
+                ty: T.Type = st
             elif isinstance(spec, A.EnumTypeSpec):
                 ty = self._enum_type(decl.name, spec)
             else:
@@ -163,7 +165,7 @@ class TypeChecks(CheckerBase):
             elem = self.type_of(spec.elem, scope)
             if elem is None:
                 return None
-            dims = []
+            dims: list[tuple[int, int] | None] = []
             for rng in spec.ranges:
                 if rng is None:
                     dims.append(None)

@@ -42,6 +42,23 @@ def py_literal(v: Any) -> str:
     raise TypeError(f"no literal form for {type(v).__name__}")
 
 
+def elementary(ty: T.Type) -> T.ElementaryType:
+    """The elementary type values of the checked type ty are stored as
+    (asked only where the checker made sure there is one)."""
+    be = T.base_elementary(ty)
+    if be is None:
+        raise TypeError(f"{ty} is not stored as an elementary value")
+    return be
+
+
+def array_type(ty: T.Type) -> T.ArrayType:
+    """The checked type ty of an indexed value: an ARRAY."""
+    t = T.resolve(ty)
+    if not isinstance(t, T.ArrayType):
+        raise TypeError(f"{ty} is not an array")
+    return t
+
+
 @dataclass
 class Accessor:
     """A process-image address the loader binds: _A<n>g / _A<n>s (scalar

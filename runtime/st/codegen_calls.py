@@ -13,7 +13,7 @@ from . import ast as A
 from . import conversions as C
 from . import ranges as R
 from . import types as T
-from .codegen_base import CodeGenBase, py_literal
+from .codegen_base import CodeGenBase, elementary, py_literal
 from .symbols import CallInfo
 
 
@@ -36,11 +36,11 @@ class CallGen(CodeGenBase):
                 return self.ref_code(info.args[0])
             return py_literal(e.const)
         if info.kind == "native":
-            args = ", ".join(self.ex(a) for a in info.args)
+            values = ", ".join(self.ex(a) for a in info.args)
             # the service stores words into the tables: it needs each table's signedness (st/native.py)
-            signed = [T.base_elementary(T.resolve(t).elem).category == T.SIGNED for t in info.rtypes
-                      if isinstance(T.resolve(t), T.ArrayType)]
-            return f"_native({self.const(info.func)}, {args}, {', '.join(map(str, signed))})"
+            tables = [t for t in map(T.resolve, info.rtypes) if isinstance(t, T.ArrayType)]
+            signed = [elementary(t.elem).category == T.SIGNED for t in tables]
+            return f"_native({self.const(info.func)}, {values}, {', '.join(map(str, signed))})"
         raise NotImplementedError(info.kind)
 
     _INLINE_2 = {"MAX": "max", "MIN": "min"}
@@ -127,6 +127,7 @@ class CallGen(CodeGenBase):
 
     def _function_call(self, info: CallInfo) -> str:
         pou = info.pou
+        assert pou is not None  # a call of kind 'function' names its POU
         given = {p.name.upper(): (p, a) for p, a in info.inputs}
         given.update({p.name.upper(): (p, a) for p, a in info.inouts})
         parts = []

@@ -14,7 +14,7 @@ from . import ast as A
 from . import conversions as C
 from . import ranges as R
 from . import types as T
-from .codegen_base import CodeGenBase, py_literal
+from .codegen_base import CodeGenBase, array_type, elementary, py_literal
 from .symbols import CallInfo, VarSymbol
 
 
@@ -86,7 +86,7 @@ class ExprGen(CodeGenBase):
 
     def _index_target(self, e: A.Index) -> str:
         code = self.ex(e.base)
-        arr = T.resolve(e.base.ty)
+        arr = array_type(e.base.ty)
         for ix, dim in zip(e.indices, arr.dims):
             code += f"[{self._index_code(ix, dim)}]"
         return code
@@ -110,7 +110,7 @@ class ExprGen(CodeGenBase):
     def _unary(self, e: A.Unary) -> str:
         v = self.ex(e.operand)
         if e.op == "NOT":
-            be = T.base_elementary(e.ty)
+            be = elementary(e.ty)
             if be.is_bool:
                 return f"(not {v})"
             if be.is_bits:
@@ -130,7 +130,7 @@ class ExprGen(CodeGenBase):
         lhs, rhs = self.ex(e.left), self.ex(e.right)
         if op in self._CMP:
             return f"({lhs} {self._CMP[op]} {rhs})"
-        be = T.base_elementary(e.ty)
+        be = elementary(e.ty)
         if op in ("AND_THEN", "OR_ELSE"):
             return f"({lhs} {'and' if op == 'AND_THEN' else 'or'} {rhs})"
         if op in ("AND", "OR", "XOR"):
@@ -198,7 +198,7 @@ class ExprGen(CodeGenBase):
             return f"_AttrRef({self.ex(e.base)}, {e.sym.pyname!r})"
         if isinstance(e, A.Index):
             base = self.ex(e.base)
-            arr = T.resolve(e.base.ty)
+            arr = array_type(e.base.ty)
             for ix, dim in list(zip(e.indices, arr.dims))[:-1]:
                 base += f"[{self._index_code(ix, dim)}]"
             return f"_ItemRef({base}, {self._index_code(e.indices[-1], arr.dims[-1])})"

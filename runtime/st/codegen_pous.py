@@ -147,6 +147,8 @@ class PouGen(CodeGenBase):
         if plan is None:
             return self._default_code(t)
         # struct/FB with field plans: built by a small helper taking a lambda list
+        if not isinstance(t, (T.StructType, T.FBType)):
+            raise TypeError(f"{ty} takes no field values")
         cls = t.pyclass if isinstance(t, T.StructType) else t.pou.pyname
         setters = []
         for key, sub in plan[1].items():
@@ -158,7 +160,7 @@ class PouGen(CodeGenBase):
         args = ", ".join(f"({attr!r}, {code})" for attr, code in setters)
         return f"_with_fields({cls}(), ({args}{',' if setters else ''}))"
 
-    def _member_attr(self, t: T.Type, key: str) -> tuple:
+    def _member_attr(self, t: T.StructType | T.FBType, key: str) -> tuple:
         if isinstance(t, T.StructType):
             f = t.fields[key]
             return f.pyname, f.type
@@ -249,7 +251,7 @@ class PouGen(CodeGenBase):
             if v.boxed and v.section == "VAR_INPUT":
                 self.emit(f"{v.pyname} = _CellRef({v.pyname})")
         if pou.result is not None:
-            self.emit(f"r_result = {self._default_code(pou.return_type)}")
+            self.emit(f"r_result = {self._default_code(pou.result.type)}")
             if pou.result.boxed:
                 self.emit("r_result = _CellRef(r_result)")
         for v in pou.vars.values():
@@ -264,6 +266,7 @@ class PouGen(CodeGenBase):
 
     def _function_epilogue(self) -> None:
         pou = self.fn.pou
+        assert pou is not None  # only a FUNCTION's body ends with an epilogue
         for v in pou.params("VAR_OUTPUT"):
             val = f"{v.pyname}.value" if v.boxed else v.pyname
             self.emit(f"if _o_{v.pyname} is not None: _o_{v.pyname}.set({val})")

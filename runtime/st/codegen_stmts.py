@@ -15,7 +15,7 @@ from . import conversions as C
 from . import ranges as R
 from . import rtlib
 from . import types as T
-from .codegen_base import CodeGenBase, py_literal
+from .codegen_base import CodeGenBase, elementary, py_literal
 from .symbols import VarSymbol
 
 
@@ -255,13 +255,13 @@ class StmtGen(CodeGenBase):
             self.emit(f"{base}.set({code})")
         elif isinstance(target, A.BitAccess):
             bit = int(target.bit.const)
-            be = T.base_elementary(target.base.ty)
+            be = elementary(target.base.ty)
             cur = self.ex(target.base)
             mask = 1 << bit
             full = (1 << be.bits) - 1
             new = f"(({cur}) | {mask} if {code} else ({cur}) & {full ^ mask})"
-            self.emit_store(target.base, self.wrap(be, new) if be.lo < 0 else new, target.base.ty, None,
-                            trusted=True)
+            signed = be.lo is not None and be.lo < 0
+            self.emit_store(target.base, self.wrap(be, new) if signed else new, target.base.ty, None, trusted=True)
         elif isinstance(target, A.Located):
             idx = self.accessor(target.addr, T.base_elementary(tty))
             self.emit(f"_A{idx}s({code})")

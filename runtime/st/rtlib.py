@@ -238,7 +238,7 @@ _DAY_NS = 86_400_000_000_000
 
 def _int_wrapper(t: ElementaryType) -> Callable[[int], int]:
     mask = (1 << t.bits) - 1
-    if t.lo < 0:  # signed integers and TIME/LTIME
+    if t.lo is not None and t.lo < 0:  # signed integers and TIME/LTIME
         half = 1 << (t.bits - 1)
 
         def wrap_signed(v: int) -> int:

@@ -24,7 +24,7 @@ runtime library and the JSON encoder):
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 
 class Type:
@@ -44,6 +44,10 @@ class Type:
         """Values that are Python objects mutated in place (value semantics
         are kept by copying into the target on assignment)."""
         return self.is_array or self.is_struct or self.is_fb
+
+    if TYPE_CHECKING:
+        @property
+        def name(self) -> str: ...
 
     def __str__(self) -> str:
         return self.name
@@ -156,7 +160,7 @@ class StringType(Type):
     is_string = True
 
     @property
-    def name(self) -> str:  # type: ignore[override]
+    def name(self) -> str:
         base = "WSTRING" if self.wide else "STRING"
         return f"{base}[{self.length}]"
 
@@ -189,7 +193,7 @@ class SubrangeType(Type):
     hi: int
 
     @property
-    def name(self) -> str:  # type: ignore[override]
+    def name(self) -> str:
         return f"{self.base.name}({self.lo}..{self.hi})"
 
 
@@ -209,7 +213,7 @@ class ArrayType(Type):
     is_array = True
 
     @property
-    def name(self) -> str:  # type: ignore[override]
+    def name(self) -> str:
         rng = ", ".join("*" if d is None else f"{d[0]}..{d[1]}" for d in self.dims)
         return f"ARRAY[{rng}] OF {self.elem.name}"
 
@@ -242,7 +246,7 @@ class RefType(Type):
     is_ref = True
 
     @property
-    def name(self) -> str:  # type: ignore[override]
+    def name(self) -> str:
         return ("POINTER TO " if self.pointer else "REF_TO ") + self.target.name
 
 
@@ -355,4 +359,4 @@ GENERICS = ("ANY", "ANY_DERIVED", "ANY_ELEMENTARY", "ANY_MAGNITUDE", "ANY_NUM", 
 
 def int_fits(t: ElementaryType, value: int) -> bool:
     """Whether value is one of integer type t's values."""
-    return t.lo is not None and t.lo <= value <= t.hi
+    return t.lo is not None and t.hi is not None and t.lo <= value <= t.hi
