@@ -19,8 +19,8 @@ Code ranges (keep them stable, users search for them):
 """
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
-from typing import Iterable, Optional
 
 from .ast import Pos
 
@@ -33,14 +33,14 @@ class Diagnostic:
     code: str
     message: str
     pos: Pos
-    hint: Optional[str] = None
+    hint: str | None = None
     severity: str = ERROR
 
     @property
     def is_error(self) -> bool:
         return self.severity == ERROR
 
-    def format(self, sources: Optional["SourceSet"] = None) -> str:
+    def format(self, sources: SourceSet | None = None) -> str:
         head = f"{self.pos.file}:{self.pos.line}:{self.pos.col}: {self.severity} {self.code}: {self.message}"
         lines = [head]
         text = sources.line(self.pos.file, self.pos.line) if sources else None
@@ -68,7 +68,7 @@ class SourceSet:
     def add(self, path: str, text: str) -> None:
         self._texts[path] = text.splitlines()
 
-    def line(self, path: str, line: int) -> Optional[str]:
+    def line(self, path: str, line: int) -> str | None:
         lines = self._texts.get(path)
         if lines is None or not (1 <= line <= len(lines)):
             return None
@@ -80,10 +80,10 @@ class DiagnosticBag:
     """Collects diagnostics of one compilation."""
     items: list = field(default_factory=list)
 
-    def error(self, code: str, message: str, pos: Pos, hint: Optional[str] = None) -> None:
+    def error(self, code: str, message: str, pos: Pos, hint: str | None = None) -> None:
         self.items.append(Diagnostic(code, message, pos, hint, ERROR))
 
-    def warning(self, code: str, message: str, pos: Pos, hint: Optional[str] = None) -> None:
+    def warning(self, code: str, message: str, pos: Pos, hint: str | None = None) -> None:
         self.items.append(Diagnostic(code, message, pos, hint, WARNING))
 
     def extend(self, diags: Iterable[Diagnostic]) -> None:
@@ -101,7 +101,7 @@ class CompileError(Exception):
     """Raised by the high-level API when a compilation has errors; carries
     every diagnostic (errors and warnings) and the sources for formatting."""
 
-    def __init__(self, diagnostics: list, sources: Optional[SourceSet] = None) -> None:
+    def __init__(self, diagnostics: list, sources: SourceSet | None = None) -> None:
         self.diagnostics = diagnostics
         self.sources = sources
         super().__init__(self.format())

@@ -8,8 +8,6 @@ the engine never lets a Python exception escape.
 """
 from __future__ import annotations
 
-from typing import Optional
-
 from .ast import Pos
 
 
@@ -18,7 +16,7 @@ class STFault(Exception):
     ('division', 'bounds', 'range', 'reference', 'watchdog', 'overflow',
     'recursion', 'internal')."""
 
-    def __init__(self, kind: str, message: str, pos: Optional[Pos] = None) -> None:
+    def __init__(self, kind: str, message: str, pos: Pos | None = None) -> None:
         self.kind = kind
         self.message = message
         self.pos = pos

@@ -25,8 +25,8 @@ from __future__ import annotations
 import math
 import re
 import struct
+from collections.abc import Callable
 from datetime import date as _date
-from typing import Callable, Optional
 
 from .types import (
     BITS,
@@ -238,7 +238,7 @@ _DAY_NS = 86_400_000_000_000
 
 def _int_wrapper(t: ElementaryType) -> Callable[[int], int]:
     mask = (1 << t.bits) - 1
-    if t.lo < 0:  # signed integers and TIME/LTIME
+    if t.lo is not None and t.lo < 0:  # signed integers and TIME/LTIME
         half = 1 << (t.bits - 1)
 
         def wrap_signed(v: int) -> int:
@@ -485,7 +485,7 @@ _REAL_RE = re.compile(
 _REAL_WORDS = {"INF": _INF, "+INF": _INF, "-INF": -_INF, "NAN": _NAN}
 
 
-def parse_int(text: str) -> Optional[int]:
+def parse_int(text: str) -> int | None:
     """An IEC integer literal ('42', '-7', '16#FF', '2#1010_0001', 'INT#5'),
     surrounding blanks allowed; None if the text is anything else."""
     m = _INT_RE.match(text.strip())
@@ -499,7 +499,7 @@ def parse_int(text: str) -> Optional[int]:
     return -v if sign == "-" else v
 
 
-def parse_real(text: str) -> Optional[float]:
+def parse_real(text: str) -> float | None:
     """A real or integer literal ('1.5', '-2.5E-3', 'REAL#1', '16#FF'),
     or INF / -INF / NAN (what real_to_string writes); None if invalid."""
     s = text.strip()
@@ -513,7 +513,7 @@ def parse_real(text: str) -> Optional[float]:
     return None if v is None else float(v)
 
 
-def parse_bool(text: str) -> Optional[bool]:
+def parse_bool(text: str) -> bool | None:
     """'TRUE' / 'FALSE' (any case, optional BOOL# prefix) or an integer
     literal (non-zero is TRUE); None if invalid."""
     s = text.strip().upper()
@@ -542,7 +542,7 @@ _TOD_RE = re.compile(r"([0-9]{1,2}):([0-9]{1,2})(?::([0-9]{1,2})(?:\.([0-9]+))?)
 _EPOCH_ORD = _date(1970, 1, 1).toordinal()
 
 
-def _date_ns(m) -> Optional[int]:
+def _date_ns(m) -> int | None:
     try:
         d = _date(int(m.group(1)), int(m.group(2)), int(m.group(3)))
     except ValueError:
@@ -550,7 +550,7 @@ def _date_ns(m) -> Optional[int]:
     return (d.toordinal() - _EPOCH_ORD) * _DAY_NS
 
 
-def _tod_ns(m) -> Optional[int]:
+def _tod_ns(m) -> int | None:
     h, mi, s, frac = m.groups()
     h, mi, s = int(h), int(mi), int(s or 0)
     if h > 23 or mi > 59 or s > 59:
@@ -561,7 +561,7 @@ def _tod_ns(m) -> Optional[int]:
     return ns
 
 
-def parse_temporal(text: str, category: str) -> Optional[int]:
+def parse_temporal(text: str, category: str) -> int | None:
     """Parse a time or date literal of the given category (types.DURATION,
     DATECAT, TODCAT, DTCAT) to nanoseconds (since 1970 for dates, since
     midnight for TOD), like the ST parser. The prefix ('T#', 'TIME#', 'LT#',
@@ -625,10 +625,10 @@ def _digits_exp(s: str) -> tuple:
 
 def _shortest_f32(x: float) -> str:
     for p in range(9):  # 9 significant digits always round-trip binary32
-        s = "%.*e" % (p, x)
+        s = f"{x:.{p}e}"
         if f32(float(s)) == x:
             return s
-    return "%.8e" % x
+    return f"{x:.8e}"
 
 
 def real_to_string(x: float, lreal: bool = False) -> str:
@@ -664,7 +664,7 @@ def real_to_string(x: float, lreal: bool = False) -> str:
         else:
             out = "0." + "0" * (-e - 1) + digits
     else:
-        out = "%s.%sE%s%02d" % (digits[0], digits[1:] or "0", "-" if e < 0 else "+", abs(e))
+        out = f"{digits[0]}.{digits[1:] or '0'}E{'-' if e < 0 else '+'}{abs(e):02d}"
     return "-" + out if neg else out
 
 
@@ -706,9 +706,9 @@ def _fmt_tod(ns: int) -> str:
     sec, frac = divmod(ns % _DAY_NS, 1_000_000_000)
     mi, s = divmod(sec, 60)
     h, mi = divmod(mi, 60)
-    out = "%02d:%02d:%02d" % (h, mi, s)
+    out = f"{h:02d}:{mi:02d}:{s:02d}"
     if frac:
-        out += "." + ("%09d" % frac).rstrip("0")
+        out += "." + f"{frac:09d}".rstrip("0")
     return out
 
 
@@ -1126,7 +1126,7 @@ def CONCAT_LDATE_LTOD(d: int, tod: int) -> int:
     return (d - d % _DAY_NS + tod % _DAY_NS) & _M64
 
 
-def _days(year: int, month: int, day: int) -> Optional[int]:
+def _days(year: int, month: int, day: int) -> int | None:
     try:
         return _date(year, month, day).toordinal() - _EPOCH_ORD
     except (ValueError, OverflowError):

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field
-from typing import Any, Optional
+from typing import Any
 
 from .types import FBType, Type
 
@@ -28,7 +28,7 @@ class VarSymbol:
     type: Type
     pos: Any
     pyname: str
-    owner: Optional["POUInfo"] = None  # None for a global
+    owner: POUInfo | None = None  # None for a global
     constant: bool = False
     retain: bool = False
     persistent: bool = False
@@ -51,9 +51,9 @@ class POUInfo:
     node: Any  # ast.POU
     pyname: str
     vars: dict = field(default_factory=dict)  # UPPER -> VarSymbol, declaration order
-    return_type: Optional[Type] = None
-    result: Optional[VarSymbol] = None  # the FUNCTION's result variable
-    fbtype: Optional[FBType] = None
+    return_type: Type | None = None
+    result: VarSymbol | None = None  # the FUNCTION's result variable
+    fbtype: FBType | None = None
     library: bool = False  # from fblocks (not the user's files)
     native: Any = None  # Python implementation of an external POU
 
@@ -67,7 +67,7 @@ class CallInfo:
     call), 'std' (standard library function), 'builtin' (TIME, LTIME, REF,
     ADR, SIZEOF), 'native' (a native function, st/native.py)."""
     kind: str
-    pou: Optional[POUInfo] = None
+    pou: POUInfo | None = None
     func: Any = None  # StdFunc for 'std'; builtin name for 'builtin'; NativeFunction for 'native'
     instance: Any = None  # the instance expression for 'fb'
     inputs: list = field(default_factory=list)  # (VarSymbol, Expr) in call order

@@ -24,7 +24,7 @@ runtime library and the JSON encoder):
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Optional
+from typing import TYPE_CHECKING, Any
 
 
 class Type:
@@ -44,6 +44,10 @@ class Type:
         """Values that are Python objects mutated in place (value semantics
         are kept by copying into the target on assignment)."""
         return self.is_array or self.is_struct or self.is_fb
+
+    if TYPE_CHECKING:
+        @property
+        def name(self) -> str: ...
 
     def __str__(self) -> str:
         return self.name
@@ -69,8 +73,8 @@ class ElementaryType(Type):
     category: str
     bits: int
     # integer range (ints and bit strings); for time types the raw int range
-    lo: Optional[int] = None
-    hi: Optional[int] = None
+    lo: int | None = None
+    hi: int | None = None
     # unit of the int representation of time/date types, in nanoseconds
     unit_ns: int = 0
 
@@ -156,11 +160,11 @@ class StringType(Type):
     is_string = True
 
     @property
-    def name(self) -> str:  # type: ignore[override]
+    def name(self) -> str:
         base = "WSTRING" if self.wide else "STRING"
         return f"{base}[{self.length}]"
 
-    def same(self, other: "Type") -> bool:
+    def same(self, other: Type) -> bool:
         return isinstance(other, StringType) and other.wide == self.wide
 
 
@@ -172,10 +176,10 @@ class EnumType(Type):
     values: dict  # UPPER name -> int, in declaration order
     spelled: dict  # UPPER name -> name as declared
     base: ElementaryType = INT
-    default: Optional[int] = None  # TYPE E : (a, b) := b; -- else the first value
+    default: int | None = None  # TYPE E : (a, b) := b; -- else the first value
     is_enum = True
 
-    def name_of(self, value: int) -> Optional[str]:
+    def name_of(self, value: int) -> str | None:
         for k, v in self.values.items():
             if v == value:
                 return self.spelled[k]
@@ -189,7 +193,7 @@ class SubrangeType(Type):
     hi: int
 
     @property
-    def name(self) -> str:  # type: ignore[override]
+    def name(self) -> str:
         return f"{self.base.name}({self.lo}..{self.hi})"
 
 
@@ -209,7 +213,7 @@ class ArrayType(Type):
     is_array = True
 
     @property
-    def name(self) -> str:  # type: ignore[override]
+    def name(self) -> str:
         rng = ", ".join("*" if d is None else f"{d[0]}..{d[1]}" for d in self.dims)
         return f"ARRAY[{rng}] OF {self.elem.name}"
 
@@ -242,7 +246,7 @@ class RefType(Type):
     is_ref = True
 
     @property
-    def name(self) -> str:  # type: ignore[override]
+    def name(self) -> str:
         return ("POINTER TO " if self.pointer else "REF_TO ") + self.target.name
 
 
@@ -287,7 +291,7 @@ def declared_default(t: Type) -> Any:
     return None
 
 
-def base_elementary(t: Type) -> Optional[ElementaryType]:
+def base_elementary(t: Type) -> ElementaryType | None:
     """The elementary type a value of t is stored as (enum -> its base,
     subrange -> its base), or None for strings and aggregates."""
     t = resolve(t)
@@ -353,52 +357,6 @@ GENERICS = ("ANY", "ANY_DERIVED", "ANY_ELEMENTARY", "ANY_MAGNITUDE", "ANY_NUM", 
             "ANY_DURATION", "ANY_CHARS")
 
 
-# ---------------------------------------------------------------- implicit conversion
-# IEC 61131-3 (3rd ed.) Figure 11: implicit conversions that lose nothing.
-_WIDEN: dict[str, tuple] = {
-    "SINT": ("INT", "DINT", "LINT", "REAL", "LREAL"),
-    "INT": ("DINT", "LINT", "REAL", "LREAL"),
-    "DINT": ("LINT", "LREAL"),
-    "LINT": (),
-    "USINT": ("UINT", "UDINT", "ULINT", "INT", "DINT", "LINT", "REAL", "LREAL"),
-    "UINT": ("UDINT", "ULINT", "DINT", "LINT", "REAL", "LREAL"),
-    "UDINT": ("ULINT", "LINT", "LREAL"),
-    "ULINT": (),
-    "BOOL": ("BYTE", "WORD", "DWORD", "LWORD"),
-    "BYTE": ("WORD", "DWORD", "LWORD"),
-    "WORD": ("DWORD", "LWORD"),
-    "DWORD": ("LWORD",),
-    "LWORD": (),
-    "REAL": ("LREAL",),
-    "LREAL": (),
-    "TIME": ("LTIME",),
-    "LTIME": (),
-    "DATE": ("LDATE",),
-    "TIME_OF_DAY": ("LTIME_OF_DAY",),
-    "DATE_AND_TIME": ("LDATE_AND_TIME",),
-    "LDATE": (),
-    "LTIME_OF_DAY": (),
-    "LDATE_AND_TIME": (),
-}
-
-
-def widens_to(src: ElementaryType, dst: ElementaryType) -> bool:
-    """True when src converts implicitly and losslessly to dst (IEC Fig. 11)."""
-    return src is dst or dst.name in _WIDEN.get(src.name, ())
-
-
 def int_fits(t: ElementaryType, value: int) -> bool:
-    return t.lo is not None and t.lo <= value <= t.hi
-
-
-def smallest_common(a: ElementaryType, b: ElementaryType) -> Optional[ElementaryType]:
-    """The smallest elementary type both widen to (for a binary operation),
-    or None if there is none."""
-    if widens_to(a, b):
-        return b
-    if widens_to(b, a):
-        return a
-    for cand in (INT, DINT, LINT, UINT, UDINT, ULINT, WORD, DWORD, LWORD, REAL, LREAL, LTIME):
-        if widens_to(a, cand) and widens_to(b, cand):
-            return cand
-    return None
+    """Whether value is one of integer type t's values."""
+    return t.lo is not None and t.hi is not None and t.lo <= value <= t.hi

@@ -3,7 +3,18 @@ from __future__ import annotations
 
 import pytest
 
+from softplc.fblocks.iec.functions import STANDARD_FUNCTIONS
 from softplc.runtime.program import check_files, compile_files
+from softplc.runtime.st.checker import Checker
+from softplc.runtime.st.diagnostics import DiagnosticBag
+from softplc.runtime.st.parser import parse_source
+from softplc.runtime.st.profile import get_profile
+
+
+def prog(decls: str, body: str) -> str:
+    """A PROGRAM main with the declarations decls (in one VAR block) and
+    the statements body; its first statement is on line 5."""
+    return f"PROGRAM main\nVAR\n{decls}\nEND_VAR\n{body}\nEND_PROGRAM\n"
 
 
 def run_st(source: str, cycles: int = 1, entry: str = "main", profile: str = "codesys",
@@ -23,6 +34,21 @@ def diagnostics(source: str, profile: str = "codesys", name: str = "test.st"):
 
 def codes(source: str, profile: str = "codesys") -> list:
     return [d.code for d in diagnostics(source, profile)]
+
+
+def check_st(source: str, profile: str = "codesys", natives: dict | None = None, name: str = "test.st"):
+    """Parse and check source alone (no library, no process image), as
+    program/compile.py drives the Checker; returns (CheckedProgram, list of
+    diagnostics in the order reported). natives: UPPER name -> NativeFunction."""
+    diags = DiagnosticBag()
+    sf = parse_source(source, name, diags)
+    checked = Checker(get_profile(profile), diags, STANDARD_FUNCTIONS, natives or {}).run([sf])
+    return checked, list(diags.items)
+
+
+def pou_body(checked, name: str = "main") -> list:
+    """The checked statements of a POU."""
+    return next(p for p in checked.pous if p.name.upper() == name.upper()).node.body
 
 
 @pytest.fixture

@@ -1,4 +1,6 @@
-"""Declarations: CONFIGURATION/RESOURCE/TASK, type forms, located variables."""
+"""Declarations: pragmas on the AST, located variables in both addressing
+models, the LTMR manual's examples. CONFIGURATION and type declarations are
+tested with the checker's parts (test_checker_config.py, test_checker_types.py)."""
 from __future__ import annotations
 
 import struct
@@ -6,62 +8,7 @@ import struct
 from softplc.runtime.io.canopen.sdo import SERVICE as SDO_SERVICE
 from softplc.runtime.program import compile_files
 
-from .conftest import codes, run_st
-
-CONFIG = """
-PROGRAM Fast
-VAR_INPUT limit : INT; END_VAR
-VAR n : INT; END_VAR
-n := n + 1; IF n > limit THEN n := 0; END_IF
-END_PROGRAM
-PROGRAM Slow
-END_PROGRAM
-CONFIGURATION Plant
-  VAR_GLOBAL g_limit : INT := 3; END_VAR
-  RESOURCE Cpu ON PLC
-    TASK T_fast (INTERVAL := T#10ms, PRIORITY := 1);
-    TASK T_slow (INTERVAL := T#100ms, PRIORITY := 5);
-    PROGRAM fast1 WITH T_fast : Fast (limit := g_limit);
-    PROGRAM slow1 WITH T_slow : Slow;
-  END_RESOURCE
-END_CONFIGURATION
-"""
-
-
-def test_configuration_tasks_and_program_instances_are_checked_and_exposed():
-    prog = compile_files([], texts={"cfg.st": CONFIG})
-    [cfg] = prog.checked.configurations
-    assert cfg.name == "Plant"
-    assert [(t["name"], t["interval_ms"], t["priority"]) for t in cfg.tasks] == \
-        [("T_fast", 10.0, 1), ("T_slow", 100.0, 5)]
-    assert [(p["name"], p["type"].name, p["task"]) for p in cfg.programs] == \
-        [("fast1", "Fast", "T_fast"), ("slow1", "Slow", "T_slow")]
-    assert [p.name for p, _ in cfg.programs[0]["binding"].inputs] == ["limit"]
-
-
-def test_configuration_errors():
-    bad = CONFIG.replace("WITH T_slow : Slow", "WITH T_none : Slow").replace(
-        "PRIORITY := 5", "PRIORITY := 300").replace("Fast (limit", "Fats (limit")
-    assert sorted(codes(bad)) == ["E091", "E092", "E093"]
-
-
-def test_aliases_typed_enums_subranges_and_struct_defaults():
-    src = """
-TYPE
-  Speed : REAL := 1.5;
-  Level : INT (0..10);
-  State : (Off, Starting := 10, Running) DINT;
-  Axis : STRUCT pos : LREAL := 2.5; state : State := State#Running; name : STRING[8] := 'x1'; END_STRUCT;
-END_TYPE
-PROGRAM main
-VAR v : Speed; lv : Level := 5; st : State; ax : Axis; n : DINT; END_VAR
-n := ax.state;
-st := State#Starting;
-END_PROGRAM
-"""
-    r = run_st(src)
-    assert r.get("v") == 1.5 and r.get("lv") == 5 and r.get("st") == 10
-    assert r.get("ax.pos") == 2.5 and r.get("ax.name") == "x1" and r.get("n") == 11
+from .conftest import run_st
 
 
 def test_pragmas_are_kept_on_the_ast():
@@ -114,15 +61,15 @@ END_PROGRAM
 def test_the_ltmr_manual_examples_run_verbatim():
     prog = compile_files(["st_programs/ltmr_write_sdo.st", "st_programs/ltmr_read_sdo.st"],
                          profile="schneider")
-    for name, idx_word, request_bit, mgmt, timeout_word, index in (
+    for name, idx_word, request_bit, _mgmt, timeout_word, index in (
             ("ltmr_write_sdo", 3200, 100, 3250, 3253, 0x00032007),
             ("ltmr_read_sdo", 3220, 101, 3260, 3263, 0x00032004)):
         runner = prog.runner(name)
         calls = []
 
         class Recorder:   # stands in for the CANopen master's SDO service
-            def request(self, *args):
-                calls.append(args)
+            def request(self, *args, _calls=calls):
+                _calls.append(args)
                 return True
 
         runner.ctx.services[SDO_SERVICE] = Recorder()

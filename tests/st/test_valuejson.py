@@ -7,7 +7,6 @@ import pytest
 from softplc.runtime.st import types as T
 from softplc.runtime.st.valuejson import encode_instance, encode_value
 
-
 # ---------------------------------------------------------------- single values
 
 @pytest.mark.parametrize("t, v, expected", [

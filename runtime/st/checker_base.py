@@ -1,0 +1,125 @@
+"""What the parts of the checker share: state, scope and helpers.
+
+The Checker (checker.py) is one class composed of a part per concern, each
+in its own module: checker_types (declared types), checker_decls
+(variables and initial values), checker_exprs (names, members, indices,
+literals, addresses), checker_operators, checker_stmts (statements and
+assignment targets), checker_calls (every kind of call) and checker_config
+(the CONFIGURATION). The implicit-conversion rule they apply is
+conversions.py. A part calls the others through ``self``; what it may call
+is declared at the end of CheckerBase, for the type checker.
+"""
+from __future__ import annotations
+
+import difflib
+from typing import TYPE_CHECKING, Any, Protocol
+
+from . import ast as A
+from . import types as T
+from .conversions import check_implicit
+from .diagnostics import DiagnosticBag
+from .profile import Profile
+from .symbols import CallInfo, POUInfo
+
+# Called like functions without a declaration (checker_calls._builtin_call).
+BUILTINS = ("TIME", "LTIME", "REF", "ADR", "SIZEOF")
+
+
+class AddressSpace(Protocol):
+    """Where direct addresses are checked: a process image laid out for the
+    profile's addressing model (runtime/image/memory.ProcessImage). Both
+    calls raise ValueError for an address outside it."""
+    size: int
+
+    def table(self, addr: A.LocatedAddress) -> Any: ...
+
+    def accessor(self, addr: A.LocatedAddress, ty: T.ElementaryType) -> Any: ...
+
+
+class Scope:
+    """Where an expression is checked: the POU (or None for global
+    initialisers) and the loop nesting for EXIT/CONTINUE."""
+
+    def __init__(self, pou: POUInfo | None) -> None:
+        self.pou = pou
+        self.loops = 0
+        self.for_vars: list = []  # VarSymbols of enclosing FOR loops
+
+
+class CheckerBase:
+    """The checker's state; the parts add the checks (see the module docstring)."""
+
+    def __init__(self, profile: Profile, diags: DiagnosticBag, std_functions: dict,
+                 natives: dict | None = None, image: AddressSpace | None = None) -> None:
+        self.profile = profile
+        self.d = diags
+        self.std = std_functions
+        self.natives: dict = natives or {}  # UPPER -> native.NativeFunction
+        self.type_decls: dict = {}  # UPPER -> TypeDecl
+        self.types: dict = {}  # UPPER -> Type (resolved)
+        self._resolving: set = set()
+        self.pous: dict = {}  # UPPER -> POUInfo
+        self.globals: dict = {}  # UPPER -> VarSymbol
+        self.enumerators: dict = {}  # UPPER -> [(EnumType, value)]
+        self.structs: list = []
+        self.configs: list = []
+        self.library_files: set = set()
+        self._inited: set = set()  # ids of VarSymbols whose initial value is checked
+        self._image_probe = image  # to validate direct addresses (None: not checked)
+
+    def _is_bool(self, ty: T.Type) -> bool:
+        e = T.base_elementary(ty)
+        return e is not None and e.is_bool and not isinstance(T.resolve(ty), T.EnumType)
+
+    def check_convertible(self, src: T.Type, dst: T.Type, e: A.Expr, what: str) -> bool:
+        """Report unless a value of type src may be stored into dst
+        implicitly (the rule: conversions.check_implicit)."""
+        return check_implicit(src, dst, e, what, self.profile, self.d)
+
+    def _suggest(self, key: str, names: list) -> str | None:
+        close = difflib.get_close_matches(key, [n.upper() for n in names], n=1, cutoff=0.75)
+        if close:
+            return f"did you mean '{self._spelled(close[0], names)}'?"
+        return None
+
+    @staticmethod
+    def _spelled(key: str, names: list) -> str:
+        for n in names:
+            if n.upper() == key:
+                return n
+        return key
+
+    if TYPE_CHECKING:
+        # Implemented by the parts: what one part calls of another.
+        # checker_types
+        def type_of(self, spec: A.TypeSpec, scope: Scope | None = None) -> T.Type | None: ...
+
+        # checker_decls
+        def init_value(self, ty: T.Type, init: Any, scope: Scope, what: str) -> Any: ...
+
+        def _const_int(self, e: A.Expr, scope: Scope, what: str) -> int | None: ...
+
+        # checker_exprs
+        def expr(self, e: A.Expr, scope: Scope, expected: T.Type | None = None) -> T.Type | None: ...
+
+        def _address_fits(self, addr: A.LocatedAddress, ty: T.ElementaryType | None, pos: A.Pos) -> bool: ...
+
+        # checker_operators
+        def _unary(self, e: A.Unary, scope: Scope, expected: T.Type | None) -> T.Type | None: ...
+
+        def _binary(self, e: A.Binary, scope: Scope, expected: T.Type | None) -> T.Type | None: ...
+
+        def _common(self, le: T.ElementaryType, re_: T.ElementaryType, e: A.Expr,
+                    report: bool = True) -> T.ElementaryType | None: ...
+
+        # checker_stmts
+        def lvalue(self, e: A.Expr, scope: Scope) -> T.Type | None: ...
+
+        def _is_lvalue_expr(self, e: A.Expr) -> bool: ...
+
+        def _check_writable(self, e: A.Expr, scope: Scope) -> None: ...
+
+        # checker_calls
+        def call(self, e: A.Call, scope: Scope, as_statement: bool) -> T.Type | None: ...
+
+        def _bind_args(self, e: A.Call, pou: POUInfo, info: CallInfo, scope: Scope, is_fb: bool) -> None: ...

@@ -1,0 +1,454 @@
+"""The checker's calls: binding and typing every kind of call.
+
+User FUNCTIONs, function block instances, standard functions (generic
+parameters, folding), the builtins TIME, LTIME, REF, ADR and SIZEOF, and
+native functions (st/native.py).
+"""
+from __future__ import annotations
+
+from typing import Any
+
+from . import ast as A
+from . import native
+from . import types as T
+from .checker_base import BUILTINS, CheckerBase, Scope
+from .conversions import generic_fit, is_flexible, same_type
+from .native import NativeFunction
+from .symbols import CallInfo, POUInfo, VarSymbol
+
+
+class CallChecks(CheckerBase):
+    """Binding and typing every kind of call."""
+
+    def call(self, e: A.Call, scope: Scope, as_statement: bool) -> T.Type | None:
+        callee = e.callee
+        if isinstance(callee, A.Name):
+            key = callee.name.upper()
+            local = None
+            if scope.pou is not None:
+                local = scope.pou.vars.get(key)
+            if local is None and key not in self.pous:
+                local = self.globals.get(key)
+            if local is not None:
+                return self._fb_call(e, callee, scope, as_statement)
+            pou = self.pous.get(key)
+            if pou is not None:
+                if pou.kind == "FUNCTION":
+                    return self._user_function_call(e, pou, scope)
+                if pou.kind == "PROGRAM":
+                    self.d.error("E043", f"'{pou.name}' is a PROGRAM; programs are started by tasks",
+                                 e.pos, "assign it to a TASK in the CONFIGURATION, or make it a "
+                                 "FUNCTION_BLOCK and call an instance")
+                else:
+                    self.d.error("E043", f"'{pou.name}' is a FUNCTION_BLOCK type, not an instance", e.pos,
+                                 f"declare an instance (inst : {pou.name};) and call inst(...)")
+                self._check_args_loosely(e, scope)
+                return None
+            native = self.natives.get(key)
+            if native is not None:
+                return self._native_call(e, native, scope)
+            if key in BUILTINS:
+                return self._builtin_call(e, key, scope)
+            func = self.std.get(key)
+            if func is not None:
+                return self._std_call(e, func, scope)
+            self.d.error("E043", f"unknown function '{callee.name}'", callee.pos,
+                         self._suggest(key, list(self.pous) + list(self.std) + list(BUILTINS))
+                         or "declare it as a FUNCTION")
+            self._check_args_loosely(e, scope)
+            return None
+        if isinstance(callee, (A.Member, A.Index)):  # inst.sub(...), timers[i](...)
+            return self._fb_call(e, callee, scope, as_statement)
+        self.d.error("E043", "this cannot be called", e.pos)
+        return None
+
+    def _check_args_loosely(self, e: A.Call, scope: Scope) -> None:
+        for a in e.args:
+            if a.value is not None:
+                self.expr(a.value, scope)
+
+    def _fb_call(self, e: A.Call, inst: A.Expr, scope: Scope, as_statement: bool) -> T.Type | None:
+        ity = self.expr(inst, scope)
+        if ity is None:
+            self._check_args_loosely(e, scope)
+            return None
+        fbt = T.resolve(ity)
+        if not isinstance(fbt, T.FBType):
+            self.d.error("E043", f"'{self._describe(inst)}' is {ity}, not a function block instance", inst.pos)
+            self._check_args_loosely(e, scope)
+            return None
+        if not as_statement:
+            self.d.error("E043", "a function block call is a statement, not a value", e.pos,
+                         f"call it on its own line, then read an output, e.g. {self._describe(inst)}.Q")
+        info = CallInfo("fb", pou=fbt.pou, instance=inst)
+        self._bind_args(e, fbt.pou, info, scope, is_fb=True)
+        e.target = info
+        return None
+
+    def _describe(self, e: A.Expr) -> str:
+        if isinstance(e, A.Name):
+            return e.name
+        if isinstance(e, A.Member):
+            return f"{self._describe(e.base)}.{e.name}"
+        return "expression"
+
+    def _user_function_call(self, e: A.Call, pou: POUInfo, scope: Scope) -> T.Type | None:
+        info = CallInfo("function", pou=pou)
+        self._bind_args(e, pou, info, scope, is_fb=False)
+        e.target = info
+        return pou.return_type if pou.return_type is not None else T.BOOL
+
+    def _bind_args(self, e: A.Call, pou: POUInfo, info: CallInfo, scope: Scope, is_fb: bool) -> None:
+        positional = pou.params("VAR_INPUT", "VAR_IN_OUT")
+        bound: set = set()
+        pos_i = 0
+        seen_formal = False
+        for a in e.args:
+            if a.name is None:
+                if seen_formal:
+                    self.d.error("E041", "a positional argument after a named one", a.pos,
+                                 "name every argument, or put positional ones first")
+                if pos_i >= len(positional):
+                    self.d.error("E041", f"too many arguments for {pou.name} "
+                                 f"(it takes {len(positional)})", a.pos)
+                    if a.value is not None:
+                        self.expr(a.value, scope)
+                    continue
+                param = positional[pos_i]
+                pos_i += 1
+            else:
+                seen_formal = True
+                param = pou.vars.get(a.name.upper())
+                if param is None or param.section not in ("VAR_INPUT", "VAR_IN_OUT", "VAR_OUTPUT"):
+                    names = [v.name for v in pou.params("VAR_INPUT", "VAR_IN_OUT", "VAR_OUTPUT")]
+                    self.d.error("E040", f"{pou.name} has no parameter '{a.name}'", a.pos,
+                                 f"its parameters are: {', '.join(names)}" if names else
+                                 f"{pou.name} takes no parameters")
+                    if a.value is not None:
+                        self.expr(a.value, scope)
+                    continue
+            key = param.name.upper()
+            if key in bound:
+                self.d.error("E041", f"parameter '{param.name}' is given twice", a.pos)
+                continue
+            bound.add(key)
+            if param.section == "VAR_OUTPUT":
+                if not a.output:
+                    self.d.error("E040", f"'{param.name}' is an output; bind it with =>", a.pos,
+                                 f"write {param.name} => variable")
+                    continue
+                if a.value is None:
+                    continue
+                tty = self.lvalue(a.value, scope)
+                if tty is not None:
+                    src = T.BOOL if a.negated else param.type
+                    self.check_convertible(src, tty, A.Name(param.name, pos=a.pos, ty=param.type),
+                                           f"output '{param.name}'")
+                info.outputs.append((param, a.value, a.negated))
+                continue
+            if a.output:
+                self.d.error("E040", f"'{param.name}' is an input; pass it with :=", a.pos)
+                continue
+            if a.value is None:
+                continue
+            if param.section == "VAR_IN_OUT":
+                vty = self.expr(a.value, scope)
+                if vty is None:
+                    continue
+                if not self._is_lvalue_expr(a.value):
+                    self.d.error("E042", f"VAR_IN_OUT '{param.name}' needs a variable, not an expression",
+                                 a.value.pos, "pass a variable: it is passed by reference")
+                    continue
+                self._check_writable(a.value, scope)
+                if not self._inout_compatible(vty, param.type):
+                    self.d.error("E020", f"VAR_IN_OUT '{param.name}' is {param.type}; got {vty}",
+                                 a.value.pos, "a reference parameter needs exactly its type")
+                    continue
+                self._mark_boxed(a.value, scope)
+                info.inouts.append((param, a.value))
+            else:
+                vty = self.expr(a.value, scope, expected=param.type)
+                if vty is not None:
+                    self.check_convertible(vty, param.type, a.value, f"input '{param.name}'")
+                info.inputs.append((param, a.value))
+        for param in pou.params("VAR_IN_OUT"):
+            if param.name.upper() not in bound:
+                self.d.error("E042", f"VAR_IN_OUT '{param.name}' of {pou.name} is not connected", e.pos,
+                             f"pass a variable: {param.name} := myVar")
+        for _, target, _n in info.outputs:
+            self._mark_boxed(target, scope)
+
+    def _inout_compatible(self, arg: T.Type, param: T.Type) -> bool:
+        a, p = T.resolve(arg), T.resolve(param)
+        if isinstance(p, T.ArrayType) and isinstance(a, T.ArrayType) and p.variable_length:
+            return len(a.dims) == len(p.dims) and same_type(a.elem, p.elem)
+        if isinstance(p, T.StringType) and isinstance(a, T.StringType):
+            return a.wide == p.wide
+        return same_type(a, p)
+
+    def _mark_boxed(self, e: A.Expr, scope: Scope) -> None:
+        """A FUNCTION local passed by reference lives in a cell."""
+        if isinstance(e, A.Name) and isinstance(e.sym, VarSymbol):
+            e.sym.address_taken = True
+        if isinstance(e, A.Name) and isinstance(e.sym, VarSymbol) and e.sym.owner is not None \
+                and e.sym.owner.kind == "FUNCTION" and not T.resolve(e.sym.type).is_aggregate:
+            e.sym.boxed = True
+
+    # ---------------------------------------------------------------- standard functions
+
+    def _std_args(self, e: A.Call, func, scope: Scope) -> list | None:
+        """Match the call's arguments to the parameters of a standard
+        function; returns the argument expressions in parameter order."""
+        params = list(func.params)
+        n_fixed = len(params)
+        args = e.args
+        if func.extensible:
+            n_fixed -= 1
+        out: list = []
+        if any(a.name is not None for a in args):
+            by_name = {}
+            for a in args:
+                if a.name is None or a.output:
+                    self.d.error("E041", f"{func.name}: mix of named and positional arguments", a.pos)
+                    return None
+                by_name[a.name.upper()] = a
+            names = [p[0].upper() for p in params]
+            if func.extensible:  # IN1, IN2, ... beyond the fixed ones
+                base = names[-1].rstrip("0123456789")
+                digits = names[-1][len(base):]
+                i = int(digits) + 1 if digits else len(names)
+                while True:
+                    nxt = f"{base}{i}"
+                    if nxt in by_name and nxt not in names:
+                        names.append(nxt)
+                        i += 1
+                    else:
+                        break
+            for a in args:
+                if a.name.upper() not in names:
+                    self.d.error("E040", f"{func.name} has no parameter '{a.name}'", a.pos,
+                                 f"its parameters are: {', '.join(p[0] for p in params)}")
+                    return None
+            for n in names:
+                if n not in by_name:
+                    self.d.error("E041", f"{func.name}: parameter '{n}' is missing", e.pos)
+                    return None
+                out.append(by_name[n].value)
+        else:
+            out = [a.value for a in args]
+            for a in args:
+                if a.output:
+                    self.d.error("E040", f"{func.name} has no outputs", a.pos)
+                    return None
+        need = len(params)
+        if len(out) < need or (not func.extensible and len(out) > need):
+            self.d.error("E041", f"{func.name} takes {'at least ' if func.extensible else ''}{need} "
+                         f"argument(s), {len(out)} given", e.pos,
+                         f"{func.name}({', '.join(p[0] for p in params)})")
+            return None
+        return out
+
+    def _std_call(self, e: A.Call, func, scope: Scope) -> T.Type | None:
+        args = self._std_args(e, func, scope)
+        if args is None:
+            self._check_args_loosely(e, scope)
+            return None
+        specs = [p[1] for p in func.params]
+        while len(specs) < len(args):
+            specs.append(specs[-1])
+        # 1) type every argument; untyped literals wait for their type variable
+        arg_types: list = []
+        for a, spec in zip(args, specs):
+            exp: T.Type | None = T.ELEMENTARY.get(spec.upper()) if ":" not in spec else None
+            if spec.upper() in ("STRING", "WSTRING"):
+                exp = T.StringType(self.profile.default_string_length, spec.upper() == "WSTRING")
+            arg_types.append(self.expr(a, scope, expected=exp))
+        if any(t is None for t in arg_types):
+            return None
+        # 2) unify type variables
+        bindings: dict = {}
+        for a, spec, t in zip(args, specs, arg_types):
+            if ":" not in spec:
+                continue
+            var, gen = spec.split(":", 1)
+            if is_flexible(a):
+                continue
+            cur = bindings.get(var)
+            bindings[var] = t if cur is None else self._unify(cur, t, e)
+            if bindings[var] is None:
+                return None
+        for _a, spec, t in zip(args, specs, arg_types):
+            if ":" in spec:
+                var = spec.split(":", 1)[0]
+                if var not in bindings:
+                    bindings[var] = t  # only literals: their own type
+        for var, bound in list(bindings.items()):
+            gen = next(sp.split(":", 1)[1] for sp in specs if sp.startswith(var + ":"))
+            bindings[var] = generic_fit(bound, gen, self.profile)
+        # 3) check membership and convertibility
+        param_types: list = []
+        for i, (a, spec, t) in enumerate(zip(args, specs, arg_types)):
+            if ":" in spec:
+                var, gen = spec.split(":", 1)
+                want = bindings[var]
+                if not T.is_generic_member(want, gen):
+                    self.d.error("E020", f"{func.name}: {want} is not {gen}", a.pos)
+                    return None
+                if is_flexible(a):
+                    arg_types[i] = self.expr(a, scope, expected=want)
+                self.check_convertible(arg_types[i], want, a, f"the argument of {func.name}")
+                param_types.append(want)
+            elif spec.upper() in T.GENERICS:
+                t = generic_fit(t, spec, self.profile)
+                if not T.is_generic_member(t, spec):
+                    self.d.error("E020", f"{func.name}: argument {i + 1} is {t}, expected {spec}", a.pos)
+                    return None
+                param_types.append(t)
+            else:
+                want = T.ELEMENTARY.get(spec.upper())
+                if want is None and spec.upper() in ("STRING", "WSTRING"):
+                    want = T.StringType(self.profile.default_string_length, spec.upper() == "WSTRING")
+                if want is None:
+                    self.d.error("E020", f"{func.name}: unknown parameter type {spec}", a.pos)
+                    return None
+                self.check_convertible(t, want, a, f"argument {i + 1} of {func.name}")
+                param_types.append(want)
+        ret = func.ret
+        if ":" in ret:
+            ret = ret.split(":", 1)[0]
+        if ret in bindings:
+            rty = bindings[ret]
+        elif ret.upper() in ("STRING", "WSTRING"):
+            rty = T.StringType(255, ret.upper() == "WSTRING")
+        else:
+            rty = T.ELEMENTARY.get(ret.upper())
+            if rty is None:
+                self.d.error("E020", f"{func.name}: unknown result type {ret}", e.pos)
+                return None
+        e.target = CallInfo("std", func=func, args=args, param_types=param_types,
+                            rtypes=(rty, *arg_types))
+        if all(a.const is not None for a in args) and self._foldable(func):
+            try:
+                e.const = self._call_impl(func, e.target, [a.const for a in args])
+            except Exception:  # not foldable; evaluated at run time
+                e.const = None
+        return rty
+
+    _FOLDABLE_NAMES = ("ABS", "SQRT", "MAX", "MIN", "LIMIT", "SEL", "MUX", "SHL", "SHR", "ROL", "ROR",
+                          "LEN", "CONCAT", "LEFT", "RIGHT", "MID", "TRUNC", "EXPT", "MOVE")
+
+    def _foldable(self, func) -> bool:
+        return "_TO_" in func.name or func.name.startswith("TO_") or func.name in self._FOLDABLE_NAMES
+
+    def _call_impl(self, func, info: CallInfo, values: list) -> Any:
+        if func.typed:
+            return func.impl(info.rtypes, *values)
+        return func.impl(*values)
+
+    def _unify(self, a: T.Type, b: T.Type, e: A.Expr) -> T.Type | None:
+        if same_type(a, b):
+            return a
+        ae, be = T.base_elementary(a), T.base_elementary(b)
+        ra, rb = T.resolve(a), T.resolve(b)
+        if isinstance(ra, T.StringType) and isinstance(rb, T.StringType):
+            return a if ra.length >= rb.length else b
+        if ae is not None and be is not None and not isinstance(T.resolve(a), T.EnumType):
+            c = self._common(ae, be, e)
+            return c
+        self.d.error("E020", f"arguments of types {a} and {b} do not match", e.pos)
+        return None
+
+    # ---------------------------------------------------------------- builtins
+
+    def _builtin_call(self, e: A.Call, key: str, scope: Scope) -> T.Type | None:
+        args = list(e.args)
+        if key in ("TIME", "LTIME"):
+            if args:
+                self.d.error("E041", f"{key}() takes no arguments", e.pos,
+                             f"{key}() reads the task clock; to convert use TO_{key}(x)")
+                return None
+            e.target = CallInfo("builtin", func=key)
+            return T.TIME if key == "TIME" else T.LTIME
+        if len(args) != 1 or args[0].name is not None or args[0].value is None:
+            self.d.error("E041", f"{key} takes one argument", e.pos)
+            return None
+        a = args[0].value
+        ty = self.expr(a, scope)
+        if ty is None:
+            return None
+        e.target = CallInfo("builtin", func=key, args=[a])
+        if key == "SIZEOF":
+            e.const = self._sizeof(ty)
+            return T.UDINT if e.const is not None and e.const < (1 << 32) else T.ULINT
+        if not self._is_lvalue_expr(a) or (isinstance(a, A.Located)):
+            self.d.error("E031", f"{key} needs a variable", a.pos)
+            return None
+        self._mark_boxed(a, scope)
+        if isinstance(a, A.BitAccess):
+            self.d.error("E031", f"{key} of a single bit is not possible", a.pos)
+            return None
+        return T.RefType(ty, pointer=(key == "ADR"))
+
+    def _sizeof(self, ty: T.Type) -> int | None:
+        t = T.resolve(ty)
+        if isinstance(t, T.ElementaryType):
+            return max(1, t.bits // 8)
+        if isinstance(t, (T.EnumType, T.SubrangeType)):
+            return max(1, t.base.bits // 8)
+        if isinstance(t, T.StringType):
+            return (t.length + 1) * (2 if t.wide else 1)
+        if isinstance(t, T.ArrayType) and not t.variable_length:
+            n = 1
+            for lo, hi in t.dims:
+                n *= hi - lo + 1
+            es = self._sizeof(t.elem)
+            return None if es is None else n * es
+        if isinstance(t, T.StructType):
+            sizes = [self._sizeof(f.type) for f in t.fields.values()]
+            known = [s for s in sizes if s is not None]
+            return None if len(known) < len(sizes) else sum(known)
+        if isinstance(t, T.RefType):
+            return 8
+        return None
+
+    # ---------------------------------------------------------------- native functions
+
+    def _native_call(self, e: A.Call, fn: NativeFunction, scope: Scope) -> T.Type | None:
+        """A call of a native function (st/native.py): positional arguments
+        checked against the declaration's parameter kinds."""
+        args = e.args
+        if len(args) != len(fn.params) or any(a.name is not None or a.value is None for a in args):
+            self.d.error("E041", f"{fn.name} takes {len(fn.params)} positional arguments", e.pos, fn.usage)
+            self._check_args_loosely(e, scope)
+            return None
+        vals = [a.value for a in args]
+        found = [self.expr(v, scope) for v in vals]
+        tys = [t for t in found if t is not None]
+        if len(tys) < len(found):
+            return None
+        for i, (param, ty, value) in enumerate(zip(fn.params, tys, vals)):
+            table = T.resolve(ty)
+            if not self._native_arg_fits(param, ty):
+                self.d.error("E020", f"{fn.name}: {param.label(i + 1)} must be {param.expected}", value.pos)
+            elif param.kind == native.WORDS and param.min_words and isinstance(table, T.ArrayType):
+                dims = table.dims[0]
+                if dims is not None and dims[1] - dims[0] + 1 < param.min_words:
+                    self.d.error("E020", f"{fn.name}: {param.label(i + 1)} needs {param.min_words} words",
+                                 value.pos)
+        e.target = CallInfo("native", func=fn, args=vals, rtypes=tuple(tys))
+        return T.ELEMENTARY[fn.result]
+
+    @staticmethod
+    def _native_arg_fits(param: native.Param, ty: T.Type) -> bool:
+        if param.kind == native.ADDRESS:
+            return isinstance(ty, T.SchneiderAddrType)
+        if param.kind == native.STRING:
+            return isinstance(T.resolve(ty), T.StringType)
+        if param.kind == native.ANY_INT:
+            be = T.base_elementary(ty)
+            return be is not None and be.is_intlike
+        t = T.resolve(ty)   # WORDS: a one-dimensional table of 16-bit words
+        if not isinstance(t, T.ArrayType) or len(t.dims) != 1:
+            return False
+        elem = T.base_elementary(t.elem)
+        return elem is not None and elem.bits == 16

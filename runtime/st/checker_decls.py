@@ -1,0 +1,258 @@
+"""The checker's variables: their declarations and initial values.
+
+Declares the globals and the variables of each POU (sections, AT
+locations, RETAIN, VAR_EXTERNAL) and evaluates initial values into plans
+the code generator emits (init_value).
+"""
+from __future__ import annotations
+
+from typing import Any
+
+from . import ast as A
+from . import types as T
+from .checker_base import CheckerBase, Scope
+from .conversions import const_as, same_type
+from .symbols import POUInfo, VarSymbol, pyname
+
+
+class DeclChecks(CheckerBase):
+    """Variable declarations and initial values."""
+
+    def _make_var(self, decl: A.VarDecl, block: A.VarBlock, owner: POUInfo | None) -> VarSymbol | None:
+        ty = self.type_of(decl.type, Scope(owner))
+        if ty is None:
+            return None
+        section = block.kind
+        rty = T.resolve(ty)
+        if isinstance(rty, T.ArrayType) and rty.variable_length and section != "VAR_IN_OUT":
+            self.d.error("E050", "ARRAY[*] is only allowed for VAR_IN_OUT", decl.pos)
+            return None
+        prefix = "v_" if owner is not None else "g_"
+        sym = VarSymbol(decl.name, section, ty, decl.pos, pyname(prefix, decl.name), owner,
+                        constant=block.constant, retain=block.retain, persistent=block.persistent,
+                        location=decl.location, init=decl.init)
+        if decl.location is not None:
+            self._check_location_type(sym)
+        if block.retain or block.persistent:
+            self._check_retained(sym, block)
+        if sym.constant:
+            # a CONSTANT may size the arrays and strings declared after it
+            self._check_var_init(sym, Scope(owner))
+            self._inited.add(id(sym))
+        return sym
+
+    def _check_retained(self, sym: VarSymbol, block: A.VarBlock) -> None:
+        """W111 where RETAIN/PERSISTENT cannot keep anything: the engine
+        retains a variable's own storage only (runtime/engine/retain.py)."""
+        if sym.section in ("VAR_IN_OUT", "VAR_EXTERNAL"):
+            what = f"a {sym.section} (it refers to a variable declared elsewhere)"
+        elif sym.section == "VAR_TEMP" or (sym.owner is not None and sym.owner.kind == "FUNCTION"):
+            what = "a temporary variable (it holds nothing between calls)"
+        elif sym.location is not None:
+            what = "a located variable (its value is the process image's)"
+        else:
+            return
+        qualifier = "PERSISTENT" if block.persistent else "RETAIN"
+        self.d.warning("W111", f"{qualifier} has no effect on {sym.name}, {what}", sym.pos,
+                       f"remove {qualifier}; to keep the value, copy it into a VAR {qualifier} "
+                       "variable of a PROGRAM or FUNCTION_BLOCK")
+
+    def _declare_globals(self, block: A.VarBlock) -> None:
+        if block.kind not in ("VAR_GLOBAL", "VAR_CONFIG"):
+            self.d.error("E011", f"{block.kind} is not allowed outside a POU", block.pos,
+                         "use VAR_GLOBAL for global variables")
+            return
+        for decl in block.decls:
+            key = decl.name.upper()
+            if key in self.globals:
+                self.d.error("E011", f"global '{decl.name}' is declared twice", decl.pos,
+                             f"the first declaration is at {self.globals[key].pos}")
+                continue
+            sym = self._make_var(decl, block, None)
+            if sym is not None:
+                sym.section = "VAR_GLOBAL"
+                self.globals[key] = sym
+
+    def _declare_pou_vars(self, pou: POUInfo) -> None:
+        node = pou.node
+        if pou.kind == "FUNCTION":
+            rt = self.type_of(node.return_type) if node.return_type is not None else None
+            pou.return_type = rt
+            if rt is not None:
+                pou.result = VarSymbol(pou.name, "RETURN", rt, node.pos, "r_result", pou)
+        elif node.return_type is not None:
+            self.d.error("E011", f"a {pou.kind} has no return type", node.return_type.pos)
+        allowed = {
+            "PROGRAM": ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_EXTERNAL", "VAR_TEMP",
+                        "VAR_GLOBAL", "VAR_STAT"),
+            "FUNCTION_BLOCK": ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_EXTERNAL",
+                               "VAR_TEMP", "VAR_STAT"),
+            "FUNCTION": ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_EXTERNAL", "VAR_TEMP",
+                         "VAR_STAT"),
+        }[pou.kind]
+        for block in node.var_blocks:
+            if block.kind not in allowed:
+                self.d.error("E011", f"{block.kind} is not allowed in a {pou.kind}", block.pos)
+                continue
+            for decl in block.decls:
+                key = decl.name.upper()
+                if key in pou.vars or (pou.kind == "FUNCTION" and key == pou.name.upper()):
+                    self.d.error("E011", f"'{decl.name}' is declared twice in {pou.name}", decl.pos)
+                    continue
+                if block.kind == "VAR_EXTERNAL":
+                    g = self.globals.get(key)
+                    if g is None:
+                        self.d.error("E010", f"VAR_EXTERNAL '{decl.name}' has no VAR_GLOBAL", decl.pos,
+                                     "declare it in a VAR_GLOBAL block (a GVL or the CONFIGURATION)")
+                        continue
+                    ty = self.type_of(decl.type)
+                    if ty is not None and not same_type(ty, g.type):
+                        self.d.error("E020", f"VAR_EXTERNAL '{decl.name}' is {ty}, the global is {g.type}",
+                                     decl.pos)
+                    if g.constant and not block.constant:
+                        self.d.error("E030", f"global '{decl.name}' is CONSTANT; declare the "
+                                     "VAR_EXTERNAL CONSTANT too", decl.pos)
+                    continue  # references the global symbol directly
+                if block.kind == "VAR_GLOBAL":  # a PROGRAM's own globals
+                    if key in self.globals:
+                        self.d.error("E011", f"global '{decl.name}' is declared twice", decl.pos)
+                        continue
+                    sym = self._make_var(decl, block, None)
+                    if sym is not None:
+                        self.globals[key] = sym
+                    continue
+                sym = self._make_var(decl, block, pou)
+                if sym is None:
+                    continue
+                if sym.location is not None and block.kind not in ("VAR", "VAR_INPUT", "VAR_OUTPUT"):
+                    self.d.error("E081", f"AT is not allowed in {block.kind}", decl.pos)
+                if block.kind == "VAR_IN_OUT" and decl.init is not None:
+                    self.d.error("E024", "a VAR_IN_OUT cannot have an initial value", decl.pos)
+                if pou.kind == "FUNCTION" and sym.location is not None:
+                    self.d.error("E081", "a FUNCTION cannot have located (AT) variables", decl.pos)
+                pou.vars[key] = sym
+
+    def _check_location_type(self, sym: VarSymbol) -> None:
+        addr = sym.location
+        ty = T.base_elementary(sym.type)
+        want = 1 if (addr.size in ("", "X") or addr.bit is not None) else \
+            {"B": 8, "W": 16, "D": 32, "L": 64}[addr.size]
+        if addr.table is not None:
+            self.d.error("E081", f"{addr.text}: a word table cannot be declared AT", sym.pos)
+        elif ty is None or ty.bits != want:
+            self.d.error("E081", f"{addr.text} is a {want}-bit address; '{sym.name}' is {sym.type}",
+                         sym.pos, "declare a type of the address size (X: BOOL, B: BYTE/SINT, "
+                         "W: WORD/INT, D: DWORD/DINT/REAL, L: LWORD/LINT/LREAL)")
+        else:
+            self._address_fits(addr, ty, sym.pos)
+
+    def _check_var_init(self, sym: VarSymbol, scope: Scope) -> None:
+        if id(sym) in self._inited:
+            return
+        if sym.init is None:
+            sym.init_value = T.declared_default(sym.type)
+            if sym.constant:
+                sym.const_value = self.default_value(sym.type)
+            return
+        sym.init_value = self.init_value(sym.type, sym.init, scope, sym.name)
+        if sym.constant and sym.init_value is not None and T.base_elementary(sym.type) is not None \
+                or (sym.constant and isinstance(T.resolve(sym.type), T.StringType)):
+            sym.const_value = sym.init_value
+
+    def default_value(self, ty: T.Type) -> Any:
+        ty = T.resolve(ty)
+        if isinstance(ty, T.ElementaryType):
+            return False if ty.is_bool else (0.0 if ty.is_real else 0)
+        if isinstance(ty, T.StringType):
+            return ""
+        if isinstance(ty, T.EnumType):
+            return ty.default if ty.default is not None else next(iter(ty.values.values()), 0)
+        if isinstance(ty, T.SubrangeType):
+            return ty.lo if not ty.lo <= 0 <= ty.hi else 0
+        return None
+
+    def init_value(self, ty: T.Type, init: Any, scope: Scope, what: str) -> Any:
+        """Evaluate an initialiser against a type. Returns a plan: a Python
+        value for elementary types, ('array', [plans]) for arrays,
+        ('struct', {UPPER: plan}) for structs and FB instances, None for the
+        default."""
+        rty = T.resolve(ty)
+        if isinstance(init, A.ArrayInit):
+            if not isinstance(rty, T.ArrayType):
+                self.d.error("E024", f"'{what}' is {ty}; an array initialiser needs an ARRAY", init.pos)
+                return None
+            return self._array_init(rty, init, scope, what)
+        if isinstance(init, A.StructInit):
+            return self._struct_init(rty, init, scope, what)
+        if isinstance(rty, T.ArrayType) and isinstance(init, A.Expr):
+            # [1, 2] arrives as ArrayInit; a bare expression is an error
+            self.d.error("E024", f"'{what}' is an ARRAY; initialise it with [ ... ]", init.pos)
+            return None
+        if isinstance(rty, (T.StructType, T.FBType)):
+            self.d.error("E024", f"'{what}' is {ty}; initialise it with ( field := value, ... )", init.pos)
+            return None
+        ety = self.expr(init, scope, expected=ty)
+        if ety is None:
+            return None
+        if not self.check_convertible(ety, ty, init, f"the initial value of '{what}'"):
+            return None
+        if init.const is None and not isinstance(rty, T.RefType):
+            self.d.error("E024", f"the initial value of '{what}' is not a constant expression", init.pos,
+                         "use literals and CONSTANTs here, or assign the value in the code")
+            return None
+        if isinstance(rty, T.RefType):
+            return None
+        return const_as(init.const, ety, ty)
+
+    def _array_init(self, ty: T.ArrayType, init: A.ArrayInit, scope: Scope, what: str) -> Any:
+        if ty.variable_length:
+            return None
+        # Items fill the array in row-major order (IEC: the last index varies fastest).
+        total = 1
+        for lo, hi in ty.dims:
+            total *= hi - lo + 1
+        flat: list = []
+        for count_expr, value in init.items:
+            count = 1
+            if count_expr is not None:
+                n = self._const_int(count_expr, scope, "a repetition count")
+                if n is None or n < 0:
+                    return None
+                count = n
+            plan = self.init_value(ty.elem, value, scope, what) if value is not None else None
+            flat.extend([plan] * count)
+        if len(flat) > total:
+            self.d.error("E052", f"{len(flat)} initial values for '{what}', which has {total} elements",
+                         init.pos, "remove values or enlarge the array")
+            return None
+        flat.extend([None] * (total - len(flat)))
+        return ("array", flat)
+
+    def _struct_init(self, ty: T.Type, init: A.StructInit, scope: Scope, what: str) -> Any:
+        out = {}
+        if isinstance(ty, T.StructType):
+            fields = {k: (f.name, f.type) for k, f in ty.fields.items()}
+        elif isinstance(ty, T.FBType):
+            fields = {k: (v.name, v.type) for k, v in ty.pou.vars.items()
+                      if v.section in ("VAR_INPUT", "VAR_OUTPUT", "VAR")}
+        else:
+            self.d.error("E024", f"'{what}' is {ty}; a ( := ) initialiser needs a STRUCT or FB", init.pos)
+            return None
+        for fname, fval, fpos in init.fields:
+            k = fname.upper()
+            if k not in fields:
+                self.d.error("E013", f"{ty} has no member '{fname}'", fpos,
+                             self._suggest(k, list(fields)))
+                continue
+            out[k] = self.init_value(fields[k][1], fval, scope, f"{what}.{fields[k][0]}")
+        return ("struct", out)
+
+    def _const_int(self, e: A.Expr, scope: Scope, what: str) -> int | None:
+        ty = self.expr(e, scope)
+        if ty is None:
+            return None
+        if e.const is None or isinstance(e.const, bool) or not isinstance(e.const, int):
+            self.d.error("E025", f"{what} must be a constant integer expression", e.pos,
+                         "use a literal or a VAR CONSTANT")
+            return None
+        return e.const

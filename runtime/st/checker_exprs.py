@@ -1,0 +1,322 @@
+"""The checker's expressions: literals, names, members, indices, addresses.
+
+Types and folds literals, names and enumerators, members, indices, bit
+access, dereferencing and direct addresses. Operators are checked in
+checker_operators, calls in checker_calls.
+"""
+from __future__ import annotations
+
+from . import ast as A
+from . import types as T
+from .checker_base import BUILTINS, CheckerBase, Scope
+
+_TIME_KIND = {
+    "time": T.TIME, "ltime": T.LTIME, "date": T.DATE, "tod": T.TOD, "dt": T.DT,
+    "ldate": T.LDATE, "ltod": T.LTOD, "ldt": T.LDT,
+}
+_SECTIONS_READABLE_OUTSIDE = ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT")
+
+
+class ExprChecks(CheckerBase):
+    """Typing and folding expressions."""
+
+    def expr(self, e: A.Expr, scope: Scope, expected: T.Type | None = None) -> T.Type | None:
+        try:
+            ty = self._expr(e, scope, expected)
+        except RecursionError:
+            self.d.error("E005", "expression nested too deeply", e.pos, "split it up with variables")
+            ty = None
+        e.ty = ty
+        return ty
+
+    def _expr(self, e: A.Expr, scope: Scope, expected: T.Type | None) -> T.Type | None:
+        if isinstance(e, A.Literal):
+            return self._literal(e, expected)
+        if isinstance(e, A.Name):
+            return self._name(e, scope, expected)
+        if isinstance(e, A.EnumLiteral):
+            return self._enum_literal(e, expected)
+        if isinstance(e, A.Member):
+            return self._member(e, scope)
+        if isinstance(e, A.Index):
+            return self._index(e, scope)
+        if isinstance(e, A.BitAccess):
+            return self._bit_access(e, scope)
+        if isinstance(e, A.Deref):
+            bty = self.expr(e.base, scope)
+            if bty is None:
+                return None
+            r = T.resolve(bty)
+            if not isinstance(r, T.RefType):
+                self.d.error("E020", f"^ needs a REF_TO or POINTER TO, not {bty}", e.pos)
+                return None
+            return r.target
+        if isinstance(e, A.Unary):
+            return self._unary(e, scope, expected)
+        if isinstance(e, A.Binary):
+            return self._binary(e, scope, expected)
+        if isinstance(e, A.Call):
+            return self.call(e, scope, as_statement=False)
+        if isinstance(e, A.Located):
+            return self._located(e)
+        if isinstance(e, A.SchneiderAddress):
+            return T.ADDR
+        self.d.error("E005", "unsupported expression", e.pos)
+        return None
+
+    def _literal(self, e: A.Literal, expected: T.Type | None) -> T.Type | None:
+        v = e.value
+        if e.c_hex and not self.profile.c_hex_literals:
+            self.d.error("E026", "C-style hexadecimal literal", e.pos,
+                         f"write 16#{v:X}, or compile with --profile schneider")
+        if e.kind in _TIME_KIND:
+            ty = _TIME_KIND[e.kind]
+            if e.type_name is not None and T.ELEMENTARY.get(e.type_name) is not None:
+                ty = T.ELEMENTARY[e.type_name]
+            e.const = self._time_repr(ty, v, e)
+            return ty
+        if e.kind in ("string", "wstring"):
+            wide = e.kind == "wstring"
+            e.const = v
+            exp = T.resolve(expected) if expected is not None else None
+            if isinstance(exp, T.StringType) and exp.wide == wide:
+                return exp
+            return T.StringType(max(len(v), 1), wide)
+        if e.type_name is not None:
+            typed = T.ELEMENTARY.get(e.type_name)
+            if typed is None:
+                self.d.error("E012", f"unknown type '{e.type_name}' in typed literal", e.pos)
+                return None
+            if typed.is_bool:
+                if e.kind == "bool" or (e.kind == "int" and v in (0, 1)):
+                    e.const = bool(v)
+                    return typed
+            elif typed.is_real and e.kind in ("int", "real"):
+                e.const = float(v)
+                return typed
+            elif typed.is_intlike and e.kind == "int":
+                if not T.int_fits(typed, v):
+                    self.d.error("E022", f"{v} does not fit {typed.name} ({typed.lo}..{typed.hi})", e.pos)
+                e.const = v
+                return typed
+            self.d.error("E003", f"{e.type_name}# does not take this literal", e.pos)
+            return None
+        if e.kind == "bool":
+            e.const = bool(v)
+            return T.BOOL
+        exp = T.base_elementary(expected) if expected is not None else None
+        if isinstance(expected, T.EnumType) or isinstance(T.resolve(expected) if expected else None, T.EnumType):
+            exp = None
+        if e.kind == "real":
+            e.const = float(v)
+            return exp if exp is not None and exp.is_real else T.LREAL
+        # untyped integer: the expected type if it fits, else the smallest signed that does
+        e.const = v
+        if exp is not None and (exp.is_intlike and T.int_fits(exp, v) or exp.is_real):
+            return exp
+        for cand in (T.INT, T.DINT, T.LINT, T.ULINT):
+            if T.int_fits(cand, v):
+                return cand
+        self.d.error("E022", f"{v} is too large for any integer type", e.pos)
+        return None
+
+    def _time_repr(self, ty: T.ElementaryType, ns: int, e: A.Expr) -> int:
+        v = ns // ty.unit_ns if ns >= 0 else -((-ns) // ty.unit_ns)
+        if ty.lo is not None and ty.hi is not None and not (ty.lo <= v <= ty.hi):
+            self.d.error("E022", f"the literal is outside the range of {ty.name}", e.pos,
+                         "use the L-type (LTIME, LDT ...) for larger values")
+        return v
+
+    def _name(self, e: A.Name, scope: Scope, expected: T.Type | None) -> T.Type | None:
+        key = e.name.upper()
+        pou = scope.pou
+        sym = None
+        if pou is not None:
+            sym = pou.vars.get(key)
+            if sym is None and pou.result is not None and key == pou.name.upper():
+                sym = pou.result
+        if sym is None:
+            sym = self.globals.get(key)
+        if sym is not None:
+            e.sym = sym
+            if sym.constant and sym.const_value is not None:
+                e.const = sym.const_value
+            return sym.type
+        # a bare enumerator: the expected enumeration first, else unique
+        cands = self.enumerators.get(key)
+        if cands:
+            exp = T.resolve(expected) if expected is not None else None
+            pick = [c for c in cands if c[0] is exp] or (cands if len(cands) == 1 else [])
+            if pick:
+                e.const = pick[0][1]
+                e.sym = pick[0][0]
+                return pick[0][0]
+            self.d.error("E010", f"'{e.name}' is an enumerator of several types", e.pos,
+                         f"qualify it, e.g. {cands[0][0].name}#{e.name}")
+            return None
+        if key in self.pous or key in self.std or key in BUILTINS:
+            self.d.error("E010", f"'{e.name}' is a POU, not a variable", e.pos,
+                         "call it with parentheses: name(...)")
+            return None
+        if key == "NULL":
+            e.const = None
+            return T.NULL
+        names = [g.name for g in self.globals.values()]
+        if pou is not None:
+            names += [v.name for v in pou.vars.values()]
+        self.d.error("E010", f"unknown name '{e.name}'", e.pos, self._suggest(key, names)
+                     or "declare it in a VAR block")
+        return None
+
+    def _enum_literal(self, e: A.EnumLiteral, expected: T.Type | None) -> T.Type | None:
+        if e.type_name is None:
+            fake = A.Name(e.value_name, pos=e.pos)
+            return self._name(fake, Scope(None), expected)
+        ty = self.types.get(e.type_name.upper())
+        ty = T.resolve(ty) if ty is not None else None
+        if not isinstance(ty, T.EnumType):
+            self.d.error("E012", f"'{e.type_name}' is not an enumeration type", e.pos,
+                         self._suggest(e.type_name.upper(),
+                                       [k for k, t in self.types.items() if isinstance(t, T.EnumType)]))
+            return None
+        v = ty.values.get(e.value_name.upper())
+        if v is None:
+            self.d.error("E013", f"enumeration {ty.name} has no value '{e.value_name}'", e.pos,
+                         self._suggest(e.value_name.upper(), list(ty.values)))
+            return None
+        e.const = v
+        return ty
+
+    def _member(self, e: A.Member, scope: Scope) -> T.Type | None:
+        # Type.Value (CODESYS qualified enumerator)
+        if isinstance(e.base, A.Name):
+            key = e.base.name.upper()
+            is_var = scope.pou is not None and key in scope.pou.vars or key in self.globals
+            et = self.types.get(key)
+            if not is_var and et is not None and isinstance(T.resolve(et), T.EnumType):
+                lit = A.EnumLiteral(e.base.name, e.name, pos=e.pos)
+                ty = self._enum_literal(lit, None)
+                e.const = lit.const
+                return ty
+        bty = self.expr(e.base, scope)
+        if bty is None:
+            return None
+        b = T.resolve(bty)
+        key = e.name.upper()
+        if isinstance(b, T.StructType):
+            f = b.fields.get(key)
+            if f is None:
+                self.d.error("E013", f"{b.name} has no field '{e.name}'", e.pos,
+                             self._suggest(key, list(b.fields)))
+                return None
+            e.sym = f
+            return f.type
+        if isinstance(b, T.FBType):
+            v = b.pou.vars.get(key)
+            if v is None:
+                self.d.error("E013", f"{b.name} has no member '{e.name}'", e.pos,
+                             self._suggest(key, [k for k, s in b.pou.vars.items()
+                                                 if s.section in _SECTIONS_READABLE_OUTSIDE]))
+                return None
+            if v.section not in ("VAR_INPUT", "VAR_OUTPUT") and scope.pou is not b.pou:
+                self.d.error("E013", f"'{v.name}' is internal to {b.name}", e.pos,
+                             "only VAR_INPUT and VAR_OUTPUT are visible outside a block")
+                return None
+            e.sym = v
+            return v.type
+        self.d.error("E013", f"{bty} has no members", e.pos)
+        return None
+
+    def _index(self, e: A.Index, scope: Scope) -> T.Type | None:
+        bty = self.expr(e.base, scope)
+        for ix in e.indices:
+            ity = self.expr(ix, scope)
+            ie = T.base_elementary(ity) if ity is not None else None
+            if ity is not None and (ie is None or not ie.is_intlike):
+                self.d.error("E050", f"an array index must be an integer, not {ity}", ix.pos)
+        if bty is None:
+            return None
+        b = T.resolve(bty)
+        if isinstance(b, T.StringType):
+            self.d.error("E050", "strings are not indexed", e.pos, "use MID(s, 1, pos)")
+            return None
+        if not isinstance(b, T.ArrayType):
+            self.d.error("E050", f"{bty} is not an array", e.pos)
+            return None
+        if len(e.indices) != len(b.dims):
+            self.d.error("E050", f"{b} has {len(b.dims)} dimension(s), {len(e.indices)} index(es) given",
+                         e.pos)
+            return None
+        for ix, dim in zip(e.indices, b.dims):
+            if dim is not None and isinstance(ix.const, int) and not (dim[0] <= ix.const <= dim[1]):
+                self.d.error("E051", f"index {ix.const} is outside {dim[0]}..{dim[1]}", ix.pos)
+        return b.elem
+
+    def _bit_access(self, e: A.BitAccess, scope: Scope) -> T.Type | None:
+        bty = self.expr(e.base, scope)
+        self.expr(e.bit, scope)
+        if bty is None:
+            return None
+        be = T.base_elementary(bty)
+        if be is None or not be.is_intlike:
+            self.d.error("E053", f"bit access needs an integer or bit-string variable, not {bty}", e.pos)
+            return None
+        if not isinstance(e.bit.const, int) or not 0 <= e.bit.const < be.bits:
+            self.d.error("E053", f"bit number must be a constant 0..{be.bits - 1} for {be.name}", e.bit.pos)
+            return None
+        return T.BOOL
+
+    def _address_fits(self, addr: A.LocatedAddress, ty: T.ElementaryType | None, pos: A.Pos) -> bool:
+        """Report (E082) a direct address outside the process image, and
+        (E083) a CODESYS placeholder address %I* that nothing maps."""
+        if not addr.indices:
+            self.d.error("E083", f"{addr.text} is an unconfigured address", pos,
+                         "give the full address (e.g. %IX0.0); mapping %I* through VAR_CONFIG "
+                         "is not supported")
+            return False
+        if self._image_probe is None:
+            return True
+        try:
+            if ty is None:
+                self._image_probe.table(addr)
+            else:
+                self._image_probe.accessor(addr, ty)
+        except ValueError as exc:   # the image's AddressError
+            self.d.error("E082", str(exc), pos, "the image areas are "
+                         f"{self._image_probe.size // 1024} KiB each")
+            return False
+        return True
+
+    def _located(self, e: A.Located) -> T.Type | None:
+        ty = self._located_type(e)
+        if ty is not None and not self._address_fits(e.addr, T.base_elementary(ty)
+                                                     if e.addr.table is None else None, e.pos):
+            return None
+        return ty
+
+    def _located_type(self, e: A.Located) -> T.Type | None:
+        a = e.addr
+        schneider = self.profile.addressing == "schneider"
+        if (a.bit is not None or a.table is not None) and not schneider:
+            self.d.error("E080", f"{a.text} is Schneider addressing", e.pos,
+                         "compile with --profile schneider, or write %MX<byte>.<bit>")
+            return None
+        if a.table is not None:
+            if a.size != "W":
+                self.d.error("E080", f"{a.text}: tables are of words (%MW)", e.pos)
+                return None
+            return T.ArrayType([(0, a.table - 1)], T.INT)
+        if a.bit is not None:
+            if a.size != "W" or not 0 <= a.bit <= 15:
+                self.d.error("E080", f"{a.text}: :Xn needs a word address and n in 0..15", e.pos)
+                return None
+            return T.BOOL
+        if a.size in ("", "X"):
+            if not schneider and a.size == "" and len(a.indices) < 2:
+                self.d.error("E080", f"{a.text}: a bit address needs byte.bit", e.pos,
+                             f"write %{a.area}X<byte>.<bit>")
+                return None
+            return T.BOOL
+        if schneider:
+            return {"B": T.BYTE, "W": T.INT, "D": T.DINT, "L": T.LINT}[a.size]
+        return {"B": T.BYTE, "W": T.WORD, "D": T.DWORD, "L": T.LWORD}[a.size]

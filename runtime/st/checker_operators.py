@@ -1,0 +1,232 @@
+"""The checker's operators: the type and folded value of each operation.
+
+Unary, logical, comparison, arithmetic and time arithmetic; a constant
+result when the operands are constant.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+from . import ast as A
+from . import rtlib
+from . import types as T
+from .checker_base import CheckerBase, Scope
+from .conversions import common_type, is_flexible
+from .symbols import CallInfo
+
+
+class OperatorChecks(CheckerBase):
+    """Typing and folding operators."""
+
+    def _unary(self, e: A.Unary, scope: Scope, expected: T.Type | None) -> T.Type | None:
+        ty = self.expr(e.operand, scope, expected)
+        if ty is None:
+            return None
+        be = T.base_elementary(ty)
+        c = e.operand.const
+        if e.op == "NOT":
+            if be is not None and (be.is_bool or be.is_bits or
+                                   (be.is_integer and self.profile.bitwise_on_integers)):
+                if isinstance(T.resolve(ty), T.EnumType):
+                    be = None
+                else:
+                    if c is not None:
+                        e.const = (not c) if be.is_bool else self._wrap_const(be, ~c)
+                    return be
+            self.d.error("E023", f"NOT needs BOOL or a bit string, not {ty}", e.pos)
+            return None
+        if be is None or not (be.is_integer or be.is_real or be.category == T.DURATION or
+                              (be.is_bits and self.profile.int_bits_mix)):
+            self.d.error("E023", f"unary {e.op} needs a number, not {ty}", e.pos)
+            return None
+        if c is not None:
+            e.const = -c if e.op == "-" else c
+            if is_flexible(e.operand) and e.op == "-" and isinstance(c, int) and expected is None:
+                # -32768 is an INT literal, not the negation of a DINT
+                for cand in (T.INT, T.DINT, T.LINT):
+                    if T.int_fits(cand, -c):
+                        return cand
+        return be
+
+    def _wrap_const(self, t: T.ElementaryType, v: int) -> int:
+        return rtlib.wrap(t, v)
+
+    def _binary(self, e: A.Binary, scope: Scope, expected: T.Type | None) -> T.Type | None:
+        op = e.op
+        lt = self.expr(e.left, scope)
+        rt = self.expr(e.right, scope, expected=lt if is_flexible(e.right) else None)
+        if lt is None or rt is None:
+            return None
+        if is_flexible(e.left) and not is_flexible(e.right):
+            lt = self.expr(e.left, scope, expected=rt)
+            if lt is None:
+                return None
+        if op in ("AND", "OR", "XOR", "AND_THEN", "OR_ELSE"):
+            return self._logical(e, lt, rt)
+        if op in ("=", "<>", "<", ">", "<=", ">="):
+            return self._comparison(e, lt, rt)
+        return self._arithmetic(e, lt, rt, expected)
+
+    def _logical(self, e: A.Binary, lt: T.Type, rt: T.Type) -> T.Type | None:
+        le, re_ = T.base_elementary(lt), T.base_elementary(rt)
+        if le is not None and re_ is not None and le.is_bool and re_.is_bool:
+            ty = T.BOOL
+        elif e.op in ("AND_THEN", "OR_ELSE"):
+            self.d.error("E023", f"{e.op} needs BOOL operands", e.pos)
+            return None
+        elif le is not None and re_ is not None and self._bitwise_ok(le) and self._bitwise_ok(re_):
+            common = self._common(le, re_, e)
+            if common is None:
+                return None
+            ty = common
+        else:
+            self.d.error("E023", f"{e.op} needs BOOL or bit-string operands, not {lt} and {rt}", e.pos,
+                         "compare numbers first, e.g. (x > 0) AND (y > 0)")
+            return None
+        lc, rc = e.left.const, e.right.const
+        if lc is not None and rc is not None:
+            if ty.is_bool:
+                e.const = {"AND": lc and rc, "AND_THEN": lc and rc, "OR": lc or rc,
+                           "OR_ELSE": lc or rc, "XOR": lc != rc}[e.op]
+            else:
+                e.const = {"AND": lc & rc, "OR": lc | rc, "XOR": lc ^ rc}[e.op]
+        return ty
+
+    def _bitwise_ok(self, t: T.ElementaryType) -> bool:
+        return t.is_bool or t.is_bits or (t.is_integer and self.profile.bitwise_on_integers)
+
+    def _comparison(self, e: A.Binary, lt: T.Type, rt: T.Type) -> T.Type | None:
+        lres, rres = T.resolve(lt), T.resolve(rt)
+        ok = False
+        if isinstance(lres, T.EnumType) or isinstance(rres, T.EnumType):
+            ok = lres is rres
+        elif isinstance(lres, T.StringType) and isinstance(rres, T.StringType):
+            ok = lres.wide == rres.wide
+        elif isinstance(lres, T.RefType) or isinstance(rres, T.RefType):
+            # r = 0 / r <> 0 is how CODESYS and TwinCAT test for NULL
+            def refish(t, side):
+                return isinstance(t, (T.RefType, T.NullType)) or side.const == 0
+            ok = e.op in ("=", "<>") and refish(lres, e.left) and refish(rres, e.right)
+        else:
+            le, re_ = T.base_elementary(lres), T.base_elementary(rres)
+            if le is not None and re_ is not None:
+                if le.is_bool and re_.is_bool:
+                    ok = True
+                elif le.is_time or re_.is_time:
+                    ok = le.category == re_.category
+                elif self._common(le, re_, e, report=False) is not None:
+                    ok = True
+        if not ok:
+            self.d.error("E020", f"cannot compare {lt} with {rt}", e.pos,
+                         "convert one side so both have the same type")
+            return None
+        lc, rc = e.left.const, e.right.const
+        if lc is not None and rc is not None and not isinstance(lres, T.RefType):
+            import operator
+            fn = {"=": operator.eq, "<>": operator.ne, "<": operator.lt, ">": operator.gt,
+                  "<=": operator.le, ">=": operator.ge}[e.op]
+            e.const = fn(lc, rc)
+        return T.BOOL
+
+    def _common(self, le: T.ElementaryType, re_: T.ElementaryType, e: A.Expr,
+                report: bool = True) -> T.ElementaryType | None:
+        c = common_type(le, re_, self.profile)
+        if c is None and report:
+            self.d.error("E020", f"no common type for {le} and {re_}", e.pos,
+                         f"convert one side explicitly, e.g. {le.name}_TO_{re_.name}(...)")
+        return c
+
+    def _arithmetic(self, e: A.Binary, lt: T.Type, rt: T.Type, expected: T.Type | None) -> T.Type | None:
+        op = e.op
+        le, re_ = T.base_elementary(lt), T.base_elementary(rt)
+        if le is None or re_ is None or isinstance(T.resolve(lt), T.EnumType) \
+                or isinstance(T.resolve(rt), T.EnumType):
+            self.d.error("E023", f"'{op}' needs numbers, not {lt} and {rt}", e.pos)
+            return None
+        if le.is_time or re_.is_time:
+            return self._time_arith(e, le, re_)
+        num = (T.SIGNED, T.UNSIGNED, T.REALCAT)
+        bits_ok = self.profile.int_bits_mix
+        for t, side in ((le, e.left), (re_, e.right)):
+            if not (t.category in num or (t.is_bits and bits_ok)):
+                self.d.error("E023", f"'{op}' needs numbers, not {t.name}", side.pos)
+                return None
+        if op == "**":
+            ty = T.REAL if le is T.REAL and re_ in (T.REAL, T.SINT, T.INT, T.USINT, T.UINT) else T.LREAL
+            if le.is_real:
+                ty = le
+        else:
+            common = self._common(le, re_, e)
+            if common is None:
+                return None
+            ty = common
+        if op == "MOD" and not ty.is_intlike:
+            self.d.error("E023", "MOD needs integers", e.pos, "use x - TRUNC(x / y) * y for REAL")
+            return None
+        lc, rc = e.left.const, e.right.const
+        if lc is not None and rc is not None:
+            e.const = self._fold_arith(op, lc, rc, ty, e)
+        elif op in ("/", "MOD") and rc == 0 and ty.is_intlike:
+            self.d.error("E027", "division by the constant zero", e.right.pos)
+        return ty
+
+    def _fold_arith(self, op: str, a: Any, b: Any, ty: T.ElementaryType, e: A.Expr) -> Any:
+        try:
+            if op == "+":
+                return a + b
+            if op == "-":
+                return a - b
+            if op == "*":
+                return a * b
+            if op == "/":
+                return rtlib.idiv(int(a), int(b)) if ty.is_intlike else rtlib.rdiv(float(a), float(b))
+            if op == "MOD":
+                return rtlib.imod(int(a), int(b))
+            if op == "**":
+                return rtlib.expt(float(a), float(b))
+        except ZeroDivisionError:
+            self.d.error("E027", "division by the constant zero", e.pos)
+        except OverflowError:
+            self.d.error("E022", "constant expression overflows", e.pos)
+        return None
+
+    def _time_arith(self, e: A.Binary, le: T.ElementaryType, re_: T.ElementaryType) -> T.Type | None:
+        op = e.op
+        cat = (le.category, re_.category)
+        name = None
+        ty = None
+        if cat == (T.DURATION, T.DURATION) and op in ("+", "-"):
+            ty = T.LTIME if T.LTIME in (le, re_) else T.TIME
+            if le is not re_:
+                name = ("ADD_" if op == "+" else "SUB_") + "LTIME"
+        elif le.category == T.DURATION and op in ("*", "/") and (re_.is_integer or re_.is_real):
+            ty = le
+            name = ("MUL_" if op == "*" else "DIV_") + ("LTIME" if le is T.LTIME else "TIME")
+        elif cat == (T.TODCAT, T.DURATION) and op in ("+", "-"):
+            ty, name = le, ("ADD_TOD_TIME" if op == "+" else "SUB_TOD_TIME")
+        elif cat == (T.DTCAT, T.DURATION) and op in ("+", "-"):
+            ty, name = le, ("ADD_DT_TIME" if op == "+" else "SUB_DT_TIME")
+        elif op == "-" and le.category == re_.category and le.category in (T.DATECAT, T.TODCAT, T.DTCAT):
+            ty = T.TIME
+            name = {T.DATECAT: "SUB_DATE_DATE", T.TODCAT: "SUB_TOD_TOD", T.DTCAT: "SUB_DT_DT"}[le.category]
+        if ty is None:
+            self.d.error("E023", f"'{op}' is not defined for {le.name} and {re_.name}", e.pos,
+                         "durations add to durations, dates and times of day; "
+                         "a duration multiplies by a number")
+            return None
+        if name is not None:
+            if le.bits == 64 or re_.bits == 64:
+                lname = {"ADD_TOD_TIME": "ADD_LTOD_LTIME", "SUB_TOD_TIME": "SUB_LTOD_LTIME",
+                         "ADD_DT_TIME": "ADD_LDT_LTIME", "SUB_DT_TIME": "SUB_LDT_LTIME",
+                         "SUB_DATE_DATE": "SUB_LDATE_LDATE", "SUB_TOD_TOD": "SUB_LTOD_LTOD",
+                         "SUB_DT_DT": "SUB_LDT_LDT"}.get(name)
+                if lname in self.std:
+                    name = lname
+                    if ty is T.TIME:
+                        ty = T.LTIME
+            func = self.std.get(name)
+            if func is None:
+                self.d.error("E023", f"'{op}' on {le.name} and {re_.name} is not available", e.pos)
+                return None
+            e.impl = CallInfo("std", func=func, rtypes=(ty, le, re_), param_types=[le, re_])
+        return ty

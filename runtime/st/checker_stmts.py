@@ -1,0 +1,207 @@
+"""The checker's statements, and what an assignment may write to.
+
+Assignments, IF, CASE, FOR, WHILE, REPEAT, EXIT/CONTINUE, SET/RESET; the
+lvalues and whether they are writable (CONSTANT, inputs, FB outputs).
+"""
+from __future__ import annotations
+
+from . import ast as A
+from . import types as T
+from .checker_base import CheckerBase, Scope
+from .conversions import same_type
+from .symbols import VarSymbol
+
+
+class StmtChecks(CheckerBase):
+    """Statements and assignment targets."""
+
+    def _stmts(self, body: list, scope: Scope) -> None:
+        for s in body:
+            try:
+                self._stmt(s, scope)
+            except RecursionError:
+                self.d.error("E005", "statement nested too deeply", s.pos, "split it up")
+
+    def _stmt(self, s: A.Stmt, scope: Scope) -> None:
+        if isinstance(s, A.Assign):
+            self._assign(s, scope)
+        elif isinstance(s, A.CallStmt):
+            self.call(s.call, scope, as_statement=True)
+        elif isinstance(s, A.If):
+            for cond, body in s.branches:
+                self._bool_cond(cond, scope, "IF")
+                self._stmts(body, scope)
+            if s.else_body:
+                self._stmts(s.else_body, scope)
+        elif isinstance(s, A.Case):
+            self._case(s, scope)
+        elif isinstance(s, A.For):
+            self._for(s, scope)
+        elif isinstance(s, A.While):
+            self._bool_cond(s.cond, scope, "WHILE")
+            self._loop_body(s.body, scope)
+        elif isinstance(s, A.Repeat):
+            self._loop_body(s.body, scope)
+            self._bool_cond(s.cond, scope, "UNTIL")
+        elif isinstance(s, (A.Exit, A.Continue)):
+            if scope.loops == 0:
+                word = "EXIT" if isinstance(s, A.Exit) else "CONTINUE"
+                self.d.error("E070", f"{word} outside a loop", s.pos,
+                             "EXIT and CONTINUE belong inside FOR, WHILE or REPEAT")
+        elif isinstance(s, A.Return):
+            pass
+        elif isinstance(s, A.SetReset):
+            ty = self.lvalue(s.target, scope)
+            if ty is not None and not self._is_bool(ty):
+                self.d.error("E020", f"{s.kind} needs a BOOL target, not {ty}", s.target.pos)
+        else:
+            self.d.error("E005", "unsupported statement", s.pos)
+
+    def _loop_body(self, body: list, scope: Scope) -> None:
+        scope.loops += 1
+        self._stmts(body, scope)
+        scope.loops -= 1
+
+    def _bool_cond(self, cond: A.Expr, scope: Scope, what: str) -> None:
+        ty = self.expr(cond, scope, expected=T.BOOL)
+        if ty is not None and not self._is_bool(ty):
+            self.d.error("E020", f"the {what} condition is {ty}, not BOOL", cond.pos,
+                         "compare it, e.g. x <> 0")
+
+    def _assign(self, s: A.Assign, scope: Scope) -> None:
+        if s.op == "REF=":
+            tty = self.lvalue(s.target, scope)
+            vty = self.expr(s.value, scope)
+            if tty is None or vty is None:
+                return
+            rt = T.resolve(tty)
+            if not isinstance(rt, T.RefType):
+                self.d.error("E020", "REF= needs a REF_TO target", s.target.pos)
+            elif not same_type(rt.target, vty):
+                self.d.error("E020", f"REF= of {vty} into {tty}", s.value.pos)
+            elif not self._is_lvalue_expr(s.value):
+                self.d.error("E031", "REF= needs a variable on the right", s.value.pos)
+            return
+        tty = self.lvalue(s.target, scope)
+        if tty is None:
+            self.expr(s.value, scope)
+            return
+        vty = self.expr(s.value, scope, expected=tty)
+        if vty is None:
+            return
+        if s.op in ("S=", "R="):
+            if not self._is_bool(tty) or not self._is_bool(vty):
+                self.d.error("E020", f"{s.op} needs BOOL on both sides", s.pos)
+            return
+        self.check_convertible(vty, tty, s.value, "the assignment")
+
+    def _case(self, s: A.Case, scope: Scope) -> None:
+        sty = self.expr(s.selector, scope)
+        if sty is None:
+            for br in s.branches:
+                self._stmts(br.body, scope)
+            return
+        se = T.resolve(sty)
+        sbase = T.base_elementary(se)
+        if not (isinstance(se, T.EnumType) or (sbase is not None and sbase.is_intlike)):
+            self.d.error("E060", f"CASE needs an integer or enumeration selector, not {sty}",
+                         s.selector.pos)
+        seen: list = []  # (lo, hi, pos)
+        for br in s.branches:
+            for lab in br.labels:
+                if isinstance(lab, A.CaseRange):
+                    lo = self._case_label(lab.lo, sty, scope)
+                    hi = self._case_label(lab.hi, sty, scope)
+                    if lo is None or hi is None:
+                        continue
+                    if hi < lo:
+                        self.d.error("E060", f"empty CASE range {lo}..{hi}", lab.pos)
+                        continue
+                else:
+                    lo = hi = self._case_label(lab, sty, scope)
+                    if lo is None:
+                        continue
+                for plo, phi, ppos in seen:
+                    if lo <= phi and plo <= hi:
+                        self.d.error("E061", "CASE label overlaps an earlier one", lab.pos,
+                                     f"the earlier label is at {ppos}")
+                        break
+                seen.append((lo, hi, lab.pos))
+            self._stmts(br.body, scope)
+        if s.else_body:
+            self._stmts(s.else_body, scope)
+
+    def _case_label(self, e: A.Expr, sty: T.Type, scope: Scope) -> int | None:
+        ty = self.expr(e, scope, expected=sty)
+        if ty is None:
+            return None
+        if e.const is None or isinstance(e.const, (str, float)):
+            self.d.error("E060", "a CASE label must be a constant", e.pos,
+                         "use literals, enumeration values or CONSTANTs")
+            return None
+        self.check_convertible(ty, sty, e, "the CASE label")
+        return int(e.const)
+
+    def _for(self, s: A.For, scope: Scope) -> None:
+        vty = self.lvalue(s.var, scope)
+        ve = T.base_elementary(vty) if vty is not None else None
+        if vty is not None and (ve is None or not ve.is_intlike or isinstance(T.resolve(vty), T.EnumType)):
+            self.d.error("E071", f"the FOR variable must be an integer, not {vty}", s.var.pos)
+            vty = None
+        for part in (s.start, s.end, s.step):
+            if part is None:
+                continue
+            pty = self.expr(part, scope, expected=vty)
+            if pty is not None and vty is not None:
+                self.check_convertible(pty, vty, part, "the FOR bound")
+        if s.step is not None and s.step.const == 0:
+            self.d.error("E071", "FOR step 0 never ends", s.step.pos)
+        sym = s.var.sym if isinstance(s.var, A.Name) else None
+        scope.for_vars.append(sym)
+        self._loop_body(s.body, scope)
+        scope.for_vars.pop()
+
+    def _is_lvalue_expr(self, e: A.Expr) -> bool:
+        return isinstance(e, (A.Name, A.Member, A.Index, A.Deref, A.BitAccess, A.Located))
+
+    def lvalue(self, e: A.Expr, scope: Scope) -> T.Type | None:
+        ty = self.expr(e, scope)
+        if ty is None:
+            return None
+        if not self._is_lvalue_expr(e):
+            self.d.error("E031", "this expression cannot be assigned to", e.pos,
+                         "the left side of := must be a variable")
+            return None
+        self._check_writable(e, scope)
+        return ty
+
+    def _check_writable(self, e: A.Expr, scope: Scope) -> None:
+        if isinstance(e, A.Name):
+            sym = e.sym
+            if not isinstance(sym, VarSymbol):
+                self.d.error("E031", f"'{e.name}' is not a variable", e.pos)
+                return
+            if sym.constant:
+                self.d.error("E030", f"'{sym.name}' is a CONSTANT", e.pos,
+                             "remove CONSTANT from its declaration or assign another variable")
+            elif sym.section == "VAR_INPUT" and sym.owner is not None and sym.owner is scope.pou:
+                self.d.error("E030", f"'{sym.name}' is an input of {sym.owner.name} and cannot be "
+                             "assigned inside it", e.pos, "copy it into a local VAR and change that")
+            elif sym in scope.for_vars:
+                self.d.error("E072", f"the FOR variable '{sym.name}' must not be changed in the loop",
+                             e.pos, "use EXIT to leave the loop early, or a WHILE loop")
+        elif isinstance(e, A.Member):
+            sym = e.sym
+            base_ty = T.resolve(e.base.ty) if e.base.ty is not None else None
+            if isinstance(base_ty, T.FBType) and isinstance(sym, VarSymbol):
+                if sym.section == "VAR_OUTPUT":
+                    self.d.error("E030", f"'{sym.name}' is an output of {base_ty.name}; it is written by "
+                                 "the block, not from outside", e.pos,
+                                 "read it after the call, e.g. x := inst.Q")
+                    return
+            self._check_writable(e.base, scope)
+        elif isinstance(e, (A.Index, A.BitAccess)):
+            self._check_writable(e.base, scope)
+        elif isinstance(e, A.Located) and e.addr.table is not None:
+            self.d.error("E031", f"the word table {e.addr.text} cannot be assigned as a whole", e.pos,
+                         "assign its words one by one")

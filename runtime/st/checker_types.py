@@ -1,0 +1,212 @@
+"""The checker's declared types: collecting names, resolving types as written.
+
+The first pass collects every POU and TYPE name (a name declared twice is
+E011); type_of resolves a type as written: named types, STRING[n], ARRAY,
+subranges, REF_TO, and the STRUCT and enumeration declarations.
+"""
+from __future__ import annotations
+
+from . import ast as A
+from . import types as T
+from .checker_base import CheckerBase, Scope
+from .symbols import POUInfo, pyname
+
+
+class TypeChecks(CheckerBase):
+    """Collecting declarations and resolving types."""
+
+    def _collect(self, sf: A.SourceFile) -> None:
+        library = sf.path in self.library_files
+        for decl in sf.decls:
+            if isinstance(decl, A.TypeDecl):
+                key = decl.name.upper()
+                if self._clash(key, decl.name, decl.pos):
+                    continue
+                self.type_decls[key] = decl
+            elif isinstance(decl, A.POU):
+                key = decl.name.upper()
+                if self._clash(key, decl.name, decl.pos):
+                    continue
+                info = POUInfo(decl.name, decl.kind, decl, pyname(
+                    {"PROGRAM": "P_", "FUNCTION": "F_", "FUNCTION_BLOCK": "FB_"}[decl.kind], decl.name),
+                    library=library)
+                if decl.kind != "FUNCTION":
+                    info.fbtype = T.FBType(decl.name, info)
+                self.pous[key] = info
+
+    def _clash(self, key: str, name: str, pos: A.Pos) -> bool:
+        if key in T.ELEMENTARY or key in ("STRING", "WSTRING") or key in T.GENERICS:
+            self.d.error("E011", f"'{name}' is the name of an elementary type", pos,
+                         "choose another name")
+            return True
+        other = self.type_decls.get(key) or self.pous.get(key)
+        if other is not None:
+            opos = other.pos if isinstance(other, A.Node) else other.node.pos
+            self.d.error("E011", f"'{name}' is declared twice", pos,
+                         f"the first declaration is at {opos}")
+            return True
+        return False
+
+    def _resolve_named_type(self, key: str, pos: A.Pos) -> T.Type | None:
+        if key in self.types:
+            return self.types[key]
+        decl = self.type_decls.get(key)
+        if decl is None:
+            return None
+        if key in self._resolving:
+            self.d.error("E012", f"type '{decl.name}' is defined in terms of itself", decl.pos,
+                         "a type cannot contain itself; use REF_TO for recursive structures")
+            return None
+        self._resolving.add(key)
+        try:
+            spec = decl.spec
+            if isinstance(spec, A.StructTypeSpec):
+                st = T.StructType(decl.name, pyclass=pyname("S_", decl.name))
+                self.types[key] = st  # before fields: REF_TO self is allowed
+                for m in spec.members:
+                    fkey = m.name.upper()
+                    if fkey in st.fields:
+                        self.d.error("E011", f"field '{m.name}' is declared twice", m.pos)
+                        continue
+                    fty = self.type_of(m.type)
+                    # an unknown field type (reported, E012) stays None: uses of the field report no more
+                    st.fields[fkey] = T.StructField(m.name, fty,  # type: ignore[arg-type]
+                                                    m.init, pyname("f_", m.name))
+                self.structs.append(st)
+                ty: T.Type = st
+            elif isinstance(spec, A.EnumTypeSpec):
+                ty = self._enum_type(decl.name, spec)
+            else:
+                target = self.type_of(spec)
+                if target is None:
+                    return None
+                ty = T.AliasType(decl.name, target)
+            self.types[key] = ty
+            if decl.init is not None:
+                plan = self.init_value(ty, decl.init, Scope(None), decl.name)
+                if isinstance(ty, T.EnumType):
+                    ty.default = plan
+                elif isinstance(ty, T.AliasType):
+                    ty.init_value = plan
+                else:
+                    self.d.error("E024", "a STRUCT takes its initial values in its fields", decl.init.pos)
+            return ty
+        finally:
+            self._resolving.discard(key)
+
+    def _enum_type(self, name: str, spec: A.EnumTypeSpec) -> T.EnumType:
+        base = T.INT
+        if spec.base is not None:
+            b = self.type_of(spec.base)
+            be = T.base_elementary(b) if b is not None else None
+            if be is None or not be.is_intlike:
+                self.d.error("E020", "the base type of an enumeration must be an integer type",
+                             spec.base.pos)
+            else:
+                base = be
+        et = T.EnumType(name, {}, {}, base)
+        nxt = 0
+        for vname, vexpr, vpos in spec.values:
+            vkey = vname.upper()
+            if vkey in et.values:
+                self.d.error("E011", f"enumerator '{vname}' appears twice in '{name}'", vpos)
+                continue
+            if vexpr is not None:
+                v = self._const_int(vexpr, Scope(None), "an enumerator value")
+                if v is not None:
+                    nxt = v
+            if not T.int_fits(base, nxt):
+                self.d.error("E022", f"enumerator value {nxt} does not fit {base.name}", vpos)
+            et.values[vkey] = nxt
+            et.spelled[vkey] = vname
+            self.enumerators.setdefault(vkey, []).append((et, nxt))
+            nxt += 1
+        return et
+
+    def type_of(self, spec: A.TypeSpec, scope: Scope | None = None) -> T.Type | None:
+        """Resolve a type as written; reports and returns None when unknown.
+        scope decides which CONSTANTs bounds and lengths may use."""
+        scope = scope or Scope(None)
+        if isinstance(spec, A.NamedType):
+            key = spec.name.upper()
+            if key in T.ELEMENTARY:
+                return T.ELEMENTARY[key]
+            if key in ("STRING", "WSTRING"):
+                return T.StringType(self.profile.default_string_length, key == "WSTRING")
+            ty = self._resolve_named_type(key, spec.pos)
+            if ty is not None:
+                return ty
+            pou = self.pous.get(key)
+            if pou is not None:
+                if pou.kind == "FUNCTION_BLOCK":
+                    return pou.fbtype
+                self.d.error("E012", f"'{spec.name}' is a {pou.kind}, not a type", spec.pos,
+                             "only FUNCTION_BLOCKs can be instantiated as variables")
+                return None
+            if key in T.GENERICS:
+                self.d.error("E012", f"generic type '{spec.name}' cannot be used in a declaration",
+                             spec.pos, "use a concrete type such as INT or REAL")
+                return None
+            self.d.error("E012", f"unknown type '{spec.name}'", spec.pos,
+                         self._suggest(key, list(self.type_decls) + list(T.ELEMENTARY)
+                                       + [k for k, p in self.pous.items() if p.kind == "FUNCTION_BLOCK"]))
+            return None
+        if isinstance(spec, A.StringTypeSpec):
+            n = self.profile.default_string_length
+            if spec.length is not None:
+                v = self._const_int(spec.length, scope, "a string length")
+                if v is not None:
+                    if v < 1 or v > 65535:
+                        self.d.error("E022", f"string length {v} is not within 1..65535", spec.length.pos)
+                    else:
+                        n = v
+            return T.StringType(n, spec.wide)
+        if isinstance(spec, A.ArrayTypeSpec):
+            elem = self.type_of(spec.elem, scope)
+            if elem is None:
+                return None
+            dims: list[tuple[int, int] | None] = []
+            for rng in spec.ranges:
+                if rng is None:
+                    dims.append(None)
+                    continue
+                lo = self._const_int(rng[0], scope, "an array bound")
+                hi = self._const_int(rng[1], scope, "an array bound")
+                if lo is None or hi is None:
+                    return None
+                if hi < lo:
+                    self.d.error("E050", f"array range {lo}..{hi} is empty", rng[0].pos,
+                                 "the upper bound must not be below the lower bound")
+                    return None
+                if (hi - lo + 1) > 10_000_000:
+                    self.d.error("E050", f"array range {lo}..{hi} is too large", rng[0].pos)
+                    return None
+                dims.append((lo, hi))
+            return T.ArrayType(dims, elem)
+        if isinstance(spec, A.SubrangeTypeSpec):
+            base = self.type_of(spec.base, scope)
+            be = T.base_elementary(base) if base is not None else None
+            if be is None or not be.is_integer:
+                self.d.error("E020", "a subrange needs an integer base type", spec.pos)
+                return None
+            lo = self._const_int(spec.lo, scope, "a subrange bound")
+            hi = self._const_int(spec.hi, scope, "a subrange bound")
+            if lo is None or hi is None:
+                return None
+            if not (T.int_fits(be, lo) and T.int_fits(be, hi)) or hi < lo:
+                self.d.error("E022", f"subrange {lo}..{hi} is not within {be.name}", spec.pos)
+                return None
+            return T.SubrangeType(be, lo, hi)
+        if isinstance(spec, A.RefTypeSpec):
+            target = self.type_of(spec.target, scope)
+            if target is None:
+                return None
+            return T.RefType(target, spec.pointer)
+        if isinstance(spec, A.StructTypeSpec):
+            self.d.error("E012", "an anonymous STRUCT is only allowed in a TYPE declaration",
+                         spec.pos, "declare it with TYPE name : STRUCT ... END_STRUCT END_TYPE")
+            return None
+        if isinstance(spec, A.EnumTypeSpec):
+            return self._enum_type("(anonymous enum)", spec)
+        self.d.error("E012", "unsupported type", spec.pos)
+        return None

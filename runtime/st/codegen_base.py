@@ -1,0 +1,173 @@
+"""What the parts of the code generator share: output, constants, state.
+
+The CodeGen (codegen.py) is one class composed of a part per concern,
+each in its own module: codegen_pous (classes, functions, initial values),
+codegen_stmts (statements, conversions on store, stores), codegen_exprs
+(expressions, references) and codegen_calls. They emit lines through
+CodeGenBase, which remembers each line's ST position, and register the
+objects the code needs as numbered constants. A part calls the others
+through ``self``; what it may call is declared at the end of CodeGenBase,
+for the type checker.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from . import ast as A
+from . import ranges as R
+from . import types as T
+from .profile import Profile
+from .symbols import CallInfo, POUInfo, VarSymbol
+
+if TYPE_CHECKING:
+    from .checker import CheckedProgram
+
+
+def py_literal(v: Any) -> str:
+    """Python source for a parsed scalar value."""
+    if isinstance(v, bool):
+        return "True" if v else "False"
+    if isinstance(v, int):
+        return str(v)
+    if isinstance(v, float):
+        if math.isnan(v):
+            return "_NAN"
+        if math.isinf(v):
+            return "_INF" if v > 0 else "(-_INF)"
+        return repr(v)
+    if isinstance(v, str):
+        return repr(v)  # repr of a str is always a valid, inert Python literal
+    raise TypeError(f"no literal form for {type(v).__name__}")
+
+
+def elementary(ty: T.Type) -> T.ElementaryType:
+    """The elementary type values of the checked type ty are stored as
+    (asked only where the checker made sure there is one)."""
+    be = T.base_elementary(ty)
+    if be is None:
+        raise TypeError(f"{ty} is not stored as an elementary value")
+    return be
+
+
+def array_type(ty: T.Type) -> T.ArrayType:
+    """The checked type ty of an indexed value: an ARRAY."""
+    t = T.resolve(ty)
+    if not isinstance(t, T.ArrayType):
+        raise TypeError(f"{ty} is not an array")
+    return t
+
+
+@dataclass
+class Accessor:
+    """A process-image address the loader binds: _A<n>g / _A<n>s (scalar
+    get/set) or _A<n>t (a word table)."""
+    addr: A.LocatedAddress
+    type: Any  # ElementaryType, or None for a table
+
+
+class FnState:
+    """Per-body state: how variables are reached from the code being emitted."""
+
+    def __init__(self, pou: POUInfo | None, self_name: str = "self") -> None:
+        self.pou = pou
+        self.self_name = self_name
+        self.loop_kinds: list = []  # 'for', 'while', 'repeat' (with its cond code)
+        # FOR variables currently read from the Python loop local: id(VarSymbol) -> local name
+        self.for_locals: dict = {}
+        # ... and of those the (lowest, highest) value when the bounds are constant
+        self.loop_ranges: dict = {}
+
+    @property
+    def is_function(self) -> bool:
+        return self.pou is not None and self.pou.kind == "FUNCTION"
+
+
+class CodeGenBase:
+    """The generator's state and output; the parts add the code for each
+    kind of node (see the module docstring)."""
+
+    def __init__(self, checked: CheckedProgram, profile: Profile) -> None:
+        self.prog = checked
+        self.profile = profile
+        self.out: list = []  # (text, pos)
+        self.indent = 0
+        self.pos: A.Pos | None = None
+        self.consts: dict = {}
+        self._const_ids: dict = {}
+        self.accessors: dict = {}
+        self._acc_keys: dict = {}
+        self._tmp = 0
+        self.fn = FnState(None)
+
+    def emit(self, line: str) -> None:
+        self.out.append(("    " * self.indent + line, self.pos))
+
+    def tmp(self, base: str = "t") -> str:
+        self._tmp += 1
+        return f"_{base}{self._tmp}"
+
+    def const(self, obj: Any, label: str = "") -> str:
+        key = id(obj)
+        if key in self._const_ids:
+            return self._const_ids[key]
+        name = f"_K{len(self.consts)}"
+        self.consts[name] = obj
+        self._const_ids[key] = name
+        return name
+
+    def accessor(self, addr: A.LocatedAddress, ty: T.ElementaryType | None) -> int:
+        key = (addr.area, addr.size, addr.indices, addr.bit, addr.table, ty.name if ty else None)
+        if key not in self._acc_keys:
+            idx = len(self.accessors)
+            self.accessors[idx] = Accessor(addr, ty)
+            self._acc_keys[key] = idx
+        return self._acc_keys[key]
+
+    def _range(self, e: A.Expr | None) -> R.Range | None:
+        """What range analysis knows of an integer expression here (ranges.py)."""
+        return R.value_range(e, self.fn.loop_ranges)
+
+    @staticmethod
+    def _temp_local(v: VarSymbol) -> bool:
+        """A VAR_TEMP of a PROGRAM or FB lives in a Python local of the body
+        (it starts afresh every call) unless a reference to it is taken."""
+        return v.section == "VAR_TEMP" and not v.address_taken and v.owner is not None \
+            and v.owner.kind != "FUNCTION"
+
+    @staticmethod
+    def wrap(t: T.ElementaryType, code: str) -> str:
+        """Python wrapping the integer code to the width of t (rtlib.wrap, inline)."""
+        mask = (1 << t.bits) - 1
+        if t.lo is not None and t.lo < 0:
+            half = 1 << (t.bits - 1)
+            return f"((({code}) + {half} & {mask}) - {half})"
+        return f"(({code}) & {mask})"
+
+    if TYPE_CHECKING:
+        # Implemented by the parts: what one part calls of another.
+        # codegen_pous
+        def _function_epilogue(self) -> None: ...
+
+        # codegen_stmts
+        def _body(self, stmts: list) -> None: ...
+
+        def coerce(self, code: str, src: T.Type, dst: T.Type, e: A.Expr | None) -> str: ...
+
+        def emit_store(self, target: A.Expr, value_code: str, value_ty: T.Type, value_expr: A.Expr | None,
+                       trusted: bool = False) -> None: ...
+
+        # codegen_exprs
+        def ex(self, e: A.Expr) -> str: ...
+
+        def _index_target(self, e: A.Index) -> str: ...
+
+        def ref_code(self, e: A.Expr) -> str: ...
+
+        # codegen_calls
+        def _call_expr(self, e: A.Call) -> str: ...
+
+        def _std_invoke(self, info: CallInfo, args: list) -> str: ...
+
+        def _call_stmt(self, e: A.Call) -> None: ...

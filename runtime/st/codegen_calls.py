@@ -1,0 +1,180 @@
+"""Code generation of calls: functions, FB instances, standard, native.
+
+User FUNCTIONs (keyword arguments, outputs through references), function
+block instances (inputs, call, outputs), standard functions (a few inlined:
+MIN, MAX, LIMIT, SEL, MOVE, shifts and integer conversions), builtins and
+native functions.
+"""
+from __future__ import annotations
+
+import re
+
+from . import ast as A
+from . import conversions as C
+from . import ranges as R
+from . import types as T
+from .codegen_base import CodeGenBase, elementary, py_literal
+from .symbols import CallInfo
+
+
+class CallGen(CodeGenBase):
+    """Calls."""
+
+    def _call_expr(self, e: A.Call) -> str:
+        info: CallInfo = e.target
+        if info.kind == "std":
+            args = [self.ex(a) for a in info.args]
+            return self._std_invoke(info, args)
+        if info.kind == "function":
+            return self._function_call(info)
+        if info.kind == "builtin":
+            if info.func == "TIME":
+                return "_NOW_MS"  # the task clock, set once per cycle by the runner
+            if info.func == "LTIME":
+                return "_NOW_NS"
+            if info.func in ("REF", "ADR"):
+                return self.ref_code(info.args[0])
+            return py_literal(e.const)
+        if info.kind == "native":
+            values = ", ".join(self.ex(a) for a in info.args)
+            # the service stores words into the tables: it needs each table's signedness (st/native.py)
+            tables = [t for t in map(T.resolve, info.rtypes) if isinstance(t, T.ArrayType)]
+            signed = [elementary(t.elem).category == T.SIGNED for t in tables]
+            return f"_native({self.const(info.func)}, {values}, {', '.join(map(str, signed))})"
+        raise NotImplementedError(info.kind)
+
+    _INLINE_2 = {"MAX": "max", "MIN": "min"}
+
+    def _std_invoke(self, info: CallInfo, args: list) -> str:
+        func = info.func
+        name = func.name
+        rty = T.base_elementary(info.rtypes[0]) if info.rtypes else None
+        # a few hot functions inline (same results as the library versions)
+        if name == "ABS" and len(args) == 1 and rty is not None and not rty.is_intlike:
+            return f"abs({args[0]})"
+        if name in self._INLINE_2 and len(args) >= 2 and rty is not None and (rty.is_intlike or rty.is_real):
+            return f"{self._INLINE_2[name]}({', '.join(args)})"
+        if name == "SEL" and len(args) == 3:
+            return f"({args[2]} if {args[0]} else {args[1]})"
+        if name == "MOVE" and len(args) == 1:
+            return args[0]
+        if name == "LIMIT" and rty is not None and (rty.is_intlike or rty.is_real):
+            return f"max(min({args[1]}, {args[2]}), {args[0]})"  # IEC: MAX(MIN(IN, MX), MN)
+        inline = self._inline_shift(info, args) or self._inline_conversion(info, args)
+        if inline is not None:
+            return inline
+        fn = self.const(func.impl)
+        if func.typed:
+            return f"{fn}({self.const(info.rtypes)}, {', '.join(args)})"
+        return f"{fn}({', '.join(args)})"
+
+    def _inline_shift(self, info: CallInfo, args: list) -> str | None:
+        """SHL/SHR/ROL/ROR of an unsigned bit string by a constant count."""
+        name = info.func.name
+        if name not in R.WRAPPING_FUNCS:
+            return None
+        t = T.base_elementary(info.rtypes[0])
+        n = info.args[1].const
+        if t is None or not t.is_bits:
+            return None
+        w, mask = t.bits, (1 << t.bits) - 1
+        if n is None and name in ("SHL", "SHR"):
+            if R.within(self._range(info.args[1]), 0, w - 1) and R.within(self._range(info.args[0]), 0, mask):
+                return f"({args[0]} << {args[1]} & {mask})" if name == "SHL" else f"({args[0]} >> {args[1]})"
+            return None
+        if not isinstance(n, int) or isinstance(n, bool) or n < 0:
+            return None
+        x = args[0]
+        if not R.within(self._range(info.args[0]), 0, mask):
+            x = f"({x} & {mask})"
+        if name in ("ROL", "ROR"):
+            n %= w
+            if n == 0:
+                return x
+            if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_.]*", x):
+                tmp = self.tmp("s")
+                first, x = f"({tmp} := {x})", tmp
+            else:
+                first = x
+            a, b = ("<<", ">>") if name == "ROL" else (">>", "<<")
+            return f"(({first} {a} {n} | {x} {b} {w - n}) & {mask})"
+        if n >= w:
+            return "0"
+        if name == "SHL":
+            return f"({x} << {n} & {mask})"
+        return f"({x} >> {n})"
+
+    def _inline_conversion(self, info: CallInfo, args: list) -> str | None:
+        """<T>_TO_<U> between integer/bit-string types and into REAL/LREAL."""
+        func = info.func
+        if func.typed or "_TO_" not in func.name or "BCD" in func.name or len(func.params) != 1:
+            return None
+        src = T.ELEMENTARY.get(func.params[0][1].upper())
+        dst = T.base_elementary(info.rtypes[0])
+        if src is None or dst is None or not src.is_intlike:
+            return None
+        x = args[0]
+        if dst.is_intlike:
+            if R.fits(dst, self._range(info.args[0])):
+                return x
+            return self.wrap(dst, x)
+        if dst is T.LREAL and src.bits <= 32 or dst is T.REAL and C.widens_to(src, T.REAL) \
+                or dst is T.REAL and R.within(self._range(info.args[0]), -(1 << 24), 1 << 24):
+            return f"float({x})"  # exact: the integer fits the mantissa
+        if dst is T.REAL and src.bits <= 53:
+            return f"_f32({x})"  # one rounding, as the integer converts to double exactly
+        return None
+
+    def _function_call(self, info: CallInfo) -> str:
+        pou = info.pou
+        assert pou is not None  # a call of kind 'function' names its POU
+        given = {p.name.upper(): (p, a) for p, a in info.inputs}
+        given.update({p.name.upper(): (p, a) for p, a in info.inouts})
+        parts = []
+        for p in pou.params("VAR_INPUT", "VAR_IN_OUT"):
+            got = given.get(p.name.upper())
+            if got is None:
+                parts.append(f"{p.pyname}=None" if p.section == "VAR_IN_OUT" else "")
+                continue
+            _, a = got
+            if p.section == "VAR_IN_OUT":
+                parts.append(f"{p.pyname}={self.ref_code(a)}")
+            elif T.resolve(p.type).is_aggregate:
+                parts.append(f"{p.pyname}=_copy_value({self.ex(a)})")
+            else:
+                parts.append(f"{p.pyname}={self.coerce(self.ex(a), a.ty, p.type, a)}")
+        for p, target, negated in info.outputs:
+            if negated:
+                raise NotImplementedError("negated outputs of a FUNCTION")
+            parts.append(f"_o_{p.pyname}={self.ref_code(target)}")
+        args = ", ".join(x for x in parts if x)
+        return f"{pou.pyname}({args})"
+
+    def _call_stmt(self, e: A.Call) -> None:
+        info: CallInfo = e.target
+        if info.kind != "fb":
+            self.emit(self.ex(e))
+            return
+        inst = self.ex(info.instance)
+        if info.inputs or info.inouts or info.outputs or not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_.]*", inst):
+            t = self.tmp("fb")  # an instance never changes identity: look it up once
+            self.emit(f"{t} = {inst}")
+            inst = t
+        for p, a in info.inputs:
+            code = self.ex(a) if T.resolve(p.type).is_aggregate else self.coerce(self.ex(a), a.ty, p.type, a)
+            if T.resolve(p.type).is_aggregate:
+                self.emit(f"_assign_into({inst}.{p.pyname}, {code})")
+            else:
+                self.emit(f"{inst}.{p.pyname} = {code}")
+        for p, a in info.inouts:
+            self.emit(f"{inst}.{p.pyname} = {self.ref_code(a)}")
+        self.emit(f"{inst}()")
+        for p, target, negated in info.outputs:
+            val = f"{inst}.{p.pyname}"
+            if negated:
+                val = f"(not {val})"
+            if T.resolve(target.ty).is_aggregate:
+                self.emit(f"_assign_into({self.ex(target)}, {val})")
+            else:
+                src = A.Name(p.name, ty=T.BOOL if negated else p.type)
+                self.emit_store(target, val, src.ty, src)

@@ -1,0 +1,210 @@
+"""Code generation of expressions, and of references to variables.
+
+Reads of variables (fields, cells, loop locals, the process image),
+indices with their bounds checks, operators with IEC semantics (truncating
+division, MOD's sign, BOOL against bit-string operators), and the
+reference objects REF, ADR, VAR_IN_OUT and => pass.
+"""
+from __future__ import annotations
+
+import re
+from typing import Any
+
+from . import ast as A
+from . import conversions as C
+from . import ranges as R
+from . import types as T
+from .codegen_base import CodeGenBase, array_type, elementary, py_literal
+from .symbols import CallInfo, VarSymbol
+
+
+class ExprGen(CodeGenBase):
+    """Expressions and references."""
+
+    def ex(self, e: A.Expr) -> str:
+        if e.const is not None and e.ty is not None:
+            r = T.resolve(e.ty)
+            be = T.base_elementary(r)
+            if be is not None or isinstance(r, T.StringType):
+                return py_literal(C.const_repr(e.const, be) if be is not None else e.const)
+        if isinstance(e, A.Name):
+            return self._read_name(e.sym)
+        if isinstance(e, A.Member):
+            if e.const is not None:
+                return py_literal(e.const)
+            return f"{self.ex(e.base)}.{e.sym.pyname}"
+        if isinstance(e, A.Index):
+            return self._index_target(e)
+        if isinstance(e, A.Deref):
+            base = self.ex(e.base)
+            if T.resolve(e.ty).is_aggregate:
+                return f"_deref({base})"
+            return f"{base}.get()"
+        if isinstance(e, A.BitAccess):
+            return f"({self.ex(e.base)} >> {int(e.bit.const)} & 1 != 0)"
+        if isinstance(e, A.Located):
+            if e.addr.table is not None:
+                return f"_A{self.accessor(e.addr, None)}t"
+            return f"_A{self.accessor(e.addr, T.base_elementary(e.ty))}g()"
+        if isinstance(e, A.Unary):
+            return self._unary(e)
+        if isinstance(e, A.Binary):
+            return self._binary(e)
+        if isinstance(e, A.Call):
+            return self._call_expr(e)
+        if isinstance(e, A.SchneiderAddress):
+            return self.const(e.parts)
+        if isinstance(e, A.Literal):
+            return py_literal(e.value)
+        if isinstance(e, A.EnumLiteral):
+            return py_literal(e.const)
+        raise NotImplementedError(type(e).__name__)
+
+    def _read_name(self, sym: Any) -> str:
+        if not isinstance(sym, VarSymbol):
+            raise NotImplementedError("name without a variable")
+        loop_local = self.fn.for_locals.get(id(sym))
+        if loop_local is not None:
+            return loop_local
+        if sym.location is not None:
+            return f"_A{self.accessor(sym.location, T.base_elementary(sym.type))}g()"
+        if sym.owner is None:
+            return f"_G.{sym.pyname}"
+        aggregate = T.resolve(sym.type).is_aggregate
+        if self._temp_local(sym) and sym.owner is self.fn.pou:
+            return sym.pyname
+        if self.fn.is_function and sym.owner is self.fn.pou:
+            if sym.section == "VAR_IN_OUT" and not aggregate:
+                return f"{sym.pyname}.get()"
+            if sym.boxed:
+                return f"{sym.pyname}.value"
+            return sym.pyname
+        base = f"{self.fn.self_name}.{sym.pyname}"
+        if sym.section == "VAR_IN_OUT" and not aggregate:
+            return f"{base}.get()"
+        return base
+
+    def _index_target(self, e: A.Index) -> str:
+        code = self.ex(e.base)
+        arr = array_type(e.base.ty)
+        for ix, dim in zip(e.indices, arr.dims):
+            code += f"[{self._index_code(ix, dim)}]"
+        return code
+
+    def _index_code(self, ix: A.Expr, dim: tuple | None) -> str:
+        if dim is None:  # ARRAY[*]: Python's own check, but no negative wrap-around
+            return f"_check_index({self.ex(ix)}, 0, 1 << 62)"
+        lo, hi = dim
+        if isinstance(ix.const, int):
+            return str(ix.const - lo)
+        code = self.ex(ix)
+        if R.within(self._range(ix), lo, hi):
+            # the index provably lies inside the bounds (a FOR range, say): no check
+            return f"{code} - {lo}" if lo else code
+        if re.fullmatch(r"[A-Za-z_][A-Za-z0-9_.]*", code):
+            off = f"{code} - {lo}" if lo else code
+            return f"({off} if {lo} <= {code} <= {hi} else _out_of_bounds({code}, {lo}, {hi}))"
+        t = self.tmp("x")  # the condition runs first and binds the index once
+        return f"({t} - {lo} if {lo} <= ({t} := {code}) <= {hi} else _out_of_bounds({t}, {lo}, {hi}))"
+
+    def _unary(self, e: A.Unary) -> str:
+        v = self.ex(e.operand)
+        if e.op == "NOT":
+            be = elementary(e.ty)
+            if be.is_bool:
+                return f"(not {v})"
+            if be.is_bits:
+                return f"({v} ^ {(1 << be.bits) - 1})"
+            return f"(~{v})"
+        if e.op == "-":
+            return f"(-{v})"
+        return v
+
+    _CMP = {"=": "==", "<>": "!=", "<": "<", ">": ">", "<=": "<=", ">=": ">="}
+
+    def _binary(self, e: A.Binary) -> str:
+        op = e.op
+        if e.impl is not None:
+            info: CallInfo = e.impl
+            return self._std_invoke(info, [self.ex(e.left), self.ex(e.right)])
+        lhs, rhs = self.ex(e.left), self.ex(e.right)
+        if op in self._CMP:
+            return f"({lhs} {self._CMP[op]} {rhs})"
+        be = elementary(e.ty)
+        if op in ("AND_THEN", "OR_ELSE"):
+            return f"({lhs} {'and' if op == 'AND_THEN' else 'or'} {rhs})"
+        if op in ("AND", "OR", "XOR"):
+            if be.is_bool:
+                if op == "XOR":
+                    return f"({lhs} != {rhs})"
+                if self.profile.short_circuit or not self._has_call(e.right):
+                    return f"({lhs} {'and' if op == 'AND' else 'or'} {rhs})"
+                return f"({lhs} {'&' if op == 'AND' else '|'} {rhs})"
+            return f"({lhs} {'&' if op == 'AND' else '|' if op == 'OR' else '^'} {rhs})"
+        divisor = e.right.const
+        if op in ("/", "MOD") and be.is_intlike and isinstance(divisor, int) and divisor > 0 \
+                and not isinstance(divisor, bool):
+            pyop = "//" if op == "/" else "%"
+            lr = self._range(e.left)
+            if lr is not None and lr[0] >= 0:
+                return f"({lhs} {pyop} {divisor})"
+            t = self.tmp("d")  # truncate toward zero / sign of the dividend (IEC)
+            return f"({t} {pyop} {divisor} if ({t} := {lhs}) >= 0 else -(-{t} {pyop} {divisor}))"
+        if op == "/":
+            if be.is_intlike:
+                return f"_idiv({lhs}, {rhs})"
+            if isinstance(e.right.const, (int, float)) and e.right.const != 0:
+                return f"({lhs} / {rhs})"
+            return f"_rdiv({lhs}, {rhs})"
+        if op == "MOD":
+            return f"_imod({lhs}, {rhs})"
+        if op == "**":
+            return f"_expt({lhs}, {rhs})"
+        return f"({lhs} {op} {rhs})"
+
+    def _has_call(self, e: A.Expr) -> bool:
+        if isinstance(e, A.Call):
+            return True
+        for attr in ("left", "right", "operand", "base"):
+            sub = getattr(e, attr, None)
+            if isinstance(sub, A.Expr) and self._has_call(sub):
+                return True
+        if isinstance(e, A.Index):
+            return any(self._has_call(i) for i in e.indices)
+        return False
+
+    # ------------------------------------------------------------ references
+
+    def ref_code(self, e: A.Expr) -> str:
+        """A reference to the storage of an lvalue (REF, ADR, VAR_IN_OUT, =>)."""
+        ty = T.resolve(e.ty)
+        if ty.is_aggregate:
+            return self.ex(e)
+        if isinstance(e, A.Name):
+            sym = e.sym
+            if sym.location is not None:
+                idx = self.accessor(sym.location, T.base_elementary(sym.type))
+                return f"_AccessorRef(_A{idx}g, _A{idx}s)"
+            if sym.owner is None:
+                return f"_AttrRef(_G, {sym.pyname!r})"
+            if self.fn.is_function and sym.owner is self.fn.pou:
+                if sym.section == "VAR_IN_OUT" or sym.boxed:
+                    return sym.pyname
+                raise NotImplementedError("reference to an unboxed FUNCTION local")
+            if sym.section == "VAR_IN_OUT":
+                return f"{self.fn.self_name}.{sym.pyname}"
+            return f"_AttrRef({self.fn.self_name}, {sym.pyname!r})"
+        if isinstance(e, A.Member):
+            return f"_AttrRef({self.ex(e.base)}, {e.sym.pyname!r})"
+        if isinstance(e, A.Index):
+            base = self.ex(e.base)
+            arr = array_type(e.base.ty)
+            for ix, dim in list(zip(e.indices, arr.dims))[:-1]:
+                base += f"[{self._index_code(ix, dim)}]"
+            return f"_ItemRef({base}, {self._index_code(e.indices[-1], arr.dims[-1])})"
+        if isinstance(e, A.Deref):
+            return self.ex(e.base)
+        if isinstance(e, A.Located):
+            idx = self.accessor(e.addr, T.base_elementary(e.ty))
+            return f"_AccessorRef(_A{idx}g, _A{idx}s)"
+        raise NotImplementedError(f"reference to {type(e).__name__}")

@@ -1,0 +1,306 @@
+"""Code generation of declarations: a class per POU and STRUCT, globals.
+
+One class with ``__slots__`` per PROGRAM, FUNCTION_BLOCK and STRUCT, one
+plain function per FUNCTION, the class of the globals, and the code that
+builds initial values from the checker's plans.
+"""
+from __future__ import annotations
+
+import itertools
+from typing import Any
+
+from . import types as T
+from .codegen_base import CodeGenBase, FnState, py_literal
+from .symbols import POUInfo
+
+
+class PouGen(CodeGenBase):
+    """Classes, functions and initial values."""
+
+    def _struct_class(self, st: T.StructType) -> None:
+        self.pos = None
+        cls = st.pyclass
+        self.emit("")
+        self.emit(f"class {cls}:")
+        self.indent += 1
+        slots = [f.pyname for f in st.fields.values()]
+        self.emit(f"__slots__ = ({''.join(repr(s) + ', ' for s in slots)})")
+        meta = [(f.name, f.pyname, f.type, "FIELD") for f in st.fields.values()]
+        self.emit(f"_VARS_ = {self.const(tuple(meta))}")
+        self.emit("")
+        self.emit("def __init__(self):")
+        self.indent += 1
+        scope = FnState(None)
+        self.fn = scope
+        if not st.fields:
+            self.emit("pass")
+        for f in st.fields.values():
+            self._emit_init(f"self.{f.pyname}", f.type, f.init_value)
+        self.indent -= 1
+        self._assign_copy_methods(cls, [(f.pyname, f.type) for f in st.fields.values()])
+        self.indent -= 1
+
+    def _assign_copy_methods(self, cls: str, fields: list) -> None:
+        self.emit("")
+        self.emit("def _assign(self, o):")
+        self.indent += 1
+        if not fields:
+            self.emit("pass")
+        for name, ty in fields:
+            if T.resolve(ty).is_aggregate:
+                self.emit(f"_assign_into(self.{name}, o.{name})")
+            else:
+                self.emit(f"self.{name} = o.{name}")
+        self.indent -= 1
+        self.emit("")
+        self.emit("def _copy(self):")
+        self.indent += 1
+        self.emit(f"n = {cls}.__new__({cls})")
+        for name, ty in fields:
+            if T.resolve(ty).is_aggregate:
+                self.emit(f"n.{name} = _copy_value(self.{name})")
+            else:
+                self.emit(f"n.{name} = self.{name}")
+        self.emit("return n")
+        self.indent -= 1
+
+    # ------------------------------------------------------------ initial values
+
+    def _default_code(self, ty: T.Type) -> str:
+        declared = T.declared_default(ty)
+        if declared is not None:
+            return self._aggregate_expr(ty, declared) if T.resolve(ty).is_aggregate else py_literal(declared)
+        t = T.resolve(ty)
+        if isinstance(t, T.ElementaryType):
+            return "False" if t.is_bool else ("0.0" if t.is_real else "0")
+        if isinstance(t, T.StringType):
+            return "''"
+        if isinstance(t, T.EnumType):
+            return str(next(iter(t.values.values()), 0))
+        if isinstance(t, T.SubrangeType):
+            return str(t.lo if not t.lo <= 0 <= t.hi else 0)
+        if isinstance(t, T.RefType):
+            return "None"
+        if isinstance(t, T.StructType):
+            return f"{t.pyclass}()"
+        if isinstance(t, T.FBType):
+            return f"{t.pou.pyname}()"
+        if isinstance(t, T.ArrayType):
+            return self._array_code(t, None)
+        return "None"
+
+    def _scalar_plan_code(self, ty: T.Type, plan: Any) -> str:
+        if plan is None:
+            return self._default_code(ty)
+        return py_literal(plan)
+
+    def _array_code(self, t: T.ArrayType, plan: Any) -> str:
+        if t.variable_length:
+            return "None"
+        flat = plan[1] if plan is not None else None
+        sizes = [hi - lo + 1 for lo, hi in t.dims]
+        elem = T.resolve(t.elem)
+        elem_aggregate = elem.is_aggregate
+
+        def build(dim: int, offset: int) -> str:
+            n = sizes[dim]
+            stride = 1
+            for s in sizes[dim + 1:]:
+                stride *= s
+            if dim == len(sizes) - 1:
+                items = [flat[offset + i] if flat is not None else None for i in range(n)]
+                if elem_aggregate:
+                    if all(p is None for p in items):
+                        return f"[{self._default_code(t.elem)} for _ in range({n})]"
+                    return "[" + ", ".join(self._aggregate_expr(t.elem, p) for p in items) + "]"
+                codes = [self._scalar_plan_code(t.elem, p) for p in items]
+                return self._runs(codes)
+            inner = [build(dim + 1, offset + i * stride) for i in range(n)]
+            if flat is None:
+                return f"[{inner[0]} for _ in range({n})]"
+            return "[" + ", ".join(inner) + "]"
+        return build(0, 0)
+
+    @staticmethod
+    def _runs(codes: list) -> str:
+        """A list display with runs compressed: [0] * 100 + [1, 2]."""
+        parts = []
+        loose: list = []  # short runs gather into one display
+        for code, run in itertools.groupby(codes):
+            n = len(list(run))
+            if n >= 4:
+                if loose:
+                    parts.append("[" + ", ".join(loose) + "]")
+                    loose = []
+                parts.append(f"[{code}] * {n}")
+            else:
+                loose += [code] * n
+        if loose or not parts:
+            parts.append("[" + ", ".join(loose) + "]")
+        return " + ".join(parts)
+
+    def _aggregate_expr(self, ty: T.Type, plan: Any) -> str:
+        """An expression building an aggregate with an initial value plan."""
+        t = T.resolve(ty)
+        if isinstance(t, T.ArrayType):
+            return self._array_code(t, plan)
+        if plan is None:
+            return self._default_code(t)
+        # struct/FB with field plans: built by a small helper taking a lambda list
+        if not isinstance(t, (T.StructType, T.FBType)):
+            raise TypeError(f"{ty} takes no field values")
+        cls = t.pyclass if isinstance(t, T.StructType) else t.pou.pyname
+        setters = []
+        for key, sub in plan[1].items():
+            attr, fty = self._member_attr(t, key)
+            if T.resolve(fty).is_aggregate:
+                setters.append((attr, self._aggregate_expr(fty, sub)))
+            elif sub is not None:
+                setters.append((attr, py_literal(sub)))
+        args = ", ".join(f"({attr!r}, {code})" for attr, code in setters)
+        return f"_with_fields({cls}(), ({args}{',' if setters else ''}))"
+
+    def _member_attr(self, t: T.StructType | T.FBType, key: str) -> tuple:
+        if isinstance(t, T.StructType):
+            f = t.fields[key]
+            return f.pyname, f.type
+        v = t.pou.vars[key]
+        return v.pyname, v.type
+
+    def _emit_init(self, target: str, ty: T.Type, plan: Any) -> None:
+        t = T.resolve(ty)
+        if t.is_aggregate:
+            self.emit(f"{target} = {self._aggregate_expr(ty, plan)}")
+        else:
+            self.emit(f"{target} = {self._scalar_plan_code(ty, plan)}")
+
+    # ------------------------------------------------------------ POU classes
+
+    def _fb_class(self, pou: POUInfo) -> None:
+        self.pos = pou.node.pos
+        self.fn = FnState(pou)
+        self.emit("")
+        self.emit(f"class {pou.pyname}:")
+        self.indent += 1
+        stored = [v for v in pou.vars.values() if v.location is None and not self._temp_local(v)]
+        located = [v for v in pou.vars.values() if v.location is not None]
+        self.emit(f"__slots__ = ({''.join(repr(v.pyname) + ', ' for v in stored)})")
+        meta = [(v.name, v.pyname, v.type, v.section) for v in pou.vars.values() if not self._temp_local(v)]
+        self.emit(f"_VARS_ = {self.const(tuple(meta))}")
+        for v in located:
+            idx = self.accessor(v.location, T.base_elementary(v.type))
+            self.emit(f"{v.pyname} = property(lambda self: _A{idx}g())")
+        self.emit("")
+        self.emit("def __init__(self):")
+        self.indent += 1
+        self.emit("pass")
+        for v in pou.vars.values():
+            self.pos = v.pos
+            if v.location is not None:
+                if v.init_value is not None:
+                    idx = self.accessor(v.location, T.base_elementary(v.type))
+                    self.emit(f"_A{idx}s({py_literal(v.init_value)})")
+                continue
+            if v.section == "VAR_IN_OUT":
+                self.emit(f"self.{v.pyname} = None")
+                continue
+            if self._temp_local(v):
+                continue
+            self._emit_init(f"self.{v.pyname}", v.type, v.init_value)
+        self.indent -= 1
+        self._assign_copy_methods(pou.pyname, [(v.pyname, v.type) for v in stored])
+        self.emit("")
+        self.pos = pou.node.pos
+        self.emit("def __call__(self):")
+        self.indent += 1
+        self._temps_init(pou)
+        self._body(pou.node.body)
+        self.indent -= 1
+        self.indent -= 1
+
+    def _temps_init(self, pou: POUInfo) -> None:
+        """VAR_TEMP is re-initialised on every call (IEC)."""
+        for v in pou.vars.values():
+            if v.section == "VAR_TEMP":
+                self.pos = v.pos
+                target = v.pyname if self._temp_local(v) else f"self.{v.pyname}"
+                self._emit_init(target, v.type, v.init_value)
+
+    def _function(self, pou: POUInfo) -> None:
+        self.pos = pou.node.pos
+        self.fn = FnState(pou)
+        inputs = pou.params("VAR_INPUT", "VAR_IN_OUT")
+        outputs = pou.params("VAR_OUTPUT")
+        params = []
+        for v in inputs:
+            if v.section == "VAR_IN_OUT" or T.resolve(v.type).is_aggregate:
+                params.append(f"{v.pyname}=None")
+            else:
+                params.append(f"{v.pyname}={self._scalar_plan_code(v.type, v.init_value)}")
+        params += [f"_o_{v.pyname}=None" for v in outputs]
+        self.emit("")
+        self.emit(f"def {pou.pyname}({', '.join(params)}):")
+        self.indent += 1
+        for v in inputs:
+            if v.section == "VAR_INPUT" and T.resolve(v.type).is_aggregate:
+                self.pos = v.pos
+                self.emit(f"if {v.pyname} is None:")
+                self.indent += 1
+                self._emit_init(v.pyname, v.type, v.init_value)
+                self.indent -= 1
+            if v.boxed and v.section == "VAR_INPUT":
+                self.emit(f"{v.pyname} = _CellRef({v.pyname})")
+        if pou.result is not None:
+            self.emit(f"r_result = {self._default_code(pou.result.type)}")
+            if pou.result.boxed:
+                self.emit("r_result = _CellRef(r_result)")
+        for v in pou.vars.values():
+            if v.section in ("VAR", "VAR_OUTPUT", "VAR_TEMP", "VAR_STAT"):
+                self.pos = v.pos
+                self._emit_init(v.pyname, v.type, v.init_value)
+                if v.boxed:
+                    self.emit(f"{v.pyname} = _CellRef({v.pyname})")
+        self._body(pou.node.body)
+        self._function_epilogue()
+        self.indent -= 1
+
+    def _function_epilogue(self) -> None:
+        pou = self.fn.pou
+        assert pou is not None  # only a FUNCTION's body ends with an epilogue
+        for v in pou.params("VAR_OUTPUT"):
+            val = f"{v.pyname}.value" if v.boxed else v.pyname
+            self.emit(f"if _o_{v.pyname} is not None: _o_{v.pyname}.set({val})")
+        if pou.result is not None:
+            self.emit("return r_result.value" if pou.result.boxed else "return r_result")
+        else:
+            self.emit("return False")
+
+    def _globals_class(self) -> None:
+        self.pos = None
+        self.fn = FnState(None, "self")
+        gl = self.prog.globals
+        stored = [g for g in gl if g.location is None]
+        self.emit("")
+        self.emit("class _Globals:")
+        self.indent += 1
+        self.emit(f"__slots__ = ({''.join(repr(g.pyname) + ', ' for g in stored)})")
+        meta = [(g.name, g.pyname, g.type, "VAR_GLOBAL") for g in gl]
+        self.emit(f"_VARS_ = {self.const(tuple(meta))}")
+        for g in gl:
+            if g.location is not None:
+                idx = self.accessor(g.location, T.base_elementary(g.type))
+                self.emit(f"{g.pyname} = property(lambda self: _A{idx}g())")
+        self.emit("")
+        self.emit("def __init__(self):")
+        self.indent += 1
+        self.emit("pass")
+        for g in gl:
+            self.pos = g.pos
+            if g.location is not None:
+                if g.init_value is not None:
+                    idx = self.accessor(g.location, T.base_elementary(g.type))
+                    self.emit(f"_A{idx}s({py_literal(g.init_value)})")
+                continue
+            self._emit_init(f"self.{g.pyname}", g.type, g.init_value)
+        self.indent -= 1
+        self.indent -= 1

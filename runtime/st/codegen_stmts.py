@@ -1,0 +1,293 @@
+"""Code generation of statements, and of the store that ends an assignment.
+
+IF, CASE, FOR, WHILE, REPEAT (with the cooperative watchdog on loop
+back-edges), EXIT, CONTINUE, RETURN; an assignment stores the value
+converted to the target's type (coerce: what conversions.store_step
+decides, written in Python).
+"""
+from __future__ import annotations
+
+import re
+from typing import Any
+
+from . import ast as A
+from . import conversions as C
+from . import ranges as R
+from . import rtlib
+from . import types as T
+from .codegen_base import CodeGenBase, elementary, py_literal
+from .symbols import VarSymbol
+
+
+class StmtGen(CodeGenBase):
+    """Statements, conversions on store and stores."""
+
+    def _body(self, stmts: list) -> None:
+        start = len(self.out)
+        for s in stmts:
+            self._stmt(s)
+        if len(self.out) == start:
+            self.emit("pass")
+
+    def _stmt(self, s: A.Stmt) -> None:
+        self.pos = s.pos
+        if isinstance(s, A.Assign):
+            self._assign(s)
+        elif isinstance(s, A.CallStmt):
+            self._call_stmt(s.call)
+        elif isinstance(s, A.If):
+            for i, (cond, body) in enumerate(s.branches):
+                self.pos = cond.pos if i else s.pos
+                self.emit(f"{'if' if i == 0 else 'elif'} {self.ex(cond)}:")
+                self.indent += 1
+                self._body(body)
+                self.indent -= 1
+            if s.else_body:
+                self.emit("else:")
+                self.indent += 1
+                self._body(s.else_body)
+                self.indent -= 1
+        elif isinstance(s, A.Case):
+            self._case(s)
+        elif isinstance(s, A.For):
+            self._for(s)
+        elif isinstance(s, A.While):
+            wd = self.tmp("wd")
+            self.emit(f"{wd} = 0")
+            self.emit(f"while {self.ex(s.cond)}:")
+            self.indent += 1
+            self._watchdog_tick(wd)
+            self.fn.loop_kinds.append(("while", None))
+            self._body(s.body)
+            self.fn.loop_kinds.pop()
+            self.indent -= 1
+        elif isinstance(s, A.Repeat):
+            wd = self.tmp("wd")
+            self.emit(f"{wd} = 0")
+            self.emit("while True:")
+            self.indent += 1
+            self._watchdog_tick(wd)
+            self.fn.loop_kinds.append(("repeat", s.cond))
+            self._body(s.body)
+            self.fn.loop_kinds.pop()
+            self.pos = s.cond.pos
+            self.emit(f"if {self.ex(s.cond)}: break")
+            self.indent -= 1
+        elif isinstance(s, A.Exit):
+            self._leave_loop("break")
+        elif isinstance(s, A.Continue):
+            kind, cond = self.fn.loop_kinds[-1]
+            if kind == "repeat":
+                self.emit(f"if {self.ex(cond)}: break")
+            self._leave_loop("continue")
+        elif isinstance(s, A.Return):
+            self._store_loop_locals()
+            if self.fn.is_function:
+                self._function_epilogue()
+            else:
+                self.emit("return")
+        elif isinstance(s, A.SetReset):
+            self.emit_store(s.target, "True" if s.kind == "SET" else "False", T.BOOL, None)
+        else:
+            raise NotImplementedError(type(s).__name__)
+
+    def _leave_loop(self, word: str) -> None:
+        kind, data = self.fn.loop_kinds[-1]
+        if kind == "for" and word == "break" and data[2]:
+            var, cur, _local = data
+            self.emit_store(var, cur, var.ty, None, trusted=True)
+        self.emit(word)
+
+    def _store_loop_locals(self) -> None:
+        """Before RETURN inside FOR loops: give the variables their values."""
+        for kind, data in self.fn.loop_kinds:
+            if kind == "for" and data[2]:
+                var, cur, _local = data
+                self.emit_store(var, cur, var.ty, None, trusted=True)
+
+    def _watchdog_tick(self, counter: str) -> None:
+        # cooperative watchdog: a cheap counter, the clock is read every 1024 passes
+        self.emit(f"{counter} += 1")
+        self.emit(f"if not {counter} & 1023: _watchdog()")
+
+    def _case(self, s: A.Case) -> None:
+        sel = self.ex(s.selector)
+        if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_.]*", sel):
+            t = self.tmp("c")
+            self.emit(f"{t} = {sel}")
+            sel = t
+        first = True
+        for br in s.branches:
+            conds = []
+            for lab in br.labels:
+                if isinstance(lab, A.CaseRange):
+                    conds.append(f"{int(lab.lo.const)} <= {sel} <= {int(lab.hi.const)}")
+                else:
+                    conds.append(f"{sel} == {int(lab.const)}")
+            self.pos = br.pos
+            self.emit(f"{'if' if first else 'elif'} {' or '.join(conds) or 'False'}:")
+            first = False
+            self.indent += 1
+            self._body(br.body)
+            self.indent -= 1
+        if s.else_body:
+            if first:
+                self._body(s.else_body)
+            else:
+                self.emit("else:")
+                self.indent += 1
+                self._body(s.else_body)
+                self.indent -= 1
+
+    def _for(self, s: A.For) -> None:
+        var = s.var
+        vty = var.ty
+        # bounds convert to the variable's type (FOR i := 1 TO r, r REAL: a W121 narrowing)
+        start = self.coerce(self.ex(s.start), s.start.ty, vty, s.start)
+        end = self.coerce(self.ex(s.end), s.end.ty, vty, s.end)
+        it = self.tmp("i")
+        rng = self.tmp("r")
+        step = None
+        if s.step is None or isinstance(s.step.const, int):
+            step = 1 if s.step is None else s.step.const
+            stop = f"{end} + 1" if step > 0 else f"{end} - 1"
+            self.emit(f"{rng} = range({start}, {stop}{'' if step == 1 else f', {step}'})")
+        else:
+            step_code = self.coerce(self.ex(s.step), s.step.ty, vty, s.step)
+            self.emit(f"{rng} = _for_range({start}, {end}, {step_code})")
+        self.emit(f"for {it} in {rng}:")
+        self.indent += 1
+        local = self._loop_local_ok(var.sym, s.body)
+        if local:
+            self.fn.for_locals[id(var.sym)] = it
+            if step is not None and isinstance(s.start.const, int) and isinstance(s.end.const, int):
+                self.fn.loop_ranges[id(var.sym)] = (min(s.start.const, s.end.const),
+                                                    max(s.start.const, s.end.const))
+        else:
+            self.emit_store(var, it, vty, None, trusted=True)
+        self.fn.loop_kinds.append(("for", (var, it, local)))
+        self._body(s.body)
+        self.fn.loop_kinds.pop()
+        self.fn.for_locals.pop(id(var.sym), None)
+        self.fn.loop_ranges.pop(id(var.sym), None)
+        self.indent -= 1
+        self.emit("else:")
+        self.indent += 1
+        # IEC: after the loop the variable holds the first value past the end
+        self.emit_store(var, f"{rng}.start + len({rng}) * {rng}.step", vty, None)
+        self.indent -= 1
+
+    def _loop_local_ok(self, sym: Any, body: list) -> bool:
+        """May the body read the FOR variable from the Python loop local?
+        Only when nothing else can observe the stored variable: a local of
+        this POU that is not located, global, or reached by any reference
+        (REF, ADR, VAR_IN_OUT, =>); the body itself may not assign it (E072)."""
+        return isinstance(sym, VarSymbol) and sym.owner is not None and sym.location is None \
+            and sym.section != "VAR_IN_OUT" and not sym.boxed and not sym.address_taken
+
+    # ------------------------------------------------------------ assignment
+
+    def _assign(self, s: A.Assign) -> None:
+        if s.op == "S=" or s.op == "R=":
+            self.emit(f"if {self.ex(s.value)}:")
+            self.indent += 1
+            self.emit_store(s.target, "True" if s.op == "S=" else "False", T.BOOL, None)
+            self.indent -= 1
+            return
+        if s.op == "REF=":
+            self.emit_store(s.target, self.ref_code(s.value), s.target.ty, None, trusted=True)
+            return
+        tty = T.resolve(s.target.ty)
+        if tty.is_aggregate:
+            self.emit(f"_assign_into({self.ex(s.target)}, {self.ex(s.value)})")
+            return
+        self.emit_store(s.target, self.ex(s.value), s.value.ty, s.value)
+
+    def coerce(self, code: str, src: T.Type, dst: T.Type, e: A.Expr | None) -> str:
+        """Convert a value of type src to the representation of dst on store
+        (wrap integers, round REAL to 32 bits, truncate strings): what
+        happens is conversions.store_step's decision, written here."""
+        if e is not None and e.const is not None and C.stores_literal(dst):
+            return py_literal(C.const_as(e.const, src, dst))
+        step = C.store_step(src, dst, e)
+        if step == C.KEEP:
+            return code
+        d = T.resolve(dst)
+        if step == C.TRUNCATE and isinstance(d, T.StringType):
+            return f"({code})[:{d.length}]"
+        if step == C.CHECK_RANGE and isinstance(d, T.SubrangeType):
+            return f"_check_range({self.coerce(code, src, d.base, e)}, {d.lo}, {d.hi})"
+        if step == C.TO_BOOL:
+            return f"({code} != 0)"
+        if step == C.TO_INT:
+            return f"int({code})"
+        if step == C.TO_FLOAT:
+            return f"float({code})"
+        if step == C.TO_F32:
+            return f"_f32({code})"
+        de = T.base_elementary(d)
+        se = T.base_elementary(T.resolve(src) if src is not None else d)
+        assert de is not None and se is not None  # store_step answers KEEP otherwise
+        if step == C.CONVERT:
+            return self._converter(se, de, code)
+        # WRAP, unless the value provably fits
+        if R.fits(de, self._range(e)):
+            return code
+        return self.wrap(de, code)
+
+    def _converter(self, se: T.ElementaryType, de: T.ElementaryType, code: str) -> str:
+        fn = rtlib.make_converter(se, de)
+        return f"{self.const(fn)}({code})"
+
+    def emit_store(self, target: A.Expr, value_code: str, value_ty: T.Type, value_expr: A.Expr | None,
+                   trusted: bool = False) -> None:
+        """target := value, with the conversion to the target's type."""
+        tty = target.ty
+        code = value_code if trusted else self.coerce(value_code, value_ty, tty, value_expr)
+        if isinstance(target, A.Name):
+            self._store_name(target.sym, code)
+        elif isinstance(target, A.Member):
+            self.emit(f"{self.ex(target.base)}.{target.sym.pyname} = {code}")
+        elif isinstance(target, A.Index):
+            self.emit(f"{self._index_target(target)} = {code}")
+        elif isinstance(target, A.Deref):
+            base = self.ex(target.base)
+            self.emit(f"{base}.set({code})")
+        elif isinstance(target, A.BitAccess):
+            bit = int(target.bit.const)
+            be = elementary(target.base.ty)
+            cur = self.ex(target.base)
+            mask = 1 << bit
+            full = (1 << be.bits) - 1
+            new = f"(({cur}) | {mask} if {code} else ({cur}) & {full ^ mask})"
+            signed = be.lo is not None and be.lo < 0
+            self.emit_store(target.base, self.wrap(be, new) if signed else new, target.base.ty, None, trusted=True)
+        elif isinstance(target, A.Located):
+            idx = self.accessor(target.addr, T.base_elementary(tty))
+            self.emit(f"_A{idx}s({code})")
+        else:
+            raise NotImplementedError(type(target).__name__)
+
+    def _store_name(self, sym: VarSymbol, code: str) -> None:
+        if sym.location is not None:
+            idx = self.accessor(sym.location, T.base_elementary(sym.type))
+            self.emit(f"_A{idx}s({code})")
+            return
+        if sym.owner is None:
+            self.emit(f"_G.{sym.pyname} = {code}")
+            return
+        if self._temp_local(sym) and sym.owner is self.fn.pou:
+            self.emit(f"{sym.pyname} = {code}")
+            return
+        if self.fn.is_function and sym.owner is self.fn.pou:
+            if sym.section == "VAR_IN_OUT":
+                self.emit(f"{sym.pyname}.set({code})")
+            elif sym.boxed:
+                self.emit(f"{sym.pyname}.value = {code}")
+            else:
+                self.emit(f"{sym.pyname} = {code}")
+            return
+        if sym.section == "VAR_IN_OUT":
+            self.emit(f"{self.fn.self_name}.{sym.pyname}.set({code})")
+        else:
+            self.emit(f"{self.fn.self_name}.{sym.pyname} = {code}")

@@ -1,0 +1,321 @@
+"""Implicit conversions: which value may go into which type, and how.
+
+The one rule (IEC 61131-3 Fig. 11, softened by the profile), read by both
+sides of the compiler:
+
+* the checker asks ``check_implicit`` whether a value may go into a type
+  without a conversion function: silently, with W121 or as error E021 (a
+  narrowing, by the profile), or not at all (E020, E022);
+* the code generator asks ``store_step`` what a store does to the value's
+  representation (nothing, wrap, round to binary32, truncate, convert), and
+  writes a folded constant as ``const_as`` converts it, as the checker does
+  for initial values.
+
+Operands of a binary operation meet in ``common_type``; a generic parameter
+takes an argument as ``generic_fit`` says.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+from . import ast as A
+from . import rtlib
+from . import types as T
+from .diagnostics import DiagnosticBag
+from .profile import Profile
+from .ranges import is_stored_value
+
+# ---------------------------------------------------------------- widening
+# IEC 61131-3 (3rd ed.) Figure 11: implicit conversions that lose nothing.
+_WIDEN: dict[str, tuple] = {
+    "SINT": ("INT", "DINT", "LINT", "REAL", "LREAL"),
+    "INT": ("DINT", "LINT", "REAL", "LREAL"),
+    "DINT": ("LINT", "LREAL"),
+    "LINT": (),
+    "USINT": ("UINT", "UDINT", "ULINT", "INT", "DINT", "LINT", "REAL", "LREAL"),
+    "UINT": ("UDINT", "ULINT", "DINT", "LINT", "REAL", "LREAL"),
+    "UDINT": ("ULINT", "LINT", "LREAL"),
+    "ULINT": (),
+    "BOOL": ("BYTE", "WORD", "DWORD", "LWORD"),
+    "BYTE": ("WORD", "DWORD", "LWORD"),
+    "WORD": ("DWORD", "LWORD"),
+    "DWORD": ("LWORD",),
+    "LWORD": (),
+    "REAL": ("LREAL",),
+    "LREAL": (),
+    "TIME": ("LTIME",),
+    "LTIME": (),
+    "DATE": ("LDATE",),
+    "TIME_OF_DAY": ("LTIME_OF_DAY",),
+    "DATE_AND_TIME": ("LDATE_AND_TIME",),
+    "LDATE": (),
+    "LTIME_OF_DAY": (),
+    "LDATE_AND_TIME": (),
+}
+
+
+def widens_to(src: T.ElementaryType, dst: T.ElementaryType) -> bool:
+    """True when src converts implicitly and losslessly to dst (IEC Fig. 11)."""
+    return src is dst or dst.name in _WIDEN.get(src.name, ())
+
+
+def smallest_common(a: T.ElementaryType, b: T.ElementaryType) -> T.ElementaryType | None:
+    """The smallest elementary type both widen to (for a binary operation),
+    or None if there is none."""
+    if widens_to(a, b):
+        return b
+    if widens_to(b, a):
+        return a
+    for cand in (T.INT, T.DINT, T.LINT, T.UINT, T.UDINT, T.ULINT, T.WORD, T.DWORD, T.LWORD, T.REAL, T.LREAL,
+                 T.LTIME):
+        if widens_to(a, cand) and widens_to(b, cand):
+            return cand
+    return None
+
+
+_BITS_AS_UNSIGNED = {T.BYTE: T.USINT, T.WORD: T.UINT, T.DWORD: T.UDINT, T.LWORD: T.ULINT}
+
+
+def common_type(a: T.ElementaryType, b: T.ElementaryType, profile: Profile) -> T.ElementaryType | None:
+    """The type a binary operation on a and b computes in (None: there is
+    none). Where the profile mixes integers and bit strings (CODESYS), a bit
+    string meets an integer as the unsigned integer of its size."""
+    if profile.int_bits_mix:
+        if a.is_bits and b.is_bits:
+            return a if a.bits >= b.bits else b
+        if a.is_bits and b.is_integer:
+            a = _BITS_AS_UNSIGNED.get(a, a)
+        if b.is_bits and a.is_integer:
+            b = _BITS_AS_UNSIGNED.get(b, b)
+    return smallest_common(a, b)
+
+
+def generic_fit(t: T.Type, generic: str, profile: Profile) -> T.Type:
+    """The type an argument of type t takes for a generic parameter:
+    itself when it is a member; an integer widens into ANY_REAL (SQRT(i),
+    as CODESYS accepts); a bit string counts as ANY_INT where the profile
+    mixes them (SHL(w, BYTE#2))."""
+    if T.is_generic_member(t, generic):
+        return t
+    te = T.base_elementary(t)
+    g = generic.upper()
+    if te is not None and te.is_intlike and g == "ANY_REAL":
+        return T.REAL if widens_to(te, T.REAL) else T.LREAL
+    if te is not None and te.is_bits and g in ("ANY_INT", "ANY_UNSIGNED") and profile.int_bits_mix:
+        return {8: T.USINT, 16: T.UINT, 32: T.UDINT, 64: T.ULINT}[te.bits]
+    return t
+
+
+# ---------------------------------------------------------------- the checker's question
+
+def same_type(a: T.Type, b: T.Type) -> bool:
+    """The same type for assignment: aliases resolved, strings of one width
+    at any length, arrays of the same element type and dimension sizes."""
+    a, b = T.resolve(a), T.resolve(b)
+    if a is b:
+        return True
+    if isinstance(a, T.StringType) and isinstance(b, T.StringType):
+        return a.wide == b.wide
+    if isinstance(a, T.ArrayType) and isinstance(b, T.ArrayType):
+        if len(a.dims) != len(b.dims) or not same_type(a.elem, b.elem):
+            return False
+        return all(x is None or y is None or (x[1] - x[0]) == (y[1] - y[0])
+                   for x, y in zip(a.dims, b.dims))
+    if isinstance(a, T.RefType) and isinstance(b, T.RefType):
+        return same_type(a.target, b.target)
+    if isinstance(a, T.SubrangeType) and isinstance(b, T.SubrangeType):
+        return a.base is b.base and a.lo == b.lo and a.hi == b.hi
+    return False
+
+
+def is_flexible(e: A.Expr) -> bool:
+    """An untyped numeric literal (or a constant expression of them) that
+    takes the type its context needs."""
+    if isinstance(e, A.Literal):
+        return e.type_name is None and e.kind in ("int", "real", "bool")
+    if isinstance(e, A.Unary):
+        return e.op in ("-", "+") and is_flexible(e.operand)
+    if isinstance(e, A.Binary):
+        return is_flexible(e.left) and is_flexible(e.right)
+    return False
+
+
+def const_fits(value: Any, se: T.ElementaryType, de: T.ElementaryType, e: A.Expr) -> bool:
+    """Whether the folded value of e, of type se, goes into de as it is: an
+    untyped literal adapts to any type that holds it."""
+    if not is_flexible(e):
+        return False
+    if isinstance(value, bool) or se.is_bool:
+        return de.is_bool
+    if isinstance(value, int) and se.is_intlike:
+        # an integer that does not fit was reported (E022) by check_implicit
+        return T.int_fits(de, value) if de.is_intlike else de.is_real
+    if isinstance(value, float) and se.is_real:
+        return de.is_real
+    return False
+
+
+def enum_example(t: T.Type) -> str:
+    """An enumerator of t as written with its type (for a hint)."""
+    t = T.resolve(t)
+    if isinstance(t, T.EnumType) and t.values:
+        k = next(iter(t.values))
+        return f"{t.name}#{t.spelled[k]}"
+    return ""
+
+
+def check_implicit(src: T.Type, dst: T.Type, e: A.Expr, what: str, profile: Profile,
+                   diags: DiagnosticBag) -> bool:
+    """Report unless a value of type src (the expression e) may be stored
+    into dst implicitly (IEC 61131-3 Fig. 11, softened by the profile).
+    False when it is an error."""
+    s, d = T.resolve(src), T.resolve(dst)
+    de0 = T.base_elementary(d)
+    if isinstance(e.const, int) and not isinstance(e.const, bool) and de0 is not None \
+            and de0.is_intlike and is_flexible(e) and not T.int_fits(de0, e.const):
+        diags.error("E022", f"{e.const} does not fit {de0.name} ({de0.lo}..{de0.hi})", e.pos,
+                    "use a larger type or a typed literal that wraps explicitly")
+        return False
+    if same_type(s, d):
+        return True
+    if isinstance(d, T.RefType):
+        if isinstance(s, T.NullType) or (isinstance(s, T.RefType) and
+                                         (same_type(s.target, d.target) or
+                                          (d.pointer and isinstance(T.resolve(d.target), T.ElementaryType)
+                                           and T.resolve(d.target) is T.BYTE))):
+            return True
+        if e.const == 0 and isinstance(s, T.ElementaryType) and s.is_intlike:
+            return True
+        diags.error("E020", f"cannot use {src} as {dst} in {what}", e.pos,
+                    "take a reference with REF(variable) or ADR(variable)")
+        return False
+    if isinstance(d, T.EnumType) or isinstance(s, T.EnumType):
+        if isinstance(d, T.ElementaryType) and isinstance(s, T.EnumType) and profile.int_bits_mix \
+                and d.is_intlike and widens_to(s.base, d):
+            return True
+        diags.error("E020", f"cannot use {src} as {dst} in {what}", e.pos,
+                    f"use an enumerator of {dst}, e.g. {enum_example(d)}"
+                    if isinstance(d, T.EnumType) else "enumerations convert only explicitly")
+        return False
+    if isinstance(d, T.StringType):
+        if isinstance(s, T.StringType) and s.wide == d.wide:
+            return True
+        diags.error("E020", f"cannot use {src} as {dst} in {what}", e.pos,
+                    "convert explicitly, e.g. INT_TO_STRING(x)" if not isinstance(s, T.StringType)
+                    else "use WSTRING_TO_STRING / STRING_TO_WSTRING")
+        return False
+    se, de = T.base_elementary(s), T.base_elementary(d)
+    if se is None or de is None:
+        diags.error("E020", f"cannot use {src} as {dst} in {what}", e.pos,
+                    "the types must be the same")
+        return False
+    if isinstance(d, T.SubrangeType):
+        if isinstance(e.const, int) and not (d.lo <= e.const <= d.hi):
+            diags.error("E022", f"{e.const} is outside {d} in {what}", e.pos)
+            return False
+        return check_implicit(src, d.base, e, what, profile, diags)
+    # a constant that fits is always fine (untyped literals adapt)
+    if e.const is not None and const_fits(e.const, se, de, e):
+        return True
+    if widens_to(se, de):
+        return True
+    if profile.int_bits_mix and se.is_intlike and de.is_intlike and se.bits <= de.bits:
+        return True
+    lossy = (se.is_intlike or se.is_real) and (de.is_intlike or de.is_real) or \
+        (se.category == T.DURATION and de.category == T.DURATION)
+    if lossy:
+        msg = f"implicit conversion from {src} to {dst} in {what} may lose data"
+        hint = f"convert explicitly: {se.name}_TO_{de.name}(...)"
+        if profile.narrowing == "error":
+            diags.error("E021", msg, e.pos, hint)
+            return False
+        diags.warning("W121", msg, e.pos, hint)
+        return True
+    hint = f"convert explicitly: {se.name}_TO_{de.name}(...)"
+    if de.is_bool and se.is_intlike:
+        hint = "compare it instead, e.g. x <> 0"
+    diags.error("E020", f"cannot use {src} as {dst} in {what}", e.pos, hint)
+    return False
+
+
+# ---------------------------------------------------------------- constants
+
+def const_repr(value: Any, t: T.ElementaryType) -> Any:
+    """A constant of elementary type t in the form t stores: REAL rounded to
+    binary32, LREAL a float, BOOL a bool; other values as they are."""
+    if t.is_real:
+        return rtlib.f32(float(value)) if t is T.REAL else float(value)
+    if t.is_bool:
+        return bool(value)
+    return value
+
+
+def const_as(value: Any, src: T.Type, dst: T.Type) -> Any:
+    """A folded constant converted to the representation of dst."""
+    d = T.resolve(dst)
+    if isinstance(d, T.StringType):
+        return value[: d.length] if isinstance(value, str) else value
+    de = T.base_elementary(d)
+    se = T.base_elementary(src)
+    if de is None or se is None:
+        return value
+    if de.is_real or de.is_bool:
+        return const_repr(value, de)
+    if de.is_intlike or de.is_time:
+        if se.is_real:
+            value = rtlib.round_half_away(value)
+        if se.is_time and de.is_time and se.unit_ns != de.unit_ns:
+            value = value * se.unit_ns // de.unit_ns
+        return rtlib.wrap(de, int(value)) if (de.is_intlike or de.category == T.DURATION) else int(value)
+    return value
+
+
+def stores_literal(dst: T.Type) -> bool:
+    """Whether a folded constant stored into dst is written as a literal
+    (converted by const_as): into elementary types and strings."""
+    d = T.resolve(dst)
+    return not isinstance(d, T.RefType) and (T.base_elementary(d) is not None or isinstance(d, T.StringType))
+
+
+# ---------------------------------------------------------------- the code generator's question
+# What storing a value that is not a folded constant does to it; the code
+# generator writes the Python for each step.
+KEEP = "keep"                # it already has the destination's representation
+TRUNCATE = "truncate"        # a string maybe longer than the destination: cut to its length
+CHECK_RANGE = "check_range"  # into a subrange: the step into its base type, then a bounds check
+TO_BOOL = "to_bool"          # a number into BOOL: value <> 0
+TO_INT = "to_int"            # BOOL into an integer: 0 or 1
+TO_FLOAT = "to_float"        # a number into LREAL
+TO_F32 = "to_f32"            # a number into REAL: rounded to binary32
+WRAP = "wrap"                # an integer into an integer type: wrapped to it unless the value provably fits
+CONVERT = "convert"          # the rest (REAL to integer, time units, time to number): the library converter
+
+
+def store_step(src: T.Type | None, dst: T.Type, e: A.Expr | None) -> str:
+    """What storing a value of type src (the expression e, if known) into
+    dst does to it: one of the steps above."""
+    d = T.resolve(dst)
+    s = T.resolve(src) if src is not None else d
+    if isinstance(d, T.StringType):
+        return KEEP if isinstance(s, T.StringType) and s.length <= d.length else TRUNCATE
+    if isinstance(d, T.SubrangeType):
+        return CHECK_RANGE
+    de = T.base_elementary(d)
+    se = T.base_elementary(s)
+    if de is None or se is None:
+        return KEEP
+    if isinstance(d, T.EnumType) or isinstance(s, T.EnumType) and de is se:
+        return KEEP
+    if de.is_bool:
+        return KEEP if se.is_bool else TO_BOOL
+    if de.is_real:
+        if se.is_real:
+            return KEEP if de is T.LREAL or (se is T.REAL and is_stored_value(e)) else TO_F32
+        if se.is_bool or se.is_intlike:
+            return TO_FLOAT if de is T.LREAL else TO_F32
+        return CONVERT
+    if se.is_real or (se.is_time and se.unit_ns != de.unit_ns) or se.is_time != de.is_time:
+        return CONVERT
+    if se.is_bool:
+        return TO_INT
+    return WRAP

@@ -1,0 +1,119 @@
+"""The checker's calls (runtime/st/checker_calls.py): user FUNCTIONs, FB
+instances, standard functions, builtins and native functions."""
+from __future__ import annotations
+
+import pytest
+
+from softplc.runtime.st import types as T
+from softplc.runtime.st.native import ADDRESS, ANY_INT, STRING, WORDS, NativeFunction, Param
+from softplc.runtime.st.symbols import CallInfo
+
+from .conftest import check_st, codes, diagnostics, pou_body
+
+
+def test_call_parameters_are_checked():
+    src = """
+FUNCTION f : INT
+VAR_INPUT a : INT; END_VAR
+VAR_IN_OUT io : INT; END_VAR
+f := a;
+END_FUNCTION
+PROGRAM main
+VAR t : TON; x : INT; q : BOOL; END_VAR
+x := f(a := 1, nosuch := 2, io := x);
+x := f(a := 1);
+t(IN := TRUE, PT := 5);
+t(IN := TRUE, Q := q);
+x := f(1, x, 3);
+END_PROGRAM
+"""
+    found = [(d.code, d.pos.line) for d in diagnostics(src) if d.is_error]
+    assert ("E040", 9) in found  # unknown parameter
+    assert ("E042", 10) in found  # VAR_IN_OUT not connected
+    assert ("E020", 11) in found  # PT is TIME, not an integer
+    assert ("E040", 12) in found  # output bound with :=
+    assert ("E041", 13) in found  # too many arguments
+
+
+def test_fb_called_as_a_value_and_program_called_directly():
+    src = """
+PROGRAM other
+END_PROGRAM
+PROGRAM main
+VAR t : TON; b : BOOL; END_VAR
+b := t(IN := TRUE);
+other();
+END_PROGRAM
+"""
+    assert codes(src) == ["E043", "E043"]
+
+
+# ---------------------------------------------------------------- native functions
+
+
+class _NoService:
+    def request(self, name, *args):
+        return False
+
+
+PROBE = NativeFunction(
+    "PROBE",
+    (Param("address", ADDRESS), Param("label", STRING), Param("node", ANY_INT, "the node"),
+     Param("table", WORDS, "the table", min_words=4)),
+    service="probe", fallback=_NoService(), usage="PROBE(ADR#0.1.SYS, 'x', <node>, %MW<table>:4)")
+
+NATIVE_DECLS = ("ok : BOOL; n : INT; r : REAL; s : STRING; t4 : ARRAY[0..3] OF WORD; t2 : ARRAY[1..2] OF INT;"
+                " b4 : ARRAY[0..3] OF BYTE;")
+
+
+def native_call(args: str):
+    """Check ok := PROBE(args) with PROBE declared as a native function;
+    returns (the call expression, [(code, message, hint, line, column)])."""
+    src = f"PROGRAM main\nVAR\n{NATIVE_DECLS}\nEND_VAR\nok := PROBE({args});\nEND_PROGRAM\n"
+    checked, diags = check_st(src, profile="schneider", natives={PROBE.name: PROBE})
+    return pou_body(checked)[0].value, [(d.code, d.message, d.hint, d.pos.line, d.pos.col) for d in diags]
+
+
+@pytest.mark.parametrize("args", ["ADR#0.1.SYS, 'SDO', n, t4", "ADR#0.1.SYS, s, 40, %MW100:4"])
+def test_a_native_call_is_typed_from_its_declaration(args):
+    call, found = native_call(args)
+    assert found == []
+    assert isinstance(call.target, CallInfo) and call.target.kind == "native" and call.target.func is PROBE
+    assert call.target.args == [a.value for a in call.args]
+    assert call.target.rtypes == tuple(a.value.ty for a in call.args)
+    assert call.ty is T.BOOL
+
+
+@pytest.mark.parametrize("args", ["ADR#0.1.SYS, 'SDO', n", "ADR#0.1.SYS, 'SDO', n, t4, 1",
+                                  "ADR#0.1.SYS, 'SDO', n, table := t4", ""])
+def test_a_native_call_with_the_wrong_arguments_shows_the_usage(args):
+    _, found = native_call(args)
+    assert found == [("E041", "PROBE takes 4 positional arguments", "PROBE(ADR#0.1.SYS, 'x', <node>, %MW<table>:4)",
+                      5, 7)]
+
+
+def test_the_arguments_of_a_wrong_native_call_are_still_checked():
+    _, found = native_call("nosuch")
+    assert [(code, line, col) for code, _m, _h, line, col in found] == [("E041", 5, 7), ("E010", 5, 13)]
+
+
+def test_native_arguments_of_the_wrong_kind():
+    _, found = native_call("n, 5, r, b4")
+    assert found == [
+        ("E020", "PROBE: argument 1 must be an ADR#... address", None, 5, 13),
+        ("E020", "PROBE: argument 2 must be a STRING", None, 5, 16),
+        ("E020", "PROBE: the node (argument 3) must be an integer", None, 5, 19),
+        ("E020", "PROBE: the table (argument 4) must be a word table such as %MW3250:4 or an ARRAY OF WORD",
+         None, 5, 22),
+    ]
+
+
+@pytest.mark.parametrize("table", ["t2", "%MW100:2"])
+def test_a_native_management_table_too_small(table):
+    _, found = native_call(f"ADR#0.1.SYS, 'SDO', n, {table}")
+    assert found == [("E020", "PROBE: the table (argument 4) needs 4 words", None, 5, 36)]
+
+
+def test_a_native_argument_in_error_is_reported_once():
+    _, found = native_call("ADR#0.1.SYS, 'SDO', nosuch, t4")
+    assert [code for code, *_ in found] == ["E010"]

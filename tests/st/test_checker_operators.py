@@ -1,0 +1,31 @@
+"""The checker's operators (runtime/st/checker_operators.py): the type and
+folded value of each operation."""
+from __future__ import annotations
+
+from softplc.runtime.st import types as T
+
+from .conftest import check_st, codes, diagnostics, pou_body, prog
+
+
+def test_type_errors_in_conditions_and_operators():
+    src = prog("i : INT; s : STRING; b : BOOL; r : REAL;",
+               "IF i THEN END_IF\nb := s + 1;\nr := r MOD 2.0;\nb := b < s;")
+    assert codes(src) == ["E020", "E023", "E023", "E020"]
+
+
+def test_operator_errors():
+    src = prog("x : INT; b : BOOL; r : REAL;", "x := 10 / 0;\nb := b AND_THEN 1;\nx := -x;\nr := NOT r;")
+    assert [(d.code, d.message, d.pos.line) for d in diagnostics(src)] == [
+        ("E027", "division by the constant zero", 5),
+        ("E023", "AND_THEN needs BOOL operands", 6),
+        ("E023", "NOT needs BOOL or a bit string, not REAL", 8),
+    ]
+
+
+def test_constant_operations_are_folded_with_iec_results():
+    checked, found = check_st(prog("x : DINT; b : BOOL; w : WORD; i : INT;",
+                                   "x := (2 + 3) * 4 - 10 MOD 3;\nb := 3 < 4 AND NOT FALSE;\n"
+                                   "w := 16#F0F0 XOR 16#FF00;\ni := 7 / -2;"))
+    assert found == []
+    assert [(s.value.const, s.value.ty) for s in pou_body(checked)] == [
+        (19, T.INT), (True, T.BOOL), (0x0FF0, T.DINT), (-3, T.INT)]

@@ -1,0 +1,51 @@
+"""Generated calls (runtime/st/codegen_calls.py): FUNCTION outputs and
+in-outs, inlined standard functions, FB instances by index."""
+from __future__ import annotations
+
+from .conftest import prog, run_st
+
+
+def test_function_outputs_in_outs_and_recursion_free_calls():
+    src = """
+FUNCTION divmod : BOOL
+VAR_INPUT a, b : DINT; END_VAR
+VAR_OUTPUT q, r : DINT; END_VAR
+VAR_IN_OUT calls : INT; END_VAR
+q := a / b; r := a MOD b; calls := calls + 1; divmod := TRUE;
+END_FUNCTION
+PROGRAM main
+VAR q, r : DINT; n : INT; ok : BOOL; END_VAR
+ok := divmod(a := 17, b := 5, q => q, r => r, calls := n);
+ok := divmod(-17, 5, n, q => q);
+END_PROGRAM
+"""
+    r = run_st(src)
+    assert (r.get("q"), r.get("r"), r.get("n"), r.get("ok")) == (-3, 2, 2, True)
+
+
+def test_inlined_operations_keep_iec_results():
+    # constant divisors, shifts and conversions are emitted inline: same results as the library
+    src = prog("a : DINT := -7; q : DINT; m : DINT; w : WORD := 16#8421; s1 : WORD; s2 : WORD; r1 : WORD;"
+               " r2 : WORD; b : BYTE := 16#81; sn : SINT; uw : WORD; big : WORD; lim : INT; x : INT := 500;",
+               "q := a / 2; m := a MOD 2; s1 := SHL(w, 4); s2 := SHR(w, 4); r1 := ROL(w, 4); r2 := ROR(w, 20);"
+               " sn := INT_TO_SINT(300); uw := INT_TO_WORD(-1); big := SHL(w, 16); b := ROL(b, 1);"
+               " lim := LIMIT(0, x, 100);")
+    r = run_st(src)
+    assert (r.get("q"), r.get("m")) == (-3, -1)
+    assert (r.get("s1"), r.get("s2"), r.get("r1"), r.get("r2")) == (0x4210, 0x0842, 0x4218, 0x1842)
+    assert (r.get("sn"), r.get("uw"), r.get("big"), r.get("b"), r.get("lim")) == (44, 65535, 0, 0x03, 100)
+
+
+def test_fb_instances_in_an_array_are_called_by_index():
+    src = """
+PROGRAM main
+VAR t : ARRAY[1..3] OF TON; i : INT; done : INT; END_VAR
+done := 0;
+FOR i := 1 TO 3 DO
+  t[i](IN := TRUE, PT := INT_TO_TIME(i * 10));
+  IF t[i].Q THEN done := done + 1; END_IF
+END_FOR
+END_PROGRAM
+"""
+    r = run_st(src, cycles=3, cycle_time_ms=10)  # at the third cycle 20 ms have passed
+    assert r.get("done") == 2
