@@ -121,6 +121,13 @@ def test_names_are_unique():
     assert [device.name for device in registry().devices] == ["ltmr", "eaton", "fc280"]
 
 
+def test_a_device_that_simulates_has_a_simulator():
+    with pytest.raises(PluginError, match="device other: sim types lamp but no simulator"):
+        with extended(Device(name="other", bus="modbus", sim_types=("lamp",))):
+            pass
+    assert [device.name for device in registry().devices] == ["ltmr", "eaton", "fc280"]
+
+
 def test_an_installed_package_is_found_through_its_entry_point(tmp_path):
     """What `pip install` of a package declaring the entry point leaves on
     the path: a .dist-info with entry_points.txt. softplc run finds the relay
