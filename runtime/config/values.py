@@ -194,10 +194,6 @@ def duration_in(unit: str, *, off: str | None = None, most: tuple | None = None)
     return check
 
 
-def duration_field(check):
-    return Annotated[int, PlainValidator(check)]
-
-
 def quiet(check, value):
     """check(value), or None when pass 1 refuses the value (it reports it)."""
     try:
