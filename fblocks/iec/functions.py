@@ -337,8 +337,8 @@ def _ne(a, b):
 
 _CMP = (("GT", lambda a, b: a > b), ("GE", lambda a, b: a >= b), ("EQ", lambda a, b: a == b),
         ("LE", lambda a, b: a <= b), ("LT", lambda a, b: a < b))
-for _name, _op in _CMP:
-    _def(_name, (("IN1", "T:ANY_ELEMENTARY"), ("IN2", "T:ANY_ELEMENTARY")), "BOOL", _chain(_op),
+for _name, _cmp in _CMP:
+    _def(_name, (("IN1", "T:ANY_ELEMENTARY"), ("IN2", "T:ANY_ELEMENTARY")), "BOOL", _chain(_cmp),
          extensible=True)
 _def("NE", (("IN1", "T:ANY_ELEMENTARY"), ("IN2", "T:ANY_ELEMENTARY")), "BOOL", _ne)
 
@@ -392,8 +392,8 @@ _TIME_FUNCS = (
     ("CONCAT_DATE_TOD", ("DATE", "TIME_OF_DAY"), "DATE_AND_TIME"),
     ("CONCAT_LDATE_LTOD", ("LDATE", "LTIME_OF_DAY"), "LDATE_AND_TIME"),
 )
-for _name, (_a, _b), _ret in _TIME_FUNCS:
-    _def(_name, (("IN1", _a), ("IN2", _b)), _ret, getattr(rtlib, _name))
+for _name, (_in1, _in2), _ret in _TIME_FUNCS:
+    _def(_name, (("IN1", _in1), ("IN2", _in2)), _ret, getattr(rtlib, _name))
 
 _YMD = (("YEAR", "ANY_INT"), ("MONTH", "ANY_INT"), ("DAY", "ANY_INT"))
 _HMSM = (("HOUR", "ANY_INT"), ("MINUTE", "ANY_INT"), ("SECOND", "ANY_INT"),

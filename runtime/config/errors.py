@@ -10,6 +10,8 @@ import typing
 from typing import Any
 
 from pydantic import BaseModel
+from pydantic.fields import FieldInfo
+from pydantic_core import ErrorDetails
 
 from .values import got
 
@@ -42,12 +44,12 @@ class ConfigError(Exception):
         return "\n".join(self.lines())
 
 
-def _keys(model: type) -> dict:
+def _keys(model: type[BaseModel]) -> dict[str, FieldInfo]:
     """TOML key -> FieldInfo of a model."""
     return {(f.alias or name): f for name, f in model.model_fields.items()}
 
 
-def _model_in(annotation) -> type | None:
+def _model_in(annotation: Any) -> type[BaseModel] | None:
     if isinstance(annotation, type) and issubclass(annotation, BaseModel):
         return annotation
     for arg in typing.get_args(annotation):
@@ -57,9 +59,9 @@ def _model_in(annotation) -> type | None:
     return None
 
 
-def _model_at(root: type, loc: tuple) -> type | None:
+def _model_at(root: type[BaseModel], loc: tuple) -> type[BaseModel] | None:
     """The model of the table at loc (() is the document)."""
-    model = root
+    model: type[BaseModel] | None = root
     for part in loc:
         if isinstance(part, int):
             continue   # an array entry: the model of the array's items
@@ -70,7 +72,7 @@ def _model_at(root: type, loc: tuple) -> type | None:
     return model
 
 
-def _field_at(root: type, loc: tuple):
+def _field_at(root: type[BaseModel], loc: tuple) -> FieldInfo | None:
     """The FieldInfo of the key at loc, or None (array entries, unknown keys)."""
     if not loc or isinstance(loc[-1], int):
         return None
@@ -78,12 +80,12 @@ def _field_at(root: type, loc: tuple):
     return _keys(owner).get(loc[-1]) if owner is not None else None
 
 
-def translate(root: type, err: dict) -> tuple:
+def translate(root: type[BaseModel], err: ErrorDetails) -> tuple:
     """A pydantic error of the document model root as (loc, message in the
     config's words)."""
     loc = tuple(err["loc"])
     kind = err["type"]
-    value = err.get("input")
+    value = err["input"]
     if kind == "config":
         return loc, err["msg"]
     if kind == "extra_forbidden":

@@ -18,6 +18,7 @@ import tomllib
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
+from types import GenericAlias
 from typing import Any
 
 from pydantic import Field, ValidationError, create_model
@@ -57,7 +58,7 @@ class PlcConfig:
 def default_config_path() -> Path:
     """The embedded default configuration (io_config/default.toml, installed
     as package data of softplc.io_config)."""
-    return Path(os.fspath(resources.files("softplc.io_config").joinpath("default.toml")))
+    return Path(str(resources.files("softplc.io_config").joinpath("default.toml")))
 
 
 def load_config(path) -> PlcConfig:
@@ -116,7 +117,8 @@ class _Document:
         self.check_order: list[Section] = [*CORE_SECTIONS, *bus_sections, self.sims]
         fields: dict[str, Any] = {}
         for section in self.sections:
-            annotation: Any = list[section.model] if section.many else section.model | None
+            # list[model], built as a call: mypy takes no runtime value as a type argument
+            annotation: Any = GenericAlias(list, section.model) if section.many else section.model | None
             if section.key == "plc":
                 fields[section.key] = (section.model, Field(description=section.description))
             elif section.many:

@@ -154,6 +154,8 @@ def _check_tasks(tasks: list, ctx: Relations) -> None:
         if not isinstance(programs, list):
             continue
         for j, entry in enumerate(programs):
+            instance: object
+            loc: tuple
             if isinstance(entry, str):
                 instance, loc = entry, here + ("programs", j)
             elif isinstance(entry, dict):
@@ -221,6 +223,7 @@ class TaskSection(Section):
         for i, t in enumerate(model):
             key = f"task[{i}]"
             interval = t.interval
+            watchdog: int | None
             if t.watchdog is None:
                 watchdog = default_watchdog_ns(interval)
             else:

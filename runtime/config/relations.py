@@ -32,7 +32,9 @@ class Relations:
         #: image bits written from the bus side: (area, first bit, last bit, loc, text)
         self.claimed: list = []
         self._probe_image: ProcessImage | None = None
-        plc = data.get("plc") if isinstance(data.get("plc"), dict) else {}
+        plc = data.get("plc")
+        if not isinstance(plc, dict):
+            plc = {}
         profile = plc.get("profile", _DEFAULT_PROFILE.name)
         profile = PROFILES.get(profile.lower()) if isinstance(profile, str) else None
         self.addressing = profile.addressing if profile is not None else None

@@ -27,8 +27,9 @@ class Section:
     key: ClassVar[str]
     #: [[key]]: an array of tables (build gets a list); [key]: one table or none
     many: ClassVar[bool] = False
-    #: one table, for pass 1
-    model: ClassVar[type[Model]]
+    #: one table, for pass 1 (a class attribute, or set in __init__ where it
+    #: depends on the registry: the [[sim]] section)
+    model: type[Model]
     #: what the key holds, for messages: "[[can]] tables", "a [canopen] table"
     description: ClassVar[str]
 

@@ -66,7 +66,9 @@ class SimSection(Section):
             model = owner.model if isinstance(owner, Attachment) else owner
             for name, info in model.model_fields.items():
                 if name not in fields:
-                    fields[name] = (info.annotation | None, Field(None, description=info.description))
+                    annotation = info.annotation
+                    assert annotation is not None      # a model's field always has its annotation
+                    fields[name] = (annotation | None, Field(None, description=info.description))
         return create_model("Sim", __base__=Model, **fields)
 
     def _device_of(self, sim: dict):

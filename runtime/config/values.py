@@ -8,7 +8,7 @@ import difflib
 import os
 import re
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Annotated, Any, TypeGuard
 
 from pydantic import BaseModel, ConfigDict, PlainValidator, ValidationInfo
 from pydantic_core import PydanticCustomError
@@ -97,7 +97,7 @@ def int_range(lo: int, hi: int | None = None):
 IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*", re.A)
 
 
-def is_ident(value) -> bool:
+def is_ident(value: object) -> TypeGuard[str]:
     return isinstance(value, str) and IDENT.fullmatch(value) is not None
 
 
@@ -134,9 +134,16 @@ def st_file(value, info: ValidationInfo) -> Path:
     return existing_file(value, info)
 
 
+def _base_dir(info: ValidationInfo) -> Path:
+    """The config file's directory: config_from_dict validates with it as context."""
+    context = info.context
+    assert context is not None, "a configuration is validated with its base_dir as context"
+    return context["base_dir"]
+
+
 def existing_file(text: str, info: ValidationInfo) -> Path:
     """text as an existing file, relative to the config file's directory."""
-    resolved = Path(os.path.normpath(info.context["base_dir"] / Path(text).expanduser()))
+    resolved = Path(os.path.normpath(_base_dir(info) / Path(text).expanduser()))
     if not resolved.exists():
         raise PydanticCustomError("config", "no such file: {path} (relative paths start at the "
                                   "config file's directory)", {"path": str(resolved)})
@@ -148,7 +155,7 @@ def existing_file(text: str, info: ValidationInfo) -> Path:
 def data_file(value, info: ValidationInfo) -> Path:
     if not isinstance(value, str) or not value.strip():
         raise fail('a file name such as "plant.retain"', value)
-    resolved = Path(os.path.normpath(info.context["base_dir"] / Path(value).expanduser()))
+    resolved = Path(os.path.normpath(_base_dir(info) / Path(value).expanduser()))
     if resolved.is_dir():
         raise PydanticCustomError("config", "{path} is a directory; expected a file name",
                                   {"path": str(resolved)})
@@ -185,10 +192,6 @@ def duration_in(unit: str, *, off: str | None = None, most: tuple | None = None)
             raise fail(f"a duration of at most {most[0]}{unit} ({most[1]}){or_off}", value)
         return count
     return check
-
-
-def duration_field(check):
-    return Annotated[int, PlainValidator(check)]
 
 
 def quiet(check, value):
@@ -240,7 +243,7 @@ def choice_upper(options):
     return PlainValidator(check)
 
 
-def in_range(value, lo: int | None, hi: int | None) -> bool:
+def in_range(value: object, lo: int | None, hi: int | None) -> TypeGuard[int]:
     """An integer (not a bool) within lo..hi (None: unbounded)."""
     return isinstance(value, int) and not isinstance(value, bool) and (lo is None or value >= lo) \
         and (hi is None or value <= hi)

@@ -2,7 +2,6 @@
 a generator writes (fblocks/vendor/*_codes.st from a device's tables)."""
 from __future__ import annotations
 
-import os
 from importlib import resources
 from pathlib import Path
 
@@ -12,7 +11,7 @@ TEXT_LENGTH = 80
 def vendor_file(name: str) -> Path:
     """The path of a file of the vendor ST library (fblocks/vendor/), where
     the package is installed (the source tree in a development install)."""
-    return Path(os.fspath(resources.files("softplc.fblocks.vendor").joinpath(name)))
+    return Path(str(resources.files("softplc.fblocks.vendor").joinpath(name)))
 
 
 def st_string(text: str, length: int = TEXT_LENGTH) -> str:

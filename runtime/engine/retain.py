@@ -85,14 +85,14 @@ def type_signature(t: T.Type) -> str:
     if isinstance(t, T.RefType):
         # The target's name only: a REF_TO value is never saved, and a
         # struct may refer to itself (a linked list) through one.
-        return ("POINTER TO " if t.pointer else "REF_TO ") + T.resolve(t.target).name.upper()
+        return ("POINTER TO " if t.pointer else "REF_TO ") + str(T.resolve(t.target)).upper()
     if isinstance(t, (T.StructType, T.FBType)):
         members = ";".join(f"{name.upper()}:{type_signature(mt)}" for name, _attr, mt in _members(t))
         return f"{t.name.upper()}{{{members}}}"
-    return t.name.upper()
+    return str(t).upper()   # ADR#, NULL; str() is the name (which Type itself does not declare)
 
 
-def _members(t: T.Type) -> list:
+def _members(t: T.StructType | T.FBType) -> list:
     """(name, python attribute, type) of the members of a STRUCT or FB type
     that belong to its retained state, in declaration order."""
     if isinstance(t, T.StructType):
@@ -186,7 +186,7 @@ def _check(t: T.Type, data: Any, where: str) -> Any:
         lo, hi = (t.lo, t.hi) if isinstance(t, (T.ElementaryType, T.SubrangeType)) else (t.base.lo, t.base.hi)
         if isinstance(data, bool) or not isinstance(data, int):
             raise _BadValue(f"{where}: expected an integer, found {_short(data)}")
-        if lo is not None and not lo <= data <= hi:
+        if lo is not None and hi is not None and not lo <= data <= hi:
             raise _BadValue(f"{where}: {data} is outside {lo}..{hi}")
         return data
     if isinstance(t, T.StringType):
@@ -209,7 +209,7 @@ def _check(t: T.Type, data: Any, where: str) -> Any:
                 raise _BadValue(f"{where}.{name}: missing")
             out[name.upper()] = _check(mt, by_name[name.upper()], f"{where}.{name}")
         return out
-    raise _BadValue(f"{where}: a {t.name} cannot be restored")
+    raise _BadValue(f"{where}: a {t} cannot be restored")
 
 
 def _check_array(dims: list, elem: T.Type, data: Any, where: str) -> list:
@@ -246,6 +246,7 @@ def _apply_into(t: T.Type, obj: Any, data: Any) -> None:
     if isinstance(t, T.ArrayType):
         _apply_array(len(t.dims), t.elem, obj, data)
         return
+    assert isinstance(t, (T.StructType, T.FBType)), t   # an aggregate (is_aggregate) other than an array
     for name, attr, mt in _members(t):
         if name.upper() in data:
             _apply(mt, obj, attr, data[name.upper()])

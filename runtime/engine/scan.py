@@ -116,7 +116,7 @@ class Engine:
         self.started = False
         self.stopped = False
         self.after_tick: list[Callable] = []  # called with the engine after the outputs are written
-        self.restore_report = None
+        self.restore_report: R.RestoreReport | None = None
         self._stop_requested = False
         self._restart_requested = False
         self._next_retain_ns = 0
@@ -322,6 +322,7 @@ class Engine:
         if not self.outputs_safe:
             log.warning("outputs are held at their safe values until a restart")
         self.outputs_safe = True
+        assert self.diag is not None   # tasks run, and fault, only after start()
         self.diag.set(Faulted=True, OutputsSafe=True, FaultCount=len(self.faults), FaultTask=task.name,
                       FaultKind=fault.kind, FaultText=fault.message,
                       FaultWhere=str(fault.pos) if fault.pos else "")
@@ -350,6 +351,7 @@ class Engine:
             task.late_cycles = 0
         self.outputs_safe = False
         self.restarts += 1
+        assert self.diag is not None   # a task faulted, so start() ran
         self.diag.set(Faulted=False, OutputsSafe=False, Restarts=self.restarts)
         log.warning("restarted task(s) %s; outputs live again", ", ".join(t.name for t in faulted))
         return True

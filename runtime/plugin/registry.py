@@ -64,6 +64,8 @@ class Registry:
                 if sim_type in taken:
                     raise PluginError(f"device {plugin.name}: sim type {sim_type!r} is device "
                                       f"{taken[sim_type].name}'s")
+            if plugin.sim_types and plugin.simulator is None:
+                raise PluginError(f"device {plugin.name}: sim types {', '.join(plugin.sim_types)} but no simulator")
         else:
             raise PluginError(f"not a Bus or a Device: {plugin!r}")
         if plugin.name in table:

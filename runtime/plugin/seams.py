@@ -27,7 +27,6 @@ adds one with no change to softplc.
 """
 from __future__ import annotations
 
-import os
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from importlib import resources
@@ -60,7 +59,7 @@ class PackageFile:
 
     @property
     def path(self) -> Path:
-        return Path(os.fspath(resources.files(self.package).joinpath(self.file)))
+        return Path(str(resources.files(self.package).joinpath(self.file)))
 
 
 @dataclass(frozen=True)

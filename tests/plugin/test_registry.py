@@ -121,8 +121,15 @@ def test_names_are_unique():
     assert [device.name for device in registry().devices] == ["ltmr", "eaton", "fc280"]
 
 
+def test_a_device_that_simulates_has_a_simulator():
+    with pytest.raises(PluginError, match="device other: sim types lamp but no simulator"):
+        with extended(Device(name="other", bus="modbus", sim_types=("lamp",))):
+            pass
+    assert [device.name for device in registry().devices] == ["ltmr", "eaton", "fc280"]
+
+
 def test_a_device_on_a_bus_that_is_not_there(tmp_path):
-    with extended(Device(name="lost", bus="profibus", sim_types=("lost",))), \
+    with extended(Device(name="lost", bus="profibus", sim_types=("lost",), simulator=relay.RelayUnit)), \
             pytest.raises(PluginError, match="device lost: its simulators sit on bus 'profibus', which is not "
                                              "registered or takes no simulated devices"):
         config_from_dict(plant(tmp_path), tmp_path / "plant.toml")

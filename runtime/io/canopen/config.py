@@ -21,7 +21,6 @@ from ...config.values import (
     Model,
     area_name,
     bit_count,
-    duration_field,
     duration_in,
     existing_file,
     fail,
@@ -178,8 +177,8 @@ class _PdoEntry(Model):
 class _Pdo(Model):
     number: Annotated[int, int_range(1, 512)] = Field(description="a PDO number from 1 to 512")
     transmission: Annotated[int, PlainValidator(_transmission)] = Field(255, description="0..240, 254 or 255")
-    inhibit: duration_field(_inhibit) = Field(0, description="a duration such as 10ms")
-    event: duration_field(_event) = Field(0, description="a duration such as 500ms")
+    inhibit: Annotated[int, PlainValidator(_inhibit)] = Field(0, description="a duration such as 10ms")
+    event: Annotated[int, PlainValidator(_event)] = Field(0, description="a duration such as 500ms")
     configure: bool = Field(True, description="true or false")
     map: list[_PdoEntry] = Field(
         min_length=1, max_length=PDO_ENTRIES_MAX,
@@ -200,11 +199,11 @@ class _Node(Model):
     eds: Annotated[Path, PlainValidator(_eds_file)] = Field(
         description='a shipped EDS name such as "ltmr" or the path of an .eds file')
     mandatory: bool = Field(True, description="true or false")
-    heartbeat: duration_field(_node_heartbeat) = Field(DEFAULT_HEARTBEAT_MS,
-                                                        description="a duration such as 100ms, or false")
-    heartbeat_timeout: duration_field(_heartbeat_timeout) | None = Field(
+    heartbeat: Annotated[int, PlainValidator(_node_heartbeat)] = Field(
+        DEFAULT_HEARTBEAT_MS, description="a duration such as 100ms, or false")
+    heartbeat_timeout: Annotated[int, PlainValidator(_heartbeat_timeout)] | None = Field(
         None, description="a duration such as 300ms, or false")
-    master_timeout: duration_field(_master_timeout) | None = Field(
+    master_timeout: Annotated[int, PlainValidator(_master_timeout)] | None = Field(
         None, description="a duration such as 500ms, or false")
     sdo: list[_SdoWrite] = Field(default_factory=list,
                                  description='an array of { object = "2007:21", value = 2 } tables')
@@ -215,12 +214,12 @@ class _Node(Model):
 class _Canopen(Model):
     bus: BusName | None = Field(None, description="the name of a [[can]] bus")
     node_id: NodeId = Field(NODE_ID_MAX, description=f"a node id from 1 to {NODE_ID_MAX}")
-    heartbeat: duration_field(_master_heartbeat) = Field(DEFAULT_HEARTBEAT_MS,
-                                                          description="a duration such as 100ms, or false")
-    sync: duration_field(_sync_period) = Field(0, description="a duration such as 10ms, or false")
-    sdo_timeout: duration_field(_timeout_ms) = Field(500, description="a duration such as 500ms")
-    boot_timeout: duration_field(_timeout_ms) = Field(2000, description="a duration such as 2s")
-    retry: duration_field(_timeout_ms) = Field(1000, description="a duration such as 1s")
+    heartbeat: Annotated[int, PlainValidator(_master_heartbeat)] = Field(
+        DEFAULT_HEARTBEAT_MS, description="a duration such as 100ms, or false")
+    sync: Annotated[int, PlainValidator(_sync_period)] = Field(0, description="a duration such as 10ms, or false")
+    sdo_timeout: Annotated[int, PlainValidator(_timeout_ms)] = Field(500, description="a duration such as 500ms")
+    boot_timeout: Annotated[int, PlainValidator(_timeout_ms)] = Field(2000, description="a duration such as 2s")
+    retry: Annotated[int, PlainValidator(_timeout_ms)] = Field(1000, description="a duration such as 1s")
     node: list[_Node] = Field(default_factory=list, description="[[canopen.node]] tables")
 
 

@@ -87,7 +87,7 @@ def compound(index: int, name: str, members, kind: str = "RECORD", sub0: Entry |
 # Writer
 # ---------------------------------------------------------------------------
 
-def _value(default: Default) -> str:
+def _value(default: int | str) -> str:
     if isinstance(default, bool):
         return str(int(default))
     if isinstance(default, int):

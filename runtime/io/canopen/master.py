@@ -19,7 +19,9 @@ from __future__ import annotations
 
 import logging
 import threading
+from typing import TYPE_CHECKING
 
+import can
 import canopen
 
 from ...engine.clock import PeriodicService
@@ -40,6 +42,9 @@ from .node import Emergency, NodeState, NodeSupervisor
 from .pdo import PdoBinding, TxSchedule, default_cob_id
 from .sdo import SERVICE as SDO_SERVICE
 from .sdo import SchneiderSdoService, SdoJob, SdoWorker
+
+if TYPE_CHECKING:
+    from .diag import CanopenDiag
 
 log = logging.getLogger(__name__)
 
@@ -109,7 +114,7 @@ class CanopenDriver(Driver):
                                         available=lambda: self._bus_ok)
         self.services = {SDO_SERVICE: self.sdo_service}
         self.rx_short = 0       # TPDOs shorter than their mapping (dropped)
-        self._diag = None
+        self._diag: CanopenDiag | None = None
 
     def _prepare(self, ncfg, probe: ProcessImage) -> _Node:
         try:
@@ -168,12 +173,31 @@ class CanopenDriver(Driver):
             self._service = None
         # The last write_outputs (the safe values) goes out before the bus closes.
         self._send_rpdos(self.clock.now_ns(), sync=False, force=True)
+        worker, endpoint = self._started_worker, self._started_endpoint
         if self.pump is not None:
             self.pump.settle()
-            self.pump.remove_busy(self.worker.busy)
-        self.worker.stop()
-        self.endpoint.stop()
+            self.pump.remove_busy(worker.busy)
+        worker.stop()
+        endpoint.stop()
         self._started = False
+
+    # What start() makes and never clears: the bus side (the service, the
+    # frame handler, the SDO worker's tasks) runs only once it has.
+
+    @property
+    def _started_endpoint(self) -> CanEndpoint:
+        assert self.endpoint is not None, "the CANopen master is not started"
+        return self.endpoint
+
+    @property
+    def _started_network(self) -> _EndpointNetwork:
+        assert self.network is not None, "the CANopen master is not started"
+        return self.network
+
+    @property
+    def _started_worker(self) -> SdoWorker:
+        assert self.worker is not None, "the CANopen master is not started"
+        return self.worker
 
     def advance_to(self, now_ns: int) -> None:
         self.service(now_ns)
@@ -215,7 +239,7 @@ class CanopenDriver(Driver):
         """The bus failed: open it again (every retry time until it works)."""
         self._next_reopen_ns = now_ns + self.config.retry_ms * 1_000_000
         try:
-            self.endpoint.reopen(open_bus(self.settings))
+            self._started_endpoint.reopen(open_bus(self.settings))
         except DriverError as exc:
             if exc.args[0] != self._bus_error:
                 log.error("canopen: %s", exc)
@@ -226,12 +250,13 @@ class CanopenDriver(Driver):
         self._bus_error = ""
 
     def _send(self, can_id: int, data: bytes) -> None:
-        if self.endpoint.send(can_id, data) or not self.endpoint.connected or not self._bus_ok:
+        endpoint = self._started_endpoint
+        if endpoint.send(can_id, data) or not endpoint.connected or not self._bus_ok:
             return
         log.error("canopen: cannot send on %s: %s; reopening it every %d ms", self.settings.describe(),
-                  self.endpoint.last_error, self.config.retry_ms)
+                  endpoint.last_error, self.config.retry_ms)
         self._bus_ok = False
-        self._bus_error = self.endpoint.last_error
+        self._bus_error = endpoint.last_error
         self._next_reopen_ns = self.clock.now_ns() + self.config.retry_ms * 1_000_000
 
     def _send_rpdos(self, now_ns: int, *, sync: bool, force: bool = False) -> None:
@@ -249,7 +274,7 @@ class CanopenDriver(Driver):
                         self._send(binding.cob_id, data)
                         schedule.sent(data, now_ns)
 
-    def _on_frame(self, msg) -> None:
+    def _on_frame(self, msg: can.Message) -> None:
         """Every received frame (receive thread, or the pump in virtual time)."""
         can_id, data = msg.arbitration_id, bytes(msg.data)
         now = self.clock.now_ns()
@@ -270,7 +295,7 @@ class CanopenDriver(Driver):
                 node.sup.emergency(emcy)
                 log.warning("canopen: node %s (%d) emergency 0x%04X, error register 0x%02X, data %s",
                             node.cfg.name, node.cfg.node_id, emcy.code, emcy.register, emcy.data.hex(" "))
-        self.network.notify(can_id, data, msg.timestamp)
+        self._started_network.notify(can_id, msg.data, msg.timestamp)
 
     def _act(self, node: _Node, action: str | None) -> None:
         """Carry out what a node's state machine asked for (lock held)."""
@@ -282,7 +307,7 @@ class CanopenDriver(Driver):
                      f" ({node.sup.message})" if node.sup.message else "")
             self._send(COB_NMT, bytes([NMT_RESET_COMMUNICATION, nid]))
         elif action == "configure":
-            self.worker.submit_task(lambda: self._configure(node))
+            self._started_worker.submit_task(lambda: self._configure(node))
         elif action == "start":
             for _binding, schedule in node.rpdos:
                 schedule.reset()
@@ -314,12 +339,12 @@ class CanopenDriver(Driver):
         with self._lock:
             if not error:
                 self._tpdo_by_cob = {c: b for c, b in self._tpdo_by_cob.items() if b not in node.tpdos}
-                self._tpdo_by_cob.update((b.cob_id, b) for b in node.tpdos)
+                self._tpdo_by_cob.update((b.cob_id, b) for b in node.tpdos if b.cob_id is not None)
             self._act(node, node.sup.configured(not error, error, now))
 
     def _sdo(self, node: _Node, index: int, sub: int, data: bytes | None, key: str, timeout: float) -> bytes:
         job = SdoJob(node.cfg.node_id, index, sub, data, timeout)
-        self.worker.transfer(job)
+        self._started_worker.transfer(job)
         if job.error:
             raise _ConfigFailed(f"{key}: {job.error}")
         return job.received
@@ -359,7 +384,7 @@ class CanopenDriver(Driver):
     # ------------------------------------------------------------ READ_VAR / WRITE_VAR
 
     def _submit_exchange(self, job: SdoJob) -> None:
-        self.worker.submit(job)
+        self._started_worker.submit(job)
 
     def _object_size(self, node_id: int, index: int, subindex: int) -> int | None:
         node = self.nodes.get(node_id)

@@ -64,8 +64,12 @@ class PdoBinding:
         self.key = key
         self.nbytes = (sum(e.bits for e in entries) + 7) // 8
         self.cob_id: int | None = None     # read from the node at boot
-        self._byte_copies = all(e.bits % 8 == 0 and e.bit_offset % 8 == 0 and e.byte_offset is not None
-                                for e in entries)
+        # Every entry whole bytes at a byte address: the frame and the image swap
+        # plain byte runs, (frame offset, image offset, bytes) per entry; None
+        # when an entry needs shifting.
+        copies = [(e.bit_offset // 8, e.byte_offset, e.bits // 8) for e in self.entries
+                  if e.bits % 8 == 0 and e.bit_offset % 8 == 0 and e.byte_offset is not None]
+        self._byte_copies: list[tuple[int, int, int]] | None = copies if len(copies) == len(entries) else None
 
     @property
     def comm_index(self) -> int:
@@ -126,11 +130,9 @@ class PdoBinding:
         mapping leaves the missing objects as they were (CiA 301 says such a
         PDO is not to be processed; the driver counts it as an error)."""
         area = image.areas["I"]
-        if self._byte_copies:
-            for e in self.entries:
-                start = e.bit_offset // 8
-                n = e.bits // 8
-                area[e.byte_offset:e.byte_offset + n] = data[start:start + n]
+        if self._byte_copies is not None:
+            for start, offset, n in self._byte_copies:
+                area[offset:offset + n] = data[start:start + n]
             return
         raw = int.from_bytes(data, "little")
         for e in self.entries:
@@ -144,8 +146,8 @@ class PdoBinding:
     def pack(self, image: ProcessImage) -> bytes:
         """The %Q values of this RPDO as frame bytes."""
         area = image.areas["Q"]
-        if self._byte_copies:
-            return b"".join(bytes(area[e.byte_offset:e.byte_offset + e.bits // 8]) for e in self.entries)
+        if self._byte_copies is not None:
+            return b"".join(bytes(area[offset:offset + n]) for _start, offset, n in self._byte_copies)
         raw = 0
         for e in self.entries:
             if e.byte_offset is None:
@@ -184,9 +186,9 @@ class TxSchedule:
     def due(self, data: bytes, now_ns: int, sync: bool) -> bool:
         t = self.transmission
         if t >= 254:
-            if self.last_sent is None:
+            if self.last_sent is None or self.last_ns is None:    # nothing sent yet (sent() sets both)
                 return True
-            if self.last_ns is not None and now_ns - self.last_ns < self.inhibit_ns:
+            if now_ns - self.last_ns < self.inhibit_ns:
                 return False
             if data != self.last_sent:
                 return True

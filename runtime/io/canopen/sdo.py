@@ -36,6 +36,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import canopen
+from canopen.sdo import SdoClient
 from canopen.sdo.exceptions import SdoAbortedError, SdoCommunicationError
 
 from ...st.native import ADDRESS, ANY_INT, STRING, WORDS, NativeFunction, Param
@@ -127,7 +128,7 @@ class SdoWorker:
             self._pending += 1
         self._queue.put(task)
 
-    def client(self, node_id: int):
+    def client(self, node_id: int) -> SdoClient:
         """The SDO client for a node: the configured node's own, or one made
         on first use for a node the configuration does not list (READ_VAR
         may address any node id, as on a Schneider master)."""
@@ -135,6 +136,7 @@ class SdoWorker:
         if node is None:
             node = canopen.RemoteNode(node_id, canopen.ObjectDictionary())
             self.network.add_node(node)
+        assert isinstance(node, canopen.RemoteNode), "the master's network holds remote nodes only"
         # canopen counts attempts here: 1 = no second try, so the timeout is
         # the program's (0 would loop for ever in canopen 2.4)
         node.sdo.MAX_RETRIES = 1
@@ -188,7 +190,7 @@ class SdoWorker:
 class _Exchange:
     """A READ_VAR / WRITE_VAR in progress: the program's tables and the job."""
 
-    def __init__(self, data, mgmt, data_signed: bool, mgmt_signed: bool, job: SdoJob | None) -> None:
+    def __init__(self, data, mgmt, data_signed: bool, mgmt_signed: bool, job: SdoJob) -> None:
         self.data = data
         self.mgmt = mgmt
         self.data_signed = data_signed
@@ -232,15 +234,14 @@ class SchneiderSdoService:
         m0 = int(mgmt[0]) & 0xFFFF
         if m0 & 1:
             return False          # the previous exchange is still running: start nothing
-        exchange = _Exchange(data, mgmt, data_signed, mgmt_signed, None)
         store_word(mgmt, 0, ((((m0 >> 8) + 1) & 0xFF) << 8) | 1, mgmt_signed)
         store_word(mgmt, 1, 0, mgmt_signed)
         index, subindex = int(number) & 0xFFFF, (int(number) >> 16) & 0xFF
         if str(obj).upper() != "SDO" or not 1 <= int(node) <= 127:
-            self._finish(exchange, COMM_BAD_ADDRESS)
+            _report(mgmt, mgmt_signed, COMM_BAD_ADDRESS)
             return False
         if not self._available():
-            self._finish(exchange, COMM_NETWORK_ERROR)
+            _report(mgmt, mgmt_signed, COMM_NETWORK_ERROR)
             return False
         timeout_units = int(mgmt[2]) & 0xFFFF
         timeout_s = timeout_units / 10 if timeout_units else self.default_timeout_s
@@ -250,13 +251,13 @@ class SchneiderSdoService:
             if length == 0:
                 length = self._object_size(int(node), index, subindex) or 2 * len(data)
             if length > 2 * len(data):
-                self._finish(exchange, COMM_BAD_PARAMETERS)
+                _report(mgmt, mgmt_signed, COMM_BAD_PARAMETERS)
                 return False
             payload = _words_to_bytes(data, length)
-        exchange.job = SdoJob(int(node), index, subindex, payload, timeout_s)
+        job = SdoJob(int(node), index, subindex, payload, timeout_s)
         with self._lock:
-            self._running.append(exchange)
-        self._submit(exchange.job)
+            self._running.append(_Exchange(data, mgmt, data_signed, mgmt_signed, job))
+        self._submit(job)
         return True
 
     def collect(self) -> None:
@@ -297,12 +298,16 @@ class SchneiderSdoService:
 
     @staticmethod
     def _finish(ex: _Exchange, comm: int, op: int = OP_POSITIVE, abort_code: int = 0) -> None:
-        mgmt, signed = ex.mgmt, ex.mgmt_signed
-        store_word(mgmt, 1, (op << 8) | comm, signed)
-        if len(mgmt) >= 6:
-            store_word(mgmt, 4, abort_code & 0xFFFF, signed)
-            store_word(mgmt, 5, abort_code >> 16, signed)
-        store_word(mgmt, 0, int(mgmt[0]) & ~3, signed)   # activity (and cancel) off: the exchange is over
+        _report(ex.mgmt, ex.mgmt_signed, comm, op, abort_code)
+
+
+def _report(mgmt, signed: bool, comm: int, op: int = OP_POSITIVE, abort_code: int = 0) -> None:
+    """The end of an exchange into its management table."""
+    store_word(mgmt, 1, (op << 8) | comm, signed)
+    if len(mgmt) >= 6:
+        store_word(mgmt, 4, abort_code & 0xFFFF, signed)
+        store_word(mgmt, 5, abort_code >> 16, signed)
+    store_word(mgmt, 0, int(mgmt[0]) & ~3, signed)   # activity (and cancel) off: the exchange is over
 
 
 class NoCommunication:

@@ -43,12 +43,13 @@ import struct
 import threading
 from dataclasses import dataclass, field
 
+import can
 import canopen
-from canopen.objectdictionary import ODArray, ODVariable
+from canopen.objectdictionary import ODArray, ODRecord, ODVariable
 from canopen.sdo import SdoAbortedError
 
 from ...sim.base import SimulatedDevice
-from ..can.bus import BusSettings, CanEndpoint, open_bus
+from ..can.bus import BusPump, BusSettings, CanEndpoint, open_bus
 from .cia301 import (
     ABORT_DEVICE_STATE,
     ABORT_NO_SUBINDEX,
@@ -181,7 +182,9 @@ class _PdoTables:
 class SimulatedCanopenSlave(SimulatedDevice):
     """See the module docstring."""
 
-    def __init__(self, node_id: int, *, eds, settings: BusSettings, clock, pump=None,
+    pump: BusPump | None       # a CAN node: its endpoint is on the bus's pump (virtual time)
+
+    def __init__(self, node_id: int, *, eds, settings: BusSettings, clock, pump: BusPump | None = None,
                  name: str | None = None) -> None:
         if not 1 <= node_id <= 127:
             raise ValueError(f"CANopen node id {node_id} is not in 1..127")
@@ -282,10 +285,15 @@ class SimulatedCanopenSlave(SimulatedDevice):
 
     def unplug(self) -> None:
         """Cut the cable: frames are dropped both ways until plug()."""
-        self.endpoint.connected = False
+        self._opened_endpoint().connected = False
 
     def plug(self) -> None:
-        self.endpoint.connected = True
+        self._opened_endpoint().connected = True
+
+    def _opened_endpoint(self) -> CanEndpoint:
+        if self.endpoint is None:
+            raise RuntimeError(f"{self.name}: not started (no cable to cut or mend)")
+        return self.endpoint
 
     @property
     def plugged(self) -> bool:
@@ -443,7 +451,7 @@ class SimulatedCanopenSlave(SimulatedDevice):
 
     # ------------------------------------------------------------------ frames
 
-    def _on_frame(self, msg) -> None:
+    def _on_frame(self, msg: can.Message) -> None:
         if msg.is_remote_frame:
             return                                     # RTR is not supported (CiA recommends against it)
         can_id, data = msg.arbitration_id, bytes(msg.data)
@@ -469,7 +477,8 @@ class SimulatedCanopenSlave(SimulatedDevice):
                     self._flush_writes(now)
                     self._transmit_event_tpdos(now)
                     return
-            self.network.notify(can_id, data, msg.timestamp)    # the SDO server
+            assert self.network is not None                     # open() made it before adding this handler
+            self.network.notify(can_id, msg.data, msg.timestamp)    # the SDO server
             self._flush_writes(now)
             if self._state == STATE_OPERATIONAL:
                 self._transmit_event_tpdos(now)        # an SDO write may have changed mapped data
@@ -533,7 +542,7 @@ class SimulatedCanopenSlave(SimulatedDevice):
             self._heartbeat_due = now + period if period else None
         elif index == ERROR_HISTORY:
             if self._value(ERROR_HISTORY, 0) == 0:
-                for sub in self.od[ERROR_HISTORY].subindices:
+                for sub in self._compound(ERROR_HISTORY).subindices:
                     if sub:
                         self._store(ERROR_HISTORY, sub, 0)
 
@@ -570,7 +579,7 @@ class SimulatedCanopenSlave(SimulatedDevice):
             self._check_mappable(*split_mapping_entry(value), rpdo=rpdo)
 
     def _check_mapping_total(self, map_index: int, count: int, *, rpdo: bool) -> None:
-        entries = sorted(s for s in self.od[map_index].subindices if s)
+        entries = sorted(s for s in self._compound(map_index).subindices if s)
         if count > len(entries):
             raise SdoAbortedError(ABORT_PDO_LENGTH)
         total = 0
@@ -606,18 +615,19 @@ class SimulatedCanopenSlave(SimulatedDevice):
     def _read_pdo(self, comm: int, mapping: int, number: int) -> _Pdo | None:
         if comm not in self.od or mapping not in self.od:
             return None
+        comm_record = self._compound(comm)
         cob = self._value(comm, 1)
-        transmission = self._value(comm, 2) if 2 in self.od[comm] else 255
+        transmission = self._value(comm, 2) if 2 in comm_record else 255
         if cob & COB_ID_INVALID or not (transmission <= SYNC_CYCLIC_LAST or transmission in EVENT_TYPES):
             return None
         count = self._value(mapping, 0)
         entries = [split_mapping_entry(self._value(mapping, sub))
-                   for sub in sorted(self.od[mapping].subindices) if 0 < sub <= count]
+                   for sub in sorted(self._compound(mapping).subindices) if 0 < sub <= count]
         pdo = _Pdo(number, cob & 0x7FF, transmission, entries)
         if comm >= TPDO_COMM:
-            if 3 in self.od[comm]:
+            if 3 in comm_record:
                 pdo.inhibit_ns = self._value(comm, 3) * 100_000       # 100 us units
-            if 5 in self.od[comm]:
+            if 5 in comm_record:
                 pdo.event_ns = self._value(comm, 5) * MS              # ms (CiA 301; manual says 0.1 ms: A7)
         return pdo
 
@@ -725,6 +735,14 @@ class SimulatedCanopenSlave(SimulatedDevice):
         if isinstance(obj, ODVariable):
             return obj if subindex == 0 else None
         return obj.subindices.get(subindex)
+
+    def _compound(self, index: int) -> ODRecord | ODArray:
+        """A RECORD or ARRAY object (PDO parameters, the error history)."""
+        obj = self.od[index]
+        if isinstance(obj, ODVariable):
+            raise TypeError(f"{self.name}: object 0x{index:04X} is a VAR in the EDS; CiA 301 makes it a "
+                            "RECORD or ARRAY")
+        return obj
 
     def _variable(self, index: int, subindex: int) -> ODVariable:
         var = self._variable_or_none(index, subindex)

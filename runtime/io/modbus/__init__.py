@@ -49,6 +49,7 @@ def _lines(config, ctx: BuildContext) -> dict:
         for sim in config.sims:
             device = devices[sim.type]
             if device.bus == BUS.name and sim.at.connection == conn.name:
+                assert device.simulator is not None   # the registry has no simulating device without one
                 units[sim.at.unit] = device.simulator(sim, ModbusSimContext(ctx.clock, conn, ctx.where))
         if not units:
             continue

@@ -53,6 +53,7 @@ class Channel:
         self.reads, self.writes, self.bits = FUNCTIONS[cfg.function]
         self._lock = threading.Lock()
         self.stats = ChannelStats()
+        # (area, byte offset, bytes) in the image; None where the function does not read (write)
         self._read_span = self._span(image, cfg.read_to, cfg.count) if self.reads else None
         write_count = cfg.write_count if cfg.function == 23 else cfg.count
         self._write_span = self._span(image, cfg.write_from, write_count) if self.writes else None
@@ -65,7 +66,7 @@ class Channel:
         self._next_due_ns = 0
         self._in_flight: bytes | None = None
 
-    def _span(self, image: ProcessImage, addr, count: int) -> tuple:
+    def _span(self, image: ProcessImage, addr, count: int) -> tuple[str, int, int]:
         area, offset, _n = image.region(addr)
         nbytes = (count + 7) // 8 if self.bits else 2 * count
         if offset + nbytes > image.size:
@@ -80,7 +81,7 @@ class Channel:
         True when the channel became due (wake the worker)."""
         woke = False
         with self._lock:
-            if self.writes:
+            if self._write_span is not None:
                 area, offset, n = self._write_span
                 data = bytes(image.areas[area][offset:offset + n])
                 if data != self._staged:
@@ -98,10 +99,12 @@ class Channel:
         """Before a cycle: new read data into the image; True if the stats changed."""
         with self._lock:
             fresh, self._fresh = self._fresh, None
-        if fresh is not None:
-            area, offset, n = self._read_span
-            image.areas[area][offset:offset + n] = fresh
-        return fresh is not None
+        if fresh is None:
+            return False
+        assert self._read_span is not None      # only a reading channel has fresh data
+        area, offset, n = self._read_span
+        image.areas[area][offset:offset + n] = fresh
+        return True
 
     # ---------------------------------------------------------------- worker side
 
@@ -129,6 +132,7 @@ class Channel:
                 self._pending = False
         values: tuple = ()
         if self.writes:
+            assert staged is not None       # due() holds a writing channel back until a cycle staged its data
             if self.bits:
                 values = tuple(bool(staged[i // 8] >> (i % 8) & 1) for i in range(self._write_count))
             else:
@@ -148,7 +152,7 @@ class Channel:
             s.version += 1
             if s.ok:
                 s.message = ""
-                if self.reads:
+                if self._read_span is not None:
                     vals = outcome.values
                     if self.bits:
                         words = pack_bits(vals)

@@ -8,7 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Annotated, Any
 
-from pydantic import Field
+from pydantic import Field, PlainValidator
 
 from ...config.errors import key_text
 from ...config.relations import Relations
@@ -20,7 +20,6 @@ from ...config.values import (
     choice,
     choice_int,
     choice_upper,
-    duration_field,
     duration_in,
     identifier,
     in_range,
@@ -122,7 +121,7 @@ class _ModbusChannel(Model):
     write_from: Any = Field(None, description='a %Q or %M address such as "%QW100"')
     trigger: Annotated[str, choice(("cyclic", "change", "edge"))] = Field(
         "cyclic", description="'cyclic', 'change' or 'edge'")
-    period: duration_field(_timeout_ms) = Field(100, description="a duration such as 100ms")
+    period: Annotated[int, PlainValidator(_timeout_ms)] = Field(100, description="a duration such as 100ms")
     edge: Any = Field(None, description='a BOOL address such as "%QX10.0"')
 
 
@@ -136,15 +135,15 @@ class _Modbus(Model):
     parity: Annotated[str, choice_upper(("N", "E", "O"))] = Field("N", description="'N', 'E' or 'O'")
     stop_bits: Annotated[int, choice_int((1, 2))] = Field(1, description="1 or 2")
     data_bits: Annotated[int, choice_int((7, 8))] = Field(8, description="7 or 8")
-    frame_gap: duration_field(_frame_gap) | None = Field(
+    frame_gap: Annotated[int, PlainValidator(_frame_gap)] | None = Field(
         None, description="a duration such as 2ms (default: 3.5 characters)")
     host: Annotated[str, nonempty('a host such as "192.168.0.20"')] | None = Field(
         None, description='a host such as "192.168.0.20"')
     port: Annotated[int, int_range(0, U16_MAX)] | None = Field(None, description="a TCP port such as 502")
-    timeout: duration_field(_timeout_ms) = Field(200, description="a duration such as 200ms")
+    timeout: Annotated[int, PlainValidator(_timeout_ms)] = Field(200, description="a duration such as 200ms")
     retries: Annotated[int, int_range(0, 10)] = Field(1, description="an integer from 0 to 10")
-    reconnect: duration_field(_timeout_ms) = Field(1000, description="a duration such as 1s")
-    reconnect_max: duration_field(_timeout_ms) = Field(10_000, description="a duration such as 10s")
+    reconnect: Annotated[int, PlainValidator(_timeout_ms)] = Field(1000, description="a duration such as 1s")
+    reconnect_max: Annotated[int, PlainValidator(_timeout_ms)] = Field(10_000, description="a duration such as 10s")
     channel: list[_ModbusChannel] = Field(default_factory=list, description="[[modbus.channel]] tables")
 
 
@@ -213,8 +212,8 @@ def _check_channels(here: tuple, channels: list, ctx: Relations, state: _State) 
                 if key in ch:
                     ctx.error(at + (key,), "only for function 23 (offset and count give the block)")
         wc = ch.get("write_count", count) if fc == 23 else count
-        _channel_address(at, ch, "read_to", reads, ("I", "M"), count if reads else 0, bits, ctx, state)
-        _channel_address(at, ch, "write_from", writes, ("Q", "M"), wc if writes else 0, bits, ctx, state)
+        _channel_address(at, ch, "read_to", reads, ("I", "M"), _size(count) if reads else 0, bits, ctx, state)
+        _channel_address(at, ch, "write_from", writes, ("Q", "M"), _size(wc) if writes else 0, bits, ctx, state)
         trigger = ch.get("trigger", "cyclic")
         trigger = trigger.lower() if isinstance(trigger, str) else None
         if trigger == "change" and not writes:
@@ -237,8 +236,14 @@ def _check_channels(here: tuple, channels: list, ctx: Relations, state: _State) 
             ctx.error(at + ("unit",), "unit 0 is the broadcast address: nobody answers, so only "
                                        "writes can go to it")
 
-def _channel_address(at: tuple, ch: dict, key: str, needed: bool, areas: tuple, count: int, bits: bool,
+def _size(value: object) -> int | None:
+    """A block size of the raw table, or None when it is no integer (pass 1 reports it)."""
+    return value if in_range(value, None, None) else None
+
+
+def _channel_address(at: tuple, ch: dict, key: str, needed: bool, areas: tuple, count: int | None, bits: bool,
                      ctx: Relations, state: _State) -> None:
+    """The image address of a block of count bits or registers (None: a count pass 1 refuses)."""
     what = "reads into" if key == "read_to" else "writes from"
     if not needed:
         if key in ch:
@@ -260,6 +265,8 @@ def _channel_address(at: tuple, ch: dict, key: str, needed: bool, areas: tuple, 
     except ValueError as exc:
         ctx.error(at + (key,), str(exc))
         return
+    if count is None:
+        return          # no valid count (pass 1 reports it): no block to fit
     nbytes = (count + 7) // 8 if bits else 2 * count
     if offset + nbytes > ctx.probe().size:
         ctx.error(at + (key,), f"{count} {'bits' if bits else 'registers'} from {addr.text} run past the "

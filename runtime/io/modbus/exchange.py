@@ -107,11 +107,17 @@ class ModbusExchangeService:
         return True
 
     def collect(self) -> None:
+        finished = []
         with self._lock:
-            finished = [ex for ex in self._running if ex.outcome is not None]
-            self._running = [ex for ex in self._running if ex.outcome is None]
-        for ex in finished:
-            self._finish(ex, ex.outcome)
+            running, self._running = self._running, []
+            for ex in running:      # outcome is set by the worker thread: read it once
+                outcome = ex.outcome
+                if outcome is None:
+                    self._running.append(ex)
+                else:
+                    finished.append((ex, outcome))
+        for ex, outcome in finished:
+            self._finish(ex, outcome)
 
     def busy(self) -> bool:
         with self._lock:

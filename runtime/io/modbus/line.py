@@ -66,14 +66,14 @@ class SimulatedModbusLine(SimulatedDevice):
         self.units: dict[int, SimulatedUnit] = dict(units)
         self.transport = transport
         self.host, self.port = host, port
-        self._serial = dict(baudrate=baud, parity=parity, stopbits=stop_bits)
+        self.baud, self.parity, self.stop_bits = baud, parity, stop_bits   # rtu: the serial settings
         self.cable: NullModem | None = NullModem(f"sim {name} cable") if transport == "rtu" else None
         self.master_port = self.cable.master_port if self.cable else None
         self.silent = False
         self.requests = 0
         self._lock = threading.Lock()
         self._loop: asyncio.AbstractEventLoop | None = None
-        self._server = None
+        self._server: ModbusTcpServer | ModbusSerialServer | None = None
         self._thread: threading.Thread | None = None
 
     def unit(self, unit: int):
@@ -138,16 +138,20 @@ class SimulatedModbusLine(SimulatedDevice):
 
     async def _serve(self, started: threading.Event) -> None:
         line = _Line(self)
+        server: ModbusTcpServer | ModbusSerialServer
         if self.transport == "tcp":
-            self._server = ModbusTcpServer(line, address=(self.host, self.port), ignore_missing_devices=True,
-                                           broadcast_enable=True, trace_packet=self._trace)
+            server = ModbusTcpServer(line, address=(self.host, self.port), ignore_missing_devices=True,
+                                     broadcast_enable=True, trace_packet=self._trace)
         else:
-            self._server = ModbusSerialServer(line, framer=FramerType.RTU, port=self.cable.slave_port,
-                                              ignore_missing_devices=True, broadcast_enable=True,
-                                              trace_packet=self._trace, **self._serial)
-        await self._server.serve_forever(background=True)
+            assert self.cable is not None      # an rtu line has its cable until close()
+            server = ModbusSerialServer(line, framer=FramerType.RTU, port=self.cable.slave_port,
+                                        ignore_missing_devices=True, broadcast_enable=True,
+                                        trace_packet=self._trace, baudrate=self.baud, parity=self.parity,
+                                        stopbits=self.stop_bits)
+        self._server = server
+        await server.serve_forever(background=True)
         started.set()
-        await self._server.serving
+        await server.serving
 
     def close(self) -> None:
         if self._server is not None and self._loop is not None:

@@ -29,6 +29,7 @@ from dataclasses import dataclass, field
 
 from pymodbus.client import ModbusSerialClient, ModbusTcpClient
 from pymodbus.exceptions import ConnectionException, ModbusException, ModbusIOException
+from pymodbus.pdu import ModbusPDU
 
 from .functions import FUNCTIONS, check_request
 
@@ -123,7 +124,7 @@ class ModbusLink:
 
     def __init__(self, settings: LinkSettings) -> None:
         self.settings = settings
-        self._client = None
+        self._client: ModbusTcpClient | ModbusSerialClient | None = None
         self._next_attempt_ns = 0
         self._backoff_s = settings.reconnect_s
         self._last_frame_end = 0.0
@@ -137,7 +138,7 @@ class ModbusLink:
 
     # ---------------------------------------------------------------- connection
 
-    def _new_client(self):
+    def _new_client(self) -> ModbusTcpClient | ModbusSerialClient:
         s = self.settings
         if s.transport == "tcp":
             return ModbusTcpClient(s.host, port=s.port, timeout=s.timeout_s, retries=s.retries,
@@ -197,13 +198,15 @@ class ModbusLink:
             return Outcome(ModbusError.INVALID_REQUEST, message=why)
         if not self.try_connect(now_ns):
             return Outcome(ModbusError.REQUEST_FAILED_TO_SEND, message=self.message)
+        client = self._client
+        assert client is not None       # connected: try_connect() made it, only _drop() and close() clear it
         if self._gap_s:
             wait = self._last_frame_end + self._gap_s - time.perf_counter()
             if wait > 0:
                 time.sleep(wait)
         start = time.perf_counter()
         try:
-            response = self._call(tx)
+            response = self._call(client, tx)
         except ModbusIOException as exc:
             outcome = Outcome(ModbusError.RESPONSE_TIMEOUT, message=f"no answer from unit {tx.unit}: {exc}")
             if self.settings.transport == "tcp":   # a late answer would be taken for the next one
@@ -230,8 +233,9 @@ class ModbusLink:
                            message=f"unit {tx.unit} sent {len(values)} items for {tx.count}")
         return Outcome(values=values, response_s=elapsed)
 
-    def _call(self, tx: Transaction):
-        c, unit, fc = self._client, tx.unit, tx.function
+    @staticmethod
+    def _call(c: ModbusTcpClient | ModbusSerialClient, tx: Transaction) -> ModbusPDU:
+        unit, fc = tx.unit, tx.function
         if fc == 1:
             return c.read_coils(tx.offset, count=tx.count, device_id=unit)
         if fc == 2:

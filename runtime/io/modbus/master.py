@@ -21,6 +21,7 @@ import collections
 import logging
 import threading
 from collections.abc import Callable
+from typing import TYPE_CHECKING
 
 from ...image.memory import ProcessImage
 from ...plugin.driver import Driver, DriverError, DriverStatus
@@ -28,6 +29,9 @@ from .channel import Channel
 from .exchange import SERVICE as EXCHANGE_SERVICE
 from .exchange import ModbusExchangeService
 from .link import LinkSettings, ModbusLink, Outcome, Transaction
+
+if TYPE_CHECKING:
+    from .diag import ModbusDiag
 
 log = logging.getLogger(__name__)
 
@@ -131,7 +135,7 @@ class ModbusDriver(Driver):
             self.workers[cfg.name] = ConnectionWorker(ModbusLink(link_settings(cfg)), channels, clock)
         self.exchange = ModbusExchangeService(self._submit)
         self.services = {EXCHANGE_SERVICE: self.exchange}
-        self._diag = None
+        self._diag: ModbusDiag | None = None
 
     def _submit(self, connection: str, tx: Transaction, done) -> bool:
         worker = self.workers.get(connection)

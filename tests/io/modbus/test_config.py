@@ -242,6 +242,15 @@ def test_modbus_count_limits_accepted(tmp_path, function, body):
     assert load(tmp_path, PLC + RTU + channel(function, body)).modbus[0].channels[0].function == function
 
 
+def test_a_count_of_the_wrong_type_is_one_error(tmp_path):
+    """Pass 2 sizes the block only with an integer count (a string once crashed it)."""
+    assert error(tmp_path, PLC + RTU + READ.replace("count = 5", 'count = "5"')) == \
+        (f"{CH}.count", "expected an integer from 1 to 2000 (got '5')")
+    body = 'read_to = "%IW0"\nwrite_from = "%QW0"\nwrite_offset = 0\nwrite_count = "2"\n'
+    assert error(tmp_path, PLC + RTU + channel(23, body)) == \
+        (f"{CH}.write_count", "expected an integer from 1 to 121 (got '2')")
+
+
 def test_function_23_write_block(tmp_path):
     rw = 'read_to = "%IW0"\nwrite_from = "%QW0"\n'
     assert errors(tmp_path, PLC + RTU + channel(23, rw)) == [
