@@ -1082,8 +1082,9 @@ class _Parse:
             # of VAR and STRUCT, say, and offers both END_VAR and END_STRUCT).
             opener = next(self._open_blocks(), None)
             closer = _CLOSERS[opener.type] if opener is not None else None
+            # ('..' is not listed: the hints never offered it.)
             shown = sorted({_FRIENDLY.get(t, _spelling(t)) for t in expected
-                            if not t.startswith("__") and (not t.startswith("END_") or t == closer)})
+                            if t != "DOTDOT" and (not t.startswith("END_") or t == closer)})
             if 0 < len(shown) <= 6:
                 hint = "expected " + ", ".join(s if s.startswith("a ") else f"'{s}'" for s in shown)
         self.report("E001", f"unexpected {self._describe(tok)}", self._tok_pos(tok), hint, calm=3)
