@@ -910,11 +910,6 @@ def test_arbitrary_text_property():
     never_raises()
 
 
-def test_reserved_words_are_grammar_keywords():
-    from softplc.runtime.st import parser
-    assert parser._RESERVED <= set(parser._LEXER.keywords)
-
-
 def test_parses_in_threads_do_not_mix():
     sources = {f"t{i}.st": f"PROGRAM P{i}\nx{i} := {i};\nEND_PROGRAM\n" * 50 for i in range(4)}
     results = {}
