@@ -182,22 +182,25 @@ class Lexer:
         while True:
             m = match(text, pos)
             if m is None:
-                start = _SKIP_WHITESPACE.match(text, pos).end()
-                kind = value = None
-            else:
-                kind = m.lastgroup
-                start = m.start(kind)
-            newlines = text.count("\n", pos, start)
-            if newlines:
-                line += newlines
-                line_start = text.rfind("\n", pos, start) + 1
-            if m is None:
+                space = _SKIP_WHITESPACE.match(text, pos)
+                start = space.end() if space else pos
+                newlines = text.count("\n", pos, start)
+                if newlines:
+                    line += newlines
+                    line_start = text.rfind("\n", pos, start) + 1
                 if start >= n:
                     return
                 pos, tok = bad(start, line, start - line_start + 1)
                 if tok is not None:
                     yield tok
                 continue
+            # (every alternative of the master pattern is a named group)
+            kind: str = m.lastgroup  # type: ignore[assignment]
+            start = m.start(kind)
+            newlines = text.count("\n", pos, start)
+            if newlines:
+                line += newlines
+                line_start = text.rfind("\n", pos, start) + 1
             value = m.group(kind)
             pos = m.end()
             if kind == "PUNCT":
@@ -223,6 +226,8 @@ class Lexer:
             elif kind == "REAL":
                 row = accepts()
                 if row is not None and "REAL" not in row and "INT" in row:
-                    value = self.int_re.match(text, start).group()  # w.0.1: bit 0, then .1
-                    kind, pos = "INT", start + len(value)
+                    digits = self.int_re.match(text, start)
+                    if digits is not None:  # (always: a REAL starts with digits)
+                        value = digits.group()  # w.0.1: bit 0, then .1
+                        kind, pos = "INT", start + len(value)
             yield Tok(kind, value, start, line, start - line_start + 1)

@@ -167,7 +167,7 @@ class Recovery(ParserCore):
         if word is None and prev is not None and prev.type == "NAME" and prev.value.upper() in _UNSUPPORTED:
             word = prev.value.upper()
         if word is not None:
-            at = tok if word == value else prev
+            at = tok if word == value or prev is None else prev
             self.report("E001", f"{word}: {_UNSUPPORTED[word]} are not supported", self._tok_pos(at),
                         "write the logic as a FUNCTION or FUNCTION_BLOCK", calm=1)
             self._unshift(prev if word != value else None)

@@ -92,7 +92,7 @@ class ParserCore:
         those reductions are taken back, so that recovery sees the stack as
         it was."""
         states, values = self.state_stack, self.value_stack
-        rows, builder, end_state = self.g.rows, self.builder, self.g.end_state
+        rows, gotos, builder, end_state = self.g.rows, self.g.goto, self.builder, self.g.end_state
         ttype = token.type
         undo = None
         while True:
@@ -118,14 +118,14 @@ class ParserCore:
             undo.append((action, children) if alias is None else (action, children, len(children[alias])))
             build = action.build
             value = children[0] if build is None else build(builder, children)
-            goto = rows[states[-1]][action.origin]
+            goto = gotos[states[-1]][action.origin]
             states.append(goto)
             values.append(value)
             if is_end and goto == end_state:
                 return value
 
     def _undo(self, undo: list) -> None:
-        states, values, rows = self.state_stack, self.value_stack, self.g.rows
+        states, values, gotos = self.state_stack, self.value_stack, self.g.goto
         for entry in reversed(undo):
             action, children = entry[0], entry[1]
             states.pop()
@@ -133,7 +133,7 @@ class ParserCore:
             if len(entry) == 3:
                 del children[action.alias][entry[2]:]
             for symbol in action.symbols:  # the states the children were shifted with
-                states.append(rows[states[-1]][symbol])
+                states.append(gotos[states[-1]][symbol])
             values.extend(children)
 
     def _synthetic(self, ttype: str, at: Tok, after: bool = True) -> Tok:

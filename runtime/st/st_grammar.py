@@ -144,25 +144,33 @@ def _filter(plan: tuple[tuple[int, bool, int], ...], trailing: int) -> Callable[
 
 
 class Grammar:
-    """grammar.lark ready to parse with: ``rows`` is the LALR table as
-    {state: {symbol: next state (int) | Reduce}}, whose reductions call the
-    methods of ``builder`` (a parse makes one instance of it)."""
+    """grammar.lark ready to parse with. The LALR table is in two parts:
+    ``rows`` {state: {terminal: next state (int) | Reduce}}, what to do with
+    a token, and ``goto`` {state: {symbol: next state}}, where a shift or a
+    reduction to a rule leads. The reductions call the methods of
+    ``builder`` (a parse makes one instance of it)."""
 
     def __init__(self, compiled: CompiledGrammar, builder: type = AstBuilder) -> None:
+        terminals = {*compiled.terminals, "$END"}
         reduces: dict[int, Reduce] = {}
         rows: dict[int, dict[str, int | Reduce]] = {}
+        goto: dict[int, dict[str, int]] = {}
         for state, actions in compiled.states.items():
             row: dict[str, int | Reduce] = {}
-            rows[state] = row
+            after: dict[str, int] = {}
+            rows[state], goto[state] = row, after
             for symbol, action in actions.items():
                 if isinstance(action, int):
-                    row[symbol] = action
+                    after[symbol] = action
+                    if symbol in terminals:
+                        row[symbol] = action
                 else:
                     reduce = reduces.get(id(action))
                     if reduce is None:
                         reduce = reduces[id(action)] = Reduce(action, builder)
                     row[symbol] = reduce
         self.rows = rows
+        self.goto = goto
         self.builder = builder  # the class whose methods the reductions call
         self.start_state = compiled.start_state
         self.end_state = compiled.end_state
@@ -186,7 +194,7 @@ class Grammar:
         """The state stack after feeding a token of type ttype (reductions and
         the shift), or None if the parser would reject it. Nothing is built;
         the names of the rules reduced on the way go into ``reduced``."""
-        rows, end_state = self.rows, self.end_state
+        rows, gotos, end_state = self.rows, self.goto, self.end_state
         stack = list(stack)
         while True:
             action = rows[stack[-1]].get(ttype)
@@ -199,8 +207,7 @@ class Grammar:
                 del stack[-action.size:]
             if reduced is not None:
                 reduced.append(action.origin)
-            goto = rows[stack[-1]][action.origin]
-            assert isinstance(goto, int)
+            goto = gotos[stack[-1]][action.origin]
             stack.append(goto)
             if ttype == "$END" and goto == end_state:
                 return stack

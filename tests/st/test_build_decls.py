@@ -75,7 +75,8 @@ END_TYPE""")
     t = {d.name: d for d in sf.decls}
     assert len(sf.decls) == 13
     color = t["Color"]
-    assert [(n, v.value if v else None) for n, v, _ in color.spec.values] == [("Red", None), ("Green", 5), ("Blue", None)]
+    assert [(n, v.value if v else None) for n, v, _ in color.spec.values] == \
+        [("Red", None), ("Green", 5), ("Blue", None)]
     assert color.spec.base is None and show(color.init) == "Green"
     assert t["Codes"].spec.base.name == "DINT" and [v[0] for v in t["Codes"].spec.values] == ["A", "B"]
     assert t["Mode"].spec.base.name == "INT" and [v[1].value for v in t["Mode"].spec.values] == [0, 1]

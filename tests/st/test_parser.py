@@ -171,8 +171,9 @@ def test_random_token_soup():
 
 
 def test_arbitrary_text_property():
-    hypothesis = pytest.importorskip("hypothesis")
-    from hypothesis import given, settings, strategies as st
+    pytest.importorskip("hypothesis")
+    from hypothesis import given, settings
+    from hypothesis import strategies as st
 
     @settings(max_examples=150, deadline=None, derandomize=True, database=None)
     @given(st.text(max_size=300))
