@@ -93,7 +93,8 @@ def _classify(t: Type) -> tuple:
         return "str", r
     e = base_elementary(r)
     if e is None:
-        raise TypeError(f"no conversion for type {t.name}")
+        # (types.Type declares no name, but every kind of type has one)
+        raise TypeError(f"no conversion for type {t.name}")  # type: ignore[attr-defined]
     c = e.category
     if c == BOOLCAT:
         return "bool", e

@@ -27,6 +27,9 @@ from .types import (
 # ---------------------------------------------------------------- wrapping
 
 def int_wrapper(t: ElementaryType) -> Callable[[int], int]:
+    """Wrapping to the range of integer, bit string or duration type t."""
+    if t.lo is None:
+        raise TypeError(f"{t.name} has no integer range")
     mask = (1 << t.bits) - 1
     if t.lo < 0:  # signed integers and TIME/LTIME
         half = 1 << (t.bits - 1)
