@@ -3,8 +3,8 @@ builder, the terminals and the lexer; built once per process, on first use.
 
 ``grammar()`` gives the shared instance (``Grammar`` is immutable once made,
 so parses in several threads can share it). It comes from grammar.lark
-through lark_adapter.py; the first call takes about 0.05 s (0.5 s when lark's
-cache of the analysis is missing).
+through lark_adapter.py; the first call takes about 0.03 s (ten times that when
+lark's cache of the analysis is missing or stale).
 
 The table's reduce actions are ``Reduce`` objects that say how to make the
 value of the rule from the values on the parser stack: the children are
