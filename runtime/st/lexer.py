@@ -1,4 +1,4 @@
-"""Structured Text tokens, for the parser in parser.py.
+"""Structured Text tokens, for the parser (parser.py and parse_stack.py).
 
 Two passes:
 
@@ -25,9 +25,11 @@ reserved words); this one is about twice as fast, and speed matters here.
 from __future__ import annotations
 
 import re
-from typing import Callable, Iterator, Optional
+from collections.abc import Callable, Iterator
+from typing import TYPE_CHECKING
 
-from lark.lexer import PatternStr
+if TYPE_CHECKING:
+    from .lark_adapter import Terminal
 
 
 class Tok:
@@ -155,22 +157,22 @@ _CONTEXTUAL = ("S_ASSIGN", "R_ASSIGN", "REF_ASSIGN", "LABEL_NAME")
 class Lexer:
     """Built once from the grammar's terminals; ``tokens`` runs per text."""
 
-    def __init__(self, terminals: dict, reserved: frozenset) -> None:
-        self.keywords: dict = {}  # 'END_IF' -> terminal name
-        punct: dict = {}          # ':=' -> terminal name
+    def __init__(self, terminals: dict[str, Terminal], reserved: frozenset) -> None:
+        self.keywords: dict[str, str] = {}  # 'END_IF' -> terminal name
+        punct: dict[str, str] = {}          # ':=' -> terminal name
         for name, t in terminals.items():
-            if isinstance(t.pattern, PatternStr):
-                value = t.pattern.value.upper()
+            if t.literal is not None:
+                value = t.literal.upper()
                 (self.keywords if value.isidentifier() else punct)[value] = name
         self.reserved = frozenset(n for v, n in self.keywords.items() if v in reserved)
         self.punct = punct
-        groups = [f"(?P<{n}>{terminals[n].pattern.to_regexp()})" for n in _ORDER]
+        groups = [f"(?P<{n}>{terminals[n].regexp})" for n in _ORDER]
         groups.append("(?P<PUNCT>" + "|".join(re.escape(p) for p in sorted(punct, key=len, reverse=True)) + ")")
         self.master = re.compile(_WHITESPACE + "(?:" + "|".join(groups) + ")", re.ASCII)
-        self.contextual = [(n, re.compile(terminals[n].pattern.to_regexp(), re.ASCII)) for n in _CONTEXTUAL]
-        self.int_re = re.compile(terminals["INT"].pattern.to_regexp(), re.ASCII)
+        self.contextual = [(n, re.compile(terminals[n].regexp, re.ASCII)) for n in _CONTEXTUAL]
+        self.int_re = re.compile(terminals["INT"].regexp, re.ASCII)
 
-    def tokens(self, text: str, accepts: Callable[[], Optional[dict]], bad: Callable) -> Iterator[Tok]:
+    def tokens(self, text: str, accepts: Callable[[], dict | None], bad: Callable) -> Iterator[Tok]:
         """The tokens of text (comments already blanked). accepts() gives
         the token types the parser takes next (None: any, while skipping).
         bad(offset, line, column) is called where no token starts and
@@ -180,22 +182,25 @@ class Lexer:
         while True:
             m = match(text, pos)
             if m is None:
-                start = _SKIP_WHITESPACE.match(text, pos).end()
-                kind = value = None
-            else:
-                kind = m.lastgroup
-                start = m.start(kind)
-            newlines = text.count("\n", pos, start)
-            if newlines:
-                line += newlines
-                line_start = text.rfind("\n", pos, start) + 1
-            if m is None:
+                space = _SKIP_WHITESPACE.match(text, pos)
+                start = space.end() if space else pos
+                newlines = text.count("\n", pos, start)
+                if newlines:
+                    line += newlines
+                    line_start = text.rfind("\n", pos, start) + 1
                 if start >= n:
                     return
                 pos, tok = bad(start, line, start - line_start + 1)
                 if tok is not None:
                     yield tok
                 continue
+            # (every alternative of the master pattern is a named group)
+            kind: str = m.lastgroup  # type: ignore[assignment]
+            start = m.start(kind)
+            newlines = text.count("\n", pos, start)
+            if newlines:
+                line += newlines
+                line_start = text.rfind("\n", pos, start) + 1
             value = m.group(kind)
             pos = m.end()
             if kind == "PUNCT":
@@ -221,6 +226,8 @@ class Lexer:
             elif kind == "REAL":
                 row = accepts()
                 if row is not None and "REAL" not in row and "INT" in row:
-                    value = self.int_re.match(text, start).group()  # w.0.1: bit 0, then .1
-                    kind, pos = "INT", start + len(value)
+                    digits = self.int_re.match(text, start)
+                    if digits is not None:  # (always: a REAL starts with digits)
+                        value = digits.group()  # w.0.1: bit 0, then .1
+                        kind, pos = "INT", start + len(value)
             yield Tok(kind, value, start, line, start - line_start + 1)

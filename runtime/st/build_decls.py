@@ -1,0 +1,229 @@
+"""The AST builder's declarations: source files, POUs, variable blocks and
+declarations, types and initial values, configurations; ``AstBuilder`` is
+the complete builder the parser uses."""
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from . import ast
+from .build_base import start_of
+from .build_stmts import StmtBuilder
+from .lexer import Tok
+
+_NAME_TYPES = frozenset(("NAME", "SET", "RESET"))
+
+
+def _identifier_from_path(path: str) -> str:
+    """The PROGRAM name for a file of bare statements: 'ltmr/write-sdo.st' -> 'write_sdo'."""
+    stem = re.sub(r"[^A-Za-z0-9_]+", "_", Path(path).stem)
+    stem = re.sub(r"_{2,}", "_", stem).strip("_")
+    if not stem:
+        return "main"
+    return "_" + stem if stem[0].isdigit() else stem
+
+
+class AstBuilder(StmtBuilder):
+    """The rule callbacks of grammar.lark: children -> ast nodes (see
+    build_base.py); this part: the top level, declarations, configuration."""
+
+    # -- top level
+    # Constructs that parse but cannot stand are reported and left out of
+    # the tree, so later stages only ever see well-formed declarations.
+    def source(self, c):
+        decls = []
+        for d in c:
+            if isinstance(d, list):
+                decls.extend(d)
+            elif isinstance(d, ast.VarBlock) and d.kind != "VAR_GLOBAL":
+                self.ctx.report("E005", f"{d.kind} block outside a POU", d.pos,
+                                "only VAR_GLOBAL blocks (a global variable list) stand on their own"
+                                + (", VAR_CONFIG goes into a CONFIGURATION" if d.kind == "VAR_CONFIG" else ""))
+            else:
+                decls.append(d)
+        return ast.SourceFile(self.ctx.path, decls, pos=ast.Pos(self.file, 1, 1))
+
+    def bare_source(self, c):
+        body = [s for s in c if s is not None]
+        pou = ast.POU("PROGRAM", _identifier_from_path(self.ctx.path), [], body,
+                      pos=self._span(body[0], body[-1]) if body else ast.Pos(self.file, 1, 1))
+        return ast.SourceFile(self.ctx.path, [pou], pos=ast.Pos(self.file, 1, 1))
+
+    def _pou(self, kind: str, c) -> ast.POU:
+        var_blocks = [x for x in c if isinstance(x, ast.VarBlock)]
+        body = next(x for x in c if isinstance(x, list))
+        ret = c[2] if kind == "FUNCTION" else None
+        pou = ast.POU(kind, c[1].value, var_blocks, body, return_type=ret, pos=self._span(c[0], c[-1]))
+        # Where the header ends: a pragma before this point belongs to the POU.
+        first = var_blocks[0] if var_blocks else body[0] if body else c[-1]
+        self.ctx.pou_headers.append((pou, start_of(c[0]), start_of(first)))
+        self.ctx.items.append(pou)
+        return pou
+
+    def program(self, c):
+        return self._pou("PROGRAM", c)
+
+    def function(self, c):
+        return self._pou("FUNCTION", c)
+
+    def function_block(self, c):
+        return self._pou("FUNCTION_BLOCK", c)
+
+    def fb_inherit(self, c):
+        self.ctx.diags.warning("W101", f"{c[0].value.upper()} is ignored: inheritance and interfaces are not supported",
+                               self._span(c[0], c[-1]),
+                               "declare the inherited variables in this block instead")
+        return None
+
+    # -- declarations
+    def var_block(self, c):
+        kind = c[0].type
+        quals = {t.type for t in c if isinstance(t, Tok)}
+        decls = self._plain_names([d for group in c if isinstance(group, list) for d in group],
+                                  dotted_ok=kind == "VAR_CONFIG")
+        blk = ast.VarBlock(kind, decls, constant="CONSTANT" in quals,
+                           retain="RETAIN" in quals,
+                           persistent="PERSISTENT" in quals, pos=self._span(c[0], c[-1]))
+        self.ctx.items.append(blk)
+        return blk
+
+    def _plain_names(self, decls: list, dotted_ok: bool = False) -> list:
+        """The declarations without those of a dotted name (inst.x), which
+        only VAR_CONFIG may have: reported and dropped."""
+        if dotted_ok:
+            return decls
+        kept = []
+        for d in decls:
+            if "." in d.name:
+                self.ctx.report("E005", f"'{d.name}': a qualified name is only allowed in VAR_CONFIG", d.pos,
+                                "declare a plain name here")
+            else:
+                kept.append(d)
+        return kept
+
+    def var_name(self, c):
+        return ".".join(t.value for t in c), c[0], c[-1]
+
+    def var_decl(self, c):
+        # var_name tuples..., LOCATED|None, type, init|None
+        *names, loc, spec, init = c
+        location = self._address(loc) if loc is not None else None
+        end = init if init is not None else spec
+        out = []
+        for name, first, _ in names:
+            d = ast.VarDecl(name, spec, init, location, pos=self._span(first, end))
+            self.ctx.items.append(d)
+            out.append(d)
+        return out
+
+    def unnamed_var_decl(self, c):
+        loc, spec, init = c
+        # 'AT %QW1 : WORD;' gets a name from the address, '__at_QW1': an
+        # identifier for later stages, unlikely to be declared as well (IEC
+        # names cannot have '__'; if one is, it is a duplicate declaration).
+        name = "__at_" + re.sub(r"\W", "_", loc.value[1:].replace("*", "star"))
+        d = ast.VarDecl(name, spec, init, self._address(loc),
+                        pos=self._span(loc, init if init is not None else spec))
+        self.ctx.items.append(d)
+        return [d]
+
+    def type_block(self, c):
+        return [d for d in c if isinstance(d, ast.TypeDecl)]
+
+    def type_decl(self, c):
+        name, spec = c[0], c[1]
+        init = c[2] if len(c) > 2 else None
+        d = ast.TypeDecl(name.value, spec, init, pos=self._span(name, init if init is not None else spec))
+        self.ctx.items.append(d)
+        return d
+
+    def named_type(self, c):
+        return ast.NamedType(c[0].value, pos=self._tpos(c[0]))
+
+    def string_type(self, c):
+        return ast.StringTypeSpec(c[0].type == "WSTRING", c[2] if len(c) > 1 else None,
+                                  pos=self._span(c[0], c[-1]))
+
+    def array_type(self, c):
+        ranges = [r for r in c[2:-1] if not isinstance(r, Tok)]
+        return ast.ArrayTypeSpec(ranges, c[-1], pos=self._span(c[0], c[-1]))
+
+    def array_range(self, c):
+        return None if len(c) == 1 else (c[0], c[1])
+
+    def ref_type(self, c):
+        return ast.RefTypeSpec(c[-1], pointer=c[0].type == "POINTER", pos=self._span(c[0], c[-1]))
+
+    def subrange_type(self, c):
+        base = ast.NamedType(c[0].value, pos=self._tpos(c[0]))
+        return ast.SubrangeTypeSpec(base, c[2], c[3], pos=self._span(c[0], c[-1]))
+
+    def enum_type(self, c):
+        return ast.EnumTypeSpec([v for v in c if isinstance(v, tuple)], pos=self._span(c[0], c[-1]))
+
+    def based_enum_type(self, c):
+        base = ast.NamedType(c[0].value, pos=self._tpos(c[0]))
+        return ast.EnumTypeSpec([v for v in c if isinstance(v, tuple)], base, pos=self._span(c[0], c[-1]))
+
+    def typed_enum_type(self, c):
+        return ast.EnumTypeSpec([v for v in c if isinstance(v, tuple)], c[-1], pos=self._span(c[0], c[-1]))
+
+    def enum_value(self, c):
+        return c[0].value, c[1], self._span(c[0], c[1] if c[1] is not None else c[0])
+
+    def struct_type(self, c):
+        members = self._plain_names([d for group in c[1:-1] for d in group])
+        return ast.StructTypeSpec(members, pos=self._span(c[0], c[-1]))
+
+    def array_init(self, c):
+        items = [x if isinstance(x, tuple) else (None, x) for x in c[1:-1]]
+        return ast.ArrayInit(items, pos=self._span(c[0], c[-1]))
+
+    def repeat_item(self, c):
+        count = self.int_lit(c[:1])
+        return count, c[2]
+
+    def struct_init(self, c):
+        return ast.StructInit(list(c[1:-1]), pos=self._span(c[0], c[-1]))
+
+    def field_init(self, c):
+        name, init = c
+        return name.value, init, self._span(name, init)
+
+    # -- configuration
+    def configuration(self, c):
+        blocks = [x for x in c if isinstance(x, ast.VarBlock)]
+        resources = [x for x in c if isinstance(x, ast.Resource)]
+        tasks = [x for x in c if isinstance(x, ast.TaskDecl)]
+        programs = [x for x in c if isinstance(x, ast.ProgramConfig)]
+        if tasks or programs:
+            # A configuration without RESOURCE has one implicit resource.
+            resources.append(ast.Resource(c[1].value, None, [], tasks, programs, pos=self._span(c[0], c[-1])))
+        return ast.Configuration(c[1].value, blocks, resources, pos=self._span(c[0], c[-1]))
+
+    def resource(self, c):
+        names = [t for t in c[1:3] if isinstance(t, Tok) and t.type in _NAME_TYPES]
+        return ast.Resource(names[0].value, names[1].value if len(names) > 1 else None,
+                            [x for x in c if isinstance(x, ast.VarBlock)],
+                            [x for x in c if isinstance(x, ast.TaskDecl)],
+                            [x for x in c if isinstance(x, ast.ProgramConfig)],
+                            pos=self._span(c[0], c[-1]))
+
+    def task_decl(self, c):
+        params = {}
+        for p in c[3:-1]:
+            if p is not None:
+                params[p[0].upper()] = p[1]
+        return ast.TaskDecl(c[1].value, params, pos=self._span(c[0], c[-1]))
+
+    def task_param(self, c):
+        return c[0].value, c[1]
+
+    def program_config(self, c):
+        # PROGRAM, RETAIN|NON_RETAIN|None, names (instance, [task], type), LPAR|None, args|None, RPAR|None
+        names = [t for t in c[2:] if isinstance(t, Tok) and t.type in _NAME_TYPES]
+        args = next((x for x in c if isinstance(x, list)), [])
+        last = next((x for x in reversed(c) if x is not None), c[0])
+        return ast.ProgramConfig(names[0].value, names[-1].value, names[1].value if len(names) == 3 else None,
+                                 args, retain=c[1] is not None and c[1].type == "RETAIN",
+                                 pos=self._span(c[0], last))

@@ -1,0 +1,59 @@
+"""lexer.py: comments, keywords and names (through the parser)."""
+from __future__ import annotations
+
+import pytest
+
+from softplc.runtime.st import ast
+
+from .parse_helpers import body, errors, expr, ok, show, span
+
+# ---------------------------------------------------------------- lexical
+
+def test_keywords_are_case_insensitive_and_names_keep_their_spelling():
+    sf = ok("program Main\nvAr MyVar : int; END_var\nif MyVar = 1 tHeN MyVar := 2; End_If\nend_PROGRAM\n")
+    [pou] = sf.decls
+    assert (pou.kind, pou.name) == ("PROGRAM", "Main")
+    [decl] = pou.var_blocks[0].decls
+    assert decl.name == "MyVar" and decl.type.name == "int"
+    [stmt] = pou.body
+    assert isinstance(stmt, ast.If) and show(stmt.branches[0][0]) == "(= MyVar 1)"
+
+
+def test_identifiers_may_start_with_an_underscore():
+    [a] = body("_x := a_b_1 + _;")
+    assert show(a.target) == "_x" and show(a.value) == "(+ a_b_1 _)"
+
+
+def test_keyword_prefixes_are_names():
+    assert show(expr("END_IFx + IFa + ORb + TOTAL")) == "(+ (+ (+ END_IFx IFa) ORb) TOTAL)"
+
+
+def test_comments_nest_and_all_three_styles_are_skipped():
+    src = """(* outer (* inner *) still comment *)
+x := 1; // line comment with (* inside
+(* y := 2; *) z := 3; /* block
+comment (* not nested here */ w := 4;
+"""
+    stmts = body(src)
+    assert [show(s.target) for s in stmts] == ["x", "z", "w"]
+    assert span(stmts[2].target) == (4, 31, 4, 32)  # positions survive the comments
+
+
+def test_comment_markers_inside_strings_are_text():
+    stmts = body("x := '(* not a comment *)'; y := '// nor {this}'; z := \"/* no */\";")
+    assert [s.value.value for s in stmts] == ["(* not a comment *)", "// nor {this}", "/* no */"]
+
+
+@pytest.mark.parametrize("src, line, col, what", [
+    ("x := 1;\n(* open (* nested *)\ny := 2;", 2, 1, "'(*' is never closed"),
+    ("x := 1; /* open", 1, 9, "'/*' is never closed"),
+    ("{attribute 'x'\nx := 1;", 1, 1, "'{' is never closed"),
+])
+def test_unterminated_comments_and_pragmas(src, line, col, what):
+    [d] = errors(src)
+    assert (d.code, d.pos.line, d.pos.col) == ("E004", line, col) and what in d.message
+
+
+def test_stray_comment_close():
+    [d] = errors("x := 1; *) y := 2;")
+    assert (d.code, d.pos.col) == ("E001", 9) and "'*)'" in d.message
