@@ -38,12 +38,12 @@ import time
 
 from pymodbus.client import ModbusTcpClient
 
-from softplc.runtime.io.modbus import ModbusChannelConfig, ModbusConnectionConfig
 from softplc.runtime.devices.eaton.model import EatonDriveModel
 from softplc.runtime.devices.eaton.registers import Family
 from softplc.runtime.engine.clock import RealClock
 from softplc.runtime.image.address import parse_address
 from softplc.runtime.image.memory import ProcessImage
+from softplc.runtime.io.modbus import ModbusChannelConfig, ModbusConnectionConfig
 from softplc.runtime.io.modbus.line import SimulatedModbusLine
 from softplc.runtime.io.modbus.link import LinkSettings, ModbusLink, Transaction
 from softplc.runtime.io.modbus.master import ModbusDriver

@@ -11,7 +11,7 @@ checker compares ``name.upper()``.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Optional, Union
+from typing import Any
 
 
 @dataclass(frozen=True, slots=True)
@@ -60,14 +60,14 @@ class Literal(Expr):
     """
     kind: str
     value: Any
-    type_name: Optional[str] = None
+    type_name: str | None = None
     c_hex: bool = False  # written C-style (0x1F); allowed by profile only
 
 
 @dataclass(slots=True, eq=False)
 class EnumLiteral(Expr):
     """``Color#Red`` (type_name='Color') or a bare enumerator resolved later."""
-    type_name: Optional[str]
+    type_name: str | None
     value_name: str
 
 
@@ -91,8 +91,8 @@ class LocatedAddress:
     area: str
     size: str
     indices: tuple
-    bit: Optional[int] = None
-    table: Optional[int] = None
+    bit: int | None = None
+    table: int | None = None
     text: str = ""
 
 
@@ -158,8 +158,8 @@ class Arg(Node):
     """One call argument. name is None for a positional argument.
     output=True for ``name => target`` (value is then the target expression,
     or None for an output left unconnected). negated for ``NOT name => x``."""
-    name: Optional[str]
-    value: Optional[Expr]
+    name: str | None
+    value: Expr | None
     output: bool = False
     negated: bool = False
 
@@ -188,7 +188,7 @@ class NamedType(TypeSpec):
 @dataclass(slots=True, eq=False)
 class StringTypeSpec(TypeSpec):
     wide: bool
-    length: Optional[Expr] = None  # STRING[80] / STRING(80); None = default
+    length: Expr | None = None  # STRING[80] / STRING(80); None = default
 
 
 @dataclass(slots=True, eq=False)
@@ -209,7 +209,7 @@ class EnumTypeSpec(TypeSpec):
     """values: list of (name, Expr|None, Pos); base: explicit base type of a
     typed enumeration ``(a, b) INT`` or ``INT (a := 1, b := 2)``."""
     values: list
-    base: Optional[TypeSpec] = None
+    base: TypeSpec | None = None
 
 
 @dataclass(slots=True, eq=False)
@@ -240,7 +240,7 @@ class StructInit(Node):
     fields: list
 
 
-Initializer = Union[Expr, ArrayInit, StructInit]
+Initializer = Expr | ArrayInit | StructInit
 
 
 # ---------------------------------------------------------------- declarations
@@ -250,7 +250,7 @@ class VarDecl(Node):
     name: str
     type: TypeSpec
     init: Any = None  # Initializer or None
-    location: Optional[LocatedAddress] = None  # AT %...
+    location: LocatedAddress | None = None  # AT %...
     pragmas: list = field(default_factory=list)
 
 
@@ -282,7 +282,7 @@ class POU(Node):
     name: str
     var_blocks: list
     body: list  # statements
-    return_type: Optional[TypeSpec] = None
+    return_type: TypeSpec | None = None
     pragmas: list = field(default_factory=list)
     external: bool = False  # declared only (body provided natively)
 
@@ -299,7 +299,7 @@ class ProgramConfig(Node):
     """PROGRAM inst WITH task : Type (args);"""
     name: str
     type_name: str
-    task: Optional[str] = None
+    task: str | None = None
     args: list = field(default_factory=list)  # Arg
     retain: bool = False
 
@@ -307,7 +307,7 @@ class ProgramConfig(Node):
 @dataclass(slots=True, eq=False)
 class Resource(Node):
     name: str
-    on: Optional[str]
+    on: str | None
     var_blocks: list
     tasks: list
     programs: list
@@ -352,7 +352,7 @@ class CallStmt(Stmt):
 @dataclass(slots=True, eq=False)
 class If(Stmt):
     branches: list  # (cond Expr, body list)
-    else_body: Optional[list] = None
+    else_body: list | None = None
 
 
 @dataclass(slots=True, eq=False)
@@ -371,7 +371,7 @@ class CaseBranch(Node):
 class Case(Stmt):
     selector: Expr
     branches: list  # CaseBranch
-    else_body: Optional[list] = None
+    else_body: list | None = None
 
 
 @dataclass(slots=True, eq=False)
@@ -379,7 +379,7 @@ class For(Stmt):
     var: Name
     start: Expr
     end: Expr
-    step: Optional[Expr]
+    step: Expr | None
     body: list
 
 

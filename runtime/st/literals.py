@@ -10,13 +10,12 @@ from __future__ import annotations
 import datetime
 import re
 from fractions import Fraction
-from typing import Optional, Union
 
 from . import ast
 
 
 class LiteralError(ValueError):
-    def __init__(self, message: str, hint: Optional[str] = None) -> None:
+    def __init__(self, message: str, hint: str | None = None) -> None:
         super().__init__(message)
         self.message = message
         self.hint = hint
@@ -229,7 +228,7 @@ _TIME_PARSERS = {"time": parse_duration, "ltime": parse_duration, "date": parse_
 
 # ---------------------------------------------------------------- prefix#body
 
-HashValue = Union[ast.Literal, ast.EnumLiteral, ast.SchneiderAddress]
+HashValue = ast.Literal | ast.EnumLiteral | ast.SchneiderAddress
 
 
 def parse_hash_literal(text: str) -> HashValue:
@@ -282,7 +281,10 @@ _LOCATED = re.compile(r"%([IQM])([XBWDL]?)(?:([\d.]+)(?::(X?)(\d+))?|\*)", re.I 
 def parse_located(text: str) -> ast.LocatedAddress:
     """``%IX0.3`` / ``%MW3250:X0`` / ``%MW3250:4`` / ``%I*`` (a LOCATED token).
     Raises LiteralError for absurdly long numbers."""
-    area, size, idx, bit_x, num = _LOCATED.fullmatch(text).groups()
+    m = _LOCATED.fullmatch(text)
+    if m is None:
+        raise LiteralError(f"'{text}' is not a direct address")
+    area, size, idx, bit_x, num = m.groups()
     if any(len(n) > 18 for n in (idx or "").split(".") + [num or ""]):
         raise LiteralError(f"invalid direct address '{text}': number too long")
     indices = tuple(int(i) for i in idx.split(".")) if idx else ()

@@ -93,8 +93,7 @@ def _classify(t: Type) -> tuple:
         return "str", r
     e = base_elementary(r)
     if e is None:
-        # (types.Type declares no name, but every kind of type has one)
-        raise TypeError(f"no conversion for type {t.name}")  # type: ignore[attr-defined]
+        raise TypeError(f"no conversion for type {t.name}")
     c = e.category
     if c == BOOLCAT:
         return "bool", e

@@ -22,9 +22,9 @@ hypothesis = pytest.importorskip("hypothesis")
 from hypothesis import HealthCheck, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
+from softplc.runtime.program import check_files, compile_files  # noqa: E402
 from softplc.runtime.st.diagnostics import CompileError, Diagnostic  # noqa: E402
 from softplc.runtime.st.faults import STFault  # noqa: E402
-from softplc.runtime.program import check_files, compile_files  # noqa: E402
 
 _SCALE = int(os.environ.get("SOFTPLC_FUZZ_EXAMPLES", "0"))
 
@@ -773,7 +773,7 @@ def test_diagnostics_in_several_files_name_the_right_file():
     ("schneider", "FUNCTION_BLOCK fb VAR x AT %IX* : BOOL; y AT %QW* : WORD; END_VAR END_FUNCTION_BLOCK"),
 ], ids=["dotted-field", "dotted-var", "unnamed-located", "unnamed-located-schneider", "string-constant-subrange",
         "address-outside-area", "address-outside-area-schneider", "double-base-literal", "bad-base-literal",
-        "for-real-start", "for-real-step", "5000-digit-literal", "var-config", "dotted-input", "unconfigured-bit-address",
-        "unconfigured-addresses-in-fb"])
+        "for-real-start", "for-real-step", "5000-digit-literal", "var-config", "dotted-input",
+        "unconfigured-bit-address", "unconfigured-addresses-in-fb"])
 def test_minimal_inputs_of_crashes_found_by_fuzzing(profile, src):
     check_and_maybe_run(profile, src, cycles=1)

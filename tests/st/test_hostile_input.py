@@ -18,14 +18,13 @@ import sys
 import tokenize
 
 import pytest
-
-from softplc.runtime.st.rtlib import iec_literal
-from softplc.runtime.st.types import StringType
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from softplc.runtime.st.diagnostics import CompileError
 from softplc.runtime.program import check_files, compile_files
+from softplc.runtime.st.diagnostics import CompileError
+from softplc.runtime.st.rtlib import iec_literal
+from softplc.runtime.st.types import StringType
 
 # ---------------------------------------------------------------- helpers
 
@@ -230,7 +229,7 @@ def test_python_names_as_functions_and_their_parameters():
 
 
 def test_python_names_as_enumerations_and_their_values():
-    vals = [n for n in PYTHON_NAMES]
+    vals = list(PYTHON_NAMES)
     enum = "TYPE lambda_e : (" + ", ".join(f"{n} := {i * 2}" for i, n in enumerate(vals)) + "); END_TYPE\n"
     types = "".join(f"TYPE {n} : (red_{i}, green_{i} := {i + 5}); END_TYPE\n" for i, n in enumerate(PYTHON_NAMES))
     decls = "e : lambda_e; hits : INT; last : INT;\n" + \

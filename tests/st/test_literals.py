@@ -2,9 +2,19 @@
 import pytest
 
 from softplc.runtime.st import ast
-from softplc.runtime.st.literals import (LiteralError, parse_based, parse_c_hex, parse_date, parse_dt,
-                                         parse_duration, parse_hash_literal, parse_int, parse_real,
-                                         parse_string, parse_tod)
+from softplc.runtime.st.literals import (
+    LiteralError,
+    parse_based,
+    parse_c_hex,
+    parse_date,
+    parse_dt,
+    parse_duration,
+    parse_hash_literal,
+    parse_int,
+    parse_real,
+    parse_string,
+    parse_tod,
+)
 
 S = 10**9
 MS = 10**6
