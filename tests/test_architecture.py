@@ -11,6 +11,8 @@ import tokenize
 import tomllib
 from pathlib import Path
 
+import pytest
+
 REPO = Path(__file__).resolve().parents[1]
 SOURCES = sorted(p for folder in ("runtime", "fblocks") for p in (REPO / folder).rglob("*.py"))
 
@@ -60,6 +62,12 @@ def test_the_rule_sees_what_it_looks_for(tmp_path):
     code.write_text('"""The LTMR, in a docstring: fine."""\n# a comment about Modbus: fine\n'
                     'x = "canopen"\nsdo_timeout = 1\n')
     assert [hit.split(": ", 1)[1] for hit in names_in_code(code, tmp_path)] == ['"canopen"', "sdo_timeout"]
+
+
+@pytest.mark.parametrize("path", SOURCES, ids=lambda p: str(p.relative_to(REPO)))
+def test_no_module_is_over_800_lines(path):
+    lines = len(path.read_text(encoding="utf-8").splitlines())
+    assert lines <= 800, f"{lines} lines: split it by concern (aim for 600)"
 
 
 def test_every_package_folder_is_installed():
