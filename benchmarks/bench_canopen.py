@@ -17,6 +17,7 @@ measured in the same run, in real time (threads as on a plant PC).
     python benchmarks/bench_canopen.py              # about 20 s
     python benchmarks/bench_canopen.py --quick
 """
+
 from __future__ import annotations
 
 import argparse
@@ -41,16 +42,37 @@ TPDO1 = 0x1A8
 
 
 def _config():
-    return config_from_dict({
-        "plc": {"programs": [str(Path(__file__).resolve().parents[1] / "st_programs" / "blink.st")]},
-        "can": [{"name": "can0", "interface": "virtual", "channel": CHANNEL}],
-        "canopen": {"node_id": 127, "heartbeat": "100ms", "sdo_timeout": "500ms",
-                    "node": [{"name": "motor", "id": 40, "eds": "ltmr", "heartbeat": "0ms",
-                              "master_timeout": False,
-                              "tpdo": [{"number": 1, "configure": False,
-                                        "map": [{"object": f"2004:{s}", "address": f"%IW{i}"}
-                                                for i, s in enumerate(("06", "07", "08", "0A"))]}]}]},
-    }, base_dir=".")
+    return config_from_dict(
+        {
+            "plc": {"programs": [str(Path(__file__).resolve().parents[1] / "st_programs" / "blink.st")]},
+            "can": [{"name": "can0", "interface": "virtual", "channel": CHANNEL}],
+            "canopen": {
+                "node_id": 127,
+                "heartbeat": "100ms",
+                "sdo_timeout": "500ms",
+                "node": [
+                    {
+                        "name": "motor",
+                        "id": 40,
+                        "eds": "ltmr",
+                        "heartbeat": "0ms",
+                        "master_timeout": False,
+                        "tpdo": [
+                            {
+                                "number": 1,
+                                "configure": False,
+                                "map": [
+                                    {"object": f"2004:{s}", "address": f"%IW{i}"}
+                                    for i, s in enumerate(("06", "07", "08", "0A"))
+                                ],
+                            }
+                        ],
+                    }
+                ],
+            },
+        },
+        base_dir=".",
+    )
 
 
 def _wait(predicate, limit_s: float, what: str) -> None:
@@ -88,6 +110,7 @@ def pdo_throughput(driver: CanopenDriver, n: int) -> dict:
 
     def listener(_msg):
         counted[0] += 1
+
     notifier = can.Notifier(bare_bus, [listener], timeout=0.1)
     cpu0, t0 = time.process_time(), time.perf_counter()
     _blast(sender, n)
@@ -104,9 +127,16 @@ def pdo_throughput(driver: CanopenDriver, n: int) -> dict:
             driver._rx_fresh[driver.nodes[40].tpdos[0]] = i.to_bytes(8, "little")
         driver.read_inputs(image)
     read_us = (time.perf_counter() - t0) / cycles * 1e6
-    return {"frames": n, "lost": n - got, "newest_in_image": last == n - 1,
-            "rate": n / wall, "cpu_us": cpu / n * 1e6,
-            "bare_rate": n / bare_wall, "bare_cpu_us": bare_cpu / n * 1e6, "read_inputs_us": read_us}
+    return {
+        "frames": n,
+        "lost": n - got,
+        "newest_in_image": last == n - 1,
+        "rate": n / wall,
+        "cpu_us": cpu / n * 1e6,
+        "bare_rate": n / bare_wall,
+        "bare_cpu_us": bare_cpu / n * 1e6,
+        "read_inputs_us": read_us,
+    }
 
 
 def sdo_round_trips(driver: CanopenDriver, n: int) -> dict:
@@ -146,18 +176,24 @@ def main() -> None:
     try:
         _wait(lambda: driver.status().ok, 10, "node 40 operational")
         s = sdo_round_trips(driver, trips)
-        sim.stop()     # from here on only the blaster sends TPDO1, and only the master receives
+        sim.stop()  # from here on only the blaster sends TPDO1, and only the master receives
         p = pdo_throughput(driver, frames)
     finally:
         driver.stop()
         sim.stop()
     print("1. received PDOs into the master (virtual bus, real time)")
-    print(f"   master:   {p['rate']:10,.0f} frames/s  {p['cpu_us']:6.1f} us CPU/frame  "
-          f"lost {p['lost']} of {p['frames']:,}  newest frame in the image: {p['newest_in_image']}")
-    print(f"   baseline: {p['bare_rate']:10,.0f} frames/s  {p['bare_cpu_us']:6.1f} us CPU/frame  "
-          "(bare python-can Notifier, empty listener)")
-    print(f"   ratio:    {p['rate'] / p['bare_rate']:.2f} of the baseline's rate, "
-          f"{p['cpu_us'] / p['bare_cpu_us']:.2f}x its CPU per frame")
+    print(
+        f"   master:   {p['rate']:10,.0f} frames/s  {p['cpu_us']:6.1f} us CPU/frame  "
+        f"lost {p['lost']} of {p['frames']:,}  newest frame in the image: {p['newest_in_image']}"
+    )
+    print(
+        f"   baseline: {p['bare_rate']:10,.0f} frames/s  {p['bare_cpu_us']:6.1f} us CPU/frame  "
+        "(bare python-can Notifier, empty listener)"
+    )
+    print(
+        f"   ratio:    {p['rate'] / p['bare_rate']:.2f} of the baseline's rate, "
+        f"{p['cpu_us'] / p['bare_cpu_us']:.2f}x its CPU per frame"
+    )
     print(f"   scan side: read_inputs with one fresh TPDO per cycle: {p['read_inputs_us']:.2f} us")
     print("2. SDO round trips (expedited upload of 2004:06 from the simulated LTMR)")
     print(f"   master (READ_VAR path, worker thread): {s['rate']:8,.0f} /s")

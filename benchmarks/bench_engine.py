@@ -12,6 +12,7 @@
     python benchmarks/bench_engine.py --seconds 10    # shorter
     python benchmarks/bench_engine.py --skip-jitter
 """
+
 from __future__ import annotations
 
 import argparse
@@ -28,9 +29,16 @@ MS = 1_000_000
 
 
 def _engine(program, clock, interval_ns=10 * MS) -> Engine:
-    task = TaskConfig(name="Main", interval_ns=interval_ns, pause_ns=MS, priority=1,
-                      watchdog_ns=100 * MS, sensitivity=1,
-                      programs=[ProgramInstance("Empty", "Empty", "bench")], key="bench")
+    task = TaskConfig(
+        name="Main",
+        interval_ns=interval_ns,
+        pause_ns=MS,
+        priority=1,
+        watchdog_ns=100 * MS,
+        sensitivity=1,
+        programs=[ProgramInstance("Empty", "Empty", "bench")],
+        key="bench",
+    )
     engine = Engine(program, [task], clock=clock)
     engine.start()
     return engine
@@ -50,8 +58,12 @@ def overhead(program, cycles: int, repeats: int = 5) -> dict:
         bare_per.append((time.perf_counter() - t0) / cycles)
         engine.stop()
     e, b = min(engine_per), min(bare_per)
-    return {"engine_us": e * 1e6, "bare_us": b * 1e6, "overhead_us": (e - b) * 1e6,
-            "median_overhead_us": (statistics.median(engine_per) - statistics.median(bare_per)) * 1e6}
+    return {
+        "engine_us": e * 1e6,
+        "bare_us": b * 1e6,
+        "overhead_us": (e - b) * 1e6,
+        "median_overhead_us": (statistics.median(engine_per) - statistics.median(bare_per)) * 1e6,
+    }
 
 
 def _percentiles(samples_ns: list) -> dict:
@@ -93,18 +105,24 @@ def main() -> None:
 
     o = overhead(program, args.cycles)
     print(f"engine overhead, empty program, virtual clock, {args.cycles} cycles (best of 5):")
-    print(f"  engine {o['engine_us']:.2f} us/cycle, bare call {o['bare_us']:.2f} us/cycle, "
-          f"overhead {o['overhead_us']:.2f} us/cycle (median {o['median_overhead_us']:.2f}), "
-          f"ratio {o['engine_us'] / o['bare_us']:.1f}x  [target <= 10 us]")
+    print(
+        f"  engine {o['engine_us']:.2f} us/cycle, bare call {o['bare_us']:.2f} us/cycle, "
+        f"overhead {o['overhead_us']:.2f} us/cycle (median {o['median_overhead_us']:.2f}), "
+        f"ratio {o['engine_us'] / o['bare_us']:.1f}x  [target <= 10 us]"
+    )
     if args.skip_jitter:
         return
     print(f"wake-up jitter of a 10 ms task, real clock, {args.seconds:g} s each:")
     base = sleep_jitter(args.seconds)
-    print(f"  time.sleep loop : p50 {base['p50_us']:.0f} us, p99 {base['p99_us']:.0f} us, "
-          f"max {base['max_us']:.0f} us ({base['n']} cycles)")
+    print(
+        f"  time.sleep loop : p50 {base['p50_us']:.0f} us, p99 {base['p99_us']:.0f} us, "
+        f"max {base['max_us']:.0f} us ({base['n']} cycles)"
+    )
     eng = engine_jitter(program, args.seconds)
-    print(f"  softplc engine  : p50 {eng['p50_us']:.0f} us, p99 {eng['p99_us']:.0f} us, "
-          f"max {eng['max_us']:.0f} us ({eng['n']} cycles)  [target p99 <= 100 us]")
+    print(
+        f"  softplc engine  : p50 {eng['p50_us']:.0f} us, p99 {eng['p99_us']:.0f} us, "
+        f"max {eng['max_us']:.0f} us ({eng['n']} cycles)  [target p99 <= 100 us]"
+    )
     print(f"  ratio p99 engine/sleep: {eng['p99_us'] / max(base['p99_us'], 1e-9):.3g}")
 
 

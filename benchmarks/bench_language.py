@@ -14,6 +14,7 @@ Part 2 generates a 10,000-line ST file and times the front end phase by phase
 
 Nothing here is asserted: the script prints figures measured in this run.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -81,8 +82,22 @@ class NumericHand:
     Wraps: counts and checksum wrap to DINT; cycle * 7 + i and the MOD/DIV
     results provably fit. MOD and / truncate toward zero (IEC), written
     inline for the constant positive divisors."""
-    __slots__ = ("counts", "samples", "avg", "integ", "last_err", "outp",
-                 "kp", "ki", "kd", "cycle", "checksum", "min_avg", "max_avg")
+
+    __slots__ = (
+        "counts",
+        "samples",
+        "avg",
+        "integ",
+        "last_err",
+        "outp",
+        "kp",
+        "ki",
+        "kd",
+        "cycle",
+        "checksum",
+        "min_avg",
+        "max_avg",
+    )
 
     def __init__(self) -> None:
         self.counts = [0] * 1000
@@ -148,9 +163,18 @@ class NumericHand:
             last_err[i] = err
 
     def state(self) -> dict:
-        return {"counts": self.counts, "samples": self.samples, "avg": self.avg, "integ": self.integ,
-                "lastErr": self.last_err, "outp": self.outp, "cycle": self.cycle,
-                "checksum": self.checksum, "minAvg": self.min_avg, "maxAvg": self.max_avg}
+        return {
+            "counts": self.counts,
+            "samples": self.samples,
+            "avg": self.avg,
+            "integ": self.integ,
+            "lastErr": self.last_err,
+            "outp": self.outp,
+            "cycle": self.cycle,
+            "checksum": self.checksum,
+            "minAvg": self.min_avg,
+            "maxAvg": self.max_avg,
+        }
 
 
 # =====================================================================
@@ -165,8 +189,8 @@ class BitsHand:
     shift or rotation can leave the width; AND/OR/XOR of in-range words
     cannot, and INT_TO_WORD(i) is i for the loop's 0..255. The bit count
     is kept in a local and wrapped to INT once (wrapping commutes with +)."""
-    __slots__ = ("words", "masks", "flags", "packed", "cycle", "and_acc", "or_acc", "xor_acc",
-                 "crc", "ones", "status")
+
+    __slots__ = ("words", "masks", "flags", "packed", "cycle", "and_acc", "or_acc", "xor_acc", "crc", "ones", "status")
 
     def __init__(self) -> None:
         self.words = [0] * 256
@@ -224,9 +248,19 @@ class BitsHand:
         self.status = st ^ 0x8000
 
     def state(self) -> dict:
-        return {"words": self.words, "masks": self.masks, "flags": self.flags, "packed": self.packed,
-                "cycle": self.cycle, "andAcc": self.and_acc, "orAcc": self.or_acc,
-                "xorAcc": self.xor_acc, "crc": self.crc, "ones": self.ones, "status": self.status}
+        return {
+            "words": self.words,
+            "masks": self.masks,
+            "flags": self.flags,
+            "packed": self.packed,
+            "cycle": self.cycle,
+            "andAcc": self.and_acc,
+            "orAcc": self.or_acc,
+            "xorAcc": self.xor_acc,
+            "crc": self.crc,
+            "ones": self.ones,
+            "status": self.status,
+        }
 
 
 # =====================================================================
@@ -242,6 +276,7 @@ CHANNELS = 50
 
 class TON:
     """IEC on-delay timer (the logic of fblocks/iec/standard_fbs.st)."""
+
     __slots__ = ("Q", "ET", "running", "start")
 
     def __init__(self) -> None:
@@ -267,6 +302,7 @@ class TON:
 
 class CTU:
     """IEC up counter; CV stops at the INT maximum (so CV + 1 never wraps)."""
+
     __slots__ = ("Q", "CV", "last_cu")
 
     def __init__(self) -> None:
@@ -287,11 +323,11 @@ class TimersHand:
     Inputs are call arguments, not stored in the instances (the program never
     reads them back). running/full/total are counted in locals without
     wraps: they are bounded by 50 and 50 * 32767."""
+
     __slots__ = ("channels", "cycle", "running", "full", "total")
 
     def __init__(self) -> None:
-        self.channels = [(TON(), CTU(), k, 2 * k + 5, k + 2, 10 * k, 40 + k)
-                         for k in range(1, CHANNELS + 1)]
+        self.channels = [(TON(), CTU(), k, 2 * k + 5, k + 2, 10 * k, 40 + k) for k in range(1, CHANNELS + 1)]
         self.cycle = self.running = self.full = self.total = 0
 
     def __call__(self, now: int) -> None:
@@ -394,25 +430,33 @@ def bench_runtime(benches: list, cycles: dict, rounds: int) -> list:
         times = {"gen": [], "hand": [], "runner": []}
         pair = [("gen", b.run_generated), ("hand", b.run_hand)]
         for r in range(rounds):
-            for key, fn in (pair if r % 2 == 0 else pair[::-1]):  # back to back, alternating
+            for key, fn in pair if r % 2 == 0 else pair[::-1]:  # back to back, alternating
                 times[key].append(timed(fn, n))
             times["runner"].append(timed(b.runner.run, n))
             b.run_hand(n)  # the generated side ran twice: keep both at the same cycle
         diff = b.compare()
         us = {key: min(t) / n * 1e6 for key, t in times.items()}
-        rows.append({
-            "name": b.name, "cycles": n, "gen_us": us["gen"], "hand_us": us["hand"],
-            "runner_us": us["runner"],
-            "ratio": statistics.median(g / h for g, h in zip(times["gen"], times["hand"])),
-            "min_ratio": us["gen"] / us["hand"],
-            "same": not diff, "diff": diff, "total_cycles": b.runner.cycles,
-        })
+        rows.append(
+            {
+                "name": b.name,
+                "cycles": n,
+                "gen_us": us["gen"],
+                "hand_us": us["hand"],
+                "runner_us": us["runner"],
+                "ratio": statistics.median(g / h for g, h in zip(times["gen"], times["hand"])),
+                "min_ratio": us["gen"] / us["hand"],
+                "same": not diff,
+                "diff": diff,
+                "total_cycles": b.runner.cycles,
+            }
+        )
     return rows
 
 
 # =====================================================================
 # Front end: a generated 10,000-line ST file
 # =====================================================================
+
 
 def generate_st(target_lines: int, seed: int = 61131) -> str:
     """A deterministic, realistic ST file: enums, structs, functions, function
@@ -431,224 +475,243 @@ def generate_st(target_lines: int, seed: int = 61131) -> str:
         n += 1
         # --- types -----------------------------------------------------
         emit(f"TYPE E_Mode{n} : (Off{n}, Manual{n}, Auto{n}, Fault{n}); END_TYPE", "")
-        emit(f"TYPE ST_Axis{n} :",
-             "STRUCT",
-             "    enabled : BOOL;",
-             "    position : REAL;         (* mm *)",
-             "    velocity : REAL := 10.0; (* mm/s *)",
-             "    errors : UINT;",
-             "    status : WORD;",
-             "    history : ARRAY[0..7] OF INT;",
-             "END_STRUCT",
-             "END_TYPE", "")
+        emit(
+            f"TYPE ST_Axis{n} :",
+            "STRUCT",
+            "    enabled : BOOL;",
+            "    position : REAL;         (* mm *)",
+            "    velocity : REAL := 10.0; (* mm/s *)",
+            "    errors : UINT;",
+            "    status : WORD;",
+            "    history : ARRAY[0..7] OF INT;",
+            "END_STRUCT",
+            "END_TYPE",
+            "",
+        )
 
         # --- a scaling function ---------------------------------------
         fn = f"F_Scale{n}"
         fn_names.append(fn)
-        emit(f"FUNCTION {fn} : REAL",
-             "(* Linear scaling of a raw analog value with clamping. *)",
-             "VAR_INPUT",
-             "    raw : INT;",
-             f"    lo : REAL := {rnd.randint(-50, 0)}.0;",
-             f"    hi : REAL := {rnd.randint(100, 500)}.0;",
-             "END_VAR",
-             "VAR",
-             "    t : REAL;",
-             "END_VAR",
-             "t := INT_TO_REAL(raw) / 27648.0;",
-             "IF t < 0.0 THEN",
-             "    t := 0.0;",
-             "ELSIF t > 1.0 THEN",
-             "    t := 1.0;",
-             "END_IF",
-             f"{fn} := lo + t * (hi - lo);",
-             "END_FUNCTION", "")
+        emit(
+            f"FUNCTION {fn} : REAL",
+            "(* Linear scaling of a raw analog value with clamping. *)",
+            "VAR_INPUT",
+            "    raw : INT;",
+            f"    lo : REAL := {rnd.randint(-50, 0)}.0;",
+            f"    hi : REAL := {rnd.randint(100, 500)}.0;",
+            "END_VAR",
+            "VAR",
+            "    t : REAL;",
+            "END_VAR",
+            "t := INT_TO_REAL(raw) / 27648.0;",
+            "IF t < 0.0 THEN",
+            "    t := 0.0;",
+            "ELSIF t > 1.0 THEN",
+            "    t := 1.0;",
+            "END_IF",
+            f"{fn} := lo + t * (hi - lo);",
+            "END_FUNCTION",
+            "",
+        )
 
         # --- an integer function with a loop ---------------------------
         fn2 = f"F_Checksum{n}"
         fn_names.append(fn2)
-        emit(f"FUNCTION {fn2} : DINT",
-             "VAR_INPUT",
-             "    seed : DINT;",
-             "    count : INT;",
-             "END_VAR",
-             "VAR",
-             "    i : INT;",
-             "    acc : DINT;",
-             "END_VAR",
-             "acc := seed;",
-             "FOR i := 1 TO count DO",
-             f"    acc := acc * {rnd.choice([31, 33, 37])} + i MOD {rnd.randint(3, 9)};",
-             "    IF acc < 0 THEN",
-             "        acc := -acc;",
-             "    END_IF",
-             "END_FOR",
-             f"{fn2} := acc;",
-             "END_FUNCTION", "")
+        emit(
+            f"FUNCTION {fn2} : DINT",
+            "VAR_INPUT",
+            "    seed : DINT;",
+            "    count : INT;",
+            "END_VAR",
+            "VAR",
+            "    i : INT;",
+            "    acc : DINT;",
+            "END_VAR",
+            "acc := seed;",
+            "FOR i := 1 TO count DO",
+            f"    acc := acc * {rnd.choice([31, 33, 37])} + i MOD {rnd.randint(3, 9)};",
+            "    IF acc < 0 THEN",
+            "        acc := -acc;",
+            "    END_IF",
+            "END_FOR",
+            f"{fn2} := acc;",
+            "END_FUNCTION",
+            "",
+        )
 
         # --- a function block: axis state machine ----------------------
         fb = f"FB_Axis{n}"
         fb_names.append(fb)
-        emit(f"FUNCTION_BLOCK {fb}",
-             "(* One axis: mode state machine, ramp, timers and bit status. *)",
-             "VAR_INPUT",
-             "    start : BOOL;",
-             "    stop : BOOL;",
-             "    rawSetpoint : INT;",
-             f"    mode : E_Mode{n};",
-             "END_VAR",
-             "VAR_OUTPUT",
-             "    busy : BOOL;",
-             "    done : BOOL;",
-             "    actual : REAL;",
-             "    statusWord : WORD;",
-             "END_VAR",
-             "VAR",
-             f"    axis : ST_Axis{n};",
-             "    startDelay : TON;",
-             "    faultTimer : TON;",
-             "    edge : R_TRIG;",
-             "    moves : CTU;",
-             "    target : REAL;",
-             "    step : INT;",
-             "    k : INT;",
-             "    bits : BYTE;",
-             f"    state : E_Mode{n};",
-             "END_VAR",
-             "",
-             "edge(CLK := start);",
-             f"startDelay(IN := start AND NOT stop, PT := T#{rnd.choice([100, 200, 500])}ms);",
-             f"faultTimer(IN := busy AND NOT done, PT := T#{rnd.randint(2, 9)}s);",
-             "moves(CU := edge.Q, R := stop, PV := 100);",
-             f"target := {fn}(raw := rawSetpoint, lo := 0.0, hi := {rnd.randint(200, 900)}.0);",
-             "",
-             "IF faultTimer.Q THEN",
-             f"    state := Fault{n};",
-             "ELSE",
-             "    state := mode;",
-             "END_IF",
-             "CASE state OF",
-             f"    Off{n}:",
-             "        busy := FALSE;",
-             "        axis.enabled := FALSE;",
-             f"    Manual{n}:",
-             "        axis.enabled := TRUE;",
-             "        IF start THEN",
-             "            actual := actual + axis.velocity * 0.01;",
-             "        END_IF",
-             f"    Auto{n}:",
-             "        axis.enabled := TRUE;",
-             "        IF startDelay.Q AND NOT done THEN",
-             "            busy := TRUE;",
-             "            IF ABS(target - actual) < 0.5 THEN",
-             "                actual := target;",
-             "                done := TRUE;",
-             "                busy := FALSE;",
-             "            ELSIF target > actual THEN",
-             "                actual := actual + MIN(axis.velocity * 0.01, target - actual);",
-             "            ELSE",
-             "                actual := actual - MIN(axis.velocity * 0.01, actual - target);",
-             "            END_IF",
-             "        END_IF",
-             f"    Fault{n}:",
-             "        busy := FALSE;",
-             "        axis.errors := axis.errors + 1;",
-             "ELSE",
-             "    step := 0;",
-             "END_CASE",
-             "",
-             "IF stop THEN",
-             "    done := FALSE;",
-             "    step := 0;",
-             "END_IF",
-             "",
-             "(* keep a short history of the position *)",
-             "FOR k := 7 TO 1 BY -1 DO",
-             "    axis.history[k] := axis.history[k - 1];",
-             "END_FOR",
-             "axis.history[0] := REAL_TO_INT(actual);",
-             "axis.position := actual;",
-             "",
-             "bits := 0;",
-             "bits.0 := busy;",
-             "bits.1 := done;",
-             "bits.2 := axis.enabled;",
-             "bits.7 := faultTimer.Q;",
-             "statusWord := SHL(BYTE_TO_WORD(bits), 8) OR INT_TO_WORD(moves.CV);",
-             "axis.status := statusWord;",
-             "END_FUNCTION_BLOCK", "")
+        emit(
+            f"FUNCTION_BLOCK {fb}",
+            "(* One axis: mode state machine, ramp, timers and bit status. *)",
+            "VAR_INPUT",
+            "    start : BOOL;",
+            "    stop : BOOL;",
+            "    rawSetpoint : INT;",
+            f"    mode : E_Mode{n};",
+            "END_VAR",
+            "VAR_OUTPUT",
+            "    busy : BOOL;",
+            "    done : BOOL;",
+            "    actual : REAL;",
+            "    statusWord : WORD;",
+            "END_VAR",
+            "VAR",
+            f"    axis : ST_Axis{n};",
+            "    startDelay : TON;",
+            "    faultTimer : TON;",
+            "    edge : R_TRIG;",
+            "    moves : CTU;",
+            "    target : REAL;",
+            "    step : INT;",
+            "    k : INT;",
+            "    bits : BYTE;",
+            f"    state : E_Mode{n};",
+            "END_VAR",
+            "",
+            "edge(CLK := start);",
+            f"startDelay(IN := start AND NOT stop, PT := T#{rnd.choice([100, 200, 500])}ms);",
+            f"faultTimer(IN := busy AND NOT done, PT := T#{rnd.randint(2, 9)}s);",
+            "moves(CU := edge.Q, R := stop, PV := 100);",
+            f"target := {fn}(raw := rawSetpoint, lo := 0.0, hi := {rnd.randint(200, 900)}.0);",
+            "",
+            "IF faultTimer.Q THEN",
+            f"    state := Fault{n};",
+            "ELSE",
+            "    state := mode;",
+            "END_IF",
+            "CASE state OF",
+            f"    Off{n}:",
+            "        busy := FALSE;",
+            "        axis.enabled := FALSE;",
+            f"    Manual{n}:",
+            "        axis.enabled := TRUE;",
+            "        IF start THEN",
+            "            actual := actual + axis.velocity * 0.01;",
+            "        END_IF",
+            f"    Auto{n}:",
+            "        axis.enabled := TRUE;",
+            "        IF startDelay.Q AND NOT done THEN",
+            "            busy := TRUE;",
+            "            IF ABS(target - actual) < 0.5 THEN",
+            "                actual := target;",
+            "                done := TRUE;",
+            "                busy := FALSE;",
+            "            ELSIF target > actual THEN",
+            "                actual := actual + MIN(axis.velocity * 0.01, target - actual);",
+            "            ELSE",
+            "                actual := actual - MIN(axis.velocity * 0.01, actual - target);",
+            "            END_IF",
+            "        END_IF",
+            f"    Fault{n}:",
+            "        busy := FALSE;",
+            "        axis.errors := axis.errors + 1;",
+            "ELSE",
+            "    step := 0;",
+            "END_CASE",
+            "",
+            "IF stop THEN",
+            "    done := FALSE;",
+            "    step := 0;",
+            "END_IF",
+            "",
+            "(* keep a short history of the position *)",
+            "FOR k := 7 TO 1 BY -1 DO",
+            "    axis.history[k] := axis.history[k - 1];",
+            "END_FOR",
+            "axis.history[0] := REAL_TO_INT(actual);",
+            "axis.position := actual;",
+            "",
+            "bits := 0;",
+            "bits.0 := busy;",
+            "bits.1 := done;",
+            "bits.2 := axis.enabled;",
+            "bits.7 := faultTimer.Q;",
+            "statusWord := SHL(BYTE_TO_WORD(bits), 8) OR INT_TO_WORD(moves.CV);",
+            "axis.status := statusWord;",
+            "END_FUNCTION_BLOCK",
+            "",
+        )
 
         # --- a function block: filter with WHILE / REPEAT --------------
         fb2 = f"FB_Filter{n}"
-        emit(f"FUNCTION_BLOCK {fb2}",
-             "VAR_INPUT",
-             "    x : REAL;",
-             f"    alpha : REAL := 0.{rnd.randint(1, 9)};",
-             "END_VAR",
-             "VAR_OUTPUT",
-             "    y : REAL;",
-             "    peak : REAL;",
-             "END_VAR",
-             "VAR",
-             "    buf : ARRAY[1..16] OF REAL;",
-             "    idx : INT := 1;",
-             "    n : INT;",
-             "    sum : REAL;",
-             "END_VAR",
-             "y := y + alpha * (x - y);",
-             "buf[idx] := y;",
-             "idx := idx MOD 16 + 1;",
-             "sum := 0.0;",
-             "n := 1;",
-             "WHILE n <= 16 DO",
-             "    sum := sum + buf[n];",
-             "    n := n + 1;",
-             "END_WHILE",
-             "peak := 0.0;",
-             "n := 0;",
-             "REPEAT",
-             "    n := n + 1;",
-             "    IF buf[n] > peak THEN",
-             "        peak := buf[n];",
-             "    END_IF",
-             "UNTIL n >= 16",
-             "END_REPEAT",
-             "END_FUNCTION_BLOCK", "")
+        emit(
+            f"FUNCTION_BLOCK {fb2}",
+            "VAR_INPUT",
+            "    x : REAL;",
+            f"    alpha : REAL := 0.{rnd.randint(1, 9)};",
+            "END_VAR",
+            "VAR_OUTPUT",
+            "    y : REAL;",
+            "    peak : REAL;",
+            "END_VAR",
+            "VAR",
+            "    buf : ARRAY[1..16] OF REAL;",
+            "    idx : INT := 1;",
+            "    n : INT;",
+            "    sum : REAL;",
+            "END_VAR",
+            "y := y + alpha * (x - y);",
+            "buf[idx] := y;",
+            "idx := idx MOD 16 + 1;",
+            "sum := 0.0;",
+            "n := 1;",
+            "WHILE n <= 16 DO",
+            "    sum := sum + buf[n];",
+            "    n := n + 1;",
+            "END_WHILE",
+            "peak := 0.0;",
+            "n := 0;",
+            "REPEAT",
+            "    n := n + 1;",
+            "    IF buf[n] > peak THEN",
+            "        peak := buf[n];",
+            "    END_IF",
+            "UNTIL n >= 16",
+            "END_REPEAT",
+            "END_FUNCTION_BLOCK",
+            "",
+        )
 
         # --- a program every few rounds, using the recent blocks -------
         if n % 3 == 0:
             m = n // 3
             axes = fb_names[-3:]
-            emit(f"PROGRAM P_Cell{m}",
-                 "VAR",
-                 *[f"    axis{j} : {fb};" for j, fb in enumerate(axes)],
-                 f"    filter : FB_Filter{n};",
-                 "    cycleCount : UDINT;",
-                 "    raw : INT;",
-                 "    check : DINT;",
-                 "    run : BOOL;",
-                 f"    alarms : ARRAY[0..{rnd.randint(7, 31)}] OF BOOL;",
-                 "    text : STRING[40] := 'cell';",
-                 "    i : INT;",
-                 "END_VAR",
-                 "cycleCount := cycleCount + 1;",
-                 "raw := UDINT_TO_INT(cycleCount MOD 27648);",
-                 "run := (cycleCount / 100) MOD 2 = 0;")
+            emit(
+                f"PROGRAM P_Cell{m}",
+                "VAR",
+                *[f"    axis{j} : {fb};" for j, fb in enumerate(axes)],
+                f"    filter : FB_Filter{n};",
+                "    cycleCount : UDINT;",
+                "    raw : INT;",
+                "    check : DINT;",
+                "    run : BOOL;",
+                f"    alarms : ARRAY[0..{rnd.randint(7, 31)}] OF BOOL;",
+                "    text : STRING[40] := 'cell';",
+                "    i : INT;",
+                "END_VAR",
+                "cycleCount := cycleCount + 1;",
+                "raw := UDINT_TO_INT(cycleCount MOD 27648);",
+                "run := (cycleCount / 100) MOD 2 = 0;",
+            )
             for j, fb in enumerate(axes):
-                mode_n = fb[len("FB_Axis"):]
-                emit(f"axis{j}(start := run, stop := NOT run, rawSetpoint := raw + {j * 100},"
-                     f" mode := Auto{mode_n});")
-            emit("filter(x := axis0.actual);",
-                 f"check := {fn_names[-1]}(seed := UDINT_TO_DINT(cycleCount), count := {rnd.randint(3, 12)});",
-                 "FOR i := 0 TO 7 DO",
-                 "    alarms[i] := axis0.statusWord.0 AND (check MOD (i + 2) = 0);",
-                 "END_FOR",
-                 "IF filter.peak > 100.0 THEN",
-                 "    text := CONCAT('cell ', 'peak');",
-                 "ELSE",
-                 "    text := 'cell';",
-                 "END_IF",
-                 "END_PROGRAM", "")
+                mode_n = fb[len("FB_Axis") :]
+                emit(f"axis{j}(start := run, stop := NOT run, rawSetpoint := raw + {j * 100}, mode := Auto{mode_n});")
+            emit(
+                "filter(x := axis0.actual);",
+                f"check := {fn_names[-1]}(seed := UDINT_TO_DINT(cycleCount), count := {rnd.randint(3, 12)});",
+                "FOR i := 0 TO 7 DO",
+                "    alarms[i] := axis0.statusWord.0 AND (check MOD (i + 2) = 0);",
+                "END_FOR",
+                "IF filter.peak > 100.0 THEN",
+                "    text := CONCAT('cell ', 'peak');",
+                "ELSE",
+                "    text := 'cell';",
+                "END_IF",
+                "END_PROGRAM",
+                "",
+            )
     return "\n".join(out) + "\n"
 
 
@@ -670,7 +733,8 @@ def bench_front_end(repeats: int) -> dict:
             library = [parse_source(lt, ln, DiagnosticBag()) for ln, lt in library_texts]
             t2 = time.perf_counter()
             checked = Checker(profile, diags, loader._std_functions(), loader._natives()).run(
-                library + [user], library_files=tuple(sf.path for sf in library))
+                library + [user], library_files=tuple(sf.path for sf in library)
+            )
             t3 = time.perf_counter()
             gen = CodeGen(checked, profile).generate()
             t4 = time.perf_counter()
@@ -679,8 +743,14 @@ def bench_front_end(repeats: int) -> dict:
             errors = [d for d in diags.items if d.is_error]
             if errors:
                 raise SystemExit(f"the generated ST file does not compile: {errors[:3]}")
-            t = {"parse": t1 - t0, "parse library": t2 - t1, "check": t3 - t2, "codegen": t4 - t3,
-                 "python compile": t5 - t4, "total": t5 - t0}
+            t = {
+                "parse": t1 - t0,
+                "parse library": t2 - t1,
+                "check": t3 - t2,
+                "codegen": t4 - t3,
+                "python compile": t5 - t4,
+                "total": t5 - t0,
+            }
             if not best or t["total"] < best["total"]:
                 best = t
         t0 = time.perf_counter()
@@ -688,8 +758,7 @@ def bench_front_end(repeats: int) -> dict:
         best["compile_files()"] = time.perf_counter() - t0
     best["lines"] = lines
     best["python lines"] = gen.source.count("\n")
-    best["pous"] = sum(1 for line in text.splitlines()
-                       if line.startswith(("FUNCTION ", "FUNCTION_BLOCK ", "PROGRAM ")))
+    best["pous"] = sum(1 for line in text.splitlines() if line.startswith(("FUNCTION ", "FUNCTION_BLOCK ", "PROGRAM ")))
     return best
 
 
@@ -697,19 +766,26 @@ def bench_front_end(repeats: int) -> dict:
 # Main
 # =====================================================================
 
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--quick", action="store_true", help="a smoke run: three rounds, one front-end pass")
-    ap.add_argument("--rounds", type=int, default=None,
-                    help="timing rounds per program, the minimum is reported (default 40, quick 3)")
+    ap.add_argument(
+        "--rounds",
+        type=int,
+        default=None,
+        help="timing rounds per program, the minimum is reported (default 40, quick 3)",
+    )
     args = ap.parse_args()
     rounds = args.rounds or (3 if args.quick else 40)
     # cycles per timed chunk, about 10 ms each: short chunks are less often
     # interrupted by other processes, so the minimum is a clean run
     cycles = {"a numeric": 4, "b bits": 16, "c timers": 200}
 
-    print(f"softplc ST benchmarks  (Python {sys.version.split()[0]}, "
-          f"{'quick' if args.quick else 'full'} run, {rounds} timing rounds)\n")
+    print(
+        f"softplc ST benchmarks  (Python {sys.version.split()[0]}, "
+        f"{'quick' if args.quick else 'full'} run, {rounds} timing rounds)\n"
+    )
 
     benches = [
         Bench("a numeric", NUMERIC_ST, "NumericMain", NumericHand, clocked=False),
@@ -717,18 +793,21 @@ def main() -> int:
         Bench("c timers", TIMERS_ST, "TimersMain", TimersHand, clocked=True),
     ]
     print("1. Generated code vs hand-written Python: the same logic for the same cycles")
-    print(f"   {'program':<10} {'generated':>12} {'hand':>12} {'ratio':>7} {'(of mins)':>9} "
-          f"{'Runner.run':>12}  check")
+    print(f"   {'program':<10} {'generated':>12} {'hand':>12} {'ratio':>7} {'(of mins)':>9} {'Runner.run':>12}  check")
     rows = bench_runtime(benches, cycles, rounds)
     for r in rows:
         check = "same state" if r["same"] else f"DIFFERENT: {', '.join(r['diff'][:5])}"
-        print(f"   {r['name']:<10} {r['gen_us']:>9.1f} us {r['hand_us']:>9.1f} us {r['ratio']:>6.2f}x "
-              f"{r['min_ratio']:>8.2f}x {r['runner_us']:>9.1f} us  {check} after {r['total_cycles']} cycles")
-    print(f"   (us per cycle: the fastest of {rounds} chunks of "
-          f"{', '.join(f'{n} {k[2:]}' for k, n in cycles.items())} cycles;\n"
-          "    ratio: the median over the rounds of generated / hand-written timed back to back;\n"
-          "    (of mins): the ratio of the two fastest chunks; Runner.run: the generated program\n"
-          "    under the real Runner, which also arms the watchdog every cycle)\n")
+        print(
+            f"   {r['name']:<10} {r['gen_us']:>9.1f} us {r['hand_us']:>9.1f} us {r['ratio']:>6.2f}x "
+            f"{r['min_ratio']:>8.2f}x {r['runner_us']:>9.1f} us  {check} after {r['total_cycles']} cycles"
+        )
+    print(
+        f"   (us per cycle: the fastest of {rounds} chunks of "
+        f"{', '.join(f'{n} {k[2:]}' for k, n in cycles.items())} cycles;\n"
+        "    ratio: the median over the rounds of generated / hand-written timed back to back;\n"
+        "    (of mins): the ratio of the two fastest chunks; Runner.run: the generated program\n"
+        "    under the real Runner, which also arms the watchdog every cycle)\n"
+    )
 
     print(f"2. Front end on a generated {FRONT_END_LINES:,}-line ST file")
     fe = bench_front_end(1 if args.quick else 3)
@@ -741,9 +820,11 @@ def main() -> int:
     print(f"   {'measure':<36} {'value':>10}  {'target':>10}  result")
     for r in rows:
         ok = r["ratio"] <= RATIO_TARGET and r["same"]
-        print(f"   {r['name'] + ': generated / hand-written':<36} {r['ratio']:>9.2f}x  "
-              f"{'<= ' + str(RATIO_TARGET) + 'x':>10}  {'met' if ok else 'MISSED'}"
-              f"{'' if r['same'] else ' (results differ)'}")
+        print(
+            f"   {r['name'] + ': generated / hand-written':<36} {r['ratio']:>9.2f}x  "
+            f"{'<= ' + str(RATIO_TARGET) + 'x':>10}  {'met' if ok else 'MISSED'}"
+            f"{'' if r['same'] else ' (results differ)'}"
+        )
     ok = fe["total"] < FRONT_END_TARGET_S
     print(f"   {'front end, 10k lines (s)':<36} {fe['total']:>9.2f}s  {'< 2 s':>10}  {'met' if ok else 'MISSED'}")
     print(f"   {'front end throughput (lines/s)':<36} {fe['lines'] / fe['total']:>10,.0f}")

@@ -29,6 +29,7 @@ VM's load swings chunk rates by 2x, a paired ratio stays steady).
     python benchmarks/bench_modbus.py              # about 15 s
     python benchmarks/bench_modbus.py --quick      # about 5 s
 """
+
 from __future__ import annotations
 
 import argparse
@@ -48,7 +49,7 @@ from softplc.runtime.io.modbus.line import SimulatedModbusLine
 from softplc.runtime.io.modbus.link import LinkSettings, ModbusLink, Transaction
 from softplc.runtime.io.modbus.master import ModbusDriver
 
-HOST = "127.0.0.1"         # loopback only
+HOST = "127.0.0.1"  # loopback only
 UNIT, FUNCTION, OFFSET, COUNT = 1, 3, 5, 6
 CONNECTION = "drive"
 WARM_UP = 200
@@ -88,6 +89,7 @@ def bare_pymodbus(client: ModbusTcpClient):
             r = read(OFFSET, count=COUNT, device_id=UNIT)
             if r.isError() or len(r.registers) != COUNT:
                 raise SystemExit(f"pymodbus: bad answer {r}")
+
     return run
 
 
@@ -100,6 +102,7 @@ def link_loop(link: ModbusLink, clock: RealClock):
             out = transact(tx, now())
             if out.error != 0 or len(out.values) != COUNT:
                 raise SystemExit(f"link: error 16#{out.error:02X} {out.message}")
+
     return run
 
 
@@ -109,15 +112,15 @@ def exchange_loop(driver: ModbusDriver, polls: list):
     def run(k: int) -> None:
         request, collect = driver.exchange.request, driver.exchange.collect
         for _ in range(k):
-            if not request("MODBUS_EXCHANGE", CONNECTION, UNIT, FUNCTION, OFFSET, COUNT, 0, 0,
-                           send, receive, mgmt):
+            if not request("MODBUS_EXCHANGE", CONNECTION, UNIT, FUNCTION, OFFSET, COUNT, 0, 0, send, receive, mgmt):
                 raise SystemExit(f"MODBUS_EXCHANGE refused: error 16#{mgmt[1]:02X}")
-            while mgmt[0] & 1:       # a scan collects once per cycle; here as soon as it can
+            while mgmt[0] & 1:  # a scan collects once per cycle; here as soon as it can
                 time.sleep(0)
                 collect()
                 polls[0] += 1
             if mgmt[1] != 0 or mgmt[2] != COUNT:
                 raise SystemExit(f"MODBUS_EXCHANGE: error 16#{mgmt[1]:02X}, {mgmt[2]} registers")
+
     return run
 
 
@@ -126,8 +129,7 @@ def paired(port: int, n: int, clock: RealClock) -> tuple:
     N transactions each in ROUNDS chunks; in each round one chunk of each side,
     back to back, the order rotating from round to round."""
     client = ModbusTcpClient(HOST, port=port, timeout=1, retries=0)
-    link = ModbusLink(LinkSettings(name=CONNECTION, transport="tcp", host=HOST, port=port,
-                                   timeout_s=1.0, retries=0))
+    link = ModbusLink(LinkSettings(name=CONNECTION, transport="tcp", host=HOST, port=port, timeout_s=1.0, retries=0))
     driver = ModbusDriver([_connection(port, [])], "iec", clock=clock)
     polls = [0]
     try:
@@ -151,20 +153,46 @@ def paired(port: int, n: int, clock: RealClock) -> tuple:
 
 def _connection(port: int, channels: list) -> ModbusConnectionConfig:
     return ModbusConnectionConfig(
-        name=CONNECTION, transport="tcp", device="", baud=19200, parity="N", stop_bits=1, data_bits=8,
-        frame_gap_us=None, host=HOST, port=port, timeout_ms=1000, retries=0,
-        reconnect_ms=1000, reconnect_max_ms=10000, channels=channels, key="modbus[0]")
+        name=CONNECTION,
+        transport="tcp",
+        device="",
+        baud=19200,
+        parity="N",
+        stop_bits=1,
+        data_bits=8,
+        frame_gap_us=None,
+        host=HOST,
+        port=port,
+        timeout_ms=1000,
+        retries=0,
+        reconnect_ms=1000,
+        reconnect_max_ms=10000,
+        channels=channels,
+        key="modbus[0]",
+    )
 
 
 def _channel(period_ns: int) -> ModbusChannelConfig:
     return ModbusChannelConfig(
-        name="status", connection=CONNECTION, unit=UNIT, function=FUNCTION, offset=OFFSET, count=COUNT,
-        write_offset=0, write_count=0, read_to=parse_address("%IW100"), write_from=None,
-        trigger="cyclic", period_ns=period_ns, edge=None, key="modbus[0].channel[0]")
+        name="status",
+        connection=CONNECTION,
+        unit=UNIT,
+        function=FUNCTION,
+        offset=OFFSET,
+        count=COUNT,
+        write_offset=0,
+        write_count=0,
+        read_to=parse_address("%IW100"),
+        write_from=None,
+        trigger="cyclic",
+        period_ns=period_ns,
+        edge=None,
+        key="modbus[0].channel[0]",
+    )
 
 
 def channel_run(port: int, seconds: float, clock: RealClock) -> dict:
-    period_ns = 1_000_000           # the shortest period the configuration allows (1ms)
+    period_ns = 1_000_000  # the shortest period the configuration allows (1ms)
     driver = ModbusDriver([_connection(port, [_channel(period_ns)])], "iec", clock=clock)
     ch = driver.channels[0]
     image = ProcessImage("iec")
@@ -176,11 +204,12 @@ def channel_run(port: int, seconds: float, clock: RealClock) -> dict:
         got = publish(img)
         fresh[0] += got
         return got
+
     ch.publish = counting_publish
     driver.start()
     try:
         end = time.monotonic() + 5
-        while ch.stats.requests == 0:        # connected and a first answer
+        while ch.stats.requests == 0:  # connected and a first answer
             if time.monotonic() > end:
                 raise SystemExit(f"channel: no transaction within 5 s ({driver.status().message})")
             time.sleep(0.001)
@@ -198,7 +227,7 @@ def channel_run(port: int, seconds: float, clock: RealClock) -> dict:
                 break
             pause = release - time.perf_counter()
             if pause > 0:
-                time.sleep(pause)   # no spin (RealClock spins its last 1 ms: at 1 ms it would only spin)
+                time.sleep(pause)  # no spin (RealClock spins its last 1 ms: at 1 ms it would only spin)
         wall, cpu = time.perf_counter() - t0, time.process_time() - cpu0
         n, errors = ch.stats.requests - req0, ch.stats.errors - err0
     finally:
@@ -210,8 +239,7 @@ def channel_run(port: int, seconds: float, clock: RealClock) -> dict:
 
 def _line(label: str, r: dict, base: dict | None = None, paired_ratio: float | None = None) -> str:
     rate, us, cpu_us = r["n"] / r["s"], r["s"] / r["n"] * 1e6, r["cpu"] / r["n"] * 1e6
-    text = (f"   {label:<12}{r['n']:7,}  {r['s']:6.2f} s  {rate:8,.0f} /s  "
-            f"{us:7.1f} us/tx  {cpu_us:7.1f} us CPU/tx")
+    text = f"   {label:<12}{r['n']:7,}  {r['s']:6.2f} s  {rate:8,.0f} /s  {us:7.1f} us/tx  {cpu_us:7.1f} us CPU/tx"
     if base is not None:
         b_rate, b_cpu = base["n"] / base["s"], base["cpu"] / base["n"] * 1e6
         ratio = paired_ratio if paired_ratio is not None else rate / b_rate
@@ -230,8 +258,9 @@ def main() -> None:
     n, seconds = (1000, 0.5) if args.quick else (5000, 2.0)
     clock = RealClock()
     port = _free_port()
-    sim = SimulatedModbusLine("bench", {UNIT: EatonDriveModel(Family.DA1)}, clock=clock,
-                              transport="tcp", host=HOST, port=port)
+    sim = SimulatedModbusLine(
+        "bench", {UNIT: EatonDriveModel(Family.DA1)}, clock=clock, transport="tcp", host=HOST, port=port
+    )
     sim.start()
     try:
         (base, link, exch), polls = paired(port, n, clock)
@@ -254,8 +283,10 @@ def main() -> None:
     print(_line("1 baseline", b))
     print(_line("2 link", link.figures(), b, _median_ratio(link, base)))
     print(_line("3 channel", chan, b))
-    print(f"     {chan['scans']:,} scans (read_inputs), {chan['fresh']:,} found fresh data "
-          f"({chan['fresh'] / max(chan['scans'], 1):.0%}); errors {chan['errors']}")
+    print(
+        f"     {chan['scans']:,} scans (read_inputs), {chan['fresh']:,} found fresh data "
+        f"({chan['fresh'] / max(chan['scans'], 1):.0%}); errors {chan['errors']}"
+    )
     print(_line("4 exchange", exch.figures(), b, _median_ratio(exch, base)))
     print(f"     {polls / exch.n:.1f} collect() polls per round trip; every answer good (mgmt[1] = 0)")
 

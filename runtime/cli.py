@@ -14,6 +14,7 @@ Exit codes (stable, scripts rely on them):
 
 Whatever the input, the user sees a message, never a Python traceback.
 """
+
 from __future__ import annotations
 
 import json
@@ -53,22 +54,25 @@ class CycleTime(click.ParamType):
         if ns <= 0:
             self.fail(f"{value!r}: the cycle time must be positive", param, ctx)
         if ns % 1_000_000:
-            self.fail(f"{value!r}: the cycle time must be a whole number of milliseconds",
-                      param, ctx)
+            self.fail(f"{value!r}: the cycle time must be a whole number of milliseconds", param, ctx)
         return ns // 1_000_000
 
 
 PROFILE_OPTION = click.option(
-    "--profile", type=click.Choice(list(PROFILES), case_sensitive=False),
-    default=DEFAULT.name, show_default=True,
-    help="Dialect: strict IEC 61131-3, CODESYS, TwinCAT or Schneider Unity/Control Expert.")
+    "--profile",
+    type=click.Choice(list(PROFILES), case_sensitive=False),
+    default=DEFAULT.name,
+    show_default=True,
+    help="Dialect: strict IEC 61131-3, CODESYS, TwinCAT or Schneider Unity/Control Expert.",
+)
 
 FILES_ARGUMENT = click.argument(
-    "files", nargs=-1, required=True,
-    type=click.Path(exists=True, dir_okay=False, readable=True))
+    "files", nargs=-1, required=True, type=click.Path(exists=True, dir_okay=False, readable=True)
+)
 
 
 # ---------------------------------------------------------------- helpers
+
 
 def _echo_err(text: str) -> None:
     click.echo(text, err=True)
@@ -113,6 +117,7 @@ def _compile(files, profile: str):
 
 # ---------------------------------------------------------------- commands
 
+
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="softplc", prog_name="softplc")
 def cli() -> None:
@@ -138,10 +143,13 @@ def check(files, profile: str) -> None:
 
 @cli.command("compile")
 @FILES_ARGUMENT
-@click.option("--emit-python", is_flag=True,
-              help="Print the generated Python module (or write it with -o).")
-@click.option("-o", "--output-dir", type=click.Path(file_okay=False),
-              help="With --emit-python: write DIR/<stem of the first FILE>.py instead of printing.")
+@click.option("--emit-python", is_flag=True, help="Print the generated Python module (or write it with -o).")
+@click.option(
+    "-o",
+    "--output-dir",
+    type=click.Path(file_okay=False),
+    help="With --emit-python: write DIR/<stem of the first FILE>.py instead of printing.",
+)
 @PROFILE_OPTION
 def compile_cmd(files, emit_python: bool, output_dir: str | None, profile: str) -> None:
     """Compile ST files to Python; with --emit-python show the result."""
@@ -167,12 +175,15 @@ def compile_cmd(files, emit_python: bool, output_dir: str | None, profile: str) 
 
 @cli.command("exec")
 @FILES_ARGUMENT
-@click.option("--entry", metavar="NAME",
-              help="PROGRAM or FUNCTION to run [default: the only PROGRAM in FILES].")
-@click.option("--cycles", type=click.IntRange(min=0), default=1, show_default=True,
-              help="Number of cycles to run.")
-@click.option("--cycle-time", type=CycleTime(), default="10ms", show_default=True,
-              help="Virtual time per cycle, whole milliseconds: 10ms, 1s, T#250ms.")
+@click.option("--entry", metavar="NAME", help="PROGRAM or FUNCTION to run [default: the only PROGRAM in FILES].")
+@click.option("--cycles", type=click.IntRange(min=0), default=1, show_default=True, help="Number of cycles to run.")
+@click.option(
+    "--cycle-time",
+    type=CycleTime(),
+    default="10ms",
+    show_default=True,
+    help="Virtual time per cycle, whole milliseconds: 10ms, 1s, T#250ms.",
+)
 @PROFILE_OPTION
 def exec_cmd(files, entry: str | None, cycles: int, cycle_time: int, profile: str) -> None:
     """Run a PROGRAM for N cycles in virtual time and print its variables as
@@ -220,13 +231,13 @@ def _pick_entry(pous: dict, entry: str | None) -> str:
             return programs[0]
         if not programs:
             raise click.UsageError("the files declare no PROGRAM; name a FUNCTION with --entry")
-        raise click.UsageError(f"the files declare several PROGRAMs ({', '.join(programs)}); "
-                               "choose one with --entry")
+        raise click.UsageError(f"the files declare several PROGRAMs ({', '.join(programs)}); choose one with --entry")
     for name, kind in pous.items():
         if name.upper() == entry.upper():
             if kind == "FUNCTION_BLOCK":
-                raise click.UsageError(f"{name} is a FUNCTION_BLOCK; --entry takes a PROGRAM "
-                                       "or a FUNCTION (call the block from a PROGRAM)")
+                raise click.UsageError(
+                    f"{name} is a FUNCTION_BLOCK; --entry takes a PROGRAM or a FUNCTION (call the block from a PROGRAM)"
+                )
             return name
     # Not a user POU: let the runner decide (library FUNCTIONs may be runnable).
     return entry
@@ -248,25 +259,52 @@ class Duration(click.ParamType):
 
 @cli.command("run")
 @click.argument("config", required=False, type=click.Path(dir_okay=False))
-@click.option("--virtual-time", is_flag=True,
-              help="Run on the virtual clock: jump from deadline to deadline (no waiting).")
-@click.option("--duration", type=Duration(), metavar="DURATION",
-              help="Stop after this much engine time (30s, 1m, T#500ms).")
+@click.option(
+    "--virtual-time", is_flag=True, help="Run on the virtual clock: jump from deadline to deadline (no waiting)."
+)
+@click.option(
+    "--duration", type=Duration(), metavar="DURATION", help="Stop after this much engine time (30s, 1m, T#500ms)."
+)
 @click.option("--cycles", type=click.IntRange(min=1), metavar="N", help="Stop after N scans.")
-@click.option("--watch", "watch", multiple=True, metavar="VAR",
-              help="Show VAR in the status line and the trace: Instance.var, a global, or an "
-                   "address such as %QW1. Repeat the option or separate names with commas.")
-@click.option("--trace", type=click.Path(dir_okay=False), metavar="FILE.csv",
-              help="Write the watched values every scan to a CSV file.")
-@click.option("--final-json", type=click.Path(dir_okay=False, allow_dash=True), metavar="FILE",
-              help="At the end, write every program's variables as JSON (as `exec` prints them; - for stdout).")
-@click.option("--cold", "start_mode", flag_value="cold",
-              help="Cold start: every variable initialised, the retain file ignored.")
-@click.option("--warm", "start_mode", flag_value="warm",
-              help="Warm start: RETAIN and PERSISTENT variables restored (the default unless the "
-                   "config says start = \"cold\").")
-def run_cmd(config: str | None, virtual_time: bool, duration: int | None, cycles: int | None,
-            watch: tuple, trace: str | None, final_json: str | None, start_mode: str | None) -> None:
+@click.option(
+    "--watch",
+    "watch",
+    multiple=True,
+    metavar="VAR",
+    help="Show VAR in the status line and the trace: Instance.var, a global, or an "
+    "address such as %QW1. Repeat the option or separate names with commas.",
+)
+@click.option(
+    "--trace",
+    type=click.Path(dir_okay=False),
+    metavar="FILE.csv",
+    help="Write the watched values every scan to a CSV file.",
+)
+@click.option(
+    "--final-json",
+    type=click.Path(dir_okay=False, allow_dash=True),
+    metavar="FILE",
+    help="At the end, write every program's variables as JSON (as `exec` prints them; - for stdout).",
+)
+@click.option(
+    "--cold", "start_mode", flag_value="cold", help="Cold start: every variable initialised, the retain file ignored."
+)
+@click.option(
+    "--warm",
+    "start_mode",
+    flag_value="warm",
+    help='Warm start: RETAIN and PERSISTENT variables restored (the default unless the config says start = "cold").',
+)
+def run_cmd(
+    config: str | None,
+    virtual_time: bool,
+    duration: int | None,
+    cycles: int | None,
+    watch: tuple,
+    trace: str | None,
+    final_json: str | None,
+    start_mode: str | None,
+) -> None:
     """Run the PLC: the tasks of CONFIG (a TOML file; without it the embedded
     default example) until Ctrl-C, SIGTERM, --duration or --cycles.
 
@@ -279,12 +317,23 @@ def run_cmd(config: str | None, virtual_time: bool, duration: int | None, cycles
     if duration is not None and cycles is not None:
         raise click.UsageError("give --duration or --cycles, not both")
     paths = [p.strip() for item in watch for p in item.split(",") if p.strip()]
-    sys.exit(run_plc(config, virtual_time=virtual_time, duration_ns=duration, cycles=cycles,
-                     watch=paths, trace=trace, final_json=final_json, start_mode=start_mode,
-                     report_compile_errors=lambda e: _summary(*_report(e.diagnostics, e.sources))))
+    sys.exit(
+        run_plc(
+            config,
+            virtual_time=virtual_time,
+            duration_ns=duration,
+            cycles=cycles,
+            watch=paths,
+            trace=trace,
+            final_json=final_json,
+            start_mode=start_mode,
+            report_compile_errors=lambda e: _summary(*_report(e.diagnostics, e.sources)),
+        )
+    )
 
 
 # ---------------------------------------------------------------- entry point
+
 
 def main(argv: list | None = None) -> None:
     """Console-script entry point: never lets a Python traceback reach the user."""
@@ -299,8 +348,10 @@ def main(argv: list | None = None) -> None:
         _echo_err("softplc: interrupted")
         sys.exit(130)
     except PluginError as e:  # an installed bus or device package that cannot be used
-        _echo_err(f"softplc: {e}\nThe package that declares it is broken or does not fit this softplc: "
-                  "upgrade it or uninstall it.")
+        _echo_err(
+            f"softplc: {e}\nThe package that declares it is broken or does not fit this softplc: "
+            "upgrade it or uninstall it."
+        )
         sys.exit(EXIT_USAGE)
     except BrokenPipeError:  # `softplc exec ... | head`: the reader left, nothing to say
         sys.stderr.close()
@@ -309,9 +360,11 @@ def main(argv: list | None = None) -> None:
         if os.environ.get("SOFTPLC_DEBUG"):
             traceback.print_exc()
         else:
-            _echo_err(f"softplc: internal error: {type(e).__name__}: {e}\n"
-                      "This is a bug in softplc; run again with SOFTPLC_DEBUG=1 "
-                      "for the traceback and report it.")
+            _echo_err(
+                f"softplc: internal error: {type(e).__name__}: {e}\n"
+                "This is a bug in softplc; run again with SOFTPLC_DEBUG=1 "
+                "for the traceback and report it."
+            )
         sys.exit(EXIT_INTERNAL)
     sys.exit(rc if isinstance(rc, int) else EXIT_OK)  # --help and --version return 0
 

@@ -2,13 +2,21 @@
 '10ms', '1s500ms', '2.5s', 'T#250ms', 'TIME#1h', or a bare number of
 milliseconds. One parser serves the CLI and the TOML configuration, so both
 accept the same spellings."""
+
 from __future__ import annotations
 
 import re
 
 # IEC duration units, largest first, in nanoseconds.
-UNITS_NS = {"d": 86_400_000_000_000, "h": 3_600_000_000_000, "m": 60_000_000_000,
-            "s": 1_000_000_000, "ms": 1_000_000, "us": 1_000, "ns": 1}
+UNITS_NS = {
+    "d": 86_400_000_000_000,
+    "h": 3_600_000_000_000,
+    "m": 60_000_000_000,
+    "s": 1_000_000_000,
+    "ms": 1_000_000,
+    "us": 1_000,
+    "ns": 1,
+}
 _PART = re.compile(r"(\d+(?:\.\d+)?)(ms|us|ns|d|h|m|s)")
 
 EXAMPLES = "10ms, 1s, T#250ms"  # what error messages suggest
@@ -28,7 +36,7 @@ def parse_duration_ns(value) -> int | None:
     text = "".join(value.split()).lower().replace("_", "")
     for prefix in ("time#", "t#"):
         if text.startswith(prefix):
-            text = text[len(prefix):]
+            text = text[len(prefix) :]
             break
     if text.isdigit():
         return int(text) * 1_000_000

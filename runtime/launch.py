@@ -4,6 +4,7 @@ its status, handle signals and commands, stop cleanly, write the results.
 Exit codes: 0 stopped cleanly, 1 compile errors, 2 bad configuration or
 option, 3 a runtime fault happened during the run.
 """
+
 from __future__ import annotations
 
 import json
@@ -24,8 +25,9 @@ class _LineFormatter(logging.Formatter):
     """Log lines that do not run into a status line being rewritten in place."""
 
     def __init__(self, tty: bool) -> None:
-        super().__init__("%(asctime)s softplc %(levelname)s: %(message)s" if not tty
-                         else "softplc %(levelname)s: %(message)s")
+        super().__init__(
+            "%(asctime)s softplc %(levelname)s: %(message)s" if not tty else "softplc %(levelname)s: %(message)s"
+        )
         self.prefix = "\r\x1b[K" if tty else ""
 
     def format(self, record) -> str:
@@ -46,9 +48,18 @@ def _fail(message: str, code: int) -> int:
     return code
 
 
-def run_plc(config: str | None, *, virtual_time: bool, duration_ns: int | None, cycles: int | None,
-            watch: list, trace: str | None, final_json: str | None, start_mode: str | None,
-            report_compile_errors: Callable) -> int:
+def run_plc(
+    config: str | None,
+    *,
+    virtual_time: bool,
+    duration_ns: int | None,
+    cycles: int | None,
+    watch: list,
+    trace: str | None,
+    final_json: str | None,
+    start_mode: str | None,
+    report_compile_errors: Callable,
+) -> int:
     from .config import ConfigError, default_config_path, load_config
     from .engine.build import build_engine
     from .engine.monitor import StatusReporter, TraceWriter, Watch
@@ -74,8 +85,7 @@ def run_plc(config: str | None, *, virtual_time: bool, duration_ns: int | None, 
             return EXIT_COMPILE
         except (TaskSetupError, DriverError) as e:
             return _fail(str(e), EXIT_CONFIG)
-        log.info("%s: %s start, %s clock", path, engine.start_mode,
-                 "virtual" if virtual_time else "real")
+        log.info("%s: %s start, %s clock", path, engine.start_mode, "virtual" if virtual_time else "real")
         try:
             engine.start()
         except STFault as e:
@@ -101,8 +111,11 @@ def run_plc(config: str | None, *, virtual_time: bool, duration_ns: int | None, 
             reporter.start()
             cleanup.callback(reporter.stop)
             engine.run(cycles=cycles, duration_ns=duration_ns)
-        log.info("stopped after %d scans: outputs safe%s", engine.cycle,
-                 ", retained data saved" if engine.retain_store is not None else "")
+        log.info(
+            "stopped after %d scans: outputs safe%s",
+            engine.cycle,
+            ", retained data saved" if engine.retain_store is not None else "",
+        )
         if final_json:
             text = json.dumps(engine.dump(), indent=2, ensure_ascii=False) + "\n"
             if final_json == "-":
@@ -138,8 +151,11 @@ class _signals:
         if threading.current_thread() is not threading.main_thread():
             return self  # signals can only be handled in the main thread
         stop = lambda *_: self.engine.request_stop()  # noqa: E731
-        for sig, handler in ((signal.SIGINT, stop), (signal.SIGTERM, stop),
-                             (signal.SIGUSR1, lambda *_: self.engine.request_restart())):
+        for sig, handler in (
+            (signal.SIGINT, stop),
+            (signal.SIGTERM, stop),
+            (signal.SIGUSR1, lambda *_: self.engine.request_restart()),
+        ):
             self.previous[sig] = signal.signal(sig, handler)
         return self
 

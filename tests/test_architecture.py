@@ -2,6 +2,7 @@
 the core names no bus and no device, no module is over 800 lines, every
 package folder is installed. The import layers are import-linter's contracts
 in pyproject.toml (.ci/run)."""
+
 from __future__ import annotations
 
 import ast
@@ -18,10 +19,10 @@ SOURCES = sorted(p for folder in ("runtime", "fblocks") for p in (REPO / folder)
 
 # Only a bus's, a device's or a simulator's own package may name a bus or a
 # device; so may a module whose own path names the thing.
-NAMES = re.compile(r"ltmr|eaton|\bd[abce]1\b|\bde11\b|fc[ _]?280|mpu2|genset|modbus|canopen|\bsdo|\bpdo|sdo\b|pdo\b",
-                   re.I)
-PLUGIN_PACKAGES = [REPO / "runtime" / "io", REPO / "runtime" / "devices", REPO / "runtime" / "sim",
-                   REPO / "fblocks"]
+NAMES = re.compile(
+    r"ltmr|eaton|\bd[abce]1\b|\bde11\b|fc[ _]?280|mpu2|genset|modbus|canopen|\bsdo|\bpdo|sdo\b|pdo\b", re.I
+)
+PLUGIN_PACKAGES = [REPO / "runtime" / "io", REPO / "runtime" / "devices", REPO / "runtime" / "sim", REPO / "fblocks"]
 
 
 def _docstring_lines(tree: ast.AST) -> set:
@@ -29,8 +30,11 @@ def _docstring_lines(tree: ast.AST) -> set:
     for node in ast.walk(tree):
         if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)) and node.body:
             first = node.body[0]
-            if isinstance(first, ast.Expr) and isinstance(first.value, ast.Constant) \
-                    and isinstance(first.value.value, str):
+            if (
+                isinstance(first, ast.Expr)
+                and isinstance(first.value, ast.Constant)
+                and isinstance(first.value.value, str)
+            ):
                 lines.update(range(first.lineno, first.end_lineno + 1))
     return lines
 
@@ -42,14 +46,12 @@ def names_in_code(path: Path, root: Path = REPO) -> list:
     docstrings = _docstring_lines(ast.parse(text))
     found = []
     for tok in tokenize.generate_tokens(io.StringIO(text).readline):
-        if tok.type in (tokenize.NAME, tokenize.STRING) and tok.start[0] not in docstrings \
-                and NAMES.search(tok.string):
+        if tok.type in (tokenize.NAME, tokenize.STRING) and tok.start[0] not in docstrings and NAMES.search(tok.string):
             found.append(f"{path.relative_to(root)}:{tok.start[0]}: {tok.string[:60]}")
     return found
 
 
-CORE = [p for p in SOURCES if not any(root in p.parents for root in PLUGIN_PACKAGES)
-        or p.parent in PLUGIN_PACKAGES]
+CORE = [p for p in SOURCES if not any(root in p.parents for root in PLUGIN_PACKAGES) or p.parent in PLUGIN_PACKAGES]
 
 
 def test_the_core_names_no_bus_and_no_device():
@@ -59,8 +61,9 @@ def test_the_core_names_no_bus_and_no_device():
 
 def test_the_rule_sees_what_it_looks_for(tmp_path):
     code = tmp_path / "example.py"
-    code.write_text('"""The LTMR, in a docstring: fine."""\n# a comment about Modbus: fine\n'
-                    'x = "canopen"\nsdo_timeout = 1\n')
+    code.write_text(
+        '"""The LTMR, in a docstring: fine."""\n# a comment about Modbus: fine\nx = "canopen"\nsdo_timeout = 1\n'
+    )
     assert [hit.split(": ", 1)[1] for hit in names_in_code(code, tmp_path)] == ['"canopen"', "sdo_timeout"]
 
 

@@ -1,6 +1,7 @@
 """The benchmarks (benchmarks/) measure speed and are not run by the suite;
 this only keeps them from rotting: each imports everything it uses and
 understands its command line."""
+
 from __future__ import annotations
 
 import subprocess
@@ -13,8 +14,12 @@ BENCHMARKS = sorted((Path(__file__).resolve().parents[1] / "benchmarks").glob("b
 
 
 def test_there_are_benchmarks():
-    assert [b.name for b in BENCHMARKS] == ["bench_canopen.py", "bench_engine.py", "bench_language.py",
-                                            "bench_modbus.py"]
+    assert [b.name for b in BENCHMARKS] == [
+        "bench_canopen.py",
+        "bench_engine.py",
+        "bench_language.py",
+        "bench_modbus.py",
+    ]
 
 
 @pytest.mark.parametrize("script", BENCHMARKS, ids=lambda p: p.name)

@@ -1,4 +1,5 @@
 """The softplc command, run as a subprocess the way a user runs it."""
+
 import json
 import os
 import subprocess
@@ -87,9 +88,15 @@ def softplc(*args, cwd=None):
     console script), without stdin, as CI does."""
     env = dict(os.environ, PYTHONIOENCODING="utf-8")
     env.pop("SOFTPLC_DEBUG", None)
-    return subprocess.run([sys.executable, "-m", "softplc.runtime.cli", *map(str, args)],
-                          capture_output=True, text=True, stdin=subprocess.DEVNULL,
-                          cwd=cwd, env=env, timeout=120)
+    return subprocess.run(
+        [sys.executable, "-m", "softplc.runtime.cli", *map(str, args)],
+        capture_output=True,
+        text=True,
+        stdin=subprocess.DEVNULL,
+        cwd=cwd,
+        env=env,
+        timeout=120,
+    )
 
 
 @pytest.fixture
@@ -98,6 +105,7 @@ def st(tmp_path):
         path = tmp_path / name
         path.write_text(text, encoding="utf-8")
         return path
+
     return write
 
 
@@ -106,6 +114,7 @@ def no_traceback(proc):
 
 
 # ---------------------------------------------------------------- check
+
 
 def test_check_ok(st):
     proc = softplc("check", st("good.st", GOOD))
@@ -119,9 +128,9 @@ def test_check_broken_file(st):
     assert proc.returncode == 1
     no_traceback(proc)
     first = proc.stderr.splitlines()[0]
-    assert first.startswith(f"{path}:5:6: error E")     # file:line:col: error CODE
+    assert first.startswith(f"{path}:5:6: error E")  # file:line:col: error CODE
     assert "undeclared" in proc.stderr
-    assert "x := undeclared + 1;" in proc.stderr        # the source excerpt
+    assert "x := undeclared + 1;" in proc.stderr  # the source excerpt
     assert "1 error" in proc.stderr.splitlines()[-1]
 
 
@@ -169,6 +178,7 @@ def test_unknown_profile_is_a_usage_error(st):
 
 # ---------------------------------------------------------------- compile
 
+
 def test_emit_python_to_stdout_compiles(st):
     proc = softplc("compile", st("good.st", GOOD), "--emit-python")
     assert proc.returncode == 0, proc.stderr
@@ -198,6 +208,7 @@ def test_output_dir_needs_emit_python(st, tmp_path):
 
 # ---------------------------------------------------------------- exec
 
+
 def test_exec_program(st):
     proc = softplc("exec", st("good.st", GOOD), "--cycles", "4")
     assert proc.returncode == 0, proc.stderr
@@ -214,10 +225,17 @@ def test_exec_default_is_one_cycle(st):
     assert out["n"] == 1
 
 
-@pytest.mark.parametrize("cycle_time, up", [
-    (None, "T#20ms"), ("10ms", "T#20ms"), ("T#1s", "T#2s"), ("250", "T#500ms"),
-    ("1m", "T#2m"), ("time#1s500ms", "T#3s"),
-])
+@pytest.mark.parametrize(
+    "cycle_time, up",
+    [
+        (None, "T#20ms"),
+        ("10ms", "T#20ms"),
+        ("T#1s", "T#2s"),
+        ("250", "T#500ms"),
+        ("1m", "T#2m"),
+        ("time#1s500ms", "T#3s"),
+    ],
+)
 def test_exec_cycle_time(st, cycle_time, up):
     # Three cycles: the clock moves two cycle times from the first to the last.
     options = [] if cycle_time is None else ["--cycle-time", cycle_time]
@@ -317,11 +335,12 @@ def test_exec_example_plant():
 
 # ---------------------------------------------------------------- the command itself
 
+
 def test_usage_errors():
-    assert softplc().returncode in (0, 2)          # bare command: help
+    assert softplc().returncode in (0, 2)  # bare command: help
     proc = softplc("frobnicate")
     assert proc.returncode == 2
-    proc = softplc("exec")                         # no FILE
+    proc = softplc("exec")  # no FILE
     assert proc.returncode == 2
     no_traceback(proc)
 
@@ -338,6 +357,5 @@ def test_console_script_is_installed():
     script = Path(sys.executable).with_name("softplc")
     if not script.exists():
         pytest.skip("console script not installed next to this Python")
-    proc = subprocess.run([str(script), "--help"], capture_output=True, text=True,
-                          stdin=subprocess.DEVNULL, timeout=60)
+    proc = subprocess.run([str(script), "--help"], capture_output=True, text=True, stdin=subprocess.DEVNULL, timeout=60)
     assert proc.returncode == 0 and "exec" in proc.stdout

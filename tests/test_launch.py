@@ -1,6 +1,7 @@
 """`softplc run`, as a user runs it: the embedded default, configs from
 files, watch/trace/final JSON, config and compile errors, signals, and the
 retain file surviving SIGKILL."""
+
 from __future__ import annotations
 
 import csv
@@ -48,9 +49,15 @@ def _no_orphans():
 
 
 def spawn(*args, cwd=None):
-    proc = subprocess.Popen([sys.executable, "-m", "softplc.runtime.cli", *map(str, args)],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, stdin=subprocess.DEVNULL,
-                            text=True, cwd=cwd, env=_env())
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "softplc.runtime.cli", *map(str, args)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        stdin=subprocess.DEVNULL,
+        text=True,
+        cwd=cwd,
+        env=_env(),
+    )
     _SPAWNED.append(proc)
     return proc
 
@@ -81,6 +88,7 @@ def write_config(tmp_path, text: str, programs: dict) -> Path:
 
 # ---------------------------------------------------------------- the embedded default
 
+
 def test_default_example_runs_in_virtual_time(tmp_path):
     out = tmp_path / "final.json"
     proc = softplc("run", "--virtual-time", "--duration", "10s", "--final-json", out)
@@ -107,13 +115,24 @@ def test_default_example_runs_in_virtual_time(tmp_path):
 
 def test_watch_and_trace_sample_every_scan(tmp_path):
     trace = tmp_path / "trace.csv"
-    proc = softplc("run", "--virtual-time", "--cycles", "300", "--watch", "Conveyor.state,Conveyor.speedOut",
-                   "--watch", "%QX0.0", "--watch", "Panel.speedPercent", "--trace", trace)
+    proc = softplc(
+        "run",
+        "--virtual-time",
+        "--cycles",
+        "300",
+        "--watch",
+        "Conveyor.state,Conveyor.speedOut",
+        "--watch",
+        "%QX0.0",
+        "--watch",
+        "Panel.speedPercent",
+        "--trace",
+        trace,
+    )
     assert proc.returncode == 0, proc.stderr
     rows = list(csv.DictReader(trace.open()))
     assert len(rows) == 300
-    assert list(rows[0]) == ["time_ms", "cycle", "Conveyor.state", "Conveyor.speedOut", "%QX0.0",
-                             "Panel.speedPercent"]
+    assert list(rows[0]) == ["time_ms", "cycle", "Conveyor.state", "Conveyor.speedOut", "%QX0.0", "Panel.speedPercent"]
     assert [float(r["time_ms"]) for r in rows[:3]] == [0.0, 10.0, 20.0]
     running = [r for r in rows if r["%QX0.0"] == "1"]
     assert running, "the belt never ran"
@@ -135,9 +154,13 @@ def test_final_json_to_stdout_matches_exec_encoding():
 
 # ---------------------------------------------------------------- errors
 
+
 def test_config_error_names_file_and_key(tmp_path):
-    cfg = write_config(tmp_path, '[plc]\nprograms = ["p.st"]\n[[task]]\nname = "T"\ninterval = "fast"\n'
-                       'programs = ["Main"]\n', {"p.st": "PROGRAM Main\nEND_PROGRAM\n"})
+    cfg = write_config(
+        tmp_path,
+        '[plc]\nprograms = ["p.st"]\n[[task]]\nname = "T"\ninterval = "fast"\nprograms = ["Main"]\n',
+        {"p.st": "PROGRAM Main\nEND_PROGRAM\n"},
+    )
     proc = softplc("run", cfg, "--virtual-time", "--cycles", "1")
     assert proc.returncode == 2
     assert f"{cfg}: task[0].interval: expected a duration" in proc.stderr
@@ -145,8 +168,11 @@ def test_config_error_names_file_and_key(tmp_path):
 
 
 def test_unknown_program_in_a_task(tmp_path):
-    cfg = write_config(tmp_path, '[plc]\nprograms = ["p.st"]\n[[task]]\nname = "T"\ninterval = "10ms"\n'
-                       'programs = ["Mian"]\n', {"p.st": "PROGRAM Main\nEND_PROGRAM\n"})
+    cfg = write_config(
+        tmp_path,
+        '[plc]\nprograms = ["p.st"]\n[[task]]\nname = "T"\ninterval = "10ms"\nprograms = ["Mian"]\n',
+        {"p.st": "PROGRAM Main\nEND_PROGRAM\n"},
+    )
     proc = softplc("run", cfg, "--virtual-time", "--cycles", "1")
     assert proc.returncode == 2
     assert "task[0].programs[0]: 'Mian' is not a PROGRAM" in proc.stderr
@@ -154,8 +180,11 @@ def test_unknown_program_in_a_task(tmp_path):
 
 
 def test_compile_error_gives_st_location(tmp_path):
-    cfg = write_config(tmp_path, '[plc]\nprograms = ["p.st"]\n',
-                       {"p.st": "PROGRAM Main\nVAR x : INT; END_VAR\nx := TRUE;\nEND_PROGRAM\n"})
+    cfg = write_config(
+        tmp_path,
+        '[plc]\nprograms = ["p.st"]\n',
+        {"p.st": "PROGRAM Main\nVAR x : INT; END_VAR\nx := TRUE;\nEND_PROGRAM\n"},
+    )
     proc = softplc("run", cfg, "--virtual-time", "--cycles", "1")
     assert proc.returncode == 1
     assert "p.st:3:6: error" in proc.stderr
@@ -168,9 +197,16 @@ def test_unknown_watch_variable(tmp_path):
 
 
 def test_runtime_fault_exit_code_and_message(tmp_path):
-    cfg = write_config(tmp_path, '[plc]\nprograms = ["p.st"]\n', {"p.st": (
-        "PROGRAM Main\nVAR n, d : INT; END_VAR\nn := n + 1;\nIF n = 3 THEN\n    n := n / d;\nEND_IF\n"
-        "END_PROGRAM\n")})
+    cfg = write_config(
+        tmp_path,
+        '[plc]\nprograms = ["p.st"]\n',
+        {
+            "p.st": (
+                "PROGRAM Main\nVAR n, d : INT; END_VAR\nn := n + 1;\nIF n = 3 THEN\n    n := n / d;\nEND_IF\n"
+                "END_PROGRAM\n"
+            )
+        },
+    )
     out = tmp_path / "final.json"
     proc = softplc("run", cfg, "--virtual-time", "--cycles", "10", "--final-json", out)
     assert proc.returncode == 3, proc.stderr
@@ -197,9 +233,13 @@ END_PROGRAM
 
 
 def _retain_config(tmp_path, period="50ms") -> Path:
-    return write_config(tmp_path, f'[plc]\nprograms = ["counter.st"]\n[retain]\nfile = "counter.retain"\n'
-                        f'period = "{period}"\n[[task]]\nname = "Main"\ninterval = "10ms"\n'
-                        'programs = ["Counter"]\n', {"counter.st": COUNTER})
+    return write_config(
+        tmp_path,
+        f'[plc]\nprograms = ["counter.st"]\n[retain]\nfile = "counter.retain"\n'
+        f'period = "{period}"\n[[task]]\nname = "Main"\ninterval = "10ms"\n'
+        'programs = ["Counter"]\n',
+        {"counter.st": COUNTER},
+    )
 
 
 @pytest.mark.realtime  # the real clock runs the PLC
@@ -218,9 +258,16 @@ def test_sigterm_stops_cleanly_and_saves_retain(tmp_path):
 
 @pytest.mark.realtime  # the real clock runs the PLC
 def test_sigusr1_restarts_a_faulted_task(tmp_path):
-    cfg = write_config(tmp_path, '[plc]\nprograms = ["p.st"]\n', {"p.st": (
-        "PROGRAM Main\nVAR n, d : INT; END_VAR\nn := n + 1;\nIF n = 3 THEN\n    n := n / d;\nEND_IF\n"
-        "END_PROGRAM\n")})
+    cfg = write_config(
+        tmp_path,
+        '[plc]\nprograms = ["p.st"]\n',
+        {
+            "p.st": (
+                "PROGRAM Main\nVAR n, d : INT; END_VAR\nn := n + 1;\nIF n = 3 THEN\n    n := n / d;\nEND_IF\n"
+                "END_PROGRAM\n"
+            )
+        },
+    )
     proc = spawn("run", cfg)
     wait_for_line(proc, "stopped by a runtime fault")
     proc.send_signal(signal.SIGUSR1)

@@ -31,6 +31,7 @@ runtime/st/rtlib.py; the ones made here:
   LIMIT = MIN(MAX(IN, MN), MX), so MN > MX gives MX (IEC definition).
   EXPT, SQRT, LN ... return IEEE results (NaN, +-inf), never a fault.
 """
+
 from __future__ import annotations
 
 from collections.abc import Callable
@@ -42,12 +43,12 @@ from softplc.runtime.st import types as T
 
 @dataclass(frozen=True)
 class StdFunc:
-    name: str                 # upper case
-    params: tuple             # ((param_name, typespec), ...)
-    ret: str                  # typespec of the result
-    impl: Callable            # the Python implementation
+    name: str  # upper case
+    params: tuple  # ((param_name, typespec), ...)
+    ret: str  # typespec of the result
+    impl: Callable  # the Python implementation
     extensible: bool = False  # last param repeats (ADD, MUX inputs, MAX, CONCAT, AND...)
-    typed: bool = False       # impl(rtypes, *args), rtypes = (result_type, arg1_type, ...)
+    typed: bool = False  # impl(rtypes, *args), rtypes = (result_type, arg1_type, ...)
 
 
 STANDARD_FUNCTIONS: dict[str, StdFunc] = {}
@@ -59,8 +60,7 @@ def parse_typespec(spec: str) -> tuple:
     return (var, rest) if sep else (None, spec)
 
 
-def _def(name: str, params, ret: str, impl: Callable, extensible: bool = False,
-         typed: bool = False) -> None:
+def _def(name: str, params, ret: str, impl: Callable, extensible: bool = False, typed: bool = False) -> None:
     STANDARD_FUNCTIONS[name] = StdFunc(name, tuple(params), ret, impl, extensible, typed)
 
 
@@ -77,7 +77,9 @@ _WSTRING = T.StringType(80, wide=True)
 
 # (spelling, type, typespec); TOD/DT/LTOD/LDT have a short and a long name
 _CONV_TYPES = [(n, t, t.name) for n, t in T.ELEMENTARY.items()] + [
-    ("STRING", _STRING, "STRING"), ("WSTRING", _WSTRING, "WSTRING")]
+    ("STRING", _STRING, "STRING"),
+    ("WSTRING", _WSTRING, "WSTRING"),
+]
 
 
 def _build_conversions() -> None:
@@ -99,6 +101,7 @@ def _generic_to(dst: T.Type) -> Callable:
 
     def to(rtypes, v):
         return convert(v, rtypes[1], dst)
+
     return to
 
 
@@ -112,6 +115,7 @@ def _trunc_to(t: T.ElementaryType) -> Callable:
 
     def trunc_to(x):
         return w(trunc(x))
+
     return trunc_to
 
 
@@ -134,6 +138,7 @@ def _bcd_decoder(width: int, dst: T.ElementaryType) -> Callable:
 
     def bcd_to(x):
         return w(dec(x, width))
+
     return bcd_to
 
 
@@ -142,6 +147,7 @@ def _bcd_encoder(width: int) -> Callable:
 
     def to_bcd(v):
         return enc(v, width)
+
     return to_bcd
 
 
@@ -151,15 +157,14 @@ def _bcd_decoder_typed(dst: T.ElementaryType) -> Callable:
 
     def bcd_to(rtypes, x):
         return w(dec(x, _elem(rtypes[1]).bits))
+
     return bcd_to
 
 
 for _b in _BCD_BITS:
     for _i in T.INTEGERS:
-        _def(f"{_b.name}_BCD_TO_{_i.name}", (("IN", _b.name),), _i.name,
-             _bcd_decoder(_b.bits, _i))
-        _def(f"{_i.name}_TO_BCD_{_b.name}", (("IN", _i.name),), _b.name,
-             _bcd_encoder(_b.bits))
+        _def(f"{_b.name}_BCD_TO_{_i.name}", (("IN", _b.name),), _i.name, _bcd_decoder(_b.bits, _i))
+        _def(f"{_i.name}_TO_BCD_{_b.name}", (("IN", _i.name),), _b.name, _bcd_encoder(_b.bits))
     _def(f"TO_BCD_{_b.name}", (("IN", "ANY_INT"),), _b.name, _bcd_encoder(_b.bits))
 for _i in T.INTEGERS:
     _def(f"BCD_TO_{_i.name}", (("IN", "ANY_BIT"),), _i.name, _bcd_decoder_typed(_i), typed=True)
@@ -168,10 +173,18 @@ _def("INT_TO_BCD", (("IN", "INT"),), "BYTE", _bcd_encoder(8))  # CODESYS Util
 
 # ---------------------------------------------------------------- numeric (Table 23)
 
-for _name, _fn in (("SQRT", rtlib.sqrt), ("LN", rtlib.ln), ("LOG", rtlib.log),
-                   ("EXP", rtlib.exp), ("SIN", rtlib.sin), ("COS", rtlib.cos),
-                   ("TAN", rtlib.tan), ("ASIN", rtlib.asin), ("ACOS", rtlib.acos),
-                   ("ATAN", rtlib.atan)):
+for _name, _fn in (
+    ("SQRT", rtlib.sqrt),
+    ("LN", rtlib.ln),
+    ("LOG", rtlib.log),
+    ("EXP", rtlib.exp),
+    ("SIN", rtlib.sin),
+    ("COS", rtlib.cos),
+    ("TAN", rtlib.tan),
+    ("ASIN", rtlib.asin),
+    ("ACOS", rtlib.acos),
+    ("ATAN", rtlib.atan),
+):
     _def(_name, (("IN", "T:ANY_REAL"),), "T", _fn)
 _def("ABS", (("IN", "T:ANY_NUM"),), "T", abs)  # ABS(INT#-32768) = 32768, wrapped on store
 _def("EXPT", (("IN1", "T:ANY_REAL"), ("IN2", "ANY_NUM")), "T", rtlib.expt)
@@ -179,6 +192,7 @@ _def("ATAN2", (("Y", "T:ANY_REAL"), ("X", "T:ANY_REAL")), "T", rtlib.atan2)
 
 
 # ---------------------------------------------------------------- arithmetic (Table 24)
+
 
 def _is_real(t: T.Type, a, b) -> bool:
     e = _elem(t)
@@ -221,8 +235,7 @@ def _move(rtypes, x):
     return x
 
 
-_def("ADD", (("IN1", "T:ANY_MAGNITUDE"), ("IN2", "T:ANY_MAGNITUDE")), "T", _add,
-     extensible=True, typed=True)
+_def("ADD", (("IN1", "T:ANY_MAGNITUDE"), ("IN2", "T:ANY_MAGNITUDE")), "T", _add, extensible=True, typed=True)
 _def("MUL", (("IN1", "T:ANY_NUM"), ("IN2", "T:ANY_NUM")), "T", _mul, extensible=True, typed=True)
 _def("SUB", (("IN1", "T:ANY_MAGNITUDE"), ("IN2", "T:ANY_MAGNITUDE")), "T", _sub, typed=True)
 _def("DIV", (("IN1", "T:ANY_NUM"), ("IN2", "T:ANY_NUM")), "T", _div, typed=True)
@@ -232,9 +245,11 @@ _def("MOVE", (("IN", "T:ANY"),), "T", _move, typed=True)
 
 # ---------------------------------------------------------------- bit strings (Table 25, 26)
 
+
 def _shift_fn(op: Callable) -> Callable:
     """Shift/rotate within the width of IN's type; the result has IN's type
     (a signed operand is shifted as its bit pattern and re-signed)."""
+
     def shift(rtypes, x, n):
         t = _elem(rtypes[1])
         r = op(t.bits, x, n)
@@ -244,6 +259,7 @@ def _shift_fn(op: Callable) -> Callable:
             half = 1 << (t.bits - 1)
             return ((r + half) & ((1 << t.bits) - 1)) - half
         return r
+
     return shift
 
 
@@ -289,6 +305,7 @@ _def("NOT", (("IN", "T:ANY_BIT"),), "T", _not, typed=True)
 
 # ---------------------------------------------------------------- selection (Table 27)
 
+
 def _sel(g, in0, in1):
     return in1 if g else in0
 
@@ -312,12 +329,12 @@ def _mux(k, *inputs):
 _def("SEL", (("G", "BOOL"), ("IN0", "T:ANY"), ("IN1", "T:ANY")), "T", _sel)
 _def("MAX", (("IN1", "T:ANY_ELEMENTARY"), ("IN2", "T:ANY_ELEMENTARY")), "T", max, extensible=True)
 _def("MIN", (("IN1", "T:ANY_ELEMENTARY"), ("IN2", "T:ANY_ELEMENTARY")), "T", min, extensible=True)
-_def("LIMIT", (("MN", "T:ANY_ELEMENTARY"), ("IN", "T:ANY_ELEMENTARY"), ("MX", "T:ANY_ELEMENTARY")),
-     "T", _limit)
+_def("LIMIT", (("MN", "T:ANY_ELEMENTARY"), ("IN", "T:ANY_ELEMENTARY"), ("MX", "T:ANY_ELEMENTARY")), "T", _limit)
 _def("MUX", (("K", "ANY_INT"), ("IN0", "T:ANY"), ("IN1", "T:ANY")), "T", _mux, extensible=True)
 
 
 # ---------------------------------------------------------------- comparison (Table 28)
+
 
 def _chain(op: Callable) -> Callable:
     def compare(a, b, *more):
@@ -328,6 +345,7 @@ def _chain(op: Callable) -> Callable:
                 return False
             b = x
         return True
+
     return compare
 
 
@@ -335,16 +353,21 @@ def _ne(a, b):
     return a != b
 
 
-_CMP = (("GT", lambda a, b: a > b), ("GE", lambda a, b: a >= b), ("EQ", lambda a, b: a == b),
-        ("LE", lambda a, b: a <= b), ("LT", lambda a, b: a < b))
+_CMP = (
+    ("GT", lambda a, b: a > b),
+    ("GE", lambda a, b: a >= b),
+    ("EQ", lambda a, b: a == b),
+    ("LE", lambda a, b: a <= b),
+    ("LT", lambda a, b: a < b),
+)
 for _name, _cmp in _CMP:
-    _def(_name, (("IN1", "T:ANY_ELEMENTARY"), ("IN2", "T:ANY_ELEMENTARY")), "BOOL", _chain(_cmp),
-         extensible=True)
+    _def(_name, (("IN1", "T:ANY_ELEMENTARY"), ("IN2", "T:ANY_ELEMENTARY")), "BOOL", _chain(_cmp), extensible=True)
 _def("NE", (("IN1", "T:ANY_ELEMENTARY"), ("IN2", "T:ANY_ELEMENTARY")), "BOOL", _ne)
 
 
 # ---------------------------------------------------------------- strings (Table 29)
 # IEC parameter names; CODESYS's W-prefixed WSTRING variants as well.
+
 
 def _string_functions(prefix: str, s: str, r: str) -> None:
     """s: the typespec of the string parameters, r: of a string result."""
@@ -355,8 +378,7 @@ def _string_functions(prefix: str, s: str, r: str) -> None:
     _def(prefix + "CONCAT", (("IN1", s), ("IN2", s)), r, rtlib.CONCAT, extensible=True)
     _def(prefix + "INSERT", (("IN1", s), ("IN2", s), ("P", "ANY_INT")), r, rtlib.INSERT)
     _def(prefix + "DELETE", (("IN", s), ("L", "ANY_INT"), ("P", "ANY_INT")), r, rtlib.DELETE)
-    _def(prefix + "REPLACE", (("IN1", s), ("IN2", s), ("L", "ANY_INT"), ("P", "ANY_INT")), r,
-         rtlib.REPLACE)
+    _def(prefix + "REPLACE", (("IN1", s), ("IN2", s), ("L", "ANY_INT"), ("P", "ANY_INT")), r, rtlib.REPLACE)
     _def(prefix + "FIND", (("IN1", s), ("IN2", s)), "INT", rtlib.FIND)
 
 
@@ -396,8 +418,7 @@ for _name, (_in1, _in2), _ret in _TIME_FUNCS:
     _def(_name, (("IN1", _in1), ("IN2", _in2)), _ret, getattr(rtlib, _name))
 
 _YMD = (("YEAR", "ANY_INT"), ("MONTH", "ANY_INT"), ("DAY", "ANY_INT"))
-_HMSM = (("HOUR", "ANY_INT"), ("MINUTE", "ANY_INT"), ("SECOND", "ANY_INT"),
-         ("MILLISECOND", "ANY_INT"))
+_HMSM = (("HOUR", "ANY_INT"), ("MINUTE", "ANY_INT"), ("SECOND", "ANY_INT"), ("MILLISECOND", "ANY_INT"))
 _def("CONCAT_DATE", _YMD, "DATE", rtlib.CONCAT_DATE)
 _def("CONCAT_TOD", _HMSM, "TIME_OF_DAY", rtlib.CONCAT_TOD)
 _def("CONCAT_LTOD", _HMSM, "LTIME_OF_DAY", rtlib.CONCAT_LTOD)

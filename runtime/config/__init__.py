@@ -22,21 +22,38 @@ Modules: load (reading, the two passes, PlcConfig), plc (the core
 sections), sims ([[sim]]), section (what a bus's section provides),
 relations (pass 2), values (single values), errors (ConfigError, messages).
 """
+
 from .errors import ConfigError
 from .load import PlcConfig, config_from_dict, default_config_path, load_config
 from .plc import (
-                  DEFAULT_PAUSE_NS,
-                  DEFAULT_RETAIN_PERIOD_NS,
-                  PRIORITY_MAX,
-                  ProgramInstance,
-                  RetainConfig,
-                  SafeOutput,
-                  TaskConfig,
-                  default_watchdog_ns,
+    DEFAULT_PAUSE_NS,
+    DEFAULT_RETAIN_PERIOD_NS,
+    PRIORITY_MAX,
+    ProgramInstance,
+    RetainConfig,
+    SafeOutput,
+    TaskConfig,
+    default_watchdog_ns,
 )
 from .section import Attachment, Section, SimOptions
 from .sims import SimConfig
 
-__all__ = ["DEFAULT_PAUSE_NS", "DEFAULT_RETAIN_PERIOD_NS", "PRIORITY_MAX", "Attachment", "ConfigError", "PlcConfig",
-           "ProgramInstance", "RetainConfig", "SafeOutput", "Section", "SimConfig", "SimOptions", "TaskConfig",
-           "config_from_dict", "default_config_path", "default_watchdog_ns", "load_config"]
+__all__ = [
+    "DEFAULT_PAUSE_NS",
+    "DEFAULT_RETAIN_PERIOD_NS",
+    "PRIORITY_MAX",
+    "Attachment",
+    "ConfigError",
+    "PlcConfig",
+    "ProgramInstance",
+    "RetainConfig",
+    "SafeOutput",
+    "Section",
+    "SimConfig",
+    "SimOptions",
+    "TaskConfig",
+    "config_from_dict",
+    "default_config_path",
+    "default_watchdog_ns",
+    "load_config",
+]

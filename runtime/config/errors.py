@@ -2,6 +2,7 @@
 its key path), and pydantic's errors told in the configuration's words:
 the key path as the file writes it (task[1].interval), what was expected
 (from the field's description) and what was given, in file order."""
+
 from __future__ import annotations
 
 import difflib
@@ -64,7 +65,7 @@ def _model_at(root: type[BaseModel], loc: tuple) -> type[BaseModel] | None:
     model: type[BaseModel] | None = root
     for part in loc:
         if isinstance(part, int):
-            continue   # an array entry: the model of the array's items
+            continue  # an array entry: the model of the array's items
         info = _keys(model).get(part) if model is not None else None
         if info is None:
             return None
@@ -130,6 +131,7 @@ def in_file_order(errors: list, data: dict) -> list:
     """Sort errors by section (as they appear in the file), then by array
     entry, down to nested arrays such as canopen.node[0].tpdo[1].map[2];
     stable, so the order within one table is the schema's."""
+
     def rank(item) -> tuple:
         loc = item[0]
         out: list = []
@@ -145,4 +147,5 @@ def in_file_order(errors: list, data: dict) -> list:
                 out.append(list(table).index(part) if part in table else len(table))
             here = table.get(part)
         return tuple(out)
+
     return sorted(errors, key=rank)

@@ -10,6 +10,7 @@ the sections' models; pass 2 runs each section's relations on the raw data
 (config/relations.py). Both run whatever the other finds, so a file's
 errors are all reported at once, in file order.
 """
+
 from __future__ import annotations
 
 import os
@@ -34,19 +35,19 @@ from .values import Model, got
 
 @dataclass
 class PlcConfig:
-    path: Path | None             # the file as given; None when built from a dict alone
-    base_dir: Path                   # relative paths in the file resolve against it
+    path: Path | None  # the file as given; None when built from a dict alone
+    base_dir: Path  # relative paths in the file resolve against it
     profile: str
-    programs: list[Path]             # the ST files, absolute
-    on_fault: str                    # "task" | "plc"
-    start: str                       # "warm" | "cold"
+    programs: list[Path]  # the ST files, absolute
+    on_fault: str  # "task" | "plc"
+    start: str  # "warm" | "cold"
     tasks: list[TaskConfig] = field(default_factory=list)
     retain: RetainConfig | None = None
     safe_outputs: list[SafeOutput] = field(default_factory=list)
     sims: list[SimConfig] = field(default_factory=list)
     #: the buses' sections by TOML key (cfg.can is cfg.sections["can"])
     sections: dict[str, Any] = field(default_factory=dict)
-    raw: dict = field(default_factory=dict)   # the parsed TOML
+    raw: dict = field(default_factory=dict)  # the parsed TOML
 
     def __getattr__(self, name: str) -> Any:
         sections = self.__dict__.get("sections")
@@ -72,13 +73,11 @@ def load_config(path) -> PlcConfig:
     except IsADirectoryError:
         raise ConfigError(label, [("", "is a directory, not a configuration file")]) from None
     except OSError as exc:
-        raise ConfigError(label, [("", f"cannot read the configuration file: {exc.strerror or exc}")]) \
-            from None
+        raise ConfigError(label, [("", f"cannot read the configuration file: {exc.strerror or exc}")]) from None
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as exc:
-        raise ConfigError(label, [("", f"not UTF-8 text (byte {exc.start}); a TOML file is UTF-8")]) \
-            from None
+        raise ConfigError(label, [("", f"not UTF-8 text (byte {exc.start}); a TOML file is UTF-8")]) from None
     try:
         parsed = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -95,11 +94,11 @@ def _toml_error(message: str, text: str) -> tuple:
     """tomllib's message without its position suffix, and (line, column)."""
     m = _TOML_AT.search(message)
     if m:
-        return message[:m.start()], (int(m.group(1)), int(m.group(2)))
+        return message[: m.start()], (int(m.group(1)), int(m.group(2)))
     m = _TOML_AT_END.search(message)
     if m:
         lines = text.split("\n")
-        return message[:m.start()] + " at the end of the file", (len(lines), len(lines[-1]) + 1)
+        return message[: m.start()] + " at the end of the file", (len(lines), len(lines[-1]) + 1)
     return message, None
 
 
@@ -167,8 +166,20 @@ def config_from_dict(data: dict, path=None, *, base_dir=None) -> PlcConfig:
     assert model is not None
     built = {s.key: s.build(getattr(model, s.key), ctx) for s in doc.check_order}
     plc = built.pop("plc")
-    core = {"retain": built.pop("retain"), "tasks": built.pop("task"), "safe_outputs": built.pop("outputs"),
-            "sims": built.pop("sim")}
-    return PlcConfig(path=Path(path) if path is not None else None, base_dir=base_dir, profile=plc.profile,
-                     programs=list(plc.programs), on_fault=plc.on_fault, start=plc.start, sections=built,
-                     raw=data, **core)
+    core = {
+        "retain": built.pop("retain"),
+        "tasks": built.pop("task"),
+        "safe_outputs": built.pop("outputs"),
+        "sims": built.pop("sim"),
+    }
+    return PlcConfig(
+        path=Path(path) if path is not None else None,
+        base_dir=base_dir,
+        profile=plc.profile,
+        programs=list(plc.programs),
+        on_fault=plc.on_fault,
+        start=plc.start,
+        sections=built,
+        raw=data,
+        **core,
+    )

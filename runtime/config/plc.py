@@ -1,5 +1,6 @@
 """The core sections of a configuration: [plc] (profile, ST files, fault
 policy, start mode), [retain], [[task]] and [outputs] (safe values)."""
+
 from __future__ import annotations
 
 import math
@@ -41,19 +42,19 @@ PRIORITY_MAX = 31
 class ProgramInstance:
     instance: str
     program: str
-    key: str            # "task[0].programs[1]", for messages
+    key: str  # "task[0].programs[1]", for messages
 
 
 @dataclass
 class TaskConfig:
     name: str
-    interval_ns: int | None       # None: freewheeling
-    pause_ns: int                    # freewheeling: the gap after a cycle
-    priority: int                    # 0 (highest) .. 31
-    watchdog_ns: int | None       # None: no watchdog
-    sensitivity: int                 # overruns in a row before the watchdog fires
+    interval_ns: int | None  # None: freewheeling
+    pause_ns: int  # freewheeling: the gap after a cycle
+    priority: int  # 0 (highest) .. 31
+    watchdog_ns: int | None  # None: no watchdog
+    sensitivity: int  # overruns in a row before the watchdog fires
     programs: list[ProgramInstance]
-    key: str                         # "task[0]", for messages
+    key: str  # "task[0]", for messages
 
 
 @dataclass
@@ -65,8 +66,8 @@ class RetainConfig:
 @dataclass
 class SafeOutput:
     address: LocatedAddress
-    value: bool | int | float   # bool for a bit address
-    key: str                         # 'outputs.safe."%QX0.0"'
+    value: bool | int | float  # bool for a bit address
+    key: str  # 'outputs.safe."%QX0.0"'
 
 
 def default_watchdog_ns(interval_ns: int | None) -> int:
@@ -82,24 +83,23 @@ def default_watchdog_ns(interval_ns: int | None) -> int:
 
 class _Plc(Model):
     profile: Annotated[str, choice(PROFILES)] = Field(
-        _DEFAULT_PROFILE.name, description=f"one of {', '.join(PROFILES)}")
+        _DEFAULT_PROFILE.name, description=f"one of {', '.join(PROFILES)}"
+    )
     programs: list[StFile] = Field(
-        min_length=1, description='an array of ST files such as ["../st_programs/conveyor.st"]')
+        min_length=1, description='an array of ST files such as ["../st_programs/conveyor.st"]'
+    )
     on_fault: Annotated[str, choice(("task", "plc"))] = Field("task", description="'task' or 'plc'")
     start: Annotated[str, choice(("warm", "cold"))] = Field("warm", description="'warm' or 'cold'")
 
 
 class _Retain(Model):
-    file: Annotated[Path, PlainValidator(data_file)] = Field(
-        description='a file name such as "plant.retain"')
+    file: Annotated[Path, PlainValidator(data_file)] = Field(description='a file name such as "plant.retain"')
     period: Duration = Field(DEFAULT_RETAIN_PERIOD_NS, description=f"a duration such as {DURATION_EXAMPLES}")
 
 
 class _ProgramEntry(Model):
-    instance: Annotated[str, identifier("an instance name")] = Field(
-        description='an instance name such as "Line2"')
-    program: Annotated[str, identifier("a PROGRAM name")] = Field(
-        description='a PROGRAM name such as "Conveyor"')
+    instance: Annotated[str, identifier("an instance name")] = Field(description='an instance name such as "Line2"')
+    program: Annotated[str, identifier("a PROGRAM name")] = Field(description='a PROGRAM name such as "Conveyor"')
 
     @model_validator(mode="before")
     @classmethod
@@ -109,8 +109,9 @@ class _ProgramEntry(Model):
                 raise fail("a PROGRAM name (an IEC identifier)", value)
             return {"instance": value, "program": value}
         if not isinstance(value, dict):
-            raise fail('a PROGRAM name such as "Conveyor" or a table '
-                        '{ instance = "Line2", program = "Conveyor" }', value)
+            raise fail(
+                'a PROGRAM name such as "Conveyor" or a table { instance = "Line2", program = "Conveyor" }', value
+            )
         return value
 
 
@@ -119,18 +120,19 @@ class _Task(Model):
     interval: Duration | None = Field(None, description=f"a duration such as {DURATION_EXAMPLES}")
     freewheeling: bool = Field(False, description="true or false")
     pause: Duration | None = Field(None, description=f"a duration such as {DURATION_EXAMPLES}")
-    priority: Annotated[int, int_range(0, PRIORITY_MAX)] = Field(
-        1, description=f"an integer from 0 to {PRIORITY_MAX}")
+    priority: Annotated[int, int_range(0, PRIORITY_MAX)] = Field(1, description=f"an integer from 0 to {PRIORITY_MAX}")
     watchdog: Watchdog | None = Field(None, description="a duration, or false")
     sensitivity: Annotated[int, int_range(1)] = Field(1, description="an integer >= 1")
     programs: list[_ProgramEntry] = Field(
-        min_length=1, description='an array of PROGRAM names or { instance = "...", program = "..." } '
-                                  'tables, such as ["Conveyor"]')
+        min_length=1,
+        description='an array of PROGRAM names or { instance = "...", program = "..." } tables, such as ["Conveyor"]',
+    )
 
 
 class _Outputs(Model):
     safe: dict[str, Any] = Field(
-        default_factory=dict, description='a table of %Q address = value, such as { "%QX0.0" = false }')
+        default_factory=dict, description='a table of %Q address = value, such as { "%QX0.0" = false }'
+    )
 
 
 # ---------------------------------------------------------------- pass 2
@@ -148,8 +150,9 @@ def _check_tasks(tasks: list, ctx: Relations) -> None:
         if is_ident(name):
             first = names.setdefault(name.upper(), i)
             if first != i:
-                ctx.error(here + ("name",), f"duplicate task name '{name}' (task[{first}] has it; "
-                                             "names are case-insensitive)")
+                ctx.error(
+                    here + ("name",), f"duplicate task name '{name}' (task[{first}] has it; names are case-insensitive)"
+                )
         programs = task.get("programs")
         if not isinstance(programs, list):
             continue
@@ -166,28 +169,31 @@ def _check_tasks(tasks: list, ctx: Relations) -> None:
                 continue
             first = instances.setdefault(instance.upper(), loc)
             if first != loc:
-                hint = ("; give one its own instance name: "
-                        f'{{ instance = "{instance}2", program = "{entry}" }}' if isinstance(entry, str)
-                        else "")
-                ctx.error(loc, f"duplicate program instance '{instance}' (also at {key_text(first)}; "
-                                f"instance names are unique across tasks, case-insensitive){hint}")
+                hint = (
+                    f'; give one its own instance name: {{ instance = "{instance}2", program = "{entry}" }}'
+                    if isinstance(entry, str)
+                    else ""
+                )
+                ctx.error(
+                    loc,
+                    f"duplicate program instance '{instance}' (also at {key_text(first)}; "
+                    f"instance names are unique across tasks, case-insensitive){hint}",
+                )
+
 
 def _check_timing(here: tuple, task: dict, ctx: Relations) -> None:
     if not isinstance(task.get("freewheeling", False), bool):
-        return   # pass 1 reports it; whether the task is cyclic is unknown
+        return  # pass 1 reports it; whether the task is cyclic is unknown
     has_interval = "interval" in task
     freewheeling = task.get("freewheeling") is True
     if has_interval and freewheeling:
-        ctx.error(here + ("freewheeling",), "a task has either an interval or freewheeling = true, "
-                                             "not both")
+        ctx.error(here + ("freewheeling",), "a task has either an interval or freewheeling = true, not both")
     elif not has_interval and not freewheeling:
-        ctx.error(here, 'expected interval = "10ms" (a cyclic task) or freewheeling = true '
-                         "(got neither)")
+        ctx.error(here, 'expected interval = "10ms" (a cyclic task) or freewheeling = true (got neither)')
     if "pause" in task and has_interval and not freewheeling:
         ctx.error(here + ("pause",), "only for a freewheeling task (this one has an interval)")
     if "sensitivity" in task and task.get("watchdog") is False:
-        ctx.error(here + ("sensitivity",), "only meaningful with a watchdog (this task has "
-                                            "watchdog = false)")
+        ctx.error(here + ("sensitivity",), "only meaningful with a watchdog (this task has watchdog = false)")
 
 
 class PlcSection(Section):
@@ -228,13 +234,21 @@ class TaskSection(Section):
                 watchdog = default_watchdog_ns(interval)
             else:
                 watchdog = None if t.watchdog is False else t.watchdog
-            programs = [ProgramInstance(p.instance, p.program, f"{key}.programs[{j}]")
-                        for j, p in enumerate(t.programs)]
-            tasks.append(TaskConfig(
-                name=t.name, interval_ns=interval,
-                pause_ns=t.pause if t.pause is not None else DEFAULT_PAUSE_NS,
-                priority=t.priority, watchdog_ns=watchdog, sensitivity=t.sensitivity,
-                programs=programs, key=key))
+            programs = [
+                ProgramInstance(p.instance, p.program, f"{key}.programs[{j}]") for j, p in enumerate(t.programs)
+            ]
+            tasks.append(
+                TaskConfig(
+                    name=t.name,
+                    interval_ns=interval,
+                    pause_ns=t.pause if t.pause is not None else DEFAULT_PAUSE_NS,
+                    priority=t.priority,
+                    watchdog_ns=watchdog,
+                    sensitivity=t.sensitivity,
+                    programs=programs,
+                    key=key,
+                )
+            )
         return tasks
 
 
@@ -259,8 +273,10 @@ class OutputsSection(Section):
                 ctx.error(loc, f"expected a %Q output address (got {area_name(addr)})")
                 continue
             if addr.table is not None:
-                ctx.error(loc, "expected a single bit, byte, word, dword or lword (got a word table); "
-                                "list the words one by one")
+                ctx.error(
+                    loc,
+                    "expected a single bit, byte, word, dword or lword (got a word table); list the words one by one",
+                )
                 continue
             ident = (addr.size if addr.size != "" else "X", addr.indices, addr.bit)
             if ident in seen:
@@ -294,8 +310,11 @@ class OutputsSection(Section):
                 return None
             return (value,)
         if isinstance(value, float):
-            ctx.error(loc, f"expected an integer for {what} address (got {value!r}; a REAL needs a "
-                            "%QD address, an LREAL a %QL address)")
+            ctx.error(
+                loc,
+                f"expected an integer for {what} address (got {value!r}; a REAL needs a "
+                "%QD address, an LREAL a %QL address)",
+            )
             return None
         kind = "an integer or a float" if bits >= 32 else "an integer"
         ctx.error(loc, f"expected {kind} for {what} address (got {got(value)})")

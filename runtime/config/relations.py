@@ -9,6 +9,7 @@ falls in the process image, keeps the %I bits that something already
 writes (so two writers of one input are reported), and holds each
 section's parsed results for its build (``state``).
 """
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -50,13 +51,13 @@ class Relations:
             return None
         try:
             return _address.parse_address(text, self.addressing)
-        except ValueError as exc:   # AddressError, and LiteralError should one slip through
+        except ValueError as exc:  # AddressError, and LiteralError should one slip through
             message = str(exc)
             if "is not a direct address" in message:
                 message = f"expected a direct address such as {examples} (got {got(text)})"
-            else:   # drop the address the key already names
+            else:  # drop the address the key already names
                 prefix = text.strip().upper() + ": "
-                message = message[len(prefix):] if message.startswith(prefix) else message
+                message = message[len(prefix) :] if message.startswith(prefix) else message
             self.error(loc, message)
             return None
 
@@ -72,7 +73,7 @@ class Relations:
         IEC model, words for Schneider; bit n of byte b is bit 8b + n."""
         image = self.probe()
         if addr.bit is not None or addr.size in ("", "X"):
-            if addr.bit is not None:     # %IW3:X2 (Schneider): a bit of a word
+            if addr.bit is not None:  # %IW3:X2 (Schneider): a bit of a word
                 word = image.byte_offset(LocatedAddress(addr.area, "W", addr.indices, None, None, addr.text))
                 bit = 8 * word + addr.bit
             elif len(addr.indices) >= 2:

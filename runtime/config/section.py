@@ -14,6 +14,7 @@ section's check runs whatever pass 1 found (value may be missing or of
 the wrong type: pass 1 reports that), and build runs only for a file
 without errors.
 """
+
 from __future__ import annotations
 
 from typing import Any, ClassVar
@@ -56,6 +57,7 @@ class Attachment:
     kind: the bus in messages ("only for a CAN device"); model: the keys,
     for pass 1; default_name: the shape of a simulator's default name in
     messages ("<type><node_id>")."""
+
     kind: ClassVar[str]
     model: ClassVar[type[Model]]
     default_name: ClassVar[str]

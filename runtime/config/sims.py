@@ -11,6 +11,7 @@ the type says which bus it sits on (the bus's Attachment gives the keys
 that place it there and checks them) and which keys of its own it has.
 A key of another bus's devices is refused with what this device has.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -27,27 +28,30 @@ from .values import Model, choice, identifier, is_ident
 
 @dataclass
 class SimConfig:
-    type: str                        # a [[sim]] type of a registered device
+    type: str  # a [[sim]] type of a registered device
     name: str
-    key: str                         # "sim[0]"
-    at: Any                          # where it sits: the bus's dataclass (a CAN node, a Modbus unit ...)
-    options: Any = None              # the device's own keys, as its SimOptions builds them
+    key: str  # "sim[0]"
+    at: Any  # where it sits: the bus's dataclass (a CAN node, a Modbus unit ...)
+    options: Any = None  # the device's own keys, as its SimOptions builds them
 
 
 class SimSection(Section):
     """The [[sim]] section of the devices in a registry."""
+
     key = "sim"
     many = True
     description = "[[sim]] tables"
 
     def __init__(self, registry: Registry) -> None:
         self.registry = registry
-        self.types = registry.sim_types()            # type -> Device
+        self.types = registry.sim_types()  # type -> Device
         self.attachments = {bus.name: bus.attachment for bus in registry.buses if bus.attachment is not None}
         for device in registry.devices:
             if device.sim_types and device.bus not in self.attachments:
-                raise PluginError(f"device {device.name}: its simulators sit on bus {device.bus!r}, which is not "
-                                  "registered or takes no simulated devices")
+                raise PluginError(
+                    f"device {device.name}: its simulators sit on bus {device.bus!r}, which is not "
+                    "registered or takes no simulated devices"
+                )
         self.model = self._model()
 
     def _model(self) -> type[Model]:
@@ -58,8 +62,10 @@ class SimSection(Section):
         listed = " or ".join([", ".join(quoted[:-1]), quoted[-1]]) if len(quoted) > 1 else "".join(quoted)
         fields: dict[str, Any] = {
             "type": (Annotated[str, choice(types)], Field(description=listed)),
-            "name": (Annotated[str, identifier("a simulator name")] | None,
-                     Field(None, description='a simulator name such as "motor_sim"')),
+            "name": (
+                Annotated[str, identifier("a simulator name")] | None,
+                Field(None, description='a simulator name such as "motor_sim"'),
+            ),
         }
         models = list(self.attachments.values()) + [d.sim_options for d in self.registry.devices if d.sim_options]
         for owner in models:
@@ -67,7 +73,7 @@ class SimSection(Section):
             for name, info in model.model_fields.items():
                 if name not in fields:
                     annotation = info.annotation
-                    assert annotation is not None      # a model's field always has its annotation
+                    assert annotation is not None  # a model's field always has its annotation
                     fields[name] = (annotation | None, Field(None, description=info.description))
         return create_model("Sim", __base__=Model, **fields)
 
@@ -87,7 +93,7 @@ class SimSection(Section):
             here = ("sim", i)
             device = self._device_of(sim)
             if device is None:
-                continue       # pass 1 reports the type
+                continue  # pass 1 reports the type
             attachment = self.attachments[device.bus]
             self._foreign_keys(here, sim, device, ctx)
             attachment.check(here, sim, ctx)
@@ -105,32 +111,41 @@ class SimSection(Section):
             types = [t for t, d in self.types.items() if d.bus == bus]
             for key in attachment.keys:
                 if key in sim and key not in mine:
-                    ctx.error(here + (key,), f"only for a {attachment.kind} device ({', '.join(types)}); "
-                                                  f"a {own.kind} device has {' and '.join(own.keys)}")
+                    ctx.error(
+                        here + (key,),
+                        f"only for a {attachment.kind} device ({', '.join(types)}); "
+                        f"a {own.kind} device has {' and '.join(own.keys)}",
+                    )
         for other in self.registry.devices:
             if other is device or other.sim_options is None:
                 continue
             for key in other.sim_options.model_fields:
                 if key in sim and key not in mine and not any(key in a.keys for a in self.attachments.values()):
-                    ctx.error(here + (key,), f"only for {', '.join(other.sim_types)}; "
-                                                  f"type {sim['type']!r} does not take it")
+                    ctx.error(
+                        here + (key,), f"only for {', '.join(other.sim_types)}; type {sim['type']!r} does not take it"
+                    )
 
     def _name(self, here: tuple, sim: dict, attachment: Attachment, names: dict, ctx: Relations) -> None:
         if "name" in sim:
             name = sim["name"]
             if not is_ident(name):
-                return        # pass 1 reports it
+                return  # pass 1 reports it
             first = names.setdefault(name.upper(), here)
             if first != here:
-                ctx.error(here + ("name",), f"duplicate simulator name '{name}' ({key_text(first)} has it; "
-                                                 "names are case-insensitive)")
+                ctx.error(
+                    here + ("name",),
+                    f"duplicate simulator name '{name}' ({key_text(first)} has it; names are case-insensitive)",
+                )
             return
         name = attachment.name(sim["type"].lower(), sim)
         if name is not None:
             first = names.setdefault(name.upper(), here)
             if first != here:
-                ctx.error(here, f"duplicate simulator name '{name}', the default {attachment.default_name} "
-                                     f"({key_text(first)} has it): give one a name")
+                ctx.error(
+                    here,
+                    f"duplicate simulator name '{name}', the default {attachment.default_name} "
+                    f"({key_text(first)} has it): give one a name",
+                )
 
     # ---------------------------------------------------------------- build
 
@@ -149,4 +164,3 @@ class SimSection(Section):
             name = sim.name or attachment.name(sim.type, {k: v for k, v in values.items() if v is not None})
             out.append(SimConfig(type=sim.type, name=name, key=key_text(here), at=at, options=options))
         return out
-

@@ -2,6 +2,7 @@
 identifiers, choices, files, integers in a range), each refusing a value
 with a message in the configuration's own words, and the base model of
 every table. Sections of the core and of the buses build on these."""
+
 from __future__ import annotations
 
 import difflib
@@ -23,6 +24,7 @@ U16_MAX = 0xFFFF
 
 class Model(BaseModel):
     """A table of the file: unknown keys refused, no coercion of values."""
+
     model_config = ConfigDict(extra="forbid", strict=True)
 
 
@@ -38,18 +40,17 @@ def got(value) -> str:
         return "an empty array" if not value else "an array"
     if isinstance(value, (int, float)):
         return repr(value)
-    return f"a {type(value).__name__}"   # TOML dates and times
+    return f"a {type(value).__name__}"  # TOML dates and times
 
 
 def fail(expected: str, value) -> PydanticCustomError:
-    return PydanticCustomError("config", "expected {expected} (got {got})",
-                               {"expected": expected, "got": got(value)})
+    return PydanticCustomError("config", "expected {expected} (got {got})", {"expected": expected, "got": got(value)})
 
 
 def duration_ns(value) -> int | None:
     try:
         return parse_duration_ns(value)
-    except (OverflowError, ValueError):   # inf, nan
+    except (OverflowError, ValueError):  # inf, nan
         return None
 
 
@@ -70,7 +71,7 @@ def negative(text: str) -> bool:
     text = text.strip().lower()
     for prefix in ("time#", "t#"):
         if text.startswith(prefix):
-            text = text[len(prefix):]
+            text = text[len(prefix) :]
             break
     return text.startswith("-") and duration_ns(text[1:]) is not None
 
@@ -87,10 +88,10 @@ def watchdog(value):
 
 def int_range(lo: int, hi: int | None = None):
     def check(value) -> int:
-        if isinstance(value, int) and not isinstance(value, bool) and value >= lo \
-                and (hi is None or value <= hi):
+        if isinstance(value, int) and not isinstance(value, bool) and value >= lo and (hi is None or value <= hi):
             return value
         raise fail(f"an integer from {lo} to {hi}" if hi is not None else f"an integer >= {lo}", value)
+
     return PlainValidator(check)
 
 
@@ -106,6 +107,7 @@ def identifier(what: str):
         if is_ident(value):
             return value
         raise fail(f"{what}: an IEC identifier (letters, digits, _; not starting with a digit)", value)
+
     return PlainValidator(check)
 
 
@@ -122,8 +124,10 @@ def choice(options):
             close = difflib.get_close_matches(value.lower(), options, n=1)
             if close:
                 hint = f"; did you mean '{close[0]}'?"
-        raise PydanticCustomError("config", "expected one of {listed} (got {got}{hint})",
-                                  {"listed": listed, "got": got(value), "hint": hint})
+        raise PydanticCustomError(
+            "config", "expected one of {listed} (got {got}{hint})", {"listed": listed, "got": got(value), "hint": hint}
+        )
+
     return PlainValidator(check)
 
 
@@ -145,8 +149,11 @@ def existing_file(text: str, info: ValidationInfo) -> Path:
     """text as an existing file, relative to the config file's directory."""
     resolved = Path(os.path.normpath(_base_dir(info) / Path(text).expanduser()))
     if not resolved.exists():
-        raise PydanticCustomError("config", "no such file: {path} (relative paths start at the "
-                                  "config file's directory)", {"path": str(resolved)})
+        raise PydanticCustomError(
+            "config",
+            "no such file: {path} (relative paths start at the config file's directory)",
+            {"path": str(resolved)},
+        )
     if not resolved.is_file():
         raise PydanticCustomError("config", "not a file: {path}", {"path": str(resolved)})
     return resolved
@@ -157,8 +164,7 @@ def data_file(value, info: ValidationInfo) -> Path:
         raise fail('a file name such as "plant.retain"', value)
     resolved = Path(os.path.normpath(_base_dir(info) / Path(value).expanduser()))
     if resolved.is_dir():
-        raise PydanticCustomError("config", "{path} is a directory; expected a file name",
-                                  {"path": str(resolved)})
+        raise PydanticCustomError("config", "{path} is a directory; expected a file name", {"path": str(resolved)})
     return resolved
 
 
@@ -191,6 +197,7 @@ def duration_in(unit: str, *, off: str | None = None, most: tuple | None = None)
         if most is not None and count > most[0]:
             raise fail(f"a duration of at most {most[0]}{unit} ({most[1]}){or_off}", value)
         return count
+
     return check
 
 
@@ -204,12 +211,14 @@ def quiet(check, value):
 
 def text_value(expected: str):
     """A non-empty string; an integer is taken as its decimal text (channel = 0)."""
+
     def check(value) -> str:
         if isinstance(value, str) and value.strip():
             return value.strip()
         if isinstance(value, int) and not isinstance(value, bool):
             return str(value)
         raise fail(expected, value)
+
     return PlainValidator(check)
 
 
@@ -218,6 +227,7 @@ def nonempty(expected: str):
         if isinstance(value, str) and value.strip():
             return value.strip()
         raise fail(expected, value)
+
     return PlainValidator(check)
 
 
@@ -232,6 +242,7 @@ def choice_int(options):
         if isinstance(value, int) and not isinstance(value, bool) and value in options:
             return value
         raise fail("one of " + ", ".join(map(str, options)), value)
+
     return PlainValidator(check)
 
 
@@ -240,13 +251,18 @@ def choice_upper(options):
         if isinstance(value, str) and value.upper() in options:
             return value.upper()
         raise fail("one of " + ", ".join(f"'{o}'" for o in options), value)
+
     return PlainValidator(check)
 
 
 def in_range(value: object, lo: int | None, hi: int | None) -> TypeGuard[int]:
     """An integer (not a bool) within lo..hi (None: unbounded)."""
-    return isinstance(value, int) and not isinstance(value, bool) and (lo is None or value >= lo) \
+    return (
+        isinstance(value, int)
+        and not isinstance(value, bool)
+        and (lo is None or value >= lo)
         and (hi is None or value <= hi)
+    )
 
 
 def bit_count(addr: LocatedAddress) -> int:

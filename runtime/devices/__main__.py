@@ -1,6 +1,7 @@
 """python -m softplc.runtime.devices [DIR]: rewrite every file the registered
 devices generate from their manual tables (ST constants, EDS files), in
 place, or into DIR to compare."""
+
 from __future__ import annotations
 
 import sys

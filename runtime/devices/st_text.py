@@ -1,5 +1,6 @@
 """Generated ST text for device libraries: string literals and the files
 a generator writes (fblocks/vendor/*_codes.st from a device's tables)."""
+
 from __future__ import annotations
 
 from importlib import resources

@@ -1,6 +1,7 @@
 """From a configuration to a ready engine: compile the ST files, plan the
 tasks, let every registered bus make its drivers and simulated devices, and
 make the retain store. Names no bus and no device: the registry does."""
+
 from __future__ import annotations
 
 from ..config import PlcConfig
@@ -21,8 +22,7 @@ def make_drivers(config: PlcConfig, clock=None) -> list:
     drivers, each in registry order. The engine stops them in reverse: bus
     drivers before the simulated devices they talk to."""
     clock = clock if clock is not None else RealClock()
-    ctx = BuildContext(clock, get_profile(config.profile).addressing,
-                       str(config.path) if config.path else "<config>")
+    ctx = BuildContext(clock, get_profile(config.profile).addressing, str(config.path) if config.path else "<config>")
     simulators, drivers = [], []
     for bus in registry().buses:
         if bus.build is not None:
@@ -32,8 +32,9 @@ def make_drivers(config: PlcConfig, clock=None) -> list:
     return simulators + drivers
 
 
-def build_engine(config: PlcConfig, *, virtual_time: bool = False, start_mode: str | None = None,
-                 program=None) -> Engine:
+def build_engine(
+    config: PlcConfig, *, virtual_time: bool = False, start_mode: str | None = None, program=None
+) -> Engine:
     """An Engine for config, not started. Raises CompileError for errors in
     the ST files and TaskSetupError for tasks that cannot run. program: an
     already compiled Program (tests compile once and build many engines)."""
@@ -43,11 +44,14 @@ def build_engine(config: PlcConfig, *, virtual_time: bool = False, start_mode: s
     tasks = plan_tasks(program, config.tasks, where)
     retain_store = RetainStore(config.retain.file) if config.retain else None
     clock = VirtualClock() if virtual_time else RealClock()
-    return Engine(program, tasks,
-                  clock=clock,
-                  drivers=make_drivers(config, clock),
-                  on_fault=config.on_fault,
-                  safe_outputs=config.safe_outputs,
-                  retain_store=retain_store,
-                  retain_period_ns=config.retain.period_ns if config.retain else 1_000_000_000,
-                  start_mode=start_mode or config.start)
+    return Engine(
+        program,
+        tasks,
+        clock=clock,
+        drivers=make_drivers(config, clock),
+        on_fault=config.on_fault,
+        safe_outputs=config.safe_outputs,
+        retain_store=retain_store,
+        retain_period_ns=config.retain.period_ns if config.retain else 1_000_000_000,
+        start_mode=start_mode or config.start,
+    )

@@ -12,6 +12,7 @@ PeriodicService  a real-time thread that serves a bus or a simulated
              device every period on a clock (in virtual time the engine
              advances them at each tick instead).
 """
+
 from __future__ import annotations
 
 import logging

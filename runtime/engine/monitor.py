@@ -1,5 +1,6 @@
 """Watching a running engine: watched variables, the status line and the
 CSV trace of `softplc run`."""
+
 from __future__ import annotations
 
 import csv
@@ -32,8 +33,10 @@ class Watch:
             return self.engine.variable(path)
         except KeyError:
             names = ", ".join(name for name, _info, _obj in self.engine.instances.values())
-            raise KeyError(f"no variable '{path}' (write Instance.variable for a program's variable "
-                           f"-- instances: {names} -- or the name of a global variable)") from None
+            raise KeyError(
+                f"no variable '{path}' (write Instance.variable for a program's variable "
+                f"-- instances: {names} -- or the name of a global variable)"
+            ) from None
 
     def _current(self) -> list:
         if self._resolved_at != self.engine.restarts:
@@ -97,10 +100,12 @@ def status_line(engine, watch: Watch | None = None) -> str:
     for task in engine.tasks:
         s = task.stats
         state = " FAULT" if task.fault is not None else ""
-        parts.append(f"{task.name}{state}: {_us(s.last_ns)}/{_us(s.mean_ns)}/{_us(s.max_ns)} "
-                     f"jitter {_us(s.jitter_max_ns)} overruns {s.overruns}")
+        parts.append(
+            f"{task.name}{state}: {_us(s.last_ns)}/{_us(s.mean_ns)}/{_us(s.max_ns)} "
+            f"jitter {_us(s.jitter_max_ns)} overruns {s.overruns}"
+        )
     parts.append(f"faults={len(engine.faults)}" + (" outputs SAFE" if engine.outputs_safe else ""))
-    for driver in engine.drivers:   # a bus driver's word on its bus: "canopen: 1/1 up"
+    for driver in engine.drivers:  # a bus driver's word on its bus: "canopen: 1/1 up"
         status = driver.status()
         if status.message:
             parts.append(status.message if status.ok else f"{status.message} (!)")
@@ -114,8 +119,7 @@ class StatusReporter:
     never waits on a terminal: rewritten in place 4 times a second on a
     terminal, a plain line every `every_s` seconds otherwise (logs)."""
 
-    def __init__(self, engine, stream: TextIO, watch: Watch | None, tty: bool,
-                 every_s: float = 5.0) -> None:
+    def __init__(self, engine, stream: TextIO, watch: Watch | None, tty: bool, every_s: float = 5.0) -> None:
         self.engine = engine
         self.stream = stream
         self.watch = watch
@@ -147,4 +151,3 @@ class StatusReporter:
         if self._thread.is_alive():
             self._thread.join(timeout=2)
         self.show(final=True)
-

@@ -38,6 +38,7 @@ of the directory): after a crash or a kill it holds either the previous or
 the new contents, never a mix. Line 1 is a JSON header with the SHA-256 and
 length of the body; the body is the JSON of RetainData, one variable a line.
 """
+
 from __future__ import annotations
 
 import hashlib
@@ -64,6 +65,7 @@ _SKIPPED_SECTIONS = frozenset({"VAR_IN_OUT", "VAR_EXTERNAL", "VAR_TEMP"})
 
 # ================================================================ type signatures
 
+
 def type_signature(t: T.Type) -> str:
     """Canonical text of a type's structure: equal for two programs that
     declare the type the same way (names are upper-cased, as ST ignores case),
@@ -89,7 +91,7 @@ def type_signature(t: T.Type) -> str:
     if isinstance(t, (T.StructType, T.FBType)):
         members = ";".join(f"{name.upper()}:{type_signature(mt)}" for name, _attr, mt in _members(t))
         return f"{t.name.upper()}{{{members}}}"
-    return str(t).upper()   # ADR#, NULL; str() is the name (which Type itself does not declare)
+    return str(t).upper()  # ADR#, NULL; str() is the name (which Type itself does not declare)
 
 
 def _members(t: T.StructType | T.FBType) -> list:
@@ -100,8 +102,11 @@ def _members(t: T.StructType | T.FBType) -> list:
     pou = t.pou
     if pou is None:
         return []
-    return [(v.name, v.pyname, v.type) for v in pou.vars.values()
-            if v.section not in _SKIPPED_SECTIONS and v.location is None]
+    return [
+        (v.name, v.pyname, v.type)
+        for v in pou.vars.values()
+        if v.section not in _SKIPPED_SECTIONS and v.location is None
+    ]
 
 
 # ================================================================ snapshot codecs
@@ -135,6 +140,7 @@ def _encoder(t: T.Type):
         def encode_object(obj, members=tuple(members)):
             # declaration order, so the file reads like the declaration
             return {name: (get(obj) if enc is None else enc(get(obj))) for name, get, enc in members}
+
         return encode_object
     if isinstance(t, (T.ElementaryType, T.StringType, T.EnumType, T.SubrangeType)):
         return None
@@ -161,6 +167,7 @@ def _array_encoder(ndims: int, elem) -> Callable:
 
 
 # ================================================================ restore (decode)
+
 
 class _BadValue(Exception):
     """A saved value that does not fit its type (a hand-edited file)."""
@@ -246,7 +253,7 @@ def _apply_into(t: T.Type, obj: Any, data: Any) -> None:
     if isinstance(t, T.ArrayType):
         _apply_array(len(t.dims), t.elem, obj, data)
         return
-    assert isinstance(t, (T.StructType, T.FBType)), t   # an aggregate (is_aggregate) other than an array
+    assert isinstance(t, (T.StructType, T.FBType)), t  # an aggregate (is_aggregate) other than an array
     for name, attr, mt in _members(t):
         if name.upper() in data:
             _apply(mt, obj, attr, data[name.upper()])
@@ -265,9 +272,11 @@ def _apply_array(ndims: int, elem: T.Type, live: list, data: list) -> None:
 
 # ================================================================ the plan
 
+
 @dataclass(eq=False)
 class RetainedVar:
     """One retained variable and where its value lives: getattr(holder, attr)."""
+
     path: str
     kind: str  # RETAIN or PERSISTENT
     signature: str
@@ -305,8 +314,10 @@ def plan_retain(checked, instances: dict, globals_obj) -> list:
     for rv in plan:
         key = rv.path.upper()
         if key in seen:
-            raise ValueError(f"two retained variables have the path {rv.path}: rename the program "
-                             "instance or the global variable so they differ")
+            raise ValueError(
+                f"two retained variables have the path {rv.path}: rename the program "
+                "instance or the global variable so they differ"
+            )
         seen[key] = rv
     return plan
 
@@ -353,6 +364,7 @@ def snapshot(plan) -> dict:
 @dataclass
 class RetainData:
     """What a retain file holds."""
+
     layout: str
     saved_ns: int
     cycle: int
@@ -361,9 +373,12 @@ class RetainData:
 
 def capture(plan, saved_ns: int, cycle: int) -> RetainData:
     values = snapshot(plan)
-    return RetainData(layout_hash(plan), int(saved_ns), int(cycle),
-                      {rv.path: {"kind": rv.kind, "type": rv.signature, "value": values[rv.path]}
-                       for rv in plan})
+    return RetainData(
+        layout_hash(plan),
+        int(saved_ns),
+        int(cycle),
+        {rv.path: {"kind": rv.kind, "type": rv.signature, "value": values[rv.path]} for rv in plan},
+    )
 
 
 @dataclass
@@ -399,8 +414,9 @@ def restore(plan, data: RetainData | None, mode: str) -> RestoreReport:
             report.dropped.append((rv.path, "not in the file"))
             continue
         if entry.get("type") != rv.signature:
-            report.dropped.append((rv.path, f"type changed (saved {_clip(entry.get('type'))}, "
-                                            f"now {_clip(rv.signature)})"))
+            report.dropped.append(
+                (rv.path, f"type changed (saved {_clip(entry.get('type'))}, now {_clip(rv.signature)})")
+            )
             continue
         try:
             value = _check(rv.type, entry.get("value"), rv.path)
@@ -413,6 +429,7 @@ def restore(plan, data: RetainData | None, mode: str) -> RestoreReport:
 
 
 # ================================================================ the file
+
 
 class RetainFileError(Exception):
     """A retain file that cannot be used; the message names the file and
@@ -436,8 +453,10 @@ def _is_temp_of(name: str, path: Path) -> bool:
 
 def _encode_body(data: RetainData) -> bytes:
     # One variable a line, so a human can read and diff the file.
-    head = (f'{{"layout": {json.dumps(data.layout)}, "saved_ns": {int(data.saved_ns)}, '
-            f'"cycle": {int(data.cycle)}, "vars": {{')
+    head = (
+        f'{{"layout": {json.dumps(data.layout)}, "saved_ns": {int(data.saved_ns)}, '
+        f'"cycle": {int(data.cycle)}, "vars": {{'
+    )
     items = [f"\n{json.dumps(path)}: {json.dumps(entry, allow_nan=True)}" for path, entry in data.vars.items()]
     return (head + ",".join(items) + "\n}}\n").encode("utf-8")
 
@@ -446,8 +465,9 @@ def write_file(path: Path, data: RetainData) -> None:
     """Write data to path atomically; raises OSError when the disk refuses."""
     path = Path(path)
     body = _encode_body(data)
-    header = json.dumps({"format": FORMAT, "version": VERSION,
-                         "sha256": hashlib.sha256(body).hexdigest(), "length": len(body)})
+    header = json.dumps(
+        {"format": FORMAT, "version": VERSION, "sha256": hashlib.sha256(body).hexdigest(), "length": len(body)}
+    )
     directory = path.parent
     tmp = directory / f"{_temp_prefix(path)}{os.getpid()}.{os.urandom(4).hex()}.tmp"
     fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0), 0o644)
@@ -491,8 +511,7 @@ def read_file(path: Path) -> RetainData | None:
     except FileNotFoundError:
         return None
     except OSError as exc:
-        raise RetainFileError(f"{path}: cannot read the retain file: {exc.strerror or exc}",
-                              damaged=False) from None
+        raise RetainFileError(f"{path}: cannot read the retain file: {exc.strerror or exc}", damaged=False) from None
     if not raw:
         raise RetainFileError(f"{path}: the retain file is empty")
     head, sep, body = raw.partition(b"\n")
@@ -504,8 +523,9 @@ def read_file(path: Path) -> RetainData | None:
         raise RetainFileError(f"{path}: not a softplc retain file (no '{FORMAT}' header on line 1)")
     version = header.get("version")
     if version != VERSION:
-        raise RetainFileError(f"{path}: retain file version {version!r} is not known to this softplc "
-                              f"(it reads version {VERSION})")
+        raise RetainFileError(
+            f"{path}: retain file version {version!r} is not known to this softplc (it reads version {VERSION})"
+        )
     length, digest = header.get("length"), header.get("sha256")
     if not isinstance(length, int) or isinstance(length, bool) or not isinstance(digest, str):
         raise RetainFileError(f"{path}: the retain file header lacks the length or sha256")
@@ -536,13 +556,18 @@ def _data_from_json(doc: Any, path: Path) -> RetainData:
     if not isinstance(variables, dict):
         raise bad("'vars' is not an object")
     for name, entry in variables.items():
-        if not (isinstance(entry, dict) and isinstance(entry.get("kind"), str)
-                and isinstance(entry.get("type"), str) and "value" in entry):
+        if not (
+            isinstance(entry, dict)
+            and isinstance(entry.get("kind"), str)
+            and isinstance(entry.get("type"), str)
+            and "value" in entry
+        ):
             raise bad(f"variable {name!r} lacks kind, type or value")
     return RetainData(layout, saved_ns, cycle, variables)
 
 
 # ================================================================ the store
+
 
 class RetainStore:
     """The retain file of a running engine. Writes happen in a background
@@ -564,8 +589,7 @@ class RetainStore:
         self._closed = False
         self._thread: threading.Thread | None = None
         if threaded:
-            self._thread = threading.Thread(target=self._run, name=f"retain-writer {self.path.name}",
-                                            daemon=True)
+            self._thread = threading.Thread(target=self._run, name=f"retain-writer {self.path.name}", daemon=True)
             self._thread.start()
 
     # ------------------------------------------------------------ start
@@ -583,8 +607,7 @@ class RetainStore:
             try:
                 kept = self._move_aside()
             except OSError as err:
-                return None, (f"{exc}; starting with initial values (could not rename it: "
-                              f"{err.strerror or err})")
+                return None, (f"{exc}; starting with initial values (could not rename it: {err.strerror or err})")
             return None, f"{exc}; kept as {kept}; starting with initial values"
 
     def _move_aside(self) -> Path:

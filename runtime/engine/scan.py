@@ -14,6 +14,7 @@ are handed the safe output values, and the engine goes on serving: inputs
 are read, the other tasks run (on_fault="task"), PLC_DIAG tells programs,
 until restart() brings the faulted tasks back.
 """
+
 from __future__ import annotations
 
 import logging
@@ -67,8 +68,7 @@ class Task:
         self.sensitivity = spec.sensitivity
         # The cooperative check on loop back-edges faults a single cycle at
         # once when it runs longer than time x sensitivity (as CODESYS).
-        self.budget_s = float("inf") if spec.watchdog_ns is None else \
-            spec.watchdog_ns * spec.sensitivity / 1e9
+        self.budget_s = float("inf") if spec.watchdog_ns is None else spec.watchdog_ns * spec.sensitivity / 1e9
         self.instances: list = []  # (instance name, POUInfo, object)
         self.calls: list = []
         self.next_ns = 0
@@ -77,18 +77,33 @@ class Task:
         self.stats = TaskStats()
 
     def describe(self) -> str:
-        every = f"every {self.interval_ns / 1e6:g} ms" if self.interval_ns is not None else \
-            f"freewheeling (pause {self.pause_ns / 1e6:g} ms)"
-        wd = "no watchdog" if self.watchdog_ns is None else \
-            f"watchdog {self.watchdog_ns / 1e6:g} ms x{self.sensitivity}"
+        every = (
+            f"every {self.interval_ns / 1e6:g} ms"
+            if self.interval_ns is not None
+            else f"freewheeling (pause {self.pause_ns / 1e6:g} ms)"
+        )
+        wd = (
+            "no watchdog" if self.watchdog_ns is None else f"watchdog {self.watchdog_ns / 1e6:g} ms x{self.sensitivity}"
+        )
         names = ", ".join(name for name, _info, _obj in self.instances)
         return f"task {self.name}: {every}, priority {self.priority}, {wd}: {names}"
 
 
 class Engine:
-    def __init__(self, program: Program, tasks: list, *, clock=None, image: ProcessImage | None = None,
-                 drivers=(), on_fault: str = "task", safe_outputs=(), retain_store=None,
-                 retain_period_ns: int = 1_000_000_000, start_mode: str = "warm") -> None:
+    def __init__(
+        self,
+        program: Program,
+        tasks: list,
+        *,
+        clock=None,
+        image: ProcessImage | None = None,
+        drivers=(),
+        on_fault: str = "task",
+        safe_outputs=(),
+        retain_store=None,
+        retain_period_ns: int = 1_000_000_000,
+        start_mode: str = "warm",
+    ) -> None:
         if on_fault not in ON_FAULT:
             raise ValueError(f"on_fault must be one of {ON_FAULT}")
         if start_mode not in START_MODES:
@@ -98,7 +113,7 @@ class Engine:
         self.image = image if image is not None else ProcessImage(program.profile.addressing)
         self.ctx = ExecContext(self.image)
         self.drivers = list(drivers)
-        for driver in self.drivers:   # a native function's service: the first driver's that offers it
+        for driver in self.drivers:  # a native function's service: the first driver's that offers it
             for name, service in driver.services.items():
                 self.ctx.services.setdefault(name, service)
         self.on_fault = on_fault
@@ -198,9 +213,9 @@ class Engine:
             task.calls = [obj for _name, _info, obj in fresh]
 
     def _plan_retain(self) -> list:
-        return R.plan_retain(self.program.checked,
-                             {name: (info, obj) for name, info, obj in self.instances.values()},
-                             self.ns["_G"])
+        return R.plan_retain(
+            self.program.checked, {name: (info, obj) for name, info, obj in self.instances.values()}, self.ns["_G"]
+        )
 
     def _log_restore(self, report) -> None:
         if report.restored:
@@ -285,9 +300,14 @@ class Engine:
             if exec_ns > task.watchdog_ns:
                 task.late_cycles += 1
                 if task.late_cycles >= task.sensitivity:
-                    self._fault(task, STFault(
-                        "watchdog", f"watchdog: {task.late_cycles} cycle(s) in a row longer than "
-                        f"{task.watchdog_ns / 1e6:g} ms (last {exec_ns / 1e6:.3f} ms)"))
+                    self._fault(
+                        task,
+                        STFault(
+                            "watchdog",
+                            f"watchdog: {task.late_cycles} cycle(s) in a row longer than "
+                            f"{task.watchdog_ns / 1e6:g} ms (last {exec_ns / 1e6:.3f} ms)",
+                        ),
+                    )
             else:
                 task.late_cycles = 0
         self._release_next(task, released)
@@ -322,10 +342,16 @@ class Engine:
         if not self.outputs_safe:
             log.warning("outputs are held at their safe values until a restart")
         self.outputs_safe = True
-        assert self.diag is not None   # tasks run, and fault, only after start()
-        self.diag.set(Faulted=True, OutputsSafe=True, FaultCount=len(self.faults), FaultTask=task.name,
-                      FaultKind=fault.kind, FaultText=fault.message,
-                      FaultWhere=str(fault.pos) if fault.pos else "")
+        assert self.diag is not None  # tasks run, and fault, only after start()
+        self.diag.set(
+            Faulted=True,
+            OutputsSafe=True,
+            FaultCount=len(self.faults),
+            FaultTask=task.name,
+            FaultKind=fault.kind,
+            FaultText=fault.message,
+            FaultWhere=str(fault.pos) if fault.pos else "",
+        )
 
     def faulted_tasks(self) -> list:
         return [t for t in self.tasks if t.fault is not None]
@@ -351,7 +377,7 @@ class Engine:
             task.late_cycles = 0
         self.outputs_safe = False
         self.restarts += 1
-        assert self.diag is not None   # a task faulted, so start() ran
+        assert self.diag is not None  # a task faulted, so start() ran
         self.diag.set(Faulted=False, OutputsSafe=False, Restarts=self.restarts)
         log.warning("restarted task(s) %s; outputs live again", ", ".join(t.name for t in faulted))
         return True

@@ -4,12 +4,23 @@ Cycle times are execution times measured on perf_counter in both clock
 modes (what the CPU really spent); wake-up jitter is the lateness of a task's
 start against its scheduled release, on the engine's clock (always 0 on the
 virtual clock, which is never late)."""
+
 from __future__ import annotations
 
 
 class TaskStats:
-    __slots__ = ("cycles", "last_ns", "min_ns", "max_ns", "total_ns",
-                 "jitter_last_ns", "jitter_max_ns", "jitter_total_ns", "overruns", "faults")
+    __slots__ = (
+        "cycles",
+        "last_ns",
+        "min_ns",
+        "max_ns",
+        "total_ns",
+        "jitter_last_ns",
+        "jitter_max_ns",
+        "jitter_total_ns",
+        "overruns",
+        "faults",
+    )
 
     def __init__(self) -> None:
         self.cycles = 0
@@ -48,9 +59,13 @@ class TaskStats:
         """Figures in microseconds, for logs and JSON."""
         return {
             "cycles": self.cycles,
-            "last_us": self.last_ns / 1e3, "min_us": self.min_ns / 1e3,
-            "max_us": self.max_ns / 1e3, "mean_us": round(self.mean_ns / 1e3, 3),
-            "jitter_last_us": self.jitter_last_ns / 1e3, "jitter_max_us": self.jitter_max_ns / 1e3,
+            "last_us": self.last_ns / 1e3,
+            "min_us": self.min_ns / 1e3,
+            "max_us": self.max_ns / 1e3,
+            "mean_us": round(self.mean_ns / 1e3, 3),
+            "jitter_last_us": self.jitter_last_ns / 1e3,
+            "jitter_max_us": self.jitter_max_ns / 1e3,
             "jitter_mean_us": round(self.jitter_mean_ns / 1e3, 3),
-            "overruns": self.overruns, "faults": self.faults,
+            "overruns": self.overruns,
+            "faults": self.faults,
         }

@@ -9,6 +9,7 @@ skips the activations it missed (counted as overruns) rather than running
 them back to back. A freewheeling task is released again `pause` after its
 previous cycle ended.
 """
+
 from __future__ import annotations
 
 import difflib
@@ -32,7 +33,8 @@ def plan_tasks(program, configured: list, config_file: str = "") -> list:
             raise TaskSetupError(
                 f"{config_file}: task: the ST sources declare CONFIGURATION "
                 f"{st_configs[0].name} with its own tasks; declare the tasks in one place "
-                "(remove the [[task]] tables or the CONFIGURATION)")
+                "(remove the [[task]] tables or the CONFIGURATION)"
+            )
         for task in configured:
             for inst in task.programs:
                 _check_program(inst.program, programs, f"{config_file}: {inst.key}")
@@ -42,48 +44,70 @@ def plan_tasks(program, configured: list, config_file: str = "") -> list:
     if not programs:
         raise TaskSetupError("the ST sources declare no PROGRAM: nothing to run")
     # No tasks anywhere: every PROGRAM in one 10 ms task, in declaration order.
-    return [TaskConfig(name="MainTask", interval_ns=DEFAULT_INTERVAL_NS, pause_ns=DEFAULT_PAUSE_NS,
-                       priority=1, watchdog_ns=default_watchdog_ns(DEFAULT_INTERVAL_NS), sensitivity=1,
-                       programs=[ProgramInstance(name, name, f"default task, PROGRAM {name}")
-                                 for name in programs.values()],
-                       key="default task")]
+    return [
+        TaskConfig(
+            name="MainTask",
+            interval_ns=DEFAULT_INTERVAL_NS,
+            pause_ns=DEFAULT_PAUSE_NS,
+            priority=1,
+            watchdog_ns=default_watchdog_ns(DEFAULT_INTERVAL_NS),
+            sensitivity=1,
+            programs=[ProgramInstance(name, name, f"default task, PROGRAM {name}") for name in programs.values()],
+            key="default task",
+        )
+    ]
 
 
 def _check_program(name: str, programs: dict, where: str) -> None:
     if name.upper() in programs:
         return
     close = difflib.get_close_matches(name.upper(), list(programs), n=1, cutoff=0.6)
-    hint = f" (did you mean '{programs[close[0]]}'?)" if close else \
-        (f" (the PROGRAMs are: {', '.join(programs.values())})" if programs else "")
+    hint = (
+        f" (did you mean '{programs[close[0]]}'?)"
+        if close
+        else (f" (the PROGRAMs are: {', '.join(programs.values())})" if programs else "")
+    )
     raise TaskSetupError(f"{where}: '{name}' is not a PROGRAM of the loaded ST files{hint}")
 
 
 def _from_st_configuration(program, configs: list) -> list:
     if len(configs) > 1:
-        raise TaskSetupError(f"{configs[1].node.pos}: only one CONFIGURATION can run at a time "
-                             f"(found {', '.join(c.name for c in configs)})")
+        raise TaskSetupError(
+            f"{configs[1].node.pos}: only one CONFIGURATION can run at a time "
+            f"(found {', '.join(c.name for c in configs)})"
+        )
     cfg = configs[0]
     tasks: dict = {}
     for t in cfg.tasks:
         if t["single"] is not None or t["interval_ms"] is None:
-            raise TaskSetupError(f"{t['pos']}: task {t['name']}: event tasks (SINGLE, or no INTERVAL) "
-                                 "are not supported; give it an INTERVAL")
+            raise TaskSetupError(
+                f"{t['pos']}: task {t['name']}: event tasks (SINGLE, or no INTERVAL) "
+                "are not supported; give it an INTERVAL"
+            )
         interval_ns = round(t["interval_ms"] * 1_000_000)
         tasks[t["name"].upper()] = TaskConfig(
-            name=t["name"], interval_ns=interval_ns, pause_ns=DEFAULT_PAUSE_NS, priority=t["priority"],
-            watchdog_ns=default_watchdog_ns(interval_ns), sensitivity=1, programs=[],
-            key=f"TASK {t['name']}")
+            name=t["name"],
+            interval_ns=interval_ns,
+            pause_ns=DEFAULT_PAUSE_NS,
+            priority=t["priority"],
+            watchdog_ns=default_watchdog_ns(interval_ns),
+            sensitivity=1,
+            programs=[],
+            key=f"TASK {t['name']}",
+        )
     for p in cfg.programs:
         binding = p["binding"]
         if binding.inputs or binding.outputs or binding.inouts:
-            raise TaskSetupError(f"{p['pos']}: program instance {p['name']}: arguments in the "
-                                 "CONFIGURATION are not supported yet; use located variables "
-                                 "(AT %I.., AT %Q..) in the PROGRAM instead")
+            raise TaskSetupError(
+                f"{p['pos']}: program instance {p['name']}: arguments in the "
+                "CONFIGURATION are not supported yet; use located variables "
+                "(AT %I.., AT %Q..) in the PROGRAM instead"
+            )
         if p["task"] is None:
-            raise TaskSetupError(f"{p['pos']}: program instance {p['name']} has no task; "
-                                 "write PROGRAM <name> WITH <task> : <type>")
-        tasks[p["task"].upper()].programs.append(
-            ProgramInstance(p["name"], p["type"].name, f"PROGRAM {p['name']}"))
+            raise TaskSetupError(
+                f"{p['pos']}: program instance {p['name']} has no task; write PROGRAM <name> WITH <task> : <type>"
+            )
+        tasks[p["task"].upper()].programs.append(ProgramInstance(p["name"], p["type"].name, f"PROGRAM {p['name']}"))
     active = [t for t in tasks.values() if t.programs]  # a task with no program has nothing to do
     if not active:
         raise TaskSetupError(f"{cfg.node.pos}: CONFIGURATION {cfg.name} assigns no PROGRAM to a task")

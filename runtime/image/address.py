@@ -9,6 +9,7 @@ model) is the business of memory.ProcessImage:
     default_type(addr)                       # BOOL
     region(image, parse_address("%QW1"))     # ('Q', 2, 2) in an IEC image
 """
+
 from __future__ import annotations
 
 import re
@@ -74,8 +75,9 @@ def check_address(addr: LocatedAddress, addressing: str | None = None) -> None:
         if len(addr.indices) == 2 and not 0 <= addr.indices[1] <= 7:
             raise AddressError(f"{addr.text}: bit number {addr.indices[1]} is not 0..7")
     elif len(addr.indices) != 1:
-        raise AddressError(f"{addr.text}: a %{addr.area}{addr.size} address has one number, "
-                           f"e.g. %{addr.area}{addr.size}4")
+        raise AddressError(
+            f"{addr.text}: a %{addr.area}{addr.size} address has one number, e.g. %{addr.area}{addr.size}4"
+        )
 
 
 def check_model(addr: LocatedAddress, addressing: str) -> None:
@@ -85,8 +87,10 @@ def check_model(addr: LocatedAddress, addressing: str) -> None:
     if addressing == "schneider":
         return
     if addr.bit is not None or addr.table is not None:
-        raise AddressError(f"{addr.text} is Schneider addressing; use the schneider profile "
-                           f"(IEC addresses a bit as %{addr.area}X<byte>.<bit>)")
+        raise AddressError(
+            f"{addr.text} is Schneider addressing; use the schneider profile "
+            f"(IEC addresses a bit as %{addr.area}X<byte>.<bit>)"
+        )
     if addr.size == "" and len(addr.indices) < 2:
         raise AddressError(f"{addr.text}: a bit address needs <byte>.<bit>, e.g. %{addr.area}X0.3")
 
@@ -110,8 +114,9 @@ def check_type(addr: LocatedAddress, ty: T.ElementaryType) -> None:
         return
     bits = SIZE_BITS[addr.size]
     if not (ty.is_intlike or ty.is_real or ty.is_time) or ty.bits != bits:
-        raise AddressError(f"{addr.text} holds {bits} bits; {ty.name} does not fit "
-                           f"(e.g. {_SIZE_TYPES[addr.size].name})")
+        raise AddressError(
+            f"{addr.text} holds {bits} bits; {ty.name} does not fit (e.g. {_SIZE_TYPES[addr.size].name})"
+        )
 
 
 def region(image, addr: LocatedAddress) -> tuple:

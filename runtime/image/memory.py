@@ -16,6 +16,7 @@ and write() reach one value by address string (--watch, forcing, tests), and
 outputs_view() is the image drivers see while outputs are held safe. Address
 syntax and default types are in address.py.
 """
+
 from __future__ import annotations
 
 import struct
@@ -26,10 +27,14 @@ from .address import SIZE_BITS as _SIZE_BITS
 from .address import AddressError, check_address, check_type, default_type, parse_address
 
 _FORMATS = {
-    (8, True): "<b", (8, False): "<B",
-    (16, True): "<h", (16, False): "<H",
-    (32, True): "<i", (32, False): "<I",
-    (64, True): "<q", (64, False): "<Q",
+    (8, True): "<b",
+    (8, False): "<B",
+    (16, True): "<h",
+    (16, False): "<H",
+    (32, True): "<i",
+    (32, False): "<I",
+    (64, True): "<q",
+    (64, False): "<Q",
 }
 
 __all__ = ["AddressError", "ProcessImage", "WordTable"]
@@ -88,11 +93,13 @@ class ProcessImage:
             buf, byte, bit = self._bit_location(addr)
             self._check(byte, 1, addr)
             if bit is None:  # a whole-byte Schneider bit cell
+
                 def get_cell(buf=buf, i=byte):
                     return buf[i] != 0
 
                 def set_cell(v, buf=buf, i=byte):
                     buf[i] = 1 if v else 0
+
                 return get_cell, set_cell
             mask = 1 << bit
 
@@ -104,6 +111,7 @@ class ProcessImage:
                     buf[i] |= m
                 else:
                     buf[i] &= ~m & 0xFF
+
             return get_bit, set_bit
         bits = _SIZE_BITS[addr.size]
         buf = self.areas[addr.area]
@@ -122,22 +130,27 @@ class ProcessImage:
         half = 1 << (bits - 1)
 
         if ty.is_real:
+
             def get_real(buf=buf, off=off):
                 return unpack_from(buf, off)[0]
 
             def set_real(v, buf=buf, off=off):
                 pack_into(buf, off, v)
+
             return get_real, set_real
 
         def get_int(buf=buf, off=off):
             return unpack_from(buf, off)[0]
 
         if fmt[1].islower():  # signed: wrap into range before packing
+
             def set_int(v, buf=buf, off=off):
                 pack_into(buf, off, ((int(v) + half) & mask) - half)
         else:
+
             def set_int(v, buf=buf, off=off):
                 pack_into(buf, off, int(v) & mask)
+
         return get_int, set_int
 
     def table(self, addr: LocatedAddress, signed: bool = True) -> WordTable:
@@ -153,8 +166,10 @@ class ProcessImage:
         copies. Bit addresses are refused, as drivers move whole bytes."""
         check_address(addr, self.addressing)
         if addr.bit is not None or addr.size in ("", "X"):
-            raise AddressError(f"{addr.text} is a bit; drivers copy whole bytes: give the byte or "
-                               f"word that holds it (e.g. %{addr.area}B0, %{addr.area}W0)")
+            raise AddressError(
+                f"{addr.text} is a bit; drivers copy whole bytes: give the byte or "
+                f"word that holds it (e.g. %{addr.area}B0, %{addr.area}W0)"
+            )
         if addr.table is not None:
             off, nbytes = self._word_offset(addr.indices[0], 16), 2 * addr.table
         else:
@@ -237,8 +252,9 @@ def _word_list(addr: LocatedAddress, value) -> list:
     try:
         values = list(value)
     except TypeError:
-        raise ValueError(f"{addr.text} is a table of {addr.table} words: write a list of "
-                         f"{addr.table} integers, not {value!r}") from None
+        raise ValueError(
+            f"{addr.text} is a table of {addr.table} words: write a list of {addr.table} integers, not {value!r}"
+        ) from None
     if len(values) != addr.table:
         raise ValueError(f"{addr.text} is a table of {addr.table} words, not {len(values)}")
     for v in values:
@@ -251,6 +267,7 @@ def _word_list(addr: LocatedAddress, value) -> list:
 class WordTable:
     """A view on n consecutive 16-bit words of the image, indexed 0..n-1,
     behaving like the Python list an ARRAY value is."""
+
     __slots__ = ("buf", "offset", "length", "_codec")
 
     def __init__(self, buf: bytearray, offset: int, length: int, signed: bool = True) -> None:

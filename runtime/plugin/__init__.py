@@ -8,6 +8,7 @@ registry that finds them.
 
 Public names: Bus, Device, Driver, DriverError, DriverStatus, registry.
 """
+
 from .driver import Driver, DriverError, DriverStatus
 from .registry import registry
 from .seams import Bus, Device

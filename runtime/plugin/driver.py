@@ -30,6 +30,7 @@ Life cycle, all called from the engine's thread:
 A lost bus is reported through status() (ok=False, message) and recovered by
 the driver itself; it never raises from read_inputs / write_outputs.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass

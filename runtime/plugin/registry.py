@@ -16,6 +16,7 @@ themselves. Tests add one for a while with ``extended(...)``.
 Order is each plugin's ``order`` (then its name): it decides the order of
 configuration checks, of drivers in the scan and of types in messages.
 """
+
 from __future__ import annotations
 
 from collections.abc import Iterator
@@ -62,8 +63,7 @@ class Registry:
             taken = self.sim_types()
             for sim_type in plugin.sim_types:
                 if sim_type in taken:
-                    raise PluginError(f"device {plugin.name}: sim type {sim_type!r} is device "
-                                      f"{taken[sim_type].name}'s")
+                    raise PluginError(f"device {plugin.name}: sim type {sim_type!r} is device {taken[sim_type].name}'s")
             if plugin.sim_types and plugin.simulator is None:
                 raise PluginError(f"device {plugin.name}: sim types {', '.join(plugin.sim_types)} but no simulator")
         else:
@@ -123,8 +123,9 @@ def registry() -> Registry:
                 try:
                     plugin = ep.load()
                 except Exception as exc:
-                    raise PluginError(f"entry point {ep.name} = {ep.value!r} ({group}) does not load: "
-                                      f"{type(exc).__name__}: {exc}") from exc
+                    raise PluginError(
+                        f"entry point {ep.name} = {ep.value!r} ({group}) does not load: {type(exc).__name__}: {exc}"
+                    ) from exc
                 reg.add(plugin)
         _registry = reg
     return _registry

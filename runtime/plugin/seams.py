@@ -25,6 +25,7 @@ Both are found through the registry (registry.py): Python entry points in
 the groups ``softplc.buses`` and ``softplc.devices``, so an installed package
 adds one with no change to softplc.
 """
+
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
@@ -40,6 +41,7 @@ from ..st.native import NativeFunction
 class StLibrary:
     """An ST file installed as package data: ``StLibrary("softplc.fblocks.comm",
     "sdo.st")``. Diagnostics name it <lib>/<last package part>/<file>."""
+
     package: str
     file: str
 
@@ -54,6 +56,7 @@ class StLibrary:
 @dataclass(frozen=True)
 class PackageFile:
     """A file installed with a package, such as a shipped EDS."""
+
     package: str
     file: str
 
@@ -67,6 +70,7 @@ class GeneratedFile:
     """A shipped file written from a device's tables: ``render()`` gives its
     text. A test compares every one with its generator, and
     ``python -m softplc.runtime.devices`` rewrites them."""
+
     target: PackageFile
     render: Callable[[], str]
     encoding: str = "utf-8"
@@ -78,6 +82,7 @@ class BuildContext:
     (virtual or real), the profile's addressing model, the configuration
     file for messages, and a dict the buses of one engine share (a
     virtual-time pump every CAN endpoint uses ...)."""
+
     clock: Any
     addressing: str
     where: str = "<config>"
@@ -93,6 +98,7 @@ class Contribution:
     """A bus's part of an engine. simulators: simulated devices (started
     first, advanced first at each tick, stopped last); drivers: the bus
     drivers, in the order they meet the scan (and stop in reverse)."""
+
     simulators: list = field(default_factory=list)
     drivers: list = field(default_factory=list)
 
@@ -103,11 +109,11 @@ class Bus:
     #: where it comes among the buses (lower first; equal: by name): the order
     #: of configuration checks and of drivers in the scan
     order: int = 100
-    sections: tuple = ()                        # config.Section instances
-    attachment: Any = None                      # config.Attachment, or None: no simulated devices
+    sections: tuple = ()  # config.Section instances
+    attachment: Any = None  # config.Attachment, or None: no simulated devices
     natives: tuple[NativeFunction, ...] = ()
     libraries: tuple[StLibrary, ...] = ()
-    build: Callable[[Any, BuildContext], Contribution] | None = None   # (PlcConfig, context)
+    build: Callable[[Any, BuildContext], Contribution] | None = None  # (PlcConfig, context)
 
 
 @dataclass(frozen=True)
@@ -116,9 +122,9 @@ class Device:
     #: where it comes among the devices (lower first; equal: by name): the
     #: order of [[sim]] types in messages
     order: int = 100
-    bus: str = ""                               # the bus its simulators attach to
-    sim_types: tuple[str, ...] = ()             # [[sim]] type values it simulates
-    sim_options: Any = None                     # config.SimOptions subclass: its own [[sim]] keys
+    bus: str = ""  # the bus its simulators attach to
+    sim_types: tuple[str, ...] = ()  # [[sim]] type values it simulates
+    sim_options: Any = None  # config.SimOptions subclass: its own [[sim]] keys
     simulator: Callable[..., Any] | None = None  # (SimConfig, the bus's context) -> a simulator
     natives: tuple[NativeFunction, ...] = ()
     libraries: tuple[StLibrary, ...] = ()

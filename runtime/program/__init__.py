@@ -10,10 +10,19 @@ namespace bound to a process image and run cycle by cycle.
 Public names: compile_files, check_files, Program, Runner, ExecContext,
 locate, global_variable, StructWriter.
 """
+
 from .compile import check_files, compile_files
 from .context import ExecContext
 from .loaded import Program, Runner
 from .variables import StructWriter, global_variable, locate
 
-__all__ = ["ExecContext", "Program", "Runner", "StructWriter", "check_files", "compile_files", "global_variable",
-           "locate"]
+__all__ = [
+    "ExecContext",
+    "Program",
+    "Runner",
+    "StructWriter",
+    "check_files",
+    "compile_files",
+    "global_variable",
+    "locate",
+]

@@ -10,6 +10,7 @@ compiled into every program; a user POU or type of the same name replaces
 the library one. The communication and device libraries are compiled in
 only when a program names something they declare.
 """
+
 from __future__ import annotations
 
 import functools
@@ -76,8 +77,10 @@ def _declared(sf: A.SourceFile) -> set:
 def _library_index(name: str, text: str) -> tuple:
     """(names the file declares, words it uses) of an on-demand library file,
     parsed once per process: the choice of files then costs no parsing."""
-    return (frozenset(_declared(parse_source(text, name, DiagnosticBag()))),
-            frozenset(w.upper() for w in _WORD.findall(text)))
+    return (
+        frozenset(_declared(parse_source(text, name, DiagnosticBag()))),
+        frozenset(w.upper() for w in _WORD.findall(text)),
+    )
 
 
 def _needed_library(always: list, on_demand: list, user_words: set) -> list:
@@ -148,11 +151,11 @@ def _front_end(paths: list, profile: Profile, texts: dict | None):
     for name, text in _needed_library(_always_sources(), _on_demand_sources(), user_words):
         sources.add(name, text)
         sf = parse_source(text, name, lib_diags)
-        sf.decls = [d for d in sf.decls
-                    if not (isinstance(d, (A.POU, A.TypeDecl)) and d.name.upper() in user_names)]
+        sf.decls = [d for d in sf.decls if not (isinstance(d, (A.POU, A.TypeDecl)) and d.name.upper() in user_names)]
         library.append(sf)
-    checker = Checker(profile, lib_diags if not user else diags, _std_functions(), _natives(),
-                      ProcessImage(profile.addressing))
+    checker = Checker(
+        profile, lib_diags if not user else diags, _std_functions(), _natives(), ProcessImage(profile.addressing)
+    )
     checked = checker.run(library + user, library_files=tuple(sf.path for sf in library))
     diags.extend(d for d in lib_diags.items if d.is_error)
     return diags, sources, checked, user
@@ -168,10 +171,13 @@ def _back_end(checked: CheckedProgram, prof: Profile, diags: DiagnosticBag, wher
         return gen, compile(gen.source, filename, "exec"), filename
     except (SyntaxError, RecursionError, MemoryError) as exc:
         line = getattr(exc, "lineno", None)
-        diags.error("E006", "the program is nested too deeply for the Python compiler "
-                    f"({getattr(exc, 'msg', None) or type(exc).__name__})",
-                    (gen.linemap.get(line) if line else None) or where,
-                    "move inner loops or long expressions into FUNCTIONs or intermediate variables")
+        diags.error(
+            "E006",
+            "the program is nested too deeply for the Python compiler "
+            f"({getattr(exc, 'msg', None) or type(exc).__name__})",
+            (gen.linemap.get(line) if line else None) or where,
+            "move inner loops or long expressions into FUNCTIONs or intermediate variables",
+        )
         return None
 
 
@@ -191,8 +197,7 @@ def check_files(paths: list, profile: str | Profile = "codesys", texts: dict | N
     return diags.sorted(), sources
 
 
-def compile_files(paths: list, profile: str | Profile = "codesys", *,
-                  texts: dict | None = None) -> Program:
+def compile_files(paths: list, profile: str | Profile = "codesys", *, texts: dict | None = None) -> Program:
     """Compile ST files (and/or in-memory texts: name -> source) into a
     loadable Program. Raises CompileError with every diagnostic on errors."""
     prof = get_profile(profile) if isinstance(profile, str) else profile
@@ -202,5 +207,6 @@ def compile_files(paths: list, profile: str | Profile = "codesys", *,
         raise CompileError(diags.sorted(), sources)
     gen, code, filename = built
     user_pous = {d.name: d.kind for sf in user for d in sf.decls if isinstance(d, A.POU)}
-    return Program(prof, checked, gen, code, filename, [d for d in diags.sorted() if not d.is_error],
-                   sources, user_pous)
+    return Program(
+        prof, checked, gen, code, filename, [d for d in diags.sorted() if not d.is_error], sources, user_pous
+    )

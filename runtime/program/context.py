@@ -1,5 +1,6 @@
 """What generated code reaches at run time: the task clock, the watchdog,
 the process image and the services of native functions (st/native.py)."""
+
 from __future__ import annotations
 
 import time
@@ -48,5 +49,4 @@ class ExecContext:
 
     def check_watchdog(self) -> None:
         if time.perf_counter() > self.deadline:
-            raise WatchdogFault(f"watchdog: the cycle ran longer than {self.watchdog_s * 1000:g} ms "
-                                "(endless loop?)")
+            raise WatchdogFault(f"watchdog: the cycle ran longer than {self.watchdog_s * 1000:g} ms (endless loop?)")

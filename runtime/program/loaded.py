@@ -1,5 +1,6 @@
 """A compiled program: loaded into a namespace bound to an ExecContext, its
 POUs instantiated, run cycle by cycle."""
+
 from __future__ import annotations
 
 import builtins
@@ -16,9 +17,10 @@ from .context import ExecContext
 from .variables import locate
 
 # The only builtins generated code may use.
-_BUILTINS = {name: getattr(builtins, name) for name in
-             ("range", "len", "abs", "max", "min", "float", "int", "property", "__build_class__",
-              "object", "bool")}
+_BUILTINS = {
+    name: getattr(builtins, name)
+    for name in ("range", "len", "abs", "max", "min", "float", "int", "property", "__build_class__", "object", "bool")
+}
 
 
 def _with_fields(obj, setters):
@@ -54,8 +56,17 @@ def _for_range(start: int, end: int, step: int) -> range:
 class Program:
     """A compiled set of POUs, ready to be instantiated by runners."""
 
-    def __init__(self, profile: Profile, checked: CheckedProgram, gen: GeneratedModule, code, filename: str,
-                 warnings: list, sources: SourceSet, user_pous: dict) -> None:
+    def __init__(
+        self,
+        profile: Profile,
+        checked: CheckedProgram,
+        gen: GeneratedModule,
+        code,
+        filename: str,
+        warnings: list,
+        sources: SourceSet,
+        user_pous: dict,
+    ) -> None:
         self.profile = profile
         self.checked = checked
         self.generated = gen
@@ -66,8 +77,9 @@ class Program:
         self.pous = user_pous
         self.linemaps = {filename: gen.linemap}
         # Globals the libraries declare (PLC_DIAG): not the user's state.
-        self.library_globals = frozenset(g.name for g in checked.globals
-                                         if g.pos is not None and g.pos.file.startswith("<lib>/"))
+        self.library_globals = frozenset(
+            g.name for g in checked.globals if g.pos is not None and g.pos.file.startswith("<lib>/")
+        )
 
     @property
     def python_source(self) -> str:
@@ -87,14 +99,24 @@ class Program:
             "__builtins__": _BUILTINS,
             "__name__": "softplc_generated",
             "_ctx": ctx,
-            "_f32": rtlib.f32, "_idiv": rtlib.idiv, "_imod": rtlib.imod, "_rdiv": rtlib.rdiv,
+            "_f32": rtlib.f32,
+            "_idiv": rtlib.idiv,
+            "_imod": rtlib.imod,
+            "_rdiv": rtlib.rdiv,
             "_expt": rtlib.expt,
-            "_INF": float("inf"), "_NAN": float("nan"),
-            "_AttrRef": refs.AttrRef, "_ItemRef": refs.ItemRef, "_CellRef": refs.CellRef,
+            "_INF": float("inf"),
+            "_NAN": float("nan"),
+            "_AttrRef": refs.AttrRef,
+            "_ItemRef": refs.ItemRef,
+            "_CellRef": refs.CellRef,
             "_AccessorRef": refs.AccessorRef,
-            "_assign_into": values.assign_into, "_copy_value": values.copy_value,
-            "_with_fields": _with_fields, "_deref": _deref,
-            "_check_index": _check_index, "_check_range": _check_range, "_out_of_bounds": out_of_bounds,
+            "_assign_into": values.assign_into,
+            "_copy_value": values.copy_value,
+            "_with_fields": _with_fields,
+            "_deref": _deref,
+            "_check_index": _check_index,
+            "_check_range": _check_range,
+            "_out_of_bounds": out_of_bounds,
             "_for_range": _for_range,
             "_watchdog": ctx.check_watchdog,
             "_native": ctx.call_native,

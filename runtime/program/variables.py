@@ -1,6 +1,7 @@
 """Program variables by their ST names: locate a variable at a dotted path
 (--watch, tests, forcing) and set the fields of a diagnostic struct the
 runtime fills (PLC_DIAG and the drivers' diagnostics)."""
+
 from __future__ import annotations
 
 from ..st import types as T

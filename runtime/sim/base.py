@@ -16,6 +16,7 @@ A subclass implements service(now_ns): the device's own time-driven
 behaviour (a motor model, heartbeats, timeouts), called with a monotonic
 time that never goes backwards.
 """
+
 from __future__ import annotations
 
 from typing import Protocol
@@ -57,8 +58,7 @@ class SimulatedDevice(Driver):
     def start(self) -> None:
         self.open()
         if not self.clock.virtual:
-            self._service = PeriodicService(f"sim {self.name}", self.clock, self.service,
-                                            self.service_period_s)
+            self._service = PeriodicService(f"sim {self.name}", self.clock, self.service, self.service_period_s)
             self._service.start()
 
     def advance_to(self, now_ns: int) -> None:

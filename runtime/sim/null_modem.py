@@ -12,6 +12,7 @@ Both ends are real ttys opened through pyserial by their users, so the
 master's RTU code path is the one it takes on /dev/ttyUSB0; only the baud
 rate has no effect on the speed.
 """
+
 from __future__ import annotations
 
 import os
@@ -27,7 +28,7 @@ class NullModem:
         paths = []
         for _ in range(2):
             master, slave = pty.openpty()
-            tty.setraw(slave)              # no echo, no line discipline: bytes go through as they are
+            tty.setraw(slave)  # no echo, no line discipline: bytes go through as they are
             self._ends.append((master, slave))
             paths.append(os.ttyname(slave))
         self.master_port, self.slave_port = paths
@@ -73,7 +74,7 @@ class NullModem:
                     continue
                 try:
                     data = os.read(fd, 4096)
-                except OSError:       # the other side closed its end
+                except OSError:  # the other side closed its end
                     continue
                 if self._cut or not data:
                     continue

@@ -8,6 +8,7 @@ can point at ST, never at Python.
 Names are kept as written (``name``); lookups are case-insensitive, so the
 checker compares ``name.upper()``.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -18,6 +19,7 @@ from typing import Any
 class Pos:
     """A source span: 1-based line and column of the first character, and of
     the character after the last one (``end_*`` may equal start for a point)."""
+
     file: str
     line: int
     col: int
@@ -37,6 +39,7 @@ class Node:
 
 
 # ---------------------------------------------------------------- expressions
+
 
 @dataclass(slots=True, eq=False)
 class Expr(Node):
@@ -58,6 +61,7 @@ class Literal(Expr):
     date/dt/ldate/ldt). type_name is the explicit prefix of a typed literal
     (``INT#5`` -> 'INT', ``T#5s`` -> None), upper-cased.
     """
+
     kind: str
     value: Any
     type_name: str | None = None
@@ -67,6 +71,7 @@ class Literal(Expr):
 @dataclass(slots=True, eq=False)
 class EnumLiteral(Expr):
     """``Color#Red`` (type_name='Color') or a bare enumerator resolved later."""
+
     type_name: str | None
     value_name: str
 
@@ -74,6 +79,7 @@ class EnumLiteral(Expr):
 @dataclass(slots=True, eq=False)
 class SchneiderAddress(Expr):
     """Schneider exchange address ``ADR#0.1.SYS`` -> parts ('0', '1', 'SYS')."""
+
     parts: tuple
 
 
@@ -88,6 +94,7 @@ class LocatedAddress:
     table: the Schneider ``:n`` table length. text: the address as written,
     for messages only (never pasted into generated code).
     """
+
     area: str
     size: str
     indices: tuple
@@ -110,6 +117,7 @@ class Name(Expr):
 @dataclass(slots=True, eq=False)
 class Member(Expr):
     """``base.name`` (struct field, FB instance variable, enum ``Type.Value``)."""
+
     base: Expr
     name: str
     sym: Any = field(default=None, kw_only=True, repr=False)
@@ -118,6 +126,7 @@ class Member(Expr):
 @dataclass(slots=True, eq=False)
 class BitAccess(Expr):
     """``w.3`` or ``w.%X3``: bit 3 of a bit-string or integer variable."""
+
     base: Expr
     bit: Expr
 
@@ -125,6 +134,7 @@ class BitAccess(Expr):
 @dataclass(slots=True, eq=False)
 class Index(Expr):
     """``a[i]`` or ``a[i, j]`` (one expression per dimension)."""
+
     base: Expr
     indices: list
 
@@ -132,6 +142,7 @@ class Index(Expr):
 @dataclass(slots=True, eq=False)
 class Deref(Expr):
     """``r^``"""
+
     base: Expr
 
 
@@ -145,6 +156,7 @@ class Unary(Expr):
 class Binary(Expr):
     """op: 'OR', 'OR_ELSE', 'XOR', 'AND', 'AND_THEN' ('&' is 'AND'), '=', '<>',
     '<', '>', '<=', '>=', '+', '-', '*', '/', 'MOD', '**'."""
+
     op: str
     left: Expr
     right: Expr
@@ -158,6 +170,7 @@ class Arg(Node):
     """One call argument. name is None for a positional argument.
     output=True for ``name => target`` (value is then the target expression,
     or None for an output left unconnected). negated for ``NOT name => x``."""
+
     name: str | None
     value: Expr | None
     output: bool = False
@@ -167,6 +180,7 @@ class Arg(Node):
 @dataclass(slots=True, eq=False)
 class Call(Expr):
     """A function call, or an FB instance call (as a statement)."""
+
     callee: Expr  # Name, or Member for an instance inside a struct/FB
     args: list
     # Set by the checker: what is called (a Symbol/POU/builtin descriptor).
@@ -174,6 +188,7 @@ class Call(Expr):
 
 
 # ---------------------------------------------------------------- types (syntax)
+
 
 @dataclass(slots=True, eq=False)
 class TypeSpec(Node):
@@ -195,6 +210,7 @@ class StringTypeSpec(TypeSpec):
 class ArrayTypeSpec(TypeSpec):
     """ranges: list of (lo, hi) expression pairs, or None for ``*``
     (variable-length array in VAR_IN_OUT)."""
+
     ranges: list
     elem: TypeSpec
 
@@ -208,6 +224,7 @@ class StructTypeSpec(TypeSpec):
 class EnumTypeSpec(TypeSpec):
     """values: list of (name, Expr|None, Pos); base: explicit base type of a
     typed enumeration ``(a, b) INT`` or ``INT (a := 1, b := 2)``."""
+
     values: list
     base: TypeSpec | None = None
 
@@ -222,21 +239,25 @@ class SubrangeTypeSpec(TypeSpec):
 @dataclass(slots=True, eq=False)
 class RefTypeSpec(TypeSpec):
     """REF_TO T (pointer=False) or POINTER TO T (pointer=True)."""
+
     target: TypeSpec
     pointer: bool = False
 
 
 # ---------------------------------------------------------------- initialisers
 
+
 @dataclass(slots=True, eq=False)
 class ArrayInit(Node):
     """``[1, 2, 3(0)]`` -> items of (count Expr|None, initialiser)."""
+
     items: list
 
 
 @dataclass(slots=True, eq=False)
 class StructInit(Node):
     """``(a := 1, b := [1, 2])`` -> fields of (name, initialiser, Pos)."""
+
     fields: list
 
 
@@ -244,6 +265,7 @@ Initializer = Expr | ArrayInit | StructInit
 
 
 # ---------------------------------------------------------------- declarations
+
 
 @dataclass(slots=True, eq=False)
 class VarDecl(Node):
@@ -258,6 +280,7 @@ class VarDecl(Node):
 class VarBlock(Node):
     """kind: 'VAR', 'VAR_INPUT', 'VAR_OUTPUT', 'VAR_IN_OUT', 'VAR_GLOBAL',
     'VAR_EXTERNAL', 'VAR_TEMP', 'VAR_STAT', 'VAR_CONFIG'."""
+
     kind: str
     decls: list
     constant: bool = False
@@ -278,6 +301,7 @@ class TypeDecl(Node):
 @dataclass(slots=True, eq=False)
 class POU(Node):
     """kind: 'PROGRAM', 'FUNCTION', 'FUNCTION_BLOCK'."""
+
     kind: str
     name: str
     var_blocks: list
@@ -290,6 +314,7 @@ class POU(Node):
 @dataclass(slots=True, eq=False)
 class TaskDecl(Node):
     """TASK name (INTERVAL := T#10ms, PRIORITY := 1, SINGLE := x)."""
+
     name: str
     params: dict  # upper-cased param name -> Expr
 
@@ -297,6 +322,7 @@ class TaskDecl(Node):
 @dataclass(slots=True, eq=False)
 class ProgramConfig(Node):
     """PROGRAM inst WITH task : Type (args);"""
+
     name: str
     type_name: str
     task: str | None = None
@@ -324,6 +350,7 @@ class Configuration(Node):
 class SourceFile(Node):
     """One parsed file. decls: POU, TypeDecl, VarBlock (top-level VAR_GLOBAL,
     as a CODESYS GVL), Configuration."""
+
     path: str
     decls: list
     # Statements outside any POU (a Schneider section pasted as is): wrapped
@@ -331,6 +358,7 @@ class SourceFile(Node):
 
 
 # ---------------------------------------------------------------- statements
+
 
 @dataclass(slots=True, eq=False)
 class Stmt(Node):
@@ -413,6 +441,6 @@ class Return(Stmt):
 @dataclass(slots=True, eq=False)
 class SetReset(Stmt):
     """Schneider ``SET x;`` / ``RESET x;`` (kind 'SET' or 'RESET')."""
+
     kind: str
     target: Expr
-

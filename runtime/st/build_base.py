@@ -8,6 +8,7 @@ The builder is made per parse (one instance, one file). The parts:
 build_exprs.py (expressions and literals), build_stmts.py (statements),
 build_decls.py (declarations, POUs, configurations: the complete builder).
 """
+
 from __future__ import annotations
 
 from typing import Any, Protocol
@@ -20,13 +21,15 @@ from .literals import LiteralError
 
 class BuildContext(Protocol):
     """The parse a builder works for."""
+
     path: str
     diags: DiagnosticBag
-    items: list        # nodes a pragma can attach to, in the order built
+    items: list  # nodes a pragma can attach to, in the order built
     pou_headers: list  # (POU, start, header end): pragmas there go to the POU
 
-    def report(self, code: str, message: str, pos: ast.Pos, hint: str | None = None,
-               always: bool = False, calm: int = 0) -> None: ...
+    def report(
+        self, code: str, message: str, pos: ast.Pos, hint: str | None = None, always: bool = False, calm: int = 0
+    ) -> None: ...
 
 
 # A child of a rule: a Tok, or a node built by another rule.

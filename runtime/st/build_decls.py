@@ -1,6 +1,7 @@
 """The AST builder's declarations: source files, POUs, variable blocks and
 declarations, types and initial values, configurations; ``AstBuilder`` is
 the complete builder the parser uses."""
+
 from __future__ import annotations
 
 import re
@@ -36,17 +37,26 @@ class AstBuilder(StmtBuilder):
             if isinstance(d, list):
                 decls.extend(d)
             elif isinstance(d, ast.VarBlock) and d.kind != "VAR_GLOBAL":
-                self.ctx.report("E005", f"{d.kind} block outside a POU", d.pos,
-                                "only VAR_GLOBAL blocks (a global variable list) stand on their own"
-                                + (", VAR_CONFIG goes into a CONFIGURATION" if d.kind == "VAR_CONFIG" else ""))
+                self.ctx.report(
+                    "E005",
+                    f"{d.kind} block outside a POU",
+                    d.pos,
+                    "only VAR_GLOBAL blocks (a global variable list) stand on their own"
+                    + (", VAR_CONFIG goes into a CONFIGURATION" if d.kind == "VAR_CONFIG" else ""),
+                )
             else:
                 decls.append(d)
         return ast.SourceFile(self.ctx.path, decls, pos=ast.Pos(self.file, 1, 1))
 
     def bare_source(self, c):
         body = [s for s in c if s is not None]
-        pou = ast.POU("PROGRAM", _identifier_from_path(self.ctx.path), [], body,
-                      pos=self._span(body[0], body[-1]) if body else ast.Pos(self.file, 1, 1))
+        pou = ast.POU(
+            "PROGRAM",
+            _identifier_from_path(self.ctx.path),
+            [],
+            body,
+            pos=self._span(body[0], body[-1]) if body else ast.Pos(self.file, 1, 1),
+        )
         return ast.SourceFile(self.ctx.path, [pou], pos=ast.Pos(self.file, 1, 1))
 
     def _pou(self, kind: str, c) -> ast.POU:
@@ -70,20 +80,29 @@ class AstBuilder(StmtBuilder):
         return self._pou("FUNCTION_BLOCK", c)
 
     def fb_inherit(self, c):
-        self.ctx.diags.warning("W101", f"{c[0].value.upper()} is ignored: inheritance and interfaces are not supported",
-                               self._span(c[0], c[-1]),
-                               "declare the inherited variables in this block instead")
+        self.ctx.diags.warning(
+            "W101",
+            f"{c[0].value.upper()} is ignored: inheritance and interfaces are not supported",
+            self._span(c[0], c[-1]),
+            "declare the inherited variables in this block instead",
+        )
         return None
 
     # -- declarations
     def var_block(self, c):
         kind = c[0].type
         quals = {t.type for t in c if isinstance(t, Tok)}
-        decls = self._plain_names([d for group in c if isinstance(group, list) for d in group],
-                                  dotted_ok=kind == "VAR_CONFIG")
-        blk = ast.VarBlock(kind, decls, constant="CONSTANT" in quals,
-                           retain="RETAIN" in quals,
-                           persistent="PERSISTENT" in quals, pos=self._span(c[0], c[-1]))
+        decls = self._plain_names(
+            [d for group in c if isinstance(group, list) for d in group], dotted_ok=kind == "VAR_CONFIG"
+        )
+        blk = ast.VarBlock(
+            kind,
+            decls,
+            constant="CONSTANT" in quals,
+            retain="RETAIN" in quals,
+            persistent="PERSISTENT" in quals,
+            pos=self._span(c[0], c[-1]),
+        )
         self.ctx.items.append(blk)
         return blk
 
@@ -95,8 +114,12 @@ class AstBuilder(StmtBuilder):
         kept = []
         for d in decls:
             if "." in d.name:
-                self.ctx.report("E005", f"'{d.name}': a qualified name is only allowed in VAR_CONFIG", d.pos,
-                                "declare a plain name here")
+                self.ctx.report(
+                    "E005",
+                    f"'{d.name}': a qualified name is only allowed in VAR_CONFIG",
+                    d.pos,
+                    "declare a plain name here",
+                )
             else:
                 kept.append(d)
         return kept
@@ -122,8 +145,7 @@ class AstBuilder(StmtBuilder):
         # identifier for later stages, unlikely to be declared as well (IEC
         # names cannot have '__'; if one is, it is a duplicate declaration).
         name = "__at_" + re.sub(r"\W", "_", loc.value[1:].replace("*", "star"))
-        d = ast.VarDecl(name, spec, init, self._address(loc),
-                        pos=self._span(loc, init if init is not None else spec))
+        d = ast.VarDecl(name, spec, init, self._address(loc), pos=self._span(loc, init if init is not None else spec))
         self.ctx.items.append(d)
         return [d]
 
@@ -141,8 +163,7 @@ class AstBuilder(StmtBuilder):
         return ast.NamedType(c[0].value, pos=self._tpos(c[0]))
 
     def string_type(self, c):
-        return ast.StringTypeSpec(c[0].type == "WSTRING", c[2] if len(c) > 1 else None,
-                                  pos=self._span(c[0], c[-1]))
+        return ast.StringTypeSpec(c[0].type == "WSTRING", c[2] if len(c) > 1 else None, pos=self._span(c[0], c[-1]))
 
     def array_type(self, c):
         ranges = [r for r in c[2:-1] if not isinstance(r, Tok)]
@@ -203,11 +224,14 @@ class AstBuilder(StmtBuilder):
 
     def resource(self, c):
         names = [t for t in c[1:3] if isinstance(t, Tok) and t.type in _NAME_TYPES]
-        return ast.Resource(names[0].value, names[1].value if len(names) > 1 else None,
-                            [x for x in c if isinstance(x, ast.VarBlock)],
-                            [x for x in c if isinstance(x, ast.TaskDecl)],
-                            [x for x in c if isinstance(x, ast.ProgramConfig)],
-                            pos=self._span(c[0], c[-1]))
+        return ast.Resource(
+            names[0].value,
+            names[1].value if len(names) > 1 else None,
+            [x for x in c if isinstance(x, ast.VarBlock)],
+            [x for x in c if isinstance(x, ast.TaskDecl)],
+            [x for x in c if isinstance(x, ast.ProgramConfig)],
+            pos=self._span(c[0], c[-1]),
+        )
 
     def task_decl(self, c):
         params = {}
@@ -224,6 +248,11 @@ class AstBuilder(StmtBuilder):
         names = [t for t in c[2:] if isinstance(t, Tok) and t.type in _NAME_TYPES]
         args = next((x for x in c if isinstance(x, list)), [])
         last = next((x for x in reversed(c) if x is not None), c[0])
-        return ast.ProgramConfig(names[0].value, names[-1].value, names[1].value if len(names) == 3 else None,
-                                 args, retain=c[1] is not None and c[1].type == "RETAIN",
-                                 pos=self._span(c[0], last))
+        return ast.ProgramConfig(
+            names[0].value,
+            names[-1].value,
+            names[1].value if len(names) == 3 else None,
+            args,
+            retain=c[1] is not None and c[1].type == "RETAIN",
+            pos=self._span(c[0], last),
+        )

@@ -1,5 +1,6 @@
 """The AST builder's expressions: operators by precedence, operands, literals,
 names, member and index access, calls and their arguments."""
+
 from __future__ import annotations
 
 from . import ast
@@ -21,13 +22,46 @@ from .literals import (
 # stages walk it recursively.
 MAX_OPERATORS = 1000
 
-_BINARY_OPS = {"OR": "OR", "OR_ELSE": "OR_ELSE", "XOR": "XOR", "AND": "AND", "AMP": "AND",
-               "AND_THEN": "AND_THEN", "EQ": "=", "NE": "<>", "LT": "<", "GT": ">", "LE": "<=",
-               "GE": ">=", "PLUS": "+", "MINUS": "-", "STAR": "*", "SLASH": "/", "MOD": "MOD",
-               "POW": "**"}
-_PRECEDENCE = {"OR": 1, "OR_ELSE": 1, "XOR": 2, "AND": 3, "AMP": 3, "AND_THEN": 3, "EQ": 4, "NE": 4,
-               "LT": 5, "GT": 5, "LE": 5, "GE": 5, "PLUS": 6, "MINUS": 6, "STAR": 7, "SLASH": 7, "MOD": 7,
-               "POW": 8}
+_BINARY_OPS = {
+    "OR": "OR",
+    "OR_ELSE": "OR_ELSE",
+    "XOR": "XOR",
+    "AND": "AND",
+    "AMP": "AND",
+    "AND_THEN": "AND_THEN",
+    "EQ": "=",
+    "NE": "<>",
+    "LT": "<",
+    "GT": ">",
+    "LE": "<=",
+    "GE": ">=",
+    "PLUS": "+",
+    "MINUS": "-",
+    "STAR": "*",
+    "SLASH": "/",
+    "MOD": "MOD",
+    "POW": "**",
+}
+_PRECEDENCE = {
+    "OR": 1,
+    "OR_ELSE": 1,
+    "XOR": 2,
+    "AND": 3,
+    "AMP": 3,
+    "AND_THEN": 3,
+    "EQ": 4,
+    "NE": 4,
+    "LT": 5,
+    "GT": 5,
+    "LE": 5,
+    "GE": 5,
+    "PLUS": 6,
+    "MINUS": 6,
+    "STAR": 7,
+    "SLASH": 7,
+    "MOD": 7,
+    "POW": 8,
+}
 _UNARY_OPS = {"MINUS": "-", "PLUS": "+", "NOT": "NOT"}
 
 
@@ -39,8 +73,13 @@ class ExprBuilder(BuilderBase):
         (all operators associate to the left)."""
         file = self.file
         if len(c) > 2 * MAX_OPERATORS:
-            self.ctx.report("E005", f"expression too long (more than {MAX_OPERATORS} operators)",
-                            self._span(c[0], c[-1]), "split it, using intermediate variables", always=True)
+            self.ctx.report(
+                "E005",
+                f"expression too long (more than {MAX_OPERATORS} operators)",
+                self._span(c[0], c[-1]),
+                "split it, using intermediate variables",
+                always=True,
+            )
             return c[0]
         operands, ops = [c[0]], []
 
@@ -48,8 +87,11 @@ class ExprBuilder(BuilderBase):
             op, right = ops.pop(), operands.pop()
             left = operands.pop()
             lp, rp = left.pos, right.pos
-            operands.append(ast.Binary(_BINARY_OPS[op.type], left, right,
-                                       pos=ast.Pos(file, lp.line, lp.col, rp.end_line, rp.end_col)))
+            operands.append(
+                ast.Binary(
+                    _BINARY_OPS[op.type], left, right, pos=ast.Pos(file, lp.line, lp.col, rp.end_line, rp.end_col)
+                )
+            )
 
         for i in range(1, len(c), 2):
             op = c[i]

@@ -1,5 +1,6 @@
 """The AST builder's statements: assignments, calls, IF, CASE and its labels,
 loops, EXIT, CONTINUE, RETURN, and statement lists."""
+
 from __future__ import annotations
 
 from . import ast
@@ -14,7 +15,6 @@ class StmtBuilder(ExprBuilder):
     def body(self, c):
         return [s for s in c if s is not None]
 
-
     def _add_stmt(self, node):
         self.ctx.items.append(node)
         return node
@@ -26,8 +26,12 @@ class StmtBuilder(ExprBuilder):
     def call_stmt(self, c):
         call = c[0]
         if not isinstance(call, ast.Call):
-            self.ctx.report("E001", "an expression alone is not a statement", call.pos,
-                            "assign it with ':=' or, to call a function block, add the argument list: fb();")
+            self.ctx.report(
+                "E001",
+                "an expression alone is not a statement",
+                call.pos,
+                "assign it with ':=' or, to call a function block, add the argument list: fb();",
+            )
             return None
         return self._add_stmt(ast.CallStmt(call, pos=call.pos))
 

@@ -8,6 +8,7 @@ All errors of all files are collected; the checker never raises on bad input.
 The Checker is composed of one part per concern (checker_base.py lists
 them); this module runs the passes in order.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -49,7 +50,8 @@ class Checker(TypeChecks, DeclChecks, ExprChecks, OperatorChecks, StmtChecks, Ca
         for key in list(self.type_decls):
             self._resolve_named_type(key, self.type_decls[key].pos)
         global_blocks: list[tuple[A.VarBlock, A.Configuration | None]] = [
-            (b, None) for sf in files for b in sf.decls if isinstance(b, A.VarBlock)]
+            (b, None) for sf in files for b in sf.decls if isinstance(b, A.VarBlock)
+        ]
         for sf in files:
             for decl in sf.decls:
                 if isinstance(decl, A.Configuration):
@@ -77,5 +79,6 @@ class Checker(TypeChecks, DeclChecks, ExprChecks, OperatorChecks, StmtChecks, Ca
             for decl in sf.decls:
                 if isinstance(decl, A.Configuration):
                     self._configuration(decl)
-        return CheckedProgram(list(self.pous.values()), list(self.globals.values()),
-                              self.structs, self.configs, self.types)
+        return CheckedProgram(
+            list(self.pous.values()), list(self.globals.values()), self.structs, self.configs, self.types
+        )

@@ -9,6 +9,7 @@ assignment targets), checker_calls (every kind of call) and checker_config
 conversions.py. A part calls the others through ``self``; what it may call
 is declared at the end of CheckerBase, for the type checker.
 """
+
 from __future__ import annotations
 
 import difflib
@@ -29,6 +30,7 @@ class AddressSpace(Protocol):
     """Where direct addresses are checked: a process image laid out for the
     profile's addressing model (runtime/image/memory.ProcessImage). Both
     calls raise ValueError for an address outside it."""
+
     size: int
 
     def table(self, addr: A.LocatedAddress) -> Any: ...
@@ -49,8 +51,14 @@ class Scope:
 class CheckerBase:
     """The checker's state; the parts add the checks (see the module docstring)."""
 
-    def __init__(self, profile: Profile, diags: DiagnosticBag, std_functions: dict,
-                 natives: dict | None = None, image: AddressSpace | None = None) -> None:
+    def __init__(
+        self,
+        profile: Profile,
+        diags: DiagnosticBag,
+        std_functions: dict,
+        natives: dict | None = None,
+        image: AddressSpace | None = None,
+    ) -> None:
         self.profile = profile
         self.d = diags
         self.std = std_functions
@@ -109,8 +117,9 @@ class CheckerBase:
 
         def _binary(self, e: A.Binary, scope: Scope, expected: T.Type | None) -> T.Type | None: ...
 
-        def _common(self, le: T.ElementaryType, re_: T.ElementaryType, e: A.Expr,
-                    report: bool = True) -> T.ElementaryType | None: ...
+        def _common(
+            self, le: T.ElementaryType, re_: T.ElementaryType, e: A.Expr, report: bool = True
+        ) -> T.ElementaryType | None: ...
 
         # checker_stmts
         def lvalue(self, e: A.Expr, scope: Scope) -> T.Type | None: ...

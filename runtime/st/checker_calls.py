@@ -4,6 +4,7 @@ User FUNCTIONs, function block instances, standard functions (generic
 parameters, folding), the builtins TIME, LTIME, REF, ADR and SIZEOF, and
 native functions (st/native.py).
 """
+
 from __future__ import annotations
 
 from typing import Any
@@ -36,12 +37,19 @@ class CallChecks(CheckerBase):
                 if pou.kind == "FUNCTION":
                     return self._user_function_call(e, pou, scope)
                 if pou.kind == "PROGRAM":
-                    self.d.error("E043", f"'{pou.name}' is a PROGRAM; programs are started by tasks",
-                                 e.pos, "assign it to a TASK in the CONFIGURATION, or make it a "
-                                 "FUNCTION_BLOCK and call an instance")
+                    self.d.error(
+                        "E043",
+                        f"'{pou.name}' is a PROGRAM; programs are started by tasks",
+                        e.pos,
+                        "assign it to a TASK in the CONFIGURATION, or make it a FUNCTION_BLOCK and call an instance",
+                    )
                 else:
-                    self.d.error("E043", f"'{pou.name}' is a FUNCTION_BLOCK type, not an instance", e.pos,
-                                 f"declare an instance (inst : {pou.name};) and call inst(...)")
+                    self.d.error(
+                        "E043",
+                        f"'{pou.name}' is a FUNCTION_BLOCK type, not an instance",
+                        e.pos,
+                        f"declare an instance (inst : {pou.name};) and call inst(...)",
+                    )
                 self._check_args_loosely(e, scope)
                 return None
             native = self.natives.get(key)
@@ -52,9 +60,12 @@ class CallChecks(CheckerBase):
             func = self.std.get(key)
             if func is not None:
                 return self._std_call(e, func, scope)
-            self.d.error("E043", f"unknown function '{callee.name}'", callee.pos,
-                         self._suggest(key, list(self.pous) + list(self.std) + list(BUILTINS))
-                         or "declare it as a FUNCTION")
+            self.d.error(
+                "E043",
+                f"unknown function '{callee.name}'",
+                callee.pos,
+                self._suggest(key, list(self.pous) + list(self.std) + list(BUILTINS)) or "declare it as a FUNCTION",
+            )
             self._check_args_loosely(e, scope)
             return None
         if isinstance(callee, (A.Member, A.Index)):  # inst.sub(...), timers[i](...)
@@ -78,8 +89,12 @@ class CallChecks(CheckerBase):
             self._check_args_loosely(e, scope)
             return None
         if not as_statement:
-            self.d.error("E043", "a function block call is a statement, not a value", e.pos,
-                         f"call it on its own line, then read an output, e.g. {self._describe(inst)}.Q")
+            self.d.error(
+                "E043",
+                "a function block call is a statement, not a value",
+                e.pos,
+                f"call it on its own line, then read an output, e.g. {self._describe(inst)}.Q",
+            )
         info = CallInfo("fb", pou=fbt.pou, instance=inst)
         self._bind_args(e, fbt.pou, info, scope, is_fb=True)
         e.target = info
@@ -106,11 +121,14 @@ class CallChecks(CheckerBase):
         for a in e.args:
             if a.name is None:
                 if seen_formal:
-                    self.d.error("E041", "a positional argument after a named one", a.pos,
-                                 "name every argument, or put positional ones first")
+                    self.d.error(
+                        "E041",
+                        "a positional argument after a named one",
+                        a.pos,
+                        "name every argument, or put positional ones first",
+                    )
                 if pos_i >= len(positional):
-                    self.d.error("E041", f"too many arguments for {pou.name} "
-                                 f"(it takes {len(positional)})", a.pos)
+                    self.d.error("E041", f"too many arguments for {pou.name} (it takes {len(positional)})", a.pos)
                     if a.value is not None:
                         self.expr(a.value, scope)
                     continue
@@ -121,9 +139,12 @@ class CallChecks(CheckerBase):
                 param = pou.vars.get(a.name.upper())
                 if param is None or param.section not in ("VAR_INPUT", "VAR_IN_OUT", "VAR_OUTPUT"):
                     names = [v.name for v in pou.params("VAR_INPUT", "VAR_IN_OUT", "VAR_OUTPUT")]
-                    self.d.error("E040", f"{pou.name} has no parameter '{a.name}'", a.pos,
-                                 f"its parameters are: {', '.join(names)}" if names else
-                                 f"{pou.name} takes no parameters")
+                    self.d.error(
+                        "E040",
+                        f"{pou.name} has no parameter '{a.name}'",
+                        a.pos,
+                        f"its parameters are: {', '.join(names)}" if names else f"{pou.name} takes no parameters",
+                    )
                     if a.value is not None:
                         self.expr(a.value, scope)
                     continue
@@ -134,16 +155,21 @@ class CallChecks(CheckerBase):
             bound.add(key)
             if param.section == "VAR_OUTPUT":
                 if not a.output:
-                    self.d.error("E040", f"'{param.name}' is an output; bind it with =>", a.pos,
-                                 f"write {param.name} => variable")
+                    self.d.error(
+                        "E040",
+                        f"'{param.name}' is an output; bind it with =>",
+                        a.pos,
+                        f"write {param.name} => variable",
+                    )
                     continue
                 if a.value is None:
                     continue
                 tty = self.lvalue(a.value, scope)
                 if tty is not None:
                     src = T.BOOL if a.negated else param.type
-                    self.check_convertible(src, tty, A.Name(param.name, pos=a.pos, ty=param.type),
-                                           f"output '{param.name}'")
+                    self.check_convertible(
+                        src, tty, A.Name(param.name, pos=a.pos, ty=param.type), f"output '{param.name}'"
+                    )
                 info.outputs.append((param, a.value, a.negated))
                 continue
             if a.output:
@@ -156,13 +182,21 @@ class CallChecks(CheckerBase):
                 if vty is None:
                     continue
                 if not self._is_lvalue_expr(a.value):
-                    self.d.error("E042", f"VAR_IN_OUT '{param.name}' needs a variable, not an expression",
-                                 a.value.pos, "pass a variable: it is passed by reference")
+                    self.d.error(
+                        "E042",
+                        f"VAR_IN_OUT '{param.name}' needs a variable, not an expression",
+                        a.value.pos,
+                        "pass a variable: it is passed by reference",
+                    )
                     continue
                 self._check_writable(a.value, scope)
                 if not self._inout_compatible(vty, param.type):
-                    self.d.error("E020", f"VAR_IN_OUT '{param.name}' is {param.type}; got {vty}",
-                                 a.value.pos, "a reference parameter needs exactly its type")
+                    self.d.error(
+                        "E020",
+                        f"VAR_IN_OUT '{param.name}' is {param.type}; got {vty}",
+                        a.value.pos,
+                        "a reference parameter needs exactly its type",
+                    )
                     continue
                 self._mark_boxed(a.value, scope)
                 info.inouts.append((param, a.value))
@@ -173,8 +207,12 @@ class CallChecks(CheckerBase):
                 info.inputs.append((param, a.value))
         for param in pou.params("VAR_IN_OUT"):
             if param.name.upper() not in bound:
-                self.d.error("E042", f"VAR_IN_OUT '{param.name}' of {pou.name} is not connected", e.pos,
-                             f"pass a variable: {param.name} := myVar")
+                self.d.error(
+                    "E042",
+                    f"VAR_IN_OUT '{param.name}' of {pou.name} is not connected",
+                    e.pos,
+                    f"pass a variable: {param.name} := myVar",
+                )
         for _, target, _n in info.outputs:
             self._mark_boxed(target, scope)
 
@@ -190,8 +228,13 @@ class CallChecks(CheckerBase):
         """A FUNCTION local passed by reference lives in a cell."""
         if isinstance(e, A.Name) and isinstance(e.sym, VarSymbol):
             e.sym.address_taken = True
-        if isinstance(e, A.Name) and isinstance(e.sym, VarSymbol) and e.sym.owner is not None \
-                and e.sym.owner.kind == "FUNCTION" and not T.resolve(e.sym.type).is_aggregate:
+        if (
+            isinstance(e, A.Name)
+            and isinstance(e.sym, VarSymbol)
+            and e.sym.owner is not None
+            and e.sym.owner.kind == "FUNCTION"
+            and not T.resolve(e.sym.type).is_aggregate
+        ):
             e.sym.boxed = True
 
     # ---------------------------------------------------------------- standard functions
@@ -215,7 +258,7 @@ class CallChecks(CheckerBase):
             names = [p[0].upper() for p in params]
             if func.extensible:  # IN1, IN2, ... beyond the fixed ones
                 base = names[-1].rstrip("0123456789")
-                digits = names[-1][len(base):]
+                digits = names[-1][len(base) :]
                 i = int(digits) + 1 if digits else len(names)
                 while True:
                     nxt = f"{base}{i}"
@@ -226,8 +269,12 @@ class CallChecks(CheckerBase):
                         break
             for a in args:
                 if a.name.upper() not in names:
-                    self.d.error("E040", f"{func.name} has no parameter '{a.name}'", a.pos,
-                                 f"its parameters are: {', '.join(p[0] for p in params)}")
+                    self.d.error(
+                        "E040",
+                        f"{func.name} has no parameter '{a.name}'",
+                        a.pos,
+                        f"its parameters are: {', '.join(p[0] for p in params)}",
+                    )
                     return None
             for n in names:
                 if n not in by_name:
@@ -242,9 +289,12 @@ class CallChecks(CheckerBase):
                     return None
         need = len(params)
         if len(out) < need or (not func.extensible and len(out) > need):
-            self.d.error("E041", f"{func.name} takes {'at least ' if func.extensible else ''}{need} "
-                         f"argument(s), {len(out)} given", e.pos,
-                         f"{func.name}({', '.join(p[0] for p in params)})")
+            self.d.error(
+                "E041",
+                f"{func.name} takes {'at least ' if func.extensible else ''}{need} argument(s), {len(out)} given",
+                e.pos,
+                f"{func.name}({', '.join(p[0] for p in params)})",
+            )
             return None
         return out
 
@@ -325,8 +375,7 @@ class CallChecks(CheckerBase):
             if rty is None:
                 self.d.error("E020", f"{func.name}: unknown result type {ret}", e.pos)
                 return None
-        e.target = CallInfo("std", func=func, args=args, param_types=param_types,
-                            rtypes=(rty, *arg_types))
+        e.target = CallInfo("std", func=func, args=args, param_types=param_types, rtypes=(rty, *arg_types))
         if all(a.const is not None for a in args) and self._foldable(func):
             try:
                 e.const = self._call_impl(func, e.target, [a.const for a in args])
@@ -334,8 +383,27 @@ class CallChecks(CheckerBase):
                 e.const = None
         return rty
 
-    _FOLDABLE_NAMES = ("ABS", "SQRT", "MAX", "MIN", "LIMIT", "SEL", "MUX", "SHL", "SHR", "ROL", "ROR",
-                          "LEN", "CONCAT", "LEFT", "RIGHT", "MID", "TRUNC", "EXPT", "MOVE")
+    _FOLDABLE_NAMES = (
+        "ABS",
+        "SQRT",
+        "MAX",
+        "MIN",
+        "LIMIT",
+        "SEL",
+        "MUX",
+        "SHL",
+        "SHR",
+        "ROL",
+        "ROR",
+        "LEN",
+        "CONCAT",
+        "LEFT",
+        "RIGHT",
+        "MID",
+        "TRUNC",
+        "EXPT",
+        "MOVE",
+    )
 
     def _foldable(self, func) -> bool:
         return "_TO_" in func.name or func.name.startswith("TO_") or func.name in self._FOLDABLE_NAMES
@@ -364,8 +432,12 @@ class CallChecks(CheckerBase):
         args = list(e.args)
         if key in ("TIME", "LTIME"):
             if args:
-                self.d.error("E041", f"{key}() takes no arguments", e.pos,
-                             f"{key}() reads the task clock; to convert use TO_{key}(x)")
+                self.d.error(
+                    "E041",
+                    f"{key}() takes no arguments",
+                    e.pos,
+                    f"{key}() reads the task clock; to convert use TO_{key}(x)",
+                )
                 return None
             e.target = CallInfo("builtin", func=key)
             return T.TIME if key == "TIME" else T.LTIME
@@ -433,8 +505,7 @@ class CallChecks(CheckerBase):
             elif param.kind == native.WORDS and param.min_words and isinstance(table, T.ArrayType):
                 dims = table.dims[0]
                 if dims is not None and dims[1] - dims[0] + 1 < param.min_words:
-                    self.d.error("E020", f"{fn.name}: {param.label(i + 1)} needs {param.min_words} words",
-                                 value.pos)
+                    self.d.error("E020", f"{fn.name}: {param.label(i + 1)} needs {param.min_words} words", value.pos)
         e.target = CallInfo("native", func=fn, args=vals, rtypes=tuple(tys))
         return T.ELEMENTARY[fn.result]
 
@@ -447,7 +518,7 @@ class CallChecks(CheckerBase):
         if param.kind == native.ANY_INT:
             be = T.base_elementary(ty)
             return be is not None and be.is_intlike
-        t = T.resolve(ty)   # WORDS: a one-dimensional table of 16-bit words
+        t = T.resolve(ty)  # WORDS: a one-dimensional table of 16-bit words
         if not isinstance(t, T.ArrayType) or len(t.dims) != 1:
             return False
         elem = T.base_elementary(t.elem)

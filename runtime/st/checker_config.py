@@ -3,6 +3,7 @@
 Tasks with INTERVAL, PRIORITY and SINGLE; program instances with their
 task and parameters.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -17,6 +18,7 @@ from .symbols import CallInfo
 @dataclass
 class ConfigInfo:
     """A checked CONFIGURATION: tasks and program instances for the engine."""
+
     name: str
     tasks: list = field(default_factory=list)  # dicts: name, interval_ms, priority, single, pos
     programs: list = field(default_factory=list)  # dicts: name, type (POUInfo), task, args, pos
@@ -35,8 +37,14 @@ class ConfigChecks(CheckerBase):
                 if key in task_names:
                     self.d.error("E090", f"task '{t.name}' is declared twice", t.pos)
                     continue
-                task = {"name": t.name, "interval_ms": None, "priority": 0, "single": None, "pos": t.pos,
-                        "resource": res.name}
+                task = {
+                    "name": t.name,
+                    "interval_ms": None,
+                    "priority": 0,
+                    "single": None,
+                    "pos": t.pos,
+                    "resource": res.name,
+                }
                 for pname, pexpr in t.params.items():
                     p = pname.upper()
                     if p == "INTERVAL":
@@ -47,8 +55,7 @@ class ConfigChecks(CheckerBase):
                             if task["interval_ms"] <= 0:
                                 self.d.error("E091", "a task INTERVAL must be positive", pexpr.pos)
                         else:
-                            self.d.error("E091", "INTERVAL must be a constant TIME such as T#10ms",
-                                         pexpr.pos)
+                            self.d.error("E091", "INTERVAL must be a constant TIME such as T#10ms", pexpr.pos)
                     elif p == "PRIORITY":
                         v = self._const_int(pexpr, Scope(None), "PRIORITY")
                         if v is not None:
@@ -61,8 +68,12 @@ class ConfigChecks(CheckerBase):
                             self.d.error("E091", "SINGLE must be a BOOL variable", pexpr.pos)
                         task["single"] = pexpr
                     else:
-                        self.d.error("E091", f"unknown task parameter '{pname}'", pexpr.pos,
-                                     "TASK parameters are INTERVAL, PRIORITY and SINGLE")
+                        self.d.error(
+                            "E091",
+                            f"unknown task parameter '{pname}'",
+                            pexpr.pos,
+                            "TASK parameters are INTERVAL, PRIORITY and SINGLE",
+                        )
                 task_names[key] = task
                 info.tasks.append(task)
         inst_names: set = set()
@@ -75,17 +86,20 @@ class ConfigChecks(CheckerBase):
                 inst_names.add(key)
                 pou = self.pous.get(p.type_name.upper())
                 if pou is None or pou.kind != "PROGRAM":
-                    self.d.error("E092", f"'{p.type_name}' is not a PROGRAM", p.pos,
-                                 self._suggest(p.type_name.upper(),
-                                               [k for k, v in self.pous.items() if v.kind == "PROGRAM"]))
+                    self.d.error(
+                        "E092",
+                        f"'{p.type_name}' is not a PROGRAM",
+                        p.pos,
+                        self._suggest(p.type_name.upper(), [k for k, v in self.pous.items() if v.kind == "PROGRAM"]),
+                    )
                     continue
                 if p.task is not None and p.task.upper() not in task_names:
-                    self.d.error("E093", f"unknown task '{p.task}'", p.pos,
-                                 self._suggest(p.task.upper(), list(task_names)))
+                    self.d.error(
+                        "E093", f"unknown task '{p.task}'", p.pos, self._suggest(p.task.upper(), list(task_names))
+                    )
                     continue
                 fake = A.Call(A.Name(p.type_name, pos=p.pos), p.args, pos=p.pos)
                 binding = CallInfo("fb", pou=pou)
                 self._bind_args(fake, pou, binding, Scope(None), is_fb=True)
-                info.programs.append({"name": p.name, "type": pou, "task": p.task, "pos": p.pos,
-                                      "binding": binding})
+                info.programs.append({"name": p.name, "type": pou, "task": p.task, "pos": p.pos, "binding": binding})
         self.configs.append(info)

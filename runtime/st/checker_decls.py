@@ -4,6 +4,7 @@ Declares the globals and the variables of each POU (sections, AT
 locations, RETAIN, VAR_EXTERNAL) and evaluates initial values into plans
 the code generator emits (init_value).
 """
+
 from __future__ import annotations
 
 from typing import Any
@@ -28,9 +29,19 @@ class DeclChecks(CheckerBase):
             self.d.error("E050", "ARRAY[*] is only allowed for VAR_IN_OUT", decl.pos)
             return None
         prefix = "v_" if owner is not None else "g_"
-        sym = VarSymbol(decl.name, section, ty, decl.pos, pyname(prefix, decl.name), owner,
-                        constant=block.constant, retain=block.retain, persistent=block.persistent,
-                        location=decl.location, init=decl.init)
+        sym = VarSymbol(
+            decl.name,
+            section,
+            ty,
+            decl.pos,
+            pyname(prefix, decl.name),
+            owner,
+            constant=block.constant,
+            retain=block.retain,
+            persistent=block.persistent,
+            location=decl.location,
+            init=decl.init,
+        )
         if decl.location is not None:
             self._check_location_type(sym)
         if block.retain or block.persistent:
@@ -53,20 +64,29 @@ class DeclChecks(CheckerBase):
         else:
             return
         qualifier = "PERSISTENT" if block.persistent else "RETAIN"
-        self.d.warning("W111", f"{qualifier} has no effect on {sym.name}, {what}", sym.pos,
-                       f"remove {qualifier}; to keep the value, copy it into a VAR {qualifier} "
-                       "variable of a PROGRAM or FUNCTION_BLOCK")
+        self.d.warning(
+            "W111",
+            f"{qualifier} has no effect on {sym.name}, {what}",
+            sym.pos,
+            f"remove {qualifier}; to keep the value, copy it into a VAR {qualifier} "
+            "variable of a PROGRAM or FUNCTION_BLOCK",
+        )
 
     def _declare_globals(self, block: A.VarBlock) -> None:
         if block.kind not in ("VAR_GLOBAL", "VAR_CONFIG"):
-            self.d.error("E011", f"{block.kind} is not allowed outside a POU", block.pos,
-                         "use VAR_GLOBAL for global variables")
+            self.d.error(
+                "E011", f"{block.kind} is not allowed outside a POU", block.pos, "use VAR_GLOBAL for global variables"
+            )
             return
         for decl in block.decls:
             key = decl.name.upper()
             if key in self.globals:
-                self.d.error("E011", f"global '{decl.name}' is declared twice", decl.pos,
-                             f"the first declaration is at {self.globals[key].pos}")
+                self.d.error(
+                    "E011",
+                    f"global '{decl.name}' is declared twice",
+                    decl.pos,
+                    f"the first declaration is at {self.globals[key].pos}",
+                )
                 continue
             sym = self._make_var(decl, block, None)
             if sym is not None:
@@ -83,12 +103,18 @@ class DeclChecks(CheckerBase):
         elif node.return_type is not None:
             self.d.error("E011", f"a {pou.kind} has no return type", node.return_type.pos)
         allowed = {
-            "PROGRAM": ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_EXTERNAL", "VAR_TEMP",
-                        "VAR_GLOBAL", "VAR_STAT"),
-            "FUNCTION_BLOCK": ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_EXTERNAL",
-                               "VAR_TEMP", "VAR_STAT"),
-            "FUNCTION": ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_EXTERNAL", "VAR_TEMP",
-                         "VAR_STAT"),
+            "PROGRAM": (
+                "VAR",
+                "VAR_INPUT",
+                "VAR_OUTPUT",
+                "VAR_IN_OUT",
+                "VAR_EXTERNAL",
+                "VAR_TEMP",
+                "VAR_GLOBAL",
+                "VAR_STAT",
+            ),
+            "FUNCTION_BLOCK": ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_EXTERNAL", "VAR_TEMP", "VAR_STAT"),
+            "FUNCTION": ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_EXTERNAL", "VAR_TEMP", "VAR_STAT"),
         }[pou.kind]
         for block in node.var_blocks:
             if block.kind not in allowed:
@@ -102,16 +128,20 @@ class DeclChecks(CheckerBase):
                 if block.kind == "VAR_EXTERNAL":
                     g = self.globals.get(key)
                     if g is None:
-                        self.d.error("E010", f"VAR_EXTERNAL '{decl.name}' has no VAR_GLOBAL", decl.pos,
-                                     "declare it in a VAR_GLOBAL block (a GVL or the CONFIGURATION)")
+                        self.d.error(
+                            "E010",
+                            f"VAR_EXTERNAL '{decl.name}' has no VAR_GLOBAL",
+                            decl.pos,
+                            "declare it in a VAR_GLOBAL block (a GVL or the CONFIGURATION)",
+                        )
                         continue
                     ty = self.type_of(decl.type)
                     if ty is not None and not same_type(ty, g.type):
-                        self.d.error("E020", f"VAR_EXTERNAL '{decl.name}' is {ty}, the global is {g.type}",
-                                     decl.pos)
+                        self.d.error("E020", f"VAR_EXTERNAL '{decl.name}' is {ty}, the global is {g.type}", decl.pos)
                     if g.constant and not block.constant:
-                        self.d.error("E030", f"global '{decl.name}' is CONSTANT; declare the "
-                                     "VAR_EXTERNAL CONSTANT too", decl.pos)
+                        self.d.error(
+                            "E030", f"global '{decl.name}' is CONSTANT; declare the VAR_EXTERNAL CONSTANT too", decl.pos
+                        )
                     continue  # references the global symbol directly
                 if block.kind == "VAR_GLOBAL":  # a PROGRAM's own globals
                     if key in self.globals:
@@ -135,14 +165,17 @@ class DeclChecks(CheckerBase):
     def _check_location_type(self, sym: VarSymbol) -> None:
         addr = sym.location
         ty = T.base_elementary(sym.type)
-        want = 1 if (addr.size in ("", "X") or addr.bit is not None) else \
-            {"B": 8, "W": 16, "D": 32, "L": 64}[addr.size]
+        want = 1 if (addr.size in ("", "X") or addr.bit is not None) else {"B": 8, "W": 16, "D": 32, "L": 64}[addr.size]
         if addr.table is not None:
             self.d.error("E081", f"{addr.text}: a word table cannot be declared AT", sym.pos)
         elif ty is None or ty.bits != want:
-            self.d.error("E081", f"{addr.text} is a {want}-bit address; '{sym.name}' is {sym.type}",
-                         sym.pos, "declare a type of the address size (X: BOOL, B: BYTE/SINT, "
-                         "W: WORD/INT, D: DWORD/DINT/REAL, L: LWORD/LINT/LREAL)")
+            self.d.error(
+                "E081",
+                f"{addr.text} is a {want}-bit address; '{sym.name}' is {sym.type}",
+                sym.pos,
+                "declare a type of the address size (X: BOOL, B: BYTE/SINT, "
+                "W: WORD/INT, D: DWORD/DINT/REAL, L: LWORD/LINT/LREAL)",
+            )
         else:
             self._address_fits(addr, ty, sym.pos)
 
@@ -155,8 +188,12 @@ class DeclChecks(CheckerBase):
                 sym.const_value = self.default_value(sym.type)
             return
         sym.init_value = self.init_value(sym.type, sym.init, scope, sym.name)
-        if sym.constant and sym.init_value is not None and T.base_elementary(sym.type) is not None \
-                or (sym.constant and isinstance(T.resolve(sym.type), T.StringType)):
+        if (
+            sym.constant
+            and sym.init_value is not None
+            and T.base_elementary(sym.type) is not None
+            or (sym.constant and isinstance(T.resolve(sym.type), T.StringType))
+        ):
             sym.const_value = sym.init_value
 
     def default_value(self, ty: T.Type) -> Any:
@@ -197,8 +234,12 @@ class DeclChecks(CheckerBase):
         if not self.check_convertible(ety, ty, init, f"the initial value of '{what}'"):
             return None
         if init.const is None and not isinstance(rty, T.RefType):
-            self.d.error("E024", f"the initial value of '{what}' is not a constant expression", init.pos,
-                         "use literals and CONSTANTs here, or assign the value in the code")
+            self.d.error(
+                "E024",
+                f"the initial value of '{what}' is not a constant expression",
+                init.pos,
+                "use literals and CONSTANTs here, or assign the value in the code",
+            )
             return None
         if isinstance(rty, T.RefType):
             return None
@@ -222,8 +263,12 @@ class DeclChecks(CheckerBase):
             plan = self.init_value(ty.elem, value, scope, what) if value is not None else None
             flat.extend([plan] * count)
         if len(flat) > total:
-            self.d.error("E052", f"{len(flat)} initial values for '{what}', which has {total} elements",
-                         init.pos, "remove values or enlarge the array")
+            self.d.error(
+                "E052",
+                f"{len(flat)} initial values for '{what}', which has {total} elements",
+                init.pos,
+                "remove values or enlarge the array",
+            )
             return None
         flat.extend([None] * (total - len(flat)))
         return ("array", flat)
@@ -233,16 +278,16 @@ class DeclChecks(CheckerBase):
         if isinstance(ty, T.StructType):
             fields = {k: (f.name, f.type) for k, f in ty.fields.items()}
         elif isinstance(ty, T.FBType):
-            fields = {k: (v.name, v.type) for k, v in ty.pou.vars.items()
-                      if v.section in ("VAR_INPUT", "VAR_OUTPUT", "VAR")}
+            fields = {
+                k: (v.name, v.type) for k, v in ty.pou.vars.items() if v.section in ("VAR_INPUT", "VAR_OUTPUT", "VAR")
+            }
         else:
             self.d.error("E024", f"'{what}' is {ty}; a ( := ) initialiser needs a STRUCT or FB", init.pos)
             return None
         for fname, fval, fpos in init.fields:
             k = fname.upper()
             if k not in fields:
-                self.d.error("E013", f"{ty} has no member '{fname}'", fpos,
-                             self._suggest(k, list(fields)))
+                self.d.error("E013", f"{ty} has no member '{fname}'", fpos, self._suggest(k, list(fields)))
                 continue
             out[k] = self.init_value(fields[k][1], fval, scope, f"{what}.{fields[k][0]}")
         return ("struct", out)
@@ -252,7 +297,8 @@ class DeclChecks(CheckerBase):
         if ty is None:
             return None
         if e.const is None or isinstance(e.const, bool) or not isinstance(e.const, int):
-            self.d.error("E025", f"{what} must be a constant integer expression", e.pos,
-                         "use a literal or a VAR CONSTANT")
+            self.d.error(
+                "E025", f"{what} must be a constant integer expression", e.pos, "use a literal or a VAR CONSTANT"
+            )
             return None
         return e.const

@@ -4,6 +4,7 @@ Types and folds literals, names and enumerators, members, indices, bit
 access, dereferencing and direct addresses. Operators are checked in
 checker_operators, calls in checker_calls.
 """
+
 from __future__ import annotations
 
 from . import ast as A
@@ -11,8 +12,14 @@ from . import types as T
 from .checker_base import BUILTINS, CheckerBase, Scope
 
 _TIME_KIND = {
-    "time": T.TIME, "ltime": T.LTIME, "date": T.DATE, "tod": T.TOD, "dt": T.DT,
-    "ldate": T.LDATE, "ltod": T.LTOD, "ldt": T.LDT,
+    "time": T.TIME,
+    "ltime": T.LTIME,
+    "date": T.DATE,
+    "tod": T.TOD,
+    "dt": T.DT,
+    "ldate": T.LDATE,
+    "ltod": T.LTOD,
+    "ldt": T.LDT,
 }
 _SECTIONS_READABLE_OUTSIDE = ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT")
 
@@ -67,8 +74,9 @@ class ExprChecks(CheckerBase):
     def _literal(self, e: A.Literal, expected: T.Type | None) -> T.Type | None:
         v = e.value
         if e.c_hex and not self.profile.c_hex_literals:
-            self.d.error("E026", "C-style hexadecimal literal", e.pos,
-                         f"write 16#{v:X}, or compile with --profile schneider")
+            self.d.error(
+                "E026", "C-style hexadecimal literal", e.pos, f"write 16#{v:X}, or compile with --profile schneider"
+            )
         if e.kind in _TIME_KIND:
             ty = _TIME_KIND[e.kind]
             if e.type_name is not None and T.ELEMENTARY.get(e.type_name) is not None:
@@ -123,8 +131,12 @@ class ExprChecks(CheckerBase):
     def _time_repr(self, ty: T.ElementaryType, ns: int, e: A.Expr) -> int:
         v = ns // ty.unit_ns if ns >= 0 else -((-ns) // ty.unit_ns)
         if ty.lo is not None and ty.hi is not None and not (ty.lo <= v <= ty.hi):
-            self.d.error("E022", f"the literal is outside the range of {ty.name}", e.pos,
-                         "use the L-type (LTIME, LDT ...) for larger values")
+            self.d.error(
+                "E022",
+                f"the literal is outside the range of {ty.name}",
+                e.pos,
+                "use the L-type (LTIME, LDT ...) for larger values",
+            )
         return v
 
     def _name(self, e: A.Name, scope: Scope, expected: T.Type | None) -> T.Type | None:
@@ -151,12 +163,15 @@ class ExprChecks(CheckerBase):
                 e.const = pick[0][1]
                 e.sym = pick[0][0]
                 return pick[0][0]
-            self.d.error("E010", f"'{e.name}' is an enumerator of several types", e.pos,
-                         f"qualify it, e.g. {cands[0][0].name}#{e.name}")
+            self.d.error(
+                "E010",
+                f"'{e.name}' is an enumerator of several types",
+                e.pos,
+                f"qualify it, e.g. {cands[0][0].name}#{e.name}",
+            )
             return None
         if key in self.pous or key in self.std or key in BUILTINS:
-            self.d.error("E010", f"'{e.name}' is a POU, not a variable", e.pos,
-                         "call it with parentheses: name(...)")
+            self.d.error("E010", f"'{e.name}' is a POU, not a variable", e.pos, "call it with parentheses: name(...)")
             return None
         if key == "NULL":
             e.const = None
@@ -164,8 +179,9 @@ class ExprChecks(CheckerBase):
         names = [g.name for g in self.globals.values()]
         if pou is not None:
             names += [v.name for v in pou.vars.values()]
-        self.d.error("E010", f"unknown name '{e.name}'", e.pos, self._suggest(key, names)
-                     or "declare it in a VAR block")
+        self.d.error(
+            "E010", f"unknown name '{e.name}'", e.pos, self._suggest(key, names) or "declare it in a VAR block"
+        )
         return None
 
     def _enum_literal(self, e: A.EnumLiteral, expected: T.Type | None) -> T.Type | None:
@@ -175,14 +191,21 @@ class ExprChecks(CheckerBase):
         ty = self.types.get(e.type_name.upper())
         ty = T.resolve(ty) if ty is not None else None
         if not isinstance(ty, T.EnumType):
-            self.d.error("E012", f"'{e.type_name}' is not an enumeration type", e.pos,
-                         self._suggest(e.type_name.upper(),
-                                       [k for k, t in self.types.items() if isinstance(t, T.EnumType)]))
+            self.d.error(
+                "E012",
+                f"'{e.type_name}' is not an enumeration type",
+                e.pos,
+                self._suggest(e.type_name.upper(), [k for k, t in self.types.items() if isinstance(t, T.EnumType)]),
+            )
             return None
         v = ty.values.get(e.value_name.upper())
         if v is None:
-            self.d.error("E013", f"enumeration {ty.name} has no value '{e.value_name}'", e.pos,
-                         self._suggest(e.value_name.upper(), list(ty.values)))
+            self.d.error(
+                "E013",
+                f"enumeration {ty.name} has no value '{e.value_name}'",
+                e.pos,
+                self._suggest(e.value_name.upper(), list(ty.values)),
+            )
             return None
         e.const = v
         return ty
@@ -206,21 +229,27 @@ class ExprChecks(CheckerBase):
         if isinstance(b, T.StructType):
             f = b.fields.get(key)
             if f is None:
-                self.d.error("E013", f"{b.name} has no field '{e.name}'", e.pos,
-                             self._suggest(key, list(b.fields)))
+                self.d.error("E013", f"{b.name} has no field '{e.name}'", e.pos, self._suggest(key, list(b.fields)))
                 return None
             e.sym = f
             return f.type
         if isinstance(b, T.FBType):
             v = b.pou.vars.get(key)
             if v is None:
-                self.d.error("E013", f"{b.name} has no member '{e.name}'", e.pos,
-                             self._suggest(key, [k for k, s in b.pou.vars.items()
-                                                 if s.section in _SECTIONS_READABLE_OUTSIDE]))
+                self.d.error(
+                    "E013",
+                    f"{b.name} has no member '{e.name}'",
+                    e.pos,
+                    self._suggest(key, [k for k, s in b.pou.vars.items() if s.section in _SECTIONS_READABLE_OUTSIDE]),
+                )
                 return None
             if v.section not in ("VAR_INPUT", "VAR_OUTPUT") and scope.pou is not b.pou:
-                self.d.error("E013", f"'{v.name}' is internal to {b.name}", e.pos,
-                             "only VAR_INPUT and VAR_OUTPUT are visible outside a block")
+                self.d.error(
+                    "E013",
+                    f"'{v.name}' is internal to {b.name}",
+                    e.pos,
+                    "only VAR_INPUT and VAR_OUTPUT are visible outside a block",
+                )
                 return None
             e.sym = v
             return v.type
@@ -244,8 +273,7 @@ class ExprChecks(CheckerBase):
             self.d.error("E050", f"{bty} is not an array", e.pos)
             return None
         if len(e.indices) != len(b.dims):
-            self.d.error("E050", f"{b} has {len(b.dims)} dimension(s), {len(e.indices)} index(es) given",
-                         e.pos)
+            self.d.error("E050", f"{b} has {len(b.dims)} dimension(s), {len(e.indices)} index(es) given", e.pos)
             return None
         for ix, dim in zip(e.indices, b.dims):
             if dim is not None and isinstance(ix.const, int) and not (dim[0] <= ix.const <= dim[1]):
@@ -270,9 +298,12 @@ class ExprChecks(CheckerBase):
         """Report (E082) a direct address outside the process image, and
         (E083) a CODESYS placeholder address %I* that nothing maps."""
         if not addr.indices:
-            self.d.error("E083", f"{addr.text} is an unconfigured address", pos,
-                         "give the full address (e.g. %IX0.0); mapping %I* through VAR_CONFIG "
-                         "is not supported")
+            self.d.error(
+                "E083",
+                f"{addr.text} is an unconfigured address",
+                pos,
+                "give the full address (e.g. %IX0.0); mapping %I* through VAR_CONFIG is not supported",
+            )
             return False
         if self._image_probe is None:
             return True
@@ -281,16 +312,16 @@ class ExprChecks(CheckerBase):
                 self._image_probe.table(addr)
             else:
                 self._image_probe.accessor(addr, ty)
-        except ValueError as exc:   # the image's AddressError
-            self.d.error("E082", str(exc), pos, "the image areas are "
-                         f"{self._image_probe.size // 1024} KiB each")
+        except ValueError as exc:  # the image's AddressError
+            self.d.error("E082", str(exc), pos, f"the image areas are {self._image_probe.size // 1024} KiB each")
             return False
         return True
 
     def _located(self, e: A.Located) -> T.Type | None:
         ty = self._located_type(e)
-        if ty is not None and not self._address_fits(e.addr, T.base_elementary(ty)
-                                                     if e.addr.table is None else None, e.pos):
+        if ty is not None and not self._address_fits(
+            e.addr, T.base_elementary(ty) if e.addr.table is None else None, e.pos
+        ):
             return None
         return ty
 
@@ -298,8 +329,12 @@ class ExprChecks(CheckerBase):
         a = e.addr
         schneider = self.profile.addressing == "schneider"
         if (a.bit is not None or a.table is not None) and not schneider:
-            self.d.error("E080", f"{a.text} is Schneider addressing", e.pos,
-                         "compile with --profile schneider, or write %MX<byte>.<bit>")
+            self.d.error(
+                "E080",
+                f"{a.text} is Schneider addressing",
+                e.pos,
+                "compile with --profile schneider, or write %MX<byte>.<bit>",
+            )
             return None
         if a.table is not None:
             if a.size != "W":
@@ -313,8 +348,7 @@ class ExprChecks(CheckerBase):
             return T.BOOL
         if a.size in ("", "X"):
             if not schneider and a.size == "" and len(a.indices) < 2:
-                self.d.error("E080", f"{a.text}: a bit address needs byte.bit", e.pos,
-                             f"write %{a.area}X<byte>.<bit>")
+                self.d.error("E080", f"{a.text}: a bit address needs byte.bit", e.pos, f"write %{a.area}X<byte>.<bit>")
                 return None
             return T.BOOL
         if schneider:

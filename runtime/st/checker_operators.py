@@ -3,6 +3,7 @@
 Unary, logical, comparison, arithmetic and time arithmetic; a constant
 result when the operands are constant.
 """
+
 from __future__ import annotations
 
 from typing import Any
@@ -25,8 +26,7 @@ class OperatorChecks(CheckerBase):
         be = T.base_elementary(ty)
         c = e.operand.const
         if e.op == "NOT":
-            if be is not None and (be.is_bool or be.is_bits or
-                                   (be.is_integer and self.profile.bitwise_on_integers)):
+            if be is not None and (be.is_bool or be.is_bits or (be.is_integer and self.profile.bitwise_on_integers)):
                 if isinstance(T.resolve(ty), T.EnumType):
                     be = None
                 else:
@@ -35,8 +35,9 @@ class OperatorChecks(CheckerBase):
                     return be
             self.d.error("E023", f"NOT needs BOOL or a bit string, not {ty}", e.pos)
             return None
-        if be is None or not (be.is_integer or be.is_real or be.category == T.DURATION or
-                              (be.is_bits and self.profile.int_bits_mix)):
+        if be is None or not (
+            be.is_integer or be.is_real or be.category == T.DURATION or (be.is_bits and self.profile.int_bits_mix)
+        ):
             self.d.error("E023", f"unary {e.op} needs a number, not {ty}", e.pos)
             return None
         if c is not None:
@@ -80,14 +81,23 @@ class OperatorChecks(CheckerBase):
                 return None
             ty = common
         else:
-            self.d.error("E023", f"{e.op} needs BOOL or bit-string operands, not {lt} and {rt}", e.pos,
-                         "compare numbers first, e.g. (x > 0) AND (y > 0)")
+            self.d.error(
+                "E023",
+                f"{e.op} needs BOOL or bit-string operands, not {lt} and {rt}",
+                e.pos,
+                "compare numbers first, e.g. (x > 0) AND (y > 0)",
+            )
             return None
         lc, rc = e.left.const, e.right.const
         if lc is not None and rc is not None:
             if ty.is_bool:
-                e.const = {"AND": lc and rc, "AND_THEN": lc and rc, "OR": lc or rc,
-                           "OR_ELSE": lc or rc, "XOR": lc != rc}[e.op]
+                e.const = {
+                    "AND": lc and rc,
+                    "AND_THEN": lc and rc,
+                    "OR": lc or rc,
+                    "OR_ELSE": lc or rc,
+                    "XOR": lc != rc,
+                }[e.op]
             else:
                 e.const = {"AND": lc & rc, "OR": lc | rc, "XOR": lc ^ rc}[e.op]
         return ty
@@ -106,6 +116,7 @@ class OperatorChecks(CheckerBase):
             # r = 0 / r <> 0 is how CODESYS and TwinCAT test for NULL
             def refish(t, side):
                 return isinstance(t, (T.RefType, T.NullType)) or side.const == 0
+
             ok = e.op in ("=", "<>") and refish(lres, e.left) and refish(rres, e.right)
         else:
             le, re_ = T.base_elementary(lres), T.base_elementary(rres)
@@ -117,30 +128,40 @@ class OperatorChecks(CheckerBase):
                 elif self._common(le, re_, e, report=False) is not None:
                     ok = True
         if not ok:
-            self.d.error("E020", f"cannot compare {lt} with {rt}", e.pos,
-                         "convert one side so both have the same type")
+            self.d.error("E020", f"cannot compare {lt} with {rt}", e.pos, "convert one side so both have the same type")
             return None
         lc, rc = e.left.const, e.right.const
         if lc is not None and rc is not None and not isinstance(lres, T.RefType):
             import operator
-            fn = {"=": operator.eq, "<>": operator.ne, "<": operator.lt, ">": operator.gt,
-                  "<=": operator.le, ">=": operator.ge}[e.op]
+
+            fn = {
+                "=": operator.eq,
+                "<>": operator.ne,
+                "<": operator.lt,
+                ">": operator.gt,
+                "<=": operator.le,
+                ">=": operator.ge,
+            }[e.op]
             e.const = fn(lc, rc)
         return T.BOOL
 
-    def _common(self, le: T.ElementaryType, re_: T.ElementaryType, e: A.Expr,
-                report: bool = True) -> T.ElementaryType | None:
+    def _common(
+        self, le: T.ElementaryType, re_: T.ElementaryType, e: A.Expr, report: bool = True
+    ) -> T.ElementaryType | None:
         c = common_type(le, re_, self.profile)
         if c is None and report:
-            self.d.error("E020", f"no common type for {le} and {re_}", e.pos,
-                         f"convert one side explicitly, e.g. {le.name}_TO_{re_.name}(...)")
+            self.d.error(
+                "E020",
+                f"no common type for {le} and {re_}",
+                e.pos,
+                f"convert one side explicitly, e.g. {le.name}_TO_{re_.name}(...)",
+            )
         return c
 
     def _arithmetic(self, e: A.Binary, lt: T.Type, rt: T.Type, expected: T.Type | None) -> T.Type | None:
         op = e.op
         le, re_ = T.base_elementary(lt), T.base_elementary(rt)
-        if le is None or re_ is None or isinstance(T.resolve(lt), T.EnumType) \
-                or isinstance(T.resolve(rt), T.EnumType):
+        if le is None or re_ is None or isinstance(T.resolve(lt), T.EnumType) or isinstance(T.resolve(rt), T.EnumType):
             self.d.error("E023", f"'{op}' needs numbers, not {lt} and {rt}", e.pos)
             return None
         if le.is_time or re_.is_time:
@@ -210,16 +231,24 @@ class OperatorChecks(CheckerBase):
             ty = T.TIME
             name = {T.DATECAT: "SUB_DATE_DATE", T.TODCAT: "SUB_TOD_TOD", T.DTCAT: "SUB_DT_DT"}[le.category]
         if ty is None:
-            self.d.error("E023", f"'{op}' is not defined for {le.name} and {re_.name}", e.pos,
-                         "durations add to durations, dates and times of day; "
-                         "a duration multiplies by a number")
+            self.d.error(
+                "E023",
+                f"'{op}' is not defined for {le.name} and {re_.name}",
+                e.pos,
+                "durations add to durations, dates and times of day; a duration multiplies by a number",
+            )
             return None
         if name is not None:
             if le.bits == 64 or re_.bits == 64:
-                lname = {"ADD_TOD_TIME": "ADD_LTOD_LTIME", "SUB_TOD_TIME": "SUB_LTOD_LTIME",
-                         "ADD_DT_TIME": "ADD_LDT_LTIME", "SUB_DT_TIME": "SUB_LDT_LTIME",
-                         "SUB_DATE_DATE": "SUB_LDATE_LDATE", "SUB_TOD_TOD": "SUB_LTOD_LTOD",
-                         "SUB_DT_DT": "SUB_LDT_LDT"}.get(name)
+                lname = {
+                    "ADD_TOD_TIME": "ADD_LTOD_LTIME",
+                    "SUB_TOD_TIME": "SUB_LTOD_LTIME",
+                    "ADD_DT_TIME": "ADD_LDT_LTIME",
+                    "SUB_DT_TIME": "SUB_LDT_LTIME",
+                    "SUB_DATE_DATE": "SUB_LDATE_LDATE",
+                    "SUB_TOD_TOD": "SUB_LTOD_LTOD",
+                    "SUB_DT_DT": "SUB_LDT_LDT",
+                }.get(name)
                 if lname in self.std:
                     name = lname
                     if ty is T.TIME:

@@ -3,6 +3,7 @@
 Assignments, IF, CASE, FOR, WHILE, REPEAT, EXIT/CONTINUE, SET/RESET; the
 lvalues and whether they are writable (CONSTANT, inputs, FB outputs).
 """
+
 from __future__ import annotations
 
 from . import ast as A
@@ -46,8 +47,9 @@ class StmtChecks(CheckerBase):
         elif isinstance(s, (A.Exit, A.Continue)):
             if scope.loops == 0:
                 word = "EXIT" if isinstance(s, A.Exit) else "CONTINUE"
-                self.d.error("E070", f"{word} outside a loop", s.pos,
-                             "EXIT and CONTINUE belong inside FOR, WHILE or REPEAT")
+                self.d.error(
+                    "E070", f"{word} outside a loop", s.pos, "EXIT and CONTINUE belong inside FOR, WHILE or REPEAT"
+                )
         elif isinstance(s, A.Return):
             pass
         elif isinstance(s, A.SetReset):
@@ -65,8 +67,7 @@ class StmtChecks(CheckerBase):
     def _bool_cond(self, cond: A.Expr, scope: Scope, what: str) -> None:
         ty = self.expr(cond, scope, expected=T.BOOL)
         if ty is not None and not self._is_bool(ty):
-            self.d.error("E020", f"the {what} condition is {ty}, not BOOL", cond.pos,
-                         "compare it, e.g. x <> 0")
+            self.d.error("E020", f"the {what} condition is {ty}, not BOOL", cond.pos, "compare it, e.g. x <> 0")
 
     def _assign(self, s: A.Assign, scope: Scope) -> None:
         if s.op == "REF=":
@@ -104,8 +105,7 @@ class StmtChecks(CheckerBase):
         se = T.resolve(sty)
         sbase = T.base_elementary(se)
         if not (isinstance(se, T.EnumType) or (sbase is not None and sbase.is_intlike)):
-            self.d.error("E060", f"CASE needs an integer or enumeration selector, not {sty}",
-                         s.selector.pos)
+            self.d.error("E060", f"CASE needs an integer or enumeration selector, not {sty}", s.selector.pos)
         seen: list = []  # (lo, hi, pos)
         for br in s.branches:
             for lab in br.labels:
@@ -123,8 +123,9 @@ class StmtChecks(CheckerBase):
                         continue
                 for plo, phi, ppos in seen:
                     if lo <= phi and plo <= hi:
-                        self.d.error("E061", "CASE label overlaps an earlier one", lab.pos,
-                                     f"the earlier label is at {ppos}")
+                        self.d.error(
+                            "E061", "CASE label overlaps an earlier one", lab.pos, f"the earlier label is at {ppos}"
+                        )
                         break
                 seen.append((lo, hi, lab.pos))
             self._stmts(br.body, scope)
@@ -136,8 +137,9 @@ class StmtChecks(CheckerBase):
         if ty is None:
             return None
         if e.const is None or isinstance(e.const, (str, float)):
-            self.d.error("E060", "a CASE label must be a constant", e.pos,
-                         "use literals, enumeration values or CONSTANTs")
+            self.d.error(
+                "E060", "a CASE label must be a constant", e.pos, "use literals, enumeration values or CONSTANTs"
+            )
             return None
         self.check_convertible(ty, sty, e, "the CASE label")
         return int(e.const)
@@ -169,8 +171,9 @@ class StmtChecks(CheckerBase):
         if ty is None:
             return None
         if not self._is_lvalue_expr(e):
-            self.d.error("E031", "this expression cannot be assigned to", e.pos,
-                         "the left side of := must be a variable")
+            self.d.error(
+                "E031", "this expression cannot be assigned to", e.pos, "the left side of := must be a variable"
+            )
             return None
         self._check_writable(e, scope)
         return ty
@@ -182,26 +185,45 @@ class StmtChecks(CheckerBase):
                 self.d.error("E031", f"'{e.name}' is not a variable", e.pos)
                 return
             if sym.constant:
-                self.d.error("E030", f"'{sym.name}' is a CONSTANT", e.pos,
-                             "remove CONSTANT from its declaration or assign another variable")
+                self.d.error(
+                    "E030",
+                    f"'{sym.name}' is a CONSTANT",
+                    e.pos,
+                    "remove CONSTANT from its declaration or assign another variable",
+                )
             elif sym.section == "VAR_INPUT" and sym.owner is not None and sym.owner is scope.pou:
-                self.d.error("E030", f"'{sym.name}' is an input of {sym.owner.name} and cannot be "
-                             "assigned inside it", e.pos, "copy it into a local VAR and change that")
+                self.d.error(
+                    "E030",
+                    f"'{sym.name}' is an input of {sym.owner.name} and cannot be assigned inside it",
+                    e.pos,
+                    "copy it into a local VAR and change that",
+                )
             elif sym in scope.for_vars:
-                self.d.error("E072", f"the FOR variable '{sym.name}' must not be changed in the loop",
-                             e.pos, "use EXIT to leave the loop early, or a WHILE loop")
+                self.d.error(
+                    "E072",
+                    f"the FOR variable '{sym.name}' must not be changed in the loop",
+                    e.pos,
+                    "use EXIT to leave the loop early, or a WHILE loop",
+                )
         elif isinstance(e, A.Member):
             sym = e.sym
             base_ty = T.resolve(e.base.ty) if e.base.ty is not None else None
             if isinstance(base_ty, T.FBType) and isinstance(sym, VarSymbol):
                 if sym.section == "VAR_OUTPUT":
-                    self.d.error("E030", f"'{sym.name}' is an output of {base_ty.name}; it is written by "
-                                 "the block, not from outside", e.pos,
-                                 "read it after the call, e.g. x := inst.Q")
+                    self.d.error(
+                        "E030",
+                        f"'{sym.name}' is an output of {base_ty.name}; it is written by the block, not from outside",
+                        e.pos,
+                        "read it after the call, e.g. x := inst.Q",
+                    )
                     return
             self._check_writable(e.base, scope)
         elif isinstance(e, (A.Index, A.BitAccess)):
             self._check_writable(e.base, scope)
         elif isinstance(e, A.Located) and e.addr.table is not None:
-            self.d.error("E031", f"the word table {e.addr.text} cannot be assigned as a whole", e.pos,
-                         "assign its words one by one")
+            self.d.error(
+                "E031",
+                f"the word table {e.addr.text} cannot be assigned as a whole",
+                e.pos,
+                "assign its words one by one",
+            )

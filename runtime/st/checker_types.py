@@ -4,6 +4,7 @@ The first pass collects every POU and TYPE name (a name declared twice is
 E011); type_of resolves a type as written: named types, STRING[n], ARRAY,
 subranges, REF_TO, and the STRUCT and enumeration declarations.
 """
+
 from __future__ import annotations
 
 from . import ast as A
@@ -27,23 +28,25 @@ class TypeChecks(CheckerBase):
                 key = decl.name.upper()
                 if self._clash(key, decl.name, decl.pos):
                     continue
-                info = POUInfo(decl.name, decl.kind, decl, pyname(
-                    {"PROGRAM": "P_", "FUNCTION": "F_", "FUNCTION_BLOCK": "FB_"}[decl.kind], decl.name),
-                    library=library)
+                info = POUInfo(
+                    decl.name,
+                    decl.kind,
+                    decl,
+                    pyname({"PROGRAM": "P_", "FUNCTION": "F_", "FUNCTION_BLOCK": "FB_"}[decl.kind], decl.name),
+                    library=library,
+                )
                 if decl.kind != "FUNCTION":
                     info.fbtype = T.FBType(decl.name, info)
                 self.pous[key] = info
 
     def _clash(self, key: str, name: str, pos: A.Pos) -> bool:
         if key in T.ELEMENTARY or key in ("STRING", "WSTRING") or key in T.GENERICS:
-            self.d.error("E011", f"'{name}' is the name of an elementary type", pos,
-                         "choose another name")
+            self.d.error("E011", f"'{name}' is the name of an elementary type", pos, "choose another name")
             return True
         other = self.type_decls.get(key) or self.pous.get(key)
         if other is not None:
             opos = other.pos if isinstance(other, A.Node) else other.node.pos
-            self.d.error("E011", f"'{name}' is declared twice", pos,
-                         f"the first declaration is at {opos}")
+            self.d.error("E011", f"'{name}' is declared twice", pos, f"the first declaration is at {opos}")
             return True
         return False
 
@@ -54,8 +57,12 @@ class TypeChecks(CheckerBase):
         if decl is None:
             return None
         if key in self._resolving:
-            self.d.error("E012", f"type '{decl.name}' is defined in terms of itself", decl.pos,
-                         "a type cannot contain itself; use REF_TO for recursive structures")
+            self.d.error(
+                "E012",
+                f"type '{decl.name}' is defined in terms of itself",
+                decl.pos,
+                "a type cannot contain itself; use REF_TO for recursive structures",
+            )
             return None
         self._resolving.add(key)
         try:
@@ -70,8 +77,12 @@ class TypeChecks(CheckerBase):
                         continue
                     fty = self.type_of(m.type)
                     # an unknown field type (reported, E012) stays None: uses of the field report no more
-                    st.fields[fkey] = T.StructField(m.name, fty,  # type: ignore[arg-type]
-                                                    m.init, pyname("f_", m.name))
+                    st.fields[fkey] = T.StructField(
+                        m.name,
+                        fty,  # type: ignore[arg-type]
+                        m.init,
+                        pyname("f_", m.name),
+                    )
                 self.structs.append(st)
                 ty: T.Type = st
             elif isinstance(spec, A.EnumTypeSpec):
@@ -100,8 +111,7 @@ class TypeChecks(CheckerBase):
             b = self.type_of(spec.base)
             be = T.base_elementary(b) if b is not None else None
             if be is None or not be.is_intlike:
-                self.d.error("E020", "the base type of an enumeration must be an integer type",
-                             spec.base.pos)
+                self.d.error("E020", "the base type of an enumeration must be an integer type", spec.base.pos)
             else:
                 base = be
         et = T.EnumType(name, {}, {}, base)
@@ -140,16 +150,32 @@ class TypeChecks(CheckerBase):
             if pou is not None:
                 if pou.kind == "FUNCTION_BLOCK":
                     return pou.fbtype
-                self.d.error("E012", f"'{spec.name}' is a {pou.kind}, not a type", spec.pos,
-                             "only FUNCTION_BLOCKs can be instantiated as variables")
+                self.d.error(
+                    "E012",
+                    f"'{spec.name}' is a {pou.kind}, not a type",
+                    spec.pos,
+                    "only FUNCTION_BLOCKs can be instantiated as variables",
+                )
                 return None
             if key in T.GENERICS:
-                self.d.error("E012", f"generic type '{spec.name}' cannot be used in a declaration",
-                             spec.pos, "use a concrete type such as INT or REAL")
+                self.d.error(
+                    "E012",
+                    f"generic type '{spec.name}' cannot be used in a declaration",
+                    spec.pos,
+                    "use a concrete type such as INT or REAL",
+                )
                 return None
-            self.d.error("E012", f"unknown type '{spec.name}'", spec.pos,
-                         self._suggest(key, list(self.type_decls) + list(T.ELEMENTARY)
-                                       + [k for k, p in self.pous.items() if p.kind == "FUNCTION_BLOCK"]))
+            self.d.error(
+                "E012",
+                f"unknown type '{spec.name}'",
+                spec.pos,
+                self._suggest(
+                    key,
+                    list(self.type_decls)
+                    + list(T.ELEMENTARY)
+                    + [k for k, p in self.pous.items() if p.kind == "FUNCTION_BLOCK"],
+                ),
+            )
             return None
         if isinstance(spec, A.StringTypeSpec):
             n = self.profile.default_string_length
@@ -175,8 +201,12 @@ class TypeChecks(CheckerBase):
                 if lo is None or hi is None:
                     return None
                 if hi < lo:
-                    self.d.error("E050", f"array range {lo}..{hi} is empty", rng[0].pos,
-                                 "the upper bound must not be below the lower bound")
+                    self.d.error(
+                        "E050",
+                        f"array range {lo}..{hi} is empty",
+                        rng[0].pos,
+                        "the upper bound must not be below the lower bound",
+                    )
                     return None
                 if (hi - lo + 1) > 10_000_000:
                     self.d.error("E050", f"array range {lo}..{hi} is too large", rng[0].pos)
@@ -203,8 +233,12 @@ class TypeChecks(CheckerBase):
                 return None
             return T.RefType(target, spec.pointer)
         if isinstance(spec, A.StructTypeSpec):
-            self.d.error("E012", "an anonymous STRUCT is only allowed in a TYPE declaration",
-                         spec.pos, "declare it with TYPE name : STRUCT ... END_STRUCT END_TYPE")
+            self.d.error(
+                "E012",
+                "an anonymous STRUCT is only allowed in a TYPE declaration",
+                spec.pos,
+                "declare it with TYPE name : STRUCT ... END_STRUCT END_TYPE",
+            )
             return None
         if isinstance(spec, A.EnumTypeSpec):
             return self._enum_type("(anonymous enum)", spec)

@@ -13,6 +13,7 @@ exception in generated code is reported at the ST file:line:column.
 The CodeGen is composed of one part per concern (codegen_base.py lists
 them); this module puts the module together.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field

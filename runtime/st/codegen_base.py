@@ -9,6 +9,7 @@ objects the code needs as numbered constants. A part calls the others
 through ``self``; what it may call is declared at the end of CodeGenBase,
 for the type checker.
 """
+
 from __future__ import annotations
 
 import math
@@ -63,6 +64,7 @@ def array_type(ty: T.Type) -> T.ArrayType:
 class Accessor:
     """A process-image address the loader binds: _A<n>g / _A<n>s (scalar
     get/set) or _A<n>t (a word table)."""
+
     addr: A.LocatedAddress
     type: Any  # ElementaryType, or None for a table
 
@@ -133,8 +135,7 @@ class CodeGenBase:
     def _temp_local(v: VarSymbol) -> bool:
         """A VAR_TEMP of a PROGRAM or FB lives in a Python local of the body
         (it starts afresh every call) unless a reference to it is taken."""
-        return v.section == "VAR_TEMP" and not v.address_taken and v.owner is not None \
-            and v.owner.kind != "FUNCTION"
+        return v.section == "VAR_TEMP" and not v.address_taken and v.owner is not None and v.owner.kind != "FUNCTION"
 
     @staticmethod
     def wrap(t: T.ElementaryType, code: str) -> str:
@@ -155,8 +156,9 @@ class CodeGenBase:
 
         def coerce(self, code: str, src: T.Type, dst: T.Type, e: A.Expr | None) -> str: ...
 
-        def emit_store(self, target: A.Expr, value_code: str, value_ty: T.Type, value_expr: A.Expr | None,
-                       trusted: bool = False) -> None: ...
+        def emit_store(
+            self, target: A.Expr, value_code: str, value_ty: T.Type, value_expr: A.Expr | None, trusted: bool = False
+        ) -> None: ...
 
         # codegen_exprs
         def ex(self, e: A.Expr) -> str: ...

@@ -5,6 +5,7 @@ block instances (inputs, call, outputs), standard functions (a few inlined:
 MIN, MAX, LIMIT, SEL, MOVE, shifts and integer conversions), builtins and
 native functions.
 """
+
 from __future__ import annotations
 
 import re
@@ -118,8 +119,14 @@ class CallGen(CodeGenBase):
             if R.fits(dst, self._range(info.args[0])):
                 return x
             return self.wrap(dst, x)
-        if dst is T.LREAL and src.bits <= 32 or dst is T.REAL and C.widens_to(src, T.REAL) \
-                or dst is T.REAL and R.within(self._range(info.args[0]), -(1 << 24), 1 << 24):
+        if (
+            dst is T.LREAL
+            and src.bits <= 32
+            or dst is T.REAL
+            and C.widens_to(src, T.REAL)
+            or dst is T.REAL
+            and R.within(self._range(info.args[0]), -(1 << 24), 1 << 24)
+        ):
             return f"float({x})"  # exact: the integer fits the mantissa
         if dst is T.REAL and src.bits <= 53:
             return f"_f32({x})"  # one rounding, as the integer converts to double exactly

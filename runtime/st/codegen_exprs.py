@@ -5,6 +5,7 @@ indices with their bounds checks, operators with IEC semantics (truncating
 division, MOD's sign, BOOL against bit-string operators), and the
 reference objects REF, ADR, VAR_IN_OUT and => pass.
 """
+
 from __future__ import annotations
 
 import re
@@ -142,8 +143,13 @@ class ExprGen(CodeGenBase):
                 return f"({lhs} {'&' if op == 'AND' else '|'} {rhs})"
             return f"({lhs} {'&' if op == 'AND' else '|' if op == 'OR' else '^'} {rhs})"
         divisor = e.right.const
-        if op in ("/", "MOD") and be.is_intlike and isinstance(divisor, int) and divisor > 0 \
-                and not isinstance(divisor, bool):
+        if (
+            op in ("/", "MOD")
+            and be.is_intlike
+            and isinstance(divisor, int)
+            and divisor > 0
+            and not isinstance(divisor, bool)
+        ):
             pyop = "//" if op == "/" else "%"
             lr = self._range(e.left)
             if lr is not None and lr[0] >= 0:

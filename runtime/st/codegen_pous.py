@@ -4,6 +4,7 @@ One class with ``__slots__`` per PROGRAM, FUNCTION_BLOCK and STRUCT, one
 plain function per FUNCTION, the class of the globals, and the code that
 builds initial values from the checker's plans.
 """
+
 from __future__ import annotations
 
 import itertools
@@ -105,7 +106,7 @@ class PouGen(CodeGenBase):
         def build(dim: int, offset: int) -> str:
             n = sizes[dim]
             stride = 1
-            for s in sizes[dim + 1:]:
+            for s in sizes[dim + 1 :]:
                 stride *= s
             if dim == len(sizes) - 1:
                 items = [flat[offset + i] if flat is not None else None for i in range(n)]
@@ -119,6 +120,7 @@ class PouGen(CodeGenBase):
             if flat is None:
                 return f"[{inner[0]} for _ in range({n})]"
             return "[" + ", ".join(inner) + "]"
+
         return build(0, 0)
 
     @staticmethod

@@ -5,6 +5,7 @@ back-edges), EXIT, CONTINUE, RETURN; an assignment stores the value
 converted to the target's type (coerce: what conversions.store_step
 decides, written in Python).
 """
+
 from __future__ import annotations
 
 import re
@@ -161,8 +162,7 @@ class StmtGen(CodeGenBase):
         if local:
             self.fn.for_locals[id(var.sym)] = it
             if step is not None and isinstance(s.start.const, int) and isinstance(s.end.const, int):
-                self.fn.loop_ranges[id(var.sym)] = (min(s.start.const, s.end.const),
-                                                    max(s.start.const, s.end.const))
+                self.fn.loop_ranges[id(var.sym)] = (min(s.start.const, s.end.const), max(s.start.const, s.end.const))
         else:
             self.emit_store(var, it, vty, None, trusted=True)
         self.fn.loop_kinds.append(("for", (var, it, local)))
@@ -182,8 +182,14 @@ class StmtGen(CodeGenBase):
         Only when nothing else can observe the stored variable: a local of
         this POU that is not located, global, or reached by any reference
         (REF, ADR, VAR_IN_OUT, =>); the body itself may not assign it (E072)."""
-        return isinstance(sym, VarSymbol) and sym.owner is not None and sym.location is None \
-            and sym.section != "VAR_IN_OUT" and not sym.boxed and not sym.address_taken
+        return (
+            isinstance(sym, VarSymbol)
+            and sym.owner is not None
+            and sym.location is None
+            and sym.section != "VAR_IN_OUT"
+            and not sym.boxed
+            and not sym.address_taken
+        )
 
     # ------------------------------------------------------------ assignment
 
@@ -239,8 +245,9 @@ class StmtGen(CodeGenBase):
         fn = rtlib.make_converter(se, de)
         return f"{self.const(fn)}({code})"
 
-    def emit_store(self, target: A.Expr, value_code: str, value_ty: T.Type, value_expr: A.Expr | None,
-                   trusted: bool = False) -> None:
+    def emit_store(
+        self, target: A.Expr, value_code: str, value_ty: T.Type, value_expr: A.Expr | None, trusted: bool = False
+    ) -> None:
         """target := value, with the conversion to the target's type."""
         tty = target.ty
         code = value_code if trusted else self.coerce(value_code, value_ty, tty, value_expr)

@@ -14,6 +14,7 @@ sides of the compiler:
 Operands of a binary operation meet in ``common_type``; a generic parameter
 takes an argument as ``generic_fit`` says.
 """
+
 from __future__ import annotations
 
 from typing import Any
@@ -66,8 +67,7 @@ def smallest_common(a: T.ElementaryType, b: T.ElementaryType) -> T.ElementaryTyp
         return b
     if widens_to(b, a):
         return a
-    for cand in (T.INT, T.DINT, T.LINT, T.UINT, T.UDINT, T.ULINT, T.WORD, T.DWORD, T.LWORD, T.REAL, T.LREAL,
-                 T.LTIME):
+    for cand in (T.INT, T.DINT, T.LINT, T.UINT, T.UDINT, T.ULINT, T.WORD, T.DWORD, T.LWORD, T.REAL, T.LREAL, T.LTIME):
         if widens_to(a, cand) and widens_to(b, cand):
             return cand
     return None
@@ -108,6 +108,7 @@ def generic_fit(t: T.Type, generic: str, profile: Profile) -> T.Type:
 
 # ---------------------------------------------------------------- the checker's question
 
+
 def same_type(a: T.Type, b: T.Type) -> bool:
     """The same type for assignment: aliases resolved, strings of one width
     at any length, arrays of the same element type and dimension sizes."""
@@ -119,8 +120,7 @@ def same_type(a: T.Type, b: T.Type) -> bool:
     if isinstance(a, T.ArrayType) and isinstance(b, T.ArrayType):
         if len(a.dims) != len(b.dims) or not same_type(a.elem, b.elem):
             return False
-        return all(x is None or y is None or (x[1] - x[0]) == (y[1] - y[0])
-                   for x, y in zip(a.dims, b.dims))
+        return all(x is None or y is None or (x[1] - x[0]) == (y[1] - y[0]) for x, y in zip(a.dims, b.dims))
     if isinstance(a, T.RefType) and isinstance(b, T.RefType):
         return same_type(a.target, b.target)
     if isinstance(a, T.SubrangeType) and isinstance(b, T.SubrangeType):
@@ -164,50 +164,80 @@ def enum_example(t: T.Type) -> str:
     return ""
 
 
-def check_implicit(src: T.Type, dst: T.Type, e: A.Expr, what: str, profile: Profile,
-                   diags: DiagnosticBag) -> bool:
+def check_implicit(src: T.Type, dst: T.Type, e: A.Expr, what: str, profile: Profile, diags: DiagnosticBag) -> bool:
     """Report unless a value of type src (the expression e) may be stored
     into dst implicitly (IEC 61131-3 Fig. 11, softened by the profile).
     False when it is an error."""
     s, d = T.resolve(src), T.resolve(dst)
     de0 = T.base_elementary(d)
-    if isinstance(e.const, int) and not isinstance(e.const, bool) and de0 is not None \
-            and de0.is_intlike and is_flexible(e) and not T.int_fits(de0, e.const):
-        diags.error("E022", f"{e.const} does not fit {de0.name} ({de0.lo}..{de0.hi})", e.pos,
-                    "use a larger type or a typed literal that wraps explicitly")
+    if (
+        isinstance(e.const, int)
+        and not isinstance(e.const, bool)
+        and de0 is not None
+        and de0.is_intlike
+        and is_flexible(e)
+        and not T.int_fits(de0, e.const)
+    ):
+        diags.error(
+            "E022",
+            f"{e.const} does not fit {de0.name} ({de0.lo}..{de0.hi})",
+            e.pos,
+            "use a larger type or a typed literal that wraps explicitly",
+        )
         return False
     if same_type(s, d):
         return True
     if isinstance(d, T.RefType):
-        if isinstance(s, T.NullType) or (isinstance(s, T.RefType) and
-                                         (same_type(s.target, d.target) or
-                                          (d.pointer and isinstance(T.resolve(d.target), T.ElementaryType)
-                                           and T.resolve(d.target) is T.BYTE))):
+        if isinstance(s, T.NullType) or (
+            isinstance(s, T.RefType)
+            and (
+                same_type(s.target, d.target)
+                or (d.pointer and isinstance(T.resolve(d.target), T.ElementaryType) and T.resolve(d.target) is T.BYTE)
+            )
+        ):
             return True
         if e.const == 0 and isinstance(s, T.ElementaryType) and s.is_intlike:
             return True
-        diags.error("E020", f"cannot use {src} as {dst} in {what}", e.pos,
-                    "take a reference with REF(variable) or ADR(variable)")
+        diags.error(
+            "E020",
+            f"cannot use {src} as {dst} in {what}",
+            e.pos,
+            "take a reference with REF(variable) or ADR(variable)",
+        )
         return False
     if isinstance(d, T.EnumType) or isinstance(s, T.EnumType):
-        if isinstance(d, T.ElementaryType) and isinstance(s, T.EnumType) and profile.int_bits_mix \
-                and d.is_intlike and widens_to(s.base, d):
+        if (
+            isinstance(d, T.ElementaryType)
+            and isinstance(s, T.EnumType)
+            and profile.int_bits_mix
+            and d.is_intlike
+            and widens_to(s.base, d)
+        ):
             return True
-        diags.error("E020", f"cannot use {src} as {dst} in {what}", e.pos,
-                    f"use an enumerator of {dst}, e.g. {enum_example(d)}"
-                    if isinstance(d, T.EnumType) else "enumerations convert only explicitly")
+        diags.error(
+            "E020",
+            f"cannot use {src} as {dst} in {what}",
+            e.pos,
+            f"use an enumerator of {dst}, e.g. {enum_example(d)}"
+            if isinstance(d, T.EnumType)
+            else "enumerations convert only explicitly",
+        )
         return False
     if isinstance(d, T.StringType):
         if isinstance(s, T.StringType) and s.wide == d.wide:
             return True
-        diags.error("E020", f"cannot use {src} as {dst} in {what}", e.pos,
-                    "convert explicitly, e.g. INT_TO_STRING(x)" if not isinstance(s, T.StringType)
-                    else "use WSTRING_TO_STRING / STRING_TO_WSTRING")
+        diags.error(
+            "E020",
+            f"cannot use {src} as {dst} in {what}",
+            e.pos,
+            "convert explicitly, e.g. INT_TO_STRING(x)"
+            if not isinstance(s, T.StringType)
+            else "use WSTRING_TO_STRING / STRING_TO_WSTRING",
+        )
         return False
     se, de = T.base_elementary(s), T.base_elementary(d)
     if se is None or de is None:
-        diags.error("E020", f"cannot use {src} as {dst} in {what}", e.pos,
-                    "the types must be the same")
+        diags.error("E020", f"cannot use {src} as {dst} in {what}", e.pos, "the types must be the same")
         return False
     if isinstance(d, T.SubrangeType):
         if isinstance(e.const, int) and not (d.lo <= e.const <= d.hi):
@@ -221,8 +251,11 @@ def check_implicit(src: T.Type, dst: T.Type, e: A.Expr, what: str, profile: Prof
         return True
     if profile.int_bits_mix and se.is_intlike and de.is_intlike and se.bits <= de.bits:
         return True
-    lossy = (se.is_intlike or se.is_real) and (de.is_intlike or de.is_real) or \
-        (se.category == T.DURATION and de.category == T.DURATION)
+    lossy = (
+        (se.is_intlike or se.is_real)
+        and (de.is_intlike or de.is_real)
+        or (se.category == T.DURATION and de.category == T.DURATION)
+    )
     if lossy:
         msg = f"implicit conversion from {src} to {dst} in {what} may lose data"
         hint = f"convert explicitly: {se.name}_TO_{de.name}(...)"
@@ -239,6 +272,7 @@ def check_implicit(src: T.Type, dst: T.Type, e: A.Expr, what: str, profile: Prof
 
 
 # ---------------------------------------------------------------- constants
+
 
 def const_repr(value: Any, t: T.ElementaryType) -> Any:
     """A constant of elementary type t in the form t stores: REAL rounded to
@@ -280,15 +314,15 @@ def stores_literal(dst: T.Type) -> bool:
 # ---------------------------------------------------------------- the code generator's question
 # What storing a value that is not a folded constant does to it; the code
 # generator writes the Python for each step.
-KEEP = "keep"                # it already has the destination's representation
-TRUNCATE = "truncate"        # a string maybe longer than the destination: cut to its length
+KEEP = "keep"  # it already has the destination's representation
+TRUNCATE = "truncate"  # a string maybe longer than the destination: cut to its length
 CHECK_RANGE = "check_range"  # into a subrange: the step into its base type, then a bounds check
-TO_BOOL = "to_bool"          # a number into BOOL: value <> 0
-TO_INT = "to_int"            # BOOL into an integer: 0 or 1
-TO_FLOAT = "to_float"        # a number into LREAL
-TO_F32 = "to_f32"            # a number into REAL: rounded to binary32
-WRAP = "wrap"                # an integer into an integer type: wrapped to it unless the value provably fits
-CONVERT = "convert"          # the rest (REAL to integer, time units, time to number): the library converter
+TO_BOOL = "to_bool"  # a number into BOOL: value <> 0
+TO_INT = "to_int"  # BOOL into an integer: 0 or 1
+TO_FLOAT = "to_float"  # a number into LREAL
+TO_F32 = "to_f32"  # a number into REAL: rounded to binary32
+WRAP = "wrap"  # an integer into an integer type: wrapped to it unless the value provably fits
+CONVERT = "convert"  # the rest (REAL to integer, time units, time to number): the library converter
 
 
 def store_step(src: T.Type | None, dst: T.Type, e: A.Expr | None) -> str:

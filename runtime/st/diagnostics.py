@@ -17,6 +17,7 @@ Code ranges (keep them stable, users search for them):
   E090-E099  configuration, resources, tasks
   W1xx       warnings (same tens as the error they soften: W121 ~ E021)
 """
+
 from __future__ import annotations
 
 from collections.abc import Iterable
@@ -78,6 +79,7 @@ class SourceSet:
 @dataclass
 class DiagnosticBag:
     """Collects diagnostics of one compilation."""
+
     items: list = field(default_factory=list)
 
     def error(self, code: str, message: str, pos: Pos, hint: str | None = None) -> None:

@@ -6,6 +6,7 @@ reference ...). ``fault_from_exception`` turns any of them into an STFault by
 mapping the innermost frame of generated code back to the ST statement, so
 the engine never lets a Python exception escape.
 """
+
 from __future__ import annotations
 
 from .ast import Pos

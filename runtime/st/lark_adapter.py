@@ -38,6 +38,7 @@ installed lark (a lark upgrade that breaks one fails there, naming it):
 The analysis takes half a second; lark caches it (``cache=``) in the user's
 cache directory.
 """
+
 from __future__ import annotations
 
 import os
@@ -56,6 +57,7 @@ __all__ = ["CompiledGrammar", "RuleInfo", "SymbolInfo", "Terminal", "compile_gra
 @dataclass(frozen=True, slots=True)
 class SymbolInfo:
     """One symbol of a rule's expansion."""
+
     name: str
     is_term: bool
     filter_out: bool  # a quoted terminal: not among the children
@@ -64,12 +66,13 @@ class SymbolInfo:
 @dataclass(frozen=True, slots=True)
 class RuleInfo:
     """One alternative of a rule, after lark's EBNF expansion."""
-    origin: str                        # the rule's name (goto symbol)
+
+    origin: str  # the rule's name (goto symbol)
     expansion: tuple[SymbolInfo, ...]  # what the parser stack holds when it is reduced
-    alias: str | None               # ``-> name``
-    expand1: bool                      # ``?rule``
-    keep_all_tokens: bool              # ``!rule``
-    empty_indices: tuple[bool, ...]    # placeholders of omitted [items] (see 3 above)
+    alias: str | None  # ``-> name``
+    expand1: bool  # ``?rule``
+    keep_all_tokens: bool  # ``!rule``
+    empty_indices: tuple[bool, ...]  # placeholders of omitted [items] (see 3 above)
     template_source: str | None
 
 
@@ -77,6 +80,7 @@ class RuleInfo:
 class Terminal:
     """A terminal of the grammar: its literal text (quoted terminals) and
     its regular expression (flags included)."""
+
     name: str
     literal: str | None
     regexp: str
@@ -125,11 +129,15 @@ def compile_grammar(text: str, start: str = "start", cache: str | None = None, *
 def _rule_info(rule: Any) -> RuleInfo:
     """assumption 3"""
     options = rule.options
-    return RuleInfo(str(rule.origin.name),
-                    tuple(SymbolInfo(str(s.name), bool(s.is_term), bool(s.is_term and s.filter_out))
-                          for s in rule.expansion),
-                    rule.alias, bool(options.expand1), bool(options.keep_all_tokens),
-                    tuple(options.empty_indices or ()), options.template_source)
+    return RuleInfo(
+        str(rule.origin.name),
+        tuple(SymbolInfo(str(s.name), bool(s.is_term), bool(s.is_term and s.filter_out)) for s in rule.expansion),
+        rule.alias,
+        bool(options.expand1),
+        bool(options.keep_all_tokens),
+        tuple(options.empty_indices or ()),
+        options.template_source,
+    )
 
 
 def _terminal(t: Any) -> Terminal:

@@ -22,6 +22,7 @@ ST needs: it asks the parser which token types the current state accepts
 lark's contextual lexer could do most of this (with a postlexer for the
 reserved words); this one is about twice as fast, and speed matters here.
 """
+
 from __future__ import annotations
 
 import re
@@ -35,6 +36,7 @@ if TYPE_CHECKING:
 class Tok:
     """A token. Tokens never span lines (strings and comments cannot), so
     the end is on the start line. Fields match lark's Token."""
+
     __slots__ = ("type", "value", "start_pos", "line", "column", "end_column")
 
     def __init__(self, type: str, value: str, start_pos: int, line: int, column: int) -> None:
@@ -59,8 +61,10 @@ class Tok:
 
 # ---------------------------------------------------------------- comments and pragmas
 
+
 class Pragma:
     """``{text}``: where it was and what was inside the braces (stripped)."""
+
     __slots__ = ("text", "line", "col", "end_line", "end_col")
 
     def __init__(self, text: str, start: tuple, end: tuple) -> None:
@@ -98,8 +102,7 @@ def strip_comments(text: str, error: Callable) -> tuple:
             pos = s.end() if s else start + 1  # the lexer reports unterminated strings
             continue
         if what == "*)":
-            error("E001", "'*)' without a matching '(*'", start, start + 2,
-                  "remove it, or open the comment with '(*'")
+            error("E001", "'*)' without a matching '(*'", start, start + 2, "remove it, or open the comment with '(*'")
             end = start + 2
         elif what == "//":
             nl = text.find("\n", start)
@@ -118,7 +121,7 @@ def strip_comments(text: str, error: Callable) -> tuple:
                 end = len(text)
             else:
                 end = close + 1
-                pragmas.append(Pragma(text[start + 1:close].strip(), line_col(text, start), line_col(text, end)))
+                pragmas.append(Pragma(text[start + 1 : close].strip(), line_col(text, start), line_col(text, end)))
         else:  # "(*": comments nest
             depth, p = 1, start + 2
             while depth:
@@ -128,8 +131,13 @@ def strip_comments(text: str, error: Callable) -> tuple:
                 depth += 1 if n.group() == "(*" else -1
                 p = n.end()
             if depth:
-                error("E004", "unterminated comment: '(*' is never closed", start, start + 2,
-                      "(* *) comments nest: every '(*' inside needs its own '*)'")
+                error(
+                    "E004",
+                    "unterminated comment: '(*' is never closed",
+                    start,
+                    start + 2,
+                    "(* *) comments nest: every '(*' inside needs its own '*)'",
+                )
                 end = len(text)
             else:
                 end = p
@@ -149,8 +157,7 @@ INVALID_RUN = re.compile(r"[^A-Za-z0-9_\s%'\"()\[\];:,.=<>+\-*/&^#]+")
 # Regular-expression terminals, in the order they are tried (first match
 # wins, so a longer form comes before its prefix: HASH_LIT before NAME,
 # REAL before INT). Others are tried only where the parser accepts them.
-_ORDER = ("HASH_LIT", "C_HEX", "BASED_INT", "REAL", "INT", "LOCATED", "BIT_REF", "NAME",
-          "STRING_LIT", "WSTRING_LIT")
+_ORDER = ("HASH_LIT", "C_HEX", "BASED_INT", "REAL", "INT", "LOCATED", "BIT_REF", "NAME", "STRING_LIT", "WSTRING_LIT")
 _CONTEXTUAL = ("S_ASSIGN", "R_ASSIGN", "REF_ASSIGN", "LABEL_NAME")
 
 
@@ -159,7 +166,7 @@ class Lexer:
 
     def __init__(self, terminals: dict[str, Terminal], reserved: frozenset) -> None:
         self.keywords: dict[str, str] = {}  # 'END_IF' -> terminal name
-        punct: dict[str, str] = {}          # ':=' -> terminal name
+        punct: dict[str, str] = {}  # ':=' -> terminal name
         for name, t in terminals.items():
             if t.literal is not None:
                 value = t.literal.upper()

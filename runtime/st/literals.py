@@ -5,6 +5,7 @@ escapes resolved, and every time and date kind as an int of nanoseconds.
 Each function raises ``LiteralError`` with a message and a hint when the text
 is not a valid literal; the parser turns that into an E003 diagnostic.
 """
+
 from __future__ import annotations
 
 import datetime
@@ -21,22 +22,48 @@ class LiteralError(ValueError):
         self.hint = hint
 
 
-NS_PER = {"D": 86_400 * 10**9, "H": 3_600 * 10**9, "M": 60 * 10**9, "S": 10**9,
-          "MS": 10**6, "US": 10**3, "NS": 1}
+NS_PER = {"D": 86_400 * 10**9, "H": 3_600 * 10**9, "M": 60 * 10**9, "S": 10**9, "MS": 10**6, "US": 10**3, "NS": 1}
 _UNIT_ORDER = ("D", "H", "M", "S", "MS", "US", "NS")
 _EPOCH_ORDINAL = datetime.date(1970, 1, 1).toordinal()
 _NS_PER_DAY = NS_PER["D"]
 
 # Prefix of a time or date literal -> Literal.kind
 _TIME_PREFIXES = {
-    "T": "time", "TIME": "time", "LT": "ltime", "LTIME": "ltime",
-    "D": "date", "DATE": "date", "LD": "ldate", "LDATE": "ldate",
-    "TOD": "tod", "TIME_OF_DAY": "tod", "LTOD": "ltod", "LTIME_OF_DAY": "ltod",
-    "DT": "dt", "DATE_AND_TIME": "dt", "LDT": "ldt", "LDATE_AND_TIME": "ldt",
+    "T": "time",
+    "TIME": "time",
+    "LT": "ltime",
+    "LTIME": "ltime",
+    "D": "date",
+    "DATE": "date",
+    "LD": "ldate",
+    "LDATE": "ldate",
+    "TOD": "tod",
+    "TIME_OF_DAY": "tod",
+    "LTOD": "ltod",
+    "LTIME_OF_DAY": "ltod",
+    "DT": "dt",
+    "DATE_AND_TIME": "dt",
+    "LDT": "ldt",
+    "LDATE_AND_TIME": "ldt",
 }
-_NUMERIC_TYPES = frozenset((
-    "SINT", "INT", "DINT", "LINT", "USINT", "UINT", "UDINT", "ULINT",
-    "BYTE", "WORD", "DWORD", "LWORD", "REAL", "LREAL"))
+_NUMERIC_TYPES = frozenset(
+    (
+        "SINT",
+        "INT",
+        "DINT",
+        "LINT",
+        "USINT",
+        "UINT",
+        "UDINT",
+        "ULINT",
+        "BYTE",
+        "WORD",
+        "DWORD",
+        "LWORD",
+        "REAL",
+        "LREAL",
+    )
+)
 _STRING_TYPES = {"STRING": "string", "CHAR": "string", "WSTRING": "wstring", "WCHAR": "wstring"}
 ELEMENTARY_NAMES = _NUMERIC_TYPES | {"BOOL"} | set(_STRING_TYPES) | set(_TIME_PREFIXES)
 
@@ -54,8 +81,7 @@ MAX_DIGITS = 128  # LWORD in base 2 is 64; more is a typo (and Python's int() ha
 
 def _check_underscores(digits: str, text: str) -> str:
     if not digits or digits.startswith("_") or digits.endswith("_") or "__" in digits:
-        raise LiteralError(f"invalid number '{text}'",
-                           "an underscore may only stand between two digits")
+        raise LiteralError(f"invalid number '{text}'", "an underscore may only stand between two digits")
     digits = digits.replace("_", "")
     if len(digits) > MAX_DIGITS:
         raise LiteralError(f"number too long ({len(digits)} digits)")
@@ -132,24 +158,25 @@ def parse_string(text: str) -> str:
             out.append(ch)
             i += 1
             continue
-        nxt = body[i + 1:i + 2]
+        nxt = body[i + 1 : i + 2]
         if nxt.upper() in _ESCAPES:
             out.append(_ESCAPES[nxt.upper()])
             i += 2
             continue
-        code = body[i + 1:i + 1 + width]
+        code = body[i + 1 : i + 1 + width]
         if len(code) == width and all(c in "0123456789abcdefABCDEF" for c in code):
             out.append(chr(int(code, 16)))
             i += 1 + width
             continue
         raise LiteralError(
             f"invalid escape '${nxt}' in string",
-            f"use $$ for '$', $' or $\", $L $N $P $R $T, or ${'h' * width} "
-            f"({width} hex digits) for a character code")
+            f"use $$ for '$', $' or $\", $L $N $P $R $T, or ${'h' * width} ({width} hex digits) for a character code",
+        )
     return "".join(out)
 
 
 # ---------------------------------------------------------------- time and date
+
 
 def parse_duration(body: str) -> int:
     """``1h2m3s4ms``, ``-5s``, ``1.5s``, ``100us`` -> nanoseconds."""
@@ -166,19 +193,24 @@ def parse_duration(body: str) -> int:
         whole, frac, unit = m.group(1), m.group(2), m.group(3).upper()
         rank = _UNIT_ORDER.index(unit)
         if rank <= last_rank:
-            raise LiteralError(f"invalid time literal: unit '{m.group(3)}' out of order",
-                               "write the units largest first: d, h, m, s, ms, us, ns (T#1h30m)")
+            raise LiteralError(
+                f"invalid time literal: unit '{m.group(3)}' out of order",
+                "write the units largest first: d, h, m, s, ms, us, ns (T#1h30m)",
+            )
         last_rank = rank
         if frac is not None and k != len(parts) - 1:
-            raise LiteralError("invalid time literal: only the last unit may have a fraction",
-                               "T#1h30m or T#1.5h, not T#1.5h30m")
+            raise LiteralError(
+                "invalid time literal: only the last unit may have a fraction", "T#1h30m or T#1.5h, not T#1.5h30m"
+            )
         value = Fraction(parse_int(whole))
         if frac is not None:
             value += Fraction(parse_int(frac), 10 ** len(frac.replace("_", "")))
         total += value * NS_PER[unit]
     if pos != len(body) or not parts:
-        raise LiteralError(f"invalid time literal '{body}'",
-                           "a duration is numbers with units d, h, m, s, ms, us, ns: T#1h2m3s, T#1.5s, T#200ms")
+        raise LiteralError(
+            f"invalid time literal '{body}'",
+            "a duration is numbers with units d, h, m, s, ms, us, ns: T#1h2m3s, T#1.5s, T#200ms",
+        )
     return sign * round(total)
 
 
@@ -217,13 +249,23 @@ def parse_tod(body: str) -> int:
 def parse_dt(body: str) -> int:
     m = re.fullmatch(r"(\d+-\d+-\d+)-(.*)", body, re.A)
     if not m:
-        raise LiteralError(f"invalid date and time '{body}'",
-                           "write it as year-month-day-hours:minutes:seconds: DT#2024-01-31-12:30:00")
+        raise LiteralError(
+            f"invalid date and time '{body}'",
+            "write it as year-month-day-hours:minutes:seconds: DT#2024-01-31-12:30:00",
+        )
     return _date_days(m.group(1)) * _NS_PER_DAY + _tod_ns(m.group(2))
 
 
-_TIME_PARSERS = {"time": parse_duration, "ltime": parse_duration, "date": parse_date, "ldate": parse_date,
-                 "tod": parse_tod, "ltod": parse_tod, "dt": parse_dt, "ldt": parse_dt}
+_TIME_PARSERS = {
+    "time": parse_duration,
+    "ltime": parse_duration,
+    "date": parse_date,
+    "ldate": parse_date,
+    "tod": parse_tod,
+    "ltod": parse_tod,
+    "dt": parse_dt,
+    "ldt": parse_dt,
+}
 
 
 # ---------------------------------------------------------------- prefix#body

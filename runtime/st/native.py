@@ -19,16 +19,17 @@ The service is called as ``service.request(NAME, *args, *signed)``, where
 elements are signed (INT) or not (WORD, UINT): the service stores words into
 the tables and must keep their type's representation.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
 from typing import Any, Protocol
 
 # Parameter kinds: what the checker accepts for an argument.
-ANY_INT = "ANY_INT"     # an integer of any width, signed or not
-STRING = "STRING"       # a STRING of any length
-ADDRESS = "ADDRESS"     # a Schneider ADR#r.m.c address
-WORDS = "WORDS"         # a one-dimensional table of 16-bit words: ARRAY OF WORD/INT/UINT, %MW100:4
+ANY_INT = "ANY_INT"  # an integer of any width, signed or not
+STRING = "STRING"  # a STRING of any length
+ADDRESS = "ADDRESS"  # a Schneider ADR#r.m.c address
+WORDS = "WORDS"  # a one-dimensional table of 16-bit words: ARRAY OF WORD/INT/UINT, %MW100:4
 
 _EXPECTED = {
     ANY_INT: "an integer",
@@ -47,6 +48,7 @@ class Param:
     """One positional parameter. what: how a message names it ('the node';
     '' for 'argument n' alone); expect: what a wrong argument is told it
     must be (default: from the kind); min_words: a word table's least size."""
+
     name: str
     kind: str
     what: str = ""
@@ -68,12 +70,12 @@ class Param:
 
 @dataclass(frozen=True, eq=False)
 class NativeFunction:
-    name: str                   # the ST name, upper case
+    name: str  # the ST name, upper case
     params: tuple[Param, ...]
-    service: str                # the key a driver binds its implementation under
-    fallback: Service           # the implementation when no driver offers the service
-    usage: str                  # the call as written, for the hint of a wrong call
-    result: str = "BOOL"        # an elementary type name
+    service: str  # the key a driver binds its implementation under
+    fallback: Service  # the implementation when no driver offers the service
+    usage: str  # the call as written, for the hint of a wrong call
+    result: str = "BOOL"  # an elementary type name
 
     def __post_init__(self) -> None:
         if self.name != self.name.upper():

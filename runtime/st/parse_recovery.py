@@ -13,6 +13,7 @@ At a token the table rejects (``_recover``), in this order:
 Errors right after another one are its echoes and are not reported
 (``calm``). At the end of the file, what is open is closed (``_finish``).
 """
+
 from __future__ import annotations
 
 import difflib
@@ -23,33 +24,114 @@ from .lexer import Tok
 from .parse_stack import MAX_STACK, ParserCore, Rejected
 from .st_grammar import COLON, COMMA, SEMI
 
-_FRIENDLY = {"NAME": "a name", "LABEL_NAME": "a name", "INT": "a number", "REAL": "a number",
-             "BASED_INT": "a number", "C_HEX": "a number", "HASH_LIT": "a typed literal",
-             "STRING_LIT": "a string", "WSTRING_LIT": "a string", "LOCATED": "a direct address",
-             "BIT_REF": "a bit number", "S_ASSIGN": "S=", "R_ASSIGN": "R=", "REF_ASSIGN": "REF=",
-             "$END": "end of file"}
+_FRIENDLY = {
+    "NAME": "a name",
+    "LABEL_NAME": "a name",
+    "INT": "a number",
+    "REAL": "a number",
+    "BASED_INT": "a number",
+    "C_HEX": "a number",
+    "HASH_LIT": "a typed literal",
+    "STRING_LIT": "a string",
+    "WSTRING_LIT": "a string",
+    "LOCATED": "a direct address",
+    "BIT_REF": "a bit number",
+    "S_ASSIGN": "S=",
+    "R_ASSIGN": "R=",
+    "REF_ASSIGN": "REF=",
+    "$END": "end of file",
+}
 # Block openers -> their closer, for "END_IF expected to close the IF at line 3".
-_CLOSERS = {"IF": "END_IF", "CASE": "END_CASE", "FOR": "END_FOR", "WHILE": "END_WHILE",
-            "REPEAT": "END_REPEAT", "PROGRAM": "END_PROGRAM", "FUNCTION": "END_FUNCTION",
-            "FUNCTION_BLOCK": "END_FUNCTION_BLOCK", "TYPE": "END_TYPE", "STRUCT": "END_STRUCT",
-            "CONFIGURATION": "END_CONFIGURATION", "RESOURCE": "END_RESOURCE",
-            **dict.fromkeys(("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_GLOBAL", "VAR_EXTERNAL",
-                             "VAR_TEMP", "VAR_STAT", "VAR_CONFIG"), "END_VAR")}
+_CLOSERS = {
+    "IF": "END_IF",
+    "CASE": "END_CASE",
+    "FOR": "END_FOR",
+    "WHILE": "END_WHILE",
+    "REPEAT": "END_REPEAT",
+    "PROGRAM": "END_PROGRAM",
+    "FUNCTION": "END_FUNCTION",
+    "FUNCTION_BLOCK": "END_FUNCTION_BLOCK",
+    "TYPE": "END_TYPE",
+    "STRUCT": "END_STRUCT",
+    "CONFIGURATION": "END_CONFIGURATION",
+    "RESOURCE": "END_RESOURCE",
+    **dict.fromkeys(
+        (
+            "VAR",
+            "VAR_INPUT",
+            "VAR_OUTPUT",
+            "VAR_IN_OUT",
+            "VAR_GLOBAL",
+            "VAR_EXTERNAL",
+            "VAR_TEMP",
+            "VAR_STAT",
+            "VAR_CONFIG",
+        ),
+        "END_VAR",
+    ),
+}
 _CLOSER_TYPES = frozenset(_CLOSERS.values())
 _VAR_KINDS = frozenset(k for k, v in _CLOSERS.items() if v == "END_VAR")
 # Tokens a broken region is skipped to before parsing resumes.
-_SYNC = frozenset([SEMI, "_ELSE", "ELSIF", "UNTIL", "THEN", "DO", "OF", "IF", "CASE", "FOR", "WHILE",
-                   "REPEAT", "EXIT", "CONTINUE", "RETURN", *_CLOSERS, *_CLOSERS.values()])
+_SYNC = frozenset(
+    [
+        SEMI,
+        "_ELSE",
+        "ELSIF",
+        "UNTIL",
+        "THEN",
+        "DO",
+        "OF",
+        "IF",
+        "CASE",
+        "FOR",
+        "WHILE",
+        "REPEAT",
+        "EXIT",
+        "CONTINUE",
+        "RETURN",
+        *_CLOSERS,
+        *_CLOSERS.values(),
+    ]
+)
 # Tokens tried as "the one that is missing", in this order.
-_INSERTABLE = [SEMI, COMMA, "THEN", "DO", "OF", "RPAR", "RSQB", "END_IF", "END_CASE", "END_FOR",
-               "END_WHILE", "END_VAR", "END_STRUCT", "END_TYPE", "END_FUNCTION_BLOCK", "END_FUNCTION",
-               "END_PROGRAM", "END_RESOURCE", "END_CONFIGURATION"]
+_INSERTABLE = [
+    SEMI,
+    COMMA,
+    "THEN",
+    "DO",
+    "OF",
+    "RPAR",
+    "RSQB",
+    "END_IF",
+    "END_CASE",
+    "END_FOR",
+    "END_WHILE",
+    "END_VAR",
+    "END_STRUCT",
+    "END_TYPE",
+    "END_FUNCTION_BLOCK",
+    "END_FUNCTION",
+    "END_PROGRAM",
+    "END_RESOURCE",
+    "END_CONFIGURATION",
+]
 # At the end of the file: closers first; ';' only when nothing else fits.
 _CLOSING = [c for c in _INSERTABLE if c.startswith("END_")] + ["RPAR", "RSQB", SEMI, "THEN", "DO", "OF"]
-_UNSUPPORTED = {"METHOD": "methods", "END_METHOD": "methods", "PROPERTY": "properties",
-                "END_PROPERTY": "properties", "INTERFACE": "interfaces", "END_INTERFACE": "interfaces",
-                "ACTION": "actions", "END_ACTION": "actions", "NAMESPACE": "namespaces",
-                "END_NAMESPACE": "namespaces", "VAR_ACCESS": "VAR_ACCESS blocks"}
+_UNSUPPORTED = {
+    "METHOD": "methods",
+    "END_METHOD": "methods",
+    "PROPERTY": "properties",
+    "END_PROPERTY": "properties",
+    "INTERFACE": "interfaces",
+    "END_INTERFACE": "interfaces",
+    "ACTION": "actions",
+    "END_ACTION": "actions",
+    "NAMESPACE": "namespaces",
+    "END_NAMESPACE": "namespaces",
+    "VAR_ACCESS": "VAR_ACCESS blocks",
+}
+
 
 def _is_bare(value) -> bool:
     """A parser stack value that is a name or expression but not a call:
@@ -147,19 +229,26 @@ class Recovery(ParserCore):
                     if v.type != "_ELSE":
                         break
                     what = "duplicate ELSE" if tok.type == "_ELSE" else "ELSIF after ELSE"
-                    self.report("E005", what, self._tok_pos(tok), f"the ELSE at line {v.line} must be the last branch",
-                                calm=1)
+                    self.report(
+                        "E005", what, self._tok_pos(tok), f"the ELSE at line {v.line} must be the last branch", calm=1
+                    )
                     # Drop it (and an ELSIF's condition): what follows joins the ELSE branch.
                     return self._skip_through("THEN") if tok.type == "ELSIF" else None
         if tok.type in _VAR_KINDS:
             opener = next(self._open_blocks(), None)
             if opener is not None and opener.type in ("PROGRAM", "FUNCTION", "FUNCTION_BLOCK"):
-                self.report("E005", f"{self.g.spelling(tok.type)} block after the statements", self._tok_pos(tok),
-                            "declare variables before the first statement of the POU", calm=1)
+                self.report(
+                    "E005",
+                    f"{self.g.spelling(tok.type)} block after the statements",
+                    self._tok_pos(tok),
+                    "declare variables before the first statement of the POU",
+                    calm=1,
+                )
                 return self._skip_through("END_VAR")
         if tok.type == "EQ" and "ASSIGN" in self._expected():
-            self.report("E001", "'=' compares; use ':=' to assign", self._tok_pos(tok), "':=' assigns, '=' compares",
-                        calm=1)
+            self.report(
+                "E001", "'=' compares; use ':=' to assign", self._tok_pos(tok), "':=' assigns, '=' compares", calm=1
+            )
             assign = Tok("ASSIGN", ":=", tok.start_pos, tok.line, tok.column)
             assign.end_column = tok.end_column
             return self._feed_or_recover(assign)
@@ -168,26 +257,46 @@ class Recovery(ParserCore):
             word = prev.value.upper()
         if word is not None:
             at = tok if word == value or prev is None else prev
-            self.report("E001", f"{word}: {_UNSUPPORTED[word]} are not supported", self._tok_pos(at),
-                        "write the logic as a FUNCTION or FUNCTION_BLOCK", calm=1)
+            self.report(
+                "E001",
+                f"{word}: {_UNSUPPORTED[word]} are not supported",
+                self._tok_pos(at),
+                "write the logic as a FUNCTION or FUNCTION_BLOCK",
+                calm=1,
+            )
             self._unshift(prev if word != value else None)
             end = word if word.startswith("END_") else "END_" + word
             return self._skip_through("NAME", end) if word != end else None
         if tok.type == "LABEL_NAME" and re.compile(r"\s*:").match(self.text, tok.end_pos):
             # In a statement list the lexer offers LABEL_NAME (a case label
             # could follow a statement), so 'lbl:' arrives as one.
-            self.report("E001", f"label '{tok.value}:' is not supported", self._tok_pos(tok),
-                        "JMP and labels are not supported; use a loop or CASE", calm=1)
+            self.report(
+                "E001",
+                f"label '{tok.value}:' is not supported",
+                self._tok_pos(tok),
+                "JMP and labels are not supported; use a loop or CASE",
+                calm=1,
+            )
             return self._skip_through(COLON)
         if prev is not None and prev.type == "NAME" and "ASSIGN" in self._expected():
             if prev.value.upper() == "JMP":
-                self.report("E001", "JMP is not supported", self._tok_pos(prev),
-                            "JMP and labels are not supported; use a loop or CASE", calm=1)
+                self.report(
+                    "E001",
+                    "JMP is not supported",
+                    self._tok_pos(prev),
+                    "JMP and labels are not supported; use a loop or CASE",
+                    calm=1,
+                )
                 self._unshift(prev)
                 return self._skip_through(SEMI)
             if tok.type == COLON:
-                self.report("E001", f"label '{prev.value}:' is not supported", self._tok_pos(prev),
-                            "JMP and labels are not supported; use a loop or CASE", calm=1)
+                self.report(
+                    "E001",
+                    f"label '{prev.value}:' is not supported",
+                    self._tok_pos(prev),
+                    "JMP and labels are not supported; use a loop or CASE",
+                    calm=1,
+                )
                 self._unshift(prev)
                 return None
         return False
@@ -215,23 +324,32 @@ class Recovery(ParserCore):
         if cand in _CLOSERS.values():
             opener = next((b for b in self._open_blocks() if _CLOSERS[b.type] == cand), None)
             where = f" to close the {opener.type} at line {opener.line}" if opener else ""
-            self.report("E001", f"{text} expected{where}, found {self._describe(tok)}", self._tok_pos(tok),
-                        f"add {text} before {self._describe(tok)}", calm=1)
+            self.report(
+                "E001",
+                f"{text} expected{where}, found {self._describe(tok)}",
+                self._tok_pos(tok),
+                f"add {text} before {self._describe(tok)}",
+                calm=1,
+            )
             return
         # Point at where the token is missing: just after the previous one.
         pos = self._pos_at(prev.end_line, prev.end_column) if prev is not None else self._tok_pos(tok)
         opener = next(self._open_blocks(), None)
         item = "declaration" if opener is not None and opener.type in ("TYPE", "STRUCT", *_VAR_KINDS) else "statement"
-        hint = {SEMI: f"missing ';' after the {item}?",
-                COMMA: "separate arguments, names and values with ','"}.get(cand)
+        hint = {SEMI: f"missing ';' after the {item}?", COMMA: "separate arguments, names and values with ','"}.get(
+            cand
+        )
         self.report("E001", f"missing '{text}' before {self._describe(tok)}", pos, hint, calm=1)
 
     def _eof_error(self) -> None:
         if self.comment_trouble:
             return  # the unterminated comment already explains it
         opener = next(self._open_blocks(), None)
-        hint = (f"{_CLOSERS[opener.type]} expected to close the {opener.type} at line {opener.line}"
-                if opener is not None else "the last statement is incomplete")
+        hint = (
+            f"{_CLOSERS[opener.type]} expected to close the {opener.type} at line {opener.line}"
+            if opener is not None
+            else "the last statement is incomplete"
+        )
         self.report("E001", "unexpected end of file", self._eof_pos(), hint)
 
     def _generic_error(self, tok: Tok, prev: Tok | None) -> None:
@@ -255,8 +373,13 @@ class Recovery(ParserCore):
             opener = next(self._open_blocks(), None)
             closer = _CLOSERS[opener.type] if opener is not None else None
             # ('..' is not listed: the hints never offered it.)
-            shown = sorted({_FRIENDLY.get(t, self.g.spelling(t)) for t in expected
-                            if t != "DOTDOT" and (not t.startswith("END_") or t == closer)})
+            shown = sorted(
+                {
+                    _FRIENDLY.get(t, self.g.spelling(t))
+                    for t in expected
+                    if t != "DOTDOT" and (not t.startswith("END_") or t == closer)
+                }
+            )
             if 0 < len(shown) <= 6:
                 hint = "expected " + ", ".join(s if s.startswith("a ") else f"'{s}'" for s in shown)
         self.report("E001", f"unexpected {self._describe(tok)}", self._tok_pos(tok), hint, calm=3)
@@ -336,18 +459,20 @@ class Recovery(ParserCore):
         then unchanged)."""
         stack, values = self.state_stack, self.value_stack
         if fits is None:
+
             def fits(depth):
                 return self.g.simulate(stack[:depth], tok.type) is not None
+
         innermost = next(self._open_blocks(with_index=True), None)
         # stack[i + 1] is the state after the opener values[i]: keep it.
         floor = innermost[0] + 2 if innermost is not None else 1
-        for lowest in ((floor,) if bounded else (floor, 1)):
+        for lowest in (floor,) if bounded else (floor, 1):
             for depth in range(len(stack), lowest - 1, -1):
                 if fits(depth):
-                    for v in values[depth - 1:]:
+                    for v in values[depth - 1 :]:
                         self._lost_opener(v)
                     del stack[depth:]
-                    del values[depth - 1:]
+                    del values[depth - 1 :]
                     return True
         return False
 

@@ -5,6 +5,7 @@ The table comes from st_grammar.py; a reduction calls the rule's builder
 method (build_*.py), so the value stack holds tokens and AST nodes. Error
 recovery (parse_recovery.py) and the driver (parser.py) build on this.
 """
+
 from __future__ import annotations
 
 from collections.abc import Iterator
@@ -41,16 +42,16 @@ class ParserCore:
     def __init__(self, text: str, path: str, diags: DiagnosticBag, g: Grammar) -> None:
         self.g = g
         self.raw = text
-        self.text = text             # with comments blanked (set by the driver)
+        self.text = text  # with comments blanked (set by the driver)
         self.path = path
         self.diags = diags
-        self.items: list = []        # nodes a pragma can attach to
+        self.items: list = []  # nodes a pragma can attach to
         self.pou_headers: list = []  # (POU, start, header end)
         self.errors = 0
-        self.calm = 0                # tokens to shift before the next error is reported
+        self.calm = 0  # tokens to shift before the next error is reported
         self.comment_trouble = False
-        self.skipping = False        # recovery is reading tokens: no parser context
-        self.strays: dict = {}       # END_* whose block recovery dropped -> how many
+        self.skipping = False  # recovery is reading tokens: no parser context
+        self.strays: dict = {}  # END_* whose block recovery dropped -> how many
         self.last: Tok | None = None
         self.state_stack = [g.start_state]
         self.value_stack: list = []
@@ -58,8 +59,9 @@ class ParserCore:
         self.builder: Any = g.builder(self)  # the AST builder (build_decls.AstBuilder)
 
     # -- diagnostics
-    def report(self, code: str, message: str, pos: ast.Pos, hint: str | None = None,
-               always: bool = False, calm: int = 0) -> None:
+    def report(
+        self, code: str, message: str, pos: ast.Pos, hint: str | None = None, always: bool = False, calm: int = 0
+    ) -> None:
         """Add an error, unless it is an echo of the previous one (``always``
         overrides). ``calm``: errors at that many next tokens are echoes."""
         quiet = self.calm and not always
@@ -131,15 +133,20 @@ class ParserCore:
             states.pop()
             values.pop()
             if len(entry) == 3:
-                del children[action.alias][entry[2]:]
+                del children[action.alias][entry[2] :]
             for symbol in action.symbols:  # the states the children were shifted with
                 states.append(gotos[states[-1]][symbol])
             values.extend(children)
 
     def _synthetic(self, ttype: str, at: Tok, after: bool = True) -> Tok:
         """A token the parser is given by recovery, placed just after (or on) at."""
-        t = Tok(ttype, self.g.spelling(ttype), at.end_pos if after else at.start_pos, at.line,
-                at.end_column if after else at.column)
+        t = Tok(
+            ttype,
+            self.g.spelling(ttype),
+            at.end_pos if after else at.start_pos,
+            at.line,
+            at.end_column if after else at.column,
+        )
         t.end_column = t.column  # it takes no room in the text
         return t
 

@@ -23,6 +23,7 @@ How it works:
 Each parse has its own state (``_Parse``, its builder); the grammar is
 shared and never changes, so files can be parsed in several threads.
 """
+
 from __future__ import annotations
 
 from bisect import bisect_left
@@ -47,8 +48,9 @@ class _Parse(Recovery):
 
         def comment_error(code, message, start, end, hint):
             self.comment_trouble = self.comment_trouble or code == "E004"
-            self.report(code, message, ast.Pos(self.path, *line_col(text, start), *line_col(text, end)),
-                        hint, always=True)
+            self.report(
+                code, message, ast.Pos(self.path, *line_col(text, start), *line_col(text, end)), hint, always=True
+            )
 
         self.text, pragmas = strip_comments(text, comment_error)
         self.tokens = self.g.lexer.tokens(self.text, self._accepts, self._bad_characters)
@@ -58,8 +60,13 @@ class _Parse(Recovery):
             self.diags.error("E001", f"too many errors; stopped after {MAX_ERRORS}", self._eof_pos())
             result = None
         except TooDeep as e:
-            self.report("E005", "nesting too deep", self._tok_pos(e.args[0]),
-                        "split the expression or statement into smaller parts", always=True)
+            self.report(
+                "E005",
+                "nesting too deep",
+                self._tok_pos(e.args[0]),
+                "split the expression or statement into smaller parts",
+                always=True,
+            )
             result = None
         if not isinstance(result, ast.SourceFile):
             result = ast.SourceFile(self.path, [], pos=ast.Pos(self.path, 1, 1))
@@ -96,12 +103,17 @@ class _Parse(Recovery):
             # Take the string to the end of the line (but leave a final ';'
             # alone) and go on as if it were closed.
             nl = text.find("\n", offset)
-            rest = text[offset:len(text) if nl < 0 else nl].rstrip()
+            rest = text[offset : len(text) if nl < 0 else nl].rstrip()
             if rest.endswith(";") and len(rest) > 1:
                 rest = rest[:-1].rstrip()
-            self.report("E004", "unterminated string", self._pos_at(line, col, col + len(rest)),
-                        f"close it with {ch} on the same line; inside a string write {ch} as ${ch}",
-                        always=True, calm=2)  # the rest of the line is guesswork
+            self.report(
+                "E004",
+                "unterminated string",
+                self._pos_at(line, col, col + len(rest)),
+                f"close it with {ch} on the same line; inside a string write {ch} as ${ch}",
+                always=True,
+                calm=2,
+            )  # the rest of the line is guesswork
             kind = "WSTRING_LIT" if ch == '"' else "STRING_LIT"
             tok = Tok(kind, rest + ch, offset, line, col)
             tok.end_column = col + len(rest)
@@ -114,8 +126,11 @@ class _Parse(Recovery):
             message, hint = "unexpected '#'", "typed literals are written without spaces: INT#5, T#1s, Color#Red"
         elif not run[0].isascii():
             message = f"invalid character '{run[0]}'"
-            hint = ("identifiers may only use ASCII letters, digits and '_'" if run[0].isalpha()
-                    else "only ASCII is allowed outside strings and comments")
+            hint = (
+                "identifiers may only use ASCII letters, digits and '_'"
+                if run[0].isalpha()
+                else "only ASCII is allowed outside strings and comments"
+            )
         else:
             message, hint = f"invalid character {run[0]!r}", None
         if not self.skipping:
@@ -152,6 +167,10 @@ def parse_source(text: str, path: str, diags: DiagnosticBag) -> ast.SourceFile:
     try:
         return _Parse(text, path, diags, grammar()).run()
     except Exception as e:  # a bug here must not become a traceback for the user
-        diags.error("E009", f"internal parser error: {type(e).__name__}: {e}", ast.Pos(str(path), 1, 1),
-                    "please report this with the source file")
+        diags.error(
+            "E009",
+            f"internal parser error: {type(e).__name__}: {e}",
+            ast.Pos(str(path), 1, 1),
+            "please report this with the source file",
+        )
         return ast.SourceFile(str(path), [], pos=ast.Pos(str(path), 1, 1))

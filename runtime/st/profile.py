@@ -4,6 +4,7 @@ Schneider Unity/Control Expert lives here, not in scattered flags.
 The checker, code generator and process image read the profile; nothing else
 decides dialect behaviour.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, replace

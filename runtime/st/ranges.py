@@ -8,6 +8,7 @@ check), a shift or an explicit conversion, and skips the wrap or check
 when the answer allows; an unknown range means "do the full work". Pure
 functions: nothing here changes the AST.
 """
+
 from __future__ import annotations
 
 from collections.abc import Mapping
@@ -36,8 +37,12 @@ def is_stored_value(e: A.Expr | None) -> bool:
         return False
     if isinstance(e, (A.Name, A.Member, A.Index, A.Deref, A.Located, A.BitAccess)) or e.const is not None:
         return True
-    if isinstance(e, A.Call) and isinstance(e.target, CallInfo) and e.target.kind == "std" \
-            and e.target.func.name in _SELECTING_FUNCS:
+    if (
+        isinstance(e, A.Call)
+        and isinstance(e.target, CallInfo)
+        and e.target.kind == "std"
+        and e.target.func.name in _SELECTING_FUNCS
+    ):
         return all(is_stored_value(a) for a in _selected_args(e.target))
     return False
 

@@ -1,11 +1,13 @@
 """References to scalar storage: what REF(), ADR() and VAR_IN_OUT pass for an
 elementary variable. Aggregates (arrays, structs, FB instances) are Python
 objects already, so a reference to one is the object itself."""
+
 from __future__ import annotations
 
 
 class AttrRef:
     """A variable held as an attribute of an instance (or of the globals)."""
+
     __slots__ = ("obj", "attr")
 
     def __init__(self, obj, attr: str) -> None:
@@ -27,6 +29,7 @@ class AttrRef:
 
 class ItemRef:
     """An element of an array (a Python list, or an image table view)."""
+
     __slots__ = ("seq", "index")
 
     def __init__(self, seq, index: int) -> None:
@@ -49,6 +52,7 @@ class ItemRef:
 class CellRef:
     """A standalone cell: the local variable of a FUNCTION passed on by
     reference, written back when the callee returns."""
+
     __slots__ = ("value",)
 
     def __init__(self, value) -> None:
@@ -63,6 +67,7 @@ class CellRef:
 
 class AccessorRef:
     """A direct address in the process image, through its get/set pair."""
+
     __slots__ = ("get", "set")
 
     def __init__(self, getter, setter) -> None:

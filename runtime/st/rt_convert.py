@@ -1,5 +1,6 @@
 """Runtime library, conversions: the <src>_TO_<dst> functions, as closures
 built once per pair of types (``make_converter``), and time/date units."""
+
 from __future__ import annotations
 
 from collections.abc import Callable
@@ -36,6 +37,7 @@ from .types import (
 
 # ---------------------------------------------------------------- conversion
 
+
 def _time_from_ns_unit(src_unit: int, d: ElementaryType) -> Callable[[int], int]:
     """Convert a time/date raw value in units of src_unit ns to type d by
     its physical meaning: durations keep their length (truncated toward zero
@@ -55,25 +57,31 @@ def _time_from_ns_unit(src_unit: int, d: ElementaryType) -> Callable[[int], int]
 
             def scale_up(v: int) -> int:
                 return w(v * f)
+
             return scale_up
         f = du // src_unit
 
         def scale_down(v: int) -> int:
             return w(idiv(v, f))  # toward zero
+
         return scale_down
     if c == DATECAT:
         per_day = DAY_NS // du
 
         def to_date(v: int) -> int:
             return w((v * src_unit // DAY_NS) * per_day)
+
         return to_date
     if c == TODCAT:
+
         def to_tod(v: int) -> int:
             return (v * src_unit % DAY_NS) // du
+
         return to_tod
 
     def to_dt(v: int) -> int:
         return w(v * src_unit // du)
+
     return to_dt
 
 
@@ -147,22 +155,27 @@ def make_converter(src: Type, dst: Type) -> Callable:
 
     if dk == "bool":
         if sk == "str":
+
             def str_to_bool(v: str) -> bool:
                 return parse_bool(v) or False
+
             return str_to_bool
         return bool  # <> 0; NaN is <> 0 as well
 
     if dk == "real":
         if sk == "str":
             if d is LREAL:
+
                 def str_to_lreal(v: str) -> float:
                     x = parse_real(v)
                     return 0.0 if x is None else x
+
                 return str_to_lreal
 
             def str_to_real(v: str) -> float:
                 x = parse_real(v)
                 return 0.0 if x is None else f32(x)
+
             return str_to_real
         if d is LREAL:
             return float
@@ -173,8 +186,10 @@ def make_converter(src: Type, dst: Type) -> Callable:
     if sk in ("int", "bool"):  # the wrappers turn a bool into 0/1
         return w
     if sk == "real":
+
         def real_to_int(v: float) -> int:
             return w(round_half_away(v))
+
         return real_to_int
     if sk == "time":
         if dk == "int":
@@ -182,9 +197,11 @@ def make_converter(src: Type, dst: Type) -> Callable:
         return _time_from_ns_unit(s.unit_ns, d)
     # from text
     if dk == "int":
+
         def str_to_int(v: str) -> int:
             x = parse_int(v)
             return 0 if x is None else w(x)
+
         return str_to_int
     from_ns_ = _time_from_ns_unit(1, d)
     cat = d.category
@@ -192,6 +209,7 @@ def make_converter(src: Type, dst: Type) -> Callable:
     def str_to_time(v: str) -> int:
         ns = parse_temporal(v, cat)
         return 0 if ns is None else from_ns_(ns)
+
     return str_to_time
 
 

@@ -2,6 +2,7 @@
 functions, integer division and rounding, bit-string shifts and rotations,
 BCD. Nothing here raises for a value an ST program can produce, except
 integer division and MOD by zero (see rtlib.py)."""
+
 from __future__ import annotations
 
 import math
@@ -82,6 +83,7 @@ def expt(a, b) -> float:
 
 # Real functions: the IEEE result instead of Python's ValueError.
 
+
 def sqrt(x) -> float:
     try:
         return math.sqrt(x)
@@ -117,6 +119,7 @@ def _nan_on_domain(fn: Callable) -> Callable:
             return fn(x)
         except ValueError:  # sin(inf), asin(2) ...
             return _NAN
+
     f.__name__ = fn.__name__
     f.__doc__ = f"{fn.__name__}(x); NaN outside the domain."
     return f
@@ -132,6 +135,7 @@ atan2 = math.atan2  # (y, x); defined for every pair incl. (0, 0)
 
 
 # ---------------------------------------------------------------- integers
+
 
 def idiv(a: int, b: int) -> int:
     """Integer division truncating toward zero (IEC / CODESYS: -7 / 2 = -3;
@@ -182,6 +186,7 @@ def trunc(x: float) -> int:
 # static analysis SA0053 says: "a constant 0 is generated") and take n MOD
 # width for rotations. A negative n shifts/rotates the other way.
 
+
 def shl(width: int, x: int, n: int) -> int:
     if n < 0:
         return shr(width, x, -n)
@@ -210,7 +215,9 @@ def rol(width: int, x: int, n: int) -> int:
 def ror(width: int, x: int, n: int) -> int:
     return rol(width, x, -n)
 
+
 # ---------------------------------------------------------------- BCD
+
 
 def bcd_to_int(x: int, width: int) -> int:
     """Decode the width-bit BCD pattern x. A nibble above 9 gives -1

@@ -1,10 +1,12 @@
 """Runtime library, the IEC string functions: LEN, LEFT, RIGHT, MID, CONCAT,
 INSERT, DELETE, REPLACE, FIND."""
+
 from __future__ import annotations
 
 # ---------------------------------------------------------------- strings
 # IEC 61131-3 Table 29 / CODESYS Standard library, positions 1-based.
 # Out-of-range arguments never raise; the rule for each is in its docstring.
+
 
 def LEN(s: str) -> int:
     return len(s)
@@ -25,7 +27,7 @@ def MID(s: str, n: int, p: int) -> str:
     p > LEN, or n <= 0 -> ''; n past the end -> up to the end."""
     if p < 1 or n <= 0:
         return ""
-    return s[p - 1:p - 1 + n]
+    return s[p - 1 : p - 1 + n]
 
 
 def CONCAT(*parts: str) -> str:
@@ -46,7 +48,7 @@ def DELETE(s: str, n: int, p: int) -> str:
     end."""
     if p < 1 or n <= 0 or p > len(s):
         return s
-    return s[:p - 1] + s[p - 1 + n:]
+    return s[: p - 1] + s[p - 1 + n :]
 
 
 def REPLACE(s1: str, s2: str, n: int, p: int) -> str:
@@ -59,7 +61,7 @@ def REPLACE(s1: str, s2: str, n: int, p: int) -> str:
         p = len(s1) + 1
     if n < 0:
         n = 0
-    return s1[:p - 1] + s2 + s1[p - 1 + n:]
+    return s1[: p - 1] + s2 + s1[p - 1 + n :]
 
 
 def FIND(s1: str, s2: str) -> int:

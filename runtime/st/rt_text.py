@@ -1,6 +1,7 @@
 """Runtime library, values as ST literal text, both ways: reading the
 literal forms (STRING_TO_* and the value parsers) and writing them
 (*_TO_STRING, JSON output, messages)."""
+
 from __future__ import annotations
 
 import math
@@ -37,11 +38,15 @@ _NAN = math.nan
 
 _INT_RE = re.compile(
     r"(?:(?:U?S?INT|U?[DL]?INT|L?D?WORD|BYTE|BOOL)#)?([+-]?)"
-    r"(?:(2|8|16)#([0-9A-F](?:_?[0-9A-F])*)|([0-9](?:_?[0-9])*))\Z", re.I)
+    r"(?:(2|8|16)#([0-9A-F](?:_?[0-9A-F])*)|([0-9](?:_?[0-9])*))\Z",
+    re.I,
+)
 _REAL_RE = re.compile(
     r"(?:L?REAL#)?"
     r"([+-]?(?:[0-9](?:_?[0-9])*(?:\.(?:[0-9](?:_?[0-9])*)?)?|\.[0-9](?:_?[0-9])*)"
-    r"(?:E[+-]?[0-9]+)?)\Z", re.I)
+    r"(?:E[+-]?[0-9]+)?)\Z",
+    re.I,
+)
 _REAL_WORDS = {"INF": _INF, "+INF": _INF, "-INF": -_INF, "NAN": _NAN}
 
 
@@ -93,8 +98,15 @@ _PREFIXES = {
     TODCAT: ("TOD", "TIME_OF_DAY", "LTOD", "LTIME_OF_DAY"),
     DTCAT: ("DT", "DATE_AND_TIME", "LDT", "LDATE_AND_TIME"),
 }
-_UNIT_NS = {"d": 86_400_000_000_000, "h": 3_600_000_000_000, "m": 60_000_000_000,
-            "s": 1_000_000_000, "ms": 1_000_000, "us": 1_000, "ns": 1}
+_UNIT_NS = {
+    "d": 86_400_000_000_000,
+    "h": 3_600_000_000_000,
+    "m": 60_000_000_000,
+    "s": 1_000_000_000,
+    "ms": 1_000_000,
+    "us": 1_000,
+    "ns": 1,
+}
 _DUR_RE = re.compile(r"(?:[0-9]+(?:\.[0-9]+)?(?:ms|us|ns|d|h|m|s))+\Z", re.I)
 _DUR_PART = re.compile(r"([0-9]+)(?:\.([0-9]+))?(ms|us|ns|d|h|m|s)", re.I)
 _DATE_RE = re.compile(r"([0-9]{4})-([0-9]{1,2})-([0-9]{1,2})")
@@ -155,7 +167,7 @@ def parse_temporal(text: str, category: str) -> int | None:
         return None if m is None else _tod_ns(m)
     # DT: date '-' time of day
     m = _DATE_RE.match(body)
-    if m is None or body[m.end():m.end() + 1] != "-":
+    if m is None or body[m.end() : m.end() + 1] != "-":
         return None
     d = _date_ns(m)
     t = _TOD_RE.fullmatch(body, m.end() + 1)
@@ -166,6 +178,7 @@ def parse_temporal(text: str, category: str) -> int | None:
 
 
 # ---------------------------------------------------------------- value -> text
+
 
 def _digits_exp(s: str) -> tuple:
     """'-1.25e+02' / '0.001' -> (neg, significant digits, decimal exponent of
@@ -219,7 +232,7 @@ def real_to_string(x: float, lreal: bool = False) -> str:
             if len(digits) <= e + 1:
                 out = digits + "0" * (e + 1 - len(digits)) + ".0"
             else:
-                out = digits[:e + 1] + "." + digits[e + 1:]
+                out = digits[: e + 1] + "." + digits[e + 1 :]
         else:
             out = "0." + "0" * (-e - 1) + digits
     else:
@@ -239,11 +252,25 @@ def bool_to_string(v) -> str:
     return "TRUE" if v else "FALSE"
 
 
-_LIT_PREFIX = {"TIME": "T#", "LTIME": "LT#", "DATE": "D#", "LDATE": "LD#",
-               "TIME_OF_DAY": "TOD#", "LTIME_OF_DAY": "LTOD#",
-               "DATE_AND_TIME": "DT#", "LDATE_AND_TIME": "LDT#"}
-_DUR_UNITS = (("d", 86_400_000_000_000), ("h", 3_600_000_000_000), ("m", 60_000_000_000),
-              ("s", 1_000_000_000), ("ms", 1_000_000), ("us", 1_000), ("ns", 1))
+_LIT_PREFIX = {
+    "TIME": "T#",
+    "LTIME": "LT#",
+    "DATE": "D#",
+    "LDATE": "LD#",
+    "TIME_OF_DAY": "TOD#",
+    "LTIME_OF_DAY": "LTOD#",
+    "DATE_AND_TIME": "DT#",
+    "LDATE_AND_TIME": "LDT#",
+}
+_DUR_UNITS = (
+    ("d", 86_400_000_000_000),
+    ("h", 3_600_000_000_000),
+    ("m", 60_000_000_000),
+    ("s", 1_000_000_000),
+    ("ms", 1_000_000),
+    ("us", 1_000),
+    ("ns", 1),
+)
 
 
 def _fmt_duration(ns: int, unit_ns: int) -> str:
@@ -283,21 +310,28 @@ def temporal_formatter(e: ElementaryType) -> Callable[[int], str]:
     norm = time_wrapper(e)
     c = e.category
     if c == DURATION:
+
         def fmt_duration(v: int) -> str:
             return prefix + _fmt_duration(norm(v) * unit, unit)
+
         return fmt_duration
     if c == DATECAT:
+
         def fmt_date(v: int) -> str:
             return prefix + _fmt_date(norm(v) * unit)
+
         return fmt_date
     if c == TODCAT:
+
         def fmt_tod(v: int) -> str:
             return prefix + _fmt_tod(norm(v) * unit)
+
         return fmt_tod
 
     def fmt_dt(v: int) -> str:
         ns = norm(v) * unit
         return prefix + _fmt_date(ns) + "-" + _fmt_tod(ns)
+
     return fmt_dt
 
 

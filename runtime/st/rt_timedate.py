@@ -1,5 +1,6 @@
 """Runtime library, time and date arithmetic: the IEC functions ADD_TIME ...
 DAY_OF_WEEK on raw values (see types.py), and the calendar constants."""
+
 from __future__ import annotations
 
 from datetime import date as _date
@@ -174,8 +175,7 @@ def CONCAT_LTOD(hour: int, minute: int, second: int, millisecond: int) -> int:
     return _tod_ms(hour, minute, second, millisecond) * 1_000_000 % DAY_NS
 
 
-def CONCAT_DT(year: int, month: int, day: int, hour: int, minute: int, second: int,
-              millisecond: int) -> int:
+def CONCAT_DT(year: int, month: int, day: int, hour: int, minute: int, second: int, millisecond: int) -> int:
     """-> DT (ms dropped); an impossible date gives DT#1970-01-01-00:00:00."""
     n = _days(year, month, day)
     if n is None:
@@ -183,8 +183,7 @@ def CONCAT_DT(year: int, month: int, day: int, hour: int, minute: int, second: i
     return (n * _DAY_S + _tod_ms(hour, minute, second, millisecond) // 1000) & _M32
 
 
-def CONCAT_LDT(year: int, month: int, day: int, hour: int, minute: int, second: int,
-               millisecond: int) -> int:
+def CONCAT_LDT(year: int, month: int, day: int, hour: int, minute: int, second: int, millisecond: int) -> int:
     n = _days(year, month, day)
     if n is None:
         return 0

@@ -1,6 +1,7 @@
 """Runtime library, storing a value: the normalisation for its type (integers
 and bit strings wrap, REAL rounds to binary32, time and date types by their
 meaning, STRING[n] truncates), as closures built once per type."""
+
 from __future__ import annotations
 
 from collections.abc import Callable
@@ -26,6 +27,7 @@ from .types import (
 
 # ---------------------------------------------------------------- wrapping
 
+
 def int_wrapper(t: ElementaryType) -> Callable[[int], int]:
     """Wrapping to the range of integer, bit string or duration type t."""
     if t.lo is None:
@@ -36,10 +38,12 @@ def int_wrapper(t: ElementaryType) -> Callable[[int], int]:
 
         def wrap_signed(v: int) -> int:
             return ((v + half) & mask) - half
+
         return wrap_signed
 
     def wrap_unsigned(v: int) -> int:
         return v & mask
+
     return wrap_unsigned
 
 
@@ -54,18 +58,23 @@ def time_wrapper(t: ElementaryType) -> Callable[[int], int]:
         return int_wrapper(t)
     day = DAY_NS // t.unit_ns
     if c == TODCAT:
+
         def wrap_tod(v: int) -> int:
             return v % day
+
         return wrap_tod
     mask = (1 << t.bits) - 1
     if c == DATECAT:
+
         def wrap_date(v: int) -> int:
             v &= mask
             return v - v % day
+
         return wrap_date
 
     def wrap_dt(v: int) -> int:
         return v & mask
+
     return wrap_dt
 
 
@@ -76,6 +85,7 @@ def identity(v):
 def _truncate_string(n: int) -> Callable[[str], str]:
     def trunc_str(v: str) -> str:
         return v if len(v) <= n else v[:n]
+
     return trunc_str
 
 

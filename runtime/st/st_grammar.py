@@ -13,6 +13,7 @@ their parent, a ``?rule`` with one child passes it through, an omitted
 ``[item]`` gives None) and handed to the builder's method named after the
 rule (or its ``-> alias``).
 """
+
 from __future__ import annotations
 
 import threading
@@ -28,13 +29,15 @@ __all__ = ["COLON", "COMMA", "Grammar", "RESERVED", "Reduce", "SEMI", "grammar"]
 # Keywords reserved everywhere: never names, so a misplaced END_IF is
 # reported as such. The others (SET, RESET, AT, ON, WITH, TASK, RETAIN,
 # CONSTANT, POINTER, ...) are keywords only where the grammar expects them.
-RESERVED = frozenset("""
+RESERVED = frozenset(
+    """
     PROGRAM END_PROGRAM FUNCTION END_FUNCTION FUNCTION_BLOCK END_FUNCTION_BLOCK TYPE END_TYPE
     STRUCT END_STRUCT ARRAY STRING WSTRING REF_TO VAR VAR_INPUT VAR_OUTPUT VAR_IN_OUT VAR_GLOBAL
     VAR_EXTERNAL VAR_TEMP VAR_STAT VAR_CONFIG END_VAR END_CONFIGURATION END_RESOURCE
     IF THEN ELSIF ELSE END_IF CASE OF END_CASE FOR TO BY DO END_FOR WHILE END_WHILE REPEAT UNTIL
     END_REPEAT EXIT CONTINUE RETURN AND AND_THEN OR OR_ELSE XOR NOT MOD TRUE FALSE
-""".split())
+""".split()
+)
 
 # Terminal names of punctuation (defined in grammar.lark).
 SEMI = "SEMICOLON"
@@ -51,6 +54,7 @@ class Reduce:
     child), the rule's name (for the goto), its symbols (to redo the states
     when a reduction is undone) and ``alias``: the child whose list the
     shaping reuses and extends in place (undo cuts it back)."""
+
     __slots__ = ("size", "build", "origin", "symbols", "alias")
 
     def __init__(self, rule: RuleInfo, builder: type) -> None:
@@ -119,12 +123,14 @@ def _itself(builder: Any, children: list) -> list:
 def _single_or(method: Build) -> Build:
     def build(builder: Any, children: list) -> Any:
         return children[0] if len(children) == 1 else method(builder, children)
+
     return build
 
 
 def _filter(plan: tuple[tuple[int, bool, int], ...], trailing: int) -> Callable[[list], list]:
     """The children a rule keeps. An inlined child's list is reused when it
     comes first (a left-recursive list grows in place, not by copying)."""
+
     def shape(children: list) -> list:
         kept: list = []
         for i, inline, nones in plan:
@@ -140,6 +146,7 @@ def _filter(plan: tuple[tuple[int, bool, int], ...], trailing: int) -> Callable[
         if trailing:
             kept += [None] * trailing
         return kept
+
     return shape
 
 
@@ -179,8 +186,9 @@ class Grammar:
         for text, name in ((";", SEMI), (",", COMMA), (":", COLON)):
             if self.lexer.punct.get(text) != name:
                 raise ValueError(f"grammar.lark must name the terminal {text!r} {name}")
-        self.keyword_terminals = frozenset(n for n, t in self.terminals.items()
-                                           if t.literal is not None and t.literal.isidentifier())
+        self.keyword_terminals = frozenset(
+            n for n, t in self.terminals.items() if t.literal is not None and t.literal.isidentifier()
+        )
         self.keywords = sorted(self.spelling(n) for n in self.keyword_terminals)
 
     def spelling(self, name: str) -> str:
@@ -204,7 +212,7 @@ class Grammar:
                 stack.append(action)
                 return stack
             if action.size:
-                del stack[-action.size:]
+                del stack[-action.size :]
             if reduced is not None:
                 reduced.append(action.origin)
             goto = gotos[stack[-1]][action.origin]

@@ -1,6 +1,7 @@
 """What the checker knows about declared things, shared with the code
 generator: variables, POUs and resolved calls. Python names are derived here
 from validated identifiers only (``pyname``), never from raw source text."""
+
 from __future__ import annotations
 
 import re
@@ -66,6 +67,7 @@ class CallInfo:
     """A checked call. kind: 'function' (user FUNCTION), 'fb' (instance
     call), 'std' (standard library function), 'builtin' (TIME, LTIME, REF,
     ADR, SIZEOF), 'native' (a native function, st/native.py)."""
+
     kind: str
     pou: POUInfo | None = None
     func: Any = None  # StdFunc for 'std'; builtin name for 'builtin'; NativeFunction for 'native'

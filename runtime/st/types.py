@@ -21,6 +21,7 @@ runtime library and the JSON encoder):
   STRUCT, FUNCTION_BLOCK                an instance of the generated class
   REF_TO / POINTER TO                   None (NULL) or a reference object
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -46,6 +47,7 @@ class Type:
         return self.is_array or self.is_struct or self.is_fb
 
     if TYPE_CHECKING:
+
         @property
         def name(self) -> str: ...
 
@@ -140,8 +142,31 @@ LDT = ElementaryType("LDATE_AND_TIME", DTCAT, 64, 0, (1 << 64) - 1, unit_ns=1)
 
 ELEMENTARY: dict[str, ElementaryType] = {
     t.name: t
-    for t in (BOOL, SINT, INT, DINT, LINT, USINT, UINT, UDINT, ULINT, BYTE, WORD, DWORD,
-              LWORD, REAL, LREAL, TIME, LTIME, DATE, TOD, DT, LDATE, LTOD, LDT)
+    for t in (
+        BOOL,
+        SINT,
+        INT,
+        DINT,
+        LINT,
+        USINT,
+        UINT,
+        UDINT,
+        ULINT,
+        BYTE,
+        WORD,
+        DWORD,
+        LWORD,
+        REAL,
+        LREAL,
+        TIME,
+        LTIME,
+        DATE,
+        TOD,
+        DT,
+        LDATE,
+        LTOD,
+        LDT,
+    )
 }
 # Short spellings.
 ELEMENTARY["TOD"] = TOD
@@ -151,6 +176,7 @@ ELEMENTARY["LDT"] = LDT
 
 
 # ---------------------------------------------------------------- strings
+
 
 @dataclass(frozen=True, eq=False)
 class StringType(Type):
@@ -169,6 +195,7 @@ class StringType(Type):
 
 
 # ---------------------------------------------------------------- derived
+
 
 @dataclass(eq=False)
 class EnumType(Type):
@@ -201,6 +228,7 @@ class SubrangeType(Type):
 class AliasType(Type):
     """TYPE Speed : REAL := 1.5; END_TYPE -- resolved away by ``resolve``;
     init_value is the type's own initial value plan, if declared."""
+
     name: str
     target: Type
     init_value: Any = None
@@ -253,6 +281,7 @@ class RefType(Type):
 @dataclass(eq=False)
 class FBType(Type):
     """A FUNCTION_BLOCK (or PROGRAM) type; pou is the checker's POU info."""
+
     name: str
     pou: Any = None
     is_fb = True
@@ -352,9 +381,22 @@ def is_generic_member(t: Type, generic: str) -> bool:
     raise ValueError(f"unknown generic type {generic}")
 
 
-GENERICS = ("ANY", "ANY_DERIVED", "ANY_ELEMENTARY", "ANY_MAGNITUDE", "ANY_NUM", "ANY_REAL",
-            "ANY_INT", "ANY_SIGNED", "ANY_UNSIGNED", "ANY_BIT", "ANY_STRING", "ANY_DATE",
-            "ANY_DURATION", "ANY_CHARS")
+GENERICS = (
+    "ANY",
+    "ANY_DERIVED",
+    "ANY_ELEMENTARY",
+    "ANY_MAGNITUDE",
+    "ANY_NUM",
+    "ANY_REAL",
+    "ANY_INT",
+    "ANY_SIGNED",
+    "ANY_UNSIGNED",
+    "ANY_BIT",
+    "ANY_STRING",
+    "ANY_DATE",
+    "ANY_DURATION",
+    "ANY_CHARS",
+)
 
 
 def int_fits(t: ElementaryType, value: int) -> bool:

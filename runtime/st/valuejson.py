@@ -28,6 +28,7 @@ elsewhere (they would show another object's data twice, or not at all once
 the call is over); VAR_TEMP is left out because it holds nothing between
 calls.
 """
+
 from __future__ import annotations
 
 import math

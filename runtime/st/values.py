@@ -2,6 +2,7 @@
 function block instances by value. Generated code assigns into the existing
 object (so references to it stay valid) and copies where a new value is
 needed (a FUNCTION input, a returned structure)."""
+
 from __future__ import annotations
 
 

@@ -1,6 +1,7 @@
 """What the configuration tests share: a file written into tmp_path next to
 a tiny ST program, loaded, and its ConfigError taken apart (after checking
 that every line of the message names the file)."""
+
 from __future__ import annotations
 
 import os
@@ -59,6 +60,7 @@ def error(tmp_path: Path, text: str) -> tuple:
 
 def addr(text: str) -> LocatedAddress:
     from softplc.runtime.image.address import parse_address
+
     return parse_address(text)
 
 

@@ -1,6 +1,7 @@
 """Reading a configuration (runtime/config/load.py): the examples and the
 default load, a file that cannot be read or is not TOML names itself, a
 file's errors are all reported at once, in file order."""
+
 from __future__ import annotations
 
 import pytest
@@ -28,13 +29,39 @@ def test_example_tasks():
     assert cfg.profile == "codesys" and cfg.on_fault == "task" and cfg.start == "warm"
     assert cfg.programs == [ST / "blink.st", ST / "conveyor.st", ST / "counter_retain.st"]
     assert cfg.tasks == [
-        TaskConfig("Fast", 10 * MS, 1 * MS, 0, 50 * MS, 2,
-                   [ProgramInstance("Blink", "Blink", "task[0].programs[0]")], "task[0]"),
-        TaskConfig("Slow", 100 * MS, 1 * MS, 5, 1000 * MS, 1,
-                   [ProgramInstance("Conveyor", "Conveyor", "task[1].programs[0]"),
-                    ProgramInstance("Line2", "Conveyor", "task[1].programs[1]")], "task[1]"),
-        TaskConfig("Background", None, 5 * MS, 20, 1000 * MS, 1,
-                   [ProgramInstance("Counter", "Counter", "task[2].programs[0]")], "task[2]"),
+        TaskConfig(
+            "Fast",
+            10 * MS,
+            1 * MS,
+            0,
+            50 * MS,
+            2,
+            [ProgramInstance("Blink", "Blink", "task[0].programs[0]")],
+            "task[0]",
+        ),
+        TaskConfig(
+            "Slow",
+            100 * MS,
+            1 * MS,
+            5,
+            1000 * MS,
+            1,
+            [
+                ProgramInstance("Conveyor", "Conveyor", "task[1].programs[0]"),
+                ProgramInstance("Line2", "Conveyor", "task[1].programs[1]"),
+            ],
+            "task[1]",
+        ),
+        TaskConfig(
+            "Background",
+            None,
+            5 * MS,
+            20,
+            1000 * MS,
+            1,
+            [ProgramInstance("Counter", "Counter", "task[2].programs[0]")],
+            "task[2]",
+        ),
     ]
     assert cfg.retain is None and cfg.safe_outputs == [] and cfg.loopback == []
     assert cfg.raw["task"][0]["name"] == "Fast"
@@ -52,8 +79,10 @@ def test_example_faults():
     cfg = load_config(EXAMPLES / "faults.toml")
     assert cfg.on_fault == "plc"
     assert cfg.programs == [ST / "heater.st", ST / "blink.st"]
-    assert [(t.name, t.interval_ns, t.priority, t.watchdog_ns) for t in cfg.tasks] == \
-        [("Control", 100 * MS, 1, 1000 * MS), ("Lamp", 10 * MS, 2, 100 * MS)]
+    assert [(t.name, t.interval_ns, t.priority, t.watchdog_ns) for t in cfg.tasks] == [
+        ("Control", 100 * MS, 1, 1000 * MS),
+        ("Lamp", 10 * MS, 2, 100 * MS),
+    ]
     assert cfg.safe_outputs == [
         SafeOutput(addr("%QX0.0"), False, 'outputs.safe."%QX0.0"'),
         SafeOutput(addr("%QX0.1"), False, 'outputs.safe."%QX0.1"'),
@@ -69,6 +98,7 @@ def test_every_example_loads_and_its_programs_compile(name):
     """The ST files compile without a warning and declare every PROGRAM the
     tasks name."""
     from softplc.runtime.program import check_files, compile_files
+
     cfg = load_config(EXAMPLES / name)
     diags, _ = check_files([str(p) for p in cfg.programs], profile=cfg.profile)
     assert [d.format() for d in diags] == []
@@ -79,9 +109,15 @@ def test_every_example_loads_and_its_programs_compile(name):
 
 
 def test_examples_cover_every_section():
-    assert sorted(p.name for p in EXAMPLES.glob("*.toml")) == \
-        ["canopen.toml", "faults.toml", "loopback.toml", "modbus_rtu.toml", "modbus_tcp.toml", "retain.toml",
-         "tasks.toml"]
+    assert sorted(p.name for p in EXAMPLES.glob("*.toml")) == [
+        "canopen.toml",
+        "faults.toml",
+        "loopback.toml",
+        "modbus_rtu.toml",
+        "modbus_tcp.toml",
+        "retain.toml",
+        "tasks.toml",
+    ]
 
 
 def test_default_config_path():
@@ -117,7 +153,7 @@ def test_directory_instead_of_file(tmp_path):
 
 def test_not_utf8(tmp_path):
     path = tmp_path / "latin1.toml"
-    path.write_bytes(b'# caf\xe9\n[plc]\n')
+    path.write_bytes(b"# caf\xe9\n[plc]\n")
     with pytest.raises(ConfigError) as info:
         load_config(path)
     assert str(info.value) == f"{path}: not UTF-8 text (byte 5); a TOML file is UTF-8"
@@ -158,7 +194,9 @@ def test_toml_duplicate_key(tmp_path):
 
 
 def test_several_errors_reported_together(tmp_path):
-    path = write(tmp_path, """\
+    path = write(
+        tmp_path,
+        """\
         [plc]
         profile = "siemens"
         programs = ["main.st", "gone.st"]
@@ -179,7 +217,8 @@ def test_several_errors_reported_together(tmp_path):
 
         [canopen]
         bus = "can0"
-        """)
+        """,
+    )
     with pytest.raises(ConfigError) as info:
         load_config(path)
     assert str(info.value).splitlines() == [
@@ -192,7 +231,7 @@ def test_several_errors_reported_together(tmp_path):
         f"{path}: task[1].programs[0]: duplicate program instance 'Main' (also at task[0].programs[0]; "
         "instance names are unique across tasks, case-insensitive); give one its own instance name: "
         '{ instance = "Main2", program = "Main" }',
-        f'{path}: outputs.safe."%IX0.0": expected a %Q output address (got \'%IX0.0\', an input)',
+        f"{path}: outputs.safe.\"%IX0.0\": expected a %Q output address (got '%IX0.0', an input)",
         f'{path}: outputs.safe."%QW2": expected an integer for a word address (got true)',
         f"{path}: canopen: the CANopen master needs a [[can]] bus (the file has none): add a [[can]] "
         "table with interface and channel",

@@ -1,5 +1,6 @@
 """The core sections (runtime/config/plc.py): [plc], [[task]], [retain] and
 [outputs]; every malformed value names the key and what was expected."""
+
 from __future__ import annotations
 
 import textwrap
@@ -15,22 +16,29 @@ from .support import DURATION, MS, PLC, PROG, error, errors, load, write
 
 def test_minimal_file_and_defaults(tmp_path):
     cfg = load(tmp_path, PLC)
-    assert cfg == PlcConfig(path=tmp_path / "plant.toml", base_dir=tmp_path, profile="codesys",
-                            programs=[tmp_path / "main.st"], on_fault="task", start="warm", tasks=[],
-                            retain=None, safe_outputs=[],
-                            sections={"loopback": [], "can": [], "canopen": None, "modbus": []},
-                            raw={"plc": {"programs": ["main.st"]}})
+    assert cfg == PlcConfig(
+        path=tmp_path / "plant.toml",
+        base_dir=tmp_path,
+        profile="codesys",
+        programs=[tmp_path / "main.st"],
+        on_fault="task",
+        start="warm",
+        tasks=[],
+        retain=None,
+        safe_outputs=[],
+        sections={"loopback": [], "can": [], "canopen": None, "modbus": []},
+        raw={"plc": {"programs": ["main.st"]}},
+    )
 
 
 def test_relative_paths_start_at_the_config_directory(tmp_path, monkeypatch):
     (tmp_path / "st").mkdir()
     (tmp_path / "st" / "a.st").write_text(PROG)
     (tmp_path / "cfg").mkdir()
-    (tmp_path / "cfg" / "p.toml").write_text('[plc]\nprograms = ["../st/a.st"]\n'
-                                             '[retain]\nfile = "p.retain"\n')
+    (tmp_path / "cfg" / "p.toml").write_text('[plc]\nprograms = ["../st/a.st"]\n[retain]\nfile = "p.retain"\n')
     monkeypatch.chdir(tmp_path / "st")
     cfg = load_config("../cfg/p.toml")
-    assert cfg.programs == [tmp_path / "st" / "a.st"]       # normalised, absolute
+    assert cfg.programs == [tmp_path / "st" / "a.st"]  # normalised, absolute
     assert cfg.retain == RetainConfig(tmp_path / "cfg" / "p.retain", 1000 * MS)
     assert cfg.base_dir == tmp_path / "cfg"
 
@@ -41,59 +49,74 @@ def test_absolute_program_path(tmp_path):
 
 
 def test_missing_program_file(tmp_path):
-    assert error(tmp_path, '[plc]\nprograms = ["main.st", "../nope.st"]\n') == \
-        ("plc.programs[1]", f"no such file: {tmp_path.parent / 'nope.st'} (relative paths start at "
-                            "the config file's directory)")
+    assert error(tmp_path, '[plc]\nprograms = ["main.st", "../nope.st"]\n') == (
+        "plc.programs[1]",
+        f"no such file: {tmp_path.parent / 'nope.st'} (relative paths start at the config file's directory)",
+    )
 
 
 def test_program_path_is_a_directory(tmp_path):
     (tmp_path / "dir.st").mkdir()
-    assert error(tmp_path, '[plc]\nprograms = ["dir.st"]\n') == \
-        ("plc.programs[0]", f"not a file: {tmp_path / 'dir.st'}")
+    assert error(tmp_path, '[plc]\nprograms = ["dir.st"]\n') == (
+        "plc.programs[0]",
+        f"not a file: {tmp_path / 'dir.st'}",
+    )
 
 
 def test_programs_wrong_types(tmp_path):
     assert errors(tmp_path, '[plc]\nprograms = "main.st"\n') == [
-        ("plc.programs", 'expected an array of ST files such as ["../st_programs/conveyor.st"] '
-                         "(got 'main.st')")]
-    assert errors(tmp_path, '[plc]\nprograms = []\n') == [
-        ("plc.programs", 'expected an array of ST files such as ["../st_programs/conveyor.st"] '
-                         "(got an empty array)")]
+        ("plc.programs", "expected an array of ST files such as [\"../st_programs/conveyor.st\"] (got 'main.st')")
+    ]
+    assert errors(tmp_path, "[plc]\nprograms = []\n") == [
+        ("plc.programs", 'expected an array of ST files such as ["../st_programs/conveyor.st"] (got an empty array)')
+    ]
     assert errors(tmp_path, '[plc]\nprograms = [1, ""]\n') == [
         ("plc.programs[0]", 'expected the path of an ST file such as "../st_programs/conveyor.st" (got 1)'),
-        ("plc.programs[1]", 'expected the path of an ST file such as "../st_programs/conveyor.st" (got \'\')')]
+        ("plc.programs[1]", "expected the path of an ST file such as \"../st_programs/conveyor.st\" (got '')"),
+    ]
 
 
 def test_missing_plc_section(tmp_path):
-    assert error(tmp_path, "") == \
-        ("plc", 'required key missing (expected a [plc] table with at least programs = ["file.st"])')
+    assert error(tmp_path, "") == (
+        "plc",
+        'required key missing (expected a [plc] table with at least programs = ["file.st"])',
+    )
 
 
 def test_missing_programs(tmp_path):
-    assert error(tmp_path, '[plc]\nprofile = "iec"\n') == \
-        ("plc.programs", 'required key missing (expected an array of ST files such as '
-                         '["../st_programs/conveyor.st"])')
+    assert error(tmp_path, '[plc]\nprofile = "iec"\n') == (
+        "plc.programs",
+        'required key missing (expected an array of ST files such as ["../st_programs/conveyor.st"])',
+    )
 
 
 def test_plc_not_a_table(tmp_path):
-    assert error(tmp_path, 'plc = "main.st"\n') == \
-        ("plc", "expected a [plc] table with at least programs = [\"file.st\"] (got 'main.st')")
+    assert error(tmp_path, 'plc = "main.st"\n') == (
+        "plc",
+        "expected a [plc] table with at least programs = [\"file.st\"] (got 'main.st')",
+    )
 
 
-@pytest.mark.parametrize("written, profile", [("iec", "iec"), ("CODESYS", "codesys"),
-                                              ("twincat", "twincat"), ("Schneider", "schneider")])
+@pytest.mark.parametrize(
+    "written, profile", [("iec", "iec"), ("CODESYS", "codesys"), ("twincat", "twincat"), ("Schneider", "schneider")]
+)
 def test_profiles(tmp_path, written, profile):
     assert load(tmp_path, PLC + f'profile = "{written}"\n').profile == profile
 
 
 def test_unknown_profile_lists_the_valid_ones(tmp_path):
-    assert error(tmp_path, PLC + 'profile = "siemens"\n') == \
-        ("plc.profile", "expected one of 'iec', 'codesys', 'twincat', 'schneider' (got 'siemens')")
-    assert error(tmp_path, PLC + 'profile = "codesis"\n') == \
-        ("plc.profile", "expected one of 'iec', 'codesys', 'twincat', 'schneider' "
-                        "(got 'codesis'; did you mean 'codesys'?)")
-    assert error(tmp_path, PLC + 'profile = 3\n') == \
-        ("plc.profile", "expected one of 'iec', 'codesys', 'twincat', 'schneider' (got 3)")
+    assert error(tmp_path, PLC + 'profile = "siemens"\n') == (
+        "plc.profile",
+        "expected one of 'iec', 'codesys', 'twincat', 'schneider' (got 'siemens')",
+    )
+    assert error(tmp_path, PLC + 'profile = "codesis"\n') == (
+        "plc.profile",
+        "expected one of 'iec', 'codesys', 'twincat', 'schneider' (got 'codesis'; did you mean 'codesys'?)",
+    )
+    assert error(tmp_path, PLC + "profile = 3\n") == (
+        "plc.profile",
+        "expected one of 'iec', 'codesys', 'twincat', 'schneider' (got 3)",
+    )
 
 
 def test_on_fault_and_start(tmp_path):
@@ -101,22 +124,26 @@ def test_on_fault_and_start(tmp_path):
     assert (cfg.on_fault, cfg.start) == ("plc", "cold")
     assert errors(tmp_path, PLC + 'on_fault = "all"\nstart = "cld"\n') == [
         ("plc.on_fault", "expected one of 'task', 'plc' (got 'all')"),
-        ("plc.start", "expected one of 'warm', 'cold' (got 'cld'; did you mean 'cold'?)")]
+        ("plc.start", "expected one of 'warm', 'cold' (got 'cld'; did you mean 'cold'?)"),
+    ]
 
 
 def test_unknown_key_with_suggestion(tmp_path):
-    assert error(tmp_path, PLC + 'on_falut = "plc"\n') == \
-        ("plc.on_falut", "unknown key (did you mean 'on_fault'?)")
+    assert error(tmp_path, PLC + 'on_falut = "plc"\n') == ("plc.on_falut", "unknown key (did you mean 'on_fault'?)")
 
 
 def test_unknown_key_without_suggestion(tmp_path):
-    assert error(tmp_path, PLC + 'colour = "blue"\n') == \
-        ("plc.colour", "unknown key (expected one of profile, programs, on_fault, start)")
+    assert error(tmp_path, PLC + 'colour = "blue"\n') == (
+        "plc.colour",
+        "unknown key (expected one of profile, programs, on_fault, start)",
+    )
 
 
 def test_later_sections_are_unknown_for_now(tmp_path):
-    assert error(tmp_path, PLC + "[mpu2s]\nx = 1\n") == \
-        ("mpu2s", "unknown key (expected one of plc, retain, task, outputs, sim, loopback, can, canopen, modbus)")
+    assert error(tmp_path, PLC + "[mpu2s]\nx = 1\n") == (
+        "mpu2s",
+        "unknown key (expected one of plc, retain, task, outputs, sim, loopback, can, canopen, modbus)",
+    )
 
 
 def test_unknown_section_suggestion(tmp_path):
@@ -130,10 +157,20 @@ def task(body: str) -> str:
     return PLC + "[[task]]\n" + textwrap.dedent(body)
 
 
-@pytest.mark.parametrize("written, ns", [
-    ('"10ms"', 10 * MS), ("10", 10 * MS), ("2.5", 2_500_000), ('"1s500ms"', 1_500_000_000),
-    ('"T#250ms"', 250 * MS), ('"TIME#1s"', 1_000_000_000), ('"100us"', 100_000), ('"1.5us"', 1_500),
-    ('"1m"', 60_000 * MS)])
+@pytest.mark.parametrize(
+    "written, ns",
+    [
+        ('"10ms"', 10 * MS),
+        ("10", 10 * MS),
+        ("2.5", 2_500_000),
+        ('"1s500ms"', 1_500_000_000),
+        ('"T#250ms"', 250 * MS),
+        ('"TIME#1s"', 1_000_000_000),
+        ('"100us"', 100_000),
+        ('"1.5us"', 1_500),
+        ('"1m"', 60_000 * MS),
+    ],
+)
 def test_interval_spellings(tmp_path, written, ns):
     cfg = load(tmp_path, task(f'name = "T"\ninterval = {written}\nprograms = ["Main"]\n'))
     assert cfg.tasks[0].interval_ns == ns
@@ -141,37 +178,52 @@ def test_interval_spellings(tmp_path, written, ns):
 
 def test_task_defaults(tmp_path):
     cfg = load(tmp_path, task('name = "T"\ninterval = "10ms"\nprograms = ["Main"]\n'))
-    assert cfg.tasks == [TaskConfig(name="T", interval_ns=10 * MS, pause_ns=1 * MS, priority=1,
-                                    watchdog_ns=100 * MS, sensitivity=1,
-                                    programs=[ProgramInstance("Main", "Main", "task[0].programs[0]")],
-                                    key="task[0]")]
+    assert cfg.tasks == [
+        TaskConfig(
+            name="T",
+            interval_ns=10 * MS,
+            pause_ns=1 * MS,
+            priority=1,
+            watchdog_ns=100 * MS,
+            sensitivity=1,
+            programs=[ProgramInstance("Main", "Main", "task[0].programs[0]")],
+            key="task[0]",
+        )
+    ]
 
 
-@pytest.mark.parametrize("timing, watchdog_ns", [
-    ('interval = "1ms"', 100 * MS),            # at least 100 ms
-    ('interval = "50ms"', 500 * MS),           # 10 x interval
-    ("freewheeling = true", 1000 * MS),        # freewheeling: 1 s
-    ('interval = "10ms"\nwatchdog = "20ms"', 20 * MS),
-    ('interval = "10ms"\nwatchdog = 15', 15 * MS),
-    ("interval = 10\nwatchdog = false", None),
-    ("freewheeling = true\nwatchdog = false", None),
-])
+@pytest.mark.parametrize(
+    "timing, watchdog_ns",
+    [
+        ('interval = "1ms"', 100 * MS),  # at least 100 ms
+        ('interval = "50ms"', 500 * MS),  # 10 x interval
+        ("freewheeling = true", 1000 * MS),  # freewheeling: 1 s
+        ('interval = "10ms"\nwatchdog = "20ms"', 20 * MS),
+        ('interval = "10ms"\nwatchdog = 15', 15 * MS),
+        ("interval = 10\nwatchdog = false", None),
+        ("freewheeling = true\nwatchdog = false", None),
+    ],
+)
 def test_watchdog(tmp_path, timing, watchdog_ns):
     cfg = load(tmp_path, task(f'name = "T"\n{timing}\nprograms = ["Main"]\n'))
     assert cfg.tasks[0].watchdog_ns == watchdog_ns
 
 
 def test_freewheeling_task(tmp_path):
-    t = load(tmp_path, task('name = "T"\nfreewheeling = true\npause = "250us"\npriority = 31\n'
-                            'sensitivity = 3\nprograms = ["Main"]\n')).tasks[0]
+    t = load(
+        tmp_path,
+        task('name = "T"\nfreewheeling = true\npause = "250us"\npriority = 31\nsensitivity = 3\nprograms = ["Main"]\n'),
+    ).tasks[0]
     assert (t.interval_ns, t.pause_ns, t.priority, t.sensitivity) == (None, 250_000, 31, 3)
     t = load(tmp_path, task('name = "T"\nfreewheeling = true\nprograms = ["Main"]\n')).tasks[0]
     assert t.pause_ns == 1 * MS
 
 
 def test_interval_and_freewheeling(tmp_path):
-    assert error(tmp_path, task('name = "T"\ninterval = "10ms"\nfreewheeling = true\nprograms = ["Main"]\n')) \
-        == ("task[0].freewheeling", "a task has either an interval or freewheeling = true, not both")
+    assert error(tmp_path, task('name = "T"\ninterval = "10ms"\nfreewheeling = true\nprograms = ["Main"]\n')) == (
+        "task[0].freewheeling",
+        "a task has either an interval or freewheeling = true, not both",
+    )
 
 
 def test_interval_with_freewheeling_false_is_cyclic(tmp_path):
@@ -181,19 +233,23 @@ def test_interval_with_freewheeling_false_is_cyclic(tmp_path):
 
 @pytest.mark.parametrize("timing", ["", "freewheeling = false\n"])
 def test_neither_interval_nor_freewheeling(tmp_path, timing):
-    assert error(tmp_path, task(f'name = "T"\n{timing}programs = ["Main"]\n')) == \
-        ("task[0]", 'expected interval = "10ms" (a cyclic task) or freewheeling = true (got neither)')
+    assert error(tmp_path, task(f'name = "T"\n{timing}programs = ["Main"]\n')) == (
+        "task[0]",
+        'expected interval = "10ms" (a cyclic task) or freewheeling = true (got neither)',
+    )
 
 
 def test_pause_with_interval(tmp_path):
-    assert error(tmp_path, task('name = "T"\ninterval = "10ms"\npause = "1ms"\nprograms = ["Main"]\n')) == \
-        ("task[0].pause", "only for a freewheeling task (this one has an interval)")
+    assert error(tmp_path, task('name = "T"\ninterval = "10ms"\npause = "1ms"\nprograms = ["Main"]\n')) == (
+        "task[0].pause",
+        "only for a freewheeling task (this one has an interval)",
+    )
 
 
 def test_sensitivity_without_watchdog(tmp_path):
-    assert error(tmp_path, task('name = "T"\ninterval = 10\nwatchdog = false\nsensitivity = 2\n'
-                                'programs = ["Main"]\n')) == \
-        ("task[0].sensitivity", "only meaningful with a watchdog (this task has watchdog = false)")
+    assert error(
+        tmp_path, task('name = "T"\ninterval = 10\nwatchdog = false\nsensitivity = 2\nprograms = ["Main"]\n')
+    ) == ("task[0].sensitivity", "only meaningful with a watchdog (this task has watchdog = false)")
 
 
 def test_bad_duration_text(tmp_path):
@@ -203,12 +259,23 @@ def test_bad_duration_text(tmp_path):
     assert str(info.value) == f"{path}: task[0].interval: expected {DURATION} (got '10 parsecs')"
 
 
-@pytest.mark.parametrize("key, written", [
-    ("interval", "0"), ("interval", '"0ms"'), ("interval", "-5"), ("interval", '"-5ms"'),
-    ("interval", '"T#-5ms"'), ("interval", "-0.5"), ("interval", '"0.1ns"')])
+@pytest.mark.parametrize(
+    "key, written",
+    [
+        ("interval", "0"),
+        ("interval", '"0ms"'),
+        ("interval", "-5"),
+        ("interval", '"-5ms"'),
+        ("interval", '"T#-5ms"'),
+        ("interval", "-0.5"),
+        ("interval", '"0.1ns"'),
+    ],
+)
 def test_zero_and_negative_durations(tmp_path, key, written):
-    assert error(tmp_path, task(f'name = "T"\n{key} = {written}\nprograms = ["Main"]\n')) == \
-        (f"task[0].{key}", f"expected a duration > 0 such as 10ms, 1s, T#250ms (got {_got(written)})")
+    assert error(tmp_path, task(f'name = "T"\n{key} = {written}\nprograms = ["Main"]\n')) == (
+        f"task[0].{key}",
+        f"expected a duration > 0 such as 10ms, 1s, T#250ms (got {_got(written)})",
+    )
 
 
 def _got(toml_value: str) -> str:
@@ -224,58 +291,78 @@ def test_durations_of_the_wrong_type(tmp_path, written):
 
 
 def test_zero_pause_and_watchdog(tmp_path):
-    assert errors(tmp_path, task('name = "T"\nfreewheeling = true\npause = 0\nwatchdog = "0s"\n'
-                                 'programs = ["Main"]\n')) == [
+    assert errors(
+        tmp_path, task('name = "T"\nfreewheeling = true\npause = 0\nwatchdog = "0s"\nprograms = ["Main"]\n')
+    ) == [
         ("task[0].pause", "expected a duration > 0 such as 10ms, 1s, T#250ms (got 0)"),
-        ("task[0].watchdog", "expected a duration > 0 such as 10ms, 1s, T#250ms, or false for no "
-                             "watchdog (got '0s')")]
+        ("task[0].watchdog", "expected a duration > 0 such as 10ms, 1s, T#250ms, or false for no watchdog (got '0s')"),
+    ]
 
 
 def test_watchdog_true_is_refused(tmp_path):
-    assert error(tmp_path, task('name = "T"\ninterval = 10\nwatchdog = true\nprograms = ["Main"]\n')) == \
-        ("task[0].watchdog", "expected a duration > 0 such as 10ms, 1s, T#250ms, or false for no "
-                             "watchdog (got true)")
+    assert error(tmp_path, task('name = "T"\ninterval = 10\nwatchdog = true\nprograms = ["Main"]\n')) == (
+        "task[0].watchdog",
+        "expected a duration > 0 such as 10ms, 1s, T#250ms, or false for no watchdog (got true)",
+    )
 
 
 @pytest.mark.parametrize("written", ["32", "-1", "100"])
 def test_priority_out_of_range(tmp_path, written):
-    assert error(tmp_path, task(f'name = "T"\ninterval = 10\npriority = {written}\nprograms = ["Main"]\n')) == \
-        ("task[0].priority", f"expected an integer from 0 to 31 (got {written})")
+    assert error(tmp_path, task(f'name = "T"\ninterval = 10\npriority = {written}\nprograms = ["Main"]\n')) == (
+        "task[0].priority",
+        f"expected an integer from 0 to 31 (got {written})",
+    )
 
 
 @pytest.mark.parametrize("written, got", [('"10"', "'10'"), ("1.0", "1.0"), ("true", "true")])
 def test_priority_wrong_type(tmp_path, written, got):
-    assert error(tmp_path, task(f'name = "T"\ninterval = 10\npriority = {written}\nprograms = ["Main"]\n')) == \
-        ("task[0].priority", f"expected an integer from 0 to 31 (got {got})")
+    assert error(tmp_path, task(f'name = "T"\ninterval = 10\npriority = {written}\nprograms = ["Main"]\n')) == (
+        "task[0].priority",
+        f"expected an integer from 0 to 31 (got {got})",
+    )
 
 
 def test_priority_bounds_accepted(tmp_path):
-    cfg = load(tmp_path, task('name = "A"\ninterval = 10\npriority = 0\nprograms = ["Main"]\n'
-                              '[[task]]\nname = "B"\ninterval = 10\npriority = 31\nprograms = ["M2"]\n'))
+    cfg = load(
+        tmp_path,
+        task(
+            'name = "A"\ninterval = 10\npriority = 0\nprograms = ["Main"]\n'
+            '[[task]]\nname = "B"\ninterval = 10\npriority = 31\nprograms = ["M2"]\n'
+        ),
+    )
     assert [t.priority for t in cfg.tasks] == [0, 31]
 
 
 def test_sensitivity_range(tmp_path):
-    assert error(tmp_path, task('name = "T"\ninterval = 10\nsensitivity = 0\nprograms = ["Main"]\n')) == \
-        ("task[0].sensitivity", "expected an integer >= 1 (got 0)")
+    assert error(tmp_path, task('name = "T"\ninterval = 10\nsensitivity = 0\nprograms = ["Main"]\n')) == (
+        "task[0].sensitivity",
+        "expected an integer >= 1 (got 0)",
+    )
 
 
 def test_freewheeling_wrong_type(tmp_path):
-    assert error(tmp_path, task('name = "T"\nfreewheeling = "yes"\nprograms = ["Main"]\n')) == \
-        ("task[0].freewheeling", "expected true or false (got 'yes')")
+    assert error(tmp_path, task('name = "T"\nfreewheeling = "yes"\nprograms = ["Main"]\n')) == (
+        "task[0].freewheeling",
+        "expected true or false (got 'yes')",
+    )
 
 
 def test_task_unknown_key(tmp_path):
     assert errors(tmp_path, task('name = "T"\nintervall = "10ms"\nprograms = ["Main"]\n')) == [
         ("task[0].intervall", "unknown key (did you mean 'interval'?)"),
-        ("task[0]", 'expected interval = "10ms" (a cyclic task) or freewheeling = true (got neither)')]
+        ("task[0]", 'expected interval = "10ms" (a cyclic task) or freewheeling = true (got neither)'),
+    ]
 
 
 def test_task_missing_keys(tmp_path):
     assert errors(tmp_path, task('interval = "10ms"\n')) == [
         ("task[0].name", 'required key missing (expected a task name such as "Fast")'),
-        ("task[0].programs", 'required key missing (expected an array of PROGRAM names or '
-                             '{ instance = "...", program = "..." } tables, such as ["Conveyor"])')]
+        (
+            "task[0].programs",
+            "required key missing (expected an array of PROGRAM names or "
+            '{ instance = "...", program = "..." } tables, such as ["Conveyor"])',
+        ),
+    ]
 
 
 def test_task_as_a_table_instead_of_an_array(tmp_path):
@@ -283,53 +370,81 @@ def test_task_as_a_table_instead_of_an_array(tmp_path):
 
 
 def test_task_name_must_be_an_identifier(tmp_path):
-    assert error(tmp_path, task('name = "1st task"\ninterval = 10\nprograms = ["Main"]\n')) == \
-        ("task[0].name", "expected a task name: an IEC identifier (letters, digits, _; not starting "
-                         "with a digit) (got '1st task')")
+    assert error(tmp_path, task('name = "1st task"\ninterval = 10\nprograms = ["Main"]\n')) == (
+        "task[0].name",
+        "expected a task name: an IEC identifier (letters, digits, _; not starting with a digit) (got '1st task')",
+    )
 
 
 def test_duplicate_task_names(tmp_path):
-    assert error(tmp_path, task('name = "Fast"\ninterval = 10\nprograms = ["Main"]\n'
-                                '[[task]]\nname = "FAST"\ninterval = 20\nprograms = ["Other"]\n')) == \
-        ("task[1].name", "duplicate task name 'FAST' (task[0] has it; names are case-insensitive)")
+    assert error(
+        tmp_path,
+        task(
+            'name = "Fast"\ninterval = 10\nprograms = ["Main"]\n'
+            '[[task]]\nname = "FAST"\ninterval = 20\nprograms = ["Other"]\n'
+        ),
+    ) == ("task[1].name", "duplicate task name 'FAST' (task[0] has it; names are case-insensitive)")
 
 
 def test_program_instances(tmp_path):
-    cfg = load(tmp_path, task('name = "T"\ninterval = 10\nprograms = ["Main", '
-                              '{ instance = "Main2", program = "Main" }]\n'))
-    assert cfg.tasks[0].programs == [ProgramInstance("Main", "Main", "task[0].programs[0]"),
-                                     ProgramInstance("Main2", "Main", "task[0].programs[1]")]
+    cfg = load(
+        tmp_path, task('name = "T"\ninterval = 10\nprograms = ["Main", { instance = "Main2", program = "Main" }]\n')
+    )
+    assert cfg.tasks[0].programs == [
+        ProgramInstance("Main", "Main", "task[0].programs[0]"),
+        ProgramInstance("Main2", "Main", "task[0].programs[1]"),
+    ]
 
 
 def test_duplicate_instance_names_across_tasks(tmp_path):
-    assert error(tmp_path, task('name = "A"\ninterval = 10\nprograms = ["Main"]\n'
-                                '[[task]]\nname = "B"\ninterval = 20\nprograms = ["main"]\n')) == \
-        ("task[1].programs[0]", "duplicate program instance 'main' (also at task[0].programs[0]; instance "
-                                "names are unique across tasks, case-insensitive); give one its own "
-                                'instance name: { instance = "main2", program = "main" }')
+    assert error(
+        tmp_path,
+        task(
+            'name = "A"\ninterval = 10\nprograms = ["Main"]\n[[task]]\nname = "B"\ninterval = 20\nprograms = ["main"]\n'
+        ),
+    ) == (
+        "task[1].programs[0]",
+        "duplicate program instance 'main' (also at task[0].programs[0]; instance "
+        "names are unique across tasks, case-insensitive); give one its own "
+        'instance name: { instance = "main2", program = "main" }',
+    )
 
 
 def test_duplicate_instance_names_in_tables(tmp_path):
-    assert error(tmp_path, task('name = "A"\ninterval = 10\nprograms = ["Main", '
-                                '{ instance = "Main", program = "Other" }]\n')) == \
-        ("task[0].programs[1].instance", "duplicate program instance 'Main' (also at task[0].programs[0]; "
-                                         "instance names are unique across tasks, case-insensitive)")
+    assert error(
+        tmp_path, task('name = "A"\ninterval = 10\nprograms = ["Main", { instance = "Main", program = "Other" }]\n')
+    ) == (
+        "task[0].programs[1].instance",
+        "duplicate program instance 'Main' (also at task[0].programs[0]; "
+        "instance names are unique across tasks, case-insensitive)",
+    )
 
 
 def test_bad_program_entries(tmp_path):
-    assert errors(tmp_path, task('name = "A"\ninterval = 10\nprograms = [5, "no good", '
-                                 '{ instance = "X" }, { instance = "Y", program = "P", prio = 1 }]\n')) == [
-        ("task[0].programs[0]", 'expected a PROGRAM name such as "Conveyor" or a table '
-                                '{ instance = "Line2", program = "Conveyor" } (got 5)'),
+    assert errors(
+        tmp_path,
+        task(
+            'name = "A"\ninterval = 10\nprograms = [5, "no good", '
+            '{ instance = "X" }, { instance = "Y", program = "P", prio = 1 }]\n'
+        ),
+    ) == [
+        (
+            "task[0].programs[0]",
+            'expected a PROGRAM name such as "Conveyor" or a table '
+            '{ instance = "Line2", program = "Conveyor" } (got 5)',
+        ),
         ("task[0].programs[1]", "expected a PROGRAM name (an IEC identifier) (got 'no good')"),
         ("task[0].programs[2].program", 'required key missing (expected a PROGRAM name such as "Conveyor")'),
-        ("task[0].programs[3].prio", "unknown key (expected one of instance, program)")]
+        ("task[0].programs[3].prio", "unknown key (expected one of instance, program)"),
+    ]
 
 
 def test_empty_program_list(tmp_path):
-    assert error(tmp_path, task('name = "A"\ninterval = 10\nprograms = []\n')) == \
-        ("task[0].programs", 'expected an array of PROGRAM names or { instance = "...", program = "..." } '
-                             'tables, such as ["Conveyor"] (got an empty array)')
+    assert error(tmp_path, task('name = "A"\ninterval = 10\nprograms = []\n')) == (
+        "task[0].programs",
+        'expected an array of PROGRAM names or { instance = "...", program = "..." } '
+        'tables, such as ["Conveyor"] (got an empty array)',
+    )
 
 
 # ====================================================================== [retain]
@@ -343,31 +458,49 @@ def test_retain_defaults(tmp_path):
 def test_retain_errors(tmp_path):
     assert errors(tmp_path, PLC + '[retain]\nperiod = "0s"\n') == [
         ("retain.file", 'required key missing (expected a file name such as "plant.retain")'),
-        ("retain.period", "expected a duration > 0 such as 10ms, 1s, T#250ms (got '0s')")]
-    assert error(tmp_path, PLC + '[retain]\nfile = "."\n') == \
-        ("retain.file", f"{tmp_path} is a directory; expected a file name")
-    assert error(tmp_path, PLC + '[retain]\nfile = 1\n') == \
-        ("retain.file", 'expected a file name such as "plant.retain" (got 1)')
+        ("retain.period", "expected a duration > 0 such as 10ms, 1s, T#250ms (got '0s')"),
+    ]
+    assert error(tmp_path, PLC + '[retain]\nfile = "."\n') == (
+        "retain.file",
+        f"{tmp_path} is a directory; expected a file name",
+    )
+    assert error(tmp_path, PLC + "[retain]\nfile = 1\n") == (
+        "retain.file",
+        'expected a file name such as "plant.retain" (got 1)',
+    )
 
 
 # ====================================================================== [outputs]
 
 
 def test_safe_outputs(tmp_path):
-    cfg = load(tmp_path, PLC + '[outputs]\nsafe = { "%QX0.0" = true, "%qx0.1" = 1, "%QX0.2" = 0, '
-                               '"%QB1" = 255, "%QW2" = -32768, "%QD4" = 1.5, "%QD5" = 7, "%QL1" = 2.5e300 }\n')
+    cfg = load(
+        tmp_path,
+        PLC + '[outputs]\nsafe = { "%QX0.0" = true, "%qx0.1" = 1, "%QX0.2" = 0, '
+        '"%QB1" = 255, "%QW2" = -32768, "%QD4" = 1.5, "%QD5" = 7, "%QL1" = 2.5e300 }\n',
+    )
     assert [(s.address.text, s.value, type(s.value)) for s in cfg.safe_outputs] == [
-        ("%QX0.0", True, bool), ("%QX0.1", True, bool), ("%QX0.2", False, bool),
-        ("%QB1", 255, int), ("%QW2", -32768, int), ("%QD4", 1.5, float), ("%QD5", 7, int),
-        ("%QL1", 2.5e300, float)]
+        ("%QX0.0", True, bool),
+        ("%QX0.1", True, bool),
+        ("%QX0.2", False, bool),
+        ("%QB1", 255, int),
+        ("%QW2", -32768, int),
+        ("%QD4", 1.5, float),
+        ("%QD5", 7, int),
+        ("%QL1", 2.5e300, float),
+    ]
     assert cfg.safe_outputs[1].key == 'outputs.safe."%qx0.1"'
 
 
 def test_safe_output_on_an_input(tmp_path):
-    assert error(tmp_path, PLC + '[outputs]\nsafe = { "%IX0.0" = false }\n') == \
-        ('outputs.safe."%IX0.0"', "expected a %Q output address (got '%IX0.0', an input)")
-    assert error(tmp_path, PLC + '[outputs]\nsafe = { "%MW0" = 0 }\n') == \
-        ('outputs.safe."%MW0"', "expected a %Q output address (got '%MW0', a memory address)")
+    assert error(tmp_path, PLC + '[outputs]\nsafe = { "%IX0.0" = false }\n') == (
+        'outputs.safe."%IX0.0"',
+        "expected a %Q output address (got '%IX0.0', an input)",
+    )
+    assert error(tmp_path, PLC + '[outputs]\nsafe = { "%MW0" = 0 }\n') == (
+        'outputs.safe."%MW0"',
+        "expected a %Q output address (got '%MW0', a memory address)",
+    )
 
 
 @pytest.mark.parametrize("text", ["QX0.0", "%QZ0", "%QX", "%Q*", "%QW0.1", "%QX0.8", "%QX0.1.2", ""])
@@ -380,31 +513,40 @@ def test_safe_output_bad_address(tmp_path, text):
 
 
 def test_safe_output_address_messages(tmp_path):
-    assert error(tmp_path, PLC + '[outputs]\nsafe = { "%QX0.8" = 0 }\n') == \
-        ('outputs.safe."%QX0.8"', "bit number 8 is not 0..7")
+    assert error(tmp_path, PLC + '[outputs]\nsafe = { "%QX0.8" = 0 }\n') == (
+        'outputs.safe."%QX0.8"',
+        "bit number 8 is not 0..7",
+    )
 
 
-@pytest.mark.parametrize("text, value, message", [
-    ("%QW2", "true", "expected an integer for a word address (got true)"),
-    ("%QB0", "false", "expected an integer for a byte address (got false)"),
-    ("%QD4", "true", "expected an integer or a float for a dword address (got true)"),
-    ("%QW2", "1.5", "expected an integer for a word address (got 1.5; a REAL needs a %QD address, "
-                    "an LREAL a %QL address)"),
-    ("%QW2", "70000", "expected an integer from -32768 to 65535 for a word address (got 70000)"),
-    ("%QB0", "256", "expected an integer from -128 to 255 for a byte address (got 256)"),
-    ("%QD0", "1e39", "expected a REAL (at most 3.4e38) for a dword address (got 1e+39)"),
-    ("%QW2", '"0"', "expected an integer for a word address (got '0')"),
-    ("%QX0.0", "2", "expected true or false (or 0 / 1) for a bit address (got 2)"),
-    ("%QX0.0", '"true"', "expected true or false (or 0 / 1) for a bit address (got 'true')"),
-])
+@pytest.mark.parametrize(
+    "text, value, message",
+    [
+        ("%QW2", "true", "expected an integer for a word address (got true)"),
+        ("%QB0", "false", "expected an integer for a byte address (got false)"),
+        ("%QD4", "true", "expected an integer or a float for a dword address (got true)"),
+        (
+            "%QW2",
+            "1.5",
+            "expected an integer for a word address (got 1.5; a REAL needs a %QD address, an LREAL a %QL address)",
+        ),
+        ("%QW2", "70000", "expected an integer from -32768 to 65535 for a word address (got 70000)"),
+        ("%QB0", "256", "expected an integer from -128 to 255 for a byte address (got 256)"),
+        ("%QD0", "1e39", "expected a REAL (at most 3.4e38) for a dword address (got 1e+39)"),
+        ("%QW2", '"0"', "expected an integer for a word address (got '0')"),
+        ("%QX0.0", "2", "expected true or false (or 0 / 1) for a bit address (got 2)"),
+        ("%QX0.0", '"true"', "expected true or false (or 0 / 1) for a bit address (got 'true')"),
+    ],
+)
 def test_safe_output_values(tmp_path, text, value, message):
-    assert error(tmp_path, PLC + f'[outputs]\nsafe = {{ "{text}" = {value} }}\n') == \
-        (f'outputs.safe."{text}"', message)
+    assert error(tmp_path, PLC + f'[outputs]\nsafe = {{ "{text}" = {value} }}\n') == (f'outputs.safe."{text}"', message)
 
 
 def test_safe_output_same_address_twice(tmp_path):
-    assert error(tmp_path, PLC + '[outputs]\nsafe = { "%QX0.0" = true, " %qx0.0" = false }\n') == \
-        ('outputs.safe." %qx0.0"', 'the same address as outputs.safe."%QX0.0"')
+    assert error(tmp_path, PLC + '[outputs]\nsafe = { "%QX0.0" = true, " %qx0.0" = false }\n') == (
+        'outputs.safe." %qx0.0"',
+        'the same address as outputs.safe."%QX0.0"',
+    )
 
 
 def test_safe_outputs_schneider_addressing(tmp_path):
@@ -412,13 +554,14 @@ def test_safe_outputs_schneider_addressing(tmp_path):
     assert cfg.safe_outputs[0].address.bit == 2 and cfg.safe_outputs[0].value is True
     key, message = error(tmp_path, PLC + '[outputs]\nsafe = { "%QW3:X2" = true }\n')
     assert key == 'outputs.safe."%QW3:X2"' and "schneider" in message
-    assert error(tmp_path, PLC + 'profile = "schneider"\n[outputs]\nsafe = { "%QW3:4" = 0 }\n') == \
-        ('outputs.safe."%QW3:4"', "expected a single bit, byte, word, dword or lword (got a word table); "
-                                  "list the words one by one")
+    assert error(tmp_path, PLC + 'profile = "schneider"\n[outputs]\nsafe = { "%QW3:4" = 0 }\n') == (
+        'outputs.safe."%QW3:4"',
+        "expected a single bit, byte, word, dword or lword (got a word table); list the words one by one",
+    )
 
 
 def test_outputs_unknown_key_and_type(tmp_path):
-    assert errors(tmp_path, PLC + '[outputs]\nsaf = {}\n') == [
-        ("outputs.saf", "unknown key (did you mean 'safe'?)")]
+    assert errors(tmp_path, PLC + "[outputs]\nsaf = {}\n") == [("outputs.saf", "unknown key (did you mean 'safe'?)")]
     assert errors(tmp_path, PLC + '[outputs]\nsafe = ["%QX0.0"]\n') == [
-        ("outputs.safe", 'expected a table of %Q address = value, such as { "%QX0.0" = false } (got an array)')]
+        ("outputs.safe", 'expected a table of %Q address = value, such as { "%QX0.0" = false } (got an array)')
+    ]

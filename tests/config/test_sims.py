@@ -1,5 +1,6 @@
 """[[sim]] (runtime/config/sims.py): simulated devices, their names and
 registers, on a CAN bus (the Modbus ones: tests/io/modbus/test_config.py)."""
+
 from __future__ import annotations
 
 import pytest
@@ -14,12 +15,17 @@ from .support import CAN, NODE, PLC, SIM, error, errors, load, pdo, plant, write
 
 
 def test_sims(tmp_path):
-    cfg = load(tmp_path, PLC + CAN + '[[sim]]\ntype = "LTMR"\nnode_id = 40\n'
-                                     'registers = { "682" = 2, "0652" = 50 }\n'
-                                     '[[sim]]\ntype = "ltmr"\nname = "spare"\nbus = "can0"\nnode_id = 41\n')
-    assert cfg.sims == [SimConfig("ltmr", "ltmr40", "sim[0]", CanNode("can0", 40), Registers({682: 2, 652: 50})),
-                        SimConfig("ltmr", "spare", "sim[1]", CanNode("can0", 41), Registers({}))]
-    assert cfg.canopen is None      # a simulator needs no master in this PLC
+    cfg = load(
+        tmp_path,
+        PLC + CAN + '[[sim]]\ntype = "LTMR"\nnode_id = 40\n'
+        'registers = { "682" = 2, "0652" = 50 }\n'
+        '[[sim]]\ntype = "ltmr"\nname = "spare"\nbus = "can0"\nnode_id = 41\n',
+    )
+    assert cfg.sims == [
+        SimConfig("ltmr", "ltmr40", "sim[0]", CanNode("can0", 40), Registers({682: 2, 652: 50})),
+        SimConfig("ltmr", "spare", "sim[1]", CanNode("can0", 41), Registers({})),
+    ]
+    assert cfg.canopen is None  # a simulator needs no master in this PLC
 
 
 def test_sim_is_the_canopen_node(tmp_path):
@@ -30,50 +36,68 @@ def test_sim_is_the_canopen_node(tmp_path):
 
 def test_sim_node_ids(tmp_path):
     other = '[[can]]\nname = "can1"\ninterface = "virtual"\nchannel = "b"\n'
-    assert error(tmp_path, PLC + CAN + SIM + SIM + 'name = "second"\n') == \
-        ("sim[1].node_id", "duplicate node id 40 on bus 'can0' (sim[0] has it)")
+    assert error(tmp_path, PLC + CAN + SIM + SIM + 'name = "second"\n') == (
+        "sim[1].node_id",
+        "duplicate node id 40 on bus 'can0' (sim[0] has it)",
+    )
     cfg = load(tmp_path, PLC + CAN + other + SIM + 'bus = "can0"\n' + SIM + 'bus = "can1"\nname = "other"\n')
     assert [(s.at.bus, s.at.node_id) for s in cfg.sims] == [("can0", 40), ("can1", 40)]
-    assert error(tmp_path, plant("", "", SIM.replace("40", "127"))) == \
-        ("sim[0].node_id", "127 is the CANopen master's own node id on bus 'can0' (canopen.node_id)")
+    assert error(tmp_path, plant("", "", SIM.replace("40", "127"))) == (
+        "sim[0].node_id",
+        "127 is the CANopen master's own node id on bus 'can0' (canopen.node_id)",
+    )
     assert errors(tmp_path, PLC + CAN + '[[sim]]\ntype = "fc281"\nnode_id = 0\n[[sim]]\nnode_id = 2\n') == [
         ("sim[0].type", "expected one of 'ltmr', 'da1', 'db1', 'dc1', 'de1', 'de11' (got 'fc281')"),
         ("sim[0].node_id", "expected an integer from 1 to 127 (got 0)"),
-        ("sim[1].type", "required key missing (expected 'ltmr', 'da1', 'db1', 'dc1', 'de1' or 'de11')")]
+        ("sim[1].type", "required key missing (expected 'ltmr', 'da1', 'db1', 'dc1', 'de1' or 'de11')"),
+    ]
 
 
 def test_sim_names(tmp_path):
     other = '[[can]]\nname = "can1"\ninterface = "virtual"\nchannel = "b"\n'
-    assert error(tmp_path, PLC + CAN + other + SIM + 'bus = "can0"\n' + SIM + 'bus = "can1"\n') == \
-        ("sim[1]", "duplicate simulator name 'ltmr40', the default <type><node_id> (sim[0] has it): give one "
-                   "a name")
-    assert error(tmp_path, PLC + CAN + SIM + 'name = "A"\n' + SIM.replace("40", "41") + 'name = "a"\n') == \
-        ("sim[1].name", "duplicate simulator name 'a' (sim[0] has it; names are case-insensitive)")
-    assert error(tmp_path, PLC + CAN + SIM + 'name = "ltmr 40"\n') == \
-        ("sim[0].name", "expected a simulator name: an IEC identifier (letters, digits, _; not starting with a "
-                        "digit) (got 'ltmr 40')")
+    assert error(tmp_path, PLC + CAN + other + SIM + 'bus = "can0"\n' + SIM + 'bus = "can1"\n') == (
+        "sim[1]",
+        "duplicate simulator name 'ltmr40', the default <type><node_id> (sim[0] has it): give one a name",
+    )
+    assert error(tmp_path, PLC + CAN + SIM + 'name = "A"\n' + SIM.replace("40", "41") + 'name = "a"\n') == (
+        "sim[1].name",
+        "duplicate simulator name 'a' (sim[0] has it; names are case-insensitive)",
+    )
+    assert error(tmp_path, PLC + CAN + SIM + 'name = "ltmr 40"\n') == (
+        "sim[0].name",
+        "expected a simulator name: an IEC identifier (letters, digits, _; not starting with a digit) (got 'ltmr 40')",
+    )
 
 
 def test_sim_registers(tmp_path):
-    assert errors(tmp_path, PLC + CAN + SIM + 'registers = { "682" = 70000, "abc" = 1, "70000" = 1, "7" = -1, '
-                                              '"8" = true }\n') == [
-        ('sim[0].registers.682', "expected an integer from 0 to 65535 (got 70000)"),
-        ('sim[0].registers.7', "expected an integer from 0 to 65535 (got -1)"),
-        ('sim[0].registers.8', "expected an integer from 0 to 65535 (got true)"),
-        ('sim[0].registers.abc', "expected a register number from 0 to 65535 in decimal, such as \"682\" "
-                                 "(got 'abc')"),
-        ('sim[0].registers.70000', "expected a register number from 0 to 65535 in decimal, such as \"682\" "
-                                   "(got '70000')")]
-    assert error(tmp_path, PLC + CAN + SIM + "registers = [682, 2]\n") == \
-        ("sim[0].registers", 'expected a table of register = value, such as { "682" = 2 } (got an array)')
+    assert errors(
+        tmp_path, PLC + CAN + SIM + 'registers = { "682" = 70000, "abc" = 1, "70000" = 1, "7" = -1, "8" = true }\n'
+    ) == [
+        ("sim[0].registers.682", "expected an integer from 0 to 65535 (got 70000)"),
+        ("sim[0].registers.7", "expected an integer from 0 to 65535 (got -1)"),
+        ("sim[0].registers.8", "expected an integer from 0 to 65535 (got true)"),
+        ("sim[0].registers.abc", "expected a register number from 0 to 65535 in decimal, such as \"682\" (got 'abc')"),
+        (
+            "sim[0].registers.70000",
+            "expected a register number from 0 to 65535 in decimal, such as \"682\" (got '70000')",
+        ),
+    ]
+    assert error(tmp_path, PLC + CAN + SIM + "registers = [682, 2]\n") == (
+        "sim[0].registers",
+        'expected a table of register = value, such as { "682" = 2 } (got an array)',
+    )
 
 
 def test_can_sections_errors_reported_together(tmp_path):
-    path = write(tmp_path, PLC + '[[can]]\ninterface = "virtual"\nchannel = "a"\nbitrate = 1\n'
-                                 '[canopen]\nnode_id = 40\nheartbeat = "0ms"\n'
-                                 + NODE + 'master_timeout = "1s"\n'
-                                 + pdo("tpdo", 1, ("2004:06", "%QW0"), ("20x4:06", "%IW0"))
-                                 + SIM.replace("40", "0"))
+    path = write(
+        tmp_path,
+        PLC + '[[can]]\ninterface = "virtual"\nchannel = "a"\nbitrate = 1\n'
+        '[canopen]\nnode_id = 40\nheartbeat = "0ms"\n'
+        + NODE
+        + 'master_timeout = "1s"\n'
+        + pdo("tpdo", 1, ("2004:06", "%QW0"), ("20x4:06", "%IW0"))
+        + SIM.replace("40", "0"),
+    )
     with pytest.raises(ConfigError) as info:
         load_config(path)
     assert str(info.value).splitlines() == [

@@ -1,6 +1,7 @@
 """The files the devices generate from their manual tables (ST constants,
 EDS files): every shipped one is exactly what its generator writes, and
 `python -m softplc.runtime.devices` rewrites them all."""
+
 from __future__ import annotations
 
 import subprocess
@@ -15,8 +16,12 @@ GENERATED = registry().generated()
 
 
 def test_every_device_file_is_generated():
-    assert sorted(g.target.file for g in GENERATED) == ["eaton_codes.st", "eds/fc280.eds", "eds/ltmr.eds",
-                                                         "ltmr_codes.st"]
+    assert sorted(g.target.file for g in GENERATED) == [
+        "eaton_codes.st",
+        "eds/fc280.eds",
+        "eds/ltmr.eds",
+        "ltmr_codes.st",
+    ]
 
 
 @pytest.mark.parametrize("generated", GENERATED, ids=lambda g: g.target.file)
@@ -26,8 +31,9 @@ def test_shipped_file_is_what_the_generator_writes(generated):
 
 
 def test_the_command_writes_every_file(tmp_path):
-    done = subprocess.run([sys.executable, "-m", "softplc.runtime.devices", str(tmp_path)],
-                          capture_output=True, text=True, check=True)
+    done = subprocess.run(
+        [sys.executable, "-m", "softplc.runtime.devices", str(tmp_path)], capture_output=True, text=True, check=True
+    )
     assert done.stdout.count("wrote ") == len(GENERATED)
     for generated in GENERATED:
         written = tmp_path / Path(generated.target.file).name

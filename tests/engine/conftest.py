@@ -1,4 +1,5 @@
 """Engines built from ST text, on the virtual clock."""
+
 from __future__ import annotations
 
 import pytest
@@ -12,17 +13,37 @@ from softplc.runtime.program import compile_files
 MS = 1_000_000
 
 
-def task(name: str, interval_ms, *programs, priority: int = 1, watchdog_ms="default",
-         sensitivity: int = 1, pause_ms: float = 1) -> TaskConfig:
+def task(
+    name: str,
+    interval_ms,
+    *programs,
+    priority: int = 1,
+    watchdog_ms="default",
+    sensitivity: int = 1,
+    pause_ms: float = 1,
+) -> TaskConfig:
     """A TaskConfig; programs are PROGRAM type names or (instance, type) pairs.
     interval_ms None makes a freewheeling task."""
     interval_ns = None if interval_ms is None else round(interval_ms * MS)
-    watchdog_ns = default_watchdog_ns(interval_ns) if watchdog_ms == "default" else \
-        (None if watchdog_ms is None else round(watchdog_ms * MS))
-    insts = [ProgramInstance(p, p, f"test {p}") if isinstance(p, str) else ProgramInstance(p[0], p[1], f"test {p[0]}")
-             for p in programs]
-    return TaskConfig(name=name, interval_ns=interval_ns, pause_ns=round(pause_ms * MS), priority=priority,
-                      watchdog_ns=watchdog_ns, sensitivity=sensitivity, programs=insts, key=f"task {name}")
+    watchdog_ns = (
+        default_watchdog_ns(interval_ns)
+        if watchdog_ms == "default"
+        else (None if watchdog_ms is None else round(watchdog_ms * MS))
+    )
+    insts = [
+        ProgramInstance(p, p, f"test {p}") if isinstance(p, str) else ProgramInstance(p[0], p[1], f"test {p[0]}")
+        for p in programs
+    ]
+    return TaskConfig(
+        name=name,
+        interval_ns=interval_ns,
+        pause_ns=round(pause_ms * MS),
+        priority=priority,
+        watchdog_ns=watchdog_ns,
+        sensitivity=sensitivity,
+        programs=insts,
+        key=f"task {name}",
+    )
 
 
 def safe(**values) -> list:
@@ -55,6 +76,7 @@ def engines():
         e = make_engine(*args, **kwargs)
         made.append(e)
         return e
+
     yield factory
     for e in made:
         e.stop()

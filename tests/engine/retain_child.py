@@ -11,6 +11,7 @@ a real process killed in the middle of whatever write_file was doing.
 Each file holds the counter and a ~40 kB block derived from it, so a reader
 can tell a complete file from a mix of two writes.
 """
+
 import os
 import sys
 from pathlib import Path
@@ -23,10 +24,15 @@ def block(counter: int) -> list:
 
 
 def data(counter: int) -> RetainData:
-    return RetainData(layout="kill-test", saved_ns=counter, cycle=counter, vars={
-        "Main.counter": {"kind": "RETAIN", "type": "LINT", "value": counter},
-        "Main.block": {"kind": "RETAIN", "type": "ARRAY[0..4999] OF DINT", "value": block(counter)},
-    })
+    return RetainData(
+        layout="kill-test",
+        saved_ns=counter,
+        cycle=counter,
+        vars={
+            "Main.counter": {"kind": "RETAIN", "type": "LINT", "value": counter},
+            "Main.block": {"kind": "RETAIN", "type": "ARRAY[0..4999] OF DINT", "value": block(counter)},
+        },
+    )
 
 
 def write_forever(path: Path, counter: int) -> None:

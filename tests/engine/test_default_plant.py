@@ -1,5 +1,6 @@
 """The embedded default (io_config/default.toml): the Eaton drive on Modbus
 RTU runs its sequence beside the LTMR on CANopen, in one engine."""
+
 from __future__ import annotations
 
 import pytest

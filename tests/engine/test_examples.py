@@ -1,5 +1,6 @@
 """Every configuration shipped in io_config/ builds and runs in virtual
 time without a fault, and the embedded default does what its comments say."""
+
 from __future__ import annotations
 
 import dataclasses
@@ -19,8 +20,7 @@ CONFIGS = sorted(Path(default_config_path()).parent.glob("**/*.toml"))
 def test_shipped_configuration_runs(path, tmp_path):
     config = load_config(path)
     if config.retain is not None:  # keep the source tree clean
-        config = dataclasses.replace(config, retain=dataclasses.replace(config.retain,
-                                                                        file=tmp_path / "x.retain"))
+        config = dataclasses.replace(config, retain=dataclasses.replace(config.retain, file=tmp_path / "x.retain"))
     engine = build_engine(config, virtual_time=True)
     engine.start()
     engine.run(duration_ns=3000 * MS)

@@ -1,6 +1,7 @@
 """Runtime faults in a running engine: the faulted task stops with the ST
 location, the drivers get the safe output values, the engine goes on
 serving (inputs, the other tasks, PLC_DIAG), and a restart resumes."""
+
 from __future__ import annotations
 
 import pytest
@@ -66,9 +67,13 @@ def _plant(kind: str, engines, on_fault: str = "task"):
     statement = FAULTS[kind][0]
     program = compile_st(PLANT.replace("{statement}", statement))
     loop = LoopbackDriver("loopback", [(parse_address("%QB0"), parse_address("%IB0"), 4)])
-    e = engines(program, [task("Control", 10, "Machine", priority=1, watchdog_ms=50),
-                          task("Supervision", 10, "Monitor", priority=2)],
-                drivers=[loop], on_fault=on_fault, safe_outputs=safe(QX0_0=False, QW1=7))
+    e = engines(
+        program,
+        [task("Control", 10, "Machine", priority=1, watchdog_ms=50), task("Supervision", 10, "Monitor", priority=2)],
+        drivers=[loop],
+        on_fault=on_fault,
+        safe_outputs=safe(QX0_0=False, QW1=7),
+    )
     return e
 
 
@@ -87,7 +92,7 @@ def test_fault_stops_the_task_with_its_st_location_and_outputs_go_safe(engines, 
     assert (record.fault.pos.file, record.fault.pos.line) == ("plant.st", STATEMENT_LINE)
     control, supervision = e.tasks
     assert control.fault is record.fault and supervision.fault is None
-    assert e.get("Machine.cycles") == 6            # 0 .. 50 ms, the last one cut short
+    assert e.get("Machine.cycles") == 6  # 0 .. 50 ms, the last one cut short
     assert e.outputs_safe
     # The drivers were handed the safe values: the loopback shows them.
     assert (e.get("Monitor.motorSeen"), e.get("Monitor.setpointSeen")) == (False, 7)
@@ -107,12 +112,12 @@ def test_restart_resumes_the_faulted_task_and_the_outputs(engines):
     e = _plant("division", engines)
     e.run(duration_ns=70 * MS)  # the fault at 50 ms; the safe value loops back at 60 ms
     assert e.faulted_tasks() and e.get("Monitor.setpointSeen") == 7
-    e.set("armed", False)           # the operator fixed the cause
-    e.request_restart()             # what SIGUSR1 or `restart` on the terminal does
+    e.set("armed", False)  # the operator fixed the cause
+    e.request_restart()  # what SIGUSR1 or `restart` on the terminal does
     e.run(duration_ns=20 * MS)
     assert not e.faulted_tasks() and not e.outputs_safe
     assert e.restarts == 1
-    assert e.get("Machine.cycles") == 2      # a fresh instance: counted from 0 again
+    assert e.get("Machine.cycles") == 2  # a fresh instance: counted from 0 again
     assert (e.get("Monitor.motorSeen"), e.get("Monitor.setpointSeen")) == (True, 1234)
     assert e.get("Monitor.alarm") is False
     assert e.get("PLC_DIAG.Restarts") == 1 and e.get("PLC_DIAG.FaultCount") == 1
@@ -130,10 +135,10 @@ def test_on_fault_plc_stops_every_task(engines):
     e = _plant("bounds", engines, on_fault="plc")
     e.run(duration_ns=100 * MS)
     assert all(t.fault is not None for t in e.tasks)
-    assert e.get("Monitor.cycles") == 5    # 0 .. 40 ms; at 50 ms Control (priority 1) faulted first
+    assert e.get("Monitor.cycles") == 5  # 0 .. 40 ms; at 50 ms Control (priority 1) faulted first
     assert e.outputs_safe
     ticks = e.cycle
-    e.run(duration_ns=50 * MS)             # still serving the drivers at the fastest interval
+    e.run(duration_ns=50 * MS)  # still serving the drivers at the fastest interval
     assert e.cycle == ticks + 5
 
 

@@ -1,5 +1,6 @@
 """What `softplc run` shows: watched values, the status line (terminal and
 log form) and the CSV trace, on an engine in virtual time."""
+
 from __future__ import annotations
 
 import csv
@@ -36,8 +37,15 @@ def test_watch_resolves_variables_globals_and_addresses(engines):
     e.run(cycles=3)
     w = Watch(e, ["Main.n", "Main.on", "Main.mode", "Main.t", "total", "%QW1", "Main.pair"])
     assert w.raw() == [3, 1, 1, 20, 6, 30, "[0,3]"]
-    assert w.shown() == [("Main.n", "3"), ("Main.on", "true"), ("Main.mode", '"Auto"'),
-                         ("Main.t", '"T#20ms"'), ("total", "6"), ("%QW1", "30"), ("Main.pair", "[0,3]")]
+    assert w.shown() == [
+        ("Main.n", "3"),
+        ("Main.on", "true"),
+        ("Main.mode", '"Auto"'),
+        ("Main.t", '"T#20ms"'),
+        ("total", "6"),
+        ("%QW1", "30"),
+        ("Main.pair", "[0,3]"),
+    ]
 
 
 @pytest.mark.parametrize("path, error", [("Main.nope", KeyError), ("nope", KeyError), ("%QZ1", AddressError)])
@@ -51,8 +59,8 @@ def test_trace_has_a_row_per_scan_and_follows_a_restart(engines):
     e = engines(SRC, [task("Main", 10, "Main")])
     out = io.StringIO()
     e.after_tick.append(TraceWriter(out, Watch(e, ["Main.n", "Main.on"])))
-    e.run(duration_ns=60 * MS)      # the fault at 40 ms: n stays 5
-    e.restart()                     # a fresh Main: the watch follows the new instance
+    e.run(duration_ns=60 * MS)  # the fault at 40 ms: n stays 5
+    e.restart()  # a fresh Main: the watch follows the new instance
     e.run(cycles=2)
     rows = list(csv.reader(io.StringIO(out.getvalue())))
     assert rows[0] == ["time_ms", "cycle", "Main.n", "Main.on"]

@@ -1,6 +1,7 @@
 """RETAIN / PERSISTENT variables: what a warm and a cold start bring back, what
 survives a new program version, and that the retain file is never left
 half-written (a real process killed with SIGKILL while it writes)."""
+
 from __future__ import annotations
 
 import hashlib
@@ -126,9 +127,11 @@ END_PROGRAM
 
 # The next version of the program: one PERSISTENT variable changes type, one
 # is renamed, one is added, one is spelled in another case.
-V2 = (V1.replace("keep : DINT;", "keep : LINT;")
-        .replace("renamed : INT;", "newname : INT;\n    extra : INT := 9;")
-        .replace("    both : INT;", "    BOTH : INT;"))
+V2 = (
+    V1.replace("keep : DINT;", "keep : LINT;")
+    .replace("renamed : INT;", "newname : INT;\n    extra : INT := 9;")
+    .replace("    both : INT;", "    BOTH : INT;")
+)
 
 _compiled: dict = {}
 
@@ -194,7 +197,7 @@ def fill_v1(plc: Plc) -> None:
     plc.set("lr", 1 / 3)
     plc.set("rinf", float("-inf"))
     plc.set("lnan", float("nan"))
-    plc.set("text", "héllo \"wörld\"\n")
+    plc.set("text", 'héllo "wörld"\n')
     plc.get("arr")[:] = [1, -2, 32767, -32768]
     plc.set("lmin", -(1 << 63))
     plc.set("lmax", (1 << 63) - 1)
@@ -239,22 +242,44 @@ def same_float(a: float, b: float) -> bool:
 
 # ================================================================ which variables
 
+
 def test_plan_lists_retained_variables_by_path_with_their_kind():
     plc = Plc()
     kinds = {rv.path: rv.kind for rv in plc.plan}
     assert list(kinds) == sorted(kinds, key=str.upper)
     assert kinds == {
-        "G_axis.hours": "RETAIN", "G_axis.meter.total": "RETAIN", "G_axis.parts": "RETAIN",
+        "G_axis.hours": "RETAIN",
+        "G_axis.meter.total": "RETAIN",
+        "G_axis.parts": "RETAIN",
         "G_axis.serial": "PERSISTENT",
-        "G_rec": "PERSISTENT", "G_total": "RETAIN",
-        "Main.arr": "RETAIN", "Main.axis.hours": "RETAIN", "Main.axis.meter.total": "RETAIN",
+        "G_rec": "PERSISTENT",
+        "G_total": "RETAIN",
+        "Main.arr": "RETAIN",
+        "Main.axis.hours": "RETAIN",
+        "Main.axis.meter.total": "RETAIN",
         "Main.axis.parts": "RETAIN",
-        "Main.axis.serial": "PERSISTENT", "Main.both": "PERSISTENT", "Main.count": "RETAIN",
-        "Main.done": "RETAIN", "Main.keep": "PERSISTENT", "Main.level": "RETAIN", "Main.lmax": "RETAIN",
-        "Main.lmin": "RETAIN", "Main.lnan": "RETAIN", "Main.lr": "RETAIN", "Main.lt": "RETAIN",
-        "Main.mode": "RETAIN", "Main.r": "RETAIN", "Main.rec": "PERSISTENT", "Main.renamed": "PERSISTENT",
-        "Main.rinf": "RETAIN", "Main.setpoint": "RETAIN", "Main.speed": "RETAIN", "Main.stat": "RETAIN",
-        "Main.t": "RETAIN", "Main.text": "RETAIN", "Main.umax": "RETAIN",
+        "Main.axis.serial": "PERSISTENT",
+        "Main.both": "PERSISTENT",
+        "Main.count": "RETAIN",
+        "Main.done": "RETAIN",
+        "Main.keep": "PERSISTENT",
+        "Main.level": "RETAIN",
+        "Main.lmax": "RETAIN",
+        "Main.lmin": "RETAIN",
+        "Main.lnan": "RETAIN",
+        "Main.lr": "RETAIN",
+        "Main.lt": "RETAIN",
+        "Main.mode": "RETAIN",
+        "Main.r": "RETAIN",
+        "Main.rec": "PERSISTENT",
+        "Main.renamed": "PERSISTENT",
+        "Main.rinf": "RETAIN",
+        "Main.setpoint": "RETAIN",
+        "Main.speed": "RETAIN",
+        "Main.stat": "RETAIN",
+        "Main.t": "RETAIN",
+        "Main.text": "RETAIN",
+        "Main.umax": "RETAIN",
     }
     # Not retained: a located variable (it lives in the process image), a
     # REF_TO (an address in the old process), FBs in an array (not searched).
@@ -269,26 +294,46 @@ def test_type_signatures_are_canonical_and_change_with_the_structure():
     assert sig["Main.level"] == "INT(0..100)"
     assert sig["Main.text"] == "STRING[20]"
     assert sig["Main.mode"] == "ENUM E_MODE:INT(OFF:=0,MANUAL:=5,AUTO:=10)"
-    assert sig["Main.rec"] == ("ST_REC{ID:INT;VALS:ARRAY[1..3] OF REAL;NAME:STRING[12];"
-                               "GRID:ARRAY[0..1, 1..2] OF DINT;LINK:REF_TO INT}")
+    assert sig["Main.rec"] == (
+        "ST_REC{ID:INT;VALS:ARRAY[1..3] OF REAL;NAME:STRING[12];GRID:ARRAY[0..1, 1..2] OF DINT;LINK:REF_TO INT}"
+    )
     assert sig["Main.axis.parts"] == "CTU{CU:BOOL;R:BOOL;PV:INT;Q:BOOL;CV:INT;LASTCU:BOOL}"
 
     def sig_of(decl: str) -> str:
-        prog = compile_files([], texts={"s.st": f"""
+        prog = compile_files(
+            [],
+            texts={
+                "s.st": f"""
             TYPE E : (A, B); END_TYPE
             TYPE S : STRUCT a : INT; b : STRING[5]; END_STRUCT END_TYPE
-            PROGRAM Main VAR RETAIN v : {decl}; END_VAR END_PROGRAM"""})
+            PROGRAM Main VAR RETAIN v : {decl}; END_VAR END_PROGRAM"""
+            },
+        )
         info = prog.pou("Main")
         return R.type_signature(info.vars["V"].type)
 
     assert sig_of("ARRAY[1..3] OF S") == sig_of("ARRAY [1 .. 3] OF s")  # spelling does not matter
-    variants = ["ARRAY[1..3] OF S", "ARRAY[0..2] OF S", "ARRAY[1..4] OF S", "ARRAY[1..3] OF E",
-                "ARRAY[1..3] OF INT", "ARRAY[1..3] OF UINT", "ARRAY[1..3, 1..1] OF S", "STRING[5]",
-                "STRING[6]", "WSTRING[5]", "INT(0..10)", "INT(0..11)", "TIME", "LTIME"]
+    variants = [
+        "ARRAY[1..3] OF S",
+        "ARRAY[0..2] OF S",
+        "ARRAY[1..4] OF S",
+        "ARRAY[1..3] OF E",
+        "ARRAY[1..3] OF INT",
+        "ARRAY[1..3] OF UINT",
+        "ARRAY[1..3, 1..1] OF S",
+        "STRING[5]",
+        "STRING[6]",
+        "WSTRING[5]",
+        "INT(0..10)",
+        "INT(0..11)",
+        "TIME",
+        "LTIME",
+    ]
     assert len({sig_of(v) for v in variants}) == len(variants)
 
 
 # ================================================================ warm and cold start
+
 
 def test_warm_start_restores_retain_and_persistent_values(tmp_path):
     path = tmp_path / "plc.retain"
@@ -309,7 +354,7 @@ def test_warm_start_restores_retain_and_persistent_values(tmp_path):
     assert new.get("lr") == 1 / 3
     assert new.get("rinf") == float("-inf") and math.isnan(new.get("lnan"))
     assert new.get("t") == -5000 and new.get("lt") == (1 << 63) - 1
-    assert new.get("text") == "héllo \"wörld\"\n"
+    assert new.get("text") == 'héllo "wörld"\n'
     assert new.get("arr") == [1, -2, 32767, -32768]
     assert (new.get("lmin"), new.get("lmax"), new.get("umax")) == (-(1 << 63), (1 << 63) - 1, (1 << 64) - 1)
     assert new.get("keep") == 123456 and new.get("both") == -3 and new.get("renamed") == 11
@@ -451,12 +496,18 @@ def test_unknown_start_mode_is_refused():
 
 # ================================================================ the file
 
+
 def small_data(counter: int = 1) -> RetainData:
-    return RetainData("layout-1", 123, counter, {
-        "Main.count": {"kind": "RETAIN", "type": "DINT", "value": counter},
-        "Main.r": {"kind": "RETAIN", "type": "LREAL", "value": float("nan")},
-        "Main.big": {"kind": "PERSISTENT", "type": "ULINT", "value": (1 << 64) - 1},
-    })
+    return RetainData(
+        "layout-1",
+        123,
+        counter,
+        {
+            "Main.count": {"kind": "RETAIN", "type": "DINT", "value": counter},
+            "Main.r": {"kind": "RETAIN", "type": "LREAL", "value": float("nan")},
+            "Main.big": {"kind": "PERSISTENT", "type": "ULINT", "value": (1 << 64) - 1},
+        },
+    )
 
 
 def test_file_round_trip_is_exact_and_readable(tmp_path):
@@ -474,7 +525,7 @@ def test_file_round_trip_is_exact_and_readable(tmp_path):
 
 def _flip(raw: bytes) -> bytes:
     i = len(raw) - 20
-    return raw[:i] + bytes([raw[i] ^ 0x01]) + raw[i + 1:]
+    return raw[:i] + bytes([raw[i] ^ 0x01]) + raw[i + 1 :]
 
 
 def _version2(raw: bytes) -> bytes:
@@ -484,16 +535,20 @@ def _version2(raw: bytes) -> bytes:
     return json.dumps(h).encode() + b"\n" + body
 
 
-@pytest.mark.parametrize("damage, message", [
-    (_flip, "bad checksum"),
-    (lambda raw: raw[: len(raw) // 2], "truncated"),
-    (lambda raw: raw.split(b"\n", 1)[0] + b"\n", "truncated (0 of"),
-    (lambda raw: raw + b"\n", "trailing data"),
-    (lambda raw: b"\x00\xffGIF89a garbage" * 50, "not a softplc retain file"),
-    (lambda raw: b"", "empty"),
-    (lambda raw: b'{"layout": "x", "saved_ns": 0, "cycle": 0, "vars": {}}\n', "not a softplc retain file"),
-    (_version2, "version 2 is not known"),
-], ids=["flipped-byte", "truncated", "no-body", "trailing", "garbage", "empty", "no-header", "version"])
+@pytest.mark.parametrize(
+    "damage, message",
+    [
+        (_flip, "bad checksum"),
+        (lambda raw: raw[: len(raw) // 2], "truncated"),
+        (lambda raw: raw.split(b"\n", 1)[0] + b"\n", "truncated (0 of"),
+        (lambda raw: raw + b"\n", "trailing data"),
+        (lambda raw: b"\x00\xffGIF89a garbage" * 50, "not a softplc retain file"),
+        (lambda raw: b"", "empty"),
+        (lambda raw: b'{"layout": "x", "saved_ns": 0, "cycle": 0, "vars": {}}\n', "not a softplc retain file"),
+        (_version2, "version 2 is not known"),
+    ],
+    ids=["flipped-byte", "truncated", "no-body", "trailing", "garbage", "empty", "no-header", "version"],
+)
 def test_damaged_file_is_refused_and_kept_aside(tmp_path, damage, message):
     path = tmp_path / "plc.retain"
     write_file(path, small_data())
@@ -522,8 +577,9 @@ def test_unreadable_retain_path_is_reported_not_moved(tmp_path):
 def test_checksum_valid_but_malformed_body(tmp_path):
     path = tmp_path / "plc.retain"
     body = b'{"layout": 1, "vars": []}'
-    head = json.dumps({"format": "softplc-retain", "version": 1, "sha256": hashlib.sha256(body).hexdigest(),
-                       "length": len(body)})
+    head = json.dumps(
+        {"format": "softplc-retain", "version": 1, "sha256": hashlib.sha256(body).hexdigest(), "length": len(body)}
+    )
     path.write_bytes(head.encode() + b"\n" + body)
     with pytest.raises(RetainFileError, match="malformed retain file"):
         read_file(path)
@@ -550,8 +606,13 @@ def test_file_stays_whole_when_the_writer_is_killed(tmp_path):
     if not hasattr(signal, "SIGKILL") or not hasattr(os, "fork"):
         pytest.skip("needs SIGKILL and fork")
     path = tmp_path / "plc.retain"
-    child = subprocess.Popen([sys.executable, str(CHILD), str(path)], stdin=subprocess.PIPE,
-                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    child = subprocess.Popen(
+        [sys.executable, str(CHILD), str(path)],
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     writer = None
     prev = -1
     try:
@@ -601,6 +662,7 @@ def test_file_stays_whole_when_the_writer_is_killed(tmp_path):
 
 
 # ================================================================ the store
+
 
 def test_store_writes_the_newest_snapshot_in_the_background(tmp_path):
     path = tmp_path / "plc.retain"

@@ -1,6 +1,7 @@
 """Task scheduling on the virtual clock: priority order at each tick,
 intervals, several program instances per task, freewheeling tasks, and IEC
 timers reading the clock of the task they run in."""
+
 from __future__ import annotations
 
 import pytest
@@ -51,12 +52,20 @@ def test_due_tasks_run_in_priority_order_then_declaration_order(engines):
     e = engines(RECORDER, [task("Fast", 10, "B", "C", priority=2), task("Slow", 30, "A", priority=0)])
     e.run(duration_ns=60 * MS)
     assert _log(e) == [
-        (0, 1), (0, 2), (0, 3),
-        (10, 2), (10, 3),
-        (20, 2), (20, 3),
-        (30, 1), (30, 2), (30, 3),
-        (40, 2), (40, 3),
-        (50, 2), (50, 3),
+        (0, 1),
+        (0, 2),
+        (0, 3),
+        (10, 2),
+        (10, 3),
+        (20, 2),
+        (20, 3),
+        (30, 1),
+        (30, 2),
+        (30, 3),
+        (40, 2),
+        (40, 3),
+        (50, 2),
+        (50, 3),
     ]
     assert e.clock.now_ns() == 60 * MS
 
@@ -97,8 +106,7 @@ def test_several_instances_of_one_program_keep_their_own_state(engines):
 
 
 def test_freewheeling_task_runs_again_after_its_pause(engines):
-    e = engines(RECORDER, [task("Cyclic", 10, "A", priority=0),
-                           task("Free", None, "B", priority=5, pause_ms=3)])
+    e = engines(RECORDER, [task("Cyclic", 10, "A", priority=0), task("Free", None, "B", priority=5, pause_ms=3)])
     e.run(duration_ns=12 * MS)
     assert _log(e) == [(0, 1), (0, 2), (3, 2), (6, 2), (9, 2), (10, 1)]
 
@@ -143,6 +151,7 @@ def test_timers_read_the_clock_of_their_task(engines):
 def test_real_clock_runs_the_same_schedule():
     # Counts only: how late the real clock is never decides this test.
     from .conftest import make_engine
+
     e = make_engine(RECORDER, [task("Fast", 2, "A"), task("Slow", 4, "B")], clock=RealClock())
     try:
         e.run(cycles=4)

@@ -1,5 +1,6 @@
 """Where the tasks come from (TOML, an ST CONFIGURATION, or the default
 MainTask), the errors when they cannot run, and the watchdog sensitivity."""
+
 from __future__ import annotations
 
 import re
@@ -22,7 +23,9 @@ n := n + 1;
 END_PROGRAM
 """
 
-CONFIGURATION = PROGRAMS + """
+CONFIGURATION = (
+    PROGRAMS
+    + """
 CONFIGURATION Plant
     RESOURCE Cpu ON PLC
         TASK Quick(INTERVAL := T#5ms, PRIORITY := 0);
@@ -33,13 +36,16 @@ CONFIGURATION Plant
     END_RESOURCE
 END_CONFIGURATION
 """
+)
 
 
 def test_tasks_from_the_st_configuration(engines):
     program = compile_st(CONFIGURATION)
     tasks = plan_tasks(program, [])
     assert [(t.name, t.interval_ns, t.priority, [p.instance for p in t.programs]) for t in tasks] == [
-        ("Quick", 5 * MS, 0, ["A", "C"]), ("Lazy", 50 * MS, 3, ["B"])]
+        ("Quick", 5 * MS, 0, ["A", "C"]),
+        ("Lazy", 50 * MS, 3, ["B"]),
+    ]
     e = engines(program, tasks)
     e.run(duration_ns=100 * MS)
     assert (e.get("A.n"), e.get("C.n"), e.get("B.n")) == (20, 20, 2)
@@ -48,8 +54,7 @@ def test_tasks_from_the_st_configuration(engines):
 def test_without_tasks_every_program_runs_in_a_10ms_main_task(engines):
     program = compile_st(PROGRAMS)
     [main] = plan_tasks(program, [])
-    assert (main.name, main.interval_ns, [p.instance for p in main.programs]) == ("MainTask", 10 * MS,
-                                                                                ["Fast", "Slow"])
+    assert (main.name, main.interval_ns, [p.instance for p in main.programs]) == ("MainTask", 10 * MS, ["Fast", "Slow"])
     e = engines(program, [main])
     e.run(duration_ns=100 * MS)
     assert (e.get("Fast.n"), e.get("Slow.n")) == (10, 10)
@@ -65,11 +70,17 @@ def test_a_task_naming_no_program_of_the_files():
         plan_tasks(compile_st(PROGRAMS), [task("T", 10, "Slwo")], "plant.toml")
 
 
-@pytest.mark.parametrize("original, replacement, message", [
-    ("TASK Lazy(INTERVAL := T#50ms, PRIORITY := 3);", "TASK Lazy(PRIORITY := 3);",
-     "plant.st:15:9: task Lazy: event tasks (SINGLE, or no INTERVAL) are not supported"),
-    ("PROGRAM B WITH Lazy : Slow;", "PROGRAM B : Slow;", "program instance B has no task"),
-])
+@pytest.mark.parametrize(
+    "original, replacement, message",
+    [
+        (
+            "TASK Lazy(INTERVAL := T#50ms, PRIORITY := 3);",
+            "TASK Lazy(PRIORITY := 3);",
+            "plant.st:15:9: task Lazy: event tasks (SINGLE, or no INTERVAL) are not supported",
+        ),
+        ("PROGRAM B WITH Lazy : Slow;", "PROGRAM B : Slow;", "program instance B has no task"),
+    ],
+)
 def test_st_configurations_the_engine_cannot_run(original, replacement, message):
     with pytest.raises(TaskSetupError, match=re.escape(message)):
         plan_tasks(compile_st(CONFIGURATION.replace(original, replacement)), [])
@@ -91,9 +102,11 @@ def test_watchdog_sensitivity_counts_overlong_cycles_in_a_row(engines):
 
 
 def test_an_endless_loop_is_stopped_by_the_watchdog_not_a_hang(engines):
-    src = PROGRAMS.replace("n := n + 1;\nEND_PROGRAM\n\nPROGRAM Slow",
-                           "n := n + 1;\nWHILE n > 2 DO n := n + 1; IF n > 30000 THEN n := 3; END_IF END_WHILE\n"
-                           "END_PROGRAM\n\nPROGRAM Slow")
+    src = PROGRAMS.replace(
+        "n := n + 1;\nEND_PROGRAM\n\nPROGRAM Slow",
+        "n := n + 1;\nWHILE n > 2 DO n := n + 1; IF n > 30000 THEN n := 3; END_IF END_WHILE\n"
+        "END_PROGRAM\n\nPROGRAM Slow",
+    )
     e = engines(src, [task("T", 10, "Fast", watchdog_ms=50), task("Other", 10, "Slow")])
     e.run(duration_ns=100 * MS)
     [record] = e.faults

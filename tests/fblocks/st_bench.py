@@ -1,5 +1,6 @@
 """A bench for one function block: a PROGRAM around it, stepped a cycle at
 a time on the runner's virtual clock; variables read and written by ST path."""
+
 from __future__ import annotations
 
 from softplc.runtime.program import compile_files, locate

@@ -1,5 +1,6 @@
 """fblocks/vendor/eaton.st and eaton_codes.st: the generated numbers are up
 to date and the ST helpers agree with runtime/devices/eaton/registers.py."""
+
 from __future__ import annotations
 
 import pytest
@@ -19,11 +20,13 @@ def test_shipped_codes_are_up_to_date():
 
 @pytest.fixture(scope="module")
 def bench():
-    return Bench("id17 : WORD; name : STRING[8]; register : UINT; family : USINT; model : STRING[4];\n"
-                 "code : UINT; text : STRING[120]; display : STRING[8];",
-                 "register := EATON_PARAMETER_REGISTER(id17, name);\n"
-                 "family := EATON_FAMILY(id17); model := EATON_MODEL(id17);\n"
-                 "text := EATON_FAULT_TEXT(code); display := EATON_FAULT_DISPLAY(code);")
+    return Bench(
+        "id17 : WORD; name : STRING[8]; register : UINT; family : USINT; model : STRING[4];\n"
+        "code : UINT; text : STRING[120]; display : STRING[8];",
+        "register := EATON_PARAMETER_REGISTER(id17, name);\n"
+        "family := EATON_FAMILY(id17); model := EATON_MODEL(id17);\n"
+        "text := EATON_FAULT_TEXT(code); display := EATON_FAULT_DISPLAY(code);",
+    )
 
 
 def _every_parameter():
@@ -45,8 +48,9 @@ def test_parameter_names_give_the_manuals_registers(bench):
     assert checked > 300
 
 
-@pytest.mark.parametrize("id17, name", [(5632, "P-03"), (10, "P1-03"), (5632, "X1-03"), (5632, "P1"),
-                                        (10, "P-123"), (0, "P-03")])
+@pytest.mark.parametrize(
+    "id17, name", [(5632, "P-03"), (10, "P1-03"), (5632, "X1-03"), (5632, "P1"), (10, "P-123"), (0, "P-03")]
+)
 def test_names_of_the_wrong_form_give_0(bench, id17, name):
     bench.step(id17=id17, name=name)
     assert bench["register"] == 0

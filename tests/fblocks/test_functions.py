@@ -1,6 +1,7 @@
 """The standard function table: every entry is well formed and callable with
 values of its parameter types, and the functions give the results the IEC
 standard and the CODESYS documentation give."""
+
 import math
 
 import pytest
@@ -34,18 +35,51 @@ def call(name, *args, types=None):
 # One concrete member per generic family, three different choices so that
 # every entry runs with integers, reals, bit strings, strings and times.
 CHOICES = [
-    {"ANY": T.INT, "ANY_ELEMENTARY": T.INT, "ANY_MAGNITUDE": T.DINT, "ANY_NUM": T.INT,
-     "ANY_REAL": T.REAL, "ANY_INT": T.INT, "ANY_SIGNED": T.SINT, "ANY_UNSIGNED": T.UINT,
-     "ANY_BIT": T.BYTE, "ANY_STRING": STRING, "ANY_CHARS": STRING, "ANY_DATE": T.DATE,
-     "ANY_DURATION": T.TIME},
-    {"ANY": T.LREAL, "ANY_ELEMENTARY": STRING, "ANY_MAGNITUDE": T.TIME, "ANY_NUM": T.LREAL,
-     "ANY_REAL": T.LREAL, "ANY_INT": T.ULINT, "ANY_SIGNED": T.LINT, "ANY_UNSIGNED": T.USINT,
-     "ANY_BIT": T.BOOL, "ANY_STRING": WSTRING, "ANY_CHARS": WSTRING, "ANY_DATE": T.DT,
-     "ANY_DURATION": T.LTIME},
-    {"ANY": T.DT, "ANY_ELEMENTARY": T.TOD, "ANY_MAGNITUDE": T.LREAL, "ANY_NUM": T.SINT,
-     "ANY_REAL": T.REAL, "ANY_INT": T.DINT, "ANY_SIGNED": T.DINT, "ANY_UNSIGNED": T.ULINT,
-     "ANY_BIT": T.LWORD, "ANY_STRING": STRING, "ANY_CHARS": STRING, "ANY_DATE": T.LDT,
-     "ANY_DURATION": T.TIME},
+    {
+        "ANY": T.INT,
+        "ANY_ELEMENTARY": T.INT,
+        "ANY_MAGNITUDE": T.DINT,
+        "ANY_NUM": T.INT,
+        "ANY_REAL": T.REAL,
+        "ANY_INT": T.INT,
+        "ANY_SIGNED": T.SINT,
+        "ANY_UNSIGNED": T.UINT,
+        "ANY_BIT": T.BYTE,
+        "ANY_STRING": STRING,
+        "ANY_CHARS": STRING,
+        "ANY_DATE": T.DATE,
+        "ANY_DURATION": T.TIME,
+    },
+    {
+        "ANY": T.LREAL,
+        "ANY_ELEMENTARY": STRING,
+        "ANY_MAGNITUDE": T.TIME,
+        "ANY_NUM": T.LREAL,
+        "ANY_REAL": T.LREAL,
+        "ANY_INT": T.ULINT,
+        "ANY_SIGNED": T.LINT,
+        "ANY_UNSIGNED": T.USINT,
+        "ANY_BIT": T.BOOL,
+        "ANY_STRING": WSTRING,
+        "ANY_CHARS": WSTRING,
+        "ANY_DATE": T.DT,
+        "ANY_DURATION": T.LTIME,
+    },
+    {
+        "ANY": T.DT,
+        "ANY_ELEMENTARY": T.TOD,
+        "ANY_MAGNITUDE": T.LREAL,
+        "ANY_NUM": T.SINT,
+        "ANY_REAL": T.REAL,
+        "ANY_INT": T.DINT,
+        "ANY_SIGNED": T.DINT,
+        "ANY_UNSIGNED": T.ULINT,
+        "ANY_BIT": T.LWORD,
+        "ANY_STRING": STRING,
+        "ANY_CHARS": STRING,
+        "ANY_DATE": T.LDT,
+        "ANY_DURATION": T.TIME,
+    },
 ]
 
 
@@ -62,12 +96,12 @@ def sample(t: T.Type, extreme: bool):
         return t.lo if extreme else -7
     if c in (T.UNSIGNED, T.BITS):
         return t.hi if extreme else 0x21
-    day = 86_400 * 10 ** 9 // t.unit_ns
+    day = 86_400 * 10**9 // t.unit_ns
     if c == T.TODCAT:
-        return day - 1 if extreme else 45_015_500 * 10 ** 6 // t.unit_ns
+        return day - 1 if extreme else 45_015_500 * 10**6 // t.unit_ns
     if c == T.DATECAT:
-        return t.hi - t.hi % day if extreme else DAY * 10 ** 9 // t.unit_ns
-    return t.hi if extreme else (DAY + 45_015) * 10 ** 9 // t.unit_ns
+        return t.hi - t.hi % day if extreme else DAY * 10**9 // t.unit_ns
+    return t.hi if extreme else (DAY + 45_015) * 10**9 // t.unit_ns
 
 
 def python_kind(t: T.Type):
@@ -157,6 +191,7 @@ def test_all_conversion_pairs_exist():
 
 # ---------------------------------------------------------------- conversions
 
+
 def test_conversion_entries():
     assert call("INT_TO_SINT", 300) == 44
     assert call("DINT_TO_UINT", -1) == 65535
@@ -190,7 +225,7 @@ def test_trunc():
     assert call("TRUNC", -2.7) == -2
     assert call("TRUNC", 2.7) == 2
     assert call("TRUNC", math.nan) == 0
-    assert call("TRUNC", 3e9) == 3_000_000_000 - 2 ** 32  # DINT wraps
+    assert call("TRUNC", 3e9) == 3_000_000_000 - 2**32  # DINT wraps
     assert call("TRUNC_INT", 40000.5) == 40000 - 65536
     assert call("LREAL_TRUNC_SINT", -1.9) == -1
     assert F["TRUNC"].ret == "DINT"
@@ -209,6 +244,7 @@ def test_bcd():
 
 
 # ---------------------------------------------------------------- numeric and arithmetic
+
 
 def test_numeric():
     assert call("ABS", -5) == 5
@@ -249,6 +285,7 @@ def test_arithmetic_typed():
 
 # ---------------------------------------------------------------- bit strings
 
+
 def test_shifts_use_the_width_of_in():
     bb = (T.BYTE, T.BYTE, T.INT)
     ww = (T.WORD, T.WORD, T.INT)
@@ -270,12 +307,13 @@ def test_bitwise():
     assert call("XOR", 0xFF, 0x0F, 0x01) == 0xF1
     assert call("AND", True, False) is False
     assert call("NOT", 0x0F, types=(T.BYTE, T.BYTE)) == 0xF0
-    assert call("NOT", 0, types=(T.LWORD, T.LWORD)) == 2 ** 64 - 1
+    assert call("NOT", 0, types=(T.LWORD, T.LWORD)) == 2**64 - 1
     assert call("NOT", True, types=(T.BOOL, T.BOOL)) is False
     assert call("NOT", 0, types=(T.INT, T.INT)) == -1
 
 
 # ---------------------------------------------------------------- selection and comparison
+
 
 def test_selection():
     assert call("SEL", True, 3, 4) == 4
@@ -310,6 +348,7 @@ def test_comparison():
 
 # ---------------------------------------------------------------- strings
 
+
 def test_string_entries():
     assert call("LEN", "SUSI") == 4
     assert call("LEFT", "SUSI", 3) == "SUS"
@@ -327,6 +366,7 @@ def test_string_entries():
 
 # ---------------------------------------------------------------- time and date
 
+
 def test_time_entries():
     assert call("ADD_TIME", 1000, 500) == 1500
     assert call("SUB_TIME", 1000, 1500) == -500
@@ -340,7 +380,7 @@ def test_time_entries():
     assert call("SUB_TOD_TIME", 0, 1) == 86_399_999
     assert call("SUB_DT_TIME", DAY, 1000) == DAY - 1
     assert call("CONCAT_DATE_TOD", DAY, 45_015_500) == DAY + 45_015
-    assert call("ADD_LTOD_LTIME", 86_400 * 10 ** 9 - 1, 1) == 0
+    assert call("ADD_LTOD_LTIME", 86_400 * 10**9 - 1, 1) == 0
     assert call("SUB_LDT_LDT", 10, 3) == 7
     assert call("CONCAT_DATE", 2024, 1, 2) == DAY
     assert call("CONCAT_DT", 2024, 1, 2, 12, 30, 15, 0) == DAY + 45_015

@@ -1,4 +1,5 @@
 """Every standard function is callable from ST: checked, generated and run."""
+
 from __future__ import annotations
 
 from softplc.fblocks.iec.functions import STANDARD_FUNCTIONS
@@ -6,16 +7,39 @@ from softplc.runtime.program import compile_files
 
 # a representative argument type for each generic family
 _GENERIC_REP = {
-    "ANY": "INT", "ANY_ELEMENTARY": "INT", "ANY_MAGNITUDE": "INT", "ANY_NUM": "INT", "ANY_INT": "INT",
-    "ANY_SIGNED": "INT", "ANY_UNSIGNED": "UINT", "ANY_REAL": "REAL", "ANY_BIT": "WORD",
-    "ANY_STRING": "STRING", "ANY_CHARS": "STRING", "ANY_DATE": "DATE", "ANY_DURATION": "TIME",
+    "ANY": "INT",
+    "ANY_ELEMENTARY": "INT",
+    "ANY_MAGNITUDE": "INT",
+    "ANY_NUM": "INT",
+    "ANY_INT": "INT",
+    "ANY_SIGNED": "INT",
+    "ANY_UNSIGNED": "UINT",
+    "ANY_REAL": "REAL",
+    "ANY_BIT": "WORD",
+    "ANY_STRING": "STRING",
+    "ANY_CHARS": "STRING",
+    "ANY_DATE": "DATE",
+    "ANY_DURATION": "TIME",
 }
-_INIT = {"BOOL": "TRUE", "STRING": "'ab1'", "WSTRING": '"ab1"', "TIME": "T#1s", "LTIME": "LT#1s",
-         "DATE": "D#2024-02-29", "LDATE": "LDATE#2024-02-29", "TOD": "TOD#12:00:00",
-         "TIME_OF_DAY": "TOD#12:00:00", "LTOD": "LTOD#12:00:00", "LTIME_OF_DAY": "LTOD#12:00:00",
-         "DT": "DT#2024-02-29-12:00:00", "DATE_AND_TIME": "DT#2024-02-29-12:00:00",
-         "LDT": "LDT#2024-02-29-12:00:00", "LDATE_AND_TIME": "LDT#2024-02-29-12:00:00",
-         "REAL": "2.0", "LREAL": "2.0"}
+_INIT = {
+    "BOOL": "TRUE",
+    "STRING": "'ab1'",
+    "WSTRING": '"ab1"',
+    "TIME": "T#1s",
+    "LTIME": "LT#1s",
+    "DATE": "D#2024-02-29",
+    "LDATE": "LDATE#2024-02-29",
+    "TOD": "TOD#12:00:00",
+    "TIME_OF_DAY": "TOD#12:00:00",
+    "LTOD": "LTOD#12:00:00",
+    "LTIME_OF_DAY": "LTOD#12:00:00",
+    "DT": "DT#2024-02-29-12:00:00",
+    "DATE_AND_TIME": "DT#2024-02-29-12:00:00",
+    "LDT": "LDT#2024-02-29-12:00:00",
+    "LDATE_AND_TIME": "LDT#2024-02-29-12:00:00",
+    "REAL": "2.0",
+    "LREAL": "2.0",
+}
 
 
 # In ST these are operators (a AND b); their function form is for FBD and LD.

@@ -5,6 +5,7 @@ Each test wraps one block in a PROGRAM that copies the block's outputs into
 program variables; the test sets the program's inputs between cycles. With
 the default 10 ms cycle, TIME() advances 10 ms from one call to the next.
 """
+
 import pytest
 
 from softplc.runtime.program import compile_files
@@ -61,17 +62,22 @@ def fb_inner(bench: Bench, fb: str, var: str):
 
 # ---------------------------------------------------------------- clock
 
+
 def test_clock_advances_one_cycle_time_per_cycle():
-    b = Bench("t0 : TIME; t1 : TIME; first : BOOL := TRUE;",
-              "IF first THEN t0 := TIME(); first := FALSE; END_IF t1 := TIME();")
+    b = Bench(
+        "t0 : TIME; t1 : TIME; first : BOOL := TRUE;",
+        "IF first THEN t0 := TIME(); first := FALSE; END_IF t1 := TIME();",
+    )
     b.step(5)
     assert b["t1"] - b["t0"] == 4 * CYCLE_MS
 
 
 # ---------------------------------------------------------------- TON
 
-TON_BENCH = ("t : TON; in_ : BOOL; pt : TIME := T#50ms; q : BOOL; et : TIME;",
-             "t(IN := in_, PT := pt); q := t.Q; et := t.ET;")
+TON_BENCH = (
+    "t : TON; in_ : BOOL; pt : TIME := T#50ms; q : BOOL; et : TIME;",
+    "t(IN := in_, PT := pt); q := t.Q; et := t.ET;",
+)
 
 
 def test_ton_timing_diagram():
@@ -79,8 +85,16 @@ def test_ton_timing_diagram():
     assert b.step(in_=False)["q"] is False and b["et"] == 0
     # IN rises: ET counts 0, 10, .. 40 ms, then reaches PT in the 6th cycle.
     got = b.trace(["q", "et"], in_=[True] * 8)
-    assert got == [(False, 0), (False, 10), (False, 20), (False, 30), (False, 40),
-                   (True, 50), (True, 50), (True, 50)]      # ET holds at PT
+    assert got == [
+        (False, 0),
+        (False, 10),
+        (False, 20),
+        (False, 30),
+        (False, 40),
+        (True, 50),
+        (True, 50),
+        (True, 50),
+    ]  # ET holds at PT
     assert b.step(in_=False)["q"] is False and b["et"] == 0  # IN low resets
 
 
@@ -98,17 +112,23 @@ def test_ton_pt_zero_is_immediate():
 
 # ---------------------------------------------------------------- TOF
 
-TOF_BENCH = ("t : TOF; in_ : BOOL; q : BOOL; et : TIME;",
-             "t(IN := in_, PT := T#50ms); q := t.Q; et := t.ET;")
+TOF_BENCH = ("t : TOF; in_ : BOOL; q : BOOL; et : TIME;", "t(IN := in_, PT := T#50ms); q := t.Q; et := t.ET;")
 
 
 def test_tof_timing_diagram():
     b = Bench(*TOF_BENCH)
-    assert b.step(in_=False)["q"] is False and b["et"] == 0   # never on: stays off
-    assert b.step(in_=True)["q"] is True and b["et"] == 0     # Q follows IN up at once
+    assert b.step(in_=False)["q"] is False and b["et"] == 0  # never on: stays off
+    assert b.step(in_=True)["q"] is True and b["et"] == 0  # Q follows IN up at once
     got = b.trace(["q", "et"], in_=[False] * 7)
-    assert got == [(True, 0), (True, 10), (True, 20), (True, 30), (True, 40),
-                   (False, 50), (False, 50)]                  # ET holds at PT
+    assert got == [
+        (True, 0),
+        (True, 10),
+        (True, 20),
+        (True, 30),
+        (True, 40),
+        (False, 50),
+        (False, 50),
+    ]  # ET holds at PT
     assert b.step(in_=True)["q"] is True and b["et"] == 0
 
 
@@ -124,16 +144,23 @@ def test_tof_input_back_during_delay_restarts_it():
 
 # ---------------------------------------------------------------- TP
 
-TP_BENCH = ("t : TP; in_ : BOOL; q : BOOL; et : TIME;",
-            "t(IN := in_, PT := T#50ms); q := t.Q; et := t.ET;")
+TP_BENCH = ("t : TP; in_ : BOOL; q : BOOL; et : TIME;", "t(IN := in_, PT := T#50ms); q := t.Q; et := t.ET;")
 
 
 def test_tp_pulse_and_et_hold():
     b = Bench(*TP_BENCH)
     got = b.trace(["q", "et"], in_=[True] * 8)
-    assert got == [(True, 0), (True, 10), (True, 20), (True, 30), (True, 40),
-                   (False, 50), (False, 50), (False, 50)]   # one pulse; ET holds
-    assert b.step(in_=False)["et"] == 0                     # reset once IN is low
+    assert got == [
+        (True, 0),
+        (True, 10),
+        (True, 20),
+        (True, 30),
+        (True, 40),
+        (False, 50),
+        (False, 50),
+        (False, 50),
+    ]  # one pulse; ET holds
+    assert b.step(in_=False)["et"] == 0  # reset once IN is low
 
 
 def test_tp_is_not_retriggerable():
@@ -151,37 +178,57 @@ def test_tp_short_input_gives_full_pulse_and_new_edge_new_pulse():
 
 # ---------------------------------------------------------------- L-timers
 
+
 def test_lton_counts_in_nanoseconds():
-    b = Bench("t : LTON; in_ : BOOL; q : BOOL; et : LTIME;",
-              "t(IN := in_, PT := LTIME#50ms); q := t.Q; et := t.ET;")
+    b = Bench("t : LTON; in_ : BOOL; q : BOOL; et : LTIME;", "t(IN := in_, PT := LTIME#50ms); q := t.Q; et := t.ET;")
     got = b.trace(["q", "et"], in_=[True] * 7)
     ms = 1_000_000
-    assert got == [(False, 0), (False, 10 * ms), (False, 20 * ms), (False, 30 * ms),
-                   (False, 40 * ms), (True, 50 * ms), (True, 50 * ms)]
+    assert got == [
+        (False, 0),
+        (False, 10 * ms),
+        (False, 20 * ms),
+        (False, 30 * ms),
+        (False, 40 * ms),
+        (True, 50 * ms),
+        (True, 50 * ms),
+    ]
 
 
 def test_ltof_and_ltp():
-    b = Bench("f : LTOF; p : LTP; in_ : BOOL; qf : BOOL; qp : BOOL;",
-              "f(IN := in_, PT := LTIME#30ms); p(IN := in_, PT := LTIME#30ms);"
-              " qf := f.Q; qp := p.Q;")
+    b = Bench(
+        "f : LTOF; p : LTP; in_ : BOOL; qf : BOOL; qp : BOOL;",
+        "f(IN := in_, PT := LTIME#30ms); p(IN := in_, PT := LTIME#30ms); qf := f.Q; qp := p.Q;",
+    )
     got = b.trace(["qf", "qp"], in_=bits("1000000"))
-    assert [x for x, _ in got] == bits("1111000")   # off delay 30 ms after IN fell
-    assert [y for _, y in got] == bits("1110000")   # 30 ms pulse
+    assert [x for x, _ in got] == bits("1111000")  # off delay 30 ms after IN fell
+    assert [y for _, y in got] == bits("1110000")  # 30 ms pulse
 
 
 # ---------------------------------------------------------------- counters
 
-CTU_BENCH = ("c : CTU; cu : BOOL; r : BOOL; pv : INT := 3; q : BOOL; cv : INT;",
-             "c(CU := cu, R := r, PV := pv); q := c.Q; cv := c.CV;")
+CTU_BENCH = (
+    "c : CTU; cu : BOOL; r : BOOL; pv : INT := 3; q : BOOL; cv : INT;",
+    "c(CU := cu, R := r, PV := pv); q := c.Q; cv := c.CV;",
+)
 
 
 def test_ctu_counts_rising_edges_to_pv():
     b = Bench(*CTU_BENCH)
     got = b.trace(["cv", "q"], cu=bits("1101010110"))
-    assert got == [(1, False), (1, False), (1, False), (2, False), (2, False),
-                   (3, True), (3, True), (4, True), (4, True), (4, True)]
-    assert b.step(r=True, cu=True)["cv"] == 0 and b["q"] is False   # R wins
-    assert b.step(r=False, cu=True)["cv"] == 0                      # CU held: no edge
+    assert got == [
+        (1, False),
+        (1, False),
+        (1, False),
+        (2, False),
+        (2, False),
+        (3, True),
+        (3, True),
+        (4, True),
+        (4, True),
+        (4, True),
+    ]
+    assert b.step(r=True, cu=True)["cv"] == 0 and b["q"] is False  # R wins
+    assert b.step(r=False, cu=True)["cv"] == 0  # CU held: no edge
 
 
 def test_ctu_stops_at_int_max():
@@ -193,13 +240,15 @@ def test_ctu_stops_at_int_max():
     assert b["cv"] == 32767
 
 
-CTD_BENCH = ("c : CTD; cd : BOOL; ld : BOOL; pv : INT := 2; q : BOOL; cv : INT;",
-             "c(CD := cd, LD := ld, PV := pv); q := c.Q; cv := c.CV;")
+CTD_BENCH = (
+    "c : CTD; cd : BOOL; ld : BOOL; pv : INT := 2; q : BOOL; cv : INT;",
+    "c(CD := cd, LD := ld, PV := pv); q := c.Q; cv := c.CV;",
+)
 
 
 def test_ctd_load_and_count_down():
     b = Bench(*CTD_BENCH)
-    assert b.step()["q"] is True and b["cv"] == 0       # CV = 0 counts as done
+    assert b.step()["q"] is True and b["cv"] == 0  # CV = 0 counts as done
     assert b.step(ld=True)["cv"] == 2 and b["q"] is False
     got = b.trace(["cv", "q"], ld=[False] * 6, cd=bits("101010"))
     assert got == [(1, False), (1, False), (0, True), (0, True), (-1, True), (-1, True)]
@@ -214,18 +263,25 @@ def test_ctd_stops_at_int_min():
     assert b["cv"] == -32768
 
 
-CTUD_BENCH = ("c : CTUD; cu, cd, r, ld : BOOL; pv : INT := 2;"
-              " qu : BOOL; qd : BOOL; cv : INT;",
-              "c(CU := cu, CD := cd, R := r, LD := ld, PV := pv);"
-              " qu := c.QU; qd := c.QD; cv := c.CV;")
+CTUD_BENCH = (
+    "c : CTUD; cu, cd, r, ld : BOOL; pv : INT := 2; qu : BOOL; qd : BOOL; cv : INT;",
+    "c(CU := cu, CD := cd, R := r, LD := ld, PV := pv); qu := c.QU; qd := c.QD; cv := c.CV;",
+)
 
 
 def test_ctud_up_down():
     b = Bench(*CTUD_BENCH)
     assert b.step()["qd"] is True and b["qu"] is False
     got = b.trace(["cv", "qu", "qd"], cu=bits("1010000"), cd=bits("0000101"))
-    assert got == [(1, False, False), (1, False, False), (2, True, False), (2, True, False),
-                   (1, False, False), (1, False, False), (0, False, True)]
+    assert got == [
+        (1, False, False),
+        (1, False, False),
+        (2, True, False),
+        (2, True, False),
+        (1, False, False),
+        (1, False, False),
+        (0, False, True),
+    ]
 
 
 def test_ctud_simultaneous_edges_cancel():
@@ -245,6 +301,7 @@ def test_ctud_reset_wins_over_load_wins_over_counting():
 
 
 # ---------------------------------------------------------------- edges
+
 
 def test_r_trig():
     b = Bench("e : R_TRIG; clk : BOOL; q : BOOL;", "e(CLK := clk); q := e.Q;")
@@ -269,21 +326,24 @@ def test_f_trig_first_call_high():
 
 # ---------------------------------------------------------------- bistables
 
-@pytest.mark.parametrize("fb, set_name, reset_name, both", [
-    ("SR", "SET1", "RESET", True),      # set dominant
-    ("RS", "SET", "RESET1", False),     # reset dominant
-])
+
+@pytest.mark.parametrize(
+    "fb, set_name, reset_name, both",
+    [
+        ("SR", "SET1", "RESET", True),  # set dominant
+        ("RS", "SET", "RESET1", False),  # reset dominant
+    ],
+)
 def test_bistables(fb, set_name, reset_name, both):
-    b = Bench(f"b : {fb}; s : BOOL; r : BOOL; q : BOOL;",
-              f"b({set_name} := s, {reset_name} := r); q := b.Q1;")
+    b = Bench(f"b : {fb}; s : BOOL; r : BOOL; q : BOOL;", f"b({set_name} := s, {reset_name} := r); q := b.Q1;")
     assert b.step()["q"] is False
     assert b.step(s=True)["q"] is True
-    assert b.step(s=False)["q"] is True      # latched
+    assert b.step(s=False)["q"] is True  # latched
     assert b.step(r=True)["q"] is False
     assert b.step(r=False)["q"] is False
     assert b.step(s=True, r=True)["q"] is both
     b.step(s=False, r=False)
-    assert b["q"] is both                    # keeps what it had
+    assert b["q"] is both  # keeps what it had
 
 
 def test_user_pou_replaces_a_standard_block():

@@ -1,5 +1,6 @@
 """Direct addresses from config files and the command line: parse_address,
 default_type, region, ProcessImage.read / write and outputs_view."""
+
 from __future__ import annotations
 
 import pytest
@@ -13,17 +14,20 @@ from softplc.runtime.st.literals import parse_located
 # ---------------------------------------------------------------- parse_address
 
 
-@pytest.mark.parametrize("text, fields", [
-    ("%QX0.0", ("Q", "X", (0, 0), None, None)),
-    ("%IW4", ("I", "W", (4,), None, None)),
-    ("%MD3200", ("M", "D", (3200,), None, None)),
-    ("%MW3250:X0", ("M", "W", (3250,), 0, None)),
-    ("%MW3250:4", ("M", "W", (3250,), None, 4)),
-    ("%QB2", ("Q", "B", (2,), None, None)),
-    ("%M100", ("M", "", (100,), None, None)),
-    ("%ML1", ("M", "L", (1,), None, None)),
-    ("  %mw3250:x15\t", ("M", "W", (3250,), 15, None)),
-])
+@pytest.mark.parametrize(
+    "text, fields",
+    [
+        ("%QX0.0", ("Q", "X", (0, 0), None, None)),
+        ("%IW4", ("I", "W", (4,), None, None)),
+        ("%MD3200", ("M", "D", (3200,), None, None)),
+        ("%MW3250:X0", ("M", "W", (3250,), 0, None)),
+        ("%MW3250:4", ("M", "W", (3250,), None, 4)),
+        ("%QB2", ("Q", "B", (2,), None, None)),
+        ("%M100", ("M", "", (100,), None, None)),
+        ("%ML1", ("M", "L", (1,), None, None)),
+        ("  %mw3250:x15\t", ("M", "W", (3250,), 15, None)),
+    ],
+)
 def test_parse_address(text, fields):
     a = parse_address(text)
     assert (a.area, a.size, a.indices, a.bit, a.table) == fields
@@ -34,24 +38,27 @@ def test_parse_address_is_case_insensitive_and_canonical():
     assert a.text == "%QW0" and a == parse_address("%QW0") == parse_located("%QW0")
 
 
-@pytest.mark.parametrize("text, message", [
-    ("%QZ1", "'%QZ1' is not a direct address (examples: %QX0.0, %IW2, %MD3200, %MW3250:X0)"),
-    ("", "'' is not a direct address"),
-    ("QW0", "'QW0' is not a direct address"),
-    ("%QW", "'%QW' is not a direct address"),
-    ("%QX0..3", "'%QX0..3' is not a direct address"),
-    ("%QX0.", "'%QX0.' is not a direct address"),
-    ("%QW0 junk", "'%QW0 junk' is not a direct address"),
-    ("%I*", "'%I*' is an unconfigured placeholder; give the full address"),
-    ("%QW0.1", "%QW0.1: a %QW address has one number, e.g. %QW4"),
-    ("%QX0.8", "%QX0.8: bit number 8 is not 0..7"),
-    ("%QX0.1.2", "%QX0.1.2: a bit address is <byte>.<bit>, e.g. %QX0.3"),
-    ("%MW3250:X16", "%MW3250:X16: a word has bits 0..15"),
-    ("%MD3200:X0", "%MD3200:X0: :X0 follows a word address, e.g. %MW3250:X0"),
-    ("%MB7:4", "%MB7:4: :4 follows a word address"),
-    ("%MW1:0", "%MW1:0: a word table has at least 1 word"),
-    ("%MW" + "9" * 19, "number too long"),
-])
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        ("%QZ1", "'%QZ1' is not a direct address (examples: %QX0.0, %IW2, %MD3200, %MW3250:X0)"),
+        ("", "'' is not a direct address"),
+        ("QW0", "'QW0' is not a direct address"),
+        ("%QW", "'%QW' is not a direct address"),
+        ("%QX0..3", "'%QX0..3' is not a direct address"),
+        ("%QX0.", "'%QX0.' is not a direct address"),
+        ("%QW0 junk", "'%QW0 junk' is not a direct address"),
+        ("%I*", "'%I*' is an unconfigured placeholder; give the full address"),
+        ("%QW0.1", "%QW0.1: a %QW address has one number, e.g. %QW4"),
+        ("%QX0.8", "%QX0.8: bit number 8 is not 0..7"),
+        ("%QX0.1.2", "%QX0.1.2: a bit address is <byte>.<bit>, e.g. %QX0.3"),
+        ("%MW3250:X16", "%MW3250:X16: a word has bits 0..15"),
+        ("%MD3200:X0", "%MD3200:X0: :X0 follows a word address, e.g. %MW3250:X0"),
+        ("%MB7:4", "%MB7:4: :4 follows a word address"),
+        ("%MW1:0", "%MW1:0: a word table has at least 1 word"),
+        ("%MW" + "9" * 19, "number too long"),
+    ],
+)
 def test_bad_addresses_say_what_was_expected(text, message):
     with pytest.raises(AddressError) as exc:
         parse_address(text)
@@ -76,15 +83,25 @@ def test_one_address_error_class():
     assert memory.AddressError is address.AddressError and issubclass(AddressError, ValueError)
 
 
-@pytest.mark.parametrize("text, ty", [
-    ("%QX0.0", T.BOOL), ("%M100", T.BOOL), ("%MW3250:X3", T.BOOL), ("%QB0", T.BYTE),
-    ("%IW2", T.WORD), ("%MD3200", T.DWORD), ("%ML0", T.LWORD), ("%MW3250:4", T.WORD),
-])
+@pytest.mark.parametrize(
+    "text, ty",
+    [
+        ("%QX0.0", T.BOOL),
+        ("%M100", T.BOOL),
+        ("%MW3250:X3", T.BOOL),
+        ("%QB0", T.BYTE),
+        ("%IW2", T.WORD),
+        ("%MD3200", T.DWORD),
+        ("%ML0", T.LWORD),
+        ("%MW3250:4", T.WORD),
+    ],
+)
 def test_default_type(text, ty):
     assert default_type(parse_address(text)) is ty
 
 
 # ---------------------------------------------------------------- region
+
 
 def test_region_of_bytes_words_and_tables():
     iec, sch = ProcessImage("iec"), ProcessImage("schneider")
@@ -95,15 +112,18 @@ def test_region_of_bytes_words_and_tables():
     assert region(iec, parse_address("%QL8191")) == ("Q", 65528, 8)  # the last whole LWORD
 
 
-@pytest.mark.parametrize("model, text, message", [
-    ("iec", "%QX0.3", "%QX0.3 is a bit; drivers copy whole bytes"),
-    ("schneider", "%MW3250:X0", "%MW3250:X0 is a bit; drivers copy whole bytes"),
-    ("schneider", "%M100", "%M100 is a bit"),
-    ("iec", "%MW3250:4", "Schneider addressing"),
-    ("iec", "%QW32768", "%QW32768 (bytes 65536..65537) is outside the 65536-byte %Q area"),
-    ("schneider", "%MW32767:2", "%MW32767:2 (bytes 65534..65537) is outside"),
-    ("schneider", "%MD32767", "%MD32767 (bytes 65534..65537) is outside"),
-])
+@pytest.mark.parametrize(
+    "model, text, message",
+    [
+        ("iec", "%QX0.3", "%QX0.3 is a bit; drivers copy whole bytes"),
+        ("schneider", "%MW3250:X0", "%MW3250:X0 is a bit; drivers copy whole bytes"),
+        ("schneider", "%M100", "%M100 is a bit"),
+        ("iec", "%MW3250:4", "Schneider addressing"),
+        ("iec", "%QW32768", "%QW32768 (bytes 65536..65537) is outside the 65536-byte %Q area"),
+        ("schneider", "%MW32767:2", "%MW32767:2 (bytes 65534..65537) is outside"),
+        ("schneider", "%MD32767", "%MD32767 (bytes 65534..65537) is outside"),
+    ],
+)
 def test_region_errors(model, text, message):
     with pytest.raises(AddressError) as exc:
         ProcessImage(model).region(parse_address(text))
@@ -121,6 +141,7 @@ def test_a_smaller_image_says_its_size():
 
 
 # ---------------------------------------------------------------- read / write
+
 
 def test_read_and_write_by_address_string_or_located_address():
     im = ProcessImage("iec")
@@ -173,6 +194,7 @@ def test_tables_read_and_write_as_lists():
 
 
 # ---------------------------------------------------------------- outputs_view
+
 
 def test_outputs_view_shares_inputs_and_memory_but_not_outputs():
     im = ProcessImage("schneider", 64)

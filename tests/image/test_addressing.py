@@ -1,6 +1,7 @@
 """The two addressing models of DESIGN.md at the byte level, and compiled ST
 programs seen from the image: IEC/CODESYS byte offsets, and the Schneider
 word indices of the LTMR manual's READ_VAR / WRITE_VAR examples."""
+
 from __future__ import annotations
 
 import struct
@@ -22,6 +23,7 @@ READ_SDO = REPO / "st_programs" / "ltmr_read_sdo.st"
 
 
 # ---------------------------------------------------------------- IEC: byte offsets
+
 
 def test_iec_words_are_byte_offsets_and_little_endian():
     im = ProcessImage("iec")
@@ -56,6 +58,7 @@ def test_iec_bits_and_bytes_of_each_area():
 
 # ---------------------------------------------------------------- Schneider: word indices
 
+
 def test_schneider_md_overlaps_two_words_low_word_first():
     # DOCA0132DE L1006: %MD3200 := 0x00032007 (<index> = 0x2007 ; <sub-index> = 3);
     # on a Premium %MD3200 is %MW3200 (low word) and %MW3201 (high word).
@@ -86,14 +89,17 @@ def test_schneider_m_bits_are_apart_from_the_words():
     assert im.read("%MW100") == 0xFFFF and im.mbits[100] == 0
 
 
-@pytest.mark.parametrize("text, iec, schneider", [
-    ("%MB3", ("M", 3, 1), ("M", 3, 1)),
-    ("%MW1", ("M", 2, 2), ("M", 2, 2)),
-    ("%MD1", ("M", 4, 4), ("M", 2, 4)),
-    ("%ML1", ("M", 8, 8), ("M", 2, 8)),
-    ("%QW4", ("Q", 8, 2), ("Q", 8, 2)),
-    ("%ID3200", ("I", 12800, 4), ("I", 6400, 4)),
-])
+@pytest.mark.parametrize(
+    "text, iec, schneider",
+    [
+        ("%MB3", ("M", 3, 1), ("M", 3, 1)),
+        ("%MW1", ("M", 2, 2), ("M", 2, 2)),
+        ("%MD1", ("M", 4, 4), ("M", 2, 4)),
+        ("%ML1", ("M", 8, 8), ("M", 2, 8)),
+        ("%QW4", ("Q", 8, 2), ("Q", 8, 2)),
+        ("%ID3200", ("I", 12800, 4), ("I", 6400, 4)),
+    ],
+)
 def test_the_models_differ_only_in_the_stride_of_d_and_l(text, iec, schneider):
     addr = parse_address(text)
     assert ProcessImage("iec").region(addr) == iec
@@ -158,12 +164,16 @@ def test_iec_located_variables_of_every_size_land_on_their_bytes():
 
 # ---------------------------------------------------------------- compiled ST, the LTMR manual
 
+
 def _ltmr_image():
     prog = compile_files([WRITE_SDO, READ_SDO], profile="schneider")
     image = ProcessImage("schneider")
     ctx = ExecContext(image)  # no bus: READ_VAR / WRITE_VAR end at once (NoCommunication)
-    return image, prog.runner("ltmr_write_sdo", cycle_time_ms=10, ctx=ctx), \
-        prog.runner("ltmr_read_sdo", cycle_time_ms=10, ctx=ctx)
+    return (
+        image,
+        prog.runner("ltmr_write_sdo", cycle_time_ms=10, ctx=ctx),
+        prog.runner("ltmr_read_sdo", cycle_time_ms=10, ctx=ctx),
+    )
 
 
 def test_ltmr_examples_share_one_memory_without_overlap():

@@ -3,6 +3,7 @@ come from its entry points, and a device from outside (tests/plugin/relay: a
 relay with one FB, one register and a simulator) plugs in through the same
 public seam and runs end to end in virtual time, configuration to ST block
 to simulated device, with no change to softplc."""
+
 from __future__ import annotations
 
 import json
@@ -107,8 +108,10 @@ def test_unregistered_the_device_is_unknown_again(tmp_path):
         pass
     with pytest.raises(ConfigError) as info:
         config_from_dict(plant(tmp_path), tmp_path / "plant.toml")
-    assert info.value.errors[0] == ("sim[0].type", "expected one of 'ltmr', 'da1', 'db1', 'dc1', 'de1', 'de11' "
-                                                   "(got 'relay')")
+    assert info.value.errors[0] == (
+        "sim[0].type",
+        "expected one of 'ltmr', 'da1', 'db1', 'dc1', 'de1', 'de11' (got 'relay')",
+    )
 
 
 def test_names_are_unique():
@@ -129,9 +132,14 @@ def test_a_device_that_simulates_has_a_simulator():
 
 
 def test_a_device_on_a_bus_that_is_not_there(tmp_path):
-    with extended(Device(name="lost", bus="profibus", sim_types=("lost",), simulator=relay.RelayUnit)), \
-            pytest.raises(PluginError, match="device lost: its simulators sit on bus 'profibus', which is not "
-                                             "registered or takes no simulated devices"):
+    with (
+        extended(Device(name="lost", bus="profibus", sim_types=("lost",), simulator=relay.RelayUnit)),
+        pytest.raises(
+            PluginError,
+            match="device lost: its simulators sit on bus 'profibus', which is not "
+            "registered or takes no simulated devices",
+        ),
+    ):
         config_from_dict(plant(tmp_path), tmp_path / "plant.toml")
 
 
@@ -144,15 +152,32 @@ def test_an_installed_package_is_found_through_its_entry_point(tmp_path):
     (dist / "METADATA").write_text("Metadata-Version: 2.1\nName: softplc-relay\nVersion: 1.0\n")
     (dist / "entry_points.txt").write_text("[softplc.devices]\nrelay = tests.plugin.relay:DEVICE\n")
     data = plant(tmp_path, close=True)
-    lines = [f"[plc]\nprograms = [{json.dumps(data['plc']['programs'][0])}]\n",
-             '[[task]]\nname = "Main"\ninterval = "10ms"\nprograms = ["Switch"]\n',
-             '[[modbus]]\nname = "line"\ntransport = "tcp"\nport = 0\ntimeout = "2s"\n',
-             '[[sim]]\ntype = "relay"\nunit = 3\nclosed = false\n']
+    lines = [
+        f"[plc]\nprograms = [{json.dumps(data['plc']['programs'][0])}]\n",
+        '[[task]]\nname = "Main"\ninterval = "10ms"\nprograms = ["Switch"]\n',
+        '[[modbus]]\nname = "line"\ntransport = "tcp"\nport = 0\ntimeout = "2s"\n',
+        '[[sim]]\ntype = "relay"\nunit = 3\nclosed = false\n',
+    ]
     (tmp_path / "plant.toml").write_text("".join(lines))
     env = {"PYTHONPATH": f"{tmp_path / 'site'}:{REPO}", "PATH": "/usr/bin:/bin"}
-    done = subprocess.run([sys.executable, "-m", "softplc.runtime.cli", "run", str(tmp_path / "plant.toml"),
-                           "--virtual-time", "--duration", "200ms", "--final-json", "-"],
-                          capture_output=True, text=True, env=env, timeout=120)
+    done = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "softplc.runtime.cli",
+            "run",
+            str(tmp_path / "plant.toml"),
+            "--virtual-time",
+            "--duration",
+            "200ms",
+            "--final-json",
+            "-",
+        ],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=120,
+    )
     assert done.returncode == 0, done.stderr
     final = json.loads(done.stdout)
     assert final["Switch"]["closed"] is True and final["Switch"]["error"] is False
@@ -165,9 +190,15 @@ def test_a_broken_installed_package_is_named_not_a_traceback(tmp_path):
     (dist / "entry_points.txt").write_text("[softplc.devices]\nbroken = no_such_module:DEVICE\n")
     (tmp_path / "p.st").write_text("PROGRAM P\nEND_PROGRAM\n")
     env = {"PYTHONPATH": f"{tmp_path / 'site'}:{REPO}", "PATH": "/usr/bin:/bin"}
-    done = subprocess.run([sys.executable, "-m", "softplc.runtime.cli", "check", str(tmp_path / "p.st")],
-                          capture_output=True, text=True, env=env, timeout=120)
+    done = subprocess.run(
+        [sys.executable, "-m", "softplc.runtime.cli", "check", str(tmp_path / "p.st")],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=120,
+    )
     assert done.returncode == 2
-    assert done.stderr.startswith("softplc: entry point broken = 'no_such_module:DEVICE' (softplc.devices) does "
-                                  "not load: ModuleNotFoundError")
+    assert done.stderr.startswith(
+        "softplc: entry point broken = 'no_such_module:DEVICE' (softplc.devices) does not load: ModuleNotFoundError"
+    )
     assert "Traceback" not in done.stderr

@@ -1,4 +1,5 @@
 """Helpers for compiling and running small ST programs in tests."""
+
 from __future__ import annotations
 
 import pytest
@@ -17,8 +18,14 @@ def prog(decls: str, body: str) -> str:
     return f"PROGRAM main\nVAR\n{decls}\nEND_VAR\n{body}\nEND_PROGRAM\n"
 
 
-def run_st(source: str, cycles: int = 1, entry: str = "main", profile: str = "codesys",
-           cycle_time_ms: int = 10, name: str = "test.st"):
+def run_st(
+    source: str,
+    cycles: int = 1,
+    entry: str = "main",
+    profile: str = "codesys",
+    cycle_time_ms: int = 10,
+    name: str = "test.st",
+):
     """Compile source, run entry for `cycles` cycles in virtual time and
     return the runner (read variables with runner.get('x'))."""
     prog = compile_files([], profile=profile, texts={name: source})

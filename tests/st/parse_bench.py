@@ -4,6 +4,7 @@
 
 Prints the time; not a test (timings are for people, not for CI).
 """
+
 from __future__ import annotations
 
 import sys
@@ -93,8 +94,10 @@ def main() -> None:
             wall = min(wall, time.perf_counter() - w0)
             cpu = min(cpu, time.process_time() - c0)
             assert not diags.items, [d.format() for d in diags.items[:3]]
-        print(f"{run:9s}: parsed {text.count(chr(10))} lines ({len(text)} chars, {len(sf.decls)} POUs) "
-              f"in {wall * 1000:.0f} ms wall, {cpu * 1000:.0f} ms CPU")
+        print(
+            f"{run:9s}: parsed {text.count(chr(10))} lines ({len(text)} chars, {len(sf.decls)} POUs) "
+            f"in {wall * 1000:.0f} ms wall, {cpu * 1000:.0f} ms CPU"
+        )
 
 
 if __name__ == "__main__":

@@ -1,4 +1,5 @@
 """Helpers of the parser's tests: parse ST text, and show what came out."""
+
 from __future__ import annotations
 
 from pathlib import Path

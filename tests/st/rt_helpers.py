@@ -1,4 +1,5 @@
 """Helpers of the runtime library's tests (test_rt_*.py)."""
+
 from __future__ import annotations
 
 from softplc.runtime.st import rtlib as r

@@ -1,4 +1,5 @@
 """build_decls.py: declarations, types, POUs and configurations in the AST."""
+
 from __future__ import annotations
 
 from softplc.runtime.st import ast
@@ -6,6 +7,7 @@ from softplc.runtime.st import ast
 from .parse_helpers import ok, parse, show, span
 
 # ---------------------------------------------------------------- declarations
+
 
 def test_var_blocks_and_qualifiers():
     [pou] = ok("""FUNCTION_BLOCK Fb
@@ -22,11 +24,19 @@ VAR_GLOBAL g : INT; END_VAR
 VAR NON_RETAIN n : INT; END_VAR
 END_FUNCTION_BLOCK""").decls
     kinds = [(b.kind, b.constant, b.retain, b.persistent) for b in pou.var_blocks]
-    assert kinds == [("VAR_INPUT", False, False, False), ("VAR_OUTPUT", False, False, False),
-                     ("VAR_IN_OUT", False, False, False), ("VAR", False, True, True),
-                     ("VAR", False, False, True), ("VAR", True, False, False), ("VAR_TEMP", False, False, False),
-                     ("VAR_STAT", False, False, False), ("VAR_EXTERNAL", False, False, False),
-                     ("VAR_GLOBAL", False, False, False), ("VAR", False, False, False)]
+    assert kinds == [
+        ("VAR_INPUT", False, False, False),
+        ("VAR_OUTPUT", False, False, False),
+        ("VAR_IN_OUT", False, False, False),
+        ("VAR", False, True, True),
+        ("VAR", False, False, True),
+        ("VAR", True, False, False),
+        ("VAR_TEMP", False, False, False),
+        ("VAR_STAT", False, False, False),
+        ("VAR_EXTERNAL", False, False, False),
+        ("VAR_GLOBAL", False, False, False),
+        ("VAR", False, False, False),
+    ]
     a, b, c = pou.var_blocks[0].decls
     assert [d.name for d in (a, b, c)] == ["a", "b", "c"]
     assert all(d.init.value == 0 for d in (a, b, c))
@@ -75,8 +85,11 @@ END_TYPE""")
     t = {d.name: d for d in sf.decls}
     assert len(sf.decls) == 13
     color = t["Color"]
-    assert [(n, v.value if v else None) for n, v, _ in color.spec.values] == \
-        [("Red", None), ("Green", 5), ("Blue", None)]
+    assert [(n, v.value if v else None) for n, v, _ in color.spec.values] == [
+        ("Red", None),
+        ("Green", 5),
+        ("Blue", None),
+    ]
     assert color.spec.base is None and show(color.init) == "Green"
     assert t["Codes"].spec.base.name == "DINT" and [v[0] for v in t["Codes"].spec.values] == ["A", "B"]
     assert t["Mode"].spec.base.name == "INT" and [v[1].value for v in t["Mode"].spec.values] == [0, 1]
@@ -215,5 +228,9 @@ END_CONFIGURATION""")
     assert (log.name, log.task, log.type_name, log.retain, log.args) == ("Log", None, "Logger", True, [])
     # Without RESOURCE: one implicit resource named after the configuration.
     [res] = small.resources
-    assert (res.name, res.on, [t.name for t in res.tasks], [p.name for p in res.programs]) == \
-        ("Small", None, ["T1"], ["P"])
+    assert (res.name, res.on, [t.name for t in res.tasks], [p.name for p in res.programs]) == (
+        "Small",
+        None,
+        ["T1"],
+        ["P"],
+    )

@@ -1,4 +1,5 @@
 """build_exprs.py: literals, direct addresses and expressions in the AST."""
+
 from __future__ import annotations
 
 import pytest
@@ -9,39 +10,43 @@ from .parse_helpers import body, errors, expr, show, span
 
 # ---------------------------------------------------------------- literals in the AST
 
-@pytest.mark.parametrize("text, kind, value, type_name", [
-    ("16#FF", "int", 255, None),
-    ("2#1010_1010", "int", 170, None),
-    ("8#17", "int", 15, None),
-    ("1_000", "int", 1000, None),
-    ("INT#5", "int", 5, "INT"),
-    ("INT#16#FF", "int", 255, "INT"),
-    ("INT#-5", "int", -5, "INT"),
-    ("REAL#1.5", "real", 1.5, "REAL"),
-    ("BOOL#1", "bool", True, "BOOL"),
-    ("1.0E-3", "real", 0.001, None),
-    ("1.5e3", "real", 1500.0, None),
-    ("TRUE", "bool", True, None),
-    ("false", "bool", False, None),
-    ("'it$'s'", "string", "it's", None),
-    ("'$''", "string", "'", None),
-    ('"$00C4"', "wstring", "Ä", None),
-    ("T#1h2m3s4ms", "time", 3_723_004_000_000, None),
-    ("TIME#1.5s", "time", 1_500_000_000, None),
-    ("T#-5s", "time", -5_000_000_000, None),
-    ("t#100us", "time", 100_000, None),
-    ("LT#5ns", "ltime", 5, None),
-    ("LTIME#1d", "ltime", 86_400 * 10**9, None),
-    ("D#2024-01-02", "date", 1_704_153_600 * 10**9, None),
-    ("DATE#1970-01-01", "date", 0, None),
-    ("TOD#12:30:15.5", "tod", 45_015_500_000_000, None),
-    ("TIME_OF_DAY#00:00:01", "tod", 10**9, None),
-    ("DT#2008-09-04-07:50:32", "dt", 1_220_514_632 * 10**9, None),
-    ("DATE_AND_TIME#1970-01-01-00:00:00.25", "dt", 250_000_000, None),
-    ("LDATE#1970-01-02", "ldate", 86_400 * 10**9, None),
-    ("LTOD#00:00:02", "ltod", 2 * 10**9, None),
-    ("LDT#1970-01-01-00:00:03", "ldt", 3 * 10**9, None),
-])
+
+@pytest.mark.parametrize(
+    "text, kind, value, type_name",
+    [
+        ("16#FF", "int", 255, None),
+        ("2#1010_1010", "int", 170, None),
+        ("8#17", "int", 15, None),
+        ("1_000", "int", 1000, None),
+        ("INT#5", "int", 5, "INT"),
+        ("INT#16#FF", "int", 255, "INT"),
+        ("INT#-5", "int", -5, "INT"),
+        ("REAL#1.5", "real", 1.5, "REAL"),
+        ("BOOL#1", "bool", True, "BOOL"),
+        ("1.0E-3", "real", 0.001, None),
+        ("1.5e3", "real", 1500.0, None),
+        ("TRUE", "bool", True, None),
+        ("false", "bool", False, None),
+        ("'it$'s'", "string", "it's", None),
+        ("'$''", "string", "'", None),
+        ('"$00C4"', "wstring", "Ä", None),
+        ("T#1h2m3s4ms", "time", 3_723_004_000_000, None),
+        ("TIME#1.5s", "time", 1_500_000_000, None),
+        ("T#-5s", "time", -5_000_000_000, None),
+        ("t#100us", "time", 100_000, None),
+        ("LT#5ns", "ltime", 5, None),
+        ("LTIME#1d", "ltime", 86_400 * 10**9, None),
+        ("D#2024-01-02", "date", 1_704_153_600 * 10**9, None),
+        ("DATE#1970-01-01", "date", 0, None),
+        ("TOD#12:30:15.5", "tod", 45_015_500_000_000, None),
+        ("TIME_OF_DAY#00:00:01", "tod", 10**9, None),
+        ("DT#2008-09-04-07:50:32", "dt", 1_220_514_632 * 10**9, None),
+        ("DATE_AND_TIME#1970-01-01-00:00:00.25", "dt", 250_000_000, None),
+        ("LDATE#1970-01-02", "ldate", 86_400 * 10**9, None),
+        ("LTOD#00:00:02", "ltod", 2 * 10**9, None),
+        ("LDT#1970-01-01-00:00:03", "ldt", 3 * 10**9, None),
+    ],
+)
 def test_literals(text, kind, value, type_name):
     lit = expr(text)
     assert isinstance(lit, ast.Literal)
@@ -68,23 +73,27 @@ def test_enumeration_values_and_schneider_addresses():
 
 # ---------------------------------------------------------------- direct addresses
 
-@pytest.mark.parametrize("text, area, size, indices, bit, table", [
-    ("%I0.1", "I", "", (0, 1), None, None),
-    ("%IX0.0", "I", "X", (0, 0), None, None),
-    ("%QX1.2", "Q", "X", (1, 2), None, None),
-    ("%IW3", "I", "W", (3,), None, None),
-    ("%QW4", "Q", "W", (4,), None, None),
-    ("%MB2", "M", "B", (2,), None, None),
-    ("%MW3250", "M", "W", (3250,), None, None),
-    ("%MD3200", "M", "D", (3200,), None, None),
-    ("%ML1", "M", "L", (1,), None, None),
-    ("%M100", "M", "", (100,), None, None),
-    ("%MX0.3", "M", "X", (0, 3), None, None),
-    ("%mw3250:x0", "M", "W", (3250,), 0, None),
-    ("%MW3250:X0", "M", "W", (3250,), 0, None),
-    ("%MW3250:4", "M", "W", (3250,), None, 4),
-    ("%IW1.2.3", "I", "W", (1, 2, 3), None, None),
-])
+
+@pytest.mark.parametrize(
+    "text, area, size, indices, bit, table",
+    [
+        ("%I0.1", "I", "", (0, 1), None, None),
+        ("%IX0.0", "I", "X", (0, 0), None, None),
+        ("%QX1.2", "Q", "X", (1, 2), None, None),
+        ("%IW3", "I", "W", (3,), None, None),
+        ("%QW4", "Q", "W", (4,), None, None),
+        ("%MB2", "M", "B", (2,), None, None),
+        ("%MW3250", "M", "W", (3250,), None, None),
+        ("%MD3200", "M", "D", (3200,), None, None),
+        ("%ML1", "M", "L", (1,), None, None),
+        ("%M100", "M", "", (100,), None, None),
+        ("%MX0.3", "M", "X", (0, 3), None, None),
+        ("%mw3250:x0", "M", "W", (3250,), 0, None),
+        ("%MW3250:X0", "M", "W", (3250,), 0, None),
+        ("%MW3250:4", "M", "W", (3250,), None, 4),
+        ("%IW1.2.3", "I", "W", (1, 2, 3), None, None),
+    ],
+)
 def test_located_addresses(text, area, size, indices, bit, table):
     loc = expr(text)
     assert isinstance(loc, ast.Located)
@@ -109,47 +118,54 @@ def test_set_and_reset_statements_and_names_called_set():
 
 # ---------------------------------------------------------------- expressions
 
-@pytest.mark.parametrize("text, tree", [
-    ("a OR b AND c", "(OR a (AND b c))"),
-    ("a OR b XOR c", "(OR a (XOR b c))"),
-    ("a XOR b AND c", "(XOR a (AND b c))"),
-    ("a AND b = c", "(AND a (= b c))"),
-    ("a = b < c", "(= a (< b c))"),
-    ("a <> b >= c", "(<> a (>= b c))"),
-    ("a < b + c", "(< a (+ b c))"),
-    ("a + b * c", "(+ a (* b c))"),
-    ("a - b - c", "(- (- a b) c)"),
-    ("a / b MOD c", "(MOD (/ a b) c)"),
-    ("a * b ** c", "(* a (** b c))"),
-    ("a ** b ** c", "(** (** a b) c)"),
-    ("-a ** 2", "(** (- a) 2)"),
-    ("NOT a AND b", "(AND (NOT a) b)"),
-    ("NOT (a AND b)", "(NOT (AND a b))"),
-    ("a & b", "(AND a b)"),
-    ("a AND_THEN b OR_ELSE c", "(OR_ELSE (AND_THEN a b) c)"),
-    ("(a + b) * c", "(* (+ a b) c)"),
-    ("- -a", "(- (- a))"),
-    ("+a", "(+ a)"),
-    ("a <= b", "(<= a b)"),
-    ("a > -1", "(> a (- 1))"),
-])
+
+@pytest.mark.parametrize(
+    "text, tree",
+    [
+        ("a OR b AND c", "(OR a (AND b c))"),
+        ("a OR b XOR c", "(OR a (XOR b c))"),
+        ("a XOR b AND c", "(XOR a (AND b c))"),
+        ("a AND b = c", "(AND a (= b c))"),
+        ("a = b < c", "(= a (< b c))"),
+        ("a <> b >= c", "(<> a (>= b c))"),
+        ("a < b + c", "(< a (+ b c))"),
+        ("a + b * c", "(+ a (* b c))"),
+        ("a - b - c", "(- (- a b) c)"),
+        ("a / b MOD c", "(MOD (/ a b) c)"),
+        ("a * b ** c", "(* a (** b c))"),
+        ("a ** b ** c", "(** (** a b) c)"),
+        ("-a ** 2", "(** (- a) 2)"),
+        ("NOT a AND b", "(AND (NOT a) b)"),
+        ("NOT (a AND b)", "(NOT (AND a b))"),
+        ("a & b", "(AND a b)"),
+        ("a AND_THEN b OR_ELSE c", "(OR_ELSE (AND_THEN a b) c)"),
+        ("(a + b) * c", "(* (+ a b) c)"),
+        ("- -a", "(- (- a))"),
+        ("+a", "(+ a)"),
+        ("a <= b", "(<= a b)"),
+        ("a > -1", "(> a (- 1))"),
+    ],
+)
 def test_precedence(text, tree):
     assert show(expr(text)) == tree
 
 
-@pytest.mark.parametrize("text, tree", [
-    ("w.3", "w.%X3"),
-    ("w.%X3", "w.%X3"),
-    ("a.b.0", "a.b.%X0"),
-    ("a.0.1", "a.%X0.%X1"),
-    ("a.b[i, j + 1]^.c(1)", "a.b[i, (+ j 1)]^.c(1)"),
-    ("p^^", "p^^"),
-    ("m[1][2]", "m[1][2]"),
-    ("REF(x)", "REF(x)"),
-    ("ADR(x) + SIZEOF(x)", "(+ ADR(x) SIZEOF(x))"),
-    ("f()", "f()"),
-    ("f(g(1), 2)", "f(g(1), 2)"),
-])
+@pytest.mark.parametrize(
+    "text, tree",
+    [
+        ("w.3", "w.%X3"),
+        ("w.%X3", "w.%X3"),
+        ("a.b.0", "a.b.%X0"),
+        ("a.0.1", "a.%X0.%X1"),
+        ("a.b[i, j + 1]^.c(1)", "a.b[i, (+ j 1)]^.c(1)"),
+        ("p^^", "p^^"),
+        ("m[1][2]", "m[1][2]"),
+        ("REF(x)", "REF(x)"),
+        ("ADR(x) + SIZEOF(x)", "(+ ADR(x) SIZEOF(x))"),
+        ("f()", "f()"),
+        ("f(g(1), 2)", "f(g(1), 2)"),
+    ],
+)
 def test_postfix_chains(text, tree):
     assert show(expr(text)) == tree
 
@@ -181,6 +197,5 @@ def test_positions_of_expressions():
 
 def test_invalid_literals_are_located():
     diags = errors("x := T#5x + 2#102 + D#2024-13-01 + 'a$Qb' + 16#_1;")
-    assert [(d.code, d.pos.col) for d in diags] == [("E003", 6), ("E003", 13), ("E003", 21), ("E003", 36),
-                                                    ("E003", 45)]
+    assert [(d.code, d.pos.col) for d in diags] == [("E003", 6), ("E003", 13), ("E003", 21), ("E003", 36), ("E003", 45)]
     assert "digit '2' is not valid in base 2" in diags[1].message

@@ -1,4 +1,5 @@
 """build_stmts.py: statements in the AST."""
+
 from __future__ import annotations
 
 from softplc.runtime.st import ast
@@ -6,6 +7,7 @@ from softplc.runtime.st import ast
 from .parse_helpers import body, show, span
 
 # ---------------------------------------------------------------- statements
+
 
 def test_assignment_operators():
     stmts = body("a := 1; b S= c; b R= d; p REF= x;")
@@ -41,8 +43,14 @@ ELSE
     x := 0;
 END_CASE""")
     labels = [[show(lab) for lab in b.labels] for b in s.branches]
-    assert labels == [["1", "2"], ["3..5", "(- 7)", "(- 10)..(- 8)"], ["Color#Red", "Green"],
-                      ["Color.Blue", "MAX_VAL..(+ MAX_VAL 1)"], ["16", "(+ N 1)"], ["True"]]
+    assert labels == [
+        ["1", "2"],
+        ["3..5", "(- 7)", "(- 10)..(- 8)"],
+        ["Color#Red", "Green"],
+        ["Color.Blue", "MAX_VAL..(+ MAX_VAL 1)"],
+        ["16", "(+ N 1)"],
+        ["True"],
+    ]
     assert [len(b.body) for b in s.branches] == [1, 1, 1, 1, 0, 2]
     assert len(s.else_body) == 1
     assert isinstance(s.branches[1].labels[0], ast.CaseRange)

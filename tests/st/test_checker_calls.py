@@ -1,5 +1,6 @@
 """The checker's calls (runtime/st/checker_calls.py): user FUNCTIONs, FB
 instances, standard functions, builtins and native functions."""
+
 from __future__ import annotations
 
 import pytest
@@ -58,12 +59,21 @@ class _NoService:
 
 PROBE = NativeFunction(
     "PROBE",
-    (Param("address", ADDRESS), Param("label", STRING), Param("node", ANY_INT, "the node"),
-     Param("table", WORDS, "the table", min_words=4)),
-    service="probe", fallback=_NoService(), usage="PROBE(ADR#0.1.SYS, 'x', <node>, %MW<table>:4)")
+    (
+        Param("address", ADDRESS),
+        Param("label", STRING),
+        Param("node", ANY_INT, "the node"),
+        Param("table", WORDS, "the table", min_words=4),
+    ),
+    service="probe",
+    fallback=_NoService(),
+    usage="PROBE(ADR#0.1.SYS, 'x', <node>, %MW<table>:4)",
+)
 
-NATIVE_DECLS = ("ok : BOOL; n : INT; r : REAL; s : STRING; t4 : ARRAY[0..3] OF WORD; t2 : ARRAY[1..2] OF INT;"
-                " b4 : ARRAY[0..3] OF BYTE;")
+NATIVE_DECLS = (
+    "ok : BOOL; n : INT; r : REAL; s : STRING; t4 : ARRAY[0..3] OF WORD; t2 : ARRAY[1..2] OF INT;"
+    " b4 : ARRAY[0..3] OF BYTE;"
+)
 
 
 def native_call(args: str):
@@ -84,12 +94,14 @@ def test_a_native_call_is_typed_from_its_declaration(args):
     assert call.ty is T.BOOL
 
 
-@pytest.mark.parametrize("args", ["ADR#0.1.SYS, 'SDO', n", "ADR#0.1.SYS, 'SDO', n, t4, 1",
-                                  "ADR#0.1.SYS, 'SDO', n, table := t4", ""])
+@pytest.mark.parametrize(
+    "args", ["ADR#0.1.SYS, 'SDO', n", "ADR#0.1.SYS, 'SDO', n, t4, 1", "ADR#0.1.SYS, 'SDO', n, table := t4", ""]
+)
 def test_a_native_call_with_the_wrong_arguments_shows_the_usage(args):
     _, found = native_call(args)
-    assert found == [("E041", "PROBE takes 4 positional arguments", "PROBE(ADR#0.1.SYS, 'x', <node>, %MW<table>:4)",
-                      5, 7)]
+    assert found == [
+        ("E041", "PROBE takes 4 positional arguments", "PROBE(ADR#0.1.SYS, 'x', <node>, %MW<table>:4)", 5, 7)
+    ]
 
 
 def test_the_arguments_of_a_wrong_native_call_are_still_checked():
@@ -103,8 +115,13 @@ def test_native_arguments_of_the_wrong_kind():
         ("E020", "PROBE: argument 1 must be an ADR#... address", None, 5, 13),
         ("E020", "PROBE: argument 2 must be a STRING", None, 5, 16),
         ("E020", "PROBE: the node (argument 3) must be an integer", None, 5, 19),
-        ("E020", "PROBE: the table (argument 4) must be a word table such as %MW3250:4 or an ARRAY OF WORD",
-         None, 5, 22),
+        (
+            "E020",
+            "PROBE: the table (argument 4) must be a word table such as %MW3250:4 or an ARRAY OF WORD",
+            None,
+            5,
+            22,
+        ),
     ]
 
 

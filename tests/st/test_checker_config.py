@@ -1,5 +1,6 @@
 """The checker's CONFIGURATION (runtime/st/checker_config.py): tasks and
 program instances, checked and exposed for the engine."""
+
 from __future__ import annotations
 
 from softplc.runtime.program import compile_files
@@ -30,14 +31,21 @@ def test_configuration_tasks_and_program_instances_are_checked_and_exposed():
     prog = compile_files([], texts={"cfg.st": CONFIG})
     [cfg] = prog.checked.configurations
     assert cfg.name == "Plant"
-    assert [(t["name"], t["interval_ms"], t["priority"]) for t in cfg.tasks] == \
-        [("T_fast", 10.0, 1), ("T_slow", 100.0, 5)]
-    assert [(p["name"], p["type"].name, p["task"]) for p in cfg.programs] == \
-        [("fast1", "Fast", "T_fast"), ("slow1", "Slow", "T_slow")]
+    assert [(t["name"], t["interval_ms"], t["priority"]) for t in cfg.tasks] == [
+        ("T_fast", 10.0, 1),
+        ("T_slow", 100.0, 5),
+    ]
+    assert [(p["name"], p["type"].name, p["task"]) for p in cfg.programs] == [
+        ("fast1", "Fast", "T_fast"),
+        ("slow1", "Slow", "T_slow"),
+    ]
     assert [p.name for p, _ in cfg.programs[0]["binding"].inputs] == ["limit"]
 
 
 def test_configuration_errors():
-    bad = CONFIG.replace("WITH T_slow : Slow", "WITH T_none : Slow").replace(
-        "PRIORITY := 5", "PRIORITY := 300").replace("Fast (limit", "Fats (limit")
+    bad = (
+        CONFIG.replace("WITH T_slow : Slow", "WITH T_none : Slow")
+        .replace("PRIORITY := 5", "PRIORITY := 300")
+        .replace("Fast (limit", "Fats (limit")
+    )
     assert sorted(codes(bad)) == ["E091", "E092", "E093"]

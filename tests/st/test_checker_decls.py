@@ -1,23 +1,31 @@
 """The checker's variables (runtime/st/checker_decls.py): declarations and
 their initial values."""
+
 from __future__ import annotations
 
 from .conftest import codes, diagnostics, prog
 
 
 def test_retain_where_nothing_can_be_kept_is_a_warning():
-    src = ("FUNCTION F : INT\nVAR RETAIN t : INT; END_VAR\nF := t;\nEND_FUNCTION\n"
-           "PROGRAM main\nVAR RETAIN\n    kept : INT;\n    x AT %MW4 : INT;\nEND_VAR\n"
-           "VAR_TEMP PERSISTENT\n    tmp : INT;\nEND_VAR\nkept := F() + x + tmp;\nEND_PROGRAM\n")
+    src = (
+        "FUNCTION F : INT\nVAR RETAIN t : INT; END_VAR\nF := t;\nEND_FUNCTION\n"
+        "PROGRAM main\nVAR RETAIN\n    kept : INT;\n    x AT %MW4 : INT;\nEND_VAR\n"
+        "VAR_TEMP PERSISTENT\n    tmp : INT;\nEND_VAR\nkept := F() + x + tmp;\nEND_PROGRAM\n"
+    )
     found = [(d.code, d.pos.line, d.message.split(",")[0]) for d in diagnostics(src)]
-    assert found == [("W111", 2, "RETAIN has no effect on t"), ("W111", 8, "RETAIN has no effect on x"),
-                     ("W111", 11, "PERSISTENT has no effect on tmp")]
+    assert found == [
+        ("W111", 2, "RETAIN has no effect on t"),
+        ("W111", 8, "RETAIN has no effect on x"),
+        ("W111", 11, "PERSISTENT has no effect on tmp"),
+    ]
 
 
 def test_external_globals_array_initialisers_and_in_outs():
-    src = ("PROGRAM main\nVAR_EXTERNAL g : INT; END_VAR\n"
-           "VAR a : ARRAY[1..2] OF INT := [1, 2, 3]; p : INT := q; END_VAR\nEND_PROGRAM\n"
-           "FUNCTION_BLOCK F\nVAR_IN_OUT io : INT := 1; END_VAR\nEND_FUNCTION_BLOCK\n")
+    src = (
+        "PROGRAM main\nVAR_EXTERNAL g : INT; END_VAR\n"
+        "VAR a : ARRAY[1..2] OF INT := [1, 2, 3]; p : INT := q; END_VAR\nEND_PROGRAM\n"
+        "FUNCTION_BLOCK F\nVAR_IN_OUT io : INT := 1; END_VAR\nEND_FUNCTION_BLOCK\n"
+    )
     assert [(d.code, d.message, d.pos.line) for d in diagnostics(src)] == [
         ("E010", "VAR_EXTERNAL 'g' has no VAR_GLOBAL", 2),
         ("E052", "3 initial values for 'a', which has 2 elements", 3),

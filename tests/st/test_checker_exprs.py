@@ -1,5 +1,6 @@
 """The checker's expressions (runtime/st/checker_exprs.py): literals, names,
 members, indices, bit access, direct addresses."""
+
 from __future__ import annotations
 
 from .conftest import codes, diagnostics, prog

@@ -1,5 +1,6 @@
 """The checker's operators (runtime/st/checker_operators.py): the type and
 folded value of each operation."""
+
 from __future__ import annotations
 
 from softplc.runtime.st import types as T
@@ -8,8 +9,9 @@ from .conftest import check_st, codes, diagnostics, pou_body, prog
 
 
 def test_type_errors_in_conditions_and_operators():
-    src = prog("i : INT; s : STRING; b : BOOL; r : REAL;",
-               "IF i THEN END_IF\nb := s + 1;\nr := r MOD 2.0;\nb := b < s;")
+    src = prog(
+        "i : INT; s : STRING; b : BOOL; r : REAL;", "IF i THEN END_IF\nb := s + 1;\nr := r MOD 2.0;\nb := b < s;"
+    )
     assert codes(src) == ["E020", "E023", "E023", "E020"]
 
 
@@ -23,9 +25,16 @@ def test_operator_errors():
 
 
 def test_constant_operations_are_folded_with_iec_results():
-    checked, found = check_st(prog("x : DINT; b : BOOL; w : WORD; i : INT;",
-                                   "x := (2 + 3) * 4 - 10 MOD 3;\nb := 3 < 4 AND NOT FALSE;\n"
-                                   "w := 16#F0F0 XOR 16#FF00;\ni := 7 / -2;"))
+    checked, found = check_st(
+        prog(
+            "x : DINT; b : BOOL; w : WORD; i : INT;",
+            "x := (2 + 3) * 4 - 10 MOD 3;\nb := 3 < 4 AND NOT FALSE;\nw := 16#F0F0 XOR 16#FF00;\ni := 7 / -2;",
+        )
+    )
     assert found == []
     assert [(s.value.const, s.value.ty) for s in pou_body(checked)] == [
-        (19, T.INT), (True, T.BOOL), (0x0FF0, T.DINT), (-3, T.INT)]
+        (19, T.INT),
+        (True, T.BOOL),
+        (0x0FF0, T.DINT),
+        (-3, T.INT),
+    ]

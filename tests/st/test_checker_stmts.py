@@ -1,5 +1,6 @@
 """The checker's statements (runtime/st/checker_stmts.py) and what an
 assignment may write to."""
+
 from __future__ import annotations
 
 from .conftest import codes, diagnostics, prog

@@ -1,5 +1,6 @@
 """The checker's declared types (runtime/st/checker_types.py): collecting
 names, resolving types as written."""
+
 from __future__ import annotations
 
 from .conftest import codes, diagnostics, run_st
@@ -25,18 +26,21 @@ END_PROGRAM
 
 
 def test_a_type_name_must_be_new_and_a_used_one_known():
-    src = ("TYPE INT : STRUCT a : BOOL; END_STRUCT END_TYPE\n"
-           "PROGRAM main\nVAR x : Motr; END_VAR\nEND_PROGRAM\n"
-           "FUNCTION_BLOCK Motor\nEND_FUNCTION_BLOCK\n")
+    src = (
+        "TYPE INT : STRUCT a : BOOL; END_STRUCT END_TYPE\n"
+        "PROGRAM main\nVAR x : Motr; END_VAR\nEND_PROGRAM\n"
+        "FUNCTION_BLOCK Motor\nEND_FUNCTION_BLOCK\n"
+    )
     found = [(d.code, d.message, d.pos.line) for d in diagnostics(src)]
-    assert found == [("E011", "'INT' is the name of an elementary type", 1),
-                     ("E012", "unknown type 'Motr'", 3)]
+    assert found == [("E011", "'INT' is the name of an elementary type", 1), ("E012", "unknown type 'Motr'", 3)]
     assert "did you mean" in diagnostics(src)[1].hint
 
 
 def test_types_declared_twice_and_empty_bounds():
-    src = ("TYPE T1 : (A, B); END_TYPE\nTYPE T1 : INT; END_TYPE\n"
-           "PROGRAM main\nVAR s : STRING[0]; a : ARRAY[3..1] OF INT; r : INT(5..1); END_VAR\nEND_PROGRAM\n")
+    src = (
+        "TYPE T1 : (A, B); END_TYPE\nTYPE T1 : INT; END_TYPE\n"
+        "PROGRAM main\nVAR s : STRING[0]; a : ARRAY[3..1] OF INT; r : INT(5..1); END_VAR\nEND_PROGRAM\n"
+    )
     assert [(d.code, d.message) for d in diagnostics(src)] == [
         ("E011", "'T1' is declared twice"),
         ("E022", "string length 0 is not within 1..65535"),

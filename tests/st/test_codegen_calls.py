@@ -1,5 +1,6 @@
 """Generated calls (runtime/st/codegen_calls.py): FUNCTION outputs and
 in-outs, inlined standard functions, FB instances by index."""
+
 from __future__ import annotations
 
 from .conftest import prog, run_st
@@ -25,11 +26,13 @@ END_PROGRAM
 
 def test_inlined_operations_keep_iec_results():
     # constant divisors, shifts and conversions are emitted inline: same results as the library
-    src = prog("a : DINT := -7; q : DINT; m : DINT; w : WORD := 16#8421; s1 : WORD; s2 : WORD; r1 : WORD;"
-               " r2 : WORD; b : BYTE := 16#81; sn : SINT; uw : WORD; big : WORD; lim : INT; x : INT := 500;",
-               "q := a / 2; m := a MOD 2; s1 := SHL(w, 4); s2 := SHR(w, 4); r1 := ROL(w, 4); r2 := ROR(w, 20);"
-               " sn := INT_TO_SINT(300); uw := INT_TO_WORD(-1); big := SHL(w, 16); b := ROL(b, 1);"
-               " lim := LIMIT(0, x, 100);")
+    src = prog(
+        "a : DINT := -7; q : DINT; m : DINT; w : WORD := 16#8421; s1 : WORD; s2 : WORD; r1 : WORD;"
+        " r2 : WORD; b : BYTE := 16#81; sn : SINT; uw : WORD; big : WORD; lim : INT; x : INT := 500;",
+        "q := a / 2; m := a MOD 2; s1 := SHL(w, 4); s2 := SHR(w, 4); r1 := ROL(w, 4); r2 := ROR(w, 20);"
+        " sn := INT_TO_SINT(300); uw := INT_TO_WORD(-1); big := SHL(w, 16); b := ROL(b, 1);"
+        " lim := LIMIT(0, x, 100);",
+    )
     r = run_st(src)
     assert (r.get("q"), r.get("m")) == (-3, -1)
     assert (r.get("s1"), r.get("s2"), r.get("r1"), r.get("r2")) == (0x4210, 0x0842, 0x4218, 0x1842)

@@ -1,6 +1,7 @@
 """Generated expressions and references (runtime/st/codegen_exprs.py):
 truncating division, MOD's sign, REAL division, bounds, AND/OR evaluation,
 REF and pointers."""
+
 from __future__ import annotations
 
 import pytest
@@ -39,9 +40,10 @@ def test_array_index_out_of_bounds_is_a_fault_not_a_wraparound():
 
 
 def test_array_with_non_zero_lower_bound_and_two_dimensions():
-    src = prog("a : ARRAY[-2..2, 1..3] OF INT; i : INT; j : INT; s : INT;",
-               "FOR i := -2 TO 2 DO FOR j := 1 TO 3 DO a[i, j] := i * 10 + j; END_FOR END_FOR\n"
-               "s := a[-2, 1] + a[2, 3];")
+    src = prog(
+        "a : ARRAY[-2..2, 1..3] OF INT; i : INT; j : INT; s : INT;",
+        "FOR i := -2 TO 2 DO FOR j := 1 TO 3 DO a[i, j] := i * 10 + j; END_FOR END_FOR\ns := a[-2, 1] + a[2, 3];",
+    )
     r = run_st(src)
     assert r.get("s") == -19 + 23
     assert r.get("a")[0][0] == -19 and r.get("a")[4][2] == 23

@@ -1,5 +1,6 @@
 """Generated classes, functions and initial values
 (runtime/st/codegen_pous.py)."""
+
 from __future__ import annotations
 
 from .conftest import prog, run_st

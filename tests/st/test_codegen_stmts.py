@@ -1,6 +1,7 @@
 """Generated statements and stores (runtime/st/codegen_stmts.py): wrap on
 store, REAL precision, string length, value copies, loops, CASE, the
 watchdog."""
+
 from __future__ import annotations
 
 import struct
@@ -12,14 +13,23 @@ from softplc.runtime.st.faults import STFault
 from .conftest import prog, run_st
 
 
-@pytest.mark.parametrize("ty,start,delta,expected", [
-    ("SINT", 127, 1, -128), ("INT", 32767, 1, -32768), ("DINT", 2147483647, 1, -2147483648),
-    ("LINT", 9223372036854775807, 1, -9223372036854775808),
-    ("USINT", 255, 1, 0), ("UINT", 0, -1, 65535), ("UDINT", 4294967295, 1, 0),
-    ("ULINT", 0, -1, 18446744073709551615),
-    ("BYTE", 255, 1, 0), ("WORD", 65535, 1, 0), ("DWORD", 0, -1, 4294967295),
-    ("LWORD", 18446744073709551615, 1, 0),
-])
+@pytest.mark.parametrize(
+    "ty,start,delta,expected",
+    [
+        ("SINT", 127, 1, -128),
+        ("INT", 32767, 1, -32768),
+        ("DINT", 2147483647, 1, -2147483648),
+        ("LINT", 9223372036854775807, 1, -9223372036854775808),
+        ("USINT", 255, 1, 0),
+        ("UINT", 0, -1, 65535),
+        ("UDINT", 4294967295, 1, 0),
+        ("ULINT", 0, -1, 18446744073709551615),
+        ("BYTE", 255, 1, 0),
+        ("WORD", 65535, 1, 0),
+        ("DWORD", 0, -1, 4294967295),
+        ("LWORD", 18446744073709551615, 1, 0),
+    ],
+)
 def test_integers_wrap_on_store(ty, start, delta, expected):
     r = run_st(prog(f"x : {ty} := {start};", f"x := x + ({delta});"))
     assert r.get("x") == expected
@@ -32,8 +42,12 @@ def test_intermediate_results_are_not_wrapped_before_the_store():
 
 
 def test_real_is_rounded_to_32_bits_and_lreal_is_not():
-    r = run_st(prog("r : REAL; l : LREAL; big : REAL; x : REAL := 1.0; y : REAL := 3.0; q : REAL;",
-                    "r := 0.1; l := 0.1; big := DINT_TO_REAL(16777217); q := x / y;"))
+    r = run_st(
+        prog(
+            "r : REAL; l : LREAL; big : REAL; x : REAL := 1.0; y : REAL := 3.0; q : REAL;",
+            "r := 0.1; l := 0.1; big := DINT_TO_REAL(16777217); q := x / y;",
+        )
+    )
     f32 = struct.unpack("<f", struct.pack("<f", 0.1))[0]
     assert r.get("r") == f32 == 0.10000000149011612
     assert r.get("l") == 0.1
@@ -63,19 +77,23 @@ END_PROGRAM
 
 
 def test_for_loop_leaves_the_variable_past_the_end_and_exit_keeps_it():
-    src = prog("i : INT; j : INT; s : INT; k : INT;",
-               "FOR i := 1 TO 10 BY 3 DO s := s + i; END_FOR\n"
-               "FOR j := 10 TO 1 BY -1 DO IF j = 4 THEN EXIT; END_IF END_FOR\n"
-               "FOR k := 5 TO 1 DO s := 1000; END_FOR")
+    src = prog(
+        "i : INT; j : INT; s : INT; k : INT;",
+        "FOR i := 1 TO 10 BY 3 DO s := s + i; END_FOR\n"
+        "FOR j := 10 TO 1 BY -1 DO IF j = 4 THEN EXIT; END_IF END_FOR\n"
+        "FOR k := 5 TO 1 DO s := 1000; END_FOR",
+    )
     r = run_st(src)
     assert r.get("s") == 1 + 4 + 7 + 10
     assert r.get("i") == 13 and r.get("j") == 4 and r.get("k") == 5
 
 
 def test_while_repeat_continue():
-    src = prog("i : INT; odd : INT; n : INT;",
-               "WHILE i < 10 DO i := i + 1; IF i MOD 2 = 0 THEN CONTINUE; END_IF odd := odd + 1; END_WHILE\n"
-               "REPEAT n := n + 1; IF n < 3 THEN CONTINUE; END_IF UNTIL n >= 5 END_REPEAT")
+    src = prog(
+        "i : INT; odd : INT; n : INT;",
+        "WHILE i < 10 DO i := i + 1; IF i MOD 2 = 0 THEN CONTINUE; END_IF odd := odd + 1; END_WHILE\n"
+        "REPEAT n := n + 1; IF n < 3 THEN CONTINUE; END_IF UNTIL n >= 5 END_REPEAT",
+    )
     r = run_st(src)
     assert r.get("odd") == 5 and r.get("n") == 5
 
@@ -109,6 +127,7 @@ def test_subrange_violation_is_a_fault():
 
 def test_watchdog_stops_an_endless_loop():
     from softplc.runtime.program import compile_files
+
     prog_ = compile_files([], texts={"w.st": prog("n : DINT;", "WHILE TRUE DO n := n + 1; END_WHILE")})
     r = prog_.runner("main")
     r.ctx.watchdog_s = 0.02

@@ -1,5 +1,6 @@
 """Implicit conversions (runtime/st/conversions.py): the one rule the checker
 and the code generator read."""
+
 from __future__ import annotations
 
 import pytest
@@ -33,48 +34,74 @@ def verdict(src: T.Type, dst: T.Type, e: A.Expr, profile: str = "codesys") -> tu
     return ok, [d.code for d in diags.items]
 
 
-@pytest.mark.parametrize("src,dst,widens", [
-    (T.INT, T.DINT, True), (T.DINT, T.INT, False), (T.USINT, T.INT, True), (T.UDINT, T.REAL, False),
-    (T.DINT, T.LREAL, True), (T.BOOL, T.BYTE, True), (T.INT, T.WORD, False), (T.TIME, T.LTIME, True),
-    (T.DATE, T.LDATE, True), (T.REAL, T.REAL, True),
-])
+@pytest.mark.parametrize(
+    "src,dst,widens",
+    [
+        (T.INT, T.DINT, True),
+        (T.DINT, T.INT, False),
+        (T.USINT, T.INT, True),
+        (T.UDINT, T.REAL, False),
+        (T.DINT, T.LREAL, True),
+        (T.BOOL, T.BYTE, True),
+        (T.INT, T.WORD, False),
+        (T.TIME, T.LTIME, True),
+        (T.DATE, T.LDATE, True),
+        (T.REAL, T.REAL, True),
+    ],
+)
 def test_widening_follows_iec_figure_11(src, dst, widens):
     assert C.widens_to(src, dst) is widens
 
 
-@pytest.mark.parametrize("a,b,profile,common", [
-    (T.INT, T.UINT, IEC, T.DINT), (T.SINT, T.INT, IEC, T.INT), (T.REAL, T.DINT, IEC, T.LREAL),
-    (T.WORD, T.INT, IEC, None), (T.WORD, T.INT, CODESYS, T.DINT), (T.BYTE, T.WORD, CODESYS, T.WORD),
-    (T.BOOL, T.INT, IEC, None),
-])
+@pytest.mark.parametrize(
+    "a,b,profile,common",
+    [
+        (T.INT, T.UINT, IEC, T.DINT),
+        (T.SINT, T.INT, IEC, T.INT),
+        (T.REAL, T.DINT, IEC, T.LREAL),
+        (T.WORD, T.INT, IEC, None),
+        (T.WORD, T.INT, CODESYS, T.DINT),
+        (T.BYTE, T.WORD, CODESYS, T.WORD),
+        (T.BOOL, T.INT, IEC, None),
+    ],
+)
 def test_common_type_of_two_operands(a, b, profile, common):
     assert C.common_type(a, b, profile) is common
 
 
-@pytest.mark.parametrize("t,generic,profile,fit", [
-    (T.INT, "ANY_NUM", IEC, T.INT), (T.INT, "ANY_REAL", IEC, T.REAL), (T.DINT, "ANY_REAL", IEC, T.LREAL),
-    (T.WORD, "ANY_INT", CODESYS, T.UINT), (T.WORD, "ANY_INT", IEC, T.WORD),
-])
+@pytest.mark.parametrize(
+    "t,generic,profile,fit",
+    [
+        (T.INT, "ANY_NUM", IEC, T.INT),
+        (T.INT, "ANY_REAL", IEC, T.REAL),
+        (T.DINT, "ANY_REAL", IEC, T.LREAL),
+        (T.WORD, "ANY_INT", CODESYS, T.UINT),
+        (T.WORD, "ANY_INT", IEC, T.WORD),
+    ],
+)
 def test_generic_parameters_take_their_argument(t, generic, profile, fit):
     assert C.generic_fit(t, generic, profile) is fit
 
 
-@pytest.mark.parametrize("src,dst,profile,expected", [
-    (T.INT, T.DINT, "iec", (True, [])),
-    (T.DINT, T.INT, "iec", (False, ["E021"])),
-    (T.DINT, T.INT, "codesys", (True, ["W121"])),
-    (T.LREAL, T.REAL, "codesys", (True, ["W121"])),
-    (T.LTIME, T.TIME, "iec", (False, ["E021"])),
-    (T.INT, T.WORD, "codesys", (True, [])),
-    (T.INT, T.BOOL, "codesys", (False, ["E020"])),
-    (T.TIME, T.DINT, "codesys", (False, ["E020"])),
-    (T.StringType(10), T.StringType(5), "iec", (True, [])),
-    (T.StringType(10), T.StringType(5, wide=True), "iec", (False, ["E020"])),
-    (COLOUR, T.INT, "codesys", (True, [])),
-    (COLOUR, T.INT, "iec", (False, ["E020"])),
-    (T.INT, COLOUR, "codesys", (False, ["E020"])),
-    (T.INT, SUB, "iec", (True, [])),
-])
+@pytest.mark.parametrize(
+    "src,dst,profile,expected",
+    [
+        (T.INT, T.DINT, "iec", (True, [])),
+        (T.DINT, T.INT, "iec", (False, ["E021"])),
+        (T.DINT, T.INT, "codesys", (True, ["W121"])),
+        (T.LREAL, T.REAL, "codesys", (True, ["W121"])),
+        (T.LTIME, T.TIME, "iec", (False, ["E021"])),
+        (T.INT, T.WORD, "codesys", (True, [])),
+        (T.INT, T.BOOL, "codesys", (False, ["E020"])),
+        (T.TIME, T.DINT, "codesys", (False, ["E020"])),
+        (T.StringType(10), T.StringType(5), "iec", (True, [])),
+        (T.StringType(10), T.StringType(5, wide=True), "iec", (False, ["E020"])),
+        (COLOUR, T.INT, "codesys", (True, [])),
+        (COLOUR, T.INT, "iec", (False, ["E020"])),
+        (T.INT, COLOUR, "codesys", (False, ["E020"])),
+        (T.INT, SUB, "iec", (True, [])),
+    ],
+)
 def test_what_may_be_stored_where(src, dst, profile, expected):
     assert verdict(src, dst, variable(src), profile) == expected
 
@@ -97,8 +124,11 @@ def test_the_hints_say_how_to_convert():
     C.check_implicit(T.INT, COLOUR, variable(T.INT), "the assignment", CODESYS, diags)
     assert [(d.code, d.message, d.hint) for d in diags.items] == [
         ("E020", "cannot use INT as BOOL in the assignment", "compare it instead, e.g. x <> 0"),
-        ("W121", "implicit conversion from DINT to INT in input 'IN' may lose data",
-         "convert explicitly: DINT_TO_INT(...)"),
+        (
+            "W121",
+            "implicit conversion from DINT to INT in input 'IN' may lose data",
+            "convert explicitly: DINT_TO_INT(...)",
+        ),
         ("E020", "cannot use INT as Colour in the assignment", "use an enumerator of Colour, e.g. Colour#Red"),
     ]
 
@@ -111,40 +141,46 @@ def test_same_type_ignores_string_lengths_and_array_offsets():
     assert not C.same_type(T.SubrangeType(T.INT, 1, 3), T.INT)
 
 
-@pytest.mark.parametrize("value,src,dst,result", [
-    (0.1, T.LREAL, T.REAL, rtlib.f32(0.1)),
-    (70000, T.DINT, T.INT, 4464),
-    (2.5, T.REAL, T.INT, 3),
-    (-2.5, T.LREAL, T.DINT, -3),
-    (1, T.INT, T.BOOL, True),
-    ("abcdef", T.StringType(10), T.StringType(3), "abc"),
-    (1000, T.TIME, T.LTIME, 1_000_000_000),
-    (5, T.INT, T.LREAL, 5.0),
-])
+@pytest.mark.parametrize(
+    "value,src,dst,result",
+    [
+        (0.1, T.LREAL, T.REAL, rtlib.f32(0.1)),
+        (70000, T.DINT, T.INT, 4464),
+        (2.5, T.REAL, T.INT, 3),
+        (-2.5, T.LREAL, T.DINT, -3),
+        (1, T.INT, T.BOOL, True),
+        ("abcdef", T.StringType(10), T.StringType(3), "abc"),
+        (1000, T.TIME, T.LTIME, 1_000_000_000),
+        (5, T.INT, T.LREAL, 5.0),
+    ],
+)
 def test_a_folded_constant_converts_at_compile_time(value, src, dst, result):
     got = C.const_as(value, src, dst)
     assert got == result and type(got) is type(result)
 
 
-@pytest.mark.parametrize("src,dst,e,step", [
-    (T.INT, T.DINT, None, C.WRAP),  # the code generator skips it when the range fits
-    (T.DINT, T.INT, None, C.WRAP),
-    (T.REAL, T.REAL, None, C.TO_F32),
-    (T.REAL, T.REAL, variable(T.REAL), C.KEEP),  # read from storage: already binary32
-    (T.REAL, T.LREAL, None, C.KEEP),
-    (T.LREAL, T.REAL, variable(T.LREAL), C.TO_F32),
-    (T.INT, T.REAL, None, C.TO_F32),
-    (T.INT, T.LREAL, None, C.TO_FLOAT),
-    (T.REAL, T.INT, None, C.CONVERT),
-    (T.TIME, T.LTIME, None, C.CONVERT),
-    (T.BOOL, T.BYTE, None, C.TO_INT),
-    (T.BYTE, T.BOOL, None, C.TO_BOOL),
-    (T.StringType(10), T.StringType(80), None, C.KEEP),
-    (T.StringType(80), T.StringType(10), None, C.TRUNCATE),
-    (T.INT, SUB, None, C.CHECK_RANGE),
-    (COLOUR, COLOUR, None, C.KEEP),
-    (T.RefType(T.INT), T.RefType(T.INT), None, C.KEEP),
-])
+@pytest.mark.parametrize(
+    "src,dst,e,step",
+    [
+        (T.INT, T.DINT, None, C.WRAP),  # the code generator skips it when the range fits
+        (T.DINT, T.INT, None, C.WRAP),
+        (T.REAL, T.REAL, None, C.TO_F32),
+        (T.REAL, T.REAL, variable(T.REAL), C.KEEP),  # read from storage: already binary32
+        (T.REAL, T.LREAL, None, C.KEEP),
+        (T.LREAL, T.REAL, variable(T.LREAL), C.TO_F32),
+        (T.INT, T.REAL, None, C.TO_F32),
+        (T.INT, T.LREAL, None, C.TO_FLOAT),
+        (T.REAL, T.INT, None, C.CONVERT),
+        (T.TIME, T.LTIME, None, C.CONVERT),
+        (T.BOOL, T.BYTE, None, C.TO_INT),
+        (T.BYTE, T.BOOL, None, C.TO_BOOL),
+        (T.StringType(10), T.StringType(80), None, C.KEEP),
+        (T.StringType(80), T.StringType(10), None, C.TRUNCATE),
+        (T.INT, SUB, None, C.CHECK_RANGE),
+        (COLOUR, COLOUR, None, C.KEEP),
+        (T.RefType(T.INT), T.RefType(T.INT), None, C.KEEP),
+    ],
+)
 def test_what_a_store_does_to_the_value(src, dst, e, step):
     assert C.store_step(src, dst, e) == step
 
@@ -156,6 +192,7 @@ def test_constants_are_stored_as_literals_except_references():
 
 # ---------------------------------------------------------------- in programs
 
+
 def test_narrowing_is_an_error_in_iec_and_a_warning_in_codesys():
     src = prog("d : DINT := 100000; i : INT; r : REAL; l : LREAL;", "i := d; r := l;")
     assert codes(src, "iec") == ["E021", "E021"]
@@ -163,8 +200,10 @@ def test_narrowing_is_an_error_in_iec_and_a_warning_in_codesys():
 
 
 def test_widening_is_silent():
-    src = prog("s : SINT; i : INT; d : DINT; r : REAL; l : LREAL; u : USINT; w : WORD; b : BYTE;",
-               "i := s; d := i; l := r; r := i; i := u; w := b; l := d;")
+    src = prog(
+        "s : SINT; i : INT; d : DINT; r : REAL; l : LREAL; u : USINT; w : WORD; b : BYTE;",
+        "i := s; d := i; l := r; r := i; i := u; w := b; l := d;",
+    )
     assert codes(src, "iec") == []
 
 

@@ -1,6 +1,7 @@
 """Declarations: pragmas on the AST, located variables in both addressing
 models, the LTMR manual's examples. CONFIGURATION and type declarations are
 tested with the checker's parts (test_checker_config.py, test_checker_types.py)."""
+
 from __future__ import annotations
 
 import struct
@@ -14,8 +15,10 @@ from .conftest import run_st
 def test_pragmas_are_kept_on_the_ast():
     from softplc.runtime.st.diagnostics import DiagnosticBag
     from softplc.runtime.st.parser import parse_source
-    sf = parse_source("{attribute 'hide'}\nPROGRAM p\nVAR {attribute 'x'} a : INT; END_VAR\nEND_PROGRAM\n",
-                      "p.st", DiagnosticBag())
+
+    sf = parse_source(
+        "{attribute 'hide'}\nPROGRAM p\nVAR {attribute 'x'} a : INT; END_VAR\nEND_PROGRAM\n", "p.st", DiagnosticBag()
+    )
     pou = sf.decls[0]
     assert any("hide" in p for p in pou.pragmas)
 
@@ -59,15 +62,15 @@ END_PROGRAM
 
 
 def test_the_ltmr_manual_examples_run_verbatim():
-    prog = compile_files(["st_programs/ltmr_write_sdo.st", "st_programs/ltmr_read_sdo.st"],
-                         profile="schneider")
+    prog = compile_files(["st_programs/ltmr_write_sdo.st", "st_programs/ltmr_read_sdo.st"], profile="schneider")
     for name, idx_word, request_bit, _mgmt, timeout_word, index in (
-            ("ltmr_write_sdo", 3200, 100, 3250, 3253, 0x00032007),
-            ("ltmr_read_sdo", 3220, 101, 3260, 3263, 0x00032004)):
+        ("ltmr_write_sdo", 3200, 100, 3250, 3253, 0x00032007),
+        ("ltmr_read_sdo", 3220, 101, 3260, 3263, 0x00032004),
+    ):
         runner = prog.runner(name)
         calls = []
 
-        class Recorder:   # stands in for the CANopen master's SDO service
+        class Recorder:  # stands in for the CANopen master's SDO service
             def request(self, *args, _calls=calls):
                 _calls.append(args)
                 return True
@@ -80,7 +83,12 @@ def test_the_ltmr_manual_examples_run_verbatim():
         assert struct.unpack_from("<h", image.areas["M"], 2 * timeout_word)[0] == 2
         assert image.mbits[request_bit] == 0  # RESET %M100 / %M101
         [(fn, addr, obj, number, node, data, table, data_signed, table_signed)] = calls
-        assert (fn, addr, obj, number, node) == (name[5:].split("_")[0].upper() + "_VAR", ("0", "1", "SYS"),
-                                                 "SDO", index, 40)
+        assert (fn, addr, obj, number, node) == (
+            name[5:].split("_")[0].upper() + "_VAR",
+            ("0", "1", "SYS"),
+            "SDO",
+            index,
+            40,
+        )
         assert len(data) == 1 and len(table) == 4
         assert data_signed and table_signed  # %MW tables hold INT words

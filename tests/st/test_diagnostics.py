@@ -1,6 +1,7 @@
 """Diagnostics as the user sees them: coded, located, with a hint; all
 errors of a file in one run; never a Python traceback. The checks behind
 each code are tested with the checker's parts (test_checker_*.py)."""
+
 from __future__ import annotations
 
 from softplc.runtime.st.diagnostics import SourceSet

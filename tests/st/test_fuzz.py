@@ -11,6 +11,7 @@ with coded, located diagnostics, never with a Python traceback.
 The runs are derandomized (CI reproducible). For a deeper local run:
     SOFTPLC_FUZZ_EXAMPLES=5000 pytest tests/st/test_fuzz.py
 """
+
 from __future__ import annotations
 
 import os
@@ -30,13 +31,19 @@ _SCALE = int(os.environ.get("SOFTPLC_FUZZ_EXAMPLES", "0"))
 
 
 def fuzz_settings(examples: int):
-    return settings(max_examples=_SCALE or examples, deadline=None, derandomize=True, database=None,
-                    suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large,
-                                           HealthCheck.filter_too_much])
+    return settings(
+        max_examples=_SCALE or examples,
+        deadline=None,
+        derandomize=True,
+        database=None,
+        suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large, HealthCheck.filter_too_much],
+    )
 
 
 FILE = "fuzz.st"
 CODE = re.compile(r"[EW]\d{3}\Z")
+
+
 # "the compiler itself failed" (an exception caught and turned into a
 # diagnostic, E009): a crash in disguise. Programs nested beyond CPython's
 # limits get E006, which is a proper answer.
@@ -48,7 +55,9 @@ def is_internal_error(d) -> bool:
 
 CORPUS = [
     # 0: elementary types, operators, strings, bit access, typed literals
-    ("codesys", """
+    (
+        "codesys",
+        """
 PROGRAM main
 VAR
     a : INT := 7; b : DINT := -3; c : REAL := 1.5; d : LREAL; ok : BOOL;
@@ -65,9 +74,12 @@ s := CONCAT(s, '!');
 u := UINT#5 + 2;
 a := -a;
 END_PROGRAM
-"""),
+""",
+    ),
     # 1: arrays (initialiser with repetition, 2-D), FOR with BY
-    ("codesys", """
+    (
+        "codesys",
+        """
 PROGRAM main
 VAR
     arr : ARRAY[1..5] OF INT := [1, 2, 3(7)];
@@ -85,9 +97,12 @@ FOR i := 0 TO 2 DO
     END_FOR
 END_FOR
 END_PROGRAM
-"""),
+""",
+    ),
     # 2: enums, structs, struct initialisers, CASE with lists, ranges, ELSE
-    ("codesys", """
+    (
+        "codesys",
+        """
 TYPE Color : (Red, Green := 5, Blue); END_TYPE
 TYPE Point :
 STRUCT
@@ -114,9 +129,12 @@ CASE c OF
 END_CASE
 p := q;
 END_PROGRAM
-"""),
+""",
+    ),
     # 3: a user FB, standard FBs, named inputs and outputs
-    ("codesys", """
+    (
+        "codesys",
+        """
 FUNCTION_BLOCK Counter
 VAR_INPUT inc : BOOL; step : INT := 1; END_VAR
 VAR_OUTPUT count : INT; done : BOOL; END_VAR
@@ -135,9 +153,12 @@ t(IN := TRUE, PT := T#30ms);
 edge(CLK := t.Q);
 n := c1.count;
 END_PROGRAM
-"""),
+""",
+    ),
     # 4: a FUNCTION with outputs and in-outs, WHILE, REPEAT, EXIT, CONTINUE
-    ("codesys", """
+    (
+        "codesys",
+        """
 FUNCTION Collatz : INT
 VAR_INPUT start : DINT; END_VAR
 VAR_OUTPUT peak : DINT; END_VAR
@@ -163,9 +184,12 @@ REPEAT
 UNTIL k >= 5
 END_REPEAT
 END_PROGRAM
-"""),
+""",
+    ),
     # 5: references and pointers
-    ("codesys", """
+    (
+        "codesys",
+        """
 PROGRAM main
 VAR
     x : INT := 5; r : REF_TO INT; p : POINTER TO INT; y : INT;
@@ -178,9 +202,12 @@ p^ := 42;
 y := x + p^;
 isnull := r = 0;
 END_PROGRAM
-"""),
+""",
+    ),
     # 6: time and date literals, globals, constants, subranges
-    ("codesys", """
+    (
+        "codesys",
+        """
 VAR_GLOBAL CONSTANT LIMIT : INT := 4; END_VAR
 VAR_GLOBAL g_total : DINT; END_VAR
 PROGRAM main
@@ -198,9 +225,12 @@ FOR i := 1 TO LIMIT DO
 END_FOR
 pct := LIMIT * 10;
 END_PROGRAM
-"""),
+""",
+    ),
     # 7: Schneider located variables, bit and table addresses, C hex, SET/RESET
-    ("schneider", """
+    (
+        "schneider",
+        """
 PROGRAM main
 VAR
     level AT %MW100 : INT;
@@ -221,22 +251,29 @@ big := %MD3220;
 w := INT_TO_WORD(%MW3250);
 RESET %M101;
 END_PROGRAM
-"""),
+""",
+    ),
     # 8: a bare statement list (a pasted Schneider section), READ_VAR
-    ("schneider", """
+    (
+        "schneider",
+        """
 %MD3220 := 0x00032004; (* index/sub-index *)
 IF %M101 AND NOT %MW3260:X0 THEN
   %MW3263 := 2;
   READ_VAR(ADR#0.1.SYS, 'SDO', %MD3220, 40, %MW3222:1, %MW3260:4);
   RESET %M101;
 END_IF;
-"""),
+""",
+    ),
 ]
 
 # ---------------------------------------------------------------- helpers
 
-_TOKEN = re.compile(r"""\s+|\(\*.*?\*\)|'(?:[^'$\n]|\$.)*'|"(?:[^"$\n]|\$.)*"|%[A-Za-z]+[0-9.]*(?::X?\d+)?"""
-                    r"""|[A-Za-z_]\w*#[-+\w.:']+|[A-Za-z_]\w*|\d[\w.#]*|:=|=>|<=|>=|<>|\*\*|\.\.|.""", re.S)
+_TOKEN = re.compile(
+    r"""\s+|\(\*.*?\*\)|'(?:[^'$\n]|\$.)*'|"(?:[^"$\n]|\$.)*"|%[A-Za-z]+[0-9.]*(?::X?\d+)?"""
+    r"""|[A-Za-z_]\w*#[-+\w.:']+|[A-Za-z_]\w*|\d[\w.#]*|:=|=>|<=|>=|<>|\*\*|\.\.|.""",
+    re.S,
+)
 _IDENT = re.compile(r"[A-Za-z_]\w*\Z")
 
 KEYWORDS = """PROGRAM END_PROGRAM FUNCTION END_FUNCTION FUNCTION_BLOCK END_FUNCTION_BLOCK TYPE END_TYPE
@@ -246,22 +283,141 @@ END_IF CASE END_CASE FOR BY DO END_FOR WHILE END_WHILE REPEAT UNTIL END_REPEAT E
 OR OR_ELSE XOR NOT MOD TRUE FALSE SET RESET CONFIGURATION END_CONFIGURATION RESOURCE END_RESOURCE TASK ON WITH
 EXTENDS IMPLEMENTS REF ADR SIZEOF TIME THIS SUPER READ_VAR WRITE_VAR""".split()
 OPERATORS = ":= => S= R= REF= + - * / ** = <> < > <= >= & ^ ( ) [ ] , ; : . .. # { } (* *) // /* */ ' \" $".split()
-LITERALS = ["0", "1", "-1", "32767", "32768", "2147483648", "99999999999999999999999", "1.5", "1.0E308", "1e999",
-            "1.0E-400", "16#FF", "2#102", "8#777", "16#", "36#ZZ", "T#1s", "T#-5ms", "T#1d2h3m4s5ms", "T#99999999d",
-            "TIME#0s", "LTIME#1ns", "TOD#25:61:00", "D#2024-02-30", "DT#2024-01-01-00:00:00", "INT#40000",
-            "BOOL#2", "'abc'", "'$N$T$$$''", "'$FF'", "'$'", "\"w$0041\"", "WSTRING#\"x\"", "STRING#'s'", "0x1F",
-            "0x", "%MW1", "%MD3220", "%M101", "%IX0.1", "%QW7:X3", "%MW3250:4", "%MW3250:X99", "%I*",
-            "%MD99999999999", "Color#Red", "Color#Purple", "ADR#0.1.SYS", "NULL", "0.0", "-0.0", "1_000",
-            "[1, 2]", "(x := 1)", "3(0)"]
-TYPES = ["BOOL", "SINT", "INT", "DINT", "LINT", "USINT", "UINT", "UDINT", "ULINT", "BYTE", "WORD", "DWORD",
-         "LWORD", "REAL", "LREAL", "TIME", "LTIME", "DATE", "TOD", "DT", "STRING", "WSTRING", "STRING[3]",
-         "STRING[0]", "ARRAY[1..2] OF INT", "ARRAY[2..1] OF INT", "ARRAY[*] OF INT", "REF_TO INT",
-         "POINTER TO BOOL", "REF_TO Point", "TON", "CTU", "Counter", "Point", "Color", "INT(0..3)", "INT(5..1)",
-         "(A, B)"]
+LITERALS = [
+    "0",
+    "1",
+    "-1",
+    "32767",
+    "32768",
+    "2147483648",
+    "99999999999999999999999",
+    "1.5",
+    "1.0E308",
+    "1e999",
+    "1.0E-400",
+    "16#FF",
+    "2#102",
+    "8#777",
+    "16#",
+    "36#ZZ",
+    "T#1s",
+    "T#-5ms",
+    "T#1d2h3m4s5ms",
+    "T#99999999d",
+    "TIME#0s",
+    "LTIME#1ns",
+    "TOD#25:61:00",
+    "D#2024-02-30",
+    "DT#2024-01-01-00:00:00",
+    "INT#40000",
+    "BOOL#2",
+    "'abc'",
+    "'$N$T$$$''",
+    "'$FF'",
+    "'$'",
+    '"w$0041"',
+    'WSTRING#"x"',
+    "STRING#'s'",
+    "0x1F",
+    "0x",
+    "%MW1",
+    "%MD3220",
+    "%M101",
+    "%IX0.1",
+    "%QW7:X3",
+    "%MW3250:4",
+    "%MW3250:X99",
+    "%I*",
+    "%MD99999999999",
+    "Color#Red",
+    "Color#Purple",
+    "ADR#0.1.SYS",
+    "NULL",
+    "0.0",
+    "-0.0",
+    "1_000",
+    "[1, 2]",
+    "(x := 1)",
+    "3(0)",
+]
+TYPES = [
+    "BOOL",
+    "SINT",
+    "INT",
+    "DINT",
+    "LINT",
+    "USINT",
+    "UINT",
+    "UDINT",
+    "ULINT",
+    "BYTE",
+    "WORD",
+    "DWORD",
+    "LWORD",
+    "REAL",
+    "LREAL",
+    "TIME",
+    "LTIME",
+    "DATE",
+    "TOD",
+    "DT",
+    "STRING",
+    "WSTRING",
+    "STRING[3]",
+    "STRING[0]",
+    "ARRAY[1..2] OF INT",
+    "ARRAY[2..1] OF INT",
+    "ARRAY[*] OF INT",
+    "REF_TO INT",
+    "POINTER TO BOOL",
+    "REF_TO Point",
+    "TON",
+    "CTU",
+    "Counter",
+    "Point",
+    "Color",
+    "INT(0..3)",
+    "INT(5..1)",
+    "(A, B)",
+]
 TYPE_NAMES = {t for t in TYPES if _IDENT.match(t)}
-IDENTS = ["x", "a", "main", "Counter", "Point", "Color", "Red", "Collatz", "lambda", "class", "self", "_G",
-          "_ctx", "_K0", "__import__", "v_x", "print", "open", "TON", "Q", "IN", "ENO", "EN", "i", "k", "n",
-          "LIMIT", "g_total", "STRING", "REF", "TIME", "ADR", "CONCAT", "SHL", "INT_TO_WORD"]
+IDENTS = [
+    "x",
+    "a",
+    "main",
+    "Counter",
+    "Point",
+    "Color",
+    "Red",
+    "Collatz",
+    "lambda",
+    "class",
+    "self",
+    "_G",
+    "_ctx",
+    "_K0",
+    "__import__",
+    "v_x",
+    "print",
+    "open",
+    "TON",
+    "Q",
+    "IN",
+    "ENO",
+    "EN",
+    "i",
+    "k",
+    "n",
+    "LIMIT",
+    "g_total",
+    "STRING",
+    "REF",
+    "TIME",
+    "ADR",
+    "CONCAT",
+    "SHL",
+    "INT_TO_WORD",
+]
 
 TOKEN_POOL = KEYWORDS + OPERATORS + LITERALS + TYPES + IDENTS
 
@@ -314,6 +470,7 @@ def check_and_maybe_run(profile: str, src: str, cycles: int = 3) -> list:
 
 # ---------------------------------------------------------------- the corpus itself is valid
 
+
 @pytest.mark.parametrize("index", range(len(CORPUS)))
 def test_corpus_programs_are_valid_and_run(index):
     profile, src = CORPUS[index]
@@ -325,8 +482,9 @@ def test_corpus_programs_are_valid_and_run(index):
 # ---------------------------------------------------------------- arbitrary text
 
 _ANY_CHAR = st.characters(exclude_categories=())  # any code point, lone surrogates included
-_ST_ALPHABET = st.sampled_from(list("abcxyzABC_019 \t\n\r\0\x0b\x0c\x1b\x7f\u00e9\u00a0\u2028\u202e\ufeff"
-                                    "'\"$#%:;=<>()[]{}*/+-.,^&@!?\\`|~"))
+_ST_ALPHABET = st.sampled_from(
+    list("abcxyzABC_019 \t\n\r\0\x0b\x0c\x1b\x7f\u00e9\u00a0\u2028\u202e\ufeff'\"$#%:;=<>()[]{}*/+-.,^&@!?\\`|~")
+)
 
 
 @fuzz_settings(120)
@@ -353,6 +511,7 @@ def test_token_salad_gives_only_diagnostics(tokens, profile):
 @given(st.binary(max_size=300) | st.text(_ST_ALPHABET, max_size=200).map(lambda t: t.encode("utf-16")))
 def test_arbitrary_bytes_in_a_file_give_only_diagnostics(data):
     import tempfile
+
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "bytes.st")
         with open(path, "wb") as f:
@@ -392,25 +551,26 @@ def test_unreadable_or_odd_files_give_diagnostics(tmp_path, kind):
 
 # ---------------------------------------------------------------- mutated valid programs
 
+
 def _pos(draw, toks, extra: int = 0) -> int:
     return draw(st.integers(0, max(0, len(toks) - 1 + extra)))
 
 
 def _m_delete(draw, toks):
     i = _pos(draw, toks)
-    del toks[i:i + draw(st.integers(1, 12))]
+    del toks[i : i + draw(st.integers(1, 12))]
 
 
 def _m_duplicate(draw, toks):
     i = _pos(draw, toks)
-    toks[i:i] = toks[i:i + draw(st.integers(1, 20))]
+    toks[i:i] = toks[i : i + draw(st.integers(1, 20))]
 
 
 def _m_swap(draw, toks):
     i, j = sorted((_pos(draw, toks), _pos(draw, toks)))
     n = draw(st.integers(1, 8))
     if i + n <= j:
-        toks[i:i + n], toks[j:j + n] = toks[j:j + n], toks[i:i + n]
+        toks[i : i + n], toks[j : j + n] = toks[j : j + n], toks[i : i + n]
 
 
 def _m_insert(draw, toks):
@@ -418,7 +578,7 @@ def _m_insert(draw, toks):
 
 
 def _m_truncate(draw, toks):
-    del toks[_pos(draw, toks):]
+    del toks[_pos(draw, toks) :]
 
 
 def _m_rename(draw, toks):
@@ -456,8 +616,18 @@ def _m_case(draw, toks):
         toks[i] = toks[i].swapcase()
 
 
-MUTATIONS = [_m_delete, _m_duplicate, _m_swap, _m_insert, _m_truncate, _m_rename, _m_flip_type, _m_literal,
-             _m_char, _m_case]
+MUTATIONS = [
+    _m_delete,
+    _m_duplicate,
+    _m_swap,
+    _m_insert,
+    _m_truncate,
+    _m_rename,
+    _m_flip_type,
+    _m_literal,
+    _m_char,
+    _m_case,
+]
 
 
 @st.composite
@@ -515,19 +685,137 @@ VAR
     p : POINTER TO INT; rf : REF_TO DINT; k : INT; tmr : TON; ctr : CTU;
 END_VAR
 """
-_R_VARS = ["i", "si", "d", "li", "us", "u", "ul", "b", "r", "l", "w", "bt", "dw", "t", "lt", "tod1", "dt1", "dd",
-           "s", "ws", "a[2]", "a[k]", "rec.x", "rec.m", "rec.v[1]", "e", "sub", "p^", "rf^", "tmr.Q", "tmr.ET",
-           "ctr.CV", "k"]
-_R_LITERALS = ["0", "1", "-1", "7", "255", "32767", "-32768", "2147483647", "4294967295", "1.0", "-0.5", "1.0E10",
-               "TRUE", "FALSE", "16#FF", "2#1010", "T#5ms", "T#-1s", "LTIME#1us", "TOD#01:02:03",
-               "DT#2024-01-01-00:00:00", "D#2024-01-01", "'q'", "''", "\"w\"", "Run", "Mode#Fault", "INT#-3",
-               "REAL#2.5", "BYTE#16#80", "WORD#1"]
-_R_BINOPS = ["+", "-", "*", "/", "MOD", "**", "AND", "OR", "XOR", "&", "=", "<>", "<", ">", "<=", ">=",
-             "AND_THEN", "OR_ELSE"]
-_R_FUNCS = ["ABS", "SQRT", "LN", "EXP", "SIN", "TRUNC", "INT_TO_REAL", "REAL_TO_INT", "DINT_TO_TIME",
-            "TIME_TO_DINT", "TO_STRING", "TO_INT", "TO_LREAL", "LEN", "BOOL_TO_INT", "Twice", "NOT", "MOVE",
-            "TO_BYTE", "TO_WSTRING", "SHL", "ROL", "MIN", "MAX", "SEL", "LIMIT", "MUX", "CONCAT", "LEFT", "MID",
-            "FIND", "EXPT", "ADD", "MUL", "INSERT", "DELETE", "REPLACE", "SUB_DT_DT", "ADR", "REF", "SIZEOF"]
+_R_VARS = [
+    "i",
+    "si",
+    "d",
+    "li",
+    "us",
+    "u",
+    "ul",
+    "b",
+    "r",
+    "l",
+    "w",
+    "bt",
+    "dw",
+    "t",
+    "lt",
+    "tod1",
+    "dt1",
+    "dd",
+    "s",
+    "ws",
+    "a[2]",
+    "a[k]",
+    "rec.x",
+    "rec.m",
+    "rec.v[1]",
+    "e",
+    "sub",
+    "p^",
+    "rf^",
+    "tmr.Q",
+    "tmr.ET",
+    "ctr.CV",
+    "k",
+]
+_R_LITERALS = [
+    "0",
+    "1",
+    "-1",
+    "7",
+    "255",
+    "32767",
+    "-32768",
+    "2147483647",
+    "4294967295",
+    "1.0",
+    "-0.5",
+    "1.0E10",
+    "TRUE",
+    "FALSE",
+    "16#FF",
+    "2#1010",
+    "T#5ms",
+    "T#-1s",
+    "LTIME#1us",
+    "TOD#01:02:03",
+    "DT#2024-01-01-00:00:00",
+    "D#2024-01-01",
+    "'q'",
+    "''",
+    '"w"',
+    "Run",
+    "Mode#Fault",
+    "INT#-3",
+    "REAL#2.5",
+    "BYTE#16#80",
+    "WORD#1",
+]
+_R_BINOPS = [
+    "+",
+    "-",
+    "*",
+    "/",
+    "MOD",
+    "**",
+    "AND",
+    "OR",
+    "XOR",
+    "&",
+    "=",
+    "<>",
+    "<",
+    ">",
+    "<=",
+    ">=",
+    "AND_THEN",
+    "OR_ELSE",
+]
+_R_FUNCS = [
+    "ABS",
+    "SQRT",
+    "LN",
+    "EXP",
+    "SIN",
+    "TRUNC",
+    "INT_TO_REAL",
+    "REAL_TO_INT",
+    "DINT_TO_TIME",
+    "TIME_TO_DINT",
+    "TO_STRING",
+    "TO_INT",
+    "TO_LREAL",
+    "LEN",
+    "BOOL_TO_INT",
+    "Twice",
+    "NOT",
+    "MOVE",
+    "TO_BYTE",
+    "TO_WSTRING",
+    "SHL",
+    "ROL",
+    "MIN",
+    "MAX",
+    "SEL",
+    "LIMIT",
+    "MUX",
+    "CONCAT",
+    "LEFT",
+    "MID",
+    "FIND",
+    "EXPT",
+    "ADD",
+    "MUL",
+    "INSERT",
+    "DELETE",
+    "REPLACE",
+    "SUB_DT_DT",
+    "ADR",
+    "REF",
+    "SIZEOF",
+]
 
 
 def _r_expr(draw, depth: int = 0) -> str:
@@ -554,15 +842,26 @@ def _r_stmt(draw, depth: int = 0) -> str:
     if kind == 4:
         return f"IF {_r_expr(draw)} THEN {_r_block(draw, depth)} ELSE {_r_block(draw, depth)} END_IF;"
     if kind == 5:
-        return f"FOR k := {_r_expr(draw)} TO {_r_expr(draw)} BY {draw(st.sampled_from(['1', '-1', '2', 'i']))} DO " \
-               f"{_r_block(draw, depth)} END_FOR;"
+        return (
+            f"FOR k := {_r_expr(draw)} TO {_r_expr(draw)} BY {draw(st.sampled_from(['1', '-1', '2', 'i']))} DO "
+            f"{_r_block(draw, depth)} END_FOR;"
+        )
     if kind == 6:
         labels = draw(st.sampled_from(["1", "1, 2", "0..3", "Run", "Idle, Fault", "-1"]))
         return f"CASE {_r_expr(draw)} OF {labels}: {_r_block(draw, depth)} ELSE {_r_block(draw, depth)} END_CASE;"
     if kind == 7:
-        call = draw(st.sampled_from([f"tmr(IN := {_r_expr(draw)}, PT := {_r_expr(draw)});",
-                                     f"ctr(CU := {_r_expr(draw)}, PV := {_r_expr(draw)}, Q => b);",
-                                     "p := ADR(a[2]);", "rf := REF(d);", "SET b;", "RESET b;"]))
+        call = draw(
+            st.sampled_from(
+                [
+                    f"tmr(IN := {_r_expr(draw)}, PT := {_r_expr(draw)});",
+                    f"ctr(CU := {_r_expr(draw)}, PV := {_r_expr(draw)}, Q => b);",
+                    "p := ADR(a[2]);",
+                    "rf := REF(d);",
+                    "SET b;",
+                    "RESET b;",
+                ]
+            )
+        )
         return call
     if kind == 8:
         return f"WHILE k < 3 AND {_r_expr(draw)} DO k := k + 1; {_r_block(draw, depth)} END_WHILE;"
@@ -591,6 +890,7 @@ def test_random_statement_declarations_are_valid():
 
 
 # ---------------------------------------------------------------- pathological nesting
+
 
 def _prog(body: str, decls: str = "x : DINT;") -> str:
     return f"PROGRAM main\nVAR\n{decls}\nEND_VAR\n{body}\nEND_PROGRAM\n"
@@ -623,8 +923,9 @@ def _nested(open_: str, close: str, n: int) -> str:
 BEYOND_PYTHON_LIMITS = {
     "21 nested WHILE": lambda: _nested("WHILE x < 0 DO\n", "END_WHILE\n", 21),
     "21 nested REPEAT": lambda: _nested("REPEAT\n", "UNTIL TRUE END_REPEAT\n", 21),
-    "21 nested FOR": lambda: "".join(f"FOR i{k} := 1 TO 1 DO\n" for k in range(21)) + "x := x + 1;\n"
-                              + "END_FOR\n" * 21,
+    "21 nested FOR": lambda: (
+        "".join(f"FOR i{k} := 1 TO 1 DO\n" for k in range(21)) + "x := x + 1;\n" + "END_FOR\n" * 21
+    ),
     "25 mixed loops": lambda: _nested("WHILE x < 0 DO\nREPEAT\n", "UNTIL TRUE END_REPEAT\nEND_WHILE\n", 13),
     "98 nested IF": lambda: _nested("IF x < 1000 THEN x := x + 1;\n", "END_IF;\n", 98),
     "98 nested CASE": lambda: _nested("CASE x OF 0..1000: x := x + 1;\n", "END_CASE\n", 98),
@@ -641,8 +942,9 @@ BEYOND_PYTHON_LIMITS = {
     "110 nested indices": lambda: f"x := {'a[' * 110}1{']' * 110};",
     "4000 ELSIF": lambda: "IF x = 0 THEN x := 1;\n" + "ELSIF x = 1 THEN x := 2;\n" * 4000 + "END_IF",
 }
-_LIMIT_DECLS = "x : DINT; b : BOOL; r : LREAL := 1.0; a : ARRAY[1..2] OF DINT := [1, 1]; " + \
-    " ".join(f"i{k} : INT;" for k in range(21))
+_LIMIT_DECLS = "x : DINT; b : BOOL; r : LREAL := 1.0; a : ARRAY[1..2] OF DINT := [1, 1]; " + " ".join(
+    f"i{k} : INT;" for k in range(21)
+)
 
 
 @pytest.mark.parametrize("shape", list(BEYOND_PYTHON_LIMITS))
@@ -650,16 +952,25 @@ def test_programs_beyond_cpython_compiler_limits(shape):
     check_and_maybe_run("codesys", _prog(BEYOND_PYTHON_LIMITS[shape](), _LIMIT_DECLS), cycles=1)
 
 
-@pytest.mark.parametrize("body,var,expected", [
-    ("".join(f"FOR i{k} := 1 TO 1 DO\n" for k in range(18)) + "x := x + 1;\n" + "END_FOR\n" * 18, "x", 1),
-    (_nested("WHILE x < 1 DO\n", "x := x + 1; END_WHILE\n", 18), "x", 18),
-    (_nested("IF x < 1000 THEN x := x + 1;\n", "END_IF;\n", 60), "x", 60),
-    ("x := 2; x := " + " + ".join(["x"] * 150) + ";", "x", 300),
-    ("x := 3; x := " + "-" * 100 + "x;", "x", 3),
-    ("b := " + "NOT " * 101 + "b;", "b", True),
-    ("x := 7; IF x = 0 THEN x := 1;\n" + "".join(f"ELSIF x = {k} THEN x := {k * 10};\n" for k in range(1, 1000))
-     + "END_IF", "x", 70),
-], ids=["18 FOR", "18 WHILE", "60 IF", "150-term sum", "100 minus", "101 NOT", "1000 ELSIF"])
+@pytest.mark.parametrize(
+    "body,var,expected",
+    [
+        ("".join(f"FOR i{k} := 1 TO 1 DO\n" for k in range(18)) + "x := x + 1;\n" + "END_FOR\n" * 18, "x", 1),
+        (_nested("WHILE x < 1 DO\n", "x := x + 1; END_WHILE\n", 18), "x", 18),
+        (_nested("IF x < 1000 THEN x := x + 1;\n", "END_IF;\n", 60), "x", 60),
+        ("x := 2; x := " + " + ".join(["x"] * 150) + ";", "x", 300),
+        ("x := 3; x := " + "-" * 100 + "x;", "x", 3),
+        ("b := " + "NOT " * 101 + "b;", "b", True),
+        (
+            "x := 7; IF x = 0 THEN x := 1;\n"
+            + "".join(f"ELSIF x = {k} THEN x := {k * 10};\n" for k in range(1, 1000))
+            + "END_IF",
+            "x",
+            70,
+        ),
+    ],
+    ids=["18 FOR", "18 WHILE", "60 IF", "150-term sum", "100 minus", "101 NOT", "1000 ELSIF"],
+)
 def test_deep_but_reasonable_programs_still_compile_and_compute(body, var, expected):
     diags = check_and_maybe_run("codesys", _prog(body, _LIMIT_DECLS), cycles=1)
     assert not [d for d in diags if d.is_error], [d.format() for d in diags]
@@ -668,33 +979,52 @@ def test_deep_but_reasonable_programs_still_compile_and_compute(body, var, expec
     assert r.get(var) == expected
 
 
-@pytest.mark.parametrize("build", [
-    lambda n: f"x := {'-' * n}1;",                                 # unary chain
-    lambda n: f"x := {'NOT ' * n}TRUE;",
-    lambda n: "x := " + " + ".join(["1"] * n) + ";",                # long flat (left-assoc) chain
-    lambda n: "x := 2" + " ** 1" * n + ";",
-    lambda n: "WHILE x < 0 DO\n" * n + "END_WHILE\n" * n,
-    lambda n: "CASE x OF 1:\n" * n + "END_CASE\n" * n,
-    lambda n: "FOR x := 1 TO 2 DO\n" * n + "END_FOR\n" * n,
-    lambda n: "REPEAT\n" * n + "UNTIL TRUE END_REPEAT\n" * n,
-    lambda n: f"x := {'ABS(' * n}1{')' * n};",                     # nested calls
-    lambda n: "x := a" + "[1]" * n + ";",
-    lambda n: "x := a" + "^" * n + ";",
-    lambda n: "x := s" + ".f" * n + ";",
-    lambda n: "(*" * n + "*)" * n,                                  # nested comments
-    lambda n: "(" * n,                                              # never closed
-    lambda n: "IF TRUE THEN " * n,                                  # never closed
-    lambda n: "x := " + "[" * n,
-], ids=["neg", "not", "sum", "pow", "while", "case", "for", "repeat", "calls", "index", "deref", "member",
-        "comments", "open-parens", "open-ifs", "open-brackets"])
+@pytest.mark.parametrize(
+    "build",
+    [
+        lambda n: f"x := {'-' * n}1;",  # unary chain
+        lambda n: f"x := {'NOT ' * n}TRUE;",
+        lambda n: "x := " + " + ".join(["1"] * n) + ";",  # long flat (left-assoc) chain
+        lambda n: "x := 2" + " ** 1" * n + ";",
+        lambda n: "WHILE x < 0 DO\n" * n + "END_WHILE\n" * n,
+        lambda n: "CASE x OF 1:\n" * n + "END_CASE\n" * n,
+        lambda n: "FOR x := 1 TO 2 DO\n" * n + "END_FOR\n" * n,
+        lambda n: "REPEAT\n" * n + "UNTIL TRUE END_REPEAT\n" * n,
+        lambda n: f"x := {'ABS(' * n}1{')' * n};",  # nested calls
+        lambda n: "x := a" + "[1]" * n + ";",
+        lambda n: "x := a" + "^" * n + ";",
+        lambda n: "x := s" + ".f" * n + ";",
+        lambda n: "(*" * n + "*)" * n,  # nested comments
+        lambda n: "(" * n,  # never closed
+        lambda n: "IF TRUE THEN " * n,  # never closed
+        lambda n: "x := " + "[" * n,
+    ],
+    ids=[
+        "neg",
+        "not",
+        "sum",
+        "pow",
+        "while",
+        "case",
+        "for",
+        "repeat",
+        "calls",
+        "index",
+        "deref",
+        "member",
+        "comments",
+        "open-parens",
+        "open-ifs",
+        "open-brackets",
+    ],
+)
 def test_other_pathological_shapes(build):
     check_and_maybe_run("codesys", _prog(build(3000)), cycles=1)
 
 
 def test_deep_nesting_of_types_and_initialisers():
     n = 2000
-    decls = f"a : {'ARRAY[1..1] OF ' * n}INT; b : ARRAY[1..1] OF INT := {'[' * n}1{']' * n};" \
-            f" c : {'REF_TO ' * n}INT;"
+    decls = f"a : {'ARRAY[1..1] OF ' * n}INT; b : ARRAY[1..1] OF INT := {'[' * n}1{']' * n}; c : {'REF_TO ' * n}INT;"
     check_and_maybe_run("codesys", _prog("x := 1;", decls), cycles=1)
 
 
@@ -714,18 +1044,36 @@ def test_huge_literals_and_lines():
 
 # ---------------------------------------------------------------- diagnostics are well formed
 
-@pytest.mark.parametrize("src", [
-    "", "\0", "\ufeff", "(*", "{", "'", '"', "*)", "PROGRAM", "END_PROGRAM", "PROGRAM main", "x := ;",
-    "PROGRAM p VAR x : INT END_VAR END_PROGRAM", "\r\n\r\n\x00PROGRAM\tmain\r\nEND_PROGRAM",
-    "PROGRAM main\nVAR x : INT; END_VAR\nx := 'never closed;\nEND_PROGRAM",
-    "PROGRAM main\n\u00e9t\u00e9 := 1;\nEND_PROGRAM", "TYPE t : STRUCT END_STRUCT END_TYPE",
-    "FUNCTION f END_FUNCTION", "FUNCTION_BLOCK TON END_FUNCTION_BLOCK",
-    "TYPE TON : INT; END_TYPE PROGRAM main VAR t : TON; END_VAR t := 1; END_PROGRAM",
-    "FUNCTION TON : INT TON := 1; END_FUNCTION",
-    "PROGRAM main VAR AT %QW1 : WORD; END_VAR END_PROGRAM",
-    "CONFIGURATION c RESOURCE r ON cpu TASK t(INTERVAL := T#10ms); PROGRAM p WITH t : main; "
-    "END_RESOURCE END_CONFIGURATION",
-])
+
+@pytest.mark.parametrize(
+    "src",
+    [
+        "",
+        "\0",
+        "\ufeff",
+        "(*",
+        "{",
+        "'",
+        '"',
+        "*)",
+        "PROGRAM",
+        "END_PROGRAM",
+        "PROGRAM main",
+        "x := ;",
+        "PROGRAM p VAR x : INT END_VAR END_PROGRAM",
+        "\r\n\r\n\x00PROGRAM\tmain\r\nEND_PROGRAM",
+        "PROGRAM main\nVAR x : INT; END_VAR\nx := 'never closed;\nEND_PROGRAM",
+        "PROGRAM main\n\u00e9t\u00e9 := 1;\nEND_PROGRAM",
+        "TYPE t : STRUCT END_STRUCT END_TYPE",
+        "FUNCTION f END_FUNCTION",
+        "FUNCTION_BLOCK TON END_FUNCTION_BLOCK",
+        "TYPE TON : INT; END_TYPE PROGRAM main VAR t : TON; END_VAR t := 1; END_PROGRAM",
+        "FUNCTION TON : INT TON := 1; END_FUNCTION",
+        "PROGRAM main VAR AT %QW1 : WORD; END_VAR END_PROGRAM",
+        "CONFIGURATION c RESOURCE r ON cpu TASK t(INTERVAL := T#10ms); PROGRAM p WITH t : main; "
+        "END_RESOURCE END_CONFIGURATION",
+    ],
+)
 def test_diagnostics_are_well_formed_and_only_in_user_files(src):
     check_and_maybe_run("codesys", src)
 
@@ -733,6 +1081,7 @@ def test_diagnostics_are_well_formed_and_only_in_user_files(src):
 def test_user_declarations_replacing_library_ones_never_surface_library_errors():
     import re as _re
     from importlib import resources
+
     lib = resources.files("softplc.fblocks.iec").joinpath("standard_fbs.st").read_text("utf-8")
     names = _re.findall(r"^(?:FUNCTION_BLOCK|FUNCTION)\s+(\w+)", lib, _re.M)
     assert {"TON", "CTU", "R_TRIG"} <= set(names)
@@ -743,8 +1092,10 @@ def test_user_declarations_replacing_library_ones_never_surface_library_errors()
 
 
 def test_diagnostics_in_several_files_name_the_right_file():
-    texts = {"a.st": "PROGRAM a\nVAR x : INT; END_VAR\nx := y;\nEND_PROGRAM\n",
-             "b.st": "PROGRAM b\nVAR z : BOOL; END_VAR\n\nz := 1 +;\nEND_PROGRAM\n"}
+    texts = {
+        "a.st": "PROGRAM a\nVAR x : INT; END_VAR\nx := y;\nEND_PROGRAM\n",
+        "b.st": "PROGRAM b\nVAR z : BOOL; END_VAR\n\nz := 1 +;\nEND_PROGRAM\n",
+    }
     diags, _ = check_files([], texts=texts)
     assert_well_formed(diags, user_files=("a.st", "b.st"))
     assert {d.pos.file for d in diags if d.is_error} == {"a.st", "b.st"}
@@ -754,26 +1105,48 @@ def test_diagnostics_in_several_files_name_the_right_file():
 
 # ---------------------------------------------------------------- minimal inputs of crashes found by fuzzing
 
-@pytest.mark.parametrize("profile,src", [
-    ("codesys", "TYPE t : STRUCT a.b : INT; END_STRUCT END_TYPE"),
-    ("codesys", "PROGRAM p VAR a.b : INT; END_VAR END_PROGRAM"),
-    ("codesys", "PROGRAM main VAR AT %QW1 : WORD; END_VAR END_PROGRAM"),
-    ("schneider", "PROGRAM main VAR AT %MW100 : INT; END_VAR END_PROGRAM"),
-    ("codesys", "PROGRAM main VAR CONSTANT c : INT := 's'; END_VAR VAR p : INT(0..100); END_VAR p := c; END_PROGRAM"),
-    ("codesys", "PROGRAM main VAR x : INT; END_VAR x := %MW70000; END_PROGRAM"),
-    ("schneider", "PROGRAM main VAR x : INT; END_VAR %MD99999999999 := 1; END_PROGRAM"),
-    ("codesys", "PROGRAM main VAR w : WORD; END_VAR w := WORD#16#36#ZZ; END_PROGRAM"),
-    ("codesys", "PROGRAM main VAR w : WORD; END_VAR w := WORD#16x#1; END_PROGRAM"),
-    ("codesys", "PROGRAM main VAR i : INT; END_VAR FOR i := 0.0 TO 5 DO END_FOR END_PROGRAM"),
-    ("codesys", "PROGRAM main VAR i : INT; END_VAR FOR i := 0 TO 5 BY 1.5 DO END_FOR END_PROGRAM"),
-    ("codesys", "PROGRAM main VAR x : DINT; END_VAR x := " + "9" * 5000 + "; END_PROGRAM"),
-    ("codesys", "VAR_CONFIG main.x AT %MW1 : INT; END_VAR PROGRAM main VAR x : INT; END_VAR END_PROGRAM"),
-    ("codesys", "FUNCTION_BLOCK f VAR_INPUT a.b : INT; END_VAR END_FUNCTION_BLOCK"),
-    ("codesys", "PROGRAM main VAR x AT %I* : BOOL; END_VAR END_PROGRAM"),
-    ("schneider", "FUNCTION_BLOCK fb VAR x AT %IX* : BOOL; y AT %QW* : WORD; END_VAR END_FUNCTION_BLOCK"),
-], ids=["dotted-field", "dotted-var", "unnamed-located", "unnamed-located-schneider", "string-constant-subrange",
-        "address-outside-area", "address-outside-area-schneider", "double-base-literal", "bad-base-literal",
-        "for-real-start", "for-real-step", "5000-digit-literal", "var-config", "dotted-input",
-        "unconfigured-bit-address", "unconfigured-addresses-in-fb"])
+
+@pytest.mark.parametrize(
+    "profile,src",
+    [
+        ("codesys", "TYPE t : STRUCT a.b : INT; END_STRUCT END_TYPE"),
+        ("codesys", "PROGRAM p VAR a.b : INT; END_VAR END_PROGRAM"),
+        ("codesys", "PROGRAM main VAR AT %QW1 : WORD; END_VAR END_PROGRAM"),
+        ("schneider", "PROGRAM main VAR AT %MW100 : INT; END_VAR END_PROGRAM"),
+        (
+            "codesys",
+            "PROGRAM main VAR CONSTANT c : INT := 's'; END_VAR VAR p : INT(0..100); END_VAR p := c; END_PROGRAM",
+        ),
+        ("codesys", "PROGRAM main VAR x : INT; END_VAR x := %MW70000; END_PROGRAM"),
+        ("schneider", "PROGRAM main VAR x : INT; END_VAR %MD99999999999 := 1; END_PROGRAM"),
+        ("codesys", "PROGRAM main VAR w : WORD; END_VAR w := WORD#16#36#ZZ; END_PROGRAM"),
+        ("codesys", "PROGRAM main VAR w : WORD; END_VAR w := WORD#16x#1; END_PROGRAM"),
+        ("codesys", "PROGRAM main VAR i : INT; END_VAR FOR i := 0.0 TO 5 DO END_FOR END_PROGRAM"),
+        ("codesys", "PROGRAM main VAR i : INT; END_VAR FOR i := 0 TO 5 BY 1.5 DO END_FOR END_PROGRAM"),
+        ("codesys", "PROGRAM main VAR x : DINT; END_VAR x := " + "9" * 5000 + "; END_PROGRAM"),
+        ("codesys", "VAR_CONFIG main.x AT %MW1 : INT; END_VAR PROGRAM main VAR x : INT; END_VAR END_PROGRAM"),
+        ("codesys", "FUNCTION_BLOCK f VAR_INPUT a.b : INT; END_VAR END_FUNCTION_BLOCK"),
+        ("codesys", "PROGRAM main VAR x AT %I* : BOOL; END_VAR END_PROGRAM"),
+        ("schneider", "FUNCTION_BLOCK fb VAR x AT %IX* : BOOL; y AT %QW* : WORD; END_VAR END_FUNCTION_BLOCK"),
+    ],
+    ids=[
+        "dotted-field",
+        "dotted-var",
+        "unnamed-located",
+        "unnamed-located-schneider",
+        "string-constant-subrange",
+        "address-outside-area",
+        "address-outside-area-schneider",
+        "double-base-literal",
+        "bad-base-literal",
+        "for-real-start",
+        "for-real-step",
+        "5000-digit-literal",
+        "var-config",
+        "dotted-input",
+        "unconfigured-bit-address",
+        "unconfigured-addresses-in-fb",
+    ],
+)
 def test_minimal_inputs_of_crashes_found_by_fuzzing(profile, src):
     check_and_maybe_run(profile, src, cycles=1)

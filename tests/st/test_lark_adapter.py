@@ -3,6 +3,7 @@
 Each test is one numbered assumption of lark_adapter.py's docstring; when a
 lark release breaks one, the failure says which (and the lark version).
 """
+
 from __future__ import annotations
 
 import re
@@ -51,10 +52,12 @@ def test_1_the_lalr_table_is_at_parser_parser_parser_parse_table():
     assert isinstance(table.states, dict) and table.states, f"assumption 1 ({VERSION}): parse_table.states"
     for state, actions in table.states.items():
         assert isinstance(state, int), f"assumption 1 ({VERSION}): states are ints, got {state!r}"
-        assert all(isinstance(str(symbol), str) and len(action) == 2 for symbol, action in actions.items()), \
+        assert all(isinstance(str(symbol), str) and len(action) == 2 for symbol, action in actions.items()), (
             f"assumption 1 ({VERSION}): a row maps symbols to (action, argument)"
-    assert set(table.start_states) == {"start"} and set(table.end_states) == {"start"}, \
+        )
+    assert set(table.start_states) == {"start"} and set(table.end_states) == {"start"}, (
         f"assumption 1 ({VERSION}): start_states and end_states by start rule name"
+    )
     assert table.start_states["start"] in table.states and table.end_states["start"] in table.states
 
 
@@ -66,8 +69,9 @@ def test_2_actions_are_shift_to_a_state_or_reduce_a_rule():
     for actions in table.states.values():
         for kind, arg in actions.values():
             if kind is Shift:
-                assert isinstance(arg, int) and arg in table.states, \
+                assert isinstance(arg, int) and arg in table.states, (
                     f"assumption 2 ({VERSION}): Shift's argument is the next state"
+                )
             else:
                 assert isinstance(arg, lark.grammar.Rule), f"assumption 2 ({VERSION}): Reduce's argument is a Rule"
 
@@ -76,8 +80,13 @@ def test_3_rules_say_their_origin_expansion_alias_and_options():
     rules = {(str(r.origin.name), tuple(str(s.name) for s in r.expansion)): r for r in lark_rules(tiny_lark())}
     message = f"assumption 3 ({VERSION}): Rule fields"
     item = rules[("item", ("NAME", "EQUAL", "value", "UNIT", "SEMICOLON"))]
-    assert [(s.is_term, s.filter_out if s.is_term else None) for s in item.expansion] == \
-        [(True, False), (True, True), (False, None), (True, False), (True, True)], message
+    assert [(s.is_term, s.filter_out if s.is_term else None) for s in item.expansion] == [
+        (True, False),
+        (True, True),
+        (False, None),
+        (True, False),
+        (True, True),
+    ], message
     assert item.alias is None and not item.options.expand1 and not item.options.keep_all_tokens, message
     # With the [UNIT] left out: a placeholder flag at its place.
     item_no_unit = rules[("item", ("NAME", "EQUAL", "value", "SEMICOLON"))]
@@ -124,10 +133,13 @@ def test_the_st_grammar_loads_and_uses_the_cache(tmp_path, monkeypatch):
     assert [p.name for p in cached] == [f"st-grammar-lark{lark.__version__}.cache"]
     again = load_st_grammar()  # from the cache
     assert again.states.keys() == first.states.keys() and again.terminals == first.terminals
-    assert {s: {k: (v if isinstance(v, int) else (v.origin, v.expansion)) for k, v in row.items()}
-            for s, row in again.states.items()} == \
-           {s: {k: (v if isinstance(v, int) else (v.origin, v.expansion)) for k, v in row.items()}
-            for s, row in first.states.items()}
+    assert {
+        s: {k: (v if isinstance(v, int) else (v.origin, v.expansion)) for k, v in row.items()}
+        for s, row in again.states.items()
+    } == {
+        s: {k: (v if isinstance(v, int) else (v.origin, v.expansion)) for k, v in row.items()}
+        for s, row in first.states.items()
+    }
 
 
 def test_a_broken_cache_is_rebuilt(tmp_path, monkeypatch):
@@ -214,12 +226,14 @@ END_CONFIGURATION
 
 def _callback_names(compiled) -> set:
     from softplc.runtime.st.build_decls import AstBuilder
+
     names = {r.alias or r.origin for row in compiled.states.values() for r in row.values() if isinstance(r, RuleInfo)}
     return {n for n in names if hasattr(AstBuilder, n)}
 
 
 def _recorder(names: set) -> type:
     """A builder whose rule methods return (rule, children): the shapes."""
+
     def method(name):
         return lambda self, children: (name, [_norm(c) for c in children])
 
@@ -230,6 +244,7 @@ def _recorder(names: set) -> type:
         def record(self, children):
             self.result = (name, [_norm(c) for c in children])
             return self.result
+
         return record
 
     body = {n: method(n) for n in names}
@@ -256,8 +271,12 @@ def test_5_children_are_shaped_as_lark_shapes_them():
     names = _callback_names(compiled)
     recorder = _recorder(names)
     ours = Grammar(compiled, builder=recorder)
-    theirs = lark.Lark(lark_adapter.GRAMMAR_FILE.read_text(encoding="utf-8"), parser="lalr",
-                       transformer=recorder(), **lark_adapter.ST_OPTIONS)
+    theirs = lark.Lark(
+        lark_adapter.GRAMMAR_FILE.read_text(encoding="utf-8"),
+        parser="lalr",
+        transformer=recorder(),
+        **lark_adapter.ST_OPTIONS,
+    )
     seen: list = []
     lex = ours.lexer.tokens
 
@@ -286,5 +305,6 @@ def test_5_children_are_shaped_as_lark_shapes_them():
                 used.add(node[0])
                 for c in node[1]:
                     collect(c)
+
         collect(mine)
     assert names <= used, f"samples to add, for: {sorted(names - used)}"

@@ -1,4 +1,5 @@
 """lexer.py: comments, keywords and names (through the parser)."""
+
 from __future__ import annotations
 
 import pytest
@@ -8,6 +9,7 @@ from softplc.runtime.st import ast
 from .parse_helpers import body, errors, expr, ok, show, span
 
 # ---------------------------------------------------------------- lexical
+
 
 def test_keywords_are_case_insensitive_and_names_keep_their_spelling():
     sf = ok("program Main\nvAr MyVar : int; END_var\nif MyVar = 1 tHeN MyVar := 2; End_If\nend_PROGRAM\n")
@@ -44,11 +46,14 @@ def test_comment_markers_inside_strings_are_text():
     assert [s.value.value for s in stmts] == ["(* not a comment *)", "// nor {this}", "/* no */"]
 
 
-@pytest.mark.parametrize("src, line, col, what", [
-    ("x := 1;\n(* open (* nested *)\ny := 2;", 2, 1, "'(*' is never closed"),
-    ("x := 1; /* open", 1, 9, "'/*' is never closed"),
-    ("{attribute 'x'\nx := 1;", 1, 1, "'{' is never closed"),
-])
+@pytest.mark.parametrize(
+    "src, line, col, what",
+    [
+        ("x := 1;\n(* open (* nested *)\ny := 2;", 2, 1, "'(*' is never closed"),
+        ("x := 1; /* open", 1, 9, "'/*' is never closed"),
+        ("{attribute 'x'\nx := 1;", 1, 1, "'{' is never closed"),
+    ],
+)
 def test_unterminated_comments_and_pragmas(src, line, col, what):
     [d] = errors(src)
     assert (d.code, d.pos.line, d.pos.col) == ("E004", line, col) and what in d.message

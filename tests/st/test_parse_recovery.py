@@ -1,5 +1,6 @@
 """parse_recovery.py: syntax errors are reported where they are, with a
 hint, and the parse goes on."""
+
 from __future__ import annotations
 
 from softplc.runtime.st import ast
@@ -7,6 +8,7 @@ from softplc.runtime.st import ast
 from .parse_helpers import errors, parse, show
 
 # ---------------------------------------------------------------- syntax errors
+
 
 def test_three_separate_errors_give_three_diagnostics():
     src = """PROGRAM p
@@ -63,8 +65,10 @@ END_FUNCTION
 
 
 def test_garbage_between_pous_is_one_error():
-    sf, [d] = parse("PROGRAM a\nx := 1;\nEND_PROGRAM\ngarbage here; more := garbage;\n"
-                    "x := 1;\nFUNCTION f : INT\nf := 1;\nEND_FUNCTION\n")
+    sf, [d] = parse(
+        "PROGRAM a\nx := 1;\nEND_PROGRAM\ngarbage here; more := garbage;\n"
+        "x := 1;\nFUNCTION f : INT\nf := 1;\nEND_FUNCTION\n"
+    )
     assert (d.code, d.pos.line, d.pos.col) == ("E001", 4, 1) and d.hint.startswith("outside a POU")
     assert [p.name for p in sf.decls] == ["a", "f"]
 

@@ -1,5 +1,6 @@
 """parse_stack.py: the limits of a parse (errors, nesting), and feeding
 tokens to the stacks."""
+
 from __future__ import annotations
 
 import pytest
@@ -14,6 +15,7 @@ from softplc.runtime.st.st_grammar import Reduce, grammar
 from .parse_helpers import errors, ok, parse
 
 # ---------------------------------------------------------------- limits
+
 
 def test_too_many_errors_stop_the_parse():
     sf, diags = parse("x := ;\n" * (MAX_ERRORS + 50))
@@ -31,6 +33,7 @@ def test_deep_nesting_is_refused_with_a_diagnostic():
 
 
 # ---------------------------------------------------------------- feeding tokens
+
 
 def test_a_rejected_token_leaves_the_stacks_as_they_were():
     g = grammar()

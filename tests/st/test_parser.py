@@ -2,6 +2,7 @@
 diagnostics instead of exceptions. Here: pragmas, invalid characters, whole
 files, hostile input, threads; the parts are tested beside their modules
 (test_lexer, test_build_*, test_parse_stack, test_parse_recovery)."""
+
 from __future__ import annotations
 
 import random
@@ -14,6 +15,7 @@ from softplc.runtime.st import ast
 from .parse_helpers import REPO, errors, ok, parse, show, span
 
 # ---------------------------------------------------------------- pragmas
+
 
 def test_pragmas_attach_to_the_item_that_follows():
     sf = ok("""{attribute 'qualified_only'}
@@ -62,6 +64,7 @@ END_FUNCTION_BLOCK
 
 # ---------------------------------------------------------------- invalid characters
 
+
 def test_lexical_errors():
     diags = errors("x := 1 § 2;\nw := größe;\ns := 'open\nt := 5;\n")
     assert [(d.code, d.pos.line, d.pos.col) for d in diags] == [("E002", 1, 8), ("E002", 2, 8), ("E004", 3, 6)]
@@ -72,10 +75,17 @@ def test_lexical_errors():
 
 # ---------------------------------------------------------------- files of bare statements
 
-@pytest.mark.parametrize("path, name", [
-    ("ltmr/write_sdo.st", "write_sdo"), ("write-sdo.st", "write_sdo"), ("000 first.st", "_000_first"),
-    ("<string>", "string"), ("---.st", "main"),
-])
+
+@pytest.mark.parametrize(
+    "path, name",
+    [
+        ("ltmr/write_sdo.st", "write_sdo"),
+        ("write-sdo.st", "write_sdo"),
+        ("000 first.st", "_000_first"),
+        ("<string>", "string"),
+        ("---.st", "main"),
+    ],
+)
 def test_bare_statements_become_a_program_named_after_the_file(path, name):
     sf = ok("x := 1;\ny := 2;", path)
     [pou] = sf.decls
@@ -83,8 +93,7 @@ def test_bare_statements_become_a_program_named_after_the_file(path, name):
     assert span(pou) == (1, 1, 2, 7)
 
 
-def _check_sdo_program(sf: ast.SourceFile, name: str, md: int, mw_value: int, mw_table: int, m_cmd: int,
-                       call: str):
+def _check_sdo_program(sf: ast.SourceFile, name: str, md: int, mw_value: int, mw_table: int, m_cmd: int, call: str):
     [pou] = sf.decls
     assert (pou.kind, pou.name, pou.var_blocks) == ("PROGRAM", name, [])
     *first, cond_if = pou.body
@@ -127,7 +136,7 @@ def test_ltmr_read_sdo_example_verbatim():
 
 
 def test_the_fixtures_are_the_manual_text():
-    manual = (REPO.parent / "shared" / "manuals" / "000_97161f374cfc3d02.txt")
+    manual = REPO.parent / "shared" / "manuals" / "000_97161f374cfc3d02.txt"
     if not manual.exists():
         pytest.skip("the manuals are not beside the project")
     lines = manual.read_text(encoding="utf-8").splitlines(keepends=True)
@@ -137,13 +146,43 @@ def test_the_fixtures_are_the_manual_text():
 
 # ---------------------------------------------------------------- hostile input
 
-@pytest.mark.parametrize("src", [
-    "", " \n\t ", "\x00" * 100, "x := 1;\x00", "\ufeffPROGRAM p END_PROGRAM", "(*", "*)", "'", '"', "{", "}",
-    "%", "#", "T#", "16#", "x := \ud800;", "😀" * 50, ")))]]];;;:=:=", "END_IF END_PROGRAM END_VAR",
-    "PROGRAM", "IF TRUE THEN " * 200, "[" * 5000, "(" * 10000, "x := " + "(" * 10000 + "1" + ")" * 10000 + ";",
-    "x := " + "-" * 10000 + "1;", "x := " + " + ".join(["a"] * 5000) + ";", "x := " + "f(" * 3000 + ")" * 3000,
-    "CASE x OF " * 500, "a" * 100_000, "'" + "x" * 100_000, "(* " * 5000 + "*)" * 5000,
-])
+
+@pytest.mark.parametrize(
+    "src",
+    [
+        "",
+        " \n\t ",
+        "\x00" * 100,
+        "x := 1;\x00",
+        "\ufeffPROGRAM p END_PROGRAM",
+        "(*",
+        "*)",
+        "'",
+        '"',
+        "{",
+        "}",
+        "%",
+        "#",
+        "T#",
+        "16#",
+        "x := \ud800;",
+        "😀" * 50,
+        ")))]]];;;:=:=",
+        "END_IF END_PROGRAM END_VAR",
+        "PROGRAM",
+        "IF TRUE THEN " * 200,
+        "[" * 5000,
+        "(" * 10000,
+        "x := " + "(" * 10000 + "1" + ")" * 10000 + ";",
+        "x := " + "-" * 10000 + "1;",
+        "x := " + " + ".join(["a"] * 5000) + ";",
+        "x := " + "f(" * 3000 + ")" * 3000,
+        "CASE x OF " * 500,
+        "a" * 100_000,
+        "'" + "x" * 100_000,
+        "(* " * 5000 + "*)" * 5000,
+    ],
+)
 def test_hostile_input_gives_diagnostics_not_exceptions(src):
     sf, diags = parse(src)
     assert isinstance(sf, ast.SourceFile)
@@ -160,10 +199,53 @@ def test_random_bytes():
 
 def test_random_token_soup():
     rng = random.Random(99)
-    words = ["IF ", "THEN ", "ELSE ", "END_IF", "CASE ", "OF ", "END_CASE", "VAR ", "END_VAR", "PROGRAM ",
-             "END_PROGRAM", "FUNCTION_BLOCK ", "FOR ", "TO ", "DO ", "END_FOR", "TYPE ", "STRUCT ", "(*", "*)",
-             "x", "1", ":=", ";", ":", "(", ")", "[", "]", ",", ".", "..", "T#1s", "16#F", "%MW1", "'s'",
-             " ", "\n", "+", "=", "=>", "^", "#", "SET ", "AT "]
+    words = [
+        "IF ",
+        "THEN ",
+        "ELSE ",
+        "END_IF",
+        "CASE ",
+        "OF ",
+        "END_CASE",
+        "VAR ",
+        "END_VAR",
+        "PROGRAM ",
+        "END_PROGRAM",
+        "FUNCTION_BLOCK ",
+        "FOR ",
+        "TO ",
+        "DO ",
+        "END_FOR",
+        "TYPE ",
+        "STRUCT ",
+        "(*",
+        "*)",
+        "x",
+        "1",
+        ":=",
+        ";",
+        ":",
+        "(",
+        ")",
+        "[",
+        "]",
+        ",",
+        ".",
+        "..",
+        "T#1s",
+        "16#F",
+        "%MW1",
+        "'s'",
+        " ",
+        "\n",
+        "+",
+        "=",
+        "=>",
+        "^",
+        "#",
+        "SET ",
+        "AT ",
+    ]
     for _ in range(300):
         src = "".join(rng.choice(words) for _ in range(rng.randint(1, 80)))
         sf, diags = parse(src)

@@ -1,6 +1,7 @@
 """Range analysis (runtime/st/ranges.py): the interval an integer expression
 of the checked AST can take, which lets generated code skip a wrap or a
 bounds check."""
+
 from __future__ import annotations
 
 import pytest
@@ -10,8 +11,7 @@ from softplc.runtime.st import types as T
 
 from .conftest import check_st, pou_body
 
-DECLS = ("b : BYTE; u : USINT; i : INT; d : DINT; w : WORD; r : REAL; k : INT; x : DINT;"
-         " arr : ARRAY[1..10] OF USINT;")
+DECLS = "b : BYTE; u : USINT; i : INT; d : DINT; w : WORD; r : REAL; k : INT; x : DINT; arr : ARRAY[1..10] OF USINT;"
 
 
 def value(expr: str, decls: str = DECLS):
@@ -21,26 +21,29 @@ def value(expr: str, decls: str = DECLS):
     return pou_body(checked)[0].value
 
 
-@pytest.mark.parametrize("expr,rng", [
-    ("42", (42, 42)),
-    ("-7", (-7, -7)),
-    ("b", (0, 255)),
-    ("i", (-32768, 32767)),
-    ("arr[2]", (0, 255)),
-    ("b + u", (0, 510)),
-    ("b - u", (-255, 255)),
-    ("u * 3", (0, 765)),
-    ("i AND 16#0F", (0, 15)),
-    ("b OR u", (0, 255)),
-    ("i MOD 10", (-9, 9)),
-    ("u MOD 10", (0, 9)),
-    ("u / 4", (0, 63)),
-    ("SHL(w, 1)", (0, 65535)),
-    ("INT_TO_BYTE(d)", (0, 255)),
-    ("MAX(b, u)", (0, 255)),
-    ("SEL(i > 0, 3, 9)", (3, 9)),
-    ("REAL_TO_INT(r)", (-32768, 32767)),
-])
+@pytest.mark.parametrize(
+    "expr,rng",
+    [
+        ("42", (42, 42)),
+        ("-7", (-7, -7)),
+        ("b", (0, 255)),
+        ("i", (-32768, 32767)),
+        ("arr[2]", (0, 255)),
+        ("b + u", (0, 510)),
+        ("b - u", (-255, 255)),
+        ("u * 3", (0, 765)),
+        ("i AND 16#0F", (0, 15)),
+        ("b OR u", (0, 255)),
+        ("i MOD 10", (-9, 9)),
+        ("u MOD 10", (0, 9)),
+        ("u / 4", (0, 63)),
+        ("SHL(w, 1)", (0, 65535)),
+        ("INT_TO_BYTE(d)", (0, 255)),
+        ("MAX(b, u)", (0, 255)),
+        ("SEL(i > 0, 3, 9)", (3, 9)),
+        ("REAL_TO_INT(r)", (-32768, 32767)),
+    ],
+)
 def test_interval_of_integer_expressions(expr, rng):
     assert R.value_range(value(expr)) == rng
 
@@ -63,10 +66,19 @@ def test_a_variable_the_caller_knows_better_than_its_type():
     assert R.value_range(e, {id(k): (1, 10)}) == (2, 20)
 
 
-@pytest.mark.parametrize("expr,stored", [
-    ("i", True), ("arr[3]", True), ("5", True), ("i + 1", False),
-    ("MAX(i, k)", True), ("MAX(i, k + 1)", False), ("SEL(i > 0, k, i)", True), ("ABS(i)", False),
-])
+@pytest.mark.parametrize(
+    "expr,stored",
+    [
+        ("i", True),
+        ("arr[3]", True),
+        ("5", True),
+        ("i + 1", False),
+        ("MAX(i, k)", True),
+        ("MAX(i, k + 1)", False),
+        ("SEL(i > 0, k, i)", True),
+        ("ABS(i)", False),
+    ],
+)
 def test_stored_values_have_their_types_representation(expr, stored):
     assert R.is_stored_value(value(expr)) is stored
 

@@ -1,5 +1,6 @@
 """rt_convert.py: the <src>_TO_<dst> conversions (through rtlib: the
 expectations also use f32 and iec_literal)."""
+
 from __future__ import annotations
 
 from softplc.runtime.st import rtlib as r
@@ -9,14 +10,15 @@ from .rt_helpers import INF, NAN, STRING, WSTRING, conv
 
 # ---------------------------------------------------------------- conversions
 
+
 def test_integer_conversions_wrap():
     assert conv(T.INT, T.SINT, 300) == 44
     assert conv(T.INT, T.SINT, 4223) == 127  # CODESYS example
     assert conv(T.DINT, T.UINT, -1) == 65535
-    assert conv(T.UDINT, T.DINT, 2 ** 32 - 1) == -1
+    assert conv(T.UDINT, T.DINT, 2**32 - 1) == -1
     assert conv(T.INT, T.WORD, -1) == 0xFFFF
     assert conv(T.WORD, T.INT, 0x8000) == -32768
-    assert conv(T.LINT, T.ULINT, -2) == 2 ** 64 - 2
+    assert conv(T.LINT, T.ULINT, -2) == 2**64 - 2
     assert conv(T.SINT, T.LINT, -5) == -5
 
 
@@ -33,12 +35,12 @@ def test_real_to_integer_rounds_then_wraps():
 
 def test_to_real():
     assert conv(T.DINT, T.REAL, 16777217) == 16777216.0
-    assert conv(T.ULINT, T.REAL, 2 ** 64 - 1) == 18446744073709551616.0
-    assert conv(T.LINT, T.REAL, 2 ** 53 + 2 ** 29 + 1) == 9007200328482816.0  # rounded once
+    assert conv(T.ULINT, T.REAL, 2**64 - 1) == 18446744073709551616.0
+    assert conv(T.LINT, T.REAL, 2**53 + 2**29 + 1) == 9007200328482816.0  # rounded once
     assert conv(T.LREAL, T.REAL, 0.1) == 0.10000000149011612
     assert conv(T.LREAL, T.REAL, 1e300) == INF
     assert conv(T.REAL, T.LREAL, r.f32(0.1)) == 0.10000000149011612
-    assert conv(T.ULINT, T.LREAL, 2 ** 64 - 1) == 1.8446744073709552e19
+    assert conv(T.ULINT, T.LREAL, 2**64 - 1) == 1.8446744073709552e19
     assert conv(T.BOOL, T.REAL, True) == 1.0
 
 
@@ -58,7 +60,7 @@ def test_bool_conversions():
 def test_time_number_conversions_are_raw():
     assert conv(T.TIME, T.DINT, 1000) == 1000  # TIME_TO_DINT(T#1s)
     assert conv(T.TIME, T.DWORD, 300_000) == 300_000  # TIME_TO_DWORD(T#5m)
-    assert conv(T.TIME, T.UDINT, -1) == 2 ** 32 - 1
+    assert conv(T.TIME, T.UDINT, -1) == 2**32 - 1
     assert conv(T.LTIME, T.INT, 2001) == 2001
     assert conv(T.DINT, T.TIME, 1500) == 1500
     assert conv(T.REAL, T.TIME, 1.5) == 2  # ms, rounded
@@ -76,10 +78,10 @@ def test_time_date_conversions():
     assert conv(T.DT, T.TOD, dt) == 45_015_000
     assert conv(T.DT, T.DATE, dt) == 19724 * 86_400
     assert conv(T.DATE, T.DT, 19724 * 86_400) == 19724 * 86_400
-    assert conv(T.DT, T.LDT, dt) == dt * 10 ** 9
-    assert conv(T.LDT, T.DT, dt * 10 ** 9 + 999_999_999) == dt  # floor to the second
-    assert conv(T.LDT, T.LTOD, dt * 10 ** 9 + 7) == 45_015 * 10 ** 9 + 7
-    assert conv(T.LDT, T.LDATE, dt * 10 ** 9) == 19724 * 86_400 * 10 ** 9
+    assert conv(T.DT, T.LDT, dt) == dt * 10**9
+    assert conv(T.LDT, T.DT, dt * 10**9 + 999_999_999) == dt  # floor to the second
+    assert conv(T.LDT, T.LTOD, dt * 10**9 + 7) == 45_015 * 10**9 + 7
+    assert conv(T.LDT, T.LDATE, dt * 10**9) == 19724 * 86_400 * 10**9
     assert conv(T.TIME, T.LTIME, 1500) == 1_500_000_000
     assert conv(T.LTIME, T.TIME, 1_999_999) == 1  # truncated
     assert conv(T.LTIME, T.TIME, -1_500_999) == -1  # toward zero
@@ -150,6 +152,6 @@ def test_from_ns_and_to_ns():
     assert r.from_ns(T.TIME, 1_500_000) == 1  # T#1.5ms as TIME
     assert r.from_ns(T.TIME, -1_500_000) == -1
     assert r.from_ns(T.LTIME, 7) == 7
-    assert r.from_ns(T.DATE, 86_400 * 10 ** 9) == 86_400
+    assert r.from_ns(T.DATE, 86_400 * 10**9) == 86_400
     assert r.to_ns(T.TIME, 2) == 2_000_000
-    assert r.to_ns(T.DT, 1) == 10 ** 9
+    assert r.to_ns(T.DT, 1) == 10**9

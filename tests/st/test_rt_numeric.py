@@ -1,5 +1,6 @@
 """rt_numeric.py: REAL rounding and real functions, integer division and
 rounding, bit strings and BCD, with the examples of the CODESYS documentation."""
+
 from __future__ import annotations
 
 import math
@@ -14,6 +15,7 @@ from .rt_helpers import INF, NAN
 
 # ---------------------------------------------------------------- REAL
 
+
 def test_f32_rounds_to_binary32():
     assert r.f32(0.1) == 0.10000000149011612
     assert r.f32(1.0) == 1.0
@@ -26,7 +28,7 @@ def test_f32_overflow_and_specials():
     assert r.f32(3.4028235e38) == 3.4028234663852886e38  # FLT_MAX stays
     assert r.f32(INF) == INF
     assert math.isnan(r.f32(NAN))
-    assert r.f32(10 ** 400) == INF  # an int beyond any float
+    assert r.f32(10**400) == INF  # an int beyond any float
     assert r.f32(1e-46) == 0.0  # underflow
 
 
@@ -66,6 +68,7 @@ def test_real_functions_never_raise():
 
 # ---------------------------------------------------------------- integers
 
+
 def test_idiv_truncates_toward_zero():
     assert r.idiv(-7, 2) == -3
     assert r.idiv(7, -2) == -3
@@ -91,13 +94,13 @@ def test_division_by_zero_raises():
 
 
 @settings(max_examples=300, deadline=None)
-@given(st.integers(-2 ** 64, 2 ** 64), st.integers(-2 ** 64, 2 ** 64).filter(bool))
+@given(st.integers(-(2**64), 2**64), st.integers(-(2**64), 2**64).filter(bool))
 def test_idiv_imod_identity(a, b):
     q, m = r.idiv(a, b), r.imod(a, b)
     assert q * b + m == a
     assert abs(m) < abs(b)
     assert m == 0 or (m < 0) == (a < 0)
-    assert q == int(a / b) or abs(a) > 2 ** 52  # trunc of the exact quotient
+    assert q == int(a / b) or abs(a) > 2**52  # trunc of the exact quotient
 
 
 def test_round_half_away_from_zero():
@@ -110,7 +113,7 @@ def test_round_half_away_from_zero():
     assert r.round_half_away(0.49999999999999994) == 0  # no x + 0.5 trap
     assert r.round_half_away(NAN) == 0
     assert r.round_half_away(INF) == 0
-    assert r.round_half_away(1e20) == 10 ** 20
+    assert r.round_half_away(1e20) == 10**20
 
 
 def test_trunc():
@@ -120,6 +123,7 @@ def test_trunc():
 
 
 # ---------------------------------------------------------------- bit strings
+
 
 def test_shifts_and_rotations():
     assert r.shl(8, 0x81, 1) == 0x02
@@ -146,6 +150,7 @@ def test_shift_signed_pattern():
 
 
 # ---------------------------------------------------------------- BCD
+
 
 def test_bcd():
     assert r.bcd_to_int(0x27, 8) == 27  # CODESYS BCD_TO_INT(2#00100111)

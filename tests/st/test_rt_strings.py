@@ -1,9 +1,11 @@
 """rt_strings.py: the IEC string functions, with the CODESYS examples."""
+
 from __future__ import annotations
 
 from softplc.runtime.st import rt_strings as r
 
 # ---------------------------------------------------------------- strings
+
 
 def test_string_functions_codesys_examples():
     assert r.LEN("SUSI") == 4

@@ -1,5 +1,6 @@
 """rt_text.py: values read from and written as ST literal text (through
 rtlib: the round trips also convert)."""
+
 from __future__ import annotations
 
 import pytest
@@ -12,6 +13,7 @@ from softplc.runtime.st import types as T
 from .rt_helpers import INF, NAN, STRING, WSTRING, conv, ns
 
 # ---------------------------------------------------------------- parsing text
+
 
 def test_parse_int():
     assert r.parse_int("  42 ") == 42
@@ -55,10 +57,10 @@ def test_parse_temporal():
     assert ns("T#1.5s", T.DURATION) == 1_500_000_000
     assert ns("LT#1us7ns", T.DURATION) == 1007
     assert ns("1m30s", T.DURATION) == 90_000_000_000  # prefix optional
-    assert ns("D#2024-01-02", T.DATECAT) == 19724 * 86_400 * 10 ** 9
+    assert ns("D#2024-01-02", T.DATECAT) == 19724 * 86_400 * 10**9
     assert ns("TOD#12:30:15.5", T.TODCAT) == 45_015_500_000_000
     assert ns("TIME_OF_DAY#12:30", T.TODCAT) == 45_000_000_000_000
-    assert ns("DT#2024-01-02-12:30:15", T.DTCAT) == (19724 * 86_400 + 45_015) * 10 ** 9
+    assert ns("DT#2024-01-02-12:30:15", T.DTCAT) == (19724 * 86_400 + 45_015) * 10**9
     assert ns("D#2024-02-30", T.DATECAT) is None
     assert ns("TOD#25:00:00", T.TODCAT) is None
     assert ns("D#2024-01-02", T.DURATION) is None  # wrong prefix
@@ -67,6 +69,7 @@ def test_parse_temporal():
 
 
 # ---------------------------------------------------------------- literals
+
 
 def test_iec_literal_time():
     assert r.iec_literal(T.TIME, 3_723_004) == "T#1h2m3s4ms"
@@ -83,12 +86,11 @@ def test_iec_literal_dates():
     assert r.iec_literal(T.TOD, 45_015_500) == "TOD#12:30:15.5"
     assert r.iec_literal(T.TOD, 45_015_000) == "TOD#12:30:15"
     assert r.iec_literal(T.DT, day + 45_015) == "DT#2024-01-02-12:30:15"
-    assert r.iec_literal(T.LDATE, day * 10 ** 9) == "LD#2024-01-02"
+    assert r.iec_literal(T.LDATE, day * 10**9) == "LD#2024-01-02"
     assert r.iec_literal(T.LTOD, 45_015_000_000_001) == "LTOD#12:30:15.000000001"
-    assert r.iec_literal(T.LDT, (day + 45_015) * 10 ** 9 + 500_000_000) == \
-        "LDT#2024-01-02-12:30:15.5"
+    assert r.iec_literal(T.LDT, (day + 45_015) * 10**9 + 500_000_000) == "LDT#2024-01-02-12:30:15.5"
     assert r.iec_literal(T.DATE, 0) == "D#1970-01-01"
-    assert r.iec_literal(T.DT, 2 ** 32 - 1) == "DT#2106-02-07-06:28:15"
+    assert r.iec_literal(T.DT, 2**32 - 1) == "DT#2106-02-07-06:28:15"
 
 
 def test_iec_literal_other_types():
@@ -102,13 +104,15 @@ def test_iec_literal_other_types():
     assert r.iec_literal(color, 7) == "7"
 
 
-_TEMPORAL = [(T.TIME, T.DURATION, st.integers(-2 ** 31, 2 ** 31 - 1)),
-             (T.LTIME, T.DURATION, st.integers(-2 ** 63, 2 ** 63 - 1)),
-             (T.DATE, T.DATECAT, st.integers(0, 2 ** 32 // 86_400 - 1).map(lambda d: d * 86_400)),
-             (T.TOD, T.TODCAT, st.integers(0, 86_400_000 - 1)),
-             (T.DT, T.DTCAT, st.integers(0, 2 ** 32 - 1)),
-             (T.LTOD, T.TODCAT, st.integers(0, 86_400 * 10 ** 9 - 1)),
-             (T.LDT, T.DTCAT, st.integers(0, 2 ** 64 - 1))]
+_TEMPORAL = [
+    (T.TIME, T.DURATION, st.integers(-(2**31), 2**31 - 1)),
+    (T.LTIME, T.DURATION, st.integers(-(2**63), 2**63 - 1)),
+    (T.DATE, T.DATECAT, st.integers(0, 2**32 // 86_400 - 1).map(lambda d: d * 86_400)),
+    (T.TOD, T.TODCAT, st.integers(0, 86_400_000 - 1)),
+    (T.DT, T.DTCAT, st.integers(0, 2**32 - 1)),
+    (T.LTOD, T.TODCAT, st.integers(0, 86_400 * 10**9 - 1)),
+    (T.LDT, T.DTCAT, st.integers(0, 2**64 - 1)),
+]
 
 
 @pytest.mark.parametrize("t,cat,values", _TEMPORAL, ids=[x[0].name for x in _TEMPORAL])
@@ -119,10 +123,12 @@ def test_iec_literal_round_trips(t, cat, values):
         text = r.iec_literal(t, v)
         assert r.from_ns(t, r.parse_temporal(text, cat)) == v
         assert conv(STRING, t, text) == v  # STRING_TO_<t>
+
     check()
 
 
 # ---------------------------------------------------------------- REAL <-> STRING
+
 
 def test_real_to_string():
     assert r.real_to_string(1.5) == "1.5"

@@ -3,6 +3,7 @@ loader, the checker and the standard functions reach every primitive as
 rtlib.X. What the primitives do is tested beside the modules that hold
 them (test_rt_numeric, test_rt_wrap, test_rt_strings, test_rt_text,
 test_rt_convert, test_rt_timedate)."""
+
 from __future__ import annotations
 
 from softplc.runtime.st import rt_convert, rt_numeric, rt_strings, rt_text, rt_timedate, rt_wrap, rtlib

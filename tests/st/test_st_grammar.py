@@ -1,4 +1,5 @@
 """st_grammar.py: the grammar bound to the AST builder, built on first use."""
+
 from __future__ import annotations
 
 import subprocess
@@ -16,11 +17,13 @@ def test_reserved_words_are_grammar_keywords():
 
 
 def test_the_grammar_is_built_on_first_use_and_then_shared():
-    code = ("import softplc.runtime.st.parser, softplc.runtime.st.st_grammar as g\n"
-            "assert g._grammar is None, 'built at import'\n"
-            "from softplc.runtime.st.diagnostics import DiagnosticBag\n"
-            "softplc.runtime.st.parser.parse_source('x := 1;', 'a.st', DiagnosticBag())\n"
-            "assert g._grammar is g.grammar()\n")
+    code = (
+        "import softplc.runtime.st.parser, softplc.runtime.st.st_grammar as g\n"
+        "assert g._grammar is None, 'built at import'\n"
+        "from softplc.runtime.st.diagnostics import DiagnosticBag\n"
+        "softplc.runtime.st.parser.parse_source('x := 1;', 'a.st', DiagnosticBag())\n"
+        "assert g._grammar is g.grammar()\n"
+    )
     subprocess.run([sys.executable, "-c", code], check=True)
     assert grammar() is grammar()
 
@@ -88,8 +91,9 @@ def reductions(builder: type) -> dict:
     for row in compile_grammar(TINY, lexer="basic", maybe_placeholders=True).states.values():
         for action in row.values():
             if not isinstance(action, int):
-                out[(action.alias or action.origin, tuple(s.name for s in action.expansion))] = \
-                    st_grammar.Reduce(action, builder)
+                out[(action.alias or action.origin, tuple(s.name for s in action.expansion))] = st_grammar.Reduce(
+                    action, builder
+                )
     return out
 
 

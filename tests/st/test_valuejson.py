@@ -1,4 +1,5 @@
 """JSON encoding of ST values (softplc exec output)."""
+
 import json
 import math
 
@@ -9,26 +10,30 @@ from softplc.runtime.st.valuejson import encode_instance, encode_value
 
 # ---------------------------------------------------------------- single values
 
-@pytest.mark.parametrize("t, v, expected", [
-    (T.BOOL, True, True),
-    (T.BOOL, 0, False),
-    (T.INT, -32768, -32768),
-    (T.LWORD, (1 << 64) - 1, (1 << 64) - 1),   # exact, no float rounding
-    (T.LREAL, 0.1, 0.1),
-    (T.StringType(80), "héllo", "héllo"),
-    (T.SubrangeType(T.INT, 0, 10), 7, 7),
-])
+
+@pytest.mark.parametrize(
+    "t, v, expected",
+    [
+        (T.BOOL, True, True),
+        (T.BOOL, 0, False),
+        (T.INT, -32768, -32768),
+        (T.LWORD, (1 << 64) - 1, (1 << 64) - 1),  # exact, no float rounding
+        (T.LREAL, 0.1, 0.1),
+        (T.StringType(80), "héllo", "héllo"),
+        (T.SubrangeType(T.INT, 0, 10), 7, 7),
+    ],
+)
 def test_elementary(t, v, expected):
     got = encode_value(t, v)
     assert got == expected and type(got) is type(expected)
 
 
 def test_real_shows_shortest_binary32_digits():
-    stored = 0.10000000149011612           # REAL 0.1 as held after rounding to 32 bits
+    stored = 0.10000000149011612  # REAL 0.1 as held after rounding to 32 bits
     assert encode_value(T.REAL, stored) == 0.1
     assert encode_value(T.REAL, 16777216.0) == 16777216.0
     assert encode_value(T.REAL, 3.4028234663852886e38) == 3.4028235e38
-    assert encode_value(T.LREAL, stored) == stored    # LREAL keeps every digit
+    assert encode_value(T.LREAL, stored) == stored  # LREAL keeps every digit
 
 
 @pytest.mark.parametrize("t", [T.REAL, T.LREAL])
@@ -41,7 +46,7 @@ def test_non_finite_reals_are_strings(t):
 def test_enum_name_or_value():
     color = T.EnumType("Color", {"RED": 0, "GREEN": 5}, {"RED": "Red", "GREEN": "Green"})
     assert encode_value(color, 5) == "Green"
-    assert encode_value(color, 3) == 3      # no enumerator has this value
+    assert encode_value(color, 3) == 3  # no enumerator has this value
 
 
 def test_arrays_nest_per_dimension():
@@ -142,9 +147,9 @@ def dump():
 
 
 def test_program_dump(dump):
-    json.dumps(dump)    # JSON-ready all the way down
+    json.dumps(dump)  # JSON-ready all the way down
     assert dump["flag"] is True
-    assert dump["small"] == -127        # 127 +1 wraps to -128, +1 again
+    assert dump["small"] == -127  # 127 +1 wraps to -128, +1 again
     assert dump["big"] == 0xFFFF_FFFF_FFFF_FFFF
     assert dump["r"] == 0.1 and dump["lr"] == 0.1
     assert dump["s"] == "hi"

@@ -13,6 +13,7 @@ drives are units of a simulated Modbus line ([[sim]] type da1 ... de11).
 
 Public names: DEVICE, EatonDriveModel, Family.
 """
+
 from __future__ import annotations
 
 from ...io.modbus import ModbusSimContext
@@ -23,20 +24,26 @@ from . import st_codes
 from .model import EatonDriveModel
 from .registers import Family
 
-SIM_TYPES = ("da1", "db1", "dc1", "de1", "de11")     # the PowerXL families; de11: a DE1 with DXE-EXT-SET
+SIM_TYPES = ("da1", "db1", "dc1", "de1", "de11")  # the PowerXL families; de11: a DE1 with DXE-EXT-SET
 
 
 def _simulator(sim, ctx: ModbusSimContext) -> EatonDriveModel:
     family = Family.DE1 if sim.type == "de11" else Family[sim.type.upper()]
     try:
         return EatonDriveModel(family, de11=sim.type == "de11", registers=dict(sim.options.registers))
-    except ValueError as exc:    # a register the drive does not have
+    except ValueError as exc:  # a register the drive does not have
         raise DriverError(f"{ctx.where}: {sim.key}.registers: {exc}") from None
 
 
 DEVICE = Device(
-    name="eaton", order=20, bus="modbus", sim_types=SIM_TYPES, sim_options=RegisterPresets, simulator=_simulator,
+    name="eaton",
+    order=20,
+    bus="modbus",
+    sim_types=SIM_TYPES,
+    sim_options=RegisterPresets,
+    simulator=_simulator,
     libraries=(StLibrary("softplc.fblocks.vendor", "eaton.st"), StLibrary("softplc.fblocks.vendor", "eaton_codes.st")),
-    generated=(GeneratedFile(PackageFile("softplc.fblocks.vendor", "eaton_codes.st"), st_codes.render),))
+    generated=(GeneratedFile(PackageFile("softplc.fblocks.vendor", "eaton_codes.st"), st_codes.render),),
+)
 
 __all__ = ["DEVICE", "EatonDriveModel", "Family"]

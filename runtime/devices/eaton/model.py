@@ -24,6 +24,7 @@ changes (the ramp reaches zero or the setpoint, the comm-loss watchdog
 expires), so the state after advance(t) does not depend on how many calls
 led there.
 """
+
 from __future__ import annotations
 
 import re
@@ -41,14 +42,14 @@ S = 1_000_000_000
 # ---------------------------------------------------------------- simulator choices (not in the manual)
 # Defaults that let a master drive the model out of the box; a real drive
 # leaves the factory with terminal control (P1-12 / P-12 = 0, L397, L413).
-DEFAULT_F_MAX_HZ = 50.0             # f-max (P1-01 / P-01)
-DEFAULT_F_MIN_HZ = 0.0              # f-min (P1-02 / P-02)
-DEFAULT_RAMP_S = 5.0                # t-acc, t-dec (P1-03/P1-04, P-03/P-04)
-DEFAULT_QUICK_STOP_S = 1.0          # ramp 2 (DA1 P2-25, DB1/DC1 P-24)
-DEFAULT_FIXED_FREQUENCY_1_HZ = 20.0     # DA1 P2-01 / P-20: the DE1 factory FF1 (L622-630)
-DEFAULT_FIXED_FREQUENCY_8_HZ = 10.0     # DA1 P2-08, the comm-loss fixed frequency
+DEFAULT_F_MAX_HZ = 50.0  # f-max (P1-01 / P-01)
+DEFAULT_F_MIN_HZ = 0.0  # f-min (P1-02 / P-02)
+DEFAULT_RAMP_S = 5.0  # t-acc, t-dec (P1-03/P1-04, P-03/P-04)
+DEFAULT_QUICK_STOP_S = 1.0  # ramp 2 (DA1 P2-25, DB1/DC1 P-24)
+DEFAULT_FIXED_FREQUENCY_1_HZ = 20.0  # DA1 P2-01 / P-20: the DE1 factory FF1 (L622-630)
+DEFAULT_FIXED_FREQUENCY_8_HZ = 10.0  # DA1 P2-08, the comm-loss fixed frequency
 DEFAULT_MOTOR_VOLTAGE_V = 400
-DEFAULT_MOTOR_CURRENT_A = 8.2       # a 4 kW four-pole motor at 400 V
+DEFAULT_MOTOR_CURRENT_A = 8.2  # a 4 kW four-pole motor at 400 V
 DEFAULT_MOTOR_FREQUENCY_HZ = 50
 DEFAULT_MOTOR_SPEED_RPM = 1440
 DEFAULT_UNIT_ADDRESS = 1
@@ -59,15 +60,15 @@ DEFAULT_UNIT_ADDRESS = 1
 # DRIVE_VARIANTS value 0 (kW, 3-phase in, 3-phase out).
 DA1_FRAME_SIZE = 2
 DA1_POWER_INDEX = 6
-DA1_VOLTAGE_INDEX = 4               # not in the manual
+DA1_VOLTAGE_INDEX = 4  # not in the manual
 DRIVE_VARIANT = 0
 POWER_RATING_KW = 4
 VOLTAGE_LEVEL_V = 400
-SOFTWARE_VERSION_CONTROL = 310      # 3.10 (two decimals, L1080)
-SOFTWARE_VERSION_POWER = 150        # 1.50 (L1084)
+SOFTWARE_VERSION_CONTROL = 310  # 3.10 (two decimals, L1080)
+SOFTWARE_VERSION_POWER = 150  # 1.50 (L1084)
 SERIAL_NUMBER = (0, 0, 0x1234, 0x5678)
-DC_LINK_VOLTAGE_V = 565             # monitor register 23: 400 V x sqrt 2
-HEATSINK_TEMPERATURE_C = 30         # monitor register 24
+DC_LINK_VOLTAGE_V = 565  # monitor register 23: 400 V x sqrt 2
+HEATSINK_TEMPERATURE_C = 30  # monitor register 24
 # Current model: magnetising current plus a load current proportional to the
 # output frequency, rated current at the motor rated frequency; torque
 # proportional to speed (a fan-like load), power = rated power x torque x speed.
@@ -77,13 +78,33 @@ MAGNETISING_CURRENT_RATIO = Fraction(3, 10)
 # finds their registers). DE1 has no quick-stop ramp: simulator choice, it
 # uses its deceleration ramp P-04. DB1/DC1 P-13 "Letzter Fehler" (L1648)
 # shows the last fault; the DA1 has it in P0-13, without a register.
-_COMPACT = {"f_max": "P-01", "f_min": "P-02", "accel": "P-03", "decel": "P-04", "quick": "P-24",
-            "ff1": "P-20", "voltage": "P-07", "current": "P-08", "frequency": "P-09", "speed": "P-10",
-            "last_fault": "P-13"}
+_COMPACT = {
+    "f_max": "P-01",
+    "f_min": "P-02",
+    "accel": "P-03",
+    "decel": "P-04",
+    "quick": "P-24",
+    "ff1": "P-20",
+    "voltage": "P-07",
+    "current": "P-08",
+    "frequency": "P-09",
+    "speed": "P-10",
+    "last_fault": "P-13",
+}
 _NAMES = {
-    Family.DA1: {"f_max": "P1-01", "f_min": "P1-02", "accel": "P1-03", "decel": "P1-04", "quick": "P2-25",
-                 "ff1": "P2-01", "ff8": "P2-08", "voltage": "P1-07", "current": "P1-08", "frequency": "P1-09",
-                 "speed": "P1-10"},
+    Family.DA1: {
+        "f_max": "P1-01",
+        "f_min": "P1-02",
+        "accel": "P1-03",
+        "decel": "P1-04",
+        "quick": "P2-25",
+        "ff1": "P2-01",
+        "ff8": "P2-08",
+        "voltage": "P1-07",
+        "current": "P1-08",
+        "frequency": "P1-09",
+        "speed": "P1-10",
+    },
     Family.DB1: _COMPACT,
     Family.DC1: _COMPACT,
     Family.DE1: {**_COMPACT, "quick": "P-04"},
@@ -160,14 +181,14 @@ class EatonDriveModel:
         self._di1 = True
         self.fault = eaton_faults.FAULT_NONE
         self._now: int | None = None
-        self._out = Fraction(0)             # output frequency in Hz, negative = reverse
-        self._modulating = False            # the output stage is on (status RUNNING)
-        self._run_request = False           # a RUN edge was accepted and not withdrawn
-        self._quick = False                 # ramping down on ramp 2
-        self._trip_at_standstill = False    # DA1 P5-06 = 1 after a comm loss
+        self._out = Fraction(0)  # output frequency in Hz, negative = reverse
+        self._modulating = False  # the output stage is on (status RUNNING)
+        self._run_request = False  # a RUN edge was accepted and not withdrawn
+        self._quick = False  # ramping down on ramp 2
+        self._trip_at_standstill = False  # DA1 P5-06 = 1 after a comm loss
         self._last_telegram: int | None = None
-        self._comm_lost = False             # the watchdog fired; waits for a telegram
-        self._fixed_frequency_8 = False     # DA1 P5-06 = 3 in effect
+        self._comm_lost = False  # the watchdog fired; waits for a telegram
+        self._fixed_frequency_8 = False  # DA1 P5-06 = 3 in effect
         self._cw_prev = self._control_word()
         self._publish()
 
@@ -200,12 +221,20 @@ class EatonDriveModel:
         """Simulator defaults: Modbus control, 0..50 Hz, 5 s ramps, the comm
         timeout at its factory value. Parameters not named here are 0."""
         family = self.family
-        self._set_param(eaton_parameters.CONTROL_SOURCE_PARAMETER[family],
-                        eaton_parameters.MODBUS_CONTROL_SOURCES[family][0])
-        for key, value in (("f_max", DEFAULT_F_MAX_HZ), ("f_min", DEFAULT_F_MIN_HZ), ("accel", DEFAULT_RAMP_S),
-                           ("decel", DEFAULT_RAMP_S), ("ff1", DEFAULT_FIXED_FREQUENCY_1_HZ),
-                           ("voltage", DEFAULT_MOTOR_VOLTAGE_V), ("current", DEFAULT_MOTOR_CURRENT_A),
-                           ("frequency", DEFAULT_MOTOR_FREQUENCY_HZ), ("speed", DEFAULT_MOTOR_SPEED_RPM)):
+        self._set_param(
+            eaton_parameters.CONTROL_SOURCE_PARAMETER[family], eaton_parameters.MODBUS_CONTROL_SOURCES[family][0]
+        )
+        for key, value in (
+            ("f_max", DEFAULT_F_MAX_HZ),
+            ("f_min", DEFAULT_F_MIN_HZ),
+            ("accel", DEFAULT_RAMP_S),
+            ("decel", DEFAULT_RAMP_S),
+            ("ff1", DEFAULT_FIXED_FREQUENCY_1_HZ),
+            ("voltage", DEFAULT_MOTOR_VOLTAGE_V),
+            ("current", DEFAULT_MOTOR_CURRENT_A),
+            ("frequency", DEFAULT_MOTOR_FREQUENCY_HZ),
+            ("speed", DEFAULT_MOTOR_SPEED_RPM),
+        ):
             self._set_scaled(key, value)
         serial = eaton_settings.SERIAL_SETTINGS[family]
         self._set_param(serial.address, DEFAULT_UNIT_ADDRESS, "adress")
@@ -213,21 +242,27 @@ class EatonDriveModel:
         if serial.data_format_factory is not None:
             self._set_param(serial.data_format, serial.data_format_factory)
         if family is Family.DA1:
-            self._regs[eaton.REG_DRIVE_TYPE] = (DA1_FRAME_SIZE << 12 | DA1_VOLTAGE_INDEX << 8
-                                                | DA1_POWER_INDEX)     # P0-29 Rating ID (L1216-1219)
+            self._regs[eaton.REG_DRIVE_TYPE] = (
+                DA1_FRAME_SIZE << 12 | DA1_VOLTAGE_INDEX << 8 | DA1_POWER_INDEX
+            )  # P0-29 Rating ID (L1216-1219)
             self._set_param(self._name("quick"), self._quick_scale().to_raw(DEFAULT_QUICK_STOP_S))
             self._set_scaled("ff8", DEFAULT_FIXED_FREQUENCY_8_HZ)
-            self._set_param(eaton_settings.DA1_COMM_TIMEOUT,
-                            eaton_settings.DA1_COMM_TIMEOUT_FACTORY)        # 2.0 s (L387, A7)
-            self._set_param(eaton_settings.DA1_COMM_LOSS_ACTION,
-                            eaton_settings.DA1_COMM_LOSS_ACTION_FACTORY)    # trip (L388)
+            self._set_param(
+                eaton_settings.DA1_COMM_TIMEOUT, eaton_settings.DA1_COMM_TIMEOUT_FACTORY
+            )  # 2.0 s (L387, A7)
+            self._set_param(
+                eaton_settings.DA1_COMM_LOSS_ACTION, eaton_settings.DA1_COMM_LOSS_ACTION_FACTORY
+            )  # trip (L388)
         else:
             self._regs[eaton.REG_DRIVE_TYPE] = DRIVE_VARIANT
             if family is not Family.DE1:
                 self._set_scaled("quick", DEFAULT_QUICK_STOP_S)
             # DB1/DC1 code 4 "t 3000 ms" (L400, L423, A8), DE1 0 = off (L445)
-            self._set_param(eaton_settings.COMM_TIMEOUT_PARAMETER[family],
-                            eaton_settings.COMM_TIMEOUT_FACTORY_CODE[family], "timeout")
+            self._set_param(
+                eaton_settings.COMM_TIMEOUT_PARAMETER[family],
+                eaton_settings.COMM_TIMEOUT_FACTORY_CODE[family],
+                "timeout",
+            )
             if family is Family.DE1:
                 self._set_param(eaton_settings.DE1_PDP_ADDRESS, DEFAULT_UNIT_ADDRESS)
         self._regs[eaton.REG_POWER_RATING] = POWER_RATING_KW
@@ -235,14 +270,15 @@ class EatonDriveModel:
         self._regs[eaton.REG_SOFTWARE_VERSION_CONTROL] = SOFTWARE_VERSION_CONTROL
         self._regs[eaton.REG_SOFTWARE_VERSION_POWER] = SOFTWARE_VERSION_POWER
         model = "DE11" if self.de11 else family.name
-        self._regs[eaton.REG_DEVICE_ID] = next(v for v, (_, m) in eaton.DEVICE_IDENTIFICATION.items()
-                                               if m == model)       # L1086-1096
+        self._regs[eaton.REG_DEVICE_ID] = next(
+            v for v, (_, m) in eaton.DEVICE_IDENTIFICATION.items() if m == model
+        )  # L1086-1096
         for register, word in zip(eaton.SERIAL_NUMBER_REGISTERS[family], SERIAL_NUMBER):
             self._regs[register] = word
         monitors = {m.register for m in eaton.MONITOR_VALUES[family]}
-        if 23 in monitors:      # P0-20 / P0-08 DC link voltage (L1201, L1575, L1889)
+        if 23 in monitors:  # P0-20 / P0-08 DC link voltage (L1201, L1575, L1889)
             self._regs[23] = DC_LINK_VOLTAGE_V
-        if 24 in monitors:      # P0-21 / P0-09 heatsink temperature (L1202, L1576, L1890)
+        if 24 in monitors:  # P0-21 / P0-09 heatsink temperature (L1202, L1576, L1890)
             self._regs[24] = HEATSINK_TEMPERATURE_C
 
     # ------------------------------------------------------------------ what a user sees
@@ -257,7 +293,7 @@ class EatonDriveModel:
     def di1(self, value: bool) -> None:
         self._di1 = bool(value)
         if not self._di1:
-            self._run_request = False       # the enable lost: coast; a new RUN edge is needed
+            self._run_request = False  # the enable lost: coast; a new RUN edge is needed
             self._coast()
         self._apply_control()
         self._publish()
@@ -335,8 +371,9 @@ class EatonDriveModel:
         not exist on this family."""
         self.advance(now_ns)
         if not 1 <= count <= eaton.MAX_REGISTERS_PER_READ:
-            raise ModbusRefusal(ILLEGAL_DATA_VALUE, f"FC03 reads 1..{eaton.MAX_REGISTERS_PER_READ} registers "
-                                                    f"(L667), not {count}")
+            raise ModbusRefusal(
+                ILLEGAL_DATA_VALUE, f"FC03 reads 1..{eaton.MAX_REGISTERS_PER_READ} registers (L667), not {count}"
+            )
         missing = [r for r in range(register, register + count) if r not in self._regs]
         if missing:
             raise ModbusRefusal(ILLEGAL_DATA_ADDRESS, f"{self.family.name} has no register {missing[0]}")
@@ -371,26 +408,28 @@ class EatonDriveModel:
             raise ModbusRefusal(ILLEGAL_DATA_VALUE, f"{value} is not a 16-bit register value")
         process = eaton.PROCESS_DATA.get(register)
         if process is not None and process.limits is not None:
-            low, high = process.limits      # ID 3 0..2000 (L799), ID 4 0..60000 (L805)
+            low, high = process.limits  # ID 3 0..2000 (L799), ID 4 0..60000 (L805)
             if not low <= value <= high:
                 raise ModbusRefusal(ILLEGAL_DATA_VALUE, f"ID {register} takes {low}..{high}, not {value}")
         for row in self._rows.get(register, ()):
             if self._modulating and not row.writable_in_run:
-                raise ModbusRefusal(ILLEGAL_DATA_VALUE, f"{name} {row.number} {row.name} can only be written "
-                                                        "while the drive is stopped")
+                raise ModbusRefusal(
+                    ILLEGAL_DATA_VALUE, f"{name} {row.number} {row.name} can only be written while the drive is stopped"
+                )
             field = row.extract(value)
             if row.format == eaton_parameters.S16:
                 field = eaton.to_signed16(field)
             allowed = _allowed_values(row)
             if row.number == eaton_settings.DA1_COMM_TIMEOUT and self.family is Family.DA1:
-                allowed = (0, eaton_settings.DA1_COMM_TIMEOUT_MAX)       # "0.0 - 5.0" s (L1395)
+                allowed = (0, eaton_settings.DA1_COMM_TIMEOUT_MAX)  # "0.0 - 5.0" s (L1395)
             if isinstance(allowed, tuple):
                 ok = allowed[0] <= field <= allowed[1]
             else:
                 ok = allowed is None or field in allowed
             if not ok:
-                raise ModbusRefusal(ILLEGAL_DATA_VALUE, f"{name} {row.number} {row.name}: {field} is outside "
-                                                        f"{row.range!r}")
+                raise ModbusRefusal(
+                    ILLEGAL_DATA_VALUE, f"{name} {row.number} {row.name}: {field} is outside {row.range!r}"
+                )
 
     # ------------------------------------------------------------------ time
 
@@ -487,7 +526,7 @@ class EatonDriveModel:
             self._coast()
         elif cw & ControlWord.QUICK_STOP:
             if self._run_request or self._modulating:
-                self._stop(quick=True)      # "Schnellstopp (Rampe 2)" (L771)
+                self._stop(quick=True)  # "Schnellstopp (Rampe 2)" (L771)
         elif not cw & ControlWord.RUN:
             if self._run_request:
                 self._stop(quick=False)
@@ -517,7 +556,7 @@ class EatonDriveModel:
         if not self.fault:
             self.fault = fault
             if self.family is not Family.DA1:
-                self._set_param(self._name("last_fault"), fault)    # P-13 "Letzter Fehler" (L1648)
+                self._set_param(self._name("last_fault"), fault)  # P-13 "Letzter Fehler" (L1648)
         self._run_request = False
         self._coast()
 
@@ -551,7 +590,7 @@ class EatonDriveModel:
         return -self._setpoint() if reverse else self._setpoint()
 
     def _quick_scale(self) -> eaton.Scale:
-        if self.family is Family.DA1:     # P2-25 counts by frame size (L1332)
+        if self.family is Family.DA1:  # P2-25 counts by frame size (L1332)
             frame = eaton_settings.decode_da1_rating_id(self._regs[eaton.REG_DRIVE_TYPE]).frame_size
             try:
                 return eaton.da1_ramp_scale(frame)
@@ -604,7 +643,7 @@ class EatonDriveModel:
                 limit, rate = target, self._rate("accel")
             distance = abs(limit - out)
             needed = Fraction(0) if rate is None else distance / rate
-            if rate is None or needed <= dt:        # no ramp: there at once
+            if rate is None or needed <= dt:  # no ramp: there at once
                 self._out = limit
                 dt -= needed
             else:
@@ -618,7 +657,7 @@ class EatonDriveModel:
         trip = self._trip_at_standstill
         self._coast()
         if trip:
-            self._set_fault(eaton_faults.COMM_LOSS_FAULT)      # P5-06 = 1: ramps down, then trips (L388)
+            self._set_fault(eaton_faults.COMM_LOSS_FAULT)  # P5-06 = 1: ramps down, then trips (L388)
 
     # ------------------------------------------------------------------ registers
 
@@ -630,7 +669,7 @@ class EatonDriveModel:
         if self._di1 and not self.fault and bus:
             flags |= StatusWord.READY
         if self._modulating:
-            flags |= StatusWord.RUNNING | StatusWord.SPEED_CONTROL_ACTIVE    # bit 6: simulator choice
+            flags |= StatusWord.RUNNING | StatusWord.SPEED_CONTROL_ACTIVE  # bit 6: simulator choice
             target = self._target()
             if self._out < 0 or (self._out == 0 and target < 0):
                 flags |= StatusWord.REVERSE
@@ -643,7 +682,7 @@ class EatonDriveModel:
         if self._out == 0 and self._di1:
             flags |= StatusWord.ZERO_SPEED
         if self._di1:
-            flags |= StatusWord.HARDWARE_ENABLE     # DA1: STO status, others: DI1 (L845-850)
+            flags |= StatusWord.HARDWARE_ENABLE  # DA1: STO status, others: DI1 (L845-850)
         regs[eaton.REG_STATUS_WORD] = eaton.status_word(flags, self.fault)
         # ID 7 without sign, the direction is status bit 2 (A24, as eaton.speed_setpoint_raw)
         speed = abs(self._out)
@@ -659,8 +698,7 @@ class EatonDriveModel:
         regs[eaton.REG_MOTOR_CURRENT] = min(eaton.CURRENT.to_raw(current), 0xFFFF)
         if family in eaton.PROCESS_DATA[eaton.REG_TORQUE].families:
             regs[eaton.REG_TORQUE] = eaton.TORQUE.to_raw(torque)
-            regs[eaton.REG_OUTPUT_POWER] = eaton.OUTPUT_POWER.to_raw(
-                regs[eaton.REG_POWER_RATING] * torque / 100 * load)
+            regs[eaton.REG_OUTPUT_POWER] = eaton.OUTPUT_POWER.to_raw(regs[eaton.REG_POWER_RATING] * torque / 100 * load)
         # ID 11 bit 0 = DI1 (L954); on the DA1 the model shows STO there (a DI1 wired with it, A22)
         regs[eaton.REG_DI_STATUS] = 1 if self._di1 else 0
 

@@ -12,6 +12,7 @@ registers.MONITOR_VALUES.
 Parameter names are the manual's German designations, as printed; the
 numbers and everything the runtime acts on have English names.
 """
+
 from __future__ import annotations
 
 import re
@@ -24,10 +25,10 @@ from .registers import Family, Scale
 # ---------------------------------------------------------------------------
 
 # When a parameter may be written ("Zugriff", columns rw/ro and RUN/STOP)
-RUN = "RUN"             # rw, also while the drive runs
-STOP = "STOP"           # rw, only while the drive is stopped
-RO = "ro"               # read-only
-RESERVED = "reserved"   # "Reservierter Parameter"
+RUN = "RUN"  # rw, also while the drive runs
+STOP = "STOP"  # rw, only while the drive is stopped
+RO = "ro"  # read-only
+RESERVED = "reserved"  # "Reservierter Parameter"
 U16, S16, WORD = "U16", "S16", "WORD"
 
 
@@ -35,14 +36,15 @@ U16, S16, WORD = "U16", "S16", "WORD"
 class Parameter:
     """One row of a parameter table. A register holding several parameters
     (DB1/DC1 160, 164, 168) has one row per field, with its bits."""
+
     register: int
-    number: str             # "P1-01", "P-36"
-    name: str               # the manual's designation, as printed
-    mode: str               # RUN, STOP, RO or RESERVED
-    scaling: str            # "Skalierung" as printed, "" where none
-    range: str              # "Wertebereich" as printed
-    format: str             # U16, S16, WORD, "" where none is printed
-    bits: tuple | None = None   # (first bit, last bit) of a field in a shared register
+    number: str  # "P1-01", "P-36"
+    name: str  # the manual's designation, as printed
+    mode: str  # RUN, STOP, RO or RESERVED
+    scaling: str  # "Skalierung" as printed, "" where none
+    range: str  # "Wertebereich" as printed
+    format: str  # U16, S16, WORD, "" where none is printed
+    bits: tuple | None = None  # (first bit, last bit) of a field in a shared register
 
     @property
     def writable(self) -> bool:
@@ -71,15 +73,17 @@ class Parameter:
         fields kept (a read-modify-write of a shared register)."""
         shift, mask = self._mask()
         if not 0 <= value <= mask:
-            raise ValueError(f"{self.number} {self.name}: {value} does not fit bits "
-                             f"{shift}..{shift + mask.bit_length() - 1} (0..{mask})")
+            raise ValueError(
+                f"{self.number} {self.name}: {value} does not fit bits "
+                f"{shift}..{shift + mask.bit_length() - 1} (0..{mask})"
+            )
         return (word & ~(mask << shift) & 0xFFFF) | value << shift
 
 
-HZ_60 = "3000 ≙ 50.0 Hz"    # every frequency parameter: PARAMETER_FREQUENCY
+HZ_60 = "3000 ≙ 50.0 Hz"  # every frequency parameter: PARAMETER_FREQUENCY
 ONE = "1 ≙ 1"
 _F_RANGE = "P1-02 (min: 0 Hz/0 rpm) - P1-01 (max: 500.0 Hz/30000 rpm)"
-_FS_RAMP = "FS2, FS3: 1 ≙ 0.01 s FS4, ..., FS7: 1 ≙ 0.1 s"     # da1_ramp_scale
+_FS_RAMP = "FS2, FS3: 1 ≙ 0.01 s FS4, ..., FS7: 1 ≙ 0.1 s"  # da1_ramp_scale
 
 # Rows: (register or (register, first bit, last bit), number, name, mode,
 # scaling, range, format), as printed; the comment is the manual line.
@@ -96,8 +100,15 @@ _DA1_ROWS = (
     (108, "P1-08", "Motor Nennstrom", STOP, "1 ≙ 0.1 A", "(0.1 - 1) x I_e", U16),  # L1294
     (109, "P1-09", "Motor Nennfrequenz", STOP, "500 ≙ 50 Hz", "10 Hz - 500 Hz", U16),  # L1295
     (110, "P1-10", "Motor Nenndrehzahl", RUN, "1500 ≙ 1500 rpm", "0 200 - 30000 rpm", U16),  # L1296
-    (111, "P1-11", "U-Boost", STOP,  # L1297
-     "-1 ≙ Auto 0 ≙ Disabled 1 ≙ 0.1 %", "0: Auto 0 - 30.0 % von P1-07", S16),
+    (
+        111,
+        "P1-11",
+        "U-Boost",
+        STOP,  # L1297
+        "-1 ≙ Auto 0 ≙ Disabled 1 ≙ 0.1 %",
+        "0: Auto 0 - 30.0 % von P1-07",
+        S16,
+    ),
     (112, "P1-12", "Lokale Prozessdaten Quelle", STOP, "", "0 - 13", U16),  # L1298
     (113, "P1-13", "DI Konfiguration Auswahl", STOP, "", "0 - 21", U16),  # L1299
     (114, "P1-14", "Kennwort", RUN, "", "0 - 30000", U16),  # L1300
@@ -308,8 +319,15 @@ _DB1_DC1_ROWS = (
     (136, "P-08", "Motor Nennstrom", RUN, "100 ≙ 10.0 A", "0.25 I_e - I_e", U16),  # L1638
     (137, "P-09", "Motor Nennfrequenz", STOP, "50 ≙ 50 Hz", "25 Hz - 500 Hz", U16),  # L1639
     (138, "P-10", "Motor Nenndrehzahl", RUN, ONE, "0 / 200 rpm - 30000 rpm", U16),  # L1640
-    (139, "P-11", "U-Boost", RUN,  # L1646
-     "100 ≙ 10.0 %", "0.0 % U_e - f (FS) FS1: 25 % U_e FS2: 20 % U_e FS3: 15 % U_e FS4: 10 % U_e", U16),
+    (
+        139,
+        "P-11",
+        "U-Boost",
+        RUN,  # L1646
+        "100 ≙ 10.0 %",
+        "0.0 % U_e - f (FS) FS1: 25 % U_e FS2: 20 % U_e FS3: 15 % U_e FS4: 10 % U_e",
+        U16,
+    ),
     (140, "P-12", "Lokale Prozessdaten Quelle", STOP, ONE, "0 - 13", U16),  # L1647
     (141, "P-13", "Letzter Fehler", RUN, ONE, "", U16),  # L1648
     (142, "P-14", "Kennwort", RUN, ONE, "0 - 65535", U16),  # L1649
@@ -488,8 +506,9 @@ def da1_parameter_register(group: int, index: int) -> int:
     the table does not have; the P0 display values have their own registers
     (monitor_registers)."""
     if group == 0:
-        raise ValueError(f"P0-{index:02d} is a display value, not in the group x 100 + index scheme: "
-                         "see monitor_registers")
+        raise ValueError(
+            f"P0-{index:02d} is a display value, not in the group x 100 + index scheme: see monitor_registers"
+        )
     parameter_rows(Family.DA1, f"P{group}-{index:02d}")
     return group * 100 + index
 

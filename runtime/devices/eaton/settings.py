@@ -5,6 +5,7 @@ their registers. Source: manual 002 (shared/manuals/002_a23ab2a6587941cb.txt,
 "L<n>" a line of that file) and its digest (shared/digests/002_eaton_modbus.md,
 "§" and the ambiguities "A<n>").
 """
+
 from __future__ import annotations
 
 import enum
@@ -20,7 +21,8 @@ from .registers import Family, Scale
 
 class DataFormat(NamedTuple):
     """One character: 1 start bit, 8 data bits, parity and stop bits."""
-    parity: str         # "N", "O" or "E"
+
+    parity: str  # "N", "O" or "E"
     stop_bits: int
 
 
@@ -35,12 +37,13 @@ _BAUD_FROM_2 = {code + 2: baud for code, baud in _BAUD_FROM_0.items()}
 class SerialSettings:
     """Where a family keeps its Modbus address, baud rate and data format,
     with the factory values of the communication tables (Tabellen 1-4)."""
-    address: str                # parameter number
+
+    address: str  # parameter number
     baud_rate: str
-    baud_codes: dict            # parameter value -> bit/s
-    baud_factory: int           # parameter value
+    baud_codes: dict  # parameter value -> bit/s
+    baud_factory: int  # parameter value
     data_format: str
-    data_format_factory: int | None     # DATA_FORMATS code; None where none is printed
+    data_format_factory: int | None  # DATA_FORMATS code; None where none is printed
 
 
 # Factory data formats (A5): §2.3.2 states no parity, 1 stop bit for every
@@ -49,22 +52,46 @@ class SerialSettings:
 # here; a configuration names the format of its line explicitly.
 SERIAL_SETTINGS = {
     # P5-01 range is "0 - 63" in Tabelle 1 (L377), "1, 2, ..., 63" in Tabelle 20 (A2)
-    Family.DA1: SerialSettings(address="P5-01", baud_rate="P5-03", baud_codes=_BAUD_FROM_0, baud_factory=4,
-                               data_format="P5-04", data_format_factory=0),        # L377-379, "n-1"
+    Family.DA1: SerialSettings(
+        address="P5-01",
+        baud_rate="P5-03",
+        baud_codes=_BAUD_FROM_0,
+        baud_factory=4,
+        data_format="P5-04",
+        data_format_factory=0,
+    ),  # L377-379, "n-1"
     # P-36 holds address (bits 0-7), baud rate (8-11) and timeout (12-15) of
     # register 164; baud codes 0 and 1 are not described (A4)
-    Family.DB1: SerialSettings(address="P-36", baud_rate="P-36", baud_codes=_BAUD_FROM_2, baud_factory=2,
-                               data_format="P-56", data_format_factory=None),     # L398-401
-    Family.DC1: SerialSettings(address="P-36", baud_rate="P-36", baud_codes=_BAUD_FROM_2, baud_factory=2,
-                               data_format="P-56", data_format_factory=2),        # L421-424
+    Family.DB1: SerialSettings(
+        address="P-36",
+        baud_rate="P-36",
+        baud_codes=_BAUD_FROM_2,
+        baud_factory=2,
+        data_format="P-56",
+        data_format_factory=None,
+    ),  # L398-401
+    Family.DC1: SerialSettings(
+        address="P-36",
+        baud_rate="P-36",
+        baud_codes=_BAUD_FROM_2,
+        baud_factory=2,
+        data_format="P-56",
+        data_format_factory=2,
+    ),  # L421-424
     # DE1: §2.6.1.1 names P-34 "PDP-Address" (162, L657), the DE1
     # communication table P-47 "Modbus-Adresse", "used as dedicated Modbus
     # communication address", 1..255 (175, L446). P-47 is taken (A1).
     # P-35 code 0 is printed "960 Bit/s", read as 9.6 kBit/s (A6).
-    Family.DE1: SerialSettings(address="P-47", baud_rate="P-35", baud_codes=_BAUD_FROM_0, baud_factory=4,
-                               data_format="P-48", data_format_factory=1),        # L437, L446-447
+    Family.DE1: SerialSettings(
+        address="P-47",
+        baud_rate="P-35",
+        baud_codes=_BAUD_FROM_0,
+        baud_factory=4,
+        data_format="P-48",
+        data_format_factory=1,
+    ),  # L437, L446-447
 }
-DE1_PDP_ADDRESS = "P-34"    # the address parameter §2.6.1.1 names for the DE1 (A1)
+DE1_PDP_ADDRESS = "P-34"  # the address parameter §2.6.1.1 names for the DE1 (A1)
 
 # ---------------------------------------------------------------------------
 # Communication loss (digest §4.3)
@@ -72,24 +99,25 @@ DE1_PDP_ADDRESS = "P-34"    # the address parameter §2.6.1.1 names for the DE1 
 
 # DA1: P5-05 "Modbus RTU0 COM Timeout": with an active connection and no
 # valid telegram for this time, the drive reacts as P5-06 selects (L387).
-DA1_COMM_TIMEOUT = "P5-05"                      # register 505
-DA1_COMM_TIMEOUT_SCALE = Scale.of(1, "0.1", "s")    # "1 ≙ 0.1 s" (L1395)
-DA1_COMM_TIMEOUT_MAX = 50                       # "0.0 - 5.0" s
+DA1_COMM_TIMEOUT = "P5-05"  # register 505
+DA1_COMM_TIMEOUT_SCALE = Scale.of(1, "0.1", "s")  # "1 ≙ 0.1 s" (L1395)
+DA1_COMM_TIMEOUT_MAX = 50  # "0.0 - 5.0" s
 # Factory value printed "2" (L387) with a 0.1 s scale: read as the keypad
 # value 2.0 s, as P5-04's factory "n-1" is a display text too, not 0.2 s (A7).
 DA1_COMM_TIMEOUT_FACTORY = 20
 # Whether 0.0 s switches the DA1 monitoring off is not said (A7); a zero
 # timeout cannot be met, so 0 is taken as "off", as code 0 of the others.
 DA1_COMM_TIMEOUT_OFF = 0
-DA1_COMM_LOSS_ACTION = "P5-06"                  # register 506
+DA1_COMM_LOSS_ACTION = "P5-06"  # register 506
 
 
 class Da1CommLossAction(enum.IntEnum):
     """P5-06 "Aktion@Modbus RTU Fehler" (L388); factory 0."""
-    TRIP = 0                    # "Abschalten"
-    RAMP_STOP_THEN_TRIP = 1     # ramps to standstill, then trips
-    RAMP_STOP_NO_FAULT = 2      # ramps to standstill, no fault message
-    FIXED_FREQUENCY_8 = 3       # runs at fixed frequency 8 (P2-08)
+
+    TRIP = 0  # "Abschalten"
+    RAMP_STOP_THEN_TRIP = 1  # ramps to standstill, then trips
+    RAMP_STOP_NO_FAULT = 2  # ramps to standstill, no fault message
+    FIXED_FREQUENCY_8 = 3  # runs at fixed frequency 8 (P2-08)
 
 
 DA1_COMM_LOSS_ACTION_FACTORY = Da1CommLossAction.TRIP
@@ -97,12 +125,12 @@ DA1_COMM_LOSS_ACTION_FACTORY = Da1CommLossAction.TRIP
 
 class CommLossReaction(enum.Enum):
     NONE = "no reaction"
-    TRIP = "trip"               # "t: Abschalten des Antriebs nach der eingestellten Zeit"
-    RAMP_TO_ZERO = "ramp to zero"   # "r: ... fährt der Antrieb mit Rampe auf null"
+    TRIP = "trip"  # "t: Abschalten des Antriebs nach der eingestellten Zeit"
+    RAMP_TO_ZERO = "ramp to zero"  # "r: ... fährt der Antrieb mit Rampe auf null"
 
 
 class CommTimeout(NamedTuple):
-    timeout_ms: int | None      # None: not monitored ("Die Einstellung 0 deaktiviert die Abschaltung")
+    timeout_ms: int | None  # None: not monitored ("Die Einstellung 0 deaktiviert die Abschaltung")
     reaction: CommLossReaction
 
 
@@ -136,17 +164,21 @@ COMM_LOSS_ACTION_PARAMETERS = {Family.DA1: "P5-16", Family.DC1: "P-53", Family.D
 
 
 class DriveVariant(NamedTuple):
-    unit: str               # the country-specific factory unit of power, "kW" or "HP"
+    unit: str  # the country-specific factory unit of power, "kW" or "HP"
     mains_phases: int
     motor_phases: int
 
 
 # Tabellen 12, 16, 18 (L967-977, L1025-1035, L1057-1067); DB1 Table 14 lists 0-5 only (L999-1007)
 DRIVE_VARIANTS = {
-    0: DriveVariant("kW", 3, 3), 1: DriveVariant("HP", 3, 3),
-    2: DriveVariant("kW", 3, 1), 3: DriveVariant("HP", 3, 1),
-    4: DriveVariant("kW", 1, 3), 5: DriveVariant("HP", 1, 3),
-    6: DriveVariant("kW", 1, 1), 7: DriveVariant("HP", 1, 1),
+    0: DriveVariant("kW", 3, 3),
+    1: DriveVariant("HP", 3, 3),
+    2: DriveVariant("kW", 3, 1),
+    3: DriveVariant("HP", 3, 1),
+    4: DriveVariant("kW", 1, 3),
+    5: DriveVariant("HP", 1, 3),
+    6: DriveVariant("kW", 1, 1),
+    7: DriveVariant("HP", 1, 1),
 }
 DRIVE_VARIANT_VALUES = {Family.DA1: range(8), Family.DB1: range(6), Family.DC1: range(8), Family.DE1: range(8)}
 
@@ -154,7 +186,7 @@ DRIVE_VARIANT_VALUES = {Family.DA1: range(8), Family.DB1: range(6), Family.DC1: 
 # index), None where the table prints "–". How these indices and the values
 # above sit in register 12 is not said (A19).
 RATED_POWER = {
-    Family.DA1: {   # Tabelle 13 (L979-994); FS6 HP 12 and 15 as printed, probably truncated (A31)
+    Family.DA1: {  # Tabelle 13 (L979-994); FS6 HP 12 and 15 as printed, probably truncated (A31)
         "FS2": ((0.75, 1.5, 2.2, 0.75, 1.5, 2.2, 4, None), (1, 2, 3, 1, 2, 3, 5, None)),
         "FS3": ((3, 4, 5.5, 5.5, 7.5, 11, None, None), (4, 5, 7.5, 7.5, 10, 15, None, None)),
         "FS4": ((7.5, 11, 15, 18.5, 22, None, None, None), (10, 15, 20, 25, 30, None, None, None)),
@@ -162,19 +194,19 @@ RATED_POWER = {
         "FS6": ((22, 30, 37, 45, 45, 55, 75, 90), (30, 40, 50, 60, 60, 75, 12, 15)),
         "FS7": ((55, 75, 90, 110, 132, 160, None, None), (75, 100, 125, 175, 200, 250, None, None)),
     },
-    Family.DB1: {   # Table 15 (L1009-1020)
+    Family.DB1: {  # Table 15 (L1009-1020)
         "FS1": ((0.37, 0.75, 0.37, 0.75, 0.75, 1.5), (0.5, 1, 0.5, 1, 1, 2)),
         "FS1B": ((0.75, 1.5, None, None, None, None), (1, 2, None, None, None, None)),
         "FS1C": ((0.75, 1.5, None, None, None, None), (1, 2, None, None, None, None)),
         "FS2": ((2.2, 4, None, None, None, None), (3, 5, None, None, None, None)),
     },
-    Family.DC1: {   # Tabelle 17 (L1037-1048)
+    Family.DC1: {  # Tabelle 17 (L1037-1048)
         "FS1": ((0.37, 0.75, 0.37, 0.75, 1.5, 0.75, 1.5, None, None), (0.5, 1, 0.5, 1, 2, 1, 2, None, None)),
         "FS2": ((1.1, 0.75, 1.5, 2.2, 0.75, 1.5, 2.2, 4, 3), (1.5, 1, 2, 3, 1, 2, 3, 5, 4)),
         "FS3": ((4, 5.5, 7.5, 11, 4, 3, 5.5, None, None), (5, 7.5, 10, 15, 5, 4, 7.5, None, None)),
         "FS4": ((5.5, 7.5, 11, 11, 15, 18.5, 22, None, None), (7.5, 10, 15, 15, 20, 25, 30, None, None)),
     },
-    Family.DE1: {   # Tabelle 19 (L1069-1076)
+    Family.DE1: {  # Tabelle 19 (L1069-1076)
         "FS1": ((0.25, 0.37, 0.55, 0.75, 1.5, 3.7, 7.5, 1.5), (0.3, 0.5, 0.7, 1, 2, 5, 10, 2)),
         "FS2": ((2.2, 2.2, 3.0, 4.0, 5.5, 7.5, None, None), (3, 3, 4, 5, 7.5, 10, None, None)),
     },
@@ -183,10 +215,11 @@ RATED_POWER = {
 
 class Da1RatingId(NamedTuple):
     """DA1 register 12 as P0-29 "Rating ID" (L1216-1219)."""
-    power_index: int        # bits 0-3, "Power Index (Internal Reference)"
-    power_unit: int         # bits 4-7, "Leistungseinheit (kW/HP)"
-    voltage_index: int      # bits 8-11, "Eingangsspannungsindex (Voltage Rating Index)"
-    frame_size: int         # bits 12-15, "Baugröße"
+
+    power_index: int  # bits 0-3, "Power Index (Internal Reference)"
+    power_unit: int  # bits 4-7, "Leistungseinheit (kW/HP)"
+    voltage_index: int  # bits 8-11, "Eingangsspannungsindex (Voltage Rating Index)"
+    frame_size: int  # bits 12-15, "Baugröße"
 
 
 def decode_da1_rating_id(word: int) -> Da1RatingId:
@@ -205,8 +238,10 @@ def de1_reverse(di1_ena: bool, di2_enadir: bool, control_reverse: bool) -> bool:
     enabled terminal at a time; ValueError for the other combinations (with
     none the drive has no enable, L599)."""
     if di1_ena == di2_enadir:
-        raise ValueError("Tabelle 9 gives the direction for DI1 (ENA) or DI2 (ENADIR) high, not "
-                         + ("both" if di1_ena else "neither"))
+        raise ValueError(
+            "Tabelle 9 gives the direction for DI1 (ENA) or DI2 (ENADIR) high, not "
+            + ("both" if di1_ena else "neither")
+        )
     return di2_enadir != control_reverse
 
 

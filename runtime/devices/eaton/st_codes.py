@@ -15,6 +15,7 @@ test regenerates the file and compares it with the shipped one.
     FUNCTION EATON_FAMILY(Id17 : WORD) : USINT              0: not an Eaton drive
     FUNCTION EATON_MODEL(Id17 : WORD) : STRING[80]          'DA1' ... 'DE11', ''
 """
+
 from __future__ import annotations
 
 from ..st_text import st_string, vendor_file
@@ -22,22 +23,23 @@ from . import faults as eaton_faults
 from . import registers as eaton
 
 ST_FILE = vendor_file("eaton_codes.st")
-FAULT_TEXT_LENGTH = 120     # the longest cause in Tabelle 11 is 87 characters
+FAULT_TEXT_LENGTH = 120  # the longest cause in Tabelle 11 is 87 characters
 
 
-def _case_function(name: str, result: str, arg: str, arg_type: str, branches: list, default: str,
-                   what: str) -> list:
-    return [f"(* {what} *)",
-            f"FUNCTION {name} : {result}",
-            "VAR_INPUT",
-            f"    {arg} : {arg_type};",
-            "END_VAR",
-            f"CASE {arg} OF",
-            *(f"    {value}: {name} := {text};" for value, text in branches),
-            "ELSE",
-            f"    {name} := {default};",
-            "END_CASE;",
-            "END_FUNCTION"]
+def _case_function(name: str, result: str, arg: str, arg_type: str, branches: list, default: str, what: str) -> list:
+    return [
+        f"(* {what} *)",
+        f"FUNCTION {name} : {result}",
+        "VAR_INPUT",
+        f"    {arg} : {arg_type};",
+        "END_VAR",
+        f"CASE {arg} OF",
+        *(f"    {value}: {name} := {text};" for value, text in branches),
+        "ELSE",
+        f"    {name} := {default};",
+        "END_CASE;",
+        "END_FUNCTION",
+    ]
 
 
 def render() -> str:
@@ -63,27 +65,54 @@ def render() -> str:
         f"    EATON_COMM_LOSS_FAULT : UINT := {eaton_faults.COMM_LOSS_FAULT};",
         f"    EATON_MAX_REGISTERS_PER_READ : UINT := {eaton.MAX_REGISTERS_PER_READ};",
         "    (* register numbers (IDs) *)",
-        *(f"    EATON_{name} : UINT := {value};" for name, value in vars(eaton).items()
-          if name.startswith("REG_") and isinstance(value, int)),
+        *(
+            f"    EATON_{name} : UINT := {value};"
+            for name, value in vars(eaton).items()
+            if name.startswith("REG_") and isinstance(value, int)
+        ),
         "    (* families, and the ID 17 values that name them (L1086-1096) *)",
         *(f"    EATON_FAMILY_{f.name} : USINT := {int(f)};" for f in eaton.Family),
         *(f"    EATON_ID17_{model} : WORD := {value};" for value, (_f, model) in ids),
         "END_VAR",
         "",
-        *_case_function("EATON_FAULT_TEXT", f"STRING[{FAULT_TEXT_LENGTH}]", "Code", "UINT",
-                        [(f.number, st_string(f.text, FAULT_TEXT_LENGTH)) for f in eaton_faults.FAULTS.values()],
-                        st_string("unknown fault number"), "the cause of a fault number (Tabelle 11)"),
+        *_case_function(
+            "EATON_FAULT_TEXT",
+            f"STRING[{FAULT_TEXT_LENGTH}]",
+            "Code",
+            "UINT",
+            [(f.number, st_string(f.text, FAULT_TEXT_LENGTH)) for f in eaton_faults.FAULTS.values()],
+            st_string("unknown fault number"),
+            "the cause of a fault number (Tabelle 11)",
+        ),
         "",
-        *_case_function("EATON_FAULT_DISPLAY", "STRING[80]", "Code", "UINT",
-                        [(f.number, st_string(f.display)) for f in eaton_faults.FAULTS.values()],
-                        "''", "the drive's display code of a fault number"),
+        *_case_function(
+            "EATON_FAULT_DISPLAY",
+            "STRING[80]",
+            "Code",
+            "UINT",
+            [(f.number, st_string(f.display)) for f in eaton_faults.FAULTS.values()],
+            "''",
+            "the drive's display code of a fault number",
+        ),
         "",
-        *_case_function("EATON_FAMILY", "USINT", "Id17", "WORD",
-                        [(value, f"EATON_FAMILY_{family.name}") for value, (family, _m) in ids],
-                        "0", "the family of an ID 17 value; 0 for a device the manual does not list"),
+        *_case_function(
+            "EATON_FAMILY",
+            "USINT",
+            "Id17",
+            "WORD",
+            [(value, f"EATON_FAMILY_{family.name}") for value, (family, _m) in ids],
+            "0",
+            "the family of an ID 17 value; 0 for a device the manual does not list",
+        ),
         "",
-        *_case_function("EATON_MODEL", "STRING[80]", "Id17", "WORD",
-                        [(value, st_string(model)) for value, (_f, model) in ids],
-                        "''", "the model of an ID 17 value ('DE11' is a DE1 variant)"),
+        *_case_function(
+            "EATON_MODEL",
+            "STRING[80]",
+            "Id17",
+            "WORD",
+            [(value, st_string(model)) for value, (_f, model) in ids],
+            "''",
+            "the model of an ID 17 value ('DE11' is a DE1 variant)",
+        ),
     ]
     return "\n".join(lines) + "\n"

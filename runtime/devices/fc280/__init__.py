@@ -4,6 +4,7 @@ So far only its EDS skeleton (eds.py -> io_config/eds/fc280.eds), so that a
 
 Public names: DEVICE.
 """
+
 from __future__ import annotations
 
 from ...io.canopen.eds import render as render_eds
@@ -12,7 +13,11 @@ from .eds import fc280_eds
 
 EDS = PackageFile("softplc.io_config", "eds/fc280.eds")
 
-DEVICE = Device(name="fc280", order=30, files={"eds": {"fc280": EDS}},
-                generated=(GeneratedFile(EDS, lambda: render_eds(fc280_eds()), encoding="ascii"),))
+DEVICE = Device(
+    name="fc280",
+    order=30,
+    files={"eds": {"fc280": EDS}},
+    generated=(GeneratedFile(EDS, lambda: render_eds(fc280_eds()), encoding="ascii"),),
+)
 
 __all__ = ["DEVICE"]

@@ -15,6 +15,7 @@ ST blocks: fblocks/vendor/ltmr.st (LTMR_CONTROL, LTMR_PKW).
 
 Public names: DEVICE, LtmrSimulator.
 """
+
 from __future__ import annotations
 
 from ...io.can import CanSimContext
@@ -29,15 +30,29 @@ EDS = PackageFile("softplc.io_config", "eds/ltmr.eds")
 
 
 def _simulator(sim, ctx: CanSimContext) -> LtmrSimulator:
-    return LtmrSimulator(sim.at.node_id, settings=ctx.settings, clock=ctx.clock, pump=ctx.pump, name=sim.name,
-                         registers=dict(sim.options.registers))
+    return LtmrSimulator(
+        sim.at.node_id,
+        settings=ctx.settings,
+        clock=ctx.clock,
+        pump=ctx.pump,
+        name=sim.name,
+        registers=dict(sim.options.registers),
+    )
 
 
 DEVICE = Device(
-    name="ltmr", order=10, bus="can", sim_types=("ltmr",), sim_options=RegisterPresets, simulator=_simulator,
+    name="ltmr",
+    order=10,
+    bus="can",
+    sim_types=("ltmr",),
+    sim_options=RegisterPresets,
+    simulator=_simulator,
     libraries=(StLibrary("softplc.fblocks.vendor", "ltmr.st"), StLibrary("softplc.fblocks.vendor", "ltmr_codes.st")),
     files={"eds": {"ltmr": EDS}},
-    generated=(GeneratedFile(PackageFile("softplc.fblocks.vendor", "ltmr_codes.st"), st_codes.render),
-               GeneratedFile(EDS, lambda: render_eds(ltmr_eds()), encoding="ascii")))
+    generated=(
+        GeneratedFile(PackageFile("softplc.fblocks.vendor", "ltmr_codes.st"), st_codes.render),
+        GeneratedFile(EDS, lambda: render_eds(ltmr_eds()), encoding="ascii"),
+    ),
+)
 
 __all__ = ["DEVICE", "LtmrSimulator"]

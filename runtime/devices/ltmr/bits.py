@@ -8,6 +8,7 @@ the ambiguities "A<n>" of its §10).
 
     Status1(0x6083)                  -> READY|ON|RUNNING|IN_REMOTE (+ current ratio 32 = 100 %)
 """
+
 from __future__ import annotations
 
 import enum
@@ -19,14 +20,15 @@ import enum
 
 class Status1(enum.IntFlag):
     """455 System status register 1 (L3516-3543)."""
+
     READY = 1 << 0
     ON = 1 << 1
     TRIP = 1 << 2
     ALARM = 1 << 3
     TRIPPED = 1 << 4
     RESET_AUTHORIZED = 1 << 5
-    CONTROLLER_POWER = 1 << 6     # "(Not significant)" in the Data Formats example; decoded (A13)
-    RUNNING = 1 << 7              # current above 10 % FLC
+    CONTROLLER_POWER = 1 << 6  # "(Not significant)" in the Data Formats example; decoded (A13)
+    RUNNING = 1 << 7  # current above 10 % FLC
     IN_REMOTE = 1 << 14
     STARTING = 1 << 15
 
@@ -49,12 +51,13 @@ def current_ratio_percent(field: int) -> float:
 
 class Status2(enum.IntFlag):
     """456 System status register 2 (L3544-3571)."""
+
     AUTO_RESET_ACTIVE = 1 << 0
     POWER_CYCLE_REQUESTED = 1 << 2
     RESTART_TIME_UNDEFINED = 1 << 3
     RAPID_CYCLE_LOCKOUT = 1 << 4
-    LOAD_SHEDDING = 1 << 5        # note 1
-    SPEED_FLC2 = 1 << 6           # 0 = FLC1 setting used, 1 = FLC2
+    LOAD_SHEDDING = 1 << 5  # note 1
+    SPEED_FLC2 = 1 << 6  # 0 = FLC1 setting used, 1 = FLC2
     HMI_COMM_LOSS = 1 << 7
     NETWORK_COMM_LOSS = 1 << 8
     TRANSITION_LOCKOUT = 1 << 9
@@ -63,6 +66,7 @@ class Status2(enum.IntFlag):
 class Control1(enum.IntFlag):
     """704 Control register 1 (L4917-4937). Bits 0 and 1 also drive LO1/LO2 in
     overload mode (German edition L2576, A12)."""
+
     RUN_FORWARD = 1 << 0
     RUN_REVERSE = 1 << 1
     TRIP_RESET = 1 << 3
@@ -72,6 +76,7 @@ class Control1(enum.IntFlag):
 
 class Control2(enum.IntFlag):
     """705 Control register 2 (L4938-4955)."""
+
     CLEAR_ALL = 1 << 0
     CLEAR_STATISTICS = 1 << 1
     CLEAR_THERMAL_CAPACITY = 1 << 2
@@ -81,6 +86,7 @@ class Control2(enum.IntFlag):
 
 class TripRegister1(enum.IntFlag):
     """452 Trip register 1 (L3423-3458)."""
+
     GROUND_CURRENT = 1 << 2
     THERMAL_OVERLOAD = 1 << 3
     LONG_START = 1 << 4
@@ -97,6 +103,7 @@ class TripRegister1(enum.IntFlag):
 
 class TripRegister2(enum.IntFlag):
     """453 Trip register 2 (L3459-3506); bits 6-15 need the LTMEV40."""
+
     EXTERNAL_SYSTEM = 1 << 0
     DIAGNOSTIC = 1 << 1
     WIRING = 1 << 2
@@ -117,6 +124,7 @@ class TripRegister2(enum.IntFlag):
 
 class AlarmRegister1(enum.IntFlag):
     """461 Alarm register 1 (L3688-3717)."""
+
     GROUND_CURRENT = 1 << 2
     THERMAL_OVERLOAD = 1 << 3
     JAM = 1 << 5
@@ -129,6 +137,7 @@ class AlarmRegister1(enum.IntFlag):
 
 class AlarmRegister2(enum.IntFlag):
     """462 Alarm register 2 (L3718-3763); bits 7-15 need the LTMEV40."""
+
     DIAGNOSTIC = 1 << 1
     OVERCURRENT = 1 << 3
     CURRENT_PHASE_LOSS = 1 << 4
@@ -146,6 +155,7 @@ class AlarmRegister2(enum.IntFlag):
 
 class NetworkPortStatus(enum.IntFlag):
     """490 Network port status (L3893-3909)."""
+
     COMMUNICATING = 1 << 0
     CONNECTED = 1 << 1
     SELF_TESTING = 1 << 2
@@ -156,11 +166,12 @@ class NetworkPortStatus(enum.IntFlag):
 class GeneralConfig1(enum.IntFlag):
     """601 General configuration register 1 (L4330-4357). Bits 8-10 are the
     configuration channels, "one bit is set to 1"."""
-    CONFIG_MODE = 1 << 0              # 1 = go to the configuration menu (note A)
+
+    CONFIG_MODE = 1 << 0  # 1 = go to the configuration menu (note A)
     CONFIG_VIA_HMI_KEYPAD = 1 << 8
     CONFIG_VIA_HMI_TOOL = 1 << 9
-    CONFIG_VIA_NETWORK = 1 << 10      # factory setting: enabled (L230)
-    MOTOR_STAR_DELTA = 1 << 11        # note B
+    CONFIG_VIA_NETWORK = 1 << 10  # factory setting: enabled (L230)
+    MOTOR_STAR_DELTA = 1 << 11  # note B
     PHASE_SEQUENCE_ACB = 1 << 12
     AUXILIARY_FAN = 1 << 15
 
@@ -174,19 +185,21 @@ GENERAL_CONFIG2_RESET_MODE_MASK = 0x7
 
 class TripEnable1(enum.IntFlag):
     """631 Trip enable register 1 (L4519-4547)."""
+
     GROUND_CURRENT = 1 << 2
     THERMAL_OVERLOAD = 1 << 3
     LONG_START = 1 << 4
     JAM = 1 << 5
     CURRENT_PHASE_IMBALANCE = 1 << 6
     UNDERCURRENT = 1 << 7
-    SELF_TEST = 1 << 9                # factory setting: enabled
+    SELF_TEST = 1 << 9  # factory setting: enabled
     HMI_PORT = 1 << 10
     NETWORK_PORT = 1 << 15
 
 
 class AlarmEnable1(enum.IntFlag):
     """632 Alarm enable register 1 (L4548-4578)."""
+
     GROUND_CURRENT = 1 << 2
     THERMAL_OVERLOAD = 1 << 3
     JAM = 1 << 5

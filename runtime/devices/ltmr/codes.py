@@ -7,6 +7,7 @@ is a line of that file) and its digest (shared/digests/001_ltmr_canopen_en.md,
 
     trip_text(TRIP_THERMAL_OVERLOAD)  -> 'Thermal overload'
 """
+
 from __future__ import annotations
 
 import enum
@@ -18,6 +19,7 @@ import enum
 
 class OperatingMode(enum.IntEnum):
     """540 Motor operating mode (L4030); 256-511 = custom logic program 0-255."""
+
     OVERLOAD_2W = 2
     OVERLOAD_3W = 3
     INDEPENDENT_2W = 4
@@ -44,12 +46,13 @@ def is_valid_operating_mode(mode: int) -> bool:
 
 class FallbackStrategy(enum.IntEnum):
     """DT_OutputFallbackStrategy, registers 682 (network) and 645 (HMI), L2171-2194."""
-    HOLD = 0        # hold LO1 LO2
-    RUN = 1         # 2-step mode only
-    OFF = 2         # LO1, LO2 off
-    BOTH_ON = 3     # overload, independent and custom modes only
-    LO1_ON = 4      # all modes except 2-step
-    LO2_ON = 5      # all modes except 2-step
+
+    HOLD = 0  # hold LO1 LO2
+    RUN = 1  # 2-step mode only
+    OFF = 2  # LO1, LO2 off
+    BOTH_ON = 3  # overload, independent and custom modes only
+    LO1_ON = 4  # all modes except 2-step
+    LO2_ON = 5  # all modes except 2-step
 
 
 _OVERLOAD = {OperatingMode.OVERLOAD_2W, OperatingMode.OVERLOAD_3W}
@@ -69,26 +72,38 @@ def fallback_allowed(strategy: int, mode: int) -> bool:
         return mode in _TWO_STEP
     if strategy == FallbackStrategy.BOTH_ON:
         return mode in _OVERLOAD or mode in _INDEPENDENT or is_custom_logic(mode)
-    return mode not in _TWO_STEP          # LO1_ON, LO2_ON
+    return mode not in _TWO_STEP  # LO1_ON, LO2_ON
 
 
 class ResetMode(enum.IntEnum):
     """DT_ResetMode, register 602 bits 0-2 (L2204-2214)."""
-    MANUAL = 1      # manual or HMI
-    REMOTE = 2      # remote by network
+
+    MANUAL = 1  # manual or HMI
+    REMOTE = 2  # remote by network
     AUTOMATIC = 4
 
 
 class PhaseNumber(enum.IntEnum):
     """DT_PhaseNumber, register 601 bits 13-14 (L2195-2203)."""
+
     ONE_PHASE = 1
     THREE_PHASES = 2
 
 
 # DT_CANopenExtBaudRate, register 695 (L183-206, L2003): code -> bit/s; 8 = autobaud.
 # 9 "Factory setting" is 250 kbit/s (L206), the same rate as code 4 (A20).
-CANOPEN_BAUD_CODES = {0: 10_000, 1: 20_000, 2: 50_000, 3: 125_000, 4: 250_000, 5: 500_000,
-                      6: 800_000, 7: 1_000_000, 8: None, 9: 250_000}
+CANOPEN_BAUD_CODES = {
+    0: 10_000,
+    1: 20_000,
+    2: 50_000,
+    3: 125_000,
+    4: 250_000,
+    5: 500_000,
+    6: 800_000,
+    7: 1_000_000,
+    8: None,
+    9: 250_000,
+}
 
 # ---------------------------------------------------------------------------
 # Trip and alarm codes (DT_FaultCode L2043-2145, DT_WarningCode L2218-2278)
@@ -141,7 +156,7 @@ TRIP_CODES = {
     65: "Expansion module communication detected error",
     66: "Stuck reset button",
     67: "Logic function detected error",
-    **dict.fromkeys(range(100, 105), "Network port internal detected error"),   # printed "100-104"
+    **dict.fromkeys(range(100, 105), "Network port internal detected error"),  # printed "100-104"
     109: "Network port comm detected error",
     111: "Fast device replacement trip",
     555: "Network port configuration detected error",
@@ -155,8 +170,8 @@ ALARM_CODES = {
     6: "Jam",
     7: "Current phase imbalance",
     8: "Undercurrent",
-    10: "HMI port",                       # 10 is "Test" as a trip code
-    11: "LTMR internal temperature",      # 11 is "HMI port detected error" as a trip code
+    10: "HMI port",  # 10 is "Test" as a trip code
+    11: "LTMR internal temperature",  # 11 is "HMI port detected error" as a trip code
     18: "Diagnostic",
     19: "Wiring",
     20: "Overcurrent",

@@ -7,6 +7,7 @@ is a line of that file) and its digest (shared/digests/001_ltmr_canopen_en.md,
 
     encode_datetime(datetime(2008, 9, 4, 7, 50, 32)) -> (0x3200, 0x0750, 0x0904, 0x2008)
 """
+
 from __future__ import annotations
 
 import datetime as _dt
@@ -15,7 +16,7 @@ import datetime as _dt
 # Data types (§5.4, §5.5)
 # ---------------------------------------------------------------------------
 
-DATETIME_MIN = _dt.datetime(2006, 1, 1, 0, 0, 0)       # L1931
+DATETIME_MIN = _dt.datetime(2006, 1, 1, 0, 0, 0)  # L1931
 DATETIME_MAX = _dt.datetime(2099, 12, 31, 23, 59, 59)  # L1934
 
 
@@ -36,10 +37,12 @@ def encode_datetime(dt: _dt.datetime) -> tuple:
     dt = dt.replace(microsecond=0, tzinfo=None)
     if not DATETIME_MIN <= dt <= DATETIME_MAX:
         raise ValueError(f"DT_DateTime {dt} is outside {DATETIME_MIN} .. {DATETIME_MAX}")
-    return (_bcd(dt.second) << 8,
-            _bcd(dt.hour) << 8 | _bcd(dt.minute),
-            _bcd(dt.month) << 8 | _bcd(dt.day),
-            _bcd(dt.year))
+    return (
+        _bcd(dt.second) << 8,
+        _bcd(dt.hour) << 8 | _bcd(dt.minute),
+        _bcd(dt.month) << 8 | _bcd(dt.day),
+        _bcd(dt.year),
+    )
 
 
 def decode_datetime(words) -> _dt.datetime:
@@ -48,13 +51,18 @@ def decode_datetime(words) -> _dt.datetime:
     will return a detected error", L1936). The low byte of the first word is
     "unused" and ignored."""
     seconds_word, hour_minute, month_day, year = (int(w) & 0xFFFF for w in words)
-    parts = dict(year=_from_bcd(year, "year"),
-                 month=_from_bcd(month_day >> 8, "month"), day=_from_bcd(month_day & 0xFF, "day"),
-                 hour=_from_bcd(hour_minute >> 8, "hour"), minute=_from_bcd(hour_minute & 0xFF, "minute"),
-                 second=_from_bcd(seconds_word >> 8, "second"))
+    parts = dict(
+        year=_from_bcd(year, "year"),
+        month=_from_bcd(month_day >> 8, "month"),
+        day=_from_bcd(month_day & 0xFF, "day"),
+        hour=_from_bcd(hour_minute >> 8, "hour"),
+        minute=_from_bcd(hour_minute & 0xFF, "minute"),
+        second=_from_bcd(seconds_word >> 8, "second"),
+    )
     try:
-        value = _dt.datetime(parts["year"], parts["month"], parts["day"],
-                             parts["hour"], parts["minute"], parts["second"])
+        value = _dt.datetime(
+            parts["year"], parts["month"], parts["day"], parts["hour"], parts["minute"], parts["second"]
+        )
     except ValueError as exc:
         raise ValueError(f"DT_DateTime {parts} is not a valid date and time: {exc}") from None
     if not DATETIME_MIN <= value <= DATETIME_MAX:

@@ -34,6 +34,7 @@ about 14 min, and 1.05 × FLC never (steady state 87 %), inside IEC's
 "no trip at 1.05 Ie, trip at 1.2 Ie within 2 h". Cooling uses the same τ.
 Within one step the current is constant and the exponential is exact.
 """
+
 from __future__ import annotations
 
 import math
@@ -111,21 +112,21 @@ S = 1_000_000_000
 
 # ---------------------------------------------------------------- simulator choices (not in the manual)
 
-DEFAULT_FLC_MAX = 80               # 96, x 0.1 A: 8.0 A, the digest's example (digest 001 §6.4)
-DEFAULT_FLC1 = 50                  # 652, % FLCmax: 4.0 A
-DEFAULT_FLC2 = 100                 # 653, % FLCmax: 8.0 A at high speed
-DEFAULT_TRIP_CLASS = 10            # 606, s
-DEFAULT_THERMAL_RESET_THRESHOLD = 75   # 608, % trip level
-DEFAULT_THERMAL_ALARM_THRESHOLD = 85   # 609, % trip level
+DEFAULT_FLC_MAX = 80  # 96, x 0.1 A: 8.0 A, the digest's example (digest 001 §6.4)
+DEFAULT_FLC1 = 50  # 652, % FLCmax: 4.0 A
+DEFAULT_FLC2 = 100  # 653, % FLCmax: 8.0 A at high speed
+DEFAULT_TRIP_CLASS = 10  # 606, s
+DEFAULT_THERMAL_RESET_THRESHOLD = 75  # 608, % trip level
+DEFAULT_THERMAL_ALARM_THRESHOLD = 85  # 609, % trip level
 DEFAULT_RESET_MODE = ResetMode.REMOTE
 DEFAULT_OPERATING_MODE = OperatingMode.REVERSER_2W
-DEFAULT_NETWORK_FALLBACK = FallbackStrategy.OFF    # 682: a lost PLC stops the motor
-DEFAULT_TRANSITION_TIMEOUT_S = 0   # 541, s: no anti-backspin wait unless configured
-DEFAULT_STEP_TIMEOUT_S = 5         # 643, unit not printed (manual 001 L4708): taken as s like 541
-DEFAULT_STEP_THRESHOLD = 150       # 644, % FLC, unit not printed (L4713)
-DEFAULT_LOAD_PERCENT = 80.0        # % FLC while running
-DEFAULT_COMMERCIAL_REFERENCE = "LTMR08CBD"         # 64-69: an LTMR with an 8 A current range
-DEFAULT_CURRENT_RANGE_MAX = 80     # 81, x 0.1 A
+DEFAULT_NETWORK_FALLBACK = FallbackStrategy.OFF  # 682: a lost PLC stops the motor
+DEFAULT_TRANSITION_TIMEOUT_S = 0  # 541, s: no anti-backspin wait unless configured
+DEFAULT_STEP_TIMEOUT_S = 5  # 643, unit not printed (manual 001 L4708): taken as s like 541
+DEFAULT_STEP_THRESHOLD = 150  # 644, % FLC, unit not printed (L4713)
+DEFAULT_LOAD_PERCENT = 80.0  # % FLC while running
+DEFAULT_COMMERCIAL_REFERENCE = "LTMR08CBD"  # 64-69: an LTMR with an 8 A current range
+DEFAULT_CURRENT_RANGE_MAX = 80  # 81, x 0.1 A
 # Enabled protections: thermal overload trip (631 bit 3), self test (bit 9, the
 # factory setting, L4519); thermal overload and network port alarms (632 bits 3, 15).
 # The network port trip (631 bit 15) is off: a lost PLC raises an alarm and
@@ -135,20 +136,20 @@ DEFAULT_ALARM_ENABLE_1 = AlarmEnable1.THERMAL_OVERLOAD | AlarmEnable1.NETWORK_PO
 # 601: config via network port (factory, L230), 3 phases (bits 13-14 = 2, DT_PhaseNumber)
 DEFAULT_GENERAL_CONFIG_1 = GeneralConfig1.CONFIG_VIA_NETWORK | (2 << 13)
 
-START_DURATION_NS = 1 * S          # inrush of a direct-on-line start
-START_CURRENT_PERCENT = 600.0      # % FLC during the inrush (or the load, if higher: a locked rotor)
-ULTIMATE_TRIP_RATIO = 1.125        # Iu: between IEC 60947-4-1's 1.05 (no trip) and 1.2 (trip)
-TAU_PER_TRIP_CLASS = -1 / math.log(1 - (ULTIMATE_TRIP_RATIO / 7.2) ** 2)   # τ / N, see the docstring
-MAX_STEP_NS = 10_000_000           # events (trip, alarm, reset threshold) are seen within 10 ms
-NO_TRIP_EXPECTED = 0xFFFF          # 511 while the thermal image is not heading for a trip
+START_DURATION_NS = 1 * S  # inrush of a direct-on-line start
+START_CURRENT_PERCENT = 600.0  # % FLC during the inrush (or the load, if higher: a locked rotor)
+ULTIMATE_TRIP_RATIO = 1.125  # Iu: between IEC 60947-4-1's 1.05 (no trip) and 1.2 (trip)
+TAU_PER_TRIP_CLASS = -1 / math.log(1 - (ULTIMATE_TRIP_RATIO / 7.2) ** 2)  # τ / N, see the docstring
+MAX_STEP_NS = 10_000_000  # events (trip, alarm, reset threshold) are seen within 10 ms
+NO_TRIP_EXPECTED = 0xFFFF  # 511 while the thermal image is not heading for a trip
 
 # ---------------------------------------------------------------- from the manual
 
-RUNNING_THRESHOLD_PERCENT = 10     # 455 bit 7: "current greater than 10% FLC" (L3533)
-DIRECT_TRANSITION = 1 << 9         # 683 bit 9: 1 = stop not required during transition (L4870)
-LOCAL_DEFAULT_MODE = 1 << 2        # 683 bit 2: 0 = remote, 1 = local (with LTMCU)
-REMOTE_CHANNEL_SHIFT = 5           # 683 bits 5-6: 0 = network, 1 = terminal strip, 2 = HMI
-REG_TRANSITION_TIMEOUT = 541       # s
+RUNNING_THRESHOLD_PERCENT = 10  # 455 bit 7: "current greater than 10% FLC" (L3533)
+DIRECT_TRANSITION = 1 << 9  # 683 bit 9: 1 = stop not required during transition (L4870)
+LOCAL_DEFAULT_MODE = 1 << 2  # 683 bit 2: 0 = remote, 1 = local (with LTMCU)
+REMOTE_CHANNEL_SHIFT = 5  # 683 bits 5-6: 0 = network, 1 = terminal strip, 2 = HMI
+REG_TRANSITION_TIMEOUT = 541  # s
 REG_STEP_TIMEOUT = 643
 REG_STEP_THRESHOLD = 644
 REG_CURRENT_RANGE_MAX = 81
@@ -158,17 +159,22 @@ REG_NETWORK_PORT_TRIPS_COUNT = 114
 REG_THERMAL_ALARMS_COUNT = 116
 REG_TRIPS_COUNT = 122
 REG_ALARMS_COUNT = 123
-REG_LO1_CLOSINGS = 124             # UDInt 124-125
-REG_LO2_CLOSINGS = 126             # UDInt 126-127
-STATISTICS = range(100, 450)       # cleared by 705 bit 1
+REG_LO1_CLOSINGS = 124  # UDInt 124-125
+REG_LO2_CLOSINGS = 126  # UDInt 126-127
+STATISTICS = range(100, 450)  # cleared by 705 bit 1
 
 _OVERLOAD = {OperatingMode.OVERLOAD_2W, OperatingMode.OVERLOAD_3W}
 _INDEPENDENT = {OperatingMode.INDEPENDENT_2W, OperatingMode.INDEPENDENT_3W}
 _REVERSER = {OperatingMode.REVERSER_2W, OperatingMode.REVERSER_3W}
 _TWO_STEP = {OperatingMode.TWO_STEP_2W, OperatingMode.TWO_STEP_3W}
 _TWO_SPEED = {OperatingMode.TWO_SPEED_2W, OperatingMode.TWO_SPEED_3W}
-_THREE_WIRE = {OperatingMode.OVERLOAD_3W, OperatingMode.INDEPENDENT_3W, OperatingMode.REVERSER_3W,
-               OperatingMode.TWO_STEP_3W, OperatingMode.TWO_SPEED_3W}
+_THREE_WIRE = {
+    OperatingMode.OVERLOAD_3W,
+    OperatingMode.INDEPENDENT_3W,
+    OperatingMode.REVERSER_3W,
+    OperatingMode.TWO_STEP_3W,
+    OperatingMode.TWO_SPEED_3W,
+}
 _RUN_BITS = Control1.RUN_FORWARD | Control1.RUN_REVERSE
 
 # 456 bits this model computes; the others keep what was written
@@ -176,7 +182,7 @@ _STATUS2_OWNED = Status2.SPEED_FLC2 | Status2.NETWORK_COMM_LOSS | Status2.TRANSI
 # 458: LO1, LO2 (bits 0, 1) and O.4 (bit 3), the trip relay (95-96 / 97-98, 459 bit 15)
 _OUTPUTS_OWNED = 0b1011
 _IO_OUTPUT_LO1, _IO_OUTPUT_LO2, _IO_OUTPUT_TRIP = 1 << 12, 1 << 13, 1 << 15
-_IO_INPUTS = 0x0FFF                # 459 bits 0-11 = inputs 1..12 (L3579)
+_IO_INPUTS = 0x0FFF  # 459 bits 0-11 = inputs 1..12 (L3579)
 
 
 def default_registers() -> dict:
@@ -186,25 +192,27 @@ def default_registers() -> dict:
     registers.update(FACTORY_SETTINGS)
     for i, word in enumerate(encode_commercial_reference(DEFAULT_COMMERCIAL_REFERENCE)):
         registers[REG_COMMERCIAL_REFERENCE + i] = word
-    registers.update({
-        REG_CURRENT_RANGE_MAX: DEFAULT_CURRENT_RANGE_MAX,
-        REG_FLC_MAX: DEFAULT_FLC_MAX,
-        REG_OPERATING_MODE: DEFAULT_OPERATING_MODE,
-        REG_TRANSITION_TIMEOUT: DEFAULT_TRANSITION_TIMEOUT_S,
-        REG_GENERAL_CONFIG_1: DEFAULT_GENERAL_CONFIG_1,
-        REG_GENERAL_CONFIG_2: (FACTORY_SETTINGS.get(REG_GENERAL_CONFIG_2, 0) & ~GENERAL_CONFIG2_RESET_MODE_MASK)
-        | DEFAULT_RESET_MODE,
-        REG_TRIP_CLASS: DEFAULT_TRIP_CLASS,
-        REG_THERMAL_RESET_THRESHOLD: DEFAULT_THERMAL_RESET_THRESHOLD,
-        REG_THERMAL_ALARM_THRESHOLD: DEFAULT_THERMAL_ALARM_THRESHOLD,
-        REG_TRIP_ENABLE_1: DEFAULT_TRIP_ENABLE_1,
-        REG_ALARM_ENABLE_1: DEFAULT_ALARM_ENABLE_1,
-        REG_STEP_TIMEOUT: DEFAULT_STEP_TIMEOUT_S,
-        REG_STEP_THRESHOLD: DEFAULT_STEP_THRESHOLD,
-        REG_FLC1: DEFAULT_FLC1,
-        REG_FLC2: DEFAULT_FLC2,
-        REG_NETWORK_FALLBACK: DEFAULT_NETWORK_FALLBACK,
-    })
+    registers.update(
+        {
+            REG_CURRENT_RANGE_MAX: DEFAULT_CURRENT_RANGE_MAX,
+            REG_FLC_MAX: DEFAULT_FLC_MAX,
+            REG_OPERATING_MODE: DEFAULT_OPERATING_MODE,
+            REG_TRANSITION_TIMEOUT: DEFAULT_TRANSITION_TIMEOUT_S,
+            REG_GENERAL_CONFIG_1: DEFAULT_GENERAL_CONFIG_1,
+            REG_GENERAL_CONFIG_2: (FACTORY_SETTINGS.get(REG_GENERAL_CONFIG_2, 0) & ~GENERAL_CONFIG2_RESET_MODE_MASK)
+            | DEFAULT_RESET_MODE,
+            REG_TRIP_CLASS: DEFAULT_TRIP_CLASS,
+            REG_THERMAL_RESET_THRESHOLD: DEFAULT_THERMAL_RESET_THRESHOLD,
+            REG_THERMAL_ALARM_THRESHOLD: DEFAULT_THERMAL_ALARM_THRESHOLD,
+            REG_TRIP_ENABLE_1: DEFAULT_TRIP_ENABLE_1,
+            REG_ALARM_ENABLE_1: DEFAULT_ALARM_ENABLE_1,
+            REG_STEP_TIMEOUT: DEFAULT_STEP_TIMEOUT_S,
+            REG_STEP_THRESHOLD: DEFAULT_STEP_THRESHOLD,
+            REG_FLC1: DEFAULT_FLC1,
+            REG_FLC2: DEFAULT_FLC2,
+            REG_NETWORK_FALLBACK: DEFAULT_NETWORK_FALLBACK,
+        }
+    )
     return {reg: int(value) & 0xFFFF for reg, value in registers.items()}
 
 
@@ -214,24 +222,24 @@ class LtmrModel:
         for reg, value in (registers or {}).items():
             self.registers[int(reg)] = int(value) & 0xFFFF
         self.load_percent = float(load_percent)
-        self.thermal = 0.0                  # θ, fraction of the trip level
+        self.thermal = 0.0  # θ, fraction of the trip level
         self.lo1 = False
         self.lo2 = False
-        self.fallback: FallbackStrategy | None = None   # applied after a network communication loss
+        self.fallback: FallbackStrategy | None = None  # applied after a network communication loss
         self.comm_lost = False
         self.t_ns: int | None = None
-        self._start_end_ns: int | None = None    # end of the inrush of the running start
+        self._start_end_ns: int | None = None  # end of the inrush of the running start
         self._running_since_ns: int | None = None
-        self._selected = 0                  # reverser / two-speed: 1 = LO1, 2 = LO2, 0 = none
+        self._selected = 0  # reverser / two-speed: 1 = LO1, 2 = LO2, 0 = none
         self._last_selected = 0
-        self._lockout_until_ns = 0          # motor transition timeout 541 after a stop
-        self._wait_release = False          # a start needs the run bits released first
-        self._step = 1                      # two-step: step 1 (LO1) or 2 (LO2)
-        self._held = (False, False)         # outputs at the moment of a HOLD fallback
+        self._lockout_until_ns = 0  # motor transition timeout 541 after a stop
+        self._wait_release = False  # a start needs the run bits released first
+        self._step = 1  # two-step: step 1 (LO1) or 2 (LO2)
+        self._held = (False, False)  # outputs at the moment of a HOLD fallback
         self._previous_control = 0
         self._previous_control2 = 0
         self._reset_pressed = False
-        self._alarms: list[int] = []        # active alarm codes, the newest last
+        self._alarms: list[int] = []  # active alarm codes, the newest last
 
     # ------------------------------------------------------------------ what a user sees
 
@@ -267,7 +275,7 @@ class LtmrModel:
 
     @property
     def motor_running(self) -> bool:
-        return self.current_percent > RUNNING_THRESHOLD_PERCENT      # 455 bit 7 (L3533)
+        return self.current_percent > RUNNING_THRESHOLD_PERCENT  # 455 bit 7 (L3533)
 
     @property
     def flc_in_use_centiamps(self) -> float:
@@ -341,8 +349,11 @@ class LtmrModel:
             self._count(REG_NETWORK_PORT_TRIPS_COUNT)
         strategy = self.registers[REG_NETWORK_FALLBACK]
         mode = self.operating_mode
-        if (strategy not in FallbackStrategy._value2member_map_ or not is_valid_operating_mode(mode)
-                or not fallback_allowed(strategy, mode)):
+        if (
+            strategy not in FallbackStrategy._value2member_map_
+            or not is_valid_operating_mode(mode)
+            or not fallback_allowed(strategy, mode)
+        ):
             strategy = FallbackStrategy.OFF
         self.fallback = FallbackStrategy(strategy)
         self._held = (self.lo1, self.lo2)
@@ -387,7 +398,7 @@ class LtmrModel:
                 break
             dt = min(now_ns - self.t_ns, MAX_STEP_NS)
             if self._start_end_ns is not None and self.starting:
-                dt = min(dt, self._start_end_ns - self.t_ns)     # the inrush ends on time
+                dt = min(dt, self._start_end_ns - self.t_ns)  # the inrush ends on time
             self._heat(dt)
             self.t_ns += dt
             self._protect()
@@ -400,12 +411,17 @@ class LtmrModel:
 
     def _protect(self) -> None:
         percent = self.thermal * 100
-        alarm = bool(self.registers[REG_ALARM_ENABLE_1] & AlarmEnable1.THERMAL_OVERLOAD) and \
-            percent >= self.registers[REG_THERMAL_ALARM_THRESHOLD]
+        alarm = (
+            bool(self.registers[REG_ALARM_ENABLE_1] & AlarmEnable1.THERMAL_OVERLOAD)
+            and percent >= self.registers[REG_THERMAL_ALARM_THRESHOLD]
+        )
         self._set_alarm(ALARM_THERMAL_OVERLOAD, alarm)
         # 1e-9: the trip of the class definition (exactly N s at 7.2 FLC) must not be lost to rounding
-        if (not self.tripped and self.registers[REG_TRIP_ENABLE_1] & TripEnable1.THERMAL_OVERLOAD
-                and self.thermal >= 1 - 1e-9):
+        if (
+            not self.tripped
+            and self.registers[REG_TRIP_ENABLE_1] & TripEnable1.THERMAL_OVERLOAD
+            and self.thermal >= 1 - 1e-9
+        ):
             self._trip(TRIP_THERMAL_OVERLOAD, TripRegister1.THERMAL_OVERLOAD)
             self._count(REG_THERMAL_TRIPS_COUNT)
 
@@ -417,9 +433,12 @@ class LtmrModel:
         rising = control & ~self._previous_control
         self._previous_control = control
         self._apply_control2()
-        if rising & Control1.SELF_TEST and not self.tripped and \
-                self.registers[REG_TRIP_ENABLE_1] & TripEnable1.SELF_TEST:
-            self._trip(TRIP_TEST, TripRegister1.TEST)         # trip code 10, 452 bit 9 (L3448)
+        if (
+            rising & Control1.SELF_TEST
+            and not self.tripped
+            and self.registers[REG_TRIP_ENABLE_1] & TripEnable1.SELF_TEST
+        ):
+            self._trip(TRIP_TEST, TripRegister1.TEST)  # trip code 10, 452 bit 9 (L3448)
         if self.tripped:
             self._try_reset(bool(rising & Control1.TRIP_RESET))
         self._reset_pressed = False
@@ -481,23 +500,22 @@ class LtmrModel:
             return self._select((1 if low else 2) if forward else 0, now)
         if mode in _TWO_STEP:
             return self._two_step(forward, now)
-        return False, False                      # custom logic programs are not simulated
+        return False, False  # custom logic programs are not simulated
 
     def _select(self, target: int, now: int) -> tuple:
         """Reverser and two-speed: one of LO1/LO2. Changing from one to the
         other needs a stop first unless 683 bit 9 (direct transition); after a
         stop, the other output waits the motor transition timeout 541."""
         current = self._selected
-        if current and target and target != current and \
-                not self.registers[REG_CONTROL_SETTING] & DIRECT_TRANSITION:
-            self._wait_release = True            # "stop required during transition" (L4870)
+        if current and target and target != current and not self.registers[REG_CONTROL_SETTING] & DIRECT_TRANSITION:
+            self._wait_release = True  # "stop required during transition" (L4870)
             target = 0
         if current and target != current:
             self._last_selected = current
             self._lockout_until_ns = now + self.registers[REG_TRANSITION_TIMEOUT] * S
             self._selected = 0
         if target and target != self._last_selected and now < self._lockout_until_ns:
-            target = 0                           # transition lockout, 456 bit 9
+            target = 0  # transition lockout, 456 bit 9
         if target:
             self._selected = target
         return self._selected == 1, self._selected == 2
@@ -525,7 +543,7 @@ class LtmrModel:
         strategy = self.fallback
         if strategy == FallbackStrategy.HOLD:
             return self._held
-        if strategy == FallbackStrategy.RUN:       # two-step only: as if the run command stayed
+        if strategy == FallbackStrategy.RUN:  # two-step only: as if the run command stayed
             return self._two_step(True, self.t_ns or 0)
         if strategy == FallbackStrategy.BOTH_ON:
             return True, True
@@ -533,7 +551,7 @@ class LtmrModel:
             return True, False
         if strategy == FallbackStrategy.LO2_ON:
             return False, True
-        return False, False                        # OFF
+        return False, False  # OFF
 
     def _drive(self, lo1: bool, lo2: bool) -> None:
         before = self._motor_output()
@@ -543,7 +561,7 @@ class LtmrModel:
             self._count_udint(REG_LO2_CLOSINGS)
         self.lo1, self.lo2 = bool(lo1), bool(lo2)
         after = self._motor_output()
-        if after and after != before:              # a (new) start: inrush
+        if after and after != before:  # a (new) start: inrush
             self._start_end_ns = (self.t_ns or 0) + START_DURATION_NS
             self._running_since_ns = self.t_ns
             self._count_udint(REG_MOTOR_STARTS_COUNT)
@@ -567,7 +585,7 @@ class LtmrModel:
         return self._motor_output() != 0
 
     def _uses_flc2(self) -> bool:
-        return self.operating_mode in _TWO_SPEED and self.lo2    # 456 bit 6 (L3544-3571)
+        return self.operating_mode in _TWO_SPEED and self.lo2  # 456 bit 6 (L3544-3571)
 
     # ------------------------------------------------------------------ trips and alarms
 
@@ -578,11 +596,13 @@ class LtmrModel:
         self._select_none()
         self._drive(False, False)
         if self.operating_mode in _THREE_WIRE:
-            self._wait_release = True              # 3-wire: no restart after the reset without a new start
+            self._wait_release = True  # 3-wire: no restart after the reset without a new start
 
     def _set_alarm(self, code: int, active: bool) -> None:
-        bit = {ALARM_THERMAL_OVERLOAD: AlarmRegister1.THERMAL_OVERLOAD,
-               ALARM_NETWORK_COMM: AlarmRegister1.NETWORK_PORT}[code]
+        bit = {
+            ALARM_THERMAL_OVERLOAD: AlarmRegister1.THERMAL_OVERLOAD,
+            ALARM_NETWORK_COMM: AlarmRegister1.NETWORK_PORT,
+        }[code]
         if active and code not in self._alarms:
             self._alarms.append(code)
             self.registers[REG_ALARM_REGISTER_1] |= int(bit)
@@ -638,17 +658,21 @@ class LtmrModel:
 
         outputs = (1 if self.lo1 else 0) | (2 if self.lo2 else 0) | (8 if tripped else 0)
         r[REG_LOGIC_OUTPUTS] = (r[REG_LOGIC_OUTPUTS] & ~_OUTPUTS_OWNED & 0xFFFF) | outputs
-        r[REG_IO_STATUS] = ((r[REG_LOGIC_INPUTS] & _IO_INPUTS) | (_IO_OUTPUT_LO1 if self.lo1 else 0)
-                            | (_IO_OUTPUT_LO2 if self.lo2 else 0) | (_IO_OUTPUT_TRIP if tripped else 0))
+        r[REG_IO_STATUS] = (
+            (r[REG_LOGIC_INPUTS] & _IO_INPUTS)
+            | (_IO_OUTPUT_LO1 if self.lo1 else 0)
+            | (_IO_OUTPUT_LO2 if self.lo2 else 0)
+            | (_IO_OUTPUT_TRIP if tripped else 0)
+        )
 
         # whole percent, rounded down so 465 and the thresholds (608, 609) agree
         r[REG_THERMAL_CAPACITY] = min(0xFFFF, math.floor(self.thermal * 100 + 1e-7))
         ratio = min(0xFFFF, round(percent))
         for reg in (REG_AVERAGE_CURRENT_RATIO, REG_L1_CURRENT_RATIO, REG_L2_CURRENT_RATIO, REG_L3_CURRENT_RATIO):
-            r[reg] = ratio                       # a balanced three-phase load (simulator choice)
+            r[reg] = ratio  # a balanced three-phase load (simulator choice)
         centiamps = min(0xFFFFFFFF, round(percent / 100 * self.flc_in_use_centiamps))
         for reg in (REG_AVERAGE_CURRENT, REG_L1_CURRENT, REG_L2_CURRENT, REG_L3_CURRENT):
-            r[reg], r[reg + 1] = udint_to_registers(centiamps)     # lower register = MSW (A5)
+            r[reg], r[reg + 1] = udint_to_registers(centiamps)  # lower register = MSW (A5)
         r[REG_TIME_TO_TRIP] = self._time_to_trip_s()
         r[REG_MIN_WAIT_TIME] = self._minimum_wait_s()
 

@@ -16,6 +16,7 @@ sit in the 8-byte frame (A6): by default each 32-bit object is
 (second word << 16) | first word, little-endian on the wire, so the bytes are
 w1lo w1hi w2lo w2hi w3lo w3hi w4lo w4hi; "big" words is the alternative.
 """
+
 from __future__ import annotations
 
 import struct
@@ -31,8 +32,8 @@ R_CO_16 = 0x35
 R_CO_32 = 0x36
 W_CO_16 = 0x3A
 W_CO_32 = 0x3B
-ERROR = 0x4E    # "DETECTED ERROR", response only (L519)
-NONE = 0x00     # no request: "unless function code [b8...b14] = 0x00"
+ERROR = 0x4E  # "DETECTED ERROR", response only (L519)
+NONE = 0x00  # no request: "unless function code [b8...b14] = 0x00"
 
 READS = frozenset({R_REG_16, R_REG_32, R_CO_16, R_CO_32})
 WRITES = frozenset({W_REG_16, W_REG_32, W_CO_16, W_CO_32})
@@ -40,9 +41,18 @@ IS_32BIT = frozenset({R_REG_32, W_REG_32, R_CO_32, W_CO_32})
 BY_OBJECT = frozenset({R_CO_16, R_CO_32, W_CO_16, W_CO_32})
 REQUESTS = READS | WRITES
 
-FUNCTION_NAMES = {R_REG_16: "R_REG_16", R_REG_32: "R_REG_32", W_REG_16: "W_REG_16", W_REG_32: "W_REG_32",
-                  R_CO_16: "R_CO_16", R_CO_32: "R_CO_32", W_CO_16: "W_CO_16", W_CO_32: "W_CO_32",
-                  ERROR: "ERROR", NONE: "NONE"}
+FUNCTION_NAMES = {
+    R_REG_16: "R_REG_16",
+    R_REG_32: "R_REG_32",
+    W_REG_16: "W_REG_16",
+    W_REG_32: "W_REG_32",
+    R_CO_16: "R_CO_16",
+    R_CO_32: "R_CO_32",
+    W_CO_16: "W_CO_16",
+    W_CO_32: "W_CO_32",
+    ERROR: "ERROR",
+    NONE: "NONE",
+}
 
 TOGGLE_BIT = 0x8000
 LAYOUTS = ("little", "big")
@@ -51,6 +61,7 @@ LAYOUTS = ("little", "big")
 @dataclass(frozen=True)
 class PkwWords:
     """Four PKW words, request or response."""
+
     w1: int
     w2: int
     w3: int = 0
@@ -84,8 +95,10 @@ class PkwWords:
 
     def describe(self) -> str:
         name = FUNCTION_NAMES.get(self.function, f"0x{self.function:02X}")
-        return (f"PKW {name} T={self.toggle} w1=0x{self.w1:04X} sub=0x{self.subindex:02X} "
-                f"data=0x{self.w3:04X} 0x{self.w4:04X}")
+        return (
+            f"PKW {name} T={self.toggle} w1=0x{self.w1:04X} sub=0x{self.subindex:02X} "
+            f"data=0x{self.w3:04X} 0x{self.w4:04X}"
+        )
 
 
 def word2(function: int, toggle: int, subindex: int = 0) -> int:
@@ -116,10 +129,9 @@ def response(req: PkwWords, data=(0, 0)) -> PkwWords:
 
 
 def error_response(req: PkwWords, abort_code: int) -> PkwWords:
-    """"function code = toggle bit + 0x4E", the SDO abort code in words 3 (MSW)
+    """ "function code = toggle bit + 0x4E", the SDO abort code in words 3 (MSW)
     and 4 (LSW) (L337-591); word 1 and the sub-index as in the request."""
-    return PkwWords(req.w1, word2(ERROR, req.toggle, req.subindex), (abort_code >> 16) & 0xFFFF,
-                    abort_code & 0xFFFF)
+    return PkwWords(req.w1, word2(ERROR, req.toggle, req.subindex), (abort_code >> 16) & 0xFFFF, abort_code & 0xFFFF)
 
 
 def response_ready(req: PkwWords, resp: PkwWords) -> bool:

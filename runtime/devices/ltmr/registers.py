@@ -15,6 +15,7 @@ dictionary chapter: profile.py.
     REGISTERS[455].name              -> 'System status register 1'
     scaled_value(REG_FREQUENCY, 5000) -> 50.0
 """
+
 from __future__ import annotations
 
 import re
@@ -30,16 +31,16 @@ from .datatypes import int16
 # The blocks are irregular (700 -> 0x2008, not 0x2007). 1200-1399 use 0x200D
 # with sub-indices 0x01..0xC8 as the detailed tables print them (A8).
 REGISTER_BLOCKS = (
-    (0, 99, 0x2000),        # identification, L2288-2394
-    (100, 149, 0x2001),     # global and LTM monitoring statistics, L2434-2643
-    (150, 299, 0x2002),     # trip history n-0..n-4, main tables, L2655-3199
-    (300, 449, 0x2003),     # trip history extensions, L3210-3383
-    (450, 539, 0x2004),     # monitoring, L3412-4006
-    (540, 599, 0x2005),     # configuration, L4030-4322
-    (600, 649, 0x2006),     # configuration, L4326-4720
-    (650, 699, 0x2007),     # setting, L4724-4895
-    (700, 799, 0x2008),     # command, L4908-4960
-    (1200, 1399, 0x200D),   # custom logic, L4972-5096 (A8)
+    (0, 99, 0x2000),  # identification, L2288-2394
+    (100, 149, 0x2001),  # global and LTM monitoring statistics, L2434-2643
+    (150, 299, 0x2002),  # trip history n-0..n-4, main tables, L2655-3199
+    (300, 449, 0x2003),  # trip history extensions, L3210-3383
+    (450, 539, 0x2004),  # monitoring, L3412-4006
+    (540, 599, 0x2005),  # configuration, L4030-4322
+    (600, 649, 0x2006),  # configuration, L4326-4720
+    (650, 699, 0x2007),  # setting, L4724-4895
+    (700, 799, 0x2008),  # command, L4908-4960
+    (1200, 1399, 0x200D),  # custom logic, L4972-5096 (A8)
 )
 
 # The group table (L4015-4023) says "200C : 01 to 200D : 64" instead: 1200-1299 in
@@ -76,8 +77,7 @@ def register_to_object(reg: int, *, split_custom_logic: bool = False) -> tuple:
             if is_forbidden(reg):
                 raise ForbiddenRegisterError(f"LTMR register {reg} is Forbidden (not accessible)")
             return index, reg - first + 1
-    raise UnmappedRegisterError(f"LTMR register {reg} has no CANopen address "
-                                "(the map covers 0-799 and 1200-1399)")
+    raise UnmappedRegisterError(f"LTMR register {reg} has no CANopen address (the map covers 0-799 and 1200-1399)")
 
 
 def object_to_register(index: int, subindex: int, *, split_custom_logic: bool = False) -> int:
@@ -89,10 +89,12 @@ def object_to_register(index: int, subindex: int, *, split_custom_logic: bool = 
             if not first <= reg <= last:
                 raise UnmappedRegisterError(
                     f"LTMR object 0x{index:04X}:{subindex:02X} has no register "
-                    f"(sub-index 0x01..0x{last - first + 1:02X})")
+                    f"(sub-index 0x01..0x{last - first + 1:02X})"
+                )
             if is_forbidden(reg):
                 raise ForbiddenRegisterError(
-                    f"LTMR object 0x{index:04X}:{subindex:02X} (register {reg}) is Forbidden (not accessible)")
+                    f"LTMR object 0x{index:04X}:{subindex:02X} (register {reg}) is Forbidden (not accessible)"
+                )
             return reg
     raise UnmappedRegisterError(f"0x{index:04X} is not an LTMR register object (0x2000-0x2008, 0x200D)")
 
@@ -101,21 +103,23 @@ def object_to_register(index: int, subindex: int, *, split_custom_logic: bool = 
 # The register table (digest §6, manual L2279-5098)
 # ---------------------------------------------------------------------------
 
+
 @dataclass(frozen=True)
 class Register:
     """One 16-bit register. A value spread over several registers (UDInt,
     Word[n]) has one Register per word; `first` and `words` tie them together."""
+
     number: int
     name: str
-    type: str            # 'UInt', 'Int', 'Word', 'UDInt', 'DInt', 'Word[n]' as printed; '' if unused
-    access: str          # 'ro' (0-539, 1200-1399) or 'rw' (540-799), §5.3
-    scale: float = 1     # 0.01 for "x 0.01 A"
+    type: str  # 'UInt', 'Int', 'Word', 'UDInt', 'DInt', 'Word[n]' as printed; '' if unused
+    access: str  # 'ro' (0-539, 1200-1399) or 'rw' (540-799), §5.3
+    scale: float = 1  # 0.01 for "x 0.01 A"
     unit: str = ""
-    notes: str = ""      # 1/2: needs the LTMEV40 expansion; A: motor off; B: config mode; C: no trip
+    notes: str = ""  # 1/2: needs the LTMEV40 expansion; A: motor off; B: config mode; C: no trip
     kind: str = "value"  # 'value', 'reserved', 'not significant', 'forbidden'
-    format: str = ""     # the manual's DT_* data type, when it names one
-    first: int = -1      # the register where the value starts (= number for one-word values)
-    words: int = 1       # how many registers the value spans
+    format: str = ""  # the manual's DT_* data type, when it names one
+    first: int = -1  # the register where the value starts (= number for one-word values)
+    words: int = 1  # how many registers the value spans
 
     @property
     def signed(self) -> bool:
@@ -131,7 +135,7 @@ class Register:
 # copied as printed (A19); typed "Ulnt" in the manual, spelled UInt here.
 _TABLE = (
     # identification, index 0x2000, read-only
-    (0, 34, "", "(Not significant)", "", "", ""),       # L2288, printed 2000:03-2000:28 (A9)
+    (0, 34, "", "(Not significant)", "", "", ""),  # L2288, printed 2000:03-2000:28 (A9)
     (35, 40, "Word[6]", "Expansion commercial reference", "", "1", "DT_CommercialReference"),  # L2292 (A9)
     (41, 45, "Word[5]", "Expansion serial number", "", "1", ""),
     (46, 46, "UInt", "Expansion ID code", "", "1", ""),
@@ -150,10 +154,10 @@ _TABLE = (
     (79, 79, "UInt", "Current sensor max", "", "", ""),
     (80, 80, "", "(Not significant)", "", "", ""),
     (81, 81, "UInt", "Current range max", "x 0.1 A", "", ""),
-    (82, 94, "", "(Not significant)", "", "", ""),      # L2380, printed 2000:53-2000:58 (A9)
+    (82, 94, "", "(Not significant)", "", "", ""),  # L2380, printed 2000:53-2000:58 (A9)
     (95, 95, "UInt", "Load CT ratio", "x 0.1 A", "", ""),
-    (96, 96, "UInt", "Full load current max", "x 0.1 A", "", ""),   # L2389: maximum FLC range
-    (97, 99, "", "(Forbidden)", "", "", ""),            # L2394
+    (96, 96, "UInt", "Full load current max", "x 0.1 A", "", ""),  # L2389: maximum FLC range
+    (97, 99, "", "(Forbidden)", "", "", ""),  # L2394
     # global statistics, 0x2001, read-only
     (100, 101, "", "(Not significant)", "", "", ""),
     (102, 102, "UInt", "Ground current trips count", "", "", ""),
@@ -162,7 +166,7 @@ _TABLE = (
     (105, 105, "UInt", "Jam trips count", "", "", ""),
     (106, 106, "UInt", "Current phase imbalance trips count", "", "", ""),
     (107, 107, "UInt", "Undercurrent trips count", "", "", ""),
-    (108, 108, "", "(Not significant)", "", "", ""),    # not listed at all (A17)
+    (108, 108, "", "(Not significant)", "", "", ""),  # not listed at all (A17)
     (109, 109, "UInt", "HMI port trips count", "", "", ""),
     (110, 110, "UInt", "Controller internal trips count", "", "", ""),
     (111, 111, "UInt", "Internal port trips count", "", "", ""),
@@ -202,7 +206,7 @@ _TABLE = (
     # 150-449: the five trip history tables, built by _trip_history_rows below
     # monitoring, 0x2004, read-only (L3412-4006)
     (450, 450, "UInt", "Minimum wait time", "s", "", ""),
-    (451, 451, "UInt", "Trip code", "", "", "DT_FaultCode"),   # of the last trip, or of the one that takes priority
+    (451, 451, "UInt", "Trip code", "", "", "DT_FaultCode"),  # of the last trip, or of the one that takes priority
     (452, 452, "Word", "Trip register 1", "", "", ""),
     (453, 453, "Word", "Trip register 2", "", "", ""),
     (454, 454, "Word", "Trip register 3", "", "", ""),
@@ -215,7 +219,7 @@ _TABLE = (
     (461, 461, "Word", "Alarm register 1", "", "", ""),
     (462, 462, "Word", "Alarm register 2", "", "", ""),
     (463, 463, "Word", "Alarm register 3", "", "", ""),
-    (464, 464, "UInt", "Motor temperature sensor degree", "°C", "", ""),   # type not printed: UInt (A17)
+    (464, 464, "UInt", "Motor temperature sensor degree", "°C", "", ""),  # type not printed: UInt (A17)
     (465, 465, "UInt", "Thermal capacity level", "% trip level", "", ""),
     (466, 466, "UInt", "Average current ratio", "% FLC", "", ""),
     (467, 467, "UInt", "L1 current ratio", "% FLC", "", ""),
@@ -254,9 +258,9 @@ _TABLE = (
     (514, 514, "UInt", "Motor starts per hour count", "", "", ""),
     (515, 515, "Word", "Phase imbalances register", "", "", ""),
     (516, 523, "", "(Reserved)", "", "1", ""),
-    (524, 539, "", "(Forbidden)", "", "1", ""),          # L4006
+    (524, 539, "", "(Forbidden)", "", "1", ""),  # L4006
     # configuration, 0x2005/0x2006, read/write (L4030-4720)
-    (540, 540, "UInt", "Motor operating mode", "", "B", ""),   # L4030, values in OperatingMode
+    (540, 540, "UInt", "Motor operating mode", "", "B", ""),  # L4030, values in OperatingMode
     (541, 541, "UInt", "Motor transition timeout", "s", "", ""),
     (542, 544, "", "(Reserved)", "", "", ""),
     (545, 545, "Word", "Controller AC inputs setting register", "", "", ""),
@@ -311,10 +315,10 @@ _TABLE = (
     (593, 593, "UInt", "Over power factor trip timeout", "x 0.1 s", "1", ""),
     (594, 594, "UInt", "Over power factor trip threshold", "x 0.01 PF", "1", ""),
     (595, 595, "UInt", "Over power factor alarm threshold", "x 0.01 PF", "1", ""),
-    (596, 596, "UInt", "Auto restart delayed timeout", "s", "", ""),   # type not printed: UInt (A17)
+    (596, 596, "UInt", "Auto restart delayed timeout", "s", "", ""),  # type not printed: UInt (A17)
     (597, 599, "", "(Reserved)", "", "", ""),
     (600, 600, "", "(Not significant)", "", "", ""),
-    (601, 601, "Word", "General configuration register 1", "", "", ""),   # per-bit notes: BIT_NOTES
+    (601, 601, "Word", "General configuration register 1", "", "", ""),  # per-bit notes: BIT_NOTES
     (602, 602, "Word", "General configuration register 2", "", "", ""),
     (603, 603, "UInt", "HMI port address setting", "", "", ""),
     (604, 604, "UInt", "HMI port baud rate setting", "Baud", "", ""),
@@ -370,7 +374,7 @@ _TABLE = (
     (660, 681, "", "(Reserved)", "", "", ""),
     (682, 682, "UInt", "Network port fallback setting", "", "", "DT_OutputFallbackStrategy"),
     (683, 683, "Word", "Control setting register", "", "", ""),
-    (684, 694, "", "(Reserved)", "", "", ""),            # L4880 printed "684-692" for 2007:23-2D (A9)
+    (684, 694, "", "(Reserved)", "", "", ""),  # L4880 printed "684-692" for 2007:23-2D (A9)
     (695, 695, "UInt", "Network port baud rate setting", "", "", "DT_ExtBaudRate"),  # a code, not baud (A20)
     (696, 696, "UInt", "Network port address setting", "", "", ""),
     (697, 699, "", "(Not significant)", "", "", ""),
@@ -380,7 +384,7 @@ _TABLE = (
     (704, 704, "Word", "Control register 1", "", "", ""),
     (705, 705, "Word", "Control register 2", "", "", ""),
     (706, 709, "", "(Reserved)", "", "", ""),
-    (710, 799, "", "(Forbidden)", "", "", ""),           # L4960 printed "707-799" for 2008:0B-64 (A9)
+    (710, 799, "", "(Forbidden)", "", "", ""),  # L4960 printed "707-799" for 2008:0B-64 (A9)
     # custom logic, 0x200D, tables headed "Read-only Variables" (L4963-5098)
     (1200, 1200, "Word", "Custom logic status register", "", "", ""),
     (1201, 1201, "Word", "Custom logic version", "", "", ""),
@@ -395,7 +399,7 @@ _TABLE = (
     (1271, 1279, "", "(Reserved)", "", "", ""),
     (1280, 1280, "Word", "Custom logic monitoring register 1", "", "", ""),
     (1281, 1300, "", "(Reserved)", "", "", ""),
-    (1301, 1399, "Word[99]", "General purpose registers for logic functions", "", "", ""),   # L5096
+    (1301, 1399, "Word[99]", "General purpose registers for logic functions", "", "", ""),  # L5096
 )
 
 # The manual's own words where this table renames (A18) or shortens
@@ -435,7 +439,7 @@ _TRIP_HISTORY_MAIN = (
     (7, 7, "UInt", "Ground current ratio", "x 0.1 % FLC min", "", ""),
     (8, 8, "UInt", "Full load current max", "x 0.1 A", "", ""),
     (9, 9, "UInt", "Current phase imbalance", "%", "", ""),
-    (10, 10, "UInt", "Frequency", "x 0.1 Hz", "2", ""),     # 0.1 Hz here, 0.01 Hz live (474), A19
+    (10, 10, "UInt", "Frequency", "x 0.1 Hz", "2", ""),  # 0.1 Hz here, 0.01 Hz live (474), A19
     (11, 11, "UInt", "Motor temperature sensor", "x 0.1 Ω", "", ""),
     (12, 15, "Word[4]", "Date and time", "", "", "DT_DateTime"),
     (16, 16, "UInt", "Average voltage", "V", "1", ""),
@@ -454,7 +458,7 @@ _TRIP_HISTORY_EXTENSION = (
     (6, 7, "UDInt", "L3 current", "x 0.01 A", "", ""),
     (8, 9, "UDInt", "Ground current", "mA", "", ""),
     (10, 10, "UInt", "Motor temperature sensor degree", "°C", "", ""),
-    (11, 29, "", "(Not significant)", "", "", ""),   # mapped (0x2003) but not listed (A17)
+    (11, 29, "", "(Not significant)", "", "", ""),  # mapped (0x2003) but not listed (A17)
 )
 
 
@@ -481,7 +485,7 @@ def _scale_and_unit(printed: str) -> tuple:
 
 
 def _access(reg: int) -> str:
-    return "rw" if 540 <= reg <= 799 else "ro"    # §5.3: 0-539 and custom logic are read-only tables
+    return "rw" if 540 <= reg <= 799 else "ro"  # §5.3: 0-539 and custom logic are read-only tables
 
 
 def _build_registers() -> dict:
@@ -497,8 +501,19 @@ def _build_registers() -> dict:
                 label, start = name, reg
             else:
                 label, start = (name if part == 0 else f"{name} (word {part + 1})"), first
-            registers[reg] = Register(number=reg, name=label, type=type_, access=_access(reg), scale=scale,
-                                      unit=unit, notes=notes, kind=kind, format=fmt, first=start, words=words)
+            registers[reg] = Register(
+                number=reg,
+                name=label,
+                type=type_,
+                access=_access(reg),
+                scale=scale,
+                unit=unit,
+                notes=notes,
+                kind=kind,
+                format=fmt,
+                first=start,
+                words=words,
+            )
     return registers
 
 
@@ -524,8 +539,8 @@ def scaled_value(reg: int, raw: int) -> float:
 
 REG_CONTROLLER_COMMERCIAL_REFERENCE = 64
 REG_CONTROLLER_FIRMWARE_VERSION = 76
-REG_FLC_MAX = 96                 # x 0.1 A
-REG_MOTOR_STARTS_COUNT = 117     # UDInt 117-118
+REG_FLC_MAX = 96  # x 0.1 A
+REG_MOTOR_STARTS_COUNT = 117  # UDInt 117-118
 REG_MIN_WAIT_TIME = 450
 REG_TRIP_CODE = 451
 REG_TRIP_REGISTER_1 = 452
@@ -546,14 +561,14 @@ REG_L1_CURRENT_RATIO = 467
 REG_L2_CURRENT_RATIO = 468
 REG_L3_CURRENT_RATIO = 469
 REG_CONTROLLER_TEMPERATURE = 472  # Int
-REG_FREQUENCY = 474               # x 0.01 Hz
+REG_FREQUENCY = 474  # x 0.01 Hz
 REG_NETWORK_PORT_STATUS = 490
 REG_NETWORK_BAUD_RATE = 491
-REG_AVERAGE_CURRENT = 500         # UDInt 500-501, x 0.01 A
+REG_AVERAGE_CURRENT = 500  # UDInt 500-501, x 0.01 A
 REG_L1_CURRENT = 502
 REG_L2_CURRENT = 504
 REG_L3_CURRENT = 506
-REG_GROUND_CURRENT = 508          # UDInt, mA
+REG_GROUND_CURRENT = 508  # UDInt, mA
 REG_TIME_TO_TRIP = 511
 REG_OPERATING_MODE = 540
 REG_THERMAL_OVERLOAD_SETTING = 546
@@ -567,9 +582,9 @@ REG_ALARM_ENABLE_1 = 632
 REG_TRIP_ENABLE_2 = 633
 REG_ALARM_ENABLE_2 = 634
 REG_HMI_FALLBACK = 645
-REG_FLC1 = 652                    # % of FLC max (96)
+REG_FLC1 = 652  # % of FLC max (96)
 REG_FLC2 = 653
-REG_DATE_TIME = 655               # Word[4] 655-658
+REG_DATE_TIME = 655  # Word[4] 655-658
 REG_NETWORK_FALLBACK = 682
 REG_CONTROL_SETTING = 683
 REG_BAUD_RATE = 695

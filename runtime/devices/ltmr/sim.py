@@ -30,6 +30,7 @@ What the bus sees (manual 001, shared/manuals/001_*.txt "L<n>", and digest
   (generic), error register 0x01, the trip code as U16 in the first two
   manufacturer bytes; on its reset: 0x0000 and error register 0x00.
 """
+
 from __future__ import annotations
 
 import contextlib
@@ -76,15 +77,15 @@ from .registers import (
 )
 
 # A22: the manual gives no EMCY content; the simulator's choice
-EMCY_TRIP = 0x1000              # CiA 301 "generic error"
-EMCY_RESET = 0x0000             # CiA 301 "error reset or no error"
-ERROR_REGISTER_GENERIC = 0x01   # 0x1001 bit 0
+EMCY_TRIP = 0x1000  # CiA 301 "generic error"
+EMCY_RESET = 0x0000  # CiA 301 "error reset or no error"
+ERROR_REGISTER_GENERIC = 0x01  # 0x1001 bit 0
 
 PRODUCT_CODE_OBJECT = (0x1018, 2)
 REGISTER_INDICES = frozenset(index for _first, _last, index in REGISTER_BLOCKS)
-CONFIGURATION_REGISTERS = range(540, 700)     # configuration and setting tables (L4011-4898)
-PKW_REQUEST_SUBS = (1, 2)                     # 0x3000:01/02 in RPDO4
-PKW_RESPONSE_SUBS = (3, 4)                    # 0x3000:03/04 in TPDO4
+CONFIGURATION_REGISTERS = range(540, 700)  # configuration and setting tables (L4011-4898)
+PKW_REQUEST_SUBS = (1, 2)  # 0x3000:01/02 in RPDO4
+PKW_RESPONSE_SUBS = (3, 4)  # 0x3000:03/04 in TPDO4
 
 
 def shipped_eds(name: str = "ltmr.eds"):
@@ -96,24 +97,35 @@ class LtmrSimulator(SimulatedCanopenSlave):
     #: A21 leaves the abort code of a note A/B/C violation open; this one by default
     note_abort = ABORT_DEVICE_STATE
 
-    def __init__(self, node_id: int = 40, *, settings: BusSettings, clock, pump=None, name: str | None = None,
-                 product_code: int = 0x30, registers: dict | None = None, eds=None) -> None:
-        pkw_read_only(product_code)                         # ValueError for an unknown product code
+    def __init__(
+        self,
+        node_id: int = 40,
+        *,
+        settings: BusSettings,
+        clock,
+        pump=None,
+        name: str | None = None,
+        product_code: int = 0x30,
+        registers: dict | None = None,
+        eds=None,
+    ) -> None:
+        pkw_read_only(product_code)  # ValueError for an unknown product code
         with shipped_eds() if eds is None else contextlib.nullcontext(eds) as path:
-            super().__init__(node_id, eds=str(path), settings=settings, clock=clock, pump=pump,
-                             name=name or f"ltmr {node_id}")
+            super().__init__(
+                node_id, eds=str(path), settings=settings, clock=clock, pump=pump, name=name or f"ltmr {node_id}"
+            )
         self.product_code = product_code
         identity = self.od.get_variable(*PRODUCT_CODE_OBJECT)
         if identity is None:
             raise KeyError(f"the EDS has no product code 0x{PRODUCT_CODE_OBJECT[0]:04X}:{PRODUCT_CODE_OBJECT[1]:02X}")
-        identity.default = product_code                        # L1034-1050
+        identity.default = product_code  # L1034-1050
         if identity.value is not None:
             identity.value = product_code
         initial = {REG_NODE_ADDRESS: node_id, REG_NETWORK_BAUD_RATE: _baud_code(settings.bitrate)}
         initial.update(registers or {})
         self.model = LtmrModel(initial)
-        self._pkw_function_byte = 0        # toggle + function code of the last request seen
-        self._emcy_trip_code = 0           # the trip the last EMCY told about
+        self._pkw_function_byte = 0  # toggle + function code of the last request seen
+        self._emcy_trip_code = 0  # the trip the last EMCY told about
 
     # ------------------------------------------------------------------ test and operator API
 
@@ -174,7 +186,7 @@ class LtmrSimulator(SimulatedCanopenSlave):
 
     def on_state_change(self, old: int, new: int) -> None:
         if old == STATE_BOOTUP:
-            self._emcy_trip_code = 0       # a trip still present is reported again after booting
+            self._emcy_trip_code = 0  # a trip still present is reported again after booting
         if old == STATE_OPERATIONAL:
             self.model.network_lost()
         elif new == STATE_OPERATIONAL and not self.heartbeat_lost:
@@ -197,7 +209,7 @@ class LtmrSimulator(SimulatedCanopenSlave):
         if self.model.fallback is not None and not self.model.comm_lost and not self.heartbeat_lost:
             self.model.clear_fallback()
         self._serve_pkw()
-        self.model.advance_to(self._clock_ns())      # the new command takes effect now
+        self.model.advance_to(self._clock_ns())  # the new command takes effect now
 
     # ------------------------------------------------------------------ objects <-> registers
 
@@ -233,17 +245,20 @@ class LtmrSimulator(SimulatedCanopenSlave):
         raises SdoAbortedError with the code the master gets."""
         register = REGISTERS.get(reg)
         if register is None or register.kind == "forbidden":
-            raise SdoAbortedError(ABORT_NO_SUBINDEX)                  # A21
+            raise SdoAbortedError(ABORT_NO_SUBINDEX)  # A21
         if register.access != "rw":
             raise SdoAbortedError(ABORT_READ_ONLY)
         if register.kind == "reserved" and value != 0:
-            raise SdoAbortedError(ABORT_VALUE_RANGE)                  # "you must write 0" (§5.3)
+            raise SdoAbortedError(ABORT_VALUE_RANGE)  # "you must write 0" (§5.3)
         if reg in CONFIGURATION_REGISTERS and not self.model.config_via_network:
-            raise SdoAbortedError(ABORT_ACCESS)                       # local configuration (601 bit 10)
+            raise SdoAbortedError(ABORT_ACCESS)  # local configuration (601 bit 10)
         model = self.model
         notes = self._notes_touched(reg, value)
-        if ("A" in notes and model.motor_on) or ("B" in notes and not model.config_mode) or \
-                ("C" in notes and model.tripped):
+        if (
+            ("A" in notes and model.motor_on)
+            or ("B" in notes and not model.config_mode)
+            or ("C" in notes and model.tripped)
+        ):
             raise SdoAbortedError(self.note_abort)
         self._check_value(reg, value)
 
@@ -258,10 +273,12 @@ class LtmrSimulator(SimulatedCanopenSlave):
     def _check_value(self, reg: int, value: int) -> None:
         """Value checks the simulator makes where the manual lists the values."""
         if reg == REG_OPERATING_MODE and value not in OperatingMode._value2member_map_:
-            raise SdoAbortedError(ABORT_VALUE_RANGE)      # 2..11; custom logic (256-511) is not simulated
-        if reg == REG_GENERAL_CONFIG_2 and (value & GENERAL_CONFIG2_RESET_MODE_MASK) not in \
-                ResetMode._value2member_map_:
-            raise SdoAbortedError(ABORT_VALUE_RANGE)      # DT_ResetMode: 1, 2 or 4 (L2204-2214)
+            raise SdoAbortedError(ABORT_VALUE_RANGE)  # 2..11; custom logic (256-511) is not simulated
+        if (
+            reg == REG_GENERAL_CONFIG_2
+            and (value & GENERAL_CONFIG2_RESET_MODE_MASK) not in ResetMode._value2member_map_
+        ):
+            raise SdoAbortedError(ABORT_VALUE_RANGE)  # DT_ResetMode: 1, 2 or 4 (L2204-2214)
         if reg == REG_NETWORK_FALLBACK:
             if value > max(FallbackStrategy):
                 raise SdoAbortedError(ABORT_VALUE_HIGH)
@@ -273,7 +290,7 @@ class LtmrSimulator(SimulatedCanopenSlave):
     # ------------------------------------------------------------------ PKW (digest 001 §2.5)
 
     def _serve_pkw(self) -> None:
-        """"Any changes in the function code will trigger the handling of the
+        """ "Any changes in the function code will trigger the handling of the
         request (unless function code [b8...b14] = 0x00)": the request byte is
         toggle + function code; a function code 0 is echoed (the HMI re-trigger)."""
         frame = b"".join(self.node.get_data(PKW_INDEX, sub) for sub in PKW_REQUEST_SUBS)
@@ -288,8 +305,8 @@ class LtmrSimulator(SimulatedCanopenSlave):
             response = self._pkw_execute(request)
         data = pkw.encode_frame(response)
         for i, sub in enumerate(PKW_RESPONSE_SUBS):
-            self._store(PKW_INDEX, sub, int.from_bytes(data[4 * i:4 * i + 4], "little"))
-            self.mark_changed(PKW_INDEX, sub)    # a response goes out even if it equals the last one
+            self._store(PKW_INDEX, sub, int.from_bytes(data[4 * i : 4 * i + 4], "little"))
+            self.mark_changed(PKW_INDEX, sub)  # a response goes out even if it equals the last one
 
     def _pkw_execute(self, request: pkw.PkwWords) -> pkw.PkwWords:
         function = request.function
@@ -307,12 +324,12 @@ class LtmrSimulator(SimulatedCanopenSlave):
                 words = [self.model.registers[r] for r in regs] + [0]
                 return pkw.response(request, (words[0], words[1]))
             if pkw_read_only(self.product_code):
-                raise SdoAbortedError(ABORT_READ_ONLY)            # MMC L variants (L343)
-            values = [request.w3, request.w4][:len(regs)]          # word 3 = register n, word 4 = n + 1
+                raise SdoAbortedError(ABORT_READ_ONLY)  # MMC L variants (L343)
+            values = [request.w3, request.w4][: len(regs)]  # word 3 = register n, word 4 = n + 1
             for r, value in zip(regs, values):
                 self._pkw_register(r)
                 self._check_network_write(r, value)
-            for r, value in zip(regs, values):                     # all or nothing
+            for r, value in zip(regs, values):  # all or nothing
                 self.model.set_register(r, value)
             return pkw.response(request)
         except SdoAbortedError as exc:

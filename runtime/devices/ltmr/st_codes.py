@@ -14,6 +14,7 @@ one.
     FUNCTION LTMR_TRIP_TEXT(Code : UINT) : STRING[80]    DT_FaultCode texts
     FUNCTION LTMR_ALARM_TEXT(Code : UINT) : STRING[80]   DT_WarningCode texts
 """
+
 from __future__ import annotations
 
 import enum
@@ -30,13 +31,19 @@ TEXT_LENGTH = 80
 
 def _members_in_order(module, base) -> list:
     """Classes of `module` derived from `base`, in the order the module defines them."""
-    return [obj for obj in vars(module).values()
-            if isinstance(obj, type) and issubclass(obj, base) and obj.__module__ == module.__name__]
+    return [
+        obj
+        for obj in vars(module).values()
+        if isinstance(obj, type) and issubclass(obj, base) and obj.__module__ == module.__name__
+    ]
 
 
 def _constants(module, prefix: str) -> list:
-    return [(name, value) for name, value in vars(module).items()
-            if name.startswith(prefix) and isinstance(value, int) and not isinstance(value, enum.Enum)]
+    return [
+        (name, value)
+        for name, value in vars(module).items()
+        if name.startswith(prefix) and isinstance(value, int) and not isinstance(value, enum.Enum)
+    ]
 
 
 def _title(cls) -> str:
@@ -73,22 +80,26 @@ def _case_branches(function: str, codes: dict) -> list:
             runs[-1][1] = code
         else:
             runs.append([code, code])
-    return [f"    {first if first == last else f'{first}..{last}'}: {function} := {st_string(codes[first])};"
-            for first, last in runs]
+    return [
+        f"    {first if first == last else f'{first}..{last}'}: {function} := {st_string(codes[first])};"
+        for first, last in runs
+    ]
 
 
 def _text_function(function: str, codes: dict, unknown: str, what: str) -> list:
-    return [f"(* {what} *)",
-            f"FUNCTION {function} : STRING[{TEXT_LENGTH}]",
-            "VAR_INPUT",
-            "    Code : UINT;",
-            "END_VAR",
-            "CASE Code OF",
-            *_case_branches(function, codes),
-            "ELSE",
-            f"    {function} := {st_string(unknown)};",
-            "END_CASE;",
-            "END_FUNCTION"]
+    return [
+        f"(* {what} *)",
+        f"FUNCTION {function} : STRING[{TEXT_LENGTH}]",
+        "VAR_INPUT",
+        "    Code : UINT;",
+        "END_VAR",
+        "CASE Code OF",
+        *_case_branches(function, codes),
+        "ELSE",
+        f"    {function} := {st_string(unknown)};",
+        "END_CASE;",
+        "END_FUNCTION",
+    ]
 
 
 def render() -> str:
@@ -108,8 +119,11 @@ def render() -> str:
         *_flag_lines(),
         *_enum_lines(),
         "    (* PKW function codes (RPDO4/TPDO4 word 2, bits 8-14) *)",
-        *(f"    LTMR_PKW_{name} : BYTE := 16#{code:02X};"
-          for code, name in pkw.FUNCTION_NAMES.items() if code != pkw.NONE),
+        *(
+            f"    LTMR_PKW_{name} : BYTE := 16#{code:02X};"
+            for code, name in pkw.FUNCTION_NAMES.items()
+            if code != pkw.NONE
+        ),
         "    (* register numbers *)",
         *(f"    LTMR_{name} : UINT := {value};" for name, value in _constants(ltmr, "REG_")),
         "    (* trip codes (DT_FaultCode) and alarm codes (DT_WarningCode) *)",
@@ -117,10 +131,18 @@ def render() -> str:
         *(f"    LTMR_{name} : UINT := {value};" for name, value in _constants(ltmr_codes, "ALARM_")),
         "END_VAR",
         "",
-        *_text_function("LTMR_TRIP_TEXT", ltmr_codes.TRIP_CODES, "unknown trip code",
-                        "text of a trip code, register 451 and the trip history (DT_FaultCode)"),
+        *_text_function(
+            "LTMR_TRIP_TEXT",
+            ltmr_codes.TRIP_CODES,
+            "unknown trip code",
+            "text of a trip code, register 451 and the trip history (DT_FaultCode)",
+        ),
         "",
-        *_text_function("LTMR_ALARM_TEXT", ltmr_codes.ALARM_CODES, "unknown alarm code",
-                        "text of an alarm code, register 460 (DT_WarningCode)"),
+        *_text_function(
+            "LTMR_ALARM_TEXT",
+            ltmr_codes.ALARM_CODES,
+            "unknown alarm code",
+            "text of an alarm code, register 460 (DT_WarningCode)",
+        ),
     ]
     return "\n".join(lines) + "\n"

@@ -9,6 +9,7 @@ and (virtual time) the pump its endpoint must use.
 Public names: BUS, BusPump, BusSettings, CanEndpoint, CanNode, CanBusConfig,
 CanSimContext, open_bus, pump_of, settings_of.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -48,12 +49,22 @@ def _build(config, ctx: BuildContext) -> Contribution:
         if device.bus != BUS.name:
             continue
         context = CanSimContext(settings_of(buses[sim.at.bus]), ctx.clock, pump_of(ctx))
-        assert device.simulator is not None   # the registry has no simulating device without one
+        assert device.simulator is not None  # the registry has no simulating device without one
         sims.append(device.simulator(sim, context))
     return Contribution(simulators=sims)
 
 
 BUS = Bus(name="can", order=20, sections=(CanSection(),), attachment=CanAttachment(), build=_build)
 
-__all__ = ["BUS", "BusPump", "BusSettings", "CanBusConfig", "CanEndpoint", "CanNode", "CanSimContext", "open_bus",
-           "pump_of", "settings_of"]
+__all__ = [
+    "BUS",
+    "BusPump",
+    "BusSettings",
+    "CanBusConfig",
+    "CanEndpoint",
+    "CanNode",
+    "CanSimContext",
+    "open_bus",
+    "pump_of",
+    "settings_of",
+]

@@ -22,6 +22,7 @@ code in both modes.
 An endpoint can be unplugged (a cut cable, a device switched off): it then
 drops frames both ways until plugged again. Tests and the simulators use it.
 """
+
 from __future__ import annotations
 
 import logging
@@ -44,6 +45,7 @@ class BusSettings:
     """What python-can needs to open a bus. Nothing is hard-coded: any
     interface python-can knows (socketcan, pcan, kvaser, ixxat, vector,
     virtual ...), with its channel, bitrate and interface-specific options."""
+
     interface: str
     channel: str
     bitrate: int = 250_000
@@ -56,8 +58,9 @@ class BusSettings:
 def open_bus(settings: BusSettings) -> can.BusABC:
     """A python-can bus, or DriverError naming the interface and the reason."""
     try:
-        return can.Bus(interface=settings.interface, channel=settings.channel,
-                       bitrate=settings.bitrate, **settings.options)
+        return can.Bus(
+            interface=settings.interface, channel=settings.channel, bitrate=settings.bitrate, **settings.options
+        )
     except (can.CanError, OSError, ValueError, ImportError, NotImplementedError) as exc:
         raise DriverError(f"cannot open CAN bus ({settings.describe()}): {exc}") from None
 
@@ -68,8 +71,8 @@ class CanEndpoint:
         self.name = name
         self.pump = pump
         self.connected = True
-        self.sent = 0            # frames handed to the bus
-        self.received = 0        # frames handed to the handlers
+        self.sent = 0  # frames handed to the bus
+        self.received = 0  # frames handed to the handlers
         self.send_errors = 0
         self.last_error = ""
         self._handlers: list[Handler] = []
@@ -128,8 +131,13 @@ class CanEndpoint:
         because a lost bus must not stop the thread that sends."""
         if not self.connected:
             return False
-        msg = can.Message(arbitration_id=can_id, data=bytes(data), is_extended_id=can_id > 0x7FF,
-                          is_remote_frame=remote, dlc=len(data) if not remote else 0)
+        msg = can.Message(
+            arbitration_id=can_id,
+            data=bytes(data),
+            is_extended_id=can_id > 0x7FF,
+            is_remote_frame=remote,
+            dlc=len(data) if not remote else 0,
+        )
         try:
             self.bus.send(msg)
         except (can.CanError, OSError) as exc:

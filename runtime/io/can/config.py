@@ -8,6 +8,7 @@ on one ([[sim]] keys bus and node_id).
     bitrate = 250000
     options = { ... }          # more python-can keyword arguments
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -24,7 +25,7 @@ from ...config.values import Model, fail, identifier, in_range, int_range, is_id
 CAN_BITRATES = (10_000, 20_000, 50_000, 125_000, 250_000, 500_000, 800_000, 1_000_000)
 # A [[can]] table without bitrate: 250 kbit/s, the LTMR's factory setting (manual 001 L206).
 DEFAULT_BITRATE = 250_000
-NODE_ID_MAX = 127                    # manual 001 L163: "an address from 1 to 127"
+NODE_ID_MAX = 127  # manual 001 L163: "an address from 1 to 127"
 
 _INTERFACE = 'a python-can interface such as "socketcan", "pcan" or "virtual"'
 
@@ -35,16 +36,17 @@ BusName = Annotated[str, identifier("a bus name")]
 @dataclass
 class CanBusConfig:
     name: str
-    interface: str                   # a python-can interface name: socketcan, pcan, virtual ...
+    interface: str  # a python-can interface name: socketcan, pcan, virtual ...
     channel: str
-    bitrate: int                     # bit/s
-    options: dict                    # more keyword arguments for python-can
-    key: str                         # "can[0]"
+    bitrate: int  # bit/s
+    options: dict  # more keyword arguments for python-can
+    key: str  # "can[0]"
 
 
 @dataclass
 class CanNode:
     """Where a simulated CAN device sits: a [[can]] bus and its node id."""
+
     bus: str
     node_id: int
 
@@ -59,21 +61,22 @@ class _Can(Model):
     name: BusName = Field("can0", description='a bus name such as "can0"')
     interface: Annotated[str, nonempty(_INTERFACE)] = Field(description=_INTERFACE)
     channel: Annotated[str, text_value('a channel such as "can0" or "PCAN_USBBUS1"')] = Field(
-        description='a channel such as "can0" or "PCAN_USBBUS1"')
-    bitrate: Annotated[int, PlainValidator(_bitrate)] = Field(DEFAULT_BITRATE,
-                                                              description="a CANopen bitrate")
+        description='a channel such as "can0" or "PCAN_USBBUS1"'
+    )
+    bitrate: Annotated[int, PlainValidator(_bitrate)] = Field(DEFAULT_BITRATE, description="a CANopen bitrate")
     options: dict[str, Any] = Field(
-        default_factory=dict, description="a table of python-can options, such as { fd = false }")
+        default_factory=dict, description="a table of python-can options, such as { fd = false }"
+    )
 
 
 class _State:
     """What pass 2 learns of the CAN side, for [canopen] and [[sim]]."""
 
     def __init__(self) -> None:
-        self.names: dict = {}         # NAME (upper) -> the name as written, of buses with a valid name
-        self.count = 0                # [[can]] tables
-        self.bus_of: dict = {}        # loc of a table that names a bus -> the bus
-        self.nodes: dict = {}         # (bus, node id) -> (loc, what holds it, or None for a simulator)
+        self.names: dict = {}  # NAME (upper) -> the name as written, of buses with a valid name
+        self.count = 0  # [[can]] tables
+        self.bus_of: dict = {}  # loc of a table that names a bus -> the bus
+        self.nodes: dict = {}  # (bus, node id) -> (loc, what holds it, or None for a simulator)
 
 
 def can_state(ctx: Relations) -> _State:
@@ -91,24 +94,26 @@ def bus_of(here: tuple, table: dict, ctx: Relations, what: str) -> str | None:
     bus = table.get("bus")
     listed = ", ".join(f"'{n}'" for n in names.values())
     if count == 0:
-        ctx.error(here, f"{what} needs a [[can]] bus (the file has none): add a [[can]] table with "
-                        "interface and channel")
+        ctx.error(
+            here, f"{what} needs a [[can]] bus (the file has none): add a [[can]] table with interface and channel"
+        )
         return None
     if bus is None:
         if count == 1 and len(names) == 1:
             bus = next(iter(names.values()))
         elif count > 1:
-            ctx.error(here + ("bus",), f"required key missing: the file has several [[can]] buses "
-                                       f"(expected one of {listed})")
+            ctx.error(
+                here + ("bus",), f"required key missing: the file has several [[can]] buses (expected one of {listed})"
+            )
             return None
         else:
-            return None   # the only bus has a bad name: pass 1 reports it
+            return None  # the only bus has a bad name: pass 1 reports it
     elif not is_ident(bus):
-        return None       # pass 1 reports it
+        return None  # pass 1 reports it
     elif bus.upper() in names:
         bus = names[bus.upper()]
     else:
-        if len(names) == count:   # every bus has a valid name, so this one is unknown
+        if len(names) == count:  # every bus has a valid name, so this one is unknown
             ctx.error(here + ("bus",), f"expected one of {listed}, the [[can]] buses (got '{bus}')")
         return None
     state.bus_of[here] = bus
@@ -137,21 +142,28 @@ class CanSection(Section):
                 continue
             name = bus.get("name", "can0")
             if not is_ident(name):
-                continue   # pass 1 reports it
+                continue  # pass 1 reports it
             first = names.get(name.upper())
             if first is None:
                 names[name.upper()] = (name, i)
             elif "name" in bus:
-                ctx.error(("can", i, "name"), f"duplicate bus name '{name}' (can[{first[1]}] has it; "
-                                              "names are case-insensitive)")
+                ctx.error(
+                    ("can", i, "name"),
+                    f"duplicate bus name '{name}' (can[{first[1]}] has it; names are case-insensitive)",
+                )
             else:
-                ctx.error(("can", i), f"duplicate bus name '{name}' (the default; can[{first[1]}] has it): "
-                                      "give each [[can]] its own name")
+                ctx.error(
+                    ("can", i),
+                    f"duplicate bus name '{name}' (the default; can[{first[1]}] has it): "
+                    "give each [[can]] its own name",
+                )
         state.names = {upper: name for upper, (name, _i) in names.items()}
 
     def build(self, model: Any, ctx: Relations) -> list[CanBusConfig]:
-        return [CanBusConfig(b.name, b.interface, b.channel, b.bitrate, dict(b.options), f"can[{i}]")
-                for i, b in enumerate(model)]
+        return [
+            CanBusConfig(b.name, b.interface, b.channel, b.bitrate, dict(b.options), f"can[{i}]")
+            for i, b in enumerate(model)
+        ]
 
 
 class _CanNodeKeys(Model):
@@ -161,6 +173,7 @@ class _CanNodeKeys(Model):
 
 class CanAttachment(Attachment):
     """A simulated device on a [[can]] bus, at a node id."""
+
     kind = "CAN"
     model = _CanNodeKeys
     default_name = "<type><node_id>"
@@ -179,8 +192,7 @@ class CanAttachment(Attachment):
         elif taken[1] is not None:
             ctx.error(here + ("node_id",), f"{node_id} is {taken[1]}")
         else:
-            ctx.error(here + ("node_id",), f"duplicate node id {node_id} on bus '{bus}' "
-                                           f"({key_text(taken[0])} has it)")
+            ctx.error(here + ("node_id",), f"duplicate node id {node_id} on bus '{bus}' ({key_text(taken[0])} has it)")
 
     def name(self, sim_type: str, sim: dict) -> str | None:
         node_id = sim.get("node_id")

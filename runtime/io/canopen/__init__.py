@@ -8,6 +8,7 @@ on (slave.py: a real canopen LocalNode).
 
 Public names: BUS, CanopenDriver, CanopenConfig, SimulatedCanopenSlave.
 """
+
 from __future__ import annotations
 
 from ...plugin.seams import BuildContext, Bus, Contribution, StLibrary
@@ -22,12 +23,22 @@ def _build(config, ctx: BuildContext) -> Contribution:
     if config.canopen is None:
         return Contribution()
     bus = next(b for b in config.can if b.name == config.canopen.bus)
-    return Contribution(drivers=[CanopenDriver(config.canopen, settings_of(bus), clock=ctx.clock,
-                                               pump=pump_of(ctx), addressing=ctx.addressing)])
+    return Contribution(
+        drivers=[
+            CanopenDriver(
+                config.canopen, settings_of(bus), clock=ctx.clock, pump=pump_of(ctx), addressing=ctx.addressing
+            )
+        ]
+    )
 
 
-BUS = Bus(name="canopen", order=30, sections=(CanopenSection(),), natives=(READ_VAR, WRITE_VAR),
-          libraries=(StLibrary("softplc.fblocks.comm", "sdo.st"), StLibrary("softplc.fblocks.comm", "canopen_diag.st")),
-          build=_build)
+BUS = Bus(
+    name="canopen",
+    order=30,
+    sections=(CanopenSection(),),
+    natives=(READ_VAR, WRITE_VAR),
+    libraries=(StLibrary("softplc.fblocks.comm", "sdo.st"), StLibrary("softplc.fblocks.comm", "canopen_diag.st")),
+    build=_build,
+)
 
 __all__ = ["BUS", "CanopenConfig", "CanopenDriver", "SimulatedCanopenSlave"]

@@ -2,6 +2,7 @@
 codes, NMT commands and states, the pre-defined COB-IDs, PDO mapping
 entries. The manual's own abort table is manual 001 §3.3 (L720-754); the
 NMT, heartbeat and COB-ID numbers are CiA 301's (digest 001, A22)."""
+
 from __future__ import annotations
 
 ABORT_TOGGLE = 0x05030000
@@ -29,15 +30,14 @@ ABORT_CODES = {
     ABORT_TIMEOUT: "The SDO protocol timed out",
     ABORT_BAD_COMMAND: "The request code is not valid or is unknown",
     ABORT_ACCESS: "An access trip has occurred during access to the parameter (for example, a write request on "
-                  "a read-only parameter)",
+    "a read-only parameter)",
     ABORT_WRITE_ONLY: "Tried to perform a read request on a parameter with write-only access rights",
     ABORT_READ_ONLY: "Tried to perform a write request on a parameter with read-only access rights",
-    ABORT_NO_OBJECT: "The index sent in the request refers to an object that does not exist in the object "
-                     "dictionary",
+    ABORT_NO_OBJECT: "The index sent in the request refers to an object that does not exist in the object dictionary",
     ABORT_NOT_MAPPABLE: "PDO object mapping: the parameter cannot be mapped to the PDO; this detected error occurs "
-                        "when writing to the 0x1600, 0x1A00, 0x1605, and 0x1A05 parameters (PDO mappings)",
+    "when writing to the 0x1600, 0x1A00, 0x1605, and 0x1A05 parameters (PDO mappings)",
     ABORT_PDO_LENGTH: "PDO object mapping: the number or length of the parameters to be mapped would exceed "
-                      "the maximum PDO length.",
+    "the maximum PDO length.",
     ABORT_NO_SUBINDEX: "The sub-index sent in the request does not exist",
     ABORT_VALUE_RANGE: "Value range of parameter exceeded (only for write access)",
     ABORT_VALUE_HIGH: "Value of parameter written too high",
@@ -59,9 +59,23 @@ ABORT_CODES = {
 }
 
 # The 15 codes the LTMR manual lists (manual 001 L720-754); PKW errors use the same codes
-MANUAL_ABORT_CODES = (ABORT_TOGGLE, ABORT_TIMEOUT, ABORT_BAD_COMMAND, ABORT_ACCESS, ABORT_WRITE_ONLY,
-                      ABORT_READ_ONLY, ABORT_NO_OBJECT, ABORT_NOT_MAPPABLE, ABORT_PDO_LENGTH, ABORT_NO_SUBINDEX,
-                      ABORT_VALUE_RANGE, ABORT_VALUE_HIGH, ABORT_VALUE_LOW, ABORT_MAX_BELOW_MIN, ABORT_GENERAL)
+MANUAL_ABORT_CODES = (
+    ABORT_TOGGLE,
+    ABORT_TIMEOUT,
+    ABORT_BAD_COMMAND,
+    ABORT_ACCESS,
+    ABORT_WRITE_ONLY,
+    ABORT_READ_ONLY,
+    ABORT_NO_OBJECT,
+    ABORT_NOT_MAPPABLE,
+    ABORT_PDO_LENGTH,
+    ABORT_NO_SUBINDEX,
+    ABORT_VALUE_RANGE,
+    ABORT_VALUE_HIGH,
+    ABORT_VALUE_LOW,
+    ABORT_MAX_BELOW_MIN,
+    ABORT_GENERAL,
+)
 
 
 def abort_text(code: int) -> str:
@@ -80,13 +94,17 @@ STATE_BOOTUP = 0x00
 STATE_STOPPED = 0x04
 STATE_OPERATIONAL = 0x05
 STATE_PRE_OPERATIONAL = 0x7F
-STATE_NAMES = {STATE_BOOTUP: "boot-up", STATE_STOPPED: "stopped", STATE_OPERATIONAL: "operational",
-               STATE_PRE_OPERATIONAL: "pre-operational"}
+STATE_NAMES = {
+    STATE_BOOTUP: "boot-up",
+    STATE_STOPPED: "stopped",
+    STATE_OPERATIONAL: "operational",
+    STATE_PRE_OPERATIONAL: "pre-operational",
+}
 
 # The pre-defined connection set (manual 001 §1.3 gives the factory values of the LTMR's OD)
 COB_NMT = 0x000
 COB_SYNC = 0x080
-COB_ID_INVALID = 1 << 31     # bit 31 of a PDO / EMCY COB-ID: does not exist / not valid
+COB_ID_INVALID = 1 << 31  # bit 31 of a PDO / EMCY COB-ID: does not exist / not valid
 
 # PDO k's communication and mapping parameters are at these indices + k - 1
 RPDO_COMM, RPDO_MAP = 0x1400, 0x1600

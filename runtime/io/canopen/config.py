@@ -2,6 +2,7 @@
 ([[canopen.node]] with the EDS, heartbeats, boot-time SDO writes and the
 PDO maps to image addresses); io_config/examples/canopen.toml shows every
 key. Limits come from the LTMR manual (001) and CiA 301."""
+
 from __future__ import annotations
 
 import difflib
@@ -36,28 +37,28 @@ from ...plugin.registry import registry
 from ...st.ast import LocatedAddress
 from ..can.config import NODE_ID_MAX, BusName, NodeId, bus_of, can_state, claim_node
 
-PDO_ENTRIES_MAX = 8                  # manual 001 L117: a PDO carries 8 bytes
+PDO_ENTRIES_MAX = 8  # manual 001 L117: a PDO carries 8 bytes
 PDO_BITS_MAX = 64
-DEFAULT_HEARTBEAT_MS = 100           # the master's and a node's, unless the file says
+DEFAULT_HEARTBEAT_MS = 100  # the master's and a node's, unless the file says
 
 
 @dataclass
 class PdoEntryConfig:
     index: int
     subindex: int
-    address: LocatedAddress          # %I (TPDO) or %Q (RPDO): a bit, byte, word, dword or lword
-    key: str                         # "canopen.node[0].tpdo[0].map[1]"
+    address: LocatedAddress  # %I (TPDO) or %Q (RPDO): a bit, byte, word, dword or lword
+    key: str  # "canopen.node[0].tpdo[0].map[1]"
 
 
 @dataclass
 class PdoConfig:
-    number: int                      # 1..512
-    transmission: int                # 0..240 (SYNC), 254, 255 (event-driven)
-    inhibit_us: int                  # 0: none
-    event_ms: int                    # 0: none
-    configure: bool                  # the master writes mapping and parameters at boot
+    number: int  # 1..512
+    transmission: int  # 0..240 (SYNC), 254, 255 (event-driven)
+    inhibit_us: int  # 0: none
+    event_ms: int  # 0: none
+    configure: bool  # the master writes mapping and parameters at boot
     entries: list[PdoEntryConfig]
-    key: str                         # "canopen.node[0].tpdo[0]"
+    key: str  # "canopen.node[0].tpdo[0]"
 
 
 @dataclass
@@ -65,31 +66,31 @@ class SdoWriteConfig:
     index: int
     subindex: int
     value: int
-    size: int | None              # bytes (1, 2, 4); None: the EDS says
-    key: str                         # "canopen.node[0].sdo[0]"
+    size: int | None  # bytes (1, 2, 4); None: the EDS says
+    key: str  # "canopen.node[0].sdo[0]"
 
 
 @dataclass
 class CanopenNodeConfig:
     name: str
     node_id: int
-    eds: Path                        # absolute
+    eds: Path  # absolute
     mandatory: bool
-    heartbeat_ms: int                # the node's producer time, its 0x1017 (0: none)
-    heartbeat_timeout_ms: int        # the master's consumer timeout for it (0: not watched)
-    master_timeout_ms: int           # its 0x1016:01 consumer time for the master (0: none)
-    sdo: list[SdoWriteConfig]        # boot-time writes, in order
+    heartbeat_ms: int  # the node's producer time, its 0x1017 (0: none)
+    heartbeat_timeout_ms: int  # the master's consumer timeout for it (0: not watched)
+    master_timeout_ms: int  # its 0x1016:01 consumer time for the master (0: none)
+    sdo: list[SdoWriteConfig]  # boot-time writes, in order
     tpdo: list[PdoConfig]
     rpdo: list[PdoConfig]
-    key: str                         # "canopen.node[0]"
+    key: str  # "canopen.node[0]"
 
 
 @dataclass
 class CanopenConfig:
-    bus: str                         # the name of a CanBusConfig
-    node_id: int                     # the master's own node id
-    heartbeat_ms: int                # the master's producer period (0: none)
-    sync_us: int                     # SYNC period (0: no SYNC)
+    bus: str  # the name of a CanBusConfig
+    node_id: int  # the master's own node id
+    heartbeat_ms: int  # the master's producer period (0: none)
+    sync_us: int  # SYNC period (0: no SYNC)
     sdo_timeout_ms: int
     boot_timeout_ms: int
     retry_ms: int
@@ -107,8 +108,9 @@ _timeout_ms = duration_in("ms")
 _node_heartbeat = duration_in("ms", off="no heartbeat", most=(U16_MAX, "0x1017 holds ms in 16 bits"))
 _heartbeat_timeout = duration_in("ms", off="not watching it")
 # manual 001 L957: 0x1016:01 bits 0-15 = heartbeat time, unit 1 ms.
-_master_timeout = duration_in("ms", off="the node not watching the master",
-                               most=(U16_MAX, "0x1016:01 holds ms in 16 bits"))
+_master_timeout = duration_in(
+    "ms", off="the node not watching the master", most=(U16_MAX, "0x1016:01 holds ms in 16 bits")
+)
 # manual 001 L1365: TPDO inhibit time, Unsigned 16, unit 0.1 ms.
 _inhibit = duration_in("us", off="none", most=(U16_MAX * 100, "the inhibit time is 16 bits of 100us"))
 # Event timer: Unsigned 16 in ms, as CiA 301 says; manual 001 L1379 says
@@ -149,14 +151,16 @@ def _eds_file(value, info: ValidationInfo) -> Path:
     if not isinstance(value, str) or not value.strip():
         raise fail(f"a shipped EDS name ({names}) or the path of an .eds file", value)
     text = value.strip()
-    if re.fullmatch(r"[A-Za-z0-9_-]+", text):      # a name, not a path
+    if re.fullmatch(r"[A-Za-z0-9_-]+", text):  # a name, not a path
         if text.lower() in shipped:
             return shipped[text.lower()].path
         close = difflib.get_close_matches(text.lower(), list(shipped), n=1)
         hint = f"; did you mean '{close[0]}'?" if close else ""
-        raise PydanticCustomError("config", "expected a shipped EDS name ({names}) or the path of an .eds "
-                                  "file (got {got}{hint})",
-                                  {"names": names, "got": got(value), "hint": hint})
+        raise PydanticCustomError(
+            "config",
+            "expected a shipped EDS name ({names}) or the path of an .eds file (got {got}{hint})",
+            {"names": names, "got": got(value), "hint": hint},
+        )
     return existing_file(text, info)
 
 
@@ -170,7 +174,8 @@ def _default_master_timeout(master_heartbeat_ms: int) -> int:
 
 class _PdoEntry(Model):
     object: Annotated[tuple, PlainValidator(_object)] = Field(
-        description='an object "index:subindex" in hex, such as "2004:06"')
+        description='an object "index:subindex" in hex, such as "2004:06"'
+    )
     address: Any = Field(description='an image address such as "%IW0" for a TPDO, "%QW0" for an RPDO')
 
 
@@ -181,14 +186,17 @@ class _Pdo(Model):
     event: Annotated[int, PlainValidator(_event)] = Field(0, description="a duration such as 500ms")
     configure: bool = Field(True, description="true or false")
     map: list[_PdoEntry] = Field(
-        min_length=1, max_length=PDO_ENTRIES_MAX,
+        min_length=1,
+        max_length=PDO_ENTRIES_MAX,
         description=f'an array of 1 to {PDO_ENTRIES_MAX} {{ object = "2004:06", address = "%IW0" }} tables; '
-                    "a PDO carries 8 bytes")
+        "a PDO carries 8 bytes",
+    )
 
 
 class _SdoWrite(Model):
     object: Annotated[tuple, PlainValidator(_object)] = Field(
-        description='an object "index:subindex" in hex, such as "2007:21"')
+        description='an object "index:subindex" in hex, such as "2007:21"'
+    )
     value: Annotated[int, PlainValidator(integer)] = Field(description="an integer")
     size: Annotated[int, PlainValidator(_sdo_size)] | None = Field(None, description="1, 2 or 4")
 
@@ -197,16 +205,21 @@ class _Node(Model):
     name: Annotated[str, identifier("a node name")] = Field(description='a node name such as "motor1"')
     id: NodeId = Field(description=f"a node id from 1 to {NODE_ID_MAX}")
     eds: Annotated[Path, PlainValidator(_eds_file)] = Field(
-        description='a shipped EDS name such as "ltmr" or the path of an .eds file')
+        description='a shipped EDS name such as "ltmr" or the path of an .eds file'
+    )
     mandatory: bool = Field(True, description="true or false")
     heartbeat: Annotated[int, PlainValidator(_node_heartbeat)] = Field(
-        DEFAULT_HEARTBEAT_MS, description="a duration such as 100ms, or false")
+        DEFAULT_HEARTBEAT_MS, description="a duration such as 100ms, or false"
+    )
     heartbeat_timeout: Annotated[int, PlainValidator(_heartbeat_timeout)] | None = Field(
-        None, description="a duration such as 300ms, or false")
+        None, description="a duration such as 300ms, or false"
+    )
     master_timeout: Annotated[int, PlainValidator(_master_timeout)] | None = Field(
-        None, description="a duration such as 500ms, or false")
-    sdo: list[_SdoWrite] = Field(default_factory=list,
-                                 description='an array of { object = "2007:21", value = 2 } tables')
+        None, description="a duration such as 500ms, or false"
+    )
+    sdo: list[_SdoWrite] = Field(
+        default_factory=list, description='an array of { object = "2007:21", value = 2 } tables'
+    )
     tpdo: list[_Pdo] = Field(default_factory=list, description="[[canopen.node.tpdo]] tables")
     rpdo: list[_Pdo] = Field(default_factory=list, description="[[canopen.node.rpdo]] tables")
 
@@ -215,7 +228,8 @@ class _Canopen(Model):
     bus: BusName | None = Field(None, description="the name of a [[can]] bus")
     node_id: NodeId = Field(NODE_ID_MAX, description=f"a node id from 1 to {NODE_ID_MAX}")
     heartbeat: Annotated[int, PlainValidator(_master_heartbeat)] = Field(
-        DEFAULT_HEARTBEAT_MS, description="a duration such as 100ms, or false")
+        DEFAULT_HEARTBEAT_MS, description="a duration such as 100ms, or false"
+    )
     sync: Annotated[int, PlainValidator(_sync_period)] = Field(0, description="a duration such as 10ms, or false")
     sdo_timeout: Annotated[int, PlainValidator(_timeout_ms)] = Field(500, description="a duration such as 500ms")
     boot_timeout: Annotated[int, PlainValidator(_timeout_ms)] = Field(2000, description="a duration such as 2s")
@@ -239,8 +253,13 @@ class CanopenSection(Section):
         node_id = value.get("node_id", NODE_ID_MAX)
         master_id = node_id if in_range(node_id, 1, NODE_ID_MAX) else None
         if bus is not None and master_id is not None:
-            claim_node(ctx, bus, master_id, ("canopen", "node_id"),
-                       f"the CANopen master's own node id on bus '{bus}' (canopen.node_id)")
+            claim_node(
+                ctx,
+                bus,
+                master_id,
+                ("canopen", "node_id"),
+                f"the CANopen master's own node id on bus '{bus}' (canopen.node_id)",
+            )
         self._nodes(value, master_id, ctx)
 
     def _nodes(self, canopen: dict, master_id: int | None, ctx: Relations) -> None:
@@ -265,8 +284,10 @@ class CanopenSection(Section):
             if is_ident(name):
                 first = names.setdefault(name.upper(), here)
                 if first != here:
-                    ctx.error(here + ("name",), f"duplicate node name '{name}' ({key_text(first)} has it; "
-                                                 "names are case-insensitive)")
+                    ctx.error(
+                        here + ("name",),
+                        f"duplicate node name '{name}' ({key_text(first)} has it; names are case-insensitive)",
+                    )
             self._heartbeats(here, node, canopen, master_heartbeat, ctx)
             for direction in ("tpdo", "rpdo"):
                 if isinstance(node.get(direction), list):
@@ -280,31 +301,43 @@ class CanopenSection(Section):
         master's heartbeat against the node's timeout for the master."""
         heartbeat = quiet(_node_heartbeat, node.get("heartbeat", DEFAULT_HEARTBEAT_MS))
         timeout = quiet(_heartbeat_timeout, node.get("heartbeat_timeout"))
-        if heartbeat is not None and timeout:   # given and not off
+        if heartbeat is not None and timeout:  # given and not off
             if heartbeat == 0:
-                ctx.error(here + ("heartbeat_timeout",), "only meaningful with a heartbeat (this node has "
-                                                          f"heartbeat = {got(node['heartbeat'])})")
+                ctx.error(
+                    here + ("heartbeat_timeout",),
+                    f"only meaningful with a heartbeat (this node has heartbeat = {got(node['heartbeat'])})",
+                )
             elif timeout <= heartbeat:
-                ctx.error(here + ("heartbeat_timeout",),
-                           f"expected a duration longer than the node's heartbeat ({heartbeat}ms), or false "
-                           f"for not watching it (got {got(node['heartbeat_timeout'])})")
+                ctx.error(
+                    here + ("heartbeat_timeout",),
+                    f"expected a duration longer than the node's heartbeat ({heartbeat}ms), or false "
+                    f"for not watching it (got {got(node['heartbeat_timeout'])})",
+                )
         if master_heartbeat is None:
             return
         if "master_timeout" in node:
             timeout = quiet(_master_timeout, node["master_timeout"])
             if not timeout:
-                return        # off, or refused by pass 1
+                return  # off, or refused by pass 1
             if master_heartbeat == 0:
-                ctx.error(here + ("master_timeout",), "only meaningful when the master sends a heartbeat "
-                                                       f"(canopen.heartbeat = {got(canopen['heartbeat'])})")
+                ctx.error(
+                    here + ("master_timeout",),
+                    "only meaningful when the master sends a heartbeat "
+                    f"(canopen.heartbeat = {got(canopen['heartbeat'])})",
+                )
             elif timeout <= master_heartbeat:
-                ctx.error(here + ("master_timeout",),
-                           f"expected a duration longer than canopen.heartbeat ({master_heartbeat}ms), or "
-                           f"false for the node not watching the master (got {got(node['master_timeout'])})")
+                ctx.error(
+                    here + ("master_timeout",),
+                    f"expected a duration longer than canopen.heartbeat ({master_heartbeat}ms), or "
+                    f"false for the node not watching the master (got {got(node['master_timeout'])})",
+                )
         elif master_heartbeat and _default_master_timeout(master_heartbeat) <= master_heartbeat:
-            ctx.error(here, f"the default master_timeout, 5 x canopen.heartbeat at most {U16_MAX}ms, is not "
-                             f"longer than canopen.heartbeat ({master_heartbeat}ms): give master_timeout, or "
-                             "false")
+            ctx.error(
+                here,
+                f"the default master_timeout, 5 x canopen.heartbeat at most {U16_MAX}ms, is not "
+                f"longer than canopen.heartbeat ({master_heartbeat}ms): give master_timeout, or "
+                "false",
+            )
 
     def _pdos(self, here: tuple, direction: str, pdos: list, ctx: Relations) -> None:
         """PDO numbers unique per direction, and the image addresses of the
@@ -319,8 +352,9 @@ class CanopenSection(Section):
             if in_range(number, 1, 512):
                 first = numbers.setdefault(number, at)
                 if first != at:
-                    ctx.error(at + ("number",), f"duplicate {direction.upper()} number {number} "
-                                                 f"({key_text(first)} has it)")
+                    ctx.error(
+                        at + ("number",), f"duplicate {direction.upper()} number {number} ({key_text(first)} has it)"
+                    )
             entries = pdo.get("map")
             if not isinstance(entries, list):
                 continue
@@ -331,9 +365,10 @@ class CanopenSection(Section):
                     if addr is not None:
                         ctx.state[self.key]["pdo_addresses"][at + ("map", k)] = addr
                         bits += bit_count(addr)
-            if bits > PDO_BITS_MAX and len(entries) <= PDO_ENTRIES_MAX:   # else pass 1 says too many
-                ctx.error(at + ("map",), f"the addresses hold {bits} bits; a PDO carries at most "
-                                          f"{PDO_BITS_MAX} (8 bytes)")
+            if bits > PDO_BITS_MAX and len(entries) <= PDO_ENTRIES_MAX:  # else pass 1 says too many
+                ctx.error(
+                    at + ("map",), f"the addresses hold {bits} bits; a PDO carries at most {PDO_BITS_MAX} (8 bytes)"
+                )
 
     @staticmethod
     def _pdo_address(loc: tuple, text, area: str, ctx: Relations) -> LocatedAddress | None:
@@ -345,8 +380,11 @@ class CanopenSection(Section):
             ctx.error(loc, f"expected a %{area} address: {kind} (got {area_name(addr)})")
             return None
         if addr.table is not None:
-            ctx.error(loc, f"expected a bit, byte, word, dword or lword address (got '{addr.text}', a word "
-                            "table): map one object per address")
+            ctx.error(
+                loc,
+                f"expected a bit, byte, word, dword or lword address (got '{addr.text}', a word "
+                "table): map one object per address",
+            )
             return None
         span = ctx.image_bits(loc, addr)
         if span is None:
@@ -366,8 +404,10 @@ class CanopenSection(Section):
             if in_range(value, None, None) and size in (1, 2, 4) and not isinstance(size, bool):
                 lo, hi = -(1 << (8 * size - 1)), (1 << (8 * size)) - 1
                 if not lo <= value <= hi:
-                    ctx.error(here + ("sdo", k, "value"), f"expected an integer from {lo} to {hi} for "
-                                                           f"size = {size} (got {value})")
+                    ctx.error(
+                        here + ("sdo", k, "value"),
+                        f"expected an integer from {lo} to {hi} for size = {size} (got {value})",
+                    )
 
     def build(self, model: Any, ctx: Relations) -> CanopenConfig | None:
         if model is None:
@@ -385,31 +425,63 @@ def _build_canopen(c: _Canopen, ctx: Relations) -> CanopenConfig:
         if n.heartbeat_timeout is not None:
             heartbeat_timeout = n.heartbeat_timeout
         else:
-            heartbeat_timeout = 3 * n.heartbeat          # 0 when the node sends none
+            heartbeat_timeout = 3 * n.heartbeat  # 0 when the node sends none
         if n.master_timeout is not None:
             master_timeout = n.master_timeout
         else:
             master_timeout = _default_master_timeout(c.heartbeat) if c.heartbeat else 0
-        nodes.append(CanopenNodeConfig(
-            name=n.name, node_id=n.id, eds=n.eds, mandatory=n.mandatory, heartbeat_ms=n.heartbeat,
-            heartbeat_timeout_ms=heartbeat_timeout, master_timeout_ms=master_timeout,
-            sdo=[SdoWriteConfig(w.object[0], w.object[1], w.value, w.size, f"{key}.sdo[{k}]")
-                 for k, w in enumerate(n.sdo)],
-            tpdo=_build_pdos(n.tpdo, ("canopen", "node", i, "tpdo"), ctx),
-            rpdo=_build_pdos(n.rpdo, ("canopen", "node", i, "rpdo"), ctx),
-            key=key))
-    return CanopenConfig(bus=can_state(ctx).bus_of["canopen",], node_id=c.node_id, heartbeat_ms=c.heartbeat,
-                         sync_us=c.sync, sdo_timeout_ms=c.sdo_timeout, boot_timeout_ms=c.boot_timeout,
-                         retry_ms=c.retry, nodes=nodes)
+        nodes.append(
+            CanopenNodeConfig(
+                name=n.name,
+                node_id=n.id,
+                eds=n.eds,
+                mandatory=n.mandatory,
+                heartbeat_ms=n.heartbeat,
+                heartbeat_timeout_ms=heartbeat_timeout,
+                master_timeout_ms=master_timeout,
+                sdo=[
+                    SdoWriteConfig(w.object[0], w.object[1], w.value, w.size, f"{key}.sdo[{k}]")
+                    for k, w in enumerate(n.sdo)
+                ],
+                tpdo=_build_pdos(n.tpdo, ("canopen", "node", i, "tpdo"), ctx),
+                rpdo=_build_pdos(n.rpdo, ("canopen", "node", i, "rpdo"), ctx),
+                key=key,
+            )
+        )
+    return CanopenConfig(
+        bus=can_state(ctx).bus_of["canopen",],
+        node_id=c.node_id,
+        heartbeat_ms=c.heartbeat,
+        sync_us=c.sync,
+        sdo_timeout_ms=c.sdo_timeout,
+        boot_timeout_ms=c.boot_timeout,
+        retry_ms=c.retry,
+        nodes=nodes,
+    )
 
 
 def _build_pdos(pdos: list, here: tuple, ctx: Relations) -> list:
     out = []
     for j, p in enumerate(pdos):
         at = here + (j,)
-        entries = [PdoEntryConfig(e.object[0], e.object[1], ctx.state["canopen"]["pdo_addresses"][at + ("map", k)],
-                                  key_text(at + ("map", k)))
-                   for k, e in enumerate(p.map)]
-        out.append(PdoConfig(number=p.number, transmission=p.transmission, inhibit_us=p.inhibit,
-                             event_ms=p.event, configure=p.configure, entries=entries, key=key_text(at)))
+        entries = [
+            PdoEntryConfig(
+                e.object[0],
+                e.object[1],
+                ctx.state["canopen"]["pdo_addresses"][at + ("map", k)],
+                key_text(at + ("map", k)),
+            )
+            for k, e in enumerate(p.map)
+        ]
+        out.append(
+            PdoConfig(
+                number=p.number,
+                transmission=p.transmission,
+                inhibit_us=p.inhibit,
+                event_ms=p.event,
+                configure=p.configure,
+                entries=entries,
+                key=key_text(at),
+            )
+        )
     return out

@@ -1,6 +1,7 @@
 """CANOPEN_NODE[id] and CANOPEN_MASTER (fblocks/comm/canopen_diag.st) as
 the program sees them, filled by the CANopen master. Written only when
 something changed, so the scan pays (almost) nothing for them."""
+
 from __future__ import annotations
 
 from ...program import StructWriter
@@ -16,7 +17,7 @@ class CanopenDiag:
         nodes = _global(globals_obj, "CANOPEN_NODE")
         self._nodes = [StructWriter(s) for s in nodes] if nodes is not None else []
         self._master = StructWriter(_global(globals_obj, "CANOPEN_MASTER"))
-        self._seen: dict = {}   # node id -> version written
+        self._seen: dict = {}  # node id -> version written
 
     def update(self, snapshot, master: dict) -> None:
         """snapshot: (node id, version, node) for every configured node."""
@@ -28,9 +29,16 @@ class CanopenDiag:
             sup = node.sup
             emcy = sup.last_emcy
             self._nodes[node_id].set(
-                Configured=True, State=int(sup.state), Operational=sup.state == NodeState.OPERATIONAL,
-                HeartbeatLost=sup.state == NodeState.LOST, Missing=sup.state == NodeState.MISSING,
-                NmtState=sup.nmt_state or 0, Boots=sup.boots, Emergencies=sup.emergencies,
-                EmcyCode=emcy.code if emcy else 0, EmcyRegister=emcy.register if emcy else 0,
+                Configured=True,
+                State=int(sup.state),
+                Operational=sup.state == NodeState.OPERATIONAL,
+                HeartbeatLost=sup.state == NodeState.LOST,
+                Missing=sup.state == NodeState.MISSING,
+                NmtState=sup.nmt_state or 0,
+                Boots=sup.boots,
+                Emergencies=sup.emergencies,
+                EmcyCode=emcy.code if emcy else 0,
+                EmcyRegister=emcy.register if emcy else 0,
                 EmcyData=int.from_bytes(emcy.data[:4], "little") if emcy else 0,
-                Message=sup.message if sup.state != NodeState.OPERATIONAL else "")
+                Message=sup.message if sup.state != NodeState.OPERATIONAL else "",
+            )

@@ -9,6 +9,7 @@ every device has (PDO parameters, SDO server). The shipped EDS files are
 generated, never edited by hand; a test regenerates each one and compares it
 byte for byte (devices: `python -m softplc.runtime.devices` rewrites them).
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -26,11 +27,13 @@ VISIBLE_STRING = 0x0009
 _OBJECT_TYPES = {"VAR": 0x7, "ARRAY": 0x8, "RECORD": 0x9}
 _ACCESS = ("ro", "rw", "wo", "const")
 
-Default = int | str | None   # an int, "$NODEID+0x180", or the text of a string object
+Default = int | str | None  # an int, "$NODEID+0x180", or the text of a string object
+
 
 @dataclass(frozen=True)
 class Entry:
     """One value: a VAR object, or one sub-index of an ARRAY/RECORD."""
+
     name: str
     data_type: int
     access: str = "ro"
@@ -48,9 +51,9 @@ class Entry:
 class EdsObject:
     index: int
     name: str
-    kind: str = "VAR"                 # VAR, ARRAY or RECORD
-    entry: Entry | None = None     # VAR only
-    members: tuple = ()               # ARRAY/RECORD: ((subindex, Entry), ...)
+    kind: str = "VAR"  # VAR, ARRAY or RECORD
+    entry: Entry | None = None  # VAR only
+    members: tuple = ()  # ARRAY/RECORD: ((subindex, Entry), ...)
 
     def __post_init__(self):
         if self.kind not in _OBJECT_TYPES:
@@ -64,7 +67,7 @@ class EdsFile:
     file_name: str
     description: str
     created_by: str
-    device_info: dict                 # [DeviceInfo] keys in order (VendorName, VendorNumber ...)
+    device_info: dict  # [DeviceInfo] keys in order (VendorName, VendorNumber ...)
     objects: tuple
     comments: tuple = ()
     file_info_extra: dict = field(default_factory=dict)
@@ -87,6 +90,7 @@ def compound(index: int, name: str, members, kind: str = "RECORD", sub0: Entry |
 # Writer
 # ---------------------------------------------------------------------------
 
+
 def _value(default: int | str) -> str:
     if isinstance(default, bool):
         return str(int(default))
@@ -102,10 +106,12 @@ def _device_info_value(key: str, value) -> str:
 
 
 def _entry_lines(entry: Entry, object_type: int) -> list:
-    lines = [f"ParameterName={entry.name}",
-             f"ObjectType=0x{object_type:X}",
-             f"DataType=0x{entry.data_type:04X}",
-             f"AccessType={entry.access}"]
+    lines = [
+        f"ParameterName={entry.name}",
+        f"ObjectType=0x{object_type:X}",
+        f"DataType=0x{entry.data_type:04X}",
+        f"AccessType={entry.access}",
+    ]
     if entry.low is not None:
         lines.append(f"LowLimit={_value(entry.low)}")
     if entry.high is not None:
@@ -122,8 +128,9 @@ def _section(title: str, lines) -> str:
 
 def _object_list(title: str, objects) -> str:
     indices = [obj.index for obj in objects]
-    return _section(title, [f"SupportedObjects={len(indices)}"]
-                    + [f"{n}=0x{index:04X}" for n, index in enumerate(indices, 1)])
+    return _section(
+        title, [f"SupportedObjects={len(indices)}"] + [f"{n}=0x{index:04X}" for n, index in enumerate(indices, 1)]
+    )
 
 
 def render(eds: EdsFile) -> str:
@@ -134,28 +141,53 @@ def render(eds: EdsFile) -> str:
                 raise ValueError(f"0x{obj.index:04X}: EDS names must be ASCII without ';': {text!r}")
     objects = sorted(eds.objects, key=lambda o: o.index)
     out = ["".join(f"; {line}\n" for line in eds.comments) + "\n" if eds.comments else ""]
-    out.append(_section("FileInfo", [
-        f"FileName={eds.file_name}", "FileVersion=1", "FileRevision=0", "EDSVersion=4.0",
-        f"Description={eds.description}", f"CreatedBy={eds.created_by}",
-        *(f"{key}={value}" for key, value in eds.file_info_extra.items())]))
-    out.append(_section("DeviceInfo", [f"{key}={_device_info_value(key, value)}"
-                                       for key, value in eds.device_info.items()]))
+    out.append(
+        _section(
+            "FileInfo",
+            [
+                f"FileName={eds.file_name}",
+                "FileVersion=1",
+                "FileRevision=0",
+                "EDSVersion=4.0",
+                f"Description={eds.description}",
+                f"CreatedBy={eds.created_by}",
+                *(f"{key}={value}" for key, value in eds.file_info_extra.items()),
+            ],
+        )
+    )
+    out.append(
+        _section("DeviceInfo", [f"{key}={_device_info_value(key, value)}" for key, value in eds.device_info.items()])
+    )
     out.append(_section("DummyUsage", [f"Dummy000{n}=0" for n in range(1, 8)]))
     if eds.comments:
-        out.append(_section("Comments", [f"Lines={len(eds.comments)}"]
-                            + [f"Line{n}={line}" for n, line in enumerate(eds.comments, 1)]))
+        out.append(
+            _section(
+                "Comments",
+                [f"Lines={len(eds.comments)}"] + [f"Line{n}={line}" for n, line in enumerate(eds.comments, 1)],
+            )
+        )
     mandatory = [o for o in objects if o.index in (0x1000, 0x1001, 0x1018)]
     optional = [o for o in objects if o not in mandatory and (0x1000 <= o.index < 0x2000 or o.index >= 0x6000)]
     manufacturer = [o for o in objects if 0x2000 <= o.index < 0x6000]
-    out += [_object_list("MandatoryObjects", mandatory), _object_list("OptionalObjects", optional),
-            _object_list("ManufacturerObjects", manufacturer)]
+    out += [
+        _object_list("MandatoryObjects", mandatory),
+        _object_list("OptionalObjects", optional),
+        _object_list("ManufacturerObjects", manufacturer),
+    ]
     for obj in objects:
         if obj.kind == "VAR":
             out.append(_section(f"{obj.index:04X}", _entry_lines(obj.entry, _OBJECT_TYPES["VAR"])))
             continue
-        out.append(_section(f"{obj.index:04X}", [f"ParameterName={obj.name}",
-                                                  f"ObjectType=0x{_OBJECT_TYPES[obj.kind]:X}",
-                                                  f"SubNumber={len(obj.members)}"]))
+        out.append(
+            _section(
+                f"{obj.index:04X}",
+                [
+                    f"ParameterName={obj.name}",
+                    f"ObjectType=0x{_OBJECT_TYPES[obj.kind]:X}",
+                    f"SubNumber={len(obj.members)}",
+                ],
+            )
+        )
         for sub, entry in obj.members:
             out.append(_section(f"{obj.index:04X}sub{sub:X}", _entry_lines(entry, _OBJECT_TYPES["VAR"])))
     return "".join(out)
@@ -165,38 +197,65 @@ def render(eds: EdsFile) -> str:
 # CiA 301 communication objects shared by both devices
 # ---------------------------------------------------------------------------
 
+
 def _nodeid(offset: int) -> str:
     return f"$NODEID+0x{offset:08X}"
 
 
-def pdo_communication(index: int, cob_offset: int, transmit: bool, transmission_type: int = 0xFF,
-                      inhibit_time: int = 0, event_timer: int = 0) -> EdsObject:
+def pdo_communication(
+    index: int,
+    cob_offset: int,
+    transmit: bool,
+    transmission_type: int = 0xFF,
+    inhibit_time: int = 0,
+    event_timer: int = 0,
+) -> EdsObject:
     """0x1400+k (RPDO) or 0x1800+k (TPDO) communication parameters; the COB-ID is
     $NODEID+cob_offset (bit 31 set in the offset = PDO disabled)."""
-    members = [(1, Entry("COB-ID", UNSIGNED32, "rw", _nodeid(cob_offset))),
-               (2, Entry("Transmission type", UNSIGNED8, "rw", transmission_type))]
+    members = [
+        (1, Entry("COB-ID", UNSIGNED32, "rw", _nodeid(cob_offset))),
+        (2, Entry("Transmission type", UNSIGNED8, "rw", transmission_type)),
+    ]
     if transmit:
-        members += [(3, Entry("Inhibit time", UNSIGNED16, "rw", inhibit_time)),
-                    (4, Entry("Reserved", UNSIGNED8, "rw", 0)),
-                    (5, Entry("Event timer", UNSIGNED16, "rw", event_timer))]
+        members += [
+            (3, Entry("Inhibit time", UNSIGNED16, "rw", inhibit_time)),
+            (4, Entry("Reserved", UNSIGNED8, "rw", 0)),
+            (5, Entry("Event timer", UNSIGNED16, "rw", event_timer)),
+        ]
     kind = "TPDO" if transmit else "RPDO"
     number = (index & 0xFF) + 1
-    return compound(index, f"{kind}{number} communication parameter", members,
-                    sub0=Entry("Highest sub-index supported", UNSIGNED8, "ro", len(members)))
+    return compound(
+        index,
+        f"{kind}{number} communication parameter",
+        members,
+        sub0=Entry("Highest sub-index supported", UNSIGNED8, "ro", len(members)),
+    )
 
 
 def pdo_mapping(index: int, entries, slots: int = 4, kind: str = "ARRAY") -> EdsObject:
     """0x1600+k or 0x1A00+k: sub 0 = number of mapped entries (rw), subs 1..slots."""
     entries = tuple(entries)
-    members = [(n, Entry(f"Mapping entry {n}", UNSIGNED32, "rw", entries[n - 1] if n <= len(entries) else 0))
-               for n in range(1, slots + 1)]
+    members = [
+        (n, Entry(f"Mapping entry {n}", UNSIGNED32, "rw", entries[n - 1] if n <= len(entries) else 0))
+        for n in range(1, slots + 1)
+    ]
     pdo = ("RPDO" if index < 0x1A00 else "TPDO") + str((index & 0xFF) + 1)
-    return compound(index, f"{pdo} mapping parameter", members, kind,
-                    sub0=Entry("Number of mapped objects", UNSIGNED8, "rw", len(entries)))
+    return compound(
+        index,
+        f"{pdo} mapping parameter",
+        members,
+        kind,
+        sub0=Entry("Number of mapped objects", UNSIGNED8, "rw", len(entries)),
+    )
 
 
 def sdo_server() -> EdsObject:
-    return compound(0x1200, "Server SDO parameter", [
-        (1, Entry("COB-ID client to server", UNSIGNED32, "ro", "$NODEID+0x600")),
-        (2, Entry("COB-ID server to client", UNSIGNED32, "ro", "$NODEID+0x580"))],
-        sub0=Entry("Number of entries", UNSIGNED8, "ro", 2))
+    return compound(
+        0x1200,
+        "Server SDO parameter",
+        [
+            (1, Entry("COB-ID client to server", UNSIGNED32, "ro", "$NODEID+0x600")),
+            (2, Entry("COB-ID server to client", UNSIGNED32, "ro", "$NODEID+0x580")),
+        ],
+        sub0=Entry("Number of entries", UNSIGNED8, "ro", 2),
+    )

@@ -15,6 +15,7 @@ Nothing in here knows a device: an LTMR, an FC 280 or any node with an EDS
 is just a NodeConfig. Plain-CAN devices (the MPU2-S) can share the bus
 through the same CanEndpoint (add_handler), which this driver exposes.
 """
+
 from __future__ import annotations
 
 import logging
@@ -72,14 +73,15 @@ class _Node:
         self.sup = supervisor
         self.tpdos: list[PdoBinding] = tpdos
         self.rpdos: list[tuple[PdoBinding, TxSchedule]] = rpdos
-        self.sdo_writes = sdo_writes     # (index, subindex, bytes, key)
+        self.sdo_writes = sdo_writes  # (index, subindex, bytes, key)
 
 
 class CanopenDriver(Driver):
     name = "canopen"
 
-    def __init__(self, config, settings: BusSettings, *, clock, pump=None, addressing: str = "iec",
-                 image_size: int | None = None) -> None:
+    def __init__(
+        self, config, settings: BusSettings, *, clock, pump=None, addressing: str = "iec", image_size: int | None = None
+    ) -> None:
         """config: a CanopenConfig (config.py); settings: its bus's.
         DriverError (naming the config key) for a node that cannot work:
         an EDS that does not load, a PDO entry the EDS does not have ..."""
@@ -108,12 +110,14 @@ class CanopenDriver(Driver):
         self.network: _EndpointNetwork | None = None
         self.worker: SdoWorker | None = None
         self._service: PeriodicService | None = None
-        self.sdo_service = SchneiderSdoService(self._submit_exchange,
-                                        default_timeout_s=config.sdo_timeout_ms / 1000,
-                                        object_size=self._object_size,
-                                        available=lambda: self._bus_ok)
+        self.sdo_service = SchneiderSdoService(
+            self._submit_exchange,
+            default_timeout_s=config.sdo_timeout_ms / 1000,
+            object_size=self._object_size,
+            available=lambda: self._bus_ok,
+        )
         self.services = {SDO_SERVICE: self.sdo_service}
-        self.rx_short = 0       # TPDOs shorter than their mapping (dropped)
+        self.rx_short = 0  # TPDOs shorter than their mapping (dropped)
         self._diag: CanopenDiag | None = None
 
     def _prepare(self, ncfg, probe: ProcessImage) -> _Node:
@@ -122,25 +126,33 @@ class CanopenDriver(Driver):
         except Exception as exc:
             raise DriverError(f"{ncfg.key}.eds: cannot load {ncfg.eds}: {exc}") from None
         c = self.config
-        sup = NodeSupervisor(ncfg.name, ncfg.node_id, mandatory=ncfg.mandatory,
-                             heartbeat_timeout_ns=ncfg.heartbeat_timeout_ms * 1_000_000,
-                             boot_timeout_ns=c.boot_timeout_ms * 1_000_000, retry_ns=c.retry_ms * 1_000_000)
+        sup = NodeSupervisor(
+            ncfg.name,
+            ncfg.node_id,
+            mandatory=ncfg.mandatory,
+            heartbeat_timeout_ns=ncfg.heartbeat_timeout_ms * 1_000_000,
+            boot_timeout_ns=c.boot_timeout_ms * 1_000_000,
+            retry_ns=c.retry_ms * 1_000_000,
+        )
         tpdos = [PdoBinding.from_config(p, "tpdo", od, probe) for p in ncfg.tpdo]
-        rpdos = [(b, TxSchedule(b.transmission, b.inhibit_us, b.event_ms))
-                 for b in (PdoBinding.from_config(p, "rpdo", od, probe) for p in ncfg.rpdo)]
+        rpdos = [
+            (b, TxSchedule(b.transmission, b.inhibit_us, b.event_ms))
+            for b in (PdoBinding.from_config(p, "rpdo", od, probe) for p in ncfg.rpdo)
+        ]
         writes = []
         for w in ncfg.sdo:
             size = w.size
             var = od.get_variable(w.index, w.subindex)
             if size is None:
                 if var is None or not var.fixed_size:
-                    raise DriverError(f"{w.key}: {w.index:04X}:{w.subindex:02X} is not in the EDS; give its "
-                                      "size in bytes (size = 1, 2 or 4)")
+                    raise DriverError(
+                        f"{w.key}: {w.index:04X}:{w.subindex:02X} is not in the EDS; give its "
+                        "size in bytes (size = 1, 2 or 4)"
+                    )
                 size = len(var) // 8
             if not 0 <= w.value < (1 << (8 * size)) and not -(1 << (8 * size - 1)) <= w.value < 0:
                 raise DriverError(f"{w.key}: {w.value} does not fit in {size} byte(s)")
-            writes.append((w.index, w.subindex, (w.value & ((1 << (8 * size)) - 1)).to_bytes(size, "little"),
-                           w.key))
+            writes.append((w.index, w.subindex, (w.value & ((1 << (8 * size)) - 1)).to_bytes(size, "little"), w.key))
         return _Node(ncfg, od, sup, tpdos, rpdos, writes)
 
     # ------------------------------------------------------------ life cycle
@@ -159,8 +171,12 @@ class CanopenDriver(Driver):
         self.endpoint.start()
         self._bus_ok = True
         self._started = True
-        log.info("canopen: master node %d on %s, %d node(s) configured", self.node_id,
-                 self.settings.describe(), len(self.nodes))
+        log.info(
+            "canopen: master node %d on %s, %d node(s) configured",
+            self.node_id,
+            self.settings.describe(),
+            len(self.nodes),
+        )
         if not self.clock.virtual:
             self._service = PeriodicService("canopen service", self.clock, self.service, 0.001)
             self._service.start()
@@ -253,8 +269,12 @@ class CanopenDriver(Driver):
         endpoint = self._started_endpoint
         if endpoint.send(can_id, data) or not endpoint.connected or not self._bus_ok:
             return
-        log.error("canopen: cannot send on %s: %s; reopening it every %d ms", self.settings.describe(),
-                  endpoint.last_error, self.config.retry_ms)
+        log.error(
+            "canopen: cannot send on %s: %s; reopening it every %d ms",
+            self.settings.describe(),
+            endpoint.last_error,
+            self.config.retry_ms,
+        )
         self._bus_ok = False
         self._bus_error = endpoint.last_error
         self._next_reopen_ns = self.clock.now_ns() + self.config.retry_ms * 1_000_000
@@ -293,8 +313,14 @@ class CanopenDriver(Driver):
                 padded = data + bytes(8 - len(data))
                 emcy = Emergency(int.from_bytes(padded[0:2], "little"), padded[2], padded[3:8], now)
                 node.sup.emergency(emcy)
-                log.warning("canopen: node %s (%d) emergency 0x%04X, error register 0x%02X, data %s",
-                            node.cfg.name, node.cfg.node_id, emcy.code, emcy.register, emcy.data.hex(" "))
+                log.warning(
+                    "canopen: node %s (%d) emergency 0x%04X, error register 0x%02X, data %s",
+                    node.cfg.name,
+                    node.cfg.node_id,
+                    emcy.code,
+                    emcy.register,
+                    emcy.data.hex(" "),
+                )
         self._started_network.notify(can_id, msg.data, msg.timestamp)
 
     def _act(self, node: _Node, action: str | None) -> None:
@@ -303,8 +329,12 @@ class CanopenDriver(Driver):
             return
         nid = node.cfg.node_id
         if action == "reset":
-            log.info("canopen: node %s (%d): reset communication%s", node.cfg.name, nid,
-                     f" ({node.sup.message})" if node.sup.message else "")
+            log.info(
+                "canopen: node %s (%d): reset communication%s",
+                node.cfg.name,
+                nid,
+                f" ({node.sup.message})" if node.sup.message else "",
+            )
             self._send(COB_NMT, bytes([NMT_RESET_COMMUNICATION, nid]))
         elif action == "configure":
             self._started_worker.submit_task(lambda: self._configure(node))
@@ -358,8 +388,10 @@ class CanopenDriver(Driver):
         cob = int.from_bytes(raw[:4].ljust(4, b"\0"), "little")
         if not b.configure:
             if cob & COB_ID_INVALID:
-                raise _ConfigFailed(f"{b.key}: the node's {b.direction.upper()} {b.number} is not valid "
-                                    f"(COB-ID 0x{cob:08X}); set configure = true")
+                raise _ConfigFailed(
+                    f"{b.key}: the node's {b.direction.upper()} {b.number} is not valid "
+                    f"(COB-ID 0x{cob:08X}); set configure = true"
+                )
             b.cob_id = cob & 0x7FF
             return
         if cob & 0x7FF == 0:
@@ -374,8 +406,7 @@ class CanopenDriver(Driver):
         self._sdo(node, b.comm_index, 2, bytes([b.transmission]), f"{b.key}.transmission", timeout)
         comm = node.od.get(b.comm_index)
         if b.inhibit_us and comm is not None and 3 in comm:
-            self._sdo(node, b.comm_index, 3, (b.inhibit_us // 100).to_bytes(2, "little"), f"{b.key}.inhibit",
-                      timeout)
+            self._sdo(node, b.comm_index, 3, (b.inhibit_us // 100).to_bytes(2, "little"), f"{b.key}.inhibit", timeout)
         if b.event_ms and comm is not None and 5 in comm:
             self._sdo(node, b.comm_index, 5, b.event_ms.to_bytes(2, "little"), f"{b.key}.event", timeout)
         self._sdo(node, b.comm_index, 1, cob_id.to_bytes(4, "little"), what, timeout)
@@ -395,6 +426,7 @@ class CanopenDriver(Driver):
 
     def bind_program(self, globals_obj) -> None:
         from .diag import CanopenDiag
+
         self._diag = CanopenDiag(globals_obj)
 
     def read_inputs(self, image: ProcessImage) -> None:
@@ -409,12 +441,14 @@ class CanopenDriver(Driver):
 
     def _master_view(self) -> dict:
         ep = self.endpoint
-        return {"BusOk": self._bus_ok,
-                "NodesConfigured": len(self.nodes),
-                "NodesOperational": sum(n.sup.state == NodeState.OPERATIONAL for n in self.nodes.values()),
-                "FramesReceived": ep.received if ep else 0,
-                "FramesSent": ep.sent if ep else 0,
-                "SendErrors": ep.send_errors if ep else 0}
+        return {
+            "BusOk": self._bus_ok,
+            "NodesConfigured": len(self.nodes),
+            "NodesOperational": sum(n.sup.state == NodeState.OPERATIONAL for n in self.nodes.values()),
+            "FramesReceived": ep.received if ep else 0,
+            "FramesSent": ep.sent if ep else 0,
+            "SendErrors": ep.send_errors if ep else 0,
+        }
 
     def write_outputs(self, image: ProcessImage) -> None:
         packed = {binding: binding.pack(image) for node in self.nodes.values() for binding, _s in node.rpdos}
@@ -438,4 +472,3 @@ class CanopenDriver(Driver):
 
 class _ConfigFailed(Exception):
     pass
-

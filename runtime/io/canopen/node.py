@@ -10,6 +10,7 @@ bus access of its own: it returns what to do, the master does it.
 A node in OPERATIONAL whose heartbeat reports another NMT state (it fell to
 pre-operational after it lost the master, it was reset) is booted again.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -20,26 +21,35 @@ from .cia301 import STATE_BOOTUP, STATE_NAMES, STATE_OPERATIONAL
 
 class NodeState(IntEnum):
     """As CANOPEN_NODE[n].State shows it to the program (fblocks/comm/canopen_diag.st)."""
+
     UNKNOWN = 0
-    BOOTING = 1          # reset communication sent, waiting for the boot-up
-    CONFIGURING = 2      # boot-up seen, SDO configuration running
-    OPERATIONAL = 3      # started, heartbeat (if any) arriving
-    MISSING = 4          # no boot-up within the boot timeout
-    LOST = 5             # heartbeat stopped, or the node left OPERATIONAL
-    CONFIG_ERROR = 6     # an SDO write of the configuration failed
+    BOOTING = 1  # reset communication sent, waiting for the boot-up
+    CONFIGURING = 2  # boot-up seen, SDO configuration running
+    OPERATIONAL = 3  # started, heartbeat (if any) arriving
+    MISSING = 4  # no boot-up within the boot timeout
+    LOST = 5  # heartbeat stopped, or the node left OPERATIONAL
+    CONFIG_ERROR = 6  # an SDO write of the configuration failed
 
 
 @dataclass
 class Emergency:
-    code: int            # the EMCY error code (0 = error reset / no error)
-    register: int        # error register (0x1001)
-    data: bytes          # manufacturer-specific bytes
+    code: int  # the EMCY error code (0 = error reset / no error)
+    register: int  # error register (0x1001)
+    data: bytes  # manufacturer-specific bytes
     time_ns: int
 
 
 class NodeSupervisor:
-    def __init__(self, name: str, node_id: int, *, mandatory: bool, heartbeat_timeout_ns: int,
-                 boot_timeout_ns: int, retry_ns: int) -> None:
+    def __init__(
+        self,
+        name: str,
+        node_id: int,
+        *,
+        mandatory: bool,
+        heartbeat_timeout_ns: int,
+        boot_timeout_ns: int,
+        retry_ns: int,
+    ) -> None:
         self.name = name
         self.node_id = node_id
         self.mandatory = mandatory
@@ -47,13 +57,13 @@ class NodeSupervisor:
         self.boot_timeout_ns = boot_timeout_ns
         self.retry_ns = retry_ns
         self.state = NodeState.UNKNOWN
-        self.nmt_state: int | None = None     # last state byte of its heartbeat
-        self.deadline_ns: int | None = None   # boot-up wait, heartbeat watch or retry
-        self.boots = 0                           # boot-ups seen
+        self.nmt_state: int | None = None  # last state byte of its heartbeat
+        self.deadline_ns: int | None = None  # boot-up wait, heartbeat watch or retry
+        self.boots = 0  # boot-ups seen
         self.emergencies = 0
         self.last_emcy: Emergency | None = None
         self.message = ""
-        self.version = 0                         # bumped on every change the program can see
+        self.version = 0  # bumped on every change the program can see
 
     def _enter(self, state: NodeState, deadline_ns: int | None, message: str = "") -> None:
         self.state = state
@@ -71,11 +81,15 @@ class NodeSupervisor:
         if self.deadline_ns is None or now_ns < self.deadline_ns:
             return None
         if self.state == NodeState.BOOTING:
-            self._enter(NodeState.MISSING, now_ns + self.retry_ns,
-                        f"no boot-up within {self.boot_timeout_ns // 1_000_000} ms")
+            self._enter(
+                NodeState.MISSING, now_ns + self.retry_ns, f"no boot-up within {self.boot_timeout_ns // 1_000_000} ms"
+            )
         elif self.state == NodeState.OPERATIONAL:
-            self._enter(NodeState.LOST, now_ns + self.retry_ns,
-                        f"heartbeat lost (none for {self.heartbeat_timeout_ns // 1_000_000} ms)")
+            self._enter(
+                NodeState.LOST,
+                now_ns + self.retry_ns,
+                f"heartbeat lost (none for {self.heartbeat_timeout_ns // 1_000_000} ms)",
+            )
         elif self.state in (NodeState.MISSING, NodeState.LOST, NodeState.CONFIG_ERROR):
             self._enter(NodeState.BOOTING, now_ns + self.boot_timeout_ns)
             return "reset"
@@ -89,13 +103,16 @@ class NodeSupervisor:
         if state_byte == STATE_BOOTUP:
             self.boots += 1
             if self.state == NodeState.CONFIGURING:
-                return None   # a second boot-up while configuring: the running writes decide
+                return None  # a second boot-up while configuring: the running writes decide
             self._enter(NodeState.CONFIGURING, None)
             return "configure"
         if self.state == NodeState.OPERATIONAL:
             if state_byte != STATE_OPERATIONAL:
-                self._enter(NodeState.BOOTING, now_ns + self.boot_timeout_ns,
-                            f"node reported {STATE_NAMES.get(state_byte, hex(state_byte))}")
+                self._enter(
+                    NodeState.BOOTING,
+                    now_ns + self.boot_timeout_ns,
+                    f"node reported {STATE_NAMES.get(state_byte, hex(state_byte))}",
+                )
                 return "reset"
             if self.heartbeat_timeout_ns:
                 self.deadline_ns = now_ns + self.heartbeat_timeout_ns
@@ -111,8 +128,7 @@ class NodeSupervisor:
         if not ok:
             self._enter(NodeState.CONFIG_ERROR, now_ns + self.retry_ns, message)
             return None
-        self._enter(NodeState.OPERATIONAL,
-                    now_ns + self.heartbeat_timeout_ns if self.heartbeat_timeout_ns else None)
+        self._enter(NodeState.OPERATIONAL, now_ns + self.heartbeat_timeout_ns if self.heartbeat_timeout_ns else None)
         return "start"
 
     def emergency(self, emcy: Emergency) -> None:

@@ -13,6 +13,7 @@ little-endian, so a 16-bit object mapped to %IW0 is a plain byte copy; a
 The transmission side (when a master sends an RPDO: on change, inhibit
 time, event timer, SYNC) is TxSchedule.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -37,10 +38,10 @@ class MappedEntry:
     index: int
     subindex: int
     bits: int
-    bit_offset: int        # in the frame
-    address: object        # LocatedAddress
+    bit_offset: int  # in the frame
+    address: object  # LocatedAddress
     area: str
-    byte_offset: int | None   # in the image area; None for a bit address
+    byte_offset: int | None  # in the image area; None for a bit address
     key: str
 
     @property
@@ -52,9 +53,19 @@ class MappedEntry:
 class PdoBinding:
     """One PDO of one node: its mapping and its place in the image."""
 
-    def __init__(self, direction: str, number: int, entries: list, *, transmission: int = 255,
-                 inhibit_us: int = 0, event_ms: int = 0, configure: bool = True, key: str = "") -> None:
-        self.direction = direction            # "tpdo" (node -> image) or "rpdo" (image -> node)
+    def __init__(
+        self,
+        direction: str,
+        number: int,
+        entries: list,
+        *,
+        transmission: int = 255,
+        inhibit_us: int = 0,
+        event_ms: int = 0,
+        configure: bool = True,
+        key: str = "",
+    ) -> None:
+        self.direction = direction  # "tpdo" (node -> image) or "rpdo" (image -> node)
         self.number = number
         self.entries: list[MappedEntry] = entries
         self.transmission = transmission
@@ -63,12 +74,15 @@ class PdoBinding:
         self.configure = configure
         self.key = key
         self.nbytes = (sum(e.bits for e in entries) + 7) // 8
-        self.cob_id: int | None = None     # read from the node at boot
+        self.cob_id: int | None = None  # read from the node at boot
         # Every entry whole bytes at a byte address: the frame and the image swap
         # plain byte runs, (frame offset, image offset, bytes) per entry; None
         # when an entry needs shifting.
-        copies = [(e.bit_offset // 8, e.byte_offset, e.bits // 8) for e in self.entries
-                  if e.bits % 8 == 0 and e.bit_offset % 8 == 0 and e.byte_offset is not None]
+        copies = [
+            (e.bit_offset // 8, e.byte_offset, e.bits // 8)
+            for e in self.entries
+            if e.bits % 8 == 0 and e.bit_offset % 8 == 0 and e.byte_offset is not None
+        ]
         self._byte_copies: list[tuple[int, int, int]] | None = copies if len(copies) == len(entries) else None
 
     @property
@@ -92,36 +106,47 @@ class PdoBinding:
                 if var is None:
                     raise KeyError(e.index)
             except KeyError:
-                raise DriverError(f"{e.key}: object {e.index:04X}:{e.subindex:02X} is not in the node's "
-                                  "EDS") from None
+                raise DriverError(f"{e.key}: object {e.index:04X}:{e.subindex:02X} is not in the node's EDS") from None
             if not var.fixed_size:
-                raise DriverError(f"{e.key}: object {e.index:04X}:{e.subindex:02X} has no fixed size "
-                                  "and cannot be mapped")
+                raise DriverError(
+                    f"{e.key}: object {e.index:04X}:{e.subindex:02X} has no fixed size and cannot be mapped"
+                )
             if not getattr(var, "pdo_mappable", True):
-                raise DriverError(f"{e.key}: object {e.index:04X}:{e.subindex:02X} ({var.name}) is not "
-                                  "PDO-mappable in the EDS")
+                raise DriverError(
+                    f"{e.key}: object {e.index:04X}:{e.subindex:02X} ({var.name}) is not PDO-mappable in the EDS"
+                )
             bits = len(var)
             addr = e.address
             if addr.area != want_area:
-                raise DriverError(f"{e.key}: a {direction.upper()} maps to %{want_area} addresses, not "
-                                  f"{addr.text}")
+                raise DriverError(f"{e.key}: a {direction.upper()} maps to %{want_area} addresses, not {addr.text}")
             if addr.bit is not None or addr.size in ("", "X"):
                 if bits != 1:
-                    raise DriverError(f"{e.key}: {addr.text} is a bit but {e.index:04X}:{e.subindex:02X} "
-                                      f"has {bits} bits")
+                    raise DriverError(
+                        f"{e.key}: {addr.text} is a bit but {e.index:04X}:{e.subindex:02X} has {bits} bits"
+                    )
                 byte_offset = None
             else:
                 size = _SIZE_BITS.get(addr.size)
                 if size != bits:
-                    raise DriverError(f"{e.key}: {e.index:04X}:{e.subindex:02X} ({var.name}) has {bits} "
-                                      f"bits but {addr.text} holds {size}")
+                    raise DriverError(
+                        f"{e.key}: {e.index:04X}:{e.subindex:02X} ({var.name}) has {bits} "
+                        f"bits but {addr.text} holds {size}"
+                    )
                 _area, byte_offset, _n = probe.region(addr)
             entries.append(MappedEntry(e.index, e.subindex, bits, offset, addr, addr.area, byte_offset, e.key))
             offset += bits
         if offset > 64:
             raise DriverError(f"{cfg.key}: the mapped objects need {offset} bits; a PDO carries 64 (8 bytes)")
-        return cls(direction, cfg.number, entries, transmission=cfg.transmission, inhibit_us=cfg.inhibit_us,
-                   event_ms=cfg.event_ms, configure=cfg.configure, key=cfg.key)
+        return cls(
+            direction,
+            cfg.number,
+            entries,
+            transmission=cfg.transmission,
+            inhibit_us=cfg.inhibit_us,
+            event_ms=cfg.event_ms,
+            configure=cfg.configure,
+            key=cfg.key,
+        )
 
     # ------------------------------------------------------------ data
 
@@ -132,7 +157,7 @@ class PdoBinding:
         area = image.areas["I"]
         if self._byte_copies is not None:
             for start, offset, n in self._byte_copies:
-                area[offset:offset + n] = data[start:start + n]
+                area[offset : offset + n] = data[start : start + n]
             return
         raw = int.from_bytes(data, "little")
         for e in self.entries:
@@ -141,19 +166,19 @@ class PdoBinding:
                 image.write(e.address, bool(value), T.BOOL)
             else:
                 n = e.bits // 8
-                area[e.byte_offset:e.byte_offset + n] = value.to_bytes(n, "little")
+                area[e.byte_offset : e.byte_offset + n] = value.to_bytes(n, "little")
 
     def pack(self, image: ProcessImage) -> bytes:
         """The %Q values of this RPDO as frame bytes."""
         area = image.areas["Q"]
         if self._byte_copies is not None:
-            return b"".join(bytes(area[offset:offset + n]) for _start, offset, n in self._byte_copies)
+            return b"".join(bytes(area[offset : offset + n]) for _start, offset, n in self._byte_copies)
         raw = 0
         for e in self.entries:
             if e.byte_offset is None:
                 value = 1 if image.read(e.address, T.BOOL) else 0
             else:
-                value = int.from_bytes(area[e.byte_offset:e.byte_offset + e.bits // 8], "little")
+                value = int.from_bytes(area[e.byte_offset : e.byte_offset + e.bits // 8], "little")
             raw |= value << e.bit_offset
         return raw.to_bytes(self.nbytes, "little")
 
@@ -186,7 +211,7 @@ class TxSchedule:
     def due(self, data: bytes, now_ns: int, sync: bool) -> bool:
         t = self.transmission
         if t >= 254:
-            if self.last_sent is None or self.last_ns is None:    # nothing sent yet (sent() sets both)
+            if self.last_sent is None or self.last_ns is None:  # nothing sent yet (sent() sets both)
                 return True
             if now_ns - self.last_ns < self.inhibit_ns:
                 return False

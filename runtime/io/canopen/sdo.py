@@ -27,6 +27,7 @@ the bytes of register 452; the timeout word 0 means the default timeout.
 
 Reports (Schneider's codes where Schneider has one):
 """
+
 from __future__ import annotations
 
 import logging
@@ -48,13 +49,13 @@ log = logging.getLogger(__name__)
 COMM_DONE = 0x00
 COMM_TIMEOUT = 0x01
 COMM_CANCELLED = 0x02
-COMM_BAD_ADDRESS = 0x03         # node id not 1..127, or an object other than 'SDO'
-COMM_BAD_PARAMETERS = 0x05      # the length word exceeds the data table
-COMM_NETWORK_ERROR = 0xFF       # no CANopen master, or its bus is down
+COMM_BAD_ADDRESS = 0x03  # node id not 1..127, or an object other than 'SDO'
+COMM_BAD_PARAMETERS = 0x05  # the length word exceeds the data table
+COMM_NETWORK_ERROR = 0xFF  # no CANopen master, or its bus is down
 # operation report (word k+1, MSB), meaningful with COMM_DONE
 OP_POSITIVE = 0x00
-OP_REFUSED = 0x01               # the node aborted the transfer: abort code in k+4/k+5
-OP_TRUNCATED = 0x02             # the answer was longer than the reception table
+OP_REFUSED = 0x01  # the node aborted the transfer: abort code in k+4/k+5
+OP_TRUNCATED = 0x02  # the answer was longer than the reception table
 
 __doc__ += """
     communication report 16#00 done, 16#01 timeout, 16#02 cancelled by the
@@ -71,6 +72,7 @@ __doc__ += """
 @dataclass
 class SdoJob:
     """One SDO transfer. data None = upload (read)."""
+
     node_id: int
     index: int
     subindex: int
@@ -79,7 +81,7 @@ class SdoJob:
     # results, set by the worker
     done: bool = False
     received: bytes = b""
-    abort_code: int = 0           # from the node, or ABORT_TIMEOUT
+    abort_code: int = 0  # from the node, or ABORT_TIMEOUT
     timed_out: bool = False
     error: str = ""
     on_done: Callable[[SdoJob], None] | None = field(default=None, repr=False)
@@ -219,9 +221,14 @@ class SchneiderSdoService:
     exchanges whose transfer is over. object_size(node, index, sub) gives
     the EDS size in bytes of an object, or None."""
 
-    def __init__(self, submit: Callable[[SdoJob], None], *, default_timeout_s: float,
-                 object_size: Callable[[int, int, int], int | None] = lambda n, i, s: None,
-                 available: Callable[[], bool] = lambda: True) -> None:
+    def __init__(
+        self,
+        submit: Callable[[SdoJob], None],
+        *,
+        default_timeout_s: float,
+        object_size: Callable[[int, int, int], int | None] = lambda n, i, s: None,
+        available: Callable[[], bool] = lambda: True,
+    ) -> None:
         self._submit = submit
         self.default_timeout_s = default_timeout_s
         self._object_size = object_size
@@ -229,11 +236,21 @@ class SchneiderSdoService:
         self._running: list[_Exchange] = []
         self._lock = threading.Lock()
 
-    def request(self, name: str, addr, obj: str, number: int, node: int, data, mgmt,
-                data_signed: bool = True, mgmt_signed: bool = True) -> bool:
+    def request(
+        self,
+        name: str,
+        addr,
+        obj: str,
+        number: int,
+        node: int,
+        data,
+        mgmt,
+        data_signed: bool = True,
+        mgmt_signed: bool = True,
+    ) -> bool:
         m0 = int(mgmt[0]) & 0xFFFF
         if m0 & 1:
-            return False          # the previous exchange is still running: start nothing
+            return False  # the previous exchange is still running: start nothing
         store_word(mgmt, 0, ((((m0 >> 8) + 1) & 0xFF) << 8) | 1, mgmt_signed)
         store_word(mgmt, 1, 0, mgmt_signed)
         index, subindex = int(number) & 0xFFFF, (int(number) >> 16) & 0xFF
@@ -290,7 +307,7 @@ class SchneiderSdoService:
             received = job.received
             room = 2 * len(ex.data)
             for i in range(min(len(ex.data), (len(received) + 1) // 2)):
-                store_word(ex.data, i, int.from_bytes(received[2 * i:2 * i + 2], "little"), ex.data_signed)
+                store_word(ex.data, i, int.from_bytes(received[2 * i : 2 * i + 2], "little"), ex.data_signed)
             store_word(ex.mgmt, 3, min(len(received), room), ex.mgmt_signed)
             self._finish(ex, COMM_DONE, OP_TRUNCATED if len(received) > room else OP_POSITIVE)
         else:
@@ -307,7 +324,7 @@ def _report(mgmt, signed: bool, comm: int, op: int = OP_POSITIVE, abort_code: in
     if len(mgmt) >= 6:
         store_word(mgmt, 4, abort_code & 0xFFFF, signed)
         store_word(mgmt, 5, abort_code >> 16, signed)
-    store_word(mgmt, 0, int(mgmt[0]) & ~3, signed)   # activity (and cancel) off: the exchange is over
+    store_word(mgmt, 0, int(mgmt[0]) & ~3, signed)  # activity (and cancel) off: the exchange is over
 
 
 class NoCommunication:
@@ -315,8 +332,18 @@ class NoCommunication:
     once with communication report 16#FF (network exchange error), as on a
     PLC with no network module. The CANopen master's service replaces this."""
 
-    def request(self, name: str, addr, obj: str, number: int, node: int, data, mgmt,
-                data_signed: bool = True, mgmt_signed: bool = True) -> bool:
+    def request(
+        self,
+        name: str,
+        addr,
+        obj: str,
+        number: int,
+        node: int,
+        data,
+        mgmt,
+        data_signed: bool = True,
+        mgmt_signed: bool = True,
+    ) -> bool:
         mgmt[0] = mgmt[0] & ~1  # activity bit off: the exchange is over
         mgmt[1] = (mgmt[1] & 0xFF00) | COMM_NETWORK_ERROR
         return False
@@ -333,12 +360,18 @@ def _schneider(name: str) -> NativeFunction:
     examples (DOCA0132DE, 'Beispiel für ein Schreibe-SDO')."""
     return NativeFunction(
         name,
-        (Param("address", ADDRESS), Param("object", STRING, expect="the object type, a string such as 'SDO'"),
-         Param("number", ANY_INT, "the number"), Param("node", ANY_INT, "the node"),
-         Param("data", WORDS, "the data table", _TABLE),
-         Param("management", WORDS, "the management table", _TABLE, min_words=4)),
-        service=SERVICE, fallback=NoCommunication(),
-        usage=f"{name}(ADR#0.1.SYS, 'SDO', %MD<index/subindex>, <node id>, %MW<data>:<n>, %MW<management>:4)")
+        (
+            Param("address", ADDRESS),
+            Param("object", STRING, expect="the object type, a string such as 'SDO'"),
+            Param("number", ANY_INT, "the number"),
+            Param("node", ANY_INT, "the node"),
+            Param("data", WORDS, "the data table", _TABLE),
+            Param("management", WORDS, "the management table", _TABLE, min_words=4),
+        ),
+        service=SERVICE,
+        fallback=NoCommunication(),
+        usage=f"{name}(ADR#0.1.SYS, 'SDO', %MD<index/subindex>, <node id>, %MW<data>:<n>, %MW<management>:4)",
+    )
 
 
 READ_VAR = _schneider("READ_VAR")

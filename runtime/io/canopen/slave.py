@@ -36,6 +36,7 @@ Choices where CiA 301 leaves room (each said again where it is made):
   more than 64 bits ABORT_PDO_LENGTH (the codes of manual 001 §3.3).
 - RTR-only transmission types (252, 253) are not supported.
 """
+
 from __future__ import annotations
 
 import logging
@@ -91,15 +92,15 @@ EMCY_COB_ID = 0x1014
 CONSUMER_HEARTBEAT = 0x1016
 PRODUCER_HEARTBEAT = 0x1017
 ERROR_BEHAVIOUR = 0x1029
-PDO_SLOTS = 512                      # CiA 301: up to 512 RPDOs and 512 TPDOs
+PDO_SLOTS = 512  # CiA 301: up to 512 RPDOs and 512 TPDOs
 
-COB_ID_EXTENDED = 1 << 29            # 29-bit identifier: the LTMR is CAN 2.0A only (manual 001 §1.1)
+COB_ID_EXTENDED = 1 << 29  # 29-bit identifier: the LTMR is CAN 2.0A only (manual 001 §1.1)
 PDO_MAX_BITS = 64
 
 # Transmission types (CiA 301; manual 001 §2.2)
-SYNC_ACYCLIC = 0                     # on SYNC, when the data changed
-SYNC_CYCLIC_LAST = 240               # 1..240: every n-th SYNC
-EVENT_TYPES = (254, 255)             # on change, inhibit time, event timer
+SYNC_ACYCLIC = 0  # on SYNC, when the data changed
+SYNC_CYCLIC_LAST = 240  # 1..240: every n-th SYNC
+EVENT_TYPES = (254, 255)  # on change, inhibit time, event timer
 
 # 0x1029:01, on a communication error (manual 001 L1017-1030)
 ERROR_TO_PRE_OPERATIONAL = 0
@@ -144,12 +145,13 @@ class _SlaveNode(canopen.LocalNode):
 @dataclass
 class _Pdo:
     """One valid PDO as its communication and mapping parameters say."""
+
     number: int
     cob_id: int
     transmission: int
-    entries: list                    # (index, subindex, bits)
-    inhibit_ns: int = 0              # TPDO sub 3, 100 us units
-    event_ns: int = 0                # TPDO sub 5, ms (A7)
+    entries: list  # (index, subindex, bits)
+    inhibit_ns: int = 0  # TPDO sub 3, 100 us units
+    event_ns: int = 0  # TPDO sub 5, ms (A7)
 
     @property
     def nbytes(self) -> int:
@@ -161,31 +163,33 @@ class _TpdoState:
     last_data: bytes | None = None
     last_sent_ns: int | None = None
     sync_count: int = 0
-    pending: bool = False            # send at the next opportunity, changed or not
+    pending: bool = False  # send at the next opportunity, changed or not
 
 
 @dataclass
 class _Consumer:
     """One heartbeat consumer entry of 0x1016."""
+
     producer: int
     timeout_ns: int
-    last_ns: int | None = None    # None: not monitoring yet (CiA 301: starts with the first heartbeat)
+    last_ns: int | None = None  # None: not monitoring yet (CiA 301: starts with the first heartbeat)
     lost: bool = False
 
 
 @dataclass
 class _PdoTables:
-    rpdos: dict = field(default_factory=dict)      # COB-ID -> _Pdo
-    tpdos: list = field(default_factory=list)      # [_Pdo]
+    rpdos: dict = field(default_factory=dict)  # COB-ID -> _Pdo
+    tpdos: list = field(default_factory=list)  # [_Pdo]
 
 
 class SimulatedCanopenSlave(SimulatedDevice):
     """See the module docstring."""
 
-    pump: BusPump | None       # a CAN node: its endpoint is on the bus's pump (virtual time)
+    pump: BusPump | None  # a CAN node: its endpoint is on the bus's pump (virtual time)
 
-    def __init__(self, node_id: int, *, eds, settings: BusSettings, clock, pump: BusPump | None = None,
-                 name: str | None = None) -> None:
+    def __init__(
+        self, node_id: int, *, eds, settings: BusSettings, clock, pump: BusPump | None = None, name: str | None = None
+    ) -> None:
         if not 1 <= node_id <= 127:
             raise ValueError(f"CANopen node id {node_id} is not in 1..127")
         super().__init__(name or f"canopen slave {node_id}", clock=clock, pump=pump)
@@ -200,13 +204,13 @@ class SimulatedCanopenSlave(SimulatedDevice):
         self._lock = threading.RLock()
         self._state = STATE_BOOTUP
         self._now = 0
-        self._local_writes = 0                  # > 0 while write() runs: the device's own access
+        self._local_writes = 0  # > 0 while write() runs: the device's own access
         self._tables: _PdoTables | None = None
         self._tpdo_state: dict[int, _TpdoState] = {}
         self._sync_rpdos: dict[int, tuple] = {}  # RPDO number -> (pdo, data) waiting for SYNC
         self._consumers: list[_Consumer] | None = None
         self._heartbeat_due: int | None = None
-        self._written: list[int] = []           # objects written, for _flush_writes
+        self._written: list[int] = []  # objects written, for _flush_writes
 
     # ------------------------------------------------------------------ hooks
 
@@ -358,7 +362,7 @@ class SimulatedCanopenSlave(SimulatedDevice):
         if application:
             self.on_reset_application()
         self._clear_stored(*COMMUNICATION_AREA)
-        self.node.sdo._buffer = None              # a segmented transfer in progress is gone
+        self.node.sdo._buffer = None  # a segmented transfer in progress is gone
         self._tables = None
         self._consumers = None
         self._tpdo_state.clear()
@@ -372,7 +376,7 @@ class SimulatedCanopenSlave(SimulatedDevice):
         if len(data) < 2:
             return
         command, target = data[0], data[1]
-        if target not in (0, self.node_id):      # node 0: every node
+        if target not in (0, self.node_id):  # node 0: every node
             return
         if command == NMT_START:
             self._set_state(STATE_OPERATIONAL)
@@ -405,7 +409,7 @@ class SimulatedCanopenSlave(SimulatedDevice):
         self._send(cob_heartbeat(self.node_id), bytes([self._state]))
         period = self._heartbeat_period_ns()
         due = self._heartbeat_due + period
-        self._heartbeat_due = due if due > now else now + period   # no burst after a long gap
+        self._heartbeat_due = due if due > now else now + period  # no burst after a long gap
 
     def _heartbeat_consumers(self) -> list:
         if self._consumers is None:
@@ -417,7 +421,7 @@ class SimulatedCanopenSlave(SimulatedDevice):
                         continue
                     entry = self._value(CONSUMER_HEARTBEAT, sub)
                     producer, time_ms = (entry >> 16) & 0xFF, entry & 0xFFFF
-                    if 1 <= producer <= 127 and time_ms:       # 0 = entry not used
+                    if 1 <= producer <= 127 and time_ms:  # 0 = entry not used
                         self._consumers.append(_Consumer(producer, time_ms * MS))
         return self._consumers
 
@@ -445,7 +449,7 @@ class SimulatedCanopenSlave(SimulatedDevice):
         if ERROR_BEHAVIOUR in self.od:
             behaviour = self._value(ERROR_BEHAVIOUR, 1)
         if behaviour == ERROR_TO_PRE_OPERATIONAL and self._state == STATE_OPERATIONAL:
-            self._set_state(STATE_PRE_OPERATIONAL)    # CiA 301: only from Operational
+            self._set_state(STATE_PRE_OPERATIONAL)  # CiA 301: only from Operational
         elif behaviour == ERROR_TO_STOPPED:
             self._set_state(STATE_STOPPED)
 
@@ -453,7 +457,7 @@ class SimulatedCanopenSlave(SimulatedDevice):
 
     def _on_frame(self, msg: can.Message) -> None:
         if msg.is_remote_frame:
-            return                                     # RTR is not supported (CiA recommends against it)
+            return  # RTR is not supported (CiA recommends against it)
         can_id, data = msg.arbitration_id, bytes(msg.data)
         with self._lock:
             now = self._clock_ns()
@@ -466,7 +470,7 @@ class SimulatedCanopenSlave(SimulatedDevice):
                 self._on_heartbeat(can_id - cob_heartbeat(0), now)
                 return
             if self._state == STATE_STOPPED:
-                return                                 # Stopped: NMT and error control only
+                return  # Stopped: NMT and error control only
             if can_id == self._sync_cob_id():
                 self._on_sync(now)
                 return
@@ -477,11 +481,11 @@ class SimulatedCanopenSlave(SimulatedDevice):
                     self._flush_writes(now)
                     self._transmit_event_tpdos(now)
                     return
-            assert self.network is not None                     # open() made it before adding this handler
-            self.network.notify(can_id, msg.data, msg.timestamp)    # the SDO server
+            assert self.network is not None  # open() made it before adding this handler
+            self.network.notify(can_id, msg.data, msg.timestamp)  # the SDO server
             self._flush_writes(now)
             if self._state == STATE_OPERATIONAL:
-                self._transmit_event_tpdos(now)        # an SDO write may have changed mapped data
+                self._transmit_event_tpdos(now)  # an SDO write may have changed mapped data
 
     def _send(self, can_id: int, data: bytes) -> None:
         if self.endpoint is not None:
@@ -516,7 +520,7 @@ class SimulatedCanopenSlave(SimulatedDevice):
 
     def _check_communication_write(self, index: int, sub: int, value: int) -> None:
         if index == ERROR_HISTORY and sub == 0 and value != 0:
-            raise SdoAbortedError(ABORT_VALUE_RANGE)   # "Only the value 0 can be written" (manual 001 §4)
+            raise SdoAbortedError(ABORT_VALUE_RANGE)  # "Only the value 0 can be written" (manual 001 §4)
         if index == ERROR_BEHAVIOUR and sub == 1 and value > ERROR_TO_STOPPED:
             raise SdoAbortedError(ABORT_VALUE_RANGE)
         if RPDO_COMM <= index < RPDO_COMM + PDO_SLOTS or TPDO_COMM <= index < TPDO_COMM + PDO_SLOTS:
@@ -536,7 +540,7 @@ class SimulatedCanopenSlave(SimulatedDevice):
         if RPDO_COMM <= index < RPDO_MAP + PDO_SLOTS or TPDO_COMM <= index < TPDO_MAP + PDO_SLOTS:
             self._tables = None
         elif index == CONSUMER_HEARTBEAT:
-            self._consumers = None                     # monitoring restarts with the next heartbeat
+            self._consumers = None  # monitoring restarts with the next heartbeat
         elif index == PRODUCER_HEARTBEAT:
             period = self._heartbeat_period_ns()
             self._heartbeat_due = now + period if period else None
@@ -562,19 +566,19 @@ class SimulatedCanopenSlave(SimulatedDevice):
                 self._check_mapping_total(mapping, self._value(mapping, 0), rpdo=not tpdo)
         elif sub == 2:
             if not (value <= SYNC_CYCLIC_LAST or value in EVENT_TYPES):
-                raise SdoAbortedError(ABORT_VALUE_RANGE)   # 241-251 reserved, 252/253 RTR only
+                raise SdoAbortedError(ABORT_VALUE_RANGE)  # 241-251 reserved, 252/253 RTR only
         elif sub == 3 and tpdo and valid:
-            raise SdoAbortedError(ABORT_DEVICE_STATE)      # CiA 301: inhibit time only while invalid
+            raise SdoAbortedError(ABORT_DEVICE_STATE)  # CiA 301: inhibit time only while invalid
 
     def _check_mapping_write(self, index: int, sub: int, value: int, *, rpdo: bool) -> None:
         comm = index - 0x200
         if comm in self.od and not self._value(comm, 1) & COB_ID_INVALID:
-            raise SdoAbortedError(ABORT_DEVICE_STATE)      # step 1: invalidate the PDO first
+            raise SdoAbortedError(ABORT_DEVICE_STATE)  # step 1: invalidate the PDO first
         if sub == 0:
             self._check_mapping_total(index, value, rpdo=rpdo)
             return
         if self._value(index, 0) != 0:
-            raise SdoAbortedError(ABORT_DEVICE_STATE)      # step 2: sub-index 0 := 0 first
+            raise SdoAbortedError(ABORT_DEVICE_STATE)  # step 2: sub-index 0 := 0 first
         if value:
             self._check_mappable(*split_mapping_entry(value), rpdo=rpdo)
 
@@ -592,9 +596,14 @@ class SimulatedCanopenSlave(SimulatedDevice):
 
     def _check_mappable(self, index: int, subindex: int, bits: int, *, rpdo: bool) -> None:
         var = self._variable_or_none(index, subindex)
-        if (var is None or not var.pdo_mappable or not var.fixed_size
-                or not (var.writable if rpdo else var.readable)
-                or bits != len(var) or not self.pdo_mappable(index, subindex, rpdo)):
+        if (
+            var is None
+            or not var.pdo_mappable
+            or not var.fixed_size
+            or not (var.writable if rpdo else var.readable)
+            or bits != len(var)
+            or not self.pdo_mappable(index, subindex, rpdo)
+        ):
             raise SdoAbortedError(ABORT_NOT_MAPPABLE)
 
     def _pdo_tables(self) -> _PdoTables:
@@ -621,25 +630,27 @@ class SimulatedCanopenSlave(SimulatedDevice):
         if cob & COB_ID_INVALID or not (transmission <= SYNC_CYCLIC_LAST or transmission in EVENT_TYPES):
             return None
         count = self._value(mapping, 0)
-        entries = [split_mapping_entry(self._value(mapping, sub))
-                   for sub in sorted(self._compound(mapping).subindices) if 0 < sub <= count]
+        entries = [
+            split_mapping_entry(self._value(mapping, sub))
+            for sub in sorted(self._compound(mapping).subindices)
+            if 0 < sub <= count
+        ]
         pdo = _Pdo(number, cob & 0x7FF, transmission, entries)
         if comm >= TPDO_COMM:
             if 3 in comm_record:
-                pdo.inhibit_ns = self._value(comm, 3) * 100_000       # 100 us units
+                pdo.inhibit_ns = self._value(comm, 3) * 100_000  # 100 us units
             if 5 in comm_record:
-                pdo.event_ns = self._value(comm, 5) * MS              # ms (CiA 301; manual says 0.1 ms: A7)
+                pdo.event_ns = self._value(comm, 5) * MS  # ms (CiA 301; manual says 0.1 ms: A7)
         return pdo
 
     # ------------------------------------------------------------------ PDO traffic
 
     def _on_rpdo_frame(self, pdo: _Pdo, data: bytes) -> None:
         if len(data) < pdo.nbytes:
-            log.debug("%s: RPDO %d with %d bytes, %d mapped: ignored", self.name, pdo.number, len(data),
-                      pdo.nbytes)
+            log.debug("%s: RPDO %d with %d bytes, %d mapped: ignored", self.name, pdo.number, len(data), pdo.nbytes)
             return
         if pdo.transmission <= SYNC_CYCLIC_LAST:
-            self._sync_rpdos[pdo.number] = (pdo, data)                # applied at the next SYNC
+            self._sync_rpdos[pdo.number] = (pdo, data)  # applied at the next SYNC
             return
         self._apply_rpdo(pdo, data)
 
@@ -653,8 +664,9 @@ class SimulatedCanopenSlave(SimulatedDevice):
                 self.node.set_data(index, subindex, value.to_bytes((bits + 7) // 8, "little"))
             except SdoAbortedError as exc:
                 # A PDO has no answer: the device keeps its value (an SDO would abort)
-                log.debug("%s: RPDO %d entry %04X:%02X refused (0x%08X)", self.name, pdo.number, index,
-                          subindex, exc.code)
+                log.debug(
+                    "%s: RPDO %d entry %04X:%02X refused (0x%08X)", self.name, pdo.number, index, subindex, exc.code
+                )
         self.on_rpdo(pdo.number)
 
     def _pack_tpdo(self, pdo: _Pdo) -> bytes:
@@ -689,7 +701,7 @@ class SimulatedCanopenSlave(SimulatedDevice):
             if not (state.pending or data != state.last_data or event_due):
                 continue
             if since is not None and since < pdo.inhibit_ns:
-                continue                                # sent once the inhibit time is over
+                continue  # sent once the inhibit time is over
             self._send_tpdo(pdo, data, now)
 
     def _on_sync(self, now: int) -> None:
@@ -712,7 +724,7 @@ class SimulatedCanopenSlave(SimulatedDevice):
             if state.sync_count >= pdo.transmission:
                 state.sync_count = 0
                 self._send_tpdo(pdo, data, now)
-        self._transmit_event_tpdos(now)                 # RPDO data applied at SYNC may change TPDO data
+        self._transmit_event_tpdos(now)  # RPDO data applied at SYNC may change TPDO data
 
     def _enter_operational(self) -> None:
         """Every TPDO goes out once: event-driven ones now, synchronous ones at
@@ -740,8 +752,9 @@ class SimulatedCanopenSlave(SimulatedDevice):
         """A RECORD or ARRAY object (PDO parameters, the error history)."""
         obj = self.od[index]
         if isinstance(obj, ODVariable):
-            raise TypeError(f"{self.name}: object 0x{index:04X} is a VAR in the EDS; CiA 301 makes it a "
-                            "RECORD or ARRAY")
+            raise TypeError(
+                f"{self.name}: object 0x{index:04X} is a VAR in the EDS; CiA 301 makes it a RECORD or ARRAY"
+            )
         return obj
 
     def _variable(self, index: int, subindex: int) -> ODVariable:
@@ -774,7 +787,7 @@ class SimulatedCanopenSlave(SimulatedDevice):
         subs = sorted(s for s in obj.subindices if s)
         count = min(self._value(ERROR_HISTORY, 0), len(subs))
         history = [error_code & 0xFFFF] + [self._value(ERROR_HISTORY, s) for s in subs[:count]]
-        history = history[:len(subs)]
+        history = history[: len(subs)]
         for sub, value in zip(subs, history):
             self._store(ERROR_HISTORY, sub, value)
         self._store(ERROR_HISTORY, 0, len(history))

@@ -4,6 +4,7 @@ smallest bus on the seams (plugin/seams.py).
 
 Public names: BUS, LoopbackDriver, LoopbackLink.
 """
+
 from __future__ import annotations
 
 from ...plugin.seams import BuildContext, Bus, Contribution
@@ -15,8 +16,11 @@ def _build(config, ctx: BuildContext) -> Contribution:
     links = config.loopback
     if not links:
         return Contribution()
-    return Contribution(drivers=[LoopbackDriver("loopback", [(link.source, link.target, link.nbytes)
-                                                             for link in links], ctx.addressing)])
+    return Contribution(
+        drivers=[
+            LoopbackDriver("loopback", [(link.source, link.target, link.nbytes) for link in links], ctx.addressing)
+        ]
+    )
 
 
 BUS = Bus(name="loopback", order=10, sections=(LoopbackSection(),), build=_build)

@@ -1,4 +1,5 @@
 """[[loopback]]: links that copy %Q bytes back to %I bytes one scan later."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -16,10 +17,10 @@ from ...st.ast import LocatedAddress
 
 @dataclass
 class LoopbackLink:
-    source: LocatedAddress           # a %Q byte/word/dword/lword address
-    target: LocatedAddress           # a %I byte/word/dword/lword address
+    source: LocatedAddress  # a %Q byte/word/dword/lword address
+    target: LocatedAddress  # a %I byte/word/dword/lword address
     nbytes: int
-    key: str                         # "loopback[0]"
+    key: str  # "loopback[0]"
 
 
 class _Loopback(Model):
@@ -45,7 +46,7 @@ class LoopbackSection(Section):
             ends = {}
             for key, area in (("from", "Q"), ("to", "I")):
                 if key not in link:
-                    continue   # pass 1 reports it missing
+                    continue  # pass 1 reports it missing
                 addr = ctx.address(here + (key,), link[key], f"%{area}B0, %{area}W2")
                 if addr is None:
                     continue
@@ -53,9 +54,12 @@ class LoopbackSection(Section):
                 if addr.area != area:
                     ctx.error(here + (key,), f"expected a {kind} address (got {area_name(addr)})")
                 elif addr.bit is not None or addr.table is not None or addr.size not in _address.SIZE_BITS:
-                    ctx.error(here + (key,), f"expected a {kind} byte, word, dword or lword address "
-                                             f"such as %{area}B0 (got '{addr.text}'); the link copies "
-                                             "whole bytes")
+                    ctx.error(
+                        here + (key,),
+                        f"expected a {kind} byte, word, dword or lword address "
+                        f"such as %{area}B0 (got '{addr.text}'); the link copies "
+                        "whole bytes",
+                    )
                 else:
                     ends[key] = addr
             nbytes = link.get("bytes")
@@ -71,8 +75,15 @@ class LoopbackSection(Section):
             _area, offset, _n = ctx.probe().region(target)
         except ValueError:
             return
-        ctx.claimed.append(("I", 8 * offset, 8 * (offset + nbytes) - 1, ("loopback", i, "to"),
-                            f"'{target.text}', {nbytes} byte{'s' if nbytes > 1 else ''}"))
+        ctx.claimed.append(
+            (
+                "I",
+                8 * offset,
+                8 * (offset + nbytes) - 1,
+                ("loopback", i, "to"),
+                f"'{target.text}', {nbytes} byte{'s' if nbytes > 1 else ''}",
+            )
+        )
 
     def build(self, model: Any, ctx: Relations) -> list[LoopbackLink]:
         return list(ctx.state.get(self.key, []))

@@ -18,6 +18,7 @@ write_outputs the inputs read as zeros (a bus that has sent nothing yet).
 
     drv = LoopbackDriver("loopback[0]", [("%QW0", "%IW10", 2), ("%QB4", "%IB24", 4)])
 """
+
 from __future__ import annotations
 
 import threading
@@ -33,6 +34,7 @@ from ...st.ast import LocatedAddress
 @dataclass(frozen=True)
 class Link:
     """nbytes bytes from source (in %Q) looped to target (in %I)."""
+
     source: LocatedAddress
     target: LocatedAddress
     nbytes: int
@@ -42,8 +44,7 @@ class Link:
 
 
 class LoopbackDriver(Driver):
-    def __init__(self, name: str, links: Iterable, addressing: str = "iec",
-                 size: int | None = None) -> None:
+    def __init__(self, name: str, links: Iterable, addressing: str = "iec", size: int | None = None) -> None:
         """links: (source, target, nbytes) with addresses as strings or
         LocatedAddress; nbytes None copies the source address's own width
         (2 for %QW0, 8 for %QW0:4). addressing and size are those of the
@@ -66,8 +67,9 @@ class LoopbackDriver(Driver):
             # Two links into the same input bytes: which one wins would be an accident.
             for j, (_q, _w, other_off, other_n) in enumerate(self._copies):
                 if i_off < other_off + other_n and other_off < i_off + link.nbytes:
-                    raise DriverError(f"{self.name}: link {i} ({link}) writes inputs that link "
-                                      f"{j} ({self.links[j]}) already writes")
+                    raise DriverError(
+                        f"{self.name}: link {i} ({link}) writes inputs that link {j} ({self.links[j]}) already writes"
+                    )
             self.links.append(link)
             self._copies.append((q_off, wire_used, i_off, link.nbytes))
             wire_used += link.nbytes
@@ -82,8 +84,7 @@ class LoopbackDriver(Driver):
             if len(rest) > 1:
                 raise ValueError
         except (TypeError, ValueError):
-            raise DriverError(f"{self.name}: link {i} must be (source, target, nbytes), "
-                              f"not {spec!r}") from None
+            raise DriverError(f"{self.name}: link {i} must be (source, target, nbytes), not {spec!r}") from None
         nbytes = rest[0] if rest else None
         where = f"{self.name}: link {i} ({_text(source)} -> {_text(target)})"
         try:
@@ -101,8 +102,9 @@ class LoopbackDriver(Driver):
             raise DriverError(f"{where}: nbytes must be a positive integer, not {nbytes!r}")
         for area, off in (("Q", q_off), ("I", i_off)):
             if off + nbytes > self.size:
-                raise DriverError(f"{where}: {nbytes} bytes from byte {off} run past the end of "
-                                  f"the {self.size}-byte %{area} area")
+                raise DriverError(
+                    f"{where}: {nbytes} bytes from byte {off} run past the end of the {self.size}-byte %{area} area"
+                )
         return Link(src, dst, nbytes), q_off, i_off
 
     # ------------------------------------------------------------ life cycle
@@ -119,7 +121,7 @@ class LoopbackDriver(Driver):
         with self._lock:  # held only for the copies, as with a bus thread
             wire = self._wire
             for _q, w, i, n in self._copies:
-                inputs[i:i + n] = wire[w:w + n]
+                inputs[i : i + n] = wire[w : w + n]
 
     def write_outputs(self, image: ProcessImage) -> None:
         self._check_image(image)
@@ -127,19 +129,22 @@ class LoopbackDriver(Driver):
         with self._lock:
             wire = self._wire
             for q, w, _i, n in self._copies:
-                wire[w:w + n] = outputs[q:q + n]
+                wire[w : w + n] = outputs[q : q + n]
             self.exchanges += 1
 
     def status(self) -> DriverStatus:
-        return DriverStatus(True, f"{len(self._wire)} bytes looped in {len(self.links)} links, "
-                                  f"{self.exchanges} exchanges")
+        return DriverStatus(
+            True, f"{len(self._wire)} bytes looped in {len(self.links)} links, {self.exchanges} exchanges"
+        )
 
     def _check_image(self, image: ProcessImage) -> None:
         # The offsets were computed for one layout; another would copy the
         # wrong bytes silently. A wiring error, so it raises.
         if image.addressing != self.addressing or image.size != self.size:
-            raise DriverError(f"{self.name}: configured for a {self.size}-byte {self.addressing} "
-                              f"image, given a {image.size}-byte {image.addressing} one")
+            raise DriverError(
+                f"{self.name}: configured for a {self.size}-byte {self.addressing} "
+                f"image, given a {image.size}-byte {image.addressing} one"
+            )
 
 
 def _text(address) -> str:

@@ -10,6 +10,7 @@ is its ModbusUnit; the line it joins is the connection's.
 Public names: BUS, ModbusDriver, ModbusConnectionConfig, ModbusChannelConfig,
 ModbusUnit, ModbusSimContext, SimulatedModbusLine, SimulatedUnit, ModbusRefusal.
 """
+
 from __future__ import annotations
 
 import dataclasses
@@ -29,7 +30,7 @@ from .unit import ModbusRefusal, SimulatedUnit
 class ModbusSimContext:
     clock: object
     connection: ModbusConnectionConfig
-    where: str                       # the configuration file, for messages
+    where: str  # the configuration file, for messages
 
 
 def _free_tcp_port() -> int:
@@ -49,16 +50,24 @@ def _lines(config, ctx: BuildContext) -> dict:
         for sim in config.sims:
             device = devices[sim.type]
             if device.bus == BUS.name and sim.at.connection == conn.name:
-                assert device.simulator is not None   # the registry has no simulating device without one
+                assert device.simulator is not None  # the registry has no simulating device without one
                 units[sim.at.unit] = device.simulator(sim, ModbusSimContext(ctx.clock, conn, ctx.where))
         if not units:
             continue
         if conn.transport == "tcp":
-            lines[conn.name] = SimulatedModbusLine(conn.name, units, clock=ctx.clock, transport="tcp",
-                                                   host=conn.host, port=conn.port or _free_tcp_port())
+            lines[conn.name] = SimulatedModbusLine(
+                conn.name, units, clock=ctx.clock, transport="tcp", host=conn.host, port=conn.port or _free_tcp_port()
+            )
         else:
-            lines[conn.name] = SimulatedModbusLine(conn.name, units, clock=ctx.clock, transport="rtu",
-                                                   baud=conn.baud, parity=conn.parity, stop_bits=conn.stop_bits)
+            lines[conn.name] = SimulatedModbusLine(
+                conn.name,
+                units,
+                clock=ctx.clock,
+                transport="rtu",
+                baud=conn.baud,
+                parity=conn.parity,
+                stop_bits=conn.stop_bits,
+            )
     return lines
 
 
@@ -67,18 +76,38 @@ def _build(config, ctx: BuildContext) -> Contribution:
         return Contribution()
     lines = _lines(config, ctx)
     connections = []
-    for conn in config.modbus:          # those to simulated devices go to the simulator's end
+    for conn in config.modbus:  # those to simulated devices go to the simulator's end
         line = lines.get(conn.name)
         if line is not None:
-            conn = dataclasses.replace(conn, device=line.master_port) if line.cable is not None \
+            conn = (
+                dataclasses.replace(conn, device=line.master_port)
+                if line.cable is not None
                 else dataclasses.replace(conn, port=line.port)
+            )
         connections.append(conn)
-    return Contribution(simulators=list(lines.values()),
-                        drivers=[ModbusDriver(connections, ctx.addressing, clock=ctx.clock)])
+    return Contribution(
+        simulators=list(lines.values()), drivers=[ModbusDriver(connections, ctx.addressing, clock=ctx.clock)]
+    )
 
 
-BUS = Bus(name="modbus", order=40, sections=(ModbusSection(),), attachment=ModbusAttachment(),
-          natives=(MODBUS_EXCHANGE,), libraries=(StLibrary("softplc.fblocks.comm", "modbus.st"),), build=_build)
+BUS = Bus(
+    name="modbus",
+    order=40,
+    sections=(ModbusSection(),),
+    attachment=ModbusAttachment(),
+    natives=(MODBUS_EXCHANGE,),
+    libraries=(StLibrary("softplc.fblocks.comm", "modbus.st"),),
+    build=_build,
+)
 
-__all__ = ["BUS", "ModbusChannelConfig", "ModbusConnectionConfig", "ModbusDriver", "ModbusRefusal",
-           "ModbusSimContext", "ModbusUnit", "SimulatedModbusLine", "SimulatedUnit"]
+__all__ = [
+    "BUS",
+    "ModbusChannelConfig",
+    "ModbusConnectionConfig",
+    "ModbusDriver",
+    "ModbusRefusal",
+    "ModbusSimContext",
+    "ModbusUnit",
+    "SimulatedModbusLine",
+    "SimulatedUnit",
+]

@@ -21,6 +21,7 @@ The scan thread calls stage() (after a cycle) and publish() (before one); the
 connection's worker calls due(), transaction() and complete(). They meet
 under the channel's lock for as long as a copy takes.
 """
+
 from __future__ import annotations
 
 import threading
@@ -34,6 +35,7 @@ from .link import ModbusError, Outcome, Transaction, error_text
 
 class ChannelStats:
     """What the program reads in MODBUS_CHANNEL[i] (fblocks/comm/modbus.st)."""
+
     __slots__ = ("requests", "errors", "last_error", "response_ms", "ok", "message", "version")
 
     def __init__(self) -> None:
@@ -58,11 +60,11 @@ class Channel:
         write_count = cfg.write_count if cfg.function == 23 else cfg.count
         self._write_span = self._span(image, cfg.write_from, write_count) if self.writes else None
         self._write_count = write_count
-        self._staged: bytes | None = None     # the last bytes the program left to write
-        self._sent: bytes | None = None       # the bytes of the last good write
+        self._staged: bytes | None = None  # the last bytes the program left to write
+        self._sent: bytes | None = None  # the bytes of the last good write
         self._pending = cfg.trigger == "change"
         self._edge_was = False
-        self._fresh: bytes | None = None      # read data not yet in the image
+        self._fresh: bytes | None = None  # read data not yet in the image
         self._next_due_ns = 0
         self._in_flight: bytes | None = None
 
@@ -70,8 +72,10 @@ class Channel:
         area, offset, _n = image.region(addr)
         nbytes = (count + 7) // 8 if self.bits else 2 * count
         if offset + nbytes > image.size:
-            raise ValueError(f"{self.cfg.key}: {count} {'bits' if self.bits else 'registers'} from "
-                             f"{addr.text} run past the end of the %{area} area ({image.size} bytes)")
+            raise ValueError(
+                f"{self.cfg.key}: {count} {'bits' if self.bits else 'registers'} from "
+                f"{addr.text} run past the end of the %{area} area ({image.size} bytes)"
+            )
         return area, offset, nbytes
 
     # ---------------------------------------------------------------- scan side
@@ -83,7 +87,7 @@ class Channel:
         with self._lock:
             if self._write_span is not None:
                 area, offset, n = self._write_span
-                data = bytes(image.areas[area][offset:offset + n])
+                data = bytes(image.areas[area][offset : offset + n])
                 if data != self._staged:
                     self._staged = data
                     if self.cfg.trigger == "change" and data != self._sent:
@@ -101,9 +105,9 @@ class Channel:
             fresh, self._fresh = self._fresh, None
         if fresh is None:
             return False
-        assert self._read_span is not None      # only a reading channel has fresh data
+        assert self._read_span is not None  # only a reading channel has fresh data
         area, offset, n = self._read_span
-        image.areas[area][offset:offset + n] = fresh
+        image.areas[area][offset : offset + n] = fresh
         return True
 
     # ---------------------------------------------------------------- worker side
@@ -111,7 +115,7 @@ class Channel:
     def due(self, now_ns: int) -> bool:
         with self._lock:
             if self.writes and self._staged is None:
-                return False      # nothing to write before the first cycle
+                return False  # nothing to write before the first cycle
             if now_ns < self._next_due_ns:
                 return False
             return self.cfg.trigger == "cyclic" or self._pending
@@ -132,14 +136,13 @@ class Channel:
                 self._pending = False
         values: tuple = ()
         if self.writes:
-            assert staged is not None       # due() holds a writing channel back until a cycle staged its data
+            assert staged is not None  # due() holds a writing channel back until a cycle staged its data
             if self.bits:
                 values = tuple(bool(staged[i // 8] >> (i % 8) & 1) for i in range(self._write_count))
             else:
-                values = tuple(int.from_bytes(staged[2 * i:2 * i + 2], "little") for i in range(self._write_count))
+                values = tuple(int.from_bytes(staged[2 * i : 2 * i + 2], "little") for i in range(self._write_count))
         offset = cfg.offset
-        return Transaction(cfg.unit, cfg.function, offset, cfg.count if self.reads else 0, values,
-                           cfg.write_offset)
+        return Transaction(cfg.unit, cfg.function, offset, cfg.count if self.reads else 0, values, cfg.write_offset)
 
     def complete(self, outcome: Outcome, now_ns: int) -> None:
         cfg = self.cfg
@@ -159,21 +162,21 @@ class Channel:
                         raw = b"".join(w.to_bytes(2, "little") for w in words)
                     else:
                         raw = b"".join((v & 0xFFFF).to_bytes(2, "little") for v in vals)
-                    self._fresh = raw[:self._read_span[2]]
+                    self._fresh = raw[: self._read_span[2]]
                 if self.writes:
                     self._sent = self._in_flight
             else:
                 s.errors += 1
                 s.message = outcome.message or error_text(outcome.error)
                 if cfg.trigger != "cyclic":
-                    self._pending = True          # try again after one period
+                    self._pending = True  # try again after one period
             if cfg.trigger == "cyclic" or not s.ok:
                 base = self._next_due_ns if cfg.trigger == "cyclic" and s.ok else now_ns
                 self._next_due_ns = base + cfg.period_ns
-                if self._next_due_ns <= now_ns:   # missed periods are skipped, not caught up
+                if self._next_due_ns <= now_ns:  # missed periods are skipped, not caught up
                     self._next_due_ns = now_ns + cfg.period_ns
             elif cfg.trigger == "change" and self._staged != self._sent:
-                self._pending = True              # the program changed it again meanwhile
+                self._pending = True  # the program changed it again meanwhile
 
     def snapshot(self) -> tuple:
         with self._lock:

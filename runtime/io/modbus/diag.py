@@ -1,5 +1,6 @@
 """MODBUS_CHANNEL[i] (fblocks/comm/modbus.st) as the program sees it,
 filled by the Modbus master. Written only when something changed."""
+
 from __future__ import annotations
 
 from ...program import StructWriter
@@ -13,7 +14,7 @@ class ModbusDiag:
     def __init__(self, globals_obj) -> None:
         channels = _global(globals_obj, "MODBUS_CHANNEL")
         self._channels = [StructWriter(s) for s in channels] if channels is not None else []
-        self._seen: dict = {}   # index -> (version, connection ok) written
+        self._seen: dict = {}  # index -> (version, connection ok) written
 
     @property
     def active(self) -> bool:
@@ -27,6 +28,13 @@ class ModbusDiag:
                 continue
             self._seen[index] = (version, link_ok)
             self._channels[index].set(
-                Configured=True, Ok=ok, Error=requests > 0 and not ok, ConnectionOk=link_ok,
-                LastError=last_error, Requests=requests, Errors=errors, ResponseTime=response_ms,
-                Message=message)
+                Configured=True,
+                Ok=ok,
+                Error=requests > 0 and not ok,
+                ConnectionOk=link_ok,
+                LastError=last_error,
+                Requests=requests,
+                Errors=errors,
+                ResponseTime=response_ms,
+                Message=message,
+            )

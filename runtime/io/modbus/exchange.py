@@ -21,6 +21,7 @@ The management table (4 words):
 
 A call while word 0 bit 0 is set starts nothing and returns FALSE.
 """
+
 from __future__ import annotations
 
 import threading
@@ -51,7 +52,7 @@ class _Exchange:
         self.receive_signed = receive_signed
         self.mgmt_signed = mgmt_signed
         self.bits = bits
-        self.outcome: Outcome | None = None     # set by the worker
+        self.outcome: Outcome | None = None  # set by the worker
 
 
 class ModbusExchangeService:
@@ -64,9 +65,23 @@ class ModbusExchangeService:
         self._running: list[_Exchange] = []
         self._lock = threading.Lock()
 
-    def request(self, name: str, connection: str, unit: int, function: int, read_offset: int, read_count: int,
-                write_offset: int, write_count: int, send, receive, mgmt,
-                send_signed: bool = False, receive_signed: bool = False, mgmt_signed: bool = False) -> bool:
+    def request(
+        self,
+        name: str,
+        connection: str,
+        unit: int,
+        function: int,
+        read_offset: int,
+        read_count: int,
+        write_offset: int,
+        write_count: int,
+        send,
+        receive,
+        mgmt,
+        send_signed: bool = False,
+        receive_signed: bool = False,
+        mgmt_signed: bool = False,
+    ) -> bool:
         m0 = int(mgmt[0]) & 0xFFFF
         if m0 & 1:
             return False
@@ -85,13 +100,15 @@ class ModbusExchangeService:
             self._finish(ex, Outcome(ModbusError.INVALID_REQUEST, message=problem or "unit beyond 0..255"))
             return False
         if writes:
-            values = tuple(unpack_bits(send, write_count) if bits
-                           else [int(send[i]) & 0xFFFF for i in range(write_count)])
+            values = tuple(
+                unpack_bits(send, write_count) if bits else [int(send[i]) & 0xFFFF for i in range(write_count)]
+            )
         else:
             values = ()
         offset = int(write_offset) if writes and not reads else int(read_offset)
-        tx = Transaction(int(unit), function, offset & 0xFFFF, read_count if reads else 0, values,
-                         int(write_offset) & 0xFFFF)
+        tx = Transaction(
+            int(unit), function, offset & 0xFFFF, read_count if reads else 0, values, int(write_offset) & 0xFFFF
+        )
 
         def done(outcome: Outcome, ex=ex) -> None:
             ex.outcome = outcome
@@ -101,8 +118,9 @@ class ModbusExchangeService:
         if not self._submit(str(connection), tx, done):
             with self._lock:
                 self._running.remove(ex)
-            self._finish(ex, Outcome(ModbusError.REQUEST_FAILED_TO_SEND,
-                                     message=f"no Modbus connection named {connection!r}"))
+            self._finish(
+                ex, Outcome(ModbusError.REQUEST_FAILED_TO_SEND, message=f"no Modbus connection named {connection!r}")
+            )
             return False
         return True
 
@@ -110,7 +128,7 @@ class ModbusExchangeService:
         finished = []
         with self._lock:
             running, self._running = self._running, []
-            for ex in running:      # outcome is set by the worker thread: read it once
+            for ex in running:  # outcome is set by the worker thread: read it once
                 outcome = ex.outcome
                 if outcome is None:
                     self._running.append(ex)
@@ -127,7 +145,7 @@ class ModbusExchangeService:
     def _finish(ex: _Exchange, outcome: Outcome) -> None:
         values = outcome.values if outcome.error == ModbusError.OK else []
         words = pack_bits(values) if ex.bits else values
-        for i, w in enumerate(words[:len(ex.receive)]):
+        for i, w in enumerate(words[: len(ex.receive)]):
             store_word(ex.receive, i, int(w), ex.receive_signed)
         mgmt, signed = ex.mgmt, ex.mgmt_signed
         store_word(mgmt, 1, int(outcome.error), signed)
@@ -136,14 +154,26 @@ class ModbusExchangeService:
         store_word(mgmt, 0, int(mgmt[0]) & ~1, signed)
 
 
-
 class NoModbus:
     """MODBUS_EXCHANGE without a [[modbus]] connection: the exchange ends at
     once with result 16#A5, REQUEST_FAILED_TO_SEND (link.ModbusError).
     The Modbus master's service replaces this."""
 
-    def request(self, name: str, connection, unit, function, read_offset, read_count, write_offset,
-                write_count, send, receive, mgmt, *signed) -> bool:
+    def request(
+        self,
+        name: str,
+        connection,
+        unit,
+        function,
+        read_offset,
+        read_count,
+        write_offset,
+        write_count,
+        send,
+        receive,
+        mgmt,
+        *signed,
+    ) -> bool:
         mgmt[0] = mgmt[0] & ~1
         mgmt[1] = int(ModbusError.REQUEST_FAILED_TO_SEND)
         return False
@@ -151,15 +181,30 @@ class NoModbus:
 
 #: the ExecContext service of MODBUS_EXCHANGE (ModbusExchangeService)
 SERVICE = "modbus.exchange"
-_ARGS = ("CONNECTION", "UNIT", "FUNCTION", "READ_OFFSET", "READ_COUNT", "WRITE_OFFSET", "WRITE_COUNT",
-         "SEND", "RECEIVE", "MGMT")
+_ARGS = (
+    "CONNECTION",
+    "UNIT",
+    "FUNCTION",
+    "READ_OFFSET",
+    "READ_COUNT",
+    "WRITE_OFFSET",
+    "WRITE_COUNT",
+    "SEND",
+    "RECEIVE",
+    "MGMT",
+)
 _TABLE = "an ARRAY OF WORD (or INT/UINT)"
 
 MODBUS_EXCHANGE = NativeFunction(
     "MODBUS_EXCHANGE",
-    (Param("CONNECTION", STRING, "CONNECTION", "the name of a [[modbus]] connection, a STRING"),
-     *(Param(name, ANY_INT, name) for name in _ARGS[1:7]),
-     Param("SEND", WORDS, "SEND", _TABLE), Param("RECEIVE", WORDS, "RECEIVE", _TABLE),
-     Param("MGMT", WORDS, "MGMT", _TABLE, min_words=4)),
-    service=SERVICE, fallback=NoModbus(),
-    usage=f"MODBUS_EXCHANGE({', '.join(_ARGS)}); or use the MODBUS_REQUEST block")
+    (
+        Param("CONNECTION", STRING, "CONNECTION", "the name of a [[modbus]] connection, a STRING"),
+        *(Param(name, ANY_INT, name) for name in _ARGS[1:7]),
+        Param("SEND", WORDS, "SEND", _TABLE),
+        Param("RECEIVE", WORDS, "RECEIVE", _TABLE),
+        Param("MGMT", WORDS, "MGMT", _TABLE, min_words=4),
+    ),
+    service=SERVICE,
+    fallback=NoModbus(),
+    usage=f"MODBUS_EXCHANGE({', '.join(_ARGS)}); or use the MODBUS_REQUEST block",
+)

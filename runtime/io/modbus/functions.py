@@ -1,19 +1,20 @@
 """The Modbus function codes the master speaks and how much each carries.
 Pure data, no pymodbus: the configuration checks channels against it, the
 link and MODBUS_EXCHANGE check requests with it."""
+
 from __future__ import annotations
 
 # Function codes the master speaks: code -> (reads, writes, bits)
 FUNCTIONS = {
-    1: (True, False, True),      # Read Coils
-    2: (True, False, True),      # Read Discrete Inputs
-    3: (True, False, False),     # Read Holding Registers
-    4: (True, False, False),     # Read Input Registers
-    5: (False, True, True),      # Write Single Coil
-    6: (False, True, False),     # Write Single Register
-    15: (False, True, True),     # Write Multiple Coils
-    16: (False, True, False),    # Write Multiple Registers
-    23: (True, True, False),     # Read/Write Multiple Registers
+    1: (True, False, True),  # Read Coils
+    2: (True, False, True),  # Read Discrete Inputs
+    3: (True, False, False),  # Read Holding Registers
+    4: (True, False, False),  # Read Input Registers
+    5: (False, True, True),  # Write Single Coil
+    6: (False, True, False),  # Write Single Register
+    15: (False, True, True),  # Write Multiple Coils
+    16: (False, True, False),  # Write Multiple Registers
+    23: (True, True, False),  # Read/Write Multiple Registers
 }
 # The most one request may carry (Modbus application protocol 6.1-6.17)
 READ_LIMIT = {1: 2000, 2: 2000, 3: 125, 4: 125, 23: 125}

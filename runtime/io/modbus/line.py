@@ -20,6 +20,7 @@ What the line does, as a real RS-485 line or TCP gateway does:
 The models run on the engine's clock: virtual time moves them at each tick
 (advance_to), real time every millisecond (the service thread).
 """
+
 from __future__ import annotations
 
 import asyncio
@@ -42,8 +43,8 @@ SIM_HOSTS = ("127.0.0.1", "localhost")
 class _Line(ModbusServerContext):
     """pymodbus's datastore interface, answered by the line's units."""
 
-    def __init__(self, sim: SimulatedModbusLine) -> None:   # no super(): no pymodbus datastore
-        self.old_simulator = True     # pymodbus then calls async_getValues/async_setValues itself
+    def __init__(self, sim: SimulatedModbusLine) -> None:  # no super(): no pymodbus datastore
+        self.old_simulator = True  # pymodbus then calls async_getValues/async_setValues itself
         self.simdevices = []
         self._sim = sim
 
@@ -58,15 +59,26 @@ class _Line(ModbusServerContext):
 
 
 class SimulatedModbusLine(SimulatedDevice):
-    def __init__(self, name: str, units: dict, *, clock, transport: str = "rtu", host: str = "127.0.0.1",
-                 port: int = 0, baud: int = 115200, parity: str = "N", stop_bits: int = 1) -> None:
+    def __init__(
+        self,
+        name: str,
+        units: dict,
+        *,
+        clock,
+        transport: str = "rtu",
+        host: str = "127.0.0.1",
+        port: int = 0,
+        baud: int = 115200,
+        parity: str = "N",
+        stop_bits: int = 1,
+    ) -> None:
         super().__init__(name, clock=clock)
         if transport == "tcp" and host not in SIM_HOSTS:
             raise DriverError(f"sim {name}: a simulated device listens on 127.0.0.1 only, not {host}")
         self.units: dict[int, SimulatedUnit] = dict(units)
         self.transport = transport
         self.host, self.port = host, port
-        self.baud, self.parity, self.stop_bits = baud, parity, stop_bits   # rtu: the serial settings
+        self.baud, self.parity, self.stop_bits = baud, parity, stop_bits  # rtu: the serial settings
         self.cable: NullModem | None = NullModem(f"sim {name} cable") if transport == "rtu" else None
         self.master_port = self.cable.master_port if self.cable else None
         self.silent = False
@@ -87,7 +99,7 @@ class SimulatedModbusLine(SimulatedDevice):
         good write, or an ExcCodes refusal."""
         model = self.units.get(unit)
         if model is None:
-            raise NoSuchIdException(f"unit {unit} is not on this line")    # pymodbus stays silent
+            raise NoSuchIdException(f"unit {unit} is not on this line")  # pymodbus stays silent
         if function not in model.functions:
             return ExcCodes.ILLEGAL_FUNCTION
         now = self.clock.now_ns()
@@ -104,7 +116,7 @@ class SimulatedModbusLine(SimulatedDevice):
 
     def _trace(self, sending: bool, data: bytes) -> bytes:
         if self.silent and not sending:
-            return b""          # the request never reaches the units: no answer
+            return b""  # the request never reaches the units: no answer
         return data
 
     # ---------------------------------------------------------------- device behaviour
@@ -124,7 +136,7 @@ class SimulatedModbusLine(SimulatedDevice):
             asyncio.set_event_loop(loop)
             try:
                 loop.run_until_complete(self._serve(started))
-            except Exception as exc:     # reported to start() below
+            except Exception as exc:  # reported to start() below
                 failure.append(exc)
                 started.set()
             finally:
@@ -133,21 +145,34 @@ class SimulatedModbusLine(SimulatedDevice):
         self._thread = threading.Thread(target=run, name=f"sim {self.name}", daemon=True)
         self._thread.start()
         if not started.wait(5) or failure:
-            raise DriverError(f"sim {self.name}: the Modbus server did not start"
-                              + (f": {failure[0]}" if failure else ""))
+            raise DriverError(
+                f"sim {self.name}: the Modbus server did not start" + (f": {failure[0]}" if failure else "")
+            )
 
     async def _serve(self, started: threading.Event) -> None:
         line = _Line(self)
         server: ModbusTcpServer | ModbusSerialServer
         if self.transport == "tcp":
-            server = ModbusTcpServer(line, address=(self.host, self.port), ignore_missing_devices=True,
-                                     broadcast_enable=True, trace_packet=self._trace)
+            server = ModbusTcpServer(
+                line,
+                address=(self.host, self.port),
+                ignore_missing_devices=True,
+                broadcast_enable=True,
+                trace_packet=self._trace,
+            )
         else:
-            assert self.cable is not None      # an rtu line has its cable until close()
-            server = ModbusSerialServer(line, framer=FramerType.RTU, port=self.cable.slave_port,
-                                        ignore_missing_devices=True, broadcast_enable=True,
-                                        trace_packet=self._trace, baudrate=self.baud, parity=self.parity,
-                                        stopbits=self.stop_bits)
+            assert self.cable is not None  # an rtu line has its cable until close()
+            server = ModbusSerialServer(
+                line,
+                framer=FramerType.RTU,
+                port=self.cable.slave_port,
+                ignore_missing_devices=True,
+                broadcast_enable=True,
+                trace_packet=self._trace,
+                baudrate=self.baud,
+                parity=self.parity,
+                stopbits=self.stop_bits,
+            )
         self._server = server
         await server.serve_forever(background=True)
         started.set()
@@ -158,7 +183,7 @@ class SimulatedModbusLine(SimulatedDevice):
             future = asyncio.run_coroutine_threadsafe(self._server.shutdown(), self._loop)
             try:
                 future.result(timeout=5)
-            except Exception:      # already down
+            except Exception:  # already down
                 pass
         if self._thread is not None:
             self._thread.join(timeout=5)

@@ -20,6 +20,7 @@ What the link adds to pymodbus:
     clock (virtual time included), so a missing slave never blocks the others
     for longer than one timeout.
 """
+
 from __future__ import annotations
 
 import enum
@@ -41,6 +42,7 @@ class ModbusError(enum.IntEnum):
     """Result codes of a transaction (channel LastError, MODBUS_REQUEST.ERRORID).
     1..11 are the slave's exception codes (Modbus application protocol 7);
     16#A1.. are the master's own, numbered as CODESYS numbers them."""
+
     OK = 0x00
     ILLEGAL_FUNCTION = 0x01
     ILLEGAL_DATA_ADDRESS = 0x02
@@ -52,14 +54,14 @@ class ModbusError(enum.IntEnum):
     GATEWAY_PATH_UNAVAILABLE = 0x0A
     GATEWAY_TARGET_FAILED = 0x0B
     RESPONSE_CRC_FAIL = 0xA1
-    RESPONSE_TIMEOUT = 0xA2             # no answer, retries included: a silent slave
+    RESPONSE_TIMEOUT = 0xA2  # no answer, retries included: a silent slave
     RESPONSE_WRONG_SLAVE = 0xA3
     RESPONSE_WRONG_FUNCTIONCODE = 0xA4
-    REQUEST_FAILED_TO_SEND = 0xA5       # the connection is down (no port, refused, reset)
-    RESPONSE_INVALID_DATA = 0xA6        # an answer of the wrong length
+    REQUEST_FAILED_TO_SEND = 0xA5  # the connection is down (no port, refused, reset)
+    RESPONSE_INVALID_DATA = 0xA6  # an answer of the wrong length
     RESPONSE_INVALID_PROTOCOL = 0xA7
     RESPONSE_INVALID_HEADER = 0xA8
-    INVALID_REQUEST = 0xFE              # softplc: a request the master refuses to send (bad count ...)
+    INVALID_REQUEST = 0xFE  # softplc: a request the master refuses to send (bad count ...)
     UNDEFINED = 0xFF
 
 
@@ -72,18 +74,18 @@ def error_text(code: int) -> str:
 
 @dataclass(frozen=True)
 class LinkSettings:
-    name: str                        # the [[modbus]] name, for messages
-    transport: str                   # "tcp" | "rtu"
+    name: str  # the [[modbus]] name, for messages
+    transport: str  # "tcp" | "rtu"
     host: str = "127.0.0.1"
     port: int = 502
-    device: str = ""                 # serial port
+    device: str = ""  # serial port
     baud: int = 19200
     parity: str = "N"
     stop_bits: int = 1
     data_bits: int = 8
-    frame_gap_s: float | None = None     # None: 3.5 characters (see frame_gap)
+    frame_gap_s: float | None = None  # None: 3.5 characters (see frame_gap)
     timeout_s: float = 0.1
-    retries: int = 1                 # requests sent again after a timeout
+    retries: int = 1  # requests sent again after a timeout
     reconnect_s: float = 1.0
     reconnect_max_s: float = 10.0
 
@@ -102,6 +104,7 @@ class Transaction:
     """One request. For writes, values holds the registers (ints) or coils
     (bools); for FC 23, offset/count are the read and write_offset/values the
     write."""
+
     unit: int
     function: int
     offset: int = 0
@@ -114,7 +117,7 @@ class Transaction:
 class Outcome:
     error: int = 0
     values: list = field(default_factory=list)
-    response_s: float = 0.0          # request sent -> answer, real time
+    response_s: float = 0.0  # request sent -> answer, real time
     message: str = ""
 
 
@@ -129,7 +132,7 @@ class ModbusLink:
         self._backoff_s = settings.reconnect_s
         self._last_frame_end = 0.0
         self.connected = False
-        self.connects = 0            # successful (re)connections
+        self.connects = 0  # successful (re)connections
         self.message = "not connected yet"
         gap = settings.frame_gap_s
         if gap is None and settings.transport == "rtu":
@@ -141,11 +144,17 @@ class ModbusLink:
     def _new_client(self) -> ModbusTcpClient | ModbusSerialClient:
         s = self.settings
         if s.transport == "tcp":
-            return ModbusTcpClient(s.host, port=s.port, timeout=s.timeout_s, retries=s.retries,
-                                   reconnect_delay=0)
-        return ModbusSerialClient(s.device, baudrate=s.baud, parity=s.parity, stopbits=s.stop_bits,
-                                  bytesize=s.data_bits, timeout=s.timeout_s, retries=s.retries,
-                                  reconnect_delay=0)
+            return ModbusTcpClient(s.host, port=s.port, timeout=s.timeout_s, retries=s.retries, reconnect_delay=0)
+        return ModbusSerialClient(
+            s.device,
+            baudrate=s.baud,
+            parity=s.parity,
+            stopbits=s.stop_bits,
+            bytesize=s.data_bits,
+            timeout=s.timeout_s,
+            retries=s.retries,
+            reconnect_delay=0,
+        )
 
     def try_connect(self, now_ns: int) -> bool:
         """Connected, or connect now unless the back-off says wait."""
@@ -199,7 +208,7 @@ class ModbusLink:
         if not self.try_connect(now_ns):
             return Outcome(ModbusError.REQUEST_FAILED_TO_SEND, message=self.message)
         client = self._client
-        assert client is not None       # connected: try_connect() made it, only _drop() and close() clear it
+        assert client is not None  # connected: try_connect() made it, only _drop() and close() clear it
         if self._gap_s:
             wait = self._last_frame_end + self._gap_s - time.perf_counter()
             if wait > 0:
@@ -209,7 +218,7 @@ class ModbusLink:
             response = self._call(client, tx)
         except ModbusIOException as exc:
             outcome = Outcome(ModbusError.RESPONSE_TIMEOUT, message=f"no answer from unit {tx.unit}: {exc}")
-            if self.settings.transport == "tcp":   # a late answer would be taken for the next one
+            if self.settings.transport == "tcp":  # a late answer would be taken for the next one
                 self._drop(now_ns, outcome.message)
             return outcome
         except (ConnectionException, OSError) as exc:
@@ -222,15 +231,21 @@ class ModbusLink:
         elapsed = self._last_frame_end - start
         if response.isError():
             code = getattr(response, "exception_code", ModbusError.UNDEFINED)
-            return Outcome(int(code), response_s=elapsed,
-                           message=f"unit {tx.unit} answered exception {int(code)} ({error_text(code)})")
+            return Outcome(
+                int(code),
+                response_s=elapsed,
+                message=f"unit {tx.unit} answered exception {int(code)} ({error_text(code)})",
+            )
         reads, _writes, bits = FUNCTIONS[tx.function]
         if not reads:
             return Outcome(response_s=elapsed)
-        values = list(response.bits[:tx.count]) if bits else list(response.registers)
+        values = list(response.bits[: tx.count]) if bits else list(response.registers)
         if len(values) != tx.count:
-            return Outcome(ModbusError.RESPONSE_INVALID_DATA, response_s=elapsed,
-                           message=f"unit {tx.unit} sent {len(values)} items for {tx.count}")
+            return Outcome(
+                ModbusError.RESPONSE_INVALID_DATA,
+                response_s=elapsed,
+                message=f"unit {tx.unit} sent {len(values)} items for {tx.count}",
+            )
         return Outcome(values=values, response_s=elapsed)
 
     @staticmethod
@@ -252,5 +267,10 @@ class ModbusLink:
             return c.write_coils(tx.offset, [bool(v) for v in tx.values], device_id=unit)
         if fc == 16:
             return c.write_registers(tx.offset, list(tx.values), device_id=unit)
-        return c.readwrite_registers(read_address=tx.offset, read_count=tx.count,
-                                     write_address=tx.write_offset, values=list(tx.values), device_id=unit)
+        return c.readwrite_registers(
+            read_address=tx.offset,
+            read_count=tx.count,
+            write_address=tx.write_offset,
+            values=list(tx.values),
+            device_id=unit,
+        )

@@ -15,6 +15,7 @@ Each connection has one owner of its pymodbus client (link.py):
 The program sees each channel in MODBUS_CHANNEL[i] (i = the channel's place
 in the file, counted over all connections; fblocks/comm/modbus.st).
 """
+
 from __future__ import annotations
 
 import collections
@@ -42,11 +43,21 @@ IDLE_WAIT_S = 0.05
 def link_settings(cfg) -> LinkSettings:
     """LinkSettings of a ModbusConnectionConfig (runtime/config/)."""
     return LinkSettings(
-        name=cfg.name, transport=cfg.transport, host=cfg.host, port=cfg.port, device=cfg.device,
-        baud=cfg.baud, parity=cfg.parity, stop_bits=cfg.stop_bits, data_bits=cfg.data_bits,
+        name=cfg.name,
+        transport=cfg.transport,
+        host=cfg.host,
+        port=cfg.port,
+        device=cfg.device,
+        baud=cfg.baud,
+        parity=cfg.parity,
+        stop_bits=cfg.stop_bits,
+        data_bits=cfg.data_bits,
         frame_gap_s=None if cfg.frame_gap_us is None else cfg.frame_gap_us / 1e6,
-        timeout_s=cfg.timeout_ms / 1000, retries=cfg.retries,
-        reconnect_s=cfg.reconnect_ms / 1000, reconnect_max_s=cfg.reconnect_max_ms / 1000)
+        timeout_s=cfg.timeout_ms / 1000,
+        retries=cfg.retries,
+        reconnect_s=cfg.reconnect_ms / 1000,
+        reconnect_max_s=cfg.reconnect_max_ms / 1000,
+    )
 
 
 class ConnectionWorker:
@@ -87,8 +98,7 @@ class ConnectionWorker:
 
     def start_thread(self) -> None:
         self._running = True
-        self._thread = threading.Thread(target=self._loop, name=f"modbus {self.link.settings.name}",
-                                        daemon=True)
+        self._thread = threading.Thread(target=self._loop, name=f"modbus {self.link.settings.name}", daemon=True)
         self._thread.start()
 
     def _loop(self) -> None:
@@ -99,7 +109,7 @@ class ConnectionWorker:
                 if wait > 0 and not self._requests:
                     self._wake.wait(wait)
                 self._wake.clear()
-        except Exception:   # a bug must not die silently in a thread
+        except Exception:  # a bug must not die silently in a thread
             log.exception("modbus %s: worker failed", self.link.settings.name)
             self.link.message = "worker failed (see the log)"
         finally:
@@ -120,7 +130,7 @@ class ModbusDriver(Driver):
 
     def __init__(self, connections: list, addressing: str, *, clock) -> None:
         self.name = "modbus"
-        image = ProcessImage(addressing)     # the layout, for the channels' byte spans
+        image = ProcessImage(addressing)  # the layout, for the channels' byte spans
         self.clock = clock
         self.channels: list[Channel] = []
         self.workers: dict[str, ConnectionWorker] = {}
@@ -161,6 +171,7 @@ class ModbusDriver(Driver):
 
     def bind_program(self, globals_obj) -> None:
         from .diag import ModbusDiag
+
         diag = ModbusDiag(globals_obj)
         # a program that does not read MODBUS_CHANNEL costs no snapshot per cycle
         self._diag = diag if diag.active else None
@@ -172,8 +183,12 @@ class ModbusDriver(Driver):
             ch.publish(image)
         self.exchange.collect()
         if self._diag is not None:
-            self._diag.update([(i, ch.snapshot(), self.workers[ch.cfg.connection].link.connected)
-                               for i, ch in enumerate(self.channels)])
+            self._diag.update(
+                [
+                    (i, ch.snapshot(), self.workers[ch.cfg.connection].link.connected)
+                    for i, ch in enumerate(self.channels)
+                ]
+            )
 
     def write_outputs(self, image: ProcessImage) -> None:
         for ch in self.channels:
@@ -186,6 +201,7 @@ class ModbusDriver(Driver):
         if down:
             return DriverStatus(False, "modbus: " + "; ".join(f"{link.settings.name} {link.message}" for link in down))
         if failing:
-            return DriverStatus(False, f"modbus: {len(failing)}/{len(self.channels)} channels failing "
-                                       f"({', '.join(failing[:3])})")
+            return DriverStatus(
+                False, f"modbus: {len(failing)}/{len(self.channels)} channels failing ({', '.join(failing[:3])})"
+            )
         return DriverStatus(True, f"modbus: {len(self.workers)} up")

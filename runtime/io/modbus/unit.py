@@ -1,6 +1,7 @@
 """What a simulated device at a unit id of a Modbus line is (SimulatedUnit),
 and how it refuses a request (ModbusRefusal). Pure: no pymodbus, so device
 models import it without the server."""
+
 from __future__ import annotations
 
 from typing import Protocol
@@ -19,7 +20,8 @@ class ModbusRefusal(Exception):
 class SimulatedUnit(Protocol):
     """A device model at one unit id of a SimulatedModbusLine. Addresses are
     PDU addresses (from 0); a refusal raises ModbusRefusal."""
-    functions: tuple[int, ...]          # the function codes it answers
+
+    functions: tuple[int, ...]  # the function codes it answers
 
     def telegram(self, now_ns: int) -> None: ...
 

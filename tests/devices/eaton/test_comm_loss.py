@@ -2,6 +2,7 @@
 DA1_DRIVE, never stops the engine; the drive's own watchdog trips it (fault
 50, manual 002 L906) after its timeout; when the line is back the master
 recovers by itself and the program resets the fault."""
+
 from __future__ import annotations
 
 import pytest
@@ -30,10 +31,18 @@ def silent_line(plant, transport):
 @pytest.mark.parametrize("transport", ["rtu", "tcp"])
 def test_line_lost_drive_trips_master_recovers(plants, tmp_path, transport):
     # P5-05 = 20: 2.0 s, P5-06 = 0: trip (the DA1's factory setting, L387-388)
-    plant = plants(plant_config(tmp_path, [DRIVE_PROGRAM], transport=transport,
-                                program={"instance": "Drive", "program": "EatonDrive"},
-                                sims=[{"type": "da1", "unit": 1, "registers": {"505": 20, "506": 0}}],
-                                channels=[MONITOR], interval="50ms", timeout=SILENT_TIMEOUT))
+    plant = plants(
+        plant_config(
+            tmp_path,
+            [DRIVE_PROGRAM],
+            transport=transport,
+            program={"instance": "Drive", "program": "EatonDrive"},
+            sims=[{"type": "da1", "unit": 1, "registers": {"505": 20, "506": 0}}],
+            channels=[MONITOR],
+            interval="50ms",
+            timeout=SILENT_TIMEOUT,
+        )
+    )
     drive = plant.drive(1)
     plant.run_until(lambda: plant["Drive.state"] == "HoldForward", 6000, step_ms=50)
     mend = silent_line(plant, transport)
@@ -42,8 +51,11 @@ def test_line_lost_drive_trips_master_recovers(plants, tmp_path, transport):
     # RTU: every request times out. TCP: the first one does, then the master
     # closes the socket (a late answer must not be taken for the next one) and
     # reconnects after its back-off; meanwhile requests fail at once.
-    expected = {ModbusError.RESPONSE_TIMEOUT} if transport == "rtu" else \
-        {ModbusError.RESPONSE_TIMEOUT, ModbusError.REQUEST_FAILED_TO_SEND}
+    expected = (
+        {ModbusError.RESPONSE_TIMEOUT}
+        if transport == "rtu"
+        else {ModbusError.RESPONSE_TIMEOUT, ModbusError.REQUEST_FAILED_TO_SEND}
+    )
     assert plant.channel(0, "LastError") in expected
     assert plant["Drive.drive.ERROR"] and plant["Drive.drive.ERRORID"] in expected
     assert not plant["Drive.drive.CONNECTED"] and not plant.master.status().ok
@@ -51,7 +63,7 @@ def test_line_lost_drive_trips_master_recovers(plants, tmp_path, transport):
     plant.run_until(lambda: drive.fault != 0, 2500, step_ms=50)
     assert 1950 <= plant.now_ms - lost_at <= 2100
     assert drive.fault == eaton_faults.COMM_LOSS_FAULT and not drive.running
-    assert plant.engine.faults == []               # the engine never stopped
+    assert plant.engine.faults == []  # the engine never stopped
     errors_before = plant.channel(0, "Errors")
     assert errors_before >= 10
     mend()
@@ -68,10 +80,17 @@ def test_line_lost_drive_trips_master_recovers(plants, tmp_path, transport):
 
 def test_no_answer_before_the_timeout_is_no_trip(plants, tmp_path):
     """P5-05 = 5 (0.5 s): a line silent for 0.4 s leaves the drive running."""
-    plant = plants(plant_config(tmp_path, [DRIVE_PROGRAM], transport="tcp",
-                                program={"instance": "Drive", "program": "EatonDrive"},
-                                sims=[{"type": "da1", "unit": 1, "registers": {"505": 5}}], interval="50ms",
-                                timeout=SILENT_TIMEOUT))
+    plant = plants(
+        plant_config(
+            tmp_path,
+            [DRIVE_PROGRAM],
+            transport="tcp",
+            program={"instance": "Drive", "program": "EatonDrive"},
+            sims=[{"type": "da1", "unit": 1, "registers": {"505": 5}}],
+            interval="50ms",
+            timeout=SILENT_TIMEOUT,
+        )
+    )
     plant.run_until(lambda: plant["Drive.state"] == "HoldForward", 6000, step_ms=50)
     mend = silent_line(plant, "tcp")
     plant.run_ms(400)

@@ -1,5 +1,6 @@
 """LTMR bit registers (bits.py) with the manual's own numbers (the register
 tables of manual 001; digest 001 §6-7)."""
+
 from __future__ import annotations
 
 import pytest
@@ -23,8 +24,16 @@ from softplc.runtime.devices.ltmr.bits import (
 
 def test_status1_bits_as_printed():
     # 455, L3516-3543
-    assert [Status1.READY, Status1.ON, Status1.TRIP, Status1.ALARM, Status1.TRIPPED, Status1.RESET_AUTHORIZED,
-            Status1.CONTROLLER_POWER, Status1.RUNNING] == [1 << bit for bit in range(8)]
+    assert [
+        Status1.READY,
+        Status1.ON,
+        Status1.TRIP,
+        Status1.ALARM,
+        Status1.TRIPPED,
+        Status1.RESET_AUTHORIZED,
+        Status1.CONTROLLER_POWER,
+        Status1.RUNNING,
+    ] == [1 << bit for bit in range(8)]
     assert (Status1.IN_REMOTE, Status1.STARTING) == (1 << 14, 1 << 15)
     assert (ltmr_bits.STATUS1_CURRENT_SHIFT, ltmr_bits.STATUS1_CURRENT_MASK) == (8, 0x3F)
 
@@ -48,17 +57,25 @@ def test_current_ratio_field_scale():
     assert ltmr_bits.current_ratio_field(50) == 16
     assert ltmr_bits.current_ratio_field(196.875) == 63
     assert ltmr_bits.current_ratio_field(200) == 63 and ltmr_bits.current_ratio_field(600) == 63
-    assert ltmr_bits.current_ratio_field(10) == 3          # 3.2 rounds to 3
+    assert ltmr_bits.current_ratio_field(10) == 3  # 3.2 rounds to 3
     assert ltmr_bits.current_ratio_percent(63) == pytest.approx(196.875)
     assert ltmr_bits.current_ratio_percent(1) == pytest.approx(3.125)
 
 
 def test_status2_bits_as_printed():
     # 456, L3544-3571
-    assert (Status2.AUTO_RESET_ACTIVE, Status2.POWER_CYCLE_REQUESTED, Status2.RESTART_TIME_UNDEFINED,
-            Status2.RAPID_CYCLE_LOCKOUT, Status2.LOAD_SHEDDING, Status2.SPEED_FLC2, Status2.HMI_COMM_LOSS,
-            Status2.NETWORK_COMM_LOSS, Status2.TRANSITION_LOCKOUT) == (1, 4, 8, 16, 32, 64, 128, 256, 512)
-    assert Status2.NETWORK_COMM_LOSS == 0x0100     # TPDO1 byte 3 = 01 (digest 001 §7.2)
+    assert (
+        Status2.AUTO_RESET_ACTIVE,
+        Status2.POWER_CYCLE_REQUESTED,
+        Status2.RESTART_TIME_UNDEFINED,
+        Status2.RAPID_CYCLE_LOCKOUT,
+        Status2.LOAD_SHEDDING,
+        Status2.SPEED_FLC2,
+        Status2.HMI_COMM_LOSS,
+        Status2.NETWORK_COMM_LOSS,
+        Status2.TRANSITION_LOCKOUT,
+    ) == (1, 4, 8, 16, 32, 64, 128, 256, 512)
+    assert Status2.NETWORK_COMM_LOSS == 0x0100  # TPDO1 byte 3 = 01 (digest 001 §7.2)
 
 
 def test_control_words_of_the_rpdo1_vectors():
@@ -66,21 +83,39 @@ def test_control_words_of_the_rpdo1_vectors():
     assert Control1.RUN_FORWARD == 0x01 and Control1.RUN_REVERSE == 0x02 and Control1.TRIP_RESET == 0x08
     assert Control1.RUN_FORWARD | Control1.LOW_SPEED == 0x41
     assert Control1.SELF_TEST == 1 << 5
-    assert [Control2.CLEAR_ALL, Control2.CLEAR_STATISTICS, Control2.CLEAR_THERMAL_CAPACITY,
-            Control2.CLEAR_CONTROLLER_SETTINGS, Control2.CLEAR_NETWORK_SETTINGS] == [1, 2, 4, 8, 16]
+    assert [
+        Control2.CLEAR_ALL,
+        Control2.CLEAR_STATISTICS,
+        Control2.CLEAR_THERMAL_CAPACITY,
+        Control2.CLEAR_CONTROLLER_SETTINGS,
+        Control2.CLEAR_NETWORK_SETTINGS,
+    ] == [1, 2, 4, 8, 16]
 
 
 def test_trip_and_alarm_register_bits():
     # 452 and 461 (L3423-3458, L3688-3717)
-    assert (TripRegister1.GROUND_CURRENT, TripRegister1.THERMAL_OVERLOAD, TripRegister1.LONG_START,
-            TripRegister1.JAM, TripRegister1.CURRENT_PHASE_IMBALANCE, TripRegister1.UNDERCURRENT) == (
-        1 << 2, 1 << 3, 1 << 4, 1 << 5, 1 << 6, 1 << 7)
-    assert (TripRegister1.TEST, TripRegister1.HMI_PORT, TripRegister1.CONTROLLER_INTERNAL,
-            TripRegister1.INTERNAL_PORT, TripRegister1.NETWORK_PORT_CONFIG, TripRegister1.NETWORK_PORT) == (
-        1 << 9, 1 << 10, 1 << 11, 1 << 12, 1 << 14, 1 << 15)
-    assert (AlarmRegister1.THERMAL_OVERLOAD, AlarmRegister1.CONTROLLER_TEMPERATURE,
-            AlarmRegister1.NETWORK_PORT) == (1 << 3, 1 << 11, 1 << 15)
-    assert 1 << 4 not in {int(m) for m in AlarmRegister1}      # bit 4 "(Not significant)"
+    assert (
+        TripRegister1.GROUND_CURRENT,
+        TripRegister1.THERMAL_OVERLOAD,
+        TripRegister1.LONG_START,
+        TripRegister1.JAM,
+        TripRegister1.CURRENT_PHASE_IMBALANCE,
+        TripRegister1.UNDERCURRENT,
+    ) == (1 << 2, 1 << 3, 1 << 4, 1 << 5, 1 << 6, 1 << 7)
+    assert (
+        TripRegister1.TEST,
+        TripRegister1.HMI_PORT,
+        TripRegister1.CONTROLLER_INTERNAL,
+        TripRegister1.INTERNAL_PORT,
+        TripRegister1.NETWORK_PORT_CONFIG,
+        TripRegister1.NETWORK_PORT,
+    ) == (1 << 9, 1 << 10, 1 << 11, 1 << 12, 1 << 14, 1 << 15)
+    assert (AlarmRegister1.THERMAL_OVERLOAD, AlarmRegister1.CONTROLLER_TEMPERATURE, AlarmRegister1.NETWORK_PORT) == (
+        1 << 3,
+        1 << 11,
+        1 << 15,
+    )
+    assert 1 << 4 not in {int(m) for m in AlarmRegister1}  # bit 4 "(Not significant)"
 
 
 def test_configuration_bits():

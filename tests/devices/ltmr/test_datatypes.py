@@ -1,6 +1,7 @@
 """LTMR data types (datatypes.py) with the manual's own numbers (manual 001
 §5.4-5.5; digest 001 §6-7): DT_DateTime, DT_CommercialReference, two-register
 and signed values."""
+
 from __future__ import annotations
 
 import datetime as dt
@@ -25,11 +26,14 @@ def test_manual_datetime_example_decodes():
     assert ltmr_datatypes.decode_datetime((0x3200, 0x0750, 0x0904, 0x2008)) == dt.datetime(2008, 9, 4, 7, 50, 32)
 
 
-@pytest.mark.parametrize("when, words", [
-    (dt.datetime(2006, 1, 1, 0, 0, 0), (0x0000, 0x0000, 0x0101, 0x2006)),    # minimum DT#2006-01-01:00:00:00
-    (dt.datetime(2099, 12, 31, 23, 59, 59), (0x5900, 0x2359, 0x1231, 0x2099)),   # maximum DT#2099-12-31-23:59:59
-    (dt.datetime(2008, 2, 29, 12, 0, 0), (0x0000, 0x1200, 0x0229, 0x2008)),   # a leap day
-])
+@pytest.mark.parametrize(
+    "when, words",
+    [
+        (dt.datetime(2006, 1, 1, 0, 0, 0), (0x0000, 0x0000, 0x0101, 0x2006)),  # minimum DT#2006-01-01:00:00:00
+        (dt.datetime(2099, 12, 31, 23, 59, 59), (0x5900, 0x2359, 0x1231, 0x2099)),  # maximum DT#2099-12-31-23:59:59
+        (dt.datetime(2008, 2, 29, 12, 0, 0), (0x0000, 0x1200, 0x0229, 0x2008)),  # a leap day
+    ],
+)
 def test_datetime_limits_both_ways(when, words):
     assert ltmr_datatypes.encode_datetime(when) == words
     assert ltmr_datatypes.decode_datetime(words) == when
@@ -42,25 +46,32 @@ def test_datetime_outside_the_limits_is_an_error(when):
         ltmr_datatypes.encode_datetime(when)
 
 
-@pytest.mark.parametrize("words, why", [
-    ((0x0000, 0x0000, 0x0229, 0x2007), "2007-02-29: not a leap year"),
-    ((0x0000, 0x0000, 0x0931, 0x2008), "September has 30 days"),
-    ((0x0000, 0x0000, 0x1301, 0x2008), "month 13"),
-    ((0x6000, 0x0000, 0x0101, 0x2008), "second 60"),
-    ((0x0000, 0x2400, 0x0101, 0x2008), "hour 24"),
-    ((0x0000, 0x0000, 0x1231, 0x2005), "before 2006"),
-    ((0x0000, 0x0000, 0x0101, 0x2100), "after 2099"),
-    ((0x3A00, 0x0750, 0x0904, 0x2008), "0xA is not a BCD digit"),
-    ((0x3200, 0x0750, 0x0904, 0x20F8), "0xF in the year"),
-])
+@pytest.mark.parametrize(
+    "words, why",
+    [
+        ((0x0000, 0x0000, 0x0229, 0x2007), "2007-02-29: not a leap year"),
+        ((0x0000, 0x0000, 0x0931, 0x2008), "September has 30 days"),
+        ((0x0000, 0x0000, 0x1301, 0x2008), "month 13"),
+        ((0x6000, 0x0000, 0x0101, 0x2008), "second 60"),
+        ((0x0000, 0x2400, 0x0101, 0x2008), "hour 24"),
+        ((0x0000, 0x0000, 0x1231, 0x2005), "before 2006"),
+        ((0x0000, 0x0000, 0x0101, 0x2100), "after 2099"),
+        ((0x3A00, 0x0750, 0x0904, 0x2008), "0xA is not a BCD digit"),
+        ((0x3200, 0x0750, 0x0904, 0x20F8), "0xF in the year"),
+    ],
+)
 def test_invalid_datetime_words_are_errors(words, why):
     with pytest.raises(ValueError):
         ltmr_datatypes.decode_datetime(words)
 
 
 def test_datetime_drops_fractions_of_a_second():
-    assert ltmr_datatypes.encode_datetime(dt.datetime(2008, 9, 4, 7, 50, 32, 999_000)) \
-        == (0x3200, 0x0750, 0x0904, 0x2008)
+    assert ltmr_datatypes.encode_datetime(dt.datetime(2008, 9, 4, 7, 50, 32, 999_000)) == (
+        0x3200,
+        0x0750,
+        0x0904,
+        0x2008,
+    )
 
 
 # ---------------------------------------------------------------------------
@@ -81,8 +92,10 @@ def test_commercial_reference_round_trip_and_limits():
     words = ltmr_datatypes.encode_commercial_reference("LTMR08CFM")
     assert len(words) == 6 and words[0] == 0x4C54
     assert ltmr_datatypes.decode_commercial_reference(words) == "LTMR08CFM"
-    assert ltmr_datatypes.decode_commercial_reference(
-        ltmr_datatypes.encode_commercial_reference("ABCDEFGHIJKL")) == "ABCDEFGHIJKL"
+    assert (
+        ltmr_datatypes.decode_commercial_reference(ltmr_datatypes.encode_commercial_reference("ABCDEFGHIJKL"))
+        == "ABCDEFGHIJKL"
+    )
     with pytest.raises(ValueError):
         ltmr_datatypes.encode_commercial_reference("ABCDEFGHIJKLM")
     with pytest.raises(ValueError):
@@ -113,9 +126,12 @@ def test_udint_other_word_order():
 
 
 def test_signed_registers():
-    assert ltmr_datatypes.int16(0xFFF6) == -10         # 472 controller internal temperature -10 °C
-    assert ltmr_datatypes.int16(0x7FFF) == 32767 and ltmr_datatypes.int16(0x8000) == -32768 \
+    assert ltmr_datatypes.int16(0xFFF6) == -10  # 472 controller internal temperature -10 °C
+    assert (
+        ltmr_datatypes.int16(0x7FFF) == 32767
+        and ltmr_datatypes.int16(0x8000) == -32768
         and ltmr_datatypes.int16(25) == 25
+    )
     assert ltmr_datatypes.dint_from_registers(0xFFFF, 0xFFFE) == -2
     assert ltmr.REGISTERS[472].type == "Int" and ltmr.REGISTERS[472].signed
 

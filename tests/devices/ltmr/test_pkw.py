@@ -1,6 +1,7 @@
 """The PKW codec: word 2 of every request in digest 001 §2.5 (DERIVED table,
 from the manual's function codes and word layout, L337-591), the handshake
 rules quoted from the manual, and the frame layout (A6)."""
+
 from __future__ import annotations
 
 import canopen
@@ -111,10 +112,10 @@ def test_retrigger_through_function_code_zero():
     req = pkw.request(704, pkw.W_REG_16, 0, data=(0x0008, 0))
     done = pkw.response(req)
     idle = pkw.request(704, pkw.NONE, 0)
-    assert not pkw.response_ready(idle, done)                   # still the old answer
+    assert not pkw.response_ready(idle, done)  # still the old answer
     idle_echo = pkw.response(idle)
     assert pkw.response_ready(idle, idle_echo)
-    assert not pkw.response_ready(req, idle_echo)               # the repeated request is not answered yet
+    assert not pkw.response_ready(req, idle_echo)  # the repeated request is not answered yet
     assert pkw.response_ready(req, pkw.response(req))
 
 

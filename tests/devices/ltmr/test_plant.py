@@ -1,5 +1,6 @@
 """The LTMR motor end to end: st_programs/ltmr_motor.st through the CANopen
 master to the simulated LTMR on the virtual bus, in virtual time."""
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -26,7 +27,7 @@ def _motor(plants, **kwargs):
 def test_the_motor_sequence_forward_pause_reverse_pause(plants):
     plant = _motor(plants)
     sim = plant.sims[40]
-    assert sim.lo1 and not sim.lo2                     # reverser mode: LO1 forward
+    assert sim.lo1 and not sim.lo2  # reverser mode: LO1 forward
     # RPDO1 as the manual lays it out (digest 001 §7.2): 704 = 0x0001, 703 = 0, 700 = 0
     assert plant.frames_with(0x228)[-1] == bytes.fromhex("01 00 00 00 00 00")
     status1 = plant.get("LtmrMotor.status1")
@@ -43,9 +44,9 @@ def test_the_motor_sequence_forward_pause_reverse_pause(plants):
 def test_an_overload_trips_the_motor_with_the_thermal_code_and_the_program_resets_it(plants):
     plant = _motor(plants)
     sim = plant.sims[40]
-    sim.set_load(400)                                  # % FLC: a jammed machine
+    sim.set_load(400)  # % FLC: a jammed machine
     plant.run_until(lambda: plant.get("LtmrMotor.ltmr.Tripped"), 60_000, "thermal trip")
-    assert plant.get("LtmrMotor.tripCode") == ltmr_codes.TRIP_THERMAL_OVERLOAD            # 451 via TPDO2
+    assert plant.get("LtmrMotor.tripCode") == ltmr_codes.TRIP_THERMAL_OVERLOAD  # 451 via TPDO2
     assert plant.get("LtmrMotor.ltmr.TripText") == ltmr_codes.trip_text(ltmr_codes.TRIP_THERMAL_OVERLOAD)
     assert not sim.lo1 and not sim.lo2
     assert sim.register(ltmr.REG_TRIP_REGISTER_1) & ltmr_bits.TripRegister1.THERMAL_OVERLOAD
@@ -54,8 +55,11 @@ def test_an_overload_trips_the_motor_with_the_thermal_code_and_the_program_reset
     assert plant.node_diag(40, "EmcyCode") == 0x1000
     sim.set_load(80)
     # READ_VAR of trip register 1 (452) shows the cause, bit 3 thermal overload
-    plant.run_until(lambda: plant.get("LtmrMotor.tripRegister1") & ltmr_bits.TripRegister1.THERMAL_OVERLOAD,
-                    3000, "trip register read by SDO")
+    plant.run_until(
+        lambda: plant.get("LtmrMotor.tripRegister1") & ltmr_bits.TripRegister1.THERMAL_OVERLOAD,
+        3000,
+        "trip register read by SDO",
+    )
     # cooling below the reset threshold authorizes the reset; the program resets (remote reset mode)
     plant.run_until(lambda: plant.get("LtmrMotor.ltmr.Running"), 600_000, "running again after reset")
     assert plant.get("LtmrMotor.trips") == 1
@@ -65,10 +69,10 @@ def test_an_overload_trips_the_motor_with_the_thermal_code_and_the_program_reset
 def test_communication_loss_applies_the_ltmr_fallback_then_recovers(plants):
     plant = _motor(plants)
     sim = plant.sims[40]
-    plant.run_ms(200)      # CiA 301: the LTMR watches the master from the first heartbeat it gets
-    sim.unplug()                                       # the cable between PLC and LTMR is cut
-    plant.run_ms(700)                                  # > 500 ms master_timeout in the LTMR
-    assert not sim.lo1 and not sim.lo2                 # fallback 682 = 2: LO1, LO2 off
+    plant.run_ms(200)  # CiA 301: the LTMR watches the master from the first heartbeat it gets
+    sim.unplug()  # the cable between PLC and LTMR is cut
+    plant.run_ms(700)  # > 500 ms master_timeout in the LTMR
+    assert not sim.lo1 and not sim.lo2  # fallback 682 = 2: LO1, LO2 off
     assert sim.register(ltmr.REG_STATUS_2) & ltmr_bits.Status2.NETWORK_COMM_LOSS
     assert plant.get("LtmrMotor.ltmr.CommLoss")
     sim.plug()

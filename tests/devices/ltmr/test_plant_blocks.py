@@ -1,5 +1,6 @@
 """LTMR_PKW over PDO4 and the CiA-405-style SDO_READ / SDO_WRITE, end to end
 through the CANopen master and the simulated LTMR (node 40)."""
+
 from __future__ import annotations
 
 import pytest
@@ -14,11 +15,24 @@ pytestmark = pytest.mark.slow
 # and the image are both little-endian, so 3000:01 in %QD55 is word 1 in %QW110 and
 # word 2 in %QW111 (the byte layout of ambiguity A6's default).
 PKW_NODE = {
-    "name": "motor", "id": 40, "eds": "ltmr", "heartbeat": "100ms",
-    "tpdo": [{"number": 4, "configure": False,
-              "map": [{"object": "3000:03", "address": "%ID55"}, {"object": "3000:04", "address": "%ID56"}]}],
-    "rpdo": [{"number": 4, "configure": False,
-              "map": [{"object": "3000:01", "address": "%QD55"}, {"object": "3000:02", "address": "%QD56"}]}],
+    "name": "motor",
+    "id": 40,
+    "eds": "ltmr",
+    "heartbeat": "100ms",
+    "tpdo": [
+        {
+            "number": 4,
+            "configure": False,
+            "map": [{"object": "3000:03", "address": "%ID55"}, {"object": "3000:04", "address": "%ID56"}],
+        }
+    ],
+    "rpdo": [
+        {
+            "number": 4,
+            "configure": False,
+            "map": [{"object": "3000:01", "address": "%QD55"}, {"object": "3000:02", "address": "%QD56"}],
+        }
+    ],
 }
 
 PKW = """
@@ -55,27 +69,27 @@ def test_pkw_reads_and_writes_registers_over_pdo4(plants):
     plant.run_until(lambda: plant.master.status().ok, 500, "node 40 booted")
     sim = plant.sims[40]
     sim.set_register(ltmr.REG_FLC1, 35)
-    assert _pkw(plant, ltmr.REG_FLC1)[:2] == (True, 35)                    # R_REG_16 652
+    assert _pkw(plant, ltmr.REG_FLC1)[:2] == (True, 35)  # R_REG_16 652
     # the request on the wire, RPDO4 (0x528): word 1 = 652, word 2 = toggle | 0x25 << 8
     request = pkw.decode_frame(plant.frames_with(0x528)[-1])
     assert (request.w1, request.function) == (652, pkw.R_REG_16)
     answer = pkw.decode_frame(plant.frames_with(0x4A8)[-1])
     assert (answer.w1, answer.function, answer.toggle, answer.w3) == (652, pkw.R_REG_16, request.toggle, 35)
-    assert _pkw(plant, ltmr.REG_FLC1, write=True, value=60)[0]               # W_REG_16 652 := 60
+    assert _pkw(plant, ltmr.REG_FLC1, write=True, value=60)[0]  # W_REG_16 652 := 60
     assert sim.register(ltmr.REG_FLC1) == 60
     second = pkw.decode_frame(plant.frames_with(0x528)[-1])
-    assert second.function == pkw.W_REG_16 and second.toggle != request.toggle   # a new request flips it
+    assert second.function == pkw.W_REG_16 and second.toggle != request.toggle  # a new request flips it
 
 
 def test_pkw_error_path_returns_the_abort_code(plants):
     plant = plants(PKW, program="Pkw", nodes=[PKW_NODE])
     plant.run_until(lambda: plant.master.status().ok, 500, "node 40 booted")
-    done, _value, code = _pkw(plant, ltmr.REG_STATUS_1, write=True, value=1)   # 455 is read-only
+    done, _value, code = _pkw(plant, ltmr.REG_STATUS_1, write=True, value=1)  # 455 is read-only
     assert not done and plant.get("Pkw.pkw.Error")
-    assert code == 0x06010002                                          # manual 001 §3.3, in words 3-4
+    assert code == 0x06010002  # manual 001 §3.3, in words 3-4
     answer = pkw.decode_frame(plant.frames_with(0x4A8)[-1])
     assert answer.function == pkw.ERROR and answer.value32 == 0x06010002
-    done, _value, code = _pkw(plant, 800)                               # no such register (not mapped)
+    done, _value, code = _pkw(plant, 800)  # no such register (not mapped)
     assert not done and code != 0
 
 
@@ -100,7 +114,7 @@ def test_sdo_read_and_sdo_write_blocks(plants):
     plant.run_until(lambda: plant.master.status().ok, 500, "node 40 booted")
     sim = plant.sims[40]
     data = plant.get("Sdo.wr.DATA")
-    data[0], data[1] = 45, 0                                            # FLC1 := 45 %
+    data[0], data[1] = 45, 0  # FLC1 := 45 %
     plant.set("Sdo.goWrite", True)
     plant.run_until(lambda: plant.get("Sdo.wr.DONE") or plant.get("Sdo.wr.ERROR"), 100, "SDO_WRITE done")
     assert plant.get("Sdo.wr.DONE") and sim.register(ltmr.REG_FLC1) == 45

@@ -1,5 +1,6 @@
 """The LTMR communication profile (profile.py): PDO defaults and identity
 with the manual's own numbers (manual 001 §4; digest 001 §2.3, §2.5)."""
+
 from __future__ import annotations
 
 import pytest
@@ -25,8 +26,12 @@ def test_identity_and_product_codes():
     assert set(ltmr_profile.PRODUCT_CODES) == {0x30, 0x31, 0x130, 0x131}
     # "For TeSys T MMC L and TeSys T MMC L EV40, PKW use is restricted to read access." (L343)
     assert [ltmr_profile.pkw_read_only(code) for code in (0x30, 0x31, 0x130, 0x131)] == [False, False, True, True]
-    assert [ltmr_profile.has_expansion_module(code)
-            for code in (0x30, 0x31, 0x130, 0x131)] == [False, True, False, True]
+    assert [ltmr_profile.has_expansion_module(code) for code in (0x30, 0x31, 0x130, 0x131)] == [
+        False,
+        True,
+        False,
+        True,
+    ]
     with pytest.raises(ValueError):
         ltmr_profile.pkw_read_only(0x32)
 

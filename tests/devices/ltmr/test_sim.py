@@ -2,6 +2,7 @@
 it: raw frames from the test's endpoint, byte-level checks against manual
 001 and the vectors of digest 001 (§3.4 SDO, §2.5 PKW, §7.2 PDO frames;
 node 40 = 0x28), virtual time only."""
+
 from __future__ import annotations
 
 import threading
@@ -48,7 +49,7 @@ def _operational(bench, **kwargs):
 def _running_forward(bench, **kwargs):
     sim = _operational(bench, **kwargs)
     bench.send(RPDO1, "01 00 00 00 00 00")
-    bench.run_ms(1500)                          # past the 1 s start
+    bench.run_ms(1500)  # past the 1 s start
     return sim
 
 
@@ -75,9 +76,10 @@ def _tpdo1(sim) -> bytes:
 
 # ---------------------------------------------------------------------------- boot and NMT
 
+
 def test_boot_up_frame_and_product_code(bench):
     sim = bench.ltmr(NODE, product_code=0x31)
-    assert bench.frames == [(0, HEARTBEAT, b"\x00")]             # 0x728 [00]
+    assert bench.frames == [(0, HEARTBEAT, b"\x00")]  # 0x728 [00]
     assert sim.nmt_state == STATE_PRE_OPERATIONAL
     # digest 001 §3.4: 0x1018:02 product code 0x31 (remote configuration, LTMEV40)
     assert bench.sdo(NODE, "40 18 10 02 00 00 00 00") == bytes.fromhex("43 18 10 02 31 00 00 00")
@@ -92,7 +94,7 @@ def test_nmt_start_then_tpdo1_carries_455_456_457_459(bench):
     sim = bench.ltmr(NODE, registers={ltmr.REG_LOGIC_INPUTS: 0x0005})
     sim.set_load(100)
     bench.clear()
-    bench.send(0x000, "01 28")                                    # NMT start node 40
+    bench.send(0x000, "01 28")  # NMT start node 40
     assert sim.nmt_state == STATE_OPERATIONAL
     assert bench.frames_with(TPDO1) == [_tpdo1(sim)]
     bench.send(RPDO1, "01 00 00 00 00 00")
@@ -103,6 +105,7 @@ def test_nmt_start_then_tpdo1_carries_455_456_457_459(bench):
 
 
 # ---------------------------------------------------------------------------- SDO (digest 001 §3.4)
+
 
 def test_sdo_read_of_status_register_1(bench):
     sim = _running_forward(bench)
@@ -120,16 +123,16 @@ def test_sdo_write_flc1_50_percent(bench):
 
 def test_sdo_read_of_trip_register_1(bench):
     sim = bench.ltmr(NODE)
-    sim.set_register(ltmr.REG_TRIP_REGISTER_1, 0x0008)          # the manual's "Read SDO Example" object
+    sim.set_register(ltmr.REG_TRIP_REGISTER_1, 0x0008)  # the manual's "Read SDO Example" object
     assert bench.sdo(NODE, "40 04 20 03 00 00 00 00") == bytes.fromhex("4B 04 20 03 08 00 00 00")
 
 
 def test_sdo_run_forward_and_trip_reset_words(bench):
     sim = bench.ltmr(NODE)
-    assert bench.sdo(NODE, "2B 08 20 05 01 00 00 00") == write_ok(0x2008, 0x05)   # 704 := 0x0001
+    assert bench.sdo(NODE, "2B 08 20 05 01 00 00 00") == write_ok(0x2008, 0x05)  # 704 := 0x0001
     bench.run_ms(10)
     assert sim.lo1
-    assert bench.sdo(NODE, "2B 08 20 05 08 00 00 00") == write_ok(0x2008, 0x05)   # 704 := 0x0008
+    assert bench.sdo(NODE, "2B 08 20 05 08 00 00 00") == write_ok(0x2008, 0x05)  # 704 := 0x0008
     bench.run_ms(10)
     assert not sim.lo1
 
@@ -180,12 +183,12 @@ def test_configuration_over_the_network_only_when_enabled(bench):
     sim = bench.ltmr(NODE)
     sim.set_register(ltmr.REG_GENERAL_CONFIG_1, sim.register(ltmr.REG_GENERAL_CONFIG_1) & ~(1 << 10))
     assert bench.sdo_write(NODE, 0x2007, 0x03, 50, 2) == abort_frame(0x2007, 0x03, ABORT_ACCESS)
-    assert bench.sdo_write(NODE, 0x2008, 0x05, 1, 2) == write_ok(0x2008, 0x05)        # commands still count
+    assert bench.sdo_write(NODE, 0x2008, 0x05, 1, 2) == write_ok(0x2008, 0x05)  # commands still count
 
 
 def test_pdo_mapping_follows_the_manuals_groups(bench):
     bench.ltmr(NODE)
-    assert bench.sdo_write(NODE, 0x1801, 2, 255, 1) == write_ok(0x1801, 2)           # TPDO2 is invalid already
+    assert bench.sdo_write(NODE, 0x1801, 2, 255, 1) == write_ok(0x1801, 2)  # TPDO2 is invalid already
     # 0x2004 (monitoring) into a TPDO; a command (0x2008) is not monitoring
     assert bench.sdo_write(NODE, 0x1A01, 1, 0x20040210, 4) == write_ok(0x1A01, 1)
     assert bench.sdo_write(NODE, 0x1A01, 2, 0x20080510, 4) == abort_frame(0x1A01, 2, ABORT_NOT_MAPPABLE)
@@ -196,25 +199,34 @@ def test_pdo_mapping_follows_the_manuals_groups(bench):
 
 def test_tpdo2_mapped_by_the_master_with_an_event_timer(bench):
     sim = bench.ltmr(NODE)
-    for index, sub, value, size in ((0x1801, 1, 0x800002A8, 4), (0x1A01, 0, 0, 1), (0x1A01, 1, 0x20040210, 4),
-                                    (0x1A01, 2, 0x20040B10, 4), (0x1A01, 3, 0x20041010, 4),
-                                    (0x1A01, 4, 0x20041110, 4), (0x1A01, 0, 4, 1), (0x1801, 2, 255, 1),
-                                    (0x1801, 5, 500, 2), (0x1801, 1, 0x2A8, 4)):
+    for index, sub, value, size in (
+        (0x1801, 1, 0x800002A8, 4),
+        (0x1A01, 0, 0, 1),
+        (0x1A01, 1, 0x20040210, 4),
+        (0x1A01, 2, 0x20040B10, 4),
+        (0x1A01, 3, 0x20041010, 4),
+        (0x1A01, 4, 0x20041110, 4),
+        (0x1A01, 0, 4, 1),
+        (0x1801, 2, 255, 1),
+        (0x1801, 5, 500, 2),
+        (0x1801, 1, 0x2A8, 4),
+    ):
         assert bench.sdo_write(NODE, index, sub, value, size) == write_ok(index, sub)
     bench.nmt(NMT_START, NODE)
     bench.run_ms(1000)
-    assert len(bench.times_of(0x2A8)) == 3                        # at 0, 500 and 1000 ms (A7: ms)
+    assert len(bench.times_of(0x2A8)) == 3  # at 0, 500 and 1000 ms (A7: ms)
     sim.set_register(ltmr.REG_TRIP_CODE, 4)
     bench.run_ms(10)
     frame = bench.frames_with(0x2A8)[-1]
-    assert frame[:2] == b"\x04\x00"                               # 451 trip code, on change
+    assert frame[:2] == b"\x04\x00"  # 451 trip code, on change
 
 
 # ---------------------------------------------------------------------------- RPDO1 (digest 001 §7.2)
 
+
 def test_rpdo1_runs_the_motor_forward_stops_and_reverses(bench):
     sim = _operational(bench)
-    bench.send(RPDO1, "01 00 00 00 00 00")                       # 704 bit 0
+    bench.send(RPDO1, "01 00 00 00 00 00")  # 704 bit 0
     bench.run_ms(10)
     assert sim.lo1 and not sim.lo2
     status = int.from_bytes(bench.frames_with(TPDO1)[-1][:2], "little")
@@ -224,7 +236,7 @@ def test_rpdo1_runs_the_motor_forward_stops_and_reverses(bench):
     bench.send(RPDO1, "00 00 00 00 00 00")
     bench.run_ms(10)
     assert not sim.lo1 and not sim.motor_running
-    bench.send(RPDO1, "02 00 00 00 00 00")                       # 704 bit 1: reverse
+    bench.send(RPDO1, "02 00 00 00 00 00")  # 704 bit 1: reverse
     bench.run_ms(10)
     assert sim.lo2 and not sim.lo1
 
@@ -238,12 +250,13 @@ def test_rpdos_are_ignored_outside_operational(bench):
 
 def test_an_rpdo_with_a_non_zero_reserved_word_still_sets_704(bench):
     sim = _operational(bench)
-    bench.send(RPDO1, "01 00 01 00 00 00")                       # 703 must be 0: that entry is refused
+    bench.send(RPDO1, "01 00 01 00 00 00")  # 703 must be 0: that entry is refused
     bench.run_ms(10)
     assert sim.lo1 and sim.register(703) == 0
 
 
 # ---------------------------------------------------------------------------- PKW (digest 001 §2.5)
+
 
 def _pkw(bench, words: pkw.PkwWords) -> list:
     bench.clear()
@@ -265,8 +278,8 @@ def test_pkw_toggle_rule(bench):
     sim = _operational(bench)
     read_455 = pkw.request(455, pkw.R_REG_16, 0)
     assert _pkw(bench, read_455) == [pkw.response(read_455, (sim.register(455), 0))]
-    assert _pkw(bench, read_455) == []                            # same function byte: no new request
-    again = pkw.request(455, pkw.R_REG_16, 1)                     # the toggle inverted: a new request
+    assert _pkw(bench, read_455) == []  # same function byte: no new request
+    again = pkw.request(455, pkw.R_REG_16, 1)  # the toggle inverted: a new request
     assert _pkw(bench, again) == [pkw.response(again, (sim.register(455), 0))]
     # the HMI way: function code 0, answered with 0, then the request again
     idle = pkw.request(455, pkw.NONE, 1)
@@ -298,23 +311,26 @@ def test_pkw_32_bit_read_is_msw_then_lsw(bench):
     assert sim.register(501) == 320
 
 
-@pytest.mark.parametrize("request_words, abort", [
-    (pkw.request(97, pkw.R_REG_16, 1), ABORT_NO_SUBINDEX),           # Forbidden register
-    (pkw.request(900, pkw.R_REG_16, 1), ABORT_NO_OBJECT),            # no register 800-1199
-    (pkw.request(455, pkw.W_REG_16, 1, data=(1, 0)), ABORT_READ_ONLY),
-    (pkw.request(0x2009, pkw.R_CO_16, 1, 1), ABORT_NO_OBJECT),
-    (pkw.PkwWords(455, 0xA700), ABORT_BAD_COMMAND),                  # function code 0x27 is not defined
-])
+@pytest.mark.parametrize(
+    "request_words, abort",
+    [
+        (pkw.request(97, pkw.R_REG_16, 1), ABORT_NO_SUBINDEX),  # Forbidden register
+        (pkw.request(900, pkw.R_REG_16, 1), ABORT_NO_OBJECT),  # no register 800-1199
+        (pkw.request(455, pkw.W_REG_16, 1, data=(1, 0)), ABORT_READ_ONLY),
+        (pkw.request(0x2009, pkw.R_CO_16, 1, 1), ABORT_NO_OBJECT),
+        (pkw.PkwWords(455, 0xA700), ABORT_BAD_COMMAND),  # function code 0x27 is not defined
+    ],
+)
 def test_pkw_errors_carry_the_sdo_abort_code_in_words_3_and_4(bench, request_words, abort):
     _operational(bench)
     [response] = _pkw(bench, request_words)
     assert response == pkw.error_response(request_words, abort)
-    assert response.w2 >> 8 == 0xCE                               # toggle + 0x4E
+    assert response.w2 >> 8 == 0xCE  # toggle + 0x4E
 
 
 def test_pkw_write_error_leaves_the_register_alone(bench):
     sim = _operational(bench)
-    request = pkw.request(682, pkw.W_REG_16, 0, data=(FallbackStrategy.BOTH_ON, 0))   # not in reverser mode
+    request = pkw.request(682, pkw.W_REG_16, 0, data=(FallbackStrategy.BOTH_ON, 0))  # not in reverser mode
     [response] = _pkw(bench, request)
     # digest §2.5: "Error response to register request, abort 0x06090030": words 3-4 = 0x0609 0x0030
     assert (response.function, response.w3, response.w4) == (pkw.ERROR, 0x0609, 0x0030)
@@ -322,7 +338,7 @@ def test_pkw_write_error_leaves_the_register_alone(bench):
 
 
 def test_pkw_is_read_only_on_the_local_configuration_variant(bench):
-    sim = _operational(bench, product_code=0x130)                 # TeSys T MMC L (L343)
+    sim = _operational(bench, product_code=0x130)  # TeSys T MMC L (L343)
     write = pkw.request(652, pkw.W_REG_16, 0, data=(60, 0))
     assert _pkw(bench, write) == [pkw.error_response(write, ABORT_READ_ONLY)]
     assert sim.register(652) != 60
@@ -332,9 +348,10 @@ def test_pkw_is_read_only_on_the_local_configuration_variant(bench):
 
 # ---------------------------------------------------------------------------- heartbeat
 
+
 def test_heartbeat_producer_in_virtual_time(bench):
     sim = bench.ltmr(NODE)
-    assert bench.sdo_write(NODE, 0x1017, 0, 1000, 2) == write_ok(0x1017, 0)   # 0x03E8 (digest §7.2)
+    assert bench.sdo_write(NODE, 0x1017, 0, 1000, 2) == write_ok(0x1017, 0)  # 0x03E8 (digest §7.2)
     start = bench.clock.now_ns()
     bench.clear()
     bench.run_ms(3000)
@@ -347,43 +364,49 @@ def test_heartbeat_producer_in_virtual_time(bench):
 
 # ---------------------------------------------------------------------------- communication loss
 
-@pytest.mark.parametrize("strategy, mode, outputs", [
-    (FallbackStrategy.HOLD, OperatingMode.REVERSER_2W, (True, False)),
-    (FallbackStrategy.RUN, OperatingMode.TWO_STEP_2W, (False, True)),
-    (FallbackStrategy.OFF, OperatingMode.REVERSER_2W, (False, False)),
-    (FallbackStrategy.BOTH_ON, OperatingMode.OVERLOAD_2W, (True, True)),
-    (FallbackStrategy.LO1_ON, OperatingMode.REVERSER_2W, (True, False)),
-    (FallbackStrategy.LO2_ON, OperatingMode.REVERSER_2W, (False, True)),
-])
+
+@pytest.mark.parametrize(
+    "strategy, mode, outputs",
+    [
+        (FallbackStrategy.HOLD, OperatingMode.REVERSER_2W, (True, False)),
+        (FallbackStrategy.RUN, OperatingMode.TWO_STEP_2W, (False, True)),
+        (FallbackStrategy.OFF, OperatingMode.REVERSER_2W, (False, False)),
+        (FallbackStrategy.BOTH_ON, OperatingMode.OVERLOAD_2W, (True, True)),
+        (FallbackStrategy.LO1_ON, OperatingMode.REVERSER_2W, (True, False)),
+        (FallbackStrategy.LO2_ON, OperatingMode.REVERSER_2W, (False, True)),
+    ],
+)
 def test_heartbeat_loss_applies_the_fallback_of_682(bench, strategy, mode, outputs):
     sim = _watched(bench, strategy, {ltmr.REG_OPERATING_MODE: mode, ltmr.REG_CONTROL_SETTING: 1 << 9})
     assert sim.lo1 or sim.lo2
-    bench.master_heartbeat_ms = 0                                 # the PLC is gone
+    bench.master_heartbeat_ms = 0  # the PLC is gone
     bench.run_ms(600)
-    assert sim.nmt_state == STATE_PRE_OPERATIONAL                  # 0x1029:01 = 0
+    assert sim.nmt_state == STATE_PRE_OPERATIONAL  # 0x1029:01 = 0
     assert (sim.lo1, sim.lo2) == outputs
-    assert sim.register(ltmr.REG_STATUS_2) & Status2.NETWORK_COMM_LOSS          # 456 bit 8
-    assert sim.register(ltmr.REG_ALARM_CODE) == ltmr_codes.ALARM_NETWORK_COMM         # 632 bit 15 (default on)
+    assert sim.register(ltmr.REG_STATUS_2) & Status2.NETWORK_COMM_LOSS  # 456 bit 8
+    assert sim.register(ltmr.REG_ALARM_CODE) == ltmr_codes.ALARM_NETWORK_COMM  # 632 bit 15 (default on)
     assert not sim.register(ltmr.REG_NETWORK_PORT_STATUS) & ltmr_bits.NetworkPortStatus.COMMUNICATING
 
 
 def test_communication_comes_back_then_the_next_rpdo_ends_the_fallback(bench):
     sim = _watched(bench, FallbackStrategy.OFF)
-    sim.unplug()                                                  # the cable is cut
+    sim.unplug()  # the cable is cut
     bench.run_ms(700)
     assert not sim.lo1
     sim.plug()
     bench.run_ms(200)
-    assert sim.register(ltmr.REG_STATUS_2) & Status2.NETWORK_COMM_LOSS      # not Operational yet
+    assert sim.register(ltmr.REG_STATUS_2) & Status2.NETWORK_COMM_LOSS  # not Operational yet
     bench.nmt(NMT_START, NODE)
     bench.run_ms(10)
     assert not sim.register(ltmr.REG_STATUS_2) & Status2.NETWORK_COMM_LOSS
     assert sim.register(ltmr.REG_ALARM_CODE) == 0
-    assert sim.register(ltmr.REG_NETWORK_PORT_STATUS) == ltmr_bits.NetworkPortStatus.CONNECTED | \
-        ltmr_bits.NetworkPortStatus.COMMUNICATING
-    assert not sim.lo1                                            # the fallback holds until an RPDO
+    assert (
+        sim.register(ltmr.REG_NETWORK_PORT_STATUS)
+        == ltmr_bits.NetworkPortStatus.CONNECTED | ltmr_bits.NetworkPortStatus.COMMUNICATING
+    )
+    assert not sim.lo1  # the fallback holds until an RPDO
     status2 = int.from_bytes(bench.frames_with(TPDO1)[-1][2:4], "little")
-    assert not status2 & Status2.NETWORK_COMM_LOSS                # TPDO1 on entering Operational
+    assert not status2 & Status2.NETWORK_COMM_LOSS  # TPDO1 on entering Operational
     bench.send(RPDO1, "01 00 00 00 00 00")
     bench.run_ms(10)
     assert sim.lo1
@@ -396,7 +419,7 @@ def test_entering_pre_operational_by_nmt_applies_the_fallback(bench):
     bench.run_ms(10)
     assert not sim.lo1
     assert sim.register(ltmr.REG_STATUS_2) & Status2.NETWORK_COMM_LOSS
-    bench.send(RPDO1, "01 00 00 00 00 00")                       # not Operational: ignored
+    bench.send(RPDO1, "01 00 00 00 00 00")  # not Operational: ignored
     bench.run_ms(10)
     assert not sim.lo1
     bench.nmt(NMT_START, NODE)
@@ -415,24 +438,26 @@ def test_stop_by_nmt_holds_when_682_says_hold(bench):
 
 
 def test_network_port_trip_109_stays_until_reset_and_sends_an_emcy(bench):
-    sim = _watched(bench, FallbackStrategy.OFF,
-                   {ltmr.REG_TRIP_ENABLE_1: TripEnable1.NETWORK_PORT | TripEnable1.THERMAL_OVERLOAD})
+    sim = _watched(
+        bench, FallbackStrategy.OFF, {ltmr.REG_TRIP_ENABLE_1: TripEnable1.NETWORK_PORT | TripEnable1.THERMAL_OVERLOAD}
+    )
     bench.master_heartbeat_ms = 0
     bench.run_ms(600)
     assert sim.register(ltmr.REG_TRIP_CODE) == ltmr_codes.TRIP_NETWORK_COMM
     assert sim.register(ltmr.REG_TRIP_REGISTER_1) & TripRegister1.NETWORK_PORT
-    assert bench.frames_with(EMCY)[-1] == bytes.fromhex("00 10 01 6D 00 00 00 00")    # A22: 0x1000, 109
+    assert bench.frames_with(EMCY)[-1] == bytes.fromhex("00 10 01 6D 00 00 00 00")  # A22: 0x1000, 109
     bench.master_heartbeat_ms = 100
     bench.nmt(NMT_START, NODE)
     bench.run_ms(200)
     assert sim.register(ltmr.REG_TRIP_CODE) == ltmr_codes.TRIP_NETWORK_COMM
-    bench.send(RPDO1, "08 00 00 00 00 00")                       # remote reset
+    bench.send(RPDO1, "08 00 00 00 00 00")  # remote reset
     bench.run_ms(10)
     assert sim.register(ltmr.REG_TRIP_CODE) == 0
-    assert bench.frames_with(EMCY)[-1] == bytes(8)               # error reset
+    assert bench.frames_with(EMCY)[-1] == bytes(8)  # error reset
 
 
 # ---------------------------------------------------------------------------- overload, reset, self test
+
 
 def test_an_overload_trips_with_code_4_and_an_emcy_then_a_remote_reset(bench):
     sim = _running_forward(bench)
@@ -442,7 +467,7 @@ def test_an_overload_trips_with_code_4_and_an_emcy_then_a_remote_reset(bench):
     assert sim.register(ltmr.REG_TRIP_CODE) == ltmr_codes.TRIP_THERMAL_OVERLOAD
     assert sim.register(ltmr.REG_TRIP_REGISTER_1) & TripRegister1.THERMAL_OVERLOAD
     assert not sim.lo1
-    assert bench.frames_with(EMCY) == [bytes.fromhex("00 10 01 04 00 00 00 00")]   # A22 choice
+    assert bench.frames_with(EMCY) == [bytes.fromhex("00 10 01 04 00 00 00 00")]  # A22 choice
     status = int.from_bytes(bench.frames_with(TPDO1)[-1][:2], "little")
     assert status & Status1.TRIP and status & Status1.TRIPPED and not status & Status1.RUNNING
     assert bench.sdo_read(NODE, 0x1001, 0) == bytes.fromhex("4F 01 10 00 01 00 00 00")
@@ -450,8 +475,8 @@ def test_an_overload_trips_with_code_4_and_an_emcy_then_a_remote_reset(bench):
     sim.set_load(80)
     bench.send(RPDO1, "00 00 00 00 00 00")
     bench.run_until(lambda: sim.register(455) & Status1.RESET_AUTHORIZED, 300_000, "reset authorized")
-    assert sim.register(ltmr.REG_THERMAL_CAPACITY) < 75           # 608
-    bench.send(RPDO1, "08 00 00 00 00 00")                       # 704 bit 3, digest §7.2
+    assert sim.register(ltmr.REG_THERMAL_CAPACITY) < 75  # 608
+    bench.send(RPDO1, "08 00 00 00 00 00")  # 704 bit 3, digest §7.2
     bench.run_ms(10)
     assert sim.register(ltmr.REG_TRIP_CODE) == 0
     assert bench.frames_with(EMCY)[-1] == bytes(8)
@@ -476,14 +501,15 @@ def test_manual_reset_mode_needs_the_button(bench):
 
 def test_self_test_by_rpdo(bench):
     sim = _operational(bench)
-    bench.send(RPDO1, "20 00 00 00 00 00")                       # 704 bit 5
+    bench.send(RPDO1, "20 00 00 00 00 00")  # 704 bit 5
     bench.run_ms(10)
-    assert sim.register(ltmr.REG_TRIP_CODE) == ltmr_codes.TRIP_TEST     # 10
-    assert sim.register(ltmr.REG_TRIP_REGISTER_1) & TripRegister1.TEST   # 452 bit 9
+    assert sim.register(ltmr.REG_TRIP_CODE) == ltmr_codes.TRIP_TEST  # 10
+    assert sim.register(ltmr.REG_TRIP_REGISTER_1) & TripRegister1.TEST  # 452 bit 9
     assert bench.frames_with(EMCY)[-1] == bytes.fromhex("00 10 01 0A 00 00 00 00")
 
 
 # ---------------------------------------------------------------------------- power
+
 
 def test_a_power_cycle_forgets_the_commands_and_keeps_the_settings(bench):
     sim = _running_forward(bench)
@@ -499,10 +525,10 @@ def test_a_power_cycle_forgets_the_commands_and_keeps_the_settings(bench):
 
 def test_a_trip_outlives_a_reset_communication_and_is_reported_again(bench):
     sim = _operational(bench)
-    bench.send(RPDO1, "20 00 00 00 00 00")                       # self test: trip 10
+    bench.send(RPDO1, "20 00 00 00 00 00")  # self test: trip 10
     bench.run_ms(10)
     bench.clear()
-    bench.send(0x000, "82 28")                                    # NMT reset communication
+    bench.send(0x000, "82 28")  # NMT reset communication
     bench.run_ms(10)
     assert bench.frames_with(HEARTBEAT) == [b"\x00"]
     assert sim.register(ltmr.REG_TRIP_CODE) == ltmr_codes.TRIP_TEST
@@ -511,6 +537,7 @@ def test_a_trip_outlives_a_reset_communication_and_is_reported_again(bench):
 
 
 # ---------------------------------------------------------------------------- canopen's own master side
+
 
 class _MasterNetwork(canopen.Network):
     """canopen's Network on the bench's master endpoint."""
@@ -531,8 +558,9 @@ def _blocking(bench, work):
     def run():
         try:
             outcome["value"] = work()
-        except BaseException as exc:          # handed to the test thread
+        except BaseException as exc:  # handed to the test thread
             outcome["error"] = exc
+
     thread = threading.Thread(target=run)
     bench.pump.add_busy(thread.is_alive)
     thread.start()
@@ -556,16 +584,17 @@ def test_canopens_sdo_client_works_against_the_simulator(bench):
     network.add_node(remote)
 
     def configure():
-        hardware = remote.sdo.upload(0x1009, 0)                 # segmented: "M1.0-ES1.0" (manual 001 §4)
-        remote.sdo[0x2007][0x03].raw = 50                       # FLC1 := 50 %
-        remote.sdo[0x1801][1].raw = 0x800002A8                  # 1. invalidate TPDO2
-        remote.sdo[0x1A01][0].raw = 0                           # 2. no entries
-        remote.sdo[0x1A01][1].raw = 0x20040210                  # 3. 451 trip code
-        remote.sdo[0x1A01][2].raw = 0x20041010                  #    465 thermal capacity
-        remote.sdo[0x1A01][0].raw = 2                           # 4. two entries
-        remote.sdo[0x1801][1].raw = 0x2A8                       # 5. valid
+        hardware = remote.sdo.upload(0x1009, 0)  # segmented: "M1.0-ES1.0" (manual 001 §4)
+        remote.sdo[0x2007][0x03].raw = 50  # FLC1 := 50 %
+        remote.sdo[0x1801][1].raw = 0x800002A8  # 1. invalidate TPDO2
+        remote.sdo[0x1A01][0].raw = 0  # 2. no entries
+        remote.sdo[0x1A01][1].raw = 0x20040210  # 3. 451 trip code
+        remote.sdo[0x1A01][2].raw = 0x20041010  #    465 thermal capacity
+        remote.sdo[0x1A01][0].raw = 2  # 4. two entries
+        remote.sdo[0x1801][1].raw = 0x2A8  # 5. valid
         remote.tpdo.read()
         return hardware, [(var.index, var.subindex) for var in remote.tpdo[2].map]
+
     hardware, mapped = _blocking(bench, configure)
     assert hardware == b"M1.0-ES1.0"
     assert mapped == [(0x2004, 0x02), (0x2004, 0x10)]

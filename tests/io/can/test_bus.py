@@ -1,5 +1,6 @@
 """CAN endpoints on python-can's virtual bus: the pump of virtual time, the
 receive thread of real time, unplugging, and a failed bus reopened."""
+
 from __future__ import annotations
 
 import itertools
@@ -33,10 +34,11 @@ def test_the_pump_delivers_everything_in_the_callers_thread(channel):
     b = _endpoint(channel, "b", pump, log)
     seen_threads = set()
     # b answers every frame from a, as a node answers an SDO request
-    b.add_handler(lambda msg: seen_threads.add(threading.get_ident()) or
-                  (msg.arbitration_id == 0x601 and b.send(0x581, b"\x60")))
+    b.add_handler(
+        lambda msg: seen_threads.add(threading.get_ident()) or (msg.arbitration_id == 0x601 and b.send(0x581, b"\x60"))
+    )
     a.send(0x601, b"\x40\x00\x10\x00")
-    assert log == []                                 # nothing moves until the pump runs
+    assert log == []  # nothing moves until the pump runs
     assert pump.settle()
     assert log == [("b", 0x601, b"\x40\x00\x10\x00"), ("a", 0x581, b"\x60")]
     assert seen_threads == {threading.get_ident()}
@@ -54,6 +56,7 @@ def test_settle_waits_for_a_busy_worker_and_delivers_what_it_sends(channel):
         go.wait()
         a.send(0x123, b"\x01")
         sent.set()
+
     thread = threading.Thread(target=worker)
     pump.add_busy(lambda: not sent.is_set())
     thread.start()
@@ -94,7 +97,7 @@ def test_a_failed_bus_reports_errors_and_works_again_after_reopen(channel):
     pump, log = BusPump(), []
     a = _endpoint(channel, "a", pump)
     _endpoint(channel, "b", pump, log)
-    a.bus.shutdown()                                  # the adapter is gone
+    a.bus.shutdown()  # the adapter is gone
     assert not a.send(0x100, b"\x01")
     assert a.send_errors == 1 and a.last_error
     a.reopen(open_bus(BusSettings("virtual", channel)))

@@ -3,6 +3,7 @@ virtual bus, a VirtualClock and one BusPump; the test is the CANopen master,
 a CanEndpoint of its own that sends raw frames and records every frame it
 receives. Time moves only through Bench.run_ms, in 10 ms steps, as the
 engine would move it; nothing sleeps."""
+
 from __future__ import annotations
 
 import itertools
@@ -23,13 +24,14 @@ class Bench:
         self.clock = VirtualClock()
         self.pump = BusPump()
         self.settings = BusSettings("virtual", f"test-sim-{next(_channels)}")
-        self.frames: list = []                     # (time ns, COB-ID, data) as the master received them
+        self.frames: list = []  # (time ns, COB-ID, data) as the master received them
         self.master = CanEndpoint(open_bus(self.settings), name="test master", pump=self.pump)
-        self.master.add_handler(lambda msg: self.frames.append(
-            (self.clock.now_ns(), msg.arbitration_id, bytes(msg.data))))
+        self.master.add_handler(
+            lambda msg: self.frames.append((self.clock.now_ns(), msg.arbitration_id, bytes(msg.data)))
+        )
         self.master.start()
         self.devices: list = []
-        self.master_heartbeat_ms = 0               # the master's own heartbeat (0x77F), 0 = none
+        self.master_heartbeat_ms = 0  # the master's own heartbeat (0x77F), 0 = none
         self._next_master_heartbeat = 0
         self.last_master_heartbeat_ns = None
 
@@ -43,8 +45,7 @@ class Bench:
         return device
 
     def ltmr(self, node_id: int = 40, **kwargs) -> LtmrSimulator:
-        return self.add(LtmrSimulator(node_id, settings=self.settings, clock=self.clock, pump=self.pump,
-                                      **kwargs))
+        return self.add(LtmrSimulator(node_id, settings=self.settings, clock=self.clock, pump=self.pump, **kwargs))
 
     # ---------------------------------------------------------------- time
 
@@ -99,7 +100,7 @@ class Bench:
         return responses[0]
 
     def sdo_write(self, node_id: int, index: int, sub: int, value: int, size: int) -> bytes:
-        command = {1: 0x2F, 2: 0x2B, 4: 0x23}[size]          # CiA 301 expedited download
+        command = {1: 0x2F, 2: 0x2B, 4: 0x23}[size]  # CiA 301 expedited download
         request = bytes([command, index & 0xFF, index >> 8, sub]) + value.to_bytes(size, "little").ljust(4, b"\0")
         return self.sdo(node_id, request)
 

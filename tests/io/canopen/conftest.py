@@ -1,4 +1,5 @@
 """Fixtures of the CANopen tests: a bench for simulated devices (bench.py)
 and plants with the master (plant.py)."""
+
 from .bench import bench  # noqa: F401
 from .plant import plants  # noqa: F401

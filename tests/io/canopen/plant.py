@@ -2,6 +2,7 @@
 (the real driver, built from a configuration as `softplc run` builds it),
 simulated LTMRs (real canopen LocalNodes) and a spy endpoint that records
 every frame on the bus, all delivered by one BusPump."""
+
 from __future__ import annotations
 
 import copy
@@ -21,27 +22,51 @@ _channels = itertools.count()
 
 # The LTMR's PDOs as io_config/default.toml maps them.
 LTMR_NODE = {
-    "name": "motor", "id": 40, "eds": "ltmr",
-    "heartbeat": "100ms", "heartbeat_timeout": "300ms", "master_timeout": "500ms",
-    "sdo": [{"object": "2007:21", "value": 2}],          # 682 fallback: LO1, LO2 off
+    "name": "motor",
+    "id": 40,
+    "eds": "ltmr",
+    "heartbeat": "100ms",
+    "heartbeat_timeout": "300ms",
+    "master_timeout": "500ms",
+    "sdo": [{"object": "2007:21", "value": 2}],  # 682 fallback: LO1, LO2 off
     "tpdo": [
-        {"number": 1, "configure": False,                 # the factory mapping (digest 001 A1)
-         "map": [{"object": "2004:06", "address": "%IW100"}, {"object": "2004:07", "address": "%IW101"},
-                 {"object": "2004:08", "address": "%IW102"}, {"object": "2004:0A", "address": "%IW103"}]},
-        {"number": 2,                                      # mapped at boot: 451, 460, 465, 466
-         "map": [{"object": "2004:02", "address": "%IW104"}, {"object": "2004:0B", "address": "%IW105"},
-                 {"object": "2004:10", "address": "%IW106"}, {"object": "2004:11", "address": "%IW107"}]},
+        {
+            "number": 1,
+            "configure": False,  # the factory mapping (digest 001 A1)
+            "map": [
+                {"object": "2004:06", "address": "%IW100"},
+                {"object": "2004:07", "address": "%IW101"},
+                {"object": "2004:08", "address": "%IW102"},
+                {"object": "2004:0A", "address": "%IW103"},
+            ],
+        },
+        {
+            "number": 2,  # mapped at boot: 451, 460, 465, 466
+            "map": [
+                {"object": "2004:02", "address": "%IW104"},
+                {"object": "2004:0B", "address": "%IW105"},
+                {"object": "2004:10", "address": "%IW106"},
+                {"object": "2004:11", "address": "%IW107"},
+            ],
+        },
     ],
     "rpdo": [
-        {"number": 1, "configure": False,
-         "map": [{"object": "2008:05", "address": "%QW100"}, {"object": "2008:04", "address": "%QW101"},
-                 {"object": "2008:01", "address": "%QW102"}]},
+        {
+            "number": 1,
+            "configure": False,
+            "map": [
+                {"object": "2008:05", "address": "%QW100"},
+                {"object": "2008:04", "address": "%QW101"},
+                {"object": "2008:01", "address": "%QW102"},
+            ],
+        },
     ],
 }
 
 
-def plant_config(tmp_path: Path, source, *, program, nodes=None, sims=None, profile="codesys",
-                 interval="10ms", canopen_extra=None) -> dict:
+def plant_config(
+    tmp_path: Path, source, *, program, nodes=None, sims=None, profile="codesys", interval="10ms", canopen_extra=None
+) -> dict:
     """source: ST text, or a list of ST files; program: a PROGRAM name or a list."""
     if isinstance(source, str):
         st = tmp_path / "plant.st"
@@ -50,13 +75,20 @@ def plant_config(tmp_path: Path, source, *, program, nodes=None, sims=None, prof
     else:
         files = [str(f) for f in source]
     channel = f"test-plant-{next(_channels)}"
-    canopen = {"node_id": 127, "heartbeat": "100ms", "sdo_timeout": "100ms", "boot_timeout": "500ms",
-               "retry": "1s", "node": copy.deepcopy(nodes if nodes is not None else [LTMR_NODE])}
+    canopen = {
+        "node_id": 127,
+        "heartbeat": "100ms",
+        "sdo_timeout": "100ms",
+        "boot_timeout": "500ms",
+        "retry": "1s",
+        "node": copy.deepcopy(nodes if nodes is not None else [LTMR_NODE]),
+    }
     canopen.update(canopen_extra or {})
     return {
         "plc": {"profile": profile, "programs": files},
-        "task": [{"name": "Main", "interval": interval,
-                  "programs": [program] if isinstance(program, str) else list(program)}],
+        "task": [
+            {"name": "Main", "interval": interval, "programs": [program] if isinstance(program, str) else list(program)}
+        ],
         "can": [{"name": "can0", "interface": "virtual", "channel": channel}],
         "canopen": canopen,
         "sim": sims if sims is not None else [{"type": "ltmr", "node_id": 40, "registers": {"682": 2}}],
@@ -71,11 +103,13 @@ class Plant:
         self.sims = {d.node_id: d for d in self.engine.drivers if isinstance(d, LtmrSimulator)}
         self.pump = self.master.pump
         bus = self.config.can[0]
-        self.frames: list = []    # (time ns, can id, bytes)
-        self.spy = CanEndpoint(open_bus(BusSettings(bus.interface, bus.channel, bus.bitrate)),
-                               name="spy", pump=self.pump)
-        self.spy.add_handler(lambda msg: self.frames.append(
-            (self.engine.clock.now_ns(), msg.arbitration_id, bytes(msg.data))))
+        self.frames: list = []  # (time ns, can id, bytes)
+        self.spy = CanEndpoint(
+            open_bus(BusSettings(bus.interface, bus.channel, bus.bitrate)), name="spy", pump=self.pump
+        )
+        self.spy.add_handler(
+            lambda msg: self.frames.append((self.engine.clock.now_ns(), msg.arbitration_id, bytes(msg.data)))
+        )
         self.spy.start()
         self.engine.start()
 
@@ -127,6 +161,7 @@ def plants(tmp_path):
         plant = Plant(plant_config(tmp_path, source, **kwargs), tmp_path)
         made.append(plant)
         return plant
+
     yield factory
     for plant in made:
         plant.stop()

@@ -1,6 +1,7 @@
 """CANopen numbers: the manual's abort table (manual 001 §3.3), the CiA-301
 NMT and COB-ID numbers the manual leaves out (digest 001 A22), and a check
 that the real `canopen` stack puts the same numbers on a virtual bus."""
+
 from __future__ import annotations
 
 import itertools
@@ -44,14 +45,14 @@ MANUAL_ABORT_TABLE = {
     0x05040000: "The SDO protocol timed out",
     0x05040001: "The request code is not valid or is unknown",
     0x06010000: "An access trip has occurred during access to the parameter (for example, a write request on a "
-                "read-only parameter)",
+    "read-only parameter)",
     0x06010001: "Tried to perform a read request on a parameter with write-only access rights",
     0x06010002: "Tried to perform a write request on a parameter with read-only access rights",
     0x06020000: "The index sent in the request refers to an object that does not exist in the object dictionary",
     0x06040041: "PDO object mapping: the parameter cannot be mapped to the PDO; this detected error occurs when "
-                "writing to the 0x1600, 0x1A00, 0x1605, and 0x1A05 parameters (PDO mappings)",
+    "writing to the 0x1600, 0x1A00, 0x1605, and 0x1A05 parameters (PDO mappings)",
     0x06040042: "PDO object mapping: the number or length of the parameters to be mapped would exceed the maximum "
-                "PDO length.",
+    "PDO length.",
     0x06090011: "The sub-index sent in the request does not exist",
     0x06090030: "Value range of parameter exceeded (only for write access)",
     0x06090031: "Value of parameter written too high",
@@ -69,14 +70,22 @@ def test_the_manual_abort_codes_with_their_texts():
 
 
 def test_named_abort_constants():
-    assert (cia301.ABORT_TOGGLE, cia301.ABORT_TIMEOUT, cia301.ABORT_BAD_COMMAND) == (0x05030000, 0x05040000,
-                                                                                     0x05040001)
-    assert (cia301.ABORT_ACCESS, cia301.ABORT_WRITE_ONLY, cia301.ABORT_READ_ONLY) == (0x06010000, 0x06010001,
-                                                                                      0x06010002)
-    assert (cia301.ABORT_NO_OBJECT, cia301.ABORT_NOT_MAPPABLE, cia301.ABORT_PDO_LENGTH) == (0x06020000, 0x06040041,
-                                                                                            0x06040042)
-    assert (cia301.ABORT_LENGTH, cia301.ABORT_NO_SUBINDEX, cia301.ABORT_VALUE_RANGE) == (0x06070010, 0x06090011,
-                                                                                         0x06090030)
+    assert (cia301.ABORT_TOGGLE, cia301.ABORT_TIMEOUT, cia301.ABORT_BAD_COMMAND) == (0x05030000, 0x05040000, 0x05040001)
+    assert (cia301.ABORT_ACCESS, cia301.ABORT_WRITE_ONLY, cia301.ABORT_READ_ONLY) == (
+        0x06010000,
+        0x06010001,
+        0x06010002,
+    )
+    assert (cia301.ABORT_NO_OBJECT, cia301.ABORT_NOT_MAPPABLE, cia301.ABORT_PDO_LENGTH) == (
+        0x06020000,
+        0x06040041,
+        0x06040042,
+    )
+    assert (cia301.ABORT_LENGTH, cia301.ABORT_NO_SUBINDEX, cia301.ABORT_VALUE_RANGE) == (
+        0x06070010,
+        0x06090011,
+        0x06090030,
+    )
     assert (cia301.ABORT_VALUE_HIGH, cia301.ABORT_VALUE_LOW) == (0x06090031, 0x06090032)
     assert (cia301.ABORT_GENERAL, cia301.ABORT_DEVICE_STATE) == (0x08000000, 0x08000022)
 
@@ -99,7 +108,7 @@ def test_cob_ids_for_node_40_and_node_1():
     assert (cob_sdo_rx(1), cob_sdo_tx(1), cob_emcy(1)) == (0x601, 0x581, 0x081)
     assert [cob_tpdo(k, 0) for k in (1, 2, 3, 4)] == [0x180, 0x280, 0x380, 0x480]
     assert [cob_rpdo(k, 0) for k in (1, 2, 3, 4)] == [0x200, 0x300, 0x400, 0x500]
-    assert (COB_NMT, COB_SYNC) == (0x000, 0x080)     # SYNC: "Its factory setting is 0x080."
+    assert (COB_NMT, COB_SYNC) == (0x000, 0x080)  # SYNC: "Its factory setting is 0x080."
 
 
 def test_mapping_entries_of_the_manual():
@@ -122,11 +131,18 @@ def test_heartbeat_consumer_entry():
 def test_nmt_numbers_agree_with_the_canopen_stack():
     commands = canopen.nmt.NMT_COMMANDS
     assert (commands["OPERATIONAL"], commands["STOPPED"], commands["PRE-OPERATIONAL"]) == (
-        NMT_START, NMT_STOP, NMT_PRE_OPERATIONAL)
+        NMT_START,
+        NMT_STOP,
+        NMT_PRE_OPERATIONAL,
+    )
     assert (commands["RESET"], commands["RESET COMMUNICATION"]) == (NMT_RESET_NODE, NMT_RESET_COMMUNICATION)
     states = canopen.nmt.NMT_STATES
-    assert (states[STATE_BOOTUP], states[STATE_STOPPED], states[STATE_OPERATIONAL],
-            states[STATE_PRE_OPERATIONAL]) == ("INITIALISING", "STOPPED", "OPERATIONAL", "PRE-OPERATIONAL")
+    assert (states[STATE_BOOTUP], states[STATE_STOPPED], states[STATE_OPERATIONAL], states[STATE_PRE_OPERATIONAL]) == (
+        "INITIALISING",
+        "STOPPED",
+        "OPERATIONAL",
+        "PRE-OPERATIONAL",
+    )
     assert STATE_NAMES[STATE_PRE_OPERATIONAL] == "pre-operational"
 
 

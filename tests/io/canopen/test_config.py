@@ -4,6 +4,7 @@ Numbers from the LTMR CANopen manual (001, English) where it sets them:
 node ids 1..127 (L163), 0x1016:01 and 0x1017 in 16 bits of ms (L957,
 L964), the TPDO inhibit time in 16 bits of 100 us (L1365), 8 bytes per PDO
 (L117)."""
+
 from __future__ import annotations
 
 import pytest
@@ -29,25 +30,85 @@ def test_example_canopen():
     key = "canopen.node[0]"
 
     def entries(pdo: str, *pairs) -> list:
-        return [PdoEntryConfig(index, sub, addr(text), f"{key}.{pdo}.map[{k}]")
-                for k, (index, sub, text) in enumerate(pairs)]
+        return [
+            PdoEntryConfig(index, sub, addr(text), f"{key}.{pdo}.map[{k}]")
+            for k, (index, sub, text) in enumerate(pairs)
+        ]
+
     assert cfg.canopen == CanopenConfig(
-        bus="can0", node_id=127, heartbeat_ms=100, sync_us=50_000, sdo_timeout_ms=500, boot_timeout_ms=2000,
-        retry_ms=1000, key="canopen", nodes=[CanopenNodeConfig(
-            name="motor", node_id=40, eds=EDS / "ltmr.eds", mandatory=True, heartbeat_ms=100,
-            heartbeat_timeout_ms=300, master_timeout_ms=500, key=key,
-            sdo=[SdoWriteConfig(0x2007, 0x21, 2, None, f"{key}.sdo[0]"),
-                 SdoWriteConfig(0x1029, 0x01, 0, 1, f"{key}.sdo[1]")],
-            tpdo=[PdoConfig(1, 255, 0, 0, False, entries("tpdo[0]", (0x2004, 0x06, "%IW100"),
-                                                         (0x2004, 0x07, "%IW101"), (0x2004, 0x08, "%IW102"),
-                                                         (0x2004, 0x0A, "%IW103")), f"{key}.tpdo[0]"),
-                  PdoConfig(2, 255, 10_000, 1000, True, entries("tpdo[1]", (0x2004, 0x02, "%IW104"),
-                                                                (0x2004, 0x0B, "%IW105")), f"{key}.tpdo[1]"),
-                  PdoConfig(3, 1, 0, 0, True, entries("tpdo[2]", (0x2004, 0x10, "%IW106"),
-                                                      (0x2004, 0x11, "%IW107")), f"{key}.tpdo[2]")],
-            rpdo=[PdoConfig(1, 255, 0, 0, False, entries("rpdo[0]", (0x2008, 0x05, "%QW100"),
-                                                         (0x2008, 0x04, "%QW101"), (0x2008, 0x01, "%QW102")),
-                            f"{key}.rpdo[0]")])])
+        bus="can0",
+        node_id=127,
+        heartbeat_ms=100,
+        sync_us=50_000,
+        sdo_timeout_ms=500,
+        boot_timeout_ms=2000,
+        retry_ms=1000,
+        key="canopen",
+        nodes=[
+            CanopenNodeConfig(
+                name="motor",
+                node_id=40,
+                eds=EDS / "ltmr.eds",
+                mandatory=True,
+                heartbeat_ms=100,
+                heartbeat_timeout_ms=300,
+                master_timeout_ms=500,
+                key=key,
+                sdo=[
+                    SdoWriteConfig(0x2007, 0x21, 2, None, f"{key}.sdo[0]"),
+                    SdoWriteConfig(0x1029, 0x01, 0, 1, f"{key}.sdo[1]"),
+                ],
+                tpdo=[
+                    PdoConfig(
+                        1,
+                        255,
+                        0,
+                        0,
+                        False,
+                        entries(
+                            "tpdo[0]",
+                            (0x2004, 0x06, "%IW100"),
+                            (0x2004, 0x07, "%IW101"),
+                            (0x2004, 0x08, "%IW102"),
+                            (0x2004, 0x0A, "%IW103"),
+                        ),
+                        f"{key}.tpdo[0]",
+                    ),
+                    PdoConfig(
+                        2,
+                        255,
+                        10_000,
+                        1000,
+                        True,
+                        entries("tpdo[1]", (0x2004, 0x02, "%IW104"), (0x2004, 0x0B, "%IW105")),
+                        f"{key}.tpdo[1]",
+                    ),
+                    PdoConfig(
+                        3,
+                        1,
+                        0,
+                        0,
+                        True,
+                        entries("tpdo[2]", (0x2004, 0x10, "%IW106"), (0x2004, 0x11, "%IW107")),
+                        f"{key}.tpdo[2]",
+                    ),
+                ],
+                rpdo=[
+                    PdoConfig(
+                        1,
+                        255,
+                        0,
+                        0,
+                        False,
+                        entries(
+                            "rpdo[0]", (0x2008, 0x05, "%QW100"), (0x2008, 0x04, "%QW101"), (0x2008, 0x01, "%QW102")
+                        ),
+                        f"{key}.rpdo[0]",
+                    )
+                ],
+            )
+        ],
+    )
     assert cfg.sims == [SimConfig("ltmr", "ltmr40", "sim[0]", CanNode("can0", 40), Registers({682: 0}))]
     assert cfg.safe_outputs == [SafeOutput(addr("%QW100"), 0, 'outputs.safe."%QW100"')]
 
@@ -55,35 +116,40 @@ def test_example_canopen():
 # ---------------------------------------------------------------- [canopen] durations
 
 
-@pytest.mark.parametrize("written, field, value", [
-    ('heartbeat = "250ms"', "heartbeat_ms", 250),
-    ("heartbeat = false", "heartbeat_ms", 0),
-    ('heartbeat = "0ms"', "heartbeat_ms", 0),
-    ('heartbeat = "1.4ms"', "heartbeat_ms", 1),          # rounded to whole ms
-    ('heartbeat = "1.6ms"', "heartbeat_ms", 2),
-    ('sync = "2.5ms"', "sync_us", 2500),                 # SYNC in microseconds
-    ('sync = "T#100us"', "sync_us", 100),
-    ("sync = false", "sync_us", 0),
-    ('sdo_timeout = "1s"', "sdo_timeout_ms", 1000),
-    ("boot_timeout = 3000", "boot_timeout_ms", 3000),    # a bare number is ms
-    ('retry = "1.5s"', "retry_ms", 1500),
-])
+@pytest.mark.parametrize(
+    "written, field, value",
+    [
+        ('heartbeat = "250ms"', "heartbeat_ms", 250),
+        ("heartbeat = false", "heartbeat_ms", 0),
+        ('heartbeat = "0ms"', "heartbeat_ms", 0),
+        ('heartbeat = "1.4ms"', "heartbeat_ms", 1),  # rounded to whole ms
+        ('heartbeat = "1.6ms"', "heartbeat_ms", 2),
+        ('sync = "2.5ms"', "sync_us", 2500),  # SYNC in microseconds
+        ('sync = "T#100us"', "sync_us", 100),
+        ("sync = false", "sync_us", 0),
+        ('sdo_timeout = "1s"', "sdo_timeout_ms", 1000),
+        ("boot_timeout = 3000", "boot_timeout_ms", 3000),  # a bare number is ms
+        ('retry = "1.5s"', "retry_ms", 1500),
+    ],
+)
 def test_master_durations(tmp_path, written, field, value):
     cfg = load(tmp_path, PLC + CAN + f"[canopen]\n{written}\n")
     assert getattr(cfg.canopen, field) == value
 
 
-@pytest.mark.parametrize("written, message", [
-    ('sdo_timeout = "0ms"', "expected a duration > 0 such as 10ms, 1s, T#250ms (got '0ms')"),
-    ("sdo_timeout = false", "expected a duration > 0 such as 10ms, 1s, T#250ms (got false)"),
-    ('retry = "0.4ms"', "expected a duration of at least 1ms (got '0.4ms')"),
-    ("heartbeat = true", "expected a duration such as 10ms, 1s, T#250ms, or false for no heartbeat (got true)"),
-    ('heartbeat = "-5ms"', "expected a duration such as 10ms, 1s, T#250ms, or false for no heartbeat "
-                           "(got '-5ms')"),
-    ('heartbeat = "0.4ms"', "expected a duration of at least 1ms, or false for no heartbeat (got '0.4ms')"),
-    ('sync = "soon"', "expected a duration such as 10ms, 1s, T#250ms, or false for no SYNC (got 'soon')"),
-    ('sync = "0.4us"', "expected a duration of at least 1us, or false for no SYNC (got '0.4us')"),
-])
+@pytest.mark.parametrize(
+    "written, message",
+    [
+        ('sdo_timeout = "0ms"', "expected a duration > 0 such as 10ms, 1s, T#250ms (got '0ms')"),
+        ("sdo_timeout = false", "expected a duration > 0 such as 10ms, 1s, T#250ms (got false)"),
+        ('retry = "0.4ms"', "expected a duration of at least 1ms (got '0.4ms')"),
+        ("heartbeat = true", "expected a duration such as 10ms, 1s, T#250ms, or false for no heartbeat (got true)"),
+        ('heartbeat = "-5ms"', "expected a duration such as 10ms, 1s, T#250ms, or false for no heartbeat (got '-5ms')"),
+        ('heartbeat = "0.4ms"', "expected a duration of at least 1ms, or false for no heartbeat (got '0.4ms')"),
+        ('sync = "soon"', "expected a duration such as 10ms, 1s, T#250ms, or false for no SYNC (got 'soon')"),
+        ('sync = "0.4us"', "expected a duration of at least 1us, or false for no SYNC (got '0.4us')"),
+    ],
+)
 def test_master_durations_refused(tmp_path, written, message):
     assert error(tmp_path, PLC + CAN + f"[canopen]\n{written}\n") == (f"canopen.{written.split()[0]}", message)
 
@@ -95,16 +161,16 @@ def test_node_heartbeat_defaults(tmp_path):
     def times(master: str, node: str) -> tuple:
         n = load(tmp_path, plant(master, node)).canopen.nodes[0]
         return n.heartbeat_ms, n.heartbeat_timeout_ms, n.master_timeout_ms
-    assert times("", "") == (100, 300, 500)                                     # 3 x 100, 5 x 100
+
+    assert times("", "") == (100, 300, 500)  # 3 x 100, 5 x 100
     assert times('heartbeat = "50ms"\n', 'heartbeat = "200ms"\n') == (200, 600, 250)
-    assert times("", 'heartbeat = "1s"\nheartbeat_timeout = "1.5s"\nmaster_timeout = "150ms"\n') == \
-        (1000, 1500, 150)
-    assert times("", "heartbeat = false\n") == (0, 0, 500)                      # nothing to watch
+    assert times("", 'heartbeat = "1s"\nheartbeat_timeout = "1.5s"\nmaster_timeout = "150ms"\n') == (1000, 1500, 150)
+    assert times("", "heartbeat = false\n") == (0, 0, 500)  # nothing to watch
     assert times("", 'heartbeat = "0ms"\n') == (0, 0, 500)
-    assert times("", "heartbeat_timeout = false\n") == (100, 0, 500)           # sent, not watched
-    assert times("heartbeat = false\n", "") == (100, 300, 0)                   # no master heartbeat to watch
+    assert times("", "heartbeat_timeout = false\n") == (100, 0, 500)  # sent, not watched
+    assert times("heartbeat = false\n", "") == (100, 300, 0)  # no master heartbeat to watch
     assert times("", "master_timeout = false\n") == (100, 300, 0)
-    assert times('heartbeat = "20s"\n', "") == (100, 300, 65535)   # not 5 x 20 s: 0x1016:01 holds 65.535 s
+    assert times('heartbeat = "20s"\n', "") == (100, 300, 65535)  # not 5 x 20 s: 0x1016:01 holds 65.535 s
 
 
 def test_heartbeat_words_of_the_manual(tmp_path):
@@ -120,34 +186,49 @@ def test_heartbeat_fields_of_16_bits(tmp_path):
     n = load(tmp_path, plant("", 'heartbeat = "65535ms"\nheartbeat_timeout = "70s"\nmaster_timeout = 65535\n'))
     assert (n.canopen.nodes[0].heartbeat_ms, n.canopen.nodes[0].master_timeout_ms) == (65535, 65535)
     assert errors(tmp_path, plant("", 'heartbeat = "65.536s"\nmaster_timeout = "1min"\n')) == [
-        ("canopen.node[0].heartbeat", "expected a duration of at most 65535ms (0x1017 holds ms in 16 bits), or "
-                                      "false for no heartbeat (got '65.536s')"),
-        ("canopen.node[0].master_timeout", "expected a duration such as 10ms, 1s, T#250ms, or false for the "
-                                           "node not watching the master (got '1min')")]
-    assert error(tmp_path, plant("", 'master_timeout = "66s"\n')) == \
-        ("canopen.node[0].master_timeout", "expected a duration of at most 65535ms (0x1016:01 holds ms in 16 "
-                                           "bits), or false for the node not watching the master (got '66s')")
+        (
+            "canopen.node[0].heartbeat",
+            "expected a duration of at most 65535ms (0x1017 holds ms in 16 bits), or "
+            "false for no heartbeat (got '65.536s')",
+        ),
+        (
+            "canopen.node[0].master_timeout",
+            "expected a duration such as 10ms, 1s, T#250ms, or false for the node not watching the master (got '1min')",
+        ),
+    ]
+    assert error(tmp_path, plant("", 'master_timeout = "66s"\n')) == (
+        "canopen.node[0].master_timeout",
+        "expected a duration of at most 65535ms (0x1016:01 holds ms in 16 "
+        "bits), or false for the node not watching the master (got '66s')",
+    )
 
 
 def test_heartbeat_timeout_must_outlast_the_heartbeat(tmp_path):
-    assert error(tmp_path, plant("", 'heartbeat = "100ms"\nheartbeat_timeout = "100ms"\n')) == \
-        ("canopen.node[0].heartbeat_timeout", "expected a duration longer than the node's heartbeat (100ms), "
-                                              "or false for not watching it (got '100ms')")
-    assert error(tmp_path, plant("", "heartbeat = false\nheartbeat_timeout = \"300ms\"\n")) == \
-        ("canopen.node[0].heartbeat_timeout", "only meaningful with a heartbeat (this node has "
-                                              "heartbeat = false)")
+    assert error(tmp_path, plant("", 'heartbeat = "100ms"\nheartbeat_timeout = "100ms"\n')) == (
+        "canopen.node[0].heartbeat_timeout",
+        "expected a duration longer than the node's heartbeat (100ms), or false for not watching it (got '100ms')",
+    )
+    assert error(tmp_path, plant("", 'heartbeat = false\nheartbeat_timeout = "300ms"\n')) == (
+        "canopen.node[0].heartbeat_timeout",
+        "only meaningful with a heartbeat (this node has heartbeat = false)",
+    )
 
 
 def test_master_timeout_must_outlast_the_masters_heartbeat(tmp_path):
-    assert error(tmp_path, plant('heartbeat = "200ms"\n', 'master_timeout = "150ms"\n')) == \
-        ("canopen.node[0].master_timeout", "expected a duration longer than canopen.heartbeat (200ms), or "
-                                           "false for the node not watching the master (got '150ms')")
-    assert error(tmp_path, plant('heartbeat = "0ms"\n', 'master_timeout = "500ms"\n')) == \
-        ("canopen.node[0].master_timeout", "only meaningful when the master sends a heartbeat "
-                                           "(canopen.heartbeat = '0ms')")
-    assert error(tmp_path, plant('heartbeat = "65535ms"\n')) == \
-        ("canopen.node[0]", "the default master_timeout, 5 x canopen.heartbeat at most 65535ms, is not longer "
-                            "than canopen.heartbeat (65535ms): give master_timeout, or false")
+    assert error(tmp_path, plant('heartbeat = "200ms"\n', 'master_timeout = "150ms"\n')) == (
+        "canopen.node[0].master_timeout",
+        "expected a duration longer than canopen.heartbeat (200ms), or "
+        "false for the node not watching the master (got '150ms')",
+    )
+    assert error(tmp_path, plant('heartbeat = "0ms"\n', 'master_timeout = "500ms"\n')) == (
+        "canopen.node[0].master_timeout",
+        "only meaningful when the master sends a heartbeat (canopen.heartbeat = '0ms')",
+    )
+    assert error(tmp_path, plant('heartbeat = "65535ms"\n')) == (
+        "canopen.node[0]",
+        "the default master_timeout, 5 x canopen.heartbeat at most 65535ms, is not longer "
+        "than canopen.heartbeat (65535ms): give master_timeout, or false",
+    )
 
 
 # ---------------------------------------------------------------- nodes
@@ -157,30 +238,37 @@ def test_node_ids(tmp_path):
     assert load(tmp_path, plant("node_id = 1\n").replace("id = 40", "id = 127")).canopen.nodes[0].node_id == 127
     assert errors(tmp_path, plant("node_id = 0\n").replace("id = 40", "id = 128")) == [
         ("canopen.node_id", "expected an integer from 1 to 127 (got 0)"),
-        ("canopen.node[0].id", "expected an integer from 1 to 127 (got 128)")]
-    assert error(tmp_path, plant("node_id = 40\n")) == \
-        ("canopen.node[0].id", "40 is the master's own node id (canopen.node_id)")
+        ("canopen.node[0].id", "expected an integer from 1 to 127 (got 128)"),
+    ]
+    assert error(tmp_path, plant("node_id = 40\n")) == (
+        "canopen.node[0].id",
+        "40 is the master's own node id (canopen.node_id)",
+    )
     assert errors(tmp_path, plant("", "", NODE.replace('"motor"', '"Pump"'), NODE.replace("40", "41"))) == [
         ("canopen.node[1].id", "duplicate node id 40 (canopen.node[0] has it)"),
-        ("canopen.node[2].name", "duplicate node name 'motor' (canopen.node[0] has it; names are "
-                                 "case-insensitive)")]
+        ("canopen.node[2].name", "duplicate node name 'motor' (canopen.node[0] has it; names are case-insensitive)"),
+    ]
 
 
 def test_node_required_keys(tmp_path):
     assert errors(tmp_path, PLC + CAN + "[canopen]\n[[canopen.node]]\nmandatory = 1\n") == [
         ("canopen.node[0].name", 'required key missing (expected a node name such as "motor1")'),
         ("canopen.node[0].id", "required key missing (expected a node id from 1 to 127)"),
-        ("canopen.node[0].eds", 'required key missing (expected a shipped EDS name such as "ltmr" or the path '
-                                "of an .eds file)"),
-        ("canopen.node[0].mandatory", "expected true or false (got 1)")]
+        (
+            "canopen.node[0].eds",
+            'required key missing (expected a shipped EDS name such as "ltmr" or the path of an .eds file)',
+        ),
+        ("canopen.node[0].mandatory", "expected true or false (got 1)"),
+    ]
 
 
 def test_node_mandatory(tmp_path):
     assert load(tmp_path, plant("", "mandatory = false\n")).canopen.nodes[0].mandatory is False
 
 
-@pytest.mark.parametrize("written, path", [('"ltmr"', EDS / "ltmr.eds"), ('"LTMR"', EDS / "ltmr.eds"),
-                                           ('"fc280"', EDS / "fc280.eds")])
+@pytest.mark.parametrize(
+    "written, path", [('"ltmr"', EDS / "ltmr.eds"), ('"LTMR"', EDS / "ltmr.eds"), ('"fc280"', EDS / "fc280.eds")]
+)
 def test_shipped_eds(tmp_path, written, path):
     text = plant("", "").replace('eds = "ltmr"', f"eds = {written}")
     assert load(tmp_path, text).canopen.nodes[0].eds == path
@@ -192,203 +280,330 @@ def test_eds_files(tmp_path):
     text = plant("", "").replace('eds = "ltmr"', 'eds = "devices/motor.eds"')
     assert load(tmp_path, text).canopen.nodes[0].eds == tmp_path / "devices" / "motor.eds"
     for written, message in [
-        ('"ltmx"', "expected a shipped EDS name ('fc280', 'ltmr') or the path of an .eds file (got 'ltmx'; did "
-                   "you mean 'ltmr'?)"),
+        (
+            '"ltmx"',
+            "expected a shipped EDS name ('fc280', 'ltmr') or the path of an .eds file (got 'ltmx'; did "
+            "you mean 'ltmr'?)",
+        ),
         ('"vfd"', "expected a shipped EDS name ('fc280', 'ltmr') or the path of an .eds file (got 'vfd')"),
         ("7", "expected a shipped EDS name ('fc280', 'ltmr') or the path of an .eds file (got 7)"),
-        ('"devices/pump.eds"', f"no such file: {tmp_path / 'devices' / 'pump.eds'} (relative paths start at "
-                               "the config file's directory)"),
+        (
+            '"devices/pump.eds"',
+            f"no such file: {tmp_path / 'devices' / 'pump.eds'} (relative paths start at the config file's directory)",
+        ),
         ('"devices/"', f"not a file: {tmp_path / 'devices'}"),
     ]:
-        assert error(tmp_path, plant("", "").replace('eds = "ltmr"', f"eds = {written}")) == \
-            ("canopen.node[0].eds", message)
+        assert error(tmp_path, plant("", "").replace('eds = "ltmr"', f"eds = {written}")) == (
+            "canopen.node[0].eds",
+            message,
+        )
 
 
 # ---------------------------------------------------------------- boot-time SDO writes
 
 
 def test_sdo_writes(tmp_path):
-    cfg = load(tmp_path, plant("", 'sdo = [{ object = "2007:21", value = 2 }, { object = "0x1017:0", '
-                                   'value = 1000, size = 2 }, { object = "1:1", value = -1, size = 4 }, '
-                                   '{ object = "2004:6a", value = 4294967295, size = 4 }]\n'))
+    cfg = load(
+        tmp_path,
+        plant(
+            "",
+            'sdo = [{ object = "2007:21", value = 2 }, { object = "0x1017:0", '
+            'value = 1000, size = 2 }, { object = "1:1", value = -1, size = 4 }, '
+            '{ object = "2004:6a", value = 4294967295, size = 4 }]\n',
+        ),
+    )
     assert cfg.canopen.nodes[0].sdo == [
         SdoWriteConfig(0x2007, 0x21, 2, None, "canopen.node[0].sdo[0]"),
         SdoWriteConfig(0x1017, 0x00, 1000, 2, "canopen.node[0].sdo[1]"),
         SdoWriteConfig(0x0001, 0x01, -1, 4, "canopen.node[0].sdo[2]"),
-        SdoWriteConfig(0x2004, 0x6A, 4294967295, 4, "canopen.node[0].sdo[3]")]
+        SdoWriteConfig(0x2004, 0x6A, 4294967295, 4, "canopen.node[0].sdo[3]"),
+    ]
 
 
-@pytest.mark.parametrize("written", ['"2004.06"', '"12004:06"', '"2004:123"', '"2004:"', '":06"', '"x2004:06"',
-                                     '"2004:0G"', '""', "0x2004"])
+@pytest.mark.parametrize(
+    "written", ['"2004.06"', '"12004:06"', '"2004:123"', '"2004:"', '":06"', '"x2004:06"', '"2004:0G"', '""', "0x2004"]
+)
 def test_bad_objects(tmp_path, written):
     got = written.replace('"', "'") if written.startswith('"') else "8196"
-    assert error(tmp_path, plant("", f"sdo = [{{ object = {written}, value = 1 }}]\n")) == \
-        ("canopen.node[0].sdo[0].object", f'expected an object "index:subindex" in hex, such as "2004:06" '
-                                          f"(got {got})")
+    assert error(tmp_path, plant("", f"sdo = [{{ object = {written}, value = 1 }}]\n")) == (
+        "canopen.node[0].sdo[0].object",
+        f'expected an object "index:subindex" in hex, such as "2004:06" (got {got})',
+    )
 
 
-@pytest.mark.parametrize("size, value, fits", [
-    (1, 255, True), (1, -128, True), (1, 256, False), (1, -129, False),
-    (2, 65535, True), (2, -32768, True), (2, 65536, False),
-    (4, 4294967295, True), (4, -2147483648, True), (4, 4294967296, False)])
+@pytest.mark.parametrize(
+    "size, value, fits",
+    [
+        (1, 255, True),
+        (1, -128, True),
+        (1, 256, False),
+        (1, -129, False),
+        (2, 65535, True),
+        (2, -32768, True),
+        (2, 65536, False),
+        (4, 4294967295, True),
+        (4, -2147483648, True),
+        (4, 4294967296, False),
+    ],
+)
 def test_sdo_value_must_fit_its_size(tmp_path, size, value, fits):
     text = plant("", f'sdo = [{{ object = "2007:21", value = {value}, size = {size} }}]\n')
     if fits:
         assert load(tmp_path, text).canopen.nodes[0].sdo[0].value == value
     else:
         lo, hi = -(1 << (8 * size - 1)), (1 << (8 * size)) - 1
-        assert error(tmp_path, text) == \
-            ("canopen.node[0].sdo[0].value", f"expected an integer from {lo} to {hi} for size = {size} "
-                                             f"(got {value})")
+        assert error(tmp_path, text) == (
+            "canopen.node[0].sdo[0].value",
+            f"expected an integer from {lo} to {hi} for size = {size} (got {value})",
+        )
 
 
 def test_sdo_write_errors(tmp_path):
-    assert errors(tmp_path, plant("", 'sdo = [{ object = "2007:21" }, { object = "2007:21", value = "2", '
-                                      'size = 3 }, { object = "2007:21", value = 1.5, bytes = 2 }]\n')) == [
+    assert errors(
+        tmp_path,
+        plant(
+            "",
+            'sdo = [{ object = "2007:21" }, { object = "2007:21", value = "2", '
+            'size = 3 }, { object = "2007:21", value = 1.5, bytes = 2 }]\n',
+        ),
+    ) == [
         ("canopen.node[0].sdo[0].value", "required key missing (expected an integer)"),
         ("canopen.node[0].sdo[1].value", "expected an integer (got '2')"),
         ("canopen.node[0].sdo[1].size", "expected a size in bytes: 1, 2 or 4 (got 3)"),
         ("canopen.node[0].sdo[2].value", "expected an integer (got 1.5)"),
-        ("canopen.node[0].sdo[2].bytes", "unknown key (expected one of object, value, size)")]
+        ("canopen.node[0].sdo[2].bytes", "unknown key (expected one of object, value, size)"),
+    ]
 
 
 # ---------------------------------------------------------------- PDOs
 
 
 def test_pdo_parameters(tmp_path):
-    cfg = load(tmp_path, plant(
-        "", "",
-        pdo("tpdo", 2, ("2004:02", "%IW4"), keys='transmission = 0\ninhibit = "150us"\nevent = "2.5s"\n'
-                                                 "configure = false\n"),
-        pdo("tpdo", 512, ("2004:0b", "%IW5"), keys="transmission = 240\n"),
-        pdo("rpdo", 2, ("2008:05", "%QW4"), keys='transmission = 254\ninhibit = "6553.5ms"\nevent = 65535\n')))
+    cfg = load(
+        tmp_path,
+        plant(
+            "",
+            "",
+            pdo(
+                "tpdo",
+                2,
+                ("2004:02", "%IW4"),
+                keys='transmission = 0\ninhibit = "150us"\nevent = "2.5s"\nconfigure = false\n',
+            ),
+            pdo("tpdo", 512, ("2004:0b", "%IW5"), keys="transmission = 240\n"),
+            pdo("rpdo", 2, ("2008:05", "%QW4"), keys='transmission = 254\ninhibit = "6553.5ms"\nevent = 65535\n'),
+        ),
+    )
     node = cfg.canopen.nodes[0]
-    assert [(p.number, p.transmission, p.inhibit_us, p.event_ms, p.configure) for p in node.tpdo + node.rpdo] \
-        == [(2, 0, 150, 2500, False), (512, 240, 0, 0, True), (2, 254, 6_553_500, 65535, True)]
-    assert node.tpdo[1].entries == \
-        [PdoEntryConfig(0x2004, 0x0B, addr("%IW5"), "canopen.node[0].tpdo[1].map[0]")]
+    assert [(p.number, p.transmission, p.inhibit_us, p.event_ms, p.configure) for p in node.tpdo + node.rpdo] == [
+        (2, 0, 150, 2500, False),
+        (512, 240, 0, 0, True),
+        (2, 254, 6_553_500, 65535, True),
+    ]
+    assert node.tpdo[1].entries == [PdoEntryConfig(0x2004, 0x0B, addr("%IW5"), "canopen.node[0].tpdo[1].map[0]")]
 
 
-@pytest.mark.parametrize("keys, key, message", [
-    ("transmission = 241\n", "transmission", "expected a transmission type 0..240, 254 or 255 (got 241)"),
-    ("transmission = 253\n", "transmission", "expected a transmission type 0..240, 254 or 255 (got 253)"),
-    ("transmission = -1\n", "transmission", "expected a transmission type 0..240, 254 or 255 (got -1)"),
-    ('inhibit = "6553.6ms"\n', "inhibit", "expected a duration of at most 6553500us (the inhibit time is 16 "
-                                          "bits of 100us), or false for none (got '6553.6ms')"),
-    ('event = "65.536s"\n', "event", "expected a duration of at most 65535ms (the event timer is 16 bits of "
-                                     "ms), or false for none (got '65.536s')"),
-    ("configure = 1\n", "configure", "expected true or false (got 1)"),
-    ("mapping = 1\n", "mapping", "unknown key (did you mean 'map'?)"),
-])
+@pytest.mark.parametrize(
+    "keys, key, message",
+    [
+        ("transmission = 241\n", "transmission", "expected a transmission type 0..240, 254 or 255 (got 241)"),
+        ("transmission = 253\n", "transmission", "expected a transmission type 0..240, 254 or 255 (got 253)"),
+        ("transmission = -1\n", "transmission", "expected a transmission type 0..240, 254 or 255 (got -1)"),
+        (
+            'inhibit = "6553.6ms"\n',
+            "inhibit",
+            "expected a duration of at most 6553500us (the inhibit time is 16 "
+            "bits of 100us), or false for none (got '6553.6ms')",
+        ),
+        (
+            'event = "65.536s"\n',
+            "event",
+            "expected a duration of at most 65535ms (the event timer is 16 bits of "
+            "ms), or false for none (got '65.536s')",
+        ),
+        ("configure = 1\n", "configure", "expected true or false (got 1)"),
+        ("mapping = 1\n", "mapping", "unknown key (did you mean 'map'?)"),
+    ],
+)
 def test_pdo_parameters_refused(tmp_path, keys, key, message):
-    assert error(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IW0"), keys=keys))) == \
-        (f"canopen.node[0].tpdo[0].{key}", message)
+    assert error(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IW0"), keys=keys))) == (
+        f"canopen.node[0].tpdo[0].{key}",
+        message,
+    )
 
 
 def test_pdo_numbers(tmp_path):
     text = plant("", "", pdo("tpdo", 0, ("2004:06", "%IW0")), pdo("rpdo", 513, ("2008:05", "%QW0")))
     assert errors(tmp_path, text) == [
         ("canopen.node[0].tpdo[0].number", "expected an integer from 1 to 512 (got 0)"),
-        ("canopen.node[0].rpdo[0].number", "expected an integer from 1 to 512 (got 513)")]
+        ("canopen.node[0].rpdo[0].number", "expected an integer from 1 to 512 (got 513)"),
+    ]
     # unique per direction per node: TPDO1 and RPDO1 are two PDOs, and so are two nodes' TPDO1
     second = NODE.replace('"motor"', '"pump"').replace("40", "41")
-    cfg = load(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IW0")), pdo("rpdo", 1, ("2008:05", "%QW0")),
-                               second, pdo("tpdo", 1, ("2004:06", "%IW1"))))
+    cfg = load(
+        tmp_path,
+        plant(
+            "",
+            "",
+            pdo("tpdo", 1, ("2004:06", "%IW0")),
+            pdo("rpdo", 1, ("2008:05", "%QW0")),
+            second,
+            pdo("tpdo", 1, ("2004:06", "%IW1")),
+        ),
+    )
     assert [len(n.tpdo) for n in cfg.canopen.nodes] == [1, 1]
     text = plant("", "", pdo("tpdo", 1, ("2004:06", "%IW0")), pdo("tpdo", 1, ("2004:07", "%IW1")))
-    assert error(tmp_path, text) == \
-        ("canopen.node[0].tpdo[1].number", "duplicate TPDO number 1 (canopen.node[0].tpdo[0] has it)")
+    assert error(tmp_path, text) == (
+        "canopen.node[0].tpdo[1].number",
+        "duplicate TPDO number 1 (canopen.node[0].tpdo[0] has it)",
+    )
 
 
 def test_pdo_carries_eight_bytes(tmp_path):
     nine = [(f"2004:{k:02X}", f"%IB{k}") for k in range(9)]
     eight_words = [(f"2004:{k:02X}", f"%IW{k}") for k in range(5)]
-    assert error(tmp_path, plant("", "", pdo("tpdo", 1, *nine))) == \
-        ("canopen.node[0].tpdo[0].map", 'expected an array of 1 to 8 { object = "2004:06", address = "%IW0" } '
-                                        "tables; a PDO carries 8 bytes (got 9 entries)")
-    assert load(tmp_path, plant("", "", pdo("tpdo", 1, *nine[:8]))).canopen.nodes[0].tpdo[0].entries[7].key == \
-        "canopen.node[0].tpdo[0].map[7]"
-    assert error(tmp_path, plant("", "", pdo("tpdo", 1, *eight_words))) == \
-        ("canopen.node[0].tpdo[0].map", "the addresses hold 80 bits; a PDO carries at most 64 (8 bytes)")
-    assert error(tmp_path, plant("", "", pdo("tpdo", 1))) == \
-        ("canopen.node[0].tpdo[0].map", 'expected an array of 1 to 8 { object = "2004:06", address = "%IW0" } '
-                                        "tables; a PDO carries 8 bytes (got an empty array)")
+    assert error(tmp_path, plant("", "", pdo("tpdo", 1, *nine))) == (
+        "canopen.node[0].tpdo[0].map",
+        'expected an array of 1 to 8 { object = "2004:06", address = "%IW0" } '
+        "tables; a PDO carries 8 bytes (got 9 entries)",
+    )
+    assert (
+        load(tmp_path, plant("", "", pdo("tpdo", 1, *nine[:8]))).canopen.nodes[0].tpdo[0].entries[7].key
+        == "canopen.node[0].tpdo[0].map[7]"
+    )
+    assert error(tmp_path, plant("", "", pdo("tpdo", 1, *eight_words))) == (
+        "canopen.node[0].tpdo[0].map",
+        "the addresses hold 80 bits; a PDO carries at most 64 (8 bytes)",
+    )
+    assert error(tmp_path, plant("", "", pdo("tpdo", 1))) == (
+        "canopen.node[0].tpdo[0].map",
+        'expected an array of 1 to 8 { object = "2004:06", address = "%IW0" } '
+        "tables; a PDO carries 8 bytes (got an empty array)",
+    )
 
 
 def test_pdo_bit_addresses(tmp_path):
-    cfg = load(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IX0.0"), ("2004:07", "%IX0.1"),
-                                           ("2004:08", "%IB1"))))
-    assert [e.address for e in cfg.canopen.nodes[0].tpdo[0].entries] == \
-        [addr("%IX0.0"), addr("%IX0.1"), addr("%IB1")]
-    cfg = load(tmp_path, plant("", "", pdo("rpdo", 1, ("2008:05", "%QW3:X2"), ("2008:06", "%QW3:X3"),
-                                           ("2008:07", "%QW4"))).replace(PLC, PLC + 'profile = "schneider"\n'))
+    cfg = load(
+        tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IX0.0"), ("2004:07", "%IX0.1"), ("2004:08", "%IB1")))
+    )
+    assert [e.address for e in cfg.canopen.nodes[0].tpdo[0].entries] == [addr("%IX0.0"), addr("%IX0.1"), addr("%IB1")]
+    cfg = load(
+        tmp_path,
+        plant("", "", pdo("rpdo", 1, ("2008:05", "%QW3:X2"), ("2008:06", "%QW3:X3"), ("2008:07", "%QW4"))).replace(
+            PLC, PLC + 'profile = "schneider"\n'
+        ),
+    )
     assert [e.address.text for e in cfg.canopen.nodes[0].rpdo[0].entries] == ["%QW3:X2", "%QW3:X3", "%QW4"]
 
 
-@pytest.mark.parametrize("direction, address, message", [
-    ("tpdo", "%QW0", "expected a %I address: a TPDO's entries go to %I inputs (got '%QW0', an output)"),
-    ("tpdo", "%MW0", "expected a %I address: a TPDO's entries go to %I inputs (got '%MW0', a memory address)"),
-    ("rpdo", "%IW0", "expected a %Q address: an RPDO's entries come from %Q outputs (got '%IW0', an input)"),
-    ("tpdo", "IW0", "expected a direct address such as %IW0, %IX0.0 (got 'IW0')"),
-    ("rpdo", "%QX0.8", "bit number 8 is not 0..7"),
-    ("tpdo", "%IW40000", "%IW40000 (bytes 80000..80001) is outside the 65536-byte %I area"),
-    ("tpdo", "%IX70000.0", "'%IX70000.0' is outside the 65536-byte %I area"),
-])
+@pytest.mark.parametrize(
+    "direction, address, message",
+    [
+        ("tpdo", "%QW0", "expected a %I address: a TPDO's entries go to %I inputs (got '%QW0', an output)"),
+        ("tpdo", "%MW0", "expected a %I address: a TPDO's entries go to %I inputs (got '%MW0', a memory address)"),
+        ("rpdo", "%IW0", "expected a %Q address: an RPDO's entries come from %Q outputs (got '%IW0', an input)"),
+        ("tpdo", "IW0", "expected a direct address such as %IW0, %IX0.0 (got 'IW0')"),
+        ("rpdo", "%QX0.8", "bit number 8 is not 0..7"),
+        ("tpdo", "%IW40000", "%IW40000 (bytes 80000..80001) is outside the 65536-byte %I area"),
+        ("tpdo", "%IX70000.0", "'%IX70000.0' is outside the 65536-byte %I area"),
+    ],
+)
 def test_pdo_addresses_refused(tmp_path, direction, address, message):
     obj = "2004:06" if direction == "tpdo" else "2008:05"
-    assert error(tmp_path, plant("", "", pdo(direction, 1, (obj, address)))) == \
-        (f"canopen.node[0].{direction}[0].map[0].address", message)
+    assert error(tmp_path, plant("", "", pdo(direction, 1, (obj, address)))) == (
+        f"canopen.node[0].{direction}[0].map[0].address",
+        message,
+    )
 
 
 def test_pdo_word_tables_refused(tmp_path):
     text = plant("", "", pdo("tpdo", 1, ("2004:06", "%IW3:4"))).replace(PLC, PLC + 'profile = "schneider"\n')
-    assert error(tmp_path, text) == \
-        ("canopen.node[0].tpdo[0].map[0].address", "expected a bit, byte, word, dword or lword address (got "
-                                                   "'%IW3:4', a word table): map one object per address")
+    assert error(tmp_path, text) == (
+        "canopen.node[0].tpdo[0].map[0].address",
+        "expected a bit, byte, word, dword or lword address (got '%IW3:4', a word table): map one object per address",
+    )
 
 
 def test_pdo_entries_may_not_overlap(tmp_path):
     key = "canopen.node[0].tpdo[0].map"
-    assert error(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IW0"), ("2004:07", "%IB1")))) == \
-        (f"{key}[1].address", f"'%IB1' overlaps {key}[0].address ('%IW0')")
-    assert error(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IX1.3"), ("2004:07", "%IW0")))) == \
-        (f"{key}[1].address", f"'%IW0' overlaps {key}[0].address ('%IX1.3')")
-    assert error(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%ID1"), ("2004:07", "%IW3")))) == \
-        (f"{key}[1].address", f"'%IW3' overlaps {key}[0].address ('%ID1')")     # %ID1 = bytes 4-7, %IW3 = 6-7
+    assert error(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IW0"), ("2004:07", "%IB1")))) == (
+        f"{key}[1].address",
+        f"'%IB1' overlaps {key}[0].address ('%IW0')",
+    )
+    assert error(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IX1.3"), ("2004:07", "%IW0")))) == (
+        f"{key}[1].address",
+        f"'%IW0' overlaps {key}[0].address ('%IX1.3')",
+    )
+    assert error(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%ID1"), ("2004:07", "%IW3")))) == (
+        f"{key}[1].address",
+        f"'%IW3' overlaps {key}[0].address ('%ID1')",
+    )  # %ID1 = bytes 4-7, %IW3 = 6-7
     # neighbours do not overlap, and %I and %Q are different areas
-    cfg = load(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IW0"), ("2004:07", "%IB2"),
-                                           ("2004:08", "%IX3.0"), ("2004:09", "%IX3.1")),
-                               pdo("rpdo", 1, ("2008:05", "%QW0"))))
+    cfg = load(
+        tmp_path,
+        plant(
+            "",
+            "",
+            pdo("tpdo", 1, ("2004:06", "%IW0"), ("2004:07", "%IB2"), ("2004:08", "%IX3.0"), ("2004:09", "%IX3.1")),
+            pdo("rpdo", 1, ("2008:05", "%QW0")),
+        ),
+    )
     assert len(cfg.canopen.nodes[0].tpdo[0].entries) == 4
 
 
 def test_pdos_may_not_overlap_each_other(tmp_path):
     second = NODE.replace('"motor"', '"pump"').replace("40", "41")
-    text = plant("", "", pdo("tpdo", 1, ("2004:06", "%IW100")), pdo("rpdo", 1, ("2008:05", "%QW100")),
-                 second, pdo("tpdo", 1, ("2004:06", "%IB201")), pdo("rpdo", 1, ("2008:05", "%QD50")))
+    text = plant(
+        "",
+        "",
+        pdo("tpdo", 1, ("2004:06", "%IW100")),
+        pdo("rpdo", 1, ("2008:05", "%QW100")),
+        second,
+        pdo("tpdo", 1, ("2004:06", "%IB201")),
+        pdo("rpdo", 1, ("2008:05", "%QD50")),
+    )
     assert errors(tmp_path, text) == [
-        ("canopen.node[1].tpdo[0].map[0].address",
-         "'%IB201' overlaps canopen.node[0].tpdo[0].map[0].address ('%IW100')"),
-        ("canopen.node[1].rpdo[0].map[0].address",
-         "'%QD50' overlaps canopen.node[0].rpdo[0].map[0].address ('%QW100')")]
+        (
+            "canopen.node[1].tpdo[0].map[0].address",
+            "'%IB201' overlaps canopen.node[0].tpdo[0].map[0].address ('%IW100')",
+        ),
+        (
+            "canopen.node[1].rpdo[0].map[0].address",
+            "'%QD50' overlaps canopen.node[0].rpdo[0].map[0].address ('%QW100')",
+        ),
+    ]
 
 
 def test_pdos_may_not_overlap_a_loopback_target(tmp_path):
     loopback = '[[loopback]]\nfrom = "%QB0"\nto = "%IB10"\nbytes = 4\n'
-    assert error(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IW6")), loopback)) == \
-        ("canopen.node[0].tpdo[0].map[0].address", "'%IW6' overlaps loopback[0].to ('%IB10', 4 bytes)")
+    assert error(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IW6")), loopback)) == (
+        "canopen.node[0].tpdo[0].map[0].address",
+        "'%IW6' overlaps loopback[0].to ('%IB10', 4 bytes)",
+    )
     # %IW7 (bytes 14-15) is past the link's bytes 10-13; an RPDO may read what a link reads
-    cfg = load(tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IW7")), pdo("rpdo", 1, ("2008:05", "%QW0")),
-                               loopback))
+    cfg = load(
+        tmp_path, plant("", "", pdo("tpdo", 1, ("2004:06", "%IW7")), pdo("rpdo", 1, ("2008:05", "%QW0")), loopback)
+    )
     assert cfg.loopback[0].nbytes == 4 and len(cfg.canopen.nodes[0].tpdo) == 1
 
 
 def test_pdo_entry_errors(tmp_path):
-    assert errors(tmp_path, plant("", "", pdo("tpdo", 1).replace("map = []", 'map = [{ object = "2004:06" }, '
-                                                                  '{ address = "%IW0", obj = 1 }, 3]'))) == [
-        ("canopen.node[0].tpdo[0].map[0].address", 'required key missing (expected an image address such as '
-                                                   '"%IW0" for a TPDO, "%QW0" for an RPDO)'),
-        ("canopen.node[0].tpdo[0].map[1].object", 'required key missing (expected an object "index:subindex" '
-                                                  'in hex, such as "2004:06")'),
+    assert errors(
+        tmp_path,
+        plant(
+            "",
+            "",
+            pdo("tpdo", 1).replace("map = []", 'map = [{ object = "2004:06" }, { address = "%IW0", obj = 1 }, 3]'),
+        ),
+    ) == [
+        (
+            "canopen.node[0].tpdo[0].map[0].address",
+            'required key missing (expected an image address such as "%IW0" for a TPDO, "%QW0" for an RPDO)',
+        ),
+        (
+            "canopen.node[0].tpdo[0].map[1].object",
+            'required key missing (expected an object "index:subindex" in hex, such as "2004:06")',
+        ),
         ("canopen.node[0].tpdo[0].map[1].obj", "unknown key (did you mean 'object'?)"),
-        ("canopen.node[0].tpdo[0].map[2]", "expected a table (got 3)")]
+        ("canopen.node[0].tpdo[0].map[2]", "expected a table (got 3)"),
+    ]

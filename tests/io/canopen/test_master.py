@@ -1,5 +1,6 @@
 """The CANopen master boots, supervises and recovers nodes as a CANopen
 manager does (CiA 301/302), against the simulated LTMR on the virtual bus."""
+
 from __future__ import annotations
 
 from softplc.runtime.devices.ltmr.sim import LtmrSimulator
@@ -19,7 +20,7 @@ lost := CANOPEN_NODE[40].HeartbeatLost;
 END_PROGRAM
 """
 
-NMT_RESET_COMM_40 = bytes([0x82, 0x28])   # CiA 301: reset communication, node 40
+NMT_RESET_COMM_40 = bytes([0x82, 0x28])  # CiA 301: reset communication, node 40
 NMT_START_40 = bytes([0x01, 0x28])
 
 
@@ -39,10 +40,10 @@ def test_boot_up_order_reset_bootup_configure_start_pdos(plants):
     # configuration by SDO: producer heartbeat 0x1017 := 100 ms, consumer 0x1016:01 := master 127 at 500 ms
     hb = _index(f, 0x628, bytes.fromhex("2B 17 10 00 64 00 00 00"), after=bootup)
     consumer = _index(f, 0x628, bytes.fromhex("23 16 10 01 F4 01 7F 00"), after=hb)
-    fallback = _index(f, 0x628, bytes.fromhex("2B 07 20 21 02 00 00 00"), after=consumer)   # 682 := 2
+    fallback = _index(f, 0x628, bytes.fromhex("2B 07 20 21 02 00 00 00"), after=consumer)  # 682 := 2
     # TPDO2 remapped (CiA 301: invalidate, sub0 := 0, entries, sub0 := 4, type, validate)
     invalidate = _index(f, 0x628, bytes.fromhex("23 01 18 01 A8 02 00 80"), after=fallback)
-    entry1 = _index(f, 0x628, bytes.fromhex("23 01 1A 01 10 02 04 20"), after=invalidate)   # 2004:02, 16 bit
+    entry1 = _index(f, 0x628, bytes.fromhex("23 01 1A 01 10 02 04 20"), after=invalidate)  # 2004:02, 16 bit
     count = _index(f, 0x628, bytes.fromhex("2F 01 1A 00 04 00 00 00"), after=entry1)
     validate = _index(f, 0x628, bytes.fromhex("23 01 18 01 A8 02 00 00"), after=count)
     start = _index(f, 0x000, NMT_START_40, after=validate)
@@ -59,8 +60,8 @@ def test_master_heartbeat_and_node_heartbeat_in_virtual_time(plants):
     plant.run_ms(1000)
     master = [t for t, cid, d in plant.frames if cid == 0x77F]
     node = [t for t, cid, d in plant.frames if cid == 0x728]
-    assert [d for _t, cid, d in plant.frames if cid == 0x77F][0] == b"\x05"   # master: operational
-    assert [d for _t, cid, d in plant.frames if cid == 0x728][0] == b"\x05"   # node 40: operational
+    assert [d for _t, cid, d in plant.frames if cid == 0x77F][0] == b"\x05"  # master: operational
+    assert [d for _t, cid, d in plant.frames if cid == 0x728][0] == b"\x05"  # node 40: operational
     assert {b - a for a, b in zip(master, master[1:])} == {100_000_000}
     assert {b - a for a, b in zip(node, node[1:])} == {100_000_000} and len(node) >= 9
 
@@ -71,11 +72,11 @@ def test_heartbeat_loss_is_seen_by_the_program_and_the_node_recovers_by_itself(p
     sim = plant.sims[40]
     sim.unplug()
     took = plant.run_until(lambda: plant.get("Watch.lost"), 1000, "heartbeat lost")
-    assert 200 <= took <= 310          # heartbeat_timeout = 300 ms after the last heartbeat
+    assert 200 <= took <= 310  # heartbeat_timeout = 300 ms after the last heartbeat
     assert plant.master.node_state(40) == NodeState.LOST
     assert not plant.master.status().ok
     assert "heartbeat lost" in plant.master.status().message
-    assert "canopen: 0/1 up; motor (40): heartbeat lost" in status_line(plant.engine)   # what the operator sees
+    assert "canopen: 0/1 up; motor (40): heartbeat lost" in status_line(plant.engine)  # what the operator sees
     sim.plug()
     plant.run_until(lambda: plant.get("Watch.operational"), 2000, "node 40 operational again")
     assert plant.master.status().ok
@@ -89,8 +90,9 @@ def test_a_missing_node_is_reported_and_booted_when_it_appears(plants, tmp_path)
     assert plant.node_diag(40, "Missing")
     assert "no boot-up" in plant.master.status().message
     bus = plant.config.can[0]
-    sim = LtmrSimulator(40, settings=BusSettings(bus.interface, bus.channel, bus.bitrate),
-                        clock=plant.engine.clock, pump=plant.pump)
+    sim = LtmrSimulator(
+        40, settings=BusSettings(bus.interface, bus.channel, bus.bitrate), clock=plant.engine.clock, pump=plant.pump
+    )
     sim.start()
     plant.engine.drivers.insert(0, sim)
     try:
@@ -104,18 +106,19 @@ def test_a_node_that_falls_to_pre_operational_is_restarted(plants):
     plant = plants(WATCH, program="Watch")
     plant.run_until(lambda: plant.get("Watch.operational"), 200, "node 40 operational")
     boots = plant.node_diag(40, "Boots")
-    plant.master.endpoint.send(0x000, bytes([0x80, 40]))    # someone sends it to pre-operational
+    plant.master.endpoint.send(0x000, bytes([0x80, 40]))  # someone sends it to pre-operational
     plant.run_ms(300)
     plant.run_until(lambda: plant.get("Watch.operational"), 2000, "node 40 operational again")
-    assert plant.node_diag(40, "Boots") == boots + 1          # reset communication, boot-up, configure, start
+    assert plant.node_diag(40, "Boots") == boots + 1  # reset communication, boot-up, configure, start
 
 
 def test_a_failed_bus_is_reported_and_reopened(plants):
     plant = plants(WATCH, program="Watch")
     plant.run_until(lambda: plant.get("Watch.operational"), 200, "node 40 operational")
-    plant.master.endpoint.bus.shutdown()       # the adapter goes away under the driver
+    plant.master.endpoint.bus.shutdown()  # the adapter goes away under the driver
     plant.run_ms(200)
     status = plant.master.status()
     assert not status.ok and "bus down" in status.message
-    plant.run_until(lambda: plant.master.status().ok and plant.get("Watch.operational"), 3000,
-                    "bus reopened, node operational")
+    plant.run_until(
+        lambda: plant.master.status().ok and plant.get("Watch.operational"), 3000, "bus reopened, node operational"
+    )

@@ -1,5 +1,6 @@
 """The master's view of one node (CiA 301/302 manager behaviour) and when it
 sends an RPDO, step by step in time."""
+
 from __future__ import annotations
 
 from softplc.runtime.io.canopen.node import NodeState, NodeSupervisor
@@ -24,7 +25,7 @@ def test_a_node_boots_reset_bootup_configure_start():
     assert s.configured(True, "", 40 * MS) == "start" and s.state == NodeState.OPERATIONAL
     assert s.heartbeat(0x05, 100 * MS) is None
     assert s.tick(399 * MS) is None
-    assert s.tick(400 * MS) is None and s.state == NodeState.LOST      # 300 ms after the last heartbeat
+    assert s.tick(400 * MS) is None and s.state == NodeState.LOST  # 300 ms after the last heartbeat
     assert "heartbeat lost" in s.message
 
 
@@ -41,7 +42,7 @@ def test_a_lost_node_heard_again_is_booted_again():
     s.tick(0), s.heartbeat(0, 1), s.configured(True, "", 2)
     s.tick(400 * MS)
     assert s.state == NodeState.LOST
-    assert s.heartbeat(0x7F, 450 * MS) == "reset"       # back, in pre-operational after its fallback
+    assert s.heartbeat(0x7F, 450 * MS) == "reset"  # back, in pre-operational after its fallback
     assert s.heartbeat(0x00, 460 * MS) == "configure"
 
 
@@ -65,18 +66,23 @@ def test_event_driven_rpdo_on_change_inhibit_and_event_timer():
     a, b = b"\x01\x00", b"\x02\x00"
     assert t.due(a, 0, False)
     t.sent(a, 0)
-    assert not t.due(a, 10 * MS, False)                 # unchanged
-    assert not t.due(b, 4 * MS, False)                  # changed, but within the 5 ms inhibit time
+    assert not t.due(a, 10 * MS, False)  # unchanged
+    assert not t.due(b, 4 * MS, False)  # changed, but within the 5 ms inhibit time
     assert t.due(b, 5 * MS, False)
     t.sent(b, 5 * MS)
     assert not t.due(b, 104 * MS, False)
-    assert t.due(b, 105 * MS, False)                    # the event timer resends it
+    assert t.due(b, 105 * MS, False)  # the event timer resends it
 
 
 def test_synchronous_rpdo_types():
     every_second = TxSchedule(2, 0, 0)
-    assert [every_second.due(b"x", 0, sync) for sync in (False, True, True, True, True)] == \
-        [False, False, True, False, True]
+    assert [every_second.due(b"x", 0, sync) for sync in (False, True, True, True, True)] == [
+        False,
+        False,
+        True,
+        False,
+        True,
+    ]
     on_change = TxSchedule(0, 0, 0)
     assert not on_change.due(b"x", 0, False)
     assert on_change.due(b"x", 0, True)

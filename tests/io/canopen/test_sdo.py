@@ -1,6 +1,7 @@
 """READ_VAR / WRITE_VAR over SDO: the LTMR manual's two ST examples run
 verbatim against the simulated LTMR (node 40), byte for byte on the wire;
 SDO aborts and timeouts surface as Schneider report codes."""
+
 from __future__ import annotations
 
 import struct
@@ -27,13 +28,13 @@ def _examples(plants):
 def test_the_manuals_write_example_writes_50_to_2007_03_of_node_40(plants):
     plant = _examples(plants)
     sim = plant.sims[40]
-    sim.set_register(ltmr.REG_FLC1, 35)               # as set on the LTMR's HMI
+    sim.set_register(ltmr.REG_FLC1, 35)  # as set on the LTMR's HMI
     plant.frames.clear()
-    plant.engine.image.mbits[100] = 1                 # %M100: the example's write command
+    plant.engine.image.mbits[100] = 1  # %M100: the example's write command
     plant.run_until(lambda: not _word(plant, 3250) & 1 and _word(plant, 3250) >> 8 == 1, 100, "exchange done")
-    assert sim.register(ltmr.REG_FLC1) == 50           # register 652, FLC1 = 50 % FLCmax
-    assert _word(plant, 3251) == 0x0000                # operation and communication report: positive, done
-    assert plant.engine.image.mbits[100] == 0          # RESET %M100
+    assert sim.register(ltmr.REG_FLC1) == 50  # register 652, FLC1 = 50 % FLCmax
+    assert _word(plant, 3251) == 0x0000  # operation and communication report: positive, done
+    assert plant.engine.image.mbits[100] == 0  # RESET %M100
     # CiA 301 expedited download of 2 bytes (digest 001 §3.4), and its confirmation
     assert plant.frames_with(0x628) == [bytes.fromhex("2B 07 20 03 32 00 00 00")]
     assert plant.frames_with(0x5A8) == [bytes.fromhex("60 07 20 03 00 00 00 00")]
@@ -42,13 +43,13 @@ def test_the_manuals_write_example_writes_50_to_2007_03_of_node_40(plants):
 def test_the_manuals_read_example_reads_2004_03_of_node_40(plants):
     plant = _examples(plants)
     sim = plant.sims[40]
-    sim.set_register(ltmr.REG_TRIP_REGISTER_1, 0x0008)   # thermal overload trip bit
+    sim.set_register(ltmr.REG_TRIP_REGISTER_1, 0x0008)  # thermal overload trip bit
     plant.frames.clear()
     plant.engine.image.mbits[101] = 1
     plant.run_until(lambda: not _word(plant, 3260) & 1 and _word(plant, 3260) >> 8 == 1, 100, "exchange done")
-    assert _word(plant, 3222) == 0x0008                # the value read
-    assert _word(plant, 3261) == 0x0000                # reports: positive
-    assert _word(plant, 3263) == 2                     # length word: 2 bytes received
+    assert _word(plant, 3222) == 0x0008  # the value read
+    assert _word(plant, 3261) == 0x0000  # reports: positive
+    assert _word(plant, 3263) == 2  # length word: 2 bytes received
     assert plant.frames_with(0x628) == [bytes.fromhex("40 04 20 03 00 00 00 00")]
     assert plant.frames_with(0x5A8) == [bytes.fromhex("4B 04 20 03 08 00 00 00")]
 
@@ -86,13 +87,14 @@ def test_sdo_aborts_and_timeouts_surface_as_report_codes_with_the_abort_code(pla
         return [w & 0xFFFF for w in plant.get(f"Aborts.{name}")]
 
     plant.run_until(lambda: not plant.get("Aborts.go"), 100, "the cycle that calls them")
-    assert all(table(t)[0] == 0x0101 for t in ("mgmtRo", "mgmtNone", "mgmtAbsent"))   # exchange 1, active
-    plant.run_until(lambda: all(not table(t)[0] & 1 for t in ("mgmtRo", "mgmtNone", "mgmtAbsent")), 2000,
-                    "all exchanges over")
+    assert all(table(t)[0] == 0x0101 for t in ("mgmtRo", "mgmtNone", "mgmtAbsent"))  # exchange 1, active
+    plant.run_until(
+        lambda: all(not table(t)[0] & 1 for t in ("mgmtRo", "mgmtNone", "mgmtAbsent")), 2000, "all exchanges over"
+    )
     ro, none, absent, short = table("mgmtRo"), table("mgmtNone"), table("mgmtAbsent"), table("mgmtShort")
     # device refused: communication report 16#00, operation report 16#01, abort code in words 4-5
-    assert ro[1] == 0x0100 and (ro[5] << 16 | ro[4]) == 0x06010002     # write to a read-only object
+    assert ro[1] == 0x0100 and (ro[5] << 16 | ro[4]) == 0x06010002  # write to a read-only object
     assert none[1] == 0x0100 and (none[5] << 16 | none[4]) == 0x06020000  # object does not exist
-    assert short[1] == 0x0005                                            # bad management parameters
-    assert absent[1] == 0x0001 and (absent[5] << 16 | absent[4]) == 0x05040000   # timeout
-    assert plant.sims[40].register(ltmr.REG_STATUS_1) != 1                 # nothing was written
+    assert short[1] == 0x0005  # bad management parameters
+    assert absent[1] == 0x0001 and (absent[5] << 16 | absent[4]) == 0x05040000  # timeout
+    assert plant.sims[40].register(ltmr.REG_STATUS_1) != 1  # nothing was written

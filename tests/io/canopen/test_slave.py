@@ -2,6 +2,7 @@
 byte, with no device behaviour: the LTMR's EDS (io_config/eds/ltmr.eds) is
 only its object dictionary here. Node 40 = 0x28 as in the LTMR manual's
 examples; the test is the master."""
+
 from __future__ import annotations
 
 import importlib.resources
@@ -85,36 +86,37 @@ def _remap_tpdo1(bench, entries, *, transmission=255, inhibit_100us=None, event_
 
 # ---------------------------------------------------------------------------- NMT
 
+
 def test_power_up_sends_the_boot_up_frame_and_enters_pre_operational(bench, slave):
-    assert bench.frames == [(0, HEARTBEAT, b"\x00")]            # CiA 301 boot-up: 0x700 + 40, [00]
+    assert bench.frames == [(0, HEARTBEAT, b"\x00")]  # CiA 301 boot-up: 0x700 + 40, [00]
     assert slave.nmt_state == STATE_PRE_OPERATIONAL
     assert ("state", 0, STATE_PRE_OPERATIONAL) in slave.events
     bench.run_ms(500)
-    assert bench.frames == [(0, HEARTBEAT, b"\x00")]            # 0x1017 = 0: no heartbeat, no PDO in pre-op
+    assert bench.frames == [(0, HEARTBEAT, b"\x00")]  # 0x1017 = 0: no heartbeat, no PDO in pre-op
 
 
 def test_nmt_start_sends_tpdo1_once_and_stop_silences_sdo(bench, slave):
-    slave.write(0x2004, 0x06, 0x6083)                           # 455 as digest 001 §6.3 decodes it
+    slave.write(0x2004, 0x06, 0x6083)  # 455 as digest 001 §6.3 decodes it
     bench.clear()
-    bench.send(0x000, "01 28")                                  # start node 40
+    bench.send(0x000, "01 28")  # start node 40
     assert slave.nmt_state == STATE_OPERATIONAL
     assert bench.frames_with(TPDO1) == [bytes.fromhex("83 60 00 00 00 00 00 00")]
     bench.run_ms(300)
-    assert len(bench.frames_with(TPDO1)) == 1                   # type 255: nothing changed, nothing sent
+    assert len(bench.frames_with(TPDO1)) == 1  # type 255: nothing changed, nothing sent
     bench.nmt(NMT_STOP, NODE)
     assert slave.nmt_state == STATE_STOPPED
     bench.clear()
     bench.send(0x628, "40 18 10 01 00 00 00 00")
-    assert bench.frames == []                                   # Stopped: no SDO
+    assert bench.frames == []  # Stopped: no SDO
     bench.nmt(NMT_PRE_OPERATIONAL, NODE)
     assert slave.nmt_state == STATE_PRE_OPERATIONAL
-    assert bench.sdo_read(NODE, 0x1018, 1) == bytes.fromhex("43 18 10 01 5A 00 00 03")   # vendor 0x0300005A
+    assert bench.sdo_read(NODE, 0x1018, 1) == bytes.fromhex("43 18 10 01 5A 00 00 03")  # vendor 0x0300005A
 
 
 def test_nmt_for_all_nodes_and_for_another_node(bench, slave):
     bench.nmt(NMT_START, 41)
     assert slave.nmt_state == STATE_PRE_OPERATIONAL
-    bench.nmt(NMT_START, 0)                                     # node 0: every node
+    bench.nmt(NMT_START, 0)  # node 0: every node
     assert slave.nmt_state == STATE_OPERATIONAL
 
 
@@ -126,8 +128,8 @@ def test_reset_communication_restores_the_communication_objects_only(bench, slav
     bench.nmt(NMT_RESET_COMMUNICATION, NODE)
     assert bench.frames == [(0, HEARTBEAT, b"\x00")]
     assert slave.nmt_state == STATE_PRE_OPERATIONAL
-    assert slave.read(0x1017) == 0                              # back to the EDS value
-    assert slave.read(0x2007, 0x03) == 50                       # the application keeps its value
+    assert slave.read(0x1017) == 0  # back to the EDS value
+    assert slave.read(0x2007, 0x03) == 50  # the application keeps its value
     assert ("reset application",) not in slave.events[1:]
 
 
@@ -152,17 +154,18 @@ def test_power_cycle_boots_again(bench, slave):
 
 # ---------------------------------------------------------------------------- heartbeat
 
+
 def test_heartbeat_producer_in_virtual_time(bench, slave):
     bench.run_ms(50)
-    assert bench.sdo_write(NODE, 0x1017, 0, 100, 2) == write_ok(0x1017, 0)   # 100 ms
+    assert bench.sdo_write(NODE, 0x1017, 0, 100, 2) == write_ok(0x1017, 0)  # 100 ms
     bench.clear()
     bench.run_ms(1000)
     assert bench.times_of(HEARTBEAT) == [t * MS for t in range(150, 1051, 100)]
-    assert set(bench.frames_with(HEARTBEAT)) == {b"\x7F"}       # pre-operational
+    assert set(bench.frames_with(HEARTBEAT)) == {b"\x7f"}  # pre-operational
     bench.nmt(NMT_START, NODE)
     bench.clear()
     bench.run_ms(200)
-    assert bench.frames_with(HEARTBEAT) == [b"\x05", b"\x05"]   # operational
+    assert bench.frames_with(HEARTBEAT) == [b"\x05", b"\x05"]  # operational
     assert bench.sdo_write(NODE, 0x1017, 0, 0, 2) == write_ok(0x1017, 0)
     bench.clear()
     bench.run_ms(500)
@@ -179,7 +182,7 @@ def _watch_master(bench, behaviour=None):
 
 def test_heartbeat_consumer_waits_for_the_first_heartbeat(bench, slave):
     _watch_master(bench)
-    bench.run_ms(2000)                                          # the master never sent one
+    bench.run_ms(2000)  # the master never sent one
     assert slave.nmt_state == STATE_OPERATIONAL
     assert ("comm error",) not in slave.events
 
@@ -193,19 +196,19 @@ def test_heartbeat_loss_sends_the_node_to_pre_operational_and_recovery_is_report
     bench.run_until(lambda: slave.heartbeat_lost, 1000, "heartbeat loss")
     # the first 10 ms step more than 500 ms after the last heartbeat
     assert bench.clock.now_ns() - bench.last_master_heartbeat_ns == 510 * MS
-    assert slave.nmt_state == STATE_PRE_OPERATIONAL             # 0x1029:01 = 0 (factory)
+    assert slave.nmt_state == STATE_PRE_OPERATIONAL  # 0x1029:01 = 0 (factory)
     errors = [e for e in slave.events if e[0] == "comm error"]
     assert len(errors) == 1
     assert ("state", STATE_OPERATIONAL, STATE_PRE_OPERATIONAL) in slave.events
     bench.master_heartbeat_ms = 100
     bench.run_ms(20)
     assert not slave.heartbeat_lost and ("comm restored",) in slave.events
-    assert slave.nmt_state == STATE_PRE_OPERATIONAL             # back in Operational only by NMT
+    assert slave.nmt_state == STATE_PRE_OPERATIONAL  # back in Operational only by NMT
 
 
 @pytest.mark.parametrize("behaviour, state", [(1, STATE_OPERATIONAL), (2, STATE_STOPPED)])
 def test_heartbeat_loss_follows_the_error_behaviour_object(bench, slave, behaviour, state):
-    _watch_master(bench, behaviour)                             # 0x1029:01: 1 no change, 2 stopped
+    _watch_master(bench, behaviour)  # 0x1029:01: 1 no change, 2 stopped
     bench.master_heartbeat_ms = 100
     bench.run_ms(300)
     bench.master_heartbeat_ms = 0
@@ -217,13 +220,14 @@ def test_heartbeat_loss_follows_the_error_behaviour_object(bench, slave, behavio
 
 # ---------------------------------------------------------------------------- SDO server
 
+
 def test_sdo_aborts_for_read_only_missing_objects_and_sub_indices(bench, slave):
     assert bench.sdo(NODE, "23 18 10 01 00 00 00 00") == abort_frame(0x1018, 1, ABORT_READ_ONLY)
     assert bench.sdo_read(NODE, 0x2009, 0) == abort_frame(0x2009, 0, ABORT_NO_OBJECT)
     assert bench.sdo_read(NODE, 0x1018, 5) == abort_frame(0x1018, 5, ABORT_NO_SUBINDEX)
     # an ARRAY object (0x1003 has 5 history entries, manual 001 §4)
     assert bench.sdo_read(NODE, 0x1003, 6) == abort_frame(0x1003, 6, ABORT_NO_SUBINDEX)
-    assert bench.sdo_write(NODE, 0x1003, 0, 1, 1) == abort_frame(0x1003, 0, ABORT_VALUE_RANGE)   # "only 0"
+    assert bench.sdo_write(NODE, 0x1003, 0, 1, 1) == abort_frame(0x1003, 0, ABORT_VALUE_RANGE)  # "only 0"
     assert bench.sdo_write(NODE, 0x1029, 1, 3, 1) == abort_frame(0x1029, 1, ABORT_VALUE_RANGE)
 
 
@@ -235,6 +239,7 @@ def test_segmented_upload_of_the_hardware_version(bench, slave):
 
 
 # ---------------------------------------------------------------------------- PDO mapping
+
 
 def test_a_valid_pdo_is_not_remapped(bench, slave):
     assert bench.sdo_write(NODE, 0x1A00, 0, 0, 1) == abort_frame(0x1A00, 0, ABORT_DEVICE_STATE)
@@ -263,7 +268,7 @@ def test_mapping_refuses_what_cannot_be_mapped_or_does_not_fit(bench, slave):
     for sub, entry in ((1, 0x30000320), (2, 0x30000420), (3, 0x20040610)):
         assert bench.sdo_write(NODE, 0x1A00, sub, entry, 4) == write_ok(0x1A00, sub)
     assert bench.sdo_write(NODE, 0x1A00, 0, 3, 1) == abort_frame(0x1A00, 0, ABORT_PDO_LENGTH)
-    assert bench.sdo_write(NODE, 0x1A00, 0, 5, 1) == abort_frame(0x1A00, 0, ABORT_PDO_LENGTH)   # 4 entries
+    assert bench.sdo_write(NODE, 0x1A00, 0, 5, 1) == abort_frame(0x1A00, 0, ABORT_PDO_LENGTH)  # 4 entries
     assert bench.sdo_write(NODE, 0x1A00, 0, 2, 1) == write_ok(0x1A00, 0)
 
 
@@ -279,18 +284,19 @@ def test_a_remapped_tpdo_carries_what_the_master_mapped(bench, slave):
 
 # ---------------------------------------------------------------------------- TPDO transmission
 
+
 def test_tpdo_on_change_respects_the_inhibit_time(bench, slave):
-    _remap_tpdo1(bench, [0x20040610], inhibit_100us=1000)      # 100 ms
+    _remap_tpdo1(bench, [0x20040610], inhibit_100us=1000)  # 100 ms
     bench.nmt(NMT_START, NODE)
     bench.clear()
-    for value in range(1, 31):                                  # a new value every 10 ms for 300 ms
+    for value in range(1, 31):  # a new value every 10 ms for 300 ms
         slave.write(0x2004, 0x06, value)
         bench.run_ms(10)
     times = bench.times_of(TPDO1)
     assert all(b - a >= 100 * MS for a, b in zip(times, times[1:]))
     assert len(times) == 3
     bench.run_ms(200)
-    assert bench.frames_with(TPDO1)[-1] == (30).to_bytes(2, "little")   # the last change still goes out
+    assert bench.frames_with(TPDO1)[-1] == (30).to_bytes(2, "little")  # the last change still goes out
 
 
 def test_tpdo_event_timer_is_in_milliseconds(bench, slave):
@@ -305,13 +311,13 @@ def test_tpdo_event_timer_is_in_milliseconds(bench, slave):
 def test_synchronous_tpdos_type_0_on_change_and_type_3_every_third_sync(bench, slave):
     _remap_tpdo1(bench, [0x20040610], transmission=0)
     bench.nmt(NMT_START, NODE)
-    assert bench.frames_with(TPDO1) == []                       # synchronous: nothing before a SYNC
+    assert bench.frames_with(TPDO1) == []  # synchronous: nothing before a SYNC
     bench.send(0x080, b"")
     bench.send(0x080, b"")
-    assert len(bench.frames_with(TPDO1)) == 1                   # the first SYNC after entering Operational
+    assert len(bench.frames_with(TPDO1)) == 1  # the first SYNC after entering Operational
     slave.write(0x2004, 0x06, 7)
     bench.run_ms(50)
-    assert len(bench.frames_with(TPDO1)) == 1                   # a change waits for the SYNC
+    assert len(bench.frames_with(TPDO1)) == 1  # a change waits for the SYNC
     bench.send(0x080, b"")
     assert bench.frames_with(TPDO1)[-1] == b"\x07\x00"
 
@@ -328,21 +334,22 @@ def test_synchronous_tpdos_type_0_on_change_and_type_3_every_third_sync(bench, s
 
 def test_reserved_transmission_types_are_refused(bench, slave):
     assert bench.sdo_write(NODE, 0x1800, 2, 245, 1) == abort_frame(0x1800, 2, ABORT_VALUE_RANGE)
-    assert bench.sdo_write(NODE, 0x1800, 2, 253, 1) == abort_frame(0x1800, 2, ABORT_VALUE_RANGE)   # RTR only
+    assert bench.sdo_write(NODE, 0x1800, 2, 253, 1) == abort_frame(0x1800, 2, ABORT_VALUE_RANGE)  # RTR only
 
 
 # ---------------------------------------------------------------------------- RPDO
 
+
 def test_rpdo_only_in_operational_little_endian_into_the_mapped_objects(bench, slave):
     # RPDO1 factory mapping (manual 001 §4): 0x2008:05, 0x2008:04, 0x2008:01
     bench.send(RPDO1, "01 00 00 00 34 12")
-    assert slave.read(0x2008, 0x05) == 0 and ("rpdo", 1) not in slave.events     # pre-operational
+    assert slave.read(0x2008, 0x05) == 0 and ("rpdo", 1) not in slave.events  # pre-operational
     bench.nmt(NMT_START, NODE)
     bench.send(RPDO1, "01 00 00 00 34 12")
     assert slave.read(0x2008, 0x05) == 0x0001
-    assert slave.read(0x2008, 0x01) == 0x1234                   # digest 001 §7.2: 700 = 0x1234
+    assert slave.read(0x2008, 0x01) == 0x1234  # digest 001 §7.2: 700 = 0x1234
     assert ("rpdo", 1) in slave.events
-    bench.send(RPDO1, "08 00")                                  # shorter than the 6 mapped bytes
+    bench.send(RPDO1, "08 00")  # shorter than the 6 mapped bytes
     assert slave.read(0x2008, 0x05) == 0x0001
 
 
@@ -357,19 +364,22 @@ def test_a_synchronous_rpdo_takes_effect_at_the_next_sync(bench, slave):
 
 # ---------------------------------------------------------------------------- EMCY
 
+
 def test_emcy_frame_error_register_and_history(bench, slave):
     bench.nmt(NMT_START, NODE)
     bench.clear()
     slave.send_emcy(0x1000, 0x01, b"\x04\x00")
     slave.send_emcy(0x8130, 0x11)
     bench.pump.settle()
-    assert bench.frames_with(EMCY) == [bytes.fromhex("00 10 01 04 00 00 00 00"),
-                                       bytes.fromhex("30 81 11 00 00 00 00 00")]
+    assert bench.frames_with(EMCY) == [
+        bytes.fromhex("00 10 01 04 00 00 00 00"),
+        bytes.fromhex("30 81 11 00 00 00 00 00"),
+    ]
     assert bench.sdo_read(NODE, 0x1001, 0) == bytes.fromhex("4F 01 10 00 11 00 00 00")
     assert bench.sdo_read(NODE, 0x1003, 0) == bytes.fromhex("4F 03 10 00 02 00 00 00")
-    assert bench.sdo_read(NODE, 0x1003, 1) == bytes.fromhex("43 03 10 01 30 81 00 00")   # newest first
+    assert bench.sdo_read(NODE, 0x1003, 1) == bytes.fromhex("43 03 10 01 30 81 00 00")  # newest first
     assert bench.sdo_read(NODE, 0x1003, 2) == bytes.fromhex("43 03 10 02 00 10 00 00")
-    slave.send_emcy(0x0000, 0x00)                               # error reset: not in the history
+    slave.send_emcy(0x0000, 0x00)  # error reset: not in the history
     assert slave.read(0x1003, 0) == 2
     assert bench.sdo_write(NODE, 0x1003, 0, 0, 1) == write_ok(0x1003, 0)
     assert slave.read(0x1003, 0) == 0 and slave.read(0x1003, 1) == 0
@@ -393,6 +403,7 @@ def test_no_emcy_in_stopped(bench, slave):
 
 # ---------------------------------------------------------------------------- the cable
 
+
 def test_an_unplugged_slave_neither_hears_nor_speaks(bench, slave):
     assert bench.sdo_write(NODE, 0x1017, 0, 100, 2) == write_ok(0x1017, 0)
     slave.unplug()
@@ -404,15 +415,14 @@ def test_an_unplugged_slave_neither_hears_nor_speaks(bench, slave):
     assert slave.nmt_state == STATE_PRE_OPERATIONAL
     slave.plug()
     bench.run_ms(100)
-    assert bench.frames_with(HEARTBEAT) == [b"\x7F"]
+    assert bench.frames_with(HEARTBEAT) == [b"\x7f"]
     assert bench.sdo_read(NODE, 0x1018, 1) == bytes.fromhex("43 18 10 01 5A 00 00 03")
 
 
 def test_any_eds_will_do(bench):
     """The slave knows no device: the FC 280's EDS gives an FC 280-shaped node."""
     with _eds("fc280.eds") as path:
-        other = bench.add(RecordingSlave(1, eds=str(path), settings=bench.settings, clock=bench.clock,
-                                         pump=bench.pump))
+        other = bench.add(RecordingSlave(1, eds=str(path), settings=bench.settings, clock=bench.clock, pump=bench.pump))
     assert bench.frames_with(0x701) == [b"\x00"]
     vendor = other.read(0x1018, 1)
     assert bench.sdo_read(1, 0x1018, 1) == bytes.fromhex("43 18 10 01") + vendor.to_bytes(4, "little")

@@ -1,4 +1,5 @@
 """[[loopback]] (runtime/io/loopback/config.py)."""
+
 from __future__ import annotations
 
 from softplc.runtime.config import load_config
@@ -9,8 +10,10 @@ from ...config.support import EXAMPLES, PLC, addr, errors
 
 def test_example_loopback():
     cfg = load_config(EXAMPLES / "loopback.toml")
-    assert cfg.loopback == [LoopbackLink(addr("%QB0"), addr("%IB0"), 2, "loopback[0]"),
-                            LoopbackLink(addr("%QD1"), addr("%ID2"), 4, "loopback[1]")]
+    assert cfg.loopback == [
+        LoopbackLink(addr("%QB0"), addr("%IB0"), 2, "loopback[0]"),
+        LoopbackLink(addr("%QD1"), addr("%ID2"), 4, "loopback[1]"),
+    ]
     assert [(t.name, t.programs[0].program) for t in cfg.tasks] == [("Main", "Echo")]
 
 
@@ -18,17 +21,26 @@ def test_example_loopback():
 
 
 def test_loopback_errors(tmp_path):
-    assert errors(tmp_path, PLC + '[[loopback]]\nfrom = "%IB0"\nto = "%QB0"\nbytes = 0\n'
-                                  '[[loopback]]\nfrom = "%QX0.0"\nto = "%IX0.0"\nbytes = 1\n'
-                                  '[[loopback]]\nfrom = "%QB0"\nbytes = true\n'
-                                  '[[loopback]]\nfrom = 3\nto = "%IZ0"\nbytes = 1\nsize = 2\n') == [
+    assert errors(
+        tmp_path,
+        PLC + '[[loopback]]\nfrom = "%IB0"\nto = "%QB0"\nbytes = 0\n'
+        '[[loopback]]\nfrom = "%QX0.0"\nto = "%IX0.0"\nbytes = 1\n'
+        '[[loopback]]\nfrom = "%QB0"\nbytes = true\n'
+        '[[loopback]]\nfrom = 3\nto = "%IZ0"\nbytes = 1\nsize = 2\n',
+    ) == [
         ("loopback[0].bytes", "expected an integer >= 1 (got 0)"),
         ("loopback[0].from", "expected a %Q output address (got '%IB0', an input)"),
         ("loopback[0].to", "expected a %I input address (got '%QB0', an output)"),
-        ("loopback[1].from", "expected a %Q output byte, word, dword or lword address such as %QB0 "
-                             "(got '%QX0.0'); the link copies whole bytes"),
-        ("loopback[1].to", "expected a %I input byte, word, dword or lword address such as %IB0 "
-                           "(got '%IX0.0'); the link copies whole bytes"),
+        (
+            "loopback[1].from",
+            "expected a %Q output byte, word, dword or lword address such as %QB0 "
+            "(got '%QX0.0'); the link copies whole bytes",
+        ),
+        (
+            "loopback[1].to",
+            "expected a %I input byte, word, dword or lword address such as %IB0 "
+            "(got '%IX0.0'); the link copies whole bytes",
+        ),
         ("loopback[2].to", 'required key missing (expected a %I byte/word/dword/lword address such as "%IB0")'),
         ("loopback[2].bytes", "expected an integer >= 1 (got true)"),
         ("loopback[3].size", "unknown key (expected one of from, to, bytes)"),

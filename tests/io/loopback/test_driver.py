@@ -1,5 +1,6 @@
 """The loopback driver alone (no engine): what a program writes to %Q at
 the end of cycle n is in %I at the start of cycle n+1."""
+
 from __future__ import annotations
 
 import pytest
@@ -63,7 +64,10 @@ def test_several_links_and_a_byte_count_beyond_the_address():
     st = drv.status()
     assert st.ok and st.message == "10 bytes looped in 3 links, 1 exchanges"
     assert [str(link) for link in drv.links] == [
-        "%QW0 -> %IW10, 2 bytes", "%QB4 -> %IB24, 4 bytes", "%QD2 -> %ID8, 4 bytes"]
+        "%QW0 -> %IW10, 2 bytes",
+        "%QB4 -> %IB24, 4 bytes",
+        "%QD2 -> %ID8, 4 bytes",
+    ]
 
 
 def test_the_safe_output_view_is_what_gets_looped():
@@ -79,8 +83,7 @@ def test_the_safe_output_view_is_what_gets_looped():
 
 def test_schneider_words():
     # word indices: %QW10 is bytes 20-21, %IW20 bytes 40-41; a :n table is n words
-    drv = LoopbackDriver("lb", [("%QW10:3", "%IW20:3", None), ("%QD40", "%ID50", None)],
-                         addressing="schneider")
+    drv = LoopbackDriver("lb", [("%QW10:3", "%IW20:3", None), ("%QD40", "%ID50", None)], addressing="schneider")
     image = ProcessImage("schneider")
     image.write("%QW10:3", [1, 2, 3])
     image.write("%QD40", 0x00032007)
@@ -93,12 +96,18 @@ def test_schneider_words():
 
 def test_a_compiled_program_counts_through_the_loop():
     # %QW0 := %IW0 + 1 through the loopback: one step per cycle, exactly.
-    prog = compile_files([], profile="codesys", texts={"count.st": """
+    prog = compile_files(
+        [],
+        profile="codesys",
+        texts={
+            "count.st": """
 PROGRAM count
 VAR n_in AT %IW0 : INT; n_out AT %QW0 : INT; END_VAR
 n_out := n_in + 1;
 END_PROGRAM
-"""})
+"""
+        },
+    )
     image = ProcessImage("iec")
     runner = prog.runner("count", ctx=ExecContext(image))
     drv = LoopbackDriver("lb", [(parse_address("%QW0"), parse_address("%IW0"), 2)])
@@ -109,22 +118,31 @@ END_PROGRAM
     drv.stop()
 
 
-@pytest.mark.parametrize("links, message", [
-    ([("%QW0", "%QW10", 2)], "lb: link 0 (%QW0 -> %QW10): a link copies %Q outputs to %I inputs, not %Q to %Q"),
-    ([("%IW0", "%IW10", 2)], "not %I to %I"),
-    ([("%QW0", "%IW0", 2), ("%QX0.1", "%IB4", 1)],
-     "lb: link 1 (%QX0.1 -> %IB4): %QX0.1 is a bit; drivers copy whole bytes"),
-    ([("%QW0", "%IW0", 2), ("%QW1", "%IW2", 2), ("%QB9", "%IB1", 1)],
-     "lb: link 2 (%QB9 -> %IB1, 1 byte) writes inputs that link 0 (%QW0 -> %IW0, 2 bytes) already writes"),
-    ([("%QW0", "%IW32768", 2)], "lb: link 0 (%QW0 -> %IW32768): %IW32768 (bytes 65536..65537) is outside"),
-    ([("%QB65535", "%IB0", 2)],
-     "lb: link 0 (%QB65535 -> %IB0): 2 bytes from byte 65535 run past the end of the 65536-byte %Q area"),
-    ([("%QW0", "%IW0", 0)], "lb: link 0 (%QW0 -> %IW0): nbytes must be a positive integer, not 0"),
-    ([("%QW0", "%IW0", "2")], "nbytes must be a positive integer, not '2'"),
-    ([("%QZ0", "%IW0", 2)], "lb: link 0 (%QZ0 -> %IW0): '%QZ0' is not a direct address"),
-    ([("%QW0",)], "lb: link 0 must be (source, target, nbytes), not ('%QW0',)"),
-    ([("%QW0:2", "%IW0", 4)], "lb: link 0 (%QW0:2 -> %IW0): %QW0:2 is Schneider addressing"),
-])
+@pytest.mark.parametrize(
+    "links, message",
+    [
+        ([("%QW0", "%QW10", 2)], "lb: link 0 (%QW0 -> %QW10): a link copies %Q outputs to %I inputs, not %Q to %Q"),
+        ([("%IW0", "%IW10", 2)], "not %I to %I"),
+        (
+            [("%QW0", "%IW0", 2), ("%QX0.1", "%IB4", 1)],
+            "lb: link 1 (%QX0.1 -> %IB4): %QX0.1 is a bit; drivers copy whole bytes",
+        ),
+        (
+            [("%QW0", "%IW0", 2), ("%QW1", "%IW2", 2), ("%QB9", "%IB1", 1)],
+            "lb: link 2 (%QB9 -> %IB1, 1 byte) writes inputs that link 0 (%QW0 -> %IW0, 2 bytes) already writes",
+        ),
+        ([("%QW0", "%IW32768", 2)], "lb: link 0 (%QW0 -> %IW32768): %IW32768 (bytes 65536..65537) is outside"),
+        (
+            [("%QB65535", "%IB0", 2)],
+            "lb: link 0 (%QB65535 -> %IB0): 2 bytes from byte 65535 run past the end of the 65536-byte %Q area",
+        ),
+        ([("%QW0", "%IW0", 0)], "lb: link 0 (%QW0 -> %IW0): nbytes must be a positive integer, not 0"),
+        ([("%QW0", "%IW0", "2")], "nbytes must be a positive integer, not '2'"),
+        ([("%QZ0", "%IW0", 2)], "lb: link 0 (%QZ0 -> %IW0): '%QZ0' is not a direct address"),
+        ([("%QW0",)], "lb: link 0 must be (source, target, nbytes), not ('%QW0',)"),
+        ([("%QW0:2", "%IW0", 4)], "lb: link 0 (%QW0:2 -> %IW0): %QW0:2 is Schneider addressing"),
+    ],
+)
 def test_bad_links_are_refused_before_the_first_cycle(links, message):
     with pytest.raises(DriverError) as exc:
         LoopbackDriver("lb", links)
@@ -133,8 +151,9 @@ def test_bad_links_are_refused_before_the_first_cycle(links, message):
 
 def test_an_image_of_another_layout_is_refused():
     drv = LoopbackDriver("lb", [("%QW0", "%IW0", 2)], addressing="schneider")
-    with pytest.raises(DriverError, match="lb: configured for a 65536-byte schneider image, "
-                                          "given a 65536-byte iec one"):
+    with pytest.raises(
+        DriverError, match="lb: configured for a 65536-byte schneider image, given a 65536-byte iec one"
+    ):
         drv.read_inputs(ProcessImage("iec"))
 
 

@@ -2,6 +2,7 @@
 from a configuration as `softplc run` builds it) and simulated Eaton drives
 behind a real pymodbus server, on a pseudo-terminal cable (RTU) or on
 127.0.0.1 (TCP)."""
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -30,15 +31,22 @@ SILENT_TIMEOUT = "30ms"
 
 def connection(transport: str, **extra) -> dict:
     """A [[modbus]] table named "drives" to the simulated drives."""
-    table = {"name": "drives", "transport": transport, "timeout": TIMEOUT, "retries": 0, "reconnect": "100ms",
-             "reconnect_max": "400ms"}
+    table = {
+        "name": "drives",
+        "transport": transport,
+        "timeout": TIMEOUT,
+        "retries": 0,
+        "reconnect": "100ms",
+        "reconnect_max": "400ms",
+    }
     table.update({"device": "sim", "baud": 115200} if transport == "rtu" else {"port": 0})
     table.update(extra)
     return table
 
 
-def plant_config(tmp_path: Path, source, *, program, transport="tcp", sims=None, channels=(),
-                 interval="10ms", **conn_extra) -> dict:
+def plant_config(
+    tmp_path: Path, source, *, program, transport="tcp", sims=None, channels=(), interval="10ms", **conn_extra
+) -> dict:
     """source: ST text or a list of ST files; program: PROGRAM names (or
     {instance, program} tables) for the one task."""
     if isinstance(source, str):
@@ -51,8 +59,13 @@ def plant_config(tmp_path: Path, source, *, program, transport="tcp", sims=None,
     conn["channel"] = list(channels)
     return {
         "plc": {"programs": files},
-        "task": [{"name": "Main", "interval": interval,
-                  "programs": [program] if isinstance(program, (str, dict)) else list(program)}],
+        "task": [
+            {
+                "name": "Main",
+                "interval": interval,
+                "programs": [program] if isinstance(program, (str, dict)) else list(program),
+            }
+        ],
         "modbus": [conn],
         "sim": sims if sims is not None else [{"type": "da1", "unit": 1}],
     }
@@ -114,6 +127,7 @@ def plants(tmp_path):
         plant = Plant(data, tmp_path)
         made.append(plant)
         return plant
+
     yield make
     for plant in made:
         plant.stop()

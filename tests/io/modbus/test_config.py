@@ -1,5 +1,6 @@
 """[[modbus]] and [[modbus.channel]] (runtime/io/modbus/config.py), and
 simulated devices on a Modbus line."""
+
 from __future__ import annotations
 
 import pytest
@@ -35,37 +36,107 @@ def channel(function, body: str = "", unit: int = 1, offset: int = 0) -> str:
     return f"[[modbus.channel]]\nunit = {unit}\nfunction = {function}\noffset = {offset}\n{body}"
 
 
-def connection(name: str = "drives", transport: str = "rtu", device: str = "sim", host: str = "127.0.0.1",
-               port: int = 502, baud: int = 19200, timeout_ms: int = 200, retries: int = 1,
-               reconnect_ms: int = 1000, channels: tuple = (), key: str = "modbus[0]",
-               **serial) -> ModbusConnectionConfig:
+def connection(
+    name: str = "drives",
+    transport: str = "rtu",
+    device: str = "sim",
+    host: str = "127.0.0.1",
+    port: int = 502,
+    baud: int = 19200,
+    timeout_ms: int = 200,
+    retries: int = 1,
+    reconnect_ms: int = 1000,
+    channels: tuple = (),
+    key: str = "modbus[0]",
+    **serial,
+) -> ModbusConnectionConfig:
     """A ModbusConnectionConfig with the defaults of the file format."""
     settings = dict(parity="N", stop_bits=1, data_bits=8, frame_gap_us=None) | serial
     return ModbusConnectionConfig(
-        name=name, transport=transport, device=device, baud=baud, host=host, port=port,
-        timeout_ms=timeout_ms, retries=retries, reconnect_ms=reconnect_ms, reconnect_max_ms=10_000,
-        channels=list(channels), key=key, **settings)
+        name=name,
+        transport=transport,
+        device=device,
+        baud=baud,
+        host=host,
+        port=port,
+        timeout_ms=timeout_ms,
+        retries=retries,
+        reconnect_ms=reconnect_ms,
+        reconnect_max_ms=10_000,
+        channels=list(channels),
+        key=key,
+        **settings,
+    )
 
 
-def read_channel(name: str, connection: str = "drives", key: str = CH, unit: int = 1, function: int = 3,
-                 offset: int = 5, count: int = 5, read_to: str = "%IW200", **more) -> ModbusChannelConfig:
-    values = dict(write_offset=0, write_count=0, write_from=None, trigger="cyclic", period_ns=100 * MS,
-                  edge=None) | more
-    return ModbusChannelConfig(name=name, connection=connection, unit=unit, function=function, offset=offset,
-                               count=count, read_to=addr(read_to) if read_to else None, key=key, **values)
+def read_channel(
+    name: str,
+    connection: str = "drives",
+    key: str = CH,
+    unit: int = 1,
+    function: int = 3,
+    offset: int = 5,
+    count: int = 5,
+    read_to: str = "%IW200",
+    **more,
+) -> ModbusChannelConfig:
+    values = (
+        dict(write_offset=0, write_count=0, write_from=None, trigger="cyclic", period_ns=100 * MS, edge=None) | more
+    )
+    return ModbusChannelConfig(
+        name=name,
+        connection=connection,
+        unit=unit,
+        function=function,
+        offset=offset,
+        count=count,
+        read_to=addr(read_to) if read_to else None,
+        key=key,
+        **values,
+    )
 
 
 def test_example_modbus_rtu():
     cfg = load_config(EXAMPLES / "modbus_rtu.toml")
     assert cfg.programs == [ST / "eaton_drive.st"]
     assert [(t.name, t.interval_ns, t.programs[0].instance) for t in cfg.tasks] == [("DriveTask", 10 * MS, "Drive")]
-    assert cfg.modbus == [ModbusConnectionConfig(
-        name="drives", transport="rtu", device="sim", baud=115200, parity="N", stop_bits=1, data_bits=8,
-        frame_gap_us=None, host="127.0.0.1", port=502, timeout_ms=100, retries=1, reconnect_ms=1000,
-        reconnect_max_ms=10_000, key="modbus[0]", channels=[ModbusChannelConfig(
-            name="drive_monitor", connection="drives", unit=1, function=3, offset=5, count=5, write_offset=0,
-            write_count=0, read_to=addr("%IW200"), write_from=None, trigger="cyclic", period_ns=100 * MS,
-            edge=None, key="modbus[0].channel[0]")])]
+    assert cfg.modbus == [
+        ModbusConnectionConfig(
+            name="drives",
+            transport="rtu",
+            device="sim",
+            baud=115200,
+            parity="N",
+            stop_bits=1,
+            data_bits=8,
+            frame_gap_us=None,
+            host="127.0.0.1",
+            port=502,
+            timeout_ms=100,
+            retries=1,
+            reconnect_ms=1000,
+            reconnect_max_ms=10_000,
+            key="modbus[0]",
+            channels=[
+                ModbusChannelConfig(
+                    name="drive_monitor",
+                    connection="drives",
+                    unit=1,
+                    function=3,
+                    offset=5,
+                    count=5,
+                    write_offset=0,
+                    write_count=0,
+                    read_to=addr("%IW200"),
+                    write_from=None,
+                    trigger="cyclic",
+                    period_ns=100 * MS,
+                    edge=None,
+                    key="modbus[0].channel[0]",
+                )
+            ],
+        )
+    ]
     assert cfg.sims == [SimConfig("da1", "da1_1", "sim[0]", ModbusUnit("drives", 1), Registers({505: 20}))]
     assert (cfg.can, cfg.canopen) == ([], None)
 
@@ -74,13 +145,43 @@ def test_example_modbus_tcp():
     cfg = load_config(EXAMPLES / "modbus_tcp.toml")
     assert cfg.programs == [ST / "eaton_drive.st"]
     # a TCP connection carries the serial defaults too; nothing uses them
-    assert cfg.modbus == [ModbusConnectionConfig(
-        name="drives", transport="tcp", device="", baud=19200, parity="N", stop_bits=1, data_bits=8,
-        frame_gap_us=None, host="127.0.0.1", port=0, timeout_ms=200, retries=0, reconnect_ms=500,
-        reconnect_max_ms=10_000, key="modbus[0]", channels=[ModbusChannelConfig(
-            name="drive_monitor", connection="drives", unit=1, function=3, offset=5, count=5, write_offset=0,
-            write_count=0, read_to=addr("%IW200"), write_from=None, trigger="cyclic", period_ns=100 * MS,
-            edge=None, key="modbus[0].channel[0]")])]
+    assert cfg.modbus == [
+        ModbusConnectionConfig(
+            name="drives",
+            transport="tcp",
+            device="",
+            baud=19200,
+            parity="N",
+            stop_bits=1,
+            data_bits=8,
+            frame_gap_us=None,
+            host="127.0.0.1",
+            port=0,
+            timeout_ms=200,
+            retries=0,
+            reconnect_ms=500,
+            reconnect_max_ms=10_000,
+            key="modbus[0]",
+            channels=[
+                ModbusChannelConfig(
+                    name="drive_monitor",
+                    connection="drives",
+                    unit=1,
+                    function=3,
+                    offset=5,
+                    count=5,
+                    write_offset=0,
+                    write_count=0,
+                    read_to=addr("%IW200"),
+                    write_from=None,
+                    trigger="cyclic",
+                    period_ns=100 * MS,
+                    edge=None,
+                    key="modbus[0].channel[0]",
+                )
+            ],
+        )
+    ]
     assert cfg.sims == [SimConfig("dc1", "dc1_1", "sim[0]", ModbusUnit("drives", 1), Registers({}))]
 
 
@@ -103,334 +204,563 @@ def test_modbus_tcp_defaults(tmp_path):
 
 
 def test_modbus_settings(tmp_path):
-    cfg = load(tmp_path, PLC + '[[modbus]]\nname = "Line"\ntransport = "RTU"\ndevice = "/dev/ttyS1"\n'
-                               'baud = 9600\nparity = "e"\nstop_bits = 2\ndata_bits = 7\nframe_gap = "2ms"\n'
-                               'timeout = "T#1s"\nretries = 10\nreconnect = 250\nreconnect_max = "1m"\n'
-                               '[[modbus]]\nname = "gw"\ntransport = "Tcp"\nhost = "192.168.0.20"\n'
-                               'port = 5020\nretries = 0\n')
+    cfg = load(
+        tmp_path,
+        PLC + '[[modbus]]\nname = "Line"\ntransport = "RTU"\ndevice = "/dev/ttyS1"\n'
+        'baud = 9600\nparity = "e"\nstop_bits = 2\ndata_bits = 7\nframe_gap = "2ms"\n'
+        'timeout = "T#1s"\nretries = 10\nreconnect = 250\nreconnect_max = "1m"\n'
+        '[[modbus]]\nname = "gw"\ntransport = "Tcp"\nhost = "192.168.0.20"\n'
+        "port = 5020\nretries = 0\n",
+    )
     assert cfg.modbus == [
-        ModbusConnectionConfig("Line", "rtu", "/dev/ttyS1", 9600, "E", 2, 7, 2000, "127.0.0.1", 502, 1000, 10,
-                               250, 60_000, [], "modbus[0]"),
-        connection("gw", "tcp", device="", host="192.168.0.20", port=5020, retries=0, key="modbus[1]")]
+        ModbusConnectionConfig(
+            "Line", "rtu", "/dev/ttyS1", 9600, "E", 2, 7, 2000, "127.0.0.1", 502, 1000, 10, 250, 60_000, [], "modbus[0]"
+        ),
+        connection("gw", "tcp", device="", host="192.168.0.20", port=5020, retries=0, key="modbus[1]"),
+    ]
 
 
 def test_modbus_channels(tmp_path):
-    cfg = load(tmp_path, PLC + RTU + READ
-               + channel(16, 'name = "Setpoints"\ncount = 2\nwrite_from = "%QW10"\ntrigger = "CHANGE"\n'
-                             'period = "1s"\n', unit=0, offset=1)
-               + channel(23, 'write_offset = 0\nwrite_count = 2\nread_to = "%MW4"\nwrite_from = "%MW0"\n'
-                             'count = 6\ntrigger = "edge"\nedge = "%QX0.0"\n', unit=247)
-               + channel(1, 'count = 16\nread_to = "%IB0"\n', unit=2)
-               + channel(5, 'write_from = "%QB7"\ntrigger = "edge"\nedge = "%MX1.7"\n')
-               + TCP + READ)
+    cfg = load(
+        tmp_path,
+        PLC
+        + RTU
+        + READ
+        + channel(
+            16,
+            'name = "Setpoints"\ncount = 2\nwrite_from = "%QW10"\ntrigger = "CHANGE"\nperiod = "1s"\n',
+            unit=0,
+            offset=1,
+        )
+        + channel(
+            23,
+            'write_offset = 0\nwrite_count = 2\nread_to = "%MW4"\nwrite_from = "%MW0"\n'
+            'count = 6\ntrigger = "edge"\nedge = "%QX0.0"\n',
+            unit=247,
+        )
+        + channel(1, 'count = 16\nread_to = "%IB0"\n', unit=2)
+        + channel(5, 'write_from = "%QB7"\ntrigger = "edge"\nedge = "%MX1.7"\n')
+        + TCP
+        + READ,
+    )
     assert cfg.modbus == [
-        connection(channels=[
-            read_channel("drives_0"),
-            ModbusChannelConfig("Setpoints", "drives", 0, 16, 1, 2, 0, 0, None, addr("%QW10"), "change",
-                                1000 * MS, None, "modbus[0].channel[1]"),
-            ModbusChannelConfig("drives_2", "drives", 247, 23, 0, 6, 0, 2, addr("%MW4"), addr("%MW0"), "edge",
-                                100 * MS, addr("%QX0.0"), "modbus[0].channel[2]"),
-            read_channel("drives_3", key="modbus[0].channel[3]", unit=2, function=1, offset=0, count=16,
-                         read_to="%IB0"),
-            ModbusChannelConfig("drives_4", "drives", 1, 5, 0, 1, 0, 0, None, addr("%QB7"), "edge", 100 * MS,
-                                addr("%MX1.7"), "modbus[0].channel[4]")]),
-        connection("gateway", "tcp", device="", key="modbus[1]",
-                   channels=[read_channel("gateway_0", "gateway", "modbus[1].channel[0]")])]
+        connection(
+            channels=[
+                read_channel("drives_0"),
+                ModbusChannelConfig(
+                    "Setpoints",
+                    "drives",
+                    0,
+                    16,
+                    1,
+                    2,
+                    0,
+                    0,
+                    None,
+                    addr("%QW10"),
+                    "change",
+                    1000 * MS,
+                    None,
+                    "modbus[0].channel[1]",
+                ),
+                ModbusChannelConfig(
+                    "drives_2",
+                    "drives",
+                    247,
+                    23,
+                    0,
+                    6,
+                    0,
+                    2,
+                    addr("%MW4"),
+                    addr("%MW0"),
+                    "edge",
+                    100 * MS,
+                    addr("%QX0.0"),
+                    "modbus[0].channel[2]",
+                ),
+                read_channel(
+                    "drives_3", key="modbus[0].channel[3]", unit=2, function=1, offset=0, count=16, read_to="%IB0"
+                ),
+                ModbusChannelConfig(
+                    "drives_4",
+                    "drives",
+                    1,
+                    5,
+                    0,
+                    1,
+                    0,
+                    0,
+                    None,
+                    addr("%QB7"),
+                    "edge",
+                    100 * MS,
+                    addr("%MX1.7"),
+                    "modbus[0].channel[4]",
+                ),
+            ]
+        ),
+        connection(
+            "gateway",
+            "tcp",
+            device="",
+            key="modbus[1]",
+            channels=[read_channel("gateway_0", "gateway", "modbus[1].channel[0]")],
+        ),
+    ]
 
 
 def test_modbus_section_shapes(tmp_path):
-    assert error(tmp_path, PLC + '[modbus]\ntransport = "tcp"\n') == \
-        ("modbus", "expected [[modbus]] tables (got a table)")
+    assert error(tmp_path, PLC + '[modbus]\ntransport = "tcp"\n') == (
+        "modbus",
+        "expected [[modbus]] tables (got a table)",
+    )
     assert error(tmp_path, PLC + TCP + 'hots = "x"\n') == ("modbus[0].hots", "unknown key (did you mean 'host'?)")
     assert errors(tmp_path, PLC + TCP + '[[modbus.channel]]\nname = "1st"\nperiod = "0ms"\ncount = 0\n') == [
-        (f"{CH}.name", "expected a channel name: an IEC identifier (letters, digits, _; not starting with a "
-                       "digit) (got '1st')"),
+        (
+            f"{CH}.name",
+            "expected a channel name: an IEC identifier (letters, digits, _; not starting with a digit) (got '1st')",
+        ),
         (f"{CH}.unit", "required key missing (expected a unit id from 1 to 247 (0: broadcast write))"),
         (f"{CH}.function", "required key missing (expected a function code: 1, 2, 3, 4, 5, 6, 15, 16, 23)"),
-        (f"{CH}.offset", "required key missing (expected a PDU address from 0 to 65535 (Eaton ID n is offset "
-                         "n-1))"),
+        (f"{CH}.offset", "required key missing (expected a PDU address from 0 to 65535 (Eaton ID n is offset n-1))"),
         (f"{CH}.count", "expected an integer from 1 to 2000 (got 0)"),
-        (f"{CH}.period", "expected a duration > 0 such as 10ms, 1s, T#250ms (got '0ms')")]
+        (f"{CH}.period", "expected a duration > 0 such as 10ms, 1s, T#250ms (got '0ms')"),
+    ]
 
 
 def test_modbus_transport(tmp_path):
-    assert error(tmp_path, PLC + '[[modbus]]\ndevice = "sim"\n') == \
-        ("modbus[0].transport", "required key missing (expected 'rtu' or 'tcp')")
-    assert error(tmp_path, PLC + '[[modbus]]\ntransport = "udp"\n') == \
-        ("modbus[0].transport", "expected one of 'rtu', 'tcp' (got 'udp')")
-    assert error(tmp_path, PLC + '[[modbus]]\ntransport = "tpc"\n') == \
-        ("modbus[0].transport", "expected one of 'rtu', 'tcp' (got 'tpc'; did you mean 'tcp'?)")
-    assert error(tmp_path, PLC + '[[modbus]]\ntransport = 1\n') == \
-        ("modbus[0].transport", "expected one of 'rtu', 'tcp' (got 1)")
+    assert error(tmp_path, PLC + '[[modbus]]\ndevice = "sim"\n') == (
+        "modbus[0].transport",
+        "required key missing (expected 'rtu' or 'tcp')",
+    )
+    assert error(tmp_path, PLC + '[[modbus]]\ntransport = "udp"\n') == (
+        "modbus[0].transport",
+        "expected one of 'rtu', 'tcp' (got 'udp')",
+    )
+    assert error(tmp_path, PLC + '[[modbus]]\ntransport = "tpc"\n') == (
+        "modbus[0].transport",
+        "expected one of 'rtu', 'tcp' (got 'tpc'; did you mean 'tcp'?)",
+    )
+    assert error(tmp_path, PLC + "[[modbus]]\ntransport = 1\n") == (
+        "modbus[0].transport",
+        "expected one of 'rtu', 'tcp' (got 1)",
+    )
 
 
 def test_modbus_rtu_needs_a_device(tmp_path):
-    assert error(tmp_path, PLC + '[[modbus]]\ntransport = "rtu"\n') == \
-        ("modbus[0]", f"required key missing: device ({DEVICE})")
-    assert error(tmp_path, PLC + '[[modbus]]\ntransport = "rtu"\ndevice = ""\n') == \
-        ("modbus[0].device", f"expected {DEVICE} (got '')")
+    assert error(tmp_path, PLC + '[[modbus]]\ntransport = "rtu"\n') == (
+        "modbus[0]",
+        f"required key missing: device ({DEVICE})",
+    )
+    assert error(tmp_path, PLC + '[[modbus]]\ntransport = "rtu"\ndevice = ""\n') == (
+        "modbus[0].device",
+        f"expected {DEVICE} (got '')",
+    )
 
 
 def test_modbus_keys_of_the_other_transport(tmp_path):
     assert errors(tmp_path, PLC + RTU + 'host = "192.168.0.20"\nport = 502\n') == [
-        ("modbus[0].host", ONLY_TCP), ("modbus[0].port", ONLY_TCP)]
-    assert errors(tmp_path, PLC + TCP + 'device = "sim"\nbaud = 9600\nparity = "E"\nstop_bits = 1\n'
-                                        'data_bits = 8\nframe_gap = "2ms"\n') == [
-        ("modbus[0].device", ONLY_RTU), ("modbus[0].baud", ONLY_RTU), ("modbus[0].parity", ONLY_RTU),
-        ("modbus[0].stop_bits", ONLY_RTU), ("modbus[0].data_bits", ONLY_RTU), ("modbus[0].frame_gap", ONLY_RTU)]
+        ("modbus[0].host", ONLY_TCP),
+        ("modbus[0].port", ONLY_TCP),
+    ]
+    assert errors(
+        tmp_path,
+        PLC + TCP + 'device = "sim"\nbaud = 9600\nparity = "E"\nstop_bits = 1\ndata_bits = 8\nframe_gap = "2ms"\n',
+    ) == [
+        ("modbus[0].device", ONLY_RTU),
+        ("modbus[0].baud", ONLY_RTU),
+        ("modbus[0].parity", ONLY_RTU),
+        ("modbus[0].stop_bits", ONLY_RTU),
+        ("modbus[0].data_bits", ONLY_RTU),
+        ("modbus[0].frame_gap", ONLY_RTU),
+    ]
 
 
 def test_modbus_serial_values_refused(tmp_path):
-    assert errors(tmp_path, PLC + RTU + 'baud = 12345\nparity = "X"\nstop_bits = 3\ndata_bits = 9\n'
-                                        'frame_gap = "2s"\n') == [
+    assert errors(
+        tmp_path, PLC + RTU + 'baud = 12345\nparity = "X"\nstop_bits = 3\ndata_bits = 9\nframe_gap = "2s"\n'
+    ) == [
         ("modbus[0].baud", "expected one of 1200, 2400, 4800, 9600, 19200, 38400, 57600, 115200 (got 12345)"),
         ("modbus[0].parity", "expected one of 'N', 'E', 'O' (got 'X')"),
         ("modbus[0].stop_bits", "expected one of 1, 2 (got 3)"),
         ("modbus[0].data_bits", "expected one of 7, 8 (got 9)"),
-        ("modbus[0].frame_gap", "expected a duration of at most 1000000us (at most 1s) (got '2s')")]
+        ("modbus[0].frame_gap", "expected a duration of at most 1000000us (at most 1s) (got '2s')"),
+    ]
     assert errors(tmp_path, PLC + TCP + 'port = 70000\nretries = 11\nhost = ""\n') == [
         ("modbus[0].host", "expected a host such as \"192.168.0.20\" (got '')"),
         ("modbus[0].port", "expected an integer from 0 to 65535 (got 70000)"),
-        ("modbus[0].retries", "expected an integer from 0 to 10 (got 11)")]
+        ("modbus[0].retries", "expected an integer from 0 to 10 (got 11)"),
+    ]
 
 
 def test_duplicate_connection_names(tmp_path):
-    assert error(tmp_path, PLC + RTU + TCP.replace('"gateway"', '"DRIVES"')) == \
-        ("modbus[1].name", "duplicate connection name 'DRIVES' (modbus[0] has it; names are case-insensitive)")
-    assert error(tmp_path, PLC + '[[modbus]]\ntransport = "tcp"\n[[modbus]]\ntransport = "tcp"\n') == \
-        ("modbus[1]", "duplicate connection name 'modbus0' (modbus[0] has it; names are case-insensitive): "
-                      "give each [[modbus]] a name")
+    assert error(tmp_path, PLC + RTU + TCP.replace('"gateway"', '"DRIVES"')) == (
+        "modbus[1].name",
+        "duplicate connection name 'DRIVES' (modbus[0] has it; names are case-insensitive)",
+    )
+    assert error(tmp_path, PLC + '[[modbus]]\ntransport = "tcp"\n[[modbus]]\ntransport = "tcp"\n') == (
+        "modbus[1]",
+        "duplicate connection name 'modbus0' (modbus[0] has it; names are case-insensitive): "
+        "give each [[modbus]] a name",
+    )
 
 
 def test_duplicate_channel_names(tmp_path):
-    assert error(tmp_path, PLC + RTU + READ + 'name = "monitor"\n' + READ + 'name = "Monitor"\n') == \
-        ("modbus[0].channel[1].name", "duplicate channel name 'Monitor' (channel[0] has it; "
-         "names are case-insensitive)")
+    assert error(tmp_path, PLC + RTU + READ + 'name = "monitor"\n' + READ + 'name = "Monitor"\n') == (
+        "modbus[0].channel[1].name",
+        "duplicate channel name 'Monitor' (channel[0] has it; names are case-insensitive)",
+    )
     # channel names are per connection
     cfg = load(tmp_path, PLC + RTU + READ + 'name = "monitor"\n' + TCP + READ + 'name = "monitor"\n')
     assert [[c.name for c in m.channels] for m in cfg.modbus] == [["monitor"], ["monitor"]]
 
 
 def test_modbus_function_codes(tmp_path):
-    assert error(tmp_path, PLC + RTU + channel(7)) == \
-        (f"{CH}.function", "expected one of 1, 2, 3, 4, 5, 6, 15, 16, 23 (got 7)")
-    assert error(tmp_path, PLC + RTU + channel("true")) == \
-        (f"{CH}.function", "expected one of 1, 2, 3, 4, 5, 6, 15, 16, 23 (got true)")
+    assert error(tmp_path, PLC + RTU + channel(7)) == (
+        f"{CH}.function",
+        "expected one of 1, 2, 3, 4, 5, 6, 15, 16, 23 (got 7)",
+    )
+    assert error(tmp_path, PLC + RTU + channel("true")) == (
+        f"{CH}.function",
+        "expected one of 1, 2, 3, 4, 5, 6, 15, 16, 23 (got true)",
+    )
 
 
-@pytest.mark.parametrize("function, body, message", [
-    (3, 'count = 126\nread_to = "%IW0"\n', "function 3 carries at most 125 registers (got 126)"),
-    (4, 'count = 126\nread_to = "%IW0"\n', "function 4 carries at most 125 registers (got 126)"),
-    (16, 'count = 124\nwrite_from = "%QW0"\n', "function 16 carries at most 123 registers (got 124)"),
-    (15, 'count = 1969\nwrite_from = "%QB0"\n', "function 15 carries at most 1968 bits (got 1969)"),
-    (6, 'count = 2\nwrite_from = "%QW0"\n', "function 6 carries at most 1 register (got 2)"),
-    (5, 'count = 2\nwrite_from = "%QB0"\n', "function 5 carries at most 1 bit (got 2)"),
-    (23, 'count = 126\nread_to = "%IW0"\nwrite_from = "%QW0"\nwrite_offset = 0\nwrite_count = 1\n',
-     "function 23 carries at most 125 registers (got 126)"),
-    # beyond what any function carries: pass 1 says so, once
-    (1, 'count = 2001\nread_to = "%IB0"\n', "expected an integer from 1 to 2000 (got 2001)"),
-])
+@pytest.mark.parametrize(
+    "function, body, message",
+    [
+        (3, 'count = 126\nread_to = "%IW0"\n', "function 3 carries at most 125 registers (got 126)"),
+        (4, 'count = 126\nread_to = "%IW0"\n', "function 4 carries at most 125 registers (got 126)"),
+        (16, 'count = 124\nwrite_from = "%QW0"\n', "function 16 carries at most 123 registers (got 124)"),
+        (15, 'count = 1969\nwrite_from = "%QB0"\n', "function 15 carries at most 1968 bits (got 1969)"),
+        (6, 'count = 2\nwrite_from = "%QW0"\n', "function 6 carries at most 1 register (got 2)"),
+        (5, 'count = 2\nwrite_from = "%QB0"\n', "function 5 carries at most 1 bit (got 2)"),
+        (
+            23,
+            'count = 126\nread_to = "%IW0"\nwrite_from = "%QW0"\nwrite_offset = 0\nwrite_count = 1\n',
+            "function 23 carries at most 125 registers (got 126)",
+        ),
+        # beyond what any function carries: pass 1 says so, once
+        (1, 'count = 2001\nread_to = "%IB0"\n', "expected an integer from 1 to 2000 (got 2001)"),
+    ],
+)
 def test_modbus_count_limits(tmp_path, function, body, message):
     assert error(tmp_path, PLC + RTU + channel(function, body)) == (f"{CH}.count", message)
 
 
-@pytest.mark.parametrize("function, body", [
-    (3, 'count = 125\nread_to = "%IW0"\n'), (1, 'count = 2000\nread_to = "%IB0"\n'),
-    (16, 'count = 123\nwrite_from = "%QW0"\n'), (15, 'count = 1968\nwrite_from = "%QB0"\n'),
-    (23, 'count = 125\nread_to = "%IW0"\nwrite_from = "%QW0"\nwrite_offset = 0\nwrite_count = 121\n')])
+@pytest.mark.parametrize(
+    "function, body",
+    [
+        (3, 'count = 125\nread_to = "%IW0"\n'),
+        (1, 'count = 2000\nread_to = "%IB0"\n'),
+        (16, 'count = 123\nwrite_from = "%QW0"\n'),
+        (15, 'count = 1968\nwrite_from = "%QB0"\n'),
+        (23, 'count = 125\nread_to = "%IW0"\nwrite_from = "%QW0"\nwrite_offset = 0\nwrite_count = 121\n'),
+    ],
+)
 def test_modbus_count_limits_accepted(tmp_path, function, body):
     assert load(tmp_path, PLC + RTU + channel(function, body)).modbus[0].channels[0].function == function
 
 
 def test_a_count_of_the_wrong_type_is_one_error(tmp_path):
     """Pass 2 sizes the block only with an integer count (a string once crashed it)."""
-    assert error(tmp_path, PLC + RTU + READ.replace("count = 5", 'count = "5"')) == \
-        (f"{CH}.count", "expected an integer from 1 to 2000 (got '5')")
+    assert error(tmp_path, PLC + RTU + READ.replace("count = 5", 'count = "5"')) == (
+        f"{CH}.count",
+        "expected an integer from 1 to 2000 (got '5')",
+    )
     body = 'read_to = "%IW0"\nwrite_from = "%QW0"\nwrite_offset = 0\nwrite_count = "2"\n'
-    assert error(tmp_path, PLC + RTU + channel(23, body)) == \
-        (f"{CH}.write_count", "expected an integer from 1 to 121 (got '2')")
+    assert error(tmp_path, PLC + RTU + channel(23, body)) == (
+        f"{CH}.write_count",
+        "expected an integer from 1 to 121 (got '2')",
+    )
 
 
 def test_function_23_write_block(tmp_path):
     rw = 'read_to = "%IW0"\nwrite_from = "%QW0"\n'
     assert errors(tmp_path, PLC + RTU + channel(23, rw)) == [
         (CH, "required key missing: write_offset (function 23 writes and reads)"),
-        (CH, "required key missing: write_count (function 23 writes and reads)")]
-    assert error(tmp_path, PLC + RTU + channel(23, rw + "write_offset = 0\nwrite_count = 122\n")) == \
-        (f"{CH}.write_count", "expected an integer from 1 to 121 (got 122)")
+        (CH, "required key missing: write_count (function 23 writes and reads)"),
+    ]
+    assert error(tmp_path, PLC + RTU + channel(23, rw + "write_offset = 0\nwrite_count = 122\n")) == (
+        f"{CH}.write_count",
+        "expected an integer from 1 to 121 (got 122)",
+    )
     assert errors(tmp_path, PLC + RTU + READ + "write_offset = 1\nwrite_count = 1\n") == [
         (f"{CH}.write_offset", "only for function 23 (offset and count give the block)"),
-        (f"{CH}.write_count", "only for function 23 (offset and count give the block)")]
+        (f"{CH}.write_count", "only for function 23 (offset and count give the block)"),
+    ]
 
 
 def test_channel_read_to(tmp_path):
-    assert error(tmp_path, PLC + RTU + channel(3)) == \
-        (CH, "required key missing: read_to (the image address the channel reads into)")
-    assert error(tmp_path, PLC + RTU + channel(3, 'read_to = "%QW0"\n')) == \
-        (f"{CH}.read_to", "expected an address in %I or %M (got '%QW0', an output)")
-    assert error(tmp_path, PLC + RTU + channel(3, 'read_to = "IW0"\n')) == \
-        (f"{CH}.read_to", "expected a direct address such as %IW100, %MW20 (got 'IW0')")
-    assert error(tmp_path, PLC + RTU + channel(3, "read_to = 200\n")) == \
-        (f"{CH}.read_to", "expected a direct address such as %IW100, %MW20 (got 200)")
-    assert error(tmp_path, PLC + RTU + READ + 'write_from = "%QW0"\n') == \
-        (f"{CH}.write_from", "function 3 does not use write_from")
+    assert error(tmp_path, PLC + RTU + channel(3)) == (
+        CH,
+        "required key missing: read_to (the image address the channel reads into)",
+    )
+    assert error(tmp_path, PLC + RTU + channel(3, 'read_to = "%QW0"\n')) == (
+        f"{CH}.read_to",
+        "expected an address in %I or %M (got '%QW0', an output)",
+    )
+    assert error(tmp_path, PLC + RTU + channel(3, 'read_to = "IW0"\n')) == (
+        f"{CH}.read_to",
+        "expected a direct address such as %IW100, %MW20 (got 'IW0')",
+    )
+    assert error(tmp_path, PLC + RTU + channel(3, "read_to = 200\n")) == (
+        f"{CH}.read_to",
+        "expected a direct address such as %IW100, %MW20 (got 200)",
+    )
+    assert error(tmp_path, PLC + RTU + READ + 'write_from = "%QW0"\n') == (
+        f"{CH}.write_from",
+        "function 3 does not use write_from",
+    )
 
 
 def test_channel_write_from(tmp_path):
-    assert error(tmp_path, PLC + RTU + channel(6)) == \
-        (CH, "required key missing: write_from (the image address the channel writes from)")
-    assert error(tmp_path, PLC + RTU + channel(6, 'write_from = "%IW0"\n')) == \
-        (f"{CH}.write_from", "expected an address in %Q or %M (got '%IW0', an input)")
-    assert error(tmp_path, PLC + RTU + channel(16, 'write_from = "%QW0"\nread_to = "%IW0"\n')) == \
-        (f"{CH}.read_to", "function 16 does not use read_to")
+    assert error(tmp_path, PLC + RTU + channel(6)) == (
+        CH,
+        "required key missing: write_from (the image address the channel writes from)",
+    )
+    assert error(tmp_path, PLC + RTU + channel(6, 'write_from = "%IW0"\n')) == (
+        f"{CH}.write_from",
+        "expected an address in %Q or %M (got '%IW0', an input)",
+    )
+    assert error(tmp_path, PLC + RTU + channel(16, 'write_from = "%QW0"\nread_to = "%IW0"\n')) == (
+        f"{CH}.read_to",
+        "function 16 does not use read_to",
+    )
 
 
 def test_channel_triggers(tmp_path):
-    assert error(tmp_path, PLC + RTU + READ + 'trigger = "change"\n') == \
-        (f"{CH}.trigger", "'change' watches the data to write; function 3 only reads (use 'cyclic' or 'edge')")
-    assert error(tmp_path, PLC + RTU + READ + 'trigger = "edge"\n') == \
-        (CH, 'required key missing: edge (the BOOL whose rising edge triggers, such as "%QX10.0")')
-    assert error(tmp_path, PLC + RTU + READ + 'trigger = "edge"\nedge = "%QW10"\n') == \
-        (f"{CH}.edge", "expected a BOOL (bit) address such as %QX10.0 (got '%QW10')")
-    assert error(tmp_path, PLC + RTU + READ + 'trigger = "edge"\nedge = true\n') == \
-        (f"{CH}.edge", "expected a direct address such as %QX10.0, %MX2.0 (got true)")
+    assert error(tmp_path, PLC + RTU + READ + 'trigger = "change"\n') == (
+        f"{CH}.trigger",
+        "'change' watches the data to write; function 3 only reads (use 'cyclic' or 'edge')",
+    )
+    assert error(tmp_path, PLC + RTU + READ + 'trigger = "edge"\n') == (
+        CH,
+        'required key missing: edge (the BOOL whose rising edge triggers, such as "%QX10.0")',
+    )
+    assert error(tmp_path, PLC + RTU + READ + 'trigger = "edge"\nedge = "%QW10"\n') == (
+        f"{CH}.edge",
+        "expected a BOOL (bit) address such as %QX10.0 (got '%QW10')",
+    )
+    assert error(tmp_path, PLC + RTU + READ + 'trigger = "edge"\nedge = true\n') == (
+        f"{CH}.edge",
+        "expected a direct address such as %QX10.0, %MX2.0 (got true)",
+    )
     assert error(tmp_path, PLC + RTU + READ + 'edge = "%QX10.0"\n') == (f"{CH}.edge", "only for trigger = 'edge'")
-    assert error(tmp_path, PLC + RTU + READ + 'trigger = "cyclic"\nedge = "%QX10.0"\n') == \
-        (f"{CH}.edge", "only for trigger = 'edge'")
-    assert error(tmp_path, PLC + RTU + READ + 'trigger = "rising"\n') == \
-        (f"{CH}.trigger", "expected one of 'cyclic', 'change', 'edge' (got 'rising')")
+    assert error(tmp_path, PLC + RTU + READ + 'trigger = "cyclic"\nedge = "%QX10.0"\n') == (
+        f"{CH}.edge",
+        "only for trigger = 'edge'",
+    )
+    assert error(tmp_path, PLC + RTU + READ + 'trigger = "rising"\n') == (
+        f"{CH}.trigger",
+        "expected one of 'cyclic', 'change', 'edge' (got 'rising')",
+    )
     cfg = load(tmp_path, PLC + RTU + READ + 'trigger = "edge"\nedge = "%IX3.1"\n')
     assert (cfg.modbus[0].channels[0].trigger, cfg.modbus[0].channels[0].edge) == ("edge", addr("%IX3.1"))
 
 
 def test_channel_unit_0_is_for_writes(tmp_path):
-    assert error(tmp_path, PLC + RTU + READ.replace("unit = 1", "unit = 0")) == \
-        (f"{CH}.unit", "unit 0 is the broadcast address: nobody answers, so only writes can go to it")
-    assert error(tmp_path, PLC + RTU + channel(23, 'read_to = "%IW0"\nwrite_from = "%QW0"\nwrite_offset = 0\n'
-                                                   'write_count = 1\n', unit=0)) == \
-        (f"{CH}.unit", "unit 0 is the broadcast address: nobody answers, so only writes can go to it")
-    assert error(tmp_path, PLC + RTU + READ.replace("unit = 1", "unit = 248")) == \
-        (f"{CH}.unit", "expected an integer from 0 to 247 (got 248)")
+    assert error(tmp_path, PLC + RTU + READ.replace("unit = 1", "unit = 0")) == (
+        f"{CH}.unit",
+        "unit 0 is the broadcast address: nobody answers, so only writes can go to it",
+    )
+    assert error(
+        tmp_path,
+        PLC + RTU + channel(23, 'read_to = "%IW0"\nwrite_from = "%QW0"\nwrite_offset = 0\nwrite_count = 1\n', unit=0),
+    ) == (f"{CH}.unit", "unit 0 is the broadcast address: nobody answers, so only writes can go to it")
+    assert error(tmp_path, PLC + RTU + READ.replace("unit = 1", "unit = 248")) == (
+        f"{CH}.unit",
+        "expected an integer from 0 to 247 (got 248)",
+    )
     cfg = load(tmp_path, PLC + RTU + channel(6, 'write_from = "%QW0"\n', unit=0))
     assert cfg.modbus[0].channels[0].unit == 0
 
 
 def test_channel_inside_the_image(tmp_path):
-    assert error(tmp_path, PLC + RTU + READ.replace("%IW200", "%IW32767").replace("count = 5", "count = 10")) == \
-        (f"{CH}.read_to", "10 registers from %IW32767 run past the end of the %I area")
-    assert error(tmp_path, PLC + RTU + channel(15, 'count = 16\nwrite_from = "%QB65535"\n')) == \
-        (f"{CH}.write_from", "16 bits from %QB65535 run past the end of the %Q area")
-    assert error(tmp_path, PLC + RTU + READ.replace("%IW200", "%IW40000")) == \
-        (f"{CH}.read_to", "%IW40000 (bytes 80000..80001) is outside the 65536-byte %I area")
-    assert error(tmp_path, PLC + RTU + channel(1, 'count = 8\nread_to = "%IX0.0"\n')) == \
-        (f"{CH}.read_to", "%IX0.0 is a bit; drivers copy whole bytes: give the byte or word that holds it "
-                          "(e.g. %IB0, %IW0)")
-    cfg = load(tmp_path, PLC + RTU + READ.replace("%IW200", "%IW32763") + channel(15, 'count = 8\nwrite_from = '
-                                                                                       '"%QB65535"\n'))
+    assert error(tmp_path, PLC + RTU + READ.replace("%IW200", "%IW32767").replace("count = 5", "count = 10")) == (
+        f"{CH}.read_to",
+        "10 registers from %IW32767 run past the end of the %I area",
+    )
+    assert error(tmp_path, PLC + RTU + channel(15, 'count = 16\nwrite_from = "%QB65535"\n')) == (
+        f"{CH}.write_from",
+        "16 bits from %QB65535 run past the end of the %Q area",
+    )
+    assert error(tmp_path, PLC + RTU + READ.replace("%IW200", "%IW40000")) == (
+        f"{CH}.read_to",
+        "%IW40000 (bytes 80000..80001) is outside the 65536-byte %I area",
+    )
+    assert error(tmp_path, PLC + RTU + channel(1, 'count = 8\nread_to = "%IX0.0"\n')) == (
+        f"{CH}.read_to",
+        "%IX0.0 is a bit; drivers copy whole bytes: give the byte or word that holds it (e.g. %IB0, %IW0)",
+    )
+    cfg = load(
+        tmp_path, PLC + RTU + READ.replace("%IW200", "%IW32763") + channel(15, 'count = 8\nwrite_from = "%QB65535"\n')
+    )
     assert [c.read_to or c.write_from for c in cfg.modbus[0].channels] == [addr("%IW32763"), addr("%QB65535")]
 
 
 def test_modbus_addresses_follow_the_profile(tmp_path):
     from softplc.runtime.image.address import parse_address
+
     schneider = '[plc]\nprograms = ["main.st"]\nprofile = "schneider"\n'
-    cfg = load(tmp_path, schneider + RTU + READ.replace('"%IW200"', '"%MW100"')
-               + channel(23, 'count = 2\nread_to = "%MW10:2"\nwrite_from = "%MW20:4"\nwrite_offset = 0\n'
-                             'write_count = 4\ntrigger = "edge"\nedge = "%MW30:X3"\n'))
+    cfg = load(
+        tmp_path,
+        schneider
+        + RTU
+        + READ.replace('"%IW200"', '"%MW100"')
+        + channel(
+            23,
+            'count = 2\nread_to = "%MW10:2"\nwrite_from = "%MW20:4"\nwrite_offset = 0\n'
+            'write_count = 4\ntrigger = "edge"\nedge = "%MW30:X3"\n',
+        ),
+    )
     assert cfg.profile == "schneider"
     first, second = cfg.modbus[0].channels
     assert first.read_to == parse_address("%MW100", "schneider")
-    assert (second.read_to, second.write_from, second.edge) == \
-        (parse_address("%MW10:2", "schneider"), parse_address("%MW20:4", "schneider"),
-         parse_address("%MW30:X3", "schneider"))
+    assert (second.read_to, second.write_from, second.edge) == (
+        parse_address("%MW10:2", "schneider"),
+        parse_address("%MW20:4", "schneider"),
+        parse_address("%MW30:X3", "schneider"),
+    )
     # the same Schneider forms under an IEC profile
-    assert errors(tmp_path, PLC + RTU + channel(23, 'count = 2\nread_to = "%MW10:2"\nwrite_from = "%MW20:4"\n'
-                                                    'write_offset = 0\nwrite_count = 4\ntrigger = "edge"\n'
-                                                    'edge = "%MW30:X3"\n')) == [
-        (f"{CH}.read_to", "%MW10:2 is Schneider addressing; use the schneider profile (IEC addresses a bit as "
-                          "%MX<byte>.<bit>)"),
-        (f"{CH}.write_from", "%MW20:4 is Schneider addressing; use the schneider profile (IEC addresses a bit "
-                             "as %MX<byte>.<bit>)"),
-        (f"{CH}.edge", "%MW30:X3 is Schneider addressing; use the schneider profile (IEC addresses a bit as "
-                       "%MX<byte>.<bit>)")]
+    assert errors(
+        tmp_path,
+        PLC
+        + RTU
+        + channel(
+            23,
+            'count = 2\nread_to = "%MW10:2"\nwrite_from = "%MW20:4"\n'
+            'write_offset = 0\nwrite_count = 4\ntrigger = "edge"\n'
+            'edge = "%MW30:X3"\n',
+        ),
+    ) == [
+        (
+            f"{CH}.read_to",
+            "%MW10:2 is Schneider addressing; use the schneider profile (IEC addresses a bit as %MX<byte>.<bit>)",
+        ),
+        (
+            f"{CH}.write_from",
+            "%MW20:4 is Schneider addressing; use the schneider profile (IEC addresses a bit as %MX<byte>.<bit>)",
+        ),
+        (
+            f"{CH}.edge",
+            "%MW30:X3 is Schneider addressing; use the schneider profile (IEC addresses a bit as %MX<byte>.<bit>)",
+        ),
+    ]
 
 
 # ---------------------------------------------------------------- [[sim]] on [[modbus]]
 
 
 def test_modbus_sims(tmp_path):
-    cfg = load(tmp_path, PLC + CAN + SIM + RTU + TCP.replace('"tcp"\n', '"tcp"\nhost = "localhost"\nport = 0\n')
-               + '[[sim]]\ntype = "DA1"\nmodbus = "DRIVES"\nunit = 1\nregisters = { "505" = 20, "0017" = 3 }\n'
-               + '[[sim]]\ntype = "de11"\nname = "pump"\nmodbus = "gateway"\nunit = 247\n'
-               + '[[sim]]\ntype = "db1"\nmodbus = "gateway"\nunit = 1\n')
-    assert cfg.sims == [SimConfig("ltmr", "ltmr40", "sim[0]", CanNode("can0", 40), Registers({})),
-                        SimConfig("da1", "da1_1", "sim[1]", ModbusUnit("drives", 1), Registers({505: 20, 17: 3})),
-                        SimConfig("de11", "pump", "sim[2]", ModbusUnit("gateway", 247), Registers({})),
-                        SimConfig("db1", "db1_1", "sim[3]", ModbusUnit("gateway", 1), Registers({}))]
+    cfg = load(
+        tmp_path,
+        PLC
+        + CAN
+        + SIM
+        + RTU
+        + TCP.replace('"tcp"\n', '"tcp"\nhost = "localhost"\nport = 0\n')
+        + '[[sim]]\ntype = "DA1"\nmodbus = "DRIVES"\nunit = 1\nregisters = { "505" = 20, "0017" = 3 }\n'
+        + '[[sim]]\ntype = "de11"\nname = "pump"\nmodbus = "gateway"\nunit = 247\n'
+        + '[[sim]]\ntype = "db1"\nmodbus = "gateway"\nunit = 1\n',
+    )
+    assert cfg.sims == [
+        SimConfig("ltmr", "ltmr40", "sim[0]", CanNode("can0", 40), Registers({})),
+        SimConfig("da1", "da1_1", "sim[1]", ModbusUnit("drives", 1), Registers({505: 20, 17: 3})),
+        SimConfig("de11", "pump", "sim[2]", ModbusUnit("gateway", 247), Registers({})),
+        SimConfig("db1", "db1_1", "sim[3]", ModbusUnit("gateway", 1), Registers({})),
+    ]
 
 
 def test_modbus_sim_on_the_only_connection(tmp_path):
     """Without modbus, a drive is on the file's only [[modbus]] connection."""
     cfg = load(tmp_path, PLC + '[[modbus]]\ntransport = "rtu"\ndevice = "sim"\n' + DA1)
     assert cfg.sims == [SimConfig("da1", "da1_1", "sim[0]", ModbusUnit("modbus0", 1), Registers({}))]
-    cfg = load(tmp_path, PLC + TCP + DA1)       # host defaults to 127.0.0.1
+    cfg = load(tmp_path, PLC + TCP + DA1)  # host defaults to 127.0.0.1
     assert (cfg.sims[0].at.connection, cfg.sims[0].at.unit) == ("gateway", 1)
 
 
 def test_modbus_sim_needs_a_unit(tmp_path):
-    assert error(tmp_path, PLC + RTU + '[[sim]]\ntype = "da1"\n') == \
-        ("sim[0]", "required key missing: unit (the drive's Modbus address)")
-    assert error(tmp_path, PLC + RTU + '[[sim]]\ntype = "da1"\nunit = 0\n') == \
-        ("sim[0].unit", "expected an integer from 1 to 247 (got 0)")
+    assert error(tmp_path, PLC + RTU + '[[sim]]\ntype = "da1"\n') == (
+        "sim[0]",
+        "required key missing: unit (the drive's Modbus address)",
+    )
+    assert error(tmp_path, PLC + RTU + '[[sim]]\ntype = "da1"\nunit = 0\n') == (
+        "sim[0].unit",
+        "expected an integer from 1 to 247 (got 0)",
+    )
 
 
 def test_modbus_sim_refuses_can_keys(tmp_path):
     assert error(tmp_path, PLC + RTU + DA1 + "node_id = 3\n") == ("sim[0].node_id", ONLY_CAN)
     assert errors(tmp_path, PLC + CAN + RTU + DA1 + 'bus = "can0"\nnode_id = 3\n') == [
-        ("sim[0].bus", ONLY_CAN), ("sim[0].node_id", ONLY_CAN)]
+        ("sim[0].bus", ONLY_CAN),
+        ("sim[0].node_id", ONLY_CAN),
+    ]
 
 
 def test_can_sim_refuses_modbus_keys(tmp_path):
     only_modbus = "only for a Modbus device (da1, db1, dc1, de1, de11); a CAN device has bus and node_id"
     assert errors(tmp_path, PLC + CAN + RTU + SIM + 'modbus = "drives"\nunit = 1\n') == [
-        ("sim[0].modbus", only_modbus), ("sim[0].unit", only_modbus)]
+        ("sim[0].modbus", only_modbus),
+        ("sim[0].unit", only_modbus),
+    ]
 
 
 def test_modbus_sim_needs_a_simulated_line(tmp_path):
-    assert error(tmp_path, PLC + RTU.replace('"sim"', '"/dev/ttyUSB0"') + DA1) == \
-        ("sim[0].modbus", 'modbus[0] is a serial line to real devices; a simulated drive needs device = "sim" '
-                          "there")
-    assert error(tmp_path, PLC + TCP + 'host = "192.168.0.20"\n' + DA1) == \
-        ("sim[0].modbus", "modbus[0] goes to 192.168.0.20; a simulated drive listens on 127.0.0.1 only")
+    assert error(tmp_path, PLC + RTU.replace('"sim"', '"/dev/ttyUSB0"') + DA1) == (
+        "sim[0].modbus",
+        'modbus[0] is a serial line to real devices; a simulated drive needs device = "sim" there',
+    )
+    assert error(tmp_path, PLC + TCP + 'host = "192.168.0.20"\n' + DA1) == (
+        "sim[0].modbus",
+        "modbus[0] goes to 192.168.0.20; a simulated drive listens on 127.0.0.1 only",
+    )
 
 
 def test_modbus_sim_units(tmp_path):
-    assert error(tmp_path, PLC + RTU + DA1 + '[[sim]]\ntype = "dc1"\nunit = 1\n') == \
-        ("sim[1].unit", "duplicate unit 1 on modbus[0] (sim[0] has it)")
+    assert error(tmp_path, PLC + RTU + DA1 + '[[sim]]\ntype = "dc1"\nunit = 1\n') == (
+        "sim[1].unit",
+        "duplicate unit 1 on modbus[0] (sim[0] has it)",
+    )
     # one unit per connection: the same unit on another connection is another drive
     cfg = load(tmp_path, PLC + RTU + TCP + DA1 + 'modbus = "drives"\n' + DA1 + 'modbus = "gateway"\nname = "b"\n')
     assert [(s.name, s.at.connection, s.at.unit) for s in cfg.sims] == [("da1_1", "drives", 1), ("b", "gateway", 1)]
 
 
 def test_modbus_sim_connection(tmp_path):
-    assert error(tmp_path, PLC + RTU + TCP + DA1 + 'modbus = "pumps"\n') == \
-        ("sim[0].modbus", "expected one of 'drives', 'gateway', the [[modbus]] connections (got 'pumps')")
-    assert error(tmp_path, PLC + DA1) == \
-        ("sim[0]", "a simulated drive needs a [[modbus]] connection (the file has none)")
-    assert error(tmp_path, PLC + RTU + TCP + DA1) == \
-        ("sim[0]", "required key missing: modbus (the [[modbus]] connection the drive is on)")
-    assert errors(tmp_path, PLC + CAN + DA1 + 'bus = "can0"\n') == [    # a [[can]] bus is no home for a drive
+    assert error(tmp_path, PLC + RTU + TCP + DA1 + 'modbus = "pumps"\n') == (
+        "sim[0].modbus",
+        "expected one of 'drives', 'gateway', the [[modbus]] connections (got 'pumps')",
+    )
+    assert error(tmp_path, PLC + DA1) == (
+        "sim[0]",
+        "a simulated drive needs a [[modbus]] connection (the file has none)",
+    )
+    assert error(tmp_path, PLC + RTU + TCP + DA1) == (
+        "sim[0]",
+        "required key missing: modbus (the [[modbus]] connection the drive is on)",
+    )
+    assert errors(tmp_path, PLC + CAN + DA1 + 'bus = "can0"\n') == [  # a [[can]] bus is no home for a drive
         ("sim[0].bus", ONLY_CAN),
-        ("sim[0]", "a simulated drive needs a [[modbus]] connection (the file has none)")]
-    assert error(tmp_path, PLC + RTU + DA1 + 'modbus = "2drives"\n') == \
-        ("sim[0].modbus", "expected a connection name: an IEC identifier (letters, digits, _; not starting with "
-                          "a digit) (got '2drives')")
+        ("sim[0]", "a simulated drive needs a [[modbus]] connection (the file has none)"),
+    ]
+    assert error(tmp_path, PLC + RTU + DA1 + 'modbus = "2drives"\n') == (
+        "sim[0].modbus",
+        "expected a connection name: an IEC identifier (letters, digits, _; not starting with a digit) (got '2drives')",
+    )
 
 
 def test_modbus_sim_names(tmp_path):
-    assert error(tmp_path, PLC + RTU + TCP + DA1 + 'modbus = "drives"\n' + DA1 + 'modbus = "gateway"\n') == \
-        ("sim[1]", "duplicate simulator name 'da1_1', the default <type>_<unit> (sim[0] has it): give one a name")
-    assert error(tmp_path, PLC + CAN + SIM + RTU + DA1 + 'name = "LTMR40"\n') == \
-        ("sim[1].name", "duplicate simulator name 'LTMR40' (sim[0] has it; names are case-insensitive)")
+    assert error(tmp_path, PLC + RTU + TCP + DA1 + 'modbus = "drives"\n' + DA1 + 'modbus = "gateway"\n') == (
+        "sim[1]",
+        "duplicate simulator name 'da1_1', the default <type>_<unit> (sim[0] has it): give one a name",
+    )
+    assert error(tmp_path, PLC + CAN + SIM + RTU + DA1 + 'name = "LTMR40"\n') == (
+        "sim[1].name",
+        "duplicate simulator name 'LTMR40' (sim[0] has it; names are case-insensitive)",
+    )
     cfg = load(tmp_path, PLC + RTU + DA1 + '[[sim]]\ntype = "da1"\nunit = 2\n')
     assert [s.name for s in cfg.sims] == ["da1_1", "da1_2"]
 
@@ -438,25 +768,33 @@ def test_modbus_sim_names(tmp_path):
 def test_modbus_sim_registers(tmp_path):
     assert errors(tmp_path, PLC + RTU + DA1 + 'registers = { "505" = 70000, "abc" = 1, "70000" = 1 }\n') == [
         ("sim[0].registers.505", "expected an integer from 0 to 65535 (got 70000)"),
-        ("sim[0].registers.abc", "expected a register number from 0 to 65535 in decimal, such as \"682\" "
-                                 "(got 'abc')"),
-        ("sim[0].registers.70000", "expected a register number from 0 to 65535 in decimal, such as \"682\" "
-                                   "(got '70000')")]
+        ("sim[0].registers.abc", "expected a register number from 0 to 65535 in decimal, such as \"682\" (got 'abc')"),
+        (
+            "sim[0].registers.70000",
+            "expected a register number from 0 to 65535 in decimal, such as \"682\" (got '70000')",
+        ),
+    ]
 
 
 def test_modbus_errors_reported_together(tmp_path):
-    path = write(tmp_path, PLC + DA1 + 'bus = "can0"\n'
-                 + '[[modbus]]\nname = "drives"\ntransport = "rtu"\ndevice = "sim"\nbaud = 12345\n'
-                 + READ + 'trigger = "change"\n'
-                 + channel(6, 'write_from = "%IW0"\n')
-                 + TCP + 'device = "sim"\n')
+    path = write(
+        tmp_path,
+        PLC
+        + DA1
+        + 'bus = "can0"\n'
+        + '[[modbus]]\nname = "drives"\ntransport = "rtu"\ndevice = "sim"\nbaud = 12345\n'
+        + READ
+        + 'trigger = "change"\n'
+        + channel(6, 'write_from = "%IW0"\n')
+        + TCP
+        + 'device = "sim"\n',
+    )
     with pytest.raises(ConfigError) as info:
         load_config(path)
     assert str(info.value).splitlines() == [
         f"{path}: sim[0].bus: {ONLY_CAN}",
         f"{path}: sim[0]: required key missing: modbus (the [[modbus]] connection the drive is on)",
-        f"{path}: modbus[0].baud: expected one of 1200, 2400, 4800, 9600, 19200, 38400, 57600, 115200 "
-        "(got 12345)",
+        f"{path}: modbus[0].baud: expected one of 1200, 2400, 4800, 9600, 19200, 38400, 57600, 115200 (got 12345)",
         f"{path}: modbus[0].channel[0].trigger: 'change' watches the data to write; function 3 only reads "
         "(use 'cyclic' or 'edge')",
         f"{path}: modbus[0].channel[1].write_from: expected an address in %Q or %M (got '%IW0', an input)",

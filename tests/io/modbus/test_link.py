@@ -1,6 +1,7 @@
 """The manual's example telegrams (manual 002 §2.6.6, digest §5.1), byte for
 byte on a real serial line: the master's RTU requests and the simulated
 drive's answers as they crossed the pseudo-terminal cable."""
+
 from __future__ import annotations
 
 from .plant import plant_config
@@ -31,27 +32,42 @@ END_PROGRAM
 """
 
 CHANNELS = [
-    {"name": "status", "unit": 1, "function": 3, "offset": 5, "count": 1, "read_to": "%IW0",
-     "trigger": "edge", "edge": "%QX0.0"},
-    {"name": "control", "unit": 1, "function": 6, "offset": 0, "write_from": "%QW2",
-     "trigger": "edge", "edge": "%QX0.1"},
+    {
+        "name": "status",
+        "unit": 1,
+        "function": 3,
+        "offset": 5,
+        "count": 1,
+        "read_to": "%IW0",
+        "trigger": "edge",
+        "edge": "%QX0.0",
+    },
+    {
+        "name": "control",
+        "unit": 1,
+        "function": 6,
+        "offset": 0,
+        "write_from": "%QW2",
+        "trigger": "edge",
+        "edge": "%QX0.1",
+    },
 ]
 
 
 def test_manual_telegrams_byte_for_byte(plants, tmp_path):
     plant = plants(plant_config(tmp_path, PROGRAM, program="P", transport="rtu", channels=CHANNELS))
-    plant.drive(1).di1 = False                      # STO open: status word 0
+    plant.drive(1).di1 = False  # STO open: status word 0
     cable = plant.line.cable
-    plant.run_ms(30)                                # the read goes out at the tick after its edge
+    plant.run_ms(30)  # the read goes out at the tick after its edge
     assert cable.sent_by_master() == READ_ID6
     assert cable.sent_by_slave() == ANSWER_0
     assert plant["%IW0"] == 0
     plant.run_ms(50)
     assert cable.sent_by_master() == READ_ID6 + WRITE_RUN
-    assert cable.sent_by_slave() == ANSWER_0 + WRITE_RUN   # FC 06 answers with the request
+    assert cable.sent_by_slave() == ANSWER_0 + WRITE_RUN  # FC 06 answers with the request
     drive = plant.drive(1)
-    assert drive.register(1) == 1                   # the run command arrived ...
-    assert not drive.running                        # ... and a drive without its STO does not start
+    assert drive.register(1) == 1  # the run command arrived ...
+    assert not drive.running  # ... and a drive without its STO does not start
     assert [(c.stats.requests, c.stats.errors) for c in plant.master.channels] == [(1, 0), (1, 0)]
 
 
@@ -59,12 +75,13 @@ def test_a_frame_with_a_bad_crc_gets_no_answer(plants, tmp_path):
     """The drive stays silent on a CRC error (digest §2.3); the channel says
     RESPONSE_TIMEOUT. Written straight onto the line, as a noisy cable would."""
     import serial
+
     plant = plants(plant_config(tmp_path, "PROGRAM P\nEND_PROGRAM\n", program="P", transport="rtu"))
     plant.run_ms(10)
     cable = plant.line.cable
     with serial.Serial(cable.master_port, 115200, timeout=0.2) as port:
-        port.write(READ_ID6[:-1] + b"\x00")         # last CRC byte wrong
+        port.write(READ_ID6[:-1] + b"\x00")  # last CRC byte wrong
         assert port.read(7) == b""
         port.write(READ_ID6)
         answer = port.read(7)
-    assert answer[:3] == bytes.fromhex("01 03 02") and len(answer) == 7   # the next good frame is answered
+    assert answer[:3] == bytes.fromhex("01 03 02") and len(answer) == 7  # the next good frame is answered

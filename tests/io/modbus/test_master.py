@@ -1,5 +1,6 @@
 """MODBUS_REQUEST from ST and the channels' triggers and statistics, against
 simulated drives over TCP (several units on one connection)."""
+
 from __future__ import annotations
 
 import re
@@ -42,8 +43,9 @@ END_PROGRAM
 
 
 def request(plants, tmp_path, **values):
-    plant = plants(plant_config(tmp_path, REQUESTS, program="P",
-                                sims=[{"type": "da1", "unit": 1}, {"type": "de1", "unit": 2}]))
+    plant = plants(
+        plant_config(tmp_path, REQUESTS, program="P", sims=[{"type": "da1", "unit": 1}, {"type": "de1", "unit": 2}])
+    )
     for name, value in values.items():
         plant.engine.set(f"P.{name}", value)
     plant.engine.set("P.go", True)
@@ -58,15 +60,18 @@ def test_read_reaches_each_unit_of_the_connection(plants, tmp_path, unit, id17):
     assert not plant["P.req.BUSY"]
 
 
-@pytest.mark.parametrize("values, code", [
-    ({"offset": 4}, ModbusError.ILLEGAL_DATA_ADDRESS),       # ID 5 does not exist
-    ({"count": 12, "offset": 5}, ModbusError.ILLEGAL_DATA_VALUE),   # more than 11 registers (L667)
-    ({"fc": 4}, ModbusError.ILLEGAL_FUNCTION),               # the drive knows 03, 06, 16, 23 only
-    ({"unit": 9}, ModbusError.RESPONSE_TIMEOUT),             # nobody answers to unit 9
-    ({"connection": "pumps"}, ModbusError.REQUEST_FAILED_TO_SEND),
-    ({"fc": 7}, ModbusError.INVALID_REQUEST),
-    ({"fc": 3, "count": 0}, ModbusError.INVALID_REQUEST),
-])
+@pytest.mark.parametrize(
+    "values, code",
+    [
+        ({"offset": 4}, ModbusError.ILLEGAL_DATA_ADDRESS),  # ID 5 does not exist
+        ({"count": 12, "offset": 5}, ModbusError.ILLEGAL_DATA_VALUE),  # more than 11 registers (L667)
+        ({"fc": 4}, ModbusError.ILLEGAL_FUNCTION),  # the drive knows 03, 06, 16, 23 only
+        ({"unit": 9}, ModbusError.RESPONSE_TIMEOUT),  # nobody answers to unit 9
+        ({"connection": "pumps"}, ModbusError.REQUEST_FAILED_TO_SEND),
+        ({"fc": 7}, ModbusError.INVALID_REQUEST),
+        ({"fc": 3, "count": 0}, ModbusError.INVALID_REQUEST),
+    ],
+)
 def test_errors(plants, tmp_path, values, code):
     plant = request(plants, tmp_path, **values)
     assert plant["P.failed"] and not plant["P.done"]
@@ -75,13 +80,13 @@ def test_errors(plants, tmp_path, values, code):
 
 
 def test_write_single_register_changes_the_drive(plants, tmp_path):
-    plant = request(plants, tmp_path, fc=6, offset=1, count=1)    # ID 2: setpoint
+    plant = request(plants, tmp_path, fc=6, offset=1, count=1)  # ID 2: setpoint
     assert plant["P.done"]
-    assert plant.drive(1).register(eaton.REG_SPEED_SETPOINT) == 0     # SEND[0] was 0
+    assert plant.drive(1).register(eaton.REG_SPEED_SETPOINT) == 0  # SEND[0] was 0
     plant.engine.set("P.go", False)
     plant.run_ms(20)
     holder, attr, _ty = plant.engine.variable("P.req.SEND")
-    getattr(holder, attr)[0] = 355                                  # 35.5 Hz
+    getattr(holder, attr)[0] = 355  # 35.5 Hz
     plant.engine.set("P.done", False)
     plant.engine.set("P.go", True)
     plant.run_until(lambda: plant["P.done"], 500)
@@ -116,25 +121,57 @@ END_PROGRAM
 def test_channel_triggers(plants, tmp_path):
     channels = [
         {"name": "cyclic", "unit": 1, "function": 3, "offset": 5, "count": 6, "read_to": "%IW0", "period": "50ms"},
-        {"name": "change", "unit": 1, "function": 16, "offset": 1, "count": 1, "write_from": "%QW10",
-         "trigger": "change"},
-        {"name": "edge", "unit": 2, "function": 3, "offset": 16, "count": 1, "read_to": "%IW20",
-         "trigger": "edge", "edge": "%QX40.0"},
-        {"name": "both", "unit": 2, "function": 23, "offset": 5, "count": 2, "read_to": "%IW30",
-         "write_offset": 1, "write_count": 1, "write_from": "%QW10", "period": "100ms"},
+        {
+            "name": "change",
+            "unit": 1,
+            "function": 16,
+            "offset": 1,
+            "count": 1,
+            "write_from": "%QW10",
+            "trigger": "change",
+        },
+        {
+            "name": "edge",
+            "unit": 2,
+            "function": 3,
+            "offset": 16,
+            "count": 1,
+            "read_to": "%IW20",
+            "trigger": "edge",
+            "edge": "%QX40.0",
+        },
+        {
+            "name": "both",
+            "unit": 2,
+            "function": 23,
+            "offset": 5,
+            "count": 2,
+            "read_to": "%IW30",
+            "write_offset": 1,
+            "write_count": 1,
+            "write_from": "%QW10",
+            "period": "100ms",
+        },
     ]
-    plant = plants(plant_config(tmp_path, TRIGGERS, program="T", channels=channels,
-                                sims=[{"type": "da1", "unit": 1}, {"type": "dc1", "unit": 2}]))
+    plant = plants(
+        plant_config(
+            tmp_path,
+            TRIGGERS,
+            program="T",
+            channels=channels,
+            sims=[{"type": "da1", "unit": 1}, {"type": "dc1", "unit": 2}],
+        )
+    )
     plant.run_ms(1000)
     cyclic, change, edge, both = plant.master.channels
-    assert cyclic.stats.requests == 20                  # every 50 ms for 1 s
-    assert change.stats.requests == 3                   # at start (0), then 250, then 300
+    assert cyclic.stats.requests == 20  # every 50 ms for 1 s
+    assert change.stats.requests == 3  # at start (0), then 250, then 300
     assert plant.drive(1).register(eaton.REG_SPEED_SETPOINT) == 300
-    assert edge.stats.requests == 2                     # the edges at 100 ms and 600 ms
-    assert plant["%IW20"] == 10                         # DC1's ID 17
+    assert edge.stats.requests == 2  # the edges at 100 ms and 600 ms
+    assert plant["%IW20"] == 10  # DC1's ID 17
     assert both.stats.requests == 10
     assert plant.drive(2).register(eaton.REG_SPEED_SETPOINT) == 300
-    assert plant["%IW0"] == plant.drive(1).status()     # ID 6 of unit 1
+    assert plant["%IW0"] == plant.drive(1).status()  # ID 6 of unit 1
     assert all(ch.stats.errors == 0 and ch.stats.ok for ch in plant.master.channels)
     assert [plant.channel(i, "Requests") for i in range(4)] == [20, 3, 2, 10]
 
@@ -160,7 +197,9 @@ def test_a_simulated_drive_refuses_a_register_it_does_not_have(tmp_path):
     from softplc.runtime.config import config_from_dict
     from softplc.runtime.engine.build import build_engine
     from softplc.runtime.plugin.driver import DriverError
-    data = plant_config(tmp_path, "PROGRAM T\nEND_PROGRAM\n", program="T",
-                        sims=[{"type": "da1", "unit": 1, "registers": {"5": 3}}])
+
+    data = plant_config(
+        tmp_path, "PROGRAM T\nEND_PROGRAM\n", program="T", sims=[{"type": "da1", "unit": 1, "registers": {"5": 3}}]
+    )
     with pytest.raises(DriverError, match=r"plant.toml: sim\[0\].registers: DA1 has no register 5"):
         build_engine(config_from_dict(data, tmp_path / "plant.toml"), virtual_time=True)

@@ -11,6 +11,7 @@ and one [[sim]] key of its own (closed, the coil at start).
 An installed package names DEVICE under the entry point group
 softplc.devices; tests register it with registry.extended(DEVICE).
 """
+
 from __future__ import annotations
 
 from pydantic import Field
@@ -19,11 +20,12 @@ from softplc.runtime.config import SimOptions
 from softplc.runtime.io.modbus import ModbusRefusal
 from softplc.runtime.plugin.seams import Device, StLibrary
 
-COIL = 0          # the one register: PDO address 0 ("40001")
+COIL = 0  # the one register: PDO address 0 ("40001")
 
 
 class RelayUnit:
     """The relay as its Modbus unit: reads and writes of register 0 only."""
+
     functions = (3, 6)
 
     def __init__(self, closed: bool = False) -> None:
@@ -60,5 +62,11 @@ def _simulator(sim, ctx) -> RelayUnit:
     return RelayUnit(closed=sim.options.closed)
 
 
-DEVICE = Device(name="relay", bus="modbus", sim_types=("relay",), sim_options=RelayOptions,
-                simulator=_simulator, libraries=(StLibrary(__name__, "relay.st"),))
+DEVICE = Device(
+    name="relay",
+    bus="modbus",
+    sim_types=("relay",),
+    sim_options=RelayOptions,
+    simulator=_simulator,
+    libraries=(StLibrary(__name__, "relay.st"),),
+)
