@@ -9,6 +9,7 @@ import re
 from collections.abc import Callable
 from datetime import date as _date
 
+from ..durations import UNITS_NS
 from .rt_numeric import f32
 from .rt_timedate import DAY_NS, EPOCH_ORD
 from .rt_wrap import time_wrapper
@@ -98,15 +99,7 @@ _PREFIXES = {
     TODCAT: ("TOD", "TIME_OF_DAY", "LTOD", "LTIME_OF_DAY"),
     DTCAT: ("DT", "DATE_AND_TIME", "LDT", "LDATE_AND_TIME"),
 }
-_UNIT_NS = {
-    "d": 86_400_000_000_000,
-    "h": 3_600_000_000_000,
-    "m": 60_000_000_000,
-    "s": 1_000_000_000,
-    "ms": 1_000_000,
-    "us": 1_000,
-    "ns": 1,
-}
+_UNIT_NS = UNITS_NS  # IEC duration units in nanoseconds (runtime/durations.py)
 _DUR_RE = re.compile(r"(?:[0-9]+(?:\.[0-9]+)?(?:ms|us|ns|d|h|m|s))+\Z", re.I)
 _DUR_PART = re.compile(r"([0-9]+)(?:\.([0-9]+))?(ms|us|ns|d|h|m|s)", re.I)
 _DATE_RE = re.compile(r"([0-9]{4})-([0-9]{1,2})-([0-9]{1,2})")
