@@ -78,7 +78,10 @@ def plant_config(
     canopen = {
         "node_id": 127,
         "heartbeat": "100ms",
-        "sdo_timeout": "100ms",
+        # SDO answers cross threads in real time even on the virtual clock: the
+        # timeout must outlast a loaded machine (a node that answers never waits
+        # for it; only the test of an absent node does, once).
+        "sdo_timeout": "1s",
         "boot_timeout": "500ms",
         "retry": "1s",
         "node": copy.deepcopy(nodes if nodes is not None else [LTMR_NODE]),
