@@ -25,16 +25,8 @@ A device simulator subclasses it and fills in the hooks:
     on_state_change(old, new), on_reset_application(), on_comm_error(),
     on_comm_restored(), on_rpdo(number)
 
-Choices where CiA 301 leaves room (each said again where it is made):
-- An event-driven TPDO (type 254/255) goes out once on entering
-  Operational; a synchronous one at the first SYNC after it.
-- The TPDO event timer is in ms (CiA 301; the LTMR manual says 0.1 ms,
-  digest 001 A7). The inhibit time is in 100 us.
-- PDO mapping follows the CiA 301 procedure: a mapping changes only while
-  its PDO is invalid (COB-ID bit 31) and its sub-index 0 is 0, otherwise
-  ABORT_DEVICE_STATE; entries that cannot be mapped ABORT_NOT_MAPPABLE;
-  more than 64 bits ABORT_PDO_LENGTH (the codes of manual 001 §3.3).
-- RTR-only transmission types (252, 253) are not supported.
+The PDO machinery (parameters, write rules, traffic, SYNC) is slave_pdo.py's,
+with the choices it makes where CiA 301 leaves room.
 """
 
 from __future__ import annotations
@@ -42,7 +34,7 @@ from __future__ import annotations
 import logging
 import struct
 import threading
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import can
 import canopen
@@ -52,14 +44,10 @@ from canopen.sdo import SdoAbortedError
 from ...sim.base import SimulatedDevice
 from ..can.bus import BusPump, BusSettings, CanEndpoint, open_bus
 from .cia301 import (
-    ABORT_DEVICE_STATE,
     ABORT_NO_SUBINDEX,
-    ABORT_NOT_MAPPABLE,
-    ABORT_PDO_LENGTH,
     ABORT_VALUE_RANGE,
     COB_ID_INVALID,
     COB_NMT,
-    COB_SYNC,
     NMT_PRE_OPERATIONAL,
     NMT_RESET_COMMUNICATION,
     NMT_RESET_NODE,
@@ -75,8 +63,8 @@ from .cia301 import (
     TPDO_MAP,
     cob_emcy,
     cob_heartbeat,
-    split_mapping_entry,
 )
+from .slave_pdo import PDO_SLOTS, PdoMixin, PdoTables, TpdoState
 
 log = logging.getLogger(__name__)
 
@@ -89,18 +77,12 @@ ERROR_REGISTER = 0x1001
 ERROR_HISTORY = 0x1003
 SYNC_COB_ID = 0x1005
 EMCY_COB_ID = 0x1014
+GUARD_TIME = 0x100C  # ms between two guarding requests of the master
+LIFE_TIME_FACTOR = 0x100D  # guard time x life time factor: the node's life time
 CONSUMER_HEARTBEAT = 0x1016
 PRODUCER_HEARTBEAT = 0x1017
+GUARDING_TOGGLE = 0x80  # bit 7 of a guarding reply
 ERROR_BEHAVIOUR = 0x1029
-PDO_SLOTS = 512  # CiA 301: up to 512 RPDOs and 512 TPDOs
-
-COB_ID_EXTENDED = 1 << 29  # 29-bit identifier: the LTMR is CAN 2.0A only (manual 001 §1.1)
-PDO_MAX_BITS = 64
-
-# Transmission types (CiA 301; manual 001 §2.2)
-SYNC_ACYCLIC = 0  # on SYNC, when the data changed
-SYNC_CYCLIC_LAST = 240  # 1..240: every n-th SYNC
-EVENT_TYPES = (254, 255)  # on change, inhibit time, event timer
 
 # 0x1029:01, on a communication error (manual 001 L1017-1030)
 ERROR_TO_PRE_OPERATIONAL = 0
@@ -143,30 +125,6 @@ class _SlaveNode(canopen.LocalNode):
 
 
 @dataclass
-class _Pdo:
-    """One valid PDO as its communication and mapping parameters say."""
-
-    number: int
-    cob_id: int
-    transmission: int
-    entries: list  # (index, subindex, bits)
-    inhibit_ns: int = 0  # TPDO sub 3, 100 us units
-    event_ns: int = 0  # TPDO sub 5, ms (A7)
-
-    @property
-    def nbytes(self) -> int:
-        return (sum(bits for _i, _s, bits in self.entries) + 7) // 8
-
-
-@dataclass
-class _TpdoState:
-    last_data: bytes | None = None
-    last_sent_ns: int | None = None
-    sync_count: int = 0
-    pending: bool = False  # send at the next opportunity, changed or not
-
-
-@dataclass
 class _Consumer:
     """One heartbeat consumer entry of 0x1016."""
 
@@ -176,13 +134,7 @@ class _Consumer:
     lost: bool = False
 
 
-@dataclass
-class _PdoTables:
-    rpdos: dict = field(default_factory=dict)  # COB-ID -> _Pdo
-    tpdos: list = field(default_factory=list)  # [_Pdo]
-
-
-class SimulatedCanopenSlave(SimulatedDevice):
+class SimulatedCanopenSlave(PdoMixin, SimulatedDevice):
     """See the module docstring."""
 
     pump: BusPump | None  # a CAN node: its endpoint is on the bus's pump (virtual time)
@@ -205,11 +157,14 @@ class SimulatedCanopenSlave(SimulatedDevice):
         self._state = STATE_BOOTUP
         self._now = 0
         self._local_writes = 0  # > 0 while write() runs: the device's own access
-        self._tables: _PdoTables | None = None
-        self._tpdo_state: dict[int, _TpdoState] = {}
+        self._tables: PdoTables | None = None
+        self._tpdo_state: dict[int, TpdoState] = {}
         self._sync_rpdos: dict[int, tuple] = {}  # RPDO number -> (pdo, data) waiting for SYNC
         self._consumers: list[_Consumer] | None = None
         self._heartbeat_due: int | None = None
+        self._guard_toggle = 0  # bit 7 of the next guarding reply
+        self._guarded_ns: int | None = None  # the last guarding request (None: not guarded yet)
+        self._guarding_lost = False
         self._written: list[int] = []  # objects written, for _flush_writes
 
     # ------------------------------------------------------------------ hooks
@@ -240,10 +195,11 @@ class SimulatedCanopenSlave(SimulatedDevice):
         self._clear_stored(*APPLICATION_AREA)
 
     def on_comm_error(self) -> None:
-        """A watched heartbeat producer fell silent (before the 0x1029 state change)."""
+        """A watched heartbeat producer fell silent, or the master stopped
+        guarding the node (life guarding), before the 0x1029 state change."""
 
     def on_comm_restored(self) -> None:
-        """Heartbeats from every lost producer came back."""
+        """Heartbeats from every lost producer came back, or guarding did."""
 
     def on_rpdo(self, number: int) -> None:
         """RPDO `number` was received in Operational and its data stored."""
@@ -273,6 +229,7 @@ class SimulatedCanopenSlave(SimulatedDevice):
                 return
             self._produce_heartbeat(now_ns)
             self._watch_heartbeats(now_ns)
+            self._watch_guarding(now_ns)
             if self._state == STATE_OPERATIONAL:
                 self._transmit_event_tpdos(now_ns)
 
@@ -286,6 +243,11 @@ class SimulatedCanopenSlave(SimulatedDevice):
     def heartbeat_lost(self) -> bool:
         """A watched producer's heartbeat is missing right now."""
         return any(c.lost for c in self._heartbeat_consumers())
+
+    @property
+    def guarding_lost(self) -> bool:
+        """The master's guarding requests stopped for longer than the life time."""
+        return self._guarding_lost
 
     def unplug(self) -> None:
         """Cut the cable: frames are dropped both ways until plug()."""
@@ -351,7 +313,7 @@ class SimulatedCanopenSlave(SimulatedDevice):
         with self._lock:
             for pdo in self._pdo_tables().tpdos:
                 if any(i == index and s == subindex for i, s, _b in pdo.entries):
-                    self._tpdo_state.setdefault(pdo.number, _TpdoState()).pending = True
+                    self._tpdo_state.setdefault(pdo.number, TpdoState()).pending = True
 
     # ------------------------------------------------------------------ NMT (CiA 301)
 
@@ -367,6 +329,9 @@ class SimulatedCanopenSlave(SimulatedDevice):
         self._consumers = None
         self._tpdo_state.clear()
         self._sync_rpdos.clear()
+        self._guard_toggle = 0
+        self._guarded_ns = None
+        self._guarding_lost = False
         self._send(cob_heartbeat(self.node_id), bytes([STATE_BOOTUP]))
         period = self._heartbeat_period_ns()
         self._heartbeat_due = now + period if period else None
@@ -443,6 +408,39 @@ class SimulatedCanopenSlave(SimulatedDevice):
                 log.info("%s: heartbeat of node %d lost", self.name, consumer.producer)
                 self._communication_error()
 
+    # ------------------------------------------------------------------ node guarding (CiA 301)
+
+    def _life_time_ns(self) -> int:
+        """Guard time x life time factor (0: the node does not watch the master)."""
+        if GUARD_TIME not in self.od or LIFE_TIME_FACTOR not in self.od:
+            return 0
+        return self._value(GUARD_TIME, 0) * self._value(LIFE_TIME_FACTOR, 0) * MS
+
+    def _on_guarding_request(self, now: int) -> None:
+        """An RTR at 0x700 + node id: answer with the NMT state and the toggle
+        bit. A node producing heartbeats does not take part in guarding."""
+        if self._heartbeat_period_ns():
+            return
+        self._send(cob_heartbeat(self.node_id), bytes([self._state | self._guard_toggle]))
+        self._guard_toggle ^= GUARDING_TOGGLE
+        self._guarded_ns = now
+        if self._guarding_lost:
+            self._guarding_lost = False
+            log.info("%s: guarding by the master resumed", self.name)
+            if not self.heartbeat_lost:
+                self.on_comm_restored()
+
+    def _watch_guarding(self, now: int) -> None:
+        """Life guarding: from the first request on, a gap longer than the life
+        time is a communication error."""
+        life = self._life_time_ns()
+        if not life or self._guarded_ns is None or self._guarding_lost:
+            return
+        if now - self._guarded_ns > life:
+            self._guarding_lost = True
+            log.info("%s: no guarding request for %d ms (life time)", self.name, life // MS)
+            self._communication_error()
+
     def _communication_error(self) -> None:
         self.on_comm_error()
         behaviour = ERROR_TO_PRE_OPERATIONAL
@@ -456,12 +454,14 @@ class SimulatedCanopenSlave(SimulatedDevice):
     # ------------------------------------------------------------------ frames
 
     def _on_frame(self, msg: can.Message) -> None:
-        if msg.is_remote_frame:
-            return  # RTR is not supported (CiA recommends against it)
         can_id, data = msg.arbitration_id, bytes(msg.data)
         with self._lock:
             now = self._clock_ns()
             if self._state == STATE_BOOTUP:
+                return
+            if msg.is_remote_frame:  # RTR: node guarding only (no RTR-requested PDOs)
+                if can_id == cob_heartbeat(self.node_id):
+                    self._on_guarding_request(now)
                 return
             if can_id == COB_NMT:
                 self._on_nmt(data, now)
@@ -549,194 +549,6 @@ class SimulatedCanopenSlave(SimulatedDevice):
                 for sub in self._compound(ERROR_HISTORY).subindices:
                     if sub:
                         self._store(ERROR_HISTORY, sub, 0)
-
-    # ------------------------------------------------------------------ PDO parameters
-
-    def _check_pdo_communication_write(self, index: int, sub: int, value: int) -> None:
-        tpdo = index >= TPDO_COMM
-        valid = not self._value(index, 1) & COB_ID_INVALID
-        if sub == 1:
-            if value & COB_ID_EXTENDED:
-                raise SdoAbortedError(ABORT_VALUE_RANGE)
-            if valid and not value & COB_ID_INVALID and (value & 0x7FF) != (self._value(index, 1) & 0x7FF):
-                # CiA 301: the COB-ID of an existing PDO cannot change; invalidate it first
-                raise SdoAbortedError(ABORT_VALUE_RANGE)
-            mapping = index + 0x200
-            if not value & COB_ID_INVALID and mapping in self.od:
-                self._check_mapping_total(mapping, self._value(mapping, 0), rpdo=not tpdo)
-        elif sub == 2:
-            if not (value <= SYNC_CYCLIC_LAST or value in EVENT_TYPES):
-                raise SdoAbortedError(ABORT_VALUE_RANGE)  # 241-251 reserved, 252/253 RTR only
-        elif sub == 3 and tpdo and valid:
-            raise SdoAbortedError(ABORT_DEVICE_STATE)  # CiA 301: inhibit time only while invalid
-
-    def _check_mapping_write(self, index: int, sub: int, value: int, *, rpdo: bool) -> None:
-        comm = index - 0x200
-        if comm in self.od and not self._value(comm, 1) & COB_ID_INVALID:
-            raise SdoAbortedError(ABORT_DEVICE_STATE)  # step 1: invalidate the PDO first
-        if sub == 0:
-            self._check_mapping_total(index, value, rpdo=rpdo)
-            return
-        if self._value(index, 0) != 0:
-            raise SdoAbortedError(ABORT_DEVICE_STATE)  # step 2: sub-index 0 := 0 first
-        if value:
-            self._check_mappable(*split_mapping_entry(value), rpdo=rpdo)
-
-    def _check_mapping_total(self, map_index: int, count: int, *, rpdo: bool) -> None:
-        entries = sorted(s for s in self._compound(map_index).subindices if s)
-        if count > len(entries):
-            raise SdoAbortedError(ABORT_PDO_LENGTH)
-        total = 0
-        for sub in entries[:count]:
-            index, subindex, bits = split_mapping_entry(self._value(map_index, sub))
-            self._check_mappable(index, subindex, bits, rpdo=rpdo)
-            total += bits
-        if total > PDO_MAX_BITS:
-            raise SdoAbortedError(ABORT_PDO_LENGTH)
-
-    def _check_mappable(self, index: int, subindex: int, bits: int, *, rpdo: bool) -> None:
-        var = self._variable_or_none(index, subindex)
-        if (
-            var is None
-            or not var.pdo_mappable
-            or not var.fixed_size
-            or not (var.writable if rpdo else var.readable)
-            or bits != len(var)
-            or not self.pdo_mappable(index, subindex, rpdo)
-        ):
-            raise SdoAbortedError(ABORT_NOT_MAPPABLE)
-
-    def _pdo_tables(self) -> _PdoTables:
-        """The valid PDOs, read from the OD (cached until a PDO object is written)."""
-        if self._tables is None:
-            tables = _PdoTables()
-            for number in range(1, PDO_SLOTS + 1):
-                rpdo = self._read_pdo(RPDO_COMM + number - 1, RPDO_MAP + number - 1, number)
-                if rpdo is not None:
-                    tables.rpdos[rpdo.cob_id] = rpdo
-                tpdo = self._read_pdo(TPDO_COMM + number - 1, TPDO_MAP + number - 1, number)
-                if tpdo is not None:
-                    tables.tpdos.append(tpdo)
-                    self._tpdo_state.setdefault(number, _TpdoState())
-            self._tables = tables
-        return self._tables
-
-    def _read_pdo(self, comm: int, mapping: int, number: int) -> _Pdo | None:
-        if comm not in self.od or mapping not in self.od:
-            return None
-        comm_record = self._compound(comm)
-        cob = self._value(comm, 1)
-        transmission = self._value(comm, 2) if 2 in comm_record else 255
-        if cob & COB_ID_INVALID or not (transmission <= SYNC_CYCLIC_LAST or transmission in EVENT_TYPES):
-            return None
-        count = self._value(mapping, 0)
-        entries = [
-            split_mapping_entry(self._value(mapping, sub))
-            for sub in sorted(self._compound(mapping).subindices)
-            if 0 < sub <= count
-        ]
-        pdo = _Pdo(number, cob & 0x7FF, transmission, entries)
-        if comm >= TPDO_COMM:
-            if 3 in comm_record:
-                pdo.inhibit_ns = self._value(comm, 3) * 100_000  # 100 us units
-            if 5 in comm_record:
-                pdo.event_ns = self._value(comm, 5) * MS  # ms (CiA 301; manual says 0.1 ms: A7)
-        return pdo
-
-    # ------------------------------------------------------------------ PDO traffic
-
-    def _on_rpdo_frame(self, pdo: _Pdo, data: bytes) -> None:
-        if len(data) < pdo.nbytes:
-            log.debug("%s: RPDO %d with %d bytes, %d mapped: ignored", self.name, pdo.number, len(data), pdo.nbytes)
-            return
-        if pdo.transmission <= SYNC_CYCLIC_LAST:
-            self._sync_rpdos[pdo.number] = (pdo, data)  # applied at the next SYNC
-            return
-        self._apply_rpdo(pdo, data)
-
-    def _apply_rpdo(self, pdo: _Pdo, data: bytes) -> None:
-        frame = int.from_bytes(data, "little")
-        offset = 0
-        for index, subindex, bits in pdo.entries:
-            value = (frame >> offset) & ((1 << bits) - 1)
-            offset += bits
-            try:
-                self.node.set_data(index, subindex, value.to_bytes((bits + 7) // 8, "little"))
-            except SdoAbortedError as exc:
-                # A PDO has no answer: the device keeps its value (an SDO would abort)
-                log.debug(
-                    "%s: RPDO %d entry %04X:%02X refused (0x%08X)", self.name, pdo.number, index, subindex, exc.code
-                )
-        self.on_rpdo(pdo.number)
-
-    def _pack_tpdo(self, pdo: _Pdo) -> bytes:
-        frame = 0
-        offset = 0
-        for index, subindex, bits in pdo.entries:
-            try:
-                raw = self.node.get_data(index, subindex)
-            except SdoAbortedError:
-                raw = b""
-            frame |= (int.from_bytes(raw, "little") & ((1 << bits) - 1)) << offset
-            offset += bits
-        return frame.to_bytes(pdo.nbytes, "little")
-
-    def _send_tpdo(self, pdo: _Pdo, data: bytes, now: int) -> None:
-        state = self._tpdo_state.setdefault(pdo.number, _TpdoState())
-        self._send(pdo.cob_id, data)
-        state.last_data = data
-        state.last_sent_ns = now
-        state.pending = False
-
-    def _transmit_event_tpdos(self, now: int) -> None:
-        """Types 254/255: on change of the packed data, after the inhibit time,
-        and every event-timer period even without change."""
-        for pdo in self._pdo_tables().tpdos:
-            if pdo.transmission not in EVENT_TYPES:
-                continue
-            state = self._tpdo_state.setdefault(pdo.number, _TpdoState())
-            data = self._pack_tpdo(pdo)
-            since = None if state.last_sent_ns is None else now - state.last_sent_ns
-            event_due = pdo.event_ns and since is not None and since >= pdo.event_ns
-            if not (state.pending or data != state.last_data or event_due):
-                continue
-            if since is not None and since < pdo.inhibit_ns:
-                continue  # sent once the inhibit time is over
-            self._send_tpdo(pdo, data, now)
-
-    def _on_sync(self, now: int) -> None:
-        pending, self._sync_rpdos = self._sync_rpdos, {}
-        if self._state != STATE_OPERATIONAL:
-            return
-        for pdo, data in pending.values():
-            self._apply_rpdo(pdo, data)
-        self._flush_writes(now)
-        for pdo in self._pdo_tables().tpdos:
-            if pdo.transmission > SYNC_CYCLIC_LAST:
-                continue
-            state = self._tpdo_state.setdefault(pdo.number, _TpdoState())
-            data = self._pack_tpdo(pdo)
-            if pdo.transmission == SYNC_ACYCLIC:
-                if state.pending or data != state.last_data:
-                    self._send_tpdo(pdo, data, now)
-                continue
-            state.sync_count += 1
-            if state.sync_count >= pdo.transmission:
-                state.sync_count = 0
-                self._send_tpdo(pdo, data, now)
-        self._transmit_event_tpdos(now)  # RPDO data applied at SYNC may change TPDO data
-
-    def _enter_operational(self) -> None:
-        """Every TPDO goes out once: event-driven ones now, synchronous ones at
-        the next SYNC (their cyclic count starts again)."""
-        for pdo in self._pdo_tables().tpdos:
-            state = self._tpdo_state.setdefault(pdo.number, _TpdoState())
-            state.pending = True
-            state.sync_count = 0
-        self._transmit_event_tpdos(self._clock_ns())
-
-    def _sync_cob_id(self) -> int:
-        return (self._value(SYNC_COB_ID, 0) & 0x7FF) if SYNC_COB_ID in self.od else COB_SYNC
 
     # ------------------------------------------------------------------ OD storage
 

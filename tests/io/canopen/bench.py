@@ -110,6 +110,13 @@ class Bench:
     def nmt(self, command: int, node_id: int) -> None:
         self.send(0x000, bytes([command, node_id]))
 
+    def guard(self, node_id: int) -> list:
+        """One node-guarding request (an RTR at 0x700 + node id); the replies."""
+        self.clear()
+        self.master.send(0x700 + node_id, b"", remote=True)
+        self.pump.settle()
+        return self.frames_with(0x700 + node_id)
+
     def close(self) -> None:
         for device in self.devices:
             device.stop()

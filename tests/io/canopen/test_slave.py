@@ -426,3 +426,41 @@ def test_any_eds_will_do(bench):
     assert bench.frames_with(0x701) == [b"\x00"]
     vendor = other.read(0x1018, 1)
     assert bench.sdo_read(1, 0x1018, 1) == bytes.fromhex("43 18 10 01") + vendor.to_bytes(4, "little")
+
+
+# ---------------------------------------------------------------------------- node guarding
+
+
+def test_guarding_replies_carry_the_state_and_a_toggle_bit(bench, slave):
+    # CiA 301: the reply's bit 7 toggles, starting with 0; 0x7F pre-operational, 0x05 operational
+    assert bench.guard(NODE) == [b"\x7f"]
+    assert bench.guard(NODE) == [b"\xff"]
+    bench.nmt(NMT_START, NODE)
+    assert bench.guard(NODE) == [b"\x05"]
+    assert bench.guard(NODE) == [b"\x85"]
+    bench.nmt(NMT_RESET_COMMUNICATION, NODE)
+    assert bench.guard(NODE) == [b"\x7f"]  # a reset starts the toggle again
+
+
+def test_a_node_producing_heartbeats_takes_no_part_in_guarding(bench, slave):
+    assert bench.sdo_write(NODE, 0x1017, 0, 100, 2) == write_ok(0x1017, 0)
+    assert bench.guard(NODE) == []
+
+
+def test_life_guarding_a_silent_master_is_a_communication_error(bench, slave):
+    # guard time 100 ms x life time factor 3: 300 ms without a request
+    assert bench.sdo_write(NODE, 0x100C, 0, 100, 2) == write_ok(0x100C, 0)
+    assert bench.sdo_write(NODE, 0x100D, 0, 3, 1) == write_ok(0x100D, 0)
+    bench.nmt(NMT_START, NODE)
+    bench.run_ms(1000)
+    assert ("comm error",) not in slave.events  # not watching before the first request
+    for _ in range(5):
+        bench.guard(NODE)
+        bench.run_ms(100)
+    assert not slave.guarding_lost
+    took = bench.run_until(lambda: slave.guarding_lost, 1000, "life guarding")
+    assert 200 < took <= 310  # 300 ms after the last request, at the 10 ms steps
+    assert ("comm error",) in slave.events
+    assert slave.nmt_state == STATE_PRE_OPERATIONAL  # 0x1029 default: to pre-operational
+    bench.guard(NODE)
+    assert not slave.guarding_lost and slave.events[-1] == ("comm restored",)

@@ -1,0 +1,305 @@
+"""The PDO side of a simulated CANopen slave (CiA 301): the communication
+and mapping parameters as the object dictionary holds them, their write
+rules, and the traffic: RPDOs into the dictionary, TPDOs out on change,
+inhibit time, event timer and SYNC. A mixin of SimulatedCanopenSlave
+(slave.py), which owns the dictionary, the NMT state and the endpoint.
+
+Choices where CiA 301 leaves room: an event-driven TPDO (type 254/255) goes
+out once on entering Operational, a synchronous one at the first SYNC after
+it; the event timer is in ms (the LTMR manual says 0.1 ms, digest 001 A7),
+the inhibit time in 100 us; a mapping changes only while its PDO is invalid
+(COB-ID bit 31) and its sub-index 0 is 0; RTR-only types (252, 253) are not
+supported.
+"""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass, field
+from typing import Any
+
+from canopen.objectdictionary import ODArray, ODRecord, ODVariable
+from canopen.sdo import SdoAbortedError
+
+from .cia301 import (
+    ABORT_DEVICE_STATE,
+    ABORT_NOT_MAPPABLE,
+    ABORT_PDO_LENGTH,
+    ABORT_VALUE_RANGE,
+    COB_ID_INVALID,
+    COB_SYNC,
+    RPDO_COMM,
+    RPDO_MAP,
+    STATE_OPERATIONAL,
+    TPDO_COMM,
+    TPDO_MAP,
+    split_mapping_entry,
+)
+
+log = logging.getLogger(__name__)
+
+MS = 1_000_000
+SYNC_COB_ID = 0x1005
+PDO_SLOTS = 512  # CiA 301: up to 512 RPDOs and 512 TPDOs
+COB_ID_EXTENDED = 1 << 29  # 29-bit identifier: the LTMR is CAN 2.0A only (manual 001 §1.1)
+PDO_MAX_BITS = 64
+
+# Transmission types (CiA 301; manual 001 §2.2)
+SYNC_ACYCLIC = 0  # on SYNC, when the data changed
+SYNC_CYCLIC_LAST = 240  # 1..240: every n-th SYNC
+EVENT_TYPES = (254, 255)  # on change, inhibit time, event timer
+
+
+@dataclass
+class Pdo:
+    """One valid PDO as its communication and mapping parameters say."""
+
+    number: int
+    cob_id: int
+    transmission: int
+    entries: list  # (index, subindex, bits)
+    inhibit_ns: int = 0  # TPDO sub 3, 100 us units
+    event_ns: int = 0  # TPDO sub 5, ms (A7)
+
+    @property
+    def nbytes(self) -> int:
+        return (sum(bits for _i, _s, bits in self.entries) + 7) // 8
+
+
+@dataclass
+class TpdoState:
+    last_data: bytes | None = None
+    last_sent_ns: int | None = None
+    sync_count: int = 0
+    pending: bool = False  # send at the next opportunity, changed or not
+
+
+@dataclass
+class PdoTables:
+    rpdos: dict = field(default_factory=dict)  # COB-ID -> Pdo
+    tpdos: list = field(default_factory=list)  # [Pdo]
+
+
+class PdoMixin:
+    """The PDO machinery of SimulatedCanopenSlave (see the module docstring)."""
+
+    od: Any
+    node: Any
+    name: str
+    _state: int
+    _tables: PdoTables | None
+    _tpdo_state: dict[int, TpdoState]
+    _sync_rpdos: dict[int, tuple]
+
+    # provided by SimulatedCanopenSlave
+    def _value(self, index: int, subindex: int) -> int:
+        raise NotImplementedError
+
+    def _send(self, can_id: int, data: bytes) -> None:
+        raise NotImplementedError
+
+    def _compound(self, index: int) -> ODRecord | ODArray:
+        raise NotImplementedError
+
+    def _variable_or_none(self, index: int, subindex: int) -> ODVariable | None:
+        raise NotImplementedError
+
+    def _flush_writes(self, now: int) -> None:
+        raise NotImplementedError
+
+    def _clock_ns(self) -> int:
+        raise NotImplementedError
+
+    def pdo_mappable(self, index: int, subindex: int, rpdo: bool) -> bool:
+        raise NotImplementedError
+
+    def on_rpdo(self, number: int) -> None:
+        raise NotImplementedError
+
+    # ------------------------------------------------------------------ PDO parameters
+
+    def _check_pdo_communication_write(self, index: int, sub: int, value: int) -> None:
+        tpdo = index >= TPDO_COMM
+        valid = not self._value(index, 1) & COB_ID_INVALID
+        if sub == 1:
+            if value & COB_ID_EXTENDED:
+                raise SdoAbortedError(ABORT_VALUE_RANGE)
+            if valid and not value & COB_ID_INVALID and (value & 0x7FF) != (self._value(index, 1) & 0x7FF):
+                # CiA 301: the COB-ID of an existing PDO cannot change; invalidate it first
+                raise SdoAbortedError(ABORT_VALUE_RANGE)
+            mapping = index + 0x200
+            if not value & COB_ID_INVALID and mapping in self.od:
+                self._check_mapping_total(mapping, self._value(mapping, 0), rpdo=not tpdo)
+        elif sub == 2:
+            if not (value <= SYNC_CYCLIC_LAST or value in EVENT_TYPES):
+                raise SdoAbortedError(ABORT_VALUE_RANGE)  # 241-251 reserved, 252/253 RTR only
+        elif sub == 3 and tpdo and valid:
+            raise SdoAbortedError(ABORT_DEVICE_STATE)  # CiA 301: inhibit time only while invalid
+
+    def _check_mapping_write(self, index: int, sub: int, value: int, *, rpdo: bool) -> None:
+        comm = index - 0x200
+        if comm in self.od and not self._value(comm, 1) & COB_ID_INVALID:
+            raise SdoAbortedError(ABORT_DEVICE_STATE)  # step 1: invalidate the PDO first
+        if sub == 0:
+            self._check_mapping_total(index, value, rpdo=rpdo)
+            return
+        if self._value(index, 0) != 0:
+            raise SdoAbortedError(ABORT_DEVICE_STATE)  # step 2: sub-index 0 := 0 first
+        if value:
+            self._check_mappable(*split_mapping_entry(value), rpdo=rpdo)
+
+    def _check_mapping_total(self, map_index: int, count: int, *, rpdo: bool) -> None:
+        entries = sorted(s for s in self._compound(map_index).subindices if s)
+        if count > len(entries):
+            raise SdoAbortedError(ABORT_PDO_LENGTH)
+        total = 0
+        for sub in entries[:count]:
+            index, subindex, bits = split_mapping_entry(self._value(map_index, sub))
+            self._check_mappable(index, subindex, bits, rpdo=rpdo)
+            total += bits
+        if total > PDO_MAX_BITS:
+            raise SdoAbortedError(ABORT_PDO_LENGTH)
+
+    def _check_mappable(self, index: int, subindex: int, bits: int, *, rpdo: bool) -> None:
+        var = self._variable_or_none(index, subindex)
+        if (
+            var is None
+            or not var.pdo_mappable
+            or not var.fixed_size
+            or not (var.writable if rpdo else var.readable)
+            or bits != len(var)
+            or not self.pdo_mappable(index, subindex, rpdo)
+        ):
+            raise SdoAbortedError(ABORT_NOT_MAPPABLE)
+
+    def _pdo_tables(self) -> PdoTables:
+        """The valid PDOs, read from the OD (cached until a PDO object is written)."""
+        if self._tables is None:
+            tables = PdoTables()
+            for number in range(1, PDO_SLOTS + 1):
+                rpdo = self._read_pdo(RPDO_COMM + number - 1, RPDO_MAP + number - 1, number)
+                if rpdo is not None:
+                    tables.rpdos[rpdo.cob_id] = rpdo
+                tpdo = self._read_pdo(TPDO_COMM + number - 1, TPDO_MAP + number - 1, number)
+                if tpdo is not None:
+                    tables.tpdos.append(tpdo)
+                    self._tpdo_state.setdefault(number, TpdoState())
+            self._tables = tables
+        return self._tables
+
+    def _read_pdo(self, comm: int, mapping: int, number: int) -> Pdo | None:
+        if comm not in self.od or mapping not in self.od:
+            return None
+        comm_record = self._compound(comm)
+        cob = self._value(comm, 1)
+        transmission = self._value(comm, 2) if 2 in comm_record else 255
+        if cob & COB_ID_INVALID or not (transmission <= SYNC_CYCLIC_LAST or transmission in EVENT_TYPES):
+            return None
+        count = self._value(mapping, 0)
+        entries = [
+            split_mapping_entry(self._value(mapping, sub))
+            for sub in sorted(self._compound(mapping).subindices)
+            if 0 < sub <= count
+        ]
+        pdo = Pdo(number, cob & 0x7FF, transmission, entries)
+        if comm >= TPDO_COMM:
+            if 3 in comm_record:
+                pdo.inhibit_ns = self._value(comm, 3) * 100_000  # 100 us units
+            if 5 in comm_record:
+                pdo.event_ns = self._value(comm, 5) * MS  # ms (CiA 301; manual says 0.1 ms: A7)
+        return pdo
+
+    # ------------------------------------------------------------------ PDO traffic
+
+    def _on_rpdo_frame(self, pdo: Pdo, data: bytes) -> None:
+        if len(data) < pdo.nbytes:
+            log.debug("%s: RPDO %d with %d bytes, %d mapped: ignored", self.name, pdo.number, len(data), pdo.nbytes)
+            return
+        if pdo.transmission <= SYNC_CYCLIC_LAST:
+            self._sync_rpdos[pdo.number] = (pdo, data)  # applied at the next SYNC
+            return
+        self._apply_rpdo(pdo, data)
+
+    def _apply_rpdo(self, pdo: Pdo, data: bytes) -> None:
+        frame = int.from_bytes(data, "little")
+        offset = 0
+        for index, subindex, bits in pdo.entries:
+            value = (frame >> offset) & ((1 << bits) - 1)
+            offset += bits
+            try:
+                self.node.set_data(index, subindex, value.to_bytes((bits + 7) // 8, "little"))
+            except SdoAbortedError as exc:
+                # A PDO has no answer: the device keeps its value (an SDO would abort)
+                log.debug(
+                    "%s: RPDO %d entry %04X:%02X refused (0x%08X)", self.name, pdo.number, index, subindex, exc.code
+                )
+        self.on_rpdo(pdo.number)
+
+    def _pack_tpdo(self, pdo: Pdo) -> bytes:
+        frame = 0
+        offset = 0
+        for index, subindex, bits in pdo.entries:
+            try:
+                raw = self.node.get_data(index, subindex)
+            except SdoAbortedError:
+                raw = b""
+            frame |= (int.from_bytes(raw, "little") & ((1 << bits) - 1)) << offset
+            offset += bits
+        return frame.to_bytes(pdo.nbytes, "little")
+
+    def _send_tpdo(self, pdo: Pdo, data: bytes, now: int) -> None:
+        state = self._tpdo_state.setdefault(pdo.number, TpdoState())
+        self._send(pdo.cob_id, data)
+        state.last_data = data
+        state.last_sent_ns = now
+        state.pending = False
+
+    def _transmit_event_tpdos(self, now: int) -> None:
+        """Types 254/255: on change of the packed data, after the inhibit time,
+        and every event-timer period even without change."""
+        for pdo in self._pdo_tables().tpdos:
+            if pdo.transmission not in EVENT_TYPES:
+                continue
+            state = self._tpdo_state.setdefault(pdo.number, TpdoState())
+            data = self._pack_tpdo(pdo)
+            since = None if state.last_sent_ns is None else now - state.last_sent_ns
+            event_due = pdo.event_ns and since is not None and since >= pdo.event_ns
+            if not (state.pending or data != state.last_data or event_due):
+                continue
+            if since is not None and since < pdo.inhibit_ns:
+                continue  # sent once the inhibit time is over
+            self._send_tpdo(pdo, data, now)
+
+    def _on_sync(self, now: int) -> None:
+        pending, self._sync_rpdos = self._sync_rpdos, {}
+        if self._state != STATE_OPERATIONAL:
+            return
+        for pdo, data in pending.values():
+            self._apply_rpdo(pdo, data)
+        self._flush_writes(now)
+        for pdo in self._pdo_tables().tpdos:
+            if pdo.transmission > SYNC_CYCLIC_LAST:
+                continue
+            state = self._tpdo_state.setdefault(pdo.number, TpdoState())
+            data = self._pack_tpdo(pdo)
+            if pdo.transmission == SYNC_ACYCLIC:
+                if state.pending or data != state.last_data:
+                    self._send_tpdo(pdo, data, now)
+                continue
+            state.sync_count += 1
+            if state.sync_count >= pdo.transmission:
+                state.sync_count = 0
+                self._send_tpdo(pdo, data, now)
+        self._transmit_event_tpdos(now)  # RPDO data applied at SYNC may change TPDO data
+
+    def _enter_operational(self) -> None:
+        """Every TPDO goes out once: event-driven ones now, synchronous ones at
+        the next SYNC (their cyclic count starts again)."""
+        for pdo in self._pdo_tables().tpdos:
+            state = self._tpdo_state.setdefault(pdo.number, TpdoState())
+            state.pending = True
+            state.sync_count = 0
+        self._transmit_event_tpdos(self._clock_ns())
+
+    def _sync_cob_id(self) -> int:
+        return (self._value(SYNC_COB_ID, 0) & 0x7FF) if SYNC_COB_ID in self.od else COB_SYNC
