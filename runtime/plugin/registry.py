@@ -106,6 +106,16 @@ class Registry:
         """The files of a kind the devices ship, by name: files("eds")["ltmr"]."""
         return {name: f for device in self.devices for name, f in device.files.get(kind, {}).items()}
 
+    def device_with_name(self, name: str) -> Device | None:
+        return self._devices.get(name)
+
+    def device_with_file(self, kind: str, name: str) -> Device | None:
+        """The device that ships the file of a kind by that name (an EDS), if any."""
+        for device in self.devices:
+            if name in device.files.get(kind, {}):
+                return device
+        return None
+
     def generated(self) -> list[GeneratedFile]:
         return [g for device in self.devices for g in device.generated]
 

@@ -130,3 +130,11 @@ class Device:
     libraries: tuple[StLibrary, ...] = ()
     files: Mapping[str, Mapping[str, PackageFile]] = field(default_factory=dict)  # kind -> name -> file
     generated: tuple[GeneratedFile, ...] = ()
+    #: a parameter named as the device's manual writes it ("8-03") and a value
+    #: in its unit -> (object index, sub-index, size in bytes, raw value), for
+    #: configured writes to a node with one of the device's files (its EDS);
+    #: ValueError with a message for an unknown name or a value out of range
+    parameter_object: Callable[[str, Any], tuple[int, int, int, int]] | None = None
+    #: an EMCY of a node with one of the device's files, in words for the log:
+    #: (error code, error register, manufacturer bytes) -> text
+    emcy_text: Callable[[int, int, bytes], str] | None = None

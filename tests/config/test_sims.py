@@ -103,7 +103,8 @@ def test_can_sections_errors_reported_together(tmp_path):
     assert str(info.value).splitlines() == [
         f"{path}: can[0].bitrate: expected one of the CANopen bitrates 10000, 20000, 50000, 125000, 250000, "
         "500000, 800000, 1000000 (got 1)",
-        f"{path}: canopen.node[0].id: 40 is the master's own node id (canopen.node_id)",
+        f"{path}: canopen.node[0].id: 40 is the master's own node id (canopen.node_id): give the master another "
+        "one (canopen.node_id = 1) or the node another (set its node-id parameter, and id here)",
         f"{path}: canopen.node[0].master_timeout: only meaningful when the master sends a heartbeat "
         "(canopen.heartbeat = '0ms')",
         f"{path}: canopen.node[0].tpdo[0].map[0].address: expected a %I address: a TPDO's entries go to %I "

@@ -10,10 +10,12 @@ from __future__ import annotations
 from ...io.canopen.eds import render as render_eds
 from ...plugin.seams import Device, GeneratedFile, PackageFile
 from .eds import fc280_eds
+from .parameters import sdo_object
 
 EDS = PackageFile("softplc.io_config", "eds/fc280.eds")
 
 DEVICE = Device(
+    parameter_object=sdo_object,
     name="fc280",
     order=30,
     files={"eds": {"fc280": EDS}},

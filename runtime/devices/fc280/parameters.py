@@ -238,6 +238,34 @@ FACTORY_NODE_ID = 127  # 10-02
 FACTORY_BITRATE = 125_000  # 10-01 [20]
 
 
+_ELEMENT = re.compile(r"\s*(\d{1,2}-\d{1,2})\s*(?:\[\s*(\d+)\s*\])?\s*\Z")
+
+
+def sdo_object(name: str, value: float | int) -> tuple[int, int, int, int]:
+    """A configured write ('8-03' = 1.0, '3-10[2]' = 25.0): (index, sub-index,
+    size, raw). An array parameter's element [i] is sub-index i + 1, sub-index
+    0 holding the count as in every CiA 301 array (digest 003 A35: the manual
+    only says "the correct subindex"). ValueError for what cannot be written."""
+    m = _ELEMENT.match(name) if isinstance(name, str) else None
+    if m is None:
+        raise ValueError(f"a parameter number is written g-nn, or g-nn[i] for an array element (got {name!r})")
+    try:
+        p = parameter(m.group(1))
+    except KeyError as exc:
+        raise ValueError(exc.args[0]) from None
+    if p.type == "VisStr":
+        raise ValueError(f"{p.number} {p.name} is text; only numbers can be written here")
+    element = m.group(2)
+    if element is not None and not p.elements:
+        raise ValueError(f"{p.number} {p.name} is not an array parameter")
+    if element is not None and int(element) >= p.elements:
+        raise ValueError(f"{p.number} {p.name} has elements [0] to [{p.elements - 1}]")
+    if element is None and p.elements:
+        raise ValueError(f"{p.number} {p.name} is an array: write one element, such as {p.number}[0]")
+    sub = int(element) + 1 if element is not None else 0
+    return p.index, sub, p.size, to_raw(p, value)
+
+
 def parameter(number: str) -> Parameter:
     """The parameter of a number ('8-03'); KeyError naming it otherwise."""
     group, nn = split_number(number)

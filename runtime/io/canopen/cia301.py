@@ -106,6 +106,12 @@ COB_NMT = 0x000
 COB_SYNC = 0x080
 COB_ID_INVALID = 1 << 31  # bit 31 of a PDO / EMCY COB-ID: does not exist / not valid
 
+# Error control objects (CiA 301)
+GUARD_TIME = 0x100C  # Unsigned 16, ms between two guarding requests of the master
+LIFE_TIME_FACTOR = 0x100D  # Unsigned 8: guard time x factor is the node's life time
+CONSUMER_HEARTBEAT = 0x1016  # sub n: (producer node << 16) | time in ms
+PRODUCER_HEARTBEAT = 0x1017  # Unsigned 16, ms (0: none)
+
 # PDO k's communication and mapping parameters are at these indices + k - 1
 RPDO_COMM, RPDO_MAP = 0x1400, 0x1600
 TPDO_COMM, TPDO_MAP = 0x1800, 0x1A00

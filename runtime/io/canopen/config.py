@@ -29,17 +29,28 @@ from ...config.values import (
     identifier,
     in_range,
     int_range,
-    integer,
     is_ident,
     quiet,
 )
 from ...plugin.registry import registry
 from ...st.ast import LocatedAddress
 from ..can.config import NODE_ID_MAX, BusName, NodeId, bus_of, can_state, claim_node
+from .config_node import (
+    DEFAULT_HEARTBEAT_MS,
+    DEFAULT_LIFE_TIME_FACTOR,
+    GUARD_TIME,
+    SdoWriteConfig,
+    _SdoWrite,
+    build_writes,
+    check_guarding,
+    check_writes,
+    default_heartbeat,
+    device_name,
+    parse_object,
+)
 
 PDO_ENTRIES_MAX = 8  # manual 001 L117: a PDO carries 8 bytes
 PDO_BITS_MAX = 64
-DEFAULT_HEARTBEAT_MS = 100  # the master's and a node's, unless the file says
 
 
 @dataclass
@@ -62,15 +73,6 @@ class PdoConfig:
 
 
 @dataclass
-class SdoWriteConfig:
-    index: int
-    subindex: int
-    value: int
-    size: int | None  # bytes (1, 2, 4); None: the EDS says
-    key: str  # "canopen.node[0].sdo[0]"
-
-
-@dataclass
 class CanopenNodeConfig:
     name: str
     node_id: int
@@ -83,6 +85,10 @@ class CanopenNodeConfig:
     tpdo: list[PdoConfig]
     rpdo: list[PdoConfig]
     key: str  # "canopen.node[0]"
+    guard_time_ms: int = 0  # node guarding: the master's request period, its 0x100C (0: no guarding)
+    life_time_factor: int = 0  # its 0x100D: guard time x factor without a request is a lost master
+    master_timeout_explicit: bool = False  # the file gives master_timeout (else it is the default)
+    device: str = ""  # the registered device whose EDS the node names ("" for an EDS file of one's own)
 
 
 @dataclass
@@ -118,29 +124,12 @@ _inhibit = duration_in("us", off="none", most=(U16_MAX * 100, "the inhibit time 
 _event = duration_in("ms", off="none", most=(U16_MAX, "the event timer is 16 bits of ms"))
 
 
-_OBJECT = re.compile(r"(?:0x)?([0-9A-F]{1,4}):(?:0x)?([0-9A-F]{1,2})", re.A | re.I)
-
-
-def _object(value) -> tuple:
-    """'2004:06' or '0x2004:06' (hex index : hex sub-index) -> (0x2004, 0x06)."""
-    m = _OBJECT.fullmatch(value.strip()) if isinstance(value, str) else None
-    if m is None:
-        raise fail('an object "index:subindex" in hex, such as "2004:06"', value)
-    return int(m.group(1), 16), int(m.group(2), 16)
-
-
 def _transmission(value) -> int:
     # manual 001 L1114: asynchronous (255), synchronously cyclic (1-240),
     # synchronously acyclic (0); CiA 301 adds 254 (event-driven, manufacturer).
     if isinstance(value, int) and not isinstance(value, bool) and (0 <= value <= 240 or value in (254, 255)):
         return value
     raise fail("a transmission type 0..240, 254 or 255", value)
-
-
-def _sdo_size(value) -> int:
-    if isinstance(value, int) and not isinstance(value, bool) and value in (1, 2, 4):
-        return value
-    raise fail("a size in bytes: 1, 2 or 4", value)
 
 
 def _eds_file(value, info: ValidationInfo) -> Path:
@@ -164,6 +153,17 @@ def _eds_file(value, info: ValidationInfo) -> Path:
     return existing_file(text, info)
 
 
+def _clash(node_id: int, master_given: bool) -> str:
+    """A node on the master's own node id, and how to part them (an FC 280
+    and the master both come with 127: manual 003 §1.9, 10-02)."""
+    where = "canopen.node_id" if master_given else f"canopen.node_id, {NODE_ID_MAX} unless the file says"
+    other = 1 if node_id != 1 else 2
+    return (
+        f"{node_id} is the master's own node id ({where}): give the master another one "
+        f"(canopen.node_id = {other}) or the node another (set its node-id parameter, and id here)"
+    )
+
+
 def _default_master_timeout(master_heartbeat_ms: int) -> int:
     """5 heartbeats of the master, within what 0x1016:01 holds."""
     return min(5 * master_heartbeat_ms, U16_MAX)
@@ -173,7 +173,7 @@ def _default_master_timeout(master_heartbeat_ms: int) -> int:
 
 
 class _PdoEntry(Model):
-    object: Annotated[tuple, PlainValidator(_object)] = Field(
+    object: Annotated[tuple, PlainValidator(parse_object)] = Field(
         description='an object "index:subindex" in hex, such as "2004:06"'
     )
     address: Any = Field(description='an image address such as "%IW0" for a TPDO, "%QW0" for an RPDO')
@@ -193,14 +193,6 @@ class _Pdo(Model):
     )
 
 
-class _SdoWrite(Model):
-    object: Annotated[tuple, PlainValidator(_object)] = Field(
-        description='an object "index:subindex" in hex, such as "2007:21"'
-    )
-    value: Annotated[int, PlainValidator(integer)] = Field(description="an integer")
-    size: Annotated[int, PlainValidator(_sdo_size)] | None = Field(None, description="1, 2 or 4")
-
-
 class _Node(Model):
     name: Annotated[str, identifier("a node name")] = Field(description='a node name such as "motor1"')
     id: NodeId = Field(description=f"a node id from 1 to {NODE_ID_MAX}")
@@ -208,9 +200,13 @@ class _Node(Model):
         description='a shipped EDS name such as "ltmr" or the path of an .eds file'
     )
     mandatory: bool = Field(True, description="true or false")
-    heartbeat: Annotated[int, PlainValidator(_node_heartbeat)] = Field(
-        DEFAULT_HEARTBEAT_MS, description="a duration such as 100ms, or false"
+    heartbeat: Annotated[int, PlainValidator(_node_heartbeat)] | None = Field(
+        None, description="a duration such as 100ms, or false"
     )
+    guard_time: Annotated[int, PlainValidator(GUARD_TIME)] | None = Field(
+        None, description="a duration such as 100ms, or false"
+    )
+    life_time_factor: Annotated[int, int_range(1, 255)] | None = Field(None, description="an integer from 1 to 255")
     heartbeat_timeout: Annotated[int, PlainValidator(_heartbeat_timeout)] | None = Field(
         None, description="a duration such as 300ms, or false"
     )
@@ -218,7 +214,8 @@ class _Node(Model):
         None, description="a duration such as 500ms, or false"
     )
     sdo: list[_SdoWrite] = Field(
-        default_factory=list, description='an array of { object = "2007:21", value = 2 } tables'
+        default_factory=list,
+        description='an array of { object = "2007:21", value = 2 } or { parameter = "8-03", value = 1.0 } tables',
     )
     tpdo: list[_Pdo] = Field(default_factory=list, description="[[canopen.node.tpdo]] tables")
     rpdo: list[_Pdo] = Field(default_factory=list, description="[[canopen.node.rpdo]] tables")
@@ -276,7 +273,7 @@ class CanopenSection(Section):
             node_id, name = node.get("id"), node.get("name")
             if in_range(node_id, 1, NODE_ID_MAX):
                 if node_id == master_id:
-                    ctx.error(here + ("id",), f"{node_id} is the master's own node id (canopen.node_id)")
+                    ctx.error(here + ("id",), _clash(node_id, "node_id" in canopen))
                 elif node_id in ids:
                     ctx.error(here + ("id",), f"duplicate node id {node_id} ({key_text(ids[node_id])} has it)")
                 else:
@@ -289,17 +286,18 @@ class CanopenSection(Section):
                         f"duplicate node name '{name}' ({key_text(first)} has it; names are case-insensitive)",
                     )
             self._heartbeats(here, node, canopen, master_heartbeat, ctx)
+            check_guarding(here, node, ctx)
             for direction in ("tpdo", "rpdo"):
                 if isinstance(node.get(direction), list):
                     self._pdos(here, direction, node[direction], ctx)
             if isinstance(node.get("sdo"), list):
-                self._sdo_values(here, node["sdo"], ctx)
+                check_writes(here, node, ctx)
 
     @staticmethod
     def _heartbeats(here: tuple, node: dict, canopen: dict, master_heartbeat: int | None, ctx: Relations) -> None:
         """The node's heartbeat against the master's timeout for it, and the
         master's heartbeat against the node's timeout for the master."""
-        heartbeat = quiet(_node_heartbeat, node.get("heartbeat", DEFAULT_HEARTBEAT_MS))
+        heartbeat = quiet(_node_heartbeat, node.get("heartbeat", default_heartbeat(node)))
         timeout = quiet(_heartbeat_timeout, node.get("heartbeat_timeout"))
         if heartbeat is not None and timeout:  # given and not off
             if heartbeat == 0:
@@ -395,20 +393,6 @@ class CanopenSection(Section):
             ctx.error(loc, f"'{addr.text}' overlaps {key_text(overlap[0])} ({overlap[1]})")
         return addr
 
-    @staticmethod
-    def _sdo_values(here: tuple, writes: list, ctx: Relations) -> None:
-        for k, write in enumerate(writes):
-            if not isinstance(write, dict):
-                continue
-            value, size = write.get("value"), write.get("size")
-            if in_range(value, None, None) and size in (1, 2, 4) and not isinstance(size, bool):
-                lo, hi = -(1 << (8 * size - 1)), (1 << (8 * size)) - 1
-                if not lo <= value <= hi:
-                    ctx.error(
-                        here + ("sdo", k, "value"),
-                        f"expected an integer from {lo} to {hi} for size = {size} (got {value})",
-                    )
-
     def build(self, model: Any, ctx: Relations) -> CanopenConfig | None:
         if model is None:
             return None
@@ -422,30 +406,33 @@ def _build_canopen(c: _Canopen, ctx: Relations) -> CanopenConfig:
     nodes = []
     for i, n in enumerate(c.node):
         key = f"canopen.node[{i}]"
+        guard_time = n.guard_time or 0
+        heartbeat = n.heartbeat if n.heartbeat is not None else (0 if guard_time else DEFAULT_HEARTBEAT_MS)
         if n.heartbeat_timeout is not None:
             heartbeat_timeout = n.heartbeat_timeout
         else:
-            heartbeat_timeout = 3 * n.heartbeat  # 0 when the node sends none
+            heartbeat_timeout = 3 * heartbeat  # 0 when the node sends none
         if n.master_timeout is not None:
             master_timeout = n.master_timeout
-        else:
-            master_timeout = _default_master_timeout(c.heartbeat) if c.heartbeat else 0
+        else:  # a guarded node watches the master through guarding
+            master_timeout = _default_master_timeout(c.heartbeat) if c.heartbeat and not guard_time else 0
         nodes.append(
             CanopenNodeConfig(
                 name=n.name,
                 node_id=n.id,
                 eds=n.eds,
                 mandatory=n.mandatory,
-                heartbeat_ms=n.heartbeat,
+                heartbeat_ms=heartbeat,
                 heartbeat_timeout_ms=heartbeat_timeout,
                 master_timeout_ms=master_timeout,
-                sdo=[
-                    SdoWriteConfig(w.object[0], w.object[1], w.value, w.size, f"{key}.sdo[{k}]")
-                    for k, w in enumerate(n.sdo)
-                ],
+                sdo=build_writes(n.sdo, ("canopen", "node", i), ctx),
                 tpdo=_build_pdos(n.tpdo, ("canopen", "node", i, "tpdo"), ctx),
                 rpdo=_build_pdos(n.rpdo, ("canopen", "node", i, "rpdo"), ctx),
                 key=key,
+                guard_time_ms=guard_time,
+                life_time_factor=(n.life_time_factor or DEFAULT_LIFE_TIME_FACTOR) if guard_time else 0,
+                master_timeout_explicit=n.master_timeout is not None,
+                device=device_name(ctx.data, i),
             )
         )
     return CanopenConfig(

@@ -28,17 +28,23 @@ import canopen
 from ...engine.clock import PeriodicService
 from ...image.memory import ProcessImage
 from ...plugin.driver import Driver, DriverError, DriverStatus
+from ...plugin.registry import registry
 from ..can.bus import BusSettings, CanEndpoint, open_bus
 from .cia301 import (
     COB_ID_INVALID,
     COB_NMT,
     COB_SYNC,
+    CONSUMER_HEARTBEAT,
+    GUARD_TIME,
+    LIFE_TIME_FACTOR,
     NMT_RESET_COMMUNICATION,
     NMT_START,
+    PRODUCER_HEARTBEAT,
     STATE_OPERATIONAL,
     cob_emcy,
     cob_heartbeat,
 )
+from .emcy_log import EmcyLog, EmcyText
 from .node import Emergency, NodeState, NodeSupervisor
 from .pdo import PdoBinding, TxSchedule, default_cob_id
 from .sdo import SERVICE as SDO_SERVICE
@@ -67,13 +73,23 @@ class _EndpointNetwork(canopen.Network):
 class _Node:
     """What the master keeps per configured node."""
 
-    def __init__(self, cfg, od, supervisor: NodeSupervisor, tpdos: list, rpdos: list, sdo_writes: list) -> None:
+    def __init__(
+        self,
+        cfg,
+        od,
+        supervisor: NodeSupervisor,
+        tpdos: list,
+        rpdos: list,
+        sdo_writes: list,
+        emcy_text: EmcyText | None = None,
+    ) -> None:
         self.cfg = cfg
         self.od = od
         self.sup = supervisor
         self.tpdos: list[PdoBinding] = tpdos
         self.rpdos: list[tuple[PdoBinding, TxSchedule]] = rpdos
         self.sdo_writes = sdo_writes  # (index, subindex, bytes, key)
+        self.emcy_text = emcy_text  # its device's words for an EMCY, if the device has them
 
 
 class CanopenDriver(Driver):
@@ -118,6 +134,7 @@ class CanopenDriver(Driver):
         )
         self.services = {SDO_SERVICE: self.sdo_service}
         self.rx_short = 0  # TPDOs shorter than their mapping (dropped)
+        self._emcy_log = EmcyLog()
         self._diag: CanopenDiag | None = None
 
     def _prepare(self, ncfg, probe: ProcessImage) -> _Node:
@@ -133,7 +150,14 @@ class CanopenDriver(Driver):
             heartbeat_timeout_ns=ncfg.heartbeat_timeout_ms * 1_000_000,
             boot_timeout_ns=c.boot_timeout_ms * 1_000_000,
             retry_ns=c.retry_ms * 1_000_000,
+            guard_ns=ncfg.guard_time_ms * 1_000_000,
+            life_time_factor=ncfg.life_time_factor,
         )
+        if ncfg.master_timeout_ms and ncfg.master_timeout_explicit and od.get_variable(CONSUMER_HEARTBEAT, 1) is None:
+            raise DriverError(
+                f"{ncfg.key}.master_timeout: the node has no heartbeat consumer (no 1016h in its EDS): it cannot "
+                "watch the master's heartbeat; watch it with node guarding (guard_time) instead"
+            )
         tpdos = [PdoBinding.from_config(p, "tpdo", od, probe) for p in ncfg.tpdo]
         rpdos = [
             (b, TxSchedule(b.transmission, b.inhibit_us, b.event_ms))
@@ -153,7 +177,8 @@ class CanopenDriver(Driver):
             if not 0 <= w.value < (1 << (8 * size)) and not -(1 << (8 * size - 1)) <= w.value < 0:
                 raise DriverError(f"{w.key}: {w.value} does not fit in {size} byte(s)")
             writes.append((w.index, w.subindex, (w.value & ((1 << (8 * size)) - 1)).to_bytes(size, "little"), w.key))
-        return _Node(ncfg, od, sup, tpdos, rpdos, writes)
+        device = registry().device_with_name(ncfg.device) if ncfg.device else None
+        return _Node(ncfg, od, sup, tpdos, rpdos, writes, device.emcy_text if device is not None else None)
 
     # ------------------------------------------------------------ life cycle
 
@@ -247,6 +272,8 @@ class CanopenDriver(Driver):
                 if node.sup.state != before and node.sup.state in (NodeState.MISSING, NodeState.LOST):
                     log.warning("canopen: node %s (%d): %s", node.cfg.name, node.cfg.node_id, node.sup.message)
                 self._act(node, action)
+                if node.sup.guard_due(now_ns):
+                    self._send_remote(cob_heartbeat(node.cfg.node_id))
             self._send_rpdos(now_ns, sync=sync)
             if sync:
                 self._send(COB_SYNC, b"")
@@ -265,9 +292,9 @@ class CanopenDriver(Driver):
         self._bus_ok = True
         self._bus_error = ""
 
-    def _send(self, can_id: int, data: bytes) -> None:
+    def _send(self, can_id: int, data: bytes, *, remote: bool = False) -> None:
         endpoint = self._started_endpoint
-        if endpoint.send(can_id, data) or not endpoint.connected or not self._bus_ok:
+        if endpoint.send(can_id, data, remote=remote) or not endpoint.connected or not self._bus_ok:
             return
         log.error(
             "canopen: cannot send on %s: %s; reopening it every %d ms",
@@ -278,6 +305,10 @@ class CanopenDriver(Driver):
         self._bus_ok = False
         self._bus_error = endpoint.last_error
         self._next_reopen_ns = self.clock.now_ns() + self.config.retry_ms * 1_000_000
+
+    def _send_remote(self, can_id: int) -> None:
+        """A remote frame (RTR): a node-guarding request."""
+        self._send(can_id, b"", remote=True)
 
     def _send_rpdos(self, now_ns: int, *, sync: bool, force: bool = False) -> None:
         with self._lock:
@@ -305,21 +336,19 @@ class CanopenDriver(Driver):
                     self.rx_short += 1
                 else:
                     self._rx_fresh[binding] = data
-            elif can_id in self._by_heartbeat and data:
+            elif can_id in self._by_heartbeat and data and not msg.is_remote_frame:
                 node = self._by_heartbeat[can_id]
-                self._act(node, node.sup.heartbeat(data[0], now))
+                if node.sup.guard_ns and data[0] & 0x7F:  # a guarding reply (a boot-up is 00)
+                    self._act(node, node.sup.guard_reply(data[0], now))
+                else:
+                    self._act(node, node.sup.heartbeat(data[0], now))
             elif can_id in self._by_emcy and data:
                 node = self._by_emcy[can_id]
                 padded = data + bytes(8 - len(data))
                 emcy = Emergency(int.from_bytes(padded[0:2], "little"), padded[2], padded[3:8], now)
                 node.sup.emergency(emcy)
-                log.warning(
-                    "canopen: node %s (%d) emergency 0x%04X, error register 0x%02X, data %s",
-                    node.cfg.name,
-                    node.cfg.node_id,
-                    emcy.code,
-                    emcy.register,
-                    emcy.data.hex(" "),
+                self._emcy_log.emergency(
+                    node.cfg.name, node.cfg.node_id, emcy.code, emcy.register, emcy.data, now, node.emcy_text
                 )
         self._started_network.notify(can_id, msg.data, msg.timestamp)
 
@@ -351,10 +380,14 @@ class CanopenDriver(Driver):
         then read back the PDO COB-IDs. Runs in the SDO worker."""
         cfg = node.cfg
         timeout = self.config.sdo_timeout_ms / 1000
-        steps = [(0x1017, 0, cfg.heartbeat_ms.to_bytes(2, "little"), f"{cfg.key}.heartbeat")]
-        if cfg.master_timeout_ms:
+        steps = [(PRODUCER_HEARTBEAT, 0, cfg.heartbeat_ms.to_bytes(2, "little"), f"{cfg.key}.heartbeat")]
+        if cfg.guard_time_ms:
+            steps.append((GUARD_TIME, 0, cfg.guard_time_ms.to_bytes(2, "little"), f"{cfg.key}.guard_time"))
+            steps.append((LIFE_TIME_FACTOR, 0, bytes([cfg.life_time_factor]), f"{cfg.key}.life_time_factor"))
+        # a node without a heartbeat consumer (no 1016h) is not told the default
+        if cfg.master_timeout_ms and node.od.get_variable(CONSUMER_HEARTBEAT, 1) is not None:
             value = (self.node_id << 16) | cfg.master_timeout_ms
-            steps.append((0x1016, 1, value.to_bytes(4, "little"), f"{cfg.key}.master_timeout"))
+            steps.append((CONSUMER_HEARTBEAT, 1, value.to_bytes(4, "little"), f"{cfg.key}.master_timeout"))
         steps.extend(node.sdo_writes)
         error = ""
         try:

@@ -9,6 +9,13 @@ bus access of its own: it returns what to do, the master does it.
 
 A node in OPERATIONAL whose heartbeat reports another NMT state (it fell to
 pre-operational after it lost the master, it was reset) is booted again.
+
+Node guarding (CiA 301) instead of a heartbeat: in OPERATIONAL and LOST the
+master asks every guard time (an RTR at 0x700 + id, guard_due) and the node
+answers with its state and a toggle bit (guard_reply). No good answer for
+guard time x life time factor is a lost node; a reply whose toggle did not
+alternate is no good answer (a reply went missing). A lost node that
+answers again is booted afresh, as one whose heartbeat comes back.
 """
 
 from __future__ import annotations
@@ -49,6 +56,8 @@ class NodeSupervisor:
         heartbeat_timeout_ns: int,
         boot_timeout_ns: int,
         retry_ns: int,
+        guard_ns: int = 0,
+        life_time_factor: int = 0,
     ) -> None:
         self.name = name
         self.node_id = node_id
@@ -56,6 +65,11 @@ class NodeSupervisor:
         self.heartbeat_timeout_ns = heartbeat_timeout_ns
         self.boot_timeout_ns = boot_timeout_ns
         self.retry_ns = retry_ns
+        self.guard_ns = guard_ns  # 0: the node is not guarded
+        self.life_ns = guard_ns * life_time_factor
+        self.next_guard_ns = 0
+        self.expected_toggle = 0  # bit 7 of the next guarding reply
+        self.toggle_errors = 0
         self.state = NodeState.UNKNOWN
         self.nmt_state: int | None = None  # last state byte of its heartbeat
         self.deadline_ns: int | None = None  # boot-up wait, heartbeat watch or retry
@@ -85,11 +99,12 @@ class NodeSupervisor:
                 NodeState.MISSING, now_ns + self.retry_ns, f"no boot-up within {self.boot_timeout_ns // 1_000_000} ms"
             )
         elif self.state == NodeState.OPERATIONAL:
-            self._enter(
-                NodeState.LOST,
-                now_ns + self.retry_ns,
-                f"heartbeat lost (none for {self.heartbeat_timeout_ns // 1_000_000} ms)",
+            lost = (
+                f"node guarding lost (no good reply for {self.life_ns // 1_000_000} ms)"
+                if self.guard_ns
+                else f"heartbeat lost (none for {self.heartbeat_timeout_ns // 1_000_000} ms)"
             )
+            self._enter(NodeState.LOST, now_ns + self.retry_ns, lost)
         elif self.state in (NodeState.MISSING, NodeState.LOST, NodeState.CONFIG_ERROR):
             self._enter(NodeState.BOOTING, now_ns + self.boot_timeout_ns)
             return "reset"
@@ -128,8 +143,52 @@ class NodeSupervisor:
         if not ok:
             self._enter(NodeState.CONFIG_ERROR, now_ns + self.retry_ns, message)
             return None
-        self._enter(NodeState.OPERATIONAL, now_ns + self.heartbeat_timeout_ns if self.heartbeat_timeout_ns else None)
+        if self.guard_ns:  # the node's first reply after its boot-up has toggle 0
+            self.expected_toggle = 0
+            self.next_guard_ns = now_ns
+            self._enter(NodeState.OPERATIONAL, now_ns + self.life_ns)
+        else:
+            watch = now_ns + self.heartbeat_timeout_ns if self.heartbeat_timeout_ns else None
+            self._enter(NodeState.OPERATIONAL, watch)
         return "start"
+
+    # ------------------------------------------------------------ node guarding
+
+    def guard_due(self, now_ns: int) -> bool:
+        """Time to send a guarding request (the master sends the RTR)."""
+        if not self.guard_ns or self.state not in (NodeState.OPERATIONAL, NodeState.LOST):
+            return False
+        if now_ns < self.next_guard_ns:
+            return False
+        self.next_guard_ns = now_ns + self.guard_ns
+        return True
+
+    def guard_reply(self, state_byte: int, now_ns: int) -> str | None:
+        """A guarding reply: the NMT state in bits 0-6, the toggle in bit 7."""
+        toggle, state_byte = state_byte & 0x80, state_byte & 0x7F
+        if state_byte != self.nmt_state:
+            self.nmt_state = state_byte
+            self.version += 1
+        if self.state in (NodeState.LOST, NodeState.MISSING):
+            self._enter(NodeState.BOOTING, now_ns + self.boot_timeout_ns)  # it is back: boot it afresh
+            return "reset"
+        if self.state != NodeState.OPERATIONAL:
+            return None
+        if state_byte != STATE_OPERATIONAL:
+            self._enter(
+                NodeState.BOOTING,
+                now_ns + self.boot_timeout_ns,
+                f"node reported {STATE_NAMES.get(state_byte, hex(state_byte))}",
+            )
+            return "reset"
+        good = toggle == self.expected_toggle
+        self.expected_toggle = toggle ^ 0x80  # follow the node either way
+        if good:
+            self.deadline_ns = now_ns + self.life_ns
+        else:
+            self.toggle_errors += 1
+            self.version += 1
+        return None
 
     def emergency(self, emcy: Emergency) -> None:
         self.emergencies += 1

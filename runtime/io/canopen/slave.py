@@ -48,11 +48,15 @@ from .cia301 import (
     ABORT_VALUE_RANGE,
     COB_ID_INVALID,
     COB_NMT,
+    CONSUMER_HEARTBEAT,
+    GUARD_TIME,
+    LIFE_TIME_FACTOR,
     NMT_PRE_OPERATIONAL,
     NMT_RESET_COMMUNICATION,
     NMT_RESET_NODE,
     NMT_START,
     NMT_STOP,
+    PRODUCER_HEARTBEAT,
     RPDO_COMM,
     RPDO_MAP,
     STATE_BOOTUP,
@@ -77,10 +81,6 @@ ERROR_REGISTER = 0x1001
 ERROR_HISTORY = 0x1003
 SYNC_COB_ID = 0x1005
 EMCY_COB_ID = 0x1014
-GUARD_TIME = 0x100C  # ms between two guarding requests of the master
-LIFE_TIME_FACTOR = 0x100D  # guard time x life time factor: the node's life time
-CONSUMER_HEARTBEAT = 0x1016
-PRODUCER_HEARTBEAT = 0x1017
 GUARDING_TOGGLE = 0x80  # bit 7 of a guarding reply
 ERROR_BEHAVIOUR = 0x1029
 

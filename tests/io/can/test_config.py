@@ -40,6 +40,7 @@ def test_canopen_defaults(tmp_path):
                 master_timeout_ms=500,
                 sdo=[],
                 key=key,
+                device="ltmr",
                 tpdo=[
                     PdoConfig(
                         1,

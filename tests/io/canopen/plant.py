@@ -107,14 +107,19 @@ class Plant:
         self.pump = self.master.pump
         bus = self.config.can[0]
         self.frames: list = []  # (time ns, can id, bytes)
+        self.remote: list = []  # (time ns, can id) of the remote frames (RTR: node guarding)
         self.spy = CanEndpoint(
             open_bus(BusSettings(bus.interface, bus.channel, bus.bitrate)), name="spy", pump=self.pump
         )
-        self.spy.add_handler(
-            lambda msg: self.frames.append((self.engine.clock.now_ns(), msg.arbitration_id, bytes(msg.data)))
-        )
+        self.spy.add_handler(self._record)
         self.spy.start()
         self.engine.start()
+
+    def _record(self, msg) -> None:
+        if msg.is_remote_frame:
+            self.remote.append((self.engine.clock.now_ns(), msg.arbitration_id))
+        else:
+            self.frames.append((self.engine.clock.now_ns(), msg.arbitration_id, bytes(msg.data)))
 
     @property
     def now_ms(self) -> float:

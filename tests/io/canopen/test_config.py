@@ -53,6 +53,8 @@ def test_example_canopen():
                 heartbeat_ms=100,
                 heartbeat_timeout_ms=300,
                 master_timeout_ms=500,
+                master_timeout_explicit=True,
+                device="ltmr",
                 key=key,
                 sdo=[
                     SdoWriteConfig(0x2007, 0x21, 2, None, f"{key}.sdo[0]"),
@@ -242,7 +244,8 @@ def test_node_ids(tmp_path):
     ]
     assert error(tmp_path, plant("node_id = 40\n")) == (
         "canopen.node[0].id",
-        "40 is the master's own node id (canopen.node_id)",
+        "40 is the master's own node id (canopen.node_id): give the master another one (canopen.node_id = 1) or "
+        "the node another (set its node-id parameter, and id here)",
     )
     assert errors(tmp_path, plant("", "", NODE.replace('"motor"', '"Pump"'), NODE.replace("40", "41"))) == [
         ("canopen.node[1].id", "duplicate node id 40 (canopen.node[0] has it)"),
@@ -371,7 +374,7 @@ def test_sdo_write_errors(tmp_path):
         ("canopen.node[0].sdo[1].value", "expected an integer (got '2')"),
         ("canopen.node[0].sdo[1].size", "expected a size in bytes: 1, 2 or 4 (got 3)"),
         ("canopen.node[0].sdo[2].value", "expected an integer (got 1.5)"),
-        ("canopen.node[0].sdo[2].bytes", "unknown key (expected one of object, value, size)"),
+        ("canopen.node[0].sdo[2].bytes", "unknown key (expected one of object, parameter, value, size)"),
     ]
 
 
@@ -607,3 +610,103 @@ def test_pdo_entry_errors(tmp_path):
         ("canopen.node[0].tpdo[0].map[1].obj", "unknown key (did you mean 'object'?)"),
         ("canopen.node[0].tpdo[0].map[2]", "expected a table (got 3)"),
     ]
+
+
+# ---------------------------------------------------------------- node guarding
+
+
+def test_node_guarding_instead_of_a_heartbeat(tmp_path):
+    node = load(tmp_path, plant("", 'guard_time = "100ms"\n')).canopen.nodes[0]
+    # no heartbeat by default, none watched, no 0x1016 default: the node watches the master by guarding
+    assert (node.guard_time_ms, node.life_time_factor) == (100, 3)
+    assert (node.heartbeat_ms, node.heartbeat_timeout_ms, node.master_timeout_ms) == (0, 0, 0)
+    node = load(tmp_path, plant("", 'guard_time = "50ms"\nlife_time_factor = 5\n')).canopen.nodes[0]
+    assert (node.guard_time_ms, node.life_time_factor) == (50, 5)
+    assert load(tmp_path, plant("", "")).canopen.nodes[0].guard_time_ms == 0
+
+
+def test_node_guarding_errors(tmp_path):
+    assert errors(tmp_path, plant("", 'guard_time = "100ms"\nheartbeat = "100ms"\n')) == [
+        (
+            "canopen.node[0].heartbeat",
+            "a node is watched by its heartbeat or by node guarding, not both (this node has guard_time = "
+            "'100ms'): remove one; a node that sends heartbeats does not answer guarding",
+        )
+    ]
+    assert error(tmp_path, plant("", "life_time_factor = 3\n")) == (
+        "canopen.node[0].life_time_factor",
+        "only with guard_time (node guarding)",
+    )
+    assert errors(tmp_path, plant("", 'guard_time = "70s"\nlife_time_factor = 0\n')) == [
+        (
+            "canopen.node[0].guard_time",
+            "expected a duration of at most 65535ms (0x100C holds ms in 16 bits), or false for no node "
+            "guarding (got '70s')",
+        ),
+        ("canopen.node[0].life_time_factor", "expected an integer from 1 to 255 (got 0)"),
+    ]
+    # heartbeat = false with guarding is what the default says anyway
+    assert load(tmp_path, plant("", 'guard_time = "100ms"\nheartbeat = false\n')).canopen.nodes[0].heartbeat_ms == 0
+
+
+# ---------------------------------------------------------------- writes by parameter number
+
+FC280 = NODE.replace('eds = "ltmr"', 'eds = "fc280"')
+
+
+def test_boot_time_writes_by_parameter_number(tmp_path):
+    # manual 003 §5.1: 2000h + g*100 + nn; Tabelle 6.2: 8-03 has conversion index -1 (1.0 s -> 10)
+    cfg = load(
+        tmp_path,
+        PLC + CAN + "[canopen]\nnode_id = 1\n" + FC280 + 'sdo = [{ parameter = "8-03", value = 1.0 }, '
+        '{ parameter = "8-04", value = 5 }, { parameter = "3-10[1]", value = 25.0 }, '
+        '{ object = "2007:21", value = 2 }]\n',
+    )
+    node = cfg.canopen.nodes[0]
+    assert node.device == "fc280"
+    assert node.sdo == [
+        SdoWriteConfig(0x2323, 0, 10, 2, "canopen.node[0].sdo[0]"),
+        SdoWriteConfig(0x2324, 0, 5, 1, "canopen.node[0].sdo[1]"),
+        SdoWriteConfig(0x2136, 2, 2500, 2, "canopen.node[0].sdo[2]"),  # element [1]: sub-index 2 (A35)
+        SdoWriteConfig(0x2007, 0x21, 2, None, "canopen.node[0].sdo[3]"),
+    ]
+
+
+def test_writes_by_parameter_number_errors(tmp_path):
+    sdo = (
+        'sdo = [{ parameter = "8-3x", value = 1 }, { parameter = "9-99", value = 1 }, '
+        '{ parameter = "8-03", value = 7000.0 }, { parameter = "3-10", value = 1 }, '
+        '{ parameter = "8-03", object = "2323:00", value = 1 }, { value = 1 }, '
+        '{ parameter = "8-03", value = 1.0, size = 2 }]\n'
+    )
+    assert errors(tmp_path, PLC + CAN + "[canopen]\nnode_id = 1\n" + FC280 + sdo) == [
+        (
+            "canopen.node[0].sdo[0].parameter",
+            "a parameter number is written g-nn, or g-nn[i] for an array element (got '8-3x')",
+        ),
+        ("canopen.node[0].sdo[1].parameter", "parameter 9-99 is not one the softplc FC 280 support knows"),
+        (
+            "canopen.node[0].sdo[2].parameter",
+            "8-03 Steuerwort Timeout-Zeit: 7000.0 s is raw 70000, outside 0..65535 (UInt16, conversion index -1)",
+        ),
+        ("canopen.node[0].sdo[3].parameter", "3-10 Festsollwert is an array: write one element, such as 3-10[0]"),
+        ("canopen.node[0].sdo[4].parameter", "object or parameter, not both"),
+        ("canopen.node[0].sdo[5]", 'required key missing: object (such as "2007:21") or parameter (such as "8-03")'),
+        ("canopen.node[0].sdo[6].size", "only with object (a parameter's size is its device's)"),
+    ]
+    # an LTMR names no parameters by number
+    assert error(tmp_path, plant("", 'sdo = [{ parameter = "8-03", value = 1 }]\n')) == (
+        "canopen.node[0].sdo[0].parameter",
+        "the node's EDS ('ltmr') is no registered device's that names its parameters: write the object "
+        'instead (object = "index:subindex")',
+    )
+
+
+def test_an_fc280_on_the_factory_node_id_clashes_with_the_master(tmp_path):
+    # both come with 127 (manual 003 §1.9, 10-02; canopen.node_id's default)
+    text = PLC + CAN + "[canopen]\n" + FC280.replace("id = 40", "id = 127")
+    assert error(tmp_path, text) == (
+        "canopen.node[0].id",
+        "127 is the master's own node id (canopen.node_id, 127 unless the file says): give the master another "
+        "one (canopen.node_id = 1) or the node another (set its node-id parameter, and id here)",
+    )

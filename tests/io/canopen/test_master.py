@@ -8,6 +8,8 @@ from softplc.runtime.engine.monitor import status_line
 from softplc.runtime.io.can.bus import BusSettings
 from softplc.runtime.io.canopen.node import NodeState
 
+from .plant import LTMR_NODE
+
 WATCH = """
 PROGRAM Watch
 VAR
@@ -122,3 +124,94 @@ def test_a_failed_bus_is_reported_and_reopened(plants):
     plant.run_until(
         lambda: plant.master.status().ok and plant.get("Watch.operational"), 3000, "bus reopened, node operational"
     )
+
+
+# ---------------------------------------------------------------------------- node guarding
+
+GUARDED = {k: v for k, v in LTMR_NODE.items() if k not in ("heartbeat", "heartbeat_timeout", "master_timeout")}
+GUARDED.update(guard_time="50ms", life_time_factor=3)
+
+
+def test_a_guarded_node_is_told_its_guard_time_and_asked_every_guard_time(plants):
+    plant = plants(WATCH, program="Watch", nodes=[GUARDED])
+    plant.run_until(lambda: plant.get("Watch.operational"), 300, "node 40 operational")
+    sdo = plant.frames_with(0x628)
+    # 0x1017 := 0 (no heartbeat), 0x100C := 50 ms, 0x100D := 3; no 0x1016 (the node watches by guarding)
+    assert bytes.fromhex("2B 17 10 00 00 00 00 00") in sdo
+    assert bytes.fromhex("2B 0C 10 00 32 00 00 00") in sdo
+    assert bytes.fromhex("2F 0D 10 00 03 00 00 00") in sdo
+    assert not any(frame[1:3] == bytes.fromhex("16 10") for frame in sdo)
+    sim = plant.sims[40]
+    assert (sim.read(0x100C), sim.read(0x100D), sim.read(0x1017)) == (50, 3, 0)
+    plant.frames.clear()
+    plant.remote.clear()
+    plant.run_ms(500)
+    requests = [t for t, cid in plant.remote if cid == 0x728]
+    assert {b - a for a, b in zip(requests, requests[1:])} == {50_000_000} and len(requests) >= 9
+    # the replies: operational (05) with the toggle bit alternating, one per request
+    replies = plant.frames_with(0x728)
+    assert {r[0] & 0x7F for r in replies} == {0x05}
+    assert all(a[0] ^ b[0] == 0x80 for a, b in zip(replies, replies[1:]))
+    assert len(replies) == len(requests)
+    assert plant.master.node_state(40) == NodeState.OPERATIONAL and plant.master.status().ok
+
+
+def test_a_guarded_node_that_stops_answering_is_lost_and_recovered(plants):
+    plant = plants(WATCH, program="Watch", nodes=[GUARDED])
+    plant.run_until(lambda: plant.get("Watch.operational"), 300, "node 40 operational")
+    sim = plant.sims[40]
+    sim.unplug()
+    took = plant.run_until(lambda: plant.get("Watch.lost"), 1000, "node lost")
+    assert 100 < took <= 160  # guard time 50 ms x life time factor 3 after the last good reply
+    assert "node guarding lost (no good reply for 150 ms)" in plant.master.status().message
+    plant.run_ms(100)
+    assert sim.guarding_lost  # and the node's side: no request for its life time, the master is lost
+    sim.plug()
+    plant.run_until(lambda: plant.get("Watch.operational"), 2000, "node 40 operational again")
+    assert plant.master.status().ok
+    assert plant.node_diag(40, "Boots") >= 2
+
+
+def test_a_guarding_reply_whose_toggle_did_not_alternate_is_no_good_reply(plants):
+    from softplc.runtime.io.canopen.node import NodeSupervisor
+
+    sup = NodeSupervisor(
+        "x",
+        5,
+        mandatory=True,
+        heartbeat_timeout_ns=0,
+        boot_timeout_ns=10**9,
+        retry_ns=10**9,
+        guard_ns=50 * 10**6,
+        life_time_factor=3,
+    )
+    sup.tick(0)
+    sup.heartbeat(0x00, 0)  # boot-up
+    sup.configured(True, "", 0)
+    assert sup.guard_due(0) and not sup.guard_due(49 * 10**6) and sup.guard_due(50 * 10**6)
+    sup.guard_reply(0x05, 10**6)  # toggle 0: good
+    sup.guard_reply(0x05, 60 * 10**6)  # toggle 0 again: a reply went missing
+    assert sup.toggle_errors == 1
+    sup.guard_reply(0x85, 110 * 10**6)  # 0x85 is what follows 0x05: good again
+    assert sup.toggle_errors == 1 and sup.deadline_ns == 260 * 10**6
+    assert sup.tick(261 * 10**6) is None and sup.state == NodeState.LOST
+
+
+def test_a_node_without_a_heartbeat_consumer_cannot_be_given_a_master_timeout(tmp_path):
+    import pytest
+
+    from softplc.runtime.config import config_from_dict
+    from softplc.runtime.engine.build import build_engine
+    from softplc.runtime.plugin.driver import DriverError
+
+    from .plant import plant_config
+
+    node = {"name": "pump", "id": 20, "eds": "fc280", "master_timeout": "500ms"}
+    data = plant_config(tmp_path, WATCH, program="Watch", nodes=[node], sims=[])
+    with pytest.raises(
+        DriverError,
+        match=r"canopen.node\[0\].master_timeout: the node has no heartbeat consumer "
+        r"\(no 1016h in its EDS\): it cannot watch the master's heartbeat; "
+        r"watch it with node guarding \(guard_time\) instead",
+    ):
+        build_engine(config_from_dict(data, tmp_path / "plant.toml"), virtual_time=True)
