@@ -437,10 +437,14 @@ class CanopenDriver(Driver):
             self._sdo(node, b.map_index, i, e.mapping_value.to_bytes(4, "little"), e.key, timeout)
         self._sdo(node, b.map_index, 0, bytes([len(b.entries)]), what, timeout)
         self._sdo(node, b.comm_index, 2, bytes([b.transmission]), f"{b.key}.transmission", timeout)
+        # A TPDO's inhibit time and event timer are written even when 0: a node's
+        # own default may not be (the FC 280 inhibits its TPDOs for 30 ms,
+        # manual 003 §4.1.4), and the configuration says what is wanted.
         comm = node.od.get(b.comm_index)
-        if b.inhibit_us and comm is not None and 3 in comm:
+        tpdo = b.direction == "tpdo"
+        if (tpdo or b.inhibit_us) and comm is not None and 3 in comm:
             self._sdo(node, b.comm_index, 3, (b.inhibit_us // 100).to_bytes(2, "little"), f"{b.key}.inhibit", timeout)
-        if b.event_ms and comm is not None and 5 in comm:
+        if (tpdo or b.event_ms) and comm is not None and 5 in comm:
             self._sdo(node, b.comm_index, 5, b.event_ms.to_bytes(2, "little"), f"{b.key}.event", timeout)
         self._sdo(node, b.comm_index, 1, cob_id.to_bytes(4, "little"), what, timeout)
         b.cob_id = cob_id

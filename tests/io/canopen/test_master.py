@@ -47,6 +47,9 @@ def test_boot_up_order_reset_bootup_configure_start_pdos(plants):
     invalidate = _index(f, 0x628, bytes.fromhex("23 01 18 01 A8 02 00 80"), after=fallback)
     entry1 = _index(f, 0x628, bytes.fromhex("23 01 1A 01 10 02 04 20"), after=invalidate)  # 2004:02, 16 bit
     count = _index(f, 0x628, bytes.fromhex("2F 01 1A 00 04 00 00 00"), after=entry1)
+    # inhibit time and event timer written although 0: the node's defaults might not be
+    inhibit = _index(f, 0x628, bytes.fromhex("2B 01 18 03 00 00 00 00"), after=count)
+    _index(f, 0x628, bytes.fromhex("2B 01 18 05 00 00 00 00"), after=inhibit)
     validate = _index(f, 0x628, bytes.fromhex("23 01 18 01 A8 02 00 00"), after=count)
     start = _index(f, 0x000, NMT_START_40, after=validate)
     tpdo1 = _index(f, 0x1A8, after=start)
