@@ -167,6 +167,7 @@ def test_a_guarded_node_that_stops_answering_is_lost_and_recovered(plants):
     took = plant.run_until(lambda: plant.get("Watch.lost"), 1000, "node lost")
     assert 100 < took <= 160  # guard time 50 ms x life time factor 3 after the last good reply
     assert "node guarding lost (no good reply for 150 ms)" in plant.master.status().message
+    assert plant.node_diag(40, "Lost") and plant.node_diag(40, "State") == NodeState.LOST
     plant.run_ms(100)
     assert sim.guarding_lost  # and the node's side: no request for its life time, the master is lost
     sim.plug()
