@@ -110,11 +110,22 @@ class NodeSupervisor:
             return "reset"
         return None
 
-    def heartbeat(self, state_byte: int, now_ns: int) -> str | None:
-        state_byte &= 0x7F
+    def _seen(self, state_byte: int) -> None:
         if state_byte != self.nmt_state:
             self.nmt_state = state_byte
             self.version += 1
+
+    def _restart_unless_operational(self, state_byte: int, now_ns: int) -> str | None:
+        """An OPERATIONAL node that reports another state is booted again."""
+        if state_byte == STATE_OPERATIONAL:
+            return None
+        reported = STATE_NAMES.get(state_byte, hex(state_byte))
+        self._enter(NodeState.BOOTING, now_ns + self.boot_timeout_ns, f"node reported {reported}")
+        return "reset"
+
+    def heartbeat(self, state_byte: int, now_ns: int) -> str | None:
+        state_byte &= 0x7F
+        self._seen(state_byte)
         if state_byte == STATE_BOOTUP:
             self.boots += 1
             if self.state == NodeState.CONFIGURING:
@@ -123,12 +134,7 @@ class NodeSupervisor:
             return "configure"
         if self.state == NodeState.OPERATIONAL:
             if state_byte != STATE_OPERATIONAL:
-                self._enter(
-                    NodeState.BOOTING,
-                    now_ns + self.boot_timeout_ns,
-                    f"node reported {STATE_NAMES.get(state_byte, hex(state_byte))}",
-                )
-                return "reset"
+                return self._restart_unless_operational(state_byte, now_ns)
             if self.heartbeat_timeout_ns:
                 self.deadline_ns = now_ns + self.heartbeat_timeout_ns
         elif self.state in (NodeState.LOST, NodeState.MISSING):
@@ -166,21 +172,14 @@ class NodeSupervisor:
     def guard_reply(self, state_byte: int, now_ns: int) -> str | None:
         """A guarding reply: the NMT state in bits 0-6, the toggle in bit 7."""
         toggle, state_byte = state_byte & 0x80, state_byte & 0x7F
-        if state_byte != self.nmt_state:
-            self.nmt_state = state_byte
-            self.version += 1
+        self._seen(state_byte)
         if self.state in (NodeState.LOST, NodeState.MISSING):
             self._enter(NodeState.BOOTING, now_ns + self.boot_timeout_ns)  # it is back: boot it afresh
             return "reset"
         if self.state != NodeState.OPERATIONAL:
             return None
         if state_byte != STATE_OPERATIONAL:
-            self._enter(
-                NodeState.BOOTING,
-                now_ns + self.boot_timeout_ns,
-                f"node reported {STATE_NAMES.get(state_byte, hex(state_byte))}",
-            )
-            return "reset"
+            return self._restart_unless_operational(state_byte, now_ns)
         good = toggle == self.expected_toggle
         self.expected_toggle = toggle ^ 0x80  # follow the node either way
         if good:
