@@ -8,7 +8,8 @@ Public names: DEVICE.
 from __future__ import annotations
 
 from ...io.canopen.eds import render as render_eds
-from ...plugin.seams import Device, GeneratedFile, PackageFile
+from ...plugin.seams import Device, GeneratedFile, PackageFile, StLibrary
+from . import st_codes
 from .eds import fc280_eds
 
 EDS = PackageFile("softplc.io_config", "eds/fc280.eds")
@@ -16,8 +17,12 @@ EDS = PackageFile("softplc.io_config", "eds/fc280.eds")
 DEVICE = Device(
     name="fc280",
     order=30,
+    libraries=(StLibrary("softplc.fblocks.vendor", "fc280_codes.st"),),
     files={"eds": {"fc280": EDS}},
-    generated=(GeneratedFile(EDS, lambda: render_eds(fc280_eds()), encoding="ascii"),),
+    generated=(
+        GeneratedFile(PackageFile("softplc.fblocks.vendor", "fc280_codes.st"), st_codes.render),
+        GeneratedFile(EDS, lambda: render_eds(fc280_eds()), encoding="ascii"),
+    ),
 )
 
 __all__ = ["DEVICE"]
