@@ -17,7 +17,11 @@ EDS = PackageFile("softplc.io_config", "eds/fc280.eds")
 DEVICE = Device(
     name="fc280",
     order=30,
-    libraries=(StLibrary("softplc.fblocks.vendor", "fc280_codes.st"),),
+    libraries=(
+        StLibrary("softplc.fblocks.vendor", "fc280.st"),
+        StLibrary("softplc.fblocks.vendor", "fc280_parameter.st"),
+        StLibrary("softplc.fblocks.vendor", "fc280_codes.st"),
+    ),
     files={"eds": {"fc280": EDS}},
     generated=(
         GeneratedFile(PackageFile("softplc.fblocks.vendor", "fc280_codes.st"), st_codes.render),
