@@ -20,6 +20,7 @@ def test_every_device_file_is_generated():
         "eaton_codes.st",
         "eds/fc280.eds",
         "eds/ltmr.eds",
+        "fc280_codes.st",
         "ltmr_codes.st",
     ]
 

@@ -37,7 +37,11 @@ BUS = Bus(
     order=30,
     sections=(CanopenSection(),),
     natives=(READ_VAR, WRITE_VAR),
-    libraries=(StLibrary("softplc.fblocks.comm", "sdo.st"), StLibrary("softplc.fblocks.comm", "canopen_diag.st")),
+    libraries=(
+        StLibrary("softplc.fblocks.comm", "sdo.st"),
+        StLibrary("softplc.fblocks.comm", "canopen_diag.st"),
+        StLibrary("softplc.fblocks.comm", "cia402.st"),
+    ),
     build=_build,
 )
 
