@@ -122,10 +122,17 @@ def number_of(index: int) -> str:
     return f"{group}-{nn:02d}"
 
 
+def _round_half_away(x: Fraction) -> int:
+    """Rounded half away from zero, as FC280_PARAMETER rounds in ST (0.25 s
+    at 0.1 s steps is 3, not Python's banker's 2)."""
+    whole = int(abs(x) + Fraction(1, 2))
+    return whole if x >= 0 else -whole
+
+
 def to_raw(p: Parameter, value: float | int) -> int:
     """value in the parameter's unit -> the raw integer on the bus (rounded
     to the nearest step); ValueError beyond what the type holds."""
-    raw = round(Fraction(value) / p.factor) if p.conversion is not None else int(value)
+    raw = _round_half_away(Fraction(value) / p.factor) if p.conversion is not None else int(value)
     _size, lo, hi = TYPES[p.type]
     if not lo <= raw <= hi:
         unit = f" {p.unit}" if p.unit else ""
