@@ -54,19 +54,41 @@ class OperatorChecks(CheckerBase):
 
     def _binary(self, e: A.Binary, scope: Scope, expected: T.Type | None) -> T.Type | None:
         op = e.op
-        lt = self.expr(e.left, scope)
-        rt = self.expr(e.right, scope, expected=lt if is_flexible(e.right) else None)
-        if lt is None or rt is None:
-            return None
-        if is_flexible(e.left) and not is_flexible(e.right):
+        if self._takes_context(e.left, scope) and not self._takes_context(e.right, scope):
+            # `Idle = state`: the enumerator takes the type of the other side
+            rt = self.expr(e.right, scope)
             lt = self.expr(e.left, scope, expected=rt)
-            if lt is None:
+            if lt is None or rt is None:
                 return None
+        else:
+            lt = self.expr(e.left, scope)
+            rt = self.expr(e.right, scope, expected=lt if self._takes_context(e.right, scope) else None)
+            if lt is None or rt is None:
+                return None
+            if is_flexible(e.left) and not is_flexible(e.right):
+                lt = self.expr(e.left, scope, expected=rt)
+                if lt is None:
+                    return None
         if op in ("AND", "OR", "XOR", "AND_THEN", "OR_ELSE"):
             return self._logical(e, lt, rt)
         if op in ("=", "<>", "<", ">", "<=", ">="):
             return self._comparison(e, lt, rt)
         return self._arithmetic(e, lt, rt, expected)
+
+    def _takes_context(self, e: A.Expr, scope: Scope) -> bool:
+        """An untyped literal, or a bare enumerator name that is no variable:
+        its type comes from the other operand (`state <> Idle` with Idle an
+        enumerator of several types picks the one of state, as CODESYS and
+        TwinCAT do)."""
+        if is_flexible(e):
+            return True
+        if not isinstance(e, A.Name):
+            return False
+        key = e.name.upper()
+        pou = scope.pou
+        if pou is not None and (key in pou.vars or (pou.result is not None and key == pou.name.upper())):
+            return False
+        return key not in self.globals and len(self.enumerators.get(key, ())) > 1
 
     def _logical(self, e: A.Binary, lt: T.Type, rt: T.Type) -> T.Type | None:
         le, re_ = T.base_elementary(lt), T.base_elementary(rt)

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from softplc.runtime.st import types as T
 
-from .conftest import check_st, codes, diagnostics, pou_body, prog
+from .conftest import check_st, codes, diagnostics, pou_body, prog, run_st
 
 
 def test_type_errors_in_conditions_and_operators():
@@ -38,3 +38,26 @@ def test_constant_operations_are_folded_with_iec_results():
         (0x0FF0, T.DINT),
         (-3, T.INT),
     ]
+
+
+SHARED_ENUMERATORS = """TYPE E_Pump : (Idle, Running, Faulted); END_TYPE
+TYPE E_Fan : (Off, Idle, Faulted); END_TYPE
+"""
+
+
+def test_an_enumerator_of_several_types_takes_the_type_of_the_other_operand():
+    src = SHARED_ENUMERATORS + prog(
+        "pump : E_Pump := Faulted; fan : E_Fan; a : BOOL; b : BOOL; c : BOOL;",
+        "a := pump <> Idle;\nb := Faulted = pump;\nc := fan = Idle;",
+    )
+    runner = run_st(src)
+    assert (runner.get("a"), runner.get("b"), runner.get("c")) == (True, True, False)
+
+
+def test_an_enumerator_with_no_typed_side_stays_ambiguous():
+    src = SHARED_ENUMERATORS + prog("b : BOOL;", "b := Idle = Faulted;")
+    assert [(d.code, d.message, d.hint) for d in diagnostics(src)][0] == (
+        "E010",
+        "'Idle' is an enumerator of several types",
+        "qualify it, e.g. E_Pump#Idle",
+    )
