@@ -1,6 +1,6 @@
 """A plant on python-can's virtual bus, in virtual time: the CANopen master
 (the real driver, built from a configuration as `softplc run` builds it),
-simulated LTMRs (real canopen LocalNodes) and a spy endpoint that records
+simulated devices (real canopen LocalNodes) and a spy endpoint that records
 every frame on the bus, all delivered by one BusPump."""
 
 from __future__ import annotations
@@ -12,9 +12,9 @@ from pathlib import Path
 import pytest
 
 from softplc.runtime.config import config_from_dict
-from softplc.runtime.devices.ltmr.sim import LtmrSimulator
 from softplc.runtime.engine.build import build_engine
 from softplc.runtime.io.can.bus import BusSettings, CanEndpoint, open_bus
+from softplc.runtime.io.canopen.slave import SimulatedCanopenSlave
 from softplc.runtime.program import locate
 
 MS = 1_000_000
@@ -103,7 +103,7 @@ class Plant:
         self.config = config_from_dict(data, tmp_path / "plant.toml")
         self.engine = build_engine(self.config, virtual_time=True)
         self.master = next(d for d in self.engine.drivers if d.name == "canopen")
-        self.sims = {d.node_id: d for d in self.engine.drivers if isinstance(d, LtmrSimulator)}
+        self.sims = {d.node_id: d for d in self.engine.drivers if isinstance(d, SimulatedCanopenSlave)}
         self.pump = self.master.pump
         bus = self.config.can[0]
         self.frames: list = []  # (time ns, can id, bytes)
