@@ -288,6 +288,7 @@ class Fc280Model:
         self._settle()
 
     def clear_warning(self, bit: int, word: str = "16-92") -> None:
+        """Fault injection: the warning raised by warn() is gone."""
         self.injected_warnings[word] &= ~bit
         self._settle()
 
@@ -302,7 +303,9 @@ class Fc280Model:
             self._dsp_state = DspState.SWITCH_ON_DISABLED
         self._settle()
 
-    press_reset = reset
+    def press_reset(self) -> None:
+        """The LCP's [Reset] key (8-04 [5] names it): reset()."""
+        self.reset()
 
     def warnings(self) -> dict[str, int]:
         """16-92 and 16-93: the injected warnings and the drive's own. A fault

@@ -32,8 +32,10 @@ its contradictions A1..A42):
   appears, the all-zero EMCY when the last is gone; 8-07 [0] (factory)
   sends none (§3.1.4). Payload: emcy.py. 1001h and 603Fh are live.
 - Life guarding (100Ch x 100Dh) lost: the model's lost-master reaction
-  (8-04 and warning 34); guarding back: its end. The node has no heartbeat
-  consumer (§3.1.4 HINWEIS: 1016h is not in the EDS).
+  (8-04 and warning 34, A6), and CiA 301's pre-operational (no 1029h);
+  guarding back: its end. The node has no heartbeat consumer (§3.1.4
+  HINWEIS: no 1016h), so a [[canopen.node]] for it takes
+  master_timeout = false.
 - power_cycle() applies a pending restore (§7.1.10); NMT reset node
   restarts the drive with its saved parameters.
 - 10-01 and 10-02 show the configuration's bit rate and node id; a write

@@ -24,6 +24,7 @@ from softplc.runtime.io.canopen.cia301 import (
 )
 
 from ...io.canopen.bench import MS, abort_frame, write_ok
+from .test_model import TABELLE_4_3
 
 NODE = 5
 TPDO1, TPDO3, RPDO1, EMCY, HEARTBEAT, SDO_TX = 0x185, 0x385, 0x205, 0x085, 0x705, 0x585
@@ -253,6 +254,24 @@ def test_dsp_402_over_pdos(bench):
     bench.run_ms(3000)
     assert bench.frames_with(TPDO1)[-1] == bytes.fromhex("37 47 DC 05")  # 1500 RPM, at the reference
     assert sim.read(0x6043) == 1500 and sim.model.output_hz == 50.0
+
+
+def test_every_transition_of_tabelle_4_3_over_sdo(bench):
+    # M11: the control word into 6040h, the status word read back from 6041h
+    sim = fc280(bench)
+    assert bench.sdo_write(NODE, 0x232A, 0, 7, 1) == write_ok(0x232A, 0)  # 8-10 [7] (A16)
+    assert bench.sdo_read(NODE, 0x6041, 0)[4:6] == bytes.fromhex("00 02")  # transition 0
+    for transition, word, status in TABELLE_4_3:
+        assert bench.sdo_write(NODE, 0x6040, 0, word, 2) == write_ok(0x6040, 0)
+        assert (transition, bench.sdo_read(NODE, 0x6041, 0)[4:6]) == (transition, status.to_bytes(2, "little"))
+    for word in (0x0006, 0x000F):
+        assert bench.sdo_write(NODE, 0x6040, 0, word, 2) == write_ok(0x6040, 0)
+    sim.model.over_current()
+    assert bench.sdo_read(NODE, 0x6041, 0)[4:6] == bytes.fromhex("3F 02")  # 13, 14 (A20)
+    assert bench.sdo_write(NODE, 0x6040, 0, 0x0000, 2) == write_ok(0x6040, 0)
+    assert bench.sdo_read(NODE, 0x6041, 0)[4:6] == bytes.fromhex("3F 02")  # 15 needs bit 7's edge (A21)
+    assert bench.sdo_write(NODE, 0x6040, 0, 0x0080, 2) == write_ok(0x6040, 0)
+    assert bench.sdo_read(NODE, 0x6041, 0)[4:6] == bytes.fromhex("40 02")  # 15
 
 
 def test_the_vl_dimension_factor(bench):
