@@ -22,8 +22,8 @@ A device simulator subclasses it and fills in the hooks:
     object_write(index, sub, od, data, local)
                                   check or apply a write; raise SdoAbortedError(code) to refuse
     pdo_mappable(index, sub, rpdo) whether an object may go into an RPDO / TPDO
-    on_state_change(old, new), on_reset_application(), on_comm_error(),
-    on_comm_restored(), on_rpdo(number)
+    on_state_change(old, new), on_reset_application(), on_reset_communication(),
+    on_comm_error(), on_comm_restored(), on_rpdo(number)
 
 The PDO machinery (parameters, write rules, traffic, SYNC) is slave_pdo.py's,
 with the choices it makes where CiA 301 leaves room.
@@ -194,6 +194,12 @@ class SimulatedCanopenSlave(PdoMixin, SimulatedDevice):
         the application area (0x2000-0x9FFF) goes back to its EDS values."""
         self._clear_stored(*APPLICATION_AREA)
 
+    def on_reset_communication(self) -> None:
+        """The communication area (0x1000-0x1FFF) has just gone back to its EDS
+        values (reset communication, reset node, power-up). A device that keeps
+        communication parameters in non-volatile memory (0x1010) puts them back
+        here (_store), before heartbeat, guarding and PDOs are set up from them."""
+
     def on_comm_error(self) -> None:
         """A watched heartbeat producer fell silent, or the master stopped
         guarding the node (life guarding), before the 0x1029 state change."""
@@ -324,6 +330,7 @@ class SimulatedCanopenSlave(PdoMixin, SimulatedDevice):
         if application:
             self.on_reset_application()
         self._clear_stored(*COMMUNICATION_AREA)
+        self.on_reset_communication()
         self.node.sdo._buffer = None  # a segmented transfer in progress is gone
         self._tables = None
         self._consumers = None

@@ -143,6 +143,34 @@ def test_reset_node_also_restarts_the_application(bench, slave):
     assert slave.read(0x2007, 0x03) == 0
 
 
+class SavingSlave(RecordingSlave):
+    """A device that keeps a producer heartbeat time in non-volatile memory."""
+
+    saved_heartbeat_ms = 0
+
+    def on_reset_communication(self):
+        self.events.append(("reset communication",))
+        if self.saved_heartbeat_ms:
+            self._store(0x1017, 0, self.saved_heartbeat_ms)
+
+
+def test_saved_communication_parameters_come_back_at_every_reset_communication(bench):
+    with _eds("ltmr.eds") as path:
+        slave = SavingSlave(NODE, eds=str(path), settings=bench.settings, clock=bench.clock, pump=bench.pump)
+    bench.add(slave)
+    assert slave.events.count(("reset communication",)) == 1  # power-up
+    slave.saved_heartbeat_ms = 100
+    bench.nmt(NMT_RESET_COMMUNICATION, NODE)
+    assert slave.read(0x1017) == 100  # put back after the EDS values, before the heartbeat is set up
+    bench.clear()
+    bench.run_ms(250)
+    assert bench.times_of(HEARTBEAT) == [t * MS for t in (100, 200)]
+    slave.saved_heartbeat_ms = 0
+    bench.nmt(NMT_RESET_NODE, NODE)
+    assert slave.read(0x1017) == 0
+    assert slave.events.count(("reset communication",)) == 3
+
+
 def test_power_cycle_boots_again(bench, slave):
     bench.nmt(NMT_START, NODE)
     bench.clear()
