@@ -5,9 +5,10 @@ objects of Tabelle 7.1, every parameter of parameters.PARAMETERS as object
 limits where store.py narrows the type's, and PDO mapping flag, and the CiA 402 velocity mode objects the
 manual names (§4.3.1).
 
-Array parameters (3-10, 5-40) have element i at sub-index i, 0 .. n-1, as
-parameters.py has it (the manual leaves the convention open, digest 003
-A35): an ARRAY without the usual "number of entries" at sub-index 0.
+Array parameters (3-10, 5-40) have element [i] at sub-index i + 1 and the
+number of elements at sub-index 0, as every CiA 301 ARRAY and as
+parameters.sdo_object has it (the manual only says "the correct subindex",
+digest 003 A35).
 """
 
 from __future__ import annotations
@@ -129,8 +130,8 @@ def parameter_objects() -> list:
     for p in PARAMETERS.values():
         name = f"{ENGLISH[p.number]} ({p.number})"
         if p.elements:
-            members = [(i, parameter_entry(p, f"{name}[{i}]")) for i in range(p.elements)]
-            objects.append(compound(p.index, name, members[1:], "ARRAY", sub0=members[0][1]))
+            members = [(i + 1, parameter_entry(p, f"{name}[{i}]")) for i in range(p.elements)]
+            objects.append(compound(p.index, name, members, "ARRAY"))
         else:
             objects.append(EdsObject(p.index, name, "VAR", entry=parameter_entry(p, name)))
     return objects
@@ -258,7 +259,7 @@ def fc280_eds() -> EdsFile:
             "Values the manual gives: device type, vendor ID 200008, the communication objects of Tabelle 7.1,",
             "the DSP 402 and FC profile objects, the factory settings of Tabelle 6.1, TPDO inhibit time 300",
             "(30 ms). Every parameter the softplc FC 280 support uses is object 2000h + parameter number;",
-            "array parameters have element i at sub-index i. Placeholders: product code, revision, device name",
+            "array parameters have element [i] at sub-index i+1. Placeholders: product code, revision, device name",
             "and software version strings, the SYNC COB-ID 0x80 (manual prints 125), the factory settings of",
             "the parameters the manual only names, the 0x6000 objects' types and values (CiA 402) and every",
             "default PDO mapping (the manual shows them only in a picture).",

@@ -72,7 +72,7 @@ class Parameter:
     default: int  # raw
     source: str  # MANUAL, or CHOICE for a parameter the manual only names
     unit: str = ""
-    elements: int = 0  # an array parameter: its number of elements (sub-indices 0..n-1)
+    elements: int = 0  # an array parameter: its number of elements ([i] at sub-index i + 1)
 
     @property
     def group(self) -> int:

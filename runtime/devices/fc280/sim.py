@@ -10,7 +10,8 @@ from the shipped EDS (io_config/eds/fc280.eds), whose drive is model.py.
 What the bus sees (manual 003, shared/manuals/003_*.txt; digest 003, with
 its contradictions A1..A42):
 - Objects 2000h + g*100 + nn are the parameters (§5.1): reads give the
-  model's values, writes go through its rules. A refused write aborts with
+  model's values, writes go through its rules. An array parameter's element
+  [i] is sub-index i + 1, sub-index 0 the number of elements (A35). A refused write aborts with
   the code of Tabelle 8.8: 0609 0031h too high, 0609 0032h too low,
   0609 0030h no allowed value, 0601 0002h read-only, 0609 0011h no such
   element, 0800 0022h not in the drive's present state (the other profile's
@@ -84,6 +85,7 @@ VELOCITY_OUTPUTS = (0x6043, 0x6044, 0x6045)  # demand, control effort (actual), 
 DIMENSION_FACTOR, SETPOINT_FACTOR = 0x604C, 0x604B
 PROFILE_SETTINGS = (0x6046, 0x6048, 0x6049, 0x604A, 0x604B, 0x604C)
 PARAMETER_INDICES = frozenset(p.index for p in PARAMETERS.values())
+ARRAYS = {p.index: p.elements for p in PARAMETERS.values() if p.elements}  # index -> number of elements
 
 ABORTS = {
     Refusal.HIGH: ABORT_VALUE_HIGH,
@@ -99,6 +101,12 @@ ABORTS = {
 def shipped_eds(name: str = "fc280.eds"):
     """A context manager giving the path of an EDS shipped in softplc.io_config/eds."""
     return importlib.resources.as_file(importlib.resources.files("softplc.io_config") / "eds" / name)
+
+
+def _element(index: int, subindex: int) -> int:
+    """The element of a parameter an SDO sub-index names: [i] of an array at
+    sub-index i + 1 (A35, as parameters.sdo_object), 0 for a single value."""
+    return subindex - 1 if index in ARRAYS else subindex
 
 
 def _baud_code(bitrate: int) -> int | None:
@@ -233,7 +241,10 @@ class Fc280Simulator(SimulatedCanopenSlave):
     def object_read(self, index: int, subindex: int, od: ODVariable):
         model = self.model
         if index in PARAMETER_INDICES:
-            value = self._refusing(model.read, number_of(index), subindex)
+            number = number_of(index)
+            if ARRAYS.get(index) and subindex == 0:
+                return ARRAYS[index]  # the number of elements (CiA 301 ARRAY)
+            value = self._refusing(model.read, number, _element(index, subindex))
             return value.encode("ascii") if isinstance(value, str) else value
         if index in (STORE_PARAMETERS, RESTORE_DEFAULTS):
             return od.default  # what the device can do (CiA 301), not the last signature
@@ -255,7 +266,7 @@ class Fc280Simulator(SimulatedCanopenSlave):
         now = self._clock_ns()
         model = self.model
         if index in PARAMETER_INDICES:
-            self._refusing(model.write, number_of(index), value, now, subindex)
+            self._refusing(model.write, number_of(index), value, now, _element(index, subindex))
         elif index == CONTROLWORD:
             self._refusing(model.dsp_control, value, now)
         elif index == TARGET_VELOCITY:

@@ -78,8 +78,10 @@ def test_every_parameter_is_an_object(od, number):
     assert obj.index == 0x2000 + p.group * 100 + int(number.split("-")[1])
     if p.elements:
         assert isinstance(obj, ODArray)
-        assert sorted(obj.subindices) == list(range(p.elements))  # element i at sub-index i (A35)
-        entries = [obj[i] for i in range(p.elements)]
+        # element [i] at sub-index i + 1, sub-index 0 the count, as CiA 301 (A35)
+        assert sorted(obj.subindices) == list(range(p.elements + 1))
+        assert obj[0].default == p.elements and obj[0].access_type == "ro"
+        entries = [obj[i + 1] for i in range(p.elements)]
     else:
         assert isinstance(obj, ODVariable)
         entries = [obj]

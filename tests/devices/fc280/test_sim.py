@@ -158,8 +158,8 @@ def test_a_segmented_upload_of_15_40(bench):
         (0x23EA, 0, 128, 1, ABORT_VALUE_HIGH),
         (0x232A, 0, 5, 1, ABORT_VALUE_RANGE),  # 8-10: [0], [7] (A16)
         (0x23E9, 0, 19, 1, ABORT_VALUE_RANGE),  # 10-01: no [19] (A33)
-        (0x2136, 0, 10001, 2, ABORT_VALUE_HIGH),  # 3-10[0] at most 100 %
-        (0x2136, 8, 0, 2, ABORT_NO_SUBINDEX),  # 3-10 has elements 0-7
+        (0x2136, 1, 10001, 2, ABORT_VALUE_HIGH),  # 3-10[0] (sub-index 1, A35) at most 100 %
+        (0x2136, 9, 0, 2, ABORT_NO_SUBINDEX),  # 3-10 has elements [0]-[7] at sub-indices 1-8
         (0x2643, 0, 0, 2, ABORT_READ_ONLY),  # 16-03
         (0x269A, 0, 0, 4, ABORT_READ_ONLY),  # 16-90
         (0x1014, 0, 0x85, 4, ABORT_READ_ONLY),  # read-only (Tabelle 7.1)
@@ -451,7 +451,8 @@ def test_save_sub_2_keeps_communication_only_sub_4_drive_only(bench):
 def test_presets_set_parameter_and_the_cable(bench):
     sim = fc280(bench, **{"8-03": 50, "3-10": [100, 200]})
     assert sim.parameter("8-03") == 50 and sim.parameter("3-10", 1) == 200
-    assert bench.sdo_read(NODE, 0x2136, 1) == bytes.fromhex("4B 36 21 01 C8 00 00 00")
+    assert bench.sdo_read(NODE, 0x2136, 2) == bytes.fromhex("4B 36 21 02 C8 00 00 00")  # 3-10[1] (A35)
+    assert bench.sdo_read(NODE, 0x2136, 0) == bytes.fromhex("4F 36 21 00 08 00 00 00")  # 8 elements
     sim.set_parameter("8-04", 3)
     assert bench.sdo_read(NODE, 0x2324, 0) == bytes.fromhex("4F 24 23 00 03 00 00 00")
     assert sim.parameter("10-02") == NODE and sim.parameter("10-01") == 21  # the bench's, 250 kbit/s
