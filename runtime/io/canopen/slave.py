@@ -165,6 +165,7 @@ class SimulatedCanopenSlave(PdoMixin, SimulatedDevice):
         self._guard_toggle = 0  # bit 7 of the next guarding reply
         self._guarded_ns: int | None = None  # the last guarding request (None: not guarded yet)
         self._guarding_lost = False
+        self._error_pending = False  # a communication error from before a communication reset
         self._written: list[int] = []  # objects written, for _flush_writes
 
     # ------------------------------------------------------------------ hooks
@@ -326,6 +327,11 @@ class SimulatedCanopenSlave(PdoMixin, SimulatedDevice):
     def _boot(self, now: int, *, application: bool) -> None:
         """Initialisation: (reset application,) reset communication, boot-up
         frame, pre-operational."""
+        # a communication error outlives a communication reset: the device
+        # hears it is over from the first guarding request or heartbeat after
+        self._error_pending = not application and (
+            self._error_pending or self._guarding_lost or (self._consumers is not None and self.heartbeat_lost)
+        )
         self._set_state(STATE_BOOTUP)
         if application:
             self.on_reset_application()
@@ -399,11 +405,14 @@ class SimulatedCanopenSlave(PdoMixin, SimulatedDevice):
 
     def _on_heartbeat(self, producer: int, now: int) -> None:
         was_lost = self.heartbeat_lost
+        watched = False
         for consumer in self._heartbeat_consumers():
             if consumer.producer == producer:
                 consumer.last_ns = now
                 consumer.lost = False
-        if was_lost and not self.heartbeat_lost:
+                watched = True
+        if (was_lost or (self._error_pending and watched)) and not self.heartbeat_lost:
+            self._error_pending = False
             self.on_comm_restored()
 
     def _watch_heartbeats(self, now: int) -> None:
@@ -431,8 +440,8 @@ class SimulatedCanopenSlave(PdoMixin, SimulatedDevice):
         self._send(cob_heartbeat(self.node_id), bytes([self._state | self._guard_toggle]))
         self._guard_toggle ^= GUARDING_TOGGLE
         self._guarded_ns = now
-        if self._guarding_lost:
-            self._guarding_lost = False
+        if self._guarding_lost or self._error_pending:
+            self._guarding_lost = self._error_pending = False
             log.info("%s: guarding by the master resumed", self.name)
             if not self.heartbeat_lost:
                 self.on_comm_restored()

@@ -492,3 +492,22 @@ def test_life_guarding_a_silent_master_is_a_communication_error(bench, slave):
     assert slave.nmt_state == STATE_PRE_OPERATIONAL  # 0x1029 default: to pre-operational
     bench.guard(NODE)
     assert not slave.guarding_lost and slave.events[-1] == ("comm restored",)
+
+
+def test_a_communication_error_outlives_a_communication_reset(bench, slave):
+    # The master boots a lost node again with NMT reset communication; the
+    # device hears that communication is back from the first request after.
+    assert bench.sdo_write(NODE, 0x100C, 0, 100, 2) == write_ok(0x100C, 0)
+    assert bench.sdo_write(NODE, 0x100D, 0, 3, 1) == write_ok(0x100D, 0)
+    bench.nmt(NMT_START, NODE)
+    bench.guard(NODE)
+    bench.run_until(lambda: slave.guarding_lost, 1000, "life guarding")
+    bench.nmt(NMT_RESET_COMMUNICATION, NODE)
+    bench.send(0x701, b"\x05")  # another node's heartbeat says nothing about the master
+    bench.run_ms(10)
+    assert slave.events[-1] != ("comm restored",)
+    bench.guard(NODE)
+    assert slave.events[-1] == ("comm restored",)
+    bench.nmt(NMT_RESET_NODE, NODE)  # a reset application starts afresh: nothing pending
+    bench.guard(NODE)
+    assert slave.events.count(("comm restored",)) == 1
