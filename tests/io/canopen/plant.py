@@ -65,9 +65,19 @@ LTMR_NODE = {
 
 
 def plant_config(
-    tmp_path: Path, source, *, program, nodes=None, sims=None, profile="codesys", interval="10ms", canopen_extra=None
+    tmp_path: Path,
+    source,
+    *,
+    program,
+    nodes=None,
+    sims=None,
+    profile="codesys",
+    interval="10ms",
+    canopen_extra=None,
+    outputs=None,
 ) -> dict:
-    """source: ST text, or a list of ST files; program: a PROGRAM name or a list."""
+    """source: ST text, or a list of ST files; program: a PROGRAM name or a
+    list; outputs: an [outputs] table (safe values)."""
     if isinstance(source, str):
         st = tmp_path / "plant.st"
         st.write_text(source)
@@ -87,7 +97,7 @@ def plant_config(
         "node": copy.deepcopy(nodes if nodes is not None else [LTMR_NODE]),
     }
     canopen.update(canopen_extra or {})
-    return {
+    data = {
         "plc": {"profile": profile, "programs": files},
         "task": [
             {"name": "Main", "interval": interval, "programs": [program] if isinstance(program, str) else list(program)}
@@ -96,6 +106,9 @@ def plant_config(
         "canopen": canopen,
         "sim": sims if sims is not None else [{"type": "ltmr", "node_id": 40, "registers": {"682": 2}}],
     }
+    if outputs is not None:
+        data["outputs"] = outputs
+    return data
 
 
 class Plant:
