@@ -94,7 +94,7 @@ def test_default_example_runs_in_virtual_time(tmp_path):
     proc = softplc("run", "--virtual-time", "--duration", "10s", "--final-json", out)
     assert proc.returncode == 0, proc.stderr
     final = json.loads(out.read_text())
-    assert set(final) == {"Conveyor", "Panel", "Motor", "Drive"}
+    assert set(final) == {"Conveyor", "Panel", "Motor", "Drive", "Pump"}
     # START is pressed at 0.1 s and 5.1 s; each batch of 8 parts is done well within 5 s.
     assert final["Conveyor"]["batches"] == 2
     assert final["Conveyor"]["state"] == "Idle"
@@ -110,6 +110,12 @@ def test_default_example_runs_in_virtual_time(tmp_path):
     assert drive["drive"]["MODEL"] == "DA1" and not drive["drive"]["ERROR"]
     assert drive["drive"]["EXCHANGES"] > 400 and drive["AccelRamp"] == 50
     assert "modbus: 1 up" in proc.stderr
+    # The FC 280 on the same CANopen bus, guarded: up to 80 % (ramp 2 s per 50 Hz), held 5 s,
+    # then 40 % (16-05 = 199Ah), no trip although the control word did not change for 5 s.
+    assert "canopen: node pump (20) operational" in proc.stderr and "canopen: 2/2 up" in proc.stderr
+    pump = final["Pump"]
+    assert pump["state"] == "Low" and pump["trips"] == 0 and pump["actualWord"] == 0x199A
+    assert pump["drive"]["RUNNING"] and pump["controlWord"] == 0x047C
     assert "stopped after 1000 scans" in proc.stderr
 
 
