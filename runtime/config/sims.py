@@ -5,6 +5,7 @@
     name = "motor_sim"       # optional; default from the type and where it sits
     node_id = 40             # the keys of the device's bus (its Attachment)
     registers = { "682" = 2 }   # the device's own keys (its SimOptions)
+    faults = [{ at = "20s", fault = "unplug", for = "2s" }]   # config/sim_faults.py
 
 Which keys a table takes depends on its type: the device that simulates
 the type says which bus it sits on (the bus's Attachment gives the keys
@@ -23,6 +24,7 @@ from ..plugin.registry import PluginError, Registry
 from .errors import key_text
 from .relations import Relations
 from .section import Attachment, Section
+from .sim_faults import FaultEvent, Faults, check_faults, fault_events
 from .values import Model, choice, identifier, is_ident
 
 
@@ -33,6 +35,7 @@ class SimConfig:
     key: str  # "sim[0]"
     at: Any  # where it sits: the bus's dataclass (a CAN node, a Modbus unit ...)
     options: Any = None  # the device's own keys, as its SimOptions builds them
+    faults: tuple[FaultEvent, ...] = ()  # faults = [...], by time
 
 
 class SimSection(Section):
@@ -66,6 +69,7 @@ class SimSection(Section):
                 Annotated[str, identifier("a simulator name")] | None,
                 Field(None, description='a simulator name such as "motor_sim"'),
             ),
+            "faults": (Faults | None, Field(None, description="faults at times of the run")),
         }
         models = list(self.attachments.values()) + [d.sim_options for d in self.registry.devices if d.sim_options]
         for owner in models:
@@ -100,6 +104,7 @@ class SimSection(Section):
             self._name(here, sim, attachment, names, ctx)
             if device.sim_options is not None:
                 device.sim_options.check(here, sim, ctx)
+            check_faults(here, sim, device, ctx)
 
     def _foreign_keys(self, here: tuple, sim: dict, device, ctx: Relations) -> None:
         """Keys that place a device on another bus, or that another device has."""
@@ -162,5 +167,14 @@ class SimSection(Section):
                 own = {k: getattr(sim, k) for k in device.sim_options.model_fields if getattr(sim, k) is not None}
                 options = device.sim_options.model_validate(own).build()
             name = sim.name or attachment.name(sim.type, {k: v for k, v in values.items() if v is not None})
-            out.append(SimConfig(type=sim.type, name=name, key=key_text(here), at=at, options=options))
+            out.append(
+                SimConfig(
+                    type=sim.type,
+                    name=name,
+                    key=key_text(here),
+                    at=at,
+                    options=options,
+                    faults=fault_events(sim.faults),
+                )
+            )
         return out

@@ -12,23 +12,30 @@ from ..st.profile import get_profile
 from .clock import RealClock, VirtualClock
 from .retain import RetainStore
 from .scan import Engine
+from .sim_schedule import SimSchedule
 from .tasks import plan_tasks
 
 
-def make_drivers(config: PlcConfig, clock=None) -> list:
+def make_drivers(config: PlcConfig, clock=None, by_name: dict | None = None) -> list:
     """The drivers and simulated devices of config, in the order the engine
     serves them: every bus's simulators first (in virtual time they move on
     to the tick's time before the drivers read the bus), then the bus
-    drivers, each in registry order. The engine stops them in reverse: bus
-    drivers before the simulated devices they talk to."""
+    drivers, each in registry order; the scheduled faults of [[sim]] tables
+    after the simulators. The engine stops them in reverse: bus drivers
+    before the simulated devices they talk to. by_name: filled with the
+    simulators by [[sim]] name."""
     clock = clock if clock is not None else RealClock()
     ctx = BuildContext(clock, get_profile(config.profile).addressing, str(config.path) if config.path else "<config>")
+    if by_name is not None:
+        ctx.simulators = by_name
     simulators, drivers = [], []
     for bus in registry().buses:
         if bus.build is not None:
             part = bus.build(config, ctx)
             simulators += part.simulators
             drivers += part.drivers
+    if any(sim.faults for sim in config.sims):
+        simulators.append(SimSchedule(clock, config.sims, ctx.simulators))
     return simulators + drivers
 
 
@@ -44,11 +51,14 @@ def build_engine(
     tasks = plan_tasks(program, config.tasks, where)
     retain_store = RetainStore(config.retain.file) if config.retain else None
     clock = VirtualClock() if virtual_time else RealClock()
+    simulators: dict = {}
+    drivers = make_drivers(config, clock, simulators)
     return Engine(
         program,
         tasks,
         clock=clock,
-        drivers=make_drivers(config, clock),
+        drivers=drivers,
+        simulators=simulators,
         on_fault=config.on_fault,
         safe_outputs=config.safe_outputs,
         retain_store=retain_store,

@@ -103,6 +103,7 @@ class Engine:
         retain_store=None,
         retain_period_ns: int = 1_000_000_000,
         start_mode: str = "warm",
+        simulators: dict | None = None,
     ) -> None:
         if on_fault not in ON_FAULT:
             raise ValueError(f"on_fault must be one of {ON_FAULT}")
@@ -113,6 +114,9 @@ class Engine:
         self.image = image if image is not None else ProcessImage(program.profile.addressing)
         self.ctx = ExecContext(self.image)
         self.drivers = list(drivers)
+        #: the simulated devices of the configuration's [[sim]] tables, by name:
+        #: what a test or a scheduled fault reaches (their inject() ...)
+        self.simulators: dict = dict(simulators or {})
         for driver in self.drivers:  # a native function's service: the first driver's that offers it
             for name, service in driver.services.items():
                 self.ctx.services.setdefault(name, service)

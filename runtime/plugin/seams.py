@@ -81,16 +81,36 @@ class BuildContext:
     """What a bus's build gets besides the configuration: the engine's clock
     (virtual or real), the profile's addressing model, the configuration
     file for messages, and a dict the buses of one engine share (a
-    virtual-time pump every CAN endpoint uses ...)."""
+    virtual-time pump every CAN endpoint uses ...). A bus hands every
+    simulator it makes for a [[sim]] table to simulated(): the engine finds
+    them there by name (scheduled faults, tests)."""
 
     clock: Any
     addressing: str
     where: str = "<config>"
     shared: dict = field(default_factory=dict)
+    simulators: dict = field(default_factory=dict)  # [[sim]] name -> the simulator object
 
     @property
     def virtual(self) -> bool:
         return bool(self.clock.virtual)
+
+    def simulated(self, sim: Any, simulator: Any) -> Any:
+        """Record the simulator built for the [[sim]] table sim (a SimConfig); returns it."""
+        self.simulators[sim.name] = simulator
+        return simulator
+
+
+@dataclass(frozen=True)
+class SimFault:
+    """A fault a device's simulator takes, from [[sim]] faults = [...] at a
+    time of the run or from a test: simulator.inject(name, value, True), and
+    inject(name, value, False) to undo a lasting one."""
+
+    name: str  # lower case, as the configuration writes it: "over_current"
+    description: str
+    value: str = ""  # what its value is ("an alarm bit of 16-90"), "" when it takes none
+    lasting: bool = False  # it lasts until undone: the configuration may give `for`
 
 
 @dataclass
@@ -135,6 +155,8 @@ class Device:
     #: configured writes to a node with one of the device's files (its EDS);
     #: ValueError with a message for an unknown name or a value out of range
     parameter_object: Callable[[str, Any], tuple[int, int, int, int]] | None = None
+    #: the faults its simulators take (config/sim_faults.py)
+    sim_faults: tuple[SimFault, ...] = ()
     #: an EMCY of a node with one of the device's files, in words for the log:
     #: (error code, error register, manufacturer bytes) -> text
     emcy_text: Callable[[int, int, bytes], str] | None = None

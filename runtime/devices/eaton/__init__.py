@@ -8,6 +8,7 @@
     settings.py   serial line, comm loss, drive variants and ratings, DE1 terminals
     st_codes.py   fblocks/vendor/eaton_codes.st from registers.py and faults.py
     model.py      a drive as a Modbus slave sees it: ramps, faults, watchdog
+    sim_faults.py the faults a simulated drive takes from [[sim]] faults = [...]
 ST blocks: fblocks/vendor/eaton.st (DA1_DRIVE, EATON_PARAMETER). Simulated
 drives are units of a simulated Modbus line ([[sim]] type da1 ... de11).
 
@@ -23,6 +24,7 @@ from ...sim.options import RegisterPresets
 from . import st_codes
 from .model import EatonDriveModel
 from .registers import Family
+from .sim_faults import FAULTS
 
 SIM_TYPES = ("da1", "db1", "dc1", "de1", "de11")  # the PowerXL families; de11: a DE1 with DXE-EXT-SET
 
@@ -42,6 +44,7 @@ DEVICE = Device(
     sim_types=SIM_TYPES,
     sim_options=RegisterPresets,
     simulator=_simulator,
+    sim_faults=FAULTS,
     libraries=(StLibrary("softplc.fblocks.vendor", "eaton.st"), StLibrary("softplc.fblocks.vendor", "eaton_codes.st")),
     generated=(GeneratedFile(PackageFile("softplc.fblocks.vendor", "eaton_codes.st"), st_codes.render),),
 )

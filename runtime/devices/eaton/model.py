@@ -35,6 +35,7 @@ from . import faults as eaton_faults
 from . import parameters as eaton_parameters
 from . import registers as eaton
 from . import settings as eaton_settings
+from . import sim_faults
 from .registers import ControlWord, Family, StatusWord
 
 S = 1_000_000_000
@@ -341,6 +342,10 @@ class EatonDriveModel:
             raise ValueError(f"{fault} is not a fault number of Tabelle 11")
         self._set_fault(fault)
         self._publish()
+
+    def inject(self, fault: str, value, on: bool) -> None:
+        """A fault of sim_faults.FAULTS (but SILENT, the line's)."""
+        sim_faults.inject(self, fault, value, on)
 
     # ------------------------------------------------------------------ Modbus side
 

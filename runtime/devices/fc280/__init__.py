@@ -30,7 +30,7 @@ from .diagnostics import emcy_text
 from .eds import fc280_eds
 from .options import Fc280Options
 from .parameters import sdo_object
-from .sim import Fc280Simulator
+from .sim import FAULTS, Fc280Simulator
 
 EDS = PackageFile("softplc.io_config", "eds/fc280.eds")
 
@@ -53,6 +53,7 @@ DEVICE = Device(
     sim_types=("fc280",),
     sim_options=Fc280Options,
     simulator=_simulator,
+    sim_faults=FAULTS,
     libraries=(
         StLibrary("softplc.fblocks.vendor", "fc280.st"),
         StLibrary("softplc.fblocks.vendor", "fc280_parameter.st"),

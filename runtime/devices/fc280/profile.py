@@ -58,7 +58,7 @@ class StatusWord(enum.IntFlag):
     WARNING = 0x0080
     AT_REFERENCE = 0x0100
     BUS_CONTROL = 0x0200  # 0: local operation
-    IN_FREQUENCY_LIMIT = 0x0400  # 0: at 4-11 / 4-13
+    IN_FREQUENCY_LIMIT = 0x0400  # 0: at 4-11 / 4-13 (Tabelle 4.10; the simulator has only 4-14)
     RUNNING = 0x0800  # a start signal, or output frequency > 0 Hz
     THERMAL_STOP = 0x1000  # stopped by over-temperature, restarts by itself
     VOLTAGE_LIMIT = 0x2000

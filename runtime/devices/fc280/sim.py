@@ -35,8 +35,8 @@ its contradictions A1..A42):
 - Life guarding (100Ch x 100Dh) lost: the model's lost-master reaction
   (8-04 and warning 34, A6), and CiA 301's pre-operational (no 1029h);
   guarding back: its end. The node has no heartbeat consumer (§3.1.4
-  HINWEIS: no 1016h), so a [[canopen.node]] for it takes
-  master_timeout = false.
+  HINWEIS: no 1016h): the master writes no master_timeout to it (a node
+  whose EDS lacks 1016h gets none by default; an explicit one is an error).
 - power_cycle() applies a pending restore (§7.1.10); NMT reset node
   restarts the drive with its saved parameters.
 - 10-01 and 10-02 show the configuration's bit rate and node id; a write
@@ -64,7 +64,8 @@ from ...io.canopen.cia301 import (
     STATE_BOOTUP,
     TPDO_COMM,
 )
-from ...io.canopen.slave import SimulatedCanopenSlave
+from ...io.canopen.slave import UNPLUG, SimulatedCanopenSlave
+from ...plugin.seams import SimFault
 from . import emcy
 from .model import Fc280Model
 from .motor import int16, round_half_away
@@ -96,6 +97,16 @@ ABORTS = {
     Refusal.NO_ELEMENT: ABORT_NO_SUBINDEX,
     Refusal.NOT_STORED: ABORT_NOT_STORED,
 }
+
+
+# [[sim]] faults = [...] (config/sim_faults.py); bits as Tabellen 8.1 and 8.3 number them
+OVER_CURRENT_FAULT = SimFault("over_current", "alarm Überstrom, 16-90 00000020h: the drive trips")
+ALARM = SimFault("alarm", "an alarm of 16-90: the drive trips until reset", value="a bit of alarm word 16-90")
+TRIP_LOCK = SimFault("trip_lock", "an alarm with trip lock: only a power cycle clears it", value="a bit of 16-90")
+WARNING = SimFault("warning", "a warning of 16-92", value="a bit of warning word 16-92", lasting=True)
+POWER_CYCLE = SimFault("power_cycle", "mains off and on")
+FAULTS = (UNPLUG, OVER_CURRENT_FAULT, ALARM, TRIP_LOCK, WARNING, POWER_CYCLE)
+_OWN_FAULTS = {f.name for f in FAULTS if f is not UNPLUG}
 
 
 def shipped_eds(name: str = "fc280.eds"):
@@ -158,6 +169,30 @@ class Fc280Simulator(SimulatedCanopenSlave):
         with self._lock:
             self.model.write(number, raw, self._clock_ns(), sub)
             self._flush_writes(self._clock_ns())
+
+    def inject(self, fault: str, value, on: bool) -> None:
+        """The faults of FAULTS (from [[sim]] faults or a test); unplug is
+        every CANopen slave's."""
+        if fault not in _OWN_FAULTS:
+            super().inject(fault, value, on)
+            return
+        if fault == POWER_CYCLE.name:
+            self.power_cycle()
+            return
+        with self._lock:
+            model = self.model
+            model.advance(self._clock_ns())
+            if fault == OVER_CURRENT_FAULT.name:
+                model.over_current()
+            elif fault == ALARM.name:
+                model.trip(int(value))
+            elif fault == TRIP_LOCK.name:
+                model.trip(int(value), lock=True)
+            elif on:  # WARNING
+                model.warn(int(value))
+            else:
+                model.clear_warning(int(value))
+            self._report_events()
 
     def power_cycle(self) -> None:
         """Mains off and on: RAM from the non-volatile memory, a pending

@@ -24,7 +24,7 @@ from ...plugin.seams import Device, GeneratedFile, PackageFile, StLibrary
 from ...sim.options import RegisterPresets
 from . import st_codes
 from .eds import ltmr_eds
-from .sim import LtmrSimulator
+from .sim import FAULTS, LtmrSimulator
 
 EDS = PackageFile("softplc.io_config", "eds/ltmr.eds")
 
@@ -47,6 +47,7 @@ DEVICE = Device(
     sim_types=("ltmr",),
     sim_options=RegisterPresets,
     simulator=_simulator,
+    sim_faults=FAULTS,
     libraries=(StLibrary("softplc.fblocks.vendor", "ltmr.st"), StLibrary("softplc.fblocks.vendor", "ltmr_codes.st")),
     files={"eds": {"ltmr": EDS}},
     generated=(

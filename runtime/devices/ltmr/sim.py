@@ -52,7 +52,8 @@ from ...io.canopen.cia301 import (
     STATE_BOOTUP,
     STATE_OPERATIONAL,
 )
-from ...io.canopen.slave import SimulatedCanopenSlave
+from ...io.canopen.slave import UNPLUG, SimulatedCanopenSlave
+from ...plugin.seams import SimFault
 from . import pkw
 from .bits import GENERAL_CONFIG2_RESET_MODE_MASK, NetworkPortStatus
 from .codes import CANOPEN_BAUD_CODES, FallbackStrategy, OperatingMode, ResetMode, fallback_allowed
@@ -93,6 +94,11 @@ def shipped_eds(name: str = "ltmr.eds"):
     return importlib.resources.as_file(importlib.resources.files("softplc.io_config") / "eds" / name)
 
 
+# [[sim]] faults = [...] (config/sim_faults.py)
+LOAD = SimFault("load", "the motor's load changes (a jam: 400): it draws that current", value="% of FLC", lasting=True)
+FAULTS = (UNPLUG, LOAD)
+
+
 class LtmrSimulator(SimulatedCanopenSlave):
     #: A21 leaves the abort code of a note A/B/C violation open; this one by default
     note_abort = ABORT_DEVICE_STATE
@@ -126,6 +132,7 @@ class LtmrSimulator(SimulatedCanopenSlave):
         self.model = LtmrModel(initial)
         self._pkw_function_byte = 0  # toggle + function code of the last request seen
         self._emcy_trip_code = 0  # the trip the last EMCY told about
+        self._load_before = self.model.load_percent  # the load a lasting "load" fault goes back to
 
     # ------------------------------------------------------------------ test and operator API
 
@@ -145,6 +152,19 @@ class LtmrSimulator(SimulatedCanopenSlave):
     def press_reset(self) -> None:
         with self._lock:
             self.model.press_reset()
+
+    def inject(self, fault: str, value, on: bool) -> None:
+        """The faults of FAULTS (from [[sim]] faults or a test); unplug is
+        every CANopen slave's."""
+        if fault != LOAD.name:
+            super().inject(fault, value, on)
+            return
+        with self._lock:
+            if on:
+                self._load_before = self.model.load_percent
+                self.model.set_load(float(value))
+            else:
+                self.model.set_load(self._load_before)
 
     @property
     def lo1(self) -> bool:

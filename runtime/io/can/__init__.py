@@ -50,7 +50,7 @@ def _build(config, ctx: BuildContext) -> Contribution:
             continue
         context = CanSimContext(settings_of(buses[sim.at.bus]), ctx.clock, pump_of(ctx))
         assert device.simulator is not None  # the registry has no simulating device without one
-        sims.append(device.simulator(sim, context))
+        sims.append(ctx.simulated(sim, device.simulator(sim, context)))
     return Contribution(simulators=sims)
 
 

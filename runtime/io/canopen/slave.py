@@ -41,6 +41,7 @@ import canopen
 from canopen.objectdictionary import ODArray, ODRecord, ODVariable
 from canopen.sdo import SdoAbortedError
 
+from ...plugin.seams import SimFault
 from ...sim.base import SimulatedDevice
 from ..can.bus import BusPump, BusSettings, CanEndpoint, open_bus
 from .cia301 import (
@@ -82,6 +83,9 @@ ERROR_HISTORY = 0x1003
 SYNC_COB_ID = 0x1005
 EMCY_COB_ID = 0x1014
 GUARDING_TOGGLE = 0x80  # bit 7 of a guarding reply
+
+#: every simulated CANopen slave takes it (SimulatedCanopenSlave.inject)
+UNPLUG = SimFault("unplug", "the node's cable out: it neither sends nor receives (a lost node)", lasting=True)
 ERROR_BEHAVIOUR = 0x1029
 
 # 0x1029:01, on a communication error (manual 001 L1017-1030)
@@ -262,6 +266,16 @@ class SimulatedCanopenSlave(PdoMixin, SimulatedDevice):
 
     def plug(self) -> None:
         self._opened_endpoint().connected = True
+
+    def inject(self, fault: str, value, on: bool) -> None:
+        """A fault from [[sim]] faults or a test (Device.sim_faults): UNPLUG
+        here; a device's own in its subclass, which hands the rest to this."""
+        if fault != UNPLUG.name:
+            raise ValueError(f"{self.name}: no fault {fault!r}")
+        if on:
+            self.unplug()
+        else:
+            self.plug()
 
     def _opened_endpoint(self) -> CanEndpoint:
         if self.endpoint is None:

@@ -21,9 +21,9 @@ from ...plugin.registry import registry
 from ...plugin.seams import BuildContext, Bus, Contribution, StLibrary
 from .config import ModbusAttachment, ModbusChannelConfig, ModbusConnectionConfig, ModbusSection, ModbusUnit
 from .exchange import MODBUS_EXCHANGE
-from .line import SimulatedModbusLine
+from .line import SimulatedModbusLine, UnitOnLine
 from .master import ModbusDriver
-from .unit import ModbusRefusal, SimulatedUnit
+from .unit import SILENT, ModbusRefusal, SimulatedUnit
 
 
 @dataclass
@@ -46,12 +46,13 @@ def _lines(config, ctx: BuildContext) -> dict:
     devices = registry().sim_types()
     lines = {}
     for conn in config.modbus:
-        units = {}
+        units, named = {}, {}
         for sim in config.sims:
             device = devices[sim.type]
             if device.bus == BUS.name and sim.at.connection == conn.name:
                 assert device.simulator is not None  # the registry has no simulating device without one
                 units[sim.at.unit] = device.simulator(sim, ModbusSimContext(ctx.clock, conn, ctx.where))
+                named[sim.at.unit] = sim
         if not units:
             continue
         if conn.transport == "tcp":
@@ -68,6 +69,8 @@ def _lines(config, ctx: BuildContext) -> dict:
                 parity=conn.parity,
                 stop_bits=conn.stop_bits,
             )
+        for unit, sim in named.items():
+            ctx.simulated(sim, UnitOnLine(lines[conn.name], unit))
     return lines
 
 
@@ -108,6 +111,8 @@ __all__ = [
     "ModbusRefusal",
     "ModbusSimContext",
     "ModbusUnit",
+    "SILENT",
     "SimulatedModbusLine",
     "SimulatedUnit",
+    "UnitOnLine",
 ]

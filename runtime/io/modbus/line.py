@@ -35,7 +35,7 @@ from pymodbus.server import ModbusSerialServer, ModbusTcpServer
 from ...plugin.driver import DriverError
 from ...sim.base import SimulatedDevice
 from ...sim.null_modem import NullModem
-from .unit import ModbusRefusal, SimulatedUnit
+from .unit import SILENT, ModbusRefusal, SimulatedUnit
 
 SIM_HOSTS = ("127.0.0.1", "localhost")
 
@@ -82,6 +82,7 @@ class SimulatedModbusLine(SimulatedDevice):
         self.cable: NullModem | None = NullModem(f"sim {name} cable") if transport == "rtu" else None
         self.master_port = self.cable.master_port if self.cable else None
         self.silent = False
+        self.muted: set[int] = set()  # unit ids that do not answer (the SILENT fault)
         self.requests = 0
         self._lock = threading.Lock()
         self._loop: asyncio.AbstractEventLoop | None = None
@@ -98,7 +99,7 @@ class SimulatedModbusLine(SimulatedDevice):
         """One datastore access of pymodbus: a list of registers, None after a
         good write, or an ExcCodes refusal."""
         model = self.units.get(unit)
-        if model is None:
+        if model is None or unit in self.muted:
             raise NoSuchIdException(f"unit {unit} is not on this line")  # pymodbus stays silent
         if function not in model.functions:
             return ExcCodes.ILLEGAL_FUNCTION
@@ -191,3 +192,28 @@ class SimulatedModbusLine(SimulatedDevice):
         if self.cable is not None:
             self.cable.close()
             self.cable = None
+
+
+class UnitOnLine:
+    """A simulated unit as the engine and tests find it by its [[sim]] name:
+    its model on its line. inject() takes SILENT itself and hands the
+    device's own faults to the model, under the line's lock."""
+
+    def __init__(self, line: SimulatedModbusLine, unit: int) -> None:
+        self.line = line
+        self.unit = unit
+
+    @property
+    def model(self) -> SimulatedUnit:
+        return self.line.units[self.unit]
+
+    def inject(self, fault: str, value, on: bool) -> None:
+        if fault == SILENT.name:
+            if on:
+                self.line.muted.add(self.unit)
+            else:
+                self.line.muted.discard(self.unit)
+            return
+        with self.line._lock:
+            self.model.advance(self.line.clock.now_ns())
+            self.model.inject(fault, value, on)

@@ -6,6 +6,11 @@ from __future__ import annotations
 
 from typing import Protocol
 
+from ...plugin.seams import SimFault
+
+#: every simulated Modbus unit takes it (io/modbus/line.py UnitOnLine.inject)
+SILENT = SimFault("silent", "the unit stops answering (switched off, or its cable cut)", lasting=True)
+
 
 class ModbusRefusal(Exception):
     """A unit refuses a request: .code is the Modbus exception code (2 illegal
@@ -30,3 +35,6 @@ class SimulatedUnit(Protocol):
     def serve_write(self, address: int, values: list[int], now_ns: int) -> None: ...
 
     def advance(self, now_ns: int) -> None: ...
+
+    def inject(self, fault: str, value, on: bool) -> None:
+        """A fault of its device's sim_faults but SILENT (the line's), at the last advanced time."""

@@ -15,6 +15,7 @@ import pytest
 from softplc.runtime.devices.fc280.diagnostics import alarm_texts
 from softplc.runtime.devices.fc280.model import CONTROL_WORD_TIMEOUT, FIELDBUS_FAULT, OVER_CURRENT
 from softplc.runtime.devices.fc280.parameters import PROFILE_DSP402, parameter, to_raw
+from softplc.runtime.engine.sim_schedule import SimSchedule
 
 # whole plants over seconds of virtual time, answers crossing sockets in real time
 pytestmark = pytest.mark.slow
@@ -25,7 +26,11 @@ RPDO1, TPDO1, EMCY, GUARD = 0x200 + NODE, 0x180 + NODE, 0x80 + NODE, 0x700 + NOD
 
 
 def _example(name: str) -> dict:
-    return tomllib.loads((ROOT / "io_config" / "examples" / name).read_text())
+    """The example's tables, without the faults it schedules for a demonstration."""
+    data = tomllib.loads((ROOT / "io_config" / "examples" / name).read_text())
+    for sim in data["sim"]:
+        sim.pop("faults", None)
+    return data
 
 
 def _states(st: Path, type_name: str) -> list[str]:
@@ -256,3 +261,29 @@ def test_parameters_are_written_read_and_saved_from_st(plants, tmp_path):
     assert plant.get("Params.failed") == 0x06090031  # 8-04 has options 0..5: too high (Tabelle 8.8)
     sim.power_cycle()  # mains off and on: the saved value stays
     assert sim.parameter("3-41") == 450
+
+
+# ---------------------------------------------------------------------------- faults on schedule
+
+
+def test_faults_scheduled_in_the_configuration(plants):
+    data = _example("fc280_fc.toml")
+    data["sim"][0]["faults"] = [
+        {"at": "3s", "fault": "over_current"},
+        {"at": "10s", "fault": "unplug", "for": "1s"},
+        {"at": "15s", "fault": "warning", "value": 0x40, "for": "2s"},  # 16-92 bit 6, torque limit
+    ]
+    plant = plants([PUMP_ST], program="Fc280Pump", nodes=data["canopen"]["node"], sims=data["sim"])
+    sim = plant.engine.simulators["fc28020"]  # the default name: type and node id
+    assert sim is plant.sims[NODE]
+    plant.run_until(lambda: plant.get("Fc280Pump.trips") == 1, 3100, "the over-current at 3 s")
+    assert plant.now_ms == pytest.approx(3000, abs=20)
+    assert plant.get("Fc280Pump.FaultText") == alarm_texts(OVER_CURRENT)[0]
+    plant.run_until(lambda: plant.node_diag(NODE, "Lost"), 7500, "the cable out at 10 s")
+    assert 10_200 <= plant.now_ms <= 10_400  # guarding: 300 ms after the last good reply
+    plant.run_until(lambda: plant.node_diag(NODE, "Operational"), 3000, "the cable back at 11 s")
+    plant.run_until(lambda: plant.get("Fc280Pump.warningWord") == 0x40, 5000, "the warning at 15 s")
+    assert 15_000 <= plant.now_ms <= 15_050 and plant.get("Fc280Pump.drive.WARNING")  # 16-92, status bit 7
+    plant.run_until(lambda: not plant.get("Fc280Pump.drive.WARNING"), 2500, "the warning gone at 17 s")
+    schedule = next(d for d in plant.engine.drivers if isinstance(d, SimSchedule))
+    assert schedule.fired == 5 and schedule.status().message == ""  # on and off: 1 + 2 + 2

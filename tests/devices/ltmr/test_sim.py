@@ -603,3 +603,26 @@ def test_canopens_sdo_client_works_against_the_simulator(bench):
     bench.clear()
     bench.nmt(NMT_START, NODE)
     assert bench.frames_with(0x2A8) == [bytes.fromhex("04 00 00 00")]
+
+
+# ---------------------------------------------------------------------------- injected faults
+
+
+def test_injected_faults_load_and_unplug(bench):
+    # what [[sim]] faults = [{ fault = "load", value = 400, for = ... }] and "unplug" do
+    sim = _running_forward(bench)
+    assert sim.register(466) == 80  # 466 average current ratio, % FLC: the model's default load
+    sim.inject("load", 400.0, True)
+    bench.run_ms(100)
+    assert sim.register(466) == 400  # a jam draws 400 % FLC
+    sim.inject("load", 400.0, False)
+    bench.run_ms(100)
+    assert sim.register(466) == 80  # back to the load before
+    sim.inject("unplug", None, True)
+    bench.clear()
+    bench.run_ms(300)
+    assert bench.frames == [] and not sim.plugged
+    sim.inject("unplug", None, False)
+    assert sim.plugged
+    with pytest.raises(ValueError, match="no fault 'over_current'"):
+        sim.inject("over_current", None, True)
