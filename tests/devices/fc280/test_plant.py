@@ -257,6 +257,12 @@ def test_parameters_are_written_read_and_saved_from_st(plants, tmp_path):
     plant.run_until(lambda: plant.get("Params.step") >= 4, 5000, "write, read, save")
     assert plant.get("Params.ramp") == 4.5
     assert sim.parameter("3-41") == to_raw(parameter("3-41"), 4.5) == 450  # conversion index -2
+    # on the bus (CiA 301 expedited; 3-41 is 2155h by the index rule, §5.1; save: D13)
+    assert plant.frames_with(0x600 + NODE)[-3:] == [
+        bytes.fromhex("23 55 21 00 C2 01 00 00"),  # 3-41 = 450 (UInt32)
+        bytes.fromhex("40 55 21 00 00 00 00 00"),  # read 3-41
+        bytes.fromhex("23 10 10 04 73 61 76 65"),  # 1010h sub 4 "save" (65766173h)
+    ]
     plant.run_until(lambda: plant.get("Params.step") == 5, 3000, "a refused write")
     assert plant.get("Params.failed") == 0x06090031  # 8-04 has options 0..5: too high (Tabelle 8.8)
     sim.power_cycle()  # mains off and on: the saved value stays
