@@ -46,7 +46,6 @@ its contradictions A1..A42):
 from __future__ import annotations
 
 import contextlib
-import importlib.resources
 from collections.abc import Mapping, Sequence
 from fractions import Fraction
 
@@ -64,6 +63,7 @@ from ...io.canopen.cia301 import (
     STATE_BOOTUP,
     TPDO_COMM,
 )
+from ...io.canopen.eds import shipped_eds
 from ...io.canopen.slave import UNPLUG, SimulatedCanopenSlave
 from ...plugin.seams import SimFault
 from . import emcy
@@ -109,11 +109,6 @@ FAULTS = (UNPLUG, OVER_CURRENT_FAULT, ALARM, TRIP_LOCK, WARNING, POWER_CYCLE)
 _OWN_FAULTS = {f.name for f in FAULTS if f is not UNPLUG}
 
 
-def shipped_eds(name: str = "fc280.eds"):
-    """A context manager giving the path of an EDS shipped in softplc.io_config/eds."""
-    return importlib.resources.as_file(importlib.resources.files("softplc.io_config") / "eds" / name)
-
-
 def _element(index: int, subindex: int) -> int:
     """The element of a parameter an SDO sub-index names: [i] of an array at
     sub-index i + 1 (A35, as parameters.sdo_object), 0 for a single value."""
@@ -143,7 +138,7 @@ class Fc280Simulator(SimulatedCanopenSlave):
         parameters: Mapping[str, int | Sequence[int]] | None = None,
         eds=None,
     ) -> None:
-        with shipped_eds() if eds is None else contextlib.nullcontext(eds) as path:
+        with shipped_eds("fc280.eds") if eds is None else contextlib.nullcontext(eds) as path:
             super().__init__(
                 node_id, eds=str(path), settings=settings, clock=clock, pump=pump, name=name or f"fc280 {node_id}"
             )

@@ -34,7 +34,6 @@ What the bus sees (manual 001, shared/manuals/001_*.txt "L<n>", and digest
 from __future__ import annotations
 
 import contextlib
-import importlib.resources
 
 from canopen.sdo import SdoAbortedError
 
@@ -52,6 +51,7 @@ from ...io.canopen.cia301 import (
     STATE_BOOTUP,
     STATE_OPERATIONAL,
 )
+from ...io.canopen.eds import shipped_eds
 from ...io.canopen.slave import UNPLUG, SimulatedCanopenSlave
 from ...plugin.seams import SimFault
 from . import pkw
@@ -89,11 +89,6 @@ PKW_REQUEST_SUBS = (1, 2)  # 0x3000:01/02 in RPDO4
 PKW_RESPONSE_SUBS = (3, 4)  # 0x3000:03/04 in TPDO4
 
 
-def shipped_eds(name: str = "ltmr.eds"):
-    """A context manager giving the path of an EDS shipped in softplc.io_config/eds."""
-    return importlib.resources.as_file(importlib.resources.files("softplc.io_config") / "eds" / name)
-
-
 # [[sim]] faults = [...] (config/sim_faults.py)
 LOAD = SimFault("load", "the motor's load changes (a jam: 400): it draws that current", value="% of FLC", lasting=True)
 FAULTS = (UNPLUG, LOAD)
@@ -116,7 +111,7 @@ class LtmrSimulator(SimulatedCanopenSlave):
         eds=None,
     ) -> None:
         pkw_read_only(product_code)  # ValueError for an unknown product code
-        with shipped_eds() if eds is None else contextlib.nullcontext(eds) as path:
+        with shipped_eds("ltmr.eds") if eds is None else contextlib.nullcontext(eds) as path:
             super().__init__(
                 node_id, eds=str(path), settings=settings, clock=clock, pump=pump, name=name or f"ltmr {node_id}"
             )

@@ -12,6 +12,7 @@ byte for byte (devices: `python -m softplc.runtime.devices` rewrites them).
 
 from __future__ import annotations
 
+import importlib.resources
 from dataclasses import dataclass, field
 
 # CiA 301 data type codes
@@ -259,3 +260,9 @@ def sdo_server() -> EdsObject:
         ],
         sub0=Entry("Number of entries", UNSIGNED8, "ro", 2),
     )
+
+
+def shipped_eds(name: str):
+    """A context manager giving the path of an EDS shipped in
+    softplc.io_config/eds (a simulator builds its LocalNode from it)."""
+    return importlib.resources.as_file(importlib.resources.files("softplc.io_config") / "eds" / name)

@@ -26,7 +26,8 @@ A device simulator subclasses it and fills in the hooks:
     on_comm_error(), on_comm_restored(), on_rpdo(number)
 
 The PDO machinery (parameters, write rules, traffic, SYNC) is slave_pdo.py's,
-with the choices it makes where CiA 301 leaves room.
+with the choices it makes where CiA 301 leaves room; error control (heartbeat
+producer and consumer, node and life guarding) is slave_errors.py's.
 """
 
 from __future__ import annotations
@@ -34,7 +35,6 @@ from __future__ import annotations
 import logging
 import struct
 import threading
-from dataclasses import dataclass
 
 import can
 import canopen
@@ -50,8 +50,6 @@ from .cia301 import (
     COB_ID_INVALID,
     COB_NMT,
     CONSUMER_HEARTBEAT,
-    GUARD_TIME,
-    LIFE_TIME_FACTOR,
     NMT_PRE_OPERATIONAL,
     NMT_RESET_COMMUNICATION,
     NMT_RESET_NODE,
@@ -69,6 +67,7 @@ from .cia301 import (
     cob_emcy,
     cob_heartbeat,
 )
+from .slave_errors import ERROR_BEHAVIOUR, ERROR_TO_STOPPED, ErrorControlMixin
 from .slave_pdo import PDO_SLOTS, PdoMixin, PdoTables, TpdoState
 
 log = logging.getLogger(__name__)
@@ -82,16 +81,9 @@ ERROR_REGISTER = 0x1001
 ERROR_HISTORY = 0x1003
 SYNC_COB_ID = 0x1005
 EMCY_COB_ID = 0x1014
-GUARDING_TOGGLE = 0x80  # bit 7 of a guarding reply
 
 #: every simulated CANopen slave takes it (SimulatedCanopenSlave.inject)
 UNPLUG = SimFault("unplug", "the node's cable out: it neither sends nor receives (a lost node)", lasting=True)
-ERROR_BEHAVIOUR = 0x1029
-
-# 0x1029:01, on a communication error (manual 001 L1017-1030)
-ERROR_TO_PRE_OPERATIONAL = 0
-ERROR_NO_STATE_CHANGE = 1
-ERROR_TO_STOPPED = 2
 
 # EMCY (CiA 301): 2 bytes error code, error register, 5 manufacturer bytes
 EMCY_MANUFACTURER_BYTES = 5
@@ -128,17 +120,7 @@ class _SlaveNode(canopen.LocalNode):
         network.subscribe(self.sdo.rx_cobid, self.sdo.on_request)
 
 
-@dataclass
-class _Consumer:
-    """One heartbeat consumer entry of 0x1016."""
-
-    producer: int
-    timeout_ns: int
-    last_ns: int | None = None  # None: not monitoring yet (CiA 301: starts with the first heartbeat)
-    lost: bool = False
-
-
-class SimulatedCanopenSlave(PdoMixin, SimulatedDevice):
+class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
     """See the module docstring."""
 
     pump: BusPump | None  # a CAN node: its endpoint is on the bus's pump (virtual time)
@@ -164,12 +146,7 @@ class SimulatedCanopenSlave(PdoMixin, SimulatedDevice):
         self._tables: PdoTables | None = None
         self._tpdo_state: dict[int, TpdoState] = {}
         self._sync_rpdos: dict[int, tuple] = {}  # RPDO number -> (pdo, data) waiting for SYNC
-        self._consumers: list[_Consumer] | None = None
-        self._heartbeat_due: int | None = None
-        self._guard_toggle = 0  # bit 7 of the next guarding reply
-        self._guarded_ns: int | None = None  # the last guarding request (None: not guarded yet)
-        self._guarding_lost = False
-        self._error_pending = False  # a communication error from before a communication reset
+        self._init_error_control()
         self._written: list[int] = []  # objects written, for _flush_writes
 
     # ------------------------------------------------------------------ hooks
@@ -238,9 +215,7 @@ class SimulatedCanopenSlave(PdoMixin, SimulatedDevice):
             self.run_device(now_ns)
             if self._state == STATE_BOOTUP:
                 return
-            self._produce_heartbeat(now_ns)
-            self._watch_heartbeats(now_ns)
-            self._watch_guarding(now_ns)
+            self._error_control(now_ns)
             if self._state == STATE_OPERATIONAL:
                 self._transmit_event_tpdos(now_ns)
 
@@ -249,16 +224,6 @@ class SimulatedCanopenSlave(PdoMixin, SimulatedDevice):
     @property
     def nmt_state(self) -> int:
         return self._state
-
-    @property
-    def heartbeat_lost(self) -> bool:
-        """A watched producer's heartbeat is missing right now."""
-        return any(c.lost for c in self._heartbeat_consumers())
-
-    @property
-    def guarding_lost(self) -> bool:
-        """The master's guarding requests stopped for longer than the life time."""
-        return self._guarding_lost
 
     def unplug(self) -> None:
         """Cut the cable: frames are dropped both ways until plug()."""
@@ -341,11 +306,7 @@ class SimulatedCanopenSlave(PdoMixin, SimulatedDevice):
     def _boot(self, now: int, *, application: bool) -> None:
         """Initialisation: (reset application,) reset communication, boot-up
         frame, pre-operational."""
-        # a communication error outlives a communication reset: the device
-        # hears it is over from the first guarding request or heartbeat after
-        self._error_pending = not application and (
-            self._error_pending or self._guarding_lost or (self._consumers is not None and self.heartbeat_lost)
-        )
+        pending = self._error_outlives_reset(application)
         self._set_state(STATE_BOOTUP)
         if application:
             self.on_reset_application()
@@ -353,15 +314,10 @@ class SimulatedCanopenSlave(PdoMixin, SimulatedDevice):
         self.on_reset_communication()
         self.node.sdo._buffer = None  # a segmented transfer in progress is gone
         self._tables = None
-        self._consumers = None
         self._tpdo_state.clear()
         self._sync_rpdos.clear()
-        self._guard_toggle = 0
-        self._guarded_ns = None
-        self._guarding_lost = False
         self._send(cob_heartbeat(self.node_id), bytes([STATE_BOOTUP]))
-        period = self._heartbeat_period_ns()
-        self._heartbeat_due = now + period if period else None
+        self._restart_error_control(now, pending)
         self._set_state(STATE_PRE_OPERATIONAL)
 
     def _on_nmt(self, data: bytes, now: int) -> None:
@@ -389,97 +345,6 @@ class SimulatedCanopenSlave(PdoMixin, SimulatedDevice):
         self.on_state_change(old, new)
         if new == STATE_OPERATIONAL:
             self._enter_operational()
-
-    # ------------------------------------------------------------------ heartbeat (CiA 301)
-
-    def _heartbeat_period_ns(self) -> int:
-        return self._value(PRODUCER_HEARTBEAT, 0) * MS if PRODUCER_HEARTBEAT in self.od else 0
-
-    def _produce_heartbeat(self, now: int) -> None:
-        if self._heartbeat_due is None or now < self._heartbeat_due:
-            return
-        self._send(cob_heartbeat(self.node_id), bytes([self._state]))
-        period = self._heartbeat_period_ns()
-        due = self._heartbeat_due + period
-        self._heartbeat_due = due if due > now else now + period  # no burst after a long gap
-
-    def _heartbeat_consumers(self) -> list:
-        if self._consumers is None:
-            self._consumers = []
-            obj = self.od.get(CONSUMER_HEARTBEAT)
-            if obj is not None:
-                for sub in sorted(obj.subindices):
-                    if sub == 0:
-                        continue
-                    entry = self._value(CONSUMER_HEARTBEAT, sub)
-                    producer, time_ms = (entry >> 16) & 0xFF, entry & 0xFFFF
-                    if 1 <= producer <= 127 and time_ms:  # 0 = entry not used
-                        self._consumers.append(_Consumer(producer, time_ms * MS))
-        return self._consumers
-
-    def _on_heartbeat(self, producer: int, now: int) -> None:
-        was_lost = self.heartbeat_lost
-        watched = False
-        for consumer in self._heartbeat_consumers():
-            if consumer.producer == producer:
-                consumer.last_ns = now
-                consumer.lost = False
-                watched = True
-        if (was_lost or (self._error_pending and watched)) and not self.heartbeat_lost:
-            self._error_pending = False
-            self.on_comm_restored()
-
-    def _watch_heartbeats(self, now: int) -> None:
-        for consumer in self._heartbeat_consumers():
-            if consumer.last_ns is None or consumer.lost:
-                continue
-            if now - consumer.last_ns > consumer.timeout_ns:
-                consumer.lost = True
-                log.info("%s: heartbeat of node %d lost", self.name, consumer.producer)
-                self._communication_error()
-
-    # ------------------------------------------------------------------ node guarding (CiA 301)
-
-    def _life_time_ns(self) -> int:
-        """Guard time x life time factor (0: the node does not watch the master)."""
-        if GUARD_TIME not in self.od or LIFE_TIME_FACTOR not in self.od:
-            return 0
-        return self._value(GUARD_TIME, 0) * self._value(LIFE_TIME_FACTOR, 0) * MS
-
-    def _on_guarding_request(self, now: int) -> None:
-        """An RTR at 0x700 + node id: answer with the NMT state and the toggle
-        bit. A node producing heartbeats does not take part in guarding."""
-        if self._heartbeat_period_ns():
-            return
-        self._send(cob_heartbeat(self.node_id), bytes([self._state | self._guard_toggle]))
-        self._guard_toggle ^= GUARDING_TOGGLE
-        self._guarded_ns = now
-        if self._guarding_lost or self._error_pending:
-            self._guarding_lost = self._error_pending = False
-            log.info("%s: guarding by the master resumed", self.name)
-            if not self.heartbeat_lost:
-                self.on_comm_restored()
-
-    def _watch_guarding(self, now: int) -> None:
-        """Life guarding: from the first request on, a gap longer than the life
-        time is a communication error."""
-        life = self._life_time_ns()
-        if not life or self._guarded_ns is None or self._guarding_lost:
-            return
-        if now - self._guarded_ns > life:
-            self._guarding_lost = True
-            log.info("%s: no guarding request for %d ms (life time)", self.name, life // MS)
-            self._communication_error()
-
-    def _communication_error(self) -> None:
-        self.on_comm_error()
-        behaviour = ERROR_TO_PRE_OPERATIONAL
-        if ERROR_BEHAVIOUR in self.od:
-            behaviour = self._value(ERROR_BEHAVIOUR, 1)
-        if behaviour == ERROR_TO_PRE_OPERATIONAL and self._state == STATE_OPERATIONAL:
-            self._set_state(STATE_PRE_OPERATIONAL)  # CiA 301: only from Operational
-        elif behaviour == ERROR_TO_STOPPED:
-            self._set_state(STATE_STOPPED)
 
     # ------------------------------------------------------------------ frames
 

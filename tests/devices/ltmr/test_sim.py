@@ -16,7 +16,6 @@ from softplc.runtime.devices.ltmr import pkw
 from softplc.runtime.devices.ltmr import registers as ltmr
 from softplc.runtime.devices.ltmr.bits import Status1, Status2, TripEnable1, TripRegister1
 from softplc.runtime.devices.ltmr.codes import FallbackStrategy, OperatingMode, ResetMode
-from softplc.runtime.devices.ltmr.sim import shipped_eds
 from softplc.runtime.io.canopen.cia301 import (
     ABORT_ACCESS,
     ABORT_BAD_COMMAND,
@@ -33,6 +32,7 @@ from softplc.runtime.io.canopen.cia301 import (
     STATE_PRE_OPERATIONAL,
     STATE_STOPPED,
 )
+from softplc.runtime.io.canopen.eds import shipped_eds
 
 from ...io.canopen.bench import MS, abort_frame, write_ok
 
@@ -579,7 +579,7 @@ def test_canopens_sdo_client_works_against_the_simulator(bench):
     to 0, and the manual declares 0x1A0x as ARRAY, manual 001 §4.)"""
     sim = bench.ltmr(NODE)
     network = _MasterNetwork(bench.master)
-    with shipped_eds() as path:
+    with shipped_eds("ltmr.eds") as path:
         remote = canopen.RemoteNode(NODE, str(path))
     network.add_node(remote)
 

@@ -5,10 +5,6 @@ examples; the test is the master."""
 
 from __future__ import annotations
 
-import importlib.resources
-
-import pytest
-
 from softplc.runtime.io.canopen.cia301 import (
     ABORT_DEVICE_STATE,
     ABORT_NO_OBJECT,
@@ -26,47 +22,11 @@ from softplc.runtime.io.canopen.cia301 import (
     STATE_PRE_OPERATIONAL,
     STATE_STOPPED,
 )
-from softplc.runtime.io.canopen.slave import SimulatedCanopenSlave
 
 from .bench import MS, abort_frame, write_ok
+from .slaves import NODE, RecordingSlave, eds_path
 
-NODE = 40
 TPDO1, RPDO1, EMCY, HEARTBEAT = 0x1A8, 0x228, 0x0A8, 0x728
-
-
-def _eds(name: str):
-    return importlib.resources.as_file(importlib.resources.files("softplc.io_config") / "eds" / name)
-
-
-class RecordingSlave(SimulatedCanopenSlave):
-    """The generic slave, with its hooks written down."""
-
-    def __init__(self, *args, **kwargs) -> None:
-        super().__init__(*args, **kwargs)
-        self.events: list = []
-
-    def on_state_change(self, old, new):
-        self.events.append(("state", old, new))
-
-    def on_reset_application(self):
-        self.events.append(("reset application",))
-        super().on_reset_application()
-
-    def on_comm_error(self):
-        self.events.append(("comm error",))
-
-    def on_comm_restored(self):
-        self.events.append(("comm restored",))
-
-    def on_rpdo(self, number):
-        self.events.append(("rpdo", number))
-
-
-@pytest.fixture
-def slave(bench):
-    with _eds("ltmr.eds") as path:
-        made = RecordingSlave(NODE, eds=str(path), settings=bench.settings, clock=bench.clock, pump=bench.pump)
-    return bench.add(made)
 
 
 def _remap_tpdo1(bench, entries, *, transmission=255, inhibit_100us=None, event_ms=None):
@@ -155,7 +115,7 @@ class SavingSlave(RecordingSlave):
 
 
 def test_saved_communication_parameters_come_back_at_every_reset_communication(bench):
-    with _eds("ltmr.eds") as path:
+    with eds_path("ltmr.eds") as path:
         slave = SavingSlave(NODE, eds=str(path), settings=bench.settings, clock=bench.clock, pump=bench.pump)
     bench.add(slave)
     assert slave.events.count(("reset communication",)) == 1  # power-up
@@ -178,72 +138,6 @@ def test_power_cycle_boots_again(bench, slave):
     bench.pump.settle()
     assert bench.frames == [(0, HEARTBEAT, b"\x00")]
     assert slave.nmt_state == STATE_PRE_OPERATIONAL
-
-
-# ---------------------------------------------------------------------------- heartbeat
-
-
-def test_heartbeat_producer_in_virtual_time(bench, slave):
-    bench.run_ms(50)
-    assert bench.sdo_write(NODE, 0x1017, 0, 100, 2) == write_ok(0x1017, 0)  # 100 ms
-    bench.clear()
-    bench.run_ms(1000)
-    assert bench.times_of(HEARTBEAT) == [t * MS for t in range(150, 1051, 100)]
-    assert set(bench.frames_with(HEARTBEAT)) == {b"\x7f"}  # pre-operational
-    bench.nmt(NMT_START, NODE)
-    bench.clear()
-    bench.run_ms(200)
-    assert bench.frames_with(HEARTBEAT) == [b"\x05", b"\x05"]  # operational
-    assert bench.sdo_write(NODE, 0x1017, 0, 0, 2) == write_ok(0x1017, 0)
-    bench.clear()
-    bench.run_ms(500)
-    assert bench.frames_with(HEARTBEAT) == []
-
-
-def _watch_master(bench, behaviour=None):
-    # 0x1016:01 = producer 0x7F, 500 ms: the digest's example value 0x007F01F4 (digest 001 §1.5)
-    assert bench.sdo_write(NODE, 0x1016, 1, 0x007F01F4, 4) == write_ok(0x1016, 1)
-    if behaviour is not None:
-        assert bench.sdo_write(NODE, 0x1029, 1, behaviour, 1) == write_ok(0x1029, 1)
-    bench.nmt(NMT_START, NODE)
-
-
-def test_heartbeat_consumer_waits_for_the_first_heartbeat(bench, slave):
-    _watch_master(bench)
-    bench.run_ms(2000)  # the master never sent one
-    assert slave.nmt_state == STATE_OPERATIONAL
-    assert ("comm error",) not in slave.events
-
-
-def test_heartbeat_loss_sends_the_node_to_pre_operational_and_recovery_is_reported(bench, slave):
-    _watch_master(bench)
-    bench.master_heartbeat_ms = 100
-    bench.run_ms(1000)
-    assert slave.nmt_state == STATE_OPERATIONAL and not slave.heartbeat_lost
-    bench.master_heartbeat_ms = 0
-    bench.run_until(lambda: slave.heartbeat_lost, 1000, "heartbeat loss")
-    # the first 10 ms step more than 500 ms after the last heartbeat
-    assert bench.clock.now_ns() - bench.last_master_heartbeat_ns == 510 * MS
-    assert slave.nmt_state == STATE_PRE_OPERATIONAL  # 0x1029:01 = 0 (factory)
-    errors = [e for e in slave.events if e[0] == "comm error"]
-    assert len(errors) == 1
-    assert ("state", STATE_OPERATIONAL, STATE_PRE_OPERATIONAL) in slave.events
-    bench.master_heartbeat_ms = 100
-    bench.run_ms(20)
-    assert not slave.heartbeat_lost and ("comm restored",) in slave.events
-    assert slave.nmt_state == STATE_PRE_OPERATIONAL  # back in Operational only by NMT
-
-
-@pytest.mark.parametrize("behaviour, state", [(1, STATE_OPERATIONAL), (2, STATE_STOPPED)])
-def test_heartbeat_loss_follows_the_error_behaviour_object(bench, slave, behaviour, state):
-    _watch_master(bench, behaviour)  # 0x1029:01: 1 no change, 2 stopped
-    bench.master_heartbeat_ms = 100
-    bench.run_ms(300)
-    bench.master_heartbeat_ms = 0
-    bench.run_ms(700)
-    assert slave.heartbeat_lost
-    assert slave.nmt_state == state
-    assert ("comm error",) in slave.events
 
 
 # ---------------------------------------------------------------------------- SDO server
@@ -449,65 +343,8 @@ def test_an_unplugged_slave_neither_hears_nor_speaks(bench, slave):
 
 def test_any_eds_will_do(bench):
     """The slave knows no device: the FC 280's EDS gives an FC 280-shaped node."""
-    with _eds("fc280.eds") as path:
+    with eds_path("fc280.eds") as path:
         other = bench.add(RecordingSlave(1, eds=str(path), settings=bench.settings, clock=bench.clock, pump=bench.pump))
     assert bench.frames_with(0x701) == [b"\x00"]
     vendor = other.read(0x1018, 1)
     assert bench.sdo_read(1, 0x1018, 1) == bytes.fromhex("43 18 10 01") + vendor.to_bytes(4, "little")
-
-
-# ---------------------------------------------------------------------------- node guarding
-
-
-def test_guarding_replies_carry_the_state_and_a_toggle_bit(bench, slave):
-    # CiA 301: the reply's bit 7 toggles, starting with 0; 0x7F pre-operational, 0x05 operational
-    assert bench.guard(NODE) == [b"\x7f"]
-    assert bench.guard(NODE) == [b"\xff"]
-    bench.nmt(NMT_START, NODE)
-    assert bench.guard(NODE) == [b"\x05"]
-    assert bench.guard(NODE) == [b"\x85"]
-    bench.nmt(NMT_RESET_COMMUNICATION, NODE)
-    assert bench.guard(NODE) == [b"\x7f"]  # a reset starts the toggle again
-
-
-def test_a_node_producing_heartbeats_takes_no_part_in_guarding(bench, slave):
-    assert bench.sdo_write(NODE, 0x1017, 0, 100, 2) == write_ok(0x1017, 0)
-    assert bench.guard(NODE) == []
-
-
-def test_life_guarding_a_silent_master_is_a_communication_error(bench, slave):
-    # guard time 100 ms x life time factor 3: 300 ms without a request
-    assert bench.sdo_write(NODE, 0x100C, 0, 100, 2) == write_ok(0x100C, 0)
-    assert bench.sdo_write(NODE, 0x100D, 0, 3, 1) == write_ok(0x100D, 0)
-    bench.nmt(NMT_START, NODE)
-    bench.run_ms(1000)
-    assert ("comm error",) not in slave.events  # not watching before the first request
-    for _ in range(5):
-        bench.guard(NODE)
-        bench.run_ms(100)
-    assert not slave.guarding_lost
-    took = bench.run_until(lambda: slave.guarding_lost, 1000, "life guarding")
-    assert 200 < took <= 310  # 300 ms after the last request, at the 10 ms steps
-    assert ("comm error",) in slave.events
-    assert slave.nmt_state == STATE_PRE_OPERATIONAL  # 0x1029 default: to pre-operational
-    bench.guard(NODE)
-    assert not slave.guarding_lost and slave.events[-1] == ("comm restored",)
-
-
-def test_a_communication_error_outlives_a_communication_reset(bench, slave):
-    # The master boots a lost node again with NMT reset communication; the
-    # device hears that communication is back from the first request after.
-    assert bench.sdo_write(NODE, 0x100C, 0, 100, 2) == write_ok(0x100C, 0)
-    assert bench.sdo_write(NODE, 0x100D, 0, 3, 1) == write_ok(0x100D, 0)
-    bench.nmt(NMT_START, NODE)
-    bench.guard(NODE)
-    bench.run_until(lambda: slave.guarding_lost, 1000, "life guarding")
-    bench.nmt(NMT_RESET_COMMUNICATION, NODE)
-    bench.send(0x701, b"\x05")  # another node's heartbeat says nothing about the master
-    bench.run_ms(10)
-    assert slave.events[-1] != ("comm restored",)
-    bench.guard(NODE)
-    assert slave.events[-1] == ("comm restored",)
-    bench.nmt(NMT_RESET_NODE, NODE)  # a reset application starts afresh: nothing pending
-    bench.guard(NODE)
-    assert slave.events.count(("comm restored",)) == 1
