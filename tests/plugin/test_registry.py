@@ -53,7 +53,7 @@ def plant(tmp_path: Path, close: bool = False, **sim) -> dict:
 def test_softplc_own_plugins_come_from_the_entry_points():
     reg = registry()
     assert [bus.name for bus in reg.buses] == ["loopback", "can", "canopen", "modbus"]
-    assert [device.name for device in reg.devices] == ["ltmr", "eaton", "fc280"]
+    assert [device.name for device in reg.devices] == ["ltmr", "eaton", "fc280", "mpu2s"]
     assert list(reg.natives()) == ["READ_VAR", "WRITE_VAR", "MODBUS_EXCHANGE"]
     assert list(reg.sim_types()) == ["ltmr", "da1", "db1", "dc1", "de1", "de11", "fc280"]
 
@@ -121,14 +121,14 @@ def test_names_are_unique():
     with pytest.raises(PluginError, match="sim type 'da1' is device eaton's"):
         with extended(Device(name="other", bus="modbus", sim_types=("da1",))):
             pass
-    assert [device.name for device in registry().devices] == ["ltmr", "eaton", "fc280"]
+    assert [device.name for device in registry().devices] == ["ltmr", "eaton", "fc280", "mpu2s"]
 
 
 def test_a_device_that_simulates_has_a_simulator():
     with pytest.raises(PluginError, match="device other: sim types lamp but no simulator"):
         with extended(Device(name="other", bus="modbus", sim_types=("lamp",))):
             pass
-    assert [device.name for device in registry().devices] == ["ltmr", "eaton", "fc280"]
+    assert [device.name for device in registry().devices] == ["ltmr", "eaton", "fc280", "mpu2s"]
 
 
 def test_a_device_on_a_bus_that_is_not_there(tmp_path):

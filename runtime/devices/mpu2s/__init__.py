@@ -1,0 +1,14 @@
+"""The Woodward MPU2-S multi-measurement transducer on plain CAN (manual 004
+"MPU2-S Multimeßwertumsetzer Protokollbeschreibung", digest 004), and the
+genset synchronisation built on it.
+
+Public names: DEVICE.
+"""
+
+from __future__ import annotations
+
+from ...plugin.seams import Device
+
+DEVICE = Device(name="mpu2s", order=40)
+
+__all__ = ["DEVICE"]
