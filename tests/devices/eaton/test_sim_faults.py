@@ -37,13 +37,15 @@ def test_faults_on_schedule(plants, tmp_path):
     )
     drive = plant.drive(1)
     assert plant.engine.simulators["da1_1"].model is drive  # by its default name: type and unit
-    plant.run_until(lambda: plant["Drive.drive.CONNECTED"], 1000, step_ms=50)
-    plant.run_until(lambda: not plant["Drive.drive.CONNECTED"], 3200, step_ms=50)
-    assert plant.now_ms >= 3000
+    # (a real-time answer late on a loaded machine may cost one exchange before 3 s; the
+    # drive's own view, telegrams received, does not depend on it)
+    plant.run_ms(3000)
+    assert drive.fault == 0
+    plant.run_until(lambda: not plant["Drive.drive.CONNECTED"], 300, step_ms=50)
     # the unit is silent, not the line: the drive's own watchdog trips it 2 s later (L906)
     plant.run_until(lambda: drive.fault == eaton_faults.COMM_LOSS_FAULT, 2200, step_ms=50)
-    plant.run_until(lambda: plant["Drive.drive.CONNECTED"], 1000, step_ms=50)
-    assert plant.now_ms >= 5500
+    assert 5000 <= plant.now_ms <= 5150
+    plant.run_until(lambda: plant.now_ms >= 5500 and plant["Drive.drive.CONNECTED"], 1500, step_ms=50)
     plant.run_until(lambda: plant["Drive.faults"] == 1 and plant["Drive.state"] == "RunForward", 3000, step_ms=50)
     plant.run_until(lambda: plant["Drive.drive.FAULT_CODE"] == OVERCURRENT, 7000, step_ms=50)
     assert 12_000 <= plant.now_ms <= 12_300
