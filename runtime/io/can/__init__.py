@@ -6,8 +6,11 @@ A device that simulates a CAN node gets ``simulator(sim, CanSimContext)``
 called: sim.at is its CanNode, the context has the bus settings, the clock
 and (virtual time) the pump its endpoint must use.
 
+The PLC side of a bus is one CanPort (port.py) that every protocol driver
+on it shares: port_of(ctx, bus).
+
 Public names: BUS, BusPump, BusSettings, CanEndpoint, CanNode, CanBusConfig,
-CanSimContext, open_bus, pump_of, settings_of.
+CanPort, CanSimContext, open_bus, port_of, pump_of, settings_of.
 """
 
 from __future__ import annotations
@@ -19,6 +22,7 @@ from ...plugin.registry import registry
 from ...plugin.seams import BuildContext, Bus, Contribution
 from .bus import BusPump, BusSettings, CanEndpoint, open_bus
 from .config import CanAttachment, CanBusConfig, CanNode, CanSection
+from .port import CanPort, shared_port
 
 
 @dataclass
@@ -38,6 +42,12 @@ def pump_of(ctx: BuildContext) -> BusPump | None:
     if "can.pump" not in ctx.shared:
         ctx.shared["can.pump"] = BusPump() if ctx.virtual else None
     return ctx.shared["can.pump"]
+
+
+def port_of(ctx: BuildContext, bus: CanBusConfig) -> CanPort:
+    """The PLC's one connection to the [[can]] bus, shared by every protocol
+    driver of the engine on it (port.py)."""
+    return shared_port(ctx.shared, bus.name, settings_of(bus), pump_of(ctx))
 
 
 def _build(config, ctx: BuildContext) -> Contribution:
@@ -63,8 +73,10 @@ __all__ = [
     "CanBusConfig",
     "CanEndpoint",
     "CanNode",
+    "CanPort",
     "CanSimContext",
     "open_bus",
+    "port_of",
     "pump_of",
     "settings_of",
 ]

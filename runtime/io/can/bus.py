@@ -82,7 +82,11 @@ class CanEndpoint:
     # ------------------------------------------------------------ set-up
 
     def add_handler(self, handler: Handler) -> None:
-        self._handlers.append(handler)
+        # a new list, not an append: the receive thread may be iterating the old one
+        self._handlers = [*self._handlers, handler]
+
+    def remove_handler(self, handler: Handler) -> None:
+        self._handlers = [h for h in self._handlers if h is not handler]
 
     def start(self) -> None:
         if self._started:

@@ -12,7 +12,7 @@ Public names: BUS, CanopenDriver, CanopenConfig, SimulatedCanopenSlave.
 from __future__ import annotations
 
 from ...plugin.seams import BuildContext, Bus, Contribution, StLibrary
-from ..can import pump_of, settings_of
+from ..can import port_of, pump_of, settings_of
 from .config import CanopenConfig, CanopenSection
 from .master import CanopenDriver
 from .sdo import READ_VAR, WRITE_VAR
@@ -26,7 +26,12 @@ def _build(config, ctx: BuildContext) -> Contribution:
     return Contribution(
         drivers=[
             CanopenDriver(
-                config.canopen, settings_of(bus), clock=ctx.clock, pump=pump_of(ctx), addressing=ctx.addressing
+                config.canopen,
+                settings_of(bus),
+                clock=ctx.clock,
+                pump=pump_of(ctx),
+                addressing=ctx.addressing,
+                port=port_of(ctx, bus),
             )
         ]
     )

@@ -30,6 +30,7 @@ from ...image.memory import ProcessImage
 from ...plugin.driver import Driver, DriverError, DriverStatus
 from ...plugin.registry import registry
 from ..can.bus import BusSettings, CanEndpoint, open_bus
+from ..can.port import CanPort
 from .cia301 import (
     COB_ID_INVALID,
     COB_NMT,
@@ -96,7 +97,15 @@ class CanopenDriver(Driver):
     name = "canopen"
 
     def __init__(
-        self, config, settings: BusSettings, *, clock, pump=None, addressing: str = "iec", image_size: int | None = None
+        self,
+        config,
+        settings: BusSettings,
+        *,
+        clock,
+        pump=None,
+        addressing: str = "iec",
+        image_size: int | None = None,
+        port: CanPort | None = None,
     ) -> None:
         """config: a CanopenConfig (config.py); settings: its bus's.
         DriverError (naming the config key) for a node that cannot work:
@@ -105,6 +114,8 @@ class CanopenDriver(Driver):
         self.settings = settings
         self.clock = clock
         self.pump = pump
+        # the PLC's connection to the bus, shared with the other protocols on it
+        self.port = port if port is not None else CanPort(settings, pump)
         self.node_id = config.node_id
         probe = ProcessImage(addressing) if image_size is None else ProcessImage(addressing, image_size)
         self.nodes: dict[int, _Node] = {}
@@ -183,8 +194,7 @@ class CanopenDriver(Driver):
     # ------------------------------------------------------------ life cycle
 
     def start(self) -> None:
-        bus = open_bus(self.settings)
-        self.endpoint = CanEndpoint(bus, name="canopen master", pump=self.pump)
+        self.endpoint = self.port.acquire()
         self.network = _EndpointNetwork(self.endpoint)
         for node in self.nodes.values():
             self.network.add_node(canopen.RemoteNode(node.cfg.node_id, node.od))
@@ -193,7 +203,6 @@ class CanopenDriver(Driver):
         self.worker.start()
         if self.pump is not None:
             self.pump.add_busy(self.worker.busy)
-        self.endpoint.start()
         self._bus_ok = True
         self._started = True
         log.info(
@@ -214,12 +223,12 @@ class CanopenDriver(Driver):
             self._service = None
         # The last write_outputs (the safe values) goes out before the bus closes.
         self._send_rpdos(self.clock.now_ns(), sync=False, force=True)
-        worker, endpoint = self._started_worker, self._started_endpoint
+        worker = self._started_worker
         if self.pump is not None:
             self.pump.settle()
             self.pump.remove_busy(worker.busy)
         worker.stop()
-        endpoint.stop()
+        self.port.release(self._on_frame)
         self._started = False
 
     # What start() makes and never clears: the bus side (the service, the
