@@ -78,6 +78,8 @@ def run_plc(
             cfg = load_config(path)
         except ConfigError as e:
             return _fail(str(e), EXIT_CONFIG)
+        for warning in cfg.warnings:
+            log.warning("%s", warning)
         try:
             engine = build_engine(cfg, virtual_time=virtual_time, start_mode=start_mode)
         except CompileError as e:

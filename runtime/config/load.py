@@ -48,6 +48,8 @@ class PlcConfig:
     #: the buses' sections by TOML key (cfg.can is cfg.sections["can"])
     sections: dict[str, Any] = field(default_factory=dict)
     raw: dict = field(default_factory=dict)  # the parsed TOML
+    #: what may be wrong but need not be, each "file: key: message" (logged by the launcher)
+    warnings: list[str] = field(default_factory=list)
 
     def __getattr__(self, name: str) -> Any:
         sections = self.__dict__.get("sections")
@@ -110,6 +112,8 @@ class _Document:
         self.version = reg.version
         self.sims = SimSection(reg)
         bus_sections = [s for bus in reg.buses for s in bus.sections]
+        for section in bus_sections:
+            section.bind(reg)
         # the document's keys in this order ("expected one of plc, retain ..."); the
         # simulated devices are checked last, when the buses they sit on are known
         self.sections: list[Section] = [*CORE_SECTIONS, self.sims, *bus_sections]
@@ -181,5 +185,6 @@ def config_from_dict(data: dict, path=None, *, base_dir=None) -> PlcConfig:
         start=plc.start,
         sections=built,
         raw=data,
+        warnings=[f"{label}: {key_text(loc)}: {message}" for loc, message in in_file_order(ctx.warnings, data)],
         **core,
     )

@@ -28,6 +28,8 @@ class Relations:
         self.data = data
         self.base_dir = base_dir
         self.errors: list = []
+        #: what may be wrong but need not be (loc, message): the file loads, the launcher logs them
+        self.warnings: list = []
         #: a section's parsed results for its build, by section key
         self.state: dict[str, Any] = {}
         #: image bits written from the bus side: (area, first bit, last bit, loc, text)
@@ -42,6 +44,9 @@ class Relations:
 
     def error(self, loc: tuple, message: str) -> None:
         self.errors.append((loc, message))
+
+    def warning(self, loc: tuple, message: str) -> None:
+        self.warnings.append((loc, message))
 
     # ---------------------------------------------------------------- addresses
 

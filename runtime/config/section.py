@@ -39,6 +39,11 @@ class Section:
         """The section's value in a file that has none."""
         return [] if self.many else None
 
+    def bind(self, registry: Any) -> None:
+        """Before the document is built, for each state of the registry: a
+        section whose keys depend on the registered devices (their own keys
+        in its tables) sets its model here."""
+
     def check(self, value: Any, ctx: Relations) -> None:
         """Pass 2: relations between values of the raw TOML value (None when
         the file has no such key), reported with ctx.error(loc, message);

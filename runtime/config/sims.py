@@ -25,7 +25,7 @@ from .errors import key_text
 from .relations import Relations
 from .section import Attachment, Section
 from .sim_faults import FaultEvent, Faults, check_faults, fault_events
-from .values import Model, choice, identifier, is_ident
+from .values import Model, choice, identifier, is_ident, optional_field
 
 
 @dataclass
@@ -76,9 +76,7 @@ class SimSection(Section):
             model = owner.model if isinstance(owner, Attachment) else owner
             for name, info in model.model_fields.items():
                 if name not in fields:
-                    annotation = info.annotation
-                    assert annotation is not None  # a model's field always has its annotation
-                    fields[name] = (annotation | None, Field(None, description=info.description))
+                    fields[name] = optional_field(info)
         return create_model("Sim", __base__=Model, **fields)
 
     def _device_of(self, sim: dict):

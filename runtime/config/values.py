@@ -11,7 +11,7 @@ import re
 from pathlib import Path
 from typing import Annotated, Any, TypeGuard
 
-from pydantic import BaseModel, ConfigDict, PlainValidator, ValidationInfo
+from pydantic import BaseModel, ConfigDict, Field, PlainValidator, ValidationInfo
 from pydantic_core import PydanticCustomError
 
 from ..durations import EXAMPLES as DURATION_EXAMPLES
@@ -273,3 +273,14 @@ def bit_count(addr: LocatedAddress) -> int:
 
 def area_name(addr: LocatedAddress) -> str:
     return f"'{addr.text}', " + {"I": "an input", "Q": "an output", "M": "a memory address"}[addr.area]
+
+
+def optional_field(info: Any) -> tuple:
+    """A model's field (a pydantic FieldInfo) as an optional field of another
+    model: its type with its validators (the Annotated metadata pydantic keeps
+    apart from the annotation), None when missing, its description. For the
+    sections whose tables take the keys of several devices ([[sim]] ...)."""
+    annotation: Any = info.annotation
+    if info.metadata:
+        annotation = Annotated[(annotation, *info.metadata)]
+    return annotation | None, Field(None, description=info.description)

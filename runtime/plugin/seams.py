@@ -157,6 +157,9 @@ class Device:
     parameter_object: Callable[[str, Any], tuple[int, int, int, int]] | None = None
     #: the faults its simulators take (config/sim_faults.py)
     sim_faults: tuple[SimFault, ...] = ()
+    #: how a real device of this kind is driven, declared for the bus that
+    #: hosts such devices (a plain-CAN protocol: io/plaincan's PlainCanKind)
+    node_kind: Any = None
     #: an EMCY of a node with one of the device's files, in words for the log:
     #: (error code, error register, manufacturer bytes) -> text
     emcy_text: Callable[[int, int, bytes], str] | None = None

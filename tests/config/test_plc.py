@@ -26,7 +26,7 @@ def test_minimal_file_and_defaults(tmp_path):
         tasks=[],
         retain=None,
         safe_outputs=[],
-        sections={"loopback": [], "can": [], "canopen": None, "modbus": []},
+        sections={"loopback": [], "can": [], "canopen": None, "plaincan": [], "modbus": []},
         raw={"plc": {"programs": ["main.st"]}},
     )
 
@@ -142,7 +142,7 @@ def test_unknown_key_without_suggestion(tmp_path):
 def test_later_sections_are_unknown_for_now(tmp_path):
     assert error(tmp_path, PLC + "[mpu2s]\nx = 1\n") == (
         "mpu2s",
-        "unknown key (expected one of plc, retain, task, outputs, sim, loopback, can, canopen, modbus)",
+        "unknown key (expected one of plc, retain, task, outputs, sim, loopback, can, canopen, plaincan, modbus)",
     )
 
 

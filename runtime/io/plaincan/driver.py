@@ -1,0 +1,188 @@
+"""The plain-CAN driver of one [[can]] bus: the devices of its [[plaincan]]
+tables, on the PLC's CanPort (io/can/port.py), which it shares with the
+CANopen master when both are on one bus.
+
+    receive thread  (real time) or the BusPump (virtual time): every frame of
+                    the bus; a node's CAN-ID goes to that node under the lock
+                    (into its shadow), anything else is someone else's
+    advance         the nodes' timers (requests, timeouts, staleness): a
+                    service thread every 5 ms in real time, the engine's
+                    tick in virtual time (then the pump delivers the answers)
+    read_inputs     cycle start: each node copies its shadow into %I
+    write_outputs   cycle end
+
+A frame a node refuses (MalformedFrame) is counted on the node and dropped;
+the first of each reason per node is logged with the frame. A send that
+fails marks the bus down (status line, logged once) and the bus is opened
+again every second until it works.
+"""
+
+from __future__ import annotations
+
+import logging
+import threading
+
+import can
+
+from ...engine.clock import PeriodicService
+from ...image.memory import ProcessImage
+from ...plugin.driver import Driver, DriverError, DriverStatus
+from ..can.bus import open_bus
+from ..can.port import CanPort
+from .kind import MalformedFrame, PlainCanNode
+
+log = logging.getLogger(__name__)
+
+SERVICE_PERIOD_S = 0.005
+REOPEN_NS = 1_000_000_000
+
+
+class PlainCanDriver(Driver):
+    def __init__(self, bus: str, port: CanPort, *, clock) -> None:
+        self.name = f"plaincan {bus}"
+        self.bus = bus
+        self.port = port
+        self.clock = clock
+        self.lock = threading.RLock()
+        self.nodes: list[PlainCanNode] = []
+        self._by_id: dict[int, PlainCanNode] = {}
+        self.services: dict = {}
+        self.malformed: dict[str, int] = {}  # node name -> frames refused
+        self._reasons_logged: set[tuple[str, str]] = set()
+        self.foreign = 0  # frames of the bus that are no node's (CANopen's ...)
+        self._bus_ok = True
+        self._bus_error = ""
+        self._next_reopen_ns = 0
+        self._service: PeriodicService | None = None
+        self._started = False
+
+    def add(self, node: PlainCanNode) -> None:
+        for can_id in node.receives:
+            other = self._by_id.get(can_id)
+            if other is not None:  # config pass 2 refuses this; a second line of defence
+                raise DriverError(f"{self.name}: CAN-ID 0x{can_id:03X} is both {other.name}'s and {node.name}'s")
+            self._by_id[can_id] = node
+        self.nodes.append(node)
+        self.malformed[node.name] = 0
+        for key, service in node.services.items():
+            self.services.setdefault(key, service)
+
+    # ------------------------------------------------------------ life cycle
+
+    def start(self) -> None:
+        endpoint = self.port.acquire()
+        endpoint.add_handler(self._on_frame)
+        self._started = True
+        log.info("%s: %d device(s) on %s", self.name, len(self.nodes), self.port.settings.describe())
+        if not self.clock.virtual:
+            self._service = PeriodicService(f"{self.name} service", self.clock, self._advance, SERVICE_PERIOD_S)
+            self._service.start()
+
+    def stop(self) -> None:
+        if not self._started:
+            return
+        if self._service is not None:
+            self._service.stop()
+            self._service = None
+        with self.lock:
+            for node in self.nodes:
+                node.stop()
+        self.port.release(self._on_frame)
+        self._started = False
+
+    def advance_to(self, now_ns: int) -> None:
+        self._advance(now_ns)
+        if self.port.pump is not None:
+            self.port.pump.settle()
+
+    def _advance(self, now_ns: int) -> None:
+        if not self._bus_ok and now_ns >= self._next_reopen_ns:
+            self._reopen(now_ns)
+        with self.lock:
+            for node in self.nodes:
+                node.advance(now_ns)
+
+    def bind_program(self, globals_obj) -> None:
+        for node in self.nodes:
+            node.bind_program(globals_obj)
+
+    # ------------------------------------------------------------ frames
+
+    def send(self, can_id: int, data: bytes) -> bool:
+        """For the nodes: one frame out; False when it did not go."""
+        endpoint = self.port.endpoint
+        if endpoint is None:
+            return False
+        if endpoint.send(can_id, data) or not endpoint.connected:
+            return endpoint.connected
+        if self._bus_ok:
+            self._bus_ok = False
+            self._bus_error = endpoint.last_error
+            self._next_reopen_ns = self.clock.now_ns() + REOPEN_NS
+            log.error("%s: cannot send: %s; opening the bus again every second", self.name, self._bus_error)
+        return False
+
+    def _reopen(self, now_ns: int) -> None:
+        self._next_reopen_ns = now_ns + REOPEN_NS
+        endpoint = self.port.endpoint
+        if endpoint is None:
+            return
+        try:
+            endpoint.reopen(open_bus(self.port.settings))
+        except DriverError as exc:
+            self._bus_error = str(exc)
+            return
+        log.warning("%s: bus open again", self.name)
+        self._bus_ok = True
+        self._bus_error = ""
+
+    def _on_frame(self, msg: can.Message) -> None:
+        node = self._by_id.get(msg.arbitration_id)
+        if node is None or msg.is_extended_id or msg.is_remote_frame:
+            self.foreign += 1
+            return
+        data = bytes(msg.data)
+        with self.lock:
+            try:
+                node.on_frame(msg.arbitration_id, data, self.clock.now_ns())
+            except MalformedFrame as exc:
+                self.malformed[node.name] += 1
+                reason = str(exc)
+                if (node.name, reason) not in self._reasons_logged:
+                    self._reasons_logged.add((node.name, reason))
+                    log.warning(
+                        "%s: %s: frame 0x%03X [%s] dropped: %s (further ones are counted, not logged)",
+                        self.name,
+                        node.name,
+                        msg.arbitration_id,
+                        data.hex(" "),
+                        reason,
+                    )
+
+    # ------------------------------------------------------------ the scan
+
+    def read_inputs(self, image: ProcessImage) -> None:
+        now = self.clock.now_ns()
+        with self.lock:
+            for node in self.nodes:
+                node.read_inputs(image, now)
+
+    def write_outputs(self, image: ProcessImage) -> None:
+        with self.lock:
+            for node in self.nodes:
+                node.write_outputs(image)
+
+    def status(self) -> DriverStatus:
+        if not self._bus_ok:
+            return DriverStatus(False, f"{self.name}: bus down ({self._bus_error})")
+        with self.lock:
+            states = [node.status() for node in self.nodes]
+        up = sum(1 for s in states if s.ok)
+        problems = [s.message for s in states if not s.ok and s.message]
+        text = f"{self.name}: {up}/{len(states)} up"
+        bad = sum(self.malformed.values())
+        if bad:
+            text += f", {bad} malformed"
+        if problems:
+            text += " (" + "; ".join(problems) + ")"
+        return DriverStatus(up == len(states), text)

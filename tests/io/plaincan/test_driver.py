@@ -1,0 +1,107 @@
+"""The plain-CAN driver (runtime/io/plaincan/driver.py) in an engine in
+virtual time: a beacon's frames from a real frame producer on python-can's
+virtual bus land in %I at the next scan; a malformed frame is counted,
+logged once and dropped; the driver shares the PLC's one connection to the
+bus with the CANopen master."""
+
+from __future__ import annotations
+
+import itertools
+import logging
+
+import pytest
+
+from softplc.runtime.config import config_from_dict
+from softplc.runtime.engine.build import build_engine
+from softplc.runtime.io.can.bus import BusSettings, CanEndpoint, open_bus
+from softplc.runtime.io.canopen.master import CanopenDriver
+from softplc.runtime.io.plaincan import PlainCanDriver
+
+from .beacon import MARK
+
+_channels = itertools.count()
+PROGRAM = "PROGRAM Main\nVAR counter AT %IW10 : WORD; seen : WORD; END_VAR\nseen := counter;\nEND_PROGRAM\n"
+LTMR = {
+    "name": "motor",
+    "id": 40,
+    "eds": "ltmr",
+    "heartbeat": "100ms",
+    "tpdo": [{"number": 1, "configure": False, "map": [{"object": "2004:06", "address": "%IW100"}]}],
+}
+
+
+@pytest.fixture
+def plant(tmp_path):
+    made = []
+
+    def make(with_canopen: bool = False):
+        (tmp_path / "main.st").write_text(PROGRAM)
+        channel = f"test-plaincan-{next(_channels)}"
+        data = {
+            "plc": {"programs": ["main.st"]},
+            "task": [{"name": "Main", "interval": "10ms", "programs": ["Main"]}],
+            "can": [{"name": "can0", "interface": "virtual", "channel": channel, "bitrate": 125000}],
+            "plaincan": [{"type": "beacon", "number": 5, "input": "%IW10"}],
+        }
+        if with_canopen:
+            data["canopen"] = {"node": [LTMR], "sdo_timeout": "1s"}
+            data["sim"] = [{"type": "ltmr", "node_id": 40}]
+        engine = build_engine(config_from_dict(data, tmp_path / "plant.toml"), virtual_time=True)
+        driver = next(d for d in engine.drivers if isinstance(d, PlainCanDriver))
+        engine.start()
+        producer = CanEndpoint(
+            open_bus(BusSettings("virtual", channel, 125000)), name="beacon 5", pump=driver.port.pump
+        )
+        producer.start()
+        made.append((engine, producer))
+        return engine, driver, producer
+
+    yield make
+    for engine, producer in made:
+        producer.stop()
+        engine.stop()
+
+
+def test_frames_land_in_the_image_at_the_next_scan(plant):
+    engine, driver, producer = plant()
+    engine.run(cycles=1)
+    assert engine.get("Main.seen") == 0 and not driver.status().ok  # silent so far
+    producer.send(0x185, bytes([MARK, 0x12, 0x34, 0, 0, 0, 0, 0]))
+    engine.run(cycles=1)
+    assert engine.get("Main.seen") == 0x1234
+    assert driver.status().ok and driver.status().message == "plaincan can0: 1/1 up"
+    producer.send(0x186, bytes(8))  # no node's: someone else's
+    engine.run(cycles=1)
+    assert driver.foreign >= 1 and engine.get("Main.seen") == 0x1234
+
+
+def test_a_malformed_frame_is_counted_logged_once_and_dropped(plant, caplog):
+    engine, driver, producer = plant()
+    producer.send(0x185, bytes([MARK, 0, 7, 0, 0, 0, 0, 0]))
+    with caplog.at_level(logging.WARNING, logger="softplc.runtime.io.plaincan.driver"):
+        for _ in range(3):
+            producer.send(0x185, bytes([0x11, 0xFF, 0xFF, 0, 0, 0, 0, 0]))  # not a beacon frame
+        producer.send(0x185, bytes([MARK, 0xFF, 0xFF]))  # short
+        engine.run(cycles=1)
+    assert engine.get("Main.seen") == 7  # the good one, nothing of the bad ones
+    assert driver.malformed == {"beacon5": 4}
+    assert driver.status().message == "plaincan can0: 1/1 up, 4 malformed"
+    lines = [r.getMessage() for r in caplog.records]
+    assert lines == [
+        "plaincan can0: beacon5: frame 0x185 [11 ff ff 00 00 00 00 00] dropped: byte 0 is 0x11, not 0xB0 "
+        "(further ones are counted, not logged)",
+        "plaincan can0: beacon5: frame 0x185 [b0 ff ff] dropped: 3 bytes, not 8 (further ones are counted, not logged)",
+    ]
+
+
+def test_one_connection_to_the_bus_shared_with_the_canopen_master(plant):
+    engine, driver, producer = plant(with_canopen=True)
+    master = next(d for d in engine.drivers if isinstance(d, CanopenDriver))
+    assert master.port is driver.port and driver.port.users == 2
+    assert master.endpoint is driver.port.endpoint  # one python-can bus object for both protocols
+    producer.send(0x185, bytes([MARK, 0, 42, 0, 0, 0, 0, 0]))
+    engine.run(duration_ns=500_000_000)
+    assert engine.get("Main.seen") == 42
+    assert master.status().ok and "1/1 up" in master.status().message  # the LTMR booted through it
+    engine.stop()
+    assert driver.port.endpoint is None and driver.port.users == 0
