@@ -106,7 +106,9 @@ class PlainCanSection(Section):
             if bus is None:
                 continue
             receives, sends = kind.options.ids(table)
-            for can_id in sorted(receives | sends):
+            # two devices that send on one ID (a request ID every device of a kind
+            # listens to) are fine; two that are told apart by one received ID are not
+            for can_id in sorted(receives):
                 first = used.setdefault((bus, can_id), (here, f"{key_text(here)} ({table['type']})"))
                 if first[0] != here:
                     ctx.error(here, f"CAN-ID 0x{can_id:03X} on bus '{bus}' is also {first[1]}'s")
