@@ -2,6 +2,9 @@
 "MPU2-S Multimeßwertumsetzer Protokollbeschreibung", digest 004), and the
 genset synchronisation built on it.
 
+    frames.py       CAN identifiers, byte-0 kinds, the XOR checksum; requests,
+                    replies and telegram frames (digest §1)
+
 Public names: DEVICE.
 """
 
