@@ -5,6 +5,7 @@ genset synchronisation built on it.
     frames.py       CAN identifiers, byte-0 kinds, the XOR checksum; requests,
                     replies and telegram frames (digest §1)
     scaling.py      the scaling families of the parameters: value <-> raw (§3.1)
+    telegram.py     the 69-word send telegram, its bit maps, the assembler (§2)
 
 Public names: DEVICE.
 """
