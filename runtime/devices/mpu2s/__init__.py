@@ -6,6 +6,9 @@ genset synchronisation built on it.
                     replies and telegram frames (digest §1)
     scaling.py      the scaling families of the parameters: value <-> raw (§3.1)
     telegram.py     the 69-word send telegram, its bit maps, the assembler (§2)
+    parameters.py   the 170 parameters of parameters.csv: lookup, encode and
+                    decode with the documented ranges, read-modify-write (§3)
+    codewords.py    fault texts, relay-manager words, DI digit words (§3.5-3.8)
 
 Public names: DEVICE.
 """
