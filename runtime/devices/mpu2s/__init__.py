@@ -9,14 +9,21 @@ genset synchronisation built on it.
     parameters.py   the 170 parameters of parameters.csv: lookup, encode and
                     decode with the documented ranges, read-modify-write (§3)
     codewords.py    fault texts, relay-manager words, DI digit words (§3.5-3.8)
+    st_codes.py     fblocks/vendor/mpu2s_codes.st from those tables
 
 Public names: DEVICE.
 """
 
 from __future__ import annotations
 
-from ...plugin.seams import Device
+from ...plugin.seams import Device, GeneratedFile, PackageFile, StLibrary
+from . import st_codes
 
-DEVICE = Device(name="mpu2s", order=40)
+DEVICE = Device(
+    name="mpu2s",
+    order=40,
+    libraries=(StLibrary("softplc.fblocks.vendor", "mpu2s_codes.st"),),
+    generated=(GeneratedFile(PackageFile("softplc.fblocks.vendor", "mpu2s_codes.st"), st_codes.render),),
+)
 
 __all__ = ["DEVICE"]
