@@ -22,6 +22,7 @@ def test_every_device_file_is_generated():
         "eds/ltmr.eds",
         "fc280_codes.st",
         "ltmr_codes.st",
+        "mpu2s_codes.st",
     ]
 
 
