@@ -49,10 +49,14 @@ def test_sim_node_ids(tmp_path):
     assert errors(tmp_path, PLC + CAN + '[[sim]]\ntype = "fc281"\nnode_id = 0\n[[sim]]\nnode_id = 2\n') == [
         (
             "sim[0].type",
-            "expected one of 'ltmr', 'da1', 'db1', 'dc1', 'de1', 'de11', 'fc280' (got 'fc281'; did you mean 'fc280'?)",
+            "expected one of 'ltmr', 'da1', 'db1', 'dc1', 'de1', 'de11', 'fc280', 'mpu2s' "
+            "(got 'fc281'; did you mean 'fc280'?)",
         ),
         ("sim[0].node_id", "expected an integer from 1 to 127 (got 0)"),
-        ("sim[1].type", "required key missing (expected 'ltmr', 'da1', 'db1', 'dc1', 'de1', 'de11' or 'fc280')"),
+        (
+            "sim[1].type",
+            "required key missing (expected 'ltmr', 'da1', 'db1', 'dc1', 'de1', 'de11', 'fc280' or 'mpu2s')",
+        ),
     ]
 
 

@@ -55,7 +55,7 @@ def test_softplc_own_plugins_come_from_the_entry_points():
     assert [bus.name for bus in reg.buses] == ["loopback", "can", "canopen", "plaincan", "modbus"]
     assert [device.name for device in reg.devices] == ["ltmr", "eaton", "fc280", "mpu2s"]
     assert list(reg.natives()) == ["READ_VAR", "WRITE_VAR", "MODBUS_EXCHANGE"]
-    assert list(reg.sim_types()) == ["ltmr", "da1", "db1", "dc1", "de1", "de11", "fc280"]
+    assert list(reg.sim_types()) == ["ltmr", "da1", "db1", "dc1", "de1", "de11", "fc280", "mpu2s"]
 
 
 def test_a_registered_device_runs_end_to_end_in_virtual_time(tmp_path):
@@ -93,7 +93,7 @@ def test_configuration_errors_through_the_seam(tmp_path):
         config_from_dict(data, tmp_path / "plant.toml")
     assert info.value.errors == [
         ("sim[0].closed", "expected true or false (got 'yes')"),
-        ("sim[0].node_id", "only for a CAN device (ltmr, fc280); a Modbus device has modbus and unit"),
+        ("sim[0].node_id", "only for a CAN device (ltmr, fc280, mpu2s); a Modbus device has modbus and unit"),
     ]
     # the LTMR does not take the relay's key
     data["sim"].append({"type": "ltmr", "node_id": 5, "bus": "can0", "closed": True})
@@ -110,7 +110,7 @@ def test_unregistered_the_device_is_unknown_again(tmp_path):
         config_from_dict(plant(tmp_path), tmp_path / "plant.toml")
     assert info.value.errors[0] == (
         "sim[0].type",
-        "expected one of 'ltmr', 'da1', 'db1', 'dc1', 'de1', 'de11', 'fc280' (got 'relay')",
+        "expected one of 'ltmr', 'da1', 'db1', 'dc1', 'de1', 'de11', 'fc280', 'mpu2s' (got 'relay')",
     )
 
 

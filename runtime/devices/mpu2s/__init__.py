@@ -11,20 +11,40 @@ genset synchronisation built on it.
     codewords.py    fault texts, relay-manager words, DI digit words (§3.5-3.8)
     st_codes.py     fblocks/vendor/mpu2s_codes.st from those tables
     plant.py        the genset, its busbar and its breaker in virtual time
+    sim_options.py  the [[sim]] keys of a simulated MPU2-S: scenario and wiring
+    sim_store.py    the simulated device's parameter memory and its write rules
+    sim_telegram.py the simulated device's 69 telegram words
+    sim_sync.py     the simulated device closing the GCB itself (supervise mode)
+    sim.py          the simulated MPU2-S on the CAN bus, over the plant
 
 ST blocks: fblocks/vendor/genset.st (STEP3, GENSET_SYNC).
 
-Public names: DEVICE.
+Public names: DEVICE, Mpu2sSimulator.
 """
 
 from __future__ import annotations
 
+from ...io.can import CanSimContext
 from ...plugin.seams import Device, GeneratedFile, PackageFile, StLibrary
 from . import st_codes
+from .sim import FAULTS, Mpu2sSimulator
+from .sim_options import Mpu2sSimOptions
+
+
+def _simulator(sim, ctx: CanSimContext) -> Mpu2sSimulator:
+    return Mpu2sSimulator(
+        sim.at.node_id, settings=ctx.settings, clock=ctx.clock, pump=ctx.pump, name=sim.name, scenario=sim.options
+    )
+
 
 DEVICE = Device(
     name="mpu2s",
     order=40,
+    bus="can",
+    sim_types=("mpu2s",),
+    sim_options=Mpu2sSimOptions,
+    simulator=_simulator,
+    sim_faults=FAULTS,
     libraries=(
         StLibrary("softplc.fblocks.vendor", "mpu2s_codes.st"),
         StLibrary("softplc.fblocks.vendor", "genset.st"),
@@ -32,4 +52,4 @@ DEVICE = Device(
     generated=(GeneratedFile(PackageFile("softplc.fblocks.vendor", "mpu2s_codes.st"), st_codes.render),),
 )
 
-__all__ = ["DEVICE"]
+__all__ = ["DEVICE", "Mpu2sSimulator"]

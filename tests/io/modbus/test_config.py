@@ -28,7 +28,7 @@ DA1 = '[[sim]]\ntype = "da1"\nunit = 1\n'
 DEVICE = 'a serial port such as "/dev/ttyUSB0", or "sim" for the simulated drives of [[sim]]'
 ONLY_TCP = "only for transport = 'tcp' (this connection is 'rtu')"
 ONLY_RTU = "only for transport = 'rtu' (this connection is 'tcp')"
-ONLY_CAN = "only for a CAN device (ltmr, fc280); a Modbus device has modbus and unit"
+ONLY_CAN = "only for a CAN device (ltmr, fc280, mpu2s); a Modbus device has modbus and unit"
 CH = "modbus[0].channel[0]"
 
 

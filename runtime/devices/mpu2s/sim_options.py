@@ -1,0 +1,165 @@
+"""The keys of a simulated MPU2-S ([[sim]] type = "mpu2s") besides its bus
+and node_id (its device number): the scenario of the genset behind it, and
+the wires between that plant and the PLC.
+
+    [[sim]]
+    type = "mpu2s"
+    node_id = 1                       # the device number (Gerätenummer)
+    busbar = "live"                   # or "dead" (a black start)
+    bus_frequency = 50.0              # Hz; bus_voltage = 400.0 V
+    slip = 0.3                        # the genset's start: f_gen - f_bus, Hz
+    voltage_offset = 2.0              # U_gen above rated, %
+    closing_time = "80ms"             # the GCB's; refuse_close = true: it never closes
+    password = 1234                   # code level 2 (ID 500): writes need it first (optional)
+    wiring = { raise_f = "%QX20.0", lower_f = "%QX20.1", gcb_close = "%QX20.4", phase = "%ID20", ... }
+
+The wiring is the plant's hard-wired I/O, seen from the PLC: the genset's
+raise/lower inputs and the breaker's coils are PLC outputs (%QX); the
+breaker's feedback is a PLC input (%IX); a fast synchronoscope (a sync-check
+relay's phase angle and frequencies, which the MPU2-S telegram does not
+carry) gives %ID REALs. Each signal is optional.
+
+Without a password the simulated device takes every valid write; with one,
+writes are refused until ID 500 got it (sim_store.py).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Annotated, Any
+
+from pydantic import Field, PlainValidator
+
+from ...config.errors import key_text
+from ...config.relations import Relations
+from ...config.section import SimOptions
+from ...config.values import choice, duration_in, fail, int_range
+
+#: PLC outputs the plant reads (contacts): signal -> what it is
+OUTPUT_SIGNALS = {
+    "raise_f": "governor RAISE (speed up)",
+    "lower_f": "governor LOWER",
+    "raise_u": "AVR RAISE (voltage up)",
+    "lower_u": "AVR LOWER",
+    "gcb_close": "GCB close coil",
+    "gcb_open": "GCB open coil",
+    "sync_request": "MPU2-S terminal 6, Sync. ein",
+    "gcb_release": "MPU2-S terminal 3, Freigabe GLS",
+}
+#: PLC inputs the plant writes: signal -> (what it is, BOOL or REAL)
+INPUT_SIGNALS = {
+    "gcb_closed": ("the GCB's feedback contact", "BOOL"),
+    "bus_live": ("busbar voltage present", "BOOL"),
+    "phase": ("phase angle generator - busbar, deg", "REAL"),
+    "f_gen": ("generator frequency, Hz", "REAL"),
+    "f_bus": ("busbar frequency, Hz", "REAL"),
+    "u_gen": ("generator voltage L1-L2, V", "REAL"),
+    "u_bus": ("busbar voltage L1-L2, V", "REAL"),
+}
+
+
+def _real(low: float, high: float, what: str):
+    def check(value) -> float:
+        if isinstance(value, (int, float)) and not isinstance(value, bool) and low <= value <= high:
+            return float(value)
+        raise fail(f"{what} from {low} to {high}", value)
+
+    return PlainValidator(check)
+
+
+def _wiring(value) -> dict:
+    if isinstance(value, dict) and all(isinstance(v, str) for v in value.values()):
+        return value
+    raise fail('a table of signal = "address", such as { gcb_close = "%QX20.4" }', value)
+
+
+@dataclass
+class Mpu2sScenario:
+    bus_live: bool = True
+    bus_frequency: float = 50.0
+    bus_voltage: float = 400.0
+    slip: float = 0.3
+    voltage_offset: float = 0.0  # % of rated
+    rated_frequency: float = 50.0
+    rated_voltage: float = 400.0
+    rated_power: float = 500.0  # kW
+    closing_time_ms: int = 80
+    refuse_close: bool = False
+    trip_limit: float = 20.0  # deg
+    wiring: dict[str, str] = field(default_factory=dict)
+    password: int | None = None  # code level 2 (ID 500), 0..9999; None: writes need none
+
+
+class Mpu2sSimOptions(SimOptions):
+    busbar: Annotated[str, choice(("live", "dead"))] = Field("live", description="'live' or 'dead'")
+    bus_frequency: Annotated[float, _real(40.0, 70.0, "a frequency in Hz")] = Field(50.0, description="Hz")
+    bus_voltage: Annotated[float, _real(0.0, 65000.0, "a voltage in V")] = Field(400.0, description="V")
+    slip: Annotated[float, _real(-5.0, 5.0, "a slip in Hz")] = Field(0.3, description="f_gen - f_bus at start, Hz")
+    voltage_offset: Annotated[float, _real(-20.0, 20.0, "a percentage")] = Field(
+        0.0, description="U_gen above rated at start, %"
+    )
+    rated_frequency: Annotated[float, _real(40.0, 70.0, "a frequency in Hz")] = Field(50.0, description="Hz")
+    rated_voltage: Annotated[float, _real(1.0, 65000.0, "a voltage in V")] = Field(400.0, description="V")
+    rated_power: Annotated[float, _real(1.0, 9999.0, "a power in kW")] = Field(500.0, description="kW")
+    closing_time: Annotated[int, PlainValidator(duration_in("ms"))] = Field(80, description="a duration such as 80ms")
+    refuse_close: bool = Field(False, description="true or false")
+    trip_limit: Annotated[float, _real(1.0, 180.0, "an angle in degrees")] = Field(
+        20.0, description="the largest |phase| a close survives, deg"
+    )
+    wiring: Annotated[dict, PlainValidator(_wiring)] = Field(default_factory=dict, description="signal = address")
+    password: Annotated[int, int_range(0, 9999)] | None = Field(
+        None, description="the code level 2 password (ID 500), 0..9999"
+    )
+
+    @classmethod
+    def check(cls, here: tuple, sim: dict, ctx: Relations) -> None:
+        wiring = sim.get("wiring")
+        if not isinstance(wiring, dict):
+            return
+        for signal, text in wiring.items():
+            loc = here + ("wiring", signal)
+            if signal not in OUTPUT_SIGNALS and signal not in INPUT_SIGNALS:
+                known = ", ".join([*OUTPUT_SIGNALS, *INPUT_SIGNALS])
+                ctx.error(loc, f"not a signal of the simulated genset (it has {known})")
+                continue
+            addr = ctx.address(loc, text, '"%QX20.0"')
+            if addr is None:
+                continue
+            if signal in OUTPUT_SIGNALS:
+                if addr.area != "Q" or not _is_bit(addr):
+                    ctx.error(
+                        loc, f"{OUTPUT_SIGNALS[signal]}: expected a PLC output bit such as %QX20.0 (got {text!r})"
+                    )
+                continue
+            what, kind = INPUT_SIGNALS[signal]
+            wanted = _is_bit(addr) if kind == "BOOL" else addr.size == "D" and addr.bit is None
+            if addr.area != "I" or not wanted:
+                example = "%IX20.0" if kind == "BOOL" else "%ID20"
+                ctx.error(loc, f"{what}: expected a PLC input {kind} such as {example} (got {text!r})")
+                continue
+            bits = ctx.image_bits(loc, addr)
+            if bits is not None:
+                other = ctx.claim("I", bits[0], bits[1], loc, text)
+                if other is not None:
+                    ctx.error(loc, f"{text} is also written by {key_text(other[0])} ({other[1]})")
+
+    def build(self) -> Mpu2sScenario:
+        return Mpu2sScenario(
+            bus_live=self.busbar == "live",
+            bus_frequency=self.bus_frequency,
+            bus_voltage=self.bus_voltage,
+            slip=self.slip,
+            voltage_offset=self.voltage_offset,
+            rated_frequency=self.rated_frequency,
+            rated_voltage=self.rated_voltage,
+            rated_power=self.rated_power,
+            closing_time_ms=self.closing_time,
+            refuse_close=self.refuse_close,
+            trip_limit=self.trip_limit,
+            wiring=dict(self.wiring),
+            password=self.password,
+        )
+
+
+def _is_bit(addr: Any) -> bool:
+    return addr.bit is not None or addr.size in ("", "X")
