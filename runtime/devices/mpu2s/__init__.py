@@ -10,6 +10,9 @@ genset synchronisation built on it.
                     decode with the documented ranges, read-modify-write (§3)
     codewords.py    fault texts, relay-manager words, DI digit words (§3.5-3.8)
     st_codes.py     fblocks/vendor/mpu2s_codes.st from those tables
+    requests.py     parameter reads and writes: password, factors, RMW, retries
+    exchange.py     MPU2S_EXCHANGE, the native function under MPU2S_PARAM
+    node.py         the [[plaincan]] type "mpu2s": telegram and requests on the bus
     plant.py        the genset, its busbar and its breaker in virtual time
     sim_options.py  the [[sim]] keys of a simulated MPU2-S: scenario and wiring
     sim_store.py    the simulated device's parameter memory and its write rules
@@ -17,7 +20,8 @@ genset synchronisation built on it.
     sim_sync.py     the simulated device closing the GCB itself (supervise mode)
     sim.py          the simulated MPU2-S on the CAN bus, over the plant
 
-ST blocks: fblocks/vendor/genset.st (STEP3, GENSET_SYNC).
+ST blocks: fblocks/vendor/mpu2s.st (MPU2S, MPU2S_PARAM, MPU2S_DEVICE),
+fblocks/vendor/genset.st (STEP3, GENSET_SYNC).
 
 Public names: DEVICE, Mpu2sSimulator.
 """
@@ -25,8 +29,11 @@ Public names: DEVICE, Mpu2sSimulator.
 from __future__ import annotations
 
 from ...io.can import CanSimContext
+from ...io.plaincan import PlainCanKind
 from ...plugin.seams import Device, GeneratedFile, PackageFile, StLibrary
 from . import st_codes
+from .exchange import MPU2S_EXCHANGE
+from .node import Mpu2sNode, Mpu2sOptions
 from .sim import FAULTS, Mpu2sSimulator
 from .sim_options import Mpu2sSimOptions
 
@@ -45,8 +52,11 @@ DEVICE = Device(
     sim_options=Mpu2sSimOptions,
     simulator=_simulator,
     sim_faults=FAULTS,
+    node_kind=PlainCanKind(options=Mpu2sOptions, build=Mpu2sNode),
+    natives=(MPU2S_EXCHANGE,),
     libraries=(
         StLibrary("softplc.fblocks.vendor", "mpu2s_codes.st"),
+        StLibrary("softplc.fblocks.vendor", "mpu2s.st"),
         StLibrary("softplc.fblocks.vendor", "genset.st"),
     ),
     generated=(GeneratedFile(PackageFile("softplc.fblocks.vendor", "mpu2s_codes.st"), st_codes.render),),

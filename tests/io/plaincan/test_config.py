@@ -29,7 +29,7 @@ def test_the_devices_keys_and_the_bus_are_checked(tmp_path):
     assert found == [
         ("plaincan[0].number", "expected an integer from 1 to 15 (got 16)"),
         ("plaincan[0].bus", "expected one of 'can0', the [[can]] buses (got 'can9')"),
-        ("plaincan[1].type", "expected one of 'beacon' (got 'lamp')"),
+        ("plaincan[1].type", "expected one of 'mpu2s', 'beacon' (got 'lamp')"),
     ]
     assert error(tmp_path, PLC + BEACON) == (
         "plaincan[0]",
