@@ -114,6 +114,8 @@ def test_examples_cover_every_section():
         "faults.toml",
         "fc280_dsp402.toml",
         "fc280_fc.toml",
+        "genset.toml",
+        "genset_dead_bus.toml",
         "loopback.toml",
         "modbus_rtu.toml",
         "modbus_tcp.toml",
