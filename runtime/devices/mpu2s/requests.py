@@ -29,7 +29,10 @@ the voltage factor may come first. Decided where the manual is silent:
 - No reply within `timeout` (default 300 ms, three message slots, §1.7 [I])
   sends the same frame again, `retries` times; then the request fails.
 - Frames of one device are at least `pace` apart (default 100 ms, the
-  manual's message spacing, §1.1).
+  manual's message spacing, §1.1, A32).
+- Only the 170 parameters of ch. 4 (the "MPU2-S Low" set, A12) are known:
+  any other ID, or a bit no parameter starts at, is UNKNOWN and costs no
+  frame.
 """
 
 from __future__ import annotations

@@ -66,3 +66,30 @@ def test_v19_relay_1_gcb_closed():
     # relay 1 = event 68 "GLS EIN" alone, end of chain: 4404h to ID 436
     (param_id, word), *_ = encode_words(parameter("relay_1"), [RelayEvent(68, end=True)]).items()
     assert frames.write_request(1, param_id, word) == bytes.fromhex("EE 01 01 B4 44 04 AB B1")
+
+
+# E9: the limit examples of the analog-output list (ch. 5, "Eingabe der beiden Grenzwerte"):
+# source, the value at 0 % and at 100 % as printed (-0050 kW / 0200 kW ...)
+E9 = [
+    (1, -50, 200),  # generator active power, kW
+    (2, -30, 30),  # cos phi: distance to 1.00, -0030 = 0.70 capacitive
+    (3, 0, 7000),  # generator frequency, Hz*100: 7000 = 70.00 Hz
+    (4, -100, 100),  # reactive power, kvar
+    (7, 0, 500),  # current L1, A
+    (10, 0, 3000),  # speed, 1/min
+    (11, 0, 255),  # T1 temperature, 0255 = 255 degC
+    (13, 0, 100),  # T3, 0100 = 10.0 bar oil pressure
+    (19, -800, 800),  # mains active power, kW
+]
+
+
+@pytest.mark.parametrize("source, at_0, at_100", E9)
+def test_e9_analog_output_limits(source, at_0, at_100):
+    for n in (1, 2):
+        src, lo, hi = (parameter(f"ao{n}_{key}") for key in ("source", "value_0", "value_100"))
+        assert encode(src, source) == source
+        # 4.2.154/155: words -9999..9999, the number as printed, negative in two's complement
+        assert encode(lo, at_0) == at_0 & 0xFFFF and decode(lo, at_0 & 0xFFFF) == at_0
+        assert encode(hi, at_100) == at_100 & 0xFFFF and decode(hi, at_100 & 0xFFFF) == at_100
+    frame = frames.write_request(1, parameter("ao1_value_0").id, encode(parameter("ao1_value_0"), at_0))
+    assert frame[:6] == bytes([0xEE, 0x01, 0x00, 193]) + (at_0 & 0xFFFF).to_bytes(2, "big")
