@@ -77,44 +77,38 @@ def speed(seconds: float, plant: bool) -> float:
     return seconds / wall
 
 
+def sweep(rows, closing, supervise: bool, runs) -> None:
+    """One line per row (label, initial slip, SLIP_TARGET), a column per
+    closing time; then min, median and max of |phase|."""
+    phases = []
+    for label, slip, target in rows:
+        cells = []
+        for ms in closing:
+            phase = close_phase(next(runs), slip, ms, supervise, target)
+            phases.append(abs(phase))
+            cells.append(f"{ms:>3} ms {phase:+7.3f}°")
+        print(f"   {label}: " + "  ".join(cells))
+    print(
+        f"   |phase| over {len(phases)} closes: min {min(phases):.3f}°, "
+        f"median {statistics.median(phases):.3f}°, max {max(phases):.3f}°"
+    )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--quick", action="store_true")
     args = parser.parse_args()
     slips = (0.1, 0.3) if args.quick else (0.05, 0.1, 0.2, 0.3, 0.45, -0.1, -0.15)
     closing = (80,) if args.quick else (40, 80, 150, 300)
-    n = 0
+    runs = iter(range(1, 1000))
     for supervise in (False, True):
         who = "MPU2-S closes (supervise)" if supervise else "PLC closes (GENSET_SYNC, fast phase input)"
         print(f"1. phase at closing, {who}")
-        phases = []
-        for slip in slips:
-            row = []
-            for ms in closing:
-                n += 1
-                phase = close_phase(n, slip, ms, supervise)
-                phases.append(abs(phase))
-                row.append(f"{ms:>3} ms {phase:+7.3f}°")
-            print(f"   slip {slip:+.2f} Hz: " + "  ".join(row))
-        print(
-            f"   |phase| over {len(phases)} closes: min {min(phases):.3f}°, "
-            f"median {statistics.median(phases):.3f}°, max {max(phases):.3f}°"
-        )
+        rows = [(f"slip {slip:+.2f} Hz", slip, None) for slip in slips]
+        sweep(rows, closing, supervise, runs)
     targets = (0.15,) if args.quick else (0.03, 0.1, 0.15, -0.03, -0.06)
     print("1. phase at closing, PLC closes, by the slip at closing (SLIP_TARGET)")
-    phases = []
-    for target in targets:
-        row = []
-        for ms in closing:
-            n += 1
-            phase = close_phase(n, 0.3, ms, False, target)
-            phases.append(abs(phase))
-            row.append(f"{ms:>3} ms {phase:+7.3f}°")
-        print(f"   target {target:+.2f} Hz: " + "  ".join(row))
-    print(
-        f"   |phase| over {len(phases)} closes: min {min(phases):.3f}°, "
-        f"median {statistics.median(phases):.3f}°, max {max(phases):.3f}°"
-    )
+    sweep([(f"target {t:+.2f} Hz", 0.3, t) for t in targets], closing, False, runs)
     seconds = 20.0 if args.quick else 60.0
     base = speed(seconds, plant=False)
     full = speed(seconds, plant=True)
