@@ -144,6 +144,10 @@ class Engine:
         self.ns: dict = {}
         self.instances: dict = {}  # instance name (upper) -> (name, POUInfo, object)
         self.diag: DiagVariable | None = None
+        self.loaded = False
+        #: forced values by key (a path): each callable stores its value again;
+        #: tick() calls them after the inputs are read and after the tasks ran
+        self.forces: dict[str, Callable[[], None]] = {}
 
     # ------------------------------------------------------------ set-up
 
@@ -164,6 +168,33 @@ class Engine:
         Raises STFault when an initial value faults, EngineError otherwise."""
         if self.started:
             return
+        self.load()
+        started = []
+        try:
+            for driver in self.drivers:
+                driver.start()
+                started.append(driver)
+        except Exception:
+            for driver in started:
+                driver.stop()
+            raise
+        for driver in self.drivers:
+            driver.bind_program(self.ns["_G"])
+        now = self.clock.now_ns()
+        for task in self.tasks:
+            task.next_ns = now
+        self._next_retain_ns = now + self.retain_period_ns
+        self.started = True
+        for task in self.tasks:
+            log.info("%s", task.describe())
+
+    def load(self) -> None:
+        """The first half of start(): the program instances with their
+        initial values and the retained values, but no driver started and no
+        scan run, so that variables can be read and set before the first
+        scan (a test's initial conditions). start() calls it if need be."""
+        if self.loaded:
+            return
         self.ns = self.program.load(self.ctx)
         for task in self.tasks:
             for inst in task.spec.programs:
@@ -183,24 +214,7 @@ class Engine:
             self.restore_report = R.restore(self._retain_plan, data, self.start_mode)
             self._log_restore(self.restore_report)
         self.diag.set(StartMode=self.start_mode)
-        started = []
-        try:
-            for driver in self.drivers:
-                driver.start()
-                started.append(driver)
-        except Exception:
-            for driver in started:
-                driver.stop()
-            raise
-        for driver in self.drivers:
-            driver.bind_program(self.ns["_G"])
-        now = self.clock.now_ns()
-        for task in self.tasks:
-            task.next_ns = now
-        self._next_retain_ns = now + self.retain_period_ns
-        self.started = True
-        for task in self.tasks:
-            log.info("%s", task.describe())
+        self.loaded = True
 
     def _instantiate(self, tasks: list) -> None:
         """Fresh program instances for tasks (initial values run here)."""
@@ -268,12 +282,17 @@ class Engine:
                 driver.advance_to(now)
         for driver in self.drivers:
             driver.read_inputs(image)
+        forces = list(self.forces.values())
+        for apply in forces:  # over what the drivers read ...
+            apply()
         for task in self.tasks:
             if task.next_ns <= now:
                 if task.fault is None:
                     self._run_task(task)
                 else:
                     self._release_next(task, task.next_ns)
+        for apply in forces:  # ... and over what the program wrote
+            apply()
         out = self._safe_view if self.outputs_safe else image
         for driver in self.drivers:
             driver.write_outputs(out)
@@ -395,6 +414,9 @@ class Engine:
     def stop(self) -> None:
         """Outputs to their safe values, retained data saved, drivers closed."""
         if self.stopped or not self.started:
+            if self.loaded and not self.stopped and self.retain_store is not None:
+                self.retain_store.close()  # loaded, never started: nothing ran to save
+            self.stopped = self.loaded
             return
         self.stopped = True
         self.outputs_safe = True
@@ -423,8 +445,23 @@ class Engine:
 
     # ------------------------------------------------------------ inspection
 
+    def force(self, key: str, apply: Callable[[], None]) -> None:
+        """Hold a value against the program, as a PLC's force does: apply()
+        stores it, now and in every scan after the drivers read the inputs
+        and again after the tasks ran, so neither a bus nor the program
+        changes what the next scan and the drivers see. key names the forced
+        variable or address; a new force of the same key replaces the old."""
+        self.forces[key] = apply
+        apply()
+
+    def unforce(self, key: str) -> bool:
+        """Release a force; the variable keeps its value until someone writes it. False if key was not forced."""
+        return self.forces.pop(key, None) is not None
+
     def variable(self, path: str):
-        """(holder, attribute, Type) of 'Instance.var.field' or 'GlobalVar.field'."""
+        """(holder, attribute, Type) of 'Instance.var.field' or 'GlobalVar.field'.
+        Works before start(): the program is loaded first."""
+        self.load()
         first, _, rest = path.partition(".")
         entry = self.instances.get(first.upper())
         if entry is not None and rest:
@@ -448,6 +485,7 @@ class Engine:
 
     def dump(self) -> dict:
         """Every program instance's variables and the globals, as `softplc exec` prints them."""
+        self.load()
         out = {name: encode_instance(obj) for name, _info, obj in self.instances.values()}
         globals_ = encode_instance(self.ns["_G"], skip=self.program.library_globals)
         if globals_:

@@ -11,9 +11,7 @@ import tomllib
 from collections.abc import Callable
 from pathlib import Path
 
-from softplc.runtime.config import config_from_dict
-from softplc.runtime.engine.build import build_engine
-from softplc.runtime.io.plaincan import PlainCanDriver
+from softplc.testing import PLC
 
 ROOT = Path(__file__).resolve().parents[3]
 EXAMPLES = ROOT / "io_config" / "examples"
@@ -46,41 +44,31 @@ def example(name: str = "genset.toml", *, sim: dict | None = None, drop_wiring: 
 
 
 class Plant:
-    def __init__(self, data: dict, where: Path) -> None:
-        self.engine = build_engine(config_from_dict(data, where / "genset.toml"), virtual_time=True)
-        self.driver = next(d for d in self.engine.drivers if isinstance(d, PlainCanDriver))
-        self.sim = self.engine.simulators["mpu2s1"]
-        self.engine.start()
+    """The genset example as a PLC (softplc.testing) with its simulated
+    MPU2-S; the state and the message are watched, so a timeout shows how
+    the sequence got there."""
+
+    def __init__(self, plc: PLC) -> None:
+        self.plc = plc
+        self.sim = plc.sim("mpu2s1")
+        plc.watch("Genset.State", "Genset.sync.STATE", "Genset.Message")
 
     def get(self, path: str):
-        return self.engine.get(path)
+        """The value as the program holds it (TIME in ms, states as numbers)."""
+        return self.plc.engine.get(path)
 
     def set(self, path: str, value) -> None:
-        self.engine.set(path, value)
+        self.plc.write(path, value)
 
     @property
     def state(self) -> str:
         return STATES[int(self.get("Genset.State"))]
 
-    def run_ms(self, ms: float, watch: Callable[[], None] | None = None) -> None:
-        end = self.engine.now_ns() + int(ms * MS)
-        while self.engine.now_ns() < end:
-            self.engine.run(cycles=1)
-            if watch is not None:
-                watch()
+    def run_ms(self, ms: float) -> None:
+        self.plc.run_for(int(ms * MS))
 
-    def run_until(self, done: Callable[[], bool], limit_ms: float, what: str, watch=None) -> float:
+    def run_until(self, done: Callable[[], bool], limit_ms: float, what: str) -> float:
         """Scan until done(); the virtual ms it took."""
-        start = self.engine.now_ns()
-        while not done():
-            if self.engine.now_ns() - start > limit_ms * MS:
-                raise AssertionError(
-                    f"not {what} after {limit_ms} ms (state {self.state}, {self.get('Genset.Message')})"
-                )
-            self.engine.run(cycles=1)
-            if watch is not None:
-                watch()
-        return (self.engine.now_ns() - start) / MS
-
-    def stop(self) -> None:
-        self.engine.stop()
+        start = self.plc.now_ns
+        self.plc.run_until(done, timeout=int(limit_ms * MS), what=what)
+        return (self.plc.now_ns - start) / MS

@@ -17,17 +17,9 @@ pytestmark = pytest.mark.slow
 
 
 @pytest.fixture
-def plants(tmp_path):
-    made: list[Plant] = []
-
-    def make(data: dict) -> Plant:
-        plant = Plant(data, tmp_path)
-        made.append(plant)
-        return plant
-
-    yield make
-    for plant in made:
-        plant.stop()
+def plants(plc_factory, tmp_path):
+    """Genset plants from example tables, stopped after the test (the softplc pytest plugin)."""
+    return lambda data: Plant(plc_factory(config=data, base_dir=tmp_path))
 
 
 def _close(plant: Plant, limit_ms: float = 60_000):
@@ -101,23 +93,20 @@ def test_the_transducer_lost_mid_sequence_means_no_close(plants):
     plant = plants(example(sim={"slip": 1.0}))
     plant.run_until(lambda: plant.get("Genset.sync.STATE") == SYNCHRONISING, 20_000, "synchronising")
     plant.sim.inject("unplug", None, True)  # the MPU2-S's CAN cable out
-    commands = []
-    plant.run_ms(30_000, watch=lambda: commands.append(plant.get("Genset.gcbClose")))
+    plant.plc.watch("Genset.gcbClose")
+    plant.run_ms(30_000)
     assert not plant.get("Genset.mpu.COMM_OK") and plant.state == "Faulted"
-    assert not any(commands) and plant.sim.closes == []
+    assert plant.plc.trace.values("Genset.gcbClose") == [False] and plant.sim.closes == []
 
 
 def test_supervise_mode_the_device_closes(plants):
     plant = plants(example())
     plant.set("Genset.Supervise", True)
-    commands, requests = [], []
-
-    def watch() -> None:
-        commands.append(plant.get("Genset.gcbClose"))
-        requests.append(plant.get("Genset.syncRequest"))
-
-    plant.run_until(lambda: plant.get("Genset.sync.STATE") == CLOSED, 60_000, "closed", watch=watch)
+    plant.plc.watch("Genset.gcbClose", "Genset.syncRequest")
+    plant.run_until(lambda: plant.get("Genset.sync.STATE") == CLOSED, 60_000, "closed")
     [close] = plant.sim.closes
     assert abs(close.phase_deg) < 10.0 and not close.tripped
-    assert plant.sim.supervisor.close_commands >= 1 and not any(commands)  # the MPU2-S closed, not the PLC
-    assert any(requests)  # the program asked: terminal 6 "Sync. ein"
+    trace = plant.plc.trace
+    assert plant.sim.supervisor.close_commands >= 1
+    assert trace.values("Genset.gcbClose") == [False]  # the MPU2-S closed, not the PLC
+    assert True in trace.values("Genset.syncRequest")  # the program asked: terminal 6 "Sync. ein"

@@ -1,0 +1,10 @@
+"""softplc.testing: the API for testing a PLC offline, under its short name.
+
+The code is softplc.runtime.testing (runtime/testing/); this package only
+re-exports its public names. README: "Testing a sequence offline (Python
+and pytest)".
+"""
+
+from softplc.runtime.testing import PLC, EnumValue, PathError, Row, Trace, duration_ns
+
+__all__ = ["PLC", "EnumValue", "PathError", "Row", "Trace", "duration_ns"]
