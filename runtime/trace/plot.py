@@ -126,5 +126,6 @@ def _draw_numbers(ax, label: str, members: list) -> None:
         style = "steps-post" if s.kind == "int" or s.stepped else "default"
         ax.plot(s.times, s.values, drawstyle=style, color=f"C{i % 10}", linewidth=1.2, label=s.name)
     ax.set_ylabel(label, fontsize=8)
-    ax.legend(loc="upper left", fontsize=7, framealpha=0.7, edgecolor="none")
+    # above the axis, where it hides no line
+    ax.legend(loc="lower left", bbox_to_anchor=(0, 1), ncol=len(members), fontsize=7, frameon=False, borderaxespad=0.1)
     ax.grid(True, axis="y", color="0.92", linewidth=0.6)
