@@ -4,6 +4,8 @@
     softplc compile FILE... --emit-python    show the generated Python
     softplc exec FILE... --cycles N          run a PROGRAM (or FUNCTION) in virtual
                                              time and print its variables as JSON
+    softplc run [CONFIG]                     run the PLC (see run --help)
+    softplc plot TRACE [-o OUT.png]          plot a trace of run --trace
 
 Exit codes (stable, scripts rely on them):
     0  success
@@ -276,9 +278,19 @@ class Duration(click.ParamType):
 )
 @click.option(
     "--trace",
+    "traces",
+    multiple=True,
     type=click.Path(dir_okay=False),
-    metavar="FILE.csv",
-    help="Write the watched values every scan to a CSV file.",
+    metavar="FILE",
+    help="Write the watched values over engine time; the ending says how: .csv (a row per scan), "
+    ".vcd (GTKWave), .png/.svg/.pdf (a plot at the end). Repeat for several.",
+)
+@click.option(
+    "--unit",
+    "units",
+    multiple=True,
+    metavar="VAR=UNIT",
+    help="Label a watched number's plot axis with UNIT; numbers with the same unit share an axis.",
 )
 @click.option(
     "--final-json",
@@ -301,7 +313,8 @@ def run_cmd(
     duration: int | None,
     cycles: int | None,
     watch: tuple,
-    trace: str | None,
+    traces: tuple,
+    units: tuple,
     final_json: str | None,
     start_mode: str | None,
 ) -> None:
@@ -324,12 +337,55 @@ def run_cmd(
             duration_ns=duration,
             cycles=cycles,
             watch=paths,
-            trace=trace,
+            traces=list(traces),
+            units=list(units),
             final_json=final_json,
             start_mode=start_mode,
             report_compile_errors=lambda e: _summary(*_report(e.diagnostics, e.sources)),
         )
     )
+
+
+@cli.command("plot")
+@click.argument("trace", type=click.Path(exists=True, dir_okay=False))
+@click.option(
+    "-o", "--output", type=click.Path(dir_okay=False), help="The figure: .png, .svg or .pdf [default: TRACE.png]."
+)
+@click.option("--signals", metavar="A,B", help="Only these signals, in this order (default: all).")
+@click.option(
+    "--unit",
+    "units",
+    multiple=True,
+    metavar="VAR=UNIT",
+    help="Label a number's axis with UNIT; numbers with the same unit share an axis.",
+)
+def plot_cmd(trace: str, output: str | None, signals: str | None, units: tuple) -> None:
+    """Plot a trace of `softplc run --trace` (a .csv or .vcd file): BOOLs as
+    stacked steps, enumerations by name, numbers as lines, over engine time."""
+    from .trace.plot import FORMATS, PlotUnavailable, parse_units, plot
+    from .trace.series import TraceFileError, read_trace
+
+    out = Path(output) if output else Path(trace).with_suffix(".png")
+    if out.suffix.lower() not in FORMATS:
+        raise click.UsageError(f"-o {out}: the ending says the format: {', '.join(FORMATS)}")
+    try:
+        unit_of = parse_units(units)
+        data = read_trace(trace)
+        if signals:
+            data = data.select([n.strip() for n in signals.split(",") if n.strip()])
+        left_out = plot(data, out, unit_of)
+    except (PlotUnavailable, TraceFileError, ValueError) as e:
+        _echo_err(f"softplc: {e}")
+        sys.exit(EXIT_USAGE)
+    except KeyError as e:
+        _echo_err(f"softplc: {e.args[0]}")
+        sys.exit(EXIT_USAGE)
+    except OSError as e:
+        _echo_err(f"softplc: cannot write {out}: {e.strerror or e}")
+        sys.exit(EXIT_USAGE)
+    if left_out:
+        _echo_err(f"not drawn (text): {', '.join(left_out)}")
+    _echo_err(f"wrote {out}")
 
 
 # ---------------------------------------------------------------- entry point

@@ -17,30 +17,47 @@ from contextlib import ExitStack
 from pathlib import Path
 
 EXIT_OK, EXIT_COMPILE, EXIT_CONFIG, EXIT_FAULT = 0, 1, 2, 3
+PLOT_SUFFIXES = (".png", ".svg", ".pdf")
+TRACE_SUFFIXES = (".csv", ".vcd", *PLOT_SUFFIXES)
 
 log = logging.getLogger("softplc")
 
 
+class _EngineTime(logging.Filter):
+    """Gives every log record the engine time (`t=12.340s `) once there is
+    an engine: the clock of the status line, the traces and TIME()."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.clock = None
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        record.engine_time = f"t={self.clock.now_ns() / 1e9:.3f}s " if self.clock is not None else ""
+        return True
+
+
 class _LineFormatter(logging.Formatter):
-    """Log lines that do not run into a status line being rewritten in place."""
+    """Wall time, engine time, level, message; on a terminal the line first
+    clears the status line being rewritten in place, so they do not run
+    into each other."""
 
     def __init__(self, tty: bool) -> None:
-        super().__init__(
-            "%(asctime)s softplc %(levelname)s: %(message)s" if not tty else "softplc %(levelname)s: %(message)s"
-        )
+        super().__init__("%(asctime)s %(engine_time)ssoftplc %(levelname)s: %(message)s")
         self.prefix = "\r\x1b[K" if tty else ""
 
     def format(self, record) -> str:
         return self.prefix + super().format(record)
 
 
-def _setup_logging(tty: bool) -> logging.Handler:
-    handler = logging.StreamHandler(sys.stderr)
+def _setup_logging(tty: bool, stream=None) -> tuple:
+    handler = logging.StreamHandler(stream if stream is not None else sys.stderr)
     handler.setFormatter(_LineFormatter(tty))
+    engine_time = _EngineTime()
+    handler.addFilter(engine_time)
     log.addHandler(handler)
     log.setLevel(logging.INFO)
     log.propagate = False
-    return handler
+    return handler, engine_time
 
 
 def _fail(message: str, code: int) -> int:
@@ -55,23 +72,40 @@ def run_plc(
     duration_ns: int | None,
     cycles: int | None,
     watch: list,
-    trace: str | None,
+    traces: list,
+    units: list,
     final_json: str | None,
     start_mode: str | None,
     report_compile_errors: Callable,
 ) -> int:
     from .config import ConfigError, default_config_path, load_config
     from .engine.build import build_engine
-    from .engine.monitor import StatusReporter, TraceWriter, Watch
+    from .engine.monitor import StatusReporter, Watch
     from .engine.scan import EngineError
     from .engine.tasks import TaskSetupError
     from .image.memory import AddressError
     from .plugin.driver import DriverError
     from .st.diagnostics import CompileError
     from .st.faults import STFault
+    from .trace.plot import PlotUnavailable, parse_units, plot
 
+    plots = [t for t in traces if Path(t).suffix.lower() in PLOT_SUFFIXES]
+    for t in traces:
+        if Path(t).suffix.lower() not in TRACE_SUFFIXES:
+            return _fail(f"--trace {t}: say which trace by the name's ending: {', '.join(TRACE_SUFFIXES)}", EXIT_CONFIG)
+    try:
+        unit_of = parse_units(units)
+    except ValueError as e:
+        return _fail(f"--unit {e}", EXIT_CONFIG)
+    if plots:
+        try:
+            from .trace.plot import require
+
+            require()
+        except PlotUnavailable as e:
+            return _fail(f"--trace {plots[0]}: {e}", EXIT_CONFIG)
     tty = sys.stderr.isatty()
-    handler = _setup_logging(tty)
+    handler, engine_time = _setup_logging(tty)
     try:
         path = Path(config) if config else default_config_path()
         try:
@@ -87,6 +121,7 @@ def run_plc(
             return EXIT_COMPILE
         except (TaskSetupError, DriverError) as e:
             return _fail(str(e), EXIT_CONFIG)
+        engine_time.clock = engine.clock
         log.info("%s: %s start, %s clock", path, engine.start_mode, "virtual" if virtual_time else "real")
         try:
             engine.start()
@@ -100,19 +135,20 @@ def run_plc(
                 watched = Watch(engine, watch)
             except (KeyError, AddressError) as e:
                 return _fail(f"--watch: {e.args[0] if e.args else e}", EXIT_CONFIG)
-            if trace:
-                try:
-                    stream = cleanup.enter_context(open(trace, "w", newline="", encoding="utf-8"))
-                except OSError as e:
-                    return _fail(f"--trace: cannot write {trace}: {e.strerror or e}", EXIT_CONFIG)
-                engine.after_tick.append(TraceWriter(stream, watched))
+            unknown = [p for p in unit_of if p not in watched.paths]
+            if unknown:
+                return _fail(f"--unit {', '.join(unknown)}: not watched (add --watch {unknown[0]})", EXIT_CONFIG)
+            try:
+                recorder = _open_traces(traces, watched, engine, cleanup)
+            except OSError as e:
+                return _fail(f"--trace: cannot write {e.filename}: {e.strerror or e}", EXIT_CONFIG)
             engine.after_tick.append(_announce_first_scan)
             reporter = StatusReporter(engine, sys.stderr, watched, tty)
             cleanup.enter_context(_signals(engine))
             _start_console_commands(engine)
             reporter.start()
             cleanup.callback(reporter.stop)
-            engine.run(cycles=cycles, duration_ns=duration_ns)
+            run_for(engine, cycles=cycles, duration_ns=duration_ns)
         log.info(
             "stopped after %d scans: outputs safe%s",
             engine.cycle,
@@ -127,12 +163,66 @@ def run_plc(
                     Path(final_json).write_text(text, encoding="utf-8")
                 except OSError as e:
                     return _fail(f"--final-json: cannot write {final_json}: {e.strerror or e}", EXIT_CONFIG)
+        if recorder is not None:
+            trace = recorder.trace("softplc run")
+            for out in plots:
+                try:
+                    left_out = plot(trace, out, unit_of, title=f"softplc run {path.name}")
+                except OSError as e:
+                    return _fail(f"--trace: cannot write {out}: {e.strerror or e}", EXIT_CONFIG)
+                except ValueError as e:
+                    log.warning("--trace %s: %s", out, e)
+                    continue
+                log.info("wrote %s%s", out, f" (text not drawn: {', '.join(left_out)})" if left_out else "")
         if engine.faults:
             log.error("%d runtime fault(s) during the run; the first: %s", len(engine.faults), engine.faults[0])
             return EXIT_FAULT
         return EXIT_OK
     finally:
         log.removeHandler(handler)
+
+
+def run_for(engine, cycles: int | None, duration_ns: int | None) -> int:
+    """engine.run until --cycles scans ran or the engine clock reads
+    --duration. The duration counts from engine time zero, the moment the
+    engine was built, as the status line's t= and the traces do: on the
+    real clock the start-up (drivers, bus start) is part of it, so
+    `--duration 5s` ends at t=5.00s, not 5 s after the first scan."""
+    if duration_ns is not None:
+        duration_ns = max(duration_ns - engine.clock.now_ns(), 0)
+    return engine.run(cycles=cycles, duration_ns=duration_ns)
+
+
+def _open_traces(traces: list, watched, engine, cleanup: ExitStack):
+    """Open every --trace file (OSError with its filename when one cannot be
+    written) and hook its writer into the scan; returns the Recorder for
+    the plots, or None."""
+    from .engine.monitor import TraceWriter
+    from .trace.series import Recorder
+    from .trace.vcd import VcdTraceWriter
+
+    recorder = None
+    for trace in traces:
+        suffix = Path(trace).suffix.lower()
+        if suffix in PLOT_SUFFIXES:
+            if not Path(trace).resolve().parent.is_dir():
+                raise FileNotFoundError(2, "No such directory", trace)
+            if recorder is None:
+                recorder = Recorder(watched)
+                engine.after_tick.append(recorder)
+            continue
+        stream = cleanup.enter_context(open(trace, "w", newline="", encoding="utf-8"))
+        if suffix == ".csv":
+            engine.after_tick.append(TraceWriter(stream, watched))
+        else:
+            vcd_writer = VcdTraceWriter(stream, watched)
+            cleanup.callback(_close_vcd, vcd_writer, engine)
+            engine.after_tick.append(vcd_writer)
+    return recorder
+
+
+def _close_vcd(writer, engine) -> None:
+    writer.close(engine.clock.now_ns())
 
 
 def _announce_first_scan(engine) -> None:

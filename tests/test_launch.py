@@ -313,3 +313,136 @@ def test_retain_survives_sigkill_repeatedly(tmp_path):
     assert json.loads(warm.stdout)["Counter"]["count"] == previous + 1, warm.stderr
     cold = softplc("run", cfg, "--virtual-time", "--cycles", "1", "--cold", "--final-json", "-")
     assert json.loads(cold.stdout)["Counter"]["count"] == 1
+
+
+def test_traces_by_their_ending_csv_vcd_and_png(tmp_path):
+    from matplotlib import image
+
+    from softplc.runtime.trace.vcd import read_vcd
+
+    watched = ["Motor.state", "Motor.ltmr.Running", "Drive.drive.ACTUAL_HZ", "Pump.drive.ACTUAL", "%QX0.0"]
+    proc = softplc(
+        "run",
+        "--virtual-time",
+        "--duration",
+        "3s",
+        "--watch",
+        ",".join(watched),
+        "--trace",
+        tmp_path / "run.csv",
+        "--trace",
+        tmp_path / "run.vcd",
+        "--trace",
+        tmp_path / "run.png",
+        "--unit",
+        "Drive.drive.ACTUAL_HZ=Hz",
+        "--unit",
+        "Pump.drive.ACTUAL=Hz",
+    )
+    assert proc.returncode == 0, proc.stderr
+    rows = list(csv.DictReader((tmp_path / "run.csv").open()))
+    assert len(rows) == 300 and rows[-1]["time_ms"] == "2990.0"
+    assert {r["Motor.state"] for r in rows} >= {"Forward"}  # enumerations by name
+    vcd = read_vcd(tmp_path / "run.vcd")
+    assert sorted(vcd.names()) == sorted(watched)
+    running = next(s for s in vcd.series if s.name == "Motor.ltmr.Running")
+    assert running.kind == "bool" and running.times[-1] == 3.0  # the VCD ends where the run did
+    in_csv = [(float(r["time_ms"]) / 1e3, int(r["Motor.ltmr.Running"])) for r in rows]
+    assert _changes(zip(running.times, running.values)) == _changes(in_csv)
+    assert len(_changes(in_csv)) > 1  # it did change
+    pixels = image.imread(tmp_path / "run.png")
+    assert pixels.shape[1] == 1210 and pixels.shape[0] > 500
+    assert f"wrote {tmp_path / 'run.png'}" in proc.stderr
+    # --duration 3s ends at 3.00 s of engine time, shown on the last status line and the log lines
+    assert "t=3.00s | cycles=300" in proc.stderr
+    assert "t=3.000s softplc INFO: stopped after 300 scans" in proc.stderr
+
+    # `softplc plot` draws the existing traces, a chosen few signals
+    for source, out in (("run.csv", "a.svg"), ("run.vcd", "b.png")):
+        plotted = softplc(
+            "plot", tmp_path / source, "-o", tmp_path / out, "--signals", "Motor.state,Pump.drive.ACTUAL", cwd=tmp_path
+        )
+        assert plotted.returncode == 0, plotted.stderr
+        assert f"wrote {tmp_path / out}" in plotted.stderr
+    assert "Pump.drive.ACTUAL" in (tmp_path / "a.svg").read_text()
+    assert (tmp_path / "b.png").read_bytes()[:4] == b"\x89PNG"
+    default = softplc("plot", tmp_path / "run.csv")
+    assert default.returncode == 0 and (tmp_path / "run.png").exists()
+
+
+def _changes(samples) -> list:
+    out: list = []
+    for t, v in samples:
+        if not out or out[-1][1] != v:
+            out.append((round(t, 6), v))
+    return out
+
+
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["--trace", "run.txt"], "--trace run.txt: say which trace by the name's ending: .csv, .vcd, .png, .svg, .pdf"),
+        (["--watch", "Motor.state", "--unit", "Motor.speed=Hz"], "--unit Motor.speed: not watched"),
+        (["--unit", "Motor.speed"], "--unit 'Motor.speed': write PATH=UNIT"),
+        (["--trace", "/nonexistent/dir/run.png"], "--trace: cannot write /nonexistent/dir/run.png"),
+    ],
+)
+def test_bad_trace_options_are_refused_before_the_run(args, message):
+    proc = softplc("run", "--virtual-time", "--cycles", "1", *args)
+    assert proc.returncode == 2
+    assert message in proc.stderr
+
+
+def test_plot_refuses_what_it_cannot_draw(tmp_path):
+    bad = tmp_path / "bad.csv"
+    bad.write_text("a,b\n")
+    proc = softplc("plot", bad)
+    assert proc.returncode == 2 and "bad.csv: not a CSV trace of softplc run" in proc.stderr
+    good = tmp_path / "good.csv"
+    good.write_text("time_ms,cycle,x\n0.0,1,1\n")
+    proc = softplc("plot", good, "--signals", "y")
+    assert proc.returncode == 2 and "no signal y" in proc.stderr
+    proc = softplc("plot", good, "-o", tmp_path / "x.jpg")
+    assert proc.returncode == 2 and "the ending says the format" in proc.stderr
+
+
+def test_duration_ends_at_that_engine_time_however_long_the_start_took():
+    from softplc.runtime.engine.clock import VirtualClock
+    from softplc.runtime.launch import run_for
+
+    from .engine.conftest import MS, make_engine, task
+
+    src = "PROGRAM Main VAR n : INT; END_VAR n := n + 1; END_PROGRAM"
+    # the engine clock already reads 190 ms when the scan begins, as after a slow bus start-up
+    engine = make_engine(src, [task("Main", 10, "Main")], clock=VirtualClock(start_ns=190 * MS))
+    try:
+        ran = run_for(engine, cycles=None, duration_ns=5000 * MS)
+        assert engine.clock.now_ns() == 5000 * MS  # t=5.00s, not 5.19s
+        assert ran == 481  # scans at 190, 200 .. 4990 ms
+        assert run_for(engine, cycles=None, duration_ns=1000 * MS) == 0  # already past it: no scan
+        assert run_for(engine, cycles=3, duration_ns=None) == 3
+    finally:
+        engine.stop()
+
+
+def test_log_lines_carry_wall_time_and_engine_time():
+    import io
+    import logging
+    import re
+
+    from softplc.runtime.engine.clock import VirtualClock
+    from softplc.runtime.launch import _setup_logging
+
+    out = io.StringIO()
+    handler, engine_time = _setup_logging(tty=False, stream=out)
+    try:
+        log = logging.getLogger("softplc.runtime.io.test")
+        log.info("before the engine")
+        engine_time.clock = VirtualClock(start_ns=12_340_000_000)
+        log.warning("node %d lost", 20)
+    finally:
+        logging.getLogger("softplc").removeHandler(handler)
+    before, after = out.getvalue().splitlines()
+    wall = r"\d{4}-\d\d-\d\d \d\d:\d\d:\d\d,\d{3}"
+    assert re.fullmatch(wall + r" softplc INFO: before the engine", before)
+    assert re.fullmatch(wall + r" t=12\.340s softplc WARNING: node 20 lost", after)

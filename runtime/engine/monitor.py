@@ -5,11 +5,48 @@ from __future__ import annotations
 
 import csv
 import json
+import os
+import shutil
 import threading
+from dataclasses import dataclass
 from typing import TextIO
 
-from ..image.address import parse_address
+from ..image.address import default_type, parse_address
+from ..st import types as T
 from ..st.valuejson import encode_value
+
+
+@dataclass(frozen=True)
+class SignalInfo:
+    """What a watched value is, for the traces: kind is "bool", "int",
+    "real", "enum" (levels: the enumerators in declared order) or "text"
+    (strings, arrays and structs as JSON); type_name is its ST type; bits
+    and signed describe an "int"."""
+
+    path: str
+    kind: str
+    type_name: str
+    bits: int = 0
+    signed: bool = False
+    levels: tuple = ()
+
+
+def signal_info(path: str, ty) -> SignalInfo:
+    """The SignalInfo of a value of ST type ty."""
+    t = T.resolve(ty)
+    if isinstance(t, T.EnumType):
+        names = [t.spelled[k] for k, _v in sorted(t.values.items(), key=lambda kv: kv[1])]
+        return SignalInfo(path, "enum", t.name, levels=tuple(names))
+    if isinstance(t, T.SubrangeType):
+        return SignalInfo(path, "int", t.name, t.base.bits, t.base.category == T.SIGNED)
+    if isinstance(t, T.ElementaryType):
+        if t.is_bool:
+            return SignalInfo(path, "bool", t.name, 1)
+        if t.is_real:
+            return SignalInfo(path, "real", t.name, t.bits)
+        if t.is_intlike or t.is_time:
+            return SignalInfo(path, "int", t.name, t.bits, t.category == T.SIGNED or t.category == T.DURATION)
+    return SignalInfo(path, "text", getattr(t, "name", type(t).__name__))
 
 
 class Watch:
@@ -44,9 +81,17 @@ class Watch:
             self._resolved_at = self.engine.restarts
         return self._cells
 
+    def signals(self) -> list:
+        """A SignalInfo per watched path, in order."""
+        out = []
+        for path, cell in zip(self.paths, self._current()):
+            out.append(signal_info(path, default_type(cell[1]) if cell[0] == "image" else cell[2]))
+        return out
+
     def raw(self) -> list:
         """Values for the trace: numbers where possible (BOOL 0/1, TIME in
-        its integer unit), JSON text for arrays and structs."""
+        its integer unit), an enumeration's value by name, JSON text for
+        arrays and structs."""
         out = []
         for cell in self._current():
             if cell[0] == "image":
@@ -57,8 +102,11 @@ class Watch:
             value = getattr(holder, attr)
             if isinstance(value, bool):
                 out.append(int(value))
-            elif isinstance(value, (int, float, str)):
+            elif isinstance(value, (float, str)):
                 out.append(value)
+            elif isinstance(value, int):
+                enum = T.resolve(ty)
+                out.append(encode_value(enum, value) if isinstance(enum, T.EnumType) else value)
             else:
                 out.append(json.dumps(encode_value(ty, value), separators=(",", ":")))
         return out
@@ -114,16 +162,47 @@ def status_line(engine, watch: Watch | None = None) -> str:
     return " | ".join(parts)
 
 
+def fit(line: str, columns: int) -> str:
+    """line cut to fit a terminal row of `columns` characters, ending in
+    '…' when cut. One column stays free: a line that fills the row makes some
+    terminals wrap, and a wrapped line cannot be rewritten in place."""
+    width = max(columns - 1, 1)
+    return line if len(line) <= width else line[: width - 1] + "…"
+
+
+def terminal_columns(stream: TextIO) -> int:
+    """The width of the terminal behind stream ($COLUMNS first, 80 when unknown)."""
+    try:
+        return int(os.environ["COLUMNS"])
+    except (KeyError, ValueError):
+        pass
+    try:
+        return os.get_terminal_size(stream.fileno()).columns
+    except (AttributeError, ValueError, OSError):  # no fileno, or not a terminal
+        return shutil.get_terminal_size().columns
+
+
 class StatusReporter:
     """Shows the status line from a thread of its own, so the scan thread
-    never waits on a terminal: rewritten in place 4 times a second on a
-    terminal, a plain line every `every_s` seconds otherwise (logs)."""
+    never waits on a terminal: on a terminal one line rewritten in place 4
+    times a second, cut to the terminal's width (read again at each refresh,
+    so resizing the window works); otherwise (a log) the whole line every
+    `every_s` seconds. The last line, at the end of the run, is whole."""
 
-    def __init__(self, engine, stream: TextIO, watch: Watch | None, tty: bool, every_s: float = 5.0) -> None:
+    def __init__(
+        self,
+        engine,
+        stream: TextIO,
+        watch: Watch | None,
+        tty: bool,
+        every_s: float = 5.0,
+        columns: int | None = None,
+    ) -> None:
         self.engine = engine
         self.stream = stream
         self.watch = watch
         self.tty = tty
+        self.columns = columns  # None: ask the terminal
         self.period = 0.25 if tty else every_s
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._loop, name="softplc-status", daemon=True)
@@ -141,7 +220,7 @@ class StatusReporter:
         except Exception as exc:  # a watched value changing shape mid-read: skip this refresh
             line = f"(status unavailable: {exc})"
         if self.tty and not final:
-            self.stream.write("\r\x1b[K" + line)
+            self.stream.write("\r\x1b[K" + fit(line, self.columns or terminal_columns(self.stream)))
         else:
             self.stream.write(("\r\x1b[K" if self.tty else "") + line + "\n")
         self.stream.flush()

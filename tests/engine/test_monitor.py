@@ -8,7 +8,7 @@ import io
 
 import pytest
 
-from softplc.runtime.engine.monitor import StatusReporter, TraceWriter, Watch, status_line
+from softplc.runtime.engine.monitor import StatusReporter, TraceWriter, Watch, fit, status_line
 from softplc.runtime.image.memory import AddressError
 
 from .conftest import MS, task
@@ -36,7 +36,7 @@ def test_watch_resolves_variables_globals_and_addresses(engines):
     e = engines(SRC, [task("Main", 10, "Main")])
     e.run(cycles=3)
     w = Watch(e, ["Main.n", "Main.on", "Main.mode", "Main.t", "total", "%QW1", "Main.pair"])
-    assert w.raw() == [3, 1, 1, 20, 6, 30, "[0,3]"]
+    assert w.raw() == [3, 1, "Auto", 20, 6, 30, "[0,3]"]
     assert w.shown() == [
         ("Main.n", "3"),
         ("Main.on", "true"),
@@ -48,11 +48,36 @@ def test_watch_resolves_variables_globals_and_addresses(engines):
     ]
 
 
+def test_watch_describes_each_signal_for_the_traces(engines):
+    e = engines(SRC, [task("Main", 10, "Main")])
+    w = Watch(e, ["Main.n", "Main.on", "Main.mode", "Main.t", "total", "%QW1", "%QX0.1", "Main.pair"])
+    kinds = [(i.path, i.kind, i.type_name, i.bits, i.signed) for i in w.signals()]
+    assert kinds == [
+        ("Main.n", "int", "INT", 16, True),
+        ("Main.on", "bool", "BOOL", 1, False),
+        ("Main.mode", "enum", "Mode", 0, False),
+        ("Main.t", "int", "TIME", 32, True),
+        ("total", "int", "DINT", 32, True),
+        ("%QW1", "int", "WORD", 16, False),
+        ("%QX0.1", "bool", "BOOL", 1, False),
+        ("Main.pair", "text", "ARRAY[1..2] OF INT", 0, False),
+    ]
+    assert w.signals()[2].levels == ("Off", "Auto")
+
+
 @pytest.mark.parametrize("path, error", [("Main.nope", KeyError), ("nope", KeyError), ("%QZ1", AddressError)])
 def test_watch_refuses_what_does_not_exist(engines, path, error):
     e = engines(SRC, [task("Main", 10, "Main")])
     with pytest.raises(error):
         Watch(e, [path])
+
+
+def test_trace_writes_enumerations_by_name(engines):
+    e = engines(SRC, [task("Main", 10, "Main")])
+    out = io.StringIO()
+    e.after_tick.append(TraceWriter(out, Watch(e, ["Main.mode", "Main.n"])))
+    e.run(cycles=2)
+    assert out.getvalue().splitlines() == ["time_ms,cycle,Main.mode,Main.n", "0.0,1,Auto,1", "10.0,2,Auto,2"]
 
 
 def test_trace_has_a_row_per_scan_and_follows_a_restart(engines):
@@ -88,3 +113,50 @@ def test_status_reporter_rewrites_the_line_on_a_terminal_and_appends_in_a_log(en
     StatusReporter(e, log, None, tty=False).show()
     assert tty.getvalue().startswith("\r\x1b[K") and not tty.getvalue().endswith("\n")
     assert log.getvalue() == status_line(e) + "\n"
+
+
+def test_a_long_status_line_is_cut_to_the_terminal_width_and_rewritten_in_place(engines):
+    e = engines(SRC, [task("Main", 10, "Main")])
+    e.run(cycles=1)
+    w = Watch(e, ["Main.n", "Main.on", "Main.mode", "Main.t", "total", "Main.pair"])
+    full = status_line(e, w)
+    assert len(full) > 60
+    term = io.StringIO()
+    reporter = StatusReporter(e, term, w, tty=True, columns=60)
+    reporter.show()
+    reporter.show()
+    shown = term.getvalue().split("\r\x1b[K")
+    assert shown[0] == "" and len(shown) == 3  # two refreshes, each clearing the row first
+    assert all(len(line) == 59 and line.endswith("…") for line in shown[1:])  # one column free
+    assert "\n" not in term.getvalue()  # one row, rewritten
+    assert shown[1][:-1] == full[:58]
+    reporter.show(final=True)  # the last line, at the end of the run, is whole
+    assert term.getvalue().endswith("\r\x1b[K" + full + "\n")
+
+
+def test_the_status_line_in_a_log_is_whole_and_on_lines_of_its_own(engines):
+    e = engines(SRC, [task("Main", 10, "Main")])
+    e.run(cycles=1)
+    w = Watch(e, ["Main.n", "Main.on", "Main.mode", "Main.t", "total", "Main.pair"])
+    log = io.StringIO()
+    reporter = StatusReporter(e, log, w, tty=False, columns=40)
+    reporter.show()
+    reporter.show()
+    assert log.getvalue() == (status_line(e, w) + "\n") * 2
+
+
+def test_the_terminal_width_comes_from_columns(engines, monkeypatch):
+    e = engines(SRC, [task("Main", 10, "Main")])
+    e.run(cycles=1)
+    monkeypatch.setenv("COLUMNS", "30")
+    term = io.StringIO()
+    StatusReporter(e, term, None, tty=True).show()
+    assert len(term.getvalue()) == len("\r\x1b[K") + 29
+
+
+@pytest.mark.parametrize(
+    "line, columns, shown",
+    [("abcdef", 10, "abcdef"), ("abcdefghij", 10, "abcdefgh…"), ("abcdefghi", 10, "abcdefghi"), ("abc", 1, "…")],
+)
+def test_fit(line, columns, shown):
+    assert fit(line, columns) == shown

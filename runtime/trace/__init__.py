@@ -1,0 +1,11 @@
+"""Traces of `softplc run` for people to look at: the values of the watched
+variables over engine time as VCD (GTKWave) and as a plot (PNG, SVG, PDF),
+and the reading of CSV and VCD traces back for `softplc plot`.
+
+series.py  Series and Trace (samples per signal), Recorder (an after_tick
+           callback that keeps the samples a plot needs), reading a trace file
+vcd.py     VcdTraceWriter (an after_tick callback) and read_vcd
+plot.py    plot(): a Trace as a figure (matplotlib, the `plot` extra)
+
+The CSV trace itself is written by engine/monitor.py (TraceWriter).
+"""
