@@ -32,7 +32,7 @@ def run_tests(paths: tuple, *, junit: str | None, pattern: str | None, timeout_n
     from ..engine.tasks import TaskSetupError
     from ..plugin.driver import DriverError
     from ..st.diagnostics import CompileError
-    from .discover import select
+    from .discover import TestError, select
     from .runner import ERROR, FAILED, PASSED, TestSuite
 
     config, files = split_arguments(paths)
@@ -50,6 +50,9 @@ def run_tests(paths: tuple, *, junit: str | None, pattern: str | None, timeout_n
         return EXIT_USAGE
     except CompileError as e:
         report_compile_errors(e)
+        return EXIT_USAGE
+    except TestError as e:
+        _err(f"softplc test: {e}")
         return EXIT_USAGE
     tests = select(suite.tests, pattern)
     if not tests:

@@ -65,11 +65,12 @@ class StFile(pytest.File):
     def collect(self):
         from ..config import ConfigError
         from ..st.diagnostics import CompileError
+        from .discover import TestError
         from .runner import TestSuite
 
         try:
             suite = TestSuite.load(_config_path(self.config), [str(self.path)])
-        except ConfigError as e:
+        except (ConfigError, TestError) as e:
             raise StCollectError(str(e)) from None
         except CompileError as e:
             raise StCollectError("\n".join(d.format(e.sources) for d in e.diagnostics)) from None

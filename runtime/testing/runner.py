@@ -111,8 +111,12 @@ class TestSuite:
         return out
 
     def run(self, case: TestCase, timeout_ns: int = DEFAULT_TIMEOUT_NS) -> TestResult:
-        """Run one test in a fresh engine (cold start, no retain file)."""
+        """Run one test in a fresh engine (cold start, no retain file).
+        timeout_ns: for a test without a timeout of its own."""
         import time
+
+        if case.timeout_ns is not None:
+            timeout_ns = case.timeout_ns
 
         started = time.perf_counter()
         engine = build_engine(

@@ -6,7 +6,7 @@ from __future__ import annotations
 import pytest
 
 from softplc.runtime.st.diagnostics import CompileError
-from softplc.runtime.testing.discover import select
+from softplc.runtime.testing.discover import TestError, select
 from softplc.runtime.testing.runner import ERROR, FAILED, PASSED, TestSuite
 
 SOURCE = """\
@@ -135,3 +135,23 @@ def test_a_test_never_touches_the_plants_retain_file(tmp_path):
     suite = TestSuite.load(tmp_path / "plant.toml", [str(tmp_path / "t.st")])
     assert suite.run(suite.tests[0]).outcome == PASSED
     assert not (tmp_path / "plant.retain").exists()
+
+
+def test_a_test_may_have_its_own_timeout(tmp_path):
+    path = tmp_path / "t.st"
+    path.write_text(
+        "FUNCTION_BLOCK TEST_Short\n{attribute 'timeout' := 'T#200ms'}\nVAR\n    n : INT;\nEND_VAR\n"
+        "n := n + 1;\nEND_FUNCTION_BLOCK\n"
+    )
+    suite = TestSuite.load(None, [str(path)])
+    assert suite.tests[0].timeout_ns == 200_000_000
+    result = suite.run(suite.tests[0])  # the default would be 60 s
+    assert (result.outcome, result.time_ns) == (FAILED, 200_000_000)
+    assert result.error == "timed out after 0.2 s of engine time without TEST_FINISHED()"
+
+
+def test_a_wrong_timeout_attribute_names_the_test(tmp_path):
+    path = tmp_path / "t.st"
+    path.write_text("FUNCTION_BLOCK TEST_Bad\n{attribute 'timeout' := 'soon'}\nEND_FUNCTION_BLOCK\n")
+    with pytest.raises(TestError, match=r"t\.st:1:1: TEST_Bad: timeout 'soon' is not a positive duration"):
+        TestSuite.load(None, [str(path)])
