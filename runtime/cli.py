@@ -388,6 +388,44 @@ def plot_cmd(trace: str, output: str | None, signals: str | None, units: tuple) 
     _echo_err(f"wrote {out}")
 
 
+@cli.command("test")
+@click.argument("paths", nargs=-1, required=True, type=click.Path(dir_okay=False), metavar="[CONFIG] FILE...")
+@click.option(
+    "--junit", type=click.Path(dir_okay=False), metavar="FILE.xml", help="Write the results as JUnit XML (for CI)."
+)
+@click.option(
+    "-k", "pattern", metavar="PATTERN", help="Run only the tests whose name contains PATTERN (or matches a glob)."
+)
+@click.option(
+    "--timeout",
+    type=Duration(),
+    default="60s",
+    show_default=True,
+    metavar="DURATION",
+    help="Engine time a test may take before it fails (30s, 2m, T#500ms).",
+)
+def test_cmd(paths: tuple, junit: str | None, pattern: str | None, timeout: int) -> None:
+    """Run the tests written in ST in FILE... (FUNCTION_BLOCKs named TEST_...
+    calling ASSERT_EQUAL, ASSERT_TRUE ...), each in a fresh PLC in virtual
+    time, against the programs and simulated devices of CONFIG (a TOML file;
+    without it the tests run alone).
+
+    Exit codes: 0 every test passed, 1 a test failed, 2 bad configuration,
+    ST files or option, or no test found.
+    """
+    from .testing.command import run_tests
+
+    sys.exit(
+        run_tests(
+            paths,
+            junit=junit,
+            pattern=pattern,
+            timeout_ns=timeout,
+            report_compile_errors=lambda e: _summary(*_report(e.diagnostics, e.sources)),
+        )
+    )
+
+
 # ---------------------------------------------------------------- entry point
 
 

@@ -40,16 +40,24 @@ def make_drivers(config: PlcConfig, clock=None, by_name: dict | None = None) -> 
 
 
 def build_engine(
-    config: PlcConfig, *, virtual_time: bool = False, start_mode: str | None = None, program=None
+    config: PlcConfig,
+    *,
+    virtual_time: bool = False,
+    start_mode: str | None = None,
+    program=None,
+    extra_tasks: tuple = (),
+    retain: bool = True,
 ) -> Engine:
     """An Engine for config, not started. Raises CompileError for errors in
     the ST files and TaskSetupError for tasks that cannot run. program: an
-    already compiled Program (tests compile once and build many engines)."""
+    already compiled Program (tests compile once and build many engines);
+    extra_tasks: TaskConfigs run beside the configured ones (a test's);
+    retain=False: no retain file is read or written (a test's plant)."""
     if program is None:
         program = compile_files(config.programs, profile=config.profile)
     where = str(config.path) if config.path else "<config>"
-    tasks = plan_tasks(program, config.tasks, where)
-    retain_store = RetainStore(config.retain.file) if config.retain else None
+    tasks = plan_tasks(program, config.tasks, where, none_ok=bool(extra_tasks)) + list(extra_tasks)
+    retain_store = RetainStore(config.retain.file) if config.retain and retain else None
     clock = VirtualClock() if virtual_time else RealClock()
     simulators: dict = {}
     drivers = make_drivers(config, clock, simulators)

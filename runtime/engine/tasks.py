@@ -24,8 +24,10 @@ class TaskSetupError(Exception):
     ST position) and what to change."""
 
 
-def plan_tasks(program, configured: list, config_file: str = "") -> list:
-    """The TaskConfig list to run. configured: tasks from the TOML file."""
+def plan_tasks(program, configured: list, config_file: str = "", *, none_ok: bool = False) -> list:
+    """The TaskConfig list to run. configured: tasks from the TOML file.
+    none_ok: sources without a PROGRAM give no task instead of an error
+    (the caller runs tasks of its own)."""
     programs = {name.upper(): name for name, kind in program.pous.items() if kind == "PROGRAM"}
     st_configs = program.checked.configurations
     if configured:
@@ -42,6 +44,8 @@ def plan_tasks(program, configured: list, config_file: str = "") -> list:
     if st_configs:
         return _from_st_configuration(program, st_configs)
     if not programs:
+        if none_ok:
+            return []
         raise TaskSetupError("the ST sources declare no PROGRAM: nothing to run")
     # No tasks anywhere: every PROGRAM in one 10 ms task, in declaration order.
     return [

@@ -106,8 +106,12 @@ def _std_functions() -> dict:
     return STANDARD_FUNCTIONS
 
 
-def _natives() -> dict:
-    return registry().natives()
+def _natives(extra: tuple = ()) -> dict:
+    """The registered buses' and devices' native functions, and extra ones
+    a caller compiles with (the test runner's assertions)."""
+    found = dict(registry().natives())
+    found.update((fn.name, fn) for fn in extra)
+    return found
 
 
 def _read_sources(paths: list, texts: dict | None, diags: DiagnosticBag, sources: SourceSet) -> tuple:
@@ -141,7 +145,7 @@ def _decl_names(sf: A.SourceFile) -> set:
     return {d.name.upper() for d in sf.decls if isinstance(d, (A.POU, A.TypeDecl))}
 
 
-def _front_end(paths: list, profile: Profile, texts: dict | None):
+def _front_end(paths: list, profile: Profile, texts: dict | None, natives: tuple = ()):
     diags = DiagnosticBag()
     sources = SourceSet()
     user, user_words = _read_sources(paths, texts, diags, sources)
@@ -154,7 +158,11 @@ def _front_end(paths: list, profile: Profile, texts: dict | None):
         sf.decls = [d for d in sf.decls if not (isinstance(d, (A.POU, A.TypeDecl)) and d.name.upper() in user_names)]
         library.append(sf)
     checker = Checker(
-        profile, lib_diags if not user else diags, _std_functions(), _natives(), ProcessImage(profile.addressing)
+        profile,
+        lib_diags if not user else diags,
+        _std_functions(),
+        _natives(natives),
+        ProcessImage(profile.addressing),
     )
     checked = checker.run(library + user, library_files=tuple(sf.path for sf in library))
     diags.extend(d for d in lib_diags.items if d.is_error)
@@ -186,22 +194,26 @@ def _first_position(paths: list, texts: dict | None) -> A.Pos:
     return A.Pos(names[0] if names else "<input>", 1, 1)
 
 
-def check_files(paths: list, profile: str | Profile = "codesys", texts: dict | None = None):
+def check_files(paths: list, profile: str | Profile = "codesys", texts: dict | None = None, natives: tuple = ()):
     """Diagnostics of the files (errors and warnings, sorted) and their texts.
     Never raises for problems in the sources. Reports exactly what
     compile_files would: the back end runs too when the front end is clean."""
     prof = get_profile(profile) if isinstance(profile, str) else profile
-    diags, sources, checked, _ = _front_end(list(paths), prof, texts)
+    diags, sources, checked, _ = _front_end(list(paths), prof, texts, natives)
     if not diags.has_errors:
         _back_end(checked, prof, diags, _first_position(paths, texts))
     return diags.sorted(), sources
 
 
-def compile_files(paths: list, profile: str | Profile = "codesys", *, texts: dict | None = None) -> Program:
+def compile_files(
+    paths: list, profile: str | Profile = "codesys", *, texts: dict | None = None, natives: tuple = ()
+) -> Program:
     """Compile ST files (and/or in-memory texts: name -> source) into a
-    loadable Program. Raises CompileError with every diagnostic on errors."""
+    loadable Program. Raises CompileError with every diagnostic on errors.
+    natives: NativeFunctions beyond the registered ones (st/native.py); the
+    ExecContext's services execute them (the test runner binds its own)."""
     prof = get_profile(profile) if isinstance(profile, str) else profile
-    diags, sources, checked, user = _front_end(list(paths), prof, texts)
+    diags, sources, checked, user = _front_end(list(paths), prof, texts, natives)
     built = None if diags.has_errors else _back_end(checked, prof, diags, _first_position(paths, texts))
     if built is None:
         raise CompileError(diags.sorted(), sources)

@@ -487,17 +487,25 @@ class CallChecks(CheckerBase):
 
     def _native_call(self, e: A.Call, fn: NativeFunction, scope: Scope) -> T.Type | None:
         """A call of a native function (st/native.py): positional arguments
-        checked against the declaration's parameter kinds."""
+        checked against the declaration's parameter kinds; the arguments of
+        parameters that share a type variable get one common type."""
         args = e.args
         if len(args) != len(fn.params) or any(a.name is not None or a.value is None for a in args):
             self.d.error("E041", f"{fn.name} takes {len(fn.params)} positional arguments", e.pos, fn.usage)
             self._check_args_loosely(e, scope)
             return None
         vals = [a.value for a in args]
-        found = [self.expr(v, scope) for v in vals]
+        found = [
+            self.expr(v, scope, expected=T.BOOL if p.kind == native.BOOL else None) for p, v in zip(fn.params, vals)
+        ]
         tys = [t for t in found if t is not None]
         if len(tys) < len(found):
             return None
+        if any(p.same for p in fn.params):
+            common = self._native_common(e, fn, vals, tys, scope)
+            if common is None:
+                return None
+            tys = common
         for i, (param, ty, value) in enumerate(zip(fn.params, tys, vals)):
             table = T.resolve(ty)
             if not self._native_arg_fits(param, ty):
@@ -509,8 +517,40 @@ class CallChecks(CheckerBase):
         e.target = CallInfo("native", func=fn, args=vals, rtypes=tuple(tys))
         return T.ELEMENTARY[fn.result]
 
+    def _native_common(self, e: A.Call, fn: NativeFunction, vals: list, tys: list, scope: Scope) -> list | None:
+        """The argument types with every type variable bound to the common
+        type of its arguments (an untyped literal takes the others' type)."""
+        bindings: dict = {}
+        for param, value, ty in zip(fn.params, vals, tys):
+            if param.same and not is_flexible(value):
+                cur = bindings.get(param.same)
+                bindings[param.same] = ty if cur is None else self._unify(cur, ty, e)
+                if bindings[param.same] is None:
+                    return None
+        out = list(tys)
+        for i, (param, value, ty) in enumerate(zip(fn.params, vals, tys)):
+            if not param.same:
+                continue
+            want = bindings.setdefault(param.same, ty)  # only literals: the first one's type
+            if param.kind == native.ANY_REAL:
+                want = bindings[param.same] = generic_fit(want, "ANY_REAL", self.profile)
+            if is_flexible(value):
+                got = self.expr(value, scope, expected=want)
+                if got is None:
+                    return None
+                self.check_convertible(got, want, value, f"argument {i + 1} of {fn.name}")
+            out[i] = want
+        return [bindings[p.same] if p.same else t for p, t in zip(fn.params, out)]
+
     @staticmethod
     def _native_arg_fits(param: native.Param, ty: T.Type) -> bool:
+        if param.kind == native.BOOL:
+            be = T.base_elementary(ty)
+            return be is not None and be.is_bool
+        if param.kind == native.ANY_ELEMENTARY:
+            return isinstance(T.resolve(ty), T.EnumType) or T.is_generic_member(ty, "ANY_ELEMENTARY")
+        if param.kind == native.ANY_REAL:
+            return T.is_generic_member(ty, "ANY_REAL")
         if param.kind == native.ADDRESS:
             return isinstance(ty, T.SchneiderAddrType)
         if param.kind == native.STRING:

@@ -15,6 +15,7 @@ from . import conversions as C
 from . import ranges as R
 from . import types as T
 from .codegen_base import CodeGenBase, elementary, py_literal
+from .native import CallSite
 from .symbols import CallInfo
 
 
@@ -37,6 +38,10 @@ class CallGen(CodeGenBase):
                 return self.ref_code(info.args[0])
             return py_literal(e.const)
         if info.kind == "native":
+            if info.func.site:  # the values in their common type, then where the call is (st/native.py)
+                typed = [self.coerce(self.ex(a), a.ty, t, a) for a, t in zip(info.args, info.rtypes)]
+                site = CallSite(e.pos.file, e.pos.line, e.pos.col, tuple(info.rtypes))
+                return f"_native({self.const(info.func)}, {', '.join([*typed, self.const(site)])})"
             values = ", ".join(self.ex(a) for a in info.args)
             # the service stores words into the tables: it needs each table's signedness (st/native.py)
             tables = [t for t in map(T.resolve, info.rtypes) if isinstance(t, T.ArrayType)]

@@ -17,7 +17,16 @@ Every native function is a statement-like call with positional arguments.
 The service is called as ``service.request(NAME, *args, *signed)``, where
 ``signed`` holds, for each word-table argument in order, whether its
 elements are signed (INT) or not (WORD, UINT): the service stores words into
-the tables and must keep their type's representation.
+the tables and must keep their type's representation. A declaration with
+``site=True`` gets one more argument last: a CallSite, where the call is in
+the ST source (file:line:column, from the compiler) and the types of its
+arguments, so that the service can name the call and write the values as ST
+literals (an assertion of a test, runtime/testing).
+
+Parameters of the generic kinds (BOOL, ANY_ELEMENTARY, ANY_REAL) may share a
+type variable (``same="T"``): their arguments are brought to one common type,
+as the standard functions' ``T:ANY_NUM`` are, so that ASSERT_EQUAL(5, x)
+compares 5 as x's type.
 """
 
 from __future__ import annotations
@@ -30,12 +39,20 @@ ANY_INT = "ANY_INT"  # an integer of any width, signed or not
 STRING = "STRING"  # a STRING of any length
 ADDRESS = "ADDRESS"  # a Schneider ADR#r.m.c address
 WORDS = "WORDS"  # a one-dimensional table of 16-bit words: ARRAY OF WORD/INT/UINT, %MW100:4
+BOOL = "BOOL"  # a BOOL
+ANY_ELEMENTARY = "ANY_ELEMENTARY"  # any elementary value: number, bit string, BOOL, time, STRING, enumeration
+ANY_REAL = "ANY_REAL"  # a REAL or LREAL (an integer literal too)
+
+GENERIC_KINDS = (BOOL, ANY_ELEMENTARY, ANY_REAL)
 
 _EXPECTED = {
     ANY_INT: "an integer",
     STRING: "a STRING",
     ADDRESS: "an ADR#... address",
     WORDS: "a word table such as %MW3250:4 or an ARRAY OF WORD",
+    BOOL: "a BOOL",
+    ANY_ELEMENTARY: "an elementary value (a number, BOOL, STRING, time or enumeration)",
+    ANY_REAL: "a REAL or LREAL",
 }
 
 
@@ -47,17 +64,21 @@ class Service(Protocol):
 class Param:
     """One positional parameter. what: how a message names it ('the node';
     '' for 'argument n' alone); expect: what a wrong argument is told it
-    must be (default: from the kind); min_words: a word table's least size."""
+    must be (default: from the kind); min_words: a word table's least size;
+    same: a type variable shared with other parameters of a generic kind."""
 
     name: str
     kind: str
     what: str = ""
     expect: str = ""
     min_words: int = 0
+    same: str = ""
 
     def __post_init__(self) -> None:
         if self.kind not in _EXPECTED:
             raise ValueError(f"{self.name}: unknown parameter kind {self.kind!r}")
+        if self.same and self.kind not in GENERIC_KINDS:
+            raise ValueError(f"{self.name}: only {', '.join(GENERIC_KINDS)} parameters share a type")
 
     @property
     def expected(self) -> str:
@@ -76,7 +97,23 @@ class NativeFunction:
     fallback: Service  # the implementation when no driver offers the service
     usage: str  # the call as written, for the hint of a wrong call
     result: str = "BOOL"  # an elementary type name
+    site: bool = False  # the service gets a CallSite after the arguments
 
     def __post_init__(self) -> None:
         if self.name != self.name.upper():
             raise ValueError(f"native function names are upper case: {self.name!r}")
+
+
+@dataclass(frozen=True)
+class CallSite:
+    """Where a native call is in the ST source and the types of its
+    arguments (after their common type is found): what a ``site=True``
+    service gets last. types are st.types.Type objects."""
+
+    file: str
+    line: int
+    col: int
+    types: tuple = ()
+
+    def __str__(self) -> str:
+        return f"{self.file}:{self.line}:{self.col}"

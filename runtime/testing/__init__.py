@@ -12,11 +12,53 @@ simulated devices and their faults, scripted inputs, the trace of watched
 values (trace.py). pytest_plugin.py: the fixtures plc and plc_factory and
 the marker softplc, installed as a pytest plugin with the package.
 README: "Testing a sequence offline (Python and pytest)".
+
+Tests written in ST (README: "Tests in ST: softplc test"): test
+FUNCTION_BLOCKs with ASSERT_* calls, run in virtual time against the
+configured plant by ``softplc test`` and by pytest.
+
+    natives.py          the assertion functions (native functions, st/native.py)
+                        and the service that records them
+    discover.py         which POUs of the test files are tests
+    runner.py           one engine per test: the plant's tasks and the test's
+    junit.py            the JUnit XML report
+    command.py          ``softplc test``: output and exit codes
+    st_pytest_plugin.py the pytest collector of test_*.st files (entry point softplc_st)
+
+Nothing below this package knows it: the test runner compiles with its own
+native functions (compile_files(natives=...)) and binds their service on
+the engine's ExecContext, the way a bus driver binds its own.
 """
 
-from .places import PathError
-from .plc import PLC, duration_ns
-from .trace import Row, Trace
-from .values import EnumValue
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from .places import PathError
+    from .plc import PLC, duration_ns
+    from .trace import Row, Trace
+    from .values import EnumValue
+
+# The names are imported on first use (PEP 562): the pytest plugins live in
+# this package, and a pytest run that never builds a PLC must not pay for
+# importing the engine, the buses and the compiler.
+_WHERE = {
+    "PLC": ".plc",
+    "duration_ns": ".plc",
+    "PathError": ".places",
+    "Row": ".trace",
+    "Trace": ".trace",
+    "EnumValue": ".values",
+}
+
+
+def __getattr__(name: str) -> Any:
+    module = _WHERE.get(name)
+    if module is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    return getattr(importlib.import_module(module, __name__), name)
+
 
 __all__ = ["PLC", "EnumValue", "PathError", "Row", "Trace", "duration_ns"]

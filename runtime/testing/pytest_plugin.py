@@ -19,11 +19,12 @@ the report ("softplc trace").
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import pytest
 
-from .plc import PLC
+if TYPE_CHECKING:  # the engine is imported when a test asks for a PLC, not by every pytest run
+    from .plc import PLC
 
 MARKER = "softplc"
 
@@ -37,6 +38,8 @@ def pytest_configure(config: pytest.Config) -> None:
 
 
 def _build(where: Path, *, config=None, st=None, watch=(), **options: Any) -> PLC:
+    from .plc import PLC
+
     if config is not None and st is not None:
         raise pytest.UsageError("softplc: give config or st, not both")
     if st is not None:

@@ -91,6 +91,13 @@ def test_no_program_at_all():
         plan_tasks(compile_st("FUNCTION F : INT\nF := 1;\nEND_FUNCTION\n"), [])
 
 
+def test_no_program_is_fine_for_a_caller_with_tasks_of_its_own():
+    # the ST test runner: the test files may declare no PROGRAM
+    assert plan_tasks(compile_st("FUNCTION F : INT\nF := 1;\nEND_FUNCTION\n"), [], none_ok=True) == []
+    planned = plan_tasks(compile_st(PROGRAMS), [], none_ok=True)
+    assert [inst.program for inst in planned[0].programs] == ["Fast", "Slow"]
+
+
 def test_watchdog_sensitivity_counts_overlong_cycles_in_a_row(engines):
     # A 1 ns watchdog: every cycle is "too long", whatever the machine, so the
     # count is deterministic. Sensitivity 3 faults at the end of the third.

@@ -134,3 +134,84 @@ def test_a_native_management_table_too_small(table):
 def test_a_native_argument_in_error_is_reported_once():
     _, found = native_call("ADR#0.1.SYS, 'SDO', nosuch, t4")
     assert [code for code, *_ in found] == ["E010"]
+
+
+# ---------------------------------------------------------------- generic native parameters
+
+from softplc.runtime.st.native import ANY_ELEMENTARY, ANY_REAL  # noqa: E402
+from softplc.runtime.st.native import BOOL as BOOL_KIND  # noqa: E402
+
+SAME = NativeFunction(
+    "SAME",
+    (Param("a", ANY_ELEMENTARY, same="T"), Param("b", ANY_ELEMENTARY, same="T"), Param("c", BOOL_KIND)),
+    service="same",
+    fallback=_NoService(),
+    usage="SAME(a, b, cond)",
+    site=True,
+)
+NEAR = NativeFunction(
+    "NEAR",
+    (Param("a", ANY_REAL, same="R"), Param("b", ANY_REAL, same="R")),
+    service="near",
+    fallback=_NoService(),
+    usage="NEAR(x, y)",
+)
+GENERIC_DECLS = (
+    "TYPE E_Light : (Off, Green, Red); END_TYPE\n"
+    "PROGRAM main\nVAR\nok : BOOL; i : INT; d : DINT; r : REAL; s : STRING; t : TIME; e : E_Light;"
+    " a : ARRAY[0..1] OF INT;\nEND_VAR\n"
+)
+
+
+def generic_call(call: str):
+    """Check ok := <call>; returns (the call, [(code, message, line, column)])."""
+    src = f"{GENERIC_DECLS}ok := {call};\nEND_PROGRAM\n"
+    checked, diags = check_st(src, natives={SAME.name: SAME, NEAR.name: NEAR})
+    return pou_body(checked)[0].value, [(d.code, d.message, d.pos.line, d.pos.col) for d in diags]
+
+
+@pytest.mark.parametrize(
+    "call, common",
+    [
+        ("SAME(5, i, TRUE)", T.INT),  # the literal takes the variable's type
+        ("SAME(i, 5, TRUE)", T.INT),
+        ("SAME(i, d, i > 0)", T.DINT),  # integers meet in the wider one
+        ("SAME(1.5, r, TRUE)", T.REAL),
+        ("SAME(T#2s, t, TRUE)", T.TIME),
+        ("SAME(E_Light#Red, e, TRUE)", "E_Light"),
+        ("SAME('abc', s, TRUE)", "STRING"),
+        ("NEAR(2, r)", T.REAL),  # an integer literal is a real here
+    ],
+)
+def test_parameters_that_share_a_type_variable_get_one_common_type(call, common):
+    node, found = generic_call(call)
+    assert found == []
+    types = node.target.rtypes[:2]
+    if isinstance(common, str):
+        assert all(str(t).startswith(common) for t in types), types
+    else:
+        assert types == (common, common)
+
+
+@pytest.mark.parametrize(
+    "call, message",
+    [
+        ("SAME(e, i, TRUE)", "arguments of types E_Light and INT do not match"),
+        (
+            "SAME(a, a, TRUE)",
+            "SAME: argument 1 must be an elementary value (a number, BOOL, STRING, time or enumeration)",
+        ),
+        ("SAME(i, i, 5)", "SAME: argument 3 must be a BOOL"),
+        ("NEAR(t, t)", "NEAR: argument 1 must be a REAL or LREAL"),
+    ],
+)
+def test_generic_native_arguments_that_do_not_fit(call, message):
+    _, found = generic_call(call)
+    assert message in [m for _c, m, _l, _col in found], found
+
+
+def test_a_native_declared_with_site_is_not_mistaken_for_a_plain_one():
+    node, found = generic_call("SAME(5, i, TRUE)")
+    assert found == [] and node.target.func.site
+    with pytest.raises(ValueError, match="share a type"):
+        Param("x", ANY_INT, same="T")

@@ -52,3 +52,45 @@ END_PROGRAM
 """
     r = run_st(src, cycles=3, cycle_time_ms=10)  # at the third cycle 20 ms have passed
     assert r.get("done") == 2
+
+
+# ---------------------------------------------------------------- natives with their call site
+
+
+def test_a_site_native_gets_its_values_in_the_common_type_and_where_it_is_called():
+    from softplc.runtime.program import compile_files
+    from softplc.runtime.st import types as T
+    from softplc.runtime.st.native import ANY_ELEMENTARY, STRING, CallSite, NativeFunction, Param
+
+    calls = []
+
+    class Service:
+        def request(self, name, *args):
+            calls.append((name, *args))
+            return True
+
+    probe = NativeFunction(
+        "PROBE_SITE",
+        (Param("a", ANY_ELEMENTARY, same="T"), Param("b", ANY_ELEMENTARY, same="T"), Param("m", STRING)),
+        service="probe",
+        fallback=Service(),
+        usage="PROBE_SITE(a, b, 'm')",
+        site=True,
+    )
+    source = prog("r : REAL := 2.5; ok : BOOL;", "ok := PROBE_SITE(1, r, 'one');\n    PROBE_SITE(r, r, 'two');")
+    program = compile_files([], texts={"site.st": source}, natives=(probe,))
+    runner = program.runner("main")
+    runner.run(1)
+    (n1, a1, b1, m1, site1), (_n2, *_v, site2) = calls
+    assert (n1, a1, b1, m1) == ("PROBE_SITE", 1.0, 2.5, "one")
+    assert isinstance(a1, float)  # the literal 1 was passed as a REAL
+    assert site1 == CallSite("site.st", 5, 7, (T.REAL, T.REAL, site1.types[2]))
+    assert (site2.line, site2.col) == (6, 5)
+    assert runner.get("ok") is True
+
+
+def test_without_the_declaration_the_name_is_an_unknown_function():
+    from .conftest import diagnostics
+
+    found = diagnostics(prog("ok : BOOL;", "ok := PROBE_SITE(1, 2, 'x');"))
+    assert [(d.code, d.pos.line) for d in found if d.is_error] == [("E043", 5)]
