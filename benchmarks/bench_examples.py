@@ -13,7 +13,7 @@ Each configuration runs in a fresh process (CAN channel names and serial
 ports stay private to it); only engine.run() is timed, not compiling, the
 CANopen boot or the simulators' start.
 
-    python benchmarks/bench_examples.py                  # 60 s of plant each, about 1 minute
+    python benchmarks/bench_examples.py                  # 60 s of plant each, about 1.5 minutes
     python benchmarks/bench_examples.py --quick          # 10 s each
     python benchmarks/bench_examples.py --only default   # one configuration
     python benchmarks/bench_examples.py --profile genset # cProfile of one, top 25 by own time
