@@ -17,6 +17,7 @@ def test_there_are_benchmarks():
     assert [b.name for b in BENCHMARKS] == [
         "bench_canopen.py",
         "bench_engine.py",
+        "bench_examples.py",
         "bench_genset.py",
         "bench_language.py",
         "bench_modbus.py",

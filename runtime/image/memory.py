@@ -196,7 +196,13 @@ class ProcessImage:
         if isinstance(where, LocatedAddress):
             check_address(where, self.addressing)
             return where
-        return parse_address(where, self.addressing)
+        key = (where, self.addressing)
+        addr = _PARSED.get(key)
+        if addr is None:  # drivers and simulators read the same few addresses every cycle
+            if len(_PARSED) >= 4096:
+                _PARSED.clear()
+            addr = _PARSED[key] = parse_address(where, self.addressing)
+        return addr
 
     def read(self, where, ty: T.ElementaryType | None = None):
         """The value at an address ('%QW0', '%MW3250:X0' or a LocatedAddress)
@@ -223,6 +229,10 @@ class ProcessImage:
                 table[i] = v
             return
         self.accessor(addr, ty)[1](_checked_value(addr, ty, value))
+
+
+#: (address text, addressing) -> its LocatedAddress, for read() and write() by text
+_PARSED: dict[tuple[str, str], LocatedAddress] = {}
 
 
 def _checked_value(addr: LocatedAddress, ty: T.ElementaryType, value):

@@ -440,9 +440,12 @@ class EatonDriveModel:
 
     def advance(self, now_ns: int) -> None:
         """Time passes up to now_ns: ramps, the comm-loss watchdog and its
-        action. A time before the last one moves nothing."""
+        action. A time before the last one moves nothing (and, as every
+        change of state publishes at once, republishes nothing)."""
         if self._now is None:
             self._now = now_ns
+        elif self._now >= now_ns:
+            return
         while self._now < now_ns:
             deadline = self._comm_deadline()
             end = now_ns

@@ -15,6 +15,7 @@ numbers and everything the runtime acts on have English names.
 
 from __future__ import annotations
 
+import functools
 import re
 from dataclasses import dataclass
 
@@ -54,7 +55,7 @@ class Parameter:
     def writable_in_run(self) -> bool:
         return self.mode == RUN
 
-    @property
+    @functools.cached_property  # the simulator asks every tick; the row never changes
     def scale(self) -> Scale | None:
         """The linear scale of the "Skalierung" cell, None where it is not one."""
         return Scale.parse(self.scaling)
@@ -491,7 +492,11 @@ _COMPACT_NUMBER = re.compile(r"^P-(\d{1,2})$")
 def parameter_rows(family: Family, number: str, *, de11: bool = False) -> tuple:
     """The table rows of a parameter number (more than one for the fields of
     a shared register, e.g. DB1/DC1 P-36). ValueError if the manual has none."""
-    number = number.strip().upper()
+    return _rows(family, number.strip().upper(), de11)
+
+
+@functools.cache  # the tables never change; the simulator asks every tick
+def _rows(family: Family, number: str, de11: bool) -> tuple:
     tables = PARAMETERS[family] + (DE11_PARAMETERS if family is Family.DE1 and de11 else ())
     rows = tuple(p for p in tables if p.number == number)
     if not rows:

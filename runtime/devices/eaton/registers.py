@@ -170,7 +170,8 @@ class Scale:
 
     def to_raw(self, value) -> int:
         """The nearest raw count of a physical value: SPEED.to_raw(50.0) -> 500."""
-        return _round_half_away(Fraction(str(value)) / self.step)
+        exact = value if isinstance(value, (int, Fraction)) else Fraction(str(value))  # a float as written
+        return _round_half_away(exact / self.step)
 
 
 # Process data (IDs 1-17) count in the manual's "Skalierungsfaktor" (L755-829)

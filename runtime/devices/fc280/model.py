@@ -325,7 +325,10 @@ class Fc280Model:
 
     def advance(self, now_ns: int) -> None:
         """Time passes up to now_ns: ramps, the DC brake time, the control word
-        timeout and its function. A time before the last one moves nothing."""
+        timeout and its function. A time already reached moves nothing (and
+        settles nothing: every change at the present time settles itself)."""
+        if now_ns <= self._now:
+            return
         while self._now < now_ns:
             deadline = self._deadline()
             end = now_ns if deadline is None or deadline >= now_ns else max(deadline, self._now)

@@ -273,11 +273,18 @@ def sdo_object(name: str, value: float | int) -> tuple[int, int, int, int]:
     return p.index, sub, p.size, to_raw(p, value)
 
 
+_BY_TEXT: dict[str, Parameter] = {}  # every number text found once: the simulator asks each tick
+
+
 def parameter(number: str) -> Parameter:
     """The parameter of a number ('8-03'); KeyError naming it otherwise."""
+    found = _BY_TEXT.get(number)
+    if found is not None:
+        return found
     group, nn = split_number(number)
     key = f"{group}-{nn:02d}"
     found = PARAMETERS.get(key)
     if found is None:
         raise KeyError(f"parameter {key} is not one the softplc FC 280 support knows")
+    _BY_TEXT[number] = found
     return found

@@ -32,6 +32,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import can
+from can.interfaces.virtual import VirtualBus
 
 from ...plugin.driver import DriverError
 
@@ -154,6 +155,9 @@ class CanEndpoint:
     def poll(self) -> bool:
         """Pumped endpoints: receive one waiting frame, if any, and hand it
         to the handlers. True when a frame was taken from the bus."""
+        waiting = getattr(self.bus, "queue", None)  # python-can's virtual bus: its receive queue
+        if type(self.bus) is VirtualBus and waiting is not None and waiting.empty():
+            return False  # nothing there: spare recv() its Empty exception (most polls find nothing)
         try:
             msg = self.bus.recv(timeout=0)
         except (can.CanError, OSError) as exc:
@@ -222,19 +226,19 @@ class BusPump:
     def settle(self, limit_s: float = 10.0) -> bool:
         """Pump until quiet. False (and a log line) if still busy after limit_s."""
         deadline = time.monotonic() + limit_s
-        idle_rounds = 0
+        was_busy = False
         while True:
             moved = self.pump_once()
             with self._lock:
                 busy = any(check() for check in self._busy)
             if moved == 0 and not busy:
-                # A worker may have just finished and sent a last frame;
-                # one more empty round proves the bus is quiet.
-                idle_rounds += 1
-                if idle_rounds >= 2:
+                # A worker that was busy may have sent a last frame as it
+                # finished; one more empty round then proves the bus quiet.
+                if not was_busy:
                     return True
+                was_busy = False
                 continue
-            idle_rounds = 0
+            was_busy = busy
             if moved == 0:
                 if time.monotonic() > deadline:
                     log.error("CAN bus not quiet after %.1f s: a worker is stuck", limit_s)

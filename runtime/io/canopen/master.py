@@ -8,8 +8,8 @@ _on_frame; a service thread (service(), every millisecond) sends what is
 due (heartbeat, SYNC, RPDOs) and moves the node state machines on; one
 worker thread runs every SDO transfer (sdo_exchange.SdoWorker). The scan
 thread only swaps buffers in read_inputs / write_outputs. In virtual time
-the engine's thread does the receiving and the servicing in advance_to(),
-and the BusPump waits for the SDO worker, so runs repeat exactly.
+the engine's thread does the receiving, the servicing and the SDO jobs in
+advance_to() (no thread, no wait: sdo.SdoWorker), so runs repeat exactly.
 
 Nothing in here knows a device: an LTMR, an FC 280 or any node with an EDS
 is just a NodeConfig. Plain-CAN devices (the MPU2-S) can share the bus
@@ -199,10 +199,8 @@ class CanopenDriver(Driver):
         for node in self.nodes.values():
             self.network.add_node(canopen.RemoteNode(node.cfg.node_id, node.od))
         self.endpoint.add_handler(self._on_frame)
-        self.worker = SdoWorker(self.network)
+        self.worker = SdoWorker(self.network, pump=self.pump)  # virtual time: no thread
         self.worker.start()
-        if self.pump is not None:
-            self.pump.add_busy(self.worker.busy)
         self._bus_ok = True
         self._started = True
         log.info(
@@ -226,7 +224,6 @@ class CanopenDriver(Driver):
         worker = self._started_worker
         if self.pump is not None:
             self.pump.settle()
-            self.pump.remove_busy(worker.busy)
         worker.stop()
         self.port.release(self._on_frame)
         self._started = False
@@ -252,11 +249,16 @@ class CanopenDriver(Driver):
     def advance_to(self, now_ns: int) -> None:
         self.service(now_ns)
         if self.pump is not None:
+            worker = self._started_worker
             self.pump.settle()
+            worker.run_pending()  # the SDO jobs due, each pumping the bus for its answers
             # What the settle delivered (boot-ups, finished configurations)
             # may call for frames now, not a tick later.
             self.service(now_ns)
             self.pump.settle()
+            if worker.run_pending():
+                self.service(now_ns)
+                self.pump.settle()
 
     # ------------------------------------------------------------ the bus side
 

@@ -92,13 +92,20 @@ class SdoJob:
 
 
 class SdoWorker:
-    """A thread that runs SDO jobs one after the other through the
-    network's SDO clients. busy() is true from submit() until the job's
-    on_done ran: the virtual-time BusPump waits on it."""
+    """Runs SDO jobs one after the other through the network's SDO clients.
 
-    def __init__(self, network: canopen.Network, name: str = "canopen sdo") -> None:
+    Real time: a thread; busy() is true from submit() until the job's
+    on_done ran. Virtual time (pump given): no thread and no wait; the
+    engine's thread runs the queued jobs in run_pending(), and each SDO
+    client, instead of blocking on its response queue, pumps the bus until
+    the answer is there (the simulated node answers within the pump) or the
+    bus is quiet: then the node did not answer, at once (no real time, no
+    virtual time)."""
+
+    def __init__(self, network: canopen.Network, name: str = "canopen sdo", pump=None) -> None:
         self.network = network
         self.name = name
+        self.pump = pump  # virtual time: the BusPump the clients pump
         self._queue: queue.Queue = queue.Queue()
         self._pending = 0
         self._lock = threading.Lock()
@@ -106,10 +113,27 @@ class SdoWorker:
         self._clients: dict = {}
 
     def start(self) -> None:
+        if self.pump is not None:
+            return  # run_pending() in the engine's thread
         self._thread = threading.Thread(target=self._run, name=self.name, daemon=True)
         self._thread.start()
 
+    def run_pending(self) -> bool:
+        """Virtual time: run every queued job now; True if there was one."""
+        ran = False
+        while True:
+            try:
+                task = self._queue.get_nowait()
+            except queue.Empty:
+                return ran
+            if task is None:
+                continue
+            ran = True
+            self._run_task(task)
+
     def stop(self) -> None:
+        if self.pump is not None:
+            self.run_pending()
         if self._thread is not None:
             self._queue.put(None)
             self._thread.join(timeout=5.0)
@@ -142,6 +166,9 @@ class SdoWorker:
         # canopen counts attempts here: 1 = no second try, so the timeout is
         # the program's (0 would loop for ever in canopen 2.4)
         node.sdo.MAX_RETRIES = 1
+        if self.pump is not None and self._clients.get(node_id) is not node.sdo:
+            self._clients[node_id] = node.sdo
+            node.sdo.read_response = _pumped_read_response(node.sdo, self.pump)
         return node.sdo
 
     def _run(self) -> None:
@@ -149,13 +176,16 @@ class SdoWorker:
             task = self._queue.get()
             if task is None:
                 return
-            try:
-                task()
-            except Exception:  # a bug in one task must not kill the worker
-                log.exception("%s: task failed", self.name)
-            finally:
-                with self._lock:
-                    self._pending -= 1
+            self._run_task(task)
+
+    def _run_task(self, task: Callable[[], None]) -> None:
+        try:
+            task()
+        except Exception:  # a bug in one task must not kill the worker
+            log.exception("%s: task failed", self.name)
+        finally:
+            with self._lock:
+                self._pending -= 1
 
     def _run_job(self, job: SdoJob) -> None:
         try:
@@ -184,6 +214,28 @@ class SdoWorker:
             job.error = f"{job.describe()}: no answer ({exc})"
         except Exception as exc:  # a dead bus: the exchange fails, the worker lives on
             job.error = f"{job.describe()}: {exc}"
+
+
+def _pumped_read_response(sdo: SdoClient, pump) -> Callable[[], bytes]:
+    """SdoClient.read_response for virtual time: pump the bus until the
+    answer is in the client's queue, never block; canopen's errors as its
+    own read_response raises them."""
+
+    def read_response() -> bytes:
+        while sdo.responses.empty() and pump.pump_once():
+            pass
+        try:
+            response = sdo.responses.get_nowait()
+        except queue.Empty:
+            raise SdoCommunicationError("No SDO response received") from None
+        if response[0] == _RESPONSE_ABORTED:
+            raise SdoAbortedError(int.from_bytes(response[4:8], "little"))
+        return response
+
+    return read_response
+
+
+_RESPONSE_ABORTED = 0x80  # the command byte of an SDO abort (CiA 301 7.2.4.3.17)
 
 
 # ====================================================================== READ_VAR / WRITE_VAR

@@ -42,7 +42,8 @@ def _free_tcp_port() -> int:
 def _lines(config, ctx: BuildContext) -> dict:
     """One simulated line per [[modbus]] connection that has [[sim]] devices:
     a pymodbus server with a model per unit (RTU on a pseudo-terminal cable,
-    TCP on 127.0.0.1)."""
+    TCP on 127.0.0.1), or in memory (wire.py): sim_wire, by default memory
+    in virtual time and the port in real time."""
     devices = registry().sim_types()
     lines = {}
     for conn in config.modbus:
@@ -55,9 +56,16 @@ def _lines(config, ctx: BuildContext) -> dict:
                 named[sim.at.unit] = sim
         if not units:
             continue
+        wire = conn.sim_wire or ("memory" if ctx.clock.virtual else "port")
         if conn.transport == "tcp":
             lines[conn.name] = SimulatedModbusLine(
-                conn.name, units, clock=ctx.clock, transport="tcp", host=conn.host, port=conn.port or _free_tcp_port()
+                conn.name,
+                units,
+                clock=ctx.clock,
+                transport="tcp",
+                host=conn.host,
+                port=0 if wire == "memory" else conn.port or _free_tcp_port(),
+                wire=wire,
             )
         else:
             lines[conn.name] = SimulatedModbusLine(
@@ -68,6 +76,7 @@ def _lines(config, ctx: BuildContext) -> dict:
                 baud=conn.baud,
                 parity=conn.parity,
                 stop_bits=conn.stop_bits,
+                wire=wire,
             )
         for unit, sim in named.items():
             ctx.simulated(sim, UnitOnLine(lines[conn.name], unit))
@@ -79,17 +88,21 @@ def _build(config, ctx: BuildContext) -> Contribution:
         return Contribution()
     lines = _lines(config, ctx)
     connections = []
+    servers = {}
     for conn in config.modbus:  # those to simulated devices go to the simulator's end
         line = lines.get(conn.name)
-        if line is not None:
+        if line is not None and line.server is not None:
+            servers[conn.name] = line.server
+        elif line is not None:
             conn = (
                 dataclasses.replace(conn, device=line.master_port)
-                if line.cable is not None
+                if line.master_port is not None
                 else dataclasses.replace(conn, port=line.port)
             )
         connections.append(conn)
     return Contribution(
-        simulators=list(lines.values()), drivers=[ModbusDriver(connections, ctx.addressing, clock=ctx.clock)]
+        simulators=list(lines.values()),
+        drivers=[ModbusDriver(connections, ctx.addressing, clock=ctx.clock, servers=servers)],
     )
 
 

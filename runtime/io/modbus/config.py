@@ -78,6 +78,7 @@ class ModbusConnectionConfig:
     reconnect_max_ms: int
     channels: list[ModbusChannelConfig]
     key: str  # "modbus[0]"
+    sim_wire: str | None = None  # to [[sim]] units: "memory" | "port"; None: memory in virtual time
 
 
 class _State:
@@ -155,6 +156,9 @@ class _Modbus(Model):
     retries: Annotated[int, int_range(0, 10)] = Field(1, description="an integer from 0 to 10")
     reconnect: Annotated[int, PlainValidator(_timeout_ms)] = Field(1000, description="a duration such as 1s")
     reconnect_max: Annotated[int, PlainValidator(_timeout_ms)] = Field(10_000, description="a duration such as 10s")
+    sim_wire: Annotated[str, choice(("memory", "port"))] | None = Field(
+        None, description="'memory' or 'port' (default: memory in virtual time, the port in real time)"
+    )
     channel: list[_ModbusChannel] = Field(default_factory=list, description="[[modbus.channel]] tables")
 
 
@@ -427,4 +431,5 @@ def _build_modbus(i: int, m: _Modbus, state: _State) -> ModbusConnectionConfig:
         reconnect_max_ms=m.reconnect_max,
         channels=channels,
         key=key,
+        sim_wire=m.sim_wire,
     )

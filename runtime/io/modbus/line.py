@@ -1,13 +1,16 @@
 """Simulated devices on one Modbus line: a real pymodbus server (RTU on a
 pseudo-terminal cable, or TCP on 127.0.0.1) whose units are device models
-(SimulatedUnit: an Eaton drive of devices/eaton, a test's relay ...).
+(SimulatedUnit: an Eaton drive of devices/eaton, a test's relay ...); or,
+with wire = "memory" (virtual time), the same units behind pymodbus's
+framers and request handling in memory (wire.py): no pty, no socket.
 
     line = SimulatedModbusLine("drives", {1: model}, clock=clock, transport="rtu")
     line.master_port         # the serial port the master opens (a NullModem end)
     line.start()
     line.unit(1)             # the model at unit 1
     line.silent = True       # every unit on the line stops answering
-    line.cable.cut()         # RTU: the line itself is cut
+    line.cable.cut()         # RTU: the line itself is cut (in memory too)
+    line.server              # wire = "memory": the MemoryServer the master's link uses
 
 What the line does, as a real RS-485 line or TCP gateway does:
   * a request to a unit that is not on the line gets no answer; a frame with
@@ -36,6 +39,7 @@ from ...plugin.driver import DriverError
 from ...sim.base import SimulatedDevice
 from ...sim.null_modem import NullModem
 from .unit import SILENT, ModbusRefusal, SimulatedUnit
+from .wire import MemoryCable, MemoryServer
 
 SIM_HOSTS = ("127.0.0.1", "localhost")
 
@@ -71,6 +75,7 @@ class SimulatedModbusLine(SimulatedDevice):
         baud: int = 115200,
         parity: str = "N",
         stop_bits: int = 1,
+        wire: str = "port",
     ) -> None:
         super().__init__(name, clock=clock)
         if transport == "tcp" and host not in SIM_HOSTS:
@@ -79,8 +84,12 @@ class SimulatedModbusLine(SimulatedDevice):
         self.transport = transport
         self.host, self.port = host, port
         self.baud, self.parity, self.stop_bits = baud, parity, stop_bits  # rtu: the serial settings
-        self.cable: NullModem | None = NullModem(f"sim {name} cable") if transport == "rtu" else None
-        self.master_port = self.cable.master_port if self.cable else None
+        self.wire = wire
+        self.server: MemoryServer | None = MemoryServer(self, _Line(self)) if wire == "memory" else None
+        self.cable: NullModem | MemoryCable | None = None
+        if transport == "rtu":
+            self.cable = MemoryCable() if self.server is not None else NullModem(f"sim {name} cable")
+        self.master_port = self.cable.master_port if isinstance(self.cable, NullModem) else None
         self.silent = False
         self.muted: set[int] = set()  # unit ids that do not answer (the SILENT fault)
         self.requests = 0
@@ -128,6 +137,8 @@ class SimulatedModbusLine(SimulatedDevice):
                 model.advance(now_ns)
 
     def open(self) -> None:
+        if self.server is not None:
+            return  # in memory: the master's link calls server.exchange()
         started = threading.Event()
         failure: list = []
 
@@ -162,7 +173,7 @@ class SimulatedModbusLine(SimulatedDevice):
                 trace_packet=self._trace,
             )
         else:
-            assert self.cable is not None  # an rtu line has its cable until close()
+            assert isinstance(self.cable, NullModem)  # a port rtu line has its cable until close()
             server = ModbusSerialServer(
                 line,
                 framer=FramerType.RTU,
@@ -189,7 +200,7 @@ class SimulatedModbusLine(SimulatedDevice):
         if self._thread is not None:
             self._thread.join(timeout=5)
         self._server = self._thread = None
-        if self.cable is not None:
+        if isinstance(self.cable, NullModem):
             self.cable.close()
             self.cable = None
 

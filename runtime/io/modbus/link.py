@@ -33,6 +33,7 @@ from pymodbus.exceptions import ConnectionException, ModbusException, ModbusIOEx
 from pymodbus.pdu import ModbusPDU
 
 from .functions import FUNCTIONS, check_request
+from .wire import MemoryClient, MemoryServer
 
 # pymodbus logs every timeout as an error; the link reports them itself.
 logging.getLogger("pymodbus").setLevel(logging.CRITICAL)
@@ -117,17 +118,19 @@ class Transaction:
 class Outcome:
     error: int = 0
     values: list = field(default_factory=list)
-    response_s: float = 0.0  # request sent -> answer, real time
+    response_s: float = 0.0  # request sent -> answer: real time, or the modelled time in memory
     message: str = ""
+    late_s: float = 0.0  # in memory (virtual time): no answer; the outcome counts this much later
 
 
 class ModbusLink:
     """One connection; see the module docstring. Not thread-safe by design:
     one owner calls transact()."""
 
-    def __init__(self, settings: LinkSettings) -> None:
+    def __init__(self, settings: LinkSettings, server: MemoryServer | None = None) -> None:
         self.settings = settings
-        self._client: ModbusTcpClient | ModbusSerialClient | None = None
+        self.server = server  # in memory to a simulated line (virtual time), see wire.py
+        self._client: ModbusTcpClient | ModbusSerialClient | MemoryClient | None = None
         self._next_attempt_ns = 0
         self._backoff_s = settings.reconnect_s
         self._last_frame_end = 0.0
@@ -141,8 +144,10 @@ class ModbusLink:
 
     # ---------------------------------------------------------------- connection
 
-    def _new_client(self) -> ModbusTcpClient | ModbusSerialClient:
+    def _new_client(self) -> ModbusTcpClient | ModbusSerialClient | MemoryClient:
         s = self.settings
+        if self.server is not None:
+            return MemoryClient(self.server, s, self._gap_s)
         if s.transport == "tcp":
             return ModbusTcpClient(s.host, port=s.port, timeout=s.timeout_s, retries=s.retries, reconnect_delay=0)
         return ModbusSerialClient(
@@ -163,7 +168,10 @@ class ModbusLink:
         if now_ns < self._next_attempt_ns:
             return False
         s = self.settings
-        where = f"{s.host}:{s.port}" if s.transport == "tcp" else s.device
+        if self.server is not None:
+            where = f"the simulated line {self.server.line.name} (in memory)"
+        else:
+            where = f"{s.host}:{s.port}" if s.transport == "tcp" else s.device
         try:
             self._client = self._new_client()
             ok = self._client.connect()
@@ -209,6 +217,8 @@ class ModbusLink:
             return Outcome(ModbusError.REQUEST_FAILED_TO_SEND, message=self.message)
         client = self._client
         assert client is not None  # connected: try_connect() made it, only _drop() and close() clear it
+        if isinstance(client, MemoryClient):
+            return self._transact_in_memory(client, tx, now_ns)
         if self._gap_s:
             wait = self._last_frame_end + self._gap_s - time.perf_counter()
             if wait > 0:
@@ -228,7 +238,29 @@ class ModbusLink:
             return Outcome(ModbusError.RESPONSE_INVALID_DATA, message=str(exc))
         finally:
             self._last_frame_end = time.perf_counter()
-        elapsed = self._last_frame_end - start
+        return self._outcome(tx, response, self._last_frame_end - start)
+
+    def _transact_in_memory(self, client: MemoryClient, tx: Transaction, now_ns: int) -> Outcome:
+        """transact() over a MemoryClient: nothing waits; a timeout is
+        reported as late_s, the virtual time it costs."""
+        try:
+            response = self._call(client, tx)
+        except ModbusIOException as exc:
+            outcome = Outcome(
+                ModbusError.RESPONSE_TIMEOUT,
+                response_s=client.line_s,
+                message=f"no answer from unit {tx.unit}: {exc}",
+                late_s=client.line_s,
+            )
+            if self.settings.transport == "tcp":
+                self._drop(now_ns + int(client.line_s * 1e9), outcome.message)
+            return outcome
+        except ModbusException as exc:
+            return Outcome(ModbusError.RESPONSE_INVALID_DATA, message=str(exc))
+        return self._outcome(tx, response, client.line_s)
+
+    @staticmethod
+    def _outcome(tx: Transaction, response: ModbusPDU, elapsed: float) -> Outcome:
         if response.isError():
             code = getattr(response, "exception_code", ModbusError.UNDEFINED)
             return Outcome(
@@ -249,7 +281,7 @@ class ModbusLink:
         return Outcome(values=values, response_s=elapsed)
 
     @staticmethod
-    def _call(c: ModbusTcpClient | ModbusSerialClient, tx: Transaction) -> ModbusPDU:
+    def _call(c: ModbusTcpClient | ModbusSerialClient | MemoryClient, tx: Transaction) -> ModbusPDU:
         unit, fc = tx.unit, tx.function
         if fc == 1:
             return c.read_coils(tx.offset, count=tx.count, device_id=unit)

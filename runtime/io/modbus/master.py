@@ -8,9 +8,13 @@ Each connection has one owner of its pymodbus client (link.py):
                 sleeps until the next due time or until the scan wakes it;
   virtual time  no thread: at each tick the engine's thread runs everything
                 due by then (advance_to), so the answers are in the image of
-                the same tick and a sequence always runs the same way. A slave
-                that does not answer costs real time (the timeout), never
-                virtual time.
+                the same tick and a sequence always runs the same way. To a
+                simulated line the link runs in memory (wire.py: real frames,
+                no pseudo-terminal, no socket, no wait): a unit that does not
+                answer costs its timeout in virtual time, during which the
+                connection sends nothing else, and the error counts when the
+                timeout ends. To a real port (or a line on sim_wire = "port")
+                a silent slave costs real time, never virtual time.
 
 The program sees each channel in MODBUS_CHANNEL[i] (i = the channel's place
 in the file, counted over all connections; fblocks/comm/modbus.st).
@@ -65,6 +69,7 @@ class ConnectionWorker:
 
     def __init__(self, link: ModbusLink, channels: list, clock) -> None:
         self.link = link
+        self._late: tuple[int, Callable[[int], None]] | None = None  # in memory: (when, deliver) of a timeout
         self.channels = channels
         self.clock = clock
         self._requests: collections.deque = collections.deque()
@@ -80,13 +85,27 @@ class ConnectionWorker:
         self._wake.set()
 
     def run_due(self, now_ns: int) -> None:
+        if self._late is not None:
+            when, deliver = self._late
+            if now_ns < when:
+                return  # the line is still waiting for an answer that does not come
+            self._late = None
+            deliver(when)
         self.link.try_connect(now_ns)
         while self._requests:
             tx, done = self._requests.popleft()
-            done(self.link.transact(tx, now_ns))
+            outcome = self.link.transact(tx, now_ns)
+            if outcome.late_s:
+                self._late = (now_ns + int(outcome.late_s * 1e9), lambda _t, done=done, o=outcome: done(o))
+                return
+            done(outcome)
         for ch in self.channels:
             if ch.due(now_ns):
-                ch.complete(self.link.transact(ch.transaction(), now_ns), now_ns)
+                outcome = self.link.transact(ch.transaction(), now_ns)
+                if outcome.late_s:
+                    self._late = (now_ns + int(outcome.late_s * 1e9), lambda t, ch=ch, o=outcome: ch.complete(o, t))
+                    return
+                ch.complete(outcome, now_ns)
 
     def _next_wait_s(self, now_ns: int) -> float:
         dues = [d for d in (ch.next_due_ns() for ch in self.channels) if d is not None]
@@ -128,7 +147,9 @@ class ConnectionWorker:
 class ModbusDriver(Driver):
     """Driver for all [[modbus]] connections (one instance per engine)."""
 
-    def __init__(self, connections: list, addressing: str, *, clock) -> None:
+    def __init__(self, connections: list, addressing: str, *, clock, servers: dict | None = None) -> None:
+        """servers: connection name -> the MemoryServer of its simulated
+        line, for the connections that run in memory (virtual time)."""
         self.name = "modbus"
         image = ProcessImage(addressing)  # the layout, for the channels' byte spans
         self.clock = clock
@@ -142,7 +163,8 @@ class ModbusDriver(Driver):
                 except Exception as exc:
                     raise DriverError(str(exc)) from None
             self.channels.extend(channels)
-            self.workers[cfg.name] = ConnectionWorker(ModbusLink(link_settings(cfg)), channels, clock)
+            link = ModbusLink(link_settings(cfg), (servers or {}).get(cfg.name))
+            self.workers[cfg.name] = ConnectionWorker(link, channels, clock)
         self.exchange = ModbusExchangeService(self._submit)
         self.services = {EXCHANGE_SERVICE: self.exchange}
         self._diag: ModbusDiag | None = None

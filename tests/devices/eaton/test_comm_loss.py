@@ -10,10 +10,10 @@ import pytest
 from softplc.runtime.devices.eaton import faults as eaton_faults
 from softplc.runtime.io.modbus.link import ModbusError
 
-from ...io.modbus.plant import DRIVE_PROGRAM, SILENT_TIMEOUT, plant_config
+from ...io.modbus.plant import DRIVE_PROGRAM, SILENT_TIMEOUT, WIRES, plant_config
 from .test_drive_sequence import MONITOR
 
-# whole plants over seconds of virtual time, answers crossing sockets in real time
+# whole plants over seconds of virtual time; on a port, answers cross sockets in real time
 pytestmark = pytest.mark.slow
 
 SIGNAL_LOST = "No valid Modbus telegram received within the set time"
@@ -28,8 +28,9 @@ def silent_line(plant, transport):
     return lambda: setattr(plant.line, "silent", False)
 
 
+@pytest.mark.parametrize("wire", WIRES)
 @pytest.mark.parametrize("transport", ["rtu", "tcp"])
-def test_line_lost_drive_trips_master_recovers(plants, tmp_path, transport):
+def test_line_lost_drive_trips_master_recovers(plants, tmp_path, transport, wire):
     # P5-05 = 20: 2.0 s, P5-06 = 0: trip (the DA1's factory setting, L387-388)
     plant = plants(
         plant_config(
@@ -41,6 +42,7 @@ def test_line_lost_drive_trips_master_recovers(plants, tmp_path, transport):
             channels=[MONITOR],
             interval="50ms",
             timeout=SILENT_TIMEOUT,
+            wire=wire,
         )
     )
     drive = plant.drive(1)

@@ -8,7 +8,7 @@ import pytest
 
 from softplc.runtime.devices.eaton import registers as eaton
 
-from ...io.modbus.plant import DRIVE_PROGRAM, plant_config
+from ...io.modbus.plant import DRIVE_PROGRAM, WIRES, plant_config
 
 # whole plants over seconds of virtual time, answers crossing sockets in real time
 pytestmark = pytest.mark.slow
@@ -38,11 +38,12 @@ def drive_plant(plants, tmp_path, transport, sim_type="da1", **extra):
     )
 
 
+@pytest.mark.parametrize("wire", WIRES)
 @pytest.mark.parametrize("transport", ["tcp", "rtu"])
-def test_start_ramp_reverse_stop(plants, tmp_path, transport):
-    # RTU costs a few ms of real time per transaction: a slower task keeps the test short
-    tick = 10 if transport == "tcp" else 50
-    plant = drive_plant(plants, tmp_path, transport, interval=f"{tick}ms")
+def test_start_ramp_reverse_stop(plants, tmp_path, transport, wire):
+    # on a port RTU costs a few ms of real time per transaction: a slower task keeps the test short
+    tick = 50 if (transport, wire) == ("rtu", "port") else 10
+    plant = drive_plant(plants, tmp_path, transport, interval=f"{tick}ms", wire=wire)
     drive = plant.drive(1)
     plant.run_until(lambda: plant["Drive.state"] == "RunForward", 500)
     assert plant["Drive.drive.MODEL"] == "DA1" and plant["Drive.drive.FAMILY"] == eaton.Family.DA1

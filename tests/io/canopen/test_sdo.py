@@ -98,3 +98,26 @@ def test_sdo_aborts_and_timeouts_surface_as_report_codes_with_the_abort_code(pla
     assert short[1] == 0x0005  # bad management parameters
     assert absent[1] == 0x0001 and (absent[5] << 16 | absent[4]) == 0x05040000  # timeout
     assert plant.sims[40].register(ltmr.REG_STATUS_1) != 1  # nothing was written
+
+
+def test_in_virtual_time_sdo_runs_in_the_engine_thread_without_waiting(plants):
+    """No SDO worker thread; every exchange, the one to a node that is not
+    on the bus included, is over at the start of the next cycle: the engine
+    ran the transfers itself, pumping the bus for the answers."""
+    import threading
+
+    before = set(threading.enumerate())
+    plant = plants(ABORTS, program="Aborts", nodes=NO_PDOS)
+    plant.run_until(lambda: plant.master.status().ok, 500, "node 40 booted")
+    assert not [t for t in set(threading.enumerate()) - before if t.name == "canopen sdo"]
+    plant.set("Aborts.go", True)
+    plant.run_until(lambda: not plant.get("Aborts.go"), 100, "the cycle that calls them")
+    called_ms = plant.now_ms
+    plant.run_until(
+        lambda: all(not plant.get(f"Aborts.{t}")[0] & 1 for t in ("mgmtRo", "mgmtNone", "mgmtAbsent")),
+        100,
+        "all exchanges over",
+    )
+    assert plant.now_ms - called_ms <= 10  # one 10 ms cycle
+    absent = [w & 0xFFFF for w in plant.get("Aborts.mgmtAbsent")]
+    assert absent[1] == 0x0001 and (absent[5] << 16 | absent[4]) == 0x05040000  # timeout

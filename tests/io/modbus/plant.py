@@ -1,7 +1,8 @@
 """A Modbus plant in virtual time: the Modbus master (the real driver, built
 from a configuration as `softplc run` builds it) and simulated Eaton drives
-behind a real pymodbus server, on a pseudo-terminal cable (RTU) or on
-127.0.0.1 (TCP)."""
+behind pymodbus's framers and request handling in memory (the default in
+virtual time), or, with wire="port", behind a real pymodbus server on a
+pseudo-terminal cable (RTU) or on 127.0.0.1 (TCP)."""
 
 from __future__ import annotations
 
@@ -20,21 +21,26 @@ REPO = Path(__file__).resolve().parents[3]
 DRIVE_PROGRAM = REPO / "st_programs" / "eaton_drive.st"
 
 
-# Answers cross a socket or a pseudo-terminal in real time even on the virtual
-# clock. The timeout must outlast the slowest answer of a loaded machine (a
-# drive that answers never waits for it), and tests that make a drive silent
-# pass SILENT_TIMEOUT, so that the many requests that then time out cost
-# little real time.
-TIMEOUT = "500ms"
+# In memory, a timeout is virtual time like any other. On a port, answers
+# cross a socket or a pseudo-terminal in real time even on the virtual clock:
+# the timeout must outlast the slowest answer of a loaded machine (a drive
+# that answers never waits for it), and tests that make a drive silent pass
+# SILENT_TIMEOUT, so that the many requests that then time out cost little
+# real time.
+TIMEOUT = "100ms"
+PORT_TIMEOUT = "500ms"
 SILENT_TIMEOUT = "30ms"
+WIRES = ("memory", "port")
 
 
-def connection(transport: str, **extra) -> dict:
-    """A [[modbus]] table named "drives" to the simulated drives."""
+def connection(transport: str, wire: str = "memory", **extra) -> dict:
+    """A [[modbus]] table named "drives" to the simulated drives, in memory
+    or on a real port (wire = "port": a pseudo-terminal or a TCP socket)."""
     table = {
         "name": "drives",
         "transport": transport,
-        "timeout": TIMEOUT,
+        "sim_wire": wire,
+        "timeout": PORT_TIMEOUT if wire == "port" else TIMEOUT,
         "retries": 0,
         "reconnect": "100ms",
         "reconnect_max": "400ms",

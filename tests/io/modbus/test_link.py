@@ -1,10 +1,14 @@
 """The manual's example telegrams (manual 002 §2.6.6, digest §5.1), byte for
-byte on a real serial line: the master's RTU requests and the simulated
-drive's answers as they crossed the pseudo-terminal cable."""
+byte: the master's RTU requests and the simulated drive's answers as they
+crossed the line, in memory (virtual time) and on the pseudo-terminal cable."""
 
 from __future__ import annotations
 
-from .plant import plant_config
+import pytest
+
+from softplc.runtime.io.modbus.link import ModbusError
+
+from .plant import WIRES, plant_config
 
 # M1/M2: read ID 6 (status word) of unit 1; the drive answers 0 (a DA1 that is
 # stopped with its STO open: no bit set, no fault). M3: write 1 to ID 1
@@ -54,8 +58,9 @@ CHANNELS = [
 ]
 
 
-def test_manual_telegrams_byte_for_byte(plants, tmp_path):
-    plant = plants(plant_config(tmp_path, PROGRAM, program="P", transport="rtu", channels=CHANNELS))
+@pytest.mark.parametrize("wire", WIRES)
+def test_manual_telegrams_byte_for_byte(plants, tmp_path, wire):
+    plant = plants(plant_config(tmp_path, PROGRAM, program="P", transport="rtu", channels=CHANNELS, wire=wire))
     plant.drive(1).di1 = False  # STO open: status word 0
     cable = plant.line.cable
     plant.run_ms(30)  # the read goes out at the tick after its edge
@@ -76,7 +81,7 @@ def test_a_frame_with_a_bad_crc_gets_no_answer(plants, tmp_path):
     RESPONSE_TIMEOUT. Written straight onto the line, as a noisy cable would."""
     import serial
 
-    plant = plants(plant_config(tmp_path, "PROGRAM P\nEND_PROGRAM\n", program="P", transport="rtu"))
+    plant = plants(plant_config(tmp_path, "PROGRAM P\nEND_PROGRAM\n", program="P", transport="rtu", wire="port"))
     plant.run_ms(10)
     cable = plant.line.cable
     with serial.Serial(cable.master_port, 115200, timeout=0.2) as port:
@@ -85,3 +90,55 @@ def test_a_frame_with_a_bad_crc_gets_no_answer(plants, tmp_path):
         port.write(READ_ID6)
         answer = port.read(7)
     assert answer[:3] == bytes.fromhex("01 03 02") and len(answer) == 7  # the next good frame is answered
+
+
+def test_in_memory_a_frame_with_a_bad_crc_is_counted_and_not_answered(plants, tmp_path):
+    plant = plants(plant_config(tmp_path, "PROGRAM P\nEND_PROGRAM\n", program="P", transport="rtu"))
+    server = plant.line.server
+    assert server.exchange(READ_ID6[:-1] + b"\x00") is None  # last CRC byte wrong
+    assert server.malformed == 1
+    assert server.exchange(READ_ID6[:3]) is None  # cut short
+    assert server.malformed == 2
+    plant.drive(1).di1 = False
+    assert server.exchange(READ_ID6) == ANSWER_0  # the next good frame is answered
+    assert server.malformed == 2
+
+
+def test_in_memory_tcp_frames_carry_the_mbap_header(plants, tmp_path):
+    channels = [{**CHANNELS[0], "trigger": "cyclic", "period": "100ms"}]
+    del channels[0]["edge"]
+    plant = plants(plant_config(tmp_path, PROGRAM, program="P", transport="tcp", channels=channels))
+    plant.drive(1).di1 = False
+    seen = []
+    exchange = plant.line.server.exchange
+    plant.line.server.exchange = lambda frame: seen.append(frame) or exchange(frame)
+    plant.run_ms(250)  # requests at 0 (the start), 100 and 200 ms
+    # transaction id (one more each time), protocol 0, length 6, unit 1, then the PDU: FC 03, ID 6, one register
+    assert len(seen) == 3
+    assert all(f[2:] == bytes.fromhex("0000 0006 01 03 0005 0001") for f in seen)
+    tids = [int.from_bytes(f[:2], "big") for f in seen]
+    assert tids == [tids[0], tids[0] + 1, tids[0] + 2]
+
+
+def test_in_memory_a_silent_unit_times_out_in_virtual_time(plants, tmp_path):
+    """The channel's error arrives when the timeout (100 ms) has run out on
+    the virtual clock, and the line sends nothing else meanwhile."""
+    channels = [
+        {"name": "one", "unit": 1, "function": 3, "offset": 5, "count": 1, "read_to": "%IW0", "period": "20ms"},
+    ]
+    plant = plants(
+        plant_config(
+            tmp_path, "PROGRAM P\nEND_PROGRAM\n", program="P", transport="rtu", channels=channels, timeout="100ms"
+        )
+    )
+    plant.run_ms(50)
+    one = plant.master.channels[0]
+    assert one.stats.ok and one.stats.requests == 3  # 0, 20, 40 ms
+    plant.engine.simulators["da1_1"].inject("silent", None, True)
+    sent = plant.line.cable.sent_by_master()
+    plant.run_ms(20)  # the request at 60 ms is waiting for its answer
+    assert one.stats.requests == 3 and one.stats.ok
+    plant.run_until(lambda: one.stats.requests == 4, 200)
+    assert plant.now_ms == pytest.approx(160, abs=10)  # sent at 60 ms + 100 ms of timeout
+    assert one.stats.last_error == ModbusError.RESPONSE_TIMEOUT and not one.stats.ok
+    assert len(plant.line.cable.sent_by_master()) == len(sent) + len(READ_ID6)  # retries = 0: sent once

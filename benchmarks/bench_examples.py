@@ -1,0 +1,130 @@
+"""Virtual-time speed of every shipped configuration: the embedded default
+plant (io_config/default.toml) and every io_config/examples/*.toml, run for
+N plant-seconds on the virtual clock (what `softplc run CFG --virtual-time
+--duration Ns` runs), printed as plant-seconds per wall-clock second.
+
+The baseline, measured in the same run: the bare engine, the same task set
+with the same programs but no bus, no simulator and no [[sim]] faults (the
+configuration's [[can]], [canopen], [[plaincan]], [[modbus]], [[loopback]]
+and [[sim]] tables removed). Its ratio to the whole plant is what the buses
+and the simulated devices cost.
+
+Each configuration runs in a fresh process (CAN channel names and serial
+ports stay private to it); only engine.run() is timed, not compiling, the
+CANopen boot or the simulators' start.
+
+    python benchmarks/bench_examples.py                  # 60 s of plant each, about 1.5 minutes
+    python benchmarks/bench_examples.py --quick          # 10 s each
+    python benchmarks/bench_examples.py --only default   # one configuration
+    python benchmarks/bench_examples.py --profile genset # cProfile of one, top 25 by own time
+"""
+
+from __future__ import annotations
+
+import argparse
+import cProfile
+import json
+import pstats
+import subprocess
+import sys
+import time
+import tomllib
+from pathlib import Path
+
+from softplc.runtime.config import config_from_dict, load_config
+from softplc.runtime.config.load import default_config_path
+from softplc.runtime.engine.build import build_engine
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLES = ROOT / "io_config" / "examples"
+BUS_TABLES = ("can", "canopen", "plaincan", "modbus", "loopback", "sim")
+TARGET_DEFAULT, TARGET_EXAMPLE = 100.0, 50.0
+
+
+def configs() -> dict[str, Path]:
+    found = {"default": default_config_path()}
+    for path in sorted(EXAMPLES.glob("*.toml")):
+        found[path.stem] = path
+    return found
+
+
+def _engine(path: Path, bare: bool, tmp: Path):
+    data = tomllib.loads(path.read_text())
+    if bare:
+        for key in BUS_TABLES:
+            data.pop(key, None)
+    if "retain" in data:  # keep the example's retain file out of the repository
+        data["retain"]["file"] = str(tmp / "retain.bin")
+    config = config_from_dict(data, path) if (bare or "retain" in data) else load_config(path)
+    return build_engine(config, virtual_time=True)
+
+
+def run_one(path: Path, seconds: float, bare: bool, profile: bool = False) -> dict:
+    """Build, start, and time engine.run() for seconds of plant time."""
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp:
+        engine = _engine(path, bare, Path(tmp))
+        engine.start()
+        try:
+            prof = cProfile.Profile() if profile else None
+            t0 = time.perf_counter()
+            if prof is not None:
+                prof.enable()
+            engine.run(duration_ns=int(seconds * 1e9))
+            if prof is not None:
+                prof.disable()
+            wall = time.perf_counter() - t0
+        finally:
+            engine.stop()
+    if prof is not None:
+        pstats.Stats(prof).sort_stats("tottime").print_stats(25)
+        pstats.Stats(prof).sort_stats("cumulative").print_stats(25)
+    return {"plant_s": seconds, "wall_s": wall, "ratio": seconds / wall}
+
+
+def _child(name: str, path: Path, seconds: float, bare: bool) -> dict:
+    cmd = [sys.executable, __file__, "--child", str(path), "--seconds", str(seconds)]
+    if bare:
+        cmd.append("--bare")
+    done = subprocess.run(cmd, capture_output=True, text=True, timeout=1800)
+    if done.returncode != 0:
+        raise RuntimeError(f"{name}: {done.stderr.strip().splitlines()[-1] if done.stderr else done.returncode}")
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="10 s of plant time each instead of 60 s")
+    parser.add_argument("--seconds", type=float, default=None, help="plant seconds per configuration")
+    parser.add_argument("--only", action="append", default=[], help="a configuration by name (repeatable)")
+    parser.add_argument("--profile", metavar="NAME", help="cProfile one configuration in this process")
+    parser.add_argument("--child", metavar="PATH", help=argparse.SUPPRESS)
+    parser.add_argument("--bare", action="store_true", help=argparse.SUPPRESS)
+    args = parser.parse_args()
+    seconds = args.seconds or (10.0 if args.quick else 60.0)
+    if args.child:
+        print(json.dumps(run_one(Path(args.child), seconds, args.bare)))
+        return
+    table = configs()
+    if args.profile:
+        run_one(table[args.profile], seconds, False, profile=True)
+        return
+    names = args.only or list(table)
+    print(f"{seconds:g} s of plant time per configuration, virtual clock; x = plant-seconds per wall-second")
+    print(f"{'configuration':<20} {'bare engine':>12} {'whole plant':>12} {'plant/bare':>10} {'wall s':>8}  target")
+    for name in names:
+        path = table[name]
+        bare = _child(name, path, seconds, True)
+        full = _child(name, path, seconds, False)
+        target = TARGET_DEFAULT if name == "default" else TARGET_EXAMPLE
+        mark = "ok" if full["ratio"] >= target else "MISSED"
+        print(
+            f"{name:<20} {bare['ratio']:>11.0f}x {full['ratio']:>11.0f}x {full['ratio'] / bare['ratio']:>10.2f} "
+            f"{full['wall_s']:>8.2f}  >= {target:.0f}x {mark}",
+            flush=True,
+        )
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,186 @@
+"""Modbus in memory: the master's client and the simulated line's server
+joined without a pseudo-terminal or a socket, for virtual time.
+
+The bytes are the real ones: the master's requests are built by pymodbus's
+own request PDUs and framer (FramerRTU: address, PDU, CRC-16; FramerSocket:
+the MBAP header), the line decodes them with pymodbus's server-side framer
+(a frame with a bad CRC is dropped, as on a real line), executes them with
+pymodbus's own request handling (``datastore_update`` against the line's
+units) and frames the answer, which the master decodes with its framer.
+Nothing waits: the answer is there when exchange() returns.
+
+    client = MemoryClient(line, settings)   # what ModbusLink uses instead of
+    client.read_holding_registers(5, count=1, device_id=1)   # pymodbus's client
+    client.line_s     # the modelled time of the last request on the line
+
+Time, decided here and kept by the link and the worker (master.py):
+  * an answer is in the image of the tick that asked (as before, when the
+    engine's thread waited for a real answer); its response time is the
+    modelled time on the line: both frames at the configured baud rate (RTU;
+    bits per character from parity and stop bits) plus the idle gap, 0 for TCP;
+  * a request that gets no answer costs its timeout, every retry included,
+    in virtual time: the connection sends nothing else meanwhile, and the
+    error (RESPONSE_TIMEOUT) reaches the program when the last timeout ends.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from pymodbus.client.mixin import ModbusClientMixin
+from pymodbus.constants import ExcCodes
+from pymodbus.exceptions import ModbusIOException, NoSuchIdException
+from pymodbus.framer import FramerBase, FramerRTU, FramerSocket
+from pymodbus.pdu import DecodePDU, ExceptionResponse, ModbusPDU
+
+if TYPE_CHECKING:
+    from .line import SimulatedModbusLine
+    from .link import LinkSettings
+
+
+def framer(transport: str, server: bool) -> FramerBase:
+    """pymodbus's framer of a transport ("rtu" or "tcp"), a server's or a client's."""
+    decoder = DecodePDU(server)
+    return FramerRTU(decoder) if transport == "rtu" else FramerSocket(decoder)
+
+
+def run_now(coroutine):
+    """The result of a coroutine that never suspends (pymodbus's
+    datastore_update against the line's units, which await nothing)."""
+    try:
+        coroutine.send(None)
+    except StopIteration as stop:
+        return stop.value
+    coroutine.close()
+    raise RuntimeError("a simulated Modbus unit suspended; in-memory requests must complete at once")
+
+
+class MemoryCable:
+    """The in-memory line's record and its one fault, as NullModem has them
+    (runtime/sim/null_modem.py): cut() and mend(), the bytes each side sent."""
+
+    def __init__(self) -> None:
+        self.is_cut = False
+        self._wire = (bytearray(), bytearray())
+
+    def cut(self) -> None:
+        """Nothing goes through any more (bytes sent meanwhile are lost)."""
+        self.is_cut = True
+
+    def mend(self) -> None:
+        self.is_cut = False
+
+    def record(self, by_slave: bool, data: bytes) -> None:
+        self._wire[by_slave].extend(data)
+
+    def sent_by_master(self) -> bytes:
+        return bytes(self._wire[0])
+
+    def sent_by_slave(self) -> bytes:
+        return bytes(self._wire[1])
+
+    def clear(self) -> None:
+        self._wire[0].clear()
+        self._wire[1].clear()
+
+
+class MemoryServer:
+    """The line's end: one request frame in, the answer frame (or None: no
+    answer) out, as pymodbus's ServerRequestHandler answers it."""
+
+    def __init__(self, line: SimulatedModbusLine, context) -> None:
+        self.line = line
+        self.context = context  # the line's units as pymodbus's datastore (line._Line)
+        self.framer = framer(line.transport, server=True)
+        self.malformed = 0  # request frames dropped: bad CRC, too short, unknown layout
+
+    def exchange(self, frame: bytes) -> bytes | None:
+        line = self.line
+        cable = line.cable if isinstance(line.cable, MemoryCable) else None
+        if cable is not None:
+            if cable.is_cut:
+                return None
+            cable.record(False, frame)
+        if line.silent:
+            return None
+        try:
+            _used, pdu = self.framer.handleFrame(frame, 0, 0)
+        except ModbusIOException as exc:  # a function code pymodbus does not know
+            response: ModbusPDU | None = ExceptionResponse(
+                exc.fcode or 0, exception_code=ExcCodes.ILLEGAL_FUNCTION, device_id=exc.dev_id
+            )
+            assert response is not None
+            response.transaction_id = exc.transaction_id
+        else:
+            if pdu is None:
+                self.malformed += 1
+                return None
+            response = self._execute(pdu)
+        if response is None:
+            return None
+        answer = self.framer.buildFrame(response)
+        if cable is not None:
+            cable.record(True, answer)
+        return answer
+
+    def _execute(self, pdu: ModbusPDU) -> ModbusPDU | None:
+        """ServerRequestHandler.handle_request, with ignore_missing_devices
+        and broadcast_enable, run at once."""
+        try:
+            if not pdu.dev_id:  # a broadcast: every unit executes it, none answers
+                for dev_id in self.context.device_ids():
+                    run_now(pdu.datastore_update(self.context, dev_id))
+                return None
+            response = run_now(pdu.datastore_update(self.context, pdu.dev_id))
+        except NoSuchIdException:
+            return None  # not on the line, or muted: no answer
+        response.transaction_id = pdu.transaction_id
+        response.dev_id = pdu.dev_id
+        return response
+
+
+class MemoryClient(ModbusClientMixin[ModbusPDU]):
+    """pymodbus's request methods (read_coils ... readwrite_registers) over
+    a MemoryServer; execute() frames, sends, retries and decodes as
+    pymodbus's sync client does, without waiting."""
+
+    def __init__(self, server: MemoryServer, settings: LinkSettings, gap_s: float) -> None:
+        super().__init__()
+        self.server = server
+        self.settings = settings
+        self.framer = framer(settings.transport, server=False)
+        self._tid = 0
+        self._gap_s = gap_s
+        if settings.transport == "rtu":
+            char_bits = 1 + settings.data_bits + (0 if settings.parity == "N" else 1) + settings.stop_bits
+            self._s_per_byte = char_bits / settings.baud
+        else:
+            self._s_per_byte = 0.0
+        self.line_s = 0.0  # the last request: answered, the time on the line; not, every timeout
+
+    def connect(self) -> bool:
+        return True
+
+    def close(self) -> None:
+        pass
+
+    def execute(self, no_response_expected: bool, request: ModbusPDU) -> ModbusPDU:
+        s = self.settings
+        if s.transport == "tcp":
+            self._tid = self._tid % 0xFFFF + 1
+            request.transaction_id = self._tid
+        frame = self.framer.buildFrame(request)
+        self.line_s = 0.0
+        for _attempt in range(s.retries + 1):
+            answer = self.server.exchange(frame)
+            if no_response_expected:
+                return None  # type: ignore[return-value]  # pymodbus's own contract
+            if answer:
+                _used, pdu = self.framer.handleFrame(answer, request.dev_id, request.transaction_id)
+                if pdu is not None:
+                    self.line_s += self._gap_s + (len(frame) + len(answer)) * self._s_per_byte
+                    return pdu
+            self.line_s += s.timeout_s
+        raise ModbusIOException(
+            f"No response received after {s.retries} retries", request.function_code, dev_id=request.dev_id
+        )
