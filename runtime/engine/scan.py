@@ -113,6 +113,12 @@ class Engine:
         self.clock = clock if clock is not None else VirtualClock()
         self.image = image if image is not None else ProcessImage(program.profile.addressing)
         self.ctx = ExecContext(self.image)
+        # The watchdog's clock (ns): wall time in real time; in virtual time the
+        # scan thread's CPU time, so that a cycle's verdict does not depend on
+        # how busy the host is (a descheduled test process is no slow program).
+        self._exec_ns = time.thread_time_ns if self.clock.virtual else time.perf_counter_ns
+        if self.clock.virtual:
+            self.ctx.timer = time.thread_time
         self.drivers = list(drivers)
         #: the simulated devices of the configuration's [[sim]] tables, by name:
         #: what a test or a scheduled fault reaches (their inject() ...)
@@ -307,7 +313,7 @@ class Engine:
         clock = self.clock
         released = task.next_ns
         start_ns = clock.now_ns()
-        counter = time.perf_counter_ns
+        counter = self._exec_ns
         t0 = counter()
         self.ctx.deadline = t0 * 1e-9 + task.budget_s
         try:

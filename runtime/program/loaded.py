@@ -4,6 +4,7 @@ POUs instantiated, run cycle by cycle."""
 from __future__ import annotations
 
 import builtins
+import time
 from typing import Any
 
 from ..image.memory import ProcessImage
@@ -153,7 +154,10 @@ class Runner:
         self.program = program
         self.info = info
         self.cycle_ns = int(cycle_time_ms * 1_000_000)
-        self.ctx = ctx or ExecContext(ProcessImage(program.profile.addressing))
+        if ctx is None:
+            ctx = ExecContext(ProcessImage(program.profile.addressing))
+            ctx.timer = time.thread_time  # virtual time: the watchdog counts this thread's CPU time
+        self.ctx = ctx
         self.ns = program.load(self.ctx)
         self.instance = None
         self.result = None

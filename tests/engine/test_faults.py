@@ -4,8 +4,11 @@ serving (inputs, the other tasks, PLC_DIAG), and a restart resumes."""
 
 from __future__ import annotations
 
+import time
+
 import pytest
 
+from softplc.runtime.engine.clock import RealClock, VirtualClock
 from softplc.runtime.image.address import parse_address
 from softplc.runtime.io.loopback.driver import LoopbackDriver
 
@@ -147,3 +150,29 @@ def test_fault_kind_of_every_task_is_counted(engines):
     e.run(duration_ns=100 * MS)
     control = e.tasks[0]
     assert control.stats.faults == 1 and control.stats.cycles == 5  # completed cycles only
+
+
+WAIT_PROGRAM = "PROGRAM Waiter\nVAR n : INT; END_VAR\nn := n + 1;\nEND_PROGRAM\n"
+
+
+def _waiting_engine(engines, clock):
+    """A task whose cycle waits 150 ms without computing (as when the host
+    deschedules the process), with a 100 ms watchdog."""
+    e = engines(WAIT_PROGRAM, [task("Main", 10, "Waiter", watchdog_ms=100)], clock=clock)
+    e.tasks[0].calls.append(lambda: time.sleep(0.15))
+    return e
+
+
+def test_in_virtual_time_a_busy_host_is_no_watchdog_fault(engines):
+    # The watchdog counts the scan thread's CPU time on a virtual clock: a
+    # descheduled process (a loaded CI machine) is not a slow program.
+    e = _waiting_engine(engines, VirtualClock())
+    e.run(cycles=2)
+    assert e.faults == [] and e.get("Waiter.n") == 2
+
+
+def test_on_the_real_clock_a_cycle_that_waits_too_long_is_a_watchdog_fault(engines):
+    e = _waiting_engine(engines, RealClock())
+    e.run(cycles=1)
+    [record] = e.faults
+    assert record.fault.kind == "watchdog" and "longer than 100 ms" in record.fault.message
