@@ -234,6 +234,18 @@ class LtmrSimulator(SimulatedCanopenSlave):
             return self.model.registers.get(reg, 0).to_bytes(2, "little")
         return None
 
+    def pdo_source(self, index: int, subindex: int):
+        """A TPDO-mapped register straight from the model (object_read, without
+        the object dictionary's look-ups): TPDOs are packed at every step."""
+        if index not in REGISTER_INDICES:
+            return None
+        try:
+            reg = object_to_register(index, subindex)
+        except (ForbiddenRegisterError, UnmappedRegisterError):
+            return None  # refused as object_read refuses it
+        registers = self.model.registers
+        return lambda: registers.get(reg, 0)
+
     def object_write(self, index: int, subindex: int, od, data: bytes, local: bool) -> None:
         if index not in REGISTER_INDICES:
             return

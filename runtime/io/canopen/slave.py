@@ -35,6 +35,7 @@ from __future__ import annotations
 import logging
 import struct
 import threading
+from collections.abc import Callable
 
 import can
 import canopen
@@ -148,6 +149,7 @@ class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
         self._sync_rpdos: dict[int, tuple] = {}  # RPDO number -> (pdo, data) waiting for SYNC
         self._init_error_control()
         self._written: list[int] = []  # objects written, for _flush_writes
+        self._cached: dict[tuple[int, int], int] = {}  # _cached_value: stored values read every tick
 
     # ------------------------------------------------------------------ hooks
 
@@ -167,6 +169,14 @@ class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
         """Device rules on top of the EDS PDOMapping flag (e.g. which objects go
         into RPDOs and which into TPDOs)."""
         return True
+
+    def pdo_source(self, index: int, subindex: int) -> Callable[[], int] | None:
+        """For a TPDO's packing, which runs at every service step: a function
+        of no arguments giving the object's present value as object_read
+        would (an int; the packing keeps its mapped bits), or None to read it
+        through object_read and the store. Only for an object whose value
+        never comes from the store and whose read is never refused."""
+        return None
 
     def on_state_change(self, old: int, new: int) -> None:
         """The NMT state changed (STATE_* of devices.cia301)."""
@@ -427,6 +437,8 @@ class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
 
     def _flush_writes(self, now: int) -> None:
         written, self._written = self._written, []
+        if written:
+            self._cached.clear()
         for index in dict.fromkeys(written):
             self._after_write(index, now)
 
@@ -475,15 +487,27 @@ class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
         data = self.node.get_data(index, subindex)
         return int.from_bytes(data, "little")
 
+    def _cached_value(self, index: int, subindex: int) -> int:
+        """_value of a communication object the slave reads at every step or
+        frame (SYNC COB-ID, heartbeat time, guard time): kept until the next
+        write (SDO, PDO, write(), _store) or reset of the store."""
+        key = (index, subindex)
+        value = self._cached.get(key)
+        if value is None:
+            value = self._cached[key] = self._value(index, subindex)
+        return value
+
     def _store(self, index: int, subindex: int, value: int) -> None:
         """Set a value directly, past every callback (error register, history, PKW response)."""
         var = self._variable(index, subindex)
         self.node.data_store.setdefault(index, {})[subindex] = var.encode_raw(value)
+        self._cached.clear()
 
     def _clear_stored(self, first: int, last: int) -> None:
         """Back to the EDS values for the objects first..last."""
         for index in [i for i in self.node.data_store if first <= i <= last]:
             del self.node.data_store[index]
+        self._cached.clear()
 
     def _push_error_history(self, error_code: int) -> None:
         """0x1003: newest first, as many entries as the EDS gives; bits 16-23

@@ -62,6 +62,9 @@ class ErrorControlMixin:
     def _value(self, index: int, subindex: int) -> int:
         raise NotImplementedError
 
+    def _cached_value(self, index: int, subindex: int) -> int:
+        raise NotImplementedError
+
     def _send(self, can_id: int, data: bytes) -> None:
         raise NotImplementedError
 
@@ -118,7 +121,7 @@ class ErrorControlMixin:
     # ------------------------------------------------------------------ heartbeat (CiA 301)
 
     def _heartbeat_period_ns(self) -> int:
-        return self._value(PRODUCER_HEARTBEAT, 0) * MS if PRODUCER_HEARTBEAT in self.od else 0
+        return self._cached_value(PRODUCER_HEARTBEAT, 0) * MS if PRODUCER_HEARTBEAT in self.od else 0
 
     def _produce_heartbeat(self, now: int) -> None:
         if self._heartbeat_due is None or now < self._heartbeat_due:
@@ -169,7 +172,7 @@ class ErrorControlMixin:
         """Guard time x life time factor (0: the node does not watch the master)."""
         if GUARD_TIME not in self.od or LIFE_TIME_FACTOR not in self.od:
             return 0
-        return self._value(GUARD_TIME, 0) * self._value(LIFE_TIME_FACTOR, 0) * MS
+        return self._cached_value(GUARD_TIME, 0) * self._cached_value(LIFE_TIME_FACTOR, 0) * MS
 
     def _on_guarding_request(self, now: int) -> None:
         """An RTR at 0x700 + node id: answer with the NMT state and the toggle

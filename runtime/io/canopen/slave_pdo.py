@@ -15,6 +15,7 @@ supported.
 from __future__ import annotations
 
 import logging
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -60,10 +61,11 @@ class Pdo:
     entries: list  # (index, subindex, bits)
     inhibit_ns: int = 0  # TPDO sub 3, 100 us units
     event_ns: int = 0  # TPDO sub 5, ms (A7)
+    readers: list = field(default_factory=list)  # TPDO: (read, mask, shift) per entry (_entry_reader)
+    nbytes: int = field(init=False)
 
-    @property
-    def nbytes(self) -> int:
-        return (sum(bits for _i, _s, bits in self.entries) + 7) // 8
+    def __post_init__(self) -> None:
+        self.nbytes = (sum(bits for _i, _s, bits in self.entries) + 7) // 8
 
 
 @dataclass
@@ -95,6 +97,9 @@ class PdoMixin:
     def _value(self, index: int, subindex: int) -> int:
         raise NotImplementedError
 
+    def _cached_value(self, index: int, subindex: int) -> int:
+        raise NotImplementedError
+
     def _send(self, can_id: int, data: bytes) -> None:
         raise NotImplementedError
 
@@ -111,6 +116,9 @@ class PdoMixin:
         raise NotImplementedError
 
     def pdo_mappable(self, index: int, subindex: int, rpdo: bool) -> bool:
+        raise NotImplementedError
+
+    def pdo_source(self, index: int, subindex: int) -> Callable[[], int] | None:
         raise NotImplementedError
 
     def on_rpdo(self, number: int) -> None:
@@ -207,7 +215,46 @@ class PdoMixin:
                 pdo.inhibit_ns = self._value(comm, 3) * 100_000  # 100 us units
             if 5 in comm_record:
                 pdo.event_ns = self._value(comm, 5) * MS  # ms (CiA 301; manual says 0.1 ms: A7)
+            shift = 0
+            for index, subindex, bits in entries:
+                pdo.readers.append((self._entry_reader(index, subindex), (1 << bits) - 1, shift))
+                shift += bits
         return pdo
+
+    def _entry_reader(self, index: int, subindex: int) -> Callable[[], int]:
+        """How _pack_tpdo reads one mapped object: the device's pdo_source, or
+        what LocalNode.get_data does (read callbacks, the store, the EDS value,
+        its default) with the object looked up once; a refused or missing
+        object packs as 0."""
+        source = self.pdo_source(index, subindex)
+        if source is not None:
+            return source
+        node = self.node
+        try:
+            var = node._find_object(index, subindex)
+        except SdoAbortedError:
+            return lambda: 0
+        callbacks = node._read_callbacks  # canopen's list: one may be added later, so read at each call
+        store = node.data_store
+
+        def read() -> int:
+            try:
+                for callback in callbacks:
+                    result = callback(index=index, subindex=subindex, od=var)
+                    if result is not None:
+                        return int.from_bytes(var.encode_raw(result), "little")
+                stored = store.get(index)
+                if stored is not None and subindex in stored:
+                    return int.from_bytes(stored[subindex], "little")
+                if var.value is not None:
+                    return int.from_bytes(var.encode_raw(var.value), "little")
+                if var.default is not None:
+                    return int.from_bytes(var.encode_raw(var.default), "little")
+            except SdoAbortedError:
+                pass
+            return 0
+
+        return read
 
     # ------------------------------------------------------------------ PDO traffic
 
@@ -237,14 +284,8 @@ class PdoMixin:
 
     def _pack_tpdo(self, pdo: Pdo) -> bytes:
         frame = 0
-        offset = 0
-        for index, subindex, bits in pdo.entries:
-            try:
-                raw = self.node.get_data(index, subindex)
-            except SdoAbortedError:
-                raw = b""
-            frame |= (int.from_bytes(raw, "little") & ((1 << bits) - 1)) << offset
-            offset += bits
+        for read, mask, shift in pdo.readers:
+            frame |= (read() & mask) << shift
         return frame.to_bytes(pdo.nbytes, "little")
 
     def _send_tpdo(self, pdo: Pdo, data: bytes, now: int) -> None:
@@ -261,13 +302,13 @@ class PdoMixin:
             if pdo.transmission not in EVENT_TYPES:
                 continue
             state = self._tpdo_state.setdefault(pdo.number, TpdoState())
-            data = self._pack_tpdo(pdo)
             since = None if state.last_sent_ns is None else now - state.last_sent_ns
+            if since is not None and since < pdo.inhibit_ns:
+                continue  # sent once the inhibit time is over (nothing to pack before)
+            data = self._pack_tpdo(pdo)
             event_due = pdo.event_ns and since is not None and since >= pdo.event_ns
             if not (state.pending or data != state.last_data or event_due):
                 continue
-            if since is not None and since < pdo.inhibit_ns:
-                continue  # sent once the inhibit time is over
             self._send_tpdo(pdo, data, now)
 
     def _on_sync(self, now: int) -> None:
@@ -302,4 +343,4 @@ class PdoMixin:
         self._transmit_event_tpdos(self._clock_ns())
 
     def _sync_cob_id(self) -> int:
-        return (self._value(SYNC_COB_ID, 0) & 0x7FF) if SYNC_COB_ID in self.od else COB_SYNC
+        return (self._cached_value(SYNC_COB_ID, 0) & 0x7FF) if SYNC_COB_ID in self.od else COB_SYNC
