@@ -181,6 +181,14 @@ _RUN_BITS = Control1.RUN_FORWARD | Control1.RUN_REVERSE
 _STATUS2_OWNED = Status2.SPEED_FLC2 | Status2.NETWORK_COMM_LOSS | Status2.TRANSITION_LOCKOUT
 # 458: LO1, LO2 (bits 0, 1) and O.4 (bit 3), the trip relay (95-96 / 97-98, 459 bit 15)
 _OUTPUTS_OWNED = 0b1011
+# _publish's bits as plain ints
+_S1_CONTROLLER_POWER, _S1_READY, _S1_ON = int(Status1.CONTROLLER_POWER), int(Status1.READY), int(Status1.ON)
+_S1_TRIPPED, _S1_ALARM = int(Status1.TRIP | Status1.TRIPPED), int(Status1.ALARM)
+_S1_RESET_AUTHORIZED, _S1_RUNNING = int(Status1.RESET_AUTHORIZED), int(Status1.RUNNING)
+_S1_IN_REMOTE, _S1_STARTING = int(Status1.IN_REMOTE), int(Status1.STARTING)
+_S2_SPEED_FLC2, _S2_NETWORK_COMM_LOSS = int(Status2.SPEED_FLC2), int(Status2.NETWORK_COMM_LOSS)
+_S2_TRANSITION_LOCKOUT = int(Status2.TRANSITION_LOCKOUT)
+_STATUS2_KEPT = ~int(_STATUS2_OWNED) & 0xFFFF
 _IO_OUTPUT_LO1, _IO_OUTPUT_LO2, _IO_OUTPUT_TRIP = 1 << 12, 1 << 13, 1 << 15
 _IO_INPUTS = 0x0FFF  # 459 bits 0-11 = inputs 1..12 (L3579)
 
@@ -628,33 +636,34 @@ class LtmrModel:
         now = self.t_ns or 0
         percent = self.current_percent
         tripped = self.tripped
-        status1 = Status1.CONTROLLER_POWER
+        # plain ints, not IntFlag operations: this runs at every step
+        status1 = _S1_CONTROLLER_POWER
         if not tripped:
-            status1 |= Status1.READY
+            status1 |= _S1_READY
         if self.motor_on:
-            status1 |= Status1.ON
+            status1 |= _S1_ON
         if tripped:
-            status1 |= Status1.TRIP | Status1.TRIPPED
+            status1 |= _S1_TRIPPED
         if self._alarms:
-            status1 |= Status1.ALARM
+            status1 |= _S1_ALARM
         if self.reset_authorized:
-            status1 |= Status1.RESET_AUTHORIZED
+            status1 |= _S1_RESET_AUTHORIZED
         if self.motor_running:
-            status1 |= Status1.RUNNING
+            status1 |= _S1_RUNNING
         if self.in_remote:
-            status1 |= Status1.IN_REMOTE
+            status1 |= _S1_IN_REMOTE
         if self.starting:
-            status1 |= Status1.STARTING
-        r[REG_STATUS_1] = int(status1) | current_ratio_field(percent) << STATUS1_CURRENT_SHIFT
+            status1 |= _S1_STARTING
+        r[REG_STATUS_1] = status1 | current_ratio_field(percent) << STATUS1_CURRENT_SHIFT
 
         status2 = 0
         if self._uses_flc2():
-            status2 |= Status2.SPEED_FLC2
+            status2 |= _S2_SPEED_FLC2
         if self.comm_lost:
-            status2 |= Status2.NETWORK_COMM_LOSS
+            status2 |= _S2_NETWORK_COMM_LOSS
         if now < self._lockout_until_ns:
-            status2 |= Status2.TRANSITION_LOCKOUT
-        r[REG_STATUS_2] = (r[REG_STATUS_2] & ~int(_STATUS2_OWNED) & 0xFFFF) | int(status2)
+            status2 |= _S2_TRANSITION_LOCKOUT
+        r[REG_STATUS_2] = (r[REG_STATUS_2] & _STATUS2_KEPT) | status2
 
         outputs = (1 if self.lo1 else 0) | (2 if self.lo2 else 0) | (8 if tripped else 0)
         r[REG_LOGIC_OUTPUTS] = (r[REG_LOGIC_OUTPUTS] & ~_OUTPUTS_OWNED & 0xFFFF) | outputs
