@@ -22,6 +22,8 @@ A device simulator subclasses it and fills in the hooks:
     object_write(index, sub, od, data, local)
                                   check or apply a write; raise SdoAbortedError(code) to refuse
     pdo_mappable(index, sub, rpdo) whether an object may go into an RPDO / TPDO
+    pdo_source(index, sub)        a cheap reader of a live object for TPDO packing,
+                                  which runs at every step (None: object_read)
     on_state_change(old, new), on_reset_application(), on_reset_communication(),
     on_comm_error(), on_comm_restored(), on_rpdo(number)
 

@@ -348,3 +348,31 @@ def test_any_eds_will_do(bench):
     assert bench.frames_with(0x701) == [b"\x00"]
     vendor = other.read(0x1018, 1)
     assert bench.sdo_read(1, 0x1018, 1) == bytes.fromhex("43 18 10 01") + vendor.to_bytes(4, "little")
+
+
+class LiveSlave(RecordingSlave):
+    """A device whose 0x2004:06 is live: object_read and pdo_source both give it."""
+
+    live = 7
+
+    def object_read(self, index, subindex, od):
+        return self.live if (index, subindex) == (0x2004, 0x06) else None
+
+    def pdo_source(self, index, subindex):
+        return (lambda: self.live) if (index, subindex) == (0x2004, 0x06) else None
+
+
+def test_a_live_value_goes_out_at_the_next_step_without_any_write(bench):
+    with eds_path("ltmr.eds") as path:
+        slave = LiveSlave(NODE, eds=str(path), settings=bench.settings, clock=bench.clock, pump=bench.pump)
+    bench.add(slave)
+    _remap_tpdo1(bench, [0x20040610, 0x20040710])  # 0x2004:07 from the store
+    bench.nmt(NMT_START, NODE)
+    assert bench.frames_with(TPDO1) == [bytes.fromhex("07 00 00 00")]
+    assert bench.sdo_read(NODE, 0x2004, 0x06)[4:6] == (7).to_bytes(2, "little")  # the same value both ways
+    bench.clear()
+    slave.live = 0x1234
+    bench.run_ms(10)
+    slave._store(0x2004, 0x07, 0x55)  # a value the device puts in the store itself
+    bench.run_ms(10)
+    assert bench.frames_with(TPDO1) == [bytes.fromhex("34 12 00 00"), bytes.fromhex("34 12 55 00")]
