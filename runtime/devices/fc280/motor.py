@@ -38,7 +38,7 @@ COAST = Motion(coast=True)
 RAMP_STOP = Motion()
 
 
-def ramp(out: Fraction, m: Motion, dt: Fraction, rate: Callable[[str], Fraction | None]) -> Fraction:
+def ramp(out: Fraction, m: Motion, dt: Fraction | int, rate: Callable[[str], Fraction | None]) -> Fraction:
     """The output frequency (Hz) dt ns later. rate(parameter): Hz per ns of a
     ramp time parameter, None for no ramp. Accelerating away from 0 uses the
     ramp-up, towards 0 (or a smaller speed, or the other direction) the

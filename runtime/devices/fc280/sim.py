@@ -150,6 +150,7 @@ class Fc280Simulator(SimulatedCanopenSlave):
         self.model.snapshot = self._snapshot
         self._power_on = True  # the next application reset is a power-up
         self._reported: list[tuple[str, int]] = []  # the events the last EMCYs told about
+        self._reported_from: tuple | None = None  # the words and 8-07 _reported was found in
         self._error_code = 0  # 603Fh
 
     # ------------------------------------------------------------------ test and operator API
@@ -207,8 +208,11 @@ class Fc280Simulator(SimulatedCanopenSlave):
         appears; the all-zero one when none is left."""
         model = self.model
         words = {**model.alarms, **model.warnings()}
-        trigger = model.read("8-07")
-        assert isinstance(trigger, int)
+        trigger = model.settings().diagnosis
+        key = (trigger, *words.values())
+        if key == self._reported_from:
+            return  # the same events as last time: nothing to send
+        self._reported_from = key
         active = emcy.events(words, emcy.watched_words(trigger))
         if not active and self._reported and trigger != emcy.DIAGNOSIS_OFF:
             self._error_code = 0
@@ -223,6 +227,7 @@ class Fc280Simulator(SimulatedCanopenSlave):
     def on_state_change(self, old: int, new: int) -> None:
         if old == STATE_BOOTUP:
             self._reported = []  # an alarm still present is reported again after booting
+            self._reported_from = None
 
     def on_reset_application(self) -> None:
         super().on_reset_application()  # the application area back to the EDS values
