@@ -588,13 +588,9 @@ class Fc280Model:
     def main_actual_value(self) -> int:
         """16-05 HIW, object 2645h: the output frequency scaled as the reference (§4.4.4)."""
         s = self.settings()
-        high = s.high
-        if s.min_max:
-            low = s.low
-            percent = (self.out - low) * 100 / (high - low) if high != low else Fraction(0)
-        else:
-            percent = self.out * 100 / high if high else Fraction(0)
-        return int16(round_half_away(percent * REFERENCE_100 / 100))
+        if s.actual_scale is None:
+            return 0
+        return int16(round_half_away((self.out - s.actual_zero) * s.actual_scale))
 
     def _publish(self) -> None:
         """The readouts in the parameter memory: 16-03, 16-05, alarm and warning

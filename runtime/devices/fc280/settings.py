@@ -15,6 +15,7 @@ from fractions import Fraction
 from .control import Selections
 from .motor import QUICK_STOP, RAMP_1_DOWN, RAMP_1_UP, RAMP_2_DOWN, RAMP_2_UP
 from .parameters import PROFILE_DSP402, parameter
+from .profile import REFERENCE_100
 from .store import ParameterStore
 
 S = 1_000_000_000
@@ -51,6 +52,11 @@ class Settings:
         self.high = value("3-03")
         self.low = value("3-02")
         self.min_max = raw("3-00") == MIN_MAX
+        # 16-05: the output frequency as a reference word, (out - actual_zero) * actual_scale
+        # (4000h = 100 % of 3-02..3-03 or of 3-03, §4.4.4); None: 0 (an empty range)
+        self.actual_zero = self.low if self.min_max else Fraction(0)
+        width = self.high - self.actual_zero
+        self.actual_scale = Fraction(REFERENCE_100) / width if width else None
         self.presets = [value("3-10", i) for i in range(parameter("3-10").elements)]
         span = abs(self.high) or value("1-23")
         # Hz per ns of each ramp time: the time for a change of 3-03 (simulator choice); None: at once

@@ -85,7 +85,8 @@ CONTROLWORD, STATUSWORD, TARGET_VELOCITY = 0x6040, 0x6041, 0x6042
 VELOCITY_OUTPUTS = (0x6043, 0x6044, 0x6045)  # demand, control effort (actual), manipulated
 DIMENSION_FACTOR, SETPOINT_FACTOR = 0x604C, 0x604B
 PROFILE_SETTINGS = (0x6046, 0x6048, 0x6049, 0x604A, 0x604B, 0x604C)
-PARAMETER_INDICES = frozenset(p.index for p in PARAMETERS.values())
+NUMBERS = {p.index: p.number for p in PARAMETERS.values()}  # index -> parameter number (§5.1)
+PARAMETER_INDICES = frozenset(NUMBERS)
 ARRAYS = {p.index: p.elements for p in PARAMETERS.values() if p.elements}  # index -> number of elements
 
 ABORTS = {
@@ -275,8 +276,8 @@ class Fc280Simulator(SimulatedCanopenSlave):
 
     def object_read(self, index: int, subindex: int, od: ODVariable):
         model = self.model
-        if index in PARAMETER_INDICES:
-            number = number_of(index)
+        number = NUMBERS.get(index)
+        if number is not None:
             if ARRAYS.get(index) and subindex == 0:
                 return ARRAYS[index]  # the number of elements (CiA 301 ARRAY)
             value = self._refusing(model.read, number, _element(index, subindex))
