@@ -574,14 +574,16 @@ class Fc280Model:
         if state == DspState.START:
             return 0
         m = self.motion()
-        sw = STATE_BITS[state] | (DSP_REMOTE if self._bus_control() else 0)
+        s = self.settings()
+        out = self.out
+        sw = STATE_BITS[state] | (DSP_REMOTE if s.bus_control else 0)
         if any(self.warnings().values()):
             sw |= DSP_WARNING
-        if state == DspState.OPERATION_ENABLED and m.run and m.reference and self.out == m.target:
+        if state == DspState.OPERATION_ENABLED and m.run and m.reference and out == m.target:
             sw |= DSP_AT_REFERENCE | DSP_TARGET_REACHED
-        if self.out != 0 and abs(self.out) >= self._f_max():
+        if out != 0 and abs(out) >= s.f_max:
             sw |= DSP_SPEED_LIMIT
-        if m.run or self.out != 0:
+        if m.run or out != 0:
             sw |= DSP_RUNNING
         return sw
 

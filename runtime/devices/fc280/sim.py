@@ -153,6 +153,8 @@ class Fc280Simulator(SimulatedCanopenSlave):
         self._reported: list[tuple[str, int]] = []  # the events the last EMCYs told about
         self._reported_from: tuple | None = None  # the words and 8-07 _reported was found in
         self._error_code = 0  # 603Fh
+        self._dimension_key: tuple | None = None  # the stored bytes of 604Ch sub 1, 2 _dimension_value is of
+        self._dimension_value = (1, 1)
 
     # ------------------------------------------------------------------ test and operator API
 
@@ -325,10 +327,15 @@ class Fc280Simulator(SimulatedCanopenSlave):
                 raise SdoAbortedError(ABORT_VALUE_HIGH)
 
     def _dimension(self) -> tuple[int, int]:
-        """604Ch vl dimension factor (numerator, denominator)."""
-        numerator = self.read(DIMENSION_FACTOR, 1)
-        denominator = self.read(DIMENSION_FACTOR, 2)
-        return (numerator or 1), (denominator or 1)
+        """604Ch vl dimension factor (numerator, denominator); decoded again only
+        when its stored bytes change (object_read adds nothing to 604Ch)."""
+        stored = self.node.data_store.get(DIMENSION_FACTOR, {})
+        key = (stored.get(1), stored.get(2))
+        if key != self._dimension_key:
+            numerator = self.read(DIMENSION_FACTOR, 1)
+            denominator = self.read(DIMENSION_FACTOR, 2)
+            self._dimension_key, self._dimension_value = key, ((numerator or 1), (denominator or 1))
+        return self._dimension_value
 
     @staticmethod
     def _refusing(action, *args):
