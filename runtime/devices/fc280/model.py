@@ -1,6 +1,7 @@
 """The Danfoss FC 280 as a drive, without its bus: the parameter memory
-(store.py), the control words of both profiles (control.py), a motor with
-linear ramps, the control word timeout, alarms and warnings. Pure: no CAN,
+(store.py) and the view of it the tick uses (settings.py), the control
+words of both profiles (control.py), a motor with linear ramps, the
+control word timeout, alarms and warnings. Pure: no CAN,
 no threads, no clock of its own; every entry point that acts takes the time
 in nanoseconds and the model integrates up to it.
 
@@ -44,7 +45,6 @@ from .control import (
     SETUP_EXTERNAL,
     STATE_BITS,
     DspState,
-    Selections,
     dsp_next,
     fc_commands,
     vl_commands,
@@ -71,19 +71,10 @@ DRIVE_INITIALISED = 0x20000000  # 16-90, Alarm 80 (§3.1.5 HINWEIS)
 VOLTAGE_WARNINGS = 0x00001000 | 0x00002000 | 0x08000000  # DC link low/high, voltage limit
 TORQUE_WARNINGS = 0x00000040 | 0x02000000  # torque limit, current limit
 TIMER_WARNINGS = 0x00000100 | 0x00000200  # motor ETR, inverter overload
-# The status word bits as plain ints (IntFlag arithmetic is slow on the tick's path)
-_SW_CONTROL_READY, _SW_DRIVE_READY = int(StatusWord.CONTROL_READY), int(StatusWord.DRIVE_READY)
-_SW_ENABLED = int(StatusWord.ENABLED)
-_SW_TRIP, _SW_TRIP_LOCK, _SW_WARNING = int(StatusWord.TRIP), int(StatusWord.TRIP_LOCK), int(StatusWord.WARNING)
-_SW_AT_REFERENCE, _SW_BUS_CONTROL = int(StatusWord.AT_REFERENCE), int(StatusWord.BUS_CONTROL)
-_SW_IN_FREQUENCY_LIMIT, _SW_RUNNING = int(StatusWord.IN_FREQUENCY_LIMIT), int(StatusWord.RUNNING)
-_SW_WARNING_BITS = (
-    (VOLTAGE_WARNINGS, int(StatusWord.VOLTAGE_LIMIT)),
-    (TORQUE_WARNINGS, int(StatusWord.TORQUE_LIMIT)),
-    (TIMER_WARNINGS, int(StatusWord.THERMAL_TIMER)),
-)
-_CW_DATA_VALID, _CW_RESET = int(ControlWord.DATA_VALID), int(ControlWord.RESET)
-_CW_RELAY_01, _CW_RELAY_04 = int(ControlWord.RELAY_01), int(ControlWord.RELAY_04)
+# The status word bits as plain ints (IntFlag operators are slow on the tick's path)
+_SW = {flag.name: int(flag) for flag in StatusWord}
+_SW_LIMITS = {VOLTAGE_WARNINGS: "VOLTAGE_LIMIT", TORQUE_WARNINGS: "TORQUE_LIMIT", TIMER_WARNINGS: "THERMAL_TIMER"}
+_SW_WARNING_BITS = tuple((bits, _SW[name]) for bits, name in _SW_LIMITS.items())
 
 
 class Fc280Model:
@@ -205,20 +196,14 @@ class Fc280Model:
     def _dsp(self) -> bool:
         return self.settings().dsp
 
-    def _bus_control(self) -> bool:
-        return self.settings().bus_control
-
-    def _selections(self) -> Selections:
-        return self.settings().selections
-
     def _fc_control_word(self, word: int) -> None:
         """Bit 10 = 0: the word is ignored, and does not retrigger 8-03 (A28)."""
-        if not word & _CW_DATA_VALID or not self._bus_control() or self._dsp():
+        if not word & ControlWord.DATA_VALID or not self.settings().bus_control or self._dsp():
             return
         previous = self._fc_word or 0
         self._fc_word = word
         self._valid_control_word()
-        if word & ~previous & _CW_RESET:  # the rising edge (§4.4.2 bit 07)
+        if word & ~previous & ControlWord.RESET:  # the rising edge (§4.4.2 bit 07)
             self.reset()
 
     def dsp_control(self, word: int, now_ns: int) -> None:
@@ -228,7 +213,7 @@ class Fc280Model:
             raise Refused(Refusal.STATE, "6040h is the DSP 402 profile's; 8-10 is [0] FC (§4.4.1)")
         previous = self._dsp_word or 0
         self._dsp_word = word
-        if self._bus_control():
+        if self.settings().bus_control:
             self._valid_control_word()
         if word & ~previous & DSP_RESET:  # fault reset on the 0 -> 1 edge of bit 7 (A21)
             self.reset()
@@ -461,7 +446,7 @@ class Fc280Model:
             return Motion(hold=True)
         if not v.start:
             return RAMP_STOP
-        return Motion(run=True, target=self._limit(sign * self._rpm_to_hz(self._dsp_rpm)), reference=True)
+        return Motion(run=True, target=self._limit(sign * self._dsp_rpm * s.hz_per_rpm), reference=True)
 
     def _reference_hz(self, bus_raw: int, preset: int) -> Fraction:
         """§4.4.4: 4000h = 100 %, plus the preset 3-10[preset] (in %)."""
@@ -474,14 +459,8 @@ class Fc280Model:
         return percent * high / 100
 
     def _limit(self, hz: Fraction) -> Fraction:
-        f_max = self._f_max()
+        f_max = self.settings().f_max
         return max(-f_max, min(f_max, hz))
-
-    def _f_max(self) -> Fraction:
-        return self.settings().f_max
-
-    def _rpm_to_hz(self, rpm: Fraction) -> Fraction:
-        return rpm * self.settings().hz_per_rpm
 
     def _integrate(self, dt: int) -> None:
         """Move the output for dt ns towards what motion() asks."""
@@ -524,20 +503,20 @@ class Fc280Model:
         if self._param("0-10") != SETUP_EXTERNAL:
             return self._param("0-10")
         if self._dsp():
-            return vl_commands(self._dsp_word, self._selections()).setup
-        return fc_commands(self._fc_word, self._selections()).setup
+            return vl_commands(self._dsp_word, self.settings().selections).setup
+        return fc_commands(self._fc_word, self.settings().selections).setup
 
     @property
     def relay_01(self) -> bool:
         """Relay 01: FC control word bit 11 with 5-40[0] = [36] "Steuerwort Bit 11"."""
         word = self._fc_word or 0
-        return not self._dsp() and bool(word & _CW_RELAY_01) and self._param("5-40", 0) == RELAY_CTW_BIT_11
+        return not self._dsp() and bool(word & ControlWord.RELAY_01) and self._param("5-40", 0) == RELAY_CTW_BIT_11
 
     @property
     def relay_04(self) -> bool:
         """Relay 04: FC control word bit 12 with 5-40[1] = [37] "Steuerwort Bit 12"."""
         word = self._fc_word or 0
-        return not self._dsp() and bool(word & _CW_RELAY_04) and self._param("5-40", 1) == RELAY_CTW_BIT_12
+        return not self._dsp() and bool(word & ControlWord.RELAY_04) and self._param("5-40", 1) == RELAY_CTW_BIT_12
 
     def fc_status_word(self) -> int:
         """16-03, object 2643h (Tabelle 4.10)."""
@@ -546,21 +525,21 @@ class Fc280Model:
     def _fc_status_word(self, m: Motion, warnings: dict[str, int], s: Settings) -> int:
         out = self.out
         if self.tripped:
-            sw = _SW_TRIP | (_SW_TRIP_LOCK if self.trip_lock else 0)
+            sw = _SW["TRIP"] | (_SW["TRIP_LOCK"] if self.trip_lock else 0)
         else:
-            sw = _SW_CONTROL_READY | _SW_DRIVE_READY
+            sw = _SW["CONTROL_READY"] | _SW["DRIVE_READY"]
             if not m.coast:
-                sw |= _SW_ENABLED
+                sw |= _SW["ENABLED"]
         if any(warnings.values()):
-            sw |= _SW_WARNING
+            sw |= _SW["WARNING"]
         if m.run and out == m.target:
-            sw |= _SW_AT_REFERENCE
+            sw |= _SW["AT_REFERENCE"]
         if s.bus_control:
-            sw |= _SW_BUS_CONTROL
+            sw |= _SW["BUS_CONTROL"]
         if abs(out) < s.f_max:
-            sw |= _SW_IN_FREQUENCY_LIMIT
+            sw |= _SW["IN_FREQUENCY_LIMIT"]
         if m.run or out != 0:
-            sw |= _SW_RUNNING
+            sw |= _SW["RUNNING"]
         warning_word = warnings["16-92"]
         for bits, flag in _SW_WARNING_BITS:
             if warning_word & bits:
