@@ -1,6 +1,7 @@
 """The Danfoss FC 280 as a drive, without its bus: the parameter memory
-(store.py), the control words of both profiles (control.py), a motor with
-linear ramps, the control word timeout, alarms and warnings. Pure: no CAN,
+(store.py) and the view of it the tick uses (settings.py), the control
+words of both profiles (control.py), a motor with linear ramps, the
+control word timeout, alarms and warnings. Pure: no CAN,
 no threads, no clock of its own; every entry point that acts takes the time
 in nanoseconds and the model integrates up to it.
 
@@ -44,7 +45,6 @@ from .control import (
     SETUP_EXTERNAL,
     STATE_BITS,
     DspState,
-    Selections,
     dsp_next,
     fc_commands,
     vl_commands,
@@ -52,14 +52,13 @@ from .control import (
 from .motor import COAST, RAMP_STOP, Motion, int16, ramp, round_half_away
 from .parameters import PROFILE_DSP402, parameter
 from .profile import REFERENCE_100, ControlWord, StatusWord
+from .settings import Settings
 from .store import SECTIONS_OF_SUB, ParameterStore, Refusal, Refused
 
 S = 1_000_000_000
 
 # 8-04 Steuerwort Timeout-Funktion (§5.4 of the digest, chapter 6)
 OFF, FREEZE, STOP, JOG, MAX_SPEED, STOP_AND_ALARM = range(6)
-CONTROL_SOURCE_OPTION_A = 3  # 8-02 [3] Option A: the control word comes from the CANopen port (§3.3.1)
-MIN_MAX = 0  # 3-00 [0] Min-Max; [1] -Max-+Max
 
 ALARM_WORDS = ("16-90", "16-91", "16-97")  # Tabellen 8.1, 8.2; 16-97 is not tabulated
 WARNING_WORDS = ("16-92", "16-93")  # Tabellen 8.3, 8.4
@@ -72,6 +71,10 @@ DRIVE_INITIALISED = 0x20000000  # 16-90, Alarm 80 (§3.1.5 HINWEIS)
 VOLTAGE_WARNINGS = 0x00001000 | 0x00002000 | 0x08000000  # DC link low/high, voltage limit
 TORQUE_WARNINGS = 0x00000040 | 0x02000000  # torque limit, current limit
 TIMER_WARNINGS = 0x00000100 | 0x00000200  # motor ETR, inverter overload
+# The status word bits as plain ints (IntFlag operators are slow on the tick's path)
+_SW = {flag.name: int(flag) for flag in StatusWord}
+_SW_LIMITS = {VOLTAGE_WARNINGS: "VOLTAGE_LIMIT", TORQUE_WARNINGS: "TORQUE_LIMIT", TIMER_WARNINGS: "THERMAL_TIMER"}
+_SW_WARNING_BITS = tuple((bits, _SW[name]) for bits, name in _SW_LIMITS.items())
 
 
 class Fc280Model:
@@ -87,6 +90,7 @@ class Fc280Model:
         now_ns: int = 0,
     ) -> None:
         self.store = ParameterStore(parameters, kept)
+        self._settings_view = Settings(self.store)
         #: the simulator's object values by section of the non-volatile memory, for save()
         self.snapshot: Callable[[], dict[str, dict]] | None = None
         self._now = now_ns
@@ -107,6 +111,9 @@ class Fc280Model:
         self.injected_warnings = dict.fromkeys(WARNING_WORDS, 0)
         self.trip_lock = False
         self._dc_since: int | None = None
+        self._base_key: tuple | None = None  # what _base_motion() was computed from
+        self._base = COAST
+        self._shown: tuple | None = None  # what _publish() last showed, from what
         self._publish()
 
     # ------------------------------------------------------------------ parameters
@@ -120,9 +127,13 @@ class Fc280Model:
         assert isinstance(value, int)
         return value
 
-    def _value(self, number: str, sub: int = 0) -> Fraction:
-        """A parameter in its unit (conversion index, Tabelle 6.2)."""
-        return self._param(number, sub) * parameter(number).factor
+    def settings(self) -> Settings:
+        """The parameters the drive works with, in their units (settings.py): read
+        again from the store after each change of it."""
+        view = self._settings_view
+        if view.version != self.store.version:
+            view = self._settings_view = Settings(self.store)
+        return view
 
     def write(self, number: str, raw: int, now_ns: int, sub: int = 0) -> None:
         """A parameter write from the bus or the drive's LCP; Refused if the
@@ -183,18 +194,11 @@ class Fc280Model:
     # ------------------------------------------------------------------ control words
 
     def _dsp(self) -> bool:
-        return self._param("8-10") == PROFILE_DSP402
-
-    def _bus_control(self) -> bool:
-        return self._param("8-02") == CONTROL_SOURCE_OPTION_A
-
-    def _selections(self) -> Selections:
-        p = self._param
-        return Selections(p("8-01"), *(p(f"8-5{n}") for n in range(7)))
+        return self.settings().dsp
 
     def _fc_control_word(self, word: int) -> None:
         """Bit 10 = 0: the word is ignored, and does not retrigger 8-03 (A28)."""
-        if not word & ControlWord.DATA_VALID or not self._bus_control() or self._dsp():
+        if not word & ControlWord.DATA_VALID or not self.settings().bus_control or self._dsp():
             return
         previous = self._fc_word or 0
         self._fc_word = word
@@ -209,7 +213,7 @@ class Fc280Model:
             raise Refused(Refusal.STATE, "6040h is the DSP 402 profile's; 8-10 is [0] FC (§4.4.1)")
         previous = self._dsp_word or 0
         self._dsp_word = word
-        if self._bus_control():
+        if self.settings().bus_control:
             self._valid_control_word()
         if word & ~previous & DSP_RESET:  # fault reset on the 0 -> 1 edge of bit 7 (A21)
             self.reset()
@@ -240,7 +244,7 @@ class Fc280Model:
         With 8-04 [5] the alarm is 16-90 00400000h "Feldbus-Fehl."."""
         self.advance(now_ns)
         self.master_lost = True
-        if self._param("8-04") == STOP_AND_ALARM:
+        if self.settings().timeout_function == STOP_AND_ALARM:
             self._alarm_at_standstill["master"] = FIELDBUS_FAULT
         self._settle()
 
@@ -254,7 +258,7 @@ class Fc280Model:
         """The 8-04 function in force, None while communication is fine."""
         if not (self.word_timed_out or self.master_lost):
             return None
-        reaction = self._param("8-04")
+        reaction = self.settings().timeout_function
         return None if reaction == OFF else reaction
 
     # ------------------------------------------------------------------ alarms and warnings
@@ -314,7 +318,7 @@ class Fc280Model:
         (simulator choice; it makes digest 003 D29's byte 3 = 01)."""
         words = dict(self.injected_warnings)
         own = 0
-        if self.word_timed_out and self._param("8-04") != OFF:
+        if self.word_timed_out and self.settings().timeout_function != OFF:
             own |= CONTROL_WORD_TIMEOUT
         if self.master_lost:
             own |= FIELDBUS_FAULT
@@ -332,7 +336,7 @@ class Fc280Model:
         while self._now < now_ns:
             deadline = self._deadline()
             end = now_ns if deadline is None or deadline >= now_ns else max(deadline, self._now)
-            self._integrate(Fraction(end - self._now))
+            self._integrate(end - self._now)
             self._now = end
             if deadline is not None and deadline < now_ns:
                 self._word_timeout()
@@ -342,12 +346,12 @@ class Fc280Model:
     def _deadline(self) -> int | None:
         if self._last_word_ns is None or self.word_timed_out:
             return None
-        return self._last_word_ns + int(self._value("8-03") * S)
+        return self._last_word_ns + self.settings().timeout_ns
 
     def _word_timeout(self) -> None:
         """No valid control word within 8-03: the 8-04 function until one comes."""
         self.word_timed_out = True
-        if self._param("8-04") == STOP_AND_ALARM:
+        if self.settings().timeout_function == STOP_AND_ALARM:
             self._alarm_at_standstill["word"] = CONTROL_WORD_TIMEOUT
 
     def _standstill_alarm(self) -> None:
@@ -377,9 +381,17 @@ class Fc280Model:
     def motion(self) -> Motion:
         if self.tripped:
             return COAST
-        base = self._dsp_motion() if self._dsp() else self._fc_motion()
+        s = self.settings()
+        key = (s.version, self._fc_word, self._dsp_word, self._dsp_state, self._dsp_rpm)
+        if key == self._base_key:
+            base = self._base
+        else:  # the control words or the parameters changed
+            base = self._base = self._dsp_motion() if s.dsp else self._fc_motion()
+            self._base_key = key
+        if not (self.word_timed_out or self.master_lost):
+            return base
         reaction = self._reaction()
-        if reaction is None or (self._dsp() and self._dsp_state != DspState.OPERATION_ENABLED):
+        if reaction is None or (s.dsp and self._dsp_state != DspState.OPERATION_ENABLED):
             return base  # in DSP 402 the state machine keeps a disabled drive off (simulator choice)
         if reaction == FREEZE:
             return Motion(hold=True)
@@ -388,14 +400,15 @@ class Fc280Model:
         # [3] jog (3-19) and [4] max speed (4-14), in the direction the motor
         # turns, forward from standstill (simulator choice)
         direction = -1 if self.out < 0 or (self.out == 0 and base.target < 0) else 1
-        speed = self._rpm_to_hz(self._value("3-19")) if reaction == JOG else self._f_max()
-        return Motion(run=True, target=direction * min(speed, self._f_max()))
+        speed = s.jog_hz if reaction == JOG else s.f_max
+        return Motion(run=True, target=direction * min(speed, s.f_max))
 
     def _fc_motion(self) -> Motion:
         """§4.4.2: coast and DC brake win; hold output frequency can only be
         ended by them; then quick stop, jog (bit 8 is itself a start:
         simulator choice, A23), start, ramp stop."""
-        c = fc_commands(self._fc_word if self._bus_control() else None, self._selections())
+        s = self.settings()
+        c = fc_commands(self._fc_word if s.bus_control else None, s.selections)
         if c.coast:
             return COAST
         if c.dc_brake:
@@ -406,7 +419,7 @@ class Fc280Model:
             return Motion(quick=True)
         sign = -1 if c.reverse else 1
         if c.jog:
-            return Motion(run=True, target=sign * self._limit(self._rpm_to_hz(self._value("3-19"))), ramp_2=c.ramp_2)
+            return Motion(run=True, target=sign * self._limit(s.jog_hz), ramp_2=c.ramp_2)
         if c.start:
             hz = self._reference_hz(self._param("16-82"), c.preset)
             return Motion(run=True, target=self._limit(sign * hz), ramp_2=c.ramp_2, reference=True)
@@ -422,47 +435,36 @@ class Fc280Model:
             return Motion(quick=True)
         if state != DspState.OPERATION_ENABLED:
             return COAST
-        v = vl_commands(self._dsp_word, self._selections())
+        s = self.settings()
+        v = vl_commands(self._dsp_word, s.selections)
         sign = -1 if v.reverse else 1
         if v.jog:
-            return Motion(run=True, target=sign * self._limit(self._rpm_to_hz(self._value("8-90"))))
+            return Motion(run=True, target=sign * self._limit(s.dsp_jog_hz))
         if v.quick_stop:
             return Motion(quick=True)
         if v.hold:
             return Motion(hold=True)
         if not v.start:
             return RAMP_STOP
-        return Motion(run=True, target=self._limit(sign * self._rpm_to_hz(self._dsp_rpm)), reference=True)
+        return Motion(run=True, target=self._limit(sign * self._dsp_rpm * s.hz_per_rpm), reference=True)
 
     def _reference_hz(self, bus_raw: int, preset: int) -> Fraction:
         """§4.4.4: 4000h = 100 %, plus the preset 3-10[preset] (in %)."""
-        percent = Fraction(bus_raw * 100, REFERENCE_100) + self._value("3-10", preset)
-        high = self._value("3-03")
-        if self._param("3-00") == MIN_MAX:
-            low = self._value("3-02")
+        s = self.settings()
+        percent = Fraction(bus_raw * 100, REFERENCE_100) + s.presets[preset]
+        high = s.high
+        if s.min_max:
+            low = s.low
             return min(max(low + percent * (high - low) / 100, low), high)
         return percent * high / 100
 
     def _limit(self, hz: Fraction) -> Fraction:
-        f_max = self._f_max()
+        f_max = self.settings().f_max
         return max(-f_max, min(f_max, hz))
 
-    def _f_max(self) -> Fraction:
-        return self._value("4-14")
-
-    def _rpm_to_hz(self, rpm: Fraction) -> Fraction:
-        return rpm * self._value("1-23") / self._value("1-25")
-
-    def _rate(self, number: str) -> Fraction | None:
-        """Hz per ns for a ramp time parameter: the time for a change of 3-03
-        (simulator choice); None for a ramp time of 0 (at once)."""
-        seconds = self._value(number)
-        span = abs(self._value("3-03")) or self._value("1-23")
-        return None if seconds <= 0 else span / (seconds * S)
-
-    def _integrate(self, dt: Fraction) -> None:
+    def _integrate(self, dt: int) -> None:
         """Move the output for dt ns towards what motion() asks."""
-        self.out = ramp(self.out, self.motion(), dt, self._rate)
+        self.out = ramp(self.out, self.motion(), dt, self.settings().rate.__getitem__)
 
     # ------------------------------------------------------------------ what the drive shows
 
@@ -477,7 +479,7 @@ class Fc280Model:
     @property
     def velocity_rpm(self) -> Fraction:
         """The motor speed in RPM (6043h, 6044h before the dimension factor)."""
-        return self.out * self._value("1-25") / self._value("1-23")
+        return self.out * self.settings().rpm_per_hz
 
     @property
     def running(self) -> bool:
@@ -487,7 +489,7 @@ class Fc280Model:
     @property
     def dc_braking(self) -> bool:
         """The DC brake current flows (bit 2 = 0, for 2-02)."""
-        return self._dc_since is not None and self._now < self._dc_since + int(self._value("2-02") * S)
+        return self._dc_since is not None and self._now < self._dc_since + self.settings().dc_brake_ns
 
     @property
     def dsp_state(self) -> DspState:
@@ -501,8 +503,8 @@ class Fc280Model:
         if self._param("0-10") != SETUP_EXTERNAL:
             return self._param("0-10")
         if self._dsp():
-            return vl_commands(self._dsp_word, self._selections()).setup
-        return fc_commands(self._fc_word, self._selections()).setup
+            return vl_commands(self._dsp_word, self.settings().selections).setup
+        return fc_commands(self._fc_word, self.settings().selections).setup
 
     @property
     def relay_01(self) -> bool:
@@ -518,33 +520,31 @@ class Fc280Model:
 
     def fc_status_word(self) -> int:
         """16-03, object 2643h (Tabelle 4.10)."""
-        m = self.motion()
-        warnings = self.warnings()
-        sw = StatusWord(0)
+        return self._fc_status_word(self.motion(), self.warnings(), self.settings())
+
+    def _fc_status_word(self, m: Motion, warnings: dict[str, int], s: Settings) -> int:
+        out = self.out
         if self.tripped:
-            sw |= StatusWord.TRIP | (StatusWord.TRIP_LOCK if self.trip_lock else 0)
+            sw = _SW["TRIP"] | (_SW["TRIP_LOCK"] if self.trip_lock else 0)
         else:
-            sw |= StatusWord.CONTROL_READY | StatusWord.DRIVE_READY
+            sw = _SW["CONTROL_READY"] | _SW["DRIVE_READY"]
             if not m.coast:
-                sw |= StatusWord.ENABLED
+                sw |= _SW["ENABLED"]
         if any(warnings.values()):
-            sw |= StatusWord.WARNING
-        if m.run and self.out == m.target:
-            sw |= StatusWord.AT_REFERENCE
-        if self._bus_control():
-            sw |= StatusWord.BUS_CONTROL
-        if abs(self.out) < self._f_max():
-            sw |= StatusWord.IN_FREQUENCY_LIMIT
-        if m.run or self.out != 0:
-            sw |= StatusWord.RUNNING
-        for bits, flag in (
-            (VOLTAGE_WARNINGS, StatusWord.VOLTAGE_LIMIT),
-            (TORQUE_WARNINGS, StatusWord.TORQUE_LIMIT),
-            (TIMER_WARNINGS, StatusWord.THERMAL_TIMER),
-        ):
-            if warnings["16-92"] & bits:
+            sw |= _SW["WARNING"]
+        if m.run and out == m.target:
+            sw |= _SW["AT_REFERENCE"]
+        if s.bus_control:
+            sw |= _SW["BUS_CONTROL"]
+        if abs(out) < s.f_max:
+            sw |= _SW["IN_FREQUENCY_LIMIT"]
+        if m.run or out != 0:
+            sw |= _SW["RUNNING"]
+        warning_word = warnings["16-92"]
+        for bits, flag in _SW_WARNING_BITS:
+            if warning_word & bits:
                 sw |= flag
-        return int(sw)
+        return sw
 
     def dsp_status_word(self) -> int:
         """6041h: the state's word of Tabelle 4.3 and the bits of Tabelle 4.6;
@@ -553,31 +553,49 @@ class Fc280Model:
         if state == DspState.START:
             return 0
         m = self.motion()
-        sw = STATE_BITS[state] | (DSP_REMOTE if self._bus_control() else 0)
+        s = self.settings()
+        out = self.out
+        sw = STATE_BITS[state] | (DSP_REMOTE if s.bus_control else 0)
         if any(self.warnings().values()):
             sw |= DSP_WARNING
-        if state == DspState.OPERATION_ENABLED and m.run and m.reference and self.out == m.target:
+        if state == DspState.OPERATION_ENABLED and m.run and m.reference and out == m.target:
             sw |= DSP_AT_REFERENCE | DSP_TARGET_REACHED
-        if self.out != 0 and abs(self.out) >= self._f_max():
+        if out != 0 and abs(out) >= s.f_max:
             sw |= DSP_SPEED_LIMIT
-        if m.run or self.out != 0:
+        if m.run or out != 0:
             sw |= DSP_RUNNING
         return sw
 
     def main_actual_value(self) -> int:
         """16-05 HIW, object 2645h: the output frequency scaled as the reference (§4.4.4)."""
-        high = self._value("3-03")
-        if self._param("3-00") == MIN_MAX:
-            low = self._value("3-02")
-            percent = (self.out - low) * 100 / (high - low) if high != low else Fraction(0)
-        else:
-            percent = self.out * 100 / high if high else Fraction(0)
-        return int16(round_half_away(percent * REFERENCE_100 / 100))
+        s = self.settings()
+        if s.actual_scale is None:
+            return 0
+        return int16(round_half_away((self.out - s.actual_zero) * s.actual_scale))
 
     def _publish(self) -> None:
-        """The readouts in the parameter memory: 16-03, 16-05, alarm and warning words."""
+        """The readouts in the parameter memory: 16-03, 16-05, alarm and warning
+        words; only when something they are made of changed."""
+        m = self.motion()
+        s = self.settings()
+        alarms = self.alarms
+        injected = self.injected_warnings
+        key = (
+            m,
+            self.out,
+            s.version,
+            self.trip_lock,
+            self.word_timed_out,
+            self.master_lost,
+            *alarms.values(),
+            *injected.values(),
+        )
+        if key == self._shown:
+            return
+        self._shown = key
+        warnings = self.warnings()
         show = self.store.show
-        show("16-03", self.fc_status_word())
+        show("16-03", self._fc_status_word(m, warnings, s))
         show("16-05", self.main_actual_value())
-        for word, value in (*self.alarms.items(), *self.warnings().items()):
+        for word, value in (*alarms.items(), *warnings.items()):
             show(word, value)

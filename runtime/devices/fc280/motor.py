@@ -34,11 +34,12 @@ class Motion:
     reference: bool = False  # run follows the reference (not jog, not a timeout speed)
 
 
+_ZERO = Fraction(0)
 COAST = Motion(coast=True)
 RAMP_STOP = Motion()
 
 
-def ramp(out: Fraction, m: Motion, dt: Fraction, rate: Callable[[str], Fraction | None]) -> Fraction:
+def ramp(out: Fraction, m: Motion, dt: Fraction | int, rate: Callable[[str], Fraction | None]) -> Fraction:
     """The output frequency (Hz) dt ns later. rate(parameter): Hz per ns of a
     ramp time parameter, None for no ramp. Accelerating away from 0 uses the
     ramp-up, towards 0 (or a smaller speed, or the other direction) the
@@ -47,24 +48,30 @@ def ramp(out: Fraction, m: Motion, dt: Fraction, rate: Callable[[str], Fraction 
         return Fraction(0)
     if m.hold:
         return out
-    target = m.target if m.run else Fraction(0)
+    target = m.target if m.run else _ZERO
     while dt > 0 and out != target:
         if out != 0 and (target == 0 or (target > 0) != (out > 0) or abs(target) < abs(out)):
-            limit = Fraction(0) if target == 0 or (target > 0) != (out > 0) else target
+            limit = _ZERO if target == 0 or (target > 0) != (out > 0) else target
             speed = rate(QUICK_STOP if m.quick else RAMP_2_DOWN if m.ramp_2 else RAMP_1_DOWN)
         else:
             limit, speed = target, rate(RAMP_2_UP if m.ramp_2 else RAMP_1_UP)
-        needed = Fraction(0) if speed is None else abs(limit - out) / speed
-        if speed is None or needed <= dt:
-            out, dt = limit, dt - needed
+        if speed is None:
+            out = limit
+            continue
+        # the same exact arithmetic as comparing the time needed to reach limit with dt, with fewer operations
+        gap, step = limit - out, speed * dt
+        if abs(gap) <= step:
+            out, dt = limit, dt - abs(gap) / speed
         else:
-            return out + (speed * dt if limit > out else -speed * dt)
+            return out + step if gap > 0 else out - step
     return out
 
 
 def round_half_away(x: Fraction) -> int:
-    """As profile.reference_raw rounds."""
-    return int(abs(x) + Fraction(1, 2)) * (1 if x >= 0 else -1)
+    """As profile.reference_raw rounds: floor(|x| + 1/2), signed, in integers."""
+    n, d = x.numerator, x.denominator
+    whole = (2 * abs(n) + d) // (2 * d)
+    return whole if n >= 0 else -whole
 
 
 def int16(x: int) -> int:

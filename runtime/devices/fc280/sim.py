@@ -85,7 +85,8 @@ CONTROLWORD, STATUSWORD, TARGET_VELOCITY = 0x6040, 0x6041, 0x6042
 VELOCITY_OUTPUTS = (0x6043, 0x6044, 0x6045)  # demand, control effort (actual), manipulated
 DIMENSION_FACTOR, SETPOINT_FACTOR = 0x604C, 0x604B
 PROFILE_SETTINGS = (0x6046, 0x6048, 0x6049, 0x604A, 0x604B, 0x604C)
-PARAMETER_INDICES = frozenset(p.index for p in PARAMETERS.values())
+NUMBERS = {p.index: p.number for p in PARAMETERS.values()}  # index -> parameter number (§5.1)
+PARAMETER_INDICES = frozenset(NUMBERS)
 ARRAYS = {p.index: p.elements for p in PARAMETERS.values() if p.elements}  # index -> number of elements
 
 ABORTS = {
@@ -150,7 +151,10 @@ class Fc280Simulator(SimulatedCanopenSlave):
         self.model.snapshot = self._snapshot
         self._power_on = True  # the next application reset is a power-up
         self._reported: list[tuple[str, int]] = []  # the events the last EMCYs told about
+        self._reported_from: tuple | None = None  # the words and 8-07 _reported was found in
         self._error_code = 0  # 603Fh
+        self._dimension_key: tuple | None = None  # the stored bytes of 604Ch sub 1, 2 _dimension_value is of
+        self._dimension_value = (1, 1)
 
     # ------------------------------------------------------------------ test and operator API
 
@@ -207,8 +211,11 @@ class Fc280Simulator(SimulatedCanopenSlave):
         appears; the all-zero one when none is left."""
         model = self.model
         words = {**model.alarms, **model.warnings()}
-        trigger = model.read("8-07")
-        assert isinstance(trigger, int)
+        trigger = model.settings().diagnosis
+        key = (trigger, *words.values())
+        if key == self._reported_from:
+            return  # the same events as last time: nothing to send
+        self._reported_from = key
         active = emcy.events(words, emcy.watched_words(trigger))
         if not active and self._reported and trigger != emcy.DIAGNOSIS_OFF:
             self._error_code = 0
@@ -223,6 +230,7 @@ class Fc280Simulator(SimulatedCanopenSlave):
     def on_state_change(self, old: int, new: int) -> None:
         if old == STATE_BOOTUP:
             self._reported = []  # an alarm still present is reported again after booting
+            self._reported_from = None
 
     def on_reset_application(self) -> None:
         super().on_reset_application()  # the application area back to the EDS values
@@ -270,8 +278,8 @@ class Fc280Simulator(SimulatedCanopenSlave):
 
     def object_read(self, index: int, subindex: int, od: ODVariable):
         model = self.model
-        if index in PARAMETER_INDICES:
-            number = number_of(index)
+        number = NUMBERS.get(index)
+        if number is not None:
             if ARRAYS.get(index) and subindex == 0:
                 return ARRAYS[index]  # the number of elements (CiA 301 ARRAY)
             value = self._refusing(model.read, number, _element(index, subindex))
@@ -319,10 +327,15 @@ class Fc280Simulator(SimulatedCanopenSlave):
                 raise SdoAbortedError(ABORT_VALUE_HIGH)
 
     def _dimension(self) -> tuple[int, int]:
-        """604Ch vl dimension factor (numerator, denominator)."""
-        numerator = self.read(DIMENSION_FACTOR, 1)
-        denominator = self.read(DIMENSION_FACTOR, 2)
-        return (numerator or 1), (denominator or 1)
+        """604Ch vl dimension factor (numerator, denominator); decoded again only
+        when its stored bytes change (object_read adds nothing to 604Ch)."""
+        stored = self.node.data_store.get(DIMENSION_FACTOR, {})
+        key = (stored.get(1), stored.get(2))
+        if key != self._dimension_key:
+            numerator = self.read(DIMENSION_FACTOR, 1)
+            denominator = self.read(DIMENSION_FACTOR, 2)
+            self._dimension_key, self._dimension_value = key, ((numerator or 1), (denominator or 1))
+        return self._dimension_value
 
     @staticmethod
     def _refusing(action, *args):

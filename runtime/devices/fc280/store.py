@@ -148,6 +148,8 @@ class ParameterStore:
                     raise ValueError(str(exc)) from None
                 self._put(p, raw, sub)
         self.saved: dict[str, Value] = _copy(self.values)  # non-volatile ("EEPROM")
+        #: counts the changes of RAM values a write or power-up makes (not the readouts show() updates)
+        self.version = 0
         self.saved_objects: dict[str, dict] = {}  # section -> the simulator's object values
         self.pending_restore: set[str] = set()
 
@@ -170,6 +172,8 @@ class ParameterStore:
         if p.elements and not 0 <= sub < p.elements:
             raise Refused(Refusal.NO_ELEMENT, f"{p.number} has elements 0..{p.elements - 1}, not {sub}")
         check(p, raw)
+        if self.get(p.number, sub) != raw:
+            self.version += 1
         self._put(p, raw, sub)
         if self.values["10-33"] == 1:  # "Immer speichern" [1]: received data go to the EEPROM (chapter 6)
             self._put(p, raw, sub, self.saved)
@@ -212,4 +216,5 @@ class ParameterStore:
         for section in pending - {DRIVE}:
             self.saved_objects.pop(section, None)
         self.values = _copy(self.saved)
+        self.version += 1
         return DRIVE in pending

@@ -240,6 +240,35 @@ def test_jog_ramp_2_and_preset_references():
     assert drive.hz == 31.25  # + 3-10[2] 50 %
 
 
+def test_parameters_written_while_the_motor_runs_act_at_once():
+    drive = Drive().ctw(RUN, 50.0).after(600)
+    assert drive.hz == 10.0  # 3-41: 3 s for 50 Hz
+    drive.write("3-41", 600).after(1200)  # 6 s for 50 Hz from here on
+    assert drive.hz == 20.0
+    drive.after(600)
+    assert drive.hz == 25.0 and drive.stw == 0x0F07
+    drive.write("4-14", 200)  # 20.0 Hz: the output is above the limit, the target is the limit
+    assert drive.stw == 0x0A07  # neither at the reference nor inside the frequency limit
+    drive.after(150)
+    assert drive.hz == 22.5  # down with 3-42, 3 s for 50 Hz
+    drive.after(150)
+    assert drive.hz == 20.0 and drive.stw == 0x0B07 and drive.m.read("16-05") == 6554  # 40 % of 4000h
+    drive.write("3-03", 100_000)  # 100 Hz: 16-05 is 20 % at once, the 20 Hz limit stays the target
+    assert drive.m.read("16-05") == 3277 and drive.stw == 0x0B07
+    drive.write("4-14", 650).after(600)  # back to 65 Hz: up to 50 % of 100 Hz, 6 s for 100 Hz
+    assert drive.hz == 30.0
+
+
+def test_a_restore_brings_the_factory_ramps_back_at_the_next_power_cycle():
+    drive = Drive(**{"3-41": 600}).ctw(RUN, 50.0).after(1200)
+    assert drive.hz == 10.0  # the preset's 6 s for 50 Hz
+    drive.m.restore(4)
+    drive.m.power_cycle(drive.t)
+    assert drive.hz == 0 and drive.m.read("16-90") == DRIVE_INITIALISED
+    drive.ctw(STOP).ctw(STOP | 0x80).ctw(RUN, 50.0).after(600)  # reset Alarm 80, start again
+    assert drive.hz == 10.0  # the factory 3 s for 50 Hz
+
+
 def test_reversing_and_the_8_54_selection():
     drive = Drive().ctw(control_word(run=True, reverse=True), 50.0).after(5000)
     assert control_word(run=True, reverse=True) == 0x847C
