@@ -6,7 +6,7 @@ entry point takes the time in nanoseconds and the model integrates up to it.
     drive = EatonDriveModel(Family.DB1)      # comm timeout 3 s (factory code 4)
     drive.telegram(0)
     drive.write(eaton.REG_SPEED_SETPOINT, [500], 0)         # 50.0 Hz
-    drive.write(eaton.REG_CONTROL_WORD, [ControlWord.RUN], 0)
+    drive.write(eaton.REG_CONTROL_WORD, [_CW_RUN], 0)
     drive.advance(2_500_000_000)
     drive.read(eaton.REG_STATUS_WORD, 2, 2_500_000_000)      # [status, 250]
 
@@ -45,6 +45,11 @@ from .registers import ControlWord, Family, StatusWord
 
 __all__ = ["EatonDriveModel", "ModbusRefusal"]
 
+# the bits as plain ints: IntFlag arithmetic costs microseconds a tick
+_CW_FAULT_RESET = int(ControlWord.FAULT_RESET)
+_CW_COAST = int(ControlWord.COAST)
+_CW_QUICK_STOP = int(ControlWord.QUICK_STOP)
+_CW_RUN = int(ControlWord.RUN)
 _READY = int(StatusWord.READY)
 _RUNNING = int(StatusWord.RUNNING | StatusWord.SPEED_CONTROL_ACTIVE)  # bit 6: simulator choice
 _REVERSE = int(StatusWord.REVERSE)
@@ -330,20 +335,20 @@ class EatonDriveModel:
         cw = self._control_word()
         rising = cw & ~self._cw_prev
         self._cw_prev = cw
-        if rising & ControlWord.FAULT_RESET and self.fault:
+        if rising & _CW_FAULT_RESET and self.fault:
             # every fault's cause is gone once reset is asked for: injected faults are events, and a
             # comm-loss fault is reset by a telegram, which restored the connection
             self.fault = eaton_faults.FAULT_NONE
-        if cw & ControlWord.COAST or self.fault or not self._di1:
+        if cw & _CW_COAST or self.fault or not self._di1:
             self._run_request = False
             self._coast()
-        elif cw & ControlWord.QUICK_STOP:
+        elif cw & _CW_QUICK_STOP:
             if self._run_request or self._modulating:
                 self._stop(quick=True)  # "Schnellstopp (Rampe 2)" (L771)
-        elif not cw & ControlWord.RUN:
+        elif not cw & _CW_RUN:
             if self._run_request:
                 self._stop(quick=False)
-        elif rising & ControlWord.RUN:
+        elif rising & _CW_RUN:
             self._run_request = True
             self._modulating = True
             self._quick = False
@@ -399,6 +404,8 @@ class EatonDriveModel:
         """Move the output for dt ns: towards zero on the deceleration ramp
         (ramp 2 in a quick stop), away from it on the acceleration ramp; a
         reversal passes through zero (L468: "gemäß der eingestellten Rampen")."""
+        # exact rational arithmetic on numerators and denominators (Fraction
+        # operators cost microseconds each): a Fraction is made only for the new output
         while self._modulating and dt > 0:
             target = self._target()
             out = self._out
@@ -407,18 +414,31 @@ class EatonDriveModel:
                     self._standstill()
                 break
             rates = self._now_effective().rates
-            if out != 0 and (target == 0 or (target > 0) != (out > 0) or abs(target) < abs(out)):
-                limit = ZERO if target == 0 or (target > 0) != (out > 0) else target
+            on, od, tn, td = out.numerator, out.denominator, target.numerator, target.denominator
+            crossing = tn == 0 or (tn > 0) != (on > 0)  # the target is zero or the other way
+            if on != 0 and (crossing or abs(tn) * od < abs(on) * td):  # towards zero
+                limit = ZERO if crossing else target
                 rate = rates["quick" if self._quick else "decel"]
             else:
                 limit, rate = target, rates["accel"]
-            distance = abs(limit - out)
-            needed = ZERO if rate is None else distance / rate
-            if rate is None or needed <= dt:  # no ramp: there at once
+            if rate is None:  # no ramp: there at once
                 self._out = limit
-                dt -= needed
-            else:
-                self._out = out + (rate * dt if limit > out else -rate * dt)
+                continue
+            ln, ld, rn, rd, dn, dd = (
+                limit.numerator,
+                limit.denominator,
+                rate.numerator,
+                rate.denominator,
+                dt.numerator,
+                dt.denominator,
+            )
+            gap = ln * od - on * ld  # (limit - out) x ld x od
+            if abs(gap) * rd * dd <= dn * ld * od * rn:  # the time needed, |gap| / rate, is within dt
+                self._out = limit
+                dt -= Fraction(abs(gap) * rd, ld * od * rn)
+            else:  # out + rate x dt towards the limit
+                step = rn * dn * od
+                self._out = Fraction(on * rd * dd + (step if gap > 0 else -step), od * rd * dd)
                 dt = 0
         if self._modulating and not self._run_request and self._out == 0:
             self._standstill()
