@@ -23,9 +23,10 @@ exactly in rational arithmetic, split at the instants where something
 changes (the ramp reaches zero or the setpoint, the comm-loss watchdog
 expires), so the state after advance(t) does not depend on how many calls
 led there. What the registers mean to the motion is worked out once per
-change of the registers (effective.py), and the monitor registers are
-written only when what they show changed, so a drive at rest or at its
-setpoint costs next to nothing per tick.
+change of the registers (effective.py), and the status and monitor
+registers are brought up to date when something reads them (read(),
+status(), register()) and what they show changed, so a tick costs next to
+nothing at rest or at the setpoint, and only the ramp while ramping.
 """
 
 from __future__ import annotations
@@ -153,7 +154,6 @@ class EatonDriveModel:
             self._run_request = False  # the enable lost: coast; a new RUN edge is needed
             self._coast()
         self._apply_control()
-        self._publish()
 
     @property
     def actual_hz(self) -> float:
@@ -182,21 +182,21 @@ class EatonDriveModel:
 
     def status(self) -> int:
         """The ID 6 word."""
+        self._publish()
         return self._regs[eaton.REG_STATUS_WORD]
 
     def register(self, number: int) -> int:
         """The raw value of any register, for tests."""
-        try:
-            return self._regs[number]
-        except KeyError:
-            raise ValueError(f"{self.family.name} has no register {number}") from None
+        if number not in self._regs:
+            raise ValueError(f"{self.family.name} has no register {number}")
+        self._publish()
+        return self._regs[number]
 
     def trip(self, fault: int) -> None:
         """Inject a fault of eaton_faults.FAULTS at the last advanced time."""
         if fault not in eaton_faults.FAULTS or fault == eaton_faults.FAULT_NONE:
             raise ValueError(f"{fault} is not a fault number of Tabelle 11")
         self._set_fault(fault)
-        self._publish()
 
     def inject(self, fault: str, value, on: bool) -> None:
         """A fault of sim_faults.FAULTS (but SILENT, the line's)."""
@@ -222,7 +222,6 @@ class EatonDriveModel:
             # RUN edge (simulator choice), a tripped one a fault reset
             self._comm_lost = False
             self._fixed_frequency_8 = False
-            self._publish()
 
     def read(self, register: int, count: int, now_ns: int) -> list[int]:
         """FC03 (and the read half of FC23). Refused with 3 for a count of 0
@@ -237,6 +236,7 @@ class EatonDriveModel:
         missing = [r for r in range(register, register + count) if r not in self._regs]
         if missing:
             raise ModbusRefusal(ILLEGAL_DATA_ADDRESS, f"{self.family.name} has no register {missing[0]}")
+        self._publish()
         return [self._regs[r] for r in range(register, register + count)]
 
     def write(self, register: int, values: list[int], now_ns: int) -> None:
@@ -259,14 +259,13 @@ class EatonDriveModel:
                 regs[register + offset] = value
                 self._effective = None
         self._apply_control()
-        self._publish()
 
     # ------------------------------------------------------------------ time
 
     def advance(self, now_ns: int) -> None:
         """Time passes up to now_ns: ramps, the comm-loss watchdog and its
-        action. A time before the last one moves nothing (and, as every
-        change of state publishes at once, republishes nothing)."""
+        action. A time before the last one moves nothing. The monitor
+        registers follow when something reads them (_publish)."""
         if self._now is None:
             self._now = now_ns
         elif self._now >= now_ns:
@@ -283,7 +282,6 @@ class EatonDriveModel:
             self._now = end
             if deadline is not None and deadline < now_ns:
                 self._on_comm_loss()
-        self._publish()
 
     def _comm_deadline(self) -> int | None:
         if self._last_telegram is None or self._comm_lost:
@@ -313,7 +311,6 @@ class EatonDriveModel:
         elif reaction is action.FIXED_FREQUENCY_8:
             # a running drive changes to P2-08 in its direction; a stopped one stays stopped (simulator choice)
             self._fixed_frequency_8 = True
-        self._publish()
 
     # ------------------------------------------------------------------ control
 
@@ -453,9 +450,10 @@ class EatonDriveModel:
     # ------------------------------------------------------------------ registers
 
     def _publish(self) -> None:
-        """The monitoring registers from the state (digest §3.3), written
-        only when something they show changed: the output, the run state,
-        the fault, the enable or a register (a new Effective)."""
+        """The monitoring registers from the state (digest §3.3), before
+        anything reads them; written only when something they show changed:
+        the output, the run state, the fault, the enable or a register (a
+        new Effective). They are no input of anything else."""
         effective = self._now_effective()
         out, modulating, fault, di1 = self._out, self._modulating, self.fault, self._di1
         shown = (effective, out, modulating, self._run_request, fault, di1, self._fixed_frequency_8)
