@@ -8,6 +8,9 @@
     settings.py   serial line, comm loss, drive variants and ratings, DE1 terminals
     st_codes.py   fblocks/vendor/eaton_codes.st from registers.py and faults.py
     model.py      a drive as a Modbus slave sees it: ramps, faults, watchdog
+    defaults.py   the simulator's defaults and the parameters the model acts on
+    effective.py  what the registers mean to the model, worked out once per change
+    checks.py     whether the drive takes a register write
     sim_faults.py the faults a simulated drive takes from [[sim]] faults = [...]
 ST blocks: fblocks/vendor/eaton.st (DA1_DRIVE, EATON_PARAMETER). Simulated
 drives are units of a simulated Modbus line ([[sim]] type da1 ... de11).

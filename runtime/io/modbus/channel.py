@@ -60,6 +60,7 @@ class Channel:
         write_count = cfg.write_count if cfg.function == 23 else cfg.count
         self._write_span = self._span(image, cfg.write_from, write_count) if self.writes else None
         self._write_count = write_count
+        self._stages = self._write_span is not None or cfg.trigger == "edge"  # stage() has work
         self._staged: bytes | None = None  # the last bytes the program left to write
         self._sent: bytes | None = None  # the bytes of the last good write
         self._pending = cfg.trigger == "change"
@@ -83,6 +84,8 @@ class Channel:
     def stage(self, image: ProcessImage) -> bool:
         """After a cycle: take the bytes to write and evaluate the trigger;
         True when the channel became due (wake the worker)."""
+        if not self._stages:
+            return False
         woke = False
         with self._lock:
             if self._write_span is not None:
@@ -101,6 +104,8 @@ class Channel:
 
     def publish(self, image: ProcessImage) -> bool:
         """Before a cycle: new read data into the image; True if the stats changed."""
+        if self._fresh is None:  # nothing new (one attribute read; what arrives now is next cycle's)
+            return False
         with self._lock:
             fresh, self._fresh = self._fresh, None
         if fresh is None:

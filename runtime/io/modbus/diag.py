@@ -21,6 +21,10 @@ class ModbusDiag:
         """The program declares MODBUS_CHANNEL (it names something of modbus.st)."""
         return bool(self._channels)
 
+    def stale(self, index: int, version: int, link_ok: bool) -> bool:
+        """MODBUS_CHANNEL[index] does not show this version of the channel yet."""
+        return index < len(self._channels) and self._seen.get(index) != (version, link_ok)
+
     def update(self, snapshot) -> None:
         """snapshot: (index, Channel.snapshot(), connection ok) per channel."""
         for index, (version, ok, last_error, requests, errors, response_ms, message), link_ok in snapshot:

@@ -125,6 +125,8 @@ class ModbusExchangeService:
         return True
 
     def collect(self) -> None:
+        if not self._running:  # only request(), in this same thread, adds to it
+            return
         finished = []
         with self._lock:
             running, self._running = self._running, []

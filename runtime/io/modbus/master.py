@@ -204,13 +204,15 @@ class ModbusDriver(Driver):
         for ch in self.channels:
             ch.publish(image)
         self.exchange.collect()
-        if self._diag is not None:
-            self._diag.update(
-                [
-                    (i, ch.snapshot(), self.workers[ch.cfg.connection].link.connected)
-                    for i, ch in enumerate(self.channels)
-                ]
-            )
+        diag = self._diag
+        if diag is not None:  # a snapshot only of the channels that changed since the last one shown
+            changed = []
+            for i, ch in enumerate(self.channels):
+                link_ok = self.workers[ch.cfg.connection].link.connected
+                if diag.stale(i, ch.stats.version, link_ok):
+                    changed.append((i, ch.snapshot(), link_ok))
+            if changed:
+                diag.update(changed)
 
     def write_outputs(self, image: ProcessImage) -> None:
         for ch in self.channels:

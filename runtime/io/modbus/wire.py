@@ -7,7 +7,9 @@ the MBAP header), the line decodes them with pymodbus's server-side framer
 (a frame with a bad CRC is dropped, as on a real line), executes them with
 pymodbus's own request handling (``datastore_update`` against the line's
 units) and frames the answer, which the master decodes with its framer.
-Nothing waits: the answer is there when exchange() returns.
+Nothing waits: the answer is there when exchange() returns. Each end
+remembers the RTU frames it built and decoded (Codec), so a request or an
+answer repeated byte for byte is not framed or CRC-checked again.
 
     client = MemoryClient(line, settings)   # what ModbusLink uses instead of
     client.read_holding_registers(5, count=1, device_id=1)   # pymodbus's client
@@ -42,6 +44,60 @@ def framer(transport: str, server: bool) -> FramerBase:
     """pymodbus's framer of a transport ("rtu" or "tcp"), a server's or a client's."""
     decoder = DecodePDU(server)
     return FramerRTU(decoder) if transport == "rtu" else FramerSocket(decoder)
+
+
+#: how many frames a Codec remembers each way before it starts afresh
+CODEC_FRAMES = 256
+
+
+class Codec:
+    """pymodbus's framer of one end, remembering frames: the same PDU bytes
+    frame to the same bytes (RTU: address, PDU, CRC-16; TCP: the MBAP
+    header, PDU), and the same frame decodes to the same PDU, so a master
+    polling the same request and a drive giving the same answer are framed,
+    decoded and CRC-checked once, not at every exchange. A frame seen for
+    the first time goes through pymodbus's framer as before (one with a bad
+    CRC is dropped there, and remembered as such). TCP frames differ only by
+    the transaction id in their first two bytes (FramerSocket's layout): it
+    is left out of the key and put back."""
+
+    def __init__(self, transport: str, server: bool) -> None:
+        self.framer = framer(transport, server)
+        self._tcp = transport == "tcp"
+        self._built: dict[tuple[int, bytes], bytes] = {}
+        self._decoded: dict[tuple[bytes, int, int], tuple[int, ModbusPDU | None]] = {}
+
+    def build(self, pdu: ModbusPDU) -> bytes:
+        """framer.buildFrame(pdu)."""
+        data = pdu.function_code.to_bytes(1, "big") + pdu.encode()
+        key = (pdu.dev_id, data)
+        frame = self._built.get(key)
+        if frame is None:
+            if len(self._built) >= CODEC_FRAMES:
+                self._built.clear()
+            frame = self._built[key] = self.framer.buildFrame(pdu)
+        if self._tcp:
+            return pdu.transaction_id.to_bytes(2, "big") + frame[2:]
+        return frame
+
+    def decode(self, frame: bytes, dev_id: int, tid: int) -> tuple[int, ModbusPDU | None]:
+        """framer.handleFrame(frame, dev_id, tid); the PDU is shared by every
+        decoding of the same frame: read it at once, do not change it."""
+        if self._tcp:
+            sent_tid = int.from_bytes(frame[0:2], "big")
+            if tid and sent_tid and sent_tid != tid:  # the framer skips it: not remembered
+                return self.framer.handleFrame(frame, dev_id, tid)
+            key = (frame[2:], dev_id, 0)
+        else:
+            key = (frame, dev_id, tid)
+        found = self._decoded.get(key)
+        if found is None:
+            if len(self._decoded) >= CODEC_FRAMES:
+                self._decoded.clear()
+            found = self._decoded[key] = self.framer.handleFrame(frame, dev_id, tid)
+        if self._tcp and found[1] is not None:
+            found[1].transaction_id = sent_tid
+        return found
 
 
 def run_now(coroutine):
@@ -91,7 +147,7 @@ class MemoryServer:
     def __init__(self, line: SimulatedModbusLine, context) -> None:
         self.line = line
         self.context = context  # the line's units as pymodbus's datastore (line._Line)
-        self.framer = framer(line.transport, server=True)
+        self.codec = Codec(line.transport, server=True)
         self.malformed = 0  # request frames dropped: bad CRC, too short, unknown layout
 
     def exchange(self, frame: bytes) -> bytes | None:
@@ -104,7 +160,7 @@ class MemoryServer:
         if line.silent:
             return None
         try:
-            _used, pdu = self.framer.handleFrame(frame, 0, 0)
+            _used, pdu = self.codec.decode(frame, 0, 0)
         except ModbusIOException as exc:  # a function code pymodbus does not know
             response: ModbusPDU | None = ExceptionResponse(
                 exc.fcode or 0, exception_code=ExcCodes.ILLEGAL_FUNCTION, device_id=exc.dev_id
@@ -118,7 +174,7 @@ class MemoryServer:
             response = self._execute(pdu)
         if response is None:
             return None
-        answer = self.framer.buildFrame(response)
+        answer = self.codec.build(response)
         if cable is not None:
             cable.record(True, answer)
         return answer
@@ -148,7 +204,7 @@ class MemoryClient(ModbusClientMixin[ModbusPDU]):
         super().__init__()
         self.server = server
         self.settings = settings
-        self.framer = framer(settings.transport, server=False)
+        self.codec = Codec(settings.transport, server=False)
         self._tid = 0
         self._gap_s = gap_s
         if settings.transport == "rtu":
@@ -169,14 +225,14 @@ class MemoryClient(ModbusClientMixin[ModbusPDU]):
         if s.transport == "tcp":
             self._tid = self._tid % 0xFFFF + 1
             request.transaction_id = self._tid
-        frame = self.framer.buildFrame(request)
+        frame = self.codec.build(request)
         self.line_s = 0.0
         for _attempt in range(s.retries + 1):
             answer = self.server.exchange(frame)
             if no_response_expected:
                 return None  # type: ignore[return-value]  # pymodbus's own contract
             if answer:
-                _used, pdu = self.framer.handleFrame(answer, request.dev_id, request.transaction_id)
+                _used, pdu = self.codec.decode(answer, request.dev_id, request.transaction_id)
                 if pdu is not None:
                     self.line_s += self._gap_s + (len(frame) + len(answer)) * self._s_per_byte
                     return pdu
