@@ -9,7 +9,10 @@
     pkw.py        the PKW codec on PDO4
     st_codes.py   fblocks/vendor/ltmr_codes.st from those tables
     eds.py        io_config/eds/ltmr.eds from those tables
-    model.py      the motor and thermal model, trips and resets, fallback
+    defaults.py   the settings at power-up, the simulator's choices, the manual's constants
+    thermal.py    the thermal image (class N) as plain functions
+    model.py      the motor model: commands, outputs, trips and resets, fallback
+    publish.py    what the model shows in its status, current and thermal registers
     sim.py        the simulated LTMR: a CANopen slave on a [[can]] bus
 ST blocks: fblocks/vendor/ltmr.st (LTMR_CONTROL, LTMR_PKW).
 
