@@ -87,6 +87,7 @@ REGISTER_INDICES = frozenset(index for _first, _last, index in REGISTER_BLOCKS)
 CONFIGURATION_REGISTERS = range(540, 700)  # configuration and setting tables (L4011-4898)
 PKW_REQUEST_SUBS = (1, 2)  # 0x3000:01/02 in RPDO4
 PKW_RESPONSE_SUBS = (3, 4)  # 0x3000:03/04 in TPDO4
+_PORT_CONNECTED, _PORT_COMMUNICATING = int(NetworkPortStatus.CONNECTED), int(NetworkPortStatus.COMMUNICATING)
 
 
 # [[sim]] faults = [...] (config/sim_faults.py)
@@ -180,14 +181,14 @@ class LtmrSimulator(SimulatedCanopenSlave):
     # ------------------------------------------------------------------ device behaviour
 
     def run_device(self, now_ns: int) -> None:
-        self.model.advance_to(now_ns)
-        status = 0
-        if self.plugged:
-            status |= NetworkPortStatus.CONNECTED
+        model = self.model
+        model.advance_to(now_ns)
+        status = _PORT_CONNECTED if self.plugged else 0  # plain ints: this runs at every step
         if self.nmt_state == STATE_OPERATIONAL and not self.heartbeat_lost:
-            status |= NetworkPortStatus.COMMUNICATING
-        self.model.registers[REG_NETWORK_PORT_STATUS] = int(status)
-        self._report_trip()
+            status |= _PORT_COMMUNICATING
+        model.registers[REG_NETWORK_PORT_STATUS] = status
+        if model.registers[REG_TRIP_CODE] != self._emcy_trip_code:
+            self._report_trip()
 
     def _report_trip(self) -> None:
         code = self.model.registers[REG_TRIP_CODE]
