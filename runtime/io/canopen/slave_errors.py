@@ -84,6 +84,7 @@ class ErrorControlMixin:
         self._guarded_ns: int | None = None  # the last guarding request (None: not guarded yet)
         self._guarding_lost = False
         self._error_pending = False  # a communication error from before a communication reset
+        self._has_guarding = GUARD_TIME in self.od and LIFE_TIME_FACTOR in self.od  # the EDS decides, once
 
     def _error_outlives_reset(self, application: bool) -> bool:
         """Before a reset: whether a communication error stays pending after it."""
@@ -170,7 +171,7 @@ class ErrorControlMixin:
 
     def _life_time_ns(self) -> int:
         """Guard time x life time factor (0: the node does not watch the master)."""
-        if GUARD_TIME not in self.od or LIFE_TIME_FACTOR not in self.od:
+        if not self._has_guarding:
             return 0
         return self._cached_value(GUARD_TIME, 0) * self._cached_value(LIFE_TIME_FACTOR, 0) * MS
 
