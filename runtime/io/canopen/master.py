@@ -285,12 +285,15 @@ class CanopenDriver(Driver):
                 self._next_sync_ns = now_ns + c.sync_us * 1000
                 sync = True
             for node in self.nodes.values():
-                before = node.sup.state
-                action = node.sup.tick(now_ns)
-                if node.sup.state != before and node.sup.state in (NodeState.MISSING, NodeState.LOST):
-                    log.warning("canopen: node %s (%d): %s", node.cfg.name, node.cfg.node_id, node.sup.message)
-                self._act(node, action)
-                if node.sup.guard_due(now_ns):
+                sup = node.sup
+                before = sup.state
+                # tick() does nothing before its deadline (most steps): not called then
+                if before == NodeState.UNKNOWN or (sup.deadline_ns is not None and now_ns >= sup.deadline_ns):
+                    action = sup.tick(now_ns)
+                    if sup.state != before and sup.state in (NodeState.MISSING, NodeState.LOST):
+                        log.warning("canopen: node %s (%d): %s", node.cfg.name, node.cfg.node_id, sup.message)
+                    self._act(node, action)
+                if sup.guard_ns and sup.guard_due(now_ns):
                     self._send_remote(cob_heartbeat(node.cfg.node_id))
             self._send_rpdos(now_ns, sync=sync)
             if sync:

@@ -192,8 +192,10 @@ class ErrorControlMixin:
     def _watch_guarding(self, now: int) -> None:
         """Life guarding: from the first request on, a gap longer than the life
         time is a communication error."""
+        if self._guarded_ns is None or self._guarding_lost:
+            return
         life = self._life_time_ns()
-        if not life or self._guarded_ns is None or self._guarding_lost:
+        if not life:
             return
         if now - self._guarded_ns > life:
             self._guarding_lost = True

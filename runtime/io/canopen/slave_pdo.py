@@ -357,11 +357,17 @@ class PdoMixin:
         and every event-timer period even without change."""
         tables = self._tables if self._tables is not None else self._pdo_tables()
         for pdo, state in tables.events:
-            since = None if state.last_sent_ns is None else now - state.last_sent_ns
-            if since is not None and since < pdo.inhibit_ns:
-                continue  # sent once the inhibit time is over (nothing to pack before)
-            data = self._pack_tpdo(pdo)
-            event_due = pdo.event_ns and since is not None and since >= pdo.event_ns
+            last = state.last_sent_ns
+            since = 0
+            if last is not None:
+                since = now - last
+                if since < pdo.inhibit_ns:
+                    continue  # sent once the inhibit time is over (nothing to pack before)
+            frame = 0  # _pack_tpdo, inlined: this runs for every event TPDO at every step
+            for read, mask, shift in pdo.readers:
+                frame |= (read() & mask) << shift
+            data = frame.to_bytes(pdo.nbytes, "little")
+            event_due = pdo.event_ns and last is not None and since >= pdo.event_ns
             if not (state.pending or data != state.last_data or event_due):
                 continue
             self._send_tpdo(pdo, data, now)
