@@ -162,9 +162,12 @@ class CanEndpoint:
         """Pumped endpoints: receive one waiting frame, if any, and hand it
         to the handlers. True when a frame was taken from the bus."""
         bus = self.bus
-        if self._virtual and bus._filters is None:  # type: ignore[attr-defined]
-            # python-can's virtual bus without filters: recv(timeout=0) is a
-            # get from its receive queue; most polls find that queue empty
+        if self._virtual:
+            # python-can's virtual bus: recv(timeout=0) is a get from its
+            # receive queue (most polls find it empty) and the bus's filters.
+            # A frame the filters drop is taken all the same (True): recv()
+            # would answer None for it, and the pump would stop there with
+            # the frames behind it still waiting.
             waiting = bus.queue  # type: ignore[attr-defined]
             if not waiting.queue:
                 return False
@@ -176,7 +179,8 @@ class CanEndpoint:
                 return False
             except queue.Empty:
                 return False
-            self._dispatch(msg)
+            if bus._filters is None or bus._matches_filters(msg):
+                self._dispatch(msg)
             return True
         try:
             msg = bus.recv(timeout=0)
@@ -204,9 +208,11 @@ _VIRTUAL_BUS_PARTS = ("queue", "channel", "channel_id", "receive_own_messages", 
 
 def _is_plain_virtual(bus: can.BusABC) -> bool:
     """python-can's in-process virtual bus, as this module knows its insides
-    (a receive queue per bus, a list of them per channel): the endpoint then
-    sends, and while no filter is set receives, on those queues directly."""
-    return type(bus) is VirtualBus and all(hasattr(bus, part) for part in (*_VIRTUAL_BUS_PARTS, "_filters"))
+    (a receive queue per bus, a list of them per channel, its filters): the
+    endpoint then sends and receives on those queues directly."""
+    return type(bus) is VirtualBus and all(
+        hasattr(bus, part) for part in (*_VIRTUAL_BUS_PARTS, "_filters", "_matches_filters")
+    )
 
 
 def _virtual_send(bus, can_id: int, data: bytes, remote: bool) -> None:

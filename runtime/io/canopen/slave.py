@@ -408,7 +408,7 @@ class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
     def _own_read_callback(self) -> Callable | None:
         return self._sdo_read_callback
 
-    def _device_object_read(self) -> Callable | None:
+    def _device_object_read(self) -> Callable:
         return self.object_read
 
     def _on_sdo_read(self, index: int, subindex: int, od: ODVariable):

@@ -40,6 +40,8 @@ from .cia301 import (
 
 log = logging.getLogger(__name__)
 
+MS = 1_000_000
+
 
 def _int_encoder(var: ODVariable) -> Callable[[object], int]:
     """int.from_bytes(var.encode_raw(value), "little"), with integers that
@@ -66,7 +68,7 @@ def _int_encoder(var: ODVariable) -> Callable[[object], int]:
 
     return encode
 
-MS = 1_000_000
+
 SYNC_COB_ID = 0x1005
 PDO_SLOTS = 512  # CiA 301: up to 512 RPDOs and 512 TPDOs
 COB_ID_EXTENDED = 1 << 29  # 29-bit identifier: the LTMR is CAN 2.0A only (manual 001 §1.1)
@@ -270,7 +272,7 @@ class PdoMixin:
         store = node.data_store
         own = self._own_read_callback()
         device_read = self._device_object_read()
-        if own is not None and device_read is not None:
+        if own is not None:
             try:
                 self._check_subindex_exists(var, subindex)  # what the own callback checks first: fixed by the EDS
             except SdoAbortedError:
@@ -279,7 +281,7 @@ class PdoMixin:
 
         def read() -> int:
             try:
-                if own is not None and len(callbacks) == 1 and callbacks[0] == own:
+                if own is not None and len(callbacks) == 1 and callbacks[0] is own:
                     # only the slave's own read callback: the device's object_read, called directly
                     result = device_read(index, subindex, var)
                     if result is not None:
@@ -302,12 +304,14 @@ class PdoMixin:
 
         return read
 
-    # provided by SimulatedCanopenSlave, for _entry_reader's direct path
+    # provided by SimulatedCanopenSlave, for _entry_reader's direct path: the
+    # read callback it gave LocalNode (None: none), and what that callback
+    # calls once the sub-index is checked (the device's object_read)
     def _own_read_callback(self) -> Callable | None:
         return None
 
-    def _device_object_read(self) -> Callable | None:
-        return None
+    def _device_object_read(self) -> Callable:
+        raise NotImplementedError
 
     @staticmethod
     def _check_subindex_exists(od: ODVariable, subindex: int) -> None:
