@@ -26,6 +26,7 @@ drops frames both ways until plugged again. Tests and the simulators use it.
 from __future__ import annotations
 
 import logging
+import queue
 import threading
 import time
 from collections.abc import Callable
@@ -79,6 +80,7 @@ class CanEndpoint:
         self._handlers: list[Handler] = []
         self._notifier: can.Notifier | None = None
         self._started = False
+        self._virtual = _is_plain_virtual(bus)
 
     # ------------------------------------------------------------ set-up
 
@@ -125,6 +127,7 @@ class CanEndpoint:
         except Exception as exc:
             log.debug("%s: shutting the failed bus down: %s", self.name, exc)
         self.bus = bus
+        self._virtual = _is_plain_virtual(bus)
         if self._started and self.pump is None:
             self._notifier = can.Notifier(self.bus, [self._dispatch], timeout=0.1)
 
@@ -136,15 +139,18 @@ class CanEndpoint:
         because a lost bus must not stop the thread that sends."""
         if not self.connected:
             return False
-        msg = can.Message(
-            arbitration_id=can_id,
-            data=bytes(data),
-            is_extended_id=can_id > 0x7FF,
-            is_remote_frame=remote,
-            dlc=len(data) if not remote else 0,
-        )
         try:
-            self.bus.send(msg)
+            if self._virtual:
+                _virtual_send(self.bus, can_id, bytes(data), remote)
+            else:
+                msg = can.Message(
+                    arbitration_id=can_id,
+                    data=bytes(data),
+                    is_extended_id=can_id > 0x7FF,
+                    is_remote_frame=remote,
+                    dlc=len(data) if not remote else 0,
+                )
+                self.bus.send(msg)
         except (can.CanError, OSError) as exc:
             self.send_errors += 1
             self.last_error = str(exc)
@@ -155,11 +161,29 @@ class CanEndpoint:
     def poll(self) -> bool:
         """Pumped endpoints: receive one waiting frame, if any, and hand it
         to the handlers. True when a frame was taken from the bus."""
-        waiting = getattr(self.bus, "queue", None)  # python-can's virtual bus: its receive queue
-        if type(self.bus) is VirtualBus and waiting is not None and waiting.empty():
-            return False  # nothing there: spare recv() its Empty exception (most polls find nothing)
+        bus = self.bus
+        if self._virtual:
+            # python-can's virtual bus: recv(timeout=0) is a get from its
+            # receive queue (most polls find it empty) and the bus's filters.
+            # A frame the filters drop is taken all the same (True): recv()
+            # would answer None for it, and the pump would stop there with
+            # the frames behind it still waiting.
+            waiting = bus.queue  # type: ignore[attr-defined]
+            if not waiting.queue:
+                return False
+            try:
+                bus._check_if_open()  # type: ignore[attr-defined]
+                msg = waiting.get_nowait()
+            except can.CanError as exc:
+                self.last_error = str(exc)
+                return False
+            except queue.Empty:
+                return False
+            if bus._filters is None or bus._matches_filters(msg):
+                self._dispatch(msg)
+            return True
         try:
-            msg = self.bus.recv(timeout=0)
+            msg = bus.recv(timeout=0)
         except (can.CanError, OSError) as exc:
             self.last_error = str(exc)
             return False
@@ -177,6 +201,46 @@ class CanEndpoint:
                 handler(msg)
             except Exception:  # one bad handler must not starve the others
                 log.exception("%s: handler failed on frame 0x%03X", self.name, msg.arbitration_id)
+
+
+_VIRTUAL_BUS_PARTS = ("queue", "channel", "channel_id", "receive_own_messages", "preserve_timestamps", "_check_if_open")
+
+
+def _is_plain_virtual(bus: can.BusABC) -> bool:
+    """python-can's in-process virtual bus, as this module knows its insides
+    (a receive queue per bus, a list of them per channel, its filters): the
+    endpoint then sends and receives on those queues directly."""
+    return type(bus) is VirtualBus and all(
+        hasattr(bus, part) for part in (*_VIRTUAL_BUS_PARTS, "_filters", "_matches_filters")
+    )
+
+
+def _virtual_send(bus, can_id: int, data: bytes, remote: bool) -> None:
+    """What VirtualBus.send does with a frame (a copy into the receive queue
+    of every other bus on the channel, stamped now), without first building
+    a Message and deep-copying it for each of them."""
+    bus._check_if_open()
+    timestamp = time.time()  # preserve_timestamps: our frames carry no timestamp of their own (0.0)
+    if bus.preserve_timestamps:
+        timestamp = 0.0
+    own = bus.queue
+    extended = can_id > 0x7FF
+    dlc = 0 if remote else len(data)
+    for receiver in bus.channel:
+        if receiver is own and not bus.receive_own_messages:
+            continue
+        receiver.put(
+            can.Message(
+                timestamp=timestamp,
+                arbitration_id=can_id,
+                is_extended_id=extended,
+                is_remote_frame=remote,
+                dlc=dlc,
+                data=data,
+                channel=bus.channel_id,
+                is_rx=receiver is not own,
+            )
+        )
 
 
 class BusPump:
@@ -230,7 +294,7 @@ class BusPump:
             return False
         for endpoint in self._endpoints:
             bus = endpoint.bus
-            if type(bus) is not VirtualBus or not bus.queue.empty():
+            if type(bus) is not VirtualBus or bus.queue.queue:
                 return False
         return True
 

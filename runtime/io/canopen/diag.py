@@ -8,6 +8,9 @@ from ...program import StructWriter
 from ...program import global_variable as _global
 from .node import NodeState
 
+#: CANOPEN_MASTER's fields, in the order of the master's view (CanopenDriver._master_view)
+MASTER_FIELDS = ("BusOk", "NodesConfigured", "NodesOperational", "FramesReceived", "FramesSent", "SendErrors")
+
 
 class CanopenDiag:
     """CANOPEN_NODE[id] and CANOPEN_MASTER, from the master's node
@@ -18,10 +21,14 @@ class CanopenDiag:
         self._nodes = [StructWriter(s) for s in nodes] if nodes is not None else []
         self._master = StructWriter(_global(globals_obj, "CANOPEN_MASTER"))
         self._seen: dict = {}  # node id -> version written
+        self._master_seen: tuple | None = None  # the master's view written last
 
-    def update(self, snapshot, master: dict) -> None:
-        """snapshot: (node id, version, node) for every configured node."""
-        self._master.set(**master)
+    def update(self, snapshot, master: tuple) -> None:
+        """snapshot: (node id, version, node) for every configured node;
+        master: CANOPEN_MASTER's values in MASTER_FIELDS order."""
+        if master != self._master_seen:
+            self._master_seen = master
+            self._master.set(**dict(zip(MASTER_FIELDS, master, strict=True)))
         for node_id, version, node in snapshot:
             if self._seen.get(node_id) == version or node_id >= len(self._nodes):
                 continue

@@ -250,8 +250,15 @@ class CanopenDriver(Driver):
         self.service(now_ns)
         if self.pump is not None:
             worker = self._started_worker
+            endpoint = self._started_endpoint
+            received = endpoint.received
             self.pump.settle()
-            worker.run_pending()  # the SDO jobs due, each pumping the bus for its answers
+            # the SDO jobs due, each pumping the bus for its answers
+            if not worker.run_pending() and endpoint.received == received:
+                # Nothing came in and no job ran: the state machines, the
+                # timers and the outputs are as service() left them, so a
+                # second service() would send nothing and the bus is quiet.
+                return
             # What the settle delivered (boot-ups, finished configurations)
             # may call for frames now, not a tick later.
             self.service(now_ns)
@@ -278,12 +285,15 @@ class CanopenDriver(Driver):
                 self._next_sync_ns = now_ns + c.sync_us * 1000
                 sync = True
             for node in self.nodes.values():
-                before = node.sup.state
-                action = node.sup.tick(now_ns)
-                if node.sup.state != before and node.sup.state in (NodeState.MISSING, NodeState.LOST):
-                    log.warning("canopen: node %s (%d): %s", node.cfg.name, node.cfg.node_id, node.sup.message)
-                self._act(node, action)
-                if node.sup.guard_due(now_ns):
+                sup = node.sup
+                before = sup.state
+                # tick() does nothing before its deadline (most steps): not called then
+                if before == NodeState.UNKNOWN or (sup.deadline_ns is not None and now_ns >= sup.deadline_ns):
+                    action = sup.tick(now_ns)
+                    if sup.state != before and sup.state in (NodeState.MISSING, NodeState.LOST):
+                        log.warning("canopen: node %s (%d): %s", node.cfg.name, node.cfg.node_id, sup.message)
+                    self._act(node, action)
+                if sup.guard_ns and sup.guard_due(now_ns):
                     self._send_remote(cob_heartbeat(node.cfg.node_id))
             self._send_rpdos(now_ns, sync=sync)
             if sync:
@@ -487,16 +497,17 @@ class CanopenDriver(Driver):
         if self._diag is not None:
             self._diag.update(snapshot, self._master_view())
 
-    def _master_view(self) -> dict:
+    def _master_view(self) -> tuple:
+        """CANOPEN_MASTER's fields, in diag.MASTER_FIELDS order."""
         ep = self.endpoint
-        return {
-            "BusOk": self._bus_ok,
-            "NodesConfigured": len(self.nodes),
-            "NodesOperational": sum(n.sup.state == NodeState.OPERATIONAL for n in self.nodes.values()),
-            "FramesReceived": ep.received if ep else 0,
-            "FramesSent": ep.sent if ep else 0,
-            "SendErrors": ep.send_errors if ep else 0,
-        }
+        return (
+            self._bus_ok,
+            len(self.nodes),
+            sum(n.sup.state == NodeState.OPERATIONAL for n in self.nodes.values()),
+            ep.received if ep else 0,
+            ep.sent if ep else 0,
+            ep.send_errors if ep else 0,
+        )
 
     def write_outputs(self, image: ProcessImage) -> None:
         packed = {binding: binding.pack(image) for node in self.nodes.values() for binding, _s in node.rpdos}

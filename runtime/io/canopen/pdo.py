@@ -84,6 +84,15 @@ class PdoBinding:
             if e.bits % 8 == 0 and e.bit_offset % 8 == 0 and e.byte_offset is not None
         ]
         self._byte_copies: list[tuple[int, int, int]] | None = copies if len(copies) == len(entries) else None
+        # The frame one run of bytes of the image (each entry right after the
+        # one before, in the frame as in the image): pack() is one slice.
+        self._span: tuple[int, int] | None = None
+        if self._byte_copies:
+            first = self._byte_copies[0][1]
+            if all(start == offset - first for start, offset, _n in self._byte_copies) and all(
+                a[0] + a[2] == b[0] for a, b in zip(self._byte_copies, self._byte_copies[1:])
+            ):
+                self._span = (first, first + sum(n for _s, _o, n in self._byte_copies))
 
     @property
     def comm_index(self) -> int:
@@ -155,6 +164,10 @@ class PdoBinding:
         mapping leaves the missing objects as they were (CiA 301 says such a
         PDO is not to be processed; the driver counts it as an error)."""
         area = image.areas["I"]
+        if self._span is not None and len(data) >= self._span[1] - self._span[0]:
+            first, end = self._span
+            area[first:end] = data[: end - first]
+            return
         if self._byte_copies is not None:
             for start, offset, n in self._byte_copies:
                 area[offset : offset + n] = data[start : start + n]
@@ -171,6 +184,8 @@ class PdoBinding:
     def pack(self, image: ProcessImage) -> bytes:
         """The %Q values of this RPDO as frame bytes."""
         area = image.areas["Q"]
+        if self._span is not None:
+            return bytes(area[self._span[0] : self._span[1]])
         if self._byte_copies is not None:
             return b"".join(bytes(area[offset : offset + n]) for _start, offset, n in self._byte_copies)
         raw = 0

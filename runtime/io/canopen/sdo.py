@@ -120,6 +120,8 @@ class SdoWorker:
 
     def run_pending(self) -> bool:
         """Virtual time: run every queued job now; True if there was one."""
+        if not self._queue.queue:
+            return False  # most ticks: spare get_nowait() its Empty exception
         ran = False
         while True:
             try:

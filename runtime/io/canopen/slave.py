@@ -138,7 +138,8 @@ class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
         self.settings = settings
         self.od = canopen.import_od(eds, node_id)
         self.node = _SlaveNode(node_id, self.od)
-        self.node.add_read_callback(self._on_sdo_read)
+        self._sdo_read_callback = self._on_sdo_read  # one bound method: PDO packing knows it by identity
+        self.node.add_read_callback(self._sdo_read_callback)
         self.node.add_write_callback(self._on_sdo_write)
         self.endpoint: CanEndpoint | None = None
         self.network: _SlaveNetwork | None = None
@@ -403,6 +404,12 @@ class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
         return self._now
 
     # ------------------------------------------------------------------ SDO access rules
+
+    def _own_read_callback(self) -> Callable | None:
+        return self._sdo_read_callback
+
+    def _device_object_read(self) -> Callable:
+        return self.object_read
 
     def _on_sdo_read(self, index: int, subindex: int, od: ODVariable):
         self._check_subindex_exists(od, subindex)

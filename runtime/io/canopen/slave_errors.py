@@ -84,6 +84,7 @@ class ErrorControlMixin:
         self._guarded_ns: int | None = None  # the last guarding request (None: not guarded yet)
         self._guarding_lost = False
         self._error_pending = False  # a communication error from before a communication reset
+        self._has_guarding = GUARD_TIME in self.od and LIFE_TIME_FACTOR in self.od  # the EDS decides, once
 
     def _error_outlives_reset(self, application: bool) -> bool:
         """Before a reset: whether a communication error stays pending after it."""
@@ -170,7 +171,7 @@ class ErrorControlMixin:
 
     def _life_time_ns(self) -> int:
         """Guard time x life time factor (0: the node does not watch the master)."""
-        if GUARD_TIME not in self.od or LIFE_TIME_FACTOR not in self.od:
+        if not self._has_guarding:
             return 0
         return self._cached_value(GUARD_TIME, 0) * self._cached_value(LIFE_TIME_FACTOR, 0) * MS
 
@@ -191,8 +192,10 @@ class ErrorControlMixin:
     def _watch_guarding(self, now: int) -> None:
         """Life guarding: from the first request on, a gap longer than the life
         time is a communication error."""
+        if self._guarded_ns is None or self._guarding_lost:
+            return
         life = self._life_time_ns()
-        if not life or self._guarded_ns is None or self._guarding_lost:
+        if not life:
             return
         if now - self._guarded_ns > life:
             self._guarding_lost = True

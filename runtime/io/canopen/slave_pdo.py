@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from canopen.objectdictionary import ODArray, ODRecord, ODVariable
+from canopen.objectdictionary.datatypes import INTEGER_TYPES, SIGNED_TYPES
 from canopen.sdo import SdoAbortedError
 
 from .cia301 import (
@@ -40,6 +41,34 @@ from .cia301 import (
 log = logging.getLogger(__name__)
 
 MS = 1_000_000
+
+
+def _int_encoder(var: ODVariable) -> Callable[[object], int]:
+    """int.from_bytes(var.encode_raw(value), "little"), with integers that
+    encode_raw takes without a word (within the type and the EDS's limits)
+    masked directly instead of packed and unpacked."""
+
+    def slow(value) -> int:
+        return int.from_bytes(var.encode_raw(value), "little")
+
+    if var.data_type not in INTEGER_TYPES or not var.fixed_size:
+        return slow
+    bits = len(var)
+    mask = (1 << bits) - 1
+    lo, hi = (-(1 << (bits - 1)), (1 << (bits - 1)) - 1) if var.data_type in SIGNED_TYPES else (0, mask)
+    if var.min is not None:
+        lo = max(lo, var.min)
+    if var.max is not None:
+        hi = min(hi, var.max)
+
+    def encode(value) -> int:
+        if type(value) is int and lo <= value <= hi:
+            return value & mask
+        return slow(value)
+
+    return encode
+
+
 SYNC_COB_ID = 0x1005
 PDO_SLOTS = 512  # CiA 301: up to 512 RPDOs and 512 TPDOs
 COB_ID_EXTENDED = 1 << 29  # 29-bit identifier: the LTMR is CAN 2.0A only (manual 001 §1.1)
@@ -80,6 +109,8 @@ class TpdoState:
 class PdoTables:
     rpdos: dict = field(default_factory=dict)  # COB-ID -> Pdo
     tpdos: list = field(default_factory=list)  # [Pdo]
+    # the event-driven TPDOs (types 254/255) with their state, looked at every step
+    events: list = field(default_factory=list)  # [(Pdo, TpdoState)]
 
 
 class PdoMixin:
@@ -191,7 +222,10 @@ class PdoMixin:
                 tpdo = self._read_pdo(TPDO_COMM + number - 1, TPDO_MAP + number - 1, number)
                 if tpdo is not None:
                     tables.tpdos.append(tpdo)
-                    self._tpdo_state.setdefault(number, TpdoState())
+                    state = self._tpdo_state.setdefault(number, TpdoState())
+                    if tpdo.transmission in EVENT_TYPES:
+                        # _boot clears the states only with the tables, so this one stays theirs
+                        tables.events.append((tpdo, state))
             self._tables = tables
         return self._tables
 
@@ -236,25 +270,52 @@ class PdoMixin:
             return lambda: 0
         callbacks = node._read_callbacks  # canopen's list: one may be added later, so read at each call
         store = node.data_store
+        own = self._own_read_callback()
+        device_read = self._device_object_read()
+        if own is not None:
+            try:
+                self._check_subindex_exists(var, subindex)  # what the own callback checks first: fixed by the EDS
+            except SdoAbortedError:
+                own = None  # the slow path refuses it at every read, as before
+        encode = _int_encoder(var)
 
         def read() -> int:
             try:
-                for callback in callbacks:
-                    result = callback(index=index, subindex=subindex, od=var)
+                if own is not None and len(callbacks) == 1 and callbacks[0] is own:
+                    # only the slave's own read callback: the device's object_read, called directly
+                    result = device_read(index, subindex, var)
                     if result is not None:
-                        return int.from_bytes(var.encode_raw(result), "little")
+                        return encode(result)
+                else:
+                    for callback in callbacks:
+                        result = callback(index=index, subindex=subindex, od=var)
+                        if result is not None:
+                            return encode(result)
                 stored = store.get(index)
                 if stored is not None and subindex in stored:
                     return int.from_bytes(stored[subindex], "little")
                 if var.value is not None:
-                    return int.from_bytes(var.encode_raw(var.value), "little")
+                    return encode(var.value)
                 if var.default is not None:
-                    return int.from_bytes(var.encode_raw(var.default), "little")
+                    return encode(var.default)
             except SdoAbortedError:
                 pass
             return 0
 
         return read
+
+    # provided by SimulatedCanopenSlave, for _entry_reader's direct path: the
+    # read callback it gave LocalNode (None: none), and what that callback
+    # calls once the sub-index is checked (the device's object_read)
+    def _own_read_callback(self) -> Callable | None:
+        return None
+
+    def _device_object_read(self) -> Callable:
+        raise NotImplementedError
+
+    @staticmethod
+    def _check_subindex_exists(od: ODVariable, subindex: int) -> None:
+        raise NotImplementedError
 
     # ------------------------------------------------------------------ PDO traffic
 
@@ -298,15 +359,19 @@ class PdoMixin:
     def _transmit_event_tpdos(self, now: int) -> None:
         """Types 254/255: on change of the packed data, after the inhibit time,
         and every event-timer period even without change."""
-        for pdo in self._pdo_tables().tpdos:
-            if pdo.transmission not in EVENT_TYPES:
-                continue
-            state = self._tpdo_state.setdefault(pdo.number, TpdoState())
-            since = None if state.last_sent_ns is None else now - state.last_sent_ns
-            if since is not None and since < pdo.inhibit_ns:
-                continue  # sent once the inhibit time is over (nothing to pack before)
-            data = self._pack_tpdo(pdo)
-            event_due = pdo.event_ns and since is not None and since >= pdo.event_ns
+        tables = self._tables if self._tables is not None else self._pdo_tables()
+        for pdo, state in tables.events:
+            last = state.last_sent_ns
+            since = 0
+            if last is not None:
+                since = now - last
+                if since < pdo.inhibit_ns:
+                    continue  # sent once the inhibit time is over (nothing to pack before)
+            frame = 0  # _pack_tpdo, inlined: this runs for every event TPDO at every step
+            for read, mask, shift in pdo.readers:
+                frame |= (read() & mask) << shift
+            data = frame.to_bytes(pdo.nbytes, "little")
+            event_due = pdo.event_ns and last is not None and since >= pdo.event_ns
             if not (state.pending or data != state.last_data or event_due):
                 continue
             self._send_tpdo(pdo, data, now)

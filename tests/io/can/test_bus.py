@@ -118,3 +118,44 @@ def test_error_frames_are_not_handed_to_the_handlers(channel):
     a.bus.send(can.Message(arbitration_id=0, is_error_frame=True))
     pump.settle()
     assert log == []
+
+
+def test_a_plain_python_can_bus_on_the_channel_sees_the_endpoints_frames(channel):
+    # A pumped endpoint puts its frames into the virtual bus's queues itself:
+    # another python-can bus on the channel still receives each one, whole.
+    pump = BusPump()
+    ep = _endpoint(channel, "ep", pump)
+    peer = can.Bus(interface="virtual", channel=channel)
+    try:
+        ep.send(0x214, b"\x3c\x04\x00\x00")
+        ep.send(0x714, b"", remote=True)
+        first, second = peer.recv(timeout=1), peer.recv(timeout=1)
+        assert (first.arbitration_id, bytes(first.data), first.dlc, first.is_remote_frame) == (
+            0x214,
+            b"\x3c\x04\x00\x00",
+            4,
+            False,
+        )
+        assert (second.arbitration_id, second.dlc, second.is_remote_frame) == (0x714, 0, True)
+        assert first.channel == channel and first.is_rx
+        assert peer.recv(timeout=0) is None
+        peer.send(can.Message(arbitration_id=0x194, data=b"\x07\x0e", is_extended_id=False))
+        log = []
+        ep.add_handler(lambda msg: log.append((msg.arbitration_id, bytes(msg.data))))
+        assert pump.settle()
+        assert log == [(0x194, b"\x07\x0e")]
+    finally:
+        peer.shutdown()
+        ep.stop()
+
+
+def test_a_pumped_endpoint_on_a_filtered_virtual_bus_gets_only_what_passes(channel):
+    pump, log = BusPump(), []
+    sender = _endpoint(channel, "sender", pump)
+    ep = _endpoint(channel, "ep", pump, log)
+    ep.bus.set_filters([{"can_id": 0x700, "can_mask": 0x780}])  # heartbeats only
+    sender.send(0x194, b"\x01")
+    sender.send(0x728, b"\x05")
+    assert pump.settle()
+    assert log == [("ep", 0x728, b"\x05")]
+    sender.stop(), ep.stop()

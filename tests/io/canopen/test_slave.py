@@ -376,3 +376,28 @@ def test_a_live_value_goes_out_at_the_next_step_without_any_write(bench):
     slave._store(0x2004, 0x07, 0x55)  # a value the device puts in the store itself
     bench.run_ms(10)
     assert bench.frames_with(TPDO1) == [bytes.fromhex("34 12 00 00"), bytes.fromhex("34 12 55 00")]
+
+
+class _LiveSlave(RecordingSlave):
+    """A device whose 2004:06 and 2004:07 are live values (object_read), as
+    a device model's measurements are."""
+
+    live = {0x06: 1234, 0x07: b"\x34\x12"}
+
+    def object_read(self, index, subindex, od):
+        return self.live.get(subindex) if index == 0x2004 else None
+
+
+def test_a_tpdo_packs_the_devices_live_values_and_a_read_callback_added_later(bench):
+    with eds_path("ltmr.eds") as path:
+        live = bench.add(_LiveSlave(NODE, eds=str(path), settings=bench.settings, clock=bench.clock, pump=bench.pump))
+    _remap_tpdo1(bench, [0x20040610, 0x20040710, 0x20040810])
+    live.write(0x2004, 0x08, 7)  # a stored value: no live one for it
+    bench.clear()
+    bench.nmt(NMT_START, NODE)
+    assert bench.frames_with(TPDO1) == [bytes.fromhex("D2 04 34 12 07 00")]
+    # canopen's own API: a read callback added later answers first from then on
+    live.node.add_read_callback(lambda index, subindex, od: 99 if (index, subindex) == (0x2004, 0x08) else None)
+    live.live = {0x06: 1235, 0x07: b"\x34\x12"}
+    bench.run_ms(10)
+    assert bench.frames_with(TPDO1)[-1] == bytes.fromhex("D3 04 34 12 63 00")
