@@ -297,6 +297,25 @@ class Fc280Simulator(SimulatedCanopenSlave):
             return int16(round_half_away(model.velocity_rpm * denominator / numerator))
         return None
 
+    def pdo_source(self, index: int, subindex: int):
+        """A TPDO-mapped parameter (a readout such as 16-03 or an alarm word)
+        straight from the parameter memory, as object_read gives it: the
+        packing runs at every step. An element that does not exist reads 0,
+        as object_read's refusal packs; VisStr and the element count keep
+        the object_read path."""
+        number = NUMBERS.get(index)
+        if number is None or (ARRAYS.get(index) and subindex == 0) or PARAMETERS[number].type == "VisStr":
+            return None
+        element = _element(index, subindex)
+
+        def read() -> int:
+            value = self.model.store.values[number]  # model and memory are replaced at a power cycle
+            if isinstance(value, list):
+                return value[element] if 0 <= element < len(value) else 0
+            return value  # type: ignore[return-value]  # VisStr left out above
+
+        return read
+
     def object_write(self, index: int, subindex: int, od: ODVariable, data: bytes, local: bool) -> None:
         value = od.decode_raw(data)
         if not isinstance(value, int):
