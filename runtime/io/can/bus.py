@@ -216,31 +216,39 @@ def _is_plain_virtual(bus: can.BusABC) -> bool:
 
 
 def _virtual_send(bus, can_id: int, data: bytes, remote: bool) -> None:
-    """What VirtualBus.send does with a frame (a copy into the receive queue
-    of every other bus on the channel, stamped now), without first building
-    a Message and deep-copying it for each of them."""
+    """What VirtualBus.send does with a frame (into the receive queue of
+    every other bus on the channel, stamped now), without first building a
+    Message and deep-copying it for each of them: the other buses share one
+    Message (what they receive is read, not changed, by every handler
+    here; python-can copies so that a user's change to a sent Message does
+    not reach the receivers, and ours are built here, from bytes)."""
     bus._check_if_open()
     timestamp = time.time()  # preserve_timestamps: our frames carry no timestamp of their own (0.0)
     if bus.preserve_timestamps:
         timestamp = 0.0
     own = bus.queue
-    extended = can_id > 0x7FF
-    dlc = 0 if remote else len(data)
+    received: can.Message | None = None  # one frame for every other bus: a receiver only reads it
     for receiver in bus.channel:
-        if receiver is own and not bus.receive_own_messages:
+        if receiver is own:
+            if bus.receive_own_messages:
+                receiver.put(_message(bus, can_id, data, remote, timestamp, rx=False))
             continue
-        receiver.put(
-            can.Message(
-                timestamp=timestamp,
-                arbitration_id=can_id,
-                is_extended_id=extended,
-                is_remote_frame=remote,
-                dlc=dlc,
-                data=data,
-                channel=bus.channel_id,
-                is_rx=receiver is not own,
-            )
-        )
+        if received is None:
+            received = _message(bus, can_id, data, remote, timestamp, rx=True)
+        receiver.put(received)
+
+
+def _message(bus, can_id: int, data: bytes, remote: bool, timestamp: float, *, rx: bool) -> can.Message:
+    return can.Message(
+        timestamp=timestamp,
+        arbitration_id=can_id,
+        is_extended_id=can_id > 0x7FF,
+        is_remote_frame=remote,
+        dlc=0 if remote else len(data),
+        data=data,
+        channel=bus.channel_id,
+        is_rx=rx,
+    )
 
 
 class BusPump:
