@@ -34,6 +34,7 @@ What the bus sees (manual 001, shared/manuals/001_*.txt "L<n>", and digest
 from __future__ import annotations
 
 import contextlib
+from functools import partial
 
 from canopen.sdo import SdoAbortedError
 
@@ -244,8 +245,7 @@ class LtmrSimulator(SimulatedCanopenSlave):
             reg = object_to_register(index, subindex)
         except (ForbiddenRegisterError, UnmappedRegisterError):
             return None  # refused as object_read refuses it
-        registers = self.model.registers
-        return lambda: registers.get(reg, 0)
+        return partial(self.model.registers.get, reg, 0)  # a C call: no Python frame per read
 
     def object_write(self, index: int, subindex: int, od, data: bytes, local: bool) -> None:
         if index not in REGISTER_INDICES:
