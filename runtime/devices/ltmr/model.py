@@ -317,8 +317,11 @@ class LtmrModel:
     def advance_to(self, now_ns: int) -> None:
         if self.t_ns is None:
             self.t_ns = now_ns
+        r = self.registers
+        apply = True
         while True:
-            self._apply_commands()
+            if apply:
+                self._apply_commands()
             t = self.t_ns
             if t >= now_ns:
                 break
@@ -326,9 +329,13 @@ class LtmrModel:
             end = self._start_end_ns
             if end is not None and t < end:
                 dt = min(dt, end - t)  # the inrush ends on time
+            code = r[REG_TRIP_CODE]
             self._heat(dt)
             self.t_ns = t + dt
             self._protect()
+            # settled commands stay so while what they read is the same: a
+            # step changes θ and the time, and what they read only by a trip
+            apply = self._settled is None or r[REG_TRIP_CODE] != code
         publish(self)
 
     def _heat(self, dt_ns: int) -> None:
