@@ -43,28 +43,42 @@ def ramp(out: Fraction, m: Motion, dt: Fraction | int, rate: Callable[[str], Fra
     """The output frequency (Hz) dt ns later. rate(parameter): Hz per ns of a
     ramp time parameter, None for no ramp. Accelerating away from 0 uses the
     ramp-up, towards 0 (or a smaller speed, or the other direction) the
-    ramp-down, or the quick stop ramp."""
+    ramp-down, or the quick stop ramp.
+
+    Exact rational arithmetic on numerators and denominators (each Fraction
+    operator costs about a microsecond, and this runs at every step): a
+    Fraction is made only for what is returned."""
     if m.coast or m.dc_brake:
         return Fraction(0)
     if m.hold:
         return out
     target = m.target if m.run else _ZERO
-    while dt > 0 and out != target:
-        if out != 0 and (target == 0 or (target > 0) != (out > 0) or abs(target) < abs(out)):
-            limit = _ZERO if target == 0 or (target > 0) != (out > 0) else target
+    on, od = out.numerator, out.denominator
+    tn, td = target.numerator, target.denominator
+    dn, dd = dt.numerator, dt.denominator
+    moved = False
+    while dn > 0 and (on != tn or od != td):
+        away_or_other_way = tn == 0 or (tn > 0) != (on > 0)  # towards 0 (through it to the other direction)
+        if on != 0 and (away_or_other_way or abs(tn) * od < abs(on) * td):
+            ln, ld = (0, 1) if away_or_other_way else (tn, td)
             speed = rate(QUICK_STOP if m.quick else RAMP_2_DOWN if m.ramp_2 else RAMP_1_DOWN)
         else:
-            limit, speed = target, rate(RAMP_2_UP if m.ramp_2 else RAMP_1_UP)
+            ln, ld = tn, td
+            speed = rate(RAMP_2_UP if m.ramp_2 else RAMP_1_UP)
+        moved = True
         if speed is None:
-            out = limit
+            on, od = ln, ld
             continue
-        # the same exact arithmetic as comparing the time needed to reach limit with dt, with fewer operations
-        gap, step = limit - out, speed * dt
-        if abs(gap) <= step:
-            out, dt = limit, dt - abs(gap) / speed
-        else:
-            return out + step if gap > 0 else out - step
-    return out
+        sn, sd = speed.numerator, speed.denominator
+        gn, gd = ln * od - on * ld, ld * od  # gap = limit - out
+        if abs(gn) * sd * dd <= sn * dn * gd:  # |gap| <= speed x dt: there within dt
+            on, od = ln, ld
+            rest = Fraction(dn * gd * sn - abs(gn) * sd * dd, dd * gd * sn)  # dt - |gap| / speed
+            dn, dd = rest.numerator, rest.denominator
+        else:  # out +/- speed x dt
+            step = sn * dn * od
+            return Fraction(on * sd * dd + (step if gn > 0 else -step), od * sd * dd)
+    return Fraction(on, od) if moved else out
 
 
 def round_half_away(x: Fraction) -> int:
