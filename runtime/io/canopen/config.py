@@ -301,10 +301,12 @@ class CanopenSection(Section):
         timeout = quiet(_heartbeat_timeout, node.get("heartbeat_timeout"))
         if heartbeat is not None and timeout:  # given and not off
             if heartbeat == 0:
-                ctx.error(
-                    here + ("heartbeat_timeout",),
-                    f"only meaningful with a heartbeat (this node has heartbeat = {got(node['heartbeat'])})",
+                which = (
+                    f"this node has heartbeat = {got(node['heartbeat'])}"
+                    if "heartbeat" in node
+                    else "this node sends none, it is guarded by guard_time"
                 )
+                ctx.error(here + ("heartbeat_timeout",), f"only meaningful with a heartbeat ({which})")
             elif timeout <= heartbeat:
                 ctx.error(
                     here + ("heartbeat_timeout",),
