@@ -37,11 +37,14 @@ _FORMATS = {
     (64, False): "<Q",
 }
 
-__all__ = ["AddressError", "ProcessImage", "WordTable"]
+__all__ = ["AREA_SIZE", "AddressError", "ProcessImage", "WordTable"]
+
+#: bytes of each area (%I, %Q, %M) of an image of the default size: 64 KiB
+AREA_SIZE = 1 << 16
 
 
 class ProcessImage:
-    def __init__(self, addressing: str = "iec", size: int = 1 << 16) -> None:
+    def __init__(self, addressing: str = "iec", size: int = AREA_SIZE) -> None:
         if addressing not in ("iec", "schneider"):
             raise ValueError(f"unknown addressing model {addressing!r}")
         self.addressing = addressing
