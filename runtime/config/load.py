@@ -28,7 +28,7 @@ from pydantic import Field, ValidationError, create_model
 
 from ..plugin.registry import Registry, registry
 from .errors import ConfigError, in_file_order, key_text, not_finite, translate
-from .plc import CORE_SECTIONS, RetainConfig, SafeOutput, TaskConfig
+from .plc import CORE_SECTIONS, RetainConfig, SafeOutput, TaskConfig, with_safe_defaults
 from .relations import Relations
 from .section import Section
 from .sims import SimConfig, SimSection
@@ -203,7 +203,7 @@ def config_from_dict(data: dict, path=None, *, base_dir=None) -> PlcConfig:
     core = {
         "retain": built.pop("retain"),
         "tasks": built.pop("task"),
-        "safe_outputs": built.pop("outputs"),
+        "safe_outputs": with_safe_defaults(built.pop("outputs"), ctx),
         "sims": built.pop("sim"),
     }
     return PlcConfig(
