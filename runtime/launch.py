@@ -61,7 +61,10 @@ def _setup_logging(tty: bool, stream=None) -> tuple:
 
 
 def _fail(message: str, code: int) -> int:
-    sys.stderr.write(f"softplc: {message}\n")
+    from .config.values import cut
+
+    # a long value or path in it (an option, a name in a driver's error) is cut, as in a configuration error
+    sys.stderr.write("softplc: " + "\n".join(cut(line) for line in message.split("\n")) + "\n")
     return code
 
 

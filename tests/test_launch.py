@@ -185,6 +185,45 @@ def test_unknown_program_in_a_task(tmp_path):
     assert "did you mean 'Main'?" in proc.stderr
 
 
+_MAIN = '[plc]\nprograms = ["p.st"]\n[[task]]\nname = "T"\ninterval = "10ms"\nprograms = ["Main"]\n'
+_RTU = '[[modbus]]\nname = "drives"\ntransport = "rtu"\ndevice = "sim"\n'
+_CHANNEL = '[[modbus.channel]]\nunit = 1\nfunction = 3\noffset = 5\nread_to = "%IW200"\n'
+_NODE = '[[can]]\ninterface = "virtual"\nchannel = "hostile"\n[canopen]\n[[canopen.node]]\nname = "pump"\nid = 20\n'
+
+
+@pytest.mark.parametrize(
+    ("text", "key", "message"),
+    [
+        (_MAIN + _RTU + _CHANNEL + "count = '5'\n", "modbus[0].channel[0].count", "expected an integer from 1 to 2000"),
+        (_MAIN + _RTU + 'timeout = "100000000000h"\n', "modbus[0].timeout", "expected a duration of at most 1d"),
+        (_MAIN.replace('"p.st"', f'"{"p" * 300}.st"'), "plc.programs[0]", "file name too long: "),
+        (_MAIN + f'[retain]\nfile = "{"r" * 300}"\n', "retain.file", "file name too long: "),
+        (_MAIN.replace('"10ms"', f'"{"x" * 5000}"'), "task[0].interval", f"(got '{'x' * 60}…' (5000 characters))"),
+        (_MAIN + '[[loopback]]\nfrom = "%QD1"\nto = "%ID2"\nbytes = 65535\n', "loopback[0].bytes", "run past"),
+        (
+            _MAIN + _NODE + 'eds = "fc280"\nguard_time = "100ms"\nheartbeat_timeout = "300ms"\n',
+            "canopen.node[0].heartbeat_timeout",
+            "only meaningful with a heartbeat",
+        ),
+        (
+            _MAIN + _NODE + 'eds = "fc280"\nguard_time = "100ms"\nsdo = [{ parameter = "8-03", value = inf }]\n',
+            "canopen.node[0].sdo[0].value",
+            "(got inf)",
+        ),
+    ],
+    ids=["count type", "RTU timeout", "program path", "retain path", "5000 chars", "loopback", "guarded", "inf"],
+)
+def test_hostile_configuration_values_exit_2_naming_file_and_key(tmp_path, text, key, message):
+    """Each of these took softplc down (exit 4, a Python error) or named
+    neither the file nor the key; the real clock, as a plant runs."""
+    cfg = write_config(tmp_path, text, {"p.st": "PROGRAM Main\nEND_PROGRAM\n"})
+    proc = softplc("run", cfg, "--duration", "0.1s")
+    assert proc.returncode == 2, proc.stderr
+    [line] = [ln for ln in proc.stderr.splitlines() if ln.startswith(f"softplc: {cfg}: ")]
+    assert line.startswith(f"softplc: {cfg}: {key}: ") and message in line
+    assert len(line) < 400 and "Traceback" not in proc.stderr and "internal error" not in proc.stderr
+
+
 def test_compile_error_gives_st_location(tmp_path):
     cfg = write_config(
         tmp_path,

@@ -14,18 +14,19 @@ from pydantic import BaseModel
 from pydantic.fields import FieldInfo
 from pydantic_core import ErrorDetails
 
-from .values import got
+from .values import KEEP, LONG, cut, got
 
 
 class ConfigError(Exception):
     """Everything wrong with one configuration file.
 
-    errors: (key path or "", message) pairs, in file order. position:
-    (line, column) of a TOML syntax error, else None."""
+    errors: (key path or "", message) pairs, in file order, every long
+    value in them cut (values.cut). position: (line, column) of a TOML
+    syntax error, else None."""
 
     def __init__(self, file: str, errors: list, *, position: tuple | None = None) -> None:
-        self.file = str(file)
-        self.errors = list(errors)
+        self.file = cut(str(file))
+        self.errors = [(cut(key), cut(message)) for key, message in errors]
         self.position = position
         super().__init__(str(self))
 
@@ -114,6 +115,14 @@ def translate(root: type[BaseModel], err: ErrorDetails) -> tuple:
     return loc, f"{err['msg']} (got {got(value)})"
 
 
+def not_finite(root: type[BaseModel], loc: tuple, value: float) -> str:
+    """The message for an inf or nan at loc: what the key takes, when the
+    schema says."""
+    info = _field_at(root, loc)
+    described = info.description if info is not None and info.description else "a finite number"
+    return f"expected {described} (got {got(value)})"
+
+
 def key_text(loc: tuple) -> str:
     """('task', 1, 'interval') -> 'task[1].interval'; odd keys quoted."""
     out = ""
@@ -123,6 +132,8 @@ def key_text(loc: tuple) -> str:
             continue
         part = str(part)
         text = part if re.fullmatch(r"[A-Za-z0-9_-]+", part) else '"' + part.replace('"', '\\"') + '"'
+        if len(part) > LONG:  # a long unknown key: its start and length
+            text = '"' + part[:KEEP].replace('"', '\\"') + f'…" ({len(part)} characters)'
         out += ("." if out else "") + text
     return out
 

@@ -13,6 +13,8 @@ errors are all reported at once, in file order.
 
 from __future__ import annotations
 
+import copy
+import math
 import os
 import re
 import tomllib
@@ -25,8 +27,8 @@ from typing import Any
 from pydantic import Field, ValidationError, create_model
 
 from ..plugin.registry import Registry, registry
-from .errors import ConfigError, in_file_order, key_text, translate
-from .plc import CORE_SECTIONS, RetainConfig, SafeOutput, TaskConfig
+from .errors import ConfigError, in_file_order, key_text, not_finite, translate
+from .plc import CORE_SECTIONS, RetainConfig, SafeOutput, TaskConfig, with_safe_defaults
 from .relations import Relations
 from .section import Section
 from .sims import SimConfig, SimSection
@@ -104,6 +106,30 @@ def _toml_error(message: str, text: str) -> tuple:
     return message, None
 
 
+def _non_finite(node: Any, here: tuple = ()):
+    """(loc, value) of every inf and nan in the data: TOML writes them, no
+    key takes them (a duration, a count, a parameter's value)."""
+    if isinstance(node, float) and not math.isfinite(node):
+        yield here, node
+    elif isinstance(node, dict):
+        for key, value in node.items():
+            yield from _non_finite(value, here + (key,))
+    elif isinstance(node, list):
+        for i, value in enumerate(node):
+            yield from _non_finite(value, here + (i,))
+
+
+def _replaced(data: dict, locs: list) -> dict:
+    """A copy of data with None at each of locs."""
+    out = copy.deepcopy(data)
+    for loc in locs:
+        node = out
+        for part in loc[:-1]:
+            node = node[part]
+        node[loc[-1]] = None
+    return out
+
+
 class _Document:
     """The sections of a configuration and the pass-1 model of the whole
     document, for one state of the registry."""
@@ -154,16 +180,20 @@ def config_from_dict(data: dict, path=None, *, base_dir=None) -> PlcConfig:
     if not isinstance(data, dict):
         raise ConfigError(label, [("", f"expected a TOML document (got {got(data)})")])
     doc = _current_document()
-    errors: list = []
+    raw = data
+    errors = [(loc, not_finite(doc.root, loc, value)) for loc, value in _non_finite(data)]
+    if errors:  # the passes see no inf or nan: None in their place, reported here
+        data = _replaced(data, [loc for loc, _message in errors])
+    refused = {loc for loc, _message in errors}
     model = None
     try:
         model = doc.root.model_validate(data, context={"base_dir": base_dir})
     except ValidationError as exc:
-        errors.extend(translate(doc.root, err) for err in exc.errors())
+        errors.extend(e for e in (translate(doc.root, err) for err in exc.errors()) if e[0] not in refused)
     ctx = Relations(data, base_dir)
     for section in doc.check_order:
         section.check(data.get(section.key), ctx)
-    errors.extend(ctx.errors)
+    errors.extend(e for e in ctx.errors if e[0] not in refused)
     if errors:
         errors = in_file_order(errors, data)
         raise ConfigError(label, [(key_text(loc), message) for loc, message in errors])
@@ -173,7 +203,7 @@ def config_from_dict(data: dict, path=None, *, base_dir=None) -> PlcConfig:
     core = {
         "retain": built.pop("retain"),
         "tasks": built.pop("task"),
-        "safe_outputs": built.pop("outputs"),
+        "safe_outputs": with_safe_defaults(built.pop("outputs"), ctx),
         "sims": built.pop("sim"),
     }
     return PlcConfig(
@@ -184,7 +214,7 @@ def config_from_dict(data: dict, path=None, *, base_dir=None) -> PlcConfig:
         on_fault=plc.on_fault,
         start=plc.start,
         sections=built,
-        raw=data,
+        raw=raw,
         warnings=[f"{label}: {key_text(loc)}: {message}" for loc, message in in_file_order(ctx.warnings, data)],
         **core,
     )

@@ -325,5 +325,20 @@ class OutputsSection(Section):
         return list(ctx.state.get(self.key, []))
 
 
+def with_safe_defaults(configured: list[SafeOutput], ctx: Relations) -> list[SafeOutput]:
+    """The safe outputs: those [outputs] safe configures, then the safe
+    values the devices give the %Q addresses mapped to their objects
+    (Relations.safe_defaults) where the file sets none of their bits."""
+    taken = [ctx.image_bits((), out.address) for out in configured]
+    out = list(configured)
+    for loc, addr, value in ctx.safe_defaults:
+        span = ctx.image_bits(loc, addr)
+        if span is None or any(t is not None and span[0] <= t[1] and t[0] <= span[1] for t in taken):
+            continue
+        taken.append(span)
+        out.append(SafeOutput(addr, value, key_text(loc)))
+    return out
+
+
 #: the core sections, in the order of the file's documentation
 CORE_SECTIONS = (PlcSection(), RetainSection(), TaskSection(), OutputsSection())

@@ -34,6 +34,9 @@ class Relations:
         self.state: dict[str, Any] = {}
         #: image bits written from the bus side: (area, first bit, last bit, loc, text)
         self.claimed: list = []
+        #: safe values a bus's devices give their %Q addresses: (loc, address,
+        #: value); [outputs] safe wins where it sets any bit of the address
+        self.safe_defaults: list = []
         self._probe_image: ProcessImage | None = None
         plc = data.get("plc")
         if not isinstance(plc, dict):

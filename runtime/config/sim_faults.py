@@ -26,7 +26,7 @@ from pydantic import Field, PlainValidator
 
 from ..plugin.seams import Device
 from .relations import Relations
-from .values import DURATION_EXAMPLES, Duration, Model, duration_ns, fail, identifier
+from .values import DURATION_EXAMPLES, Duration, Model, at_most_a_day, duration_ns, fail, identifier
 
 
 @dataclass(frozen=True)
@@ -42,7 +42,7 @@ def _instant(value) -> int:
     ns = duration_ns(value)
     if ns is None or ns < 0:
         raise fail(f"a time of the run such as {DURATION_EXAMPLES}", value)
-    return ns
+    return at_most_a_day(ns, value)
 
 
 def _value(value):

@@ -8,6 +8,7 @@ from __future__ import annotations
 import difflib
 import os
 import re
+import stat
 from pathlib import Path
 from typing import Annotated, Any, TypeGuard
 
@@ -20,6 +21,13 @@ from ..image import address as _address
 from ..st.ast import LocatedAddress
 
 U16_MAX = 0xFFFF
+#: every duration of a configuration is at most this (a day): beyond, clocks,
+#: timers and serial timeouts overflow, and no plant waits that long
+MAX_DURATION_NS = 86_400_000_000_000
+MAX_DURATION_TEXT = "1d"
+#: a value longer than LONG characters is shown as its first KEEP and its
+#: length; so is a run of text longer than LONG_RUN (no path is, in practice)
+LONG, LONG_RUN, KEEP = 100, 255, 60
 
 
 class Model(BaseModel):
@@ -29,10 +37,14 @@ class Model(BaseModel):
 
 
 def got(value) -> str:
-    """A value as the user wrote it, for '(got ...)'."""
+    """A value as the user wrote it, for '(got ...)'; a long string cut:
+    'xxxx…' (5000 characters)."""
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, str):
+        if len(value) > LONG:
+            head = repr(value[:KEEP])
+            return f"{head[:-1]}…{head[-1]} ({len(value)} characters)"
         return repr(value)
     if isinstance(value, dict):
         return "a table"
@@ -41,6 +53,21 @@ def got(value) -> str:
     if isinstance(value, (int, float)):
         return repr(value)
     return f"a {type(value).__name__}"  # TOML dates and times
+
+
+# a run of text with no space, quote, bracket or separator: a value, a path
+_RUN = re.compile(r"[^\s'\"(),:;\[\]{}]{" + str(LONG_RUN + 1) + ",}")
+#: a message longer than this is cut at its end
+MESSAGE_MAX = 1000
+
+
+def cut(text: str) -> str:
+    """A message with every long run of text in it (a value, a path: no
+    space, quote, bracket or separator in LONG_RUN characters) cut to its first KEEP
+    characters and its length, and the whole to at most MESSAGE_MAX
+    characters: what a configuration error echoes stays readable."""
+    text = _RUN.sub(lambda m: f"{m.group()[:KEEP]}… ({len(m.group())} characters)", text)
+    return text if len(text) <= MESSAGE_MAX else text[: MESSAGE_MAX - 1] + "…"
 
 
 def fail(expected: str, value) -> PydanticCustomError:
@@ -55,7 +82,7 @@ def duration_ns(value) -> int | None:
 
 
 def positive_duration(value) -> int:
-    """A duration > 0 in ns: '10ms', 'T#1s', '1s500ms', or a bare number of ms."""
+    """A duration > 0 in ns, at most a day: '10ms', 'T#1s', '1s500ms', or a bare number of ms."""
     ns = duration_ns(value)
     if ns is None and isinstance(value, str) and negative(value):
         ns = -1
@@ -63,6 +90,13 @@ def positive_duration(value) -> int:
         raise fail(f"a duration such as {DURATION_EXAMPLES}", value)
     if ns <= 0:
         raise fail(f"a duration > 0 such as {DURATION_EXAMPLES}", value)
+    return at_most_a_day(ns, value)
+
+
+def at_most_a_day(ns: int, value, or_off: str = "") -> int:
+    """ns, or the error of a duration beyond MAX_DURATION_NS."""
+    if ns > MAX_DURATION_NS:
+        raise fail(f"a duration of at most {MAX_DURATION_TEXT}{or_off}", value)
     return ns
 
 
@@ -83,7 +117,7 @@ def watchdog(value):
     ns = duration_ns(value)
     if ns is None or ns <= 0:
         raise fail(f"a duration > 0 such as {DURATION_EXAMPLES}, or false for no watchdog", value)
-    return ns
+    return at_most_a_day(ns, value, ", or false for no watchdog")
 
 
 def int_range(lo: int, hi: int | None = None):
@@ -147,14 +181,15 @@ def _base_dir(info: ValidationInfo) -> Path:
 
 def existing_file(text: str, info: ValidationInfo) -> Path:
     """text as an existing file, relative to the config file's directory."""
-    resolved = Path(os.path.normpath(_base_dir(info) / Path(text).expanduser()))
-    if not resolved.exists():
+    resolved = _resolved(text, info)
+    found = _stat(resolved)
+    if found is None:
         raise PydanticCustomError(
             "config",
             "no such file: {path} (relative paths start at the config file's directory)",
             {"path": str(resolved)},
         )
-    if not resolved.is_file():
+    if not stat.S_ISREG(found.st_mode):
         raise PydanticCustomError("config", "not a file: {path}", {"path": str(resolved)})
     return resolved
 
@@ -162,10 +197,38 @@ def existing_file(text: str, info: ValidationInfo) -> Path:
 def data_file(value, info: ValidationInfo) -> Path:
     if not isinstance(value, str) or not value.strip():
         raise fail('a file name such as "plant.retain"', value)
-    resolved = Path(os.path.normpath(_base_dir(info) / Path(value).expanduser()))
-    if resolved.is_dir():
+    resolved = _resolved(value, info)
+    found = _stat(resolved)
+    if found is not None and stat.S_ISDIR(found.st_mode):
         raise PydanticCustomError("config", "{path} is a directory; expected a file name", {"path": str(resolved)})
+    folder = _stat(resolved.parent)
+    if folder is None or not stat.S_ISDIR(folder.st_mode):
+        raise PydanticCustomError(
+            "config",
+            "no such directory: {path} (the file is written there; relative paths start at the config file's "
+            "directory)",
+            {"path": str(resolved.parent)},
+        )
     return resolved
+
+
+def _resolved(text: str, info: ValidationInfo) -> Path:
+    return Path(os.path.normpath(_base_dir(info) / Path(text).expanduser()))
+
+
+def _stat(path: Path) -> os.stat_result | None:
+    """The file's status, None when there is no such file; a path the
+    system refuses (too long, a NUL character, a loop of links) is the
+    key's error."""
+    try:
+        return path.stat()
+    except (FileNotFoundError, NotADirectoryError):
+        return None
+    except (OSError, ValueError) as exc:
+        why = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+        raise PydanticCustomError(
+            "config", "{why}: {path}", {"path": str(path), "why": why[:1].lower() + why[1:]}
+        ) from None
 
 
 Duration = Annotated[int, PlainValidator(positive_duration)]
@@ -180,7 +243,8 @@ def duration_in(unit: str, *, off: str | None = None, most: tuple | None = None)
     """A duration as a whole number of unit ("ms" or "us"), rounded from the
     nanoseconds parse_duration_ns gives. off: what 0 / "0ms" / false means
     (None: they are refused); most: (largest value, why) where the bus
-    carries the value in a field of fixed width."""
+    carries the value in a field of fixed width; never more than a day
+    (MAX_DURATION_NS)."""
     per = UNIT_NS[unit]
     or_off = f", or false for {off}" if off else ""
 
@@ -196,6 +260,7 @@ def duration_in(unit: str, *, off: str | None = None, most: tuple | None = None)
             raise fail(f"a duration of at least 1{unit}{or_off}", value)
         if most is not None and count > most[0]:
             raise fail(f"a duration of at most {most[0]}{unit} ({most[1]}){or_off}", value)
+        at_most_a_day(ns, value, or_off)
         return count
 
     return check

@@ -15,13 +15,18 @@ from __future__ import annotations
 import difflib
 
 from ..config import DEFAULT_PAUSE_NS, ProgramInstance, TaskConfig, default_watchdog_ns
+from ..config.values import cut
 
 DEFAULT_INTERVAL_NS = 10_000_000  # CODESYS's MainTask: 10 ms
 
 
 class TaskSetupError(Exception):
     """The tasks cannot be set up; the message names where (file and key or
-    ST position) and what to change."""
+    ST position) and what to change, a long name in it cut as in a
+    configuration error."""
+
+    def __init__(self, message: str) -> None:
+        super().__init__(cut(message))
 
 
 def plan_tasks(program, configured: list, config_file: str = "", *, none_ok: bool = False) -> list:

@@ -37,11 +37,18 @@ _FORMATS = {
     (64, False): "<Q",
 }
 
-__all__ = ["AddressError", "ProcessImage", "WordTable"]
+__all__ = ["AREA_SIZE", "AddressError", "ProcessImage", "WordTable"]
+
+#: bytes of each area (%I, %Q, %M) of an image of the default size: 64 KiB
+AREA_SIZE = 1 << 16
 
 
 class ProcessImage:
-    def __init__(self, addressing: str = "iec", size: int = 1 << 16) -> None:
+    #: this is the engine's safe-output view (outputs_view): the drivers are
+    #: handed it while a task is faulted and at the stop
+    held_safe = False
+
+    def __init__(self, addressing: str = "iec", size: int = AREA_SIZE) -> None:
         if addressing not in ("iec", "schneider"):
             raise ValueError(f"unknown addressing model {addressing!r}")
         self.addressing = addressing
@@ -190,6 +197,7 @@ class ProcessImage:
         view.size = self.size
         view.areas = {"I": self.areas["I"], "Q": q_bytes, "M": self.areas["M"]}
         view.mbits = self.mbits
+        view.held_safe = True
         return view
 
     def _resolve(self, where) -> LocatedAddress:

@@ -12,7 +12,10 @@ Both run in the scan thread and must never wait on the bus: they swap or copy
 buffers under a lock that the bus thread holds only as long as a copy takes
 (the double buffer of DESIGN.md). The image handed to write_outputs may be
 the engine's safe-output view (its %Q area holds the configured safe values
-while a task is faulted or the PLC stops); a driver does not know or care.
+while a task is faulted or the PLC stops); a driver that sends %Q needs not
+know. A driver whose devices the program drives by requests rather than %Q
+reads image.held_safe to put them in the safe state their blocks declared,
+and sends what that queued before stop() closes the bus.
 
 Life cycle, all called from the engine's thread:
 

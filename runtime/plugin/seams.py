@@ -163,3 +163,8 @@ class Device:
     #: an EMCY of a node with one of the device's files, in words for the log:
     #: (error code, error register, manufacturer bytes) -> text
     emcy_text: Callable[[int, int, bytes], str] | None = None
+    #: the device's safe state, for a node with one of its files: (object
+    #: index, sub-index) -> the raw value an RPDO carries there while the PLC
+    #: holds its outputs safe (a task fault, the stop), where [outputs] safe
+    #: sets none of the bits of the %Q address mapped to the object
+    safe_objects: Mapping[tuple[int, int], int] = field(default_factory=dict)

@@ -203,6 +203,7 @@ def test_outputs_view_shares_inputs_and_memory_but_not_outputs():
     view = im.outputs_view(safe)
     assert view.areas["Q"] is safe and view.areas["I"] is im.areas["I"] and view.mbits is im.mbits
     assert (view.addressing, view.size) == ("schneider", 64)
+    assert view.held_safe and not im.held_safe  # what a driver that sends no %Q acts on
     im.write("%QW0", 0x1111)
     assert view.read("%QB0") == 0x5A and im.read("%QB0") == 0x11  # its own %Q
     im.write("%IW1", 7)

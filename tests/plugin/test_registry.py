@@ -54,7 +54,7 @@ def test_softplc_own_plugins_come_from_the_entry_points():
     reg = registry()
     assert [bus.name for bus in reg.buses] == ["loopback", "can", "canopen", "plaincan", "modbus"]
     assert [device.name for device in reg.devices] == ["ltmr", "eaton", "fc280", "mpu2s"]
-    assert list(reg.natives()) == ["READ_VAR", "WRITE_VAR", "MODBUS_EXCHANGE", "MPU2S_EXCHANGE"]
+    assert list(reg.natives()) == ["READ_VAR", "WRITE_VAR", "MODBUS_EXCHANGE", "MODBUS_SAFE_WRITE", "MPU2S_EXCHANGE"]
     assert list(reg.sim_types()) == ["ltmr", "da1", "db1", "dc1", "de1", "de11", "fc280", "mpu2s"]
 
 

@@ -440,6 +440,11 @@ class ControlWord(enum.IntFlag):
     ZERO_SETPOINT = 1 << 7  # "Sollwert mit 0 überschreiben"
 
 
+#: ID 1 while the PLC holds its outputs safe (a task fault, the stop): stop
+#: (bit 0 = 0), by the drive's stop mode (DA1 P1-05, DB1/DC1/DE1 P-05),
+#: forward, no other function (L760-781; digest 002 §4.2); ID 2 gets 0 Hz
+SAFE_CONTROL_WORD = ControlWord(0)
+
 CONTROL_WORD_UNUSED_BITS = 0xFF10  # bit 4 and bits 8-15 "nicht verwendet" (L770, L774-781)
 
 

@@ -59,6 +59,8 @@ def render() -> str:
         "VAR_GLOBAL CONSTANT",
         "    (* ID 1 control word (L760-781) *)",
         *(f"    EATON_CW_{m.name} : WORD := 16#{int(m):04X};" for m in eaton.ControlWord),
+        "    (* ID 1 while the PLC holds its outputs safe: stop (DA1_DRIVE declares it, MODBUS_SAFE_WRITE) *)",
+        f"    EATON_CW_SAFE : WORD := 16#{int(eaton.SAFE_CONTROL_WORD):04X};",
         "    (* ID 6 status word, bits 0-7 (L831-850); bits 8-15 hold the fault number *)",
         *(f"    EATON_SW_{m.name} : WORD := 16#{int(m):04X};" for m in eaton.StatusWord),
         f"    EATON_FAULT_SHIFT : UINT := {eaton.FAULT_NUMBER_SHIFT};",

@@ -23,6 +23,7 @@ Public names: DEVICE, Fc280Simulator.
 from __future__ import annotations
 
 from ...io.can import CanSimContext
+from ...io.canopen import cia402
 from ...io.canopen.eds import render as render_eds
 from ...plugin.seams import Device, GeneratedFile, PackageFile, StLibrary
 from . import st_codes
@@ -30,9 +31,19 @@ from .diagnostics import emcy_text
 from .eds import fc280_eds
 from .options import Fc280Options
 from .parameters import sdo_object
+from .profile import OBJ_CONTROL_WORD, OBJ_REFERENCE, SAFE_CONTROL_WORD
 from .sim import FAULTS, Fc280Simulator
 
 EDS = PackageFile("softplc.io_config", "eds/fc280.eds")
+
+#: what the RPDOs carry while the PLC holds its outputs safe: in both profiles
+#: the motor coasts, the power section off, with a reference of 0
+SAFE_OBJECTS = {
+    (OBJ_CONTROL_WORD, 0): SAFE_CONTROL_WORD,  # FC profile: 0434h, coast (§4.4.2)
+    (OBJ_REFERENCE, 0): 0,
+    (0x6040, 0): cia402.DISABLE_VOLTAGE,  # DSP 402: 0000h, transition 9: coast (§4.3.2)
+    (0x6042, 0): 0,  # vl target velocity
+}
 
 
 def _simulator(sim, ctx: CanSimContext) -> Fc280Simulator:
@@ -66,6 +77,7 @@ DEVICE = Device(
     ),
     parameter_object=sdo_object,
     emcy_text=emcy_text,
+    safe_objects=SAFE_OBJECTS,
 )
 
 __all__ = ["DEVICE", "Fc280Simulator"]

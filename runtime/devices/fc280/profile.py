@@ -149,3 +149,12 @@ def reference_percent(word: int) -> float:
     reference, §4.4.4)."""
     signed = word - 0x10000 if word & 0x8000 else word
     return signed * 100 / REFERENCE_100
+
+
+#: 2690h while the PLC holds its outputs safe (a task fault, the stop): data
+#: valid, coast (bit 3 = 0: the output transistors off, the motor runs down
+#: freely) and no start (bit 6 = 0): 0434h. Coast rather than quick stop
+#: (046C without start): it needs no ramp (3-81) and no working power section,
+#: and is what DSP 402's 0000h does (transition 9) and what 0000h, ignored
+#: for its bit 10 = 0, never does (§4.4.2, Tabelle 4.7; digest 003 §4.5)
+SAFE_CONTROL_WORD = control_word(coast=True)

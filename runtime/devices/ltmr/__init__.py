@@ -26,7 +26,9 @@ from ...io.canopen.eds import render as render_eds
 from ...plugin.seams import Device, GeneratedFile, PackageFile, StLibrary
 from ...sim.options import RegisterPresets
 from . import st_codes
+from .bits import SAFE_CONTROL_1
 from .eds import ltmr_eds
+from .registers import REG_CONTROL_1, register_to_object
 from .sim import FAULTS, LtmrSimulator
 
 EDS = PackageFile("softplc.io_config", "eds/ltmr.eds")
@@ -57,6 +59,7 @@ DEVICE = Device(
         GeneratedFile(PackageFile("softplc.fblocks.vendor", "ltmr_codes.st"), st_codes.render),
         GeneratedFile(EDS, lambda: render_eds(ltmr_eds()), encoding="ascii"),
     ),
+    safe_objects={register_to_object(REG_CONTROL_1): int(SAFE_CONTROL_1)},  # 2008:05 = 0: motor off
 )
 
 __all__ = ["DEVICE", "LtmrSimulator"]

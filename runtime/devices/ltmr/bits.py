@@ -74,6 +74,11 @@ class Control1(enum.IntFlag):
     LOW_SPEED = 1 << 6
 
 
+#: 704 while the PLC holds its outputs safe: no run command (bits 0 and 1 off),
+#: so LO1 and LO2 open and the motor stops (L4917-4937)
+SAFE_CONTROL_1 = Control1(0)
+
+
 class Control2(enum.IntFlag):
     """705 Control register 2 (L4938-4955)."""
 

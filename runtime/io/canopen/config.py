@@ -44,6 +44,7 @@ from .config_node import (
     build_writes,
     check_guarding,
     check_writes,
+    claim_safe_values,
     default_heartbeat,
     device_name,
     parse_object,
@@ -301,10 +302,12 @@ class CanopenSection(Section):
         timeout = quiet(_heartbeat_timeout, node.get("heartbeat_timeout"))
         if heartbeat is not None and timeout:  # given and not off
             if heartbeat == 0:
-                ctx.error(
-                    here + ("heartbeat_timeout",),
-                    f"only meaningful with a heartbeat (this node has heartbeat = {got(node['heartbeat'])})",
+                which = (
+                    f"this node has heartbeat = {got(node['heartbeat'])}"
+                    if "heartbeat" in node
+                    else "this node sends none, it is guarded by guard_time"
                 )
+                ctx.error(here + ("heartbeat_timeout",), f"only meaningful with a heartbeat ({which})")
             elif timeout <= heartbeat:
                 ctx.error(
                     here + ("heartbeat_timeout",),
@@ -416,6 +419,8 @@ def _build_canopen(c: _Canopen, ctx: Relations) -> CanopenConfig:
             master_timeout = n.master_timeout
         else:  # a guarded node watches the master through guarding
             master_timeout = _default_master_timeout(c.heartbeat) if c.heartbeat and not guard_time else 0
+        rpdo = _build_pdos(n.rpdo, ("canopen", "node", i, "rpdo"), ctx)
+        claim_safe_values(("canopen", "node", i), ctx.data["canopen"]["node"][i], rpdo, ctx)
         nodes.append(
             CanopenNodeConfig(
                 name=n.name,
@@ -427,7 +432,7 @@ def _build_canopen(c: _Canopen, ctx: Relations) -> CanopenConfig:
                 master_timeout_ms=master_timeout,
                 sdo=build_writes(n.sdo, ("canopen", "node", i), ctx),
                 tpdo=_build_pdos(n.tpdo, ("canopen", "node", i, "tpdo"), ctx),
-                rpdo=_build_pdos(n.rpdo, ("canopen", "node", i, "rpdo"), ctx),
+                rpdo=rpdo,
                 key=key,
                 guard_time_ms=guard_time,
                 life_time_factor=(n.life_time_factor or DEFAULT_LIFE_TIME_FACTOR) if guard_time else 0,

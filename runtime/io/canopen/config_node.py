@@ -26,7 +26,7 @@ from pydantic import Field, PlainValidator, ValidationInfo
 
 from ...config.errors import key_text
 from ...config.relations import Relations
-from ...config.values import U16_MAX, Model, duration_in, fail, got, in_range, nonempty, quiet
+from ...config.values import U16_MAX, Model, bit_count, duration_in, fail, got, in_range, nonempty, quiet
 from ...plugin.registry import registry
 
 DEFAULT_HEARTBEAT_MS = 100  # the master's and a node's, unless the file says
@@ -111,6 +111,25 @@ def device_name(data: dict, i: int) -> str:
     node = data["canopen"]["node"][i]
     device = _device_of(node)
     return device.name if device is not None else ""
+
+
+def claim_safe_values(here: tuple, node: dict, rpdos: list, ctx: Relations) -> None:
+    """The safe values of the node's device (Device.safe_objects) for the %Q
+    addresses its RPDOs map to the device's objects: the engine holds them
+    there while outputs are safe, unless [outputs] safe says otherwise. A
+    value that does not fit the address (a mapping the master refuses) is
+    left out."""
+    device = _device_of(node)
+    if device is None or not device.safe_objects:
+        return
+    for j, pdo in enumerate(rpdos):
+        for k, entry in enumerate(pdo.entries):
+            value = device.safe_objects.get((entry.index, entry.subindex))
+            addr = entry.address
+            if value is None or addr.bit is not None or addr.size in ("", "X"):
+                continue
+            if 0 <= value < 1 << bit_count(addr):
+                ctx.safe_defaults.append((here + ("rpdo", j, "map", k, "address"), addr, int(value)))
 
 
 def check_writes(here: tuple, node: dict, ctx: Relations) -> None:

@@ -23,6 +23,7 @@ from .config import ModbusAttachment, ModbusChannelConfig, ModbusConnectionConfi
 from .exchange import MODBUS_EXCHANGE
 from .line import SimulatedModbusLine, UnitOnLine
 from .master import ModbusDriver
+from .safe import MODBUS_SAFE_WRITE
 from .unit import SILENT, ModbusRefusal, SimulatedUnit
 
 
@@ -111,7 +112,7 @@ BUS = Bus(
     order=40,
     sections=(ModbusSection(),),
     attachment=ModbusAttachment(),
-    natives=(MODBUS_EXCHANGE,),
+    natives=(MODBUS_EXCHANGE, MODBUS_SAFE_WRITE),
     libraries=(StLibrary("softplc.fblocks.comm", "modbus.st"),),
     build=_build,
 )

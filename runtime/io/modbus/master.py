@@ -18,6 +18,11 @@ Each connection has one owner of its pymodbus client (link.py):
 
 The program sees each channel in MODBUS_CHANNEL[i] (i = the channel's place
 in the file, counted over all connections; fblocks/comm/modbus.st).
+
+While the engine holds the outputs safe (a task fault, the stop) the master
+writes the safe values the program's device blocks declared with
+MODBUS_SAFE_WRITE, and puts them in place of what the program's requests
+would write there (safe.py); at the stop it sends them before it closes.
 """
 
 from __future__ import annotations
@@ -33,7 +38,9 @@ from ...plugin.driver import Driver, DriverError, DriverStatus
 from .channel import Channel
 from .exchange import SERVICE as EXCHANGE_SERVICE
 from .exchange import ModbusExchangeService
-from .link import LinkSettings, ModbusLink, Outcome, Transaction
+from .link import LinkSettings, ModbusLink, Outcome, Transaction, error_text
+from .safe import SERVICE as SAFE_SERVICE
+from .safe import SafeWrites
 
 if TYPE_CHECKING:
     from .diag import ModbusDiag
@@ -128,19 +135,29 @@ class ConnectionWorker:
                 if wait > 0 and not self._requests:
                     self._wake.wait(wait)
                 self._wake.clear()
+            self.drain(self.clock.now_ns())
         except Exception:  # a bug must not die silently in a thread
             log.exception("modbus %s: worker failed", self.link.settings.name)
             self.link.message = "worker failed (see the log)"
         finally:
             self.link.close()
 
+    def drain(self, now_ns: int) -> None:
+        """At the stop: the requests still queued (the safe writes the last
+        write_outputs queued), each once, whatever answer is late."""
+        self._late = None
+        while self._requests:
+            tx, done = self._requests.popleft()
+            done(self.link.transact(tx, now_ns))
+
     def stop(self) -> None:
         self._running = False
         self._wake.set()
         if self._thread is not None:
-            self._thread.join(timeout=5)
+            self._thread.join(timeout=5 + self.link.settings.timeout_s * (1 + self.link.settings.retries))
             self._thread = None
         else:
+            self.drain(self.clock.now_ns())
             self.link.close()
 
 
@@ -166,15 +183,37 @@ class ModbusDriver(Driver):
             link = ModbusLink(link_settings(cfg), (servers or {}).get(cfg.name))
             self.workers[cfg.name] = ConnectionWorker(link, channels, clock)
         self.exchange = ModbusExchangeService(self._submit)
-        self.services = {EXCHANGE_SERVICE: self.exchange}
+        self.safe = SafeWrites(self.workers.__contains__)
+        self.services = {EXCHANGE_SERVICE: self.exchange, SAFE_SERVICE: self.safe}
+        self._held = False  # the engine holds the outputs safe (safe.py)
         self._diag: ModbusDiag | None = None
 
     def _submit(self, connection: str, tx: Transaction, done) -> bool:
         worker = self.workers.get(connection)
         if worker is None:
             return False
+        if self._held:  # the device's safe values, not the program's
+            tx = self.safe.substitute(connection, tx)
         worker.submit(tx, done)
         return True
+
+    def _send_safe(self) -> None:
+        """The safe writes due now (safe.py), queued after the program's."""
+        for connection, tx, key in self.safe.due(self.clock.now_ns()):
+
+            def done(outcome: Outcome, tx=tx, key=key, connection=connection) -> None:
+                self.safe.done(key, outcome.error == 0)
+                if outcome.error:
+                    log.warning(
+                        "modbus %s: unit %d: safe values to registers %d..%d not written: %s",
+                        connection,
+                        tx.unit,
+                        tx.offset,
+                        tx.offset + len(tx.values) - 1,
+                        outcome.message or error_text(outcome.error),
+                    )
+
+            self.workers[connection].submit(tx, done)
 
     # life cycle -------------------------------------------------------------
 
@@ -218,6 +257,12 @@ class ModbusDriver(Driver):
         for ch in self.channels:
             if ch.stage(image):
                 self.workers[ch.cfg.connection].wake()
+        if image.held_safe != self._held:
+            self._held = image.held_safe
+            if self._held:
+                self.safe.hold()
+        if self._held:
+            self._send_safe()
 
     def status(self) -> DriverStatus:
         down = [w.link for w in self.workers.values() if not w.link.connected]
