@@ -221,11 +221,15 @@ class ModbusDriver(Driver):
 
     def status(self) -> DriverStatus:
         down = [w.link for w in self.workers.values() if not w.link.connected]
-        failing = [ch.name for ch in self.channels if ch.stats.requests and not ch.stats.ok]
+        failing = [ch for ch in self.channels if ch.stats.requests and not ch.stats.ok]
         if down:
             return DriverStatus(False, "modbus: " + "; ".join(f"{link.settings.name} {link.message}" for link in down))
         if failing:
+            first = failing[0]
+            others = "".join(f", {ch.name}" for ch in failing[1:3])
             return DriverStatus(
-                False, f"modbus: {len(failing)}/{len(self.channels)} channels failing ({', '.join(failing[:3])})"
+                False,
+                f"modbus: {len(failing)}/{len(self.channels)} channels failing "
+                f"({first.name}: {first.stats.message}{others})",
             )
         return DriverStatus(True, f"modbus: {len(self.workers)} up")
