@@ -36,8 +36,11 @@ import can
 from can.interfaces.virtual import VirtualBus
 
 from ...plugin.driver import DriverError
+from ..ratelog import RateLimitedLog
 
 log = logging.getLogger(__name__)
+#: what an endpoint or the pump logs (a handler that fails on every frame ...), rate limited
+lines = RateLimitedLog(log)
 
 Handler = Callable[[can.Message], None]
 
@@ -113,7 +116,7 @@ class CanEndpoint:
         try:
             self.bus.shutdown()
         except Exception as exc:  # a bus that dies on close has nothing more to lose
-            log.debug("%s: bus shutdown: %s", self.name, exc)
+            lines.debug(None, "%s: bus shutdown: %s", self.name, exc)
 
     def reopen(self, bus: can.BusABC) -> None:
         """Swap in a freshly opened bus after the old one failed (adapter
@@ -125,7 +128,7 @@ class CanEndpoint:
         try:
             old.shutdown()
         except Exception as exc:
-            log.debug("%s: shutting the failed bus down: %s", self.name, exc)
+            lines.debug(None, "%s: shutting the failed bus down: %s", self.name, exc)
         self.bus = bus
         self._virtual = _is_plain_virtual(bus)
         if self._started and self.pump is None:
@@ -200,7 +203,8 @@ class CanEndpoint:
             try:
                 handler(msg)
             except Exception:  # one bad handler must not starve the others
-                log.exception("%s: handler failed on frame 0x%03X", self.name, msg.arbitration_id)
+                key = (self.name, getattr(handler, "__qualname__", None))
+                lines.exception(key, "%s: handler failed on frame 0x%03X", self.name, msg.arbitration_id)
 
 
 _VIRTUAL_BUS_PARTS = ("queue", "channel", "channel_id", "receive_own_messages", "preserve_timestamps", "_check_if_open")
@@ -318,6 +322,6 @@ class BusPump:
             was_busy = busy
             if moved == 0:
                 if time.monotonic() > deadline:
-                    log.error("CAN bus not quiet after %.1f s: a worker is stuck", limit_s)
+                    lines.error(None, "CAN bus not quiet after %.1f s: a worker is stuck", limit_s)
                     return False
                 time.sleep(0.0001)  # let the busy worker run

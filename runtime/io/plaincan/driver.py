@@ -12,9 +12,11 @@ CANopen master when both are on one bus.
     write_outputs   cycle end
 
 A frame a node refuses (MalformedFrame) is counted on the node and dropped;
-the first of each reason per node is logged with the frame. A send that
-fails marks the bus down (status line, logged once) and the bus is opened
-again every second until it works.
+one per node and CAN-ID is logged with the frame and its reason every 10 s
+of engine time, the ones held back meanwhile in a "suppressed N" line
+(runtime/io/ratelog.py, which every line of the driver goes through). A send
+that fails marks the bus down (status line, logged once) and the bus is
+opened again every second until it works.
 """
 
 from __future__ import annotations
@@ -29,6 +31,7 @@ from ...image.memory import ProcessImage
 from ...plugin.driver import Driver, DriverError, DriverStatus
 from ..can.bus import open_bus
 from ..can.port import CanPort
+from ..ratelog import RateLimitedLog
 from .kind import MalformedFrame, PlainCanNode
 
 log = logging.getLogger(__name__)
@@ -48,7 +51,7 @@ class PlainCanDriver(Driver):
         self._by_id: dict[int, PlainCanNode] = {}
         self.services: dict = {}
         self.malformed: dict[str, int] = {}  # node name -> frames refused
-        self._reasons_logged: set[tuple[str, str]] = set()
+        self.lines = RateLimitedLog(log, clock.now_ns)  # what the driver logs, rate limited
         self.foreign = 0  # frames of the bus that are no node's (CANopen's ...)
         self._bus_ok = True
         self._bus_error = ""
@@ -73,7 +76,7 @@ class PlainCanDriver(Driver):
         endpoint = self.port.acquire()
         endpoint.add_handler(self._on_frame)
         self._started = True
-        log.info("%s: %d device(s) on %s", self.name, len(self.nodes), self.port.settings.describe())
+        self.lines.info(None, "%s: %d device(s) on %s", self.name, len(self.nodes), self.port.settings.describe())
         if not self.clock.virtual:
             self._service = PeriodicService(f"{self.name} service", self.clock, self._advance, SERVICE_PERIOD_S)
             self._service.start()
@@ -96,6 +99,7 @@ class PlainCanDriver(Driver):
             self.port.pump.settle()
 
     def _advance(self, now_ns: int) -> None:
+        self.lines.flush(now_ns)
         if not self._bus_ok and now_ns >= self._next_reopen_ns:
             self._reopen(now_ns)
         with self.lock:
@@ -119,7 +123,9 @@ class PlainCanDriver(Driver):
             self._bus_ok = False
             self._bus_error = endpoint.last_error
             self._next_reopen_ns = self.clock.now_ns() + REOPEN_NS
-            log.error("%s: cannot send: %s; opening the bus again every second", self.name, self._bus_error)
+            self.lines.error(
+                "cannot send", "%s: cannot send: %s; opening the bus again every second", self.name, self._bus_error
+            )
         return False
 
     def _reopen(self, now_ns: int) -> None:
@@ -132,7 +138,7 @@ class PlainCanDriver(Driver):
         except DriverError as exc:
             self._bus_error = str(exc)
             return
-        log.warning("%s: bus open again", self.name)
+        self.lines.warning("open again", "%s: bus open again", self.name)
         self._bus_ok = True
         self._bus_error = ""
 
@@ -147,17 +153,15 @@ class PlainCanDriver(Driver):
                 node.on_frame(msg.arbitration_id, data, self.clock.now_ns())
             except MalformedFrame as exc:
                 self.malformed[node.name] += 1
-                reason = str(exc)
-                if (node.name, reason) not in self._reasons_logged:
-                    self._reasons_logged.add((node.name, reason))
-                    log.warning(
-                        "%s: %s: frame 0x%03X [%s] dropped: %s (further ones are counted, not logged)",
-                        self.name,
-                        node.name,
-                        msg.arbitration_id,
-                        data.hex(" "),
-                        reason,
-                    )
+                self.lines.warning(
+                    ("malformed", node.name, msg.arbitration_id),
+                    "%s: %s: frame 0x%03X [%s] dropped: %s",
+                    self.name,
+                    node.name,
+                    msg.arbitration_id,
+                    data.hex(" "),
+                    exc,
+                )
 
     # ------------------------------------------------------------ the scan
 

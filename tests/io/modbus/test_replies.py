@@ -12,6 +12,8 @@ asyncio server on 127.0.0.1 sends them over a real socket to pymodbus's client."
 from __future__ import annotations
 
 import asyncio
+import logging
+import re
 import threading
 
 import pytest
@@ -394,3 +396,25 @@ def test_tcp_a_channel_to_a_slave_that_lies_keeps_its_last_good_values(slave, tm
         assert "exception code 0" in status_line(engine)
     finally:
         engine.stop()
+
+
+def test_a_slave_that_keeps_lying_is_logged_once_per_interval(plants, tmp_path, caplog):
+    """Every failure with a new reason is a log line, rate limited per channel:
+    a slave that answers nonsense every 20 ms writes two lines per 10 s."""
+    caplog.set_level(logging.INFO, logger="softplc.runtime.io.modbus")
+    plant = plants(plant_config(tmp_path, PROGRAM, program="P", transport="rtu", channels=[READ_ID6]))
+    plant.run_ms(30)
+    counts = (2 * (k % 5 + 2) for k in range(1_000_000))  # byte counts 4, 6 ... 12 for one register, in turn
+
+    def lie(unit, request, own):
+        n = next(counts)
+        return unit, bytes([0x03, n]) + bytes(n)
+
+    crafting(plant, "rtu", lie)
+    plant.run_ms(12_000)
+    failures = plant.master.channels[0].stats.errors
+    lines = [r.getMessage() for r in caplog.records if "channel status" in r.getMessage()]
+    assert failures > 500 and 2 <= len(lines) <= 4
+    assert lines[0].startswith("modbus drives: channel status: unit 1 sent byte count")
+    held = sum(int(m.group(1)) for line in lines if (m := re.match(r"suppressed (\d+) ", line)))
+    assert held > 0
