@@ -21,6 +21,9 @@ code in both modes.
 
 An endpoint can be unplugged (a cut cable, a device switched off): it then
 drops frames both ways until plugged again. Tests and the simulators use it.
+An endpoint may also have no bus yet (bus None: the adapter was missing when
+the PLC started, port.py): it sends and receives nothing until reopen()
+gives it one.
 """
 
 from __future__ import annotations
@@ -71,7 +74,7 @@ def open_bus(settings: BusSettings) -> can.BusABC:
 
 
 class CanEndpoint:
-    def __init__(self, bus: can.BusABC, *, name: str = "", pump: BusPump | None = None) -> None:
+    def __init__(self, bus: can.BusABC | None, *, name: str = "", pump: BusPump | None = None) -> None:
         self.bus = bus
         self.name = name
         self.pump = pump
@@ -100,7 +103,7 @@ class CanEndpoint:
         self._started = True
         if self.pump is not None:
             self.pump.register(self)
-        else:
+        elif self.bus is not None:
             self._notifier = can.Notifier(self.bus, [self._dispatch], timeout=0.1)
 
     def stop(self) -> None:
@@ -114,19 +117,22 @@ class CanEndpoint:
             self._notifier.stop(timeout=1.0)
             self._notifier = None
         try:
-            self.bus.shutdown()
+            if self.bus is not None:
+                self.bus.shutdown()
         except Exception as exc:  # a bus that dies on close has nothing more to lose
             lines.debug(None, "%s: bus shutdown: %s", self.name, exc)
 
     def reopen(self, bus: can.BusABC) -> None:
         """Swap in a freshly opened bus after the old one failed (adapter
-        unplugged, interface down): the handlers stay, the counters go on."""
+        unplugged, interface down) or for the first time (the adapter was
+        missing at the start): the handlers stay, the counters go on."""
         old = self.bus
         if self._notifier is not None:
             self._notifier.stop(timeout=0.5)
             self._notifier = None
         try:
-            old.shutdown()
+            if old is not None:
+                old.shutdown()
         except Exception as exc:
             lines.debug(None, "%s: shutting the failed bus down: %s", self.name, exc)
         self.bus = bus
@@ -141,6 +147,9 @@ class CanEndpoint:
         bus error); the error is counted and kept in last_error, never raised,
         because a lost bus must not stop the thread that sends."""
         if not self.connected:
+            return False
+        if self.bus is None:
+            self.last_error = "the CAN bus is not open"
             return False
         try:
             if self._virtual:
@@ -165,6 +174,8 @@ class CanEndpoint:
         """Pumped endpoints: receive one waiting frame, if any, and hand it
         to the handlers. True when a frame was taken from the bus."""
         bus = self.bus
+        if bus is None:
+            return False
         if self._virtual:
             # python-can's virtual bus: recv(timeout=0) is a get from its
             # receive queue (most polls find it empty) and the bus's filters.
@@ -210,7 +221,7 @@ class CanEndpoint:
 _VIRTUAL_BUS_PARTS = ("queue", "channel", "channel_id", "receive_own_messages", "preserve_timestamps", "_check_if_open")
 
 
-def _is_plain_virtual(bus: can.BusABC) -> bool:
+def _is_plain_virtual(bus: can.BusABC | None) -> bool:
     """python-can's in-process virtual bus, as this module knows its insides
     (a receive queue per bus, a list of them per channel, its filters): the
     endpoint then sends and receives on those queues directly."""

@@ -29,7 +29,7 @@ from ...engine.clock import PeriodicService
 from ...image.memory import ProcessImage
 from ...plugin.driver import Driver, DriverError, DriverStatus
 from ...plugin.registry import registry
-from ..can.bus import BusSettings, CanEndpoint, open_bus
+from ..can.bus import BusSettings, CanEndpoint
 from ..can.port import CanPort
 from ..ratelog import RateLimitedLog
 from .boot import ConfigFailed, boot_steps, configure_node
@@ -120,7 +120,7 @@ class CanopenDriver(Driver):
         self.clock = clock
         self.pump = pump
         # the PLC's connection to the bus, shared with the other protocols on it
-        self.port = port if port is not None else CanPort(settings, pump)
+        self.port = port if port is not None else CanPort(settings, pump, clock=clock)
         self.node_id = config.node_id
         probe = ProcessImage(addressing) if image_size is None else ProcessImage(addressing, image_size)
         self.nodes: dict[int, _Node] = {}
@@ -135,9 +135,6 @@ class CanopenDriver(Driver):
         self._tx_data: dict[PdoBinding, bytes] = {}
         self._next_heartbeat_ns = 0
         self._next_sync_ns = 0
-        self._next_reopen_ns = 0
-        self._bus_ok = False
-        self._bus_error = ""
         self._started = False
         self.endpoint: CanEndpoint | None = None
         self.network: _EndpointNetwork | None = None
@@ -206,14 +203,13 @@ class CanopenDriver(Driver):
 
     def start(self) -> None:
         self._library_log = route_library_log(self.clock.now_ns)  # canopen's own lines: through ours, limited
-        self.endpoint = self.port.acquire()
+        self.endpoint = self.port.acquire(self.clock.now_ns())  # the adapter may be missing: the port waits
         self.network = _EndpointNetwork(self.endpoint, self._log)
         for node in self.nodes.values():
             self.network.add_node(canopen.RemoteNode(node.cfg.node_id, node.od))
         self.endpoint.add_handler(self._on_frame)
         self.worker = SdoWorker(self.network, pump=self.pump)  # virtual time: no thread
         self.worker.start()
-        self._bus_ok = True
         self._started = True
         self._log.info(
             None,
@@ -291,10 +287,8 @@ class CanopenDriver(Driver):
             self._library_log.flush(now_ns)
         with self._lock:
             c = self.config
-            if not self._bus_ok:
-                if now_ns < self._next_reopen_ns:
-                    return
-                self._reopen(now_ns)
+            if not self.port.try_open(now_ns):
+                return  # the bus is down (the port opens it again with back-off)
             if c.heartbeat_ms and now_ns >= self._next_heartbeat_ns:
                 self._next_heartbeat_ns = now_ns + c.heartbeat_ms * 1_000_000
                 self._send(cob_heartbeat(self.node_id), bytes([STATE_OPERATIONAL]))
@@ -323,19 +317,10 @@ class CanopenDriver(Driver):
             if sync:
                 self._send(COB_SYNC, b"")
 
-    def _reopen(self, now_ns: int) -> None:
-        """The bus failed: open it again (every retry time until it works)."""
-        self._next_reopen_ns = now_ns + self.config.retry_ms * 1_000_000
-        try:
-            self._started_endpoint.reopen(open_bus(self.settings))
-        except DriverError as exc:
-            if exc.args[0] != self._bus_error:
-                self._log.error("reopen", "canopen: %s", exc)
-            self._bus_error = exc.args[0]
-            return
-        self._log.warning("reopened", "canopen: bus reopened (%s)", self.settings.describe())
-        self._bus_ok = True
-        self._bus_error = ""
+    @property
+    def _bus_ok(self) -> bool:
+        """Started and the bus open (the port: shared with the other protocols on it)."""
+        return self._started and self.port.is_open
 
     def _send(self, can_id: int, data: bytes, *, remote: bool = False) -> None:
         endpoint = self._started_endpoint
@@ -343,14 +328,11 @@ class CanopenDriver(Driver):
             return
         self._log.error(
             "cannot send",
-            "canopen: cannot send on %s: %s; reopening it every %d ms",
+            "canopen: cannot send on %s: %s; opening it again with back-off",
             self.settings.describe(),
             endpoint.last_error,
-            self.config.retry_ms,
         )
-        self._bus_ok = False
-        self._bus_error = endpoint.last_error
-        self._next_reopen_ns = self.clock.now_ns() + self.config.retry_ms * 1_000_000
+        self.port.failed(self.clock.now_ns(), endpoint.last_error)
 
     def _send_remote(self, can_id: int) -> None:
         """A remote frame (RTR): a node-guarding request."""
@@ -528,7 +510,7 @@ class CanopenDriver(Driver):
 
     def status(self) -> DriverStatus:
         if not self._bus_ok:
-            return DriverStatus(False, f"canopen: bus down ({self._bus_error})")
+            return DriverStatus(False, f"canopen: bus down ({self.port.describe_down(self.clock.now_ns())})")
         bad = [n for n in self.nodes.values() if n.cfg.mandatory and n.sup.state != NodeState.OPERATIONAL]
         up = sum(n.sup.state == NodeState.OPERATIONAL for n in self.nodes.values())
         malformed = f", {self.malformed} malformed" if self.malformed else ""
