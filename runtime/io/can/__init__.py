@@ -47,7 +47,14 @@ def pump_of(ctx: BuildContext) -> BusPump | None:
 def port_of(ctx: BuildContext, bus: CanBusConfig) -> CanPort:
     """The PLC's one connection to the [[can]] bus, shared by every protocol
     driver of the engine on it (port.py)."""
-    return shared_port(ctx.shared, bus.name, settings_of(bus), pump_of(ctx))
+    return shared_port(
+        ctx.shared,
+        bus.name,
+        settings_of(bus),
+        pump_of(ctx),
+        clock=ctx.clock,
+        fail_fast=bus.missing_adapter == "fail",
+    )
 
 
 def _build(config, ctx: BuildContext) -> Contribution:

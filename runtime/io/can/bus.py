@@ -21,6 +21,9 @@ code in both modes.
 
 An endpoint can be unplugged (a cut cable, a device switched off): it then
 drops frames both ways until plugged again. Tests and the simulators use it.
+An endpoint may also have no bus yet (bus None: the adapter was missing when
+the PLC started, port.py): it sends and receives nothing until reopen()
+gives it one.
 """
 
 from __future__ import annotations
@@ -36,8 +39,11 @@ import can
 from can.interfaces.virtual import VirtualBus
 
 from ...plugin.driver import DriverError
+from ..ratelog import RateLimitedLog
 
 log = logging.getLogger(__name__)
+#: what an endpoint or the pump logs (a handler that fails on every frame ...), rate limited
+lines = RateLimitedLog(log)
 
 Handler = Callable[[can.Message], None]
 
@@ -68,7 +74,7 @@ def open_bus(settings: BusSettings) -> can.BusABC:
 
 
 class CanEndpoint:
-    def __init__(self, bus: can.BusABC, *, name: str = "", pump: BusPump | None = None) -> None:
+    def __init__(self, bus: can.BusABC | None, *, name: str = "", pump: BusPump | None = None) -> None:
         self.bus = bus
         self.name = name
         self.pump = pump
@@ -97,7 +103,7 @@ class CanEndpoint:
         self._started = True
         if self.pump is not None:
             self.pump.register(self)
-        else:
+        elif self.bus is not None:
             self._notifier = can.Notifier(self.bus, [self._dispatch], timeout=0.1)
 
     def stop(self) -> None:
@@ -111,21 +117,24 @@ class CanEndpoint:
             self._notifier.stop(timeout=1.0)
             self._notifier = None
         try:
-            self.bus.shutdown()
+            if self.bus is not None:
+                self.bus.shutdown()
         except Exception as exc:  # a bus that dies on close has nothing more to lose
-            log.debug("%s: bus shutdown: %s", self.name, exc)
+            lines.debug(None, "%s: bus shutdown: %s", self.name, exc)
 
     def reopen(self, bus: can.BusABC) -> None:
         """Swap in a freshly opened bus after the old one failed (adapter
-        unplugged, interface down): the handlers stay, the counters go on."""
+        unplugged, interface down) or for the first time (the adapter was
+        missing at the start): the handlers stay, the counters go on."""
         old = self.bus
         if self._notifier is not None:
             self._notifier.stop(timeout=0.5)
             self._notifier = None
         try:
-            old.shutdown()
+            if old is not None:
+                old.shutdown()
         except Exception as exc:
-            log.debug("%s: shutting the failed bus down: %s", self.name, exc)
+            lines.debug(None, "%s: shutting the failed bus down: %s", self.name, exc)
         self.bus = bus
         self._virtual = _is_plain_virtual(bus)
         if self._started and self.pump is None:
@@ -138,6 +147,9 @@ class CanEndpoint:
         bus error); the error is counted and kept in last_error, never raised,
         because a lost bus must not stop the thread that sends."""
         if not self.connected:
+            return False
+        if self.bus is None:
+            self.last_error = "the CAN bus is not open"
             return False
         try:
             if self._virtual:
@@ -162,6 +174,8 @@ class CanEndpoint:
         """Pumped endpoints: receive one waiting frame, if any, and hand it
         to the handlers. True when a frame was taken from the bus."""
         bus = self.bus
+        if bus is None:
+            return False
         if self._virtual:
             # python-can's virtual bus: recv(timeout=0) is a get from its
             # receive queue (most polls find it empty) and the bus's filters.
@@ -200,13 +214,14 @@ class CanEndpoint:
             try:
                 handler(msg)
             except Exception:  # one bad handler must not starve the others
-                log.exception("%s: handler failed on frame 0x%03X", self.name, msg.arbitration_id)
+                key = (self.name, getattr(handler, "__qualname__", None))
+                lines.exception(key, "%s: handler failed on frame 0x%03X", self.name, msg.arbitration_id)
 
 
 _VIRTUAL_BUS_PARTS = ("queue", "channel", "channel_id", "receive_own_messages", "preserve_timestamps", "_check_if_open")
 
 
-def _is_plain_virtual(bus: can.BusABC) -> bool:
+def _is_plain_virtual(bus: can.BusABC | None) -> bool:
     """python-can's in-process virtual bus, as this module knows its insides
     (a receive queue per bus, a list of them per channel, its filters): the
     endpoint then sends and receives on those queues directly."""
@@ -326,6 +341,6 @@ class BusPump:
             was_busy = busy
             if moved == 0:
                 if time.monotonic() > deadline:
-                    log.error("CAN bus not quiet after %.1f s: a worker is stuck", limit_s)
+                    lines.error(None, "CAN bus not quiet after %.1f s: a worker is stuck", limit_s)
                     return False
                 time.sleep(0.0001)  # let the busy worker run

@@ -7,6 +7,8 @@ on one ([[sim]] keys bus and node_id).
     channel = "can0"
     bitrate = 250000
     options = { ... }          # more python-can keyword arguments
+    missing_adapter = "retry"  # the adapter cannot be opened at the start: "retry" (wait for
+                               # it, with back-off) or "fail" (stop: softplc run exits with 2)
 """
 
 from __future__ import annotations
@@ -19,13 +21,26 @@ from pydantic import Field, PlainValidator
 from ...config.errors import key_text
 from ...config.relations import Relations
 from ...config.section import Attachment, Section
-from ...config.values import Model, fail, identifier, in_range, int_range, is_ident, nonempty, text_value
+from ...config.values import (
+    Model,
+    choice,
+    fail,
+    identifier,
+    in_range,
+    int_range,
+    is_ident,
+    nonempty,
+    text_value,
+)
 
 # manual 001 L183-205 (Network Port Baud Rate Setting): the CANopen rates.
 CAN_BITRATES = (10_000, 20_000, 50_000, 125_000, 250_000, 500_000, 800_000, 1_000_000)
 # A [[can]] table without bitrate: 250 kbit/s, the LTMR's factory setting (manual 001 L206).
 DEFAULT_BITRATE = 250_000
 NODE_ID_MAX = 127  # manual 001 L163: "an address from 1 to 127"
+# An adapter that cannot be opened when the PLC starts: wait for it (plant PCs bring USB
+# adapters up late), or stop with a configuration error.
+MISSING_ADAPTER = ("retry", "fail")
 
 _INTERFACE = 'a python-can interface such as "socketcan", "pcan" or "virtual"'
 
@@ -41,6 +56,7 @@ class CanBusConfig:
     bitrate: int  # bit/s
     options: dict  # more keyword arguments for python-can
     key: str  # "can[0]"
+    missing_adapter: str = "retry"  # "retry" | "fail": an adapter that cannot be opened at the start
 
 
 @dataclass
@@ -66,6 +82,9 @@ class _Can(Model):
     bitrate: Annotated[int, PlainValidator(_bitrate)] = Field(DEFAULT_BITRATE, description="a CANopen bitrate")
     options: dict[str, Any] = Field(
         default_factory=dict, description="a table of python-can options, such as { fd = false }"
+    )
+    missing_adapter: Annotated[str, choice(MISSING_ADAPTER)] = Field(
+        "retry", description='"retry" (wait for the adapter, with back-off) or "fail" (stop at the start)'
     )
 
 
@@ -161,7 +180,7 @@ class CanSection(Section):
 
     def build(self, model: Any, ctx: Relations) -> list[CanBusConfig]:
         return [
-            CanBusConfig(b.name, b.interface, b.channel, b.bitrate, dict(b.options), f"can[{i}]")
+            CanBusConfig(b.name, b.interface, b.channel, b.bitrate, dict(b.options), f"can[{i}]", b.missing_adapter)
             for i, b in enumerate(model)
         ]
 

@@ -9,7 +9,15 @@ from ...program import global_variable as _global
 from .node import NodeState
 
 #: CANOPEN_MASTER's fields, in the order of the master's view (CanopenDriver._master_view)
-MASTER_FIELDS = ("BusOk", "NodesConfigured", "NodesOperational", "FramesReceived", "FramesSent", "SendErrors")
+MASTER_FIELDS = (
+    "BusOk",
+    "NodesConfigured",
+    "NodesOperational",
+    "FramesReceived",
+    "FramesSent",
+    "SendErrors",
+    "Malformed",
+)
 
 
 class CanopenDiag:
@@ -49,5 +57,6 @@ class CanopenDiag:
                 EmcyCode=emcy.code if emcy else 0,
                 EmcyRegister=emcy.register if emcy else 0,
                 EmcyData=int.from_bytes(emcy.data[:4], "little") if emcy else 0,
+                Malformed=sup.malformed,
                 Message=sup.message if sup.state != NodeState.OPERATIONAL else "",
             )

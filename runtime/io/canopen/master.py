@@ -29,25 +29,25 @@ from ...engine.clock import PeriodicService
 from ...image.memory import ProcessImage
 from ...plugin.driver import Driver, DriverError, DriverStatus
 from ...plugin.registry import registry
-from ..can.bus import BusSettings, CanEndpoint, open_bus
+from ..can.bus import BusSettings, CanEndpoint
 from ..can.port import CanPort
+from ..ratelog import RateLimitedLog
+from .boot import ConfigFailed, boot_steps, configure_node
 from .cia301 import (
-    COB_ID_INVALID,
     COB_NMT,
     COB_SYNC,
     CONSUMER_HEARTBEAT,
-    GUARD_TIME,
-    LIFE_TIME_FACTOR,
     NMT_RESET_COMMUNICATION,
     NMT_START,
-    PRODUCER_HEARTBEAT,
     STATE_OPERATIONAL,
     cob_emcy,
     cob_heartbeat,
+    cob_sdo_tx,
 )
 from .emcy_log import EmcyLog, EmcyText
+from .library_log import route_library_log
 from .node import Emergency, NodeState, NodeSupervisor
-from .pdo import PdoBinding, TxSchedule, default_cob_id
+from .pdo import PdoBinding, TxSchedule
 from .sdo import SERVICE as SDO_SERVICE
 from .sdo import SchneiderSdoService, SdoJob, SdoWorker
 
@@ -57,18 +57,23 @@ if TYPE_CHECKING:
 log = logging.getLogger(__name__)
 
 
+#: the most lines per node and kind of event (reset, operational, lost ...) in the log per 10 s
+EVENT_BURST = 3
+
+
 class _EndpointNetwork(canopen.Network):
     """canopen's Network, sending through our endpoint (so an unplugged or
     failed bus is handled in one place) instead of owning a bus."""
 
-    def __init__(self, endpoint: CanEndpoint) -> None:
+    def __init__(self, endpoint: CanEndpoint, lines: RateLimitedLog) -> None:
         super().__init__(bus=None)
         self.endpoint = endpoint
+        self.lines = lines
 
     def send_message(self, can_id: int, data: bytes, remote: bool = False) -> None:
         if not self.endpoint.send(can_id, bytes(data), remote=remote):
             # canopen's SDO client then waits for its timeout, as on a real bus
-            log.debug("frame 0x%03X not sent: %s", can_id, self.endpoint.last_error or "unplugged")
+            self.lines.debug("not sent", "frame 0x%03X not sent: %s", can_id, self.endpoint.last_error or "unplugged")
 
 
 class _Node:
@@ -115,7 +120,7 @@ class CanopenDriver(Driver):
         self.clock = clock
         self.pump = pump
         # the PLC's connection to the bus, shared with the other protocols on it
-        self.port = port if port is not None else CanPort(settings, pump)
+        self.port = port if port is not None else CanPort(settings, pump, clock=clock)
         self.node_id = config.node_id
         probe = ProcessImage(addressing) if image_size is None else ProcessImage(addressing, image_size)
         self.nodes: dict[int, _Node] = {}
@@ -125,13 +130,11 @@ class CanopenDriver(Driver):
         self._by_emcy = {cob_emcy(n): node for n, node in self.nodes.items()}
         self._lock = threading.RLock()
         self._tpdo_by_cob: dict[int, PdoBinding] = {}
+        self._tpdo_node: dict[int, _Node] = {}  # COB-ID -> the node whose TPDO it is
         self._rx_fresh: dict[PdoBinding, bytes] = {}
         self._tx_data: dict[PdoBinding, bytes] = {}
         self._next_heartbeat_ns = 0
         self._next_sync_ns = 0
-        self._next_reopen_ns = 0
-        self._bus_ok = False
-        self._bus_error = ""
         self._started = False
         self.endpoint: CanEndpoint | None = None
         self.network: _EndpointNetwork | None = None
@@ -145,7 +148,12 @@ class CanopenDriver(Driver):
         )
         self.services = {SDO_SERVICE: self.sdo_service}
         self.rx_short = 0  # TPDOs shorter than their mapping (dropped)
-        self._emcy_log = EmcyLog()
+        self.malformed = 0  # frames dropped as malformed: short TPDOs, EMCYs, heartbeats, SDO answers
+        # what the master logs: events (EVENT_BURST a node and kind per 10 s), frames (one a node per 10 s)
+        self._log = RateLimitedLog(log, clock.now_ns, burst=EVENT_BURST)
+        self._frames_log = RateLimitedLog(log, clock.now_ns)
+        self._emcy_log = EmcyLog(clock=clock.now_ns)
+        self._library_log: RateLimitedLog | None = None  # canopen's own lines (library_log.py), once started
         self._diag: CanopenDiag | None = None
 
     def _prepare(self, ncfg, probe: ProcessImage) -> _Node:
@@ -194,16 +202,17 @@ class CanopenDriver(Driver):
     # ------------------------------------------------------------ life cycle
 
     def start(self) -> None:
-        self.endpoint = self.port.acquire()
-        self.network = _EndpointNetwork(self.endpoint)
+        self._library_log = route_library_log(self.clock.now_ns)  # canopen's own lines: through ours, limited
+        self.endpoint = self.port.acquire(self.clock.now_ns())  # the adapter may be missing: the port waits
+        self.network = _EndpointNetwork(self.endpoint, self._log)
         for node in self.nodes.values():
             self.network.add_node(canopen.RemoteNode(node.cfg.node_id, node.od))
         self.endpoint.add_handler(self._on_frame)
         self.worker = SdoWorker(self.network, pump=self.pump)  # virtual time: no thread
         self.worker.start()
-        self._bus_ok = True
         self._started = True
-        log.info(
+        self._log.info(
+            None,
             "canopen: master node %d on %s, %d node(s) configured",
             self.node_id,
             self.settings.describe(),
@@ -271,12 +280,15 @@ class CanopenDriver(Driver):
 
     def service(self, now_ns: int) -> None:
         """Send what is due and move the node state machines on."""
+        self._log.flush(now_ns)
+        self._frames_log.flush(now_ns)
+        self._emcy_log.flush(now_ns)
+        if self._library_log is not None:
+            self._library_log.flush(now_ns)
         with self._lock:
             c = self.config
-            if not self._bus_ok:
-                if now_ns < self._next_reopen_ns:
-                    return
-                self._reopen(now_ns)
+            if not self.port.try_open(now_ns):
+                return  # the bus is down (the port opens it again with back-off)
             if c.heartbeat_ms and now_ns >= self._next_heartbeat_ns:
                 self._next_heartbeat_ns = now_ns + c.heartbeat_ms * 1_000_000
                 self._send(cob_heartbeat(self.node_id), bytes([STATE_OPERATIONAL]))
@@ -291,7 +303,13 @@ class CanopenDriver(Driver):
                 if before == NodeState.UNKNOWN or (sup.deadline_ns is not None and now_ns >= sup.deadline_ns):
                     action = sup.tick(now_ns)
                     if sup.state != before and sup.state in (NodeState.MISSING, NodeState.LOST):
-                        log.warning("canopen: node %s (%d): %s", node.cfg.name, node.cfg.node_id, sup.message)
+                        self._log.warning(
+                            ("state", node.cfg.node_id),
+                            "canopen: node %s (%d): %s",
+                            node.cfg.name,
+                            node.cfg.node_id,
+                            sup.message,
+                        )
                     self._act(node, action)
                 if sup.guard_ns and sup.guard_due(now_ns):
                     self._send_remote(cob_heartbeat(node.cfg.node_id))
@@ -299,33 +317,22 @@ class CanopenDriver(Driver):
             if sync:
                 self._send(COB_SYNC, b"")
 
-    def _reopen(self, now_ns: int) -> None:
-        """The bus failed: open it again (every retry time until it works)."""
-        self._next_reopen_ns = now_ns + self.config.retry_ms * 1_000_000
-        try:
-            self._started_endpoint.reopen(open_bus(self.settings))
-        except DriverError as exc:
-            if exc.args[0] != self._bus_error:
-                log.error("canopen: %s", exc)
-            self._bus_error = exc.args[0]
-            return
-        log.warning("canopen: bus reopened (%s)", self.settings.describe())
-        self._bus_ok = True
-        self._bus_error = ""
+    @property
+    def _bus_ok(self) -> bool:
+        """Started and the bus open (the port: shared with the other protocols on it)."""
+        return self._started and self.port.is_open
 
     def _send(self, can_id: int, data: bytes, *, remote: bool = False) -> None:
         endpoint = self._started_endpoint
         if endpoint.send(can_id, data, remote=remote) or not endpoint.connected or not self._bus_ok:
             return
-        log.error(
-            "canopen: cannot send on %s: %s; reopening it every %d ms",
+        self._log.error(
+            "cannot send",
+            "canopen: cannot send on %s: %s; opening it again with back-off",
             self.settings.describe(),
             endpoint.last_error,
-            self.config.retry_ms,
         )
-        self._bus_ok = False
-        self._bus_error = endpoint.last_error
-        self._next_reopen_ns = self.clock.now_ns() + self.config.retry_ms * 1_000_000
+        self.port.failed(self.clock.now_ns(), endpoint.last_error)
 
     def _send_remote(self, can_id: int) -> None:
         """A remote frame (RTR): a node-guarding request."""
@@ -347,7 +354,12 @@ class CanopenDriver(Driver):
                         schedule.sent(data, now_ns)
 
     def _on_frame(self, msg: can.Message) -> None:
-        """Every received frame (receive thread, or the pump in virtual time)."""
+        """Every received frame (receive thread, or the pump in virtual time).
+        A frame of the wrong length for what its CAN-ID carries (CiA 301: a
+        heartbeat or guarding reply 1 byte, an EMCY and an SDO answer 8, a
+        TPDO its mapping) is counted and dropped, never handed on."""
+        if msg.is_remote_frame:
+            return  # requests (node guarding): the nodes answer them, not the master
         can_id, data = msg.arbitration_id, bytes(msg.data)
         now = self.clock.now_ns()
         with self._lock:
@@ -355,23 +367,55 @@ class CanopenDriver(Driver):
             if binding is not None:
                 if len(data) < binding.nbytes:
                     self.rx_short += 1
+                    self._malformed(self._tpdo_node.get(can_id), can_id, data, f"its mapping needs {binding.nbytes}")
                 else:
                     self._rx_fresh[binding] = data
-            elif can_id in self._by_heartbeat and data and not msg.is_remote_frame:
-                node = self._by_heartbeat[can_id]
-                if node.sup.guard_ns and data[0] & 0x7F:  # a guarding reply (a boot-up is 00)
+                return
+            node = self._by_heartbeat.get(can_id)
+            if node is not None:
+                if len(data) != 1:
+                    self._malformed(node, can_id, data, "a heartbeat has 1")
+                elif node.sup.guard_ns and data[0] & 0x7F:  # a guarding reply (a boot-up is 00)
                     self._act(node, node.sup.guard_reply(data[0], now))
                 else:
                     self._act(node, node.sup.heartbeat(data[0], now))
-            elif can_id in self._by_emcy and data:
-                node = self._by_emcy[can_id]
-                padded = data + bytes(8 - len(data))
-                emcy = Emergency(int.from_bytes(padded[0:2], "little"), padded[2], padded[3:8], now)
+                return
+            node = self._by_emcy.get(can_id)
+            if node is not None:
+                if len(data) != 8:
+                    self._malformed(node, can_id, data, "an EMCY has 8")
+                    return
+                emcy = Emergency(int.from_bytes(data[0:2], "little"), data[2], data[3:8], now)
                 node.sup.emergency(emcy)
                 self._emcy_log.emergency(
-                    node.cfg.name, node.cfg.node_id, emcy.code, emcy.register, emcy.data, now, node.emcy_text
+                    node.cfg.name, node.cfg.node_id, emcy.code, emcy.register, emcy.data, node.emcy_text
                 )
-        self._started_network.notify(can_id, msg.data, msg.timestamp)
+                return
+            if not cob_sdo_tx(1) <= can_id <= cob_sdo_tx(127):
+                return  # not the master's: SYNC, NMT, other PDOs ...
+            if len(data) != 8:
+                self._malformed(self.nodes.get(can_id - cob_sdo_tx(0)), can_id, data, "an SDO answer has 8")
+                return
+        self._started_network.notify(can_id, msg.data, msg.timestamp)  # the SDO client's answer
+
+    def _malformed(self, node: _Node | None, can_id: int, data: bytes, rule: str) -> None:
+        """A frame of the wrong length: counted (on its node, if it is one of
+        ours) and logged once per node every 10 s, with the count held back."""
+        self.malformed += 1
+        if node is not None:
+            node.sup.malformed_frame()
+            who = f"node {node.cfg.name} ({node.cfg.node_id})"
+        else:
+            who = "an unconfigured node"
+        self._frames_log.warning(
+            ("malformed", node.cfg.node_id if node is not None else None),
+            "canopen: %s: frame 0x%03X [%s] dropped: %d bytes, %s",
+            who,
+            can_id,
+            data.hex(" "),
+            len(data),
+            rule,
+        )
 
     def _act(self, node: _Node, action: str | None) -> None:
         """Carry out what a node's state machine asked for (lock held)."""
@@ -379,7 +423,8 @@ class CanopenDriver(Driver):
             return
         nid = node.cfg.node_id
         if action == "reset":
-            log.info(
+            self._log.info(
+                ("reset", nid),
                 "canopen: node %s (%d): reset communication%s",
                 node.cfg.name,
                 nid,
@@ -392,83 +437,31 @@ class CanopenDriver(Driver):
             for _binding, schedule in node.rpdos:
                 schedule.reset()
             self._send(COB_NMT, bytes([NMT_START, nid]))
-            log.info("canopen: node %s (%d) operational", node.cfg.name, nid)
+            self._log.info(("operational", nid), "canopen: node %s (%d) operational", node.cfg.name, nid)
 
     # ------------------------------------------------------------ boot-time configuration (worker)
 
     def _configure(self, node: _Node) -> None:
         """The node booted: write its heartbeat, its SDO list and its PDOs,
-        then read back the PDO COB-IDs. Runs in the SDO worker."""
+        then read back the PDO COB-IDs (boot.py). Runs in the SDO worker."""
         cfg = node.cfg
-        timeout = self.config.sdo_timeout_ms / 1000
-        steps = [(PRODUCER_HEARTBEAT, 0, cfg.heartbeat_ms.to_bytes(2, "little"), f"{cfg.key}.heartbeat")]
-        if cfg.guard_time_ms:
-            steps.append((GUARD_TIME, 0, cfg.guard_time_ms.to_bytes(2, "little"), f"{cfg.key}.guard_time"))
-            steps.append((LIFE_TIME_FACTOR, 0, bytes([cfg.life_time_factor]), f"{cfg.key}.life_time_factor"))
-        # a node without a heartbeat consumer (no 1016h) is not told the default
-        if cfg.master_timeout_ms and node.od.get_variable(CONSUMER_HEARTBEAT, 1) is not None:
-            value = (self.node_id << 16) | cfg.master_timeout_ms
-            steps.append((CONSUMER_HEARTBEAT, 1, value.to_bytes(4, "little"), f"{cfg.key}.master_timeout"))
-        steps.extend(node.sdo_writes)
+        steps = boot_steps(cfg, node.od, self.node_id) + node.sdo_writes
+        bindings = node.tpdos + [b for b, _s in node.rpdos]
         error = ""
         try:
-            for index, sub, data, key in steps:
-                self._sdo(node, index, sub, data, key, timeout)
-            for binding in node.tpdos + [b for b, _s in node.rpdos]:
-                self._configure_pdo(node, binding, timeout)
-        except _ConfigFailed as exc:
+            configure_node(
+                self._started_worker, cfg.node_id, node.od, steps, bindings, self.config.sdo_timeout_ms / 1000
+            )
+        except ConfigFailed as exc:
             error = str(exc)
-            log.error("canopen: node %s (%d): %s", cfg.name, cfg.node_id, error)
+            self._log.error(("configure", cfg.node_id), "canopen: node %s (%d): %s", cfg.name, cfg.node_id, error)
         now = self.clock.now_ns()
         with self._lock:
             if not error:
                 self._tpdo_by_cob = {c: b for c, b in self._tpdo_by_cob.items() if b not in node.tpdos}
                 self._tpdo_by_cob.update((b.cob_id, b) for b in node.tpdos if b.cob_id is not None)
+                self._tpdo_node.update((b.cob_id, node) for b in node.tpdos if b.cob_id is not None)
             self._act(node, node.sup.configured(not error, error, now))
-
-    def _sdo(self, node: _Node, index: int, sub: int, data: bytes | None, key: str, timeout: float) -> bytes:
-        job = SdoJob(node.cfg.node_id, index, sub, data, timeout)
-        self._started_worker.transfer(job)
-        if job.error:
-            raise _ConfigFailed(f"{key}: {job.error}")
-        return job.received
-
-    def _configure_pdo(self, node: _Node, b: PdoBinding, timeout: float) -> None:
-        """CiA 301 PDO (re)mapping: invalidate, clear, write the entries, set
-        their number, set the parameters, validate. configure = false only
-        reads the COB-ID the node uses."""
-        nid = node.cfg.node_id
-        raw = self._sdo(node, b.comm_index, 1, None, f"{b.key}: read COB-ID", timeout)
-        cob = int.from_bytes(raw[:4].ljust(4, b"\0"), "little")
-        if not b.configure:
-            if cob & COB_ID_INVALID:
-                raise _ConfigFailed(
-                    f"{b.key}: the node's {b.direction.upper()} {b.number} is not valid "
-                    f"(COB-ID 0x{cob:08X}); set configure = true"
-                )
-            b.cob_id = cob & 0x7FF
-            return
-        if cob & 0x7FF == 0:
-            cob = default_cob_id(b.direction, b.number, nid)
-        cob_id = cob & 0x7FF
-        what = f"{b.key}"
-        self._sdo(node, b.comm_index, 1, (cob_id | COB_ID_INVALID).to_bytes(4, "little"), what, timeout)
-        self._sdo(node, b.map_index, 0, b"\0", what, timeout)
-        for i, e in enumerate(b.entries, start=1):
-            self._sdo(node, b.map_index, i, e.mapping_value.to_bytes(4, "little"), e.key, timeout)
-        self._sdo(node, b.map_index, 0, bytes([len(b.entries)]), what, timeout)
-        self._sdo(node, b.comm_index, 2, bytes([b.transmission]), f"{b.key}.transmission", timeout)
-        # A TPDO's inhibit time and event timer are written even when 0: a node's
-        # own default may not be (the FC 280 inhibits its TPDOs for 30 ms,
-        # manual 003 §4.1.4), and the configuration says what is wanted.
-        comm = node.od.get(b.comm_index)
-        tpdo = b.direction == "tpdo"
-        if (tpdo or b.inhibit_us) and comm is not None and 3 in comm:
-            self._sdo(node, b.comm_index, 3, (b.inhibit_us // 100).to_bytes(2, "little"), f"{b.key}.inhibit", timeout)
-        if (tpdo or b.event_ms) and comm is not None and 5 in comm:
-            self._sdo(node, b.comm_index, 5, b.event_ms.to_bytes(2, "little"), f"{b.key}.event", timeout)
-        self._sdo(node, b.comm_index, 1, cob_id.to_bytes(4, "little"), what, timeout)
-        b.cob_id = cob_id
 
     # ------------------------------------------------------------ READ_VAR / WRITE_VAR
 
@@ -507,6 +500,7 @@ class CanopenDriver(Driver):
             ep.received if ep else 0,
             ep.sent if ep else 0,
             ep.send_errors if ep else 0,
+            self.malformed,
         )
 
     def write_outputs(self, image: ProcessImage) -> None:
@@ -516,18 +510,17 @@ class CanopenDriver(Driver):
 
     def status(self) -> DriverStatus:
         if not self._bus_ok:
-            return DriverStatus(False, f"canopen: bus down ({self._bus_error})")
+            return DriverStatus(False, f"canopen: bus down ({self.port.describe_down(self.clock.now_ns())})")
         bad = [n for n in self.nodes.values() if n.cfg.mandatory and n.sup.state != NodeState.OPERATIONAL]
         up = sum(n.sup.state == NodeState.OPERATIONAL for n in self.nodes.values())
+        malformed = f", {self.malformed} malformed" if self.malformed else ""
         if bad:
             n = bad[0]
             why = n.sup.message or n.sup.state.name.lower()
-            return DriverStatus(False, f"canopen: {up}/{len(self.nodes)} up; {n.cfg.name} ({n.cfg.node_id}): {why}")
-        return DriverStatus(True, f"canopen: {up}/{len(self.nodes)} up")
+            return DriverStatus(
+                False, f"canopen: {up}/{len(self.nodes)} up{malformed}; {n.cfg.name} ({n.cfg.node_id}): {why}"
+            )
+        return DriverStatus(True, f"canopen: {up}/{len(self.nodes)} up{malformed}")
 
     def node_state(self, node_id: int) -> NodeState:
         return self.nodes[node_id].sup.state
-
-
-class _ConfigFailed(Exception):
-    pass

@@ -75,6 +75,7 @@ class NodeSupervisor:
         self.deadline_ns: int | None = None  # boot-up wait, heartbeat watch or retry
         self.boots = 0  # boot-ups seen
         self.emergencies = 0
+        self.malformed = 0  # its frames dropped as malformed (an EMCY or heartbeat of the wrong length ...)
         self.last_emcy: Emergency | None = None
         self.message = ""
         self.version = 0  # bumped on every change the program can see
@@ -192,4 +193,8 @@ class NodeSupervisor:
     def emergency(self, emcy: Emergency) -> None:
         self.emergencies += 1
         self.last_emcy = emcy
+        self.version += 1
+
+    def malformed_frame(self) -> None:
+        self.malformed += 1
         self.version += 1

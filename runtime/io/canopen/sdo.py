@@ -41,9 +41,11 @@ from canopen.sdo import SdoClient
 from canopen.sdo.exceptions import SdoAbortedError, SdoCommunicationError
 
 from ...st.native import ADDRESS, ANY_INT, STRING, WORDS, NativeFunction, Param
+from ..ratelog import RateLimitedLog
 from .cia301 import ABORT_TIMEOUT, abort_text
 
 log = logging.getLogger(__name__)
+lines = RateLimitedLog(log)  # a worker's failures, rate limited
 
 # communication report (word k+1, LSB)
 COMM_DONE = 0x00
@@ -184,7 +186,7 @@ class SdoWorker:
         try:
             task()
         except Exception:  # a bug in one task must not kill the worker
-            log.exception("%s: task failed", self.name)
+            lines.exception((self.name, "task"), "%s: task failed", self.name)
         finally:
             with self._lock:
                 self._pending -= 1

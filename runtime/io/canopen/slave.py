@@ -47,6 +47,7 @@ from canopen.sdo import SdoAbortedError
 from ...plugin.seams import SimFault
 from ...sim.base import SimulatedDevice
 from ..can.bus import BusPump, BusSettings, CanEndpoint, open_bus
+from ..ratelog import RateLimitedLog
 from .cia301 import (
     ABORT_NO_SUBINDEX,
     ABORT_VALUE_RANGE,
@@ -69,7 +70,9 @@ from .cia301 import (
     TPDO_MAP,
     cob_emcy,
     cob_heartbeat,
+    cob_sdo_rx,
 )
+from .library_log import route_library_log
 from .slave_errors import ERROR_BEHAVIOUR, ERROR_TO_STOPPED, ErrorControlMixin
 from .slave_pdo import PDO_SLOTS, PdoMixin, PdoTables, TpdoState
 
@@ -153,6 +156,8 @@ class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
         self._init_error_control()
         self._written: list[int] = []  # objects written, for _flush_writes
         self._cached: dict[tuple[int, int], int] = {}  # _cached_value: stored values read every tick
+        self.malformed = 0  # SDO requests of the wrong length, dropped (CiA 301: 8 bytes)
+        self.lines = RateLimitedLog(log, clock.now_ns, burst=3)  # what it logs, rate limited
 
     # ------------------------------------------------------------------ hooks
 
@@ -208,6 +213,7 @@ class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
     # ------------------------------------------------------------------ life cycle
 
     def open(self) -> None:
+        route_library_log()  # canopen's own log lines (its SDO server's): through ours, rate limited
         with self._lock:
             self.endpoint = CanEndpoint(open_bus(self.settings), name=self.name, pump=self.pump)
             self.network = _SlaveNetwork(self.endpoint)
@@ -389,6 +395,14 @@ class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
                     self._flush_writes(now)
                     self._transmit_event_tpdos(now)
                     return
+            if can_id != cob_sdo_rx(self.node_id):
+                return  # not for this node
+            if len(data) != 8:
+                self.malformed += 1
+                self.lines.warning(
+                    "malformed", "%s: SDO request [%s] dropped: %d bytes, not 8", self.name, data.hex(" "), len(data)
+                )
+                return
             assert self.network is not None  # open() made it before adding this handler
             self.network.notify(can_id, msg.data, msg.timestamp)  # the SDO server
             self._flush_writes(now)

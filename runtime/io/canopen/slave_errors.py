@@ -13,9 +13,8 @@ producer, after the reset. A reset of the application starts afresh.
 
 from __future__ import annotations
 
-import logging
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .cia301 import (
     CONSUMER_HEARTBEAT,
@@ -28,7 +27,9 @@ from .cia301 import (
     cob_heartbeat,
 )
 
-log = logging.getLogger("softplc.runtime.io.canopen.slave")
+if TYPE_CHECKING:
+    from ..ratelog import RateLimitedLog
+
 
 MS = 1_000_000
 GUARDING_TOGGLE = 0x80  # bit 7 of a guarding reply
@@ -57,6 +58,7 @@ class ErrorControlMixin:
     name: str
     node_id: int
     _state: int
+    lines: RateLimitedLog  # what it logs, rate limited
 
     # provided by SimulatedCanopenSlave
     def _value(self, index: int, subindex: int) -> int:
@@ -164,7 +166,9 @@ class ErrorControlMixin:
                 continue
             if now - consumer.last_ns > consumer.timeout_ns:
                 consumer.lost = True
-                log.info("%s: heartbeat of node %d lost", self.name, consumer.producer)
+                self.lines.info(
+                    ("heartbeat lost", consumer.producer), "%s: heartbeat of node %d lost", self.name, consumer.producer
+                )
                 self._communication_error()
 
     # ------------------------------------------------------------------ node guarding (CiA 301)
@@ -185,7 +189,7 @@ class ErrorControlMixin:
         self._guarded_ns = now
         if self._guarding_lost or self._error_pending:
             self._guarding_lost = self._error_pending = False
-            log.info("%s: guarding by the master resumed", self.name)
+            self.lines.info(None, "%s: guarding by the master resumed", self.name)
             if not self.heartbeat_lost:
                 self.on_comm_restored()
 
@@ -199,7 +203,7 @@ class ErrorControlMixin:
             return
         if now - self._guarded_ns > life:
             self._guarding_lost = True
-            log.info("%s: no guarding request for %d ms (life time)", self.name, life // MS)
+            self.lines.info(None, "%s: no guarding request for %d ms (life time)", self.name, life // MS)
             self._communication_error()
 
     def _communication_error(self) -> None:

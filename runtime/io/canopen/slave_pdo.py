@@ -14,10 +14,9 @@ supported.
 
 from __future__ import annotations
 
-import logging
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from canopen.objectdictionary import ODArray, ODRecord, ODVariable
 from canopen.objectdictionary.datatypes import INTEGER_TYPES, SIGNED_TYPES
@@ -38,7 +37,9 @@ from .cia301 import (
     split_mapping_entry,
 )
 
-log = logging.getLogger(__name__)
+if TYPE_CHECKING:
+    from ..ratelog import RateLimitedLog
+
 
 MS = 1_000_000
 
@@ -120,6 +121,7 @@ class PdoMixin:
     node: Any
     name: str
     _state: int
+    lines: RateLimitedLog  # what it logs, rate limited
     _tables: PdoTables | None
     _tpdo_state: dict[int, TpdoState]
     _sync_rpdos: dict[int, tuple]
@@ -321,7 +323,14 @@ class PdoMixin:
 
     def _on_rpdo_frame(self, pdo: Pdo, data: bytes) -> None:
         if len(data) < pdo.nbytes:
-            log.debug("%s: RPDO %d with %d bytes, %d mapped: ignored", self.name, pdo.number, len(data), pdo.nbytes)
+            self.lines.debug(
+                ("short rpdo", pdo.number),
+                "%s: RPDO %d with %d bytes, %d mapped: ignored",
+                self.name,
+                pdo.number,
+                len(data),
+                pdo.nbytes,
+            )
             return
         if pdo.transmission <= SYNC_CYCLIC_LAST:
             self._sync_rpdos[pdo.number] = (pdo, data)  # applied at the next SYNC
@@ -338,8 +347,14 @@ class PdoMixin:
                 self.node.set_data(index, subindex, value.to_bytes((bits + 7) // 8, "little"))
             except SdoAbortedError as exc:
                 # A PDO has no answer: the device keeps its value (an SDO would abort)
-                log.debug(
-                    "%s: RPDO %d entry %04X:%02X refused (0x%08X)", self.name, pdo.number, index, subindex, exc.code
+                self.lines.debug(
+                    ("refused", pdo.number),
+                    "%s: RPDO %d entry %04X:%02X refused (0x%08X)",
+                    self.name,
+                    pdo.number,
+                    index,
+                    subindex,
+                    exc.code,
                 )
         self.on_rpdo(pdo.number)
 

@@ -12,6 +12,10 @@ the engine's thread in virtual time (runtime/io/modbus/master.py).
 What the link adds to pymodbus:
   * every failure becomes an error code, never an exception: the codes are
     CODESYS's (IoDrvModbus MB_ErrorCodes), so a ported program's checks work;
+  * every reply is checked against its request as it crossed the wire
+    (replies.py: unit, function, exception code, byte and item counts, the
+    echo of a write); a bad reply is an error with its reason, and nothing
+    of it is taken;
   * the idle time between RTU frames (Modbus over serial line 2.5.1.1:
     3.5 character times, fixed 1.75 ms above 19200 bit/s; the Eaton manual
     asks for it too, digest §2.3) is kept before every request;
@@ -23,7 +27,6 @@ What the link adds to pymodbus:
 
 from __future__ import annotations
 
-import enum
 import logging
 import time
 from dataclasses import dataclass, field
@@ -32,45 +35,15 @@ from pymodbus.client import ModbusSerialClient, ModbusTcpClient
 from pymodbus.exceptions import ConnectionException, ModbusException, ModbusIOException
 from pymodbus.pdu import ModbusPDU
 
+from .errors import ModbusError, error_text
 from .functions import FUNCTIONS, check_request
+from .replies import BadReply, ReplyCheck
 from .wire import MemoryClient, MemoryServer
+
+__all__ = ["LinkSettings", "ModbusError", "ModbusLink", "Outcome", "Transaction", "error_text", "frame_gap"]
 
 # pymodbus logs every timeout as an error; the link reports them itself.
 logging.getLogger("pymodbus").setLevel(logging.CRITICAL)
-
-
-class ModbusError(enum.IntEnum):
-    """Result codes of a transaction (channel LastError, MODBUS_REQUEST.ERRORID).
-    1..11 are the slave's exception codes (Modbus application protocol 7);
-    16#A1.. are the master's own, numbered as CODESYS numbers them."""
-
-    OK = 0x00
-    ILLEGAL_FUNCTION = 0x01
-    ILLEGAL_DATA_ADDRESS = 0x02
-    ILLEGAL_DATA_VALUE = 0x03
-    SLAVE_DEVICE_FAILURE = 0x04
-    ACKNOWLEDGE = 0x05
-    SLAVE_DEVICE_BUSY = 0x06
-    MEMORY_PARITY_ERROR = 0x08
-    GATEWAY_PATH_UNAVAILABLE = 0x0A
-    GATEWAY_TARGET_FAILED = 0x0B
-    RESPONSE_CRC_FAIL = 0xA1
-    RESPONSE_TIMEOUT = 0xA2  # no answer, retries included: a silent slave
-    RESPONSE_WRONG_SLAVE = 0xA3
-    RESPONSE_WRONG_FUNCTIONCODE = 0xA4
-    REQUEST_FAILED_TO_SEND = 0xA5  # the connection is down (no port, refused, reset)
-    RESPONSE_INVALID_DATA = 0xA6  # an answer of the wrong length
-    RESPONSE_INVALID_PROTOCOL = 0xA7
-    RESPONSE_INVALID_HEADER = 0xA8
-    INVALID_REQUEST = 0xFE  # softplc: a request the master refuses to send (bad count ...)
-    UNDEFINED = 0xFF
-
-
-def error_text(code: int) -> str:
-    try:
-        return ModbusError(code).name.lower().replace("_", " ")
-    except ValueError:
-        return f"error 16#{code:02X}"
 
 
 @dataclass(frozen=True)
@@ -123,6 +96,29 @@ class Outcome:
     late_s: float = 0.0  # in memory (virtual time): no answer; the outcome counts this much later
 
 
+_OUT_OF_STEP = (
+    ModbusError.RESPONSE_TIMEOUT,
+    ModbusError.RESPONSE_INVALID_HEADER,
+    ModbusError.RESPONSE_INVALID_PROTOCOL,
+)
+
+
+class _Tap:
+    """pymodbus's trace_packet hook: the last request frame sent and the
+    bytes received since (pymodbus hands over all it has gathered so far)."""
+
+    def __init__(self) -> None:
+        self.sent = b""
+        self.received = b""
+
+    def __call__(self, sending: bool, data: bytes) -> bytes:
+        if sending:
+            self.sent, self.received = bytes(data), b""
+        else:
+            self.received = bytes(data)
+        return data
+
+
 class ModbusLink:
     """One connection; see the module docstring. Not thread-safe by design:
     one owner calls transact()."""
@@ -131,6 +127,8 @@ class ModbusLink:
         self.settings = settings
         self.server = server  # in memory to a simulated line (virtual time), see wire.py
         self._client: ModbusTcpClient | ModbusSerialClient | MemoryClient | None = None
+        self._tap = _Tap()  # the frames of the last request, as they crossed the wire
+        self._replies = ReplyCheck(settings.transport)
         self._next_attempt_ns = 0
         self._backoff_s = settings.reconnect_s
         self._last_frame_end = 0.0
@@ -149,7 +147,14 @@ class ModbusLink:
         if self.server is not None:
             return MemoryClient(self.server, s, self._gap_s)
         if s.transport == "tcp":
-            return ModbusTcpClient(s.host, port=s.port, timeout=s.timeout_s, retries=s.retries, reconnect_delay=0)
+            return ModbusTcpClient(
+                s.host,
+                port=s.port,
+                timeout=s.timeout_s,
+                retries=s.retries,
+                reconnect_delay=0,
+                trace_packet=self._tap,
+            )
         return ModbusSerialClient(
             s.device,
             baudrate=s.baud,
@@ -159,6 +164,7 @@ class ModbusLink:
             timeout=s.timeout_s,
             retries=s.retries,
             reconnect_delay=0,
+            trace_packet=self._tap,
         )
 
     def try_connect(self, now_ns: int) -> bool:
@@ -224,11 +230,13 @@ class ModbusLink:
             if wait > 0:
                 time.sleep(wait)
         start = time.perf_counter()
+        tap = self._tap
         try:
             response = self._call(client, tx)
         except ModbusIOException as exc:
-            outcome = Outcome(ModbusError.RESPONSE_TIMEOUT, message=f"no answer from unit {tx.unit}: {exc}")
-            if self.settings.transport == "tcp":  # a late answer would be taken for the next one
+            # a timeout, or a reply pymodbus skipped or could not decode
+            outcome = self._no_reply(tx, tap.sent, tap.received, exc, 0.0)
+            if self._out_of_step(outcome):
                 self._drop(now_ns, outcome.message)
             return outcome
         except (ConnectionException, OSError) as exc:
@@ -238,7 +246,7 @@ class ModbusLink:
             return Outcome(ModbusError.RESPONSE_INVALID_DATA, message=str(exc))
         finally:
             self._last_frame_end = time.perf_counter()
-        return self._outcome(tx, response, self._last_frame_end - start)
+        return self._outcome(tx, response, self._last_frame_end - start, self._check(tx, tap.sent, tap.received))
 
     def _transact_in_memory(self, client: MemoryClient, tx: Transaction, now_ns: int) -> Outcome:
         """transact() over a MemoryClient: nothing waits; a timeout is
@@ -246,21 +254,45 @@ class ModbusLink:
         try:
             response = self._call(client, tx)
         except ModbusIOException as exc:
-            outcome = Outcome(
-                ModbusError.RESPONSE_TIMEOUT,
-                response_s=client.line_s,
-                message=f"no answer from unit {tx.unit}: {exc}",
-                late_s=client.line_s,
-            )
-            if self.settings.transport == "tcp":
+            outcome = self._no_reply(tx, client.sent, client.received, exc, client.line_s)
+            if self._out_of_step(outcome):
                 self._drop(now_ns + int(client.line_s * 1e9), outcome.message)
             return outcome
         except ModbusException as exc:
             return Outcome(ModbusError.RESPONSE_INVALID_DATA, message=str(exc))
-        return self._outcome(tx, response, client.line_s)
+        return self._outcome(tx, response, client.line_s, self._check(tx, client.sent, client.received))
+
+    def _no_reply(self, tx: Transaction, sent: bytes, received: bytes, exc: Exception, line_s: float) -> Outcome:
+        """pymodbus gave up on a request: no reply came (a timeout), or the
+        one that came was skipped (another unit's) or did not decode; the
+        reply check says what was wrong with it."""
+        bad = self._check(tx, sent, received) if received else None
+        if bad is None and not received:
+            return Outcome(
+                ModbusError.RESPONSE_TIMEOUT,
+                response_s=line_s,
+                message=f"no answer from unit {tx.unit}: {exc}",
+                late_s=line_s,
+            )
+        if bad is None:
+            bad = BadReply(ModbusError.RESPONSE_INVALID_DATA, f"unit {tx.unit}: a reply that does not decode: {exc}")
+        return Outcome(bad.error, response_s=line_s, message=bad.message, late_s=line_s)
+
+    def _out_of_step(self, outcome: Outcome) -> bool:
+        """TCP: the stream may be out of step with the requests (no answer
+        came, and a late one would be taken for the next request's; or a
+        header did not frame): the connection is closed and opened again."""
+        return self.settings.transport == "tcp" and outcome.error in _OUT_OF_STEP
+
+    def _check(self, tx: Transaction, sent: bytes, received: bytes) -> BadReply | None:
+        if not received:  # pymodbus answered without a frame (a broadcast): nothing to check
+            return None
+        return self._replies(tx, sent, received)
 
     @staticmethod
-    def _outcome(tx: Transaction, response: ModbusPDU, elapsed: float) -> Outcome:
+    def _outcome(tx: Transaction, response: ModbusPDU, elapsed: float, bad: BadReply | None) -> Outcome:
+        if bad is not None:
+            return Outcome(bad.error, response_s=elapsed, message=bad.message)
         if response.isError():
             code = getattr(response, "exception_code", ModbusError.UNDEFINED)
             return Outcome(

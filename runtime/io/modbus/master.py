@@ -45,7 +45,10 @@ from .safe import SafeWrites
 if TYPE_CHECKING:
     from .diag import ModbusDiag
 
+from ..ratelog import RateLimitedLog
+
 log = logging.getLogger(__name__)
+lines = RateLimitedLog(log)  # a worker's failures, rate limited
 
 #: real time: the longest a worker sleeps without looking at its channels
 IDLE_WAIT_S = 0.05
@@ -72,10 +75,14 @@ def link_settings(cfg) -> LinkSettings:
 
 
 class ConnectionWorker:
-    """The owner of one link: runs its requests and due channels."""
+    """The owner of one link: runs its requests and due channels, and logs
+    what changes (a channel that fails or works again, the connection lost
+    or made), rate limited."""
 
-    def __init__(self, link: ModbusLink, channels: list, clock) -> None:
+    def __init__(self, link: ModbusLink, channels: list, clock, lines: RateLimitedLog | None = None) -> None:
         self.link = link
+        self.lines = lines if lines is not None else RateLimitedLog(log, clock.now_ns)
+        self._was_up: bool | None = None  # the connection when last looked at (None: not yet)
         self._late: tuple[int, Callable[[int], None]] | None = None  # in memory: (when, deliver) of a timeout
         self.channels = channels
         self.clock = clock
@@ -92,6 +99,7 @@ class ConnectionWorker:
         self._wake.set()
 
     def run_due(self, now_ns: int) -> None:
+        self.lines.flush(now_ns)
         if self._late is not None:
             when, deliver = self._late
             if now_ns < when:
@@ -99,9 +107,11 @@ class ConnectionWorker:
             self._late = None
             deliver(when)
         self.link.try_connect(now_ns)
+        self._watch_link()
         while self._requests:
             tx, done = self._requests.popleft()
             outcome = self.link.transact(tx, now_ns)
+            self._watch_link()
             if outcome.late_s:
                 self._late = (now_ns + int(outcome.late_s * 1e9), lambda _t, done=done, o=outcome: done(o))
                 return
@@ -109,10 +119,34 @@ class ConnectionWorker:
         for ch in self.channels:
             if ch.due(now_ns):
                 outcome = self.link.transact(ch.transaction(), now_ns)
+                self._watch_link()
                 if outcome.late_s:
-                    self._late = (now_ns + int(outcome.late_s * 1e9), lambda t, ch=ch, o=outcome: ch.complete(o, t))
+                    self._late = (
+                        now_ns + int(outcome.late_s * 1e9),
+                        lambda t, ch=ch, o=outcome: self._complete(ch, o, t),
+                    )
                     return
-                ch.complete(outcome, now_ns)
+                self._complete(ch, outcome, now_ns)
+
+    def _complete(self, ch: Channel, outcome: Outcome, now_ns: int) -> None:
+        """The channel's transaction is over: its stats, and a log line when
+        it starts failing (or fails for another reason) or works again."""
+        was_ok, was_message, tried = ch.stats.ok, ch.stats.message, ch.stats.requests
+        ch.complete(outcome, now_ns)
+        stats, name = ch.stats, self.link.settings.name
+        if not stats.ok and (was_ok or stats.message != was_message or not tried):
+            self.lines.warning(("channel", ch.name), "modbus %s: channel %s: %s", name, ch.name, stats.message)
+        elif stats.ok and not was_ok and tried:
+            self.lines.info(("channel ok", ch.name), "modbus %s: channel %s works again", name, ch.name)
+
+    def _watch_link(self) -> None:
+        """A log line when the connection is made or lost."""
+        up = self.link.connected
+        if up == self._was_up:
+            return
+        self._was_up = up
+        level = logging.INFO if up else logging.WARNING
+        self.lines.log(level, ("link", up), "modbus %s: %s", self.link.settings.name, self.link.message)
 
     def _next_wait_s(self, now_ns: int) -> float:
         dues = [d for d in (ch.next_due_ns() for ch in self.channels) if d is not None]
@@ -137,7 +171,7 @@ class ConnectionWorker:
                 self._wake.clear()
             self.drain(self.clock.now_ns())
         except Exception:  # a bug must not die silently in a thread
-            log.exception("modbus %s: worker failed", self.link.settings.name)
+            lines.exception(None, "modbus %s: worker failed", self.link.settings.name)
             self.link.message = "worker failed (see the log)"
         finally:
             self.link.close()
@@ -170,6 +204,7 @@ class ModbusDriver(Driver):
         self.name = "modbus"
         image = ProcessImage(addressing)  # the layout, for the channels' byte spans
         self.clock = clock
+        self.lines = RateLimitedLog(log, clock.now_ns)  # what the connections log, rate limited
         self.channels: list[Channel] = []
         self.workers: dict[str, ConnectionWorker] = {}
         for cfg in connections:
@@ -181,7 +216,7 @@ class ModbusDriver(Driver):
                     raise DriverError(str(exc)) from None
             self.channels.extend(channels)
             link = ModbusLink(link_settings(cfg), (servers or {}).get(cfg.name))
-            self.workers[cfg.name] = ConnectionWorker(link, channels, clock)
+            self.workers[cfg.name] = ConnectionWorker(link, channels, clock, self.lines)
         self.exchange = ModbusExchangeService(self._submit)
         self.safe = SafeWrites(self.workers.__contains__)
         self.services = {EXCHANGE_SERVICE: self.exchange, SAFE_SERVICE: self.safe}
@@ -266,11 +301,15 @@ class ModbusDriver(Driver):
 
     def status(self) -> DriverStatus:
         down = [w.link for w in self.workers.values() if not w.link.connected]
-        failing = [ch.name for ch in self.channels if ch.stats.requests and not ch.stats.ok]
+        failing = [ch for ch in self.channels if ch.stats.requests and not ch.stats.ok]
         if down:
             return DriverStatus(False, "modbus: " + "; ".join(f"{link.settings.name} {link.message}" for link in down))
         if failing:
+            first = failing[0]
+            others = "".join(f", {ch.name}" for ch in failing[1:3])
             return DriverStatus(
-                False, f"modbus: {len(failing)}/{len(self.channels)} channels failing ({', '.join(failing[:3])})"
+                False,
+                f"modbus: {len(failing)}/{len(self.channels)} channels failing "
+                f"({first.name}: {first.stats.message}{others})",
             )
         return DriverStatus(True, f"modbus: {len(self.workers)} up")

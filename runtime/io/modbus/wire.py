@@ -213,6 +213,8 @@ class MemoryClient(ModbusClientMixin[ModbusPDU]):
         else:
             self._s_per_byte = 0.0
         self.line_s = 0.0  # the last request: answered, the time on the line; not, every timeout
+        self.sent = b""  # the last request frame
+        self.received = b""  # the last reply frame to it (of the last attempt), b"" if none came
 
     def connect(self) -> bool:
         return True
@@ -225,16 +227,23 @@ class MemoryClient(ModbusClientMixin[ModbusPDU]):
         if s.transport == "tcp":
             self._tid = self._tid % 0xFFFF + 1
             request.transaction_id = self._tid
-        frame = self.codec.build(request)
+        frame = self.sent = self.codec.build(request)
+        self.received = b""
         self.line_s = 0.0
         for _attempt in range(s.retries + 1):
             answer = self.server.exchange(frame)
             if no_response_expected:
                 return None  # type: ignore[return-value]  # pymodbus's own contract
             if answer:
-                _used, pdu = self.codec.decode(answer, request.dev_id, request.transaction_id)
+                self.received = answer
+                on_line = self._gap_s + (len(frame) + len(answer)) * self._s_per_byte
+                try:
+                    _used, pdu = self.codec.decode(answer, request.dev_id, request.transaction_id)
+                except ModbusIOException:
+                    self.line_s += on_line  # pymodbus's client gives up at once on a reply it cannot decode
+                    raise
                 if pdu is not None:
-                    self.line_s += self._gap_s + (len(frame) + len(answer)) * self._s_per_byte
+                    self.line_s += on_line
                     return pdu
             self.line_s += s.timeout_s
         raise ModbusIOException(

@@ -12,9 +12,12 @@ CANopen master when both are on one bus.
     write_outputs   cycle end
 
 A frame a node refuses (MalformedFrame) is counted on the node and dropped;
-the first of each reason per node is logged with the frame. A send that
-fails marks the bus down (status line, logged once) and the bus is opened
-again every second until it works.
+one per node and CAN-ID is logged with the frame and its reason every 10 s
+of engine time, the ones held back meanwhile in a "suppressed N" line
+(runtime/io/ratelog.py, which every line of the driver goes through). A send
+that fails marks the bus down (status line, logged) and the PLC's port
+(io/can/port.py) opens it again with back-off, as it does an adapter that
+was missing at the start.
 """
 
 from __future__ import annotations
@@ -27,14 +30,13 @@ import can
 from ...engine.clock import PeriodicService
 from ...image.memory import ProcessImage
 from ...plugin.driver import Driver, DriverError, DriverStatus
-from ..can.bus import open_bus
 from ..can.port import CanPort
+from ..ratelog import RateLimitedLog
 from .kind import MalformedFrame, PlainCanNode
 
 log = logging.getLogger(__name__)
 
 SERVICE_PERIOD_S = 0.005
-REOPEN_NS = 1_000_000_000
 
 
 class PlainCanDriver(Driver):
@@ -48,11 +50,8 @@ class PlainCanDriver(Driver):
         self._by_id: dict[int, PlainCanNode] = {}
         self.services: dict = {}
         self.malformed: dict[str, int] = {}  # node name -> frames refused
-        self._reasons_logged: set[tuple[str, str]] = set()
+        self.lines = RateLimitedLog(log, clock.now_ns)  # what the driver logs, rate limited
         self.foreign = 0  # frames of the bus that are no node's (CANopen's ...)
-        self._bus_ok = True
-        self._bus_error = ""
-        self._next_reopen_ns = 0
         self._service: PeriodicService | None = None
         self._started = False
 
@@ -70,10 +69,10 @@ class PlainCanDriver(Driver):
     # ------------------------------------------------------------ life cycle
 
     def start(self) -> None:
-        endpoint = self.port.acquire()
+        endpoint = self.port.acquire(self.clock.now_ns())  # the adapter may be missing: the port waits
         endpoint.add_handler(self._on_frame)
         self._started = True
-        log.info("%s: %d device(s) on %s", self.name, len(self.nodes), self.port.settings.describe())
+        self.lines.info(None, "%s: %d device(s) on %s", self.name, len(self.nodes), self.port.settings.describe())
         if not self.clock.virtual:
             self._service = PeriodicService(f"{self.name} service", self.clock, self._advance, SERVICE_PERIOD_S)
             self._service.start()
@@ -96,8 +95,9 @@ class PlainCanDriver(Driver):
             self.port.pump.settle()
 
     def _advance(self, now_ns: int) -> None:
-        if not self._bus_ok and now_ns >= self._next_reopen_ns:
-            self._reopen(now_ns)
+        self.lines.flush(now_ns)
+        if self._started:
+            self.port.try_open(now_ns)  # the bus down: open it again when due (port.py)
         with self.lock:
             for node in self.nodes:
                 node.advance(now_ns)
@@ -115,26 +115,15 @@ class PlainCanDriver(Driver):
             return False
         if endpoint.send(can_id, data) or not endpoint.connected:
             return endpoint.connected
-        if self._bus_ok:
-            self._bus_ok = False
-            self._bus_error = endpoint.last_error
-            self._next_reopen_ns = self.clock.now_ns() + REOPEN_NS
-            log.error("%s: cannot send: %s; opening the bus again every second", self.name, self._bus_error)
+        if self.port.is_open:
+            self.lines.error(
+                "cannot send",
+                "%s: cannot send: %s; opening the bus again with back-off",
+                self.name,
+                endpoint.last_error,
+            )
+            self.port.failed(self.clock.now_ns(), endpoint.last_error)
         return False
-
-    def _reopen(self, now_ns: int) -> None:
-        self._next_reopen_ns = now_ns + REOPEN_NS
-        endpoint = self.port.endpoint
-        if endpoint is None:
-            return
-        try:
-            endpoint.reopen(open_bus(self.port.settings))
-        except DriverError as exc:
-            self._bus_error = str(exc)
-            return
-        log.warning("%s: bus open again", self.name)
-        self._bus_ok = True
-        self._bus_error = ""
 
     def _on_frame(self, msg: can.Message) -> None:
         node = self._by_id.get(msg.arbitration_id)
@@ -147,17 +136,15 @@ class PlainCanDriver(Driver):
                 node.on_frame(msg.arbitration_id, data, self.clock.now_ns())
             except MalformedFrame as exc:
                 self.malformed[node.name] += 1
-                reason = str(exc)
-                if (node.name, reason) not in self._reasons_logged:
-                    self._reasons_logged.add((node.name, reason))
-                    log.warning(
-                        "%s: %s: frame 0x%03X [%s] dropped: %s (further ones are counted, not logged)",
-                        self.name,
-                        node.name,
-                        msg.arbitration_id,
-                        data.hex(" "),
-                        reason,
-                    )
+                self.lines.warning(
+                    ("malformed", node.name, msg.arbitration_id),
+                    "%s: %s: frame 0x%03X [%s] dropped: %s",
+                    self.name,
+                    node.name,
+                    msg.arbitration_id,
+                    data.hex(" "),
+                    exc,
+                )
 
     # ------------------------------------------------------------ the scan
 
@@ -173,8 +160,8 @@ class PlainCanDriver(Driver):
                 node.write_outputs(image)
 
     def status(self) -> DriverStatus:
-        if not self._bus_ok:
-            return DriverStatus(False, f"{self.name}: bus down ({self._bus_error})")
+        if self._started and not self.port.is_open:
+            return DriverStatus(False, f"{self.name}: bus down ({self.port.describe_down(self.clock.now_ns())})")
         with self.lock:
             states = [node.status() for node in self.nodes]
         up = sum(1 for s in states if s.ok)

@@ -8,11 +8,12 @@
 
 The bus (driver.py) owns the frames: it receives every frame of the [[can]]
 bus through the PLC's shared CanPort, hands a node the frames whose CAN-ID
-it listed in `receives`, counts and logs once what a node refuses as
-malformed, and calls the node at the cycle boundary. A node never waits on
-the bus; everything it does runs under the driver's lock (`NodeContext.lock`),
-from the receive thread (on_frame), the driver's service (advance) or the
-scan thread (read_inputs, write_outputs, its native functions' services).
+it listed in `receives`, counts what a node refuses as malformed and logs
+it (one line per node and CAN-ID every 10 s, rate limited), and calls the
+node at the cycle boundary. A node never waits on the bus; everything it
+does runs under the driver's lock (`NodeContext.lock`), from the receive
+thread (on_frame), the driver's service (advance) or the scan thread
+(read_inputs, write_outputs, its native functions' services).
 """
 
 from __future__ import annotations
@@ -30,7 +31,7 @@ from ...plugin.driver import DriverStatus
 
 class MalformedFrame(ValueError):
     """A frame a node cannot take (wrong length, bad checksum ...): counted
-    and dropped; the reason is logged once per node and reason."""
+    and dropped; the reason is logged, once per node and CAN-ID every 10 s."""
 
 
 class NodeOptions(Model):

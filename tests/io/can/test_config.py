@@ -92,6 +92,24 @@ def test_can_buses(tmp_path):
     assert [(s.name, s.at.bus, s.at.node_id) for s in cfg.sims] == [("ltmr3", "can0", 3), ("spare", "Line2", 3)]
 
 
+@pytest.mark.parametrize("written, meant", [('"retry"', "retry"), ('"fail"', "fail"), ('"Fail"', "fail")])
+def test_missing_adapter(tmp_path, written, meant):
+    cfg = load(tmp_path, PLC + CAN + f"missing_adapter = {written}\n")
+    assert cfg.can[0].missing_adapter == meant
+    assert load(tmp_path, PLC + CAN).can[0].missing_adapter == "retry"  # a plant PC's adapter may come up late
+
+
+@pytest.mark.parametrize(
+    "written, got",
+    [('"wait"', "'wait'"), ("true", "true"), ('"fial"', "'fial'; did you mean 'fail'?")],
+)
+def test_missing_adapter_takes_retry_or_fail(tmp_path, written, got):
+    assert error(tmp_path, PLC + CAN + f"missing_adapter = {written}\n") == (
+        "can[0].missing_adapter",
+        f"expected one of 'retry', 'fail' (got {got})",
+    )
+
+
 @pytest.mark.parametrize("bitrate", CANOPEN_BITRATES)
 def test_canopen_bitrates(tmp_path, bitrate):
     assert load(tmp_path, PLC + CAN + f"bitrate = {bitrate}\n").can[0].bitrate == bitrate

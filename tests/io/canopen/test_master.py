@@ -3,12 +3,18 @@ manager does (CiA 301/302), against the simulated LTMR on the virtual bus."""
 
 from __future__ import annotations
 
+import logging
+
+import pytest
+
 from softplc.runtime.devices.ltmr.sim import LtmrSimulator
 from softplc.runtime.engine.monitor import status_line
 from softplc.runtime.io.can.bus import BusSettings
 from softplc.runtime.io.canopen.node import NodeState
 
 from .plant import LTMR_NODE
+
+MS = 1_000_000
 
 WATCH = """
 PROGRAM Watch
@@ -219,3 +225,77 @@ def test_a_node_without_a_heartbeat_consumer_cannot_be_given_a_master_timeout(tm
         r"watch it with node guarding \(guard_time\) instead",
     ):
         build_engine(config_from_dict(data, tmp_path / "plant.toml"), virtual_time=True)
+
+
+# ---------------------------------------------------------------------------- the CAN adapter comes up late
+
+
+def test_a_can_adapter_missing_at_start_is_waited_for_and_the_node_booted(tmp_path, monkeypatch, caplog):
+    """The PLC starts before its adapter (a plant PC's USB adapter comes up
+    later): the master starts, says the bus is down, tries again with back-off
+    (0.5 s doubling up to 10 s, engine time), and boots its node once it is
+    there. The adapter is python-can's interface "late" (tests/io/can)."""
+    from softplc.runtime.config import config_from_dict
+    from softplc.runtime.engine.build import build_engine
+
+    from ..can import late_adapter
+    from .plant import plant_config
+
+    late_adapter.register(monkeypatch)
+    caplog.set_level(logging.INFO)
+    data = plant_config(tmp_path, WATCH, program="Watch", sims=[])
+    channel = data["can"][0]["channel"]
+    data["can"][0]["interface"] = "late"
+    late_adapter.ABSENT.add(channel)
+    engine = build_engine(config_from_dict(data, tmp_path / "plant.toml"), virtual_time=True)
+    try:
+        engine.start()  # no DriverError: it waits for the adapter
+        master = next(d for d in engine.drivers if d.name == "canopen")
+        engine.run(duration_ns=100 * MS)
+        status = master.status()
+        assert not status.ok and "bus down" in status.message and "no CAN adapter" in status.message
+        assert "canopen: bus down" in status_line(engine)
+        assert not engine.get("CANOPEN_MASTER.BusOk")
+        engine.run(duration_ns=19_900 * MS)  # 20 s: tries at 0.5, 1.5, 3.5, 7.5, 15.5 s
+        assert late_adapter.ATTEMPTS[channel] == 6
+        # one line at the start, then one at most every 10 s for the tries that fail
+        waiting = [r.getMessage() for r in caplog.records if "no CAN adapter" in r.getMessage()]
+        assert 2 <= len(waiting) <= 4, waiting
+        assert "trying again in 0.5 s" in waiting[0]
+        late_adapter.ABSENT.discard(channel)  # plugged in at 20 s; the next try is at 25.5 s
+        sim = LtmrSimulator(40, settings=BusSettings("virtual", channel, 250_000), clock=engine.clock, pump=master.pump)
+        sim.start()
+        engine.drivers.insert(0, sim)
+        engine.run(duration_ns=5_400 * MS)
+        assert not master.status().ok
+        engine.run(duration_ns=1_000 * MS)
+        assert master.status().ok and engine.get("Watch.operational") and engine.get("CANOPEN_MASTER.BusOk")
+        assert any("CAN bus open" in r.getMessage() for r in caplog.records)
+    finally:
+        engine.stop()
+        for d in list(engine.drivers):
+            if isinstance(d, LtmrSimulator):
+                d.stop()
+        late_adapter.ABSENT.discard(channel)
+
+
+def test_fail_fast_stops_at_the_start_when_the_adapter_is_missing(tmp_path, monkeypatch):
+    from softplc.runtime.config import config_from_dict
+    from softplc.runtime.engine.build import build_engine
+    from softplc.runtime.plugin.driver import DriverError
+
+    from ..can import late_adapter
+    from .plant import plant_config
+
+    late_adapter.register(monkeypatch)
+    data = plant_config(tmp_path, WATCH, program="Watch", sims=[])
+    channel = data["can"][0]["channel"]
+    data["can"][0].update(interface="late", missing_adapter="fail")
+    late_adapter.ABSENT.add(channel)
+    try:
+        engine = build_engine(config_from_dict(data, tmp_path / "plant.toml"), virtual_time=True)
+        with pytest.raises(DriverError, match=r"can0: cannot open CAN bus \(late channel .*no CAN adapter"):
+            engine.start()
+        engine.stop()
+    finally:
+        late_adapter.ABSENT.discard(channel)

@@ -1,7 +1,7 @@
 """The plain-CAN driver (runtime/io/plaincan/driver.py) in an engine in
 virtual time: a beacon's frames from a real frame producer on python-can's
 virtual bus land in %I at the next scan; a malformed frame is counted,
-logged once and dropped; the driver shares the PLC's one connection to the
+logged once per 10 s and dropped; the driver shares the PLC's one connection to the
 bus with the CANopen master."""
 
 from __future__ import annotations
@@ -17,6 +17,7 @@ from softplc.runtime.io.can.bus import BusSettings, CanEndpoint, open_bus
 from softplc.runtime.io.canopen.master import CanopenDriver
 from softplc.runtime.io.plaincan import PlainCanDriver
 
+from ..can import late_adapter
 from .beacon import MARK
 
 _channels = itertools.count()
@@ -34,13 +35,16 @@ LTMR = {
 def plant(tmp_path):
     made = []
 
-    def make(with_canopen: bool = False):
+    def make(with_canopen: bool = False, interface: str = "virtual", absent: bool = False):
+        """interface "late" (tests/io/can/late_adapter.py), absent: the adapter is not there yet."""
         (tmp_path / "main.st").write_text(PROGRAM)
         channel = f"test-plaincan-{next(_channels)}"
+        if absent:
+            late_adapter.ABSENT.add(channel)
         data = {
             "plc": {"programs": ["main.st"]},
             "task": [{"name": "Main", "interval": "10ms", "programs": ["Main"]}],
-            "can": [{"name": "can0", "interface": "virtual", "channel": channel, "bitrate": 125000}],
+            "can": [{"name": "can0", "interface": interface, "channel": channel, "bitrate": 125000}],
             "plaincan": [{"type": "beacon", "number": 5, "input": "%IW10"}],
         }
         if with_canopen:
@@ -60,6 +64,7 @@ def plant(tmp_path):
     for engine, producer in made:
         producer.stop()
         engine.stop()
+    late_adapter.ABSENT.clear()
 
 
 def test_frames_land_in_the_image_at_the_next_scan(plant):
@@ -75,7 +80,7 @@ def test_frames_land_in_the_image_at_the_next_scan(plant):
     assert driver.foreign >= 1 and engine.get("Main.seen") == 0x1234
 
 
-def test_a_malformed_frame_is_counted_logged_once_and_dropped(plant, caplog):
+def test_a_malformed_frame_is_counted_logged_once_per_interval_and_dropped(plant, caplog):
     engine, driver, producer = plant()
     producer.send(0x185, bytes([MARK, 0, 7, 0, 0, 0, 0, 0]))
     with caplog.at_level(logging.WARNING, logger="softplc.runtime.io.plaincan.driver"):
@@ -83,14 +88,17 @@ def test_a_malformed_frame_is_counted_logged_once_and_dropped(plant, caplog):
             producer.send(0x185, bytes([0x11, 0xFF, 0xFF, 0, 0, 0, 0, 0]))  # not a beacon frame
         producer.send(0x185, bytes([MARK, 0xFF, 0xFF]))  # short
         engine.run(cycles=1)
-    assert engine.get("Main.seen") == 7  # the good one, nothing of the bad ones
-    assert driver.malformed == {"beacon5": 4}
-    assert driver.status().message == "plaincan can0: 1/1 up, 4 malformed"
+        assert engine.get("Main.seen") == 7  # the good one, nothing of the bad ones
+        assert driver.malformed == {"beacon5": 4}
+        assert driver.status().message == "plaincan can0: 1/1 up, 4 malformed"
+        assert [r.getMessage() for r in caplog.records] == [
+            "plaincan can0: beacon5: frame 0x185 [11 ff ff 00 00 00 00 00] dropped: byte 0 is 0x11, not 0xB0",
+        ]
+        engine.run(duration_ns=10_100_000_000)  # the interval ends: what was held back is told
     lines = [r.getMessage() for r in caplog.records]
-    assert lines == [
-        "plaincan can0: beacon5: frame 0x185 [11 ff ff 00 00 00 00 00] dropped: byte 0 is 0x11, not 0xB0 "
-        "(further ones are counted, not logged)",
-        "plaincan can0: beacon5: frame 0x185 [b0 ff ff] dropped: 3 bytes, not 8 (further ones are counted, not logged)",
+    assert lines[1:] == [
+        "suppressed 3 similar messages in 10 s; the last: "
+        "plaincan can0: beacon5: frame 0x185 [b0 ff ff] dropped: 3 bytes, not 8",
     ]
 
 
@@ -105,3 +113,19 @@ def test_one_connection_to_the_bus_shared_with_the_canopen_master(plant):
     assert master.status().ok and "1/1 up" in master.status().message  # the LTMR booted through it
     engine.stop()
     assert driver.port.endpoint is None and driver.port.users == 0
+
+
+def test_an_adapter_missing_at_start_is_waited_for(plant, monkeypatch):
+    late_adapter.register(monkeypatch)
+    engine, driver, producer = plant(interface="late", absent=True)
+    channel = driver.port.settings.channel
+    engine.run(duration_ns=1_000_000_000)
+    status = driver.status()
+    assert not status.ok and "plaincan can0: bus down" in status.message and "no CAN adapter" in status.message
+    producer.send(0x185, bytes([MARK, 0, 9, 0, 0, 0, 0, 0]))  # nobody can hear it: the PLC has no bus yet
+    late_adapter.ABSENT.discard(channel)  # plugged in at 1 s; tries at 0.5 s, then 1.5 s
+    engine.run(duration_ns=600_000_000)
+    assert driver.port.is_open
+    producer.send(0x185, bytes([MARK, 0, 7, 0, 0, 0, 0, 0]))
+    engine.run(cycles=2)
+    assert engine.get("Main.seen") == 7 and driver.status().ok
