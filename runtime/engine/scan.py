@@ -315,7 +315,10 @@ class Engine:
         start_ns = clock.now_ns()
         counter = self._exec_ns
         t0 = counter()
-        self.ctx.deadline = t0 * 1e-9 + task.budget_s
+        ctx = self.ctx
+        ctx.deadline = t0 * 1e-9 + task.budget_s
+        ctx.wall_deadline = time.perf_counter() + task.budget_s
+        ctx.watchdog_s = task.budget_s
         try:
             for call in task.calls:
                 call()

@@ -36,6 +36,12 @@ class RangeFault(Exception):
         super().__init__(message)
 
 
+#: loop iterations between two checks of the cooperative watchdog's clock:
+#: about 20 us .. a few ms of ST, while a check costs well under 1 us
+#: (program/context.py does the counting)
+LOOP_CHECK_EVERY = 1024
+
+
 class WatchdogFault(Exception):
     """Raised by the cooperative watchdog check on a loop back-edge."""
 
