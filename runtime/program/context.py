@@ -8,8 +8,9 @@ length when it starts (no cost per iteration) and, once the budget is spent,
 runs in slices of ``LOOP_CHECK_EVERY`` with a check between them; WHILE and
 REPEAT count down a local copy of the budget per iteration and charge what
 they used when they end. A check raises WatchdogFault once the cycle is past
-its deadline, so a long loop ends the cycle within about LOOP_CHECK_EVERY
-passes of the deadline, whatever nests it (the bound grows by that much per
+its deadline and StopRequested once a stop was asked for (a signal), so a
+long loop ends the cycle within about LOOP_CHECK_EVERY passes of either,
+whatever nests it (the bound grows by that much per
 level of loops that have not ended yet). benchmarks/bench_loops.py measures
 what the checks cost.
 """
@@ -22,7 +23,7 @@ from itertools import chain
 from ..image.memory import ProcessImage
 from ..st import rtlib
 from ..st import types as T
-from ..st.faults import LOOP_CHECK_EVERY, WatchdogFault
+from ..st.faults import LOOP_CHECK_EVERY, StopRequested, WatchdogFault
 
 
 class ExecContext:
@@ -46,6 +47,9 @@ class ExecContext:
         self.wall_deadline = float("-inf")
         #: loop iterations left before the next check (see the module's doc)
         self.loop_budget = LOOP_CHECK_EVERY
+        #: why the run is stopping (e.g. "SIGTERM"), set from a signal handler:
+        #: a running loop ends its cycle at its next check; None while running
+        self.stop_reason: str | None = None
         # native function services (st/native.py) by name, bound by the drivers
         self.services: dict = {}
         self.namespaces: list = []  # loaded modules that read the clock
@@ -76,8 +80,10 @@ class ExecContext:
 
     def check_watchdog(self) -> int:
         """The check on a loop back-edge (``_watchdog()`` in generated code):
-        raises WatchdogFault, else renews the loop budget and returns it (a
-        WHILE or REPEAT loop counts down from it)."""
+        raises StopRequested or WatchdogFault, else renews the loop budget
+        and returns it (a WHILE or REPEAT loop counts down from it)."""
+        if self.stop_reason is not None:
+            raise StopRequested(self.stop_reason)
         if time.perf_counter() > self.wall_deadline and self.timer() > self.deadline:
             raise WatchdogFault(f"watchdog: the cycle ran longer than {self.watchdog_s * 1000:g} ms (endless loop?)")
         self.loop_budget = LOOP_CHECK_EVERY
