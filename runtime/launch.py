@@ -153,7 +153,8 @@ def run_plc(
             cleanup.callback(reporter.stop)
             run_for(engine, cycles=cycles, duration_ns=duration_ns)
         log.info(
-            "stopped after %d scans: outputs safe%s",
+            "stopped%s after %d scans: outputs safe%s",
+            f" by {engine.stop_reason}" if engine.stop_reason else "",
             engine.cycle,
             ", retained data saved" if engine.retain_store is not None else "",
         )
@@ -235,8 +236,9 @@ def _announce_first_scan(engine) -> None:
 
 
 class _signals:
-    """SIGINT/SIGTERM stop the engine after the current scan; SIGUSR1
-    restarts faulted tasks. The handlers only set flags the scan reads."""
+    """SIGINT/SIGTERM stop the engine after the current scan (a task in a
+    loop ends its cycle at the loop's next watchdog check); SIGUSR1 restarts
+    faulted tasks. The handlers only set flags the scan reads."""
 
     def __init__(self, engine) -> None:
         self.engine = engine
@@ -245,7 +247,7 @@ class _signals:
     def __enter__(self):
         if threading.current_thread() is not threading.main_thread():
             return self  # signals can only be handled in the main thread
-        stop = lambda *_: self.engine.request_stop()  # noqa: E731
+        stop = lambda signum, _frame: self.engine.request_stop(signal.Signals(signum).name)  # noqa: E731
         for sig, handler in (
             (signal.SIGINT, stop),
             (signal.SIGTERM, stop),
@@ -270,7 +272,7 @@ def _start_console_commands(engine) -> None:
             if word in ("r", "restart"):
                 engine.request_restart()
             elif word in ("q", "quit", "stop"):
-                engine.request_stop()
+                engine.request_stop(f"'{word}' typed on the terminal")
                 return
 
     threading.Thread(target=read, name="softplc-console", daemon=True).start()

@@ -20,7 +20,9 @@ def test_there_are_benchmarks():
         "bench_examples.py",
         "bench_genset.py",
         "bench_language.py",
+        "bench_loops.py",
         "bench_modbus.py",
+        "bench_spin.py",
     ]
 
 

@@ -301,6 +301,49 @@ def test_sigterm_stops_cleanly_and_saves_retain(tmp_path):
     assert saved.vars["Counter.count"]["value"] == final["count"] >= 1
 
 
+# In its second cycle Main enters a loop of 2^31 passes (minutes of work) and
+# has no watchdog: only the signal can end it.
+LONG_LOOP = """
+PROGRAM Main
+VAR
+    lamp AT %QX0.0 : BOOL;
+    stage : INT;
+    i, n : DINT;
+END_VAR
+lamp := TRUE;
+stage := stage + 1;
+IF stage = 2 THEN
+    FOR i := 0 TO 2147483647 DO n := n + 1; END_FOR
+END_IF
+END_PROGRAM
+"""
+
+
+@pytest.mark.realtime  # the real clock runs the PLC and the signal comes at a real moment
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT], ids=lambda s: s.name)
+def test_a_signal_stops_a_task_inside_a_long_loop(tmp_path, sig):
+    # Before: the signal waited for the loop to end, some 200 s.
+    cfg = write_config(
+        tmp_path,
+        '[plc]\nprograms = ["p.st"]\n[[task]]\nname = "Main"\ninterval = "10ms"\nwatchdog = false\n'
+        'programs = ["Main"]\n[outputs]\nsafe = { "%QX0.0" = false }\n',
+        {"p.st": LONG_LOOP},
+    )
+    proc = spawn("run", cfg, "--watch", "Main.stage,%QX0.0")
+    # the status line (every 5 s) shows the second cycle under way: the loop runs
+    wait_for_line(proc, "Main.stage=2")
+    proc.send_signal(sig)
+    try:
+        _stdout, stderr = proc.communicate(timeout=30)  # generous: the stop takes milliseconds
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        raise AssertionError(f"{sig.name} did not stop a task inside a loop within 30 s") from None
+    assert proc.returncode == 0, stderr
+    assert f"task Main: {sig.name}: its cycle was ended in the loop at {tmp_path / 'p.st'}:11:5" in stderr
+    assert f"stopped by {sig.name} after 2 scans: outputs safe" in stderr
+    assert "faults=0 outputs SAFE" in stderr  # the last status line
+
+
 @pytest.mark.realtime  # the real clock runs the PLC
 def test_sigusr1_restarts_a_faulted_task(tmp_path):
     cfg = write_config(

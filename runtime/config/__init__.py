@@ -28,6 +28,7 @@ from .load import PlcConfig, config_from_dict, default_config_path, load_config
 from .plc import (
     DEFAULT_PAUSE_NS,
     DEFAULT_RETAIN_PERIOD_NS,
+    DEFAULT_SPIN_NS,
     PRIORITY_MAX,
     ProgramInstance,
     RetainConfig,
@@ -41,6 +42,7 @@ from .sims import SimConfig
 __all__ = [
     "DEFAULT_PAUSE_NS",
     "DEFAULT_RETAIN_PERIOD_NS",
+    "DEFAULT_SPIN_NS",
     "PRIORITY_MAX",
     "Attachment",
     "ConfigError",

@@ -28,7 +28,7 @@ from pydantic import Field, ValidationError, create_model
 
 from ..plugin.registry import Registry, registry
 from .errors import ConfigError, in_file_order, key_text, not_finite, translate
-from .plc import CORE_SECTIONS, RetainConfig, SafeOutput, TaskConfig, with_safe_defaults
+from .plc import CORE_SECTIONS, DEFAULT_SPIN_NS, RetainConfig, SafeOutput, TaskConfig, with_safe_defaults
 from .relations import Relations
 from .section import Section
 from .sims import SimConfig, SimSection
@@ -43,6 +43,8 @@ class PlcConfig:
     programs: list[Path]  # the ST files, absolute
     on_fault: str  # "task" | "plc"
     start: str  # "warm" | "cold"
+    #: the real clock busy-waits this long before each release ([plc] spin)
+    spin_ns: int = DEFAULT_SPIN_NS
     tasks: list[TaskConfig] = field(default_factory=list)
     retain: RetainConfig | None = None
     safe_outputs: list[SafeOutput] = field(default_factory=list)
@@ -213,6 +215,7 @@ def config_from_dict(data: dict, path=None, *, base_dir=None) -> PlcConfig:
         programs=list(plc.programs),
         on_fault=plc.on_fault,
         start=plc.start,
+        spin_ns=plc.spin,
         sections=built,
         raw=raw,
         warnings=[f"{label}: {key_text(loc)}: {message}" for loc, message in in_file_order(ctx.warnings, data)],

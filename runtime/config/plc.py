@@ -1,5 +1,6 @@
 """The core sections of a configuration: [plc] (profile, ST files, fault
-policy, start mode), [retain], [[task]] and [outputs] (safe values)."""
+policy, start mode, the real clock's spin), [retain], [[task]] and [outputs]
+(safe values)."""
 
 from __future__ import annotations
 
@@ -19,6 +20,7 @@ from .errors import key_text
 from .relations import Relations
 from .section import Section
 from .values import (
+    SPIN_EXPECTED,
     Duration,
     Model,
     StFile,
@@ -31,9 +33,14 @@ from .values import (
     identifier,
     int_range,
     is_ident,
+    spin_duration,
 )
 
 DEFAULT_PAUSE_NS = 1_000_000
+#: the real clock busy-waits this last stretch before each release: twice
+#: the kernel's usual wake-up lateness, some 2 % of a core at a 10 ms task
+#: (benchmarks/bench_spin.py: lateness against CPU for several settings)
+DEFAULT_SPIN_NS = 200_000
 DEFAULT_RETAIN_PERIOD_NS = 1_000_000_000
 PRIORITY_MAX = 31
 
@@ -90,6 +97,7 @@ class _Plc(Model):
     )
     on_fault: Annotated[str, choice(("task", "plc"))] = Field("task", description="'task' or 'plc'")
     start: Annotated[str, choice(("warm", "cold"))] = Field("warm", description="'warm' or 'cold'")
+    spin: Annotated[int, PlainValidator(spin_duration)] = Field(DEFAULT_SPIN_NS, description=SPIN_EXPECTED)
 
 
 class _Retain(Model):

@@ -120,6 +120,18 @@ def watchdog(value):
     return at_most_a_day(ns, value, ", or false for no watchdog")
 
 
+SPIN_MAX_NS = 10_000_000
+SPIN_EXPECTED = "a duration from 0 to 10ms such as 200us, 0.5ms or 0"
+
+
+def spin_duration(value) -> int:
+    """The real clock's busy wait before a release, in ns: 0 .. 10 ms."""
+    ns = duration_ns(value)
+    if ns is None or not 0 <= ns <= SPIN_MAX_NS:
+        raise fail(SPIN_EXPECTED, value)
+    return ns
+
+
 def int_range(lo: int, hi: int | None = None):
     def check(value) -> int:
         if isinstance(value, int) and not isinstance(value, bool) and value >= lo and (hi is None or value <= hi):

@@ -1,10 +1,13 @@
 """The engine's clocks. Both count nanoseconds from the moment they were
 made, so TIME() in a program starts at T#0s whichever clock drives it.
 
-RealClock    the wall (monotonic) clock: sleeps until shortly before a
+RealClock    the wall (monotonic) clock: sleeps until `spin_ns` before a
              deadline, then spins the last stretch, because the kernel's
              wake-up from sleep is late by 50 µs .. several ms on a loaded PC
              while a spin on perf_counter is late by about a microsecond.
+             The spin costs CPU (spin_ns per release) and holds the GIL, so
+             it is short and configurable ([plc] spin; the figures of
+             benchmarks/bench_spin.py in benchmarks/README.md).
 VirtualClock jumps straight to the next deadline: a 10-minute sequence runs
              in milliseconds and always the same way. Simulators read the
              same clock.
@@ -20,9 +23,9 @@ import threading
 import time
 from collections.abc import Callable
 
-log = logging.getLogger(__name__)
+from ..config import DEFAULT_SPIN_NS
 
-DEFAULT_SPIN_NS = 1_000_000  # DESIGN.md: spin the last ~1 ms
+log = logging.getLogger(__name__)
 
 
 class VirtualClock:

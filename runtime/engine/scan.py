@@ -13,6 +13,10 @@ that task, or every task with on_fault="plc"; from that tick on the drivers
 are handed the safe output values, and the engine goes on serving: inputs
 are read, the other tasks run (on_fault="task"), PLC_DIAG tells programs,
 until restart() brings the faulted tasks back.
+
+request_stop() (a signal) ends the run after the current tick; a task that
+is in a loop then ends its cycle at the loop's next watchdog check instead
+of finishing it, and that tick hands the drivers the safe output values.
 """
 
 from __future__ import annotations
@@ -143,6 +147,8 @@ class Engine:
         self.after_tick: list[Callable] = []  # called with the engine after the outputs are written
         self.restore_report: R.RestoreReport | None = None
         self._stop_requested = False
+        #: why the run stopped (request_stop's reason), None until then
+        self.stop_reason: str | None = None
         self._restart_requested = False
         self._next_retain_ns = 0
         self._retain_plan: list = []
@@ -263,6 +269,8 @@ class Engine:
                 clock.sleep_until(end_ns)
                 break
             clock.sleep_until(release)
+            if self._stop_requested:  # asked for while sleeping: no new scan
+                break
             self.tick()
             ran += 1
         return ran
@@ -315,12 +323,19 @@ class Engine:
         start_ns = clock.now_ns()
         counter = self._exec_ns
         t0 = counter()
-        self.ctx.deadline = t0 * 1e-9 + task.budget_s
+        ctx = self.ctx
+        ctx.deadline = t0 * 1e-9 + task.budget_s
+        ctx.wall_deadline = time.perf_counter() + task.budget_s
+        ctx.watchdog_s = task.budget_s
         try:
             for call in task.calls:
                 call()
         except Exception as exc:
-            self._fault(task, fault_from_exception(exc, self.program.linemaps))
+            fault = fault_from_exception(exc, self.program.linemaps)
+            if fault.kind == "stop":
+                self._cut_short(task, fault)
+            else:
+                self._fault(task, fault)
             self._release_next(task, released)  # keep the grid: no second tick at this time
             return
         exec_ns = counter() - t0
@@ -382,6 +397,19 @@ class Engine:
             FaultWhere=str(fault.pos) if fault.pos else "",
         )
 
+    def _cut_short(self, task: Task, ended: STFault) -> None:
+        """A stop request ended the task's cycle in a loop: no fault of the
+        program, but its outputs are half-computed, so the drivers get the
+        safe values from this tick on (the run ends after it)."""
+        where = f" at {ended.pos}" if ended.pos else ""
+        log.warning(
+            "task %s: %s: its cycle was ended in the loop%s; outputs go to their safe values",
+            task.name,
+            self.stop_reason or "stop requested",
+            where,
+        )
+        self.outputs_safe = True
+
     def faulted_tasks(self) -> list:
         return [t for t in self.tasks if t.fault is not None]
 
@@ -413,9 +441,14 @@ class Engine:
 
     # ------------------------------------------------------------ stopping
 
-    def request_stop(self) -> None:
-        """Make run() return after the current tick; safe from a signal handler."""
+    def request_stop(self, reason: str = "stop requested") -> None:
+        """Make run() return after the current tick, a task in a loop ending
+        its cycle at the loop's next watchdog check; safe from a signal
+        handler. reason (e.g. "SIGTERM") is what the log says."""
+        if self.stop_reason is None:
+            self.stop_reason = reason
         self._stop_requested = True
+        self.ctx.stop_reason = self.stop_reason
 
     def stop(self) -> None:
         """Outputs to their safe values, retained data saved, drivers closed."""

@@ -1,14 +1,29 @@
 """What generated code reaches at run time: the task clock, the watchdog,
-the process image and the services of native functions (st/native.py)."""
+the process image and the services of native functions (st/native.py).
+
+The cooperative watchdog. Generated code reaches it on loop back-edges,
+cheaply: ``loop_budget`` is the number of loop iterations left before the
+next check, shared by every loop of the cycle. A FOR loop charges its whole
+length when it starts (no cost per iteration) and, once the budget is spent,
+runs in slices of ``LOOP_CHECK_EVERY`` with a check between them; WHILE and
+REPEAT count down a local copy of the budget per iteration and charge what
+they used when they end. A check raises WatchdogFault once the cycle is past
+its deadline and StopRequested once a stop was asked for (a signal), so a
+long loop ends the cycle within about LOOP_CHECK_EVERY passes of either,
+whatever nests it (the bound grows by that much per
+level of loops that have not ended yet). benchmarks/bench_loops.py measures
+what the checks cost.
+"""
 
 from __future__ import annotations
 
 import time
+from itertools import chain
 
 from ..image.memory import ProcessImage
 from ..st import rtlib
 from ..st import types as T
-from ..st.faults import WatchdogFault
+from ..st.faults import LOOP_CHECK_EVERY, StopRequested, WatchdogFault
 
 
 class ExecContext:
@@ -25,6 +40,16 @@ class ExecContext:
         # time, so a loaded machine that deschedules the process never faults
         # a simulated task (the verdict stays the program's, not the host's)
         self.timer = time.perf_counter
+        # the same deadline on perf_counter, when the timer is another clock:
+        # a thread's CPU time never runs ahead of the wall clock, so the
+        # check reads the timer (a system call for CPU time) only once wall
+        # time is past it; -inf: no such shortcut, the timer is always read
+        self.wall_deadline = float("-inf")
+        #: loop iterations left before the next check (see the module's doc)
+        self.loop_budget = LOOP_CHECK_EVERY
+        #: why the run is stopping (e.g. "SIGTERM"), set from a signal handler:
+        #: a running loop ends its cycle at its next check; None while running
+        self.stop_reason: str | None = None
         # native function services (st/native.py) by name, bound by the drivers
         self.services: dict = {}
         self.namespaces: list = []  # loaded modules that read the clock
@@ -51,7 +76,36 @@ class ExecContext:
 
     def arm_watchdog(self) -> None:
         self.deadline = self.timer() + self.watchdog_s
+        self.wall_deadline = time.perf_counter() + self.watchdog_s
 
-    def check_watchdog(self) -> None:
-        if self.timer() > self.deadline:
+    def check_watchdog(self) -> int:
+        """The check on a loop back-edge (``_watchdog()`` in generated code):
+        raises StopRequested or WatchdogFault, else renews the loop budget
+        and returns it (a WHILE or REPEAT loop counts down from it)."""
+        if self.stop_reason is not None:
+            raise StopRequested(self.stop_reason)
+        if time.perf_counter() > self.wall_deadline and self.timer() > self.deadline:
             raise WatchdogFault(f"watchdog: the cycle ran longer than {self.watchdog_s * 1000:g} ms (endless loop?)")
+        self.loop_budget = LOOP_CHECK_EVERY
+        return LOOP_CHECK_EVERY
+
+    def loop_range(self, rng: range):
+        """A FOR loop's range when the loop budget is spent (``_loop(r)`` in
+        generated code): checks now; a range longer than the budget comes
+        back in slices with a check between them, a short one as it is."""
+        self.check_watchdog()
+        if len(rng[: LOOP_CHECK_EVERY + 1]) <= LOOP_CHECK_EVERY:  # len(rng) may not fit a C integer
+            self.loop_budget -= len(rng)
+            return rng
+        return chain.from_iterable(self._slices(rng))
+
+    def _slices(self, rng: range):
+        every = LOOP_CHECK_EVERY
+        start = 0
+        while True:
+            part = rng[start : start + every]
+            if not part:
+                return
+            yield part
+            start += every
+            self.check_watchdog()

@@ -120,6 +120,7 @@ class Program:
             "_out_of_bounds": out_of_bounds,
             "_for_range": _for_range,
             "_watchdog": ctx.check_watchdog,
+            "_loop": ctx.loop_range,
             "_native": ctx.call_native,
         }
         ns.update(self.generated.consts)

@@ -75,7 +75,8 @@ class FnState:
     def __init__(self, pou: POUInfo | None, self_name: str = "self") -> None:
         self.pou = pou
         self.self_name = self_name
-        self.loop_kinds: list = []  # 'for', 'while', 'repeat' (with its cond code)
+        # ('for', (var, loop local, read from it?)), ('while', budget local), ('repeat', (cond, budget local))
+        self.loop_kinds: list = []
         # FOR variables currently read from the Python loop local: id(VarSymbol) -> local name
         self.for_locals: dict = {}
         # ... and of those the (lowest, highest) value when the bounds are constant
@@ -89,6 +90,10 @@ class FnState:
 class CodeGenBase:
     """The generator's state and output; the parts add the code for each
     kind of node (see the module docstring)."""
+
+    #: the cooperative watchdog's checks on loop back-edges (codegen_stmts.py);
+    #: False only to measure what they cost (benchmarks/bench_loops.py)
+    watchdog_checks = True
 
     def __init__(self, checked: CheckedProgram, profile: Profile) -> None:
         self.prog = checked

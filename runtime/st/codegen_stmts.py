@@ -1,9 +1,9 @@
 """Code generation of statements, and of the store that ends an assignment.
 
 IF, CASE, FOR, WHILE, REPEAT (with the cooperative watchdog on loop
-back-edges), EXIT, CONTINUE, RETURN; an assignment stores the value
-converted to the target's type (coerce: what conversions.store_step
-decides, written in Python).
+back-edges: program/context.py says how it counts), EXIT, CONTINUE, RETURN;
+an assignment stores the value converted to the target's type (coerce: what
+conversions.store_step decides, written in Python).
 """
 
 from __future__ import annotations
@@ -17,6 +17,7 @@ from . import ranges as R
 from . import rtlib
 from . import types as T
 from .codegen_base import CodeGenBase, elementary, py_literal
+from .faults import LOOP_CHECK_EVERY
 from .symbols import VarSymbol
 
 
@@ -53,33 +54,35 @@ class StmtGen(CodeGenBase):
         elif isinstance(s, A.For):
             self._for(s)
         elif isinstance(s, A.While):
-            wd = self.tmp("wd")
-            self.emit(f"{wd} = 0")
+            wd = self._loop_budget_take()
             self.emit(f"while {self.ex(s.cond)}:")
             self.indent += 1
             self._watchdog_tick(wd)
-            self.fn.loop_kinds.append(("while", None))
+            self.fn.loop_kinds.append(("while", wd))
             self._body(s.body)
             self.fn.loop_kinds.pop()
             self.indent -= 1
+            self.pos = s.pos
+            self._loop_budget_give(wd)
         elif isinstance(s, A.Repeat):
-            wd = self.tmp("wd")
-            self.emit(f"{wd} = 0")
+            wd = self._loop_budget_take()
             self.emit("while True:")
             self.indent += 1
             self._watchdog_tick(wd)
-            self.fn.loop_kinds.append(("repeat", s.cond))
+            self.fn.loop_kinds.append(("repeat", (s.cond, wd)))
             self._body(s.body)
             self.fn.loop_kinds.pop()
             self.pos = s.cond.pos
             self.emit(f"if {self.ex(s.cond)}: break")
             self.indent -= 1
+            self.pos = s.pos
+            self._loop_budget_give(wd)
         elif isinstance(s, A.Exit):
             self._leave_loop("break")
         elif isinstance(s, A.Continue):
-            kind, cond = self.fn.loop_kinds[-1]
+            kind, data = self.fn.loop_kinds[-1]
             if kind == "repeat":
-                self.emit(f"if {self.ex(cond)}: break")
+                self.emit(f"if {self.ex(data[0])}: break")
             self._leave_loop("continue")
         elif isinstance(s, A.Return):
             self._store_loop_locals()
@@ -100,16 +103,46 @@ class StmtGen(CodeGenBase):
         self.emit(word)
 
     def _store_loop_locals(self) -> None:
-        """Before RETURN inside FOR loops: give the variables their values."""
+        """Before RETURN inside loops: give FOR variables their values, and
+        the innermost WHILE or REPEAT hands the loop budget back."""
         for kind, data in self.fn.loop_kinds:
             if kind == "for" and data[2]:
                 var, cur, _local = data
                 self.emit_store(var, cur, var.ty, None, trusted=True)
+        for kind, data in self.fn.loop_kinds:
+            if kind != "for":
+                self._loop_budget_give(data if kind == "while" else data[1])
 
-    def _watchdog_tick(self, counter: str) -> None:
-        # cooperative watchdog: a cheap counter, the clock is read every 1024 passes
-        self.emit(f"{counter} += 1")
-        self.emit(f"if not {counter} & 1023: _watchdog()")
+    # The cooperative watchdog (program/context.py): a FOR charges its length
+    # to the loop budget before it starts; a WHILE or REPEAT counts down a
+    # copy of the budget on every pass (_wd<n>, from _wd<n>s; a check renews
+    # both) and charges the passes it made when it ends.
+
+    def _loop_budget_take(self) -> str:
+        wd = self.tmp("wd")
+        if self.watchdog_checks:
+            self.emit(f"{wd} = {wd}s = _ctx.loop_budget")
+        return wd
+
+    def _loop_budget_give(self, wd: str) -> None:
+        if self.watchdog_checks:
+            self.emit(f"_ctx.loop_budget -= {wd}s - {wd}")
+
+    def _watchdog_tick(self, wd: str) -> None:
+        if self.watchdog_checks:
+            self.emit(f"{wd} -= 1")
+            self.emit(f"if {wd} < 0: {wd} = {wd}s = _watchdog()")
+
+    def _for_iterable(self, rng: str, var_type: T.Type) -> str:
+        """What a FOR loop iterates over: its range, its length charged to
+        the loop budget first; when that runs out, _loop checks and slices
+        a long range."""
+        if not self.watchdog_checks:
+            return rng
+        left = self.tmp("b")
+        size = f"len({rng})" if elementary(var_type).bits < 64 else f"len({rng}[:{LOOP_CHECK_EVERY + 1}])"
+        self.emit(f"_ctx.loop_budget = {left} = _ctx.loop_budget - {size}")
+        return f"({rng} if {left} >= 0 else _loop({rng}))"
 
     def _case(self, s: A.Case) -> None:
         sel = self.ex(s.selector)
@@ -156,7 +189,7 @@ class StmtGen(CodeGenBase):
         else:
             step_code = self.coerce(self.ex(s.step), s.step.ty, vty, s.step)
             self.emit(f"{rng} = _for_range({start}, {end}, {step_code})")
-        self.emit(f"for {it} in {rng}:")
+        self.emit(f"for {it} in {self._for_iterable(rng, vty)}:")
         self.indent += 1
         local = self._loop_local_ok(var.sym, s.body)
         if local:

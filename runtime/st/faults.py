@@ -15,7 +15,8 @@ from .ast import Pos
 class STFault(Exception):
     """A runtime fault with its ST location. kind is a short stable word
     ('division', 'bounds', 'range', 'reference', 'watchdog', 'overflow',
-    'recursion', 'internal')."""
+    'recursion', 'internal'; 'stop' for a cycle ended by a stop request,
+    which is no fault of the program)."""
 
     def __init__(self, kind: str, message: str, pos: Pos | None = None) -> None:
         self.kind = kind
@@ -36,8 +37,19 @@ class RangeFault(Exception):
         super().__init__(message)
 
 
+#: loop iterations between two checks of the cooperative watchdog (its
+#: clock and a stop request): about 20 us .. a few ms of ST, while a check
+#: costs well under 1 us (program/context.py does the counting)
+LOOP_CHECK_EVERY = 1024
+
+
 class WatchdogFault(Exception):
     """Raised by the cooperative watchdog check on a loop back-edge."""
+
+
+class StopRequested(Exception):
+    """Raised by the same check once the run is stopping (SIGTERM, Ctrl-C):
+    the cycle ends in the loop instead of finishing it. Its text says why."""
 
 
 def out_of_bounds(index: int, lo: int, hi: int) -> int:
@@ -53,6 +65,8 @@ def _classify(exc: BaseException) -> tuple:
         return "division", "division by zero"
     if isinstance(exc, RangeFault):
         return exc.kind, str(exc)
+    if isinstance(exc, StopRequested):
+        return "stop", f"{exc or 'stop requested'}: the cycle was ended in a loop"
     if isinstance(exc, WatchdogFault):
         return "watchdog", str(exc) or "watchdog: the cycle took too long (endless loop?)"
     if isinstance(exc, (AttributeError, TypeError)) and "NoneType" in str(exc):

@@ -7,7 +7,15 @@ import textwrap
 
 import pytest
 
-from softplc.runtime.config import ConfigError, PlcConfig, ProgramInstance, RetainConfig, TaskConfig, load_config
+from softplc.runtime.config import (
+    DEFAULT_SPIN_NS,
+    ConfigError,
+    PlcConfig,
+    ProgramInstance,
+    RetainConfig,
+    TaskConfig,
+    load_config,
+)
 
 from .support import DURATION, MS, PLC, PROG, error, errors, load, write
 
@@ -128,6 +136,19 @@ def test_on_fault_and_start(tmp_path):
     ]
 
 
+def test_spin_of_the_real_clock(tmp_path):
+    assert load(tmp_path, PLC).spin_ns == DEFAULT_SPIN_NS
+    for written, ns in (('"0.5ms"', 500_000), ('"200us"', 200_000), ("0", 0), ('"T#1ms"', MS), ("0.1", 100_000)):
+        assert load(tmp_path, PLC + f"spin = {written}\n").spin_ns == ns
+
+
+@pytest.mark.parametrize("written", ['"20ms"', "-1", '"-0.1ms"', '"fast"', "true", "[]"])
+def test_spin_out_of_range_names_the_file_and_key(tmp_path, written):
+    key, message = error(tmp_path, PLC + f"spin = {written}\n")
+    assert key == "plc.spin"
+    assert message.startswith("expected a duration from 0 to 10ms such as 200us, 0.5ms or 0 (got ")
+
+
 def test_unknown_key_with_suggestion(tmp_path):
     assert error(tmp_path, PLC + 'on_falut = "plc"\n') == ("plc.on_falut", "unknown key (did you mean 'on_fault'?)")
 
@@ -135,7 +156,7 @@ def test_unknown_key_with_suggestion(tmp_path):
 def test_unknown_key_without_suggestion(tmp_path):
     assert error(tmp_path, PLC + 'colour = "blue"\n') == (
         "plc.colour",
-        "unknown key (expected one of profile, programs, on_fault, start)",
+        "unknown key (expected one of profile, programs, on_fault, start, spin)",
     )
 
 

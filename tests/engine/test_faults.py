@@ -15,7 +15,7 @@ from softplc.runtime.io.loopback.driver import LoopbackDriver
 from .conftest import MS, compile_st, safe, task
 
 # The program that faults: it drives the outputs every cycle and, from 50 ms
-# on while `armed`, executes the statement under test on line 21.
+# on while `armed`, executes the statement under test on line 22.
 PLANT = """
 VAR_GLOBAL
     armed : BOOL := TRUE;
@@ -32,6 +32,7 @@ VAR
     values : ARRAY[1..10] OF INT;
     percent : INT(0..100);
     x : INT;
+    i : DINT;
     cycles : UDINT;
 END_VAR
 motor := TRUE; setpoint := 1234; cycles := cycles + 1;
@@ -55,19 +56,23 @@ where := PLC_DIAG.FaultWhere;
 cycles := cycles + 1;
 END_PROGRAM
 """
-STATEMENT_LINE = 21
+STATEMENT_LINE = 22
 
+# case: (the statement, the fault's kind, what its message says)
 FAULTS = {
-    "division": ("x := 10 / zero;", "division by zero"),
-    "bounds": ("values[index] := 1;", "array index 11 is outside the bounds 1..10"),
-    "range": ("percent := big;", "value 1000 is outside the subrange 0..100"),
-    "reference": ("nothing^ := 1;", "invalid reference"),
-    "watchdog": ("WHILE TRUE DO x := x + 1; END_WHILE", "watchdog"),
+    "division": ("x := 10 / zero;", "division", "division by zero"),
+    "bounds": ("values[index] := 1;", "bounds", "array index 11 is outside the bounds 1..10"),
+    "range": ("percent := big;", "range", "value 1000 is outside the subrange 0..100"),
+    "reference": ("nothing^ := 1;", "reference", "invalid reference"),
+    "watchdog": ("WHILE TRUE DO x := x + 1; END_WHILE", "watchdog", "longer than 50 ms"),
+    # ran for minutes before: FOR loops had no watchdog check
+    "watchdog in FOR": ("FOR i := 0 TO 2147483647 DO x := x + 1; END_FOR", "watchdog", "longer than 50 ms"),
+    "watchdog in REPEAT": ("REPEAT x := x + 1; UNTIL FALSE END_REPEAT", "watchdog", "longer than 50 ms"),
 }
 
 
-def _plant(kind: str, engines, on_fault: str = "task"):
-    statement = FAULTS[kind][0]
+def _plant(case: str, engines, on_fault: str = "task"):
+    statement = FAULTS[case][0]
     program = compile_st(PLANT.replace("{statement}", statement))
     loop = LoopbackDriver("loopback", [(parse_address("%QB0"), parse_address("%IB0"), 4)])
     e = engines(
@@ -80,9 +85,10 @@ def _plant(kind: str, engines, on_fault: str = "task"):
     return e
 
 
-@pytest.mark.parametrize("kind", sorted(FAULTS))
-def test_fault_stops_the_task_with_its_st_location_and_outputs_go_safe(engines, kind):
-    e = _plant(kind, engines)
+@pytest.mark.parametrize("case", sorted(FAULTS))
+def test_fault_stops_the_task_with_its_st_location_and_outputs_go_safe(engines, case):
+    _statement, kind, message = FAULTS[case]
+    e = _plant(case, engines)
     e.run(duration_ns=40 * MS)
     # Before the fault: the outputs reach the bus, the monitor sees them.
     assert (e.get("Monitor.motorSeen"), e.get("Monitor.setpointSeen")) == (True, 1234)
@@ -91,7 +97,7 @@ def test_fault_stops_the_task_with_its_st_location_and_outputs_go_safe(engines, 
     [record] = e.faults
     assert record.task == "Control" and record.time_ns == 50 * MS
     assert record.fault.kind == kind
-    assert FAULTS[kind][1] in record.fault.message
+    assert message in record.fault.message
     assert (record.fault.pos.file, record.fault.pos.line) == ("plant.st", STATEMENT_LINE)
     control, supervision = e.tasks
     assert control.fault is record.fault and supervision.fault is None

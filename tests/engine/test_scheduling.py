@@ -1,11 +1,13 @@
 """Task scheduling on the virtual clock: priority order at each tick,
 intervals, several program instances per task, freewheeling tasks, and IEC
-timers reading the clock of the task they run in."""
+timers reading the clock of the task they run in; the real clock's spin."""
 
 from __future__ import annotations
 
 import pytest
 
+from softplc.runtime.config import DEFAULT_SPIN_NS, load_config
+from softplc.runtime.engine.build import build_engine
 from softplc.runtime.engine.clock import RealClock
 
 from .conftest import MS, task
@@ -159,3 +161,12 @@ def test_real_clock_runs_the_same_schedule():
         e.stop()
     assert sum(t.stats.cycles for t in e.tasks) >= 5
     assert [who for _t, who in _log(e)][:2] == [1, 2]
+
+
+@pytest.mark.parametrize("spin, ns", [(None, DEFAULT_SPIN_NS), ('"0.2ms"', 200_000), ("0", 0)])
+def test_the_real_clock_spins_as_long_as_plc_spin_says(tmp_path, spin, ns):
+    (tmp_path / "a.st").write_text("PROGRAM A\nEND_PROGRAM\n")
+    (tmp_path / "plant.toml").write_text('[plc]\nprograms = ["a.st"]\n' + (f"spin = {spin}\n" if spin else ""))
+    engine = build_engine(load_config(tmp_path / "plant.toml"))
+    assert isinstance(engine.clock, RealClock) and engine.clock.spin_ns == ns
+    assert build_engine(load_config(tmp_path / "plant.toml"), virtual_time=True).clock.virtual

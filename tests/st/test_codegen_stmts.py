@@ -8,6 +8,7 @@ import struct
 
 import pytest
 
+from softplc.runtime.program import compile_files
 from softplc.runtime.st.faults import STFault
 
 from .conftest import prog, run_st
@@ -125,16 +126,125 @@ def test_subrange_violation_is_a_fault():
     assert err.value.kind == "range"
 
 
-def test_watchdog_stops_an_endless_loop():
-    from softplc.runtime.program import compile_files
+# ---------------------------------------------------------------- the watchdog on loop back-edges
 
-    prog_ = compile_files([], texts={"w.st": prog("n : DINT;", "WHILE TRUE DO n := n + 1; END_WHILE")})
-    r = prog_.runner("main")
-    r.ctx.watchdog_s = 0.02
+
+def _runner(source: str, watchdog_s: float):
+    r = compile_files([], texts={"w.st": source}).runner("main")
+    r.ctx.watchdog_s = watchdog_s  # the watchdog counts this thread's CPU time: no host can make it late
+    return r
+
+
+ENDLESS = {
+    "WHILE": "WHILE TRUE DO n := n + 1; END_WHILE",
+    "REPEAT": "REPEAT n := n + 1; UNTIL FALSE END_REPEAT",
+    "FOR": "FOR i := 0 TO 2147483647 DO n := n + 1; END_FOR",
+    "FOR BY": "FOR i := 2147483647 TO 0 BY step DO n := n + 1; END_FOR",
+    "FOR LINT": "FOR l := 0 TO 9223372036854775807 DO n := n + 1; END_FOR",
+}
+
+
+@pytest.mark.parametrize("loop", ENDLESS)
+def test_the_watchdog_stops_an_endless_loop_at_the_loop(loop):
+    # FOR i := 0 TO 2147483647 ran for minutes before: no check on its back-edge
+    r = _runner(prog("n : DINT; i : DINT; l : LINT; step : DINT := -1;", ENDLESS[loop]), 0.02)
     with pytest.raises(STFault) as err:
         r.run(1)
-    assert err.value.kind == "watchdog" and err.value.pos.line == 5
+    fault = err.value
+    assert fault.kind == "watchdog" and "longer than 20 ms" in fault.message
+    assert (fault.pos.file, fault.pos.line, fault.pos.col) == ("w.st", 5, 1)
     assert r.get("n") > 0
+
+
+# Loops too short to check on their own, but more than LOOP_CHECK_EVERY passes
+# in all: nested, or in a FUNCTION or FB called in a loop, left by EXIT or
+# RETURN. In a cycle already past its deadline (a negative watchdog time) the
+# first check faults, at the loop whose pass spends the shared loop budget.
+PAST_THE_BUDGET = {
+    "nested FOR": (
+        """PROGRAM main
+VAR i, j, k, n : DINT; END_VAR
+FOR i := 1 TO 20 DO
+  FOR j := 1 TO 20 DO
+    FOR k := 1 TO 20 DO n := n + 1; END_FOR
+  END_FOR
+END_FOR
+END_PROGRAM
+""",
+        (5, 5),
+    ),
+    "nested WHILE": (
+        """PROGRAM main
+VAR i, j, k, n : DINT; END_VAR
+WHILE i < 20 DO i := i + 1; j := 0;
+  WHILE j < 20 DO j := j + 1; k := 0;
+    WHILE k < 20 DO k := k + 1; n := n + 1; END_WHILE
+  END_WHILE
+END_WHILE
+END_PROGRAM
+""",
+        (5, 5),
+    ),
+    "nested REPEAT": (
+        """PROGRAM main
+VAR i, j, k, n : DINT; END_VAR
+REPEAT i := i + 1; j := 0;
+  REPEAT j := j + 1; k := 0;
+    REPEAT k := k + 1; n := n + 1; UNTIL k >= 20 END_REPEAT
+  UNTIL j >= 20 END_REPEAT
+UNTIL i >= 20 END_REPEAT
+END_PROGRAM
+""",
+        (5, 5),
+    ),
+    "FOR in a FUNCTION called in a FOR": (
+        """FUNCTION sum_to : DINT
+VAR_INPUT n : DINT; END_VAR
+VAR k : DINT; END_VAR
+FOR k := 1 TO n DO sum_to := sum_to + k; END_FOR
+END_FUNCTION
+PROGRAM main
+VAR i, total : DINT; END_VAR
+FOR i := 1 TO 100 DO total := total + sum_to(50); END_FOR
+END_PROGRAM
+""",
+        (4, 1),
+    ),
+    "WHILE left by EXIT in an FB called in a WHILE": (
+        """FUNCTION_BLOCK Tens
+VAR_OUTPUT n : DINT; END_VAR
+WHILE TRUE DO n := n + 1; IF n MOD 10 = 0 THEN EXIT; END_IF END_WHILE
+END_FUNCTION_BLOCK
+PROGRAM main
+VAR c : Tens; i : DINT; END_VAR
+WHILE i < 200 DO i := i + 1; c(); END_WHILE
+END_PROGRAM
+""",
+        (3, 1),
+    ),
+    "WHILE left by RETURN in a FUNCTION called in a FOR": (
+        """FUNCTION tens : DINT
+VAR_INPUT x : DINT; END_VAR
+WHILE TRUE DO tens := tens + 1; IF tens >= 10 THEN RETURN; END_IF END_WHILE
+END_FUNCTION
+PROGRAM main
+VAR i, n : DINT; END_VAR
+FOR i := 1 TO 200 DO n := n + tens(i); END_FOR
+END_PROGRAM
+""",
+        (3, 1),
+    ),
+}
+
+
+@pytest.mark.parametrize("case", PAST_THE_BUDGET)
+def test_loops_share_one_budget_so_nesting_cannot_hide_a_long_cycle(case):
+    source, where = PAST_THE_BUDGET[case]
+    r = _runner(source, -1.0)
+    with pytest.raises(STFault) as err:
+        r.run(1)
+    assert err.value.kind == "watchdog"
+    assert (err.value.pos.line, err.value.pos.col) == where
 
 
 def test_for_bounds_convert_to_the_loop_variables_type():
