@@ -299,10 +299,11 @@ class Engine:
         forces = list(self.forces.values())
         for apply in forces:  # over what the drivers read ...
             apply()
+        mark = None  # the execution clock where the last task ended: the next one starts there
         for task in self.tasks:
             if task.next_ns <= now:
                 if task.fault is None:
-                    self._run_task(task)
+                    mark = self._run_task(task, mark)
                 else:
                     self._release_next(task, task.next_ns)
         for apply in forces:  # ... and over what the program wrote
@@ -317,12 +318,18 @@ class Engine:
         for callback in self.after_tick:
             callback(self)
 
-    def _run_task(self, task: Task) -> None:
+    def _run_task(self, task: Task, t0: int | None = None) -> int | None:
+        """One cycle of a task. t0: the execution clock (_exec_ns) where the
+        task before it in this scan ended, or None to read it. Returns the
+        clock where this one ended, for the next (None after a fault): in
+        virtual time the clock is the thread's CPU time, a system call, and
+        between two tasks there is only this bookkeeping to count."""
         clock = self.clock
         released = task.next_ns
         start_ns = clock.now_ns()
         counter = self._exec_ns
-        t0 = counter()
+        if t0 is None:
+            t0 = counter()
         ctx = self.ctx
         ctx.deadline = t0 * 1e-9 + task.budget_s
         ctx.wall_deadline = time.perf_counter() + task.budget_s
@@ -337,8 +344,9 @@ class Engine:
             else:
                 self._fault(task, fault)
             self._release_next(task, released)  # keep the grid: no second tick at this time
-            return
-        exec_ns = counter() - t0
+            return None
+        t1 = counter()
+        exec_ns = t1 - t0
         task.stats.record(exec_ns, start_ns - released)
         if task.watchdog_ns is not None:
             if exec_ns > task.watchdog_ns:
@@ -355,6 +363,7 @@ class Engine:
             else:
                 task.late_cycles = 0
         self._release_next(task, released)
+        return t1
 
     def _release_next(self, task: Task, released: int) -> None:
         end = self.clock.now_ns()
