@@ -115,6 +115,7 @@ class Program:
             "_copy_value": values.copy_value,
             "_with_fields": _with_fields,
             "_deref": _deref,
+            "_same_ref": refs.same_ref,
             "_check_index": _check_index,
             "_check_range": _check_range,
             "_out_of_bounds": out_of_bounds,
@@ -134,7 +135,9 @@ class Program:
         ctx.set_time(ctx.now_ns)
         exec(self.code, ns)
         try:
-            ns["_G"] = ns["_Globals"]()
+            # _G is bound first: initial values may take references to globals
+            ns["_G"] = glob = ns["_Globals"].__new__(ns["_Globals"])
+            glob.__init__()
         except Exception as exc:
             raise fault_from_exception(exc, self.linemaps) from None
         return ns

@@ -13,7 +13,7 @@ from . import ast as A
 from . import types as T
 from .checker_base import CheckerBase, Scope
 from .conversions import const_as, same_type
-from .symbols import POUInfo, VarSymbol, pyname
+from .symbols import CallInfo, POUInfo, VarSymbol, pyname
 
 
 class DeclChecks(CheckerBase):
@@ -187,7 +187,8 @@ class DeclChecks(CheckerBase):
             if sym.constant:
                 sym.const_value = self.default_value(sym.type)
             return
-        sym.init_value = self.init_value(sym.type, sym.init, scope, sym.name)
+        function_input = sym.owner is not None and sym.owner.kind == "FUNCTION" and sym.section == "VAR_INPUT"
+        sym.init_value = self.init_value(sym.type, sym.init, scope, sym.name, ref_ok=not function_input)
         if (
             sym.constant
             and sym.init_value is not None
@@ -208,11 +209,12 @@ class DeclChecks(CheckerBase):
             return ty.lo if not ty.lo <= 0 <= ty.hi else 0
         return None
 
-    def init_value(self, ty: T.Type, init: Any, scope: Scope, what: str) -> Any:
+    def init_value(self, ty: T.Type, init: Any, scope: Scope, what: str, ref_ok: bool = False) -> Any:
         """Evaluate an initialiser against a type. Returns a plan: a Python
         value for elementary types, ('array', [plans]) for arrays,
-        ('struct', {UPPER: plan}) for structs and FB instances, None for the
-        default."""
+        ('struct', {UPPER: plan}) for structs and FB instances, ('ref', the
+        REF()/ADR() call) for a reference (only where ref_ok: a variable's
+        own initial value), None for the default."""
         rty = T.resolve(ty)
         if isinstance(init, A.ArrayInit):
             if not isinstance(rty, T.ArrayType):
@@ -242,8 +244,47 @@ class DeclChecks(CheckerBase):
             )
             return None
         if isinstance(rty, T.RefType):
-            return None
+            return self._ref_init(init, ety, what, ref_ok)
         return const_as(init.const, ety, ty)
+
+    def _ref_init(self, init: A.Expr, ety: T.Type, what: str, ref_ok: bool) -> Any:
+        """A reference's initial value: NULL (or 0), or REF()/ADR() of a
+        variable whose place is known before the first cycle."""
+        if not isinstance(T.resolve(ety), T.RefType):
+            return None  # NULL or 0: the default
+        call = init.target if isinstance(init, A.Call) and isinstance(init.target, CallInfo) else None
+        if call is None or call.func not in ("REF", "ADR") or not self._fixed_place(call.args[0]):
+            self.d.error(
+                "E024",
+                f"the initial value of '{what}' is not a reference to a variable at a fixed place",
+                init.pos,
+                "write REF(variable) (constant indices, no ^) or NULL; assign other references in the code",
+            )
+        elif not ref_ok:
+            self.d.error(
+                "E024",
+                f"'{what}' cannot start with a reference",
+                init.pos,
+                "only a variable's own declaration may take one, not a FUNCTION input or a STRUCT field; "
+                "assign it in the code",
+            )
+        else:
+            return ("ref", init)
+        return None
+
+    @staticmethod
+    def _fixed_place(e: A.Expr) -> bool:
+        """Whether e designates the same storage whenever it is evaluated: a
+        variable, its members, elements at constant indices."""
+        while True:
+            if isinstance(e, A.Name):
+                return isinstance(e.sym, VarSymbol) and e.sym.section != "VAR_IN_OUT"
+            if isinstance(e, A.Member):
+                e = e.base
+            elif isinstance(e, A.Index) and all(isinstance(i.const, int) for i in e.indices):
+                e = e.base
+            else:
+                return False
 
     def _array_init(self, ty: T.ArrayType, init: A.ArrayInit, scope: Scope, what: str) -> Any:
         if ty.variable_length:

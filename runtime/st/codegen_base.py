@@ -102,6 +102,7 @@ class CodeGenBase:
         self._acc_keys: dict = {}
         self._tmp = 0
         self.fn = FnState(None)
+        self._ref_inits: list = []  # (target, REF() call, pos) to emit after the other initial values
 
     def emit(self, line: str) -> None:
         self.out.append(("    " * self.indent + line, self.pos))

@@ -162,6 +162,32 @@ class PouGen(CodeGenBase):
         args = ", ".join(f"({attr!r}, {code})" for attr, code in setters)
         return f"_with_fields({cls}(), ({args}{',' if setters else ''}))"
 
+    @staticmethod
+    def _holds_instance(ty: T.Type) -> bool:
+        """Whether a value of type ty is or holds an FB instance."""
+        seen: set = set()
+        todo = [ty]
+        while todo:
+            t = T.resolve(todo.pop())
+            if isinstance(t, T.FBType):
+                return True
+            if id(t) in seen:
+                continue
+            seen.add(id(t))
+            if isinstance(t, T.ArrayType):
+                todo.append(t.elem)
+            elif isinstance(t, T.StructType):
+                todo += [f.type for f in t.fields.values() if f.type is not None]
+        return False
+
+    def _emit_ref_inits(self) -> None:
+        """The references the last variables' initialisers take, now that
+        every variable they may designate exists."""
+        for target, call, pos in self._ref_inits:
+            self.pos = pos
+            self.emit(f"{target} = {self.ex(call)}")
+        self._ref_inits = []
+
     def _member_attr(self, t: T.StructType | T.FBType, key: str) -> tuple:
         if isinstance(t, T.StructType):
             f = t.fields[key]
@@ -169,8 +195,15 @@ class PouGen(CodeGenBase):
         v = t.pou.vars[key]
         return v.pyname, v.type
 
-    def _emit_init(self, target: str, ty: T.Type, plan: Any) -> None:
+    def _emit_init(self, target: str, ty: T.Type, plan: Any, ref_target: str | None = None) -> None:
+        """target = the initial value. A reference's REF() initialiser is
+        kept for _emit_ref_inits (to ref_target, if the variable is boxed
+        after this): it may designate storage initialised after it."""
         t = T.resolve(ty)
+        if isinstance(plan, tuple) and plan[0] == "ref":
+            self.emit(f"{target} = None")
+            self._ref_inits.append((ref_target or target, plan[1], self.pos))
+            return
         if t.is_aggregate:
             self.emit(f"{target} = {self._aggregate_expr(ty, plan)}")
         else:
@@ -209,6 +242,7 @@ class PouGen(CodeGenBase):
             if self._temp_local(v):
                 continue
             self._emit_init(f"self.{v.pyname}", v.type, v.init_value)
+        self._emit_ref_inits()
         self.indent -= 1
         self._assign_copy_methods(pou.pyname, [(v.pyname, v.type) for v in stored])
         self.emit("")
@@ -227,6 +261,7 @@ class PouGen(CodeGenBase):
                 self.pos = v.pos
                 target = v.pyname if self._temp_local(v) else f"self.{v.pyname}"
                 self._emit_init(target, v.type, v.init_value)
+        self._emit_ref_inits()
 
     def _function(self, pou: POUInfo) -> None:
         self.pos = pou.node.pos
@@ -259,9 +294,10 @@ class PouGen(CodeGenBase):
         for v in pou.vars.values():
             if v.section in ("VAR", "VAR_OUTPUT", "VAR_TEMP", "VAR_STAT"):
                 self.pos = v.pos
-                self._emit_init(v.pyname, v.type, v.init_value)
+                self._emit_init(v.pyname, v.type, v.init_value, f"{v.pyname}.value" if v.boxed else None)
                 if v.boxed:
                     self.emit(f"{v.pyname} = _CellRef({v.pyname})")
+        self._emit_ref_inits()
         self._body(pou.node.body)
         self._function_epilogue()
         self.indent -= 1
@@ -296,7 +332,8 @@ class PouGen(CodeGenBase):
         self.emit("def __init__(self):")
         self.indent += 1
         self.emit("pass")
-        for g in gl:
+        # FB instances last: their initial values may take references to other globals
+        for g in sorted(gl, key=lambda g: self._holds_instance(g.type)):
             self.pos = g.pos
             if g.location is not None:
                 if g.init_value is not None:
@@ -304,5 +341,6 @@ class PouGen(CodeGenBase):
                     self.emit(f"_A{idx}s({py_literal(g.init_value)})")
                 continue
             self._emit_init(f"self.{g.pyname}", g.type, g.init_value)
+        self._emit_ref_inits()
         self.indent -= 1
         self.indent -= 1
