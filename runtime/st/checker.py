@@ -22,6 +22,7 @@ from .checker_decls import DeclChecks
 from .checker_exprs import ExprChecks
 from .checker_operators import OperatorChecks
 from .checker_stmts import StmtChecks
+from .checker_storage import StorageChecks
 from .checker_types import TypeChecks
 from .conversions import const_as
 
@@ -37,7 +38,7 @@ class CheckedProgram:
     types: dict  # UPPER -> Type
 
 
-class Checker(TypeChecks, DeclChecks, ExprChecks, OperatorChecks, StmtChecks, CallChecks, ConfigChecks):
+class Checker(TypeChecks, DeclChecks, StorageChecks, ExprChecks, OperatorChecks, StmtChecks, CallChecks, ConfigChecks):
     """Checker(profile, diags, std_functions, natives=None, image=None).run(files)
     -> CheckedProgram. std_functions: UPPER name -> standard function
     (fblocks/iec/functions.py); natives: UPPER name -> NativeFunction
@@ -62,6 +63,7 @@ class Checker(TypeChecks, DeclChecks, ExprChecks, OperatorChecks, StmtChecks, Ca
             self._declare_globals(block)
         for pou in self.pous.values():
             self._declare_pou_vars(pou)
+        self._check_containment()
         for st in self.structs:
             for f in st.fields.values():
                 if f.init is not None:

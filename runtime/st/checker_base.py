@@ -65,7 +65,7 @@ class CheckerBase:
         self.natives: dict = natives or {}  # UPPER -> native.NativeFunction
         self.type_decls: dict = {}  # UPPER -> TypeDecl
         self.types: dict = {}  # UPPER -> Type (resolved)
-        self._resolving: set = set()
+        self._resolving: dict = {}  # UPPER -> name as declared, of the types being resolved, in order
         self.pous: dict = {}  # UPPER -> POUInfo
         self.globals: dict = {}  # UPPER -> VarSymbol
         self.enumerators: dict = {}  # UPPER -> [(EnumType, value)]

@@ -57,14 +57,16 @@ class TypeChecks(CheckerBase):
         if decl is None:
             return None
         if key in self._resolving:
+            chain = list(self._resolving)
+            names = [self._resolving[k] for k in chain[chain.index(key) :]] + [decl.name]
             self.d.error(
                 "E012",
-                f"type '{decl.name}' is defined in terms of itself",
+                f"type '{decl.name}' is defined in terms of itself: {' -> '.join(names)}",
                 decl.pos,
                 "a type cannot contain itself; use REF_TO for recursive structures",
             )
             return None
-        self._resolving.add(key)
+        self._resolving[key] = decl.name
         try:
             spec = decl.spec
             if isinstance(spec, A.StructTypeSpec):
@@ -103,7 +105,7 @@ class TypeChecks(CheckerBase):
                     self.d.error("E024", "a STRUCT takes its initial values in its fields", decl.init.pos)
             return ty
         finally:
-            self._resolving.discard(key)
+            self._resolving.pop(key, None)
 
     def _enum_type(self, name: str, spec: A.EnumTypeSpec) -> T.EnumType:
         base = T.INT
@@ -146,6 +148,8 @@ class TypeChecks(CheckerBase):
             ty = self._resolve_named_type(key, spec.pos)
             if ty is not None:
                 return ty
+            if key in self.type_decls:
+                return None  # declared, but wrong: reported at its declaration
             pou = self.pous.get(key)
             if pou is not None:
                 if pou.kind == "FUNCTION_BLOCK":

@@ -6,7 +6,8 @@ Code ranges (keep them stable, users search for them):
   E001-E005  lexical and syntax (parser)
   E006       nested beyond the Python compiler's limits (code generator)
   E009       internal error (a bug in softplc; the input is reported, not lost)
-  E010-E019  names and declarations
+  E010-E019  names and declarations (E014: a STRUCT or FUNCTION_BLOCK that
+             contains itself)
   E020-E029  types and conversions
   E030-E039  assignment targets
   E040-E049  calls
