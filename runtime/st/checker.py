@@ -64,6 +64,7 @@ class Checker(TypeChecks, DeclChecks, StorageChecks, ExprChecks, OperatorChecks,
         for pou in self.pous.values():
             self._declare_pou_vars(pou)
         self._check_containment()
+        self._check_sizes()
         for st in self.structs:
             for f in st.fields.values():
                 if f.init is not None:

@@ -2,7 +2,8 @@
 
 The Checker (checker.py) is one class composed of a part per concern, each
 in its own module: checker_types (declared types), checker_decls
-(variables and initial values), checker_exprs (names, members, indices,
+(variables and initial values), checker_storage (types that contain
+themselves, the size limits of limits.py), checker_exprs (names, members, indices,
 literals, addresses), checker_operators, checker_stmts (statements and
 assignment targets), checker_calls (every kind of call) and checker_config
 (the CONFIGURATION). The implicit-conversion rule they apply is

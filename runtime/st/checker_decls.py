@@ -211,7 +211,8 @@ class DeclChecks(CheckerBase):
 
     def init_value(self, ty: T.Type, init: Any, scope: Scope, what: str, ref_ok: bool = False) -> Any:
         """Evaluate an initialiser against a type. Returns a plan: a Python
-        value for elementary types, ('array', [plans]) for arrays,
+        value for elementary types, ('array', [(count, plan), ...]) for
+        arrays (runs in row-major order, as many elements as the array has),
         ('struct', {UPPER: plan}) for structs and FB instances, ('ref', the
         REF()/ADR() call) for a reference (only where ref_ok: a variable's
         own initial value), None for the default."""
@@ -289,11 +290,13 @@ class DeclChecks(CheckerBase):
     def _array_init(self, ty: T.ArrayType, init: A.ArrayInit, scope: Scope, what: str) -> Any:
         if ty.variable_length:
             return None
-        # Items fill the array in row-major order (IEC: the last index varies fastest).
+        # Items fill the array in row-major order (IEC: the last index varies
+        # fastest). A repetition n(v) stays one run: n may be huge.
         total = 1
         for lo, hi in ty.dims:
             total *= hi - lo + 1
-        flat: list = []
+        runs: list = []
+        given = 0
         for count_expr, value in init.items:
             count = 1
             if count_expr is not None:
@@ -302,17 +305,20 @@ class DeclChecks(CheckerBase):
                     return None
                 count = n
             plan = self.init_value(ty.elem, value, scope, what) if value is not None else None
-            flat.extend([plan] * count)
-        if len(flat) > total:
+            given += count
+            if count:
+                runs.append((count, plan))
+        if given > total:
             self.d.error(
                 "E052",
-                f"{len(flat)} initial values for '{what}', which has {total} elements",
+                f"{given:,} initial values for '{what}', which has {total:,} elements",
                 init.pos,
                 "remove values or enlarge the array",
             )
             return None
-        flat.extend([None] * (total - len(flat)))
-        return ("array", flat)
+        if given < total:
+            runs.append((total - given, None))
+        return ("array", runs)
 
     def _struct_init(self, ty: T.Type, init: A.StructInit, scope: Scope, what: str) -> Any:
         out = {}

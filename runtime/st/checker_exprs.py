@@ -31,7 +31,7 @@ class ExprChecks(CheckerBase):
         try:
             ty = self._expr(e, scope, expected)
         except RecursionError:
-            self.d.error("E005", "expression nested too deeply", e.pos, "split it up with variables")
+            self.d.error("E006", "expression nested too deeply", e.pos, "split it up with variables")
             ty = None
         e.ty = ty
         return ty

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from . import types as T
 from .checker_base import CheckerBase
+from .limits import MAX_TOTAL_ELEMENTS, MAX_VAR_ELEMENTS
 
 # The sections whose variables an instance holds itself (VAR_IN_OUT and
 # VAR_EXTERNAL refer to storage elsewhere).
@@ -95,3 +96,61 @@ class StorageChecks(CheckerBase):
         FB variables (sizes, codegen) do not run or keep a visited set."""
         if isinstance(t, T.StructType):
             t.fields[name.upper()].type = None
+
+    # ------------------------------------------------------------ sizes
+
+    def _check_sizes(self) -> None:
+        """E054 for a variable with more elements than MAX_VAR_ELEMENTS;
+        E055 where the globals and the variables of the PROGRAMs and
+        FUNCTIONs together pass MAX_TOTAL_ELEMENTS (FB instances count
+        where they are declared)."""
+        memo: dict = {}
+        total = 0
+        over = False
+        owners = [None] + list(self.pous.values())
+        for owner in owners:
+            syms = self.globals.values() if owner is None else owner.vars.values()
+            for sym in syms:
+                if owner is not None and (sym.section not in _HELD or sym.owner is not owner):
+                    continue
+                n = _elements(sym.type, memo)
+                if n > MAX_VAR_ELEMENTS:
+                    self.d.error(
+                        "E054",
+                        f"'{sym.name}' has {n:,} elements; one variable may have {MAX_VAR_ELEMENTS:,}",
+                        sym.pos,
+                        "make it smaller, or split it into several variables",
+                    )
+                    continue
+                if owner is not None and owner.kind == "FUNCTION_BLOCK":
+                    continue  # counted in the instances
+                total += n
+                if total > MAX_TOTAL_ELEMENTS and not over:
+                    over = True
+                    self.d.error(
+                        "E055",
+                        f"the variables have more than {MAX_TOTAL_ELEMENTS:,} elements together "
+                        f"({total:,} up to '{sym.name}')",
+                        sym.pos,
+                        "make the largest arrays smaller",
+                    )
+
+
+def _elements(ty: T.Type, memo: dict) -> int:
+    """How many elements a value of type ty holds (limits.py): one per
+    elementary value, and one more per STRUCT or FB instance."""
+    t = T.resolve(ty)
+    if isinstance(t, T.ArrayType):
+        if t.variable_length:
+            return 1  # a VAR_IN_OUT: a reference to an array held elsewhere
+        n = 1
+        for lo, hi in t.dims:
+            n *= hi - lo + 1
+        return n * _elements(t.elem, memo)
+    if not isinstance(t, (T.StructType, T.FBType)):
+        return 1
+    key = id(t)
+    if key not in memo:
+        memo[key] = 1  # while counting: a cycle (reported) counts once
+        memo[key] = 1 + sum(_elements(m, memo) for _name, m in _parts(t))
+    return memo[key]

@@ -10,6 +10,7 @@ from __future__ import annotations
 from . import ast as A
 from . import types as T
 from .checker_base import CheckerBase, Scope
+from .limits import MAX_STRING_LENGTH, MAX_VAR_ELEMENTS
 from .symbols import POUInfo, pyname
 
 
@@ -186,8 +187,8 @@ class TypeChecks(CheckerBase):
             if spec.length is not None:
                 v = self._const_int(spec.length, scope, "a string length")
                 if v is not None:
-                    if v < 1 or v > 65535:
-                        self.d.error("E022", f"string length {v} is not within 1..65535", spec.length.pos)
+                    if v < 1 or v > MAX_STRING_LENGTH:
+                        self.d.error("E022", f"string length {v} is not within 1..{MAX_STRING_LENGTH}", spec.length.pos)
                     else:
                         n = v
             return T.StringType(n, spec.wide)
@@ -196,6 +197,7 @@ class TypeChecks(CheckerBase):
             if elem is None:
                 return None
             dims: list[tuple[int, int] | None] = []
+            count = 1
             for rng in spec.ranges:
                 if rng is None:
                     dims.append(None)
@@ -212,8 +214,15 @@ class TypeChecks(CheckerBase):
                         "the upper bound must not be below the lower bound",
                     )
                     return None
-                if (hi - lo + 1) > 10_000_000:
-                    self.d.error("E050", f"array range {lo}..{hi} is too large", rng[0].pos)
+                count *= hi - lo + 1
+                if count > MAX_VAR_ELEMENTS:
+                    self.d.error(
+                        "E054",
+                        f"the array has {'more than ' if rng is not spec.ranges[-1] else ''}{count:,} elements; "
+                        f"one variable may have {MAX_VAR_ELEMENTS:,}",
+                        spec.pos,
+                        "make it smaller, or split it into several variables",
+                    )
                     return None
                 dims.append((lo, hi))
             return T.ArrayType(dims, elem)

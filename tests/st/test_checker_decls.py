@@ -55,3 +55,9 @@ def test_a_reference_starts_at_a_variable_at_a_fixed_place_or_at_null():
         ("E024", 9, "the initial value of 'r1' is not a reference to a variable at a fixed place"),
         ("E024", 10, "the initial value of 'r2' is not a reference to a variable at a fixed place"),
     ]
+
+
+def test_a_huge_repetition_count_is_counted_not_built():
+    [d] = diagnostics(prog("a : ARRAY[0..9] OF INT := [1, 10000000000000000(0)];", ""))
+    assert (d.code, d.pos.line, d.pos.col) == ("E052", 3, 27)
+    assert d.message == "10,000,000,000,000,001 initial values for 'a', which has 10 elements"

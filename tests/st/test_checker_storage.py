@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import pytest
 
+from softplc.runtime.st.limits import MAX_TOTAL_ELEMENTS, MAX_VAR_ELEMENTS
+
 from ..test_cli import softplc
 from .conftest import diagnostics
 
@@ -67,3 +69,34 @@ def test_a_self_containing_struct_through_the_command_line_is_diagnostic_e014(tm
         assert proc.returncode == 1, proc.stderr
         assert f"{path}:1:17: error E014: STRUCT 'S' contains itself: S.me is S" in proc.stderr
         assert "Traceback" not in proc.stderr
+
+
+# ---------------------------------------------------------------- sizes
+
+
+def test_a_variable_of_more_elements_than_the_limit_is_e054_at_its_declaration():
+    # 4 million two-field points: 4M * (2 + 1) elements
+    src = (
+        "TYPE Point : STRUCT x : REAL; y : REAL; END_STRUCT END_TYPE\n"
+        "FUNCTION_BLOCK Track\nVAR pts : ARRAY[1..4000000] OF Point; END_VAR\nEND_FUNCTION_BLOCK\n"
+        "PROGRAM main\nVAR\n    ok : ARRAY[1..3000000] OF Point;\n    t : Track;\nEND_VAR\nEND_PROGRAM\n"
+    )
+    found = [(d.code, d.pos.line, d.pos.col, d.message) for d in diagnostics(src)]
+    assert found == [
+        ("E054", 3, 5, f"'pts' has 12,000,000 elements; one variable may have {MAX_VAR_ELEMENTS:,}"),
+        ("E054", 8, 5, f"'t' has 12,000,001 elements; one variable may have {MAX_VAR_ELEMENTS:,}"),
+    ]
+
+
+def test_all_variables_together_pass_the_total_limit_at_the_one_that_crosses_it():
+    half = MAX_TOTAL_ELEMENTS // 4
+    src = (
+        f"VAR_GLOBAL g : ARRAY[1..{half}] OF LREAL; END_VAR\n"
+        f"FUNCTION f : INT\nVAR tmp : ARRAY[1..{half}] OF DINT; END_VAR\nf := 0;\nEND_FUNCTION\n"
+        f"PROGRAM main\nVAR\n    a : ARRAY[1..{half}] OF INT;\n    b : ARRAY[1..{half}] OF INT;\n"
+        "    c : INT;\nEND_VAR\nEND_PROGRAM\n"
+    )
+    [d] = diagnostics(src)
+    assert (d.code, d.pos.line) == ("E055", 9)
+    assert d.message.startswith(f"the variables have more than {MAX_TOTAL_ELEMENTS:,} elements together (")
+    assert d.message.endswith(" up to 'b')")
