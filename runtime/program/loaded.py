@@ -142,6 +142,19 @@ class Program:
             raise fault_from_exception(exc, self.linemaps) from None
         return ns
 
+    def configured(self, ns: dict, instance: str, obj) -> Any:
+        """What a task calls each cycle for the program instance obj of the
+        CONFIGURATION (named instance): obj itself, or obj with its
+        VAR_CONFIG settings applied now and its configured addresses
+        copied around each call (st/codegen_config.py)."""
+        configure = ns.get("_VAR_CONFIG", {}).get(instance.upper())
+        if configure is None:
+            return obj
+        try:
+            return configure(obj)
+        except Exception as exc:
+            raise fault_from_exception(exc, self.linemaps) from None
+
     def runner(self, entry: str, cycle_time_ms: int = 10, ctx: ExecContext | None = None) -> Runner:
         info = self.pou(entry)
         if info.kind == "FUNCTION_BLOCK":

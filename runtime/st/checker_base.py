@@ -21,7 +21,7 @@ from . import types as T
 from .conversions import check_implicit
 from .diagnostics import DiagnosticBag
 from .profile import Profile
-from .symbols import CallInfo, POUInfo
+from .symbols import CallInfo, POUInfo, VarSymbol
 
 # Called like functions without a declaration (checker_calls._builtin_call).
 BUILTINS = ("TIME", "LTIME", "REF", "ADR", "SIZEOF")
@@ -112,6 +112,11 @@ class CheckerBase:
         def expr(self, e: A.Expr, scope: Scope, expected: T.Type | None = None) -> T.Type | None: ...
 
         def _address_fits(self, addr: A.LocatedAddress, ty: T.ElementaryType | None, pos: A.Pos) -> bool: ...
+
+        # checker_varconfig
+        def _check_placeholder(self, sym: VarSymbol) -> None: ...
+
+        def _var_config(self, blocks: list, config: Any) -> None: ...
 
         # checker_operators
         def _unary(self, e: A.Unary, scope: Scope, expected: T.Type | None) -> T.Type | None: ...

@@ -164,6 +164,9 @@ class DeclChecks(CheckerBase):
 
     def _check_location_type(self, sym: VarSymbol) -> None:
         addr = sym.location
+        if not addr.indices:  # %IX*: each instance gets its address in VAR_CONFIG
+            self._check_placeholder(sym)
+            return
         ty = T.base_elementary(sym.type)
         want = 1 if (addr.size in ("", "X") or addr.bit is not None) else {"B": 8, "W": 16, "D": 32, "L": 64}[addr.size]
         if addr.table is not None:

@@ -19,7 +19,7 @@ Code ranges (keep them stable, users search for them):
   E060-E069  CASE
   E070-E079  control flow
   E080-E089  direct (located) addresses
-  E090-E099  configuration, resources, tasks
+  E090-E099  configuration, resources, tasks (E094: a VAR_CONFIG path)
   W1xx       warnings (same tens as the error they soften: W121 ~ E021)
 """
 
