@@ -24,7 +24,7 @@ Point`` with a two-field Point is 10 * (2 + 1) = 30 elements.
 
 from __future__ import annotations
 
-# About 7 s and 600 MB to check and compile a 1 MiB file of dense
+# 6 to 7 s and 600 MB to check and compile a 1 MiB file of dense
 # statements (the generated Python is about four times the ST, and
 # Python's compiler takes most of the memory); the ST files of a plant are
 # far smaller, a POU or a few each.
@@ -43,7 +43,7 @@ MAX_OPERATORS = 1000
 # 10 million elements are 80 MB of references for an array of numbers
 # (equal values are shared). The worst case within both limits, two
 # arrays of 5 million one-field STRUCTs (an object per element), loads in
-# about 7 s and 600 MB.
+# 3 to 7 s and 600 MB.
 MAX_VAR_ELEMENTS = 10_000_000
 MAX_TOTAL_ELEMENTS = 20_000_000
 
