@@ -240,7 +240,7 @@ class Engine:
                 fresh.append((name, info, obj))
                 self.instances[name.upper()] = (name, info, obj)
             task.instances = fresh
-            task.calls = [obj for _name, _info, obj in fresh]
+            task.calls = [self.program.configured(self.ns, name, obj) for name, _info, obj in fresh]
 
     def _plan_retain(self) -> list:
         return R.plan_retain(

@@ -17,7 +17,6 @@ import functools
 import itertools
 import re
 from importlib import resources
-from pathlib import Path
 
 from ...fblocks.iec.functions import STANDARD_FUNCTIONS
 from ..image.memory import ProcessImage
@@ -26,6 +25,7 @@ from ..st import ast as A
 from ..st.checker import CheckedProgram, Checker
 from ..st.codegen import CodeGen
 from ..st.diagnostics import CompileError, DiagnosticBag, SourceSet
+from ..st.limits import MAX_SOURCE_CHARS
 from ..st.parser import parse_source
 from ..st.profile import Profile, get_profile
 from .loaded import Program
@@ -119,16 +119,17 @@ def _read_sources(paths: list, texts: dict | None, diags: DiagnosticBag, sources
     files = []
     for p in paths:
         try:
-            text = Path(p).read_text(encoding="utf-8-sig")
-        except UnicodeDecodeError:
-            try:  # Windows tools still write Latin-1 ST files
-                text = Path(p).read_text(encoding="latin-1")
-            except OSError as exc:
-                diags.error("E000", f"cannot read the file: {exc.strerror or exc}", A.Pos(str(p), 1, 1))
-                continue
+            with open(p, "rb") as f:
+                # no more than can hold MAX_SOURCE_CHARS characters and one:
+                # the parser reports a larger file (E007) without reading on
+                data = f.read(4 * MAX_SOURCE_CHARS + 4)
         except OSError as exc:
             diags.error("E000", f"cannot read the file: {exc.strerror or exc}", A.Pos(str(p), 1, 1))
             continue
+        try:
+            text = data.decode("utf-8-sig")
+        except UnicodeDecodeError:  # Windows tools still write Latin-1 ST files
+            text = data.decode("latin-1")
         files.append((str(p), text))
     for name, text in (texts or {}).items():
         files.append((name, text))

@@ -115,6 +115,7 @@ class Program:
             "_copy_value": values.copy_value,
             "_with_fields": _with_fields,
             "_deref": _deref,
+            "_same_ref": refs.same_ref,
             "_check_index": _check_index,
             "_check_range": _check_range,
             "_out_of_bounds": out_of_bounds,
@@ -135,10 +136,25 @@ class Program:
         ctx.set_time(ctx.now_ns)
         exec(self.code, ns)
         try:
-            ns["_G"] = ns["_Globals"]()
+            # _G is bound first: initial values may take references to globals
+            ns["_G"] = glob = ns["_Globals"].__new__(ns["_Globals"])
+            glob.__init__()
         except Exception as exc:
             raise fault_from_exception(exc, self.linemaps) from None
         return ns
+
+    def configured(self, ns: dict, instance: str, obj) -> Any:
+        """What a task calls each cycle for the program instance obj of the
+        CONFIGURATION (named instance): obj itself, or obj with its
+        VAR_CONFIG settings applied now and its configured addresses
+        copied around each call (st/codegen_config.py)."""
+        configure = ns.get("_VAR_CONFIG", {}).get(instance.upper())
+        if configure is None:
+            return obj
+        try:
+            return configure(obj)
+        except Exception as exc:
+            raise fault_from_exception(exc, self.linemaps) from None
 
     def runner(self, entry: str, cycle_time_ms: int = 10, ctx: ExecContext | None = None) -> Runner:
         info = self.pou(entry)

@@ -6,6 +6,7 @@ from __future__ import annotations
 from . import ast
 from .build_base import BuilderBase
 from .lexer import Tok
+from .limits import MAX_OPERATORS
 from .literals import (
     LiteralError,
     parse_based,
@@ -16,11 +17,6 @@ from .literals import (
     parse_real,
     parse_string,
 )
-
-# Beyond this many operators in one expression it is refused (E005): the
-# tree of a chain a + b + c ... is as deep as the chain is long, and later
-# stages walk it recursively.
-MAX_OPERATORS = 1000
 
 _BINARY_OPS = {
     "OR": "OR",
@@ -73,8 +69,9 @@ class ExprBuilder(BuilderBase):
         (all operators associate to the left)."""
         file = self.file
         if len(c) > 2 * MAX_OPERATORS:
+            # the tree of a chain a + b + c ... is as deep as the chain is long
             self.ctx.report(
-                "E005",
+                "E006",
                 f"expression too long (more than {MAX_OPERATORS} operators)",
                 self._span(c[0], c[-1]),
                 "split it, using intermediate variables",

@@ -22,7 +22,9 @@ from .checker_decls import DeclChecks
 from .checker_exprs import ExprChecks
 from .checker_operators import OperatorChecks
 from .checker_stmts import StmtChecks
+from .checker_storage import StorageChecks
 from .checker_types import TypeChecks
+from .checker_varconfig import VarConfigChecks
 from .conversions import const_as
 
 __all__ = ["AddressSpace", "CheckedProgram", "Checker", "ConfigInfo", "const_as"]
@@ -37,7 +39,17 @@ class CheckedProgram:
     types: dict  # UPPER -> Type
 
 
-class Checker(TypeChecks, DeclChecks, ExprChecks, OperatorChecks, StmtChecks, CallChecks, ConfigChecks):
+class Checker(
+    TypeChecks,
+    DeclChecks,
+    StorageChecks,
+    ExprChecks,
+    OperatorChecks,
+    StmtChecks,
+    CallChecks,
+    ConfigChecks,
+    VarConfigChecks,
+):
     """Checker(profile, diags, std_functions, natives=None, image=None).run(files)
     -> CheckedProgram. std_functions: UPPER name -> standard function
     (fblocks/iec/functions.py); natives: UPPER name -> NativeFunction
@@ -55,13 +67,16 @@ class Checker(TypeChecks, DeclChecks, ExprChecks, OperatorChecks, StmtChecks, Ca
         for sf in files:
             for decl in sf.decls:
                 if isinstance(decl, A.Configuration):
-                    global_blocks += [(b, decl) for b in decl.var_blocks]
+                    # VAR_CONFIG is checked with the CONFIGURATION (checker_varconfig.py)
+                    global_blocks += [(b, decl) for b in decl.var_blocks if b.kind != "VAR_CONFIG"]
                     for res in decl.resources:
-                        global_blocks += [(b, decl) for b in res.var_blocks]
+                        global_blocks += [(b, decl) for b in res.var_blocks if b.kind != "VAR_CONFIG"]
         for block, _ in global_blocks:
             self._declare_globals(block)
         for pou in self.pous.values():
             self._declare_pou_vars(pou)
+        self._check_containment()
+        self._check_sizes()
         for st in self.structs:
             for f in st.fields.values():
                 if f.init is not None:
@@ -79,6 +94,7 @@ class Checker(TypeChecks, DeclChecks, ExprChecks, OperatorChecks, StmtChecks, Ca
             for decl in sf.decls:
                 if isinstance(decl, A.Configuration):
                     self._configuration(decl)
+        self._check_placeholders()
         return CheckedProgram(
             list(self.pous.values()), list(self.globals.values()), self.structs, self.configs, self.types
         )

@@ -2,7 +2,8 @@
 
 The Checker (checker.py) is one class composed of a part per concern, each
 in its own module: checker_types (declared types), checker_decls
-(variables and initial values), checker_exprs (names, members, indices,
+(variables and initial values), checker_storage (types that contain
+themselves, the size limits of limits.py), checker_exprs (names, members, indices,
 literals, addresses), checker_operators, checker_stmts (statements and
 assignment targets), checker_calls (every kind of call) and checker_config
 (the CONFIGURATION). The implicit-conversion rule they apply is
@@ -20,7 +21,7 @@ from . import types as T
 from .conversions import check_implicit
 from .diagnostics import DiagnosticBag
 from .profile import Profile
-from .symbols import CallInfo, POUInfo
+from .symbols import CallInfo, POUInfo, VarSymbol
 
 # Called like functions without a declaration (checker_calls._builtin_call).
 BUILTINS = ("TIME", "LTIME", "REF", "ADR", "SIZEOF")
@@ -65,7 +66,7 @@ class CheckerBase:
         self.natives: dict = natives or {}  # UPPER -> native.NativeFunction
         self.type_decls: dict = {}  # UPPER -> TypeDecl
         self.types: dict = {}  # UPPER -> Type (resolved)
-        self._resolving: set = set()
+        self._resolving: dict = {}  # UPPER -> name as declared, of the types being resolved, in order
         self.pous: dict = {}  # UPPER -> POUInfo
         self.globals: dict = {}  # UPPER -> VarSymbol
         self.enumerators: dict = {}  # UPPER -> [(EnumType, value)]
@@ -103,7 +104,7 @@ class CheckerBase:
         def type_of(self, spec: A.TypeSpec, scope: Scope | None = None) -> T.Type | None: ...
 
         # checker_decls
-        def init_value(self, ty: T.Type, init: Any, scope: Scope, what: str) -> Any: ...
+        def init_value(self, ty: T.Type, init: Any, scope: Scope, what: str, ref_ok: bool = False) -> Any: ...
 
         def _const_int(self, e: A.Expr, scope: Scope, what: str) -> int | None: ...
 
@@ -111,6 +112,11 @@ class CheckerBase:
         def expr(self, e: A.Expr, scope: Scope, expected: T.Type | None = None) -> T.Type | None: ...
 
         def _address_fits(self, addr: A.LocatedAddress, ty: T.ElementaryType | None, pos: A.Pos) -> bool: ...
+
+        # checker_varconfig
+        def _check_placeholder(self, sym: VarSymbol) -> None: ...
+
+        def _var_config(self, blocks: list, config: Any) -> None: ...
 
         # checker_operators
         def _unary(self, e: A.Unary, scope: Scope, expected: T.Type | None) -> T.Type | None: ...

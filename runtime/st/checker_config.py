@@ -1,7 +1,7 @@
 """The checker's CONFIGURATION: tasks and program instances for the engine.
 
 Tasks with INTERVAL, PRIORITY and SINGLE; program instances with their
-task and parameters.
+task and parameters; the VAR_CONFIG lines (checker_varconfig.py).
 """
 
 from __future__ import annotations
@@ -21,8 +21,9 @@ class ConfigInfo:
 
     name: str
     tasks: list = field(default_factory=list)  # dicts: name, interval_ms, priority, single, pos
-    programs: list = field(default_factory=list)  # dicts: name, type (POUInfo), task, args, pos
+    programs: list = field(default_factory=list)  # dicts: name, type (POUInfo), task, resource, binding, pos
     node: Any = None
+    settings: list = field(default_factory=list)  # checker_varconfig.ConfigSetting, one per VAR_CONFIG line
 
 
 class ConfigChecks(CheckerBase):
@@ -101,5 +102,17 @@ class ConfigChecks(CheckerBase):
                 fake = A.Call(A.Name(p.type_name, pos=p.pos), p.args, pos=p.pos)
                 binding = CallInfo("fb", pou=pou)
                 self._bind_args(fake, pou, binding, Scope(None), is_fb=True)
-                info.programs.append({"name": p.name, "type": pou, "task": p.task, "pos": p.pos, "binding": binding})
+                info.programs.append(
+                    {
+                        "name": p.name,
+                        "type": pou,
+                        "task": p.task,
+                        "resource": res.name,
+                        "pos": p.pos,
+                        "binding": binding,
+                    }
+                )
+        blocks = [b for b in c.var_blocks if b.kind == "VAR_CONFIG"]
+        blocks += [b for res in c.resources for b in res.var_blocks if b.kind == "VAR_CONFIG"]
+        self._var_config(blocks, info)
         self.configs.append(info)

@@ -13,7 +13,7 @@ from . import ast as A
 from . import types as T
 from .checker_base import CheckerBase, Scope
 from .conversions import const_as, same_type
-from .symbols import POUInfo, VarSymbol, pyname
+from .symbols import CallInfo, POUInfo, VarSymbol, pyname
 
 
 class DeclChecks(CheckerBase):
@@ -164,6 +164,9 @@ class DeclChecks(CheckerBase):
 
     def _check_location_type(self, sym: VarSymbol) -> None:
         addr = sym.location
+        if not addr.indices:  # %IX*: each instance gets its address in VAR_CONFIG
+            self._check_placeholder(sym)
+            return
         ty = T.base_elementary(sym.type)
         want = 1 if (addr.size in ("", "X") or addr.bit is not None) else {"B": 8, "W": 16, "D": 32, "L": 64}[addr.size]
         if addr.table is not None:
@@ -187,7 +190,8 @@ class DeclChecks(CheckerBase):
             if sym.constant:
                 sym.const_value = self.default_value(sym.type)
             return
-        sym.init_value = self.init_value(sym.type, sym.init, scope, sym.name)
+        function_input = sym.owner is not None and sym.owner.kind == "FUNCTION" and sym.section == "VAR_INPUT"
+        sym.init_value = self.init_value(sym.type, sym.init, scope, sym.name, ref_ok=not function_input)
         if (
             sym.constant
             and sym.init_value is not None
@@ -208,11 +212,13 @@ class DeclChecks(CheckerBase):
             return ty.lo if not ty.lo <= 0 <= ty.hi else 0
         return None
 
-    def init_value(self, ty: T.Type, init: Any, scope: Scope, what: str) -> Any:
+    def init_value(self, ty: T.Type, init: Any, scope: Scope, what: str, ref_ok: bool = False) -> Any:
         """Evaluate an initialiser against a type. Returns a plan: a Python
-        value for elementary types, ('array', [plans]) for arrays,
-        ('struct', {UPPER: plan}) for structs and FB instances, None for the
-        default."""
+        value for elementary types, ('array', [(count, plan), ...]) for
+        arrays (runs in row-major order, as many elements as the array has),
+        ('struct', {UPPER: plan}) for structs and FB instances, ('ref', the
+        REF()/ADR() call) for a reference (only where ref_ok: a variable's
+        own initial value), None for the default."""
         rty = T.resolve(ty)
         if isinstance(init, A.ArrayInit):
             if not isinstance(rty, T.ArrayType):
@@ -242,17 +248,58 @@ class DeclChecks(CheckerBase):
             )
             return None
         if isinstance(rty, T.RefType):
-            return None
+            return self._ref_init(init, ety, what, ref_ok)
         return const_as(init.const, ety, ty)
+
+    def _ref_init(self, init: A.Expr, ety: T.Type, what: str, ref_ok: bool) -> Any:
+        """A reference's initial value: NULL (or 0), or REF()/ADR() of a
+        variable whose place is known before the first cycle."""
+        if not isinstance(T.resolve(ety), T.RefType):
+            return None  # NULL or 0: the default
+        call = init.target if isinstance(init, A.Call) and isinstance(init.target, CallInfo) else None
+        if call is None or call.func not in ("REF", "ADR") or not self._fixed_place(call.args[0]):
+            self.d.error(
+                "E024",
+                f"the initial value of '{what}' is not a reference to a variable at a fixed place",
+                init.pos,
+                "write REF(variable) (constant indices, no ^) or NULL; assign other references in the code",
+            )
+        elif not ref_ok:
+            self.d.error(
+                "E024",
+                f"'{what}' cannot start with a reference",
+                init.pos,
+                "only a variable's own declaration may take one, not a FUNCTION input or a STRUCT field; "
+                "assign it in the code",
+            )
+        else:
+            return ("ref", init)
+        return None
+
+    @staticmethod
+    def _fixed_place(e: A.Expr) -> bool:
+        """Whether e designates the same storage whenever it is evaluated: a
+        variable, its members, elements at constant indices."""
+        while True:
+            if isinstance(e, A.Name):
+                return isinstance(e.sym, VarSymbol) and e.sym.section != "VAR_IN_OUT"
+            if isinstance(e, A.Member):
+                e = e.base
+            elif isinstance(e, A.Index) and all(isinstance(i.const, int) for i in e.indices):
+                e = e.base
+            else:
+                return False
 
     def _array_init(self, ty: T.ArrayType, init: A.ArrayInit, scope: Scope, what: str) -> Any:
         if ty.variable_length:
             return None
-        # Items fill the array in row-major order (IEC: the last index varies fastest).
+        # Items fill the array in row-major order (IEC: the last index varies
+        # fastest). A repetition n(v) stays one run: n may be huge.
         total = 1
         for lo, hi in ty.dims:
             total *= hi - lo + 1
-        flat: list = []
+        runs: list = []
+        given = 0
         for count_expr, value in init.items:
             count = 1
             if count_expr is not None:
@@ -261,17 +308,20 @@ class DeclChecks(CheckerBase):
                     return None
                 count = n
             plan = self.init_value(ty.elem, value, scope, what) if value is not None else None
-            flat.extend([plan] * count)
-        if len(flat) > total:
+            given += count
+            if count:
+                runs.append((count, plan))
+        if given > total:
             self.d.error(
                 "E052",
-                f"{len(flat)} initial values for '{what}', which has {total} elements",
+                f"{given:,} initial values for '{what}', which has {total:,} elements",
                 init.pos,
                 "remove values or enlarge the array",
             )
             return None
-        flat.extend([None] * (total - len(flat)))
-        return ("array", flat)
+        if given < total:
+            runs.append((total - given, None))
+        return ("array", runs)
 
     def _struct_init(self, ty: T.Type, init: A.StructInit, scope: Scope, what: str) -> Any:
         out = {}

@@ -31,7 +31,7 @@ class ExprChecks(CheckerBase):
         try:
             ty = self._expr(e, scope, expected)
         except RecursionError:
-            self.d.error("E005", "expression nested too deeply", e.pos, "split it up with variables")
+            self.d.error("E006", "expression nested too deeply", e.pos, "split it up with variables")
             ty = None
         e.ty = ty
         return ty
@@ -296,13 +296,14 @@ class ExprChecks(CheckerBase):
 
     def _address_fits(self, addr: A.LocatedAddress, ty: T.ElementaryType | None, pos: A.Pos) -> bool:
         """Report (E082) a direct address outside the process image, and
-        (E083) a CODESYS placeholder address %I* that nothing maps."""
+        (E083) an incomplete address %I* used directly."""
         if not addr.indices:
             self.d.error(
                 "E083",
                 f"{addr.text} is an unconfigured address",
                 pos,
-                "give the full address (e.g. %IX0.0); mapping %I* through VAR_CONFIG is not supported",
+                "give the full address (e.g. %IX0.0); %IX* is for a declaration (x AT %IX* : BOOL) "
+                "whose address each instance gets in VAR_CONFIG",
             )
             return False
         if self._image_probe is None:

@@ -21,7 +21,7 @@ class StmtChecks(CheckerBase):
             try:
                 self._stmt(s, scope)
             except RecursionError:
-                self.d.error("E005", "statement nested too deeply", s.pos, "split it up")
+                self.d.error("E006", "statement nested too deeply", s.pos, "split it up")
 
     def _stmt(self, s: A.Stmt, scope: Scope) -> None:
         if isinstance(s, A.Assign):

@@ -10,6 +10,7 @@ from __future__ import annotations
 from . import ast as A
 from . import types as T
 from .checker_base import CheckerBase, Scope
+from .limits import MAX_STRING_LENGTH, MAX_VAR_ELEMENTS
 from .symbols import POUInfo, pyname
 
 
@@ -57,14 +58,16 @@ class TypeChecks(CheckerBase):
         if decl is None:
             return None
         if key in self._resolving:
+            chain = list(self._resolving)
+            names = [self._resolving[k] for k in chain[chain.index(key) :]] + [decl.name]
             self.d.error(
                 "E012",
-                f"type '{decl.name}' is defined in terms of itself",
+                f"type '{decl.name}' is defined in terms of itself: {' -> '.join(names)}",
                 decl.pos,
                 "a type cannot contain itself; use REF_TO for recursive structures",
             )
             return None
-        self._resolving.add(key)
+        self._resolving[key] = decl.name
         try:
             spec = decl.spec
             if isinstance(spec, A.StructTypeSpec):
@@ -103,7 +106,7 @@ class TypeChecks(CheckerBase):
                     self.d.error("E024", "a STRUCT takes its initial values in its fields", decl.init.pos)
             return ty
         finally:
-            self._resolving.discard(key)
+            self._resolving.pop(key, None)
 
     def _enum_type(self, name: str, spec: A.EnumTypeSpec) -> T.EnumType:
         base = T.INT
@@ -146,6 +149,8 @@ class TypeChecks(CheckerBase):
             ty = self._resolve_named_type(key, spec.pos)
             if ty is not None:
                 return ty
+            if key in self.type_decls:
+                return None  # declared, but wrong: reported at its declaration
             pou = self.pous.get(key)
             if pou is not None:
                 if pou.kind == "FUNCTION_BLOCK":
@@ -182,8 +187,8 @@ class TypeChecks(CheckerBase):
             if spec.length is not None:
                 v = self._const_int(spec.length, scope, "a string length")
                 if v is not None:
-                    if v < 1 or v > 65535:
-                        self.d.error("E022", f"string length {v} is not within 1..65535", spec.length.pos)
+                    if v < 1 or v > MAX_STRING_LENGTH:
+                        self.d.error("E022", f"string length {v} is not within 1..{MAX_STRING_LENGTH}", spec.length.pos)
                     else:
                         n = v
             return T.StringType(n, spec.wide)
@@ -192,6 +197,7 @@ class TypeChecks(CheckerBase):
             if elem is None:
                 return None
             dims: list[tuple[int, int] | None] = []
+            count = 1
             for rng in spec.ranges:
                 if rng is None:
                     dims.append(None)
@@ -208,8 +214,15 @@ class TypeChecks(CheckerBase):
                         "the upper bound must not be below the lower bound",
                     )
                     return None
-                if (hi - lo + 1) > 10_000_000:
-                    self.d.error("E050", f"array range {lo}..{hi} is too large", rng[0].pos)
+                count *= hi - lo + 1
+                if count > MAX_VAR_ELEMENTS:
+                    self.d.error(
+                        "E054",
+                        f"the array has {'more than ' if rng is not spec.ranges[-1] else ''}{count:,} elements; "
+                        f"one variable may have {MAX_VAR_ELEMENTS:,}",
+                        spec.pos,
+                        "make it smaller, or split it into several variables",
+                    )
                     return None
                 dims.append((lo, hi))
             return T.ArrayType(dims, elem)

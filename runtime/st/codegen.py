@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 
 from .codegen_base import Accessor
 from .codegen_calls import CallGen
+from .codegen_config import ConfigGen
 from .codegen_exprs import ExprGen
 from .codegen_pous import PouGen
 from .codegen_stmts import StmtGen
@@ -36,7 +37,7 @@ class GeneratedModule:
     pou_classes: dict = field(default_factory=dict)  # UPPER POU name -> python name
 
 
-class CodeGen(PouGen, StmtGen, ExprGen, CallGen):
+class CodeGen(PouGen, StmtGen, ExprGen, CallGen, ConfigGen):
     """CodeGen(checked, profile).generate() -> GeneratedModule."""
 
     def generate(self) -> GeneratedModule:
@@ -53,6 +54,7 @@ class CodeGen(PouGen, StmtGen, ExprGen, CallGen):
                 self._fb_class(pou)
             classes[pou.name.upper()] = pou.pyname
         self._globals_class()
+        self._var_config()
         text_lines = []
         linemap = {}
         for i, (text, pos) in enumerate(self.out, start=1):

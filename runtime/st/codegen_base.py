@@ -107,6 +107,7 @@ class CodeGenBase:
         self._acc_keys: dict = {}
         self._tmp = 0
         self.fn = FnState(None)
+        self._ref_inits: list = []  # (target, REF() call, pos) to emit after the other initial values
 
     def emit(self, line: str) -> None:
         self.out.append(("    " * self.indent + line, self.pos))
@@ -171,6 +172,11 @@ class CodeGenBase:
         def _index_target(self, e: A.Index) -> str: ...
 
         def ref_code(self, e: A.Expr) -> str: ...
+
+        # codegen_pous
+        def _emit_init(self, target: str, ty: T.Type, plan: Any, ref_target: str | None = None) -> None: ...
+
+        def _aggregate_expr(self, ty: T.Type, plan: Any) -> str: ...
 
         # codegen_calls
         def _call_expr(self, e: A.Call) -> str: ...

@@ -29,6 +29,8 @@ class ExprGen(CodeGenBase):
             if be is not None or isinstance(r, T.StringType):
                 return py_literal(C.const_repr(e.const, be) if be is not None else e.const)
         if isinstance(e, A.Name):
+            if isinstance(e.ty, T.NullType):
+                return "None"
             return self._read_name(e.sym)
         if isinstance(e, A.Member):
             if e.const is not None:
@@ -128,6 +130,8 @@ class ExprGen(CodeGenBase):
         if e.impl is not None:
             info: CallInfo = e.impl
             return self._std_invoke(info, [self.ex(e.left), self.ex(e.right)])
+        if op in ("=", "<>") and (self._is_ref(e.left.ty) or self._is_ref(e.right.ty)):
+            return self._ref_comparison(e)
         lhs, rhs = self.ex(e.left), self.ex(e.right)
         if op in self._CMP:
             return f"({lhs} {self._CMP[op]} {rhs})"
@@ -167,6 +171,21 @@ class ExprGen(CodeGenBase):
         if op == "**":
             return f"_expt({lhs}, {rhs})"
         return f"({lhs} {op} {rhs})"
+
+    @staticmethod
+    def _is_ref(ty: T.Type | None) -> bool:
+        return ty is not None and isinstance(T.resolve(ty), (T.RefType, T.NullType))
+
+    def _ref_comparison(self, e: A.Binary) -> str:
+        """r = NULL, r <> 0, r1 = r2: whether two references designate the
+        same storage (NULL and the 0 CODESYS allows are no reference)."""
+        sides = [side if self._is_ref(side.ty) else None for side in (e.left, e.right)]
+        codes = ["None" if side is None or isinstance(side.ty, T.NullType) else self.ex(side) for side in sides]
+        negate = "not " if e.op == "<>" else ""
+        if "None" in codes:
+            other = codes[1] if codes[0] == "None" else codes[0]
+            return f"({other} is {negate}None)"
+        return f"({negate}_same_ref({codes[0]}, {codes[1]}))"
 
     def _has_call(self, e: A.Expr) -> bool:
         if isinstance(e, A.Call):

@@ -8,6 +8,7 @@ builds initial values from the checker's plans.
 from __future__ import annotations
 
 import itertools
+from bisect import bisect_right
 from typing import Any
 
 from . import types as T
@@ -96,50 +97,59 @@ class PouGen(CodeGenBase):
         return py_literal(plan)
 
     def _array_code(self, t: T.ArrayType, plan: Any) -> str:
+        """An expression building an array from its plan's runs (checker:
+        init_value). Its size follows the runs, not the elements: a block
+        of equal elements is one repetition ([0] * 100, [Point() for _ in
+        range(100)], nested for each dimension)."""
         if t.variable_length:
             return "None"
-        flat = plan[1] if plan is not None else None
         sizes = [hi - lo + 1 for lo, hi in t.dims]
-        elem = T.resolve(t.elem)
-        elem_aggregate = elem.is_aggregate
+        strides = [1] * len(sizes)
+        for d in range(len(sizes) - 2, -1, -1):
+            strides[d] = strides[d + 1] * sizes[d + 1]
+        runs = plan[1] if plan is not None else [(strides[0] * sizes[0], None)]
+        starts = list(itertools.accumulate((n for n, _p in runs), initial=0))
+        aggregate = T.resolve(t.elem).is_aggregate
+        last = len(sizes) - 1
+
+        def element(p: Any) -> str:
+            return self._aggregate_expr(t.elem, p) if aggregate else self._scalar_plan_code(t.elem, p)
+
+        def repeat(code: str, n: int, distinct: bool) -> str:
+            return f"[{code} for _ in range({n})]" if distinct else f"[{code}] * {n}"
+
+        def uniform(dim: int, p: Any) -> str:
+            if dim == last:
+                return repeat(element(p), sizes[dim], aggregate)
+            return repeat(uniform(dim + 1, p), sizes[dim], True)
 
         def build(dim: int, offset: int) -> str:
-            n = sizes[dim]
-            stride = 1
-            for s in sizes[dim + 1 :]:
-                stride *= s
-            if dim == len(sizes) - 1:
-                items = [flat[offset + i] if flat is not None else None for i in range(n)]
-                if elem_aggregate:
-                    if all(p is None for p in items):
-                        return f"[{self._default_code(t.elem)} for _ in range({n})]"
-                    return "[" + ", ".join(self._aggregate_expr(t.elem, p) for p in items) + "]"
-                codes = [self._scalar_plan_code(t.elem, p) for p in items]
-                return self._runs(codes)
-            inner = [build(dim + 1, offset + i * stride) for i in range(n)]
-            if flat is None:
-                return f"[{inner[0]} for _ in range({n})]"
-            return "[" + ", ".join(inner) + "]"
+            stride, end = strides[dim], offset + sizes[dim] * strides[dim]
+            pieces: list = []
+            loose: list = []  # single items, gathered into one list display
+            i = offset
+            while i < end:
+                r = bisect_right(starts, i) - 1
+                run_end = min(starts[r + 1], end)
+                if dim == last:
+                    n, code, distinct = run_end - i, element(runs[r][1]), aggregate
+                elif i + stride <= run_end:
+                    n, code, distinct = (run_end - i) // stride, uniform(dim + 1, runs[r][1]), True
+                else:  # a block that several runs share
+                    n, code, distinct = 1, build(dim + 1, i), True
+                if n >= 4:
+                    if loose:
+                        pieces.append("[" + ", ".join(loose) + "]")
+                        loose = []
+                    pieces.append(repeat(code, n, distinct))
+                else:
+                    loose += [code] * n
+                i += n * stride
+            if loose or not pieces:
+                pieces.append("[" + ", ".join(loose) + "]")
+            return " + ".join(pieces)
 
         return build(0, 0)
-
-    @staticmethod
-    def _runs(codes: list) -> str:
-        """A list display with runs compressed: [0] * 100 + [1, 2]."""
-        parts = []
-        loose: list = []  # short runs gather into one display
-        for code, run in itertools.groupby(codes):
-            n = len(list(run))
-            if n >= 4:
-                if loose:
-                    parts.append("[" + ", ".join(loose) + "]")
-                    loose = []
-                parts.append(f"[{code}] * {n}")
-            else:
-                loose += [code] * n
-        if loose or not parts:
-            parts.append("[" + ", ".join(loose) + "]")
-        return " + ".join(parts)
 
     def _aggregate_expr(self, ty: T.Type, plan: Any) -> str:
         """An expression building an aggregate with an initial value plan."""
@@ -162,6 +172,32 @@ class PouGen(CodeGenBase):
         args = ", ".join(f"({attr!r}, {code})" for attr, code in setters)
         return f"_with_fields({cls}(), ({args}{',' if setters else ''}))"
 
+    @staticmethod
+    def _holds_instance(ty: T.Type) -> bool:
+        """Whether a value of type ty is or holds an FB instance."""
+        seen: set = set()
+        todo = [ty]
+        while todo:
+            t = T.resolve(todo.pop())
+            if isinstance(t, T.FBType):
+                return True
+            if id(t) in seen:
+                continue
+            seen.add(id(t))
+            if isinstance(t, T.ArrayType):
+                todo.append(t.elem)
+            elif isinstance(t, T.StructType):
+                todo += [f.type for f in t.fields.values() if f.type is not None]
+        return False
+
+    def _emit_ref_inits(self) -> None:
+        """The references the last variables' initialisers take, now that
+        every variable they may designate exists."""
+        for target, call, pos in self._ref_inits:
+            self.pos = pos
+            self.emit(f"{target} = {self.ex(call)}")
+        self._ref_inits = []
+
     def _member_attr(self, t: T.StructType | T.FBType, key: str) -> tuple:
         if isinstance(t, T.StructType):
             f = t.fields[key]
@@ -169,8 +205,15 @@ class PouGen(CodeGenBase):
         v = t.pou.vars[key]
         return v.pyname, v.type
 
-    def _emit_init(self, target: str, ty: T.Type, plan: Any) -> None:
+    def _emit_init(self, target: str, ty: T.Type, plan: Any, ref_target: str | None = None) -> None:
+        """target = the initial value. A reference's REF() initialiser is
+        kept for _emit_ref_inits (to ref_target, if the variable is boxed
+        after this): it may designate storage initialised after it."""
         t = T.resolve(ty)
+        if isinstance(plan, tuple) and plan[0] == "ref":
+            self.emit(f"{target} = None")
+            self._ref_inits.append((ref_target or target, plan[1], self.pos))
+            return
         if t.is_aggregate:
             self.emit(f"{target} = {self._aggregate_expr(ty, plan)}")
         else:
@@ -209,6 +252,7 @@ class PouGen(CodeGenBase):
             if self._temp_local(v):
                 continue
             self._emit_init(f"self.{v.pyname}", v.type, v.init_value)
+        self._emit_ref_inits()
         self.indent -= 1
         self._assign_copy_methods(pou.pyname, [(v.pyname, v.type) for v in stored])
         self.emit("")
@@ -227,6 +271,7 @@ class PouGen(CodeGenBase):
                 self.pos = v.pos
                 target = v.pyname if self._temp_local(v) else f"self.{v.pyname}"
                 self._emit_init(target, v.type, v.init_value)
+        self._emit_ref_inits()
 
     def _function(self, pou: POUInfo) -> None:
         self.pos = pou.node.pos
@@ -259,9 +304,10 @@ class PouGen(CodeGenBase):
         for v in pou.vars.values():
             if v.section in ("VAR", "VAR_OUTPUT", "VAR_TEMP", "VAR_STAT"):
                 self.pos = v.pos
-                self._emit_init(v.pyname, v.type, v.init_value)
+                self._emit_init(v.pyname, v.type, v.init_value, f"{v.pyname}.value" if v.boxed else None)
                 if v.boxed:
                     self.emit(f"{v.pyname} = _CellRef({v.pyname})")
+        self._emit_ref_inits()
         self._body(pou.node.body)
         self._function_epilogue()
         self.indent -= 1
@@ -296,7 +342,8 @@ class PouGen(CodeGenBase):
         self.emit("def __init__(self):")
         self.indent += 1
         self.emit("pass")
-        for g in gl:
+        # FB instances last: their initial values may take references to other globals
+        for g in sorted(gl, key=lambda g: self._holds_instance(g.type)):
             self.pos = g.pos
             if g.location is not None:
                 if g.init_value is not None:
@@ -304,5 +351,6 @@ class PouGen(CodeGenBase):
                     self.emit(f"_A{idx}s({py_literal(g.init_value)})")
                 continue
             self._emit_init(f"self.{g.pyname}", g.type, g.init_value)
+        self._emit_ref_inits()
         self.indent -= 1
         self.indent -= 1

@@ -251,6 +251,8 @@ class StmtGen(CodeGenBase):
         step = C.store_step(src, dst, e)
         if step == C.KEEP:
             return code
+        if step == C.TO_NULL:
+            return "None"
         d = T.resolve(dst)
         if step == C.TRUNCATE and isinstance(d, T.StringType):
             return f"({code})[:{d.length}]"

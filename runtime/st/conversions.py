@@ -323,6 +323,7 @@ TO_FLOAT = "to_float"  # a number into LREAL
 TO_F32 = "to_f32"  # a number into REAL: rounded to binary32
 WRAP = "wrap"  # an integer into an integer type: wrapped to it unless the value provably fits
 CONVERT = "convert"  # the rest (REAL to integer, time units, time to number): the library converter
+TO_NULL = "to_null"  # NULL (or the 0 CODESYS allows) into a reference: no reference
 
 
 def store_step(src: T.Type | None, dst: T.Type, e: A.Expr | None) -> str:
@@ -330,6 +331,8 @@ def store_step(src: T.Type | None, dst: T.Type, e: A.Expr | None) -> str:
     dst does to it: one of the steps above."""
     d = T.resolve(dst)
     s = T.resolve(src) if src is not None else d
+    if isinstance(d, T.RefType):
+        return KEEP if isinstance(s, T.RefType) else TO_NULL
     if isinstance(d, T.StringType):
         return KEEP if isinstance(s, T.StringType) and s.length <= d.length else TRUNCATE
     if isinstance(d, T.SubrangeType):

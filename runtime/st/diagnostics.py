@@ -3,18 +3,23 @@ caret, and a hint. Every stage collects them instead of raising, so all the
 errors of a file are reported in one run.
 
 Code ranges (keep them stable, users search for them):
+  E000       a file that cannot be read
   E001-E005  lexical and syntax (parser)
-  E006       nested beyond the Python compiler's limits (code generator)
+  E006-E008  limits (limits.py): E006 expressions and statements nested too
+             deeply (parser, checker, or the Python compiler), E007 a source
+             file too large, E008 comments nested too deeply
   E009       internal error (a bug in softplc; the input is reported, not lost)
-  E010-E019  names and declarations
+  E010-E019  names and declarations (E014: a STRUCT or FUNCTION_BLOCK that
+             contains itself)
   E020-E029  types and conversions
   E030-E039  assignment targets
   E040-E049  calls
-  E050-E059  arrays, indices, bit access
+  E050-E059  arrays, indices, bit access (E054, E055: the element limits of
+             one variable and of all, limits.py)
   E060-E069  CASE
   E070-E079  control flow
   E080-E089  direct (located) addresses
-  E090-E099  configuration, resources, tasks
+  E090-E099  configuration, resources, tasks (E094: a VAR_CONFIG path)
   W1xx       warnings (same tens as the error they soften: W121 ~ E021)
 """
 
@@ -47,17 +52,34 @@ class Diagnostic:
         text = sources.line(self.pos.file, self.pos.line) if sources else None
         if text is not None:
             shown = text.expandtabs(1).rstrip("\n")
-            lines.append(f"    {shown}")
             start = max(self.pos.col, 1)
             if self.pos.end_line == self.pos.line and self.pos.end_col > start:
                 width = self.pos.end_col - start
             else:
                 width = 1
             width = max(1, min(width, max(1, len(shown) - start + 1)))
+            shown, start, width = _excerpt(shown, start, width)
+            lines.append(f"    {shown}")
             lines.append("    " + " " * (start - 1) + "^" * width)
         if self.hint:
             lines.append(f"    hint: {self.hint}")
         return "\n".join(lines)
+
+
+EXCERPT = 120  # characters of a long source line shown around the column
+
+
+def _excerpt(line: str, start: int, width: int) -> tuple:
+    """(line, caret column, caret width): a long line cut to EXCERPT
+    characters around the caret, with '...' where it is cut."""
+    if len(line) <= EXCERPT:
+        return line, start, width
+    width = min(width, EXCERPT // 2)
+    first = max(0, min(start - 1 - EXCERPT // 3, len(line) - EXCERPT))
+    cut = line[first : first + EXCERPT]
+    head = "..." if first > 0 else ""
+    tail = "..." if first + EXCERPT < len(line) else ""
+    return head + cut + tail, start - first + len(head), width
 
 
 class SourceSet:

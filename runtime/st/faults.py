@@ -9,14 +9,21 @@ the engine never lets a Python exception escape.
 
 from __future__ import annotations
 
+import sys
+
 from .ast import Pos
+
+try:
+    import resource
+except ImportError:  # Windows: no resource module, no limit to show
+    resource = None  # type: ignore[assignment]
 
 
 class STFault(Exception):
     """A runtime fault with its ST location. kind is a short stable word
     ('division', 'bounds', 'range', 'reference', 'watchdog', 'overflow',
-    'recursion', 'internal'; 'stop' for a cycle ended by a stop request,
-    which is no fault of the program)."""
+    'recursion', 'memory', 'internal'; 'stop' for a cycle ended by a stop
+    request, which is no fault of the program)."""
 
     def __init__(self, kind: str, message: str, pos: Pos | None = None) -> None:
         self.kind = kind
@@ -75,7 +82,26 @@ def _classify(exc: BaseException) -> tuple:
         return "recursion", "call depth exceeded (recursive calls are not supported)"
     if isinstance(exc, OverflowError):
         return "overflow", f"arithmetic overflow ({exc})"
+    if isinstance(exc, MemoryError):
+        return "memory", f"out of memory: the process could not get the memory this statement needs{_memory_use()}"
     return "internal", f"internal error {type(exc).__name__}: {exc}"
+
+
+def _memory_use() -> str:
+    """' (peak resident 812 MB, address-space limit 1024 MB)': what the
+    process held at most and the limit it hit, where the system says."""
+    if resource is None:
+        return ""
+    try:
+        peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+        limit, _hard = resource.getrlimit(resource.RLIMIT_AS)
+    except (OSError, ValueError):
+        return ""
+    peak_mb = peak >> 20 if sys.platform == "darwin" else peak >> 10  # bytes on macOS, KiB elsewhere
+    parts = [f"peak resident {peak_mb:,} MB"]
+    if limit != resource.RLIM_INFINITY:
+        parts.append(f"address-space limit {limit >> 20:,} MB")
+    return f" ({', '.join(parts)})"
 
 
 def fault_from_exception(exc: BaseException, linemaps: dict) -> STFault:

@@ -29,6 +29,8 @@ import re
 from collections.abc import Callable, Iterator
 from typing import TYPE_CHECKING
 
+from .limits import MAX_COMMENT_DEPTH
+
 if TYPE_CHECKING:
     from .lark_adapter import Terminal
 
@@ -123,13 +125,22 @@ def strip_comments(text: str, error: Callable) -> tuple:
                 end = close + 1
                 pragmas.append(Pragma(text[start + 1 : close].strip(), line_col(text, start), line_col(text, end)))
         else:  # "(*": comments nest
-            depth, p = 1, start + 2
+            depth, p, deep = 1, start + 2, False
             while depth:
                 n = _NESTED.search(text, p)
                 if n is None:
                     break
                 depth += 1 if n.group() == "(*" else -1
                 p = n.end()
+                if depth > MAX_COMMENT_DEPTH and not deep:
+                    deep = True  # reported once; the comment still ends at its own '*)'
+                    error(
+                        "E008",
+                        f"comments nested too deeply (more than {MAX_COMMENT_DEPTH} levels)",
+                        n.start(),
+                        p,
+                        "(* *) comments nest: close the inner ones, or use // for a line",
+                    )
             if depth:
                 error(
                     "E004",

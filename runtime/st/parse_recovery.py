@@ -21,7 +21,8 @@ import re
 
 from . import ast
 from .lexer import Tok
-from .parse_stack import MAX_STACK, ParserCore, Rejected
+from .limits import MAX_NESTING
+from .parse_stack import ParserCore, Rejected
 from .st_grammar import COLON, COMMA, SEMI
 
 _FRIENDLY = {
@@ -489,7 +490,7 @@ class Recovery(ParserCore):
         part; then accept."""
         stack = self.state_stack
         previous = None
-        for _ in range(MAX_STACK):
+        for _ in range(MAX_NESTING):
             if self.g.simulate(stack, "$END") is not None:
                 break
             # Closers first; ';' (always welcome in a statement list) only

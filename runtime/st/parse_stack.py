@@ -14,18 +14,14 @@ from typing import Any
 from . import ast
 from .diagnostics import DiagnosticBag
 from .lexer import Tok, line_col
+from .limits import MAX_ERRORS
 from .st_grammar import Grammar
-
-MAX_ERRORS = 100
-# Nesting beyond this is refused (E005): later stages walk the tree
-# recursively, and generated Python has limits of its own (100 levels of
-# indentation, 200 nested parentheses). The parser stack grows by 1-4
-# entries per nesting level (a parenthesis, a unary operator, IF in IF).
-MAX_STACK = 300
 
 
 class TooDeep(Exception):
-    """The nesting limit (MAX_STACK) is reached; args: the token."""
+    """More than MAX_NESTING entries on the parser's stack (E006; it grows
+    by 1-4 entries per level: a parenthesis, a unary operator, IF in IF);
+    args: the token."""
 
 
 class GiveUp(Exception):

@@ -4,7 +4,8 @@
 
 Never raises: every problem becomes a coded diagnostic in ``diags`` (E001
 syntax, E002 invalid character, E003 invalid literal, E004 unterminated
-comment/string/pragma, E005 structural, E009 internal; W101 ignored
+comment/string/pragma, E005 structural, E006 nested too deeply, E007 file
+too large, E008 comments nested too deeply, E009 internal; W101 ignored
 EXTENDS/IMPLEMENTS) and the result holds whatever could be parsed.
 
 How it works:
@@ -31,8 +32,9 @@ from bisect import bisect_left
 from . import ast
 from .diagnostics import DiagnosticBag
 from .lexer import INVALID_RUN, Tok, line_col, strip_comments
+from .limits import MAX_ERRORS, MAX_NESTING, MAX_SOURCE_CHARS
 from .parse_recovery import Recovery
-from .parse_stack import MAX_ERRORS, MAX_STACK, GiveUp, Rejected, TooDeep
+from .parse_stack import GiveUp, Rejected, TooDeep
 from .st_grammar import grammar
 
 __all__ = ["MAX_ERRORS", "parse_source"]
@@ -52,19 +54,29 @@ class _Parse(Recovery):
                 code, message, ast.Pos(self.path, *line_col(text, start), *line_col(text, end)), hint, always=True
             )
 
-        self.text, pragmas = strip_comments(text, comment_error)
-        self.tokens = self.g.lexer.tokens(self.text, self._accepts, self._bad_characters)
+        if len(text) > MAX_SOURCE_CHARS:
+            where = ast.Pos(self.path, *line_col(text, MAX_SOURCE_CHARS))
+            self.diags.error(
+                "E007",
+                f"the file is too large: more than {MAX_SOURCE_CHARS:,} characters",
+                where,
+                "split it into several files; the part past this point is not read",
+            )
+            return ast.SourceFile(self.path, [], pos=ast.Pos(self.path, 1, 1))
+        pragmas: list = []
         try:
+            self.text, pragmas = strip_comments(text, comment_error)
+            self.tokens = self.g.lexer.tokens(self.text, self._accepts, self._bad_characters)
             result = self._drive()
         except GiveUp:
             self.diags.error("E001", f"too many errors; stopped after {MAX_ERRORS}", self._eof_pos())
             result = None
         except TooDeep as e:
             self.report(
-                "E005",
-                "nesting too deep",
+                "E006",
+                f"nested too deeply (more than {MAX_NESTING} levels of the parser)",
                 self._tok_pos(e.args[0]),
-                "split the expression or statement into smaller parts",
+                "split the expression or statement into smaller parts, with intermediate variables",
                 always=True,
             )
             result = None
@@ -90,7 +102,7 @@ class _Parse(Recovery):
             self.last = tok
             if self.calm:
                 self.calm -= 1
-            if len(stack) > MAX_STACK:
+            if len(stack) > MAX_NESTING:
                 raise TooDeep(tok)
         return self._feed_or_recover(self._end_token())
 

@@ -73,3 +73,21 @@ class AccessorRef:
     def __init__(self, getter, setter) -> None:
         self.get = getter
         self.set = setter
+
+    def __eq__(self, other) -> bool:
+        return isinstance(other, AccessorRef) and other.get is self.get
+
+    def __hash__(self) -> int:
+        return hash(id(self.get))
+
+
+_SCALAR_REFS = (AttrRef, ItemRef, AccessorRef)
+
+
+def same_ref(a, b) -> bool:
+    """Whether two non-NULL references designate the same storage: equal
+    scalar references, or the same aggregate object (an array is a list,
+    and two lists of equal values are still two arrays)."""
+    if a is b:
+        return True
+    return type(a) is type(b) and type(a) in _SCALAR_REFS and a == b

@@ -34,6 +34,7 @@ class VarSymbol:
     retain: bool = False
     persistent: bool = False
     location: Any = None  # ast.LocatedAddress
+    placeholder: Any = None  # AT %QX*: the incomplete address (VAR_CONFIG completes it per instance)
     init: Any = None  # AST initialiser
     init_value: Any = None  # evaluated initial value plan (see checker.init_value)
     const_value: Any = None  # compile-time value of a CONSTANT

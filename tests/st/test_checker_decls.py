@@ -38,3 +38,26 @@ def test_a_constant_sizes_the_arrays_declared_after_it():
     src = "PROGRAM main\nVAR CONSTANT n : INT := 3; END_VAR\nVAR a : ARRAY[1..n] OF INT; END_VAR\nEND_PROGRAM\n"
     assert codes(src) == []
     assert codes(prog("n : INT := 3; a : ARRAY[1..n] OF INT;", "")) == ["E025"]
+
+
+def test_a_reference_starts_at_a_variable_at_a_fixed_place_or_at_null():
+    src = (
+        "TYPE S : STRUCT r : REF_TO INT := REF(gx); END_STRUCT END_TYPE\n"
+        "VAR_GLOBAL gx : INT; END_VAR\n"
+        "FUNCTION F : INT\nVAR_INPUT r : REF_TO INT := REF(gx); END_VAR\nF := 1;\nEND_FUNCTION\n"
+        "PROGRAM main\nVAR i : INT; a : ARRAY[1..3] OF INT;\n"
+        "r1 : REF_TO INT := REF(a[i]);\nr2 : REF_TO INT := r1;\n"
+        "r3 : REF_TO INT := NULL; r4 : REF_TO INT := 0; r5 : REF_TO INT := REF(a[3]);\nEND_VAR\nEND_PROGRAM\n"
+    )
+    assert [(d.code, d.pos.line, d.message) for d in diagnostics(src)] == [
+        ("E024", 1, "'S.r' cannot start with a reference"),
+        ("E024", 4, "'r' cannot start with a reference"),
+        ("E024", 9, "the initial value of 'r1' is not a reference to a variable at a fixed place"),
+        ("E024", 10, "the initial value of 'r2' is not a reference to a variable at a fixed place"),
+    ]
+
+
+def test_a_huge_repetition_count_is_counted_not_built():
+    [d] = diagnostics(prog("a : ARRAY[0..9] OF INT := [1, 10000000000000000(0)];", ""))
+    assert (d.code, d.pos.line, d.pos.col) == ("E052", 3, 27)
+    assert d.message == "10,000,000,000,000,001 initial values for 'a', which has 10 elements"

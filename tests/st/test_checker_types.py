@@ -3,7 +3,9 @@ names, resolving types as written."""
 
 from __future__ import annotations
 
-from .conftest import codes, diagnostics, run_st
+from softplc.runtime.st.limits import MAX_VAR_ELEMENTS
+
+from .conftest import codes, diagnostics, prog, run_st
 
 
 def test_aliases_typed_enums_subranges_and_struct_defaults():
@@ -48,3 +50,12 @@ def test_types_declared_twice_and_empty_bounds():
         ("E022", "subrange 5..1 is not within INT"),
     ]
     assert codes(src, "iec") == ["E011", "E022", "E050", "E022"]
+
+
+def test_an_array_type_with_more_elements_than_a_variable_may_have_is_e054():
+    src = prog(f"a : ARRAY[1..{MAX_VAR_ELEMENTS}] OF BYTE;\nb : ARRAY[0..9999, 0..9999, 0..99] OF INT;", "")
+    [d] = diagnostics(src)
+    assert (d.code, d.pos.line, d.pos.col) == ("E054", 4, 5)
+    assert d.message == f"the array has more than 100,000,000 elements; one variable may have {MAX_VAR_ELEMENTS:,}"
+    [d] = diagnostics(prog(f"a : ARRAY[0..{MAX_VAR_ELEMENTS}] OF BYTE;", ""))
+    assert d.message == f"the array has {MAX_VAR_ELEMENTS + 1:,} elements; one variable may have {MAX_VAR_ELEMENTS:,}"

@@ -4,10 +4,13 @@ REF and pointers."""
 
 from __future__ import annotations
 
+import json
+
 import pytest
 
 from softplc.runtime.st.faults import STFault
 
+from ..test_cli import softplc
 from .conftest import prog, run_st
 
 
@@ -85,3 +88,56 @@ def test_null_reference_is_a_fault():
     with pytest.raises(STFault) as err:
         run_st(src)
     assert err.value.kind == "reference" and err.value.pos.line == 5
+
+
+def test_null_is_assigned_and_compared_and_zero_means_null():
+    src = prog(
+        "x : INT := 5; y : INT := 5; r : REF_TO INT; s : REF_TO INT; seen : ARRAY[1..8] OF BOOL;",
+        "seen[1] := r = NULL; seen[2] := r = 0;\n"
+        "r := REF(x); s := REF(y);\n"
+        "seen[3] := r <> NULL; seen[4] := NULL <> r; seen[5] := r = s;\n"
+        "s := REF(x); seen[6] := r = s;\n"
+        "r := NULL; s := 0; seen[7] := r = NULL AND s = NULL; seen[8] := r <> 0;",
+    )
+    r = run_st(src)
+    assert r.get("seen") == [True, True, True, True, False, True, True, False]
+    assert r.get("r") is None and r.get("s") is None
+
+
+def test_references_to_two_arrays_of_equal_values_differ():
+    src = prog(
+        "a : ARRAY[1..2] OF INT; b : ARRAY[1..2] OF INT; ra : REF_TO ARRAY[1..2] OF INT;"
+        "rb : REF_TO ARRAY[1..2] OF INT; same : BOOL; other : BOOL; v AT %MW2 : INT; m1 : REF_TO INT; m2 : REF_TO INT;"
+        "w : BOOL;",
+        "ra := REF(a); rb := REF(b); same := ra = REF(a); other := ra = rb;\nm1 := REF(v); m2 := REF(v); w := m1 = m2;",
+    )
+    r = run_st(src)
+    assert (r.get("same"), r.get("other"), r.get("w")) == (True, False, True)
+
+
+def test_null_as_a_function_argument_and_result():
+    src = """
+FUNCTION pick : REF_TO INT
+VAR_INPUT r : REF_TO INT; END_VAR
+IF r = NULL THEN pick := NULL; ELSE pick := r; END_IF
+END_FUNCTION
+PROGRAM main
+VAR x : INT; a : BOOL; b : BOOL; END_VAR
+a := pick(NULL) = NULL;
+b := pick(REF(x)) = REF(x);
+END_PROGRAM
+"""
+    r = run_st(src)
+    assert (r.get("a"), r.get("b")) == (True, True)
+
+
+def test_null_through_the_command_line_runs_instead_of_crashing(tmp_path):
+    path = tmp_path / "null.st"
+    path.write_text(prog("x : INT; r : REF_TO INT := REF(x); gone : BOOL;", "r := NULL; gone := r = NULL;"))
+    for command in ("check", "compile"):
+        proc = softplc(command, path)
+        assert proc.returncode == 0, proc.stderr
+        assert "Traceback" not in proc.stderr + proc.stdout
+    proc = softplc("exec", path)
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads(proc.stdout) == {"x": 0, "r": None, "gone": True}

@@ -5,8 +5,9 @@ from __future__ import annotations
 import pytest
 
 from softplc.runtime.st import ast
+from softplc.runtime.st.limits import MAX_COMMENT_DEPTH
 
-from .parse_helpers import body, errors, expr, ok, show, span
+from .parse_helpers import body, errors, expr, ok, parse, show, span
 
 # ---------------------------------------------------------------- lexical
 
@@ -62,3 +63,17 @@ def test_unterminated_comments_and_pragmas(src, line, col, what):
 def test_stray_comment_close():
     [d] = errors("x := 1; *) y := 2;")
     assert (d.code, d.pos.col) == ("E001", 9) and "'*)'" in d.message
+
+
+# ---------------------------------------------------------------- comment nesting
+
+
+def test_comments_nest_up_to_the_limit_and_deeper_is_e008_where_it_starts():
+    ok("(*" * MAX_COMMENT_DEPTH + " deep " + "*)" * MAX_COMMENT_DEPTH + "\nx := 1;")
+    text = "x := 1;\n  " + "(*" * (MAX_COMMENT_DEPTH + 1) + "*)" * (MAX_COMMENT_DEPTH + 1) + "\ny := 2;"
+    sf, diags = parse(text)
+    [d] = diags
+    assert (d.code, d.pos.line, d.pos.col) == ("E008", 2, 3 + 2 * MAX_COMMENT_DEPTH)
+    assert d.message == f"comments nested too deeply (more than {MAX_COMMENT_DEPTH} levels)"
+    # the comment still ends at its own '*)': the statements around it are read
+    assert [s.target.name for s in sf.decls[0].body] == ["x", "y"]

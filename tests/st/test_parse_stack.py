@@ -25,9 +25,9 @@ def test_too_many_errors_stop_the_parse():
 
 def test_deep_nesting_is_refused_with_a_diagnostic():
     [d] = errors("x := " + "(" * 10000 + "1" + ")" * 10000 + ";")
-    assert d.code == "E005" and d.message == "nesting too deep"
+    assert d.code == "E006" and d.message == "nested too deeply (more than 300 levels of the parser)"
     [d] = errors("x := " + " + ".join(["a"] * 2000) + ";")
-    assert d.code == "E005" and "expression too long" in d.message
+    assert d.code == "E006" and d.message == "expression too long (more than 1000 operators)"
     ok("x := " + "(" * 50 + "1" + ")" * 50 + ";")  # but reasonable depth is fine
     ok("IF a THEN " * 30 + "x := 1;" + " END_IF" * 30)
 
@@ -64,3 +64,9 @@ def test_the_value_of_the_start_rule_ends_the_parse():
     core = ParserCore("", "t.st", DiagnosticBag(), g)
     sf = core._feed(core._end_token(), True)
     assert isinstance(sf, ast.SourceFile) and sf.decls == [] and core.state_stack[-1] == g.end_state
+
+
+def test_too_many_stray_comment_ends_stop_the_parse_as_too_many_errors():
+    sf, diags = parse("PROGRAM main\nEND_PROGRAM\n" + "*)" * (MAX_ERRORS + 1))
+    assert [d.code for d in diags] == ["E001"] * (MAX_ERRORS + 1)
+    assert diags[-1].message == f"too many errors; stopped after {MAX_ERRORS}"

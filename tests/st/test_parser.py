@@ -11,6 +11,7 @@ import threading
 import pytest
 
 from softplc.runtime.st import ast
+from softplc.runtime.st.limits import MAX_SOURCE_CHARS
 
 from .parse_helpers import REPO, errors, ok, parse, show, span
 
@@ -282,3 +283,14 @@ def test_parses_in_threads_do_not_mix():
         sf, diags = results[f"t{i}.st"]
         assert not diags and len(sf.decls) == 50
         assert all(p.name == f"P{i}" and p.pos.file == f"t{i}.st" for p in sf.decls)
+
+
+def test_a_file_larger_than_the_limit_is_e007_where_the_limit_is_passed():
+    line = "(* " + "c" * 93 + " *)\n"  # 100 characters
+    fits = line * (MAX_SOURCE_CHARS // len(line)) + "x := 1;"
+    assert len(fits) <= MAX_SOURCE_CHARS
+    ok(fits)
+    sf, [d] = parse(line * (MAX_SOURCE_CHARS // len(line) + 1) + "x := 1;")
+    assert (d.code, d.message) == ("E007", f"the file is too large: more than {MAX_SOURCE_CHARS:,} characters")
+    assert (d.pos.line, d.pos.col) == (MAX_SOURCE_CHARS // len(line) + 1, MAX_SOURCE_CHARS % len(line) + 1)
+    assert sf.decls == []
