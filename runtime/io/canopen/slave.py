@@ -48,6 +48,7 @@ from ...plugin.seams import SimFault
 from ...sim.base import SimulatedDevice
 from ..can.bus import BusPump, BusSettings, CanEndpoint, open_bus
 from .cia301 import (
+    ABORT_BAD_COMMAND,
     ABORT_NO_SUBINDEX,
     ABORT_VALUE_RANGE,
     COB_ID_INVALID,
@@ -69,6 +70,8 @@ from .cia301 import (
     TPDO_MAP,
     cob_emcy,
     cob_heartbeat,
+    cob_sdo_rx,
+    cob_sdo_tx,
 )
 from .slave_errors import ERROR_BEHAVIOUR, ERROR_TO_STOPPED, ErrorControlMixin
 from .slave_pdo import PDO_SLOTS, PdoMixin, PdoTables, TpdoState
@@ -153,6 +156,7 @@ class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
         self._init_error_control()
         self._written: list[int] = []  # objects written, for _flush_writes
         self._cached: dict[tuple[int, int], int] = {}  # _cached_value: stored values read every tick
+        self.sdo_malformed = 0  # SDO requests refused: not 8 bytes (dropped), out of sequence (aborted)
 
     # ------------------------------------------------------------------ hooks
 
@@ -389,11 +393,38 @@ class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
                     self._flush_writes(now)
                     self._transmit_event_tpdos(now)
                     return
-            assert self.network is not None  # open() made it before adding this handler
-            self.network.notify(can_id, msg.data, msg.timestamp)  # the SDO server
+            if can_id == cob_sdo_rx(self.node_id):
+                if not self._on_sdo_request(msg):
+                    return
+            else:
+                assert self.network is not None  # open() made it before adding this handler
+                self.network.notify(can_id, msg.data, msg.timestamp)
             self._flush_writes(now)
             if self._state == STATE_OPERATIONAL:
                 self._transmit_event_tpdos(now)  # an SDO write may have changed mapped data
+
+    def _on_sdo_request(self, msg: can.Message) -> bool:
+        """One request to canopen's SDO server; False when it was refused
+        before reaching it."""
+        if len(msg.data) != 8:
+            # an SDO frame has 8 bytes (CiA 301); canopen's server fails on a
+            # shorter one
+            self.sdo_malformed += 1
+            return False
+        assert self.network is not None  # open() made it before adding this handler
+        server = self.node.sdo
+        # A segment (upload 0x60, download 0x00) before any segmented transfer
+        # began: canopen's server fails on its missing buffer (and, before any
+        # request at all, on the index it has not got to abort with), logging a
+        # traceback. Such a request gets the abort a device sends for an
+        # unknown request code, here.
+        if msg.data[0] & 0xE0 in (0x00, 0x60) and server._buffer is None:
+            self.sdo_malformed += 1
+            where = (server._index or 0).to_bytes(2, "little") + bytes([server._subindex or 0])
+            self._send(cob_sdo_tx(self.node_id), bytes([0x80]) + where + ABORT_BAD_COMMAND.to_bytes(4, "little"))
+            return True
+        self.network.notify(msg.arbitration_id, msg.data, msg.timestamp)
+        return True
 
     def _send(self, can_id: int, data: bytes) -> None:
         if self.endpoint is not None:
