@@ -21,11 +21,17 @@ def pytest_collection_modifyitems(config, items):
 
 
 class Tally(Counter):
-    """Inputs by outcome ("diagnostics", "clean", "ran", "runtime fault" ...)."""
+    """A long test's inputs (ST sources, configurations, frames) and its
+    outcomes ("diagnostics", "ran", "runtime fault", "config error" ...)."""
 
     def __init__(self, area: str) -> None:
         super().__init__()
         self.area = area
+        self.inputs = 0
+
+    def add(self, outcome: str, inputs: int = 1) -> None:
+        self[outcome] += 1
+        self.inputs += inputs
 
 
 @pytest.fixture
@@ -39,7 +45,7 @@ def tally(request, record_property):
 
     yield make
     for t in made:
-        record_property("fuzz_tally", (t.area, dict(t)))
+        record_property("fuzz_tally", (t.area, t.inputs, dict(t)))
 
 
 def pytest_terminal_summary(terminalreporter):
@@ -48,14 +54,13 @@ def pytest_terminal_summary(terminalreporter):
         for report in reports:
             for name, value in getattr(report, "user_properties", ()):
                 if name == "fuzz_tally":
-                    found[(report.nodeid, value[0])] = value[1]
-    rows = [(nodeid.split("::")[-1], area, counts) for (nodeid, area), counts in found.items()]
+                    found[(report.nodeid, value[0])] = value[1:]
+    rows = [(nodeid.split("::")[-1], area, n, counts) for (nodeid, area), (n, counts) in found.items()]
     if not rows:
         return
     terminalreporter.section("fuzz: inputs by outcome")
     totals: Counter = Counter()
-    for test, area, counts in rows:
-        n = sum(counts.values())
+    for test, area, n, counts in rows:
         totals[area] += n
         detail = ", ".join(f"{k} {v:,}" for k, v in sorted(counts.items()))
         terminalreporter.write_line(f"{test}: {n:,} {area} ({detail})")

@@ -66,7 +66,7 @@ def test_long_valid_programs(tally):
     @long("st", 0.3)
     @given(valid_programs())
     def run(src):
-        counts[_check_valid(src)] += 1
+        counts.add(_check_valid(src))
 
     run()
 
@@ -78,7 +78,7 @@ def test_long_mutants(tally):
     @long("st", 0.5)
     @given(mutants(valid_programs()))
     def run(case):
-        counts[_check_mutant(case)] += 1
+        counts.add(_check_mutant(case))
 
     run()
 
@@ -90,6 +90,6 @@ def test_long_corpus_mutants(tally):
     @long("st", 0.2)
     @given(mutants(None))
     def run(case):
-        counts[_check_mutant(case)] += 1
+        counts.add(_check_mutant(case))
 
     run()
