@@ -21,6 +21,7 @@ def test_there_are_benchmarks():
         "bench_genset.py",
         "bench_language.py",
         "bench_modbus.py",
+        "bench_soak.py",
     ]
 
 
