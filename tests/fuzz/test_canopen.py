@@ -13,6 +13,7 @@ short, counted (rx_short) and dropped.
 
 from __future__ import annotations
 
+import pytest
 from hypothesis import given
 
 from softplc.runtime.plugin.driver import DriverStatus
@@ -81,6 +82,7 @@ def play(case) -> tuple[int, dict]:
     return rig.sent, outcomes
 
 
+@pytest.mark.slow  # whole plants or buses
 @short(12)
 @given(sdo_plans(), events())
 def test_canopen_frames_are_applied_counted_or_dropped(plans, steps):
@@ -91,7 +93,7 @@ def test_canopen_frames_are_applied_counted_or_dropped(plans, steps):
 def test_long_canopen_frames(tally):
     counts = tally("frames")
 
-    @long("frames", 0.45, per_example=60)
+    @long("frames", 0.45, per_example=95)
     @given(sdo_plans(), events())
     def run(plans, steps):
         frames, outcomes = play((plans, steps))

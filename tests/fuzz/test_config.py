@@ -158,6 +158,7 @@ def test_mutated_files_give_config_errors_or_load(mirror, case):
     mirror.check_text(case)
 
 
+@pytest.mark.slow  # whole plants or buses
 @short(6)
 @given(case=mutated_documents())
 def test_mutated_documents_that_load_build_and_run(mirror, case):

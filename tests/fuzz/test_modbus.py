@@ -102,7 +102,7 @@ def test_modbus_replies_give_outcomes(case):
 def test_long_modbus_replies(tally):
     counts = tally("frames")
 
-    @long("frames", 0.4, per_example=5)
+    @long("frames", 0.4, per_example=3.7)
     @given(exchanges())
     def run(case):
         frames, outcomes = check_exchanges(case)

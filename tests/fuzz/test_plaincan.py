@@ -19,6 +19,7 @@ import itertools
 import tempfile
 from pathlib import Path
 
+import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -131,6 +132,7 @@ def play(case) -> tuple[int, dict]:
     return sent, outcomes
 
 
+@pytest.mark.slow  # whole plants or buses
 @short(15)
 @given(traffic())
 def test_plain_can_frames_are_applied_or_counted(case):
@@ -141,7 +143,7 @@ def test_plain_can_frames_are_applied_or_counted(case):
 def test_long_plain_can_frames(tally):
     counts = tally("frames")
 
-    @long("frames", 0.15, per_example=60)
+    @long("frames", 0.15, per_example=65)
     @given(traffic())
     def run(case):
         frames, outcomes = play(case)
