@@ -99,7 +99,7 @@ def _function(g: Gen) -> str:
     inputs = [(g.fresh("a"), _value_type(g, structs=False, arrays=False)) for _ in range(g.int_in(1, 3))]
     local = [(g.fresh("t"), _value_type(g)) for _ in range(g.int_in(0, 2))]
     counters, guards = _loop_vars(g)
-    loops = [(v, elem("INT")) for v in counters + guards]
+    loops = [(v, elem("DINT")) for v in counters] + [(v, elem("INT")) for v in guards]
     scope = Scope(g.world, [*inputs, *local, *loops, (name, result), *g.world.globals], {n for n, _ in inputs})
     body = _body(g, scope, counters, guards)
     final = f"{name} := {g.expr(result, scope)};"
@@ -124,7 +124,7 @@ def _function_block(g: Gen) -> str:
     outputs = [(g.fresh("out"), _value_type(g, structs=False, arrays=False)) for _ in range(g.int_in(1, 3))]
     local = [(g.fresh("s"), _value_type(g)) for _ in range(g.int_in(0, 2))] + _instances(g, g.int_in(0, 2))
     counters, guards = _loop_vars(g)
-    loops = [(v, elem("INT")) for v in counters + guards]
+    loops = [(v, elem("DINT")) for v in counters] + [(v, elem("INT")) for v in guards]
     scope = Scope(g.world, [*inputs, *outputs, *local, *loops, *g.world.globals], {n for n, _ in inputs})
     body = _body(g, scope, counters, guards)
     text = (
@@ -144,7 +144,7 @@ def _program(g: Gen) -> str:
     instances = _instances(g, g.int_in(0, 3))
     constants = [(g.fresh("c"), elem(g.pick(["INT", "DINT", "REAL", "BOOL", "TIME"]))) for _ in range(g.int_in(0, 2))]
     counters, guards = _loop_vars(g)
-    loops = [(v, elem("INT")) for v in counters + guards]
+    loops = [(v, elem("DINT")) for v in counters] + [(v, elem("INT")) for v in guards]
     plain = [(n, t) for n, t in variables if t.kind == "elem"]
     refs = [(g.fresh("r"), Ty("ref", "", t), n) for n, t in plain[: g.int_in(0, 2)]]
     every = [*variables, *instances, *constants, *loops, *g.world.globals, *((r, t) for r, t, _n in refs)]

@@ -32,7 +32,7 @@ ELEMENTARY = (*INTS, *BITS, *REALS, "BOOL", "TIME", "STRING")
 
 # issue 16, "FOR loops are not checked by the watchdog": a FOR over a huge
 # range freezes the scan for minutes. Until the fix is merged, the bounds of
-# generated FOR loops are small literals; afterwards any INT expression may
+# generated FOR loops are small literals; afterwards any DINT expression may
 # be a bound (FOR_ANY_BOUNDS = True).
 FOR_ANY_BOUNDS = UNRESTRICTED
 
@@ -127,7 +127,7 @@ class Scope:
             self._walk((name,), ty, name not in readonly and name not in constants, 0)
         for leaf in self.leaves:
             leaf.const = leaf.parts[0] in constants
-        self.counters: list[str] = []  # FOR counters (INT), one per nesting level
+        self.counters: list[str] = []  # FOR counters (DINT), one per nesting level
         self.guards: list[str] = []  # WHILE/REPEAT guards (INT)
         self.instances = [(n, t) for n, t in variables if t.kind == "fb"]
 
@@ -469,8 +469,9 @@ class Gen:
         counter = scope.counters[depth] if depth < len(scope.counters) else None
         if counter is None or counter in scope.counters[:depth]:
             return self.assign(scope, depth)
-        if FOR_ANY_BOUNDS and self.chance(0.3):
-            start, end = self.expr(elem("INT"), scope, 2), self.expr(elem("INT"), scope, 2)
+        if FOR_ANY_BOUNDS and self.chance(0.3):  # the counters are DINTs
+            start = self.expr(elem("DINT"), scope, 2)
+            end = self.pick(["2147483647", self.expr(elem("DINT"), scope, 2)])
         else:
             start, end = str(self.int_in(-3, 6)), str(self.int_in(-3, 8))
         step = self.pick(["", "", " BY 1", " BY 2", " BY -1", " BY 3"])

@@ -84,11 +84,14 @@ def bounded(what: str = "input", limit_s: float | None = None, memory_mb: int | 
     limit = LIMIT_S if limit_s is None else limit_s
     extra = (MEMORY_MB if memory_mb is None else memory_mb) << 20
     main = threading.current_thread() is threading.main_thread()
+    what_hung = f"{what}: not done within {limit:g} s"
+    fired: list = []
     old_handler = None
     if main:
 
         def expired(_sig, _frame):
-            raise Hang(f"{what}: not done within {limit:g} s")
+            fired.append(True)
+            raise Hang(what_hung)
 
         old_handler = signal.signal(signal.SIGALRM, expired)
         signal.setitimer(signal.ITIMER_REAL, limit)
@@ -99,6 +102,10 @@ def bounded(what: str = "input", limit_s: float | None = None, memory_mb: int | 
     resource.setrlimit(resource.RLIMIT_AS, (cap, hard))
     try:
         yield
+    except Exception as exc:
+        if fired and not isinstance(exc, Hang):  # the code under test caught the Hang and went on
+            raise Hang(what_hung) from exc
+        raise
     finally:
         resource.setrlimit(resource.RLIMIT_AS, (soft, hard))
         if main:
