@@ -2,13 +2,14 @@
 the type its place wants, so the checker must accept the program and the
 code generator and the runtime get legal programs of every shape.
 
-    valid_programs()     a hypothesis strategy of source texts: enumerations,
-                         structures (with arrays and earlier structures),
-                         FUNCTIONs, FUNCTION_BLOCKs (with standard FBs and
-                         earlier FBs inside), globals, constants and one
-                         PROGRAM main; IF/ELSIF/CASE/FOR/WHILE/REPEAT, EXIT,
-                         CONTINUE, RETURN, calls with named and positional
-                         arguments, array, field and bit access
+    valid_programs()     (st_decls.py) a hypothesis strategy of source
+                         texts: enumerations, structures (with arrays and
+                         earlier structures), FUNCTIONs, FUNCTION_BLOCKs (with
+                         standard FBs and earlier FBs inside), globals,
+                         constants, references and one PROGRAM main;
+                         IF/ELSIF/CASE/FOR/WHILE/REPEAT, EXIT, CONTINUE, calls
+                         with named and positional arguments, array, field,
+                         bit and reference access
 
 Only the division by zero, an index out of bounds, an overflowing conversion
 or an endless WHILE may stop a generated program at run time (a runtime
