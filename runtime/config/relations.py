@@ -48,6 +48,16 @@ class Relations:
     def error(self, loc: tuple, message: str) -> None:
         self.errors.append((loc, message))
 
+    def required(self, here: tuple, table: dict, model) -> None:
+        """The keys a device's own model (its NodeOptions, SimOptions) needs
+        and the table lacks: pass 1 takes them as optional, because the
+        table's model holds the keys of every device."""
+        for name, info in model.model_fields.items():
+            key = info.alias or name
+            if info.is_required() and key not in table:
+                described = f" ({info.description})" if info.description else ""
+                self.error(here, f"required key missing: {key}{described}")
+
     def warning(self, loc: tuple, message: str) -> None:
         self.warnings.append((loc, message))
 

@@ -101,6 +101,7 @@ class SimSection(Section):
             attachment.check(here, sim, ctx)
             self._name(here, sim, attachment, names, ctx)
             if device.sim_options is not None:
+                ctx.required(here, sim, device.sim_options)
                 device.sim_options.check(here, sim, ctx)
             check_faults(here, sim, device, ctx)
 

@@ -7,6 +7,7 @@ pairs joined by a relay thread, like `socat pty pty` with a pair of scissors.
     cable.cut()          # the line goes silent in both directions
     cable.mend()
     cable.sent_by_master(), cable.sent_by_slave()   # the bytes that went through
+                                                    # (the newest RECORD_BYTES at least)
 
 Both ends are real ttys opened through pyserial by their users, so the
 master's RTU code path is the one it takes on /dev/ttyUSB0; only the baud
@@ -20,6 +21,16 @@ import pty
 import select
 import threading
 import tty
+
+#: what a cable keeps of the bytes each way: the newest RECORD_BYTES at least,
+#: 2 * RECORD_BYTES at most, so that a plant run for days does not grow
+RECORD_BYTES = 1 << 16
+
+
+def keep_recent(record: bytearray) -> None:
+    """Drop a record's oldest bytes once it holds twice RECORD_BYTES."""
+    if len(record) > 2 * RECORD_BYTES:
+        del record[: len(record) - RECORD_BYTES]
 
 
 class NullModem:
@@ -81,6 +92,7 @@ class NullModem:
                 target, side = other[fd]
                 with self._lock:
                     self._wire[side] += data
+                    keep_recent(self._wire[side])
                 os.write(target, data)
 
     def close(self) -> None:

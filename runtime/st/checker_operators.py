@@ -42,11 +42,16 @@ class OperatorChecks(CheckerBase):
             return None
         if c is not None:
             e.const = -c if e.op == "-" else c
-            if is_flexible(e.operand) and e.op == "-" and isinstance(c, int) and expected is None:
-                # -32768 is an INT literal, not the negation of a DINT
-                for cand in (T.INT, T.DINT, T.LINT):
-                    if T.int_fits(cand, -c):
-                        return cand
+            if is_flexible(e.operand) and e.op == "-" and isinstance(c, int):
+                # -32768 is an INT literal, not the negation of a DINT; beside a
+                # LINT, -9223372036854775808 is a LINT, not the negation of a ULINT
+                exp = T.base_elementary(expected) if expected is not None else None
+                if exp is not None and exp.is_integer and exp.lo is not None and exp.lo < 0 and T.int_fits(exp, -c):
+                    return exp
+                if exp is None or (exp.is_integer and exp.lo is not None and exp.lo < 0 and not T.int_fits(be, -c)):
+                    for cand in (T.INT, T.DINT, T.LINT):
+                        if T.int_fits(cand, -c):
+                            return cand
         return be
 
     def _wrap_const(self, t: T.ElementaryType, v: int) -> int:

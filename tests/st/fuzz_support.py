@@ -218,9 +218,10 @@ def assert_well_formed(diags, user_files=(FILE,)) -> None:
         d.format()  # formatting never fails either
 
 
-def check_and_maybe_run(profile: str, src: str, cycles: int = 3) -> list:
+def check_and_maybe_run(profile: str, src: str, cycles: int = 3, faults: list | None = None) -> list:
     """check_files must not raise; an error-free source must compile, load
-    and run (or stop with an STFault that is not an internal error)."""
+    and run (or stop with an STFault that is not an internal error, appended
+    to faults when given)."""
     diags, _sources = check_files([], profile=profile, texts={FILE: src})
     assert isinstance(diags, list)
     assert_well_formed(diags)
@@ -239,4 +240,6 @@ def check_and_maybe_run(profile: str, src: str, cycles: int = 3) -> list:
             runner.run(cycles)
         except STFault as fault:
             assert fault.kind != "internal", f"internal fault (a code generator bug): {fault}\n{src}"
+            if faults is not None:
+                faults.append(fault)
     return diags

@@ -40,6 +40,22 @@ def test_constant_operations_are_folded_with_iec_results():
     ]
 
 
+def test_the_smallest_lint_is_a_lint_literal_beside_a_lint():
+    """Found by the fuzz harness (tests/fuzz): -9223372036854775808 compared
+    with a LINT was taken as the negation of a ULINT ("cannot compare LINT
+    with ULINT"), though assigned to one it was a LINT."""
+    src = prog(
+        "v : LINT := -5; a : BOOL; b : BOOL; c : BOOL; u : UINT;",
+        "a := v > (-9223372036854775808);\nb := (1 > (-9223372036854775808));\nc := v > -9223372036854775807;",
+    )
+    assert codes(src) == []
+    runner = run_st(src)
+    assert (runner.get("a"), runner.get("b"), runner.get("c")) == (True, True, True)
+    assert [(d.code, d.message) for d in diagnostics(prog("u : UINT;", "u := -5;"))] == [
+        ("E022", "-5 does not fit UINT (0..65535)")
+    ]
+
+
 SHARED_ENUMERATORS = """TYPE E_Pump : (Idle, Running, Faulted); END_TYPE
 TYPE E_Fan : (Off, Idle, Faulted); END_TYPE
 """

@@ -2,14 +2,17 @@
 with coded, located diagnostics, never with a Python traceback.
 
   * arbitrary text (control characters, NULs, unicode) goes into check_files;
-  * a corpus of valid programs is mutated token-wise (spans deleted,
-    duplicated, swapped; keywords, operators, literals inserted; identifiers
-    renamed; types flipped; truncated). When the checker accepts a mutant,
-    it must also compile, load and run (or stop with an STFault);
+  * a corpus of valid programs is mutated token-wise (fuzz_mutations.py:
+    spans deleted, duplicated, swapped; keywords, operators, literals
+    inserted; identifiers renamed; types flipped; truncated). When the
+    checker accepts a mutant, it must also compile, load and run (or stop
+    with an STFault);
   * pathological nesting ends in a diagnostic, not a RecursionError.
 
 The runs are derandomized (CI reproducible). For a deeper local run:
     SOFTPLC_FUZZ_EXAMPLES=5000 pytest tests/st/test_fuzz.py
+The cross-cutting harness (tests/fuzz/) adds programs generated from the
+typed grammar, more mutations and the long seeded run (pytest -m fuzz).
 """
 
 from __future__ import annotations
@@ -25,14 +28,10 @@ from hypothesis import strategies as st  # noqa: E402
 from softplc.runtime.program import check_files, compile_files  # noqa: E402
 
 from .fuzz_corpus import CORPUS  # noqa: E402
+from .fuzz_mutations import ST_ALPHABET, gently_mutated_programs, mutated_programs  # noqa: E402
 from .fuzz_support import (  # noqa: E402
     FILE,
-    IDENT_RE,
-    IDENTS,
-    LITERALS,
     TOKEN_POOL,
-    TYPE_NAMES,
-    TYPES,
     assert_well_formed,
     check_and_maybe_run,
     fuzz_settings,
@@ -53,9 +52,6 @@ def test_corpus_programs_are_valid_and_run(index):
 # ---------------------------------------------------------------- arbitrary text
 
 _ANY_CHAR = st.characters(exclude_categories=())  # any code point, lone surrogates included
-_ST_ALPHABET = st.sampled_from(
-    list("abcxyzABC_019 \t\n\r\0\x0b\x0c\x1b\x7f\u00e9\u00a0\u2028\u202e\ufeff'\"$#%:;=<>()[]{}*/+-.,^&@!?\\`|~")
-)
 
 
 @fuzz_settings(120)
@@ -66,7 +62,7 @@ def test_arbitrary_text_gives_only_diagnostics(text):
 
 
 @fuzz_settings(80)
-@given(st.text(_ST_ALPHABET, max_size=200), st.sampled_from(["codesys", "iec", "schneider", "twincat"]))
+@given(st.text(ST_ALPHABET, max_size=200), st.sampled_from(["codesys", "iec", "schneider", "twincat"]))
 def test_punctuation_soup_gives_only_diagnostics(text, profile):
     diags, _ = check_files([], profile=profile, texts={FILE: text})
     assert_well_formed(diags)
@@ -79,7 +75,7 @@ def test_token_salad_gives_only_diagnostics(tokens, profile):
 
 
 @fuzz_settings(40)
-@given(st.binary(max_size=300) | st.text(_ST_ALPHABET, max_size=200).map(lambda t: t.encode("utf-16")))
+@given(st.binary(max_size=300) | st.text(ST_ALPHABET, max_size=200).map(lambda t: t.encode("utf-16")))
 def test_arbitrary_bytes_in_a_file_give_only_diagnostics(data):
     import tempfile
 
@@ -123,109 +119,11 @@ def test_unreadable_or_odd_files_give_diagnostics(tmp_path, kind):
 # ---------------------------------------------------------------- mutated valid programs
 
 
-def _pos(draw, toks, extra: int = 0) -> int:
-    return draw(st.integers(0, max(0, len(toks) - 1 + extra)))
-
-
-def _m_delete(draw, toks):
-    i = _pos(draw, toks)
-    del toks[i : i + draw(st.integers(1, 12))]
-
-
-def _m_duplicate(draw, toks):
-    i = _pos(draw, toks)
-    toks[i:i] = toks[i : i + draw(st.integers(1, 20))]
-
-
-def _m_swap(draw, toks):
-    i, j = sorted((_pos(draw, toks), _pos(draw, toks)))
-    n = draw(st.integers(1, 8))
-    if i + n <= j:
-        toks[i : i + n], toks[j : j + n] = toks[j : j + n], toks[i : i + n]
-
-
-def _m_insert(draw, toks):
-    toks.insert(_pos(draw, toks, 1), " " + draw(st.sampled_from(TOKEN_POOL)) + " ")
-
-
-def _m_truncate(draw, toks):
-    del toks[_pos(draw, toks) :]
-
-
-def _m_rename(draw, toks):
-    names = sorted({t for t in toks if IDENT_RE.match(t)})
-    if not names:
-        return
-    old = draw(st.sampled_from(names))
-    new = draw(st.sampled_from(IDENTS) | st.from_regex(r"[A-Za-z_][A-Za-z0-9_]{0,12}", fullmatch=True))
-    if draw(st.booleans()):  # every occurrence: the program often stays valid
-        toks[:] = [new if t == old else t for t in toks]
-    else:
-        toks[draw(st.sampled_from([i for i, t in enumerate(toks) if t == old]))] = new
-
-
-def _m_flip_type(draw, toks):
-    at = [i for i, t in enumerate(toks) if t.upper() in TYPE_NAMES]
-    if at:
-        toks[draw(st.sampled_from(at))] = draw(st.sampled_from(TYPES))
-
-
-def _m_literal(draw, toks):
-    at = [i for i, t in enumerate(toks) if t[:1].isdigit() or t[:1] in "'\"%" or "#" in t]
-    if at:
-        toks[draw(st.sampled_from(at))] = draw(st.sampled_from(LITERALS))
-
-
-def _m_char(draw, toks):
-    i = _pos(draw, toks, 1)
-    toks.insert(i, draw(st.text(_ST_ALPHABET, min_size=1, max_size=3)))
-
-
-def _m_case(draw, toks):
-    i = _pos(draw, toks)
-    if toks:
-        toks[i] = toks[i].swapcase()
-
-
-MUTATIONS = [
-    _m_delete,
-    _m_duplicate,
-    _m_swap,
-    _m_insert,
-    _m_truncate,
-    _m_rename,
-    _m_flip_type,
-    _m_literal,
-    _m_char,
-    _m_case,
-]
-
-
-@st.composite
-def mutated_programs(draw):
-    profile, src = CORPUS[draw(st.integers(0, len(CORPUS) - 1))]
-    toks = tokenize(src)
-    for _ in range(draw(st.integers(1, 4))):
-        draw(st.sampled_from(MUTATIONS))(draw, toks)
-    return profile, "".join(toks)
-
-
 @fuzz_settings(200)
 @given(mutated_programs())
 def test_mutated_programs_give_diagnostics_or_run(case):
     profile, src = case
     check_and_maybe_run(profile, src)
-
-
-@st.composite
-def gently_mutated_programs(draw):
-    """Mutations that often keep the program valid, so the code generator
-    and the runtime see unusual but legal programs too."""
-    profile, src = CORPUS[draw(st.integers(0, len(CORPUS) - 1))]
-    toks = tokenize(src)
-    for _ in range(draw(st.integers(1, 3))):
-        draw(st.sampled_from([_m_rename, _m_flip_type, _m_literal, _m_case]))(draw, toks)
-    return profile, "".join(toks)
 
 
 @fuzz_settings(100)

@@ -49,6 +49,7 @@ from ...sim.base import SimulatedDevice
 from ..can.bus import BusPump, BusSettings, CanEndpoint, open_bus
 from ..ratelog import RateLimitedLog
 from .cia301 import (
+    ABORT_BAD_COMMAND,
     ABORT_NO_SUBINDEX,
     ABORT_VALUE_RANGE,
     COB_ID_INVALID,
@@ -71,6 +72,7 @@ from .cia301 import (
     cob_emcy,
     cob_heartbeat,
     cob_sdo_rx,
+    cob_sdo_tx,
 )
 from .library_log import route_library_log
 from .slave_errors import ERROR_BEHAVIOUR, ERROR_TO_STOPPED, ErrorControlMixin
@@ -156,7 +158,7 @@ class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
         self._init_error_control()
         self._written: list[int] = []  # objects written, for _flush_writes
         self._cached: dict[tuple[int, int], int] = {}  # _cached_value: stored values read every tick
-        self.malformed = 0  # SDO requests of the wrong length, dropped (CiA 301: 8 bytes)
+        self.malformed = 0  # SDO requests refused: not 8 bytes (dropped), a segment out of sequence (aborted)
         self.lines = RateLimitedLog(log, clock.now_ns, burst=3)  # what it logs, rate limited
 
     # ------------------------------------------------------------------ hooks
@@ -397,17 +399,41 @@ class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
                     return
             if can_id != cob_sdo_rx(self.node_id):
                 return  # not for this node
-            if len(data) != 8:
-                self.malformed += 1
-                self.lines.warning(
-                    "malformed", "%s: SDO request [%s] dropped: %d bytes, not 8", self.name, data.hex(" "), len(data)
-                )
+            if not self._on_sdo_request(msg):
                 return
-            assert self.network is not None  # open() made it before adding this handler
-            self.network.notify(can_id, msg.data, msg.timestamp)  # the SDO server
             self._flush_writes(now)
             if self._state == STATE_OPERATIONAL:
                 self._transmit_event_tpdos(now)  # an SDO write may have changed mapped data
+
+    def _on_sdo_request(self, msg: can.Message) -> bool:
+        """One request to canopen's SDO server; False when it was refused
+        before reaching it."""
+        data = bytes(msg.data)
+        if len(data) != 8:
+            # an SDO frame has 8 bytes (CiA 301); canopen's server fails on a
+            # shorter one
+            self.malformed += 1
+            self.lines.warning(
+                "malformed", "%s: SDO request [%s] dropped: %d bytes, not 8", self.name, data.hex(" "), len(data)
+            )
+            return False
+        assert self.network is not None  # open() made it before adding this handler
+        server = self.node.sdo
+        # A segment (upload 0x60, download 0x00) before any segmented transfer
+        # began: canopen's server fails on its missing buffer (and, before any
+        # request at all, on the index it has not got to abort with), logging a
+        # traceback. Such a request gets the abort a device sends for an
+        # unknown request code, here.
+        if data[0] & 0xE0 in (0x00, 0x60) and server._buffer is None:
+            self.malformed += 1
+            self.lines.warning(
+                "malformed", "%s: SDO segment [%s] outside a transfer: aborted", self.name, data.hex(" ")
+            )
+            where = (server._index or 0).to_bytes(2, "little") + bytes([server._subindex or 0])
+            self._send(cob_sdo_tx(self.node_id), bytes([0x80]) + where + ABORT_BAD_COMMAND.to_bytes(4, "little"))
+            return True
+        self.network.notify(msg.arbitration_id, msg.data, msg.timestamp)
+        return True
 
     def _send(self, can_id: int, data: bytes) -> None:
         if self.endpoint is not None:

@@ -35,6 +35,8 @@ from pymodbus.exceptions import ModbusIOException, NoSuchIdException
 from pymodbus.framer import FramerBase, FramerRTU, FramerSocket
 from pymodbus.pdu import DecodePDU, ExceptionResponse, ModbusPDU
 
+from ...sim.null_modem import keep_recent
+
 if TYPE_CHECKING:
     from .line import SimulatedModbusLine
     from .link import LinkSettings
@@ -113,7 +115,8 @@ def run_now(coroutine):
 
 class MemoryCable:
     """The in-memory line's record and its one fault, as NullModem has them
-    (runtime/sim/null_modem.py): cut() and mend(), the bytes each side sent."""
+    (runtime/sim/null_modem.py): cut() and mend(), the bytes each side sent
+    (the newest RECORD_BYTES at least)."""
 
     def __init__(self) -> None:
         self.is_cut = False
@@ -127,7 +130,9 @@ class MemoryCable:
         self.is_cut = False
 
     def record(self, by_slave: bool, data: bytes) -> None:
-        self._wire[by_slave].extend(data)
+        record = self._wire[by_slave]
+        record.extend(data)
+        keep_recent(record)
 
     def sent_by_master(self) -> bytes:
         return bytes(self._wire[0])

@@ -96,6 +96,7 @@ class PlainCanSection(Section):
             here = ("plaincan", i)
             self._foreign_keys(here, table, kind, ctx)
             bus = bus_of(here, table, ctx, "a [[plaincan]] device")
+            ctx.required(here, table, kind.options)
             kind.options.check(here, table, ctx)
             name = table.get("name") or kind.options.default_name(table["type"].lower(), table)
             if isinstance(name, str) and is_ident(name):

@@ -6,6 +6,7 @@ examples; the test is the master."""
 from __future__ import annotations
 
 from softplc.runtime.io.canopen.cia301 import (
+    ABORT_BAD_COMMAND,
     ABORT_DEVICE_STATE,
     ABORT_NO_OBJECT,
     ABORT_NO_SUBINDEX,
@@ -141,6 +142,25 @@ def test_power_cycle_boots_again(bench, slave):
 
 
 # ---------------------------------------------------------------------------- SDO server
+
+
+def test_malformed_sdo_requests_are_counted_and_refused(bench, slave, caplog):
+    """Found by the fuzz harness (tests/fuzz): a frame to 0x628 shorter than
+    8 bytes, or an upload segment request before any upload, made canopen's
+    SDO server fail, logged with a traceback for every such frame. The slave
+    drops a short one (an SDO frame has 8 bytes) and aborts a segment before
+    any segmented transfer (0504 0001, the request code is not valid),
+    counting both; a whole request still gets its answer."""
+    for short in ("", "40", "40 18 10 01 00 00 00"):
+        bench.clear()
+        bench.send(0x628, short)
+        assert bench.frames_with(0x5A8) == []
+    assert bench.sdo(NODE, "60 00 00 00 00 00 00 00") == abort_frame(0, 0, ABORT_BAD_COMMAND)
+    assert bench.sdo_read(NODE, 0x1017, 0)[0] == 0x4B  # an expedited upload: still no segmented transfer
+    assert bench.sdo(NODE, "00 01 02 03 04 05 06 07") == abort_frame(0x1017, 0, ABORT_BAD_COMMAND)
+    assert slave.malformed == 5
+    assert not [r for r in caplog.records if r.exc_info]
+    assert bench.sdo_read(NODE, 0x1018, 1) == bytes.fromhex("43 18 10 01 5A 00 00 03")
 
 
 def test_sdo_aborts_for_read_only_missing_objects_and_sub_indices(bench, slave):

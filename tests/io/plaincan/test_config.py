@@ -37,6 +37,18 @@ def test_the_devices_keys_and_the_bus_are_checked(tmp_path):
     )
 
 
+def test_a_required_key_of_the_device_missing_is_an_error_not_a_crash(tmp_path):
+    """Found by the fuzz harness (tests/fuzz): without its device's required
+    key (the beacon's number, the MPU2-S's device), a [[plaincan]] table
+    passed both passes and loading crashed with pydantic's ValidationError."""
+    assert errors(tmp_path, PLC + CAN + '[[plaincan]]\ntype = "beacon"\ninput = "%IW10"\n') == [
+        ("plaincan[0]", "required key missing: number (the beacon's number, 1 to 15)")
+    ]
+    assert errors(tmp_path, PLC + CAN + '[[plaincan]]\ntype = "mpu2s"\n') == [
+        ("plaincan[0]", "required key missing: device (the device number (Gerätenummer), 1 to 30)")
+    ]
+
+
 def test_two_devices_on_one_id_or_one_name(tmp_path):
     assert errors(tmp_path, PLC + CAN + BEACON + BEACON) == [
         ("plaincan[1]", "duplicate device name 'beacon5' (plaincan[0] has it)"),

@@ -1,0 +1,103 @@
+"""CANopen frames into a real master and a real slave (canopen_rig.Rig, on
+python-can's `virtual` interface, a channel of its own per example, virtual
+time): EMCY, heartbeats, boot-ups, TPDOs of every length, SDO responses
+(node 41 answers the master's configuration with drawn responses), NMT, SDO
+requests and RPDOs to the simulated LTMR, frames of any id, bursts.
+
+Whatever comes, nothing escapes (advance_to, read_inputs, write_outputs
+return), nothing hangs (support.bounded), nothing is logged with a
+traceback, the master's status stays a status; and a TPDO of a configured
+mapping is applied (its bytes in the image at the next read_inputs) or, too
+short, counted (rx_short) and dropped.
+"""
+
+from __future__ import annotations
+
+import pytest
+from hypothesis import given
+
+from softplc.runtime.plugin.driver import DriverStatus
+
+from .canopen_frames import answer, events, sdo_plans
+from .canopen_rig import Rig
+from .support import UNRESTRICTED, LogWatch, assert_no_tracebacks, bounded, fuzz, long, short
+
+
+def _binding(rig: Rig, can_id: int):
+    for node in rig.master.nodes.values():
+        for binding in node.tpdos:
+            if binding.cob_id == can_id:
+                return binding
+    return None
+
+
+def _frame(rig: Rig, can_id: int, data: bytes, remote: bool) -> str:
+    binding = None if remote else _binding(rig, can_id)
+    short_before = rig.master.rx_short
+    rig.inject(can_id, data, remote)
+    if binding is None:
+        return "frame"
+    rig.scan()
+    if len(data) < binding.nbytes:
+        assert rig.master.rx_short == short_before + 1, f"a short TPDO 0x{can_id:03X} [{data.hex(' ')}] not counted"
+        return "short TPDO counted"
+    area = rig.image.areas["I"]
+    for e in binding.entries:  # the rig maps whole words
+        sent = data[e.bit_offset // 8 : (e.bit_offset + e.bits) // 8]
+        got = bytes(area[e.byte_offset : e.byte_offset + e.bits // 8])
+        assert got == sent, f"TPDO 0x{can_id:03X} [{data.hex(' ')}]: {e.key} holds [{got.hex(' ')}]"
+    return "TPDO applied"
+
+
+def play(case) -> tuple[int, dict]:
+    """(frames the hostile endpoint sent, events by outcome)"""
+    plans, steps = case
+    outcomes: dict = {}
+    virtual_ms = 0
+    with LogWatch() as watch, bounded("CANopen frames"):
+        rig = Rig(plans, answer)
+        try:
+            for step in steps:
+                if step[0] == "time":
+                    rig.run_ms(step[1])
+                    virtual_ms += step[1]
+                    outcome = "time"
+                elif step[0] == "burst":
+                    for _ in range(step[1]):
+                        outcome = _frame(rig, *step[2:])
+                else:
+                    outcome = _frame(rig, *step[1:])
+                outcomes[outcome] = outcomes.get(outcome, 0) + 1
+            rig.run_ms(50)
+            assert isinstance(rig.master.status(), DriverStatus)
+        finally:
+            rig.close()
+    assert_no_tracebacks(watch, "CANopen frames")
+    # issue 16, "an EMCY flood logs 10,000 lines a second ... every log message
+    # from a bus is rate limited": until the fix is merged, only
+    # SOFTPLC_FUZZ_UNRESTRICTED=1 bounds the lines. Make it unconditional after.
+    if UNRESTRICTED:
+        lines = len(watch.records)
+        assert lines <= 20 + virtual_ms // 50, f"{lines} log lines in {virtual_ms} ms of bus time"
+    return rig.sent, outcomes
+
+
+@pytest.mark.slow  # whole plants or buses
+@short(12)
+@given(sdo_plans(), events())
+def test_canopen_frames_are_applied_counted_or_dropped(plans, steps):
+    play((plans, steps))
+
+
+@fuzz
+def test_long_canopen_frames(tally):
+    counts = tally("frames")
+
+    @long("frames", 0.45, per_example=95)
+    @given(sdo_plans(), events())
+    def run(plans, steps):
+        frames, outcomes = play((plans, steps))
+        counts.inputs += frames
+        counts.update({f"canopen {k}": v for k, v in outcomes.items()})
+
+    run()
