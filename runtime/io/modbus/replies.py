@@ -178,6 +178,16 @@ class ReplyCheck:
 
     def _decode(self, frame: bytes, tcp: bool) -> tuple[int, bytes] | BadReply:
         used, unit, _tid, pdu = self._framer.decode(frame)
+        size = len(pdu) + (7 if tcp else 3)  # the frame around the PDU: MBAP header; address and CRC
+        if pdu and len(frame) != size:
+            # pymodbus's framer takes a frame out of what came (skipping bytes
+            # before it, ignoring any after): all of it is the reply, and a
+            # master that frames by the line's silence (RTU) checks the CRC
+            # over all of it; a TCP reply is its header's length, no more
+            return BadReply(
+                ModbusError.RESPONSE_INVALID_HEADER if tcp else ModbusError.RESPONSE_CRC_FAIL,
+                f"a reply of {len(frame)} bytes around a {size}-byte frame",
+            )
         if pdu:
             return unit, bytes(pdu)
         if tcp:

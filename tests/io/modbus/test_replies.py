@@ -418,3 +418,25 @@ def test_a_slave_that_keeps_lying_is_logged_once_per_interval(plants, tmp_path, 
     assert lines[0].startswith("modbus drives: channel status: unit 1 sent byte count")
     held = sum(int(m.group(1)) for line in lines if (m := re.match(r"suppressed (\d+) ", line)))
     assert held > 0
+
+
+@pytest.mark.parametrize("transport, code", [("rtu", ModbusError.RESPONSE_CRC_FAIL), ("tcp", None)])
+@pytest.mark.parametrize("around", ["after", "before"])
+def test_a_good_frame_with_bytes_around_it_is_not_taken(plants, tmp_path, transport, code, around):
+    """pymodbus's framer takes a frame out of what came and ignores the rest;
+    everything that came is the reply: in RTU the CRC is over all of it (a
+    master frames by the line's silence), in TCP the header's length is
+    exact (found by the fuzz harness, tests/fuzz/test_modbus.py)."""
+    plant = plants(plant_config(tmp_path, PROGRAM, program="P", transport=transport, channels=[READ_ID6]))
+    plant.run_ms(30)
+    assert plant["%IW0"] == IDLE and plant["P.ok"]
+    server = plant.line.server
+    genuine = server.exchange
+    server.exchange = lambda frame: (b"\x00" + genuine(frame)) if around == "before" else (genuine(frame) + b"\x00")
+    plant.run_ms(150)
+    stats = plant.master.channels[0].stats
+    assert not stats.ok, "a reply with a stray byte was taken"
+    if code is not None:
+        assert stats.last_error == code
+    assert "bytes around a" in stats.message or "header" in stats.message or "CRC" in stats.message, stats.message
+    assert plant["%IW0"] == IDLE
