@@ -13,12 +13,8 @@ from __future__ import annotations
 from hypothesis import strategies as st
 
 from .canopen_rig import HOSTILE, LTMR
-from .support import UNRESTRICTED
 
 NODES = (LTMR, HOSTILE)
-# the ids whose frames the master hands to canopen's consumers: NMT, and the
-# EMCY and heartbeat of its nodes
-PARSED_BY_CANOPEN = {0x000, *(0x80 + n for n in NODES), *(0x700 + n for n in NODES)}
 OBJECTS = [(0x1017, 0), (0x1016, 1), (0x1800, 1), (0x1A00, 0), (0x1A00, 1), (0x2008, 5), (0x2004, 6), (0x1000, 0)]
 
 
@@ -75,27 +71,15 @@ def _frame(draw):
         )
     )
     node = draw(st.sampled_from([*NODES, *NODES, 1, 127]))
-    ours = node in NODES
     if kind == "boot":
         return 0x700 + HOSTILE, b"\x00", False
     if kind == "heartbeat":
-        # issue 16, "a short EMCY or heartbeat frame logs a Python traceback per
-        # frame": until the fix is merged, a heartbeat of a configured node has
-        # its state byte (the restriction goes with SOFTPLC_FUZZ_UNRESTRICTED).
-        lo = 0 if UNRESTRICTED or not ours else 1
-        # Likewise, a heartbeat whose state byte is no NMT state (0x01 ...)
-        # makes the next NMT command on the bus fail in canopen's
-        # NmtBase.on_command (KeyError, logged with a traceback): until the
-        # fix is merged, a configured node's heartbeat carries an NMT state.
-        states = st.sampled_from([0x00, 0x04, 0x05, 0x7F, 0x84, 0x85, 0xFF])
-        state = draw(states | st.integers(0, 255) if UNRESTRICTED or not ours else states)
-        return 0x700 + node, (bytes([state]) + _data(draw, 0, 7))[: draw(st.integers(lo, 8))] or b"", False
+        # short ones and states that are no NMT state (issue 16: a traceback per frame)
+        state = draw(st.sampled_from([0x00, 0x04, 0x05, 0x7F, 0x84, 0x85, 0xFF]) | st.integers(0, 255))
+        return 0x700 + node, (bytes([state]) + _data(draw, 0, 7))[: draw(st.integers(0, 8))] or b"", False
     if kind == "emcy":
-        # issue 16, as above: until the fix is merged, an EMCY of a configured
-        # node has its 8 bytes.
-        lo = 0 if UNRESTRICTED or not ours else 8
         code = draw(st.sampled_from([0x0000, 0x1000, 0x2310, 0xFF00]) | st.integers(0, 0xFFFF))
-        return 0x80 + node, (code.to_bytes(2, "little") + _data(draw, 6, 6))[: draw(st.integers(lo, 8))], False
+        return 0x80 + node, (code.to_bytes(2, "little") + _data(draw, 6, 6))[: draw(st.integers(0, 8))], False
     if kind == "tpdo":
         return draw(st.sampled_from([0x180, 0x280, 0x380, 0x480])) + node, _data(draw), False
     if kind == "sdo response":
@@ -103,13 +87,7 @@ def _frame(draw):
     if kind == "nmt":
         command = draw(st.sampled_from([0x01, 0x02, 0x80, 0x81, 0x82]) | st.integers(0, 255))
         target = draw(st.sampled_from([0, LTMR, HOSTILE]) | st.integers(0, 255))
-        # issue 16, "CANopen: a short EMCY or heartbeat frame logs a Python
-        # traceback per frame; malformed frames are counted": so does an NMT
-        # command shorter than 2 bytes in the master (canopen's NmtBase.on_command,
-        # reached through CanopenDriver._on_frame). Until the fix is merged, NMT
-        # commands have their 2 bytes.
-        lo = 0 if UNRESTRICTED else 2
-        return 0x000, (bytes([command, target]) + _data(draw, 0, 6))[: draw(st.integers(lo, 8))], False
+        return 0x000, (bytes([command, target]) + _data(draw, 0, 6))[: draw(st.integers(0, 8))], False
     if kind == "sdo request":
         if draw(st.booleans()):
             return 0x600 + LTMR, _data(draw), False
@@ -122,11 +100,6 @@ def _frame(draw):
         return 0x080, _data(draw, 0, 2), False
     remote = draw(st.booleans())
     can_id = draw(st.integers(0, 0x7FF) | st.integers(0x800, 0x1FFFFFFF))
-    if not UNRESTRICTED and can_id in PARSED_BY_CANOPEN:
-        # issue 16, as above: until the fix is merged, a frame of any id keeps
-        # off the ids the master hands to canopen's NMT, EMCY and heartbeat
-        # consumers, which fail on short frames (a remote frame has no data)
-        can_id = 0x7FF
     return can_id, b"" if remote else _data(draw), remote
 
 

@@ -21,18 +21,14 @@ from pathlib import Path
 from hypothesis import strategies as st
 
 from ..st.fuzz_mutations import ST_ALPHABET
-from .support import UNRESTRICTED
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG_DIR = ROOT / "io_config"
 
 # issue 16, "a 5,000-character value is echoed whole in the error" and "a
-# path that is too long (ENAMETOOLONG)": until the fixes are merged,
-# generated strings are at most LONG characters (a file name component at
-# most 255), so that the messages stay shorter than ECHO_LIMIT
-# (test_config.py) and no path is too long. Raise LONG to 5000 after the
-# merge.
-LONG = 5000 if UNRESTRICTED else 200
+# path that is too long (ENAMETOOLONG)": generated strings up to 5,000
+# characters (a message must still stay shorter than ECHO_LIMIT, test_config.py)
+LONG = 5000
 
 
 @functools.cache

@@ -22,8 +22,6 @@ from dataclasses import dataclass, field
 
 from hypothesis import strategies as st
 
-from .support import UNRESTRICTED
-
 SIGNED = {"SINT": 8, "INT": 16, "DINT": 32, "LINT": 64}
 UNSIGNED = {"USINT": 8, "UINT": 16, "UDINT": 32, "ULINT": 64}
 BITS = {"BYTE": 8, "WORD": 16, "DWORD": 32, "LWORD": 64}
@@ -31,11 +29,9 @@ INTS = {**SIGNED, **UNSIGNED}
 REALS = ("REAL", "LREAL")
 ELEMENTARY = (*INTS, *BITS, *REALS, "BOOL", "TIME", "STRING")
 
-# issue 16, "FOR loops are not checked by the watchdog": a FOR over a huge
-# range freezes the scan for minutes. Until the fix is merged, the bounds of
-# generated FOR loops are small literals; afterwards any DINT expression may
-# be a bound (FOR_ANY_BOUNDS = True).
-FOR_ANY_BOUNDS = UNRESTRICTED
+# issue 16, "FOR loops are not checked by the watchdog": the bounds of a
+# generated FOR loop may be any DINT expression (the loop watchdog stops it)
+FOR_ANY_BOUNDS = True
 
 
 @dataclass(frozen=True)

@@ -10,7 +10,6 @@ from hypothesis import strategies as st
 from ..st.fuzz_corpus import CORPUS
 from ..st.fuzz_mutations import MUTATIONS, ST_ALPHABET
 from ..st.fuzz_support import tokenize
-from .support import UNRESTRICTED
 
 HUGE = [
     "99999999999999999999999999999999",
@@ -56,17 +55,10 @@ def _next_code(toks, i: int, step: int) -> str:
 def _m_huge(draw, toks):
     """A number made huge (or tiny, or too long).
 
-    issue 16, "a huge repeat count in an array initialiser raises MemoryError
-    in the checker; a huge multi-dimensional array makes the code generator
-    run for minutes": until the fix is merged, a repeat count (a number before
-    "(") and an array or subrange bound (a number next to "..") stay as they
-    are. Remove the condition after the merge."""
-    at = [
-        i
-        for i, t in enumerate(toks)
-        if t[:1].isdigit()
-        and (UNRESTRICTED or (_next_code(toks, i, 1) not in ("(", "..") and _next_code(toks, i, -1) != ".."))
-    ]
+    Repeat counts and array bounds too (issue 16, "a huge repeat count in an
+    array initialiser raises MemoryError in the checker; a huge
+    multi-dimensional array makes the code generator run for minutes")."""
+    at = [i for i, t in enumerate(toks) if t[:1].isdigit()]
     if at:
         toks[draw(st.sampled_from(at))] = draw(st.sampled_from(HUGE))
 
@@ -90,10 +82,7 @@ def _m_nest(draw, toks):
     elif shape == "brackets":
         toks.insert(i, "[" * depth + "1" + "]" * depth)
     else:
-        # issue 16, "101 nested `*)` give an internal _GiveUp": until the fix
-        # is merged, comments nest 100 deep at most. Remove the min() after.
-        d = depth if UNRESTRICTED else min(depth, 100)
-        toks[i:j] = ["(* " * d, *toks[i:j], " *)" * d]
+        toks[i:j] = ["(* " * depth, *toks[i:j], " *)" * depth]
 
 
 NEW_MUTATIONS = [_m_bytes, _m_huge, _m_nest]

@@ -14,10 +14,6 @@ Two runs of every property (test_*.py defines both with `short` and `long`):
     frames, shared among the tests of each area; SOFTPLC_FUZZ_ST,
     SOFTPLC_FUZZ_CONFIGS and SOFTPLC_FUZZ_FRAMES set other totals.
 
-Where issue 16's bugs are being fixed in parallel, the generators keep away
-from them (each place names the bug); SOFTPLC_FUZZ_UNRESTRICTED=1 lifts every
-such restriction, to check the fixes once merged (then delete them).
-
 Every input runs under `bounded()`: SOFTPLC_FUZZ_LIMIT_S seconds of wall time
 (default 20; SIGALRM raises Hang in the main thread) and at most
 SOFTPLC_FUZZ_MEMORY_MB more address space (default 2048; RLIMIT_AS makes a
@@ -41,7 +37,6 @@ TOTALS = {
     "configs": ("SOFTPLC_FUZZ_CONFIGS", 10_000),
     "frames": ("SOFTPLC_FUZZ_FRAMES", 100_000),
 }
-UNRESTRICTED = os.environ.get("SOFTPLC_FUZZ_UNRESTRICTED") == "1"
 LIMIT_S = float(os.environ.get("SOFTPLC_FUZZ_LIMIT_S", "20"))
 MEMORY_MB = int(os.environ.get("SOFTPLC_FUZZ_MEMORY_MB", "2048"))
 _HEALTH = [HealthCheck.too_slow, HealthCheck.data_too_large, HealthCheck.filter_too_much]

@@ -20,7 +20,7 @@ from softplc.runtime.plugin.driver import DriverStatus
 
 from .canopen_frames import answer, events, sdo_plans
 from .canopen_rig import Rig
-from .support import UNRESTRICTED, LogWatch, assert_no_tracebacks, bounded, fuzz, long, short
+from .support import LogWatch, assert_no_tracebacks, bounded, fuzz, long, short
 
 
 def _binding(rig: Rig, can_id: int):
@@ -74,11 +74,9 @@ def play(case) -> tuple[int, dict]:
             rig.close()
     assert_no_tracebacks(watch, "CANopen frames")
     # issue 16, "an EMCY flood logs 10,000 lines a second ... every log message
-    # from a bus is rate limited": until the fix is merged, only
-    # SOFTPLC_FUZZ_UNRESTRICTED=1 bounds the lines. Make it unconditional after.
-    if UNRESTRICTED:
-        lines = len(watch.records)
-        assert lines <= 20 + virtual_ms // 50, f"{lines} log lines in {virtual_ms} ms of bus time"
+    # from a bus is rate limited"
+    lines = len(watch.records)
+    assert lines <= 20 + virtual_ms // 50, f"{lines} log lines in {virtual_ms} ms of bus time"
     return rig.sent, outcomes
 
 

@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 from softplc.runtime.io.modbus.link import LinkSettings, ModbusError, ModbusLink
 
 from .modbus_replies import HostileLine, replies, requests
-from .support import UNRESTRICTED, LogWatch, assert_no_tracebacks, bounded, fuzz, long, short
+from .support import LogWatch, assert_no_tracebacks, bounded, fuzz, long, short
 
 S = 1_000_000_000
 
@@ -84,10 +84,8 @@ def _judge(tx, used: list, outcome) -> None:
         assert outcome.error != 0, f"an exception response taken as success: {what}"
     # issue 16, "an exception response with code 0 is taken as success, and a
     # reply with the wrong function code is accepted ... Check function code,
-    # exception code, unit, byte count and register count of every reply":
-    # until the fix is merged, only SOFTPLC_FUZZ_UNRESTRICTED=1 asks that no
-    # other reply be taken. Make it unconditional after the merge.
-    if UNRESTRICTED and outcome.error == 0:
+    # exception code, unit, byte count and register count of every reply"
+    if outcome.error == 0:
         taken = [r for _f, r in used if r.faithful is not False]
         assert taken, f"a reply that answers something else taken as success: {what}"
 
