@@ -135,7 +135,9 @@ def replies(draw, tx: Transaction, tcp: bool):
         same = bits and (n + 7) // 8 == (tx.count + 7) // 8
         pdu, reply = _pdu(tx, fc, other), Reply(same, values=other[: tx.count], how=f"{n} items")
         if same and n < tx.count:
-            reply = Reply(False, how=f"{n} items")
+            # fewer coils in the same bytes: the unset bits read as the missing
+            # coils, and nothing on the wire tells it from a faithful answer
+            reply = Reply(None, how=f"{n} items, in the bytes of {tx.count}")
     elif change == "tid" and tcp:
         wrong = draw(st.sampled_from([0, 0x1234, 0xFFFF]))
         reply = Reply(False, how=f"transaction id {wrong}", tid=wrong)
