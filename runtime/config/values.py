@@ -207,7 +207,8 @@ def existing_file(text: str, info: ValidationInfo) -> Path:
 
 
 def data_file(value, info: ValidationInfo) -> Path:
-    if not isinstance(value, str) or not value.strip():
+    # a NUL byte: no file has it in its name, and opening one raises ValueError
+    if not isinstance(value, str) or not value.strip() or "\0" in value:
         raise fail('a file name such as "plant.retain"', value)
     resolved = _resolved(value, info)
     found = _stat(resolved)

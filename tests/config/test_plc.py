@@ -489,6 +489,11 @@ def test_retain_errors(tmp_path):
         "retain.file",
         'expected a file name such as "plant.retain" (got 1)',
     )
+    # found by the fuzz harness (tests/fuzz): loaded, then the start crashed reading it (ValueError)
+    assert error(tmp_path, PLC + '[retain]\nfile = "a\\u0000b"\n') == (
+        "retain.file",
+        "expected a file name such as \"plant.retain\" (got 'a\\x00b')",
+    )
 
 
 # ====================================================================== [outputs]

@@ -18,9 +18,11 @@ bus traffic costs, not what configparser costs.
 
 from __future__ import annotations
 
+import atexit
 import functools
 import itertools
 import pickle
+import shutil
 import tempfile
 from pathlib import Path
 from unittest import mock
@@ -69,6 +71,7 @@ def canopen_config():
     """The [canopen] section of the rig, loaded once through the real
     configuration code."""
     tmp = Path(tempfile.mkdtemp(prefix="softplc-fuzz-canopen-"))
+    atexit.register(shutil.rmtree, tmp, True)
     (tmp / "p.st").write_text("PROGRAM P\nEND_PROGRAM\n")
     data = {
         "plc": {"programs": [str(tmp / "p.st")]},

@@ -24,11 +24,10 @@ from .support import LogWatch, assert_no_tracebacks, bounded, fuzz, long, short
 
 
 def _binding(rig: Rig, can_id: int):
-    for node in rig.master.nodes.values():
-        for binding in node.tpdos:
-            if binding.cob_id == can_id:
-                return binding
-    return None
+    """The TPDO the master takes on can_id: of a node whose configuration
+    went through (a binding's COB-ID is known as soon as it is read, but
+    the master listens to it only once the whole configuration worked)."""
+    return rig.master._tpdo_by_cob.get(can_id)
 
 
 def _frame(rig: Rig, can_id: int, data: bytes, remote: bool) -> str:

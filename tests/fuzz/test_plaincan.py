@@ -15,7 +15,9 @@ traceback.
 
 from __future__ import annotations
 
+import atexit
 import itertools
+import shutil
 import tempfile
 from pathlib import Path
 
@@ -35,6 +37,7 @@ DEVICE = 1
 NODE_ID = F.device_can_id(DEVICE)  # 321h: what the device sends
 _channels = itertools.count()
 _dir = Path(tempfile.mkdtemp(prefix="softplc-fuzz-plaincan-"))
+atexit.register(shutil.rmtree, _dir, True)
 (_dir / "p.st").write_text("PROGRAM P\nEND_PROGRAM\n")
 
 

@@ -13,6 +13,7 @@ element 0. Pass 2 checks each value against what the drive takes.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Annotated
 
@@ -62,6 +63,8 @@ def raw_presets(number: str, value) -> tuple[Parameter, int | list[int]]:
         raise ValueError(f"{p.number} {p.name} has {p.elements} elements, not {len(values)}")
     raws = []
     for item in values:
+        if not math.isfinite(item):
+            raise ValueError(f"{p.number} {p.name} takes a finite number (got {got(item)})")
         if p.conversion is None and item != int(item):
             raise ValueError(f"{p.number} {p.name} takes an option number such as 1 (got {got(item)})")
         raw = to_raw(p, item)

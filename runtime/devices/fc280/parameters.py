@@ -25,6 +25,7 @@ conversion index and default are this simulator's choice, said per row.
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass
 from fractions import Fraction
@@ -132,6 +133,8 @@ def _round_half_away(x: Fraction) -> int:
 def to_raw(p: Parameter, value: float | int) -> int:
     """value in the parameter's unit -> the raw integer on the bus (rounded
     to the nearest step); ValueError beyond what the type holds."""
+    if not math.isfinite(value):
+        raise ValueError(f"{p.number} {p.name}: {value} is no value a parameter holds")
     raw = _round_half_away(Fraction(value) / p.factor) if p.conversion is not None else int(value)
     _size, lo, hi = TYPES[p.type]
     if not lo <= raw <= hi:

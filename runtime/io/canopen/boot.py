@@ -14,6 +14,7 @@ from .cia301 import (
     GUARD_TIME,
     LIFE_TIME_FACTOR,
     PRODUCER_HEARTBEAT,
+    restricted_cob_id,
 )
 from .pdo import PdoBinding, default_cob_id
 from .sdo import SdoJob, SdoWorker
@@ -68,9 +69,16 @@ def _configure_pdo(worker: SdoWorker, nid: int, od, b: PdoBinding, timeout: floa
                 f"{b.key}: the node's {b.direction.upper()} {b.number} is not valid "
                 f"(COB-ID 0x{cob:08X}); set configure = true"
             )
+        if restricted_cob_id(cob & 0x7FF):
+            # taken as it is, NMT (0x000) or heartbeat frames would be read as
+            # this TPDO, or this RPDO sent as them
+            raise ConfigFailed(
+                f"{b.key}: the node's {b.direction.upper()} {b.number} has COB-ID 0x{cob & 0x7FF:03X}, "
+                "which CiA 301 keeps for other services; set configure = true"
+            )
         b.cob_id = cob & 0x7FF
         return
-    if cob & 0x7FF == 0:
+    if restricted_cob_id(cob & 0x7FF):  # 0 (none), or one no PDO may use
         cob = default_cob_id(b.direction, b.number, nid)
     cob_id = cob & 0x7FF
     what = f"{b.key}"

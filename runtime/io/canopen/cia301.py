@@ -117,6 +117,15 @@ RPDO_COMM, RPDO_MAP = 0x1400, 0x1600
 TPDO_COMM, TPDO_MAP = 0x1800, 0x1A00
 
 
+# CAN-IDs no PDO may use (CiA 301, restricted CAN-IDs): NMT and reserved ones,
+# the default SDO channels, the NMT error control (heartbeat, boot-up) ones
+RESTRICTED_COB_IDS = ((0x000, 0x07F), (0x101, 0x180), (0x581, 0x5FF), (0x601, 0x67F), (0x6E0, 0x6FF), (0x701, 0x7FF))
+
+
+def restricted_cob_id(cob_id: int) -> bool:
+    return any(lo <= cob_id <= hi for lo, hi in RESTRICTED_COB_IDS)
+
+
 def cob_emcy(node: int) -> int:
     return 0x080 + node
 

@@ -55,6 +55,13 @@ def test_bad_parameters_are_named(tmp_path):
     assert error(tmp_path, PLC + CAN + FC280 + 'parameters = { "8-03" = 100000.0 }\n')[1].startswith(
         "8-03 Steuerwort Timeout-Zeit: 100000.0 s is raw 1000000, outside 0..65535"
     )
+    # found by the fuzz harness (tests/fuzz): inf or nan crashed the check (OverflowError, exit 4);
+    # the configuration's check of every value (config/errors.py not_finite) names the key
+    for value in ("inf", "-inf", "nan"):
+        assert error(tmp_path, PLC + CAN + FC280 + f'parameters = {{ "3-41" = {value} }}\n') == (
+            "sim[0].parameters.3-41",
+            f"expected a finite number (got {value})",
+        )
 
 
 def test_the_ltmr_keys_are_not_the_fc280s(tmp_path):

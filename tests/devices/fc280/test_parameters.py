@@ -70,6 +70,10 @@ def test_values_beyond_the_type_are_refused():
     # 8-03 ranges to 18000 s in the manual but is a UInt16 of 0.1 s (A27)
     with pytest.raises(ValueError, match=r"8-03 Steuerwort Timeout-Zeit: 7000.0 s is raw 70000, outside 0..65535"):
         to_raw(parameter("8-03"), 7000.0)
+    # found by the fuzz harness (tests/fuzz): inf crashed with OverflowError, nan with an odd ValueError
+    for value in (float("inf"), float("-inf"), float("nan")):
+        with pytest.raises(ValueError, match=rf"8-07 Diagnose Trigger: {value} is no value a parameter holds"):
+            to_raw(parameter("8-07"), value)
 
 
 def test_the_manuals_parameter_list_with_its_defaults():

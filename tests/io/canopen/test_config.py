@@ -694,6 +694,11 @@ def test_writes_by_parameter_number_errors(tmp_path):
         ("canopen.node[0].sdo[5]", 'required key missing: object (such as "2007:21") or parameter (such as "8-03")'),
         ("canopen.node[0].sdo[6].size", "only with object (a parameter's size is its device's)"),
     ]
+    # found by the fuzz harness (tests/fuzz): inf (TOML has it) crashed the check with OverflowError;
+    # the configuration's check of every value (config/errors.py not_finite) now names the value's key
+    assert error(
+        tmp_path, PLC + CAN + "[canopen]\nnode_id = 1\n" + FC280 + 'sdo = [{ parameter = "8-07", value = inf }]\n'
+    ) == ("canopen.node[0].sdo[0].value", "expected an integer (got inf)")
     # an LTMR names no parameters by number
     assert error(tmp_path, plant("", 'sdo = [{ parameter = "8-03", value = 1 }]\n')) == (
         "canopen.node[0].sdo[0].parameter",

@@ -299,3 +299,43 @@ def test_fail_fast_stops_at_the_start_when_the_adapter_is_missing(tmp_path, monk
         engine.stop()
     finally:
         late_adapter.ABSENT.discard(channel)
+
+
+ROGUE = {
+    "name": "rogue",
+    "id": 41,
+    "eds": "ltmr",
+    "tpdo": [{"number": 1, "configure": False, "map": [{"object": "2004:06", "address": "%IW100"}]}],
+}
+
+
+def test_a_pdo_on_a_restricted_cob_id_is_refused(plants):
+    """Found by the fuzz harness (tests/fuzz): a node that reported COB-ID 0
+    for a TPDO the master does not configure (configure = false) had its
+    TPDO taken on 0x000, so every NMT command on the bus was read into the
+    image as that TPDO (and an RPDO would have gone out as NMT commands).
+    A COB-ID that CiA 301 keeps for other services now fails the node's
+    configuration, naming the PDO."""
+    from softplc.runtime.io.can.bus import CanEndpoint, open_bus
+
+    plant = plants(WATCH, program="Watch", nodes=[ROGUE], sims=[])
+    bus = plant.config.can[0]
+    node = CanEndpoint(open_bus(BusSettings(bus.interface, bus.channel, bus.bitrate)), name="node 41", pump=plant.pump)
+
+    def answer(msg):
+        if msg.arbitration_id == 0x629:  # downloads confirmed; every upload: 0x00000000
+            command = 0x60 if msg.data[0] & 0xE0 == 0x20 else 0x43
+            node.send(0x5A9, bytes([command]) + bytes(msg.data[1:4]) + bytes(4))
+
+    node.add_handler(answer)
+    node.start()
+    try:
+        node.send(0x729, b"\x00")  # boot-up
+        plant.run_ms(300)
+        assert "canopen.node[0].tpdo[0]: the node's TPDO 1 has COB-ID 0x000" in plant.master.status().message
+        node.send(0x000, bytes([0x01, 0x00, 0x11, 0x22, 0x33, 0x44, 0x55, 0x66]))  # 8 bytes on the NMT id
+        plant.run_ms(20)
+        assert plant.get("Watch.status1") == 0
+        assert plant.master.rx_short == 0
+    finally:
+        node.stop()
