@@ -20,6 +20,18 @@ class DeclChecks(CheckerBase):
     """Variable declarations and initial values."""
 
     def _make_var(self, decl: A.VarDecl, block: A.VarBlock, owner: POUInfo | None) -> VarSymbol | None:
+        if decl.name.upper() in T.ELEMENTARY:
+            # an IEC keyword (CODESYS and TwinCAT refuse it too); as a global it
+            # would also hide the standard function of that name (TIME()) from
+            # every POU, the library's included, whose errors would then point
+            # into files the user did not write (found by tests/fuzz)
+            self.d.error(
+                "E011",
+                f"'{decl.name}' is the name of an elementary type, not a variable's",
+                decl.pos,
+                f"rename it, e.g. {decl.name}_1",
+            )
+            return None
         ty = self.type_of(decl.type, Scope(owner))
         if ty is None:
             return None

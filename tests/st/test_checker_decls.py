@@ -61,3 +61,16 @@ def test_a_huge_repetition_count_is_counted_not_built():
     [d] = diagnostics(prog("a : ARRAY[0..9] OF INT := [1, 10000000000000000(0)];", ""))
     assert (d.code, d.pos.line, d.pos.col) == ("E052", 3, 27)
     assert d.message == "10,000,000,000,000,001 initial values for 'a', which has 10 elements"
+
+
+def test_an_elementary_type_name_is_no_variable_name():
+    """Found by tests/fuzz: a global named TIME hid the standard function
+    TIME() from the library's timers, whose errors then pointed into files
+    the user did not write. It is an IEC keyword: the declaration is the error."""
+    src = "VAR_GLOBAL TIME : INT; END_VAR\n" + prog("x : INT;", "x := 1;")
+    found = diagnostics(src)
+    assert [d.code for d in found] == ["E011"]
+    assert found[0].pos.file == "test.st" and found[0].pos.line == 1
+    assert "'TIME' is the name of an elementary type" in found[0].message
+    assert codes(prog("int : INT; Date : DINT;", "")) == ["E011", "E011"]
+    assert codes(prog("time_1 : INT; ton1 : TON;", "")) == []
