@@ -117,10 +117,16 @@ class Engine:
         self.clock = clock if clock is not None else VirtualClock()
         self.image = image if image is not None else ProcessImage(program.profile.addressing)
         self.ctx = ExecContext(self.image)
-        # The watchdog's clock (ns): wall time in real time; in virtual time the
-        # scan thread's CPU time, so that a cycle's verdict does not depend on
-        # how busy the host is (a descheduled test process is no slow program).
-        self._exec_ns = time.thread_time_ns if self.clock.virtual else time.perf_counter_ns
+        # The watchdog's verdict: wall time in real time. In virtual time a
+        # cycle is late only when the scan thread's CPU time says so too, so
+        # that the verdict does not depend on how busy the host is (a
+        # descheduled test process is no slow program). CPU time is a system
+        # call (about a microsecond), wall time is not: the engine reads CPU
+        # time once a tick (_tick_cpu_ns) and again only for a cycle whose
+        # wall time is past its watchdog; that cycle's CPU time is then taken
+        # as the thread's CPU time since the tick began, an upper bound (the
+        # drivers' work and the tasks before it in the tick count too).
+        self._tick_cpu_ns = 0
         if self.clock.virtual:
             self.ctx.timer = time.thread_time
         self.drivers = list(drivers)
@@ -290,6 +296,7 @@ class Engine:
         self.ctx.set_time(now)
         image = self.image
         if self.clock.virtual:
+            self._tick_cpu_ns = time.thread_time_ns()
             # Virtual time: the bus work due by now happens first, in this
             # thread, so the inputs read below are the same on every run.
             for driver in self.drivers:
@@ -319,21 +326,24 @@ class Engine:
             callback(self)
 
     def _run_task(self, task: Task, t0: int | None = None) -> int | None:
-        """One cycle of a task. t0: the execution clock (_exec_ns) where the
-        task before it in this scan ended, or None to read it. Returns the
-        clock where this one ended, for the next (None after a fault): in
-        virtual time the clock is the thread's CPU time, a system call, and
-        between two tasks there is only this bookkeeping to count."""
+        """One cycle of a task. t0: perf_counter_ns where the task before it
+        in this scan ended, or None to read it. Returns the counter where
+        this one ended, for the next (None after a fault): between two tasks
+        there is only this bookkeeping to count."""
         clock = self.clock
         released = task.next_ns
         start_ns = clock.now_ns()
-        counter = self._exec_ns
+        counter = time.perf_counter_ns
         if t0 is None:
             t0 = counter()
         ctx = self.ctx
-        ctx.deadline = t0 * 1e-9 + task.budget_s
-        ctx.wall_deadline = time.perf_counter() + task.budget_s
-        ctx.watchdog_s = task.budget_s
+        budget = task.budget_s
+        ctx.wall_deadline = t0 * 1e-9 + budget
+        # the loops' check (ExecContext.check_watchdog) reads ctx.timer once
+        # wall time is past wall_deadline: CPU time in virtual time, counted
+        # from the tick's start as for the cycle's verdict below
+        ctx.deadline = self._tick_cpu_ns * 1e-9 + budget if clock.virtual else ctx.wall_deadline
+        ctx.watchdog_s = budget
         try:
             for call in task.calls:
                 call()
@@ -349,6 +359,8 @@ class Engine:
         exec_ns = t1 - t0
         task.stats.record(exec_ns, start_ns - released)
         if task.watchdog_ns is not None:
+            if exec_ns > task.watchdog_ns and clock.virtual:
+                exec_ns = min(exec_ns, time.thread_time_ns() - self._tick_cpu_ns)
             if exec_ns > task.watchdog_ns:
                 task.late_cycles += 1
                 if task.late_cycles >= task.sensitivity:
