@@ -29,7 +29,6 @@ gives it one.
 from __future__ import annotations
 
 import logging
-import queue
 import threading
 import time
 from collections.abc import Callable
@@ -103,6 +102,8 @@ class CanEndpoint:
         self._started = True
         if self.pump is not None:
             self.pump.register(self)
+            if self._virtual:
+                setattr(self.bus.queue, _PUMPED, True)  # type: ignore[union-attr]
         elif self.bus is not None:
             self._notifier = can.Notifier(self.bus, [self._dispatch], timeout=0.1)
 
@@ -137,6 +138,8 @@ class CanEndpoint:
             lines.debug(None, "%s: shutting the failed bus down: %s", self.name, exc)
         self.bus = bus
         self._virtual = _is_plain_virtual(bus)
+        if self._virtual and self._started and self.pump is not None:
+            setattr(bus.queue, _PUMPED, True)  # type: ignore[attr-defined]
         if self._started and self.pump is None:
             self._notifier = can.Notifier(self.bus, [self._dispatch], timeout=0.1)
 
@@ -182,16 +185,19 @@ class CanEndpoint:
             # A frame the filters drop is taken all the same (True): recv()
             # would answer None for it, and the pump would stop there with
             # the frames behind it still waiting.
-            waiting = bus.queue  # type: ignore[attr-defined]
-            if not waiting.queue:
+            # Only the pump takes frames from this queue (no thread waits on
+            # it), so they come straight off its deque, without the queue's
+            # lock and notifications (see _virtual_send).
+            waiting = bus.queue.queue  # type: ignore[attr-defined]
+            if not waiting:
                 return False
             try:
                 bus._check_if_open()  # type: ignore[attr-defined]
-                msg = waiting.get_nowait()
+                msg = waiting.popleft()
             except can.CanError as exc:
                 self.last_error = str(exc)
                 return False
-            except queue.Empty:
+            except IndexError:
                 return False
             if bus._filters is None or bus._matches_filters(msg):
                 self._dispatch(msg)
@@ -217,6 +223,12 @@ class CanEndpoint:
                 key = (self.name, getattr(handler, "__qualname__", None))
                 lines.exception(key, "%s: handler failed on frame 0x%03X", self.name, msg.arbitration_id)
 
+
+#: the mark of a pumped endpoint's receive queue (virtual time): only the
+#: pump reads it, and no thread waits on it, so a frame for it goes straight
+#: onto its deque (an atomic append) instead of through Queue.put, whose
+#: lock and notification cost more than the rest of the delivery
+_PUMPED = "_softplc_pumped"
 
 _VIRTUAL_BUS_PARTS = ("queue", "channel", "channel_id", "receive_own_messages", "preserve_timestamps", "_check_if_open")
 
@@ -250,7 +262,10 @@ def _virtual_send(bus, can_id: int, data: bytes, remote: bool) -> None:
             continue
         if received is None:
             received = _message(bus, can_id, data, remote, timestamp, rx=True)
-        receiver.put(received)
+        if getattr(receiver, _PUMPED, False):
+            receiver.queue.append(received)
+        else:
+            receiver.put(received)
 
 
 def _message(bus, can_id: int, data: bytes, remote: bool, timestamp: float, *, rx: bool) -> can.Message:
