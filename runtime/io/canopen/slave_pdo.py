@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import partial
 from typing import TYPE_CHECKING, Any
 
 from canopen.objectdictionary import ODArray, ODRecord, ODVariable
@@ -92,6 +93,9 @@ class Pdo:
     inhibit_ns: int = 0  # TPDO sub 3, 100 us units
     event_ns: int = 0  # TPDO sub 5, ms (A7)
     readers: list = field(default_factory=list)  # TPDO: (read, mask, shift) per entry (_entry_reader)
+    # TPDO: the raw values of every entry at once, when they all come from
+    # one dict (_snapshot); None: no such shortcut
+    snapshot: Callable[[], tuple] | None = None
     nbytes: int = field(init=False)
 
     def __post_init__(self) -> None:
@@ -104,6 +108,9 @@ class TpdoState:
     last_sent_ns: int | None = None
     sync_count: int = 0
     pending: bool = False  # send at the next opportunity, changed or not
+    # Pdo.snapshot when last_data was packed from it: the same snapshot packs
+    # the same data (None: not known)
+    last_seen: tuple | None = None
 
 
 @dataclass
@@ -255,6 +262,7 @@ class PdoMixin:
             for index, subindex, bits in entries:
                 pdo.readers.append((self._entry_reader(index, subindex), (1 << bits) - 1, shift))
                 shift += bits
+            pdo.snapshot = _snapshot([read for read, _mask, _shift in pdo.readers])
         return pdo
 
     def _entry_reader(self, index: int, subindex: int) -> Callable[[], int]:
@@ -364,10 +372,11 @@ class PdoMixin:
             frame |= (read() & mask) << shift
         return frame.to_bytes(pdo.nbytes, "little")
 
-    def _send_tpdo(self, pdo: Pdo, data: bytes, now: int) -> None:
+    def _send_tpdo(self, pdo: Pdo, data: bytes, now: int, seen: tuple | None = None) -> None:
         state = self._tpdo_state.setdefault(pdo.number, TpdoState())
         self._send(pdo.cob_id, data)
         state.last_data = data
+        state.last_seen = seen
         state.last_sent_ns = now
         state.pending = False
 
@@ -382,14 +391,20 @@ class PdoMixin:
                 since = now - last
                 if since < pdo.inhibit_ns:
                     continue  # sent once the inhibit time is over (nothing to pack before)
+            send = state.pending or (pdo.event_ns and last is not None and since >= pdo.event_ns)
+            seen = None
+            if pdo.snapshot is not None:
+                seen = pdo.snapshot()
+                if not send and seen == state.last_seen:
+                    continue  # the values last_data was packed from: the same data
             frame = 0  # _pack_tpdo, inlined: this runs for every event TPDO at every step
             for read, mask, shift in pdo.readers:
                 frame |= (read() & mask) << shift
             data = frame.to_bytes(pdo.nbytes, "little")
-            event_due = pdo.event_ns and last is not None and since >= pdo.event_ns
-            if not (state.pending or data != state.last_data or event_due):
+            if not (send or data != state.last_data):
+                state.last_seen = seen  # other values, the same data (bits not mapped)
                 continue
-            self._send_tpdo(pdo, data, now)
+            self._send_tpdo(pdo, data, now, seen)
 
     def _on_sync(self, now: int) -> None:
         pending, self._sync_rpdos = self._sync_rpdos, {}
@@ -424,3 +439,33 @@ class PdoMixin:
 
     def _sync_cob_id(self) -> int:
         return (self._cached_value(SYNC_COB_ID, 0) & 0x7FF) if SYNC_COB_ID in self.od else COB_SYNC
+
+
+def _snapshot(readers: list) -> Callable[[], tuple] | None:
+    """A TPDO's entries read at once, when every reader is a device's
+    pdo_source of the form partial(values.get, key, 0) on one dict (the
+    LTMR's registers): a tuple of the raw values, built in C, which
+    _transmit_event_tpdos compares before it packs anything."""
+    values = None
+    keys = []
+    for read in readers:
+        get = read.func if type(read) is partial else None
+        owner = getattr(get, "__self__", None)
+        if (
+            type(owner) is not dict
+            or getattr(get, "__name__", "") != "get"
+            or len(read.args) != 2
+            or read.args[1] != 0
+            or read.keywords
+            or (values is not None and owner is not values)
+        ):
+            return None
+        values = owner
+        keys.append(read.args[0])
+    if values is None:
+        return None
+    return partial(_values_of, values.get, tuple(keys))
+
+
+def _values_of(get: Callable, keys: tuple) -> tuple:
+    return tuple(map(get, keys))
