@@ -307,10 +307,11 @@ class Engine:
         for apply in forces:  # over what the drivers read ...
             apply()
         mark = None  # the execution clock where the last task ended: the next one starts there
+        same = now if self.clock.virtual else None  # the virtual clock stands still within a tick
         for task in self.tasks:
             if task.next_ns <= now:
                 if task.fault is None:
-                    mark = self._run_task(task, mark)
+                    mark = self._run_task(task, mark, same)
                 else:
                     self._release_next(task, task.next_ns)
         for apply in forces:  # ... and over what the program wrote
@@ -325,14 +326,15 @@ class Engine:
         for callback in self.after_tick:
             callback(self)
 
-    def _run_task(self, task: Task, t0: int | None = None) -> int | None:
+    def _run_task(self, task: Task, t0: int | None = None, now: int | None = None) -> int | None:
         """One cycle of a task. t0: perf_counter_ns where the task before it
         in this scan ended, or None to read it. Returns the counter where
         this one ended, for the next (None after a fault): between two tasks
-        there is only this bookkeeping to count."""
+        there is only this bookkeeping to count. now: the engine clock, when
+        it cannot have moved since the tick read it (virtual time), else None."""
         clock = self.clock
         released = task.next_ns
-        start_ns = clock.now_ns()
+        start_ns = clock.now_ns() if now is None else now
         counter = time.perf_counter_ns
         if t0 is None:
             t0 = counter()
@@ -374,11 +376,12 @@ class Engine:
                     )
             else:
                 task.late_cycles = 0
-        self._release_next(task, released)
+        self._release_next(task, released, now)
         return t1
 
-    def _release_next(self, task: Task, released: int) -> None:
-        end = self.clock.now_ns()
+    def _release_next(self, task: Task, released: int, end: int | None = None) -> None:
+        if end is None:
+            end = self.clock.now_ns()
         if task.interval_ns is None:
             task.next_ns = end + task.pause_ns
             return
