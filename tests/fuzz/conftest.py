@@ -10,6 +10,18 @@ from collections import Counter
 
 import pytest
 
+from .support import SHARDS, Shard
+
+
+def pytest_generate_tests(metafunc):
+    """A long test takes `shard`: it runs as SHARDS tests (support.long)."""
+    if "shard" in metafunc.fixturenames:
+        base = metafunc.config.getoption("--hypothesis-seed", None)
+        name = metafunc.function.__name__
+        metafunc.parametrize(
+            "shard", [Shard(name, i, SHARDS, base) for i in range(SHARDS)], ids=[f"shard{i}" for i in range(SHARDS)]
+        )
+
 
 def pytest_collection_modifyitems(config, items):
     if "fuzz" in (config.option.markexpr or ""):
@@ -55,7 +67,7 @@ def pytest_terminal_summary(terminalreporter):
             for name, value in getattr(report, "user_properties", ()):
                 if name == "fuzz_tally":
                     found[(report.nodeid, value[0])] = value[1:]
-    rows = [(nodeid.split("::")[-1], area, n, counts) for (nodeid, area), (n, counts) in found.items()]
+    rows = sorted((nodeid.split("::")[-1], area, n, counts) for (nodeid, area), (n, counts) in found.items())
     if not rows:
         return
     terminalreporter.section("fuzz: inputs by outcome")

@@ -12,7 +12,12 @@ Two runs of every property (test_*.py defines both with `short` and `long`):
 
     The totals are 100,000 ST inputs, 10,000 configurations and 100,000 bus
     frames, shared among the tests of each area; SOFTPLC_FUZZ_ST,
-    SOFTPLC_FUZZ_CONFIGS and SOFTPLC_FUZZ_FRAMES set other totals.
+    SOFTPLC_FUZZ_CONFIGS and SOFTPLC_FUZZ_FRAMES set other totals. Each long
+    test runs in SOFTPLC_FUZZ_SHARDS shards (default 10; conftest.py
+    parametrizes `shard`), each a tenth of its inputs from a seed of its own
+    (the --hypothesis-seed, the test and the shard), so a long run spreads
+    over cores (pytest-xdist's -n) and can be run, and its figures kept, a
+    part at a time (-k shard3).
 
 Every input runs under `bounded()`: SOFTPLC_FUZZ_LIMIT_S seconds of wall time
 (default 20; SIGALRM raises Hang in the main thread) and at most
@@ -28,9 +33,11 @@ import os
 import resource
 import signal
 import threading
+import zlib
+from dataclasses import dataclass
 
 import pytest
-from hypothesis import HealthCheck, settings
+from hypothesis import HealthCheck, seed, settings
 
 TOTALS = {
     "st": ("SOFTPLC_FUZZ_ST", 100_000),
@@ -39,6 +46,7 @@ TOTALS = {
 }
 LIMIT_S = float(os.environ.get("SOFTPLC_FUZZ_LIMIT_S", "20"))
 MEMORY_MB = int(os.environ.get("SOFTPLC_FUZZ_MEMORY_MB", "2048"))
+SHARDS = max(1, int(os.environ.get("SOFTPLC_FUZZ_SHARDS", "10")))
 _HEALTH = [HealthCheck.too_slow, HealthCheck.data_too_large, HealthCheck.filter_too_much]
 
 
@@ -55,13 +63,38 @@ def short(examples: int):
     )
 
 
-def long(area: str, share: float, per_example: float = 1.0):
-    """The long run: share of the area's total, per_example inputs an example
-    (a frame sequence holds several frames), seeded by --hypothesis-seed."""
-    examples = max(1, round(total(area) * share / per_example))
-    return settings(
+@dataclass(frozen=True)
+class Shard:
+    """One part of a long test (conftest.py's `shard` parameter): index of
+    count, and the run's --hypothesis-seed (None: a random run)."""
+
+    test: str
+    index: int
+    count: int
+    base_seed: object
+
+    def seed(self) -> int | None:
+        if self.base_seed is None:
+            return None
+        return zlib.crc32(f"{self.base_seed}/{self.test}/{self.index}".encode())
+
+
+def long(area: str, share: float, shard: Shard, per_example: float = 1.0):
+    """The long run: this shard's part of the area's share, per_example
+    inputs an example (a frame sequence holds several frames), seeded by
+    --hypothesis-seed, the test and the shard (the shards of one test must
+    not draw the same inputs, as one seed for all would make them)."""
+    examples = max(1, round(total(area) * share / per_example / shard.count))
+    configured = settings(
         max_examples=examples, deadline=None, derandomize=False, database=None, suppress_health_check=_HEALTH
     )
+    shard_seed = shard.seed()
+
+    def apply(test):
+        test = configured(test)
+        return test if shard_seed is None else seed(shard_seed)(test)
+
+    return apply
 
 
 fuzz = pytest.mark.fuzz

@@ -87,10 +87,10 @@ def test_canopen_frames_are_applied_counted_or_dropped(plans, steps):
 
 
 @fuzz
-def test_long_canopen_frames(tally):
+def test_long_canopen_frames(tally, shard):
     counts = tally("frames")
 
-    @long("frames", 0.45, per_example=95)
+    @long("frames", 0.45, shard, per_example=95)
     @given(sdo_plans(), events())
     def run(plans, steps):
         frames, outcomes = play((plans, steps))

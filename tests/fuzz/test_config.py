@@ -166,10 +166,10 @@ def test_mutated_documents_that_load_build_and_run(mirror, case):
 
 
 @fuzz
-def test_long_mutated_documents(tally, mirror):
+def test_long_mutated_documents(tally, mirror, shard):
     counts = tally("configs")
 
-    @long("configs", 0.6)
+    @long("configs", 0.6, shard)
     @given(mutated_documents())
     def run(case):
         counts.add(mirror.check_document(case))
@@ -178,10 +178,10 @@ def test_long_mutated_documents(tally, mirror):
 
 
 @fuzz
-def test_long_mutated_files(tally, mirror):
+def test_long_mutated_files(tally, mirror, shard):
     counts = tally("configs")
 
-    @long("configs", 0.3)
+    @long("configs", 0.3, shard)
     @given(mutated_texts())
     def run(case):
         counts.add(mirror.check_text(case))
@@ -190,10 +190,10 @@ def test_long_mutated_files(tally, mirror):
 
 
 @fuzz
-def test_long_mutated_documents_built(tally, mirror):
+def test_long_mutated_documents_built(tally, mirror, shard):
     counts = tally("configs")
 
-    @long("configs", 0.1)
+    @long("configs", 0.1, shard)
     @given(mutated_documents())
     def run(case):
         counts.add(mirror.check_document(case, build=True))

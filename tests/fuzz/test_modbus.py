@@ -97,10 +97,10 @@ def test_modbus_replies_give_outcomes(case):
 
 
 @fuzz
-def test_long_modbus_replies(tally):
+def test_long_modbus_replies(tally, shard):
     counts = tally("frames")
 
-    @long("frames", 0.4, per_example=3.7)
+    @long("frames", 0.4, shard, per_example=3.7)
     @given(exchanges())
     def run(case):
         frames, outcomes = check_exchanges(case)

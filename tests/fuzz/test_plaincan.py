@@ -143,10 +143,10 @@ def test_plain_can_frames_are_applied_or_counted(case):
 
 
 @fuzz
-def test_long_plain_can_frames(tally):
+def test_long_plain_can_frames(tally, shard):
     counts = tally("frames")
 
-    @long("frames", 0.15, per_example=65)
+    @long("frames", 0.15, shard, per_example=65)
     @given(traffic())
     def run(case):
         frames, outcomes = play(case)

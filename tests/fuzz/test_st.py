@@ -60,10 +60,10 @@ def test_mutants_of_the_corpus_give_diagnostics_or_run(case):
 
 
 @fuzz
-def test_long_valid_programs(tally):
+def test_long_valid_programs(tally, shard):
     counts = tally("st")
 
-    @long("st", 0.3)
+    @long("st", 0.3, shard)
     @given(valid_programs())
     def run(src):
         counts.add(_check_valid(src))
@@ -72,10 +72,10 @@ def test_long_valid_programs(tally):
 
 
 @fuzz
-def test_long_mutants(tally):
+def test_long_mutants(tally, shard):
     counts = tally("st")
 
-    @long("st", 0.5)
+    @long("st", 0.5, shard)
     @given(mutants(valid_programs()))
     def run(case):
         counts.add(_check_mutant(case))
@@ -84,10 +84,10 @@ def test_long_mutants(tally):
 
 
 @fuzz
-def test_long_corpus_mutants(tally):
+def test_long_corpus_mutants(tally, shard):
     counts = tally("st")
 
-    @long("st", 0.2)
+    @long("st", 0.2, shard)
     @given(mutants(None))
     def run(case):
         counts.add(_check_mutant(case))
