@@ -65,7 +65,9 @@ PROFILE_OPTION = click.option(
     type=click.Choice(list(PROFILES), case_sensitive=False),
     default=DEFAULT.name,
     show_default=True,
-    help="Dialect: strict IEC 61131-3, CODESYS, TwinCAT or Schneider Unity/Control Expert.",
+    help=(
+        "Dialect: strict IEC 61131-3, MatIEC (OpenPLC, Beremiz), CODESYS, TwinCAT or Schneider Unity/Control Expert."
+    ),
 )
 
 FILES_ARGUMENT = click.argument(

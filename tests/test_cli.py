@@ -141,8 +141,9 @@ def test_check_reports_warnings_but_succeeds(st):
     assert proc.stderr.splitlines()[-1].startswith("0 errors, ")
 
 
-def test_check_profile_changes_severity(st):
-    proc = softplc("check", st("narrow.st", WARNS), "--profile", "iec")
+@pytest.mark.parametrize("profile", ["iec", "matiec", "MatIEC"])
+def test_check_profile_changes_severity(st, profile):
+    proc = softplc("check", st("narrow.st", WARNS), "--profile", profile)
     assert proc.returncode == 1
     assert ": error E" in proc.stderr
 

@@ -1,5 +1,6 @@
-"""Dialect profiles: every difference between IEC, CODESYS/TwinCAT and
-Schneider Unity/Control Expert lives here, not in scattered flags.
+"""Dialect profiles: every difference between IEC, MatIEC (OpenPLC, Beremiz),
+CODESYS/TwinCAT and Schneider Unity/Control Expert lives here, not in
+scattered flags.
 
 The checker, code generator and process image read the profile; nothing else
 decides dialect behaviour.
@@ -57,6 +58,12 @@ CODESYS = Profile(
 
 TWINCAT = replace(CODESYS, name="twincat")
 
+# MatIEC, the compiler of OpenPLC and Beremiz: strict IEC types (it converts
+# nothing implicitly, bit operators want ANY_BIT). Its process image is the
+# runtime's business (OpenPLC's per-size areas are not modelled): byte
+# offsets as in IEC.
+MATIEC = replace(IEC, name="matiec")
+
 SCHNEIDER = Profile(
     name="schneider",
     addressing="schneider",
@@ -67,7 +74,7 @@ SCHNEIDER = Profile(
     c_hex_literals=True,
 )
 
-PROFILES = {p.name: p for p in (IEC, CODESYS, TWINCAT, SCHNEIDER)}
+PROFILES = {p.name: p for p in (IEC, MATIEC, CODESYS, TWINCAT, SCHNEIDER)}
 DEFAULT = CODESYS
 
 

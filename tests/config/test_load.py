@@ -225,7 +225,7 @@ def test_several_errors_reported_together(tmp_path):
     with pytest.raises(ConfigError) as info:
         load_config(path)
     assert str(info.value).splitlines() == [
-        f"{path}: plc.profile: expected one of 'iec', 'codesys', 'twincat', 'schneider' (got 'siemens')",
+        f"{path}: plc.profile: expected one of 'iec', 'matiec', 'codesys', 'twincat', 'schneider' (got 'siemens')",
         f"{path}: plc.programs[1]: no such file: {tmp_path / 'gone.st'} (relative paths start at the "
         "config file's directory)",
         f"{path}: task[0].interval: expected a duration such as 10ms, 1s, T#250ms (got '10 parsecs')",

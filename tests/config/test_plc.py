@@ -106,7 +106,8 @@ def test_plc_not_a_table(tmp_path):
 
 
 @pytest.mark.parametrize(
-    "written, profile", [("iec", "iec"), ("CODESYS", "codesys"), ("twincat", "twincat"), ("Schneider", "schneider")]
+    "written, profile",
+    [("iec", "iec"), ("MatIEC", "matiec"), ("CODESYS", "codesys"), ("twincat", "twincat"), ("Schneider", "schneider")],
 )
 def test_profiles(tmp_path, written, profile):
     assert load(tmp_path, PLC + f'profile = "{written}"\n').profile == profile
@@ -115,15 +116,15 @@ def test_profiles(tmp_path, written, profile):
 def test_unknown_profile_lists_the_valid_ones(tmp_path):
     assert error(tmp_path, PLC + 'profile = "siemens"\n') == (
         "plc.profile",
-        "expected one of 'iec', 'codesys', 'twincat', 'schneider' (got 'siemens')",
+        "expected one of 'iec', 'matiec', 'codesys', 'twincat', 'schneider' (got 'siemens')",
     )
     assert error(tmp_path, PLC + 'profile = "codesis"\n') == (
         "plc.profile",
-        "expected one of 'iec', 'codesys', 'twincat', 'schneider' (got 'codesis'; did you mean 'codesys'?)",
+        "expected one of 'iec', 'matiec', 'codesys', 'twincat', 'schneider' (got 'codesis'; did you mean 'codesys'?)",
     )
     assert error(tmp_path, PLC + "profile = 3\n") == (
         "plc.profile",
-        "expected one of 'iec', 'codesys', 'twincat', 'schneider' (got 3)",
+        "expected one of 'iec', 'matiec', 'codesys', 'twincat', 'schneider' (got 3)",
     )
 
 

@@ -13,6 +13,7 @@ import itertools
 import pytest
 
 from softplc.runtime.io.canopen import cia402
+from softplc.runtime.st.profile import PROFILES
 
 from .st_bench import CYCLE_MS, Bench
 
@@ -191,7 +192,7 @@ def test_the_st_constants_are_cia402_py_numbers():
         assert b[f"v{i}"] == value, name
 
 
-@pytest.mark.parametrize("profile", ["iec", "codesys", "twincat", "schneider"])
+@pytest.mark.parametrize("profile", list(PROFILES))
 def test_compiles_in_every_profile_without_warnings(profile):
     b = Bench(DECLS, BODY, profile).step(enable=True, sw=SWITCH_ON_DISABLED)
     assert b.runner.program.warnings == []

@@ -15,6 +15,7 @@ import pytest
 
 from softplc.runtime.devices.fc280 import profile
 from softplc.runtime.io.canopen import cia402
+from softplc.runtime.st.profile import PROFILES
 
 from .st_bench import CYCLE_MS, Bench
 
@@ -314,7 +315,7 @@ def test_dsp402_with_the_node_lost_falls_back_to_0000():
 # ---------------------------------------------------------------- every profile
 
 
-@pytest.mark.parametrize("profile_name", ["iec", "codesys", "twincat", "schneider"])
+@pytest.mark.parametrize("profile_name", list(PROFILES))
 def test_the_blocks_compile_in_every_profile_without_warnings(profile_name):
     decls = "d : FC280_DRIVE; e : FC280_DSP402; p : FC280_PARAMETER; s : FC280_STORE; i : UINT;"
     body = "d(ENABLE := TRUE, RUN := TRUE); e(); p(); s(); i := FC280_PARAMETER_INDEX('8-03', 0, 0);"

@@ -17,6 +17,8 @@ from __future__ import annotations
 
 import pytest
 
+from softplc.runtime.st.profile import PROFILES
+
 from .st_bench import Bench
 
 PKW_DECLS = """
@@ -287,7 +289,7 @@ wr(EXECUTE := execute, NODE := node, INDEX := 16#2007, SUBINDEX := 3, DATA := by
 """
 
 
-@pytest.mark.parametrize("profile", ["iec", "codesys", "twincat", "schneider"])
+@pytest.mark.parametrize("profile", list(PROFILES))
 def test_the_libraries_compile_in_every_profile_without_warnings(profile):
     b = Bench(SDO_DECLS + PKW_DECLS + "m : LTMR_CONTROL;", SDO_BODY + PKW_BODY + "m();", profile)
     b.step(execute=True)
