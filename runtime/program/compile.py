@@ -114,8 +114,9 @@ def _natives(extra: tuple = ()) -> dict:
     return found
 
 
-def _read_sources(paths: list, texts: dict | None, diags: DiagnosticBag, sources: SourceSet) -> tuple:
-    """(parsed files, the set of words in them, upper case)."""
+def _read_sources(paths: list, texts: dict | None, diags: DiagnosticBag, sources: SourceSet, profile: Profile) -> tuple:
+    """(parsed files, the set of words in them, upper case), parsed as the
+    profile reads ST."""
     files = []
     for p in paths:
         try:
@@ -137,7 +138,7 @@ def _read_sources(paths: list, texts: dict | None, diags: DiagnosticBag, sources
     words: set = set()
     for name, text in files:
         sources.add(name, text)
-        parsed.append(parse_source(text, name, diags))
+        parsed.append(parse_source(text, name, diags, profile))
         words.update(w.upper() for w in _WORD.findall(text))
     return parsed, words
 
@@ -149,12 +150,13 @@ def _decl_names(sf: A.SourceFile) -> set:
 def _front_end(paths: list, profile: Profile, texts: dict | None, natives: tuple = ()):
     diags = DiagnosticBag()
     sources = SourceSet()
-    user, user_words = _read_sources(paths, texts, diags, sources)
+    user, user_words = _read_sources(paths, texts, diags, sources, profile)
     user_names = set().union(*(_decl_names(sf) for sf in user)) if user else set()
     lib_diags = DiagnosticBag()
     library = []
     for name, text in _needed_library(_always_sources(), _on_demand_sources(), user_words):
         sources.add(name, text)
+        # written to read alike in every profile (tests/program/test_compile.py)
         sf = parse_source(text, name, lib_diags)
         sf.decls = [d for d in sf.decls if not (isinstance(d, (A.POU, A.TypeDecl)) and d.name.upper() in user_names)]
         library.append(sf)

@@ -2,9 +2,11 @@
 
 Two passes:
 
-``strip_comments`` blanks comments (nested ``(* *)``, ``//``, ``/* */``) and
+``strip_comments`` blanks comments (``(* *)``, ``//``, ``/* */``) and
 pragmas ``{...}`` out with spaces, keeping every line and column where it
-was, and collects the pragmas. Nested comments are beyond a regular lexer.
+was, and collects the pragmas. Whether ``(* *)`` comments nest is the
+profile's choice (``Profile.nested_comments``); nested comments are beyond a
+regular lexer.
 
 ``Lexer.tokens`` cuts the rest into ``Tok``s with one compiled regular
 expression made from the terminals of grammar.lark. It is contextual the way
@@ -30,6 +32,7 @@ from collections.abc import Callable, Iterator
 from typing import TYPE_CHECKING
 
 from .limits import MAX_COMMENT_DEPTH
+from .profile import PROFILES
 
 if TYPE_CHECKING:
     from .lark_adapter import Terminal
@@ -87,13 +90,23 @@ def line_col(text: str, offset: int) -> tuple:
     return line, offset - (text.rfind("\n", 0, offset) + 1) + 1
 
 
-def strip_comments(text: str, error: Callable) -> tuple:
+def _profiles_nesting(nested: bool) -> str:
+    """'codesys, twincat and schneider': the profiles whose (* *) comments
+    nest (nested=True) or do not."""
+    names = [p.name for p in PROFILES.values() if p.nested_comments == nested]
+    return ", ".join(names[:-1]) + " and " + names[-1] if len(names) > 1 else "".join(names)
+
+
+def strip_comments(text: str, error: Callable, nested: bool = True) -> tuple:
     """Return (text with comments and pragmas blanked, [Pragma]).
-    ``error(code, message, start_offset, end_offset, hint)`` reports a problem."""
+    ``error(code, message, start_offset, end_offset, hint)`` reports a problem.
+    nested: ``(* *)`` comments nest (CODESYS, TwinCAT), or the first ``*)``
+    ends one (IEC 61131-3 ed.2 2.1.5, MatIEC)."""
     if not any(c in text for c in "(/{*"):
         return text, []
     pieces, pragmas = [], []
     done = pos = 0  # text[:done] is in pieces; the scan resumes at pos
+    inner_open = -1  # not nesting: where the last comment holding a '(*' started
     while True:
         m = _COMMENT_START.search(text, pos)
         if m is None:
@@ -104,7 +117,14 @@ def strip_comments(text: str, error: Callable) -> tuple:
             pos = s.end() if s else start + 1  # the lexer reports unterminated strings
             continue
         if what == "*)":
-            error("E001", "'*)' without a matching '(*'", start, start + 2, "remove it, or open the comment with '(*'")
+            hint = "remove it, or open the comment with '(*'"
+            if inner_open >= 0:
+                line = line_col(text, inner_open)[0]
+                hint = (
+                    f"(* *) comments do not nest in this profile: the comment at line {line} ended at its "
+                    f"first '*)'; they nest in {_profiles_nesting(True)}"
+                )
+            error("E001", "'*)' without a matching '(*'", start, start + 2, hint)
             end = start + 2
         elif what == "//":
             nl = text.find("\n", start)
@@ -124,39 +144,56 @@ def strip_comments(text: str, error: Callable) -> tuple:
             else:
                 end = close + 1
                 pragmas.append(Pragma(text[start + 1 : close].strip(), line_col(text, start), line_col(text, end)))
-        else:  # "(*": comments nest
-            depth, p, deep = 1, start + 2, False
-            while depth:
-                n = _NESTED.search(text, p)
-                if n is None:
-                    break
-                depth += 1 if n.group() == "(*" else -1
-                p = n.end()
-                if depth > MAX_COMMENT_DEPTH and not deep:
-                    deep = True  # reported once; the comment still ends at its own '*)'
-                    error(
-                        "E008",
-                        f"comments nested too deeply (more than {MAX_COMMENT_DEPTH} levels)",
-                        n.start(),
-                        p,
-                        "(* *) comments nest: close the inner ones, or use // for a line",
-                    )
-            if depth:
-                error(
-                    "E004",
-                    "unterminated comment: '(*' is never closed",
-                    start,
-                    start + 2,
-                    "(* *) comments nest: every '(*' inside needs its own '*)'",
-                )
+        elif not nested:  # "(*": the first '*)' ends it
+            close = text.find("*)", start + 2)
+            if close < 0:
+                error("E004", "unterminated comment: '(*' is never closed", start, start + 2, "close it with '*)'")
                 end = len(text)
             else:
-                end = p
+                end = close + 2
+                if text.find("(*", start + 2, close) >= 0:
+                    inner_open = start
+        else:  # "(*": comments nest
+            end = _nested_comment_end(text, start, error)
         pieces.append(text[done:start])
         pieces.append(_NOT_NEWLINE.sub(" ", text[start:end]))
         done = pos = end
     pieces.append(text[done:])
     return "".join(pieces), pragmas
+
+
+def _nested_comment_end(text: str, start: int, error: Callable) -> int:
+    """The end of the nesting (* *) comment at start (the text's end, with
+    E004, when it is never closed)."""
+    depth, p, deep, first_close = 1, start + 2, False, -1
+    while depth:
+        n = _NESTED.search(text, p)
+        if n is None:
+            break
+        if n.group() == "(*":
+            depth += 1
+        else:
+            depth -= 1
+            if first_close < 0:
+                first_close = n.start()
+        p = n.end()
+        if depth > MAX_COMMENT_DEPTH and not deep:
+            deep = True  # reported once; the comment still ends at its own '*)'
+            error(
+                "E008",
+                f"comments nested too deeply (more than {MAX_COMMENT_DEPTH} levels)",
+                n.start(),
+                p,
+                "(* *) comments nest: close the inner ones, or use // for a line",
+            )
+    if not depth:
+        return p
+    hint = "(* *) comments nest in this profile: every '(*' inside needs its own '*)'"
+    if first_close >= 0:
+        line = line_col(text, first_close)[0]
+        hint += f"; in {_profiles_nesting(False)} (no nesting) it would end at line {line}"
+    error("E004", "unterminated comment: '(*' is never closed", start, start + 2, hint)
+    return len(text)
 
 
 # ---------------------------------------------------------------- tokens

@@ -1,6 +1,7 @@
 """Structured Text source -> ``ast.SourceFile``: the parser's entry point.
 
-    sf = parse_source(text, path, diags)
+    sf = parse_source(text, path, diags)               # as the default profile
+    sf = parse_source(text, path, diags, profile)      # as another one
 
 Never raises: every problem becomes a coded diagnostic in ``diags`` (E001
 syntax, E002 invalid character, E003 invalid literal, E004 unterminated
@@ -10,7 +11,8 @@ EXTENDS/IMPLEMENTS) and the result holds whatever could be parsed.
 
 How it works:
   1. lexer.strip_comments blanks out comments and pragmas, keeping every
-     line and column; lexer.Lexer cuts the rest into tokens.
+     line and column (whether (* *) comments nest is the profile's
+     choice); lexer.Lexer cuts the rest into tokens.
   2. The LALR(1) table comes from lark (grammar.lark, analysed once per
      process, on first use, through lark_adapter.py; st_grammar.py). The
      token loop is ours (parse_stack.py): it runs the table and calls the
@@ -35,13 +37,18 @@ from .lexer import INVALID_RUN, Tok, line_col, strip_comments
 from .limits import MAX_ERRORS, MAX_NESTING, MAX_SOURCE_CHARS
 from .parse_recovery import Recovery
 from .parse_stack import GiveUp, Rejected, TooDeep
-from .st_grammar import grammar
+from .profile import DEFAULT, Profile
+from .st_grammar import Grammar, grammar
 
 __all__ = ["MAX_ERRORS", "parse_source"]
 
 
 class _Parse(Recovery):
     """One run of the parser over one file."""
+
+    def __init__(self, text: str, path: str, diags: DiagnosticBag, g: Grammar, profile: Profile) -> None:
+        super().__init__(text, path, diags, g)
+        self.profile = profile
 
     def run(self) -> ast.SourceFile:
         if self.raw.startswith("\ufeff"):
@@ -65,7 +72,7 @@ class _Parse(Recovery):
             return ast.SourceFile(self.path, [], pos=ast.Pos(self.path, 1, 1))
         pragmas: list = []
         try:
-            self.text, pragmas = strip_comments(text, comment_error)
+            self.text, pragmas = strip_comments(text, comment_error, self.profile.nested_comments)
             self.tokens = self.g.lexer.tokens(self.text, self._accepts, self._bad_characters)
             result = self._drive()
         except GiveUp:
@@ -173,11 +180,11 @@ class _Parse(Recovery):
                 target.external = True
 
 
-def parse_source(text: str, path: str, diags: DiagnosticBag) -> ast.SourceFile:
-    """Parse one ST file into an ``ast.SourceFile``. Never raises; every
-    problem goes into diags."""
+def parse_source(text: str, path: str, diags: DiagnosticBag, profile: Profile = DEFAULT) -> ast.SourceFile:
+    """Parse one ST file into an ``ast.SourceFile`` as the profile reads ST
+    (its comments). Never raises; every problem goes into diags."""
     try:
-        return _Parse(text, path, diags, grammar()).run()
+        return _Parse(text, path, diags, grammar(), profile).run()
     except Exception as e:  # a bug here must not become a traceback for the user
         diags.error(
             "E009",

@@ -32,6 +32,11 @@ class Profile:
     int_bits_mix: bool
     # C-style 0x literals (the Schneider manual's examples use them).
     c_hex_literals: bool
+    # (* *) comments nest: (* a (* b *) c *) is one comment. CODESYS and
+    # TwinCAT nest them (their static analysis has a rule, SA0163, against
+    # nested comments); IEC 61131-3 ed.2 2.1.5 does not, nor does MatIEC
+    # (unless run with -n): there the first '*)' ends the comment.
+    nested_comments: bool
     # Length of a STRING declared without one.
     default_string_length: int = 80
 
@@ -44,6 +49,7 @@ IEC = Profile(
     bitwise_on_integers=False,
     int_bits_mix=False,
     c_hex_literals=False,
+    nested_comments=False,
 )
 
 CODESYS = Profile(
@@ -54,6 +60,7 @@ CODESYS = Profile(
     bitwise_on_integers=True,
     int_bits_mix=True,
     c_hex_literals=False,
+    nested_comments=True,
 )
 
 TWINCAT = replace(CODESYS, name="twincat")
@@ -72,6 +79,7 @@ SCHNEIDER = Profile(
     bitwise_on_integers=True,
     int_bits_mix=True,
     c_hex_literals=True,
+    nested_comments=True,
 )
 
 PROFILES = {p.name: p for p in (IEC, MATIEC, CODESYS, TWINCAT, SCHNEIDER)}

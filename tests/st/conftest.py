@@ -48,7 +48,7 @@ def check_st(source: str, profile: str = "codesys", natives: dict | None = None,
     program/compile.py drives the Checker; returns (CheckedProgram, list of
     diagnostics in the order reported). natives: UPPER name -> NativeFunction."""
     diags = DiagnosticBag()
-    sf = parse_source(source, name, diags)
+    sf = parse_source(source, name, diags, get_profile(profile))
     checked = Checker(get_profile(profile), diags, STANDARD_FUNCTIONS, natives or {}).run([sf])
     return checked, list(diags.items)
 

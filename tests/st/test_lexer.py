@@ -5,8 +5,12 @@ from __future__ import annotations
 import pytest
 
 from softplc.runtime.st import ast
+from softplc.runtime.st.diagnostics import DiagnosticBag
 from softplc.runtime.st.limits import MAX_COMMENT_DEPTH
+from softplc.runtime.st.parser import parse_source
+from softplc.runtime.st.profile import PROFILES
 
+from .conftest import prog, run_st
 from .parse_helpers import body, errors, expr, ok, parse, show, span
 
 # ---------------------------------------------------------------- lexical
@@ -77,3 +81,70 @@ def test_comments_nest_up_to_the_limit_and_deeper_is_e008_where_it_starts():
     assert d.message == f"comments nested too deeply (more than {MAX_COMMENT_DEPTH} levels)"
     # the comment still ends at its own '*)': the statements around it are read
     assert [s.target.name for s in sf.decls[0].body] == ["x", "y"]
+
+
+# ---------------------------------------------------------------- nesting by profile
+
+
+def parse_as(text: str, profile: str) -> tuple:
+    diags = DiagnosticBag()
+    sf = parse_source(text, "test.st", diags, PROFILES[profile])
+    return sf, diags.items
+
+
+NESTING = prog("x : INT; y : INT;", "x := 1;\n(* off: (* y := 5; *) x := 2; *)\ny := y + 1;")
+
+
+@pytest.mark.parametrize("profile", ["codesys", "twincat", "schneider"])
+def test_nesting_profiles_read_the_whole_comment(profile):
+    # CODESYS and TwinCAT: (* (* *) *) is one comment (their static analysis
+    # rule SA0163 flags such nested comments), so x := 2 is commented out.
+    r = run_st(NESTING, profile=profile)
+    assert (r.get("x"), r.get("y")) == (1, 1)
+
+
+@pytest.mark.parametrize("profile", ["iec", "matiec"])
+def test_without_nesting_the_first_close_ends_the_comment(profile):
+    # IEC 61131-3 ed.2 2.1.5 and MatIEC: comments do not nest. The comment
+    # ends after 'y := 5; *)', so x := 2 is a statement and the last '*)' is
+    # stray: an error that says why.
+    _, diags = parse_as(NESTING, profile)
+    [d] = diags
+    assert (d.code, d.pos.line, d.pos.col) == ("E001", 6, 31)
+    assert d.message == "'*)' without a matching '(*'"
+    assert d.hint == (
+        "(* *) comments do not nest in this profile: the comment at line 6 ended at its first '*)'; "
+        "they nest in codesys, twincat and schneider"
+    )
+    # without the stray '*)' the program runs, and x := 2 with it
+    r = run_st(NESTING.replace(" *)\ny", "\ny"), profile=profile)
+    assert (r.get("x"), r.get("y")) == (2, 1)
+
+
+def test_without_nesting_an_inner_open_is_text():
+    # "(* a (* b *)" is a whole comment in IEC; in CODESYS it is still open
+    src = "x := 1; (* a (* b *)\ny := 2;"
+    [pou] = parse_as(src, "iec")[0].decls
+    assert [show(s.target) for s in pou.body] == ["x", "y"] and parse_as(src, "iec")[1] == []
+    [d] = parse_as(src, "codesys")[1]
+    assert (d.code, d.pos.line, d.pos.col) == ("E004", 1, 9)
+    assert d.hint == (
+        "(* *) comments nest in this profile: every '(*' inside needs its own '*)'; "
+        "in iec and matiec (no nesting) it would end at line 1"
+    )
+
+
+def test_an_unclosed_comment_is_e004_at_its_start_in_every_profile():
+    src = "x := 1;\n(* never closed\ny := 2;"
+    for profile in PROFILES:
+        [d] = parse_as(src, profile)[1]
+        assert (d.code, d.pos.line, d.pos.col) == ("E004", 2, 1), profile
+        assert "'(*' is never closed" in d.message
+    assert parse_as(src, "iec")[1][0].hint == "close it with '*)'"
+    assert "would end" not in parse_as(src, "codesys")[1][0].hint  # no '*)' anywhere: nothing to add
+
+
+def test_without_nesting_there_is_no_depth_limit():
+    text = "(*" * (MAX_COMMENT_DEPTH + 1) + " *)\nx := 1;"
+    sf, diags = parse_as(text, "iec")
+    assert diags == [] and [s.target.name for s in sf.decls[0].body] == ["x"]

@@ -103,7 +103,7 @@ def render() -> str:
         "    Source of every number: the MPU2-S protocol description (manual 004), digest 004,",
         "    cited in those modules.",
         "        IF (Nr10 AND MPU2S_NR10_T5_GCB_CLOSED) = MPU2S_NR10_T5_GCB_CLOSED THEN ... END_IF;",
-        "        raw := LREAL_TO_UINT(0.2 * MPU2S_SCALE_FREQUENCY);    (* MPU2S_ID_SYNC_DF_MAX *)",
+        "        raw := LREAL_TO_UINT(0.2 * MPU2S_SCALE_FREQUENCY);    // MPU2S_ID_SYNC_DF_MAX",
         "*)",
         "VAR_GLOBAL CONSTANT",
         "    (* CAN identifiers and byte 0 (§1.2, §1.3) *)",
