@@ -10,6 +10,7 @@ from . import ast as A
 from . import types as T
 from .checker_base import CheckerBase, Scope
 from .conversions import same_type
+from .profile import names_where
 from .symbols import VarSymbol
 
 
@@ -192,12 +193,7 @@ class StmtChecks(CheckerBase):
                     "remove CONSTANT from its declaration or assign another variable",
                 )
             elif sym.section == "VAR_INPUT" and sym.owner is not None and sym.owner is scope.pou:
-                self.d.error(
-                    "E030",
-                    f"'{sym.name}' is an input of {sym.owner.name} and cannot be assigned inside it",
-                    e.pos,
-                    "copy it into a local VAR and change that",
-                )
+                self._own_input_assigned(sym, e.pos)
             elif sym in scope.for_vars:
                 self.d.error(
                     "E072",
@@ -226,4 +222,26 @@ class StmtChecks(CheckerBase):
                 f"the word table {e.addr.text} cannot be assigned as a whole",
                 e.pos,
                 "assign its words one by one",
+            )
+
+    def _own_input_assigned(self, sym: VarSymbol, pos: A.Pos) -> None:
+        """An input assigned inside its own POU: E030 where the profile
+        reads inputs only (IEC, MatIEC), W130 where it lets the POU change
+        them (CODESYS, TwinCAT: the value holds until the next call passes
+        another)."""
+        owner = sym.owner.name if sym.owner is not None else "its POU"
+        if self.profile.own_input_assignment == "error":
+            self.d.error(
+                "E030",
+                f"'{sym.name}' is an input of {owner} and cannot be assigned inside it",
+                pos,
+                "copy it into a local VAR and change that "
+                f"(the {names_where(lambda p: p.own_input_assignment != 'error')} profiles allow it)",
+            )
+        else:
+            self.d.warning(
+                "W130",
+                f"'{sym.name}' is an input of {owner}: assigning it inside changes what the caller passed",
+                pos,
+                "copy it into a local VAR and change that (IEC 61131-3 reads inputs only)",
             )

@@ -32,7 +32,7 @@ from collections.abc import Callable, Iterator
 from typing import TYPE_CHECKING
 
 from .limits import MAX_COMMENT_DEPTH
-from .profile import PROFILES
+from .profile import names_where
 
 if TYPE_CHECKING:
     from .lark_adapter import Terminal
@@ -90,13 +90,6 @@ def line_col(text: str, offset: int) -> tuple:
     return line, offset - (text.rfind("\n", 0, offset) + 1) + 1
 
 
-def _profiles_nesting(nested: bool) -> str:
-    """'codesys, twincat and schneider': the profiles whose (* *) comments
-    nest (nested=True) or do not."""
-    names = [p.name for p in PROFILES.values() if p.nested_comments == nested]
-    return ", ".join(names[:-1]) + " and " + names[-1] if len(names) > 1 else "".join(names)
-
-
 def strip_comments(text: str, error: Callable, nested: bool = True) -> tuple:
     """Return (text with comments and pragmas blanked, [Pragma]).
     ``error(code, message, start_offset, end_offset, hint)`` reports a problem.
@@ -122,7 +115,7 @@ def strip_comments(text: str, error: Callable, nested: bool = True) -> tuple:
                 line = line_col(text, inner_open)[0]
                 hint = (
                     f"(* *) comments do not nest in this profile: the comment at line {line} ended at its "
-                    f"first '*)'; they nest in {_profiles_nesting(True)}"
+                    f"first '*)'; they nest in {names_where(lambda p: p.nested_comments)}"
                 )
             error("E001", "'*)' without a matching '(*'", start, start + 2, hint)
             end = start + 2
@@ -191,7 +184,7 @@ def _nested_comment_end(text: str, start: int, error: Callable) -> int:
     hint = "(* *) comments nest in this profile: every '(*' inside needs its own '*)'"
     if first_close >= 0:
         line = line_col(text, first_close)[0]
-        hint += f"; in {_profiles_nesting(False)} (no nesting) it would end at line {line}"
+        hint += f"; in {names_where(lambda p: not p.nested_comments)} (no nesting) it would end at line {line}"
     error("E004", "unterminated comment: '(*' is never closed", start, start + 2, hint)
     return len(text)
 

@@ -8,6 +8,7 @@ decides dialect behaviour.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 
@@ -37,6 +38,11 @@ class Profile:
     # nested comments); IEC 61131-3 ed.2 2.1.5 does not, nor does MatIEC
     # (unless run with -n): there the first '*)' ends the comment.
     nested_comments: bool
+    # Assigning a VAR_INPUT inside its own POU is an 'error' (E030) or a
+    # 'warning' (W130). IEC 61131-3 reads inputs only and MatIEC rejects
+    # the assignment; CODESYS and TwinCAT accept it: the input then holds
+    # the new value until the next call passes another.
+    own_input_assignment: str
     # Length of a STRING declared without one.
     default_string_length: int = 80
 
@@ -50,6 +56,7 @@ IEC = Profile(
     int_bits_mix=False,
     c_hex_literals=False,
     nested_comments=False,
+    own_input_assignment="error",
 )
 
 CODESYS = Profile(
@@ -61,6 +68,7 @@ CODESYS = Profile(
     int_bits_mix=True,
     c_hex_literals=False,
     nested_comments=True,
+    own_input_assignment="warning",
 )
 
 TWINCAT = replace(CODESYS, name="twincat")
@@ -80,6 +88,7 @@ SCHNEIDER = Profile(
     int_bits_mix=True,
     c_hex_literals=True,
     nested_comments=True,
+    own_input_assignment="warning",
 )
 
 PROFILES = {p.name: p for p in (IEC, MATIEC, CODESYS, TWINCAT, SCHNEIDER)}
@@ -91,3 +100,9 @@ def get_profile(name: str) -> Profile:
         return PROFILES[name.lower()]
     except KeyError:
         raise KeyError(f"unknown profile {name!r}; choose one of {', '.join(PROFILES)}") from None
+
+
+def names_where(test: Callable[[Profile], bool]) -> str:
+    """The profiles that pass test, for a hint: 'codesys, twincat and schneider'."""
+    names = [p.name for p in PROFILES.values() if test(p)]
+    return ", ".join(names[:-1]) + " and " + names[-1] if len(names) > 1 else "".join(names)

@@ -3,11 +3,11 @@ assignment may write to."""
 
 from __future__ import annotations
 
+import pytest
+
 from .conftest import codes, diagnostics, prog
 
-
-def test_assignments_to_constants_inputs_and_foreign_outputs_are_rejected():
-    src = """
+ASSIGNS = """
 FUNCTION_BLOCK Fb
 VAR_INPUT i : INT; END_VAR
 VAR_OUTPUT o : INT; END_VAR
@@ -21,8 +21,30 @@ f.o := 3;
 f.i := 4;
 END_PROGRAM
 """
-    ds = diagnostics(src)
+
+
+@pytest.mark.parametrize("profile", ["iec", "matiec"])
+def test_assignments_to_constants_inputs_and_foreign_outputs_are_rejected(profile):
+    ds = diagnostics(ASSIGNS, profile)
     assert [(d.code, d.pos.line) for d in ds] == [("E030", 5), ("E030", 10), ("E030", 11)]
+    assert ds[0].message == "'i' is an input of Fb and cannot be assigned inside it"
+    assert (
+        ds[0].hint == "copy it into a local VAR and change that (the codesys, twincat and schneider profiles allow it)"
+    )
+
+
+@pytest.mark.parametrize("profile", ["codesys", "twincat", "schneider"])
+def test_an_input_assigned_inside_its_own_pou_is_a_warning_where_the_dialect_allows_it(profile):
+    # CODESYS and TwinCAT accept i := 1 inside the FB that declares i (IEC
+    # 61131-3 and MatIEC do not); a CONSTANT and another block's output stay
+    # read-only everywhere.
+    ds = diagnostics(ASSIGNS, profile)
+    assert [(d.code, d.severity, d.pos.line) for d in ds] == [
+        ("W130", "warning", 5),
+        ("E030", "error", 10),
+        ("E030", "error", 11),
+    ]
+    assert ds[0].message == "'i' is an input of Fb: assigning it inside changes what the caller passed"
 
 
 def test_for_variable_must_not_be_assigned_in_the_loop():

@@ -251,3 +251,40 @@ def test_for_bounds_convert_to_the_loop_variables_type():
     # found by the fuzzer: a REAL bound is a W121 narrowing in CODESYS and must still run
     r = run_st(prog("i : INT; n : INT; hi : REAL := 3.6;", "FOR i := 1 TO hi DO n := n + 1; END_FOR"))
     assert r.get("n") == 4  # 3.6 rounds to 4, as REAL_TO_INT does
+
+
+OWN_INPUTS = """
+FUNCTION_BLOCK Doubler
+VAR_INPUT i : INT; END_VAR
+VAR_OUTPUT o : INT; seen : INT; END_VAR
+seen := i;
+i := i * 2;
+o := i;
+END_FUNCTION_BLOCK
+FUNCTION Inc : INT
+VAR_INPUT a : INT; END_VAR
+a := a + 1;
+Inc := a;
+END_FUNCTION
+PROGRAM main
+VAR_INPUT p : INT; END_VAR
+VAR d : Doubler; n : INT; q : INT; r : INT; END_VAR
+p := p + 5;
+q := p;
+n := n + 1;
+IF n = 1 THEN d(i := 3); ELSE d(); END_IF
+r := Inc(10);
+END_PROGRAM
+"""
+
+
+def test_an_input_assigned_inside_its_own_pou_takes_effect_at_once_and_holds():
+    # CODESYS/TwinCAT (W130): the assignment writes the input itself, so the
+    # POU reads its own value back in the same call (q, o, Inc); an FB's or a
+    # program's input then keeps it until a call passes another (the second
+    # d() passes nothing: i is still 6, 12 after the call).
+    r = run_st(OWN_INPUTS, cycles=1)
+    assert [d.code for d in r.program.warnings] == ["W130", "W130", "W130"]
+    assert (r.get("p"), r.get("q"), r.get("d.i"), r.get("d.o"), r.get("r")) == (5, 5, 6, 6, 11)
+    r.run(1)
+    assert (r.get("p"), r.get("q"), r.get("d.seen"), r.get("d.i"), r.get("d.o"), r.get("r")) == (10, 10, 6, 12, 12, 11)
