@@ -11,6 +11,7 @@ checker compares ``name.upper()``.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -177,12 +178,25 @@ class Arg(Node):
     negated: bool = False
 
 
+class ArgList(list):
+    """A call's arguments (Arg) as written; trailing_comma: where a comma
+    ends the list, F(a := 1,) (TwinCAT accepts it; the profile decides)."""
+
+    __slots__ = ("trailing_comma",)
+
+    def __init__(self, args: Iterable = (), trailing_comma: Pos | None = None) -> None:
+        super().__init__(args)
+        self.trailing_comma = trailing_comma
+
+
 @dataclass(slots=True, eq=False)
 class Call(Expr):
     """A function call, or an FB instance call (as a statement)."""
 
     callee: Expr  # Name, or Member for an instance inside a struct/FB
     args: list
+    # Where a comma ends the argument list (None: it does not).
+    trailing_comma: Pos | None = field(default=None, kw_only=True)
     # Set by the checker: what is called (a Symbol/POU/builtin descriptor).
     target: Any = field(default=None, kw_only=True, repr=False)
 
@@ -328,6 +342,7 @@ class ProgramConfig(Node):
     task: str | None = None
     args: list = field(default_factory=list)  # Arg
     retain: bool = False
+    trailing_comma: Pos | None = None  # as in Call
 
 
 @dataclass(slots=True, eq=False)

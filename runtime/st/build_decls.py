@@ -254,5 +254,6 @@ class AstBuilder(StmtBuilder):
             names[1].value if len(names) == 3 else None,
             args,
             retain=c[1] is not None and c[1].type == "RETAIN",
+            trailing_comma=args.trailing_comma if isinstance(args, ast.ArgList) else None,
             pos=self._span(c[0], last),
         )

@@ -184,10 +184,20 @@ class ExprBuilder(BuilderBase):
         return ast.Deref(c[0], pos=self._span(c[0], c[1]))
 
     def call(self, c):
-        return ast.Call(c[0], c[2], pos=self._span(c[0], c[3]))
+        args = c[2]
+        return ast.Call(c[0], args, trailing_comma=args.trailing_comma, pos=self._span(c[0], c[3]))
 
     def arg_list(self, c):
-        return [a if isinstance(a, ast.Arg) else ast.Arg(None, a, pos=a.pos) for a in c if a is not None]
+        # (c may be a list the parser reuses: read it, never change it)
+        comma = c[-1] if c and isinstance(c[-1], Tok) else None
+        return ast.ArgList(
+            (
+                a if isinstance(a, ast.Arg) else ast.Arg(None, a, pos=a.pos)
+                for a in c
+                if a is not None and a is not comma
+            ),
+            self._span(comma, comma) if comma is not None else None,
+        )
 
     def named_arg(self, c):
         return ast.Arg(c[0].value, c[1], pos=self._span(c[0], c[1]))

@@ -20,7 +20,7 @@ from . import ast as A
 from . import types as T
 from .conversions import check_implicit
 from .diagnostics import DiagnosticBag
-from .profile import Profile
+from .profile import Profile, names_where
 from .symbols import CallInfo, POUInfo, VarSymbol
 
 # Called like functions without a declaration (checker_calls._builtin_call).
@@ -84,6 +84,17 @@ class CheckerBase:
         """Report unless a value of type src may be stored into dst
         implicitly (the rule: conversions.check_implicit)."""
         return check_implicit(src, dst, e, what, self.profile, self.d)
+
+    def trailing_comma(self, pos: A.Pos | None) -> None:
+        """A comma that ends an argument list, F(a := 1,): accepted where
+        the profile says so (TwinCAT), E044 elsewhere."""
+        if pos is not None and not self.profile.trailing_comma_in_calls:
+            self.d.error(
+                "E044",
+                "a comma ends the argument list",
+                pos,
+                f"remove it (the {names_where(lambda p: p.trailing_comma_in_calls)} profile accepts it)",
+            )
 
     def _suggest(self, key: str, names: list) -> str | None:
         close = difflib.get_close_matches(key, [n.upper() for n in names], n=1, cutoff=0.75)

@@ -22,6 +22,7 @@ class CallChecks(CheckerBase):
     """Binding and typing every kind of call."""
 
     def call(self, e: A.Call, scope: Scope, as_statement: bool) -> T.Type | None:
+        self.trailing_comma(e.trailing_comma)
         callee = e.callee
         if isinstance(callee, A.Name):
             key = callee.name.upper()

@@ -99,6 +99,7 @@ class ConfigChecks(CheckerBase):
                         "E093", f"unknown task '{p.task}'", p.pos, self._suggest(p.task.upper(), list(task_names))
                     )
                     continue
+                self.trailing_comma(p.trailing_comma)
                 fake = A.Call(A.Name(p.type_name, pos=p.pos), p.args, pos=p.pos)
                 binding = CallInfo("fb", pou=pou)
                 self._bind_args(fake, pou, binding, Scope(None), is_fb=True)

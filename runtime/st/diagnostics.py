@@ -13,7 +13,8 @@ Code ranges (keep them stable, users search for them):
              contains itself)
   E020-E029  types and conversions
   E030-E039  assignment targets
-  E040-E049  calls
+  E040-E049  calls (E044: a comma ending an argument list, where the profile
+             does not take it)
   E050-E059  arrays, indices, bit access (E054, E055: the element limits of
              one variable and of all, limits.py)
   E060-E069  CASE

@@ -46,7 +46,7 @@ __all__ = ["MAX_ERRORS", "parse_source"]
 class _Parse(Recovery):
     """One run of the parser over one file."""
 
-    def __init__(self, text: str, path: str, diags: DiagnosticBag, g: Grammar, profile: Profile) -> None:
+    def __init__(self, text: str, path: str, diags: DiagnosticBag, g: Grammar, profile: Profile = DEFAULT) -> None:
         super().__init__(text, path, diags, g)
         self.profile = profile
 

@@ -43,6 +43,11 @@ class Profile:
     # the assignment; CODESYS and TwinCAT accept it: the input then holds
     # the new value until the next call passes another.
     own_input_assignment: str
+    # A comma may end a call's argument list, F(a := 1, b := 2,): TwinCAT 3
+    # accepts it (blark, a parser of TwinCAT sources, does too). The IEC
+    # 61131-3 grammar has no such comma, MatIEC rejects it, and no CODESYS
+    # documentation shows one, so only twincat takes it.
+    trailing_comma_in_calls: bool
     # Length of a STRING declared without one.
     default_string_length: int = 80
 
@@ -57,6 +62,7 @@ IEC = Profile(
     c_hex_literals=False,
     nested_comments=False,
     own_input_assignment="error",
+    trailing_comma_in_calls=False,
 )
 
 CODESYS = Profile(
@@ -69,9 +75,10 @@ CODESYS = Profile(
     c_hex_literals=False,
     nested_comments=True,
     own_input_assignment="warning",
+    trailing_comma_in_calls=False,
 )
 
-TWINCAT = replace(CODESYS, name="twincat")
+TWINCAT = replace(CODESYS, name="twincat", trailing_comma_in_calls=True)
 
 # MatIEC, the compiler of OpenPLC and Beremiz: strict IEC types (it converts
 # nothing implicitly, bit operators want ANY_BIT). Its process image is the
@@ -89,6 +96,7 @@ SCHNEIDER = Profile(
     c_hex_literals=True,
     nested_comments=True,
     own_input_assignment="warning",
+    trailing_comma_in_calls=False,
 )
 
 PROFILES = {p.name: p for p in (IEC, MATIEC, CODESYS, TWINCAT, SCHNEIDER)}

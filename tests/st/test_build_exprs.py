@@ -199,3 +199,22 @@ def test_invalid_literals_are_located():
     diags = errors("x := T#5x + 2#102 + D#2024-13-01 + 'a$Qb' + 16#_1;")
     assert [(d.code, d.pos.col) for d in diags] == [("E003", 6), ("E003", 13), ("E003", 21), ("E003", 36), ("E003", 45)]
     assert "digit '2' is not valid in base 2" in diags[1].message
+
+
+# ---------------------------------------------------------------- argument lists
+
+
+def test_a_trailing_comma_is_read_and_kept_where_it_is():
+    # The parser takes F(a := 1,) in every profile and notes the comma; the
+    # checker decides by the profile (checker_base.trailing_comma).
+    [stmt] = body("x := f(a := 1, b := 2 ,);")
+    assert show(stmt.value) == "f(a := 1, b := 2)"
+    p = stmt.value.trailing_comma
+    assert (p.line, p.col, p.end_line, p.end_col) == (1, 23, 1, 24)
+    [stmt] = body("x := f(a := 1, b := 2);")
+    assert stmt.value.trailing_comma is None
+
+
+@pytest.mark.parametrize("text", ["x := f(,);", "x := f(1,,);", "x := f(1,, 2);"])
+def test_a_comma_alone_or_twice_is_still_a_syntax_error(text):
+    assert [d.code for d in errors(text)][:1] == ["E001"]

@@ -215,3 +215,33 @@ def test_a_native_declared_with_site_is_not_mistaken_for_a_plain_one():
     assert found == [] and node.target.func.site
     with pytest.raises(ValueError, match="share a type"):
         Param("x", ANY_INT, same="T")
+
+
+# ---------------------------------------------------------------- a trailing comma
+
+TRAILING = """
+FUNCTION add : INT
+VAR_INPUT a : INT; b : INT; END_VAR
+add := a + b;
+END_FUNCTION
+PROGRAM main
+VAR r : INT; t : TON; END_VAR
+r := add(a := 1, b := 2,);
+r := add(1, 2 ,);
+t(IN := TRUE, PT := T#1s,);
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("profile", ["iec", "matiec", "codesys", "schneider"])
+def test_a_trailing_comma_is_e044_but_in_twincat(profile):
+    ds = diagnostics(TRAILING, profile)
+    assert [(d.code, d.pos.line, d.pos.col) for d in ds] == [("E044", 8, 24), ("E044", 9, 15), ("E044", 10, 25)]
+    assert ds[0].message == "a comma ends the argument list"
+    assert ds[0].hint == "remove it (the twincat profile accepts it)"
+
+
+def test_twincat_accepts_a_trailing_comma():
+    # TwinCAT 3 compiles F(a := 1, b := 2,); blark, a parser of TwinCAT
+    # sources, reads it too
+    assert codes(TRAILING, "twincat") == []

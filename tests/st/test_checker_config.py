@@ -49,3 +49,9 @@ def test_configuration_errors():
         .replace("Fast (limit", "Fats (limit")
     )
     assert sorted(codes(bad)) == ["E091", "E092", "E093"]
+
+
+def test_a_trailing_comma_in_a_program_configuration_is_the_profiles_choice():
+    trailing = CONFIG.replace("(limit := g_limit)", "(limit := g_limit,)")
+    assert codes(trailing, "codesys") == ["E044"]
+    assert codes(trailing, "twincat") == []

@@ -94,3 +94,20 @@ def test_without_the_declaration_the_name_is_an_unknown_function():
 
     found = diagnostics(prog("ok : BOOL;", "ok := PROBE_SITE(1, 2, 'x');"))
     assert [(d.code, d.pos.line) for d in found if d.is_error] == [("E043", 5)]
+
+
+def test_calls_with_a_trailing_comma_run_as_without_in_twincat():
+    src = """
+FUNCTION add : INT
+VAR_INPUT a : INT; b : INT; END_VAR
+add := a + b;
+END_FUNCTION
+PROGRAM main
+VAR r : INT; s : INT; t : TON; q : BOOL; END_VAR
+r := add(a := 1, b := 2,);
+s := add(40, 2,);
+t(IN := TRUE, PT := T#20ms, Q => q,);
+END_PROGRAM
+"""
+    r = run_st(src, cycles=3, profile="twincat")
+    assert (r.get("r"), r.get("s"), r.get("t.PT"), r.get("q")) == (3, 42, 20, True)

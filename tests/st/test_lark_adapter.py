@@ -204,6 +204,7 @@ p REF= a;
 SET t.q; RESET t.q;
 t.q S= TRUE; t.q R= FALSE;
 f(x := 1);
+f(x := 1, y := 2,);
 ;
 RETURN;
 END_PROGRAM
