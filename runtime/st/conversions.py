@@ -23,7 +23,7 @@ from . import ast as A
 from . import rtlib
 from . import types as T
 from .diagnostics import DiagnosticBag
-from .profile import Profile
+from .profile import Profile, names_where
 from .ranges import is_stored_value
 
 # ---------------------------------------------------------------- widening
@@ -140,6 +140,18 @@ def is_flexible(e: A.Expr) -> bool:
     return False
 
 
+def is_0_or_1(e: A.Expr) -> bool:
+    """The literal 0 or 1, a lone digit (not 1-0, INT#1 or 16#1): what the
+    profile may let stand for FALSE and TRUE."""
+    return (
+        isinstance(e, A.Literal)
+        and e.kind == "int"
+        and e.type_name is None
+        and e.value in (0, 1)
+        and (e.pos.line, e.pos.end_line, e.pos.end_col - e.pos.col) == (e.pos.line, e.pos.line, 1)
+    )
+
+
 def const_fits(value: Any, se: T.ElementaryType, de: T.ElementaryType, e: A.Expr) -> bool:
     """Whether the folded value of e, of type se, goes into de as it is: an
     untyped literal adapts to any type that holds it."""
@@ -244,6 +256,17 @@ def check_implicit(src: T.Type, dst: T.Type, e: A.Expr, what: str, profile: Prof
             diags.error("E022", f"{e.const} is outside {d} in {what}", e.pos)
             return False
         return check_implicit(src, d.base, e, what, profile, diags)
+    if de.is_bool and is_0_or_1(e):
+        if profile.bool_from_0_1:
+            return True  # FALSE / TRUE (the code generator stores a bool: const_as)
+        diags.error(
+            "E020",
+            f"cannot use {src} as {dst} in {what}",
+            e.pos,
+            f"write {'TRUE' if e.const else 'FALSE'} (the {names_where(lambda p: p.bool_from_0_1)} profiles "
+            "take 1 and 0 for BOOL)",
+        )
+        return False
     # a constant that fits is always fine (untyped literals adapt)
     if e.const is not None and const_fits(e.const, se, de, e):
         return True

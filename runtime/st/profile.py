@@ -48,6 +48,13 @@ class Profile:
     # 61131-3 grammar has no such comma, MatIEC rejects it, and no CODESYS
     # documentation shows one, so only twincat takes it.
     trailing_comma_in_calls: bool
+    # The untyped literals 0 and 1 go into a BOOL (assigned, passed, as an
+    # initial value) as FALSE and TRUE: CODESYS, TwinCAT, Schneider and
+    # MatIEC accept b := 1. The IEC 61131-3 grammar itself lets 0 and 1
+    # spell a BOOL literal (ed.2 B.1.2 boolean_literal); the iec profile is stricter by
+    # choice and wants TRUE/FALSE or BOOL#1, so that a number meant for an
+    # INT does not pass silently. Any other number stays E020 everywhere.
+    bool_from_0_1: bool
     # Length of a STRING declared without one.
     default_string_length: int = 80
 
@@ -63,6 +70,7 @@ IEC = Profile(
     nested_comments=False,
     own_input_assignment="error",
     trailing_comma_in_calls=False,
+    bool_from_0_1=False,
 )
 
 CODESYS = Profile(
@@ -76,6 +84,7 @@ CODESYS = Profile(
     nested_comments=True,
     own_input_assignment="warning",
     trailing_comma_in_calls=False,
+    bool_from_0_1=True,
 )
 
 TWINCAT = replace(CODESYS, name="twincat", trailing_comma_in_calls=True)
@@ -84,7 +93,7 @@ TWINCAT = replace(CODESYS, name="twincat", trailing_comma_in_calls=True)
 # nothing implicitly, bit operators want ANY_BIT). Its process image is the
 # runtime's business (OpenPLC's per-size areas are not modelled): byte
 # offsets as in IEC.
-MATIEC = replace(IEC, name="matiec")
+MATIEC = replace(IEC, name="matiec", bool_from_0_1=True)
 
 SCHNEIDER = Profile(
     name="schneider",
@@ -97,6 +106,7 @@ SCHNEIDER = Profile(
     nested_comments=True,
     own_input_assignment="warning",
     trailing_comma_in_calls=False,
+    bool_from_0_1=True,
 )
 
 PROFILES = {p.name: p for p in (IEC, MATIEC, CODESYS, TWINCAT, SCHNEIDER)}

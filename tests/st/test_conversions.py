@@ -12,7 +12,7 @@ from softplc.runtime.st import types as T
 from softplc.runtime.st.diagnostics import DiagnosticBag
 from softplc.runtime.st.profile import CODESYS, IEC, get_profile
 
-from .conftest import codes, prog
+from .conftest import codes, diagnostics, prog, run_st
 
 SUB = T.SubrangeType(T.INT, 1, 3)
 COLOUR = T.EnumType("Colour", {"RED": 0, "GREEN": 1}, {"RED": "Red", "GREEN": "Green"})
@@ -211,3 +211,77 @@ def test_literal_out_of_range_for_its_type():
     assert codes(prog("x : SINT := 200;", "")) == ["E022"]
     assert codes(prog("x : INT;", "x := 70000;")) == ["E022"]
     assert codes(prog("x : USINT;", "x := -1;")) == ["E022"]
+
+
+# ---------------------------------------------------------------- 0 and 1 for BOOL
+
+BOOL_01 = """
+TYPE Flags : STRUCT on : BOOL; off : BOOL; END_STRUCT END_TYPE
+FUNCTION Pass : BOOL
+VAR_INPUT b : BOOL; END_VAR
+Pass := b;
+END_FUNCTION
+PROGRAM main
+VAR
+  a : BOOL := 1;
+  f : Flags := (on := 1, off := 0);
+  arr : ARRAY[1..2] OF BOOL := [0, 1];
+  b : BOOL;
+  c : BOOL := TRUE;
+  p : BOOL;
+  t : TON;
+END_VAR
+b := 1;
+c := 0;
+p := Pass(1);
+t(IN := 1, PT := T#10ms);
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("profile", ["matiec", "codesys", "twincat", "schneider"])
+def test_0_and_1_go_into_bool_as_false_and_true(profile):
+    # CODESYS, TwinCAT, Schneider and MatIEC take b := 1 (IEC 61131-3 ed.2
+    # B.1.2: '0' and '1' spell BOOL literals); stored as real bools, so the
+    # values compare and print as BOOLs do
+    r = run_st(BOOL_01, cycles=2, profile=profile)
+    values = [r.get(n) for n in ("a", "f.on", "f.off", "b", "c", "p", "t.IN", "t.Q")] + r.get("arr")
+    assert values == [True, True, False, True, False, True, True, True, False, True]
+    assert all(type(v) is bool for v in values)
+    assert r.program.warnings == []
+
+
+def test_0_and_1_for_bool_are_e020_in_iec_with_a_hint():
+    ds = diagnostics(BOOL_01, "iec")
+    assert [(d.code, d.pos.line, d.pos.col) for d in ds] == [
+        ("E020", 9, 15),
+        ("E020", 10, 23),
+        ("E020", 10, 33),
+        ("E020", 11, 33),
+        ("E020", 11, 36),
+        ("E020", 17, 6),
+        ("E020", 18, 6),
+        ("E020", 19, 11),
+        ("E020", 20, 9),
+    ]
+    assert ds[0].hint == "write TRUE (the matiec, codesys, twincat and schneider profiles take 1 and 0 for BOOL)"
+    assert ds[1].message == "cannot use INT as BOOL in the initial value of 'f.on'"
+    assert ds[2].hint.startswith("write FALSE ")
+    assert (
+        codes(
+            BOOL_01.replace(":= 1", ":= TRUE")
+            .replace(":= 0", ":= FALSE")
+            .replace("[0, 1]", "[FALSE, BOOL#1]")
+            .replace("Pass(1)", "Pass(TRUE)"),
+            "iec",
+        )
+        == []
+    )
+
+
+@pytest.mark.parametrize("value", ["2", "-1", "16#1", "INT#1", "1 - 0", "n"])
+def test_only_the_digits_0_and_1_stand_for_bool(value):
+    src = prog("b : BOOL; n : INT := 1;", f"b := {value};")
+    for profile in ("codesys", "matiec"):
+        [d] = diagnostics(src, profile)
+        assert d.code == "E020" and d.hint == "compare it instead, e.g. x <> 0", (profile, value)
