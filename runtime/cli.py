@@ -29,7 +29,7 @@ import click
 
 from .durations import EXAMPLES, parse_duration_ns
 from .plugin.registry import PluginError
-from .st.profile import DEFAULT, PROFILES
+from .st.profile import DEFAULT, PROFILES, get_profile
 
 EXIT_OK = 0
 EXIT_COMPILE = 1
@@ -141,6 +141,7 @@ def check(files, profile: str) -> None:
 
     diagnostics, sources = check_files(list(files), profile=profile)
     errors, warnings = _report(diagnostics, sources)
+    _echo_err(f"profile: {get_profile(profile).name}")  # what decided the dialect's questions
     _summary(errors, warnings)
     sys.exit(EXIT_COMPILE if errors else EXIT_OK)
 

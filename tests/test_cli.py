@@ -119,7 +119,7 @@ def no_traceback(proc):
 def test_check_ok(st):
     proc = softplc("check", st("good.st", GOOD))
     assert proc.returncode == 0, proc.stderr
-    assert "0 errors, 0 warnings" in proc.stderr
+    assert proc.stderr.splitlines() == ["profile: codesys", "0 errors, 0 warnings"]
 
 
 def test_check_broken_file(st):
@@ -146,6 +146,7 @@ def test_check_profile_changes_severity(st, profile):
     proc = softplc("check", st("narrow.st", WARNS), "--profile", profile)
     assert proc.returncode == 1
     assert ": error E" in proc.stderr
+    assert proc.stderr.splitlines()[-2:] == [f"profile: {profile.lower()}", "1 error, 0 warnings"]
 
 
 def test_check_syntax_error(st):

@@ -98,7 +98,7 @@ def test_var_config_through_the_command_line_is_checked_not_a_crash(tmp_path):
     good = tmp_path / "good.st"
     good.write_text(VALVES.format(more=""))
     proc = softplc("check", good)
-    assert (proc.returncode, proc.stderr.strip()) == (0, "0 errors, 0 warnings")
+    assert (proc.returncode, proc.stderr.strip()) == (0, "profile: codesys\n0 errors, 0 warnings")
     bad = tmp_path / "bad.st"
     bad.write_text(VALVES.format(more="    Cpu.line1.v1.limit AT %QX0.4 : INT;\n"))
     for command in ("check", "compile"):
