@@ -152,12 +152,15 @@ def run_plc(
             reporter.start()
             cleanup.callback(reporter.stop)
             run_for(engine, cycles=cycles, duration_ns=duration_ns)
+        store = engine.retain_store
         log.info(
             "stopped%s after %d scans: outputs safe%s",
             f" by {engine.stop_reason}" if engine.stop_reason else "",
             engine.cycle,
-            ", retained data saved" if engine.retain_store is not None else "",
+            ", retained data saved" if store is not None and store.last_error is None else "",
         )
+        if store is not None and store.last_error is not None:  # the last write, at the stop, failed
+            log.error("retained data NOT saved: %s", store.last_error)
         if final_json:
             text = json.dumps(engine.dump(), indent=2, ensure_ascii=False) + "\n"
             if final_json == "-":

@@ -301,6 +301,17 @@ def test_sigterm_stops_cleanly_and_saves_retain(tmp_path):
     assert saved.vars["Counter.count"]["value"] == final["count"] >= 1
 
 
+def test_a_retain_file_that_cannot_be_written_is_not_said_saved(tmp_path):
+    # The stop said "retained data saved" whatever the last write did.
+    cfg = _retain_config(tmp_path)
+    # /proc takes no new file, even from root: every write fails (the start is fine: no file yet)
+    cfg.write_text(cfg.read_text().replace('file = "counter.retain"', 'file = "/proc/softplc-test.retain"'))
+    result = softplc("run", cfg, "--virtual-time", "--duration", "200ms")
+    assert result.returncode == 0, result.stderr
+    assert "retained data saved" not in result.stderr
+    assert "retained data NOT saved: " in result.stderr and "cannot write the retain file" in result.stderr
+
+
 # In its second cycle Main enters a loop of 2^31 passes (minutes of work) and
 # has no watchdog: only the signal can end it.
 LONG_LOOP = """

@@ -136,6 +136,12 @@ class Bus:
     build: Callable[[Any, BuildContext], Contribution] | None = None  # (PlcConfig, context)
 
 
+class ParameterValueError(ValueError):
+    """Device.parameter_object: the parameter is known, its value cannot be
+    written (out of range, not a number it holds); the configuration error
+    then names the write's value, not its parameter."""
+
+
 @dataclass(frozen=True)
 class Device:
     name: str
@@ -153,7 +159,8 @@ class Device:
     #: a parameter named as the device's manual writes it ("8-03") and a value
     #: in its unit -> (object index, sub-index, size in bytes, raw value), for
     #: configured writes to a node with one of the device's files (its EDS);
-    #: ValueError with a message for an unknown name or a value out of range
+    #: ValueError with a message for an unknown name, ParameterValueError for
+    #: a value it cannot write
     parameter_object: Callable[[str, Any], tuple[int, int, int, int]] | None = None
     #: the faults its simulators take (config/sim_faults.py)
     sim_faults: tuple[SimFault, ...] = ()

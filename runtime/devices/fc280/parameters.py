@@ -30,6 +30,8 @@ import re
 from dataclasses import dataclass
 from fractions import Fraction
 
+from ...plugin.seams import ParameterValueError
+
 FIRST_INDEX = 0x2000  # §5.1: parameter 0-00 is object 2000h
 
 CONVERSION_FACTORS: dict[int, Fraction] = {
@@ -132,14 +134,14 @@ def _round_half_away(x: Fraction) -> int:
 
 def to_raw(p: Parameter, value: float | int) -> int:
     """value in the parameter's unit -> the raw integer on the bus (rounded
-    to the nearest step); ValueError beyond what the type holds."""
+    to the nearest step); ParameterValueError beyond what the type holds."""
     if not math.isfinite(value):
-        raise ValueError(f"{p.number} {p.name}: {value} is no value a parameter holds")
+        raise ParameterValueError(f"{p.number} {p.name}: {value} is no value a parameter holds")
     raw = _round_half_away(Fraction(value) / p.factor) if p.conversion is not None else int(value)
     _size, lo, hi = TYPES[p.type]
     if not lo <= raw <= hi:
         unit = f" {p.unit}" if p.unit else ""
-        raise ValueError(
+        raise ParameterValueError(
             f"{p.number} {p.name}: {value}{unit} is raw {raw}, outside {lo}..{hi} ({p.type}"
             + (f", conversion index {p.conversion}" if p.conversion is not None else "")
             + ")"

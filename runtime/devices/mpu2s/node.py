@@ -24,7 +24,6 @@ the password is given again before the next write (A11).
 
 from __future__ import annotations
 
-import logging
 from dataclasses import dataclass
 from typing import Annotated, Any
 
@@ -43,8 +42,6 @@ from . import frames
 from .exchange import SERVICE, Mpu2sExchangeService
 from .requests import MS, Request, RequestEngine, Result
 from .telegram import TelegramAssembler
-
-log = logging.getLogger(__name__)
 
 WORDS = 69  # Nr 1..69 (ch. 3)
 #: MPU2S_DEVICE_T's values (fblocks/vendor/mpu2s.st) -> the telegram's keys (telegram.py)
@@ -161,6 +158,7 @@ class Mpu2sNode:
         self.settings = s
         self.clock = ctx.clock
         self.lock = ctx.lock
+        self.lines = ctx.lines  # a device that comes and goes must not flood the log
         self.receives = frozenset({frames.device_can_id(s.device)})
         self.assembler = TelegramAssembler()
         self.engine = RequestEngine(
@@ -193,7 +191,7 @@ class Mpu2sNode:
                 self._last_frame = now_ns
                 if not self._up:
                     self._up = True
-                    log.info("%s: device %d heard", self.name, self.device)
+                    self.lines.info(("heard", self.name), "%s: device %d heard", self.name, self.device)
             else:
                 self.engine.on_reply(frames.decode_reply(can_id, data), now_ns)
         except frames.MalformedFrame as exc:
@@ -203,7 +201,13 @@ class Mpu2sNode:
         if self._up and (self._last_frame is None or now_ns - self._last_frame > self.settings.stale_ms * MS):
             self._up = False
             self.engine.comm_lost()
-            log.warning("%s: no telegram from device %d for %d ms", self.name, self.device, self.settings.stale_ms)
+            self.lines.warning(
+                ("stale", self.name),
+                "%s: no telegram from device %d for %d ms",
+                self.name,
+                self.device,
+                self.settings.stale_ms,
+            )
         self.engine.advance(now_ns)
 
     def submit(self, request: Request) -> None:

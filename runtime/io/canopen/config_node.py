@@ -28,6 +28,7 @@ from ...config.errors import key_text
 from ...config.relations import Relations
 from ...config.values import U16_MAX, Model, bit_count, duration_in, fail, got, in_range, nonempty, quiet
 from ...plugin.registry import registry
+from ...plugin.seams import ParameterValueError
 
 DEFAULT_HEARTBEAT_MS = 100  # the master's and a node's, unless the file says
 DEFAULT_LIFE_TIME_FACTOR = 3  # guarding: three requests may go unanswered
@@ -172,6 +173,8 @@ def _check_parameter(at: tuple, node: dict, write: dict, ctx: Relations, resolve
         return  # pass 1 reports it
     try:
         resolved[at] = device.parameter_object(name, value)
+    except ParameterValueError as exc:
+        ctx.error(at + ("value",), str(exc.args[0] if exc.args else exc))
     except (ValueError, KeyError) as exc:
         ctx.error(at + ("parameter",), str(exc.args[0] if exc.args else exc))
 

@@ -225,10 +225,14 @@ class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
             self._boot(self._clock_ns(), application=True)
 
     def close(self) -> None:
+        # The endpoint is stopped outside the lock: in real time stop() joins
+        # the receive thread, which may be waiting for the lock in _on_frame
+        # (the join then timed out after 1 s, and the stop took that long).
         with self._lock:
-            if self.endpoint is not None:
-                self.endpoint.stop()
+            endpoint = self.endpoint
             self._state = STATE_BOOTUP
+        if endpoint is not None:
+            endpoint.stop()
 
     def service(self, now_ns: int) -> None:
         with self._lock:

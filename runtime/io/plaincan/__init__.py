@@ -29,7 +29,7 @@ def _build(config, ctx: BuildContext) -> Contribution:
         if driver is None:
             bus = next(b for b in config.can if b.name == cfg.bus)
             driver = drivers[cfg.bus] = PlainCanDriver(cfg.bus, port_of(ctx, bus), clock=ctx.clock)
-        node_ctx = NodeContext(ctx.clock, ctx.addressing, ctx.where, driver.send, driver.lock, ctx.shared)
+        node_ctx = NodeContext(ctx.clock, ctx.addressing, ctx.where, driver.send, driver.lock, ctx.shared, driver.lines)
         driver.add(by_kind[cfg.type].build(cfg, node_ctx))
     return Contribution(drivers=list(drivers.values()))
 

@@ -27,6 +27,7 @@ from ...config.relations import Relations
 from ...config.values import Model
 from ...image.memory import ProcessImage
 from ...plugin.driver import DriverStatus
+from ..ratelog import RateLimitedLog
 
 
 class MalformedFrame(ValueError):
@@ -76,6 +77,7 @@ class NodeContext:
     send: Callable[[int, bytes], bool]  # put a frame on the bus (False: not sent)
     lock: threading.RLock  # the driver's: held around every call into the node
     shared: dict  # the dict every driver of the engine shares (one service object per device kind ...)
+    lines: RateLimitedLog  # the driver's rate-limited log: what a node logs goes through it
 
 
 class PlainCanNode(Protocol):

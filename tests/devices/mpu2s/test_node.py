@@ -197,3 +197,23 @@ def test_one_connection_to_the_bus_shared_with_a_canopen_master(plant):
     assert engine.get("Main.mpu.COMM_OK") and engine.get("Main.ident") == 1301
     _request(engine, id=parameter("sync_df_max").id)
     assert engine.get("Main.par.DONE")
+
+
+def test_a_device_that_comes_and_goes_does_not_flood_the_log(plant, caplog):
+    # issue 16: every log message from a bus is rate limited. 20 losses and
+    # returns in 30 s of plant: one line of each kind per 10 s window, and a
+    # "suppressed" line that counts the rest.
+    engine, _driver, sim, _monitor, _seen = plant()
+    engine.run(duration_ns=500 * MS)
+    with caplog.at_level(logging.INFO):
+        for _ in range(20):
+            sim.inject("unplug", None, True)
+            engine.run(duration_ns=1200 * MS)  # more than `stale` (1 s): lost
+            sim.inject("unplug", None, False)
+            engine.run(duration_ns=300 * MS)  # telegram frames every 100 ms: heard again
+        engine.run(duration_ns=10_000 * MS)  # the last windows end: their summaries
+    lost = [r.getMessage() for r in caplog.records if "no telegram from device 1" in r.getMessage()]
+    assert 3 <= len(lost) <= 8, lost  # 30 s: about one a window, a summary in some
+    suppressed = [m for m in lost if m.startswith("suppressed ")]
+    assert suppressed and all("similar messages" in m for m in suppressed)
+    assert engine.get("Main.mpu.COMM_OK")

@@ -685,8 +685,8 @@ def test_writes_by_parameter_number_errors(tmp_path):
             "a parameter number is written g-nn, or g-nn[i] for an array element (got '8-3x')",
         ),
         ("canopen.node[0].sdo[1].parameter", "parameter 9-99 is not one the softplc FC 280 support knows"),
-        (
-            "canopen.node[0].sdo[2].parameter",
+        (  # the parameter is known; its value is what is wrong
+            "canopen.node[0].sdo[2].value",
             "8-03 Steuerwort Timeout-Zeit: 7000.0 s is raw 70000, outside 0..65535 (UInt16, conversion index -1)",
         ),
         ("canopen.node[0].sdo[3].parameter", "3-10 Festsollwert is an array: write one element, such as 3-10[0]"),
