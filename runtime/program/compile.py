@@ -7,9 +7,9 @@ compile side (st/: parse, check, generate) into a loadable Program.
 
 The IEC standard function blocks (fblocks/iec/*.st) and PLC_DIAG are
 compiled into every program; a user POU or type of the same name replaces
-the library one. The IEC typed counters (CTU_DINT ...), the communication
-and the device libraries are compiled in only when a program names
-something they declare.
+the library one. The IEC typed counters (CTU_DINT ...), SPLIT_DATE/TOD/DT,
+the communication and the device libraries are compiled in only when a
+program names something they declare.
 """
 
 from __future__ import annotations
@@ -38,8 +38,12 @@ _gen_counter = itertools.count(1)
 # Compiled into every program: the standard blocks and PLC_DIAG.
 _ALWAYS = ("softplc.fblocks.iec", "softplc.fblocks.system")
 # IEC library files of those packages compiled in only when a program names
-# what they declare: 15 typed counters cost every other program compile time.
-_IEC_ON_DEMAND = (StLibrary("softplc.fblocks.iec", "typed_counters.st"),)
+# what they declare: 15 typed counters and the SPLIT_ functions would cost
+# every other program compile time.
+_IEC_ON_DEMAND = (
+    StLibrary("softplc.fblocks.iec", "typed_counters.st"),
+    StLibrary("softplc.fblocks.iec", "date_time.st"),
+)
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 
