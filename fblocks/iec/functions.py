@@ -171,6 +171,16 @@ for _i in T.INTEGERS:
 _def("INT_TO_BCD", (("IN", "INT"),), "BYTE", _bcd_encoder(8))  # CODESYS Util
 
 
+def _is_valid_bcd(rtypes, x):
+    """IS_VALID_BCD (IEC 3rd ed., beside the BCD conversions): every 4-bit
+    digit of IN, within its type's width, is 0..9 (16#1234 yes, 16#12A4 no);
+    what the BCD_TO_ conversions decode without the -1 of invalid BCD."""
+    return rtlib.bcd_to_int(x, _elem(rtypes[1]).bits) >= 0
+
+
+_def("IS_VALID_BCD", (("IN", "ANY_BIT"),), "BOOL", _is_valid_bcd, typed=True)
+
+
 # ---------------------------------------------------------------- numeric (Table 23)
 
 for _name, _fn in (

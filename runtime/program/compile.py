@@ -7,8 +7,9 @@ compile side (st/: parse, check, generate) into a loadable Program.
 
 The IEC standard function blocks (fblocks/iec/*.st) and PLC_DIAG are
 compiled into every program; a user POU or type of the same name replaces
-the library one. The communication and device libraries are compiled in
-only when a program names something they declare.
+the library one. The IEC typed counters (CTU_DINT ...), SPLIT_DATE/TOD/DT,
+the communication and the device libraries are compiled in only when a
+program names something they declare.
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ from importlib import resources
 from ...fblocks.iec.functions import STANDARD_FUNCTIONS
 from ..image.memory import ProcessImage
 from ..plugin.registry import registry
+from ..plugin.seams import StLibrary
 from ..st import ast as A
 from ..st.checker import CheckedProgram, Checker
 from ..st.codegen import CodeGen
@@ -35,16 +37,24 @@ _gen_counter = itertools.count(1)
 
 # Compiled into every program: the standard blocks and PLC_DIAG.
 _ALWAYS = ("softplc.fblocks.iec", "softplc.fblocks.system")
+# IEC library files of those packages compiled in only when a program names
+# what they declare: 15 typed counters and the SPLIT_ functions would cost
+# every other program compile time.
+_IEC_ON_DEMAND = (
+    StLibrary("softplc.fblocks.iec", "typed_counters.st"),
+    StLibrary("softplc.fblocks.iec", "date_time.st"),
+)
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 
 def _always_sources() -> list:
     """(name, text) of the ST files compiled into every program."""
     out = []
+    on_demand = {(lib.package, lib.file) for lib in _IEC_ON_DEMAND}
     for package in _ALWAYS:
         root = resources.files(package)
         for entry in sorted(root.iterdir(), key=lambda p: p.name):
-            if entry.name.endswith(".st"):
+            if entry.name.endswith(".st") and (package, entry.name) not in on_demand:
                 out.append((f"<lib>/{package.rsplit('.', 1)[-1]}/{entry.name}", entry.read_text("utf-8")))
     return out
 
@@ -56,7 +66,8 @@ def _on_demand_sources() -> list:
     mentions a device's block does not pay for it, and a user POU that
     replaces a standard block (its own TON) cannot break a device block it
     does not use."""
-    return sorted((lib.name, lib.read_text()) for lib in registry().libraries())
+    libraries = (*_IEC_ON_DEMAND, *registry().libraries())
+    return sorted((lib.name, lib.read_text()) for lib in libraries)
 
 
 def _library_sources() -> list:

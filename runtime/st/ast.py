@@ -164,6 +164,9 @@ class Binary(Expr):
     # Set by the checker when the operator is a library function (time and
     # date arithmetic: TOD + TIME is ADD_TOD_TIME).
     impl: Any = field(default=None, kw_only=True, repr=False)
+    # The function the operation was written as (ADD for ADD(a, b)), for
+    # diagnostics; None for the operator form.
+    spelling: str | None = field(default=None, kw_only=True, repr=False)
 
 
 @dataclass(slots=True, eq=False)

@@ -184,8 +184,21 @@ class ExprBuilder(BuilderBase):
         return ast.Deref(c[0], pos=self._span(c[0], c[1]))
 
     def call(self, c):
-        args = c[2]
-        return ast.Call(c[0], args, trailing_comma=args.trailing_comma, pos=self._span(c[0], c[3]))
+        callee, lpar, args, rpar = c
+        if (
+            isinstance(callee, ast.Name)
+            and callee.name.upper() == "NOT"
+            and len(args) == 1
+            and args[0].name is None
+            and not args[0].output
+            and args.trailing_comma is None
+        ):
+            # NOT (x): the lexer made NOT a name (NOT(IN := x) is the function);
+            # with one positional argument it is the operator, as it always was
+            operand = args[0].value
+            operand.pos = self._span(lpar, rpar)
+            return ast.Unary("NOT", operand, pos=self._span(callee, rpar))
+        return ast.Call(callee, args, trailing_comma=args.trailing_comma, pos=self._span(callee, rpar))
 
     def arg_list(self, c):
         # (c may be a list the parser reuses: read it, never change it)

@@ -13,6 +13,7 @@ from . import ast as A
 from . import native
 from . import types as T
 from .checker_base import BUILTINS, CheckerBase, Scope
+from .checker_operators import OPERATOR_FUNCTIONS
 from .conversions import generic_fit, is_flexible, same_type
 from .native import NativeFunction
 from .symbols import CallInfo, POUInfo, VarSymbol
@@ -60,6 +61,8 @@ class CallChecks(CheckerBase):
                 return self._builtin_call(e, key, scope)
             func = self.std.get(key)
             if func is not None:
+                if key in OPERATOR_FUNCTIONS:
+                    return self.operator_call(e, func, scope)
                 return self._std_call(e, func, scope)
             self.d.error(
                 "E043",

@@ -1,7 +1,9 @@
 """The checker's operators: the type and folded value of each operation.
 
 Unary, logical, comparison, arithmetic and time arithmetic; a constant
-result when the operands are constant.
+result when the operands are constant. The function forms of the operators
+(ADD(a, b, c), NOT(IN := x)) are checked as the operator expression they
+stand for.
 """
 
 from __future__ import annotations
@@ -15,9 +17,54 @@ from .checker_base import CheckerBase, Scope
 from .conversions import common_type, is_flexible
 from .symbols import CallInfo
 
+# IEC 61131-3 ed.3 Table 29-31: the standard functions that are the operators
+# written as functions. ADD(a, b, c) is (a + b) + c: it is checked, folded and
+# generated as that expression, so both forms follow the same type rules
+# (ADD(INT, DINT) is DINT, ADD(TOD, TIME) is ADD_TOD_TIME, AND of two WORDs
+# is a WORD). EXPT and MOVE stay ordinary standard functions.
+OPERATOR_FUNCTIONS = {
+    "ADD": "+",
+    "SUB": "-",
+    "MUL": "*",
+    "DIV": "/",
+    "MOD": "MOD",
+    "AND": "AND",
+    "OR": "OR",
+    "XOR": "XOR",
+    "NOT": "NOT",
+}
+
 
 class OperatorChecks(CheckerBase):
     """Typing and folding operators."""
+
+    def operator_call(self, e: A.Call, func: Any, scope: Scope) -> T.Type | None:
+        """ADD(a, b, c), AND(IN1 := a, IN2 := b), NOT(x) ...: the arguments
+        bound like a standard function's (positional, or formal IN1, IN2 ...
+        / IN), then checked as the operator expression, left to right."""
+        args = self._std_args(e, func, scope)
+        if args is None:
+            self._check_args_loosely(e, scope)
+            return None
+        op = OPERATOR_FUNCTIONS[func.name]
+        lowered: A.Expr
+        if op == "NOT":
+            lowered = A.Unary("NOT", args[0], pos=e.pos)
+        else:
+            lowered = args[0]
+            for a in args[1:]:
+                lowered = A.Binary(op, lowered, a, pos=e.pos, spelling=func.name)
+        ty = self.expr(lowered, scope)
+        if ty is None:
+            return None
+        e.target = CallInfo("operator", args=[lowered])
+        e.const = lowered.const
+        return ty
+
+    @staticmethod
+    def _label(e: A.Binary) -> str:
+        """How a diagnostic names the operation: ADD, or '+'."""
+        return e.spelling or f"'{e.op}'"
 
     def _unary(self, e: A.Unary, scope: Scope, expected: T.Type | None) -> T.Type | None:
         ty = self.expr(e.operand, scope, expected)
@@ -189,7 +236,7 @@ class OperatorChecks(CheckerBase):
         op = e.op
         le, re_ = T.base_elementary(lt), T.base_elementary(rt)
         if le is None or re_ is None or isinstance(T.resolve(lt), T.EnumType) or isinstance(T.resolve(rt), T.EnumType):
-            self.d.error("E023", f"'{op}' needs numbers, not {lt} and {rt}", e.pos)
+            self.d.error("E023", f"{self._label(e)} needs numbers, not {lt} and {rt}", e.pos)
             return None
         if le.is_time or re_.is_time:
             return self._time_arith(e, le, re_)
@@ -197,7 +244,7 @@ class OperatorChecks(CheckerBase):
         bits_ok = self.profile.int_bits_mix
         for t, side in ((le, e.left), (re_, e.right)):
             if not (t.category in num or (t.is_bits and bits_ok)):
-                self.d.error("E023", f"'{op}' needs numbers, not {t.name}", side.pos)
+                self.d.error("E023", f"{self._label(e)} needs numbers, not {t.name}", side.pos)
                 return None
         if op == "**":
             ty = T.REAL if le is T.REAL and re_ in (T.REAL, T.SINT, T.INT, T.USINT, T.UINT) else T.LREAL
@@ -260,7 +307,7 @@ class OperatorChecks(CheckerBase):
         if ty is None:
             self.d.error(
                 "E023",
-                f"'{op}' is not defined for {le.name} and {re_.name}",
+                f"{self._label(e)} is not defined for {le.name} and {re_.name}",
                 e.pos,
                 "durations add to durations, dates and times of day; a duration multiplies by a number",
             )
@@ -282,7 +329,7 @@ class OperatorChecks(CheckerBase):
                         ty = T.LTIME
             func = self.std.get(name)
             if func is None:
-                self.d.error("E023", f"'{op}' on {le.name} and {re_.name} is not available", e.pos)
+                self.d.error("E023", f"{self._label(e)} on {le.name} and {re_.name} is not available", e.pos)
                 return None
             e.impl = CallInfo("std", func=func, rtypes=(ty, le, re_), param_types=[le, re_])
         return ty

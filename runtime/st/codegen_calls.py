@@ -27,6 +27,8 @@ class CallGen(CodeGenBase):
         if info.kind == "std":
             args = [self.ex(a) for a in info.args]
             return self._std_invoke(info, args)
+        if info.kind == "operator":  # ADD(a, b): the operator expression a + b
+            return self.ex(info.args[0])
         if info.kind == "function":
             return self._function_call(info)
         if info.kind == "builtin":

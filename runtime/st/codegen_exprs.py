@@ -189,6 +189,9 @@ class ExprGen(CodeGenBase):
 
     def _has_call(self, e: A.Expr) -> bool:
         if isinstance(e, A.Call):
+            info = e.target
+            if isinstance(info, CallInfo) and info.kind == "operator":
+                return self._has_call(info.args[0])
             return True
         for attr in ("left", "right", "operand", "base"):
             sub = getattr(e, attr, None)

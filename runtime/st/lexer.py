@@ -19,7 +19,14 @@ ST needs: it asks the parser which token types the current state accepts
   * ``LABEL_NAME``: a name followed by ':', ',' or '..' where a CASE label
     may stand (a label can follow a statement, LALR sees one token);
   * ``S=`` / ``R=`` / ``REF=`` after an assignment target;
-  * ``w.0.1``: after '.', digits are a bit number, never the real 0.1.
+  * ``w.0.1``: after '.', digits are a bit number, never the real 0.1;
+  * the function forms of the operators (IEC 61131-3 ed.3 Table 29-31):
+    AND, OR, XOR, NOT and MOD followed by '(' where an operand may stand
+    are a NAME (``AND(a, b)``, ``NOT(IN := x)``); after a token that ends
+    an operand (a name, a literal, ')', ']', '^') they stay operators
+    (``a AND (b)``). LALR merges the lookaheads of a reduction, so the
+    parser's row alone cannot tell the two apart. ``NOT (x)`` with one
+    positional argument is the operator again (build_exprs.py).
 
 lark's contextual lexer could do most of this (with a postlexer for the
 reserved words); this one is about twice as fast, and speed matters here.
@@ -200,6 +207,14 @@ INVALID_RUN = re.compile(r"[^A-Za-z0-9_\s%'\"()\[\];:,.=<>+\-*/&^#]+")
 # REAL before INT). Others are tried only where the parser accepts them.
 _ORDER = ("HASH_LIT", "C_HEX", "BASED_INT", "REAL", "INT", "LOCATED", "BIT_REF", "NAME", "STRING_LIT", "WSTRING_LIT")
 _CONTEXTUAL = ("S_ASSIGN", "R_ASSIGN", "REF_ASSIGN", "LABEL_NAME")
+# Reserved operator keywords that are also standard functions (AND(a, b)).
+_OPERATOR_FUNCTIONS = frozenset(("AND", "OR", "XOR", "NOT", "MOD"))
+_OPEN_PAREN = re.compile(r"[ \t\f\r\n\v]*\(")
+# Tokens that end an operand: after them AND, OR ... are operators.
+_ENDS_OPERAND = frozenset(
+    ("NAME", "INT", "REAL", "BASED_INT", "C_HEX", "HASH_LIT", "STRING_LIT", "WSTRING_LIT", "LOCATED", "BIT_REF")
+    + ("TRUE", "FALSE", "RPAR", "RSQB", "DEREF", "SET", "RESET")
+)
 
 
 class Lexer:
@@ -227,6 +242,7 @@ class Lexer:
         returns (offset to go on from, token to yield or None)."""
         match, keywords, reserved, punct = self.master.match, self.keywords, self.reserved, self.punct
         pos, line, line_start, n = 0, 1, 0, len(text)
+        prev = ""  # the kind of the last token
         while True:
             m = match(text, pos)
             if m is None:
@@ -271,6 +287,10 @@ class Lexer:
                                 kind = kw
                 else:
                     kind = kw
+                    if kw in _OPERATOR_FUNCTIONS and prev not in _ENDS_OPERAND and _OPEN_PAREN.match(text, pos):
+                        row = accepts()
+                        if row is not None and "NAME" in row:
+                            kind = "NAME"  # AND(a, b): the function form
             elif kind == "REAL":
                 row = accepts()
                 if row is not None and "REAL" not in row and "INT" in row:
@@ -278,4 +298,5 @@ class Lexer:
                     if digits is not None:  # (always: a REAL starts with digits)
                         value = digits.group()  # w.0.1: bit 0, then .1
                         kind, pos = "INT", start + len(value)
+            prev = kind
             yield Tok(kind, value, start, line, start - line_start + 1)

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from datetime import date as _date
 
+from .faults import RangeFault
 from .rt_numeric import idiv, round_half_away
 
 DAY_NS = 86_400_000_000_000
@@ -148,46 +149,67 @@ def CONCAT_LDATE_LTOD(d: int, tod: int) -> int:
     return (d - d % DAY_NS + tod % DAY_NS) & _M64
 
 
-def _days(year: int, month: int, day: int) -> int | None:
+# CONCAT_DATE, CONCAT_TOD, CONCAT_DT (IEC 61131-3 ed.3 Table 37): a field
+# outside the calendar (month 13, Feb 30, hour 24, second 60) or a date the
+# type cannot hold (DATE and DT: 1970-01-01 .. 2106-02-07, 32-bit seconds;
+# LDT: 64-bit nanoseconds, to 2554) is a runtime fault at the call, like an
+# array index out of bounds: IEC leaves it open, and CODESYS's DTUtil
+# returns a zero date with an error code that is easily missed.
+
+_LAST_DAY_32 = _M32 // _DAY_S  # 2106-02-07, the last day DATE holds
+
+
+def _days(fn: str, year: int, month: int, day: int, last: int) -> int:
+    """Days from 1970-01-01 to the date; a RangeFault if it is none or
+    beyond day ``last``."""
     try:
-        return _date(year, month, day).toordinal() - EPOCH_ORD
+        n = _date(year, month, day).toordinal() - EPOCH_ORD
     except (ValueError, OverflowError):
-        return None
+        raise RangeFault("range", f"{fn}: {year}-{month:02}-{day:02} is not a date") from None
+    if not 0 <= n <= last:
+        end = _date.fromordinal(EPOCH_ORD + last).isoformat()
+        raise RangeFault("range", f"{fn}: {year}-{month:02}-{day:02} is outside 1970-01-01 .. {end}")
+    return n
 
 
-def CONCAT_DATE(year: int, month: int, day: int) -> int:
-    """-> DATE; an impossible date (month 13, Feb 30) gives D#1970-01-01."""
-    n = _days(year, month, day)
-    return 0 if n is None else (n * _DAY_S) & _M32
-
-
-def _tod_ms(hour: int, minute: int, second: int, ms: int) -> int:
-    # Computed arithmetically, then wrapped at midnight (out-of-range fields
-    # carry over, like the time arithmetic does).
+def _tod_ms(fn: str, hour: int, minute: int, second: int, ms: int) -> int:
+    if not (0 <= hour < 24 and 0 <= minute < 60 and 0 <= second < 60 and 0 <= ms < 1000):
+        raise RangeFault("range", f"{fn}: {hour:02}:{minute:02}:{second:02}.{ms:03} is not a time of day")
     return ((hour * 60 + minute) * 60 + second) * 1000 + ms
 
 
+def _stamp(year: int, month: int, day: int, hour: int, minute: int, second: int) -> str:
+    return f"{year}-{month:02}-{day:02}-{hour:02}:{minute:02}:{second:02}"
+
+
+def CONCAT_DATE(year: int, month: int, day: int) -> int:
+    """-> DATE."""
+    return _days("CONCAT_DATE", year, month, day, _LAST_DAY_32) * _DAY_S
+
+
 def CONCAT_TOD(hour: int, minute: int, second: int, millisecond: int) -> int:
-    return _tod_ms(hour, minute, second, millisecond) % _DAY_MS
+    return _tod_ms("CONCAT_TOD", hour, minute, second, millisecond)
 
 
 def CONCAT_LTOD(hour: int, minute: int, second: int, millisecond: int) -> int:
-    return _tod_ms(hour, minute, second, millisecond) * 1_000_000 % DAY_NS
+    return _tod_ms("CONCAT_LTOD", hour, minute, second, millisecond) * 1_000_000
 
 
 def CONCAT_DT(year: int, month: int, day: int, hour: int, minute: int, second: int, millisecond: int) -> int:
-    """-> DT (ms dropped); an impossible date gives DT#1970-01-01-00:00:00."""
-    n = _days(year, month, day)
-    if n is None:
-        return 0
-    return (n * _DAY_S + _tod_ms(hour, minute, second, millisecond) // 1000) & _M32
+    """-> DT (the milliseconds are dropped: DT counts seconds)."""
+    secs = _tod_ms("CONCAT_DT", hour, minute, second, millisecond) // 1000
+    n = _days("CONCAT_DT", year, month, day, _LAST_DAY_32)
+    if n * _DAY_S + secs > _M32:
+        raise RangeFault("range", f"CONCAT_DT: {_stamp(year, month, day, hour, minute, second)} is beyond DT")
+    return n * _DAY_S + secs
 
 
 def CONCAT_LDT(year: int, month: int, day: int, hour: int, minute: int, second: int, millisecond: int) -> int:
-    n = _days(year, month, day)
-    if n is None:
-        return 0
-    return (n * DAY_NS + _tod_ms(hour, minute, second, millisecond) * 1_000_000) & _M64
+    ns = _tod_ms("CONCAT_LDT", hour, minute, second, millisecond) * 1_000_000
+    n = _days("CONCAT_LDT", year, month, day, _M64 // DAY_NS)
+    if n * DAY_NS + ns > _M64:
+        raise RangeFault("range", f"CONCAT_LDT: {_stamp(year, month, day, hour, minute, second)} is beyond LDT")
+    return n * DAY_NS + ns
 
 
 def DAY_OF_WEEK(d: int) -> int:

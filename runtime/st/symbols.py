@@ -67,7 +67,9 @@ class POUInfo:
 class CallInfo:
     """A checked call. kind: 'function' (user FUNCTION), 'fb' (instance
     call), 'std' (standard library function), 'builtin' (TIME, LTIME, REF,
-    ADR, SIZEOF), 'native' (a native function, st/native.py)."""
+    ADR, SIZEOF), 'native' (a native function, st/native.py), 'operator'
+    (the function form of an operator, ADD(a, b, c): args is [the operator
+    expression it stands for, (a + b) + c])."""
 
     kind: str
     pou: POUInfo | None = None

@@ -330,8 +330,10 @@ def test_f_trig_first_call_high():
 @pytest.mark.parametrize(
     "fb, set_name, reset_name, both",
     [
-        ("SR", "SET1", "RESET", True),  # set dominant
+        ("SR", "SET1", "RESET", True),  # set dominant; CODESYS/TwinCAT Standard names
         ("RS", "SET", "RESET1", False),  # reset dominant
+        ("SR", "S1", "R", True),  # the IEC 61131-3 ed.3 Table 43 names
+        ("RS", "S", "R1", False),
     ],
 )
 def test_bistables(fb, set_name, reset_name, both):
@@ -344,6 +346,25 @@ def test_bistables(fb, set_name, reset_name, both):
     assert b.step(s=True, r=True)["q"] is both
     b.step(s=False, r=False)
     assert b["q"] is both  # keeps what it had
+
+
+@pytest.mark.parametrize("fb, both", [("SR", True), ("RS", False)])
+def test_bistables_positional_set_then_reset(fb, both):
+    """SR(set, reset) and RS(set, reset), as CODESYS's Q1 = SR(SET1, RESET)."""
+    b = Bench(f"b : {fb}; s : BOOL; r : BOOL; q : BOOL;", "b(s, r); q := b.Q1;")
+    assert b.step(s=True)["q"] is True
+    assert b.step(s=False, r=True)["q"] is False
+    assert b.step(s=True, r=True)["q"] is both
+
+
+def test_bistable_spellings_mix():
+    """A set by the IEC name is reset by the CODESYS one, and back."""
+    b = Bench("b : SR; s : BOOL; r : BOOL; q : BOOL;", "b(S1 := s, RESET := r); q := b.Q1;")
+    assert b.step(s=True)["q"] is True
+    assert b.step(s=False, r=True)["q"] is False
+    c = Bench("b : RS; s : BOOL; r : BOOL; q : BOOL;", "b(SET := s, R1 := r); q := b.Q1;")
+    assert c.step(s=True)["q"] is True
+    assert c.step(s=True, r=True)["q"] is False
 
 
 def test_user_pou_replaces_a_standard_block():

@@ -77,3 +77,107 @@ def test_an_enumerator_with_no_typed_side_stays_ambiguous():
         "'Idle' is an enumerator of several types",
         "qualify it, e.g. E_Pump#Idle",
     )
+
+
+# ---------------------------------------------------------------- the operators' function forms
+# IEC 61131-3 ed.3 Table 29 (arithmetic: ADD and MUL extensible, SUB, DIV,
+# MOD, EXPT, MOVE), Table 30 (ADD/SUB on durations, TOD and DT) and Table 31
+# (bitwise Boolean: AND, OR, XOR extensible, NOT). Formal inputs IN1, IN2 ...
+# (IN for NOT and MOVE).
+
+
+def test_operator_functions_compute_what_the_operators_compute():
+    src = prog(
+        "i : INT := 5; d : DINT := 100000; r : REAL := 2.0; w : WORD := 16#00FF; b : BOOL := TRUE;\n"
+        "sum : DINT; prod : DINT; diff : INT; q : INT; qr : REAL; m : INT; mneg : INT; e : REAL; mv : INT;\n"
+        "a3 : BOOL; o3 : BOOL; x3 : BOOL; nb : BOOL; wa : WORD; wo : WORD; wx : WORD; wn : WORD;",
+        "sum := ADD(i, d, 3);\n"  # INT + DINT is DINT: no INT overflow
+        "prod := MUL(i, d, 2);\n"
+        "diff := SUB(i, 7);\n"
+        "q := DIV(-7, 2);\n"  # integer division truncates toward zero
+        "qr := DIV(7.0, r);\n"
+        "m := MOD(7, 3);\n"
+        "mneg := MOD(-7, 3);\n"  # the sign of the dividend, as the MOD operator
+        "e := EXPT(r, 3);\n"
+        "mv := MOVE(i);\n"
+        "a3 := AND(b, TRUE, FALSE);\n"
+        "o3 := OR(FALSE, FALSE, b);\n"
+        "x3 := XOR(b, b, b);\n"
+        "nb := NOT(b);\n"
+        "wa := AND(w, 16#0F0F, 16#FFF3);\n"
+        "wo := OR(IN1 := w, IN2 := 16#F000);\n"
+        "wx := XOR(IN1 := w, IN2 := 16#0F0F, IN3 := 16#0001);\n"
+        "wn := NOT(IN := w);",
+    )
+    r = run_st(src)
+    got = {n: r.get(n) for n in ("sum", "prod", "diff", "q", "qr", "m", "mneg", "e", "mv")}
+    assert got == {
+        "sum": 100008,
+        "prod": 1000000,
+        "diff": -2,
+        "q": -3,
+        "qr": 3.5,
+        "m": 1,
+        "mneg": -1,
+        "e": 8.0,
+        "mv": 5,
+    }
+    assert [r.get(n) for n in ("a3", "o3", "x3", "nb")] == [False, True, True, False]
+    assert [r.get(n) for n in ("wa", "wo", "wx", "wn")] == [0x0003, 0xF0FF, 0x0FF1, 0xFF00]
+
+
+def test_operator_functions_have_the_operators_result_types_and_fold():
+    checked, found = check_st(
+        prog(
+            "i : INT; d : DINT; w : WORD; y : BYTE; t : TIME; clock : TOD;\n"
+            "vd : DINT; vw : WORD; vt : TIME; vtod : TOD; vc : INT;",
+            "vd := ADD(i, d);\nvw := AND(w, y);\nvt := MUL(t, 2);\nvtod := ADD(clock, t);\nvc := SUB(MUL(2, 3, 4), 4);",
+        )
+    )
+    assert found == []
+    values = [s.value for s in pou_body(checked)]
+    assert [v.ty for v in values] == [T.DINT, T.WORD, T.TIME, T.TOD, T.INT]
+    assert values[-1].const == 20  # folded like (2 * 3 * 4) - 4
+
+
+def test_operator_functions_fold_where_a_constant_is_needed():
+    src = (
+        "PROGRAM main\nVAR CONSTANT N : INT := MUL(2, 4); END_VAR\n"
+        "VAR a : ARRAY[0..ADD(N, 1)] OF INT; total : DINT; END_VAR\n"
+        "a[9] := 7;\ntotal := SIZEOF(a) + a[9];\nEND_PROGRAM\n"
+    )
+    assert run_st(src).get("total") == 27  # 10 INTs of 2 bytes, and a[9]
+
+
+def test_operator_functions_report_arity_and_type_errors_where_they_are():
+    src = prog(
+        "i : INT; r : REAL; b : BOOL; w : WORD;",
+        "i := ADD(1);\n"
+        "i := SUB(1, 2, 3);\n"
+        "i := NOT(w, w);\n"
+        "i := MOD(r, 2);\n"
+        "b := AND(r, TRUE);\n"
+        "i := ADD(b, 1);\n"
+        "i := MUL(IN1 := 2, IN3 := 3);\n"
+        "i := DIV(i, 0);",
+    )
+    assert [(d.code, d.message, d.pos.line, d.pos.col) for d in diagnostics(src)] == [
+        ("E041", "ADD takes at least 2 argument(s), 1 given", 5, 6),
+        ("E041", "SUB takes 2 argument(s), 3 given", 6, 6),
+        ("E041", "NOT takes 1 argument(s), 2 given", 7, 6),
+        ("E023", "MOD needs integers", 8, 6),
+        ("E023", "AND needs BOOL or bit-string operands, not REAL and BOOL", 9, 6),
+        ("E023", "ADD needs numbers, not BOOL", 10, 10),
+        ("E041", "MUL: parameter 'IN2' is missing", 11, 6),
+        ("E027", "division by the constant zero", 12, 13),
+    ]
+
+
+def test_the_operator_forms_are_unchanged():
+    """a AND (b) is still the operator; NOT (x) is the operator's value."""
+    src = prog(
+        "a : BOOL := TRUE; b : BOOL; w : WORD := 16#F00F; c : BOOL; d : BOOL; m : INT; v : WORD;",
+        "c := a AND (b) OR NOT (b) AND a;\nd := NOT (a) OR NOT(b);\nm := 17 MOD (5);\nv := w AND (NOT (w) OR 16#00F0);",
+    )
+    r = run_st(src)
+    assert (r.get("c"), r.get("d"), r.get("m"), r.get("v")) == (True, True, 2, 0)

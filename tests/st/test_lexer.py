@@ -148,3 +148,17 @@ def test_without_nesting_there_is_no_depth_limit():
     text = "(*" * (MAX_COMMENT_DEPTH + 1) + " *)\nx := 1;"
     sf, diags = parse_as(text, "iec")
     assert diags == [] and [s.target.name for s in sf.decls[0].body] == ["x"]
+
+
+# ---------------------------------------------------------------- operator keywords as functions
+
+
+def test_operator_keywords_before_a_parenthesis_are_functions_where_an_operand_stands():
+    """IEC 61131-3 ed.3 Table 29-31: AND, OR, XOR, NOT and MOD are also
+    functions (AND(a, b, c)). After an operand they stay operators."""
+    assert show(expr("AND(a, b, c) OR NOT (x) AND y MOD(3)")) == "(OR AND(a, b, c) (AND (NOT x) (MOD y 3)))"
+    assert show(expr("a AND (b) XOR MOD(7, 3)")) == "(XOR (AND a b) MOD(7, 3))"
+    assert show(expr("(a) OR\n(b) OR x[1] AND (c) OR p^ XOR (d)")) == "(OR (OR (OR a b) (AND x[1] c)) (XOR p^ d))"
+    assert show(expr("NOT(IN := w) AND NOT b")) == "(AND NOT(IN := w) (NOT b))"
+    [stmt] = body("XOR(IN1 := a, IN2 := b);")
+    assert isinstance(stmt, ast.CallStmt) and show(stmt.call) == "XOR(IN1 := a, IN2 := b)"
