@@ -67,7 +67,9 @@ class CallGen(CodeGenBase):
         if name == "MOVE" and len(args) == 1:
             return args[0]
         if name == "LIMIT" and rty is not None and (rty.is_intlike or rty.is_real):
-            return f"max(min({args[1]}, {args[2]}), {args[0]})"  # IEC: MAX(MIN(IN, MX), MN)
+            # IEC 61131-3 Table 28: MIN(MAX(IN, MN), MX), as the library's _limit
+            # and the folding: MN > MX gives MX
+            return f"min(max({args[1]}, {args[0]}), {args[2]})"
         inline = self._inline_shift(info, args) or self._inline_conversion(info, args)
         if inline is not None:
             return inline

@@ -39,6 +39,17 @@ def test_inlined_operations_keep_iec_results():
     assert (r.get("sn"), r.get("uw"), r.get("big"), r.get("b"), r.get("lim")) == (44, 65535, 0, 0x03, 100)
 
 
+def test_limit_with_mn_above_mx_gives_mx_inline_folded_and_in_the_library():
+    # IEC 61131-3 Table 28: LIMIT(MN, IN, MX) = MIN(MAX(IN, MN), MX), so MN > MX gives MX.
+    # The inlined form gave MN, the folded constant and the library function MX.
+    src = prog(
+        "mn : INT := 10; x : INT := 5; mx : INT := 0; v : INT; c : INT; r : REAL; lo : REAL := 2.5;",
+        "v := LIMIT(mn, x, mx); c := LIMIT(10, 5, 0); r := LIMIT(lo, 9.0, 1.5);",
+    )
+    r = run_st(src)
+    assert (r.get("v"), r.get("c"), r.get("r")) == (0, 0, 1.5)
+
+
 def test_fb_instances_in_an_array_are_called_by_index():
     src = """
 PROGRAM main
