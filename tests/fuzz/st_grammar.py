@@ -369,7 +369,10 @@ class Gen:
         if form == "equal":
             enums = list(self.world.enums)
             other = Ty("enum", self.pick(enums)) if enums and self.chance(0.5) else elem("STRING")
-            return f"({self.expr(other, scope, depth)} = {self.expr(other, scope, depth)})"
+            # a variable on one side at least: ('' = '') is the constant TRUE, and
+            # BOOL_TO_INT of it a constant index the checker rightly bounds (E051)
+            ops = self._operands(other, scope, depth, 2)
+            return None if ops is None else f"({ops[0]} = {ops[1]})"
         raise AssertionError(form)
 
     def conversion(self, ty: Ty, scope: Scope, depth: int) -> str | None:
