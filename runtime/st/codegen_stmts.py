@@ -214,10 +214,12 @@ class StmtGen(CodeGenBase):
         """May the body read the FOR variable from the Python loop local?
         Only when nothing else can observe the stored variable: a local of
         this POU that is not located, global, or reached by any reference
-        (REF, ADR, VAR_IN_OUT, =>); the body itself may not assign it (E072)."""
+        (REF, ADR, VAR_IN_OUT, =>) nor by an action of the POU; the body
+        itself may not assign it (E072)."""
         return (
             isinstance(sym, VarSymbol)
             and sym.owner is not None
+            and not sym.owner.actions  # an action called in the loop may read it
             and sym.location is None
             and sym.section != "VAR_IN_OUT"
             and not sym.boxed

@@ -18,6 +18,7 @@ ST needs: it asks the parser which token types the current state accepts
     reserved keywords (IF, END_IF, ...) are keywords everywhere;
   * ``LABEL_NAME``: a name followed by ':', ',' or '..' where a CASE label
     may stand (a label can follow a statement, LALR sees one token);
+  * ACTION is a keyword only where a name follows it;
   * ``S=`` / ``R=`` / ``REF=`` after an assignment target;
   * ``w.0.1``: after '.', digits are a bit number, never the real 0.1;
   * the function forms of the operators (IEC 61131-3 ed.3 Table 29-31):
@@ -207,6 +208,11 @@ INVALID_RUN = re.compile(r"[^A-Za-z0-9_\s%'\"()\[\];:,.=<>+\-*/&^#]+")
 # REAL before INT). Others are tried only where the parser accepts them.
 _ORDER = ("HASH_LIT", "C_HEX", "BASED_INT", "REAL", "INT", "LOCATED", "BIT_REF", "NAME", "STRING_LIT", "WSTRING_LIT")
 _CONTEXTUAL = ("S_ASSIGN", "R_ASSIGN", "REF_ASSIGN", "LABEL_NAME")
+# Soft keywords that stay names unless what follows fits: 'ACTION Reset:'
+# but 'action := 2;'.
+_SOFT_FOLLOW = {
+    "ACTION": re.compile(r"[ \t\f\r\n\v]+[A-Za-z_]"),
+}
 # Reserved operator keywords that are also standard functions (AND(a, b)).
 _OPERATOR_FUNCTIONS = frozenset(("AND", "OR", "XOR", "NOT", "MOD"))
 _OPEN_PAREN = re.compile(r"[ \t\f\r\n\v]*\(")
@@ -284,7 +290,9 @@ class Lexer:
                                     break
                         else:
                             if kw is not None and kw in row:
-                                kind = kw
+                                follow = _SOFT_FOLLOW.get(kw)
+                                if follow is None or follow.match(text, pos):
+                                    kind = kw
                 else:
                     kind = kw
                     if kw in _OPERATOR_FUNCTIONS and prev not in _ENDS_OPERAND and _OPEN_PAREN.match(text, pos):

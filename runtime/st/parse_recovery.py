@@ -126,7 +126,7 @@ _UNSUPPORTED = {
     "END_PROPERTY": "properties",
     "INTERFACE": "interfaces",
     "END_INTERFACE": "interfaces",
-    "ACTION": "actions",
+    "ACTION": "actions",  # ACTION where no action can stand: its own message below
     "END_ACTION": "actions",
     "NAMESPACE": "namespaces",
     "END_NAMESPACE": "namespaces",
@@ -258,16 +258,19 @@ class Recovery(ParserCore):
             word = prev.value.upper()
         if word is not None:
             at = tok if word == value or prev is None else prev
-            self.report(
-                "E001",
+            message, hint = (
                 f"{word}: {_UNSUPPORTED[word]} are not supported",
-                self._tok_pos(at),
                 "write the logic as a FUNCTION or FUNCTION_BLOCK",
-                calm=1,
             )
+            if word in ("ACTION", "END_ACTION"):
+                message = f"{word} here: only a PROGRAM or FUNCTION_BLOCK has actions"
+                hint = "write ACTION Name: ... END_ACTION after the POU's statements, or outside it as ACTION Pou.Name:"
+            self.report("E001", message, self._tok_pos(at), hint, calm=1)
             self._unshift(prev if word != value else None)
             end = word if word.startswith("END_") else "END_" + word
-            return self._skip_through("NAME", end) if word != end else None
+            if word == end:
+                return None
+            return self._skip_through(end) if end in self.g.terminals else self._skip_through("NAME", end)
         if tok.type == "LABEL_NAME" and re.compile(r"\s*:").match(self.text, tok.end_pos):
             # In a statement list the lexer offers LABEL_NAME (a case label
             # could follow a statement), so 'lbl:' arrives as one.
