@@ -476,3 +476,20 @@ class SetReset(Stmt):
 
     kind: str
     target: Expr
+
+
+@dataclass(slots=True, eq=False)
+class Label(Stmt):
+    """``name:`` before a statement (CODESYS/TwinCAT ST). jumped_to: set by
+    the checker when a JMP names it."""
+
+    name: str
+    jumped_to: bool = False
+
+
+@dataclass(slots=True, eq=False)
+class Jump(Stmt):
+    """``JMP name;``. target: the Label, set by the checker."""
+
+    label: str
+    target: Label | None = field(default=None, repr=False)

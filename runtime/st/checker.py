@@ -21,6 +21,7 @@ from .checker_calls import CallChecks
 from .checker_config import ConfigChecks, ConfigInfo
 from .checker_decls import DeclChecks
 from .checker_exprs import ExprChecks
+from .checker_jumps import JumpChecks
 from .checker_operators import OperatorChecks
 from .checker_stmts import StmtChecks
 from .checker_storage import StorageChecks
@@ -51,6 +52,7 @@ class Checker(
     ConfigChecks,
     VarConfigChecks,
     ActionChecks,
+    JumpChecks,
 ):
     """Checker(profile, diags, std_functions, natives=None, image=None).run(files)
     -> CheckedProgram. std_functions: UPPER name -> standard function
@@ -93,6 +95,7 @@ class Checker(
             for sym in pou.vars.values():
                 self._check_var_init(sym, scope)
             self._stmts(pou.node.body, scope)
+            self._check_jumps(pou.node.body)
             self._check_actions(pou)
         for sf in files:
             for decl in sf.decls:

@@ -95,6 +95,7 @@ class ActionChecks(CheckerBase):
                 del pou.actions[key]
                 continue
             self._stmts(act.node.body, Scope(pou))
+            self._check_jumps(act.node.body)
 
     # ------------------------------------------------------------ calls
 

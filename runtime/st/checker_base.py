@@ -6,8 +6,8 @@ in its own module: checker_types (declared types), checker_decls
 themselves, the size limits of limits.py), checker_exprs (names, members, indices,
 literals, addresses), checker_operators, checker_stmts (statements and
 assignment targets), checker_calls (every kind of call),
-checker_actions (ACTIONs of POUs) and checker_config (the
-CONFIGURATION). The implicit-conversion rule they apply is
+checker_actions (ACTIONs of POUs), checker_jumps (JMP and labels) and
+checker_config (the CONFIGURATION). The implicit-conversion rule they apply is
 conversions.py. A part calls the others through ``self``; what it may call
 is declared at the end of CheckerBase, for the type checker.
 """
@@ -150,6 +150,9 @@ class CheckerBase:
         def _check_writable(self, e: A.Expr, scope: Scope) -> None: ...
 
         def operator_call(self, e: A.Call, func: Any, scope: Scope) -> T.Type | None: ...
+
+        # checker_jumps
+        def _check_jumps(self, body: list) -> None: ...
 
         # checker_actions
         def own_action_call(self, e: A.Call, scope: Scope, as_statement: bool) -> bool: ...

@@ -4,7 +4,7 @@ again, so that one parse finds all the errors of a file.
 At a token the table rejects (``_recover``), in this order:
   * the END_* of a block an earlier recovery dropped: skipped silently;
   * a known mistake (``_special_case``: '=' for ':=', ELSE after ELSE, a
-    VAR block after the statements, JMP and labels, METHOD ...): a tailored
+    VAR block after the statements, a misplaced label or ACTION, METHOD ...): a tailored
     message and recovery;
   * one missing token (';', ',', THEN, END_IF, ...) that would let it fit:
     reported and inserted;
@@ -276,29 +276,25 @@ class Recovery(ParserCore):
             # could follow a statement), so 'lbl:' arrives as one.
             self.report(
                 "E001",
-                f"label '{tok.value}:' is not supported",
+                f"a label '{tok.value}:' cannot stand here",
                 self._tok_pos(tok),
-                "JMP and labels are not supported; use a loop or CASE",
+                "a jump label goes before a statement of a POU or ACTION",
                 calm=1,
             )
             return self._skip_through(COLON)
         if prev is not None and prev.type == "NAME" and "ASSIGN" in self._expected():
             if prev.value.upper() == "JMP":
                 self.report(
-                    "E001",
-                    "JMP is not supported",
-                    self._tok_pos(prev),
-                    "JMP and labels are not supported; use a loop or CASE",
-                    calm=1,
+                    "E001", "JMP needs a label", self._tok_pos(prev), "write JMP name; to go on at 'name:'", calm=1
                 )
                 self._unshift(prev)
                 return self._skip_through(SEMI)
             if tok.type == COLON:
                 self.report(
                     "E001",
-                    f"label '{prev.value}:' is not supported",
+                    f"a label '{prev.value}:' cannot stand here",
                     self._tok_pos(prev),
-                    "JMP and labels are not supported; use a loop or CASE",
+                    "a jump label goes before a statement of a POU or ACTION",
                     calm=1,
                 )
                 self._unshift(prev)
