@@ -326,6 +326,20 @@ class POU(Node):
     return_type: TypeSpec | None = None
     pragmas: list = field(default_factory=list)
     external: bool = False  # declared only (body provided natively)
+    actions: list = field(default_factory=list)  # Action, written inside the POU or given to it
+
+
+@dataclass(slots=True, eq=False)
+class Action(Node):
+    """``ACTION Name: ... END_ACTION``: more code of a PROGRAM or
+    FUNCTION_BLOCK, on its variables. pou_name: the POU a top-level
+    ``ACTION Pou.Name:`` names (None inside a POU); name_pos: where the
+    name is."""
+
+    name: str
+    body: list
+    pou_name: str | None = None
+    name_pos: Pos = NOPOS
 
 
 @dataclass(slots=True, eq=False)
@@ -462,3 +476,20 @@ class SetReset(Stmt):
 
     kind: str
     target: Expr
+
+
+@dataclass(slots=True, eq=False)
+class Label(Stmt):
+    """``name:`` before a statement (CODESYS/TwinCAT ST). jumped_to: set by
+    the checker when a JMP names it."""
+
+    name: str
+    jumped_to: bool = False
+
+
+@dataclass(slots=True, eq=False)
+class Jump(Stmt):
+    """``JMP name;``. target: the Label, set by the checker."""
+
+    label: str
+    target: Label | None = field(default=None, repr=False)

@@ -64,6 +64,16 @@ class AstBuilder(StmtBuilder):
         body = next(x for x in c if isinstance(x, list))
         ret = c[2] if kind == "FUNCTION" else None
         pou = ast.POU(kind, c[1].value, var_blocks, body, return_type=ret, pos=self._span(c[0], c[-1]))
+        for act in (x for x in c if isinstance(x, ast.Action)):
+            if act.pou_name is not None:
+                self.ctx.report(
+                    "E047",
+                    f"ACTION {act.pou_name}.{act.name} inside {pou.name}",
+                    act.name_pos,
+                    f"inside the POU write ACTION {act.name}: (the POU's name only goes before it outside)",
+                )
+            else:
+                pou.actions.append(act)
         # Where the header ends: a pragma before this point belongs to the POU.
         first = var_blocks[0] if var_blocks else body[0] if body else c[-1]
         self.ctx.pou_headers.append((pou, start_of(c[0]), start_of(first)))
@@ -78,6 +88,25 @@ class AstBuilder(StmtBuilder):
 
     def function_block(self, c):
         return self._pou("FUNCTION_BLOCK", c)
+
+    def action_block(self, c):
+        names = [t for t in c if isinstance(t, Tok) and t.type in _NAME_TYPES]
+        body = next(x for x in c if isinstance(x, list))
+        if len(names) > 2:
+            self.ctx.report(
+                "E047",
+                "an ACTION name is the action's, or Pou.Action",
+                self._span(names[0], names[-1]),
+                "name the action, and outside its POU the POU before it: ACTION Pou.Name:",
+            )
+        last = names[-1]
+        return ast.Action(
+            last.value,
+            body,
+            pou_name=names[0].value if len(names) > 1 else None,
+            name_pos=self._span(names[0], last),
+            pos=self._span(c[0], c[-1]),
+        )
 
     def fb_inherit(self, c):
         self.ctx.diags.warning(

@@ -1,5 +1,5 @@
 """The AST builder's statements: assignments, calls, IF, CASE and its labels,
-loops, EXIT, CONTINUE, RETURN, and statement lists."""
+loops, EXIT, CONTINUE, RETURN, jump labels and JMP, and statement lists."""
 
 from __future__ import annotations
 
@@ -87,3 +87,10 @@ class StmtBuilder(ExprBuilder):
 
     def return_stmt(self, c):
         return self._add_stmt(ast.Return(pos=self._tpos(c[0])))
+
+    def label_stmt(self, c):
+        t = c[0]
+        return self._add_stmt(ast.Label(t.value, pos=self._tpos(t)))
+
+    def jmp_stmt(self, c):
+        return self._add_stmt(ast.Jump(c[1].value, pos=self._span(c[0], c[1])))

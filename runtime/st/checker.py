@@ -15,11 +15,13 @@ from dataclasses import dataclass
 
 from . import ast as A
 from . import types as T
+from .checker_actions import ActionChecks
 from .checker_base import AddressSpace, Scope
 from .checker_calls import CallChecks
 from .checker_config import ConfigChecks, ConfigInfo
 from .checker_decls import DeclChecks
 from .checker_exprs import ExprChecks
+from .checker_jumps import JumpChecks
 from .checker_operators import OperatorChecks
 from .checker_stmts import StmtChecks
 from .checker_storage import StorageChecks
@@ -49,6 +51,8 @@ class Checker(
     CallChecks,
     ConfigChecks,
     VarConfigChecks,
+    ActionChecks,
+    JumpChecks,
 ):
     """Checker(profile, diags, std_functions, natives=None, image=None).run(files)
     -> CheckedProgram. std_functions: UPPER name -> standard function
@@ -59,6 +63,7 @@ class Checker(
         self.library_files = set(library_files)
         for sf in files:
             self._collect(sf)
+        self._collect_actions(files)
         for key in list(self.type_decls):
             self._resolve_named_type(key, self.type_decls[key].pos)
         global_blocks: list[tuple[A.VarBlock, A.Configuration | None]] = [
@@ -90,6 +95,8 @@ class Checker(
             for sym in pou.vars.values():
                 self._check_var_init(sym, scope)
             self._stmts(pou.node.body, scope)
+            self._check_jumps(pou.node.body)
+            self._check_actions(pou)
         for sf in files:
             for decl in sf.decls:
                 if isinstance(decl, A.Configuration):

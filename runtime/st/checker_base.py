@@ -5,8 +5,9 @@ in its own module: checker_types (declared types), checker_decls
 (variables and initial values), checker_storage (types that contain
 themselves, the size limits of limits.py), checker_exprs (names, members, indices,
 literals, addresses), checker_operators, checker_stmts (statements and
-assignment targets), checker_calls (every kind of call) and checker_config
-(the CONFIGURATION). The implicit-conversion rule they apply is
+assignment targets), checker_calls (every kind of call),
+checker_actions (ACTIONs of POUs), checker_jumps (JMP and labels) and
+checker_config (the CONFIGURATION). The implicit-conversion rule they apply is
 conversions.py. A part calls the others through ``self``; what it may call
 is declared at the end of CheckerBase, for the type checker.
 """
@@ -68,6 +69,7 @@ class CheckerBase:
         self.types: dict = {}  # UPPER -> Type (resolved)
         self._resolving: dict = {}  # UPPER -> name as declared, of the types being resolved, in order
         self.pous: dict = {}  # UPPER -> POUInfo
+        self.action_names: set = set()  # UPPER names of all ACTIONs (checker_actions.py)
         self.globals: dict = {}  # UPPER -> VarSymbol
         self.enumerators: dict = {}  # UPPER -> [(EnumType, value)]
         self.structs: list = []
@@ -139,6 +141,8 @@ class CheckerBase:
         ) -> T.ElementaryType | None: ...
 
         # checker_stmts
+        def _stmts(self, body: list, scope: Scope) -> None: ...
+
         def lvalue(self, e: A.Expr, scope: Scope) -> T.Type | None: ...
 
         def _is_lvalue_expr(self, e: A.Expr) -> bool: ...
@@ -146,6 +150,14 @@ class CheckerBase:
         def _check_writable(self, e: A.Expr, scope: Scope) -> None: ...
 
         def operator_call(self, e: A.Call, func: Any, scope: Scope) -> T.Type | None: ...
+
+        # checker_jumps
+        def _check_jumps(self, body: list) -> None: ...
+
+        # checker_actions
+        def own_action_call(self, e: A.Call, scope: Scope, as_statement: bool) -> bool: ...
+
+        def member_action_call(self, e: A.Call, scope: Scope, as_statement: bool) -> bool: ...
 
         # checker_calls
         def call(self, e: A.Call, scope: Scope, as_statement: bool) -> T.Type | None: ...

@@ -30,6 +30,8 @@ class CallChecks(CheckerBase):
             local = None
             if scope.pou is not None:
                 local = scope.pou.vars.get(key)
+                if local is None and self.own_action_call(e, scope, as_statement):
+                    return None
             if local is None and key not in self.pous:
                 local = self.globals.get(key)
             if local is not None:
@@ -72,6 +74,8 @@ class CallChecks(CheckerBase):
             )
             self._check_args_loosely(e, scope)
             return None
+        if isinstance(callee, A.Member) and self.member_action_call(e, scope, as_statement):
+            return None  # inst.Act(...)
         if isinstance(callee, (A.Member, A.Index)):  # inst.sub(...), timers[i](...)
             return self._fb_call(e, callee, scope, as_statement)
         self.d.error("E043", "this cannot be called", e.pos)

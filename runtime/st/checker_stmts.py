@@ -51,8 +51,8 @@ class StmtChecks(CheckerBase):
                 self.d.error(
                     "E070", f"{word} outside a loop", s.pos, "EXIT and CONTINUE belong inside FOR, WHILE or REPEAT"
                 )
-        elif isinstance(s, A.Return):
-            pass
+        elif isinstance(s, (A.Return, A.Label, A.Jump)):
+            pass  # where a JMP goes: checker_jumps.py
         elif isinstance(s, A.SetReset):
             ty = self.lvalue(s.target, scope)
             if ty is not None and not self._is_bool(ty):

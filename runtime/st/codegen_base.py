@@ -2,7 +2,8 @@
 
 The CodeGen (codegen.py) is one class composed of a part per concern,
 each in its own module: codegen_pous (classes, functions, initial values),
-codegen_stmts (statements, conversions on store, stores), codegen_exprs
+codegen_stmts (statements, conversions on store, stores), codegen_jumps
+(JMP and labels), codegen_exprs
 (expressions, references) and codegen_calls. They emit lines through
 CodeGenBase, which remembers each line's ST position, and register the
 objects the code needs as numbered constants. A part calls the others
@@ -75,12 +76,18 @@ class FnState:
     def __init__(self, pou: POUInfo | None, self_name: str = "self") -> None:
         self.pou = pou
         self.self_name = self_name
-        # ('for', (var, loop local, read from it?)), ('while', budget local), ('repeat', (cond, budget local))
+        # ('for', (var, loop local, read from it?)), ('while', budget local), ('repeat', (cond, budget local)),
+        # ('jump', JumpFrame): a statement list with labels (codegen_jumps.py)
         self.loop_kinds: list = []
         # FOR variables currently read from the Python loop local: id(VarSymbol) -> local name
         self.for_locals: dict = {}
         # ... and of those the (lowest, highest) value when the bounds are constant
         self.loop_ranges: dict = {}
+        # JMP (codegen_jumps.py): id(Label) -> (JumpFrame, index); transfers out
+        # of loops waiting after the loop at a depth of loop_kinds; their count
+        self.labels: dict = {}
+        self.crossing: dict = {}
+        self.transfers = 0
 
     @property
     def is_function(self) -> bool:
@@ -159,6 +166,23 @@ class CodeGenBase:
 
         # codegen_stmts
         def _body(self, stmts: list) -> None: ...
+
+        def _stmt(self, s: A.Stmt) -> None: ...
+
+        def _loop_budget_take(self) -> str: ...
+
+        def _loop_budget_give(self, wd: str) -> None: ...
+
+        def _watchdog_tick(self, wd: str) -> None: ...
+
+        # codegen_jumps
+        def _dispatch(self, stmts: list) -> None: ...
+
+        def _jump(self, s: A.Jump) -> None: ...
+
+        def _leave_through_labels(self, word: str) -> bool: ...
+
+        def _after_loop(self) -> None: ...
 
         def coerce(self, code: str, src: T.Type, dst: T.Type, e: A.Expr | None) -> str: ...
 

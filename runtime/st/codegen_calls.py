@@ -168,10 +168,11 @@ class CallGen(CodeGenBase):
 
     def _call_stmt(self, e: A.Call) -> None:
         info: CallInfo = e.target
-        if info.kind != "fb":
+        if info.kind not in ("fb", "action"):
             self.emit(self.ex(e))
             return
-        inst = self.ex(info.instance)
+        # an action inside its own POU: a method of the instance running
+        inst = self.fn.self_name if info.instance is None else self.ex(info.instance)
         if info.inputs or info.inouts or info.outputs or not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_.]*", inst):
             t = self.tmp("fb")  # an instance never changes identity: look it up once
             self.emit(f"{t} = {inst}")
@@ -184,7 +185,7 @@ class CallGen(CodeGenBase):
                 self.emit(f"{inst}.{p.pyname} = {code}")
         for p, a in info.inouts:
             self.emit(f"{inst}.{p.pyname} = {self.ref_code(a)}")
-        self.emit(f"{inst}()")
+        self.emit(f"{inst}.{info.func.pyname}()" if info.kind == "action" else f"{inst}()")
         for p, target, negated in info.outputs:
             val = f"{inst}.{p.pyname}"
             if negated:

@@ -262,6 +262,15 @@ class PouGen(CodeGenBase):
         self._temps_init(pou)
         self._body(pou.node.body)
         self.indent -= 1
+        for act in pou.actions.values():  # an ACTION: a method on the same variables
+            self.pos = act.node.pos
+            self.fn = FnState(pou)
+            self.emit("")
+            self.emit(f"def {act.pyname}(self):")
+            self.indent += 1
+            self._temps_init(pou)
+            self._body(act.node.body)
+            self.indent -= 1
         self.indent -= 1
 
     def _temps_init(self, pou: POUInfo) -> None:

@@ -1,7 +1,8 @@
 """Code generation of statements, and of the store that ends an assignment.
 
 IF, CASE, FOR, WHILE, REPEAT (with the cooperative watchdog on loop
-back-edges: program/context.py says how it counts), EXIT, CONTINUE, RETURN;
+back-edges: program/context.py says how it counts), EXIT, CONTINUE, RETURN
+(statement lists with jump labels: codegen_jumps.py);
 an assignment stores the value converted to the target's type (coerce: what
 conversions.store_step decides, written in Python).
 """
@@ -26,8 +27,15 @@ class StmtGen(CodeGenBase):
 
     def _body(self, stmts: list) -> None:
         start = len(self.out)
-        for s in stmts:
-            self._stmt(s)
+        if any(s.__class__ is A.Label and s.jumped_to for s in stmts):
+            self._dispatch(stmts)  # a JMP goes to a label here (codegen_jumps.py)
+            if self.fn.crossing:
+                self._after_loop()  # EXIT, CONTINUE or JMP out of it
+        else:
+            for s in stmts:
+                self._stmt(s)
+                if self.fn.crossing:
+                    self._after_loop()
         if len(self.out) == start:
             self.emit("pass")
 
@@ -80,6 +88,8 @@ class StmtGen(CodeGenBase):
         elif isinstance(s, A.Exit):
             self._leave_loop("break")
         elif isinstance(s, A.Continue):
+            if self._leave_through_labels("continue"):
+                return
             kind, data = self.fn.loop_kinds[-1]
             if kind == "repeat":
                 self.emit(f"if {self.ex(data[0])}: break")
@@ -92,10 +102,16 @@ class StmtGen(CodeGenBase):
                 self.emit("return")
         elif isinstance(s, A.SetReset):
             self.emit_store(s.target, "True" if s.kind == "SET" else "False", T.BOOL, None)
+        elif isinstance(s, A.Jump):
+            self._jump(s)
+        elif isinstance(s, A.Label):
+            pass  # no JMP names it
         else:
             raise NotImplementedError(type(s).__name__)
 
     def _leave_loop(self, word: str) -> None:
+        if self._leave_through_labels(word):
+            return
         kind, data = self.fn.loop_kinds[-1]
         if kind == "for" and word == "break" and data[2]:
             var, cur, _local = data
@@ -104,14 +120,18 @@ class StmtGen(CodeGenBase):
 
     def _store_loop_locals(self) -> None:
         """Before RETURN inside loops: give FOR variables their values, and
-        the innermost WHILE or REPEAT hands the loop budget back."""
+        every WHILE, REPEAT and list with labels hands its loop budget back."""
         for kind, data in self.fn.loop_kinds:
             if kind == "for" and data[2]:
                 var, cur, _local = data
                 self.emit_store(var, cur, var.ty, None, trusted=True)
         for kind, data in self.fn.loop_kinds:
-            if kind != "for":
-                self._loop_budget_give(data if kind == "while" else data[1])
+            if kind == "while":
+                self._loop_budget_give(data)
+            elif kind == "repeat":
+                self._loop_budget_give(data[1])
+            elif kind == "jump":
+                self._loop_budget_give(data.wd)
 
     # The cooperative watchdog (program/context.py): a FOR charges its length
     # to the loop budget before it starts; a WHILE or REPEAT counts down a
@@ -214,10 +234,12 @@ class StmtGen(CodeGenBase):
         """May the body read the FOR variable from the Python loop local?
         Only when nothing else can observe the stored variable: a local of
         this POU that is not located, global, or reached by any reference
-        (REF, ADR, VAR_IN_OUT, =>); the body itself may not assign it (E072)."""
+        (REF, ADR, VAR_IN_OUT, =>) nor by an action of the POU; the body
+        itself may not assign it (E072)."""
         return (
             isinstance(sym, VarSymbol)
             and sym.owner is not None
+            and not sym.owner.actions  # an action called in the loop may read it
             and sym.location is None
             and sym.section != "VAR_IN_OUT"
             and not sym.boxed

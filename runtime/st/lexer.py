@@ -18,6 +18,10 @@ ST needs: it asks the parser which token types the current state accepts
     reserved keywords (IF, END_IF, ...) are keywords everywhere;
   * ``LABEL_NAME``: a name followed by ':', ',' or '..' where a CASE label
     may stand (a label can follow a statement, LALR sees one token);
+    ``JUMP_LABEL``: a name followed by ':' where a statement starts and no
+    CASE label can (so in a CASE branch, 'name:' after a statement starts
+    the next branch, as before);
+  * JMP and ACTION are keywords only where a name follows them;
   * ``S=`` / ``R=`` / ``REF=`` after an assignment target;
   * ``w.0.1``: after '.', digits are a bit number, never the real 0.1;
   * the function forms of the operators (IEC 61131-3 ed.3 Table 29-31):
@@ -206,7 +210,13 @@ INVALID_RUN = re.compile(r"[^A-Za-z0-9_\s%'\"()\[\];:,.=<>+\-*/&^#]+")
 # wins, so a longer form comes before its prefix: HASH_LIT before NAME,
 # REAL before INT). Others are tried only where the parser accepts them.
 _ORDER = ("HASH_LIT", "C_HEX", "BASED_INT", "REAL", "INT", "LOCATED", "BIT_REF", "NAME", "STRING_LIT", "WSTRING_LIT")
-_CONTEXTUAL = ("S_ASSIGN", "R_ASSIGN", "REF_ASSIGN", "LABEL_NAME")
+_CONTEXTUAL = ("S_ASSIGN", "R_ASSIGN", "REF_ASSIGN", "LABEL_NAME", "JUMP_LABEL")
+# Soft keywords that stay names unless what follows fits: 'JMP done;' but
+# 'jmp := 1;', 'ACTION Reset:' but 'action := 2;'.
+_SOFT_FOLLOW = {
+    "JMP": re.compile(r"[ \t\f\r\n\v]+[A-Za-z_]"),
+    "ACTION": re.compile(r"[ \t\f\r\n\v]+[A-Za-z_]"),
+}
 # Reserved operator keywords that are also standard functions (AND(a, b)).
 _OPERATOR_FUNCTIONS = frozenset(("AND", "OR", "XOR", "NOT", "MOD"))
 _OPEN_PAREN = re.compile(r"[ \t\f\r\n\v]*\(")
@@ -235,11 +245,15 @@ class Lexer:
         self.contextual = [(n, re.compile(terminals[n].regexp, re.ASCII)) for n in _CONTEXTUAL]
         self.int_re = re.compile(terminals["INT"].regexp, re.ASCII)
 
-    def tokens(self, text: str, accepts: Callable[[], dict | None], bad: Callable) -> Iterator[Tok]:
+    def tokens(
+        self, text: str, accepts: Callable[[], dict | None], bad: Callable, fits: Callable[[str], bool] = bool
+    ) -> Iterator[Tok]:
         """The tokens of text (comments already blanked). accepts() gives
         the token types the parser takes next (None: any, while skipping).
         bad(offset, line, column) is called where no token starts and
-        returns (offset to go on from, token to yield or None)."""
+        returns (offset to go on from, token to yield or None).
+        fits(type): would the parser really take a token of that type
+        (LALR rows offer some that a later reduction refuses)?"""
         match, keywords, reserved, punct = self.master.match, self.keywords, self.reserved, self.punct
         pos, line, line_start, n = 0, 1, 0, len(text)
         prev = ""  # the kind of the last token
@@ -280,11 +294,17 @@ class Lexer:
                             if name in row:
                                 cm = regex.match(text, start)
                                 if cm:
+                                    # LALR merges rows: is it a CASE label, a jump label, or neither?
+                                    if name == "JUMP_LABEL" or "JUMP_LABEL" in row:
+                                        if not fits(name):
+                                            continue
                                     kind, value, pos = name, cm.group(), cm.end()
                                     break
                         else:
                             if kw is not None and kw in row:
-                                kind = kw
+                                follow = _SOFT_FOLLOW.get(kw)
+                                if follow is None or follow.match(text, pos):
+                                    kind = kw
                 else:
                     kind = kw
                     if kw in _OPERATOR_FUNCTIONS and prev not in _ENDS_OPERAND and _OPEN_PAREN.match(text, pos):

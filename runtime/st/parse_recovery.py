@@ -4,7 +4,7 @@ again, so that one parse finds all the errors of a file.
 At a token the table rejects (``_recover``), in this order:
   * the END_* of a block an earlier recovery dropped: skipped silently;
   * a known mistake (``_special_case``: '=' for ':=', ELSE after ELSE, a
-    VAR block after the statements, JMP and labels, METHOD ...): a tailored
+    VAR block after the statements, a misplaced label or ACTION, METHOD ...): a tailored
     message and recovery;
   * one missing token (';', ',', THEN, END_IF, ...) that would let it fit:
     reported and inserted;
@@ -126,7 +126,7 @@ _UNSUPPORTED = {
     "END_PROPERTY": "properties",
     "INTERFACE": "interfaces",
     "END_INTERFACE": "interfaces",
-    "ACTION": "actions",
+    "ACTION": "actions",  # ACTION where no action can stand: its own message below
     "END_ACTION": "actions",
     "NAMESPACE": "namespaces",
     "END_NAMESPACE": "namespaces",
@@ -258,44 +258,43 @@ class Recovery(ParserCore):
             word = prev.value.upper()
         if word is not None:
             at = tok if word == value or prev is None else prev
-            self.report(
-                "E001",
+            message, hint = (
                 f"{word}: {_UNSUPPORTED[word]} are not supported",
-                self._tok_pos(at),
                 "write the logic as a FUNCTION or FUNCTION_BLOCK",
-                calm=1,
             )
+            if word in ("ACTION", "END_ACTION"):
+                message = f"{word} here: only a PROGRAM or FUNCTION_BLOCK has actions"
+                hint = "write ACTION Name: ... END_ACTION after the POU's statements, or outside it as ACTION Pou.Name:"
+            self.report("E001", message, self._tok_pos(at), hint, calm=1)
             self._unshift(prev if word != value else None)
             end = word if word.startswith("END_") else "END_" + word
-            return self._skip_through("NAME", end) if word != end else None
+            if word == end:
+                return None
+            return self._skip_through(end) if end in self.g.terminals else self._skip_through("NAME", end)
         if tok.type == "LABEL_NAME" and re.compile(r"\s*:").match(self.text, tok.end_pos):
             # In a statement list the lexer offers LABEL_NAME (a case label
             # could follow a statement), so 'lbl:' arrives as one.
             self.report(
                 "E001",
-                f"label '{tok.value}:' is not supported",
+                f"a label '{tok.value}:' cannot stand here",
                 self._tok_pos(tok),
-                "JMP and labels are not supported; use a loop or CASE",
+                "a jump label goes before a statement of a POU or ACTION",
                 calm=1,
             )
             return self._skip_through(COLON)
         if prev is not None and prev.type == "NAME" and "ASSIGN" in self._expected():
             if prev.value.upper() == "JMP":
                 self.report(
-                    "E001",
-                    "JMP is not supported",
-                    self._tok_pos(prev),
-                    "JMP and labels are not supported; use a loop or CASE",
-                    calm=1,
+                    "E001", "JMP needs a label", self._tok_pos(prev), "write JMP name; to go on at 'name:'", calm=1
                 )
                 self._unshift(prev)
                 return self._skip_through(SEMI)
             if tok.type == COLON:
                 self.report(
                     "E001",
-                    f"label '{prev.value}:' is not supported",
+                    f"a label '{prev.value}:' cannot stand here",
                     self._tok_pos(prev),
-                    "JMP and labels are not supported; use a loop or CASE",
+                    "a jump label goes before a statement of a POU or ACTION",
                     calm=1,
                 )
                 self._unshift(prev)

@@ -6,8 +6,9 @@
 Never raises: every problem becomes a coded diagnostic in ``diags`` (E001
 syntax, E002 invalid character, E003 invalid literal, E004 unterminated
 comment/string/pragma, E005 structural, E006 nested too deeply, E007 file
-too large, E008 comments nested too deeply, E009 internal; W101 ignored
-EXTENDS/IMPLEMENTS) and the result holds whatever could be parsed.
+too large, E008 comments nested too deeply, E009 internal, E047 an
+ACTION named Pou.Name inside a POU; W101 ignored EXTENDS/IMPLEMENTS) and
+the result holds whatever could be parsed.
 
 How it works:
   1. lexer.strip_comments blanks out comments and pragmas, keeping every
@@ -73,7 +74,7 @@ class _Parse(Recovery):
         pragmas: list = []
         try:
             self.text, pragmas = strip_comments(text, comment_error, self.profile.nested_comments)
-            self.tokens = self.g.lexer.tokens(self.text, self._accepts, self._bad_characters)
+            self.tokens = self.g.lexer.tokens(self.text, self._accepts, self._bad_characters, self._fits)
             result = self._drive()
         except GiveUp:
             self.diags.error("E001", f"too many errors; stopped after {MAX_ERRORS}", self._eof_pos())
@@ -95,6 +96,9 @@ class _Parse(Recovery):
 
     def _accepts(self) -> dict | None:
         return None if self.skipping else self.g.rows[self.state_stack[-1]]
+
+    def _fits(self, ttype: str) -> bool:
+        return self.g.simulate(self.state_stack, ttype) is not None
 
     def _drive(self):
         feed, stack = self._feed, self.state_stack

@@ -58,15 +58,27 @@ class POUInfo:
     fbtype: FBType | None = None
     library: bool = False  # from fblocks (not the user's files)
     native: Any = None  # Python implementation of an external POU
+    actions: dict = field(default_factory=dict)  # UPPER -> ActionInfo (PROGRAM, FUNCTION_BLOCK)
 
     def params(self, *sections: str) -> list:
         return [v for v in self.vars.values() if v.section in sections]
 
 
 @dataclass(eq=False)
+class ActionInfo:
+    """An ACTION of a PROGRAM or FUNCTION_BLOCK: a method of its class."""
+
+    name: str
+    node: Any  # ast.Action
+    pou: POUInfo
+    pyname: str
+
+
+@dataclass(eq=False)
 class CallInfo:
     """A checked call. kind: 'function' (user FUNCTION), 'fb' (instance
-    call), 'std' (standard library function), 'builtin' (TIME, LTIME, REF,
+    call), 'action' (an ACTION of pou: func is its ActionInfo, instance the
+    FB instance or None inside the POU), 'std' (standard library function), 'builtin' (TIME, LTIME, REF,
     ADR, SIZEOF), 'native' (a native function, st/native.py), 'operator'
     (the function form of an operator, ADD(a, b, c): args is [the operator
     expression it stands for, (a + b) + c])."""

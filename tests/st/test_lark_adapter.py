@@ -222,6 +222,8 @@ CONFIGURATION c2
 END_CONFIGURATION
 """,
     "x := 1; y(z := 2);",
+    "FUNCTION_BLOCK fb2\n;\nACTION A: ; END_ACTION\nEND_FUNCTION_BLOCK\nACTION fb2.B x := 1; END_ACTION;",
+    "top: x := 1;\nJMP top;",
 ]
 
 
@@ -281,8 +283,8 @@ def test_5_children_are_shaped_as_lark_shapes_them():
     seen: list = []
     lex = ours.lexer.tokens
 
-    def tokens(text, accepts, bad):
-        for t in lex(text, accepts, bad):
+    def tokens(text, accepts, bad, *more):
+        for t in lex(text, accepts, bad, *more):
             seen.append(t)
             yield t
 

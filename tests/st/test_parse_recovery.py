@@ -98,10 +98,11 @@ def test_duplicate_else_and_elsif_after_else():
     assert (d.code, d.message, d.pos.line) == ("E005", "ELSIF after ELSE", 3)
 
 
-def test_jumps_and_labels_are_refused_clearly():
-    diags = errors("x := 1;\nJMP done;\ndone: x := 2;\n")
-    assert [(d.code, d.pos.line) for d in diags] == [("E001", 2), ("E001", 3)]
-    assert all(d.hint == "JMP and labels are not supported; use a loop or CASE" for d in diags)
+def test_jumps_and_labels_parse_and_a_jump_to_a_number_is_refused_clearly():
+    assert errors("x := 1;\nJMP done;\ndone: x := 2;\n") == []
+    # CODESYS C0114 "Invalid destination 0 for 'JMP'"
+    [d] = errors("x := 1;\nJMP 0;\nx := 2;\n")
+    assert (d.code, d.message, d.pos.line, d.pos.col) == ("E001", "JMP needs a label", 2, 1)
 
 
 def test_misspelt_keyword_gets_a_suggestion():
