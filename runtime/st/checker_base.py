@@ -47,6 +47,7 @@ class Scope:
         self.pou = pou
         self.loops = 0
         self.for_vars: list = []  # VarSymbols of enclosing FOR loops
+        self.names: dict = {}  # UPPER -> VarSymbol of this part only (an SFC transition's name)
 
 
 class CheckerBase:
@@ -139,6 +140,8 @@ class CheckerBase:
         ) -> T.ElementaryType | None: ...
 
         # checker_stmts
+        def _stmts(self, body: list, scope: Scope) -> None: ...
+
         def lvalue(self, e: A.Expr, scope: Scope) -> T.Type | None: ...
 
         def _is_lvalue_expr(self, e: A.Expr) -> bool: ...

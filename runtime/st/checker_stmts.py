@@ -11,6 +11,7 @@ from . import types as T
 from .checker_base import CheckerBase, Scope
 from .conversions import same_type
 from .profile import names_where
+from .rt_sfc import STEP_TYPE
 from .symbols import VarSymbol
 
 
@@ -191,6 +192,13 @@ class StmtChecks(CheckerBase):
                     f"'{sym.name}' is a CONSTANT",
                     e.pos,
                     "remove CONSTANT from its declaration or assign another variable",
+                )
+            elif sym.type is STEP_TYPE:
+                self.d.error(
+                    "E157",
+                    f"'{sym.name}' is an SFC step: its flags X and T are set by the sequence",
+                    e.pos,
+                    "change the step through the transitions; an action can set a variable instead",
                 )
             elif sym.section == "VAR_INPUT" and sym.owner is not None and sym.owner is scope.pou:
                 self._own_input_assigned(sym, e.pos)

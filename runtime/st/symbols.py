@@ -58,6 +58,7 @@ class POUInfo:
     fbtype: FBType | None = None
     library: bool = False  # from fblocks (not the user's files)
     native: Any = None  # Python implementation of an external POU
+    sfc: Any = None  # checker_sfc.SfcInfo of an SFC body
 
     def params(self, *sections: str) -> list:
         return [v for v in self.vars.values() if v.section in sections]
