@@ -12,6 +12,7 @@ what codegen_sfc.py emits. Diagnostics:
   E154  an association names neither an ACTION nor a BOOL variable
   E155  a bad qualifier, a timed one without its TIME, or a time where
         none is taken
+  E156  RETURN in an action or a transition's statements
   E157  a step flag written by the program
   W150  a step no transition path from the initial step reaches
 """
@@ -122,6 +123,7 @@ class SfcChecks(CheckerBase):
             elif tr.body is not None and tr.name is not None:
                 t.name_sym = VarSymbol(tr.name, "VAR_TEMP", T.BOOL, tr.pos, pyname("t_", tr.name), pou)
                 scope.names[tr.name.upper()] = t.name_sym
+                scope.sfc_part = "a TRANSITION"
                 self._stmts(tr.body, scope)
             if sources is not None and targets is not None:
                 order.append((priority, k, t))
@@ -129,7 +131,9 @@ class SfcChecks(CheckerBase):
         info.transitions = [t for _p, _k, t in sorted(order, key=lambda x: x[:2])]
         for action in info.actions:
             if action.body is not None:
-                self._stmts(action.body, Scope(pou))
+                scope = Scope(pou)
+                scope.sfc_part = "an ACTION"
+                self._stmts(action.body, scope)
         self._sfc_reachable(info)
 
     def _sfc_steps(self, names: list, index: dict) -> tuple | None:

@@ -53,7 +53,13 @@ class StmtChecks(CheckerBase):
                     "E070", f"{word} outside a loop", s.pos, "EXIT and CONTINUE belong inside FOR, WHILE or REPEAT"
                 )
         elif isinstance(s, A.Return):
-            pass
+            if scope.sfc_part is not None:
+                self.d.error(
+                    "E156",
+                    f"RETURN in {scope.sfc_part} of an SFC body",
+                    s.pos,
+                    "it would end the POU's whole cycle; use IF to skip the rest",
+                )
         elif isinstance(s, A.SetReset):
             ty = self.lvalue(s.target, scope)
             if ty is not None and not self._is_bool(ty):

@@ -71,6 +71,8 @@ def test_a_function_block_may_have_an_sfc_body_a_function_may_not():
         ("INITIAL_STEP a: lamp(N, T#1s); END_STEP", "E155", "N takes no duration"),
         ("INITIAL_STEP a: END_STEP STEP b: END_STEP", "W150", "'b' is never reached"),
         ("INITIAL_STEP a: END_STEP ACTION act: a.X := TRUE; END_ACTION", "E157", "'a' is an SFC step"),
+        ("INITIAL_STEP a: act(N); END_STEP ACTION act: IF x THEN RETURN; END_IF END_ACTION", "E156", "in an ACTION"),
+        ("INITIAL_STEP a: END_STEP TRANSITION t FROM a TO a : RETURN; END_TRANSITION", "E156", "in a TRANSITION"),
     ],
 )
 def test_diagnostics(network, code, words):
