@@ -8,7 +8,7 @@ import time
 from typing import Any
 
 from ..image.memory import ProcessImage
-from ..st import refs, rtlib, values
+from ..st import refs, rt_sfc, rtlib, values
 from ..st.checker import CheckedProgram
 from ..st.codegen import GeneratedModule
 from ..st.diagnostics import Diagnostic, SourceSet
@@ -123,6 +123,8 @@ class Program:
             "_watchdog": ctx.check_watchdog,
             "_loop": ctx.loop_range,
             "_native": ctx.call_native,
+            "_SfcStep": rt_sfc.Step,
+            "_SfcState": rt_sfc.SfcState,
         }
         ns.update(self.generated.consts)
         image = ctx.image

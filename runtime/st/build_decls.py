@@ -9,6 +9,7 @@ from pathlib import Path
 
 from . import ast
 from .build_base import start_of
+from .build_sfc import SfcBuilder
 from .build_stmts import StmtBuilder
 from .lexer import Tok
 
@@ -24,7 +25,7 @@ def _identifier_from_path(path: str) -> str:
     return "_" + stem if stem[0].isdigit() else stem
 
 
-class AstBuilder(StmtBuilder):
+class AstBuilder(StmtBuilder, SfcBuilder):
     """The rule callbacks of grammar.lark: children -> ast nodes (see
     build_base.py); this part: the top level, declarations, configuration."""
 
@@ -61,9 +62,18 @@ class AstBuilder(StmtBuilder):
 
     def _pou(self, kind: str, c) -> ast.POU:
         var_blocks = [x for x in c if isinstance(x, ast.VarBlock)]
-        body = next(x for x in c if isinstance(x, list))
+        sfc = next((x for x in c if isinstance(x, ast.SfcNetwork)), None)
+        if sfc is not None and kind == "FUNCTION":
+            self.ctx.report(
+                "E005",
+                "a FUNCTION cannot have an SFC body",
+                sfc.pos,
+                "SFC is for PROGRAMs and FUNCTION_BLOCKs (IEC 61131-3 ed.3 6.7): they keep the active steps",
+            )
+            sfc = None
+        body = [] if sfc is not None else next((x for x in c if isinstance(x, list)), [])
         ret = c[2] if kind == "FUNCTION" else None
-        pou = ast.POU(kind, c[1].value, var_blocks, body, return_type=ret, pos=self._span(c[0], c[-1]))
+        pou = ast.POU(kind, c[1].value, var_blocks, body, return_type=ret, pos=self._span(c[0], c[-1]), sfc=sfc)
         for act in (x for x in c if isinstance(x, ast.Action)):
             if act.pou_name is not None:
                 self.ctx.report(
@@ -75,7 +85,7 @@ class AstBuilder(StmtBuilder):
             else:
                 pou.actions.append(act)
         # Where the header ends: a pragma before this point belongs to the POU.
-        first = var_blocks[0] if var_blocks else body[0] if body else c[-1]
+        first = var_blocks[0] if var_blocks else body[0] if body else sfc or c[-1]
         self.ctx.pou_headers.append((pou, start_of(c[0]), start_of(first)))
         self.ctx.items.append(pou)
         return pou

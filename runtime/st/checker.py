@@ -23,6 +23,7 @@ from .checker_decls import DeclChecks
 from .checker_exprs import ExprChecks
 from .checker_jumps import JumpChecks
 from .checker_operators import OperatorChecks
+from .checker_sfc import SfcChecks
 from .checker_stmts import StmtChecks
 from .checker_storage import StorageChecks
 from .checker_types import TypeChecks
@@ -53,6 +54,7 @@ class Checker(
     VarConfigChecks,
     ActionChecks,
     JumpChecks,
+    SfcChecks,
 ):
     """Checker(profile, diags, std_functions, natives=None, image=None).run(files)
     -> CheckedProgram. std_functions: UPPER name -> standard function
@@ -80,6 +82,7 @@ class Checker(
             self._declare_globals(block)
         for pou in self.pous.values():
             self._declare_pou_vars(pou)
+            self._declare_sfc(pou)
         self._check_containment()
         self._check_sizes()
         for st in self.structs:
@@ -97,6 +100,7 @@ class Checker(
             self._stmts(pou.node.body, scope)
             self._check_jumps(pou.node.body)
             self._check_actions(pou)
+            self._check_sfc(pou)
         for sf in files:
             for decl in sf.decls:
                 if isinstance(decl, A.Configuration):

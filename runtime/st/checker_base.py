@@ -48,6 +48,8 @@ class Scope:
         self.pou = pou
         self.loops = 0
         self.for_vars: list = []  # VarSymbols of enclosing FOR loops
+        self.names: dict = {}  # UPPER -> VarSymbol of this part only (an SFC transition's name)
+        self.sfc_part: str | None = None  # 'an ACTION' or 'a TRANSITION' of an SFC body
 
 
 class CheckerBase:

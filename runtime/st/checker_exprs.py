@@ -144,7 +144,7 @@ class ExprChecks(CheckerBase):
         pou = scope.pou
         sym = None
         if pou is not None:
-            sym = pou.vars.get(key)
+            sym = scope.names.get(key) or pou.vars.get(key)
             if sym is None and pou.result is not None and key == pou.name.upper():
                 sym = pou.result
         if sym is None:

@@ -11,6 +11,7 @@ from . import types as T
 from .checker_base import CheckerBase, Scope
 from .conversions import same_type
 from .profile import names_where
+from .rt_sfc import STEP_TYPE
 from .symbols import VarSymbol
 
 
@@ -51,7 +52,15 @@ class StmtChecks(CheckerBase):
                 self.d.error(
                     "E070", f"{word} outside a loop", s.pos, "EXIT and CONTINUE belong inside FOR, WHILE or REPEAT"
                 )
-        elif isinstance(s, (A.Return, A.Label, A.Jump)):
+        elif isinstance(s, A.Return):
+            if scope.sfc_part is not None:
+                self.d.error(
+                    "E156",
+                    f"RETURN in {scope.sfc_part} of an SFC body",
+                    s.pos,
+                    "it would end the POU's whole cycle; use IF to skip the rest",
+                )
+        elif isinstance(s, (A.Label, A.Jump)):
             pass  # where a JMP goes: checker_jumps.py
         elif isinstance(s, A.SetReset):
             ty = self.lvalue(s.target, scope)
@@ -191,6 +200,13 @@ class StmtChecks(CheckerBase):
                     f"'{sym.name}' is a CONSTANT",
                     e.pos,
                     "remove CONSTANT from its declaration or assign another variable",
+                )
+            elif sym.type is STEP_TYPE:
+                self.d.error(
+                    "E157",
+                    f"'{sym.name}' is an SFC step: its flags X and T are set by the sequence",
+                    e.pos,
+                    "change the step through the transitions; an action can set a variable instead",
                 )
             elif sym.section == "VAR_INPUT" and sym.owner is not None and sym.owner is scope.pou:
                 self._own_input_assigned(sym, e.pos)

@@ -12,11 +12,12 @@ from bisect import bisect_right
 from typing import Any
 
 from . import types as T
-from .codegen_base import CodeGenBase, FnState, py_literal
+from .codegen_base import FnState, py_literal
+from .codegen_sfc import SFC_SLOT, SFC_SLOT_TYPE, SfcGen
 from .symbols import POUInfo
 
 
-class PouGen(CodeGenBase):
+class PouGen(SfcGen):
     """Classes, functions and initial values."""
 
     def _struct_class(self, st: T.StructType) -> None:
@@ -229,7 +230,9 @@ class PouGen(CodeGenBase):
         self.indent += 1
         stored = [v for v in pou.vars.values() if v.location is None and not self._temp_local(v)]
         located = [v for v in pou.vars.values() if v.location is not None]
-        self.emit(f"__slots__ = ({''.join(repr(v.pyname) + ', ' for v in stored)})")
+        hidden = [(SFC_SLOT, SFC_SLOT_TYPE)] if pou.sfc is not None else []  # not a variable
+        slots = [v.pyname for v in stored] + [h[0] for h in hidden]
+        self.emit(f"__slots__ = ({''.join(repr(n) + ', ' for n in slots)})")
         meta = [(v.name, v.pyname, v.type, v.section) for v in pou.vars.values() if not self._temp_local(v)]
         self.emit(f"_VARS_ = {self.const(tuple(meta))}")
         for v in located:
@@ -253,14 +256,19 @@ class PouGen(CodeGenBase):
                 continue
             self._emit_init(f"self.{v.pyname}", v.type, v.init_value)
         self._emit_ref_inits()
+        if pou.sfc is not None:
+            self._sfc_init(pou)
         self.indent -= 1
-        self._assign_copy_methods(pou.pyname, [(v.pyname, v.type) for v in stored])
+        self._assign_copy_methods(pou.pyname, [(v.pyname, v.type) for v in stored] + hidden)
         self.emit("")
         self.pos = pou.node.pos
         self.emit("def __call__(self):")
         self.indent += 1
         self._temps_init(pou)
-        self._body(pou.node.body)
+        if pou.sfc is not None:
+            self._sfc_body(pou)
+        else:
+            self._body(pou.node.body)
         self.indent -= 1
         for act in pou.actions.values():  # an ACTION: a method on the same variables
             self.pos = act.node.pos

@@ -21,6 +21,7 @@ Code ranges (keep them stable, users search for them):
   E070-E079  control flow
   E080-E089  direct (located) addresses
   E090-E099  configuration, resources, tasks (E094: a VAR_CONFIG path)
+  E150-E159  SFC (st/checker_sfc.py); W150 a step no transition reaches
   W1xx       warnings (same tens as the error they soften: W121 ~ E021,
              W130 ~ E030 where the profile allows what IEC forbids)
 """

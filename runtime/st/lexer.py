@@ -220,6 +220,13 @@ _SOFT_FOLLOW = {
 # Reserved operator keywords that are also standard functions (AND(a, b)).
 _OPERATOR_FUNCTIONS = frozenset(("AND", "OR", "XOR", "NOT", "MOD"))
 _OPEN_PAREN = re.compile(r"[ \t\f\r\n\v]*\(")
+# The SFC keywords that open an element (build_sfc.py) are soft: where a
+# statement could start too, they are keywords only when what follows reads
+# like SFC (a name; for TRANSITION also FROM or '(PRIORITY'), so that
+# ``step := 1;`` and ``action();`` stay statements.
+_SFC_OPENERS = frozenset(("INITIAL_STEP", "STEP", "TRANSITION", "ACTION"))
+_SFC_FOLLOWS = re.compile(r"[ \t\f\r\n\v]+[a-z_]", re.ASCII | re.IGNORECASE)
+_PRIORITY_FOLLOWS = re.compile(r"[ \t\f\r\n\v]*\([ \t\f\r\n\v]*PRIORITY\b", re.ASCII | re.IGNORECASE)
 # Tokens that end an operand: after them AND, OR ... are operators.
 _ENDS_OPERAND = frozenset(
     ("NAME", "INT", "REAL", "BASED_INT", "C_HEX", "HASH_LIT", "STRING_LIT", "WSTRING_LIT", "LOCATED", "BIT_REF")
@@ -244,6 +251,13 @@ class Lexer:
         self.master = re.compile(_WHITESPACE + "(?:" + "|".join(groups) + ")", re.ASCII)
         self.contextual = [(n, re.compile(terminals[n].regexp, re.ASCII)) for n in _CONTEXTUAL]
         self.int_re = re.compile(terminals["INT"].regexp, re.ASCII)
+
+    @staticmethod
+    def _sfc_follows(kw: str, text: str, pos: int) -> bool:
+        """Whether the SFC keyword kw, ending at pos, opens an SFC element."""
+        if _SFC_FOLLOWS.match(text, pos):
+            return True
+        return kw == "TRANSITION" and _PRIORITY_FOLLOWS.match(text, pos) is not None
 
     def tokens(
         self, text: str, accepts: Callable[[], dict | None], bad: Callable, fits: Callable[[str], bool] = bool
@@ -302,9 +316,12 @@ class Lexer:
                                     break
                         else:
                             if kw is not None and kw in row:
+                                kind = kw
                                 follow = _SOFT_FOLLOW.get(kw)
-                                if follow is None or follow.match(text, pos):
-                                    kind = kw
+                                if follow is not None and not follow.match(text, pos):
+                                    kind = "NAME"
+                                elif kw in _SFC_OPENERS and "NAME" in row and not self._sfc_follows(kw, text, pos):
+                                    kind = "NAME"
                 else:
                     kind = kw
                     if kw in _OPERATOR_FUNCTIONS and prev not in _ENDS_OPERAND and _OPEN_PAREN.match(text, pos):

@@ -59,6 +59,7 @@ class POUInfo:
     library: bool = False  # from fblocks (not the user's files)
     native: Any = None  # Python implementation of an external POU
     actions: dict = field(default_factory=dict)  # UPPER -> ActionInfo (PROGRAM, FUNCTION_BLOCK)
+    sfc: Any = None  # checker_sfc.SfcInfo of an SFC body
 
     def params(self, *sections: str) -> list:
         return [v for v in self.vars.values() if v.section in sections]

@@ -120,6 +120,7 @@ def test_examples_cover_every_section():
         "modbus_rtu.toml",
         "modbus_tcp.toml",
         "retain.toml",
+        "sfc.toml",
         "tasks.toml",
     ]
 

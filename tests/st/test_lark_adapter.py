@@ -224,6 +224,18 @@ END_CONFIGURATION
     "x := 1; y(z := 2);",
     "FUNCTION_BLOCK fb2\n;\nACTION A: ; END_ACTION\nEND_FUNCTION_BLOCK\nACTION fb2.B x := 1; END_ACTION;",
     "top: x := 1;\nJMP top;",
+    """
+FUNCTION_BLOCK seq
+VAR go : BOOL; lamp : BOOL; n : INT; END_VAR
+INITIAL_STEP s1: lamp(N); act(L, T#1s, lamp); END_STEP
+STEP s2: END_STEP;
+STEP s3: END_STEP
+TRANSITION t1 (PRIORITY := 1) FROM s1 TO (s2, s3) := go; END_TRANSITION
+TRANSITION t2 FROM (s2, s3) TO s1 : t2 := TRUE; END_TRANSITION;
+ACTION act: n := n + 1; END_ACTION
+ACTION other n := 0; END_ACTION;
+END_FUNCTION_BLOCK
+""",
 ]
 
 
