@@ -22,7 +22,8 @@ Code ranges (keep them stable, users search for them):
   E080-E089  direct (located) addresses
   E090-E099  configuration, resources, tasks (E094: a VAR_CONFIG path)
   W1xx       warnings (same tens as the error they soften: W121 ~ E021,
-             W130 ~ E030 where the profile allows what IEC forbids)
+             W122 ~ E022, W130 ~ E030 where the profile allows what IEC
+             forbids)
 """
 
 from __future__ import annotations
