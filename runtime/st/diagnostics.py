@@ -23,7 +23,8 @@ Code ranges (keep them stable, users search for them):
   E090-E099  configuration, resources, tasks (E094: a VAR_CONFIG path)
   W1xx       warnings (same tens as the error they soften: W121 ~ E021,
              W122 ~ E022, W130 ~ E030 where the profile allows what IEC
-             forbids)
+             forbids; W101-W103 the parser: W102 MatIEC embedded C, W103 an
+             attribute not honoured, pragmas.py)
 """
 
 from __future__ import annotations
