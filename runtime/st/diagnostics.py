@@ -10,7 +10,8 @@ Code ranges (keep them stable, users search for them):
              file too large, E008 comments nested too deeply
   E009       internal error (a bug in softplc; the input is reported, not lost)
   E010-E019  names and declarations (E014: a STRUCT or FUNCTION_BLOCK that
-             contains itself)
+             contains itself; E018 a qualified_only list's variable without
+             its list, E019 a namespace or list problem: namespaces.py)
   E020-E029  types and conversions
   E030-E039  assignment targets
   E040-E049  calls (E044: a comma ending an argument list, where the profile

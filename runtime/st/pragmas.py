@@ -11,7 +11,8 @@ syntax error. This module says what softplc makes of them:
   Python and runs no C, so the program does less than it does there, and
   the warning says so. ``matiec`` warns too: that is where it matters.
 * ``{attribute 'name'}`` and ``{attribute 'name' := 'value'}`` (CODESYS,
-  TwinCAT): ``call_after_init``
+  TwinCAT): ``qualified_only`` before a VAR_GLOBAL list and ``hide``
+  before a declaration are honoured (namespaces.py); ``call_after_init``
   (a method called after FB_init) and ``monitoring := 'call'`` (a property
   read by calling it) are ignored with W103; ``monitoring := 'variable'``
   is what softplc does anyway. Every other attribute, and every other
