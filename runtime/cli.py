@@ -119,6 +119,27 @@ def _compile(files, profile: str):
     return prog
 
 
+def _profile_hint(files, profile: str, errors: int, warnings: int) -> None:
+    """When the files read like another dialect (st/dialects.py) and that
+    profile checks them with fewer errors (or, with none, fewer warnings),
+    say so: 'reads like schneider (0x literals ...); try --profile schneider'."""
+    from .program import check_files
+    from .st import dialects
+
+    texts = []
+    for f in files:
+        try:
+            texts.append(Path(f).read_text(encoding="utf-8", errors="replace"))
+        except OSError:
+            return
+    for other, whats in dialects.candidates(texts, profile):
+        diagnostics, _sources = check_files(list(files), profile=other)
+        e = sum(1 for d in diagnostics if d.is_error)
+        if e < errors or (e == errors == 0 and len(diagnostics) < warnings):
+            _echo_err(dialects.hint(other, whats))
+            return
+
+
 # ---------------------------------------------------------------- commands
 
 
@@ -142,6 +163,8 @@ def check(files, profile: str) -> None:
     diagnostics, sources = check_files(list(files), profile=profile)
     errors, warnings = _report(diagnostics, sources)
     _echo_err(f"profile: {get_profile(profile).name}")  # what decided the dialect's questions
+    if errors or warnings:
+        _profile_hint(files, get_profile(profile).name, errors, warnings)
     _summary(errors, warnings)
     sys.exit(EXIT_COMPILE if errors else EXIT_OK)
 

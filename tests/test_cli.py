@@ -361,3 +361,61 @@ def test_console_script_is_installed():
         pytest.skip("console script not installed next to this Python")
     proc = subprocess.run([str(script), "--help"], capture_output=True, text=True, stdin=subprocess.DEVNULL, timeout=60)
     assert proc.returncode == 0 and "exec" in proc.stdout
+
+
+# ---------------------------------------------------------------- check: another profile
+
+
+def test_check_suggests_schneider_for_the_schneider_samples():
+    proc = softplc("check", REPO / "st_programs" / "ltmr_read_sdo.st")
+    assert proc.returncode == 1
+    no_traceback(proc)
+    assert proc.stderr.splitlines()[-3:-1] == [
+        "profile: codesys",
+        "reads like schneider (0x literals, %MW..:X bits and %MW..:n tables, ADR#); try --profile schneider",
+    ]
+    assert softplc("check", "--profile", "schneider", REPO / "st_programs" / "ltmr_read_sdo.st").returncode == 0
+
+
+TWINCAT_CALL = """\
+FUNCTION Add2 : INT
+VAR_INPUT a : INT; b : INT; END_VAR
+Add2 := a + b;
+END_FUNCTION
+PROGRAM main
+VAR x : INT; END_VAR
+x := Add2(a := 1, b := 2,);
+END_PROGRAM
+"""
+
+# MatIEC: comments do not nest, so '(* (*' closes at the first '*)'; with
+# CODESYS nesting the rest of the file would be a comment.
+MATIEC_FILE = """\
+PROGRAM main
+VAR x : INT; END_VAR
+(* counts (* cycles *)
+x := x + 1;
+{{ printf("%d", 1); }}
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize(
+    "name, text, line",
+    [
+        ("call.st", TWINCAT_CALL, "reads like twincat (a comma ending an argument list); try --profile twincat"),
+        ("beremiz.st", MATIEC_FILE, "reads like matiec ({{ }} embedded C); try --profile matiec"),
+    ],
+)
+def test_check_suggests_the_profile_a_file_reads_like(st, name, text, line):
+    proc = softplc("check", st(name, text))
+    assert proc.returncode == 1
+    assert proc.stderr.splitlines()[-2] == line
+
+
+def test_check_suggests_nothing_when_no_other_profile_does_better(st):
+    # a MatIEC marker, but the error (an unknown name) is the same everywhere
+    proc = softplc("check", st("bad.st", "PROGRAM p\nVAR x : INT; END_VAR\n{{ x++; }}\nx := y;\nEND_PROGRAM\n"))
+    assert proc.returncode == 1
+    assert "reads like" not in proc.stderr
+    assert proc.stderr.splitlines()[-2] == "profile: codesys"

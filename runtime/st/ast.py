@@ -113,6 +113,9 @@ class Located(Expr):
 class Name(Expr):
     name: str
     sym: Any = field(default=None, kw_only=True, repr=False)
+    # The global variable list it was written with (GVL.x -> 'GVL'): only
+    # globals are then looked up (namespaces.py).
+    qualifier: str | None = field(default=None, kw_only=True)
 
 
 @dataclass(slots=True, eq=False)
@@ -386,6 +389,10 @@ class SourceFile(Node):
 
     path: str
     decls: list
+    # The names a '.' follows (UPPER): 'GVL' of GVL.x, 'Tc2_Standard' of
+    # Tc2_Standard.TON, 'motor' of motor.speed. namespaces.py reads a file
+    # only when one of them may be a namespace.
+    qualified_bases: set = field(default_factory=set)
     # Statements outside any POU (a Schneider section pasted as is): wrapped
     # by the parser into a PROGRAM named after the file.
 

@@ -54,6 +54,7 @@ class BuilderBase:
     def __init__(self, ctx: BuildContext) -> None:
         self.ctx = ctx
         self.file = ctx.path
+        self.qualified_bases: set = set()  # names before a '.' (ast.SourceFile)
 
     def _tpos(self, t: Tok) -> ast.Pos:
         return ast.Pos(self.file, t.line, t.column, t.end_line, t.end_column)

@@ -16,8 +16,9 @@ from .lexer import Tok
 _NAME_TYPES = frozenset(("NAME", "SET", "RESET"))
 
 
-def _identifier_from_path(path: str) -> str:
-    """The PROGRAM name for a file of bare statements: 'ltmr/write-sdo.st' -> 'write_sdo'."""
+def identifier_from_path(path: str) -> str:
+    """The name a file gives: to the PROGRAM of a file of bare statements, to
+    a global variable list (namespaces.py). 'ltmr/write-sdo.st' -> 'write_sdo'."""
     stem = re.sub(r"[^A-Za-z0-9_]+", "_", Path(path).stem)
     stem = re.sub(r"_{2,}", "_", stem).strip("_")
     if not stem:
@@ -47,18 +48,18 @@ class AstBuilder(StmtBuilder, SfcBuilder):
                 )
             else:
                 decls.append(d)
-        return ast.SourceFile(self.ctx.path, decls, pos=ast.Pos(self.file, 1, 1))
+        return ast.SourceFile(self.ctx.path, decls, self.qualified_bases, pos=ast.Pos(self.file, 1, 1))
 
     def bare_source(self, c):
         body = [s for s in c if s is not None]
         pou = ast.POU(
             "PROGRAM",
-            _identifier_from_path(self.ctx.path),
+            identifier_from_path(self.ctx.path),
             [],
             body,
             pos=self._span(body[0], body[-1]) if body else ast.Pos(self.file, 1, 1),
         )
-        return ast.SourceFile(self.ctx.path, [pou], pos=ast.Pos(self.file, 1, 1))
+        return ast.SourceFile(self.ctx.path, [pou], self.qualified_bases, pos=ast.Pos(self.file, 1, 1))
 
     def _pou(self, kind: str, c) -> ast.POU:
         var_blocks = [x for x in c if isinstance(x, ast.VarBlock)]
@@ -200,6 +201,11 @@ class AstBuilder(StmtBuilder, SfcBuilder):
 
     def named_type(self, c):
         return ast.NamedType(c[0].value, pos=self._tpos(c[0]))
+
+    def qualified_type(self, c):
+        # Tc2_Standard.TON: the checker resolves the namespace (namespaces.py)
+        self.qualified_bases.add(c[0].value.upper())
+        return ast.NamedType(".".join(t.value for t in c), pos=self._span(c[0], c[-1]))
 
     def string_type(self, c):
         return ast.StringTypeSpec(c[0].type == "WSTRING", c[2] if len(c) > 1 else None, pos=self._span(c[0], c[-1]))

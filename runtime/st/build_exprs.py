@@ -169,6 +169,8 @@ class ExprBuilder(BuilderBase):
 
     def member(self, c):
         base, t = c
+        if isinstance(base, ast.Name):
+            self.qualified_bases.add(base.name.upper())
         return ast.Member(base, t.value, pos=self._span(base, t))
 
     def bit_access(self, c):

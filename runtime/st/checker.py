@@ -29,6 +29,7 @@ from .checker_storage import StorageChecks
 from .checker_types import TypeChecks
 from .checker_varconfig import VarConfigChecks
 from .conversions import const_as
+from .namespaces import NamespaceChecks
 
 __all__ = ["AddressSpace", "CheckedProgram", "Checker", "ConfigInfo", "const_as"]
 
@@ -55,6 +56,7 @@ class Checker(
     ActionChecks,
     JumpChecks,
     SfcChecks,
+    NamespaceChecks,
 ):
     """Checker(profile, diags, std_functions, natives=None, image=None).run(files)
     -> CheckedProgram. std_functions: UPPER name -> standard function
@@ -66,6 +68,7 @@ class Checker(
         for sf in files:
             self._collect(sf)
         self._collect_actions(files)
+        self._resolve_namespaces(files)
         for key in list(self.type_decls):
             self._resolve_named_type(key, self.type_decls[key].pos)
         global_blocks: list[tuple[A.VarBlock, A.Configuration | None]] = [
@@ -83,6 +86,7 @@ class Checker(
         for pou in self.pous.values():
             self._declare_pou_vars(pou)
             self._declare_sfc(pou)
+        self._mark_hidden()
         self._check_containment()
         self._check_sizes()
         for st in self.structs:

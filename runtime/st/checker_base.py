@@ -128,6 +128,9 @@ class CheckerBase:
 
         def _address_fits(self, addr: A.LocatedAddress, ty: T.ElementaryType | None, pos: A.Pos) -> bool: ...
 
+        # namespaces
+        def _check_qualified_only(self, e: A.Name) -> None: ...
+
         # checker_varconfig
         def _check_placeholder(self, sym: VarSymbol) -> None: ...
 

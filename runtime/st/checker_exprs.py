@@ -143,12 +143,16 @@ class ExprChecks(CheckerBase):
         key = e.name.upper()
         pou = scope.pou
         sym = None
-        if pou is not None:
+        if pou is not None and e.qualifier is None:
             sym = scope.names.get(key) or pou.vars.get(key)
             if sym is None and pou.result is not None and key == pou.name.upper():
                 sym = pou.result
         if sym is None:
             sym = self.globals.get(key)
+            if sym is not None:
+                self._check_qualified_only(e)
+            elif e.qualifier is not None:
+                return None  # GVL.y where GVL has no y: E019 (namespaces.py)
         if sym is not None:
             e.sym = sym
             if sym.constant and sym.const_value is not None:

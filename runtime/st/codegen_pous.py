@@ -220,6 +220,13 @@ class PouGen(SfcGen):
         else:
             self.emit(f"{target} = {self._scalar_plan_code(ty, plan)}")
 
+    def _hidden(self, syms) -> None:
+        """_HIDDEN_: the names of {attribute 'hide'} variables, which
+        listings leave out (valuejson.encode_instance)."""
+        hidden = frozenset(v.name for v in syms if v.hidden)
+        if hidden:
+            self.emit(f"_HIDDEN_ = {self.const(hidden)}")
+
     # ------------------------------------------------------------ POU classes
 
     def _fb_class(self, pou: POUInfo) -> None:
@@ -235,6 +242,7 @@ class PouGen(SfcGen):
         self.emit(f"__slots__ = ({''.join(repr(n) + ', ' for n in slots)})")
         meta = [(v.name, v.pyname, v.type, v.section) for v in pou.vars.values() if not self._temp_local(v)]
         self.emit(f"_VARS_ = {self.const(tuple(meta))}")
+        self._hidden(pou.vars.values())
         for v in located:
             idx = self.accessor(v.location, T.base_elementary(v.type))
             self.emit(f"{v.pyname} = property(lambda self: _A{idx}g())")
@@ -351,6 +359,7 @@ class PouGen(SfcGen):
         self.emit(f"__slots__ = ({''.join(repr(g.pyname) + ', ' for g in stored)})")
         meta = [(g.name, g.pyname, g.type, "VAR_GLOBAL") for g in gl]
         self.emit(f"_VARS_ = {self.const(tuple(meta))}")
+        self._hidden(gl)
         for g in gl:
             if g.location is not None:
                 idx = self.accessor(g.location, T.base_elementary(g.type))

@@ -176,6 +176,29 @@ def enum_example(t: T.Type) -> str:
     return ""
 
 
+def _literal_out_of_range(value: int, de: T.ElementaryType, e: A.Expr, profile: Profile, diags: DiagnosticBag) -> bool:
+    """An untyped integer constant that does not fit de: E022, or where the
+    profile converts literals (CODESYS, TwinCAT: the literal is typed as the
+    smallest type holding it and converted like a variable, warning C0195
+    for UINT := -1) W122 and the value wrapped to de (const_as)."""
+    msg = f"{value} does not fit {de.name} ({de.lo}..{de.hi})"
+    fits_an_integer = T.int_fits(T.LINT, value) or T.int_fits(T.ULINT, value)
+    if profile.literal_range == "warning" and fits_an_integer:
+        wrapped = rtlib.wrap(de, value)
+        diags.warning(
+            "W122",
+            f"{msg}: converted implicitly to {wrapped}",
+            e.pos,
+            f"write the value {de.name} holds ({wrapped}), or use a larger type",
+        )
+        return True
+    hint = "use a larger type, or write the value the type holds"
+    if fits_an_integer:
+        hint += f" (the {names_where(lambda p: p.literal_range == 'warning')} profiles convert it with a warning)"
+    diags.error("E022", msg, e.pos, hint)
+    return False
+
+
 def check_implicit(src: T.Type, dst: T.Type, e: A.Expr, what: str, profile: Profile, diags: DiagnosticBag) -> bool:
     """Report unless a value of type src (the expression e) may be stored
     into dst implicitly (IEC 61131-3 Fig. 11, softened by the profile).
@@ -190,12 +213,9 @@ def check_implicit(src: T.Type, dst: T.Type, e: A.Expr, what: str, profile: Prof
         and is_flexible(e)
         and not T.int_fits(de0, e.const)
     ):
-        diags.error(
-            "E022",
-            f"{e.const} does not fit {de0.name} ({de0.lo}..{de0.hi})",
-            e.pos,
-            "use a larger type or a typed literal that wraps explicitly",
-        )
+        if isinstance(d, T.ElementaryType):
+            return _literal_out_of_range(e.const, de0, e, profile, diags)
+        diags.error("E022", f"{e.const} does not fit {de0.name} ({de0.lo}..{de0.hi})", e.pos, "use a larger type")
         return False
     if same_type(s, d):
         return True

@@ -10,7 +10,8 @@ Code ranges (keep them stable, users search for them):
              file too large, E008 comments nested too deeply
   E009       internal error (a bug in softplc; the input is reported, not lost)
   E010-E019  names and declarations (E014: a STRUCT or FUNCTION_BLOCK that
-             contains itself)
+             contains itself; E018 a qualified_only list's variable without
+             its list, E019 a namespace or list problem: namespaces.py)
   E020-E029  types and conversions
   E030-E039  assignment targets
   E040-E049  calls (E044: a comma ending an argument list, where the profile
@@ -23,7 +24,9 @@ Code ranges (keep them stable, users search for them):
   E090-E099  configuration, resources, tasks (E094: a VAR_CONFIG path)
   E150-E159  SFC (st/checker_sfc.py); W150 a step no transition reaches
   W1xx       warnings (same tens as the error they soften: W121 ~ E021,
-             W130 ~ E030 where the profile allows what IEC forbids)
+             W122 ~ E022, W130 ~ E030 where the profile allows what IEC
+             forbids; W101-W103 the parser: W102 MatIEC embedded C, W103 an
+             attribute not honoured, pragmas.py)
 """
 
 from __future__ import annotations

@@ -140,6 +140,17 @@ def strip_comments(text: str, error: Callable, nested: bool = True) -> tuple:
                 end = len(text)
             else:
                 end = close + 2
+        elif what == "{" and text.startswith("{{", start):
+            # MatIEC's embedded C, {{ ... }}: it may hold single braces and
+            # span lines; the first '}}' ends it. Its text keeps one brace
+            # each side ('{ ... }'), which tells it from other pragmas.
+            close = text.find("}}", start + 2)
+            if close < 0:
+                error("E004", "unterminated pragma: '{{' is never closed", start, start + 2, "close it with '}}'")
+                end = len(text)
+            else:
+                end = close + 2
+                pragmas.append(Pragma(text[start + 1 : end - 1], line_col(text, start), line_col(text, end)))
         elif what == "{":
             close = text.find("}", start + 1)
             if close < 0:

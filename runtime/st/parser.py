@@ -7,7 +7,9 @@ Never raises: every problem becomes a coded diagnostic in ``diags`` (E001
 syntax, E002 invalid character, E003 invalid literal, E004 unterminated
 comment/string/pragma, E005 structural, E006 nested too deeply, E007 file
 too large, E008 comments nested too deeply, E009 internal, E047 an
-ACTION named Pou.Name inside a POU; W101 ignored EXTENDS/IMPLEMENTS) and
+ACTION named Pou.Name inside a POU; W101 ignored EXTENDS/IMPLEMENTS, W102
+ignored MatIEC embedded C {{ }}, W103 an attribute accepted but not
+honoured: pragmas.py) and
 the result holds whatever could be parsed.
 
 How it works:
@@ -38,6 +40,7 @@ from .lexer import INVALID_RUN, Tok, line_col, strip_comments
 from .limits import MAX_ERRORS, MAX_NESTING, MAX_SOURCE_CHARS
 from .parse_recovery import Recovery
 from .parse_stack import GiveUp, Rejected, TooDeep
+from .pragmas import warn_ignored
 from .profile import DEFAULT, Profile
 from .st_grammar import Grammar, grammar
 
@@ -91,6 +94,7 @@ class _Parse(Recovery):
         if not isinstance(result, ast.SourceFile):
             result = ast.SourceFile(self.path, [], pos=ast.Pos(self.path, 1, 1))
         if pragmas:
+            warn_ignored(pragmas, self.path, self.diags)
             self._attach(pragmas)
         return result
 

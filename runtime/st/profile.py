@@ -57,6 +57,18 @@ class Profile:
     # choice and wants TRUE/FALSE or BOOL#1, so that a number meant for an
     # INT does not pass silently. Any other number stays E020 everywhere.
     bool_from_0_1: bool
+    # An untyped integer literal that does not fit its target but fits some
+    # integer type (w : WORD := -1; i : INT := 40000) is an 'error' (E022)
+    # or an implicit conversion with a 'warning' (W122): the value wraps to
+    # the target as the conversion function would (-1 -> 16#FFFF, 40000 ->
+    # -25536). CODESYS and TwinCAT type a literal as the smallest type that
+    # holds it and convert it like a variable, with a warning (C0195 for
+    # UINT := -1, shown in the CODESYS and TwinCAT help of the 'warning
+    # disable' pragma); a literal too large for any integer type is C0001
+    # there too (E022 everywhere). IEC 61131-3 and MatIEC take a literal
+    # only where its value fits; schneider, which narrows nothing
+    # implicitly, is as strict.
+    literal_range: str = "error"
     # Length of a STRING declared without one.
     default_string_length: int = 80
 
@@ -87,6 +99,7 @@ CODESYS = Profile(
     own_input_assignment="warning",
     trailing_comma_in_calls=False,
     bool_from_0_1=True,
+    literal_range="warning",
 )
 
 TWINCAT = replace(CODESYS, name="twincat", trailing_comma_in_calls=True)

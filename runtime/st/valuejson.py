@@ -67,8 +67,10 @@ def encode_value(t: T.Type, v: Any) -> Any:
 def encode_instance(obj: Any, skip: frozenset = frozenset()) -> dict:
     """A PROGRAM, FUNCTION_BLOCK instance or STRUCT value as a dict of its
     variables (name as declared -> encoded value), in declaration order;
-    variables named in skip are left out."""
+    variables named in skip and those hidden by {attribute 'hide'}
+    (``_HIDDEN_``) are left out."""
     out: dict[str, Any] = {}
+    skip = skip | getattr(type(obj), "_HIDDEN_", frozenset())
     for st_name, pyname, vtype, section in type(obj)._VARS_:
         if section in SKIPPED_SECTIONS or st_name in skip:
             continue

@@ -68,8 +68,9 @@ def test_pv_and_cv_have_the_counters_type():
         "l := d.CV;\nd(PV := -1);\nEND_PROGRAM\n"
     )
     diags, _ = check_files([], texts={"t.st": src})
-    assert [(d.code, d.pos.line) for d in diags] == [("W121", 5), ("E022", 7)]
+    assert [(d.code, d.pos.line) for d in diags] == [("W121", 5), ("W122", 7)]
     assert "LINT to INT" in diags[0].message
+    assert diags[1].message.startswith("-1 does not fit UDINT")
 
 
 def test_typed_counters_are_compiled_only_into_programs_that_name_one():

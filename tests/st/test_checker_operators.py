@@ -51,7 +51,7 @@ def test_the_smallest_lint_is_a_lint_literal_beside_a_lint():
     assert codes(src) == []
     runner = run_st(src)
     assert (runner.get("a"), runner.get("b"), runner.get("c")) == (True, True, True)
-    assert [(d.code, d.message) for d in diagnostics(prog("u : UINT;", "u := -5;"))] == [
+    assert [(d.code, d.message) for d in diagnostics(prog("u : UINT;", "u := -5;"), "iec")] == [
         ("E022", "-5 does not fit UINT (0..65535)")
     ]
 

@@ -108,7 +108,9 @@ def test_what_may_be_stored_where(src, dst, profile, expected):
 
 def test_untyped_literals_adapt_where_they_fit():
     assert verdict(T.DINT, T.INT, literal(1000), "iec") == (True, [])
-    assert verdict(T.DINT, T.INT, literal(70000), "codesys") == (False, ["E022"])
+    assert verdict(T.DINT, T.INT, literal(70000), "iec") == (False, ["E022"])
+    assert verdict(T.DINT, T.INT, literal(70000), "codesys") == (True, ["W122"])
+    assert verdict(T.DINT, SUB, literal(70000), "codesys") == (False, ["E022"])
     assert verdict(T.LREAL, T.REAL, literal(0.1, "real"), "iec") == (True, [])
     assert verdict(T.INT, SUB, literal(5), "iec") == (False, ["E022"])
     assert verdict(T.INT, SUB, literal(2), "iec") == (True, [])
@@ -207,10 +209,48 @@ def test_widening_is_silent():
     assert codes(src, "iec") == []
 
 
-def test_literal_out_of_range_for_its_type():
-    assert codes(prog("x : SINT := 200;", "")) == ["E022"]
-    assert codes(prog("x : INT;", "x := 70000;")) == ["E022"]
-    assert codes(prog("x : USINT;", "x := -1;")) == ["E022"]
+@pytest.mark.parametrize("profile", ["iec", "matiec", "schneider"])
+def test_literal_out_of_range_for_its_type_is_an_error_in_the_strict_profiles(profile):
+    assert codes(prog("x : SINT := 200;", ""), profile) == ["E022"]
+    assert codes(prog("x : INT;", "x := 70000;"), profile) == ["E022"]
+    assert codes(prog("x : USINT;", "x := -1;"), profile) == ["E022"]
+    [d] = diagnostics(prog("w : UINT := -1;", ""), profile)
+    assert (d.code, d.message) == ("E022", "-1 does not fit UINT (0..65535)")
+    assert "codesys and twincat profiles convert it with a warning" in (d.hint or "")
+
+
+LITERALS_CONVERTED = prog(
+    "w : WORD := -1; i : INT := 40000; b : BYTE; u : UDINT; s : SINT;",
+    "b := 300;\nu := -1;\ns := 255;",
+)
+
+
+@pytest.mark.parametrize("profile", ["codesys", "twincat"])
+def test_a_literal_out_of_range_converts_with_a_warning_in_codesys_and_twincat(profile):
+    # CODESYS/TwinCAT type an untyped literal as the smallest type that holds
+    # it and convert it like a variable: `test2 : UINT := -1;` compiles with
+    # warning C0195 (help page of the 'warning disable' pragma). The value
+    # wraps as the conversion function does: -1 -> 16#FFFF, 40000 -> -25536.
+    found = [(d.code, d.message) for d in diagnostics(LITERALS_CONVERTED, profile)]
+    assert found == [
+        ("W122", "-1 does not fit WORD (0..65535): converted implicitly to 65535"),
+        ("W122", "40000 does not fit INT (-32768..32767): converted implicitly to -25536"),
+        ("W122", "300 does not fit BYTE (0..255): converted implicitly to 44"),
+        ("W122", "-1 does not fit UDINT (0..4294967295): converted implicitly to 4294967295"),
+        ("W122", "255 does not fit SINT (-128..127): converted implicitly to -1"),
+    ]
+    runner = run_st(LITERALS_CONVERTED, profile=profile)
+    assert [runner.get(v) for v in ("w", "i", "b", "u", "s")] == [65535, -25536, 44, 4294967295, -1]
+
+
+def test_a_literal_too_large_for_any_integer_stays_an_error_in_every_profile():
+    # CODESYS C0001: "Constant ... too large for type 'ANY_INT'"
+    src = prog("x : LINT;", "x := 18446744073709551616;")
+    assert codes(src, "codesys") == ["E022"]
+    # a subrange is checked against its own bounds, never wrapped into them
+    assert codes(prog("x : INT(1..3) := 40000;", ""), "codesys") == ["E022"]
+    # a typed literal is checked against its own type (C0001 for INT#123456)
+    assert codes(prog("x : DINT := INT#40000;", ""), "codesys") == ["E022"]
 
 
 # ---------------------------------------------------------------- 0 and 1 for BOOL

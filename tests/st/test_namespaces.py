@@ -1,0 +1,161 @@
+"""namespaces.py: global variable lists named by their file (GVL.x), the
+qualified_only and hide attributes, and the CODESYS/TwinCAT standard
+library namespaces (Standard.TON, Tc2_Standard.TON)."""
+
+from __future__ import annotations
+
+import pytest
+
+from softplc.runtime.program import check_files, compile_files
+from softplc.runtime.st.valuejson import encode_instance
+
+GVL = """{attribute 'qualified_only'}
+VAR_GLOBAL
+    speed : INT := 5;
+    {attribute 'hide'} secret : INT := 7;
+END_VAR
+"""
+
+PLAIN_GVL = """VAR_GLOBAL
+    level : INT := 40;
+END_VAR
+"""
+
+
+def run(texts: dict, cycles: int = 1, profile: str = "codesys"):
+    prog = compile_files([], profile=profile, texts=texts)
+    runner = prog.runner("main")
+    runner.run(cycles)
+    return runner
+
+
+def found(texts: dict, profile: str = "codesys") -> list:
+    diags, _sources = check_files([], profile=profile, texts=texts)
+    return [(d.code, d.pos.file, d.pos.line, d.pos.col, d.message) for d in diags]
+
+
+# ---------------------------------------------------------------- global variable lists
+
+
+def test_a_global_list_is_named_by_its_file_and_list_x_reaches_its_variable():
+    # CODESYS: a GVL object's variables are reachable as <GVL name>.<variable>;
+    # here the file GVL.st holds the list GVL.
+    main = """PROGRAM main
+VAR a : INT; b : INT; END_VAR
+GVL.speed := GVL.speed + 1;
+a := GVL.speed * 2;
+b := Plant.level + plant.LEVEL;
+END_PROGRAM
+"""
+    runner = run({"GVL.st": GVL, "plant.st": PLAIN_GVL, "main.st": main}, cycles=3)
+    assert (runner.get("speed"), runner.get("a"), runner.get("b")) == (8, 16, 80)
+
+
+def test_qualified_only_makes_a_bare_name_an_error():
+    # CODESYS {attribute 'qualified_only'} before a GVL: "the variables can
+    # only be accessed with the GVL name" (CODESYS Online Help, Attribute
+    # qualified_only).
+    main = "PROGRAM main\nVAR a : INT; END_VAR\na := speed;\nEND_PROGRAM\n"
+    [(code, file, line, col, message)] = found({"GVL.st": GVL, "main.st": main})
+    assert (code, file, line, col) == ("E018", "main.st", 3, 6)
+    assert message == "'speed' belongs to the global variable list GVL, which is qualified_only"
+    diags, _ = check_files([], texts={"GVL.st": GVL, "main.st": main})
+    assert diags[0].hint.startswith("write GVL.speed")
+
+
+def test_a_list_without_qualified_only_takes_both_spellings():
+    main = "PROGRAM main\nVAR a : INT; END_VAR\na := level + Plant.level;\nEND_PROGRAM\n"
+    assert run({"plant.st": PLAIN_GVL, "main.st": main}).get("a") == 80
+
+
+def test_a_variable_named_like_a_list_wins_over_the_list():
+    main = """TYPE Pair : STRUCT speed : INT := 100; END_STRUCT END_TYPE
+PROGRAM main
+VAR GVL : Pair; a : INT; END_VAR
+a := GVL.speed;
+END_PROGRAM
+"""
+    assert run({"GVL.st": GVL, "main.st": main}).get("a") == 100
+
+
+def test_list_x_is_the_global_even_where_a_local_is_called_x():
+    main = "PROGRAM main\nVAR speed : INT := 1; a : INT; END_VAR\na := speed + GVL.speed;\nEND_PROGRAM\n"
+    assert run({"GVL.st": GVL, "main.st": main}).get("a") == 6
+
+
+def test_a_variable_the_list_does_not_have_is_e019():
+    main = "PROGRAM main\nVAR a : INT; END_VAR\na := GVL.sped;\nEND_PROGRAM\n"
+    [(code, file, line, col, message)] = found({"GVL.st": GVL, "main.st": main})
+    assert (code, file, line, col) == ("E019", "main.st", 3, 6)
+    assert message == "the global variable list GVL has no variable 'sped'"
+
+
+# ---------------------------------------------------------------- hide
+
+
+def test_hide_leaves_a_variable_out_of_listings_but_a_path_still_reaches_it():
+    # CODESYS {attribute 'hide'}: the variable is not shown in monitoring.
+    main = """PROGRAM main
+VAR
+    shown : INT;
+    {attribute 'hide'} internal : INT;
+END_VAR
+internal := internal + 1;
+shown := internal * 10;
+END_PROGRAM
+"""
+    runner = run({"GVL.st": GVL, "main.st": main}, cycles=2)
+    assert encode_instance(runner.instance) == {"shown": 20}
+    assert encode_instance(runner.globals, skip=runner.program.library_globals) == {"speed": 5}
+    assert (runner.get("internal"), runner.get("secret")) == (2, 7)
+
+
+# ---------------------------------------------------------------- library namespaces
+
+TIMERS = """PROGRAM main
+VAR
+    t1 : Tc2_Standard.TON;
+    t2 : Standard.TOF;
+    edge : standard.R_TRIG;
+    n : INT;
+    q1 : BOOL;
+    pulses : INT;
+END_VAR
+t1(IN := TRUE, PT := T#30ms);
+q1 := t1.Q;
+edge(CLK := q1);
+IF edge.Q THEN pulses := pulses + 1; END_IF
+n := Tc2_Standard.LEN('abcd') + Standard.FIND('abcd', 'c');
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("profile", ["codesys", "twincat"])
+def test_standard_library_namespaces_name_our_blocks(profile):
+    # CODESYS "Standard" and TwinCAT "Tc2_Standard" hold the IEC timers,
+    # counters, triggers and string functions; Tc2_Standard.TON is our TON.
+    runner = run({"main.st": TIMERS}, cycles=5, profile=profile)
+    # TON: Q after PT = 30 ms, the 4th call at 10 ms a cycle (clock 0, 10, 20, 30, 40)
+    assert (runner.get("q1"), runner.get("t1.ET"), runner.get("pulses"), runner.get("n")) == (True, 30, 1, 7)
+
+
+def test_an_unknown_namespace_is_e019_with_the_known_ones():
+    src = "PROGRAM main\nVAR t : Foo.TON; END_VAR\nt(IN := TRUE, PT := T#1s);\nEND_PROGRAM\n"
+    diags, _ = check_files([], texts={"plant.st": PLAIN_GVL, "main.st": src})
+    [d] = diags
+    assert (d.code, d.pos.file, d.pos.line, d.pos.col) == ("E019", "main.st", 2, 9)
+    assert d.message == "unknown namespace 'Foo' in 'Foo.TON'"
+    assert d.hint == "known namespaces: Standard, Tc2_Standard, plant"
+
+
+def test_a_vendor_library_softplc_lacks_is_named():
+    src = "PROGRAM main\nVAR b : Tc2_Utilities.BLINK; x : INT; END_VAR\nx := Util.LEN('a');\nEND_PROGRAM\n"
+    found_ = [(c, line, col, m) for c, _f, line, col, m in found({"main.st": src})]
+    assert ("E019", 2, 9, "softplc has no library Tc2_Utilities ('Tc2_Utilities.BLINK')") in found_
+    assert ("E019", 3, 6, "softplc has no library Util ('Util.LEN')") in found_
+
+
+def test_a_name_the_standard_library_does_not_hold_is_e019():
+    src = "PROGRAM main\nVAR x : INT; END_VAR\nx := Standard.SQRTX(4);\nEND_PROGRAM\n"
+    message = "'SQRTX' is not in the Standard library as softplc has it"
+    assert ("E019", "main.st", 3, 6, message) in found({"main.st": src})
