@@ -12,7 +12,7 @@ from ..st import refs, rtlib, values
 from ..st.checker import CheckedProgram
 from ..st.codegen import GeneratedModule
 from ..st.diagnostics import Diagnostic, SourceSet
-from ..st.faults import RangeFault, fault_from_exception, out_of_bounds, out_of_range
+from ..st.faults import NULL_REFERENCE, RangeFault, fault_from_exception, out_of_bounds, out_of_range
 from ..st.profile import Profile
 from .context import ExecContext
 from .variables import locate
@@ -32,7 +32,7 @@ def _with_fields(obj, setters):
 
 def _deref(ref):
     if ref is None:
-        raise RangeFault("reference", "invalid reference: dereferenced a NULL REF_TO/POINTER")
+        raise RangeFault("reference", NULL_REFERENCE)
     return ref
 
 

@@ -21,6 +21,7 @@ from .checker_config import ConfigChecks, ConfigInfo
 from .checker_decls import DeclChecks
 from .checker_exprs import ExprChecks
 from .checker_operators import OperatorChecks
+from .checker_refs import RefChecks
 from .checker_stmts import StmtChecks
 from .checker_storage import StorageChecks
 from .checker_types import TypeChecks
@@ -47,6 +48,7 @@ class Checker(
     OperatorChecks,
     StmtChecks,
     CallChecks,
+    RefChecks,
     ConfigChecks,
     VarConfigChecks,
 ):

@@ -72,7 +72,7 @@ class CallChecks(CheckerBase):
             )
             self._check_args_loosely(e, scope)
             return None
-        if isinstance(callee, (A.Member, A.Index)):  # inst.sub(...), timers[i](...)
+        if isinstance(callee, (A.Member, A.Index, A.Deref)):  # inst.sub(...), timers[i](...), r^(...)
             return self._fb_call(e, callee, scope, as_statement)
         self.d.error("E043", "this cannot be called", e.pos)
         return None
@@ -180,6 +180,10 @@ class CallChecks(CheckerBase):
                 self.d.error("E040", f"'{param.name}' is an input; pass it with :=", a.pos)
                 continue
             if a.value is None:
+                continue
+            if T.is_reference(param.type):  # a REFERENCE TO parameter is bound to the argument
+                if self.bind_argument(param, a.value, scope):
+                    (info.inouts if param.section == "VAR_IN_OUT" else info.inputs).append((param, a.value))
                 continue
             if param.section == "VAR_IN_OUT":
                 vty = self.expr(a.value, scope)
@@ -420,6 +424,9 @@ class CallChecks(CheckerBase):
     def _unify(self, a: T.Type, b: T.Type, e: A.Expr) -> T.Type | None:
         if same_type(a, b):
             return a
+        for one, other in ((a, b), (b, a)):  # SEL(c, NULL, REF(x)): NULL is no reference of that type
+            if isinstance(T.resolve(one), T.NullType) and isinstance(T.resolve(other), T.RefType):
+                return other
         ae, be = T.base_elementary(a), T.base_elementary(b)
         ra, rb = T.resolve(a), T.resolve(b)
         if isinstance(ra, T.StringType) and isinstance(rb, T.StringType):
@@ -434,6 +441,10 @@ class CallChecks(CheckerBase):
 
     def _builtin_call(self, e: A.Call, key: str, scope: Scope) -> T.Type | None:
         args = list(e.args)
+        if key == "__ISVALIDREF":
+            ty = self.isvalidref(e, scope)
+            e.target = CallInfo("builtin", func=key, args=[args[0].value] if ty is not None else [])
+            return ty
         if key in ("TIME", "LTIME"):
             if args:
                 self.d.error(

@@ -186,7 +186,7 @@ class OperatorChecks(CheckerBase):
             ok = lres is rres
         elif isinstance(lres, T.StringType) and isinstance(rres, T.StringType):
             ok = lres.wide == rres.wide
-        elif isinstance(lres, T.RefType) or isinstance(rres, T.RefType):
+        elif isinstance(lres, (T.RefType, T.NullType)) or isinstance(rres, (T.RefType, T.NullType)):
             # r = 0 / r <> 0 is how CODESYS and TwinCAT test for NULL
             def refish(t, side):
                 return isinstance(t, (T.RefType, T.NullType)) or side.const == 0

@@ -11,6 +11,7 @@ import itertools
 from bisect import bisect_right
 from typing import Any
 
+from . import ast as A
 from . import types as T
 from .codegen_base import CodeGenBase, FnState, py_literal
 from .symbols import POUInfo
@@ -92,7 +93,7 @@ class PouGen(CodeGenBase):
         return "None"
 
     def _scalar_plan_code(self, ty: T.Type, plan: Any) -> str:
-        if plan is None:
+        if plan is None or _is_ref_plan(plan):  # a REF() inside an aggregate: set by _emit_ref_inits
             return self._default_code(ty)
         return py_literal(plan)
 
@@ -167,7 +168,7 @@ class PouGen(CodeGenBase):
             attr, fty = self._member_attr(t, key)
             if T.resolve(fty).is_aggregate:
                 setters.append((attr, self._aggregate_expr(fty, sub)))
-            elif sub is not None:
+            elif sub is not None and not _is_ref_plan(sub):
                 setters.append((attr, py_literal(sub)))
         args = ", ".join(f"({attr!r}, {code})" for attr, code in setters)
         return f"_with_fields({cls}(), ({args}{',' if setters else ''}))"
@@ -195,8 +196,31 @@ class PouGen(CodeGenBase):
         every variable they may designate exists."""
         for target, call, pos in self._ref_inits:
             self.pos = pos
-            self.emit(f"{target} = {self.ex(call)}")
+            # REF(x) / ADR(x), or the variable a REFERENCE TO is bound to
+            self.emit(f"{target} = {self.ex(call) if isinstance(call, A.Call) else self.ref_code(call)}")
         self._ref_inits = []
+
+    def _ref_plans(self, code: str, ty: T.Type, plan: Any):
+        """(where, REF() call) for each reference an aggregate's initial
+        value takes: its fields and elements, at any depth."""
+        t = T.resolve(ty)
+        if _is_ref_plan(plan):
+            yield code, plan[1]
+        elif isinstance(plan, tuple) and plan[0] == "struct" and isinstance(t, (T.StructType, T.FBType)):
+            for key, sub in plan[1].items():
+                attr, fty = self._member_attr(t, key)
+                yield from self._ref_plans(f"{code}.{attr}", fty, sub)
+        elif isinstance(plan, tuple) and plan[0] == "array" and isinstance(t, T.ArrayType):
+            sizes = [hi - lo + 1 for lo, hi in t.dims]
+            flat = 0
+            for count, sub in plan[1]:
+                if sub is not None and (_is_ref_plan(sub) or T.resolve(t.elem).is_aggregate):
+                    for i in range(flat, flat + count):
+                        path, rest = "", i
+                        for size in reversed(sizes):
+                            path, rest = f"[{rest % size}]{path}", rest // size
+                        yield from self._ref_plans(code + path, t.elem, sub)
+                flat += count
 
     def _member_attr(self, t: T.StructType | T.FBType, key: str) -> tuple:
         if isinstance(t, T.StructType):
@@ -216,6 +240,7 @@ class PouGen(CodeGenBase):
             return
         if t.is_aggregate:
             self.emit(f"{target} = {self._aggregate_expr(ty, plan)}")
+            self._ref_inits += [(path, call, self.pos) for path, call in self._ref_plans(target, t, plan)]
         else:
             self.emit(f"{target} = {self._scalar_plan_code(ty, plan)}")
 
@@ -354,3 +379,8 @@ class PouGen(CodeGenBase):
         self._emit_ref_inits()
         self.indent -= 1
         self.indent -= 1
+
+
+def _is_ref_plan(plan: Any) -> bool:
+    """Whether an initial value plan (checker_decls.init_value) is a REF()."""
+    return isinstance(plan, tuple) and plan[0] == "ref"
