@@ -460,13 +460,13 @@ class CallChecks(CheckerBase):
             self.d.error("E041", f"{key} takes one argument", e.pos)
             return None
         a = args[0].value
+        if key == "SIZEOF":
+            e.target = CallInfo("builtin", func=key, args=[a])
+            return self.sizeof_call(e, a, scope)
         ty = self.expr(a, scope)
         if ty is None:
             return None
         e.target = CallInfo("builtin", func=key, args=[a])
-        if key == "SIZEOF":
-            e.const = self._sizeof(ty)
-            return T.UDINT if e.const is not None and e.const < (1 << 32) else T.ULINT
         if not self._is_lvalue_expr(a) or (isinstance(a, A.Located)):
             self.d.error("E031", f"{key} needs a variable", a.pos)
             return None
@@ -475,28 +475,6 @@ class CallChecks(CheckerBase):
             self.d.error("E031", f"{key} of a single bit is not possible", a.pos)
             return None
         return T.RefType(ty, pointer=(key == "ADR"))
-
-    def _sizeof(self, ty: T.Type) -> int | None:
-        t = T.resolve(ty)
-        if isinstance(t, T.ElementaryType):
-            return max(1, t.bits // 8)
-        if isinstance(t, (T.EnumType, T.SubrangeType)):
-            return max(1, t.base.bits // 8)
-        if isinstance(t, T.StringType):
-            return (t.length + 1) * (2 if t.wide else 1)
-        if isinstance(t, T.ArrayType) and not t.variable_length:
-            n = 1
-            for lo, hi in t.dims:
-                n *= hi - lo + 1
-            es = self._sizeof(t.elem)
-            return None if es is None else n * es
-        if isinstance(t, T.StructType):
-            sizes = [self._sizeof(f.type) for f in t.fields.values()]
-            known = [s for s in sizes if s is not None]
-            return None if len(known) < len(sizes) else sum(known)
-        if isinstance(t, T.RefType):
-            return 8
-        return None
 
     # ---------------------------------------------------------------- native functions
 

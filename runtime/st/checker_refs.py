@@ -13,6 +13,7 @@ from __future__ import annotations
 from typing import Any
 
 from . import ast as A
+from . import sizes
 from . import types as T
 from .checker_base import CheckerBase, Scope
 from .conversions import same_type
@@ -112,6 +113,38 @@ class RefChecks(CheckerBase):
             )
             return None
         return ("ref", init)
+
+    def sizeof_call(self, e: A.Call, a: A.Expr, scope: Scope) -> T.Type | None:
+        """SIZEOF(variable) or SIZEOF(type): its size in bytes as CODESYS
+        lays it out on a 64-bit target (st/sizes.py), a UDINT constant."""
+        ty = self._type_named(a, scope)
+        if ty is None:
+            ty = self.expr(a, scope)
+            if ty is None:
+                return None
+        size = sizes.sizeof(ty)
+        if size is None:
+            self.d.error(
+                "E142",
+                f"the size of {ty} is not known",
+                a.pos,
+                "SIZEOF takes an elementary type, a string, an array of fixed bounds, a structure or a reference",
+            )
+            return None
+        e.const = size
+        return T.UDINT if size < (1 << 32) else T.ULINT
+
+    def _type_named(self, a: A.Expr, scope: Scope) -> T.Type | None:
+        """The type a SIZEOF argument names, unless a variable has the name."""
+        if not isinstance(a, A.Name):
+            return None
+        key = a.name.upper()
+        if (scope.pou is not None and key in scope.pou.vars) or key in self.globals:
+            return None
+        ty = self.types.get(key) or T.ELEMENTARY.get(key)
+        if ty is not None:
+            a.ty = ty
+        return ty
 
     def isvalidref(self, e: A.Call, scope: Scope) -> T.Type | None:
         """__ISVALIDREF(r): whether a REFERENCE TO is bound (CODESYS)."""
