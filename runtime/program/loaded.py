@@ -12,7 +12,7 @@ from ..st import refs, rtlib, values
 from ..st.checker import CheckedProgram
 from ..st.codegen import GeneratedModule
 from ..st.diagnostics import Diagnostic, SourceSet
-from ..st.faults import NULL_REFERENCE, RangeFault, fault_from_exception, out_of_bounds, out_of_range
+from ..st.faults import RangeFault, fault_from_exception, out_of_bounds, out_of_range
 from ..st.profile import Profile
 from .context import ExecContext
 from .variables import locate
@@ -28,12 +28,6 @@ def _with_fields(obj, setters):
     for attr, value in setters:
         setattr(obj, attr, value)
     return obj
-
-
-def _deref(ref):
-    if ref is None:
-        raise RangeFault("reference", NULL_REFERENCE)
-    return ref
 
 
 def _check_index(i: int, lo: int, hi: int) -> int:
@@ -109,12 +103,16 @@ class Program:
             "_NAN": float("nan"),
             "_AttrRef": refs.AttrRef,
             "_ItemRef": refs.ItemRef,
+            "_ElemPtr": refs.ElemPtr,
             "_CellRef": refs.CellRef,
             "_AccessorRef": refs.AccessorRef,
             "_assign_into": values.assign_into,
             "_copy_value": values.copy_value,
             "_with_fields": _with_fields,
-            "_deref": _deref,
+            "_deref": refs.deref,
+            "_elem_ptr": refs.elem_ptr,
+            "_ptr_add": refs.ptr_add,
+            "_ptr_diff": refs.ptr_diff,
             "_same_ref": refs.same_ref,
             "_check_index": _check_index,
             "_check_range": _check_range,

@@ -21,6 +21,7 @@ from .checker_config import ConfigChecks, ConfigInfo
 from .checker_decls import DeclChecks
 from .checker_exprs import ExprChecks
 from .checker_operators import OperatorChecks
+from .checker_pointers import PointerChecks
 from .checker_refs import RefChecks
 from .checker_stmts import StmtChecks
 from .checker_storage import StorageChecks
@@ -49,6 +50,7 @@ class Checker(
     StmtChecks,
     CallChecks,
     RefChecks,
+    PointerChecks,
     ConfigChecks,
     VarConfigChecks,
 ):

@@ -121,6 +121,10 @@ class OperatorChecks(CheckerBase):
                 lt = self.expr(e.left, scope, expected=rt)
                 if lt is None:
                     return None
+        if op in ("+", "-", "<", ">", "<=", ">=") and (
+            isinstance(T.resolve(lt), T.RefType) or isinstance(T.resolve(rt), T.RefType)
+        ):
+            return self.pointer_binary(e, lt, rt)
         if op in ("AND", "OR", "XOR", "AND_THEN", "OR_ELSE"):
             return self._logical(e, lt, rt)
         if op in ("=", "<>", "<", ">", "<=", ">="):

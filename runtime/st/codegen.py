@@ -22,6 +22,7 @@ from .codegen_base import Accessor
 from .codegen_calls import CallGen
 from .codegen_config import ConfigGen
 from .codegen_exprs import ExprGen
+from .codegen_pointers import PointerGen
 from .codegen_pous import PouGen
 from .codegen_stmts import StmtGen
 
@@ -37,7 +38,7 @@ class GeneratedModule:
     pou_classes: dict = field(default_factory=dict)  # UPPER POU name -> python name
 
 
-class CodeGen(PouGen, StmtGen, ExprGen, CallGen, ConfigGen):
+class CodeGen(PouGen, StmtGen, ExprGen, PointerGen, CallGen, ConfigGen):
     """CodeGen(checked, profile).generate() -> GeneratedModule."""
 
     def generate(self) -> GeneratedModule:

@@ -107,7 +107,7 @@ class CodeGenBase:
         self._acc_keys: dict = {}
         self._tmp = 0
         self.fn = FnState(None)
-        self._ref_inits: list = []  # (target, REF() call, pos) to emit after the other initial values
+        self._ref_inits: list = []  # (target, REF() call, pos, type) to emit after the other initial values
 
     def emit(self, line: str) -> None:
         self.out.append(("    " * self.indent + line, self.pos))
@@ -176,6 +176,15 @@ class CodeGenBase:
         def ref_value(self, e: A.Expr) -> str: ...
 
         def bind_code(self, e: A.Expr) -> str: ...
+
+        # codegen_pointers
+        def pointer_op(self, e: A.Binary) -> str: ...
+
+        def decay_code(self, code: str, target: T.Type) -> str: ...
+
+        def adr_code(self, e: A.Expr) -> str: ...
+
+        def _index_code(self, ix: A.Expr, dim: tuple | None) -> str: ...
 
         # codegen_pous
         def _emit_init(self, target: str, ty: T.Type, plan: Any, ref_target: str | None = None) -> None: ...

@@ -36,7 +36,9 @@ class CallGen(CodeGenBase):
                 return "_NOW_MS"  # the task clock, set once per cycle by the runner
             if info.func == "LTIME":
                 return "_NOW_NS"
-            if info.func in ("REF", "ADR"):
+            if info.func == "ADR":
+                return self.adr_code(info.args[0])
+            if info.func == "REF":
                 return self.ref_code(info.args[0])
             if info.func == "__ISVALIDREF":
                 return f"({self.ref_value(info.args[0])} is not None)"

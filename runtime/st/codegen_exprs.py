@@ -133,6 +133,8 @@ class ExprGen(CodeGenBase):
         op = e.op
         if e.impl is not None:
             info: CallInfo = e.impl
+            if info.kind == "pointer":
+                return self.pointer_op(e)
             return self._std_invoke(info, [self.ex(e.left), self.ex(e.right)])
         if op in ("=", "<>") and (self._is_ref(e.left.ty) or self._is_ref(e.right.ty)):
             return self._ref_comparison(e)

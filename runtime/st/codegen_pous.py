@@ -194,10 +194,12 @@ class PouGen(CodeGenBase):
     def _emit_ref_inits(self) -> None:
         """The references the last variables' initialisers take, now that
         every variable they may designate exists."""
-        for target, call, pos in self._ref_inits:
+        for target, call, pos, ty in self._ref_inits:
             self.pos = pos
-            # REF(x) / ADR(x), or the variable a REFERENCE TO is bound to
-            self.emit(f"{target} = {self.ex(call) if isinstance(call, A.Call) else self.ref_code(call)}")
+            # REF(x) / ADR(x) (as the variable's type: ADR(arr) into a POINTER TO INT), or the
+            # variable a REFERENCE TO is bound to
+            code = self.coerce(self.ex(call), call.ty, ty, None) if isinstance(call, A.Call) else self.ref_code(call)
+            self.emit(f"{target} = {code}")
         self._ref_inits = []
 
     def _ref_plans(self, code: str, ty: T.Type, plan: Any):
@@ -205,7 +207,7 @@ class PouGen(CodeGenBase):
         value takes: its fields and elements, at any depth."""
         t = T.resolve(ty)
         if _is_ref_plan(plan):
-            yield code, plan[1]
+            yield code, plan[1], ty
         elif isinstance(plan, tuple) and plan[0] == "struct" and isinstance(t, (T.StructType, T.FBType)):
             for key, sub in plan[1].items():
                 attr, fty = self._member_attr(t, key)
@@ -236,11 +238,11 @@ class PouGen(CodeGenBase):
         t = T.resolve(ty)
         if isinstance(plan, tuple) and plan[0] == "ref":
             self.emit(f"{target} = None")
-            self._ref_inits.append((ref_target or target, plan[1], self.pos))
+            self._ref_inits.append((ref_target or target, plan[1], self.pos, ty))
             return
         if t.is_aggregate:
             self.emit(f"{target} = {self._aggregate_expr(ty, plan)}")
-            self._ref_inits += [(path, call, self.pos) for path, call in self._ref_plans(target, t, plan)]
+            self._ref_inits += [(path, call, self.pos, rty) for path, call, rty in self._ref_plans(target, t, plan)]
         else:
             self.emit(f"{target} = {self._scalar_plan_code(ty, plan)}")
 

@@ -253,6 +253,10 @@ class StmtGen(CodeGenBase):
             return code
         if step == C.TO_NULL:
             return "None"
+        if step == C.TO_FIRST_ELEMENT:
+            s = T.resolve(src)
+            assert isinstance(s, T.RefType)
+            return self.decay_code(code, s.target)
         d = T.resolve(dst)
         if step == C.TRUNCATE and isinstance(d, T.StringType):
             return f"({code})[:{d.length}]"
