@@ -40,8 +40,9 @@ class RefChecks(CheckerBase):
         return False
 
     def implicit_deref(self, e: A.Expr, ty: T.Type | None) -> T.Type | None:
-        """A use of a REFERENCE TO stands for its target."""
-        if ty is not None and T.is_reference(ty):
+        """A use of a REFERENCE TO stands for its target (a variable, a
+        member, an element, a call's result)."""
+        if ty is not None and T.is_reference(ty) and isinstance(e, (A.Name, A.Member, A.Index, A.Call)):
             e.implicit_ref = ty
             r = T.resolve(ty)
             assert isinstance(r, T.RefType)
