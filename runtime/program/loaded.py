@@ -30,12 +30,6 @@ def _with_fields(obj, setters):
     return obj
 
 
-def _deref(ref):
-    if ref is None:
-        raise RangeFault("reference", "invalid reference: dereferenced a NULL REF_TO/POINTER")
-    return ref
-
-
 def _check_index(i: int, lo: int, hi: int) -> int:
     if lo <= i <= hi:
         return i - lo
@@ -109,12 +103,16 @@ class Program:
             "_NAN": float("nan"),
             "_AttrRef": refs.AttrRef,
             "_ItemRef": refs.ItemRef,
+            "_ElemPtr": refs.ElemPtr,
             "_CellRef": refs.CellRef,
             "_AccessorRef": refs.AccessorRef,
             "_assign_into": values.assign_into,
             "_copy_value": values.copy_value,
             "_with_fields": _with_fields,
-            "_deref": _deref,
+            "_deref": refs.deref,
+            "_elem_ptr": refs.elem_ptr,
+            "_ptr_add": refs.ptr_add,
+            "_ptr_diff": refs.ptr_diff,
             "_same_ref": refs.same_ref,
             "_check_index": _check_index,
             "_check_range": _check_range,

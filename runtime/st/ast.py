@@ -48,6 +48,9 @@ class Expr(Node):
     ty: Any = field(default=None, kw_only=True, repr=False)
     # Set by the checker when the value is known at compile time.
     const: Any = field(default=None, kw_only=True, repr=False)
+    # Set by the checker on a REFERENCE TO used as its target (CODESYS:
+    # dereferenced implicitly): the reference's type; ty is the target's.
+    implicit_ref: Any = field(default=None, kw_only=True, repr=False)
 
 
 @dataclass(slots=True, eq=False)
@@ -258,10 +261,12 @@ class SubrangeTypeSpec(TypeSpec):
 
 @dataclass(slots=True, eq=False)
 class RefTypeSpec(TypeSpec):
-    """REF_TO T (pointer=False) or POINTER TO T (pointer=True)."""
+    """REF_TO T (pointer=False), POINTER TO T (pointer=True) or the CODESYS
+    REFERENCE TO T (reference=True)."""
 
     target: TypeSpec
     pointer: bool = False
+    reference: bool = False
 
 
 # ---------------------------------------------------------------- initialisers

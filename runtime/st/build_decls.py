@@ -218,7 +218,10 @@ class AstBuilder(StmtBuilder, SfcBuilder):
         return None if len(c) == 1 else (c[0], c[1])
 
     def ref_type(self, c):
-        return ast.RefTypeSpec(c[-1], pointer=c[0].type == "POINTER", pos=self._span(c[0], c[-1]))
+        kind = c[0].type
+        return ast.RefTypeSpec(
+            c[-1], pointer=kind == "POINTER", reference=kind == "REFERENCE", pos=self._span(c[0], c[-1])
+        )
 
     def subrange_type(self, c):
         base = ast.NamedType(c[0].value, pos=self._tpos(c[0]))

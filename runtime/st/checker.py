@@ -23,6 +23,8 @@ from .checker_decls import DeclChecks
 from .checker_exprs import ExprChecks
 from .checker_jumps import JumpChecks
 from .checker_operators import OperatorChecks
+from .checker_pointers import PointerChecks
+from .checker_refs import RefChecks
 from .checker_sfc import SfcChecks
 from .checker_stmts import StmtChecks
 from .checker_storage import StorageChecks
@@ -51,6 +53,8 @@ class Checker(
     OperatorChecks,
     StmtChecks,
     CallChecks,
+    RefChecks,
+    PointerChecks,
     ConfigChecks,
     VarConfigChecks,
     ActionChecks,

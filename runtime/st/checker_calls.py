@@ -76,7 +76,7 @@ class CallChecks(CheckerBase):
             return None
         if isinstance(callee, A.Member) and self.member_action_call(e, scope, as_statement):
             return None  # inst.Act(...)
-        if isinstance(callee, (A.Member, A.Index)):  # inst.sub(...), timers[i](...)
+        if isinstance(callee, (A.Member, A.Index, A.Deref)):  # inst.sub(...), timers[i](...), r^(...)
             return self._fb_call(e, callee, scope, as_statement)
         self.d.error("E043", "this cannot be called", e.pos)
         return None
@@ -184,6 +184,10 @@ class CallChecks(CheckerBase):
                 self.d.error("E040", f"'{param.name}' is an input; pass it with :=", a.pos)
                 continue
             if a.value is None:
+                continue
+            if T.is_reference(param.type):  # a REFERENCE TO parameter is bound to the argument
+                if self.bind_argument(param, a.value, scope):
+                    (info.inouts if param.section == "VAR_IN_OUT" else info.inputs).append((param, a.value))
                 continue
             if param.section == "VAR_IN_OUT":
                 vty = self.expr(a.value, scope)
@@ -424,6 +428,9 @@ class CallChecks(CheckerBase):
     def _unify(self, a: T.Type, b: T.Type, e: A.Expr) -> T.Type | None:
         if same_type(a, b):
             return a
+        for one, other in ((a, b), (b, a)):  # SEL(c, NULL, REF(x)): NULL is no reference of that type
+            if isinstance(T.resolve(one), T.NullType) and isinstance(T.resolve(other), T.RefType):
+                return other
         ae, be = T.base_elementary(a), T.base_elementary(b)
         ra, rb = T.resolve(a), T.resolve(b)
         if isinstance(ra, T.StringType) and isinstance(rb, T.StringType):
@@ -438,6 +445,10 @@ class CallChecks(CheckerBase):
 
     def _builtin_call(self, e: A.Call, key: str, scope: Scope) -> T.Type | None:
         args = list(e.args)
+        if key == "__ISVALIDREF":
+            ty = self.isvalidref(e, scope)
+            e.target = CallInfo("builtin", func=key, args=[args[0].value] if ty is not None else [])
+            return ty
         if key in ("TIME", "LTIME"):
             if args:
                 self.d.error(
@@ -453,13 +464,13 @@ class CallChecks(CheckerBase):
             self.d.error("E041", f"{key} takes one argument", e.pos)
             return None
         a = args[0].value
+        if key == "SIZEOF":
+            e.target = CallInfo("builtin", func=key, args=[a])
+            return self.sizeof_call(e, a, scope)
         ty = self.expr(a, scope)
         if ty is None:
             return None
         e.target = CallInfo("builtin", func=key, args=[a])
-        if key == "SIZEOF":
-            e.const = self._sizeof(ty)
-            return T.UDINT if e.const is not None and e.const < (1 << 32) else T.ULINT
         if not self._is_lvalue_expr(a) or (isinstance(a, A.Located)):
             self.d.error("E031", f"{key} needs a variable", a.pos)
             return None
@@ -468,28 +479,6 @@ class CallChecks(CheckerBase):
             self.d.error("E031", f"{key} of a single bit is not possible", a.pos)
             return None
         return T.RefType(ty, pointer=(key == "ADR"))
-
-    def _sizeof(self, ty: T.Type) -> int | None:
-        t = T.resolve(ty)
-        if isinstance(t, T.ElementaryType):
-            return max(1, t.bits // 8)
-        if isinstance(t, (T.EnumType, T.SubrangeType)):
-            return max(1, t.base.bits // 8)
-        if isinstance(t, T.StringType):
-            return (t.length + 1) * (2 if t.wide else 1)
-        if isinstance(t, T.ArrayType) and not t.variable_length:
-            n = 1
-            for lo, hi in t.dims:
-                n *= hi - lo + 1
-            es = self._sizeof(t.elem)
-            return None if es is None else n * es
-        if isinstance(t, T.StructType):
-            sizes = [self._sizeof(f.type) for f in t.fields.values()]
-            known = [s for s in sizes if s is not None]
-            return None if len(known) < len(sizes) else sum(known)
-        if isinstance(t, T.RefType):
-            return 8
-        return None
 
     # ---------------------------------------------------------------- native functions
 

@@ -232,13 +232,15 @@ class DeclChecks(CheckerBase):
         REF()/ADR() call) for a reference (only where ref_ok: a variable's
         own initial value), None for the default."""
         rty = T.resolve(ty)
+        if T.is_reference(ty) and isinstance(init, A.Expr):
+            return self.reference_init(ty, init, scope, what, ref_ok)
         if isinstance(init, A.ArrayInit):
             if not isinstance(rty, T.ArrayType):
                 self.d.error("E024", f"'{what}' is {ty}; an array initialiser needs an ARRAY", init.pos)
                 return None
-            return self._array_init(rty, init, scope, what)
+            return self._array_init(rty, init, scope, what, ref_ok)
         if isinstance(init, A.StructInit):
-            return self._struct_init(rty, init, scope, what)
+            return self._struct_init(rty, init, scope, what, ref_ok)
         if isinstance(rty, T.ArrayType) and isinstance(init, A.Expr):
             # [1, 2] arrives as ArrayInit; a bare expression is an error
             self.d.error("E024", f"'{what}' is an ARRAY; initialise it with [ ... ]", init.pos)
@@ -302,7 +304,7 @@ class DeclChecks(CheckerBase):
             else:
                 return False
 
-    def _array_init(self, ty: T.ArrayType, init: A.ArrayInit, scope: Scope, what: str) -> Any:
+    def _array_init(self, ty: T.ArrayType, init: A.ArrayInit, scope: Scope, what: str, ref_ok: bool) -> Any:
         if ty.variable_length:
             return None
         # Items fill the array in row-major order (IEC: the last index varies
@@ -319,7 +321,7 @@ class DeclChecks(CheckerBase):
                 if n is None or n < 0:
                     return None
                 count = n
-            plan = self.init_value(ty.elem, value, scope, what) if value is not None else None
+            plan = self.init_value(ty.elem, value, scope, what, ref_ok) if value is not None else None
             given += count
             if count:
                 runs.append((count, plan))
@@ -335,7 +337,7 @@ class DeclChecks(CheckerBase):
             runs.append((total - given, None))
         return ("array", runs)
 
-    def _struct_init(self, ty: T.Type, init: A.StructInit, scope: Scope, what: str) -> Any:
+    def _struct_init(self, ty: T.Type, init: A.StructInit, scope: Scope, what: str, ref_ok: bool) -> Any:
         out = {}
         if isinstance(ty, T.StructType):
             fields = {k: (f.name, f.type) for k, f in ty.fields.items()}
@@ -351,7 +353,7 @@ class DeclChecks(CheckerBase):
             if k not in fields:
                 self.d.error("E013", f"{ty} has no member '{fname}'", fpos, self._suggest(k, list(fields)))
                 continue
-            out[k] = self.init_value(fields[k][1], fval, scope, f"{what}.{fields[k][0]}")
+            out[k] = self.init_value(fields[k][1], fval, scope, f"{what}.{fields[k][0]}", ref_ok)
         return ("struct", out)
 
     def _const_int(self, e: A.Expr, scope: Scope, what: str) -> int | None:

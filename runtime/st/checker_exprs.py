@@ -30,6 +30,8 @@ class ExprChecks(CheckerBase):
     def expr(self, e: A.Expr, scope: Scope, expected: T.Type | None = None) -> T.Type | None:
         try:
             ty = self._expr(e, scope, expected)
+            if ty is not None and (ty.is_ref or isinstance(ty, T.AliasType)):
+                ty = self.implicit_deref(e, ty)
         except RecursionError:
             self.d.error("E006", "expression nested too deeply", e.pos, "split it up with variables")
             ty = None

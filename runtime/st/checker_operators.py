@@ -121,6 +121,10 @@ class OperatorChecks(CheckerBase):
                 lt = self.expr(e.left, scope, expected=rt)
                 if lt is None:
                     return None
+        if op in ("+", "-", "<", ">", "<=", ">=") and (
+            isinstance(T.resolve(lt), T.RefType) or isinstance(T.resolve(rt), T.RefType)
+        ):
+            return self.pointer_binary(e, lt, rt)
         if op in ("AND", "OR", "XOR", "AND_THEN", "OR_ELSE"):
             return self._logical(e, lt, rt)
         if op in ("=", "<>", "<", ">", "<=", ">="):
@@ -186,7 +190,7 @@ class OperatorChecks(CheckerBase):
             ok = lres is rres
         elif isinstance(lres, T.StringType) and isinstance(rres, T.StringType):
             ok = lres.wide == rres.wide
-        elif isinstance(lres, T.RefType) or isinstance(rres, T.RefType):
+        elif isinstance(lres, (T.RefType, T.NullType)) or isinstance(rres, (T.RefType, T.NullType)):
             # r = 0 / r <> 0 is how CODESYS and TwinCAT test for NULL
             def refish(t, side):
                 return isinstance(t, (T.RefType, T.NullType)) or side.const == 0

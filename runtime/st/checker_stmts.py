@@ -9,7 +9,6 @@ from __future__ import annotations
 from . import ast as A
 from . import types as T
 from .checker_base import CheckerBase, Scope
-from .conversions import same_type
 from .profile import names_where
 from .rt_sfc import STEP_TYPE
 from .symbols import VarSymbol
@@ -81,17 +80,7 @@ class StmtChecks(CheckerBase):
 
     def _assign(self, s: A.Assign, scope: Scope) -> None:
         if s.op == "REF=":
-            tty = self.lvalue(s.target, scope)
-            vty = self.expr(s.value, scope)
-            if tty is None or vty is None:
-                return
-            rt = T.resolve(tty)
-            if not isinstance(rt, T.RefType):
-                self.d.error("E020", "REF= needs a REF_TO target", s.target.pos)
-            elif not same_type(rt.target, vty):
-                self.d.error("E020", f"REF= of {vty} into {tty}", s.value.pos)
-            elif not self._is_lvalue_expr(s.value):
-                self.d.error("E031", "REF= needs a variable on the right", s.value.pos)
+            self.ref_bind(s, scope)
             return
         tty = self.lvalue(s.target, scope)
         if tty is None:
@@ -189,6 +178,8 @@ class StmtChecks(CheckerBase):
         return ty
 
     def _check_writable(self, e: A.Expr, scope: Scope) -> None:
+        if e.implicit_ref is not None:
+            return  # writes through a REFERENCE TO, like r^ := ...
         if isinstance(e, A.Name):
             sym = e.sym
             if not isinstance(sym, VarSymbol):

@@ -10,6 +10,7 @@ from __future__ import annotations
 from . import ast as A
 from . import types as T
 from .checker_base import CheckerBase, Scope
+from .checker_refs import spec_kind
 from .limits import MAX_STRING_LENGTH, MAX_VAR_ELEMENTS
 from .symbols import POUInfo, pyname
 
@@ -194,7 +195,7 @@ class TypeChecks(CheckerBase):
             return T.StringType(n, spec.wide)
         if isinstance(spec, A.ArrayTypeSpec):
             elem = self.type_of(spec.elem, scope)
-            if elem is None:
+            if elem is None or not self._not_a_reference(elem, "the element type of an ARRAY", spec.elem.pos):
                 return None
             dims: list[tuple[int, int] | None] = []
             count = 1
@@ -242,9 +243,9 @@ class TypeChecks(CheckerBase):
             return T.SubrangeType(be, lo, hi)
         if isinstance(spec, A.RefTypeSpec):
             target = self.type_of(spec.target, scope)
-            if target is None:
+            if target is None or not self._not_a_reference(target, f"the target of {spec_kind(spec)}", spec.target.pos):
                 return None
-            return T.RefType(target, spec.pointer)
+            return T.RefType(target, spec.pointer, spec.reference)
         if isinstance(spec, A.StructTypeSpec):
             self.d.error(
                 "E012",

@@ -23,6 +23,7 @@ from .codegen_calls import CallGen
 from .codegen_config import ConfigGen
 from .codegen_exprs import ExprGen
 from .codegen_jumps import JumpGen
+from .codegen_pointers import PointerGen
 from .codegen_pous import PouGen
 from .codegen_stmts import StmtGen
 
@@ -38,7 +39,7 @@ class GeneratedModule:
     pou_classes: dict = field(default_factory=dict)  # UPPER POU name -> python name
 
 
-class CodeGen(PouGen, StmtGen, ExprGen, CallGen, ConfigGen, JumpGen):
+class CodeGen(PouGen, StmtGen, ExprGen, PointerGen, CallGen, ConfigGen, JumpGen):
     """CodeGen(checked, profile).generate() -> GeneratedModule."""
 
     def generate(self) -> GeneratedModule:

@@ -36,8 +36,12 @@ class CallGen(CodeGenBase):
                 return "_NOW_MS"  # the task clock, set once per cycle by the runner
             if info.func == "LTIME":
                 return "_NOW_NS"
-            if info.func in ("REF", "ADR"):
+            if info.func == "ADR":
+                return self.adr_code(info.args[0])
+            if info.func == "REF":
                 return self.ref_code(info.args[0])
+            if info.func == "__ISVALIDREF":
+                return f"({self.ref_value(info.args[0])} is not None)"
             return py_literal(e.const)
         if info.kind == "native":
             if info.func.site:  # the values in their common type, then where the call is (st/native.py)
@@ -153,7 +157,10 @@ class CallGen(CodeGenBase):
                 parts.append(f"{p.pyname}=None" if p.section == "VAR_IN_OUT" else "")
                 continue
             _, a = got
-            if p.section == "VAR_IN_OUT":
+            if T.is_reference(p.type):  # bound to the argument (CODESYS)
+                bound = self.bind_code(a)
+                parts.append(f"{p.pyname}={bound if p.section == 'VAR_INPUT' else f'_CellRef({bound})'}")
+            elif p.section == "VAR_IN_OUT":
                 parts.append(f"{p.pyname}={self.ref_code(a)}")
             elif T.resolve(p.type).is_aggregate:
                 parts.append(f"{p.pyname}=_copy_value({self.ex(a)})")
@@ -178,13 +185,17 @@ class CallGen(CodeGenBase):
             self.emit(f"{t} = {inst}")
             inst = t
         for p, a in info.inputs:
+            if T.is_reference(p.type):  # bound to the argument (CODESYS)
+                self.emit(f"{inst}.{p.pyname} = {self.bind_code(a)}")
+                continue
             code = self.ex(a) if T.resolve(p.type).is_aggregate else self.coerce(self.ex(a), a.ty, p.type, a)
             if T.resolve(p.type).is_aggregate:
                 self.emit(f"_assign_into({inst}.{p.pyname}, {code})")
             else:
                 self.emit(f"{inst}.{p.pyname} = {code}")
         for p, a in info.inouts:
-            self.emit(f"{inst}.{p.pyname} = {self.ref_code(a)}")
+            ref = f"_CellRef({self.bind_code(a)})" if T.is_reference(p.type) else self.ref_code(a)
+            self.emit(f"{inst}.{p.pyname} = {ref}")
         self.emit(f"{inst}.{info.func.pyname}()" if info.kind == "action" else f"{inst}()")
         for p, target, negated in info.outputs:
             val = f"{inst}.{p.pyname}"

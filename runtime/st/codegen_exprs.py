@@ -23,6 +23,10 @@ class ExprGen(CodeGenBase):
     """Expressions and references."""
 
     def ex(self, e: A.Expr) -> str:
+        if e.implicit_ref is not None:  # a REFERENCE TO stands for its target
+            if T.resolve(e.ty).is_aggregate:
+                return f"_deref({self.ref_value(e)})"
+            return f"{self.ref_value(e)}.get()"
         if e.const is not None and e.ty is not None:
             r = T.resolve(e.ty)
             be = T.base_elementary(r)
@@ -129,6 +133,8 @@ class ExprGen(CodeGenBase):
         op = e.op
         if e.impl is not None:
             info: CallInfo = e.impl
+            if info.kind == "pointer":
+                return self.pointer_op(e)
             return self._std_invoke(info, [self.ex(e.left), self.ex(e.right)])
         if op in ("=", "<>") and (self._is_ref(e.left.ty) or self._is_ref(e.right.ty)):
             return self._ref_comparison(e)
@@ -203,8 +209,29 @@ class ExprGen(CodeGenBase):
 
     # ------------------------------------------------------------ references
 
+    def ref_value(self, e: A.Expr) -> str:
+        """The reference a use of a REFERENCE TO holds (its binding)."""
+        if isinstance(e, A.Name):
+            return self._read_name(e.sym)
+        if isinstance(e, A.Member):
+            return f"{self.ex(e.base)}.{e.sym.pyname}"
+        if isinstance(e, A.Index):
+            return self._index_target(e)
+        if isinstance(e, A.Call):
+            return self._call_expr(e)
+        raise NotImplementedError(f"REFERENCE TO in {type(e).__name__}")
+
+    def bind_code(self, e: A.Expr) -> str:
+        """What a REFERENCE TO bound to e holds (REF=, a reference parameter):
+        NULL and 0 bind it to nothing."""
+        if isinstance(T.resolve(e.ty), T.NullType) or e.const == 0:
+            return "None"
+        return self.ref_code(e)
+
     def ref_code(self, e: A.Expr) -> str:
         """A reference to the storage of an lvalue (REF, ADR, VAR_IN_OUT, =>)."""
+        if e.implicit_ref is not None:  # the storage a REFERENCE TO designates
+            return self.ref_value(e)
         ty = T.resolve(e.ty)
         if ty.is_aggregate:
             return self.ex(e)

@@ -11,6 +11,7 @@ import itertools
 from bisect import bisect_right
 from typing import Any
 
+from . import ast as A
 from . import types as T
 from .codegen_base import FnState, py_literal
 from .codegen_sfc import SFC_SLOT, SFC_SLOT_TYPE, SfcGen
@@ -93,7 +94,7 @@ class PouGen(SfcGen):
         return "None"
 
     def _scalar_plan_code(self, ty: T.Type, plan: Any) -> str:
-        if plan is None:
+        if plan is None or _is_ref_plan(plan):  # a REF() inside an aggregate: set by _emit_ref_inits
             return self._default_code(ty)
         return py_literal(plan)
 
@@ -168,7 +169,7 @@ class PouGen(SfcGen):
             attr, fty = self._member_attr(t, key)
             if T.resolve(fty).is_aggregate:
                 setters.append((attr, self._aggregate_expr(fty, sub)))
-            elif sub is not None:
+            elif sub is not None and not _is_ref_plan(sub):
                 setters.append((attr, py_literal(sub)))
         args = ", ".join(f"({attr!r}, {code})" for attr, code in setters)
         return f"_with_fields({cls}(), ({args}{',' if setters else ''}))"
@@ -194,10 +195,35 @@ class PouGen(SfcGen):
     def _emit_ref_inits(self) -> None:
         """The references the last variables' initialisers take, now that
         every variable they may designate exists."""
-        for target, call, pos in self._ref_inits:
+        for target, call, pos, ty in self._ref_inits:
             self.pos = pos
-            self.emit(f"{target} = {self.ex(call)}")
+            # REF(x) / ADR(x) (as the variable's type: ADR(arr) into a POINTER TO INT), or the
+            # variable a REFERENCE TO is bound to
+            code = self.coerce(self.ex(call), call.ty, ty, None) if isinstance(call, A.Call) else self.ref_code(call)
+            self.emit(f"{target} = {code}")
         self._ref_inits = []
+
+    def _ref_plans(self, code: str, ty: T.Type, plan: Any):
+        """(where, REF() call) for each reference an aggregate's initial
+        value takes: its fields and elements, at any depth."""
+        t = T.resolve(ty)
+        if _is_ref_plan(plan):
+            yield code, plan[1], ty
+        elif isinstance(plan, tuple) and plan[0] == "struct" and isinstance(t, (T.StructType, T.FBType)):
+            for key, sub in plan[1].items():
+                attr, fty = self._member_attr(t, key)
+                yield from self._ref_plans(f"{code}.{attr}", fty, sub)
+        elif isinstance(plan, tuple) and plan[0] == "array" and isinstance(t, T.ArrayType):
+            sizes = [hi - lo + 1 for lo, hi in t.dims]
+            flat = 0
+            for count, sub in plan[1]:
+                if sub is not None and (_is_ref_plan(sub) or T.resolve(t.elem).is_aggregate):
+                    for i in range(flat, flat + count):
+                        path, rest = "", i
+                        for size in reversed(sizes):
+                            path, rest = f"[{rest % size}]{path}", rest // size
+                        yield from self._ref_plans(code + path, t.elem, sub)
+                flat += count
 
     def _member_attr(self, t: T.StructType | T.FBType, key: str) -> tuple:
         if isinstance(t, T.StructType):
@@ -213,10 +239,11 @@ class PouGen(SfcGen):
         t = T.resolve(ty)
         if isinstance(plan, tuple) and plan[0] == "ref":
             self.emit(f"{target} = None")
-            self._ref_inits.append((ref_target or target, plan[1], self.pos))
+            self._ref_inits.append((ref_target or target, plan[1], self.pos, ty))
             return
         if t.is_aggregate:
             self.emit(f"{target} = {self._aggregate_expr(ty, plan)}")
+            self._ref_inits += [(path, call, self.pos, rty) for path, call, rty in self._ref_plans(target, t, plan)]
         else:
             self.emit(f"{target} = {self._scalar_plan_code(ty, plan)}")
 
@@ -380,3 +407,8 @@ class PouGen(SfcGen):
         self._emit_ref_inits()
         self.indent -= 1
         self.indent -= 1
+
+
+def _is_ref_plan(plan: Any) -> bool:
+    """Whether an initial value plan (checker_decls.init_value) is a REF()."""
+    return isinstance(plan, tuple) and plan[0] == "ref"

@@ -256,7 +256,7 @@ class StmtGen(CodeGenBase):
             self.indent -= 1
             return
         if s.op == "REF=":
-            self.emit_store(s.target, self.ref_code(s.value), s.target.ty, None, trusted=True)
+            self.emit_store(s.target, self.bind_code(s.value), s.target.ty, None, trusted=True, bind=True)
             return
         tty = T.resolve(s.target.ty)
         if tty.is_aggregate:
@@ -275,6 +275,10 @@ class StmtGen(CodeGenBase):
             return code
         if step == C.TO_NULL:
             return "None"
+        if step == C.TO_FIRST_ELEMENT:
+            s = T.resolve(src)
+            assert isinstance(s, T.RefType)
+            return self.decay_code(code, s.target)
         d = T.resolve(dst)
         if step == C.TRUNCATE and isinstance(d, T.StringType):
             return f"({code})[:{d.length}]"
@@ -303,12 +307,21 @@ class StmtGen(CodeGenBase):
         return f"{self.const(fn)}({code})"
 
     def emit_store(
-        self, target: A.Expr, value_code: str, value_ty: T.Type, value_expr: A.Expr | None, trusted: bool = False
+        self,
+        target: A.Expr,
+        value_code: str,
+        value_ty: T.Type,
+        value_expr: A.Expr | None,
+        trusted: bool = False,
+        bind: bool = False,
     ) -> None:
-        """target := value, with the conversion to the target's type."""
+        """target := value, with the conversion to the target's type; bind:
+        a REFERENCE TO target takes the reference value_code (REF=)."""
         tty = target.ty
         code = value_code if trusted else self.coerce(value_code, value_ty, tty, value_expr)
-        if isinstance(target, A.Name):
+        if target.implicit_ref is not None and not bind:
+            self.emit(f"{self.ref_value(target)}.set({code})")
+        elif isinstance(target, A.Name):
             self._store_name(target.sym, code)
         elif isinstance(target, A.Member):
             self.emit(f"{self.ex(target.base)}.{target.sym.pyname} = {code}")

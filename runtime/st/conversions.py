@@ -221,13 +221,17 @@ def check_implicit(src: T.Type, dst: T.Type, e: A.Expr, what: str, profile: Prof
         return True
     if isinstance(d, T.RefType):
         if isinstance(s, T.NullType) or (
-            isinstance(s, T.RefType)
-            and (
-                same_type(s.target, d.target)
-                or (d.pointer and isinstance(T.resolve(d.target), T.ElementaryType) and T.resolve(d.target) is T.BYTE)
-            )
+            isinstance(s, T.RefType) and (same_type(s.target, d.target) or decays_to(s, d))
         ):
             return True
+        if isinstance(s, T.RefType) and d.pointer and T.resolve(d.target) is T.BYTE:
+            diags.error(
+                "E161",
+                f"a POINTER TO BYTE over {s.target} (its bytes) is not supported",
+                e.pos,
+                "values are not kept as bytes here: point at the value itself, or convert it (e.g. DWORD_TO_BYTE, SHR)",
+            )
+            return False
         if e.const == 0 and isinstance(s, T.ElementaryType) and s.is_intlike:
             return True
         diags.error(
@@ -366,7 +370,21 @@ TO_FLOAT = "to_float"  # a number into LREAL
 TO_F32 = "to_f32"  # a number into REAL: rounded to binary32
 WRAP = "wrap"  # an integer into an integer type: wrapped to it unless the value provably fits
 CONVERT = "convert"  # the rest (REAL to integer, time units, time to number): the library converter
+TO_FIRST_ELEMENT = "to_first_element"  # a POINTER TO an ARRAY into a POINTER TO its element
 TO_NULL = "to_null"  # NULL (or the 0 CODESYS allows) into a reference: no reference
+
+
+def decays_to(s: T.RefType, d: T.RefType) -> bool:
+    """A POINTER TO an ARRAY stored as a POINTER TO its element type: a
+    pointer to the first element (CODESYS: p := ADR(arr))."""
+    arr = T.resolve(s.target)
+    return (
+        d.pointer
+        and isinstance(arr, T.ArrayType)
+        and not arr.variable_length
+        and same_type(arr.elem, d.target)
+        and not same_type(s.target, d.target)
+    )
 
 
 def store_step(src: T.Type | None, dst: T.Type, e: A.Expr | None) -> str:
@@ -375,6 +393,8 @@ def store_step(src: T.Type | None, dst: T.Type, e: A.Expr | None) -> str:
     d = T.resolve(dst)
     s = T.resolve(src) if src is not None else d
     if isinstance(d, T.RefType):
+        if isinstance(s, T.RefType) and decays_to(s, d):
+            return TO_FIRST_ELEMENT
         return KEEP if isinstance(s, T.RefType) else TO_NULL
     if isinstance(d, T.StringType):
         return KEEP if isinstance(s, T.StringType) and s.length <= d.length else TRUNCATE

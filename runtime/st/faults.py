@@ -59,6 +59,9 @@ class StopRequested(Exception):
     the cycle ends in the loop instead of finishing it. Its text says why."""
 
 
+NULL_REFERENCE = "invalid reference: a NULL REF_TO/POINTER dereferenced, or an unbound REFERENCE TO used"
+
+
 def out_of_bounds(index: int, lo: int, hi: int) -> int:
     raise RangeFault("bounds", f"array index {index} is outside the bounds {lo}..{hi}")
 
@@ -77,7 +80,7 @@ def _classify(exc: BaseException) -> tuple:
     if isinstance(exc, WatchdogFault):
         return "watchdog", str(exc) or "watchdog: the cycle took too long (endless loop?)"
     if isinstance(exc, (AttributeError, TypeError)) and "NoneType" in str(exc):
-        return "reference", "invalid reference: dereferenced a NULL REF_TO/POINTER"
+        return "reference", NULL_REFERENCE
     if isinstance(exc, RecursionError):
         return "recursion", "call depth exceeded (recursive calls are not supported)"
     if isinstance(exc, OverflowError):

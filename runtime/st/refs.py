@@ -1,8 +1,19 @@
 """References to scalar storage: what REF(), ADR() and VAR_IN_OUT pass for an
 elementary variable. Aggregates (arrays, structs, FB instances) are Python
-objects already, so a reference to one is the object itself."""
+objects already, so a reference to one is the object itself.
+
+Pointer arithmetic (CODESYS POINTER TO) keeps a pointer bound to the object
+it points into: an ElemPtr is an array (the outermost Python list) and a
+byte offset into it, mapped to an element by the element size
+(st/sizes.py); an ObjPtr is any other reference moved by a byte offset.
+Either may point anywhere, as a C pointer may; dereferencing one that is
+not on an element of its own object is a 'reference' fault, never another
+variable's memory.
+"""
 
 from __future__ import annotations
+
+from .faults import NULL_REFERENCE, RangeFault
 
 
 class AttrRef:
@@ -81,7 +92,102 @@ class AccessorRef:
         return hash(id(self.get))
 
 
+class ElemPtr:
+    """A pointer into an array: root (the array's outermost list), a byte
+    offset from its first element, the element size and the array's shape
+    (elements per dimension)."""
+
+    __slots__ = ("root", "offset", "esize", "shape", "count")
+
+    def __init__(self, root: list, offset: int, esize: int, shape: tuple) -> None:
+        self.root = root
+        self.offset = offset
+        self.esize = esize
+        self.shape = shape
+        count = 1
+        for n in shape:
+            count *= n
+        self.count = count
+
+    def _place(self) -> tuple:
+        """(the innermost list, the index in it) of the element pointed at."""
+        i, skew = divmod(self.offset, self.esize)
+        if skew or not 0 <= i < self.count:
+            where = " (between two elements)" if skew and 0 <= i < self.count else ""
+            raise RangeFault(
+                "reference",
+                f"pointer outside its array: byte offset {self.offset}{where} in an array of "
+                f"{self.count} elements of {self.esize} bytes",
+            )
+        seq, stride = self.root, self.count
+        for n in self.shape[:-1]:  # row-major: the last index varies fastest
+            stride //= n
+            j, i = divmod(i, stride)
+            seq = seq[j]
+        return seq, i
+
+    def get(self):
+        seq, i = self._place()
+        return seq[i]
+
+    def set(self, value) -> None:
+        seq, i = self._place()
+        seq[i] = value
+
+    def key(self) -> tuple:
+        try:
+            seq, i = self._place()
+        except RangeFault:
+            return (id(self.root), "+", self.offset)
+        return (id(seq), i)
+
+
+class ObjPtr:
+    """Any other reference moved by a byte offset: only offset 0 (back at
+    the variable) can be dereferenced; aggregate: base is the object."""
+
+    __slots__ = ("base", "offset", "aggregate")
+
+    def __init__(self, base, offset: int, aggregate: bool) -> None:
+        self.base = base
+        self.offset = offset
+        self.aggregate = aggregate
+
+    def _at(self):
+        if self.offset:
+            raise RangeFault(
+                "reference",
+                f"pointer {self.offset:+} bytes off its variable (pointers move within arrays only)",
+            )
+        return self.base
+
+    def get(self):
+        base = self._at()
+        return base if self.aggregate else base.get()
+
+    def set(self, value) -> None:
+        self._at().set(value)
+
+    def key(self) -> tuple:
+        return (*_key(self.base), "+", self.offset) if self.offset else _key(self.base)
+
+
 _SCALAR_REFS = (AttrRef, ItemRef, AccessorRef)
+_POINTERS = (ElemPtr, ObjPtr)
+
+
+def _key(r) -> tuple:
+    """What a reference designates, comparable across its representations."""
+    t = type(r)
+    if t in _POINTERS:
+        return r.key()
+    if t is AttrRef:
+        return (id(r.obj), r.attr)
+    if t is ItemRef:
+        return (id(r.seq), r.index)
+    if t is AccessorRef:
+        return (id(r.get),)
+    return (id(r),)
 
 
 def same_ref(a, b) -> bool:
@@ -90,4 +196,64 @@ def same_ref(a, b) -> bool:
     and two lists of equal values are still two arrays)."""
     if a is b:
         return True
+    if type(a) in _POINTERS or type(b) in _POINTERS:
+        return _key(a) == _key(b)
     return type(a) is type(b) and type(a) in _SCALAR_REFS and a == b
+
+
+def deref(ref):
+    """The aggregate a REF_TO/POINTER TO an array, struct or FB designates."""
+    if ref is None:
+        raise RangeFault("reference", NULL_REFERENCE)
+    if type(ref) in _POINTERS:
+        return ref.get()
+    return ref
+
+
+def elem_ptr(array, esize: int, shape: tuple):
+    """A pointer to an array, taken as a pointer to its first element."""
+    if array is None:
+        return None
+    if type(array) in _POINTERS:
+        return array
+    return ElemPtr(array, 0, esize, shape)
+
+
+def ptr_add(p, delta: int, esize: int):
+    """p + delta bytes (CODESYS: p := p + SIZEOF(INT) steps one INT)."""
+    if p is None:
+        raise RangeFault("reference", "pointer arithmetic on a NULL pointer")
+    t = type(p)
+    if t is ElemPtr:
+        return ElemPtr(p.root, p.offset + delta, p.esize, p.shape)
+    if t is ObjPtr:
+        if p.offset + delta == 0:
+            return p.base
+        return ObjPtr(p.base, p.offset + delta, p.aggregate)
+    if t is ItemRef:
+        return ElemPtr(p.seq, p.index * esize + delta, esize, (len(p.seq),))
+    if delta == 0:
+        return p
+    return ObjPtr(p, delta, t not in _SCALAR_REFS and t is not CellRef)
+
+
+def ptr_diff(a, b, esize: int) -> int:
+    """a - b in bytes, both pointing into one object (else a fault)."""
+    if a is None or b is None:
+        raise RangeFault("reference", "pointer arithmetic on a NULL pointer")
+    ka, kb = _order(a, esize), _order(b, esize)
+    if ka[0] != kb[0]:
+        raise RangeFault("reference", "pointers into different variables subtracted or compared")
+    return ka[1] - kb[1]
+
+
+def _order(p, esize: int) -> tuple:
+    """(the object pointed into, the byte offset in it)."""
+    t = type(p)
+    if t is ElemPtr:
+        return id(p.root), p.offset
+    if t is ItemRef:
+        return id(p.seq), p.index * esize
+    if t is ObjPtr:
+        return _key(p.base), p.offset
+    return _key(p), 0

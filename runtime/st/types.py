@@ -271,11 +271,13 @@ class StructType(Type):
 class RefType(Type):
     target: Type
     pointer: bool = False
+    reference: bool = False  # CODESYS REFERENCE TO: dereferenced implicitly
     is_ref = True
 
     @property
     def name(self) -> str:
-        return ("POINTER TO " if self.pointer else "REF_TO ") + self.target.name
+        kind = "REFERENCE TO " if self.reference else "POINTER TO " if self.pointer else "REF_TO "
+        return kind + self.target.name
 
 
 @dataclass(eq=False)
@@ -306,6 +308,14 @@ def resolve(t: Type) -> Type:
     while isinstance(t, AliasType):
         t = t.target
     return t
+
+
+def is_reference(t: Type | None) -> bool:
+    """Whether t is a CODESYS REFERENCE TO (dereferenced implicitly)."""
+    if t is None:
+        return False
+    r = resolve(t)
+    return isinstance(r, RefType) and r.reference
 
 
 def declared_default(t: Type) -> Any:

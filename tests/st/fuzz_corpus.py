@@ -216,4 +216,25 @@ IF %M101 AND NOT %MW3260:X0 THEN
 END_IF;
 """,
     ),
+    # CODESYS REFERENCE TO and pointer arithmetic (tests/st/test_refs.py, test_pointers.py)
+    (
+        "codesys",
+        """
+TYPE Pair : STRUCT a : INT; r : REFERENCE TO INT; END_STRUCT END_TYPE
+FUNCTION_BLOCK Bump
+VAR_INPUT target : REFERENCE TO INT; END_VAR
+IF __ISVALIDREF(target) THEN target := target + 1; END_IF
+END_FUNCTION_BLOCK
+PROGRAM main
+VAR
+    arr : ARRAY[0..3] OF INT := [1, 2, 3, 4]; p : POINTER TO INT; q : POINTER TO INT;
+    r : REFERENCE TO INT; pr : Pair; b : Bump; s : INT; d : DINT; n : UDINT;
+END_VAR
+r REF= arr[1]; r := r * 10; pr.r REF= s; b(target := s);
+p := ADR(arr); q := ADR(arr) + 3 * SIZEOF(INT);
+WHILE p <= q DO s := s + p^; p := p + SIZEOF(INT); END_WHILE
+d := q - ADR(arr); n := SIZEOF(Pair);
+END_PROGRAM
+""",
+    ),
 ]

@@ -1,0 +1,66 @@
+"""Code generation of pointer arithmetic (CODESYS POINTER TO).
+
+The checker marks `p + n`, `p - n`, `p - q` and `p < q` with a CallInfo
+of kind 'pointer' (checker_pointers.py); the generated code calls the
+helpers of st/refs.py, which keep a pointer bound to its object. Plain
+references and code without pointers never reach this module.
+"""
+
+from __future__ import annotations
+
+from . import ast as A
+from . import sizes
+from . import types as T
+from .codegen_base import CodeGenBase, array_type
+
+
+class PointerGen(CodeGenBase):
+    """Pointer arithmetic and the decay of a POINTER TO an ARRAY."""
+
+    def pointer_op(self, e: A.Binary) -> str:
+        esize = e.impl.rtypes[0]
+        if e.impl.func == "move":
+            left_is_ptr = isinstance(T.resolve(e.left.ty), T.RefType)
+            ptr, delta = (e.left, e.right) if left_is_ptr else (e.right, e.left)
+            amount = self.ex(delta)
+            if e.op == "-":
+                amount = f"-({amount})"
+            return f"_ptr_add({self.pointer_operand(ptr)}, {amount}, {esize})"
+        diff = f"_ptr_diff({self.pointer_operand(e.left)}, {self.pointer_operand(e.right)}, {esize})"
+        if e.op == "-":
+            return diff
+        return f"({diff} {e.op} 0)"
+
+    def pointer_operand(self, e: A.Expr) -> str:
+        """A pointer operand; a POINTER TO an ARRAY as its first element."""
+        r = T.resolve(e.ty)
+        assert isinstance(r, T.RefType)
+        return self.decay_code(self.ex(e), r.target)
+
+    def decay_code(self, code: str, target: T.Type) -> str:
+        arr = T.resolve(target)
+        if not isinstance(arr, T.ArrayType) or arr.variable_length:
+            return code
+        esize = sizes.sizeof(arr.elem)
+        shape = tuple(hi - lo + 1 for lo, hi in arr.dims)
+        return f"_elem_ptr({code}, {esize}, {shape!r})"
+
+    def adr_code(self, e: A.Expr) -> str:
+        """ADR(x): REF(x), but an element of a multi-dimensional array or an
+        aggregate element is an ElemPtr into the whole array, so that
+        arithmetic can step across rows and over structures."""
+        if not isinstance(e, A.Index):
+            return self.ref_code(e)
+        arr = array_type(e.base.ty)
+        if arr.variable_length or (len(arr.dims) == 1 and not T.resolve(arr.elem).is_aggregate):
+            return self.ref_code(e)
+        esize = sizes.sizeof(arr.elem)
+        if esize is None:
+            return self.ref_code(e)
+        shape = [hi - lo + 1 for lo, hi in arr.dims]
+        terms = []
+        stride = 1
+        for ix, dim, n in reversed(list(zip(e.indices, arr.dims, shape))):
+            terms.append(f"({self._index_code(ix, dim)}) * {stride * esize}")
+            stride *= n
+        return f"_ElemPtr({self.ex(e.base)}, {' + '.join(terms)}, {esize}, {tuple(shape)!r})"
