@@ -20,6 +20,7 @@ from .checker_calls import CallChecks
 from .checker_config import ConfigChecks, ConfigInfo
 from .checker_decls import DeclChecks
 from .checker_exprs import ExprChecks
+from .checker_oop import OopChecks
 from .checker_operators import OperatorChecks
 from .checker_stmts import StmtChecks
 from .checker_storage import StorageChecks
@@ -49,6 +50,7 @@ class Checker(
     CallChecks,
     ConfigChecks,
     VarConfigChecks,
+    OopChecks,
 ):
     """Checker(profile, diags, std_functions, natives=None, image=None).run(files)
     -> CheckedProgram. std_functions: UPPER name -> standard function
@@ -75,6 +77,8 @@ class Checker(
             self._declare_globals(block)
         for pou in self.pous.values():
             self._declare_pou_vars(pou)
+        self._oop_declare()
+        self._check_instances()
         self._check_containment()
         self._check_sizes()
         for st in self.structs:
@@ -90,6 +94,7 @@ class Checker(
             for sym in pou.vars.values():
                 self._check_var_init(sym, scope)
             self._stmts(pou.node.body, scope)
+        self._oop_bodies()
         for sf in files:
             for decl in sf.decls:
                 if isinstance(decl, A.Configuration):

@@ -22,6 +22,7 @@ from .codegen_base import Accessor
 from .codegen_calls import CallGen
 from .codegen_config import ConfigGen
 from .codegen_exprs import ExprGen
+from .codegen_oop import OopGen
 from .codegen_pous import PouGen
 from .codegen_stmts import StmtGen
 
@@ -37,7 +38,7 @@ class GeneratedModule:
     pou_classes: dict = field(default_factory=dict)  # UPPER POU name -> python name
 
 
-class CodeGen(PouGen, StmtGen, ExprGen, CallGen, ConfigGen):
+class CodeGen(PouGen, StmtGen, ExprGen, CallGen, ConfigGen, OopGen):
     """CodeGen(checked, profile).generate() -> GeneratedModule."""
 
     def generate(self) -> GeneratedModule:
@@ -47,7 +48,7 @@ class CodeGen(PouGen, StmtGen, ExprGen, CallGen, ConfigGen):
         classes = {}
         for st in self.prog.structs:
             self._struct_class(st)
-        for pou in self.prog.pous:
+        for pou in self._class_order(self.prog.pous):  # a base class before those extending it
             if pou.kind == "FUNCTION":
                 self._function(pou)
             else:

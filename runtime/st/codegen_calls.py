@@ -31,6 +31,8 @@ class CallGen(CodeGenBase):
             return self.ex(info.args[0])
         if info.kind == "function":
             return self._function_call(info)
+        if info.kind == "method":
+            return self._method_invoke(e, info)  # codegen_oop.py
         if info.kind == "builtin":
             if info.func == "TIME":
                 return "_NOW_MS"  # the task clock, set once per cycle by the runner
@@ -38,6 +40,9 @@ class CallGen(CodeGenBase):
                 return "_NOW_NS"
             if info.func in ("REF", "ADR"):
                 return self.ref_code(info.args[0])
+            if info.func == "__QUERYINTERFACE":
+                src, dst = info.args
+                return f"_query_into({self._query_code(src, dst.ty)}, {self.ref_code(dst)})"
             return py_literal(e.const)
         if info.kind == "native":
             if info.func.site:  # the values in their common type, then where the call is (st/native.py)
@@ -144,6 +149,12 @@ class CallGen(CodeGenBase):
     def _function_call(self, info: CallInfo) -> str:
         pou = info.pou
         assert pou is not None  # a call of kind 'function' names its POU
+        return f"{pou.pyname}({self._function_args(info)})"
+
+    def _function_args(self, info: CallInfo) -> str:
+        """The keyword arguments of a FUNCTION's or METHOD's call."""
+        pou = info.pou
+        assert pou is not None
         given = {p.name.upper(): (p, a) for p, a in info.inputs}
         given.update({p.name.upper(): (p, a) for p, a in info.inouts})
         parts = []
@@ -163,8 +174,7 @@ class CallGen(CodeGenBase):
             if negated:
                 raise NotImplementedError("negated outputs of a FUNCTION")
             parts.append(f"_o_{p.pyname}={self.ref_code(target)}")
-        args = ", ".join(x for x in parts if x)
-        return f"{pou.pyname}({args})"
+        return ", ".join(x for x in parts if x)
 
     def _call_stmt(self, e: A.Call) -> None:
         info: CallInfo = e.target

@@ -225,11 +225,12 @@ class PouGen(CodeGenBase):
         self.pos = pou.node.pos
         self.fn = FnState(pou)
         self.emit("")
-        self.emit(f"class {pou.pyname}:")
+        self.emit(self._class_header(pou))  # class X, or class X(Base) (codegen_oop.py)
         self.indent += 1
         stored = [v for v in pou.vars.values() if v.location is None and not self._temp_local(v)]
         located = [v for v in pou.vars.values() if v.location is not None]
-        self.emit(f"__slots__ = ({''.join(repr(v.pyname) + ', ' for v in stored)})")
+        own = [v for v in stored if v.owner is pou]  # a base class has the inherited ones
+        self.emit(f"__slots__ = ({''.join(repr(v.pyname) + ', ' for v in own)})")
         meta = [(v.name, v.pyname, v.type, v.section) for v in pou.vars.values() if not self._temp_local(v)]
         self.emit(f"_VARS_ = {self.const(tuple(meta))}")
         for v in located:
@@ -253,6 +254,7 @@ class PouGen(CodeGenBase):
                 continue
             self._emit_init(f"self.{v.pyname}", v.type, v.init_value)
         self._emit_ref_inits()
+        self._fb_init_calls(pou)  # FB_init, base first (codegen_oop.py)
         self.indent -= 1
         self._assign_copy_methods(pou.pyname, [(v.pyname, v.type) for v in stored])
         self.emit("")
@@ -262,6 +264,7 @@ class PouGen(CodeGenBase):
         self._temps_init(pou)
         self._body(pou.node.body)
         self.indent -= 1
+        self._oop_members(pou)
         self.indent -= 1
 
     def _temps_init(self, pou: POUInfo) -> None:
@@ -273,7 +276,9 @@ class PouGen(CodeGenBase):
                 self._emit_init(target, v.type, v.init_value)
         self._emit_ref_inits()
 
-    def _function(self, pou: POUInfo) -> None:
+    def _function(self, pou: POUInfo, method: bool = False) -> None:
+        """A FUNCTION, or (method) a METHOD or PROPERTY accessor of the
+        class being emitted: the same, with self first."""
         self.pos = pou.node.pos
         self.fn = FnState(pou)
         inputs = pou.params("VAR_INPUT", "VAR_IN_OUT")
@@ -285,6 +290,8 @@ class PouGen(CodeGenBase):
             else:
                 params.append(f"{v.pyname}={self._scalar_plan_code(v.type, v.init_value)}")
         params += [f"_o_{v.pyname}=None" for v in outputs]
+        if method:
+            params.insert(0, "self")
         self.emit("")
         self.emit(f"def {pou.pyname}({', '.join(params)}):")
         self.indent += 1

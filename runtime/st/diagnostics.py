@@ -21,6 +21,8 @@ Code ranges (keep them stable, users search for them):
   E070-E079  control flow
   E080-E089  direct (located) addresses
   E090-E099  configuration, resources, tasks (E094: a VAR_CONFIG path)
+  E140-E149  object-oriented ST (checker_oop.py): EXTENDS/IMPLEMENTS, members,
+             ABSTRACT, FINAL, access, interfaces, THIS/SUPER, PROPERTY, FB_init
   W1xx       warnings (same tens as the error they soften: W121 ~ E021,
              W130 ~ E030 where the profile allows what IEC forbids)
 """

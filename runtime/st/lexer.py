@@ -210,6 +210,16 @@ _CONTEXTUAL = ("S_ASSIGN", "R_ASSIGN", "REF_ASSIGN", "LABEL_NAME")
 # Reserved operator keywords that are also standard functions (AND(a, b)).
 _OPERATOR_FUNCTIONS = frozenset(("AND", "OR", "XOR", "NOT", "MOD"))
 _OPEN_PAREN = re.compile(r"[ \t\f\r\n\v]*\(")
+# After a name, what makes it the start of a statement: the soft keywords
+# of object-oriented ST are names there (Get := 1; property := x;): LALR
+# merges the states after a type name and after a VAR block, so the
+# parser's row has GET after METHOD Get : INT, and METHOD, PROPERTY after
+# the VAR blocks of any POU.
+_STARTS_STATEMENT = re.compile(r"[ \t]*(?::=|\?=|[(.\[^])")
+_OOP_SOFT = frozenset(
+    ("GET", "METHOD", "PROPERTY", "INTERFACE", "ABSTRACT", "FINAL", "PUBLIC", "PRIVATE", "PROTECTED")
+    + ("INTERNAL", "VAR_INST")
+)
 # Tokens that end an operand: after them AND, OR ... are operators.
 _ENDS_OPERAND = frozenset(
     ("NAME", "INT", "REAL", "BASED_INT", "C_HEX", "HASH_LIT", "STRING_LIT", "WSTRING_LIT", "LOCATED", "BIT_REF")
@@ -284,7 +294,8 @@ class Lexer:
                                     break
                         else:
                             if kw is not None and kw in row:
-                                kind = kw
+                                if kw not in _OOP_SOFT or not _STARTS_STATEMENT.match(text, pos):
+                                    kind = kw
                 else:
                     kind = kw
                     if kw in _OPERATOR_FUNCTIONS and prev not in _ENDS_OPERAND and _OPEN_PAREN.match(text, pos):

@@ -6,8 +6,8 @@
 Never raises: every problem becomes a coded diagnostic in ``diags`` (E001
 syntax, E002 invalid character, E003 invalid literal, E004 unterminated
 comment/string/pragma, E005 structural, E006 nested too deeply, E007 file
-too large, E008 comments nested too deeply, E009 internal; W101 ignored
-EXTENDS/IMPLEMENTS) and the result holds whatever could be parsed.
+too large, E008 comments nested too deeply, E009 internal) and the result
+holds whatever could be parsed.
 
 How it works:
   1. lexer.strip_comments blanks out comments and pragmas, keeping every
