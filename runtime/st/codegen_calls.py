@@ -151,8 +151,10 @@ class CallGen(CodeGenBase):
         assert pou is not None  # a call of kind 'function' names its POU
         return f"{pou.pyname}({self._function_args(info)})"
 
-    def _function_args(self, info: CallInfo) -> str:
-        """The keyword arguments of a FUNCTION's or METHOD's call."""
+    def _function_args(self, info: CallInfo, positional: bool = False) -> str:
+        """The keyword arguments of a FUNCTION's or METHOD's call
+        (positional: the leading inputs given without their names, which
+        is a little faster to call)."""
         pou = info.pou
         assert pou is not None
         given = {p.name.upper(): (p, a) for p, a in info.inputs}
@@ -170,6 +172,11 @@ class CallGen(CodeGenBase):
                 parts.append(f"{p.pyname}=_copy_value({self.ex(a)})")
             else:
                 parts.append(f"{p.pyname}={self.coerce(self.ex(a), a.ty, p.type, a)}")
+        if positional:
+            for i, part in enumerate(parts):
+                if not part:
+                    break
+                parts[i] = part.split("=", 1)[1]
         for p, target, negated in info.outputs:
             if negated:
                 raise NotImplementedError("negated outputs of a FUNCTION")

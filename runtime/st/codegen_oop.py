@@ -103,7 +103,7 @@ class OopGen(CodeGenBase):
         assert m is not None  # a method call names its METHOD
         if info.func == "body":  # SUPER^(): the base's body on this instance
             return f"{m.pyname}.__call__({self.fn.self_name})"
-        args = self._function_args(info)
+        args = self._function_args(info, positional=True)
         if info.func == "super":  # SUPER^.M(): the base's own, no dispatch
             assert m.fb is not None
             sep = ", " if args else ""
