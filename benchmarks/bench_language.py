@@ -4,8 +4,8 @@
     python benchmarks/bench_language.py           # full run, about 20 s
     python benchmarks/bench_language.py --quick   # smoke run, about 4 s
 
-Part 1 runs three ST programs (numeric loops, bit/word manipulation, 100 FB
-instances) and a hand-written Python implementation of the same logic, checks
+Part 1 runs four ST programs (numeric loops, bit/word manipulation, 100 FB
+instances, 100 method calls through an interface) and a hand-written Python implementation of the same logic, checks
 that both end in the same state and prints us/cycle and the ratio
 generated / hand-written (target: within 1.3x).
 
@@ -350,6 +350,67 @@ class TimersHand:
         for ton, ctu, k, *_ in self.channels:
             st.update({f"t{k}.Q": ton.Q, f"t{k}.ET": ton.ET, f"c{k}.Q": ctu.Q, f"c{k}.CV": ctu.CV})
         return st
+
+
+# =====================================================================
+# d. Methods dispatched through an interface
+# =====================================================================
+
+OOP_ST = HERE / "oop.st"
+
+
+class AccAdd:
+    __slots__ = ("sum",)
+
+    def __init__(self) -> None:
+        self.sum = 0
+
+    def step(self, x: int) -> int:
+        self.sum = s = ((self.sum + x + 0x8000_0000) & 0xFFFF_FFFF) - 0x8000_0000
+        return s
+
+    @property
+    def total(self) -> int:
+        return self.sum
+
+
+class AccMax:
+    __slots__ = ("sum",)
+
+    def __init__(self) -> None:
+        self.sum = 0
+
+    def step(self, x: int) -> int:
+        if x > self.sum:
+            self.sum = x
+        return self.sum
+
+    @property
+    def total(self) -> int:
+        return self.sum
+
+
+class OopHand:
+    """benchmarks/oop.st by hand: two classes with the same method and
+    property in one list (Python's own dispatch); the DINT sums wrap where
+    the ST's do (the compiler cannot prove them in range)."""
+
+    __slots__ = ("accs", "cycle", "check", "last")
+
+    def __init__(self) -> None:
+        self.accs = [acc for _ in range(50) for acc in (AccAdd(), AccMax())]
+        self.cycle = self.check = self.last = 0
+
+    def __call__(self) -> None:
+        self.cycle = cycle = s32(self.cycle + 1)
+        check = last = 0
+        for i, acc in enumerate(self.accs, start=1):
+            last = acc.step(((cycle + i + 0x8000_0000) & 0xFFFF_FFFF) - 0x8000_0000)
+            check = ((check + last - acc.total + 0x8000_0000) & 0xFFFF_FFFF) - 0x8000_0000
+        self.check, self.last = check, last
+
+    def state(self) -> dict:
+        return {"cycle": self.cycle, "check": self.check, "last": self.last}
 
 
 # =====================================================================
@@ -780,7 +841,7 @@ def main() -> int:
     rounds = args.rounds or (3 if args.quick else 40)
     # cycles per timed chunk, about 10 ms each: short chunks are less often
     # interrupted by other processes, so the minimum is a clean run
-    cycles = {"a numeric": 4, "b bits": 16, "c timers": 200}
+    cycles = {"a numeric": 4, "b bits": 16, "c timers": 200, "d methods": 50}
 
     print(
         f"softplc ST benchmarks  (Python {sys.version.split()[0]}, "
@@ -791,6 +852,7 @@ def main() -> int:
         Bench("a numeric", NUMERIC_ST, "NumericMain", NumericHand, clocked=False),
         Bench("b bits", BITS_ST, "BitsMain", BitsHand, clocked=False),
         Bench("c timers", TIMERS_ST, "TimersMain", TimersHand, clocked=True),
+        Bench("d methods", OOP_ST, "OopMain", OopHand, clocked=False),
     ]
     print("1. Generated code vs hand-written Python: the same logic for the same cycles")
     print(f"   {'program':<10} {'generated':>12} {'hand':>12} {'ratio':>7} {'(of mins)':>9} {'Runner.run':>12}  check")

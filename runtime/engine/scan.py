@@ -29,6 +29,7 @@ from dataclasses import dataclass
 from ..image.address import default_type
 from ..image.memory import ProcessImage
 from ..program import ExecContext, Program, locate
+from ..st import rt_oop
 from ..st import types as T
 from ..st.faults import STFault, fault_from_exception
 from ..st.valuejson import encode_instance
@@ -482,6 +483,7 @@ class Engine:
             self.stopped = self.loaded
             return
         self.stopped = True
+        self._exit_instances()
         self.outputs_safe = True
         for driver in self.drivers:
             driver.write_outputs(self._safe_view)
@@ -492,6 +494,15 @@ class Engine:
         # lists those first), so no master reports its devices going away
         for driver in reversed(self.drivers):
             driver.stop()
+
+    def _exit_instances(self) -> None:
+        """The FB_exit methods of the program's instances (CODESYS calls
+        them before it removes the instances); a fault there is logged."""
+        roots = [obj for _name, _info, obj in self.instances.values() if obj is not None] + [self.ns["_G"]]
+        try:
+            rt_oop.exit_instances(self.ns, roots)
+        except Exception as exc:
+            log.error("FB_exit: %s", fault_from_exception(exc, self.program.linemaps))
 
     def save_retain(self) -> None:
         if not self._retain_plan:

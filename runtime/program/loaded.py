@@ -8,7 +8,7 @@ import time
 from typing import Any
 
 from ..image.memory import ProcessImage
-from ..st import refs, rt_sfc, rtlib, values
+from ..st import refs, rt_oop, rt_sfc, rtlib, values
 from ..st.checker import CheckedProgram
 from ..st.codegen import GeneratedModule
 from ..st.diagnostics import Diagnostic, SourceSet
@@ -114,6 +114,9 @@ class Program:
             "_ptr_add": refs.ptr_add,
             "_ptr_diff": refs.ptr_diff,
             "_same_ref": refs.same_ref,
+            "_no_itf": rt_oop.no_interface,
+            "_query_itf": rt_oop.query_interface,
+            "_query_into": rt_oop.query_into,
             "_check_index": _check_index,
             "_check_range": _check_range,
             "_out_of_bounds": out_of_bounds,
@@ -209,6 +212,15 @@ class Runner:
                 raise fault_from_exception(exc, self.program.linemaps) from None
             self.cycles += 1
             ctx.set_time(ctx.now_ns + self.cycle_ns)
+
+    def exit(self) -> None:
+        """Take the program down: the FB_exit methods of its instances
+        (rt_oop.exit_instances), as the engine does when it stops."""
+        roots = ([self.instance] if self.instance is not None else []) + [self.globals]
+        try:
+            rt_oop.exit_instances(self.ns, roots)
+        except Exception as exc:
+            raise fault_from_exception(exc, self.program.linemaps) from None
 
     def get(self, path: str):
         """The value of a variable by its ST path, e.g. 'counter.CV' or 'G_speed'."""

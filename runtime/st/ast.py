@@ -336,6 +336,14 @@ class POU(Node):
     external: bool = False  # declared only (body provided natively)
     actions: list = field(default_factory=list)  # Action, written inside the POU or given to it
     sfc: SfcNetwork | None = None  # the body is an SFC network (then body is [])
+    # Object-oriented ST (FUNCTION_BLOCK only; checker_oop.py): ABSTRACT,
+    # FINAL, PUBLIC ... as written (upper-case), EXTENDS (the base's name
+    # and position), IMPLEMENTS (names and positions), METHODs, PROPERTYs.
+    modifiers: tuple = ()
+    extends: tuple | None = None
+    implements: list = field(default_factory=list)
+    methods: list = field(default_factory=list)
+    properties: list = field(default_factory=list)
 
 
 @dataclass(slots=True, eq=False)
@@ -349,6 +357,40 @@ class Action(Node):
     body: list
     pou_name: str | None = None
     name_pos: Pos = NOPOS
+
+
+@dataclass(slots=True, eq=False)
+class Method(Node):
+    """A METHOD of a FUNCTION_BLOCK or INTERFACE (an interface's has no
+    body; body is then None). modifiers: upper-case ABSTRACT, FINAL, PUBLIC ..."""
+
+    name: str
+    var_blocks: list
+    body: list | None
+    return_type: TypeSpec | None = None
+    modifiers: tuple = ()
+
+
+@dataclass(slots=True, eq=False)
+class Property(Node):
+    """A PROPERTY (CODESYS, TwinCAT): its GET and SET accessors are Methods
+    (None where it has none; in an INTERFACE they have no body)."""
+
+    name: str
+    type: TypeSpec
+    getter: Method | None
+    setter: Method | None
+    modifiers: tuple = ()
+
+
+@dataclass(slots=True, eq=False)
+class Interface(Node):
+    """INTERFACE name EXTENDS bases: methods and properties without bodies."""
+
+    name: str
+    bases: list  # (name, Pos)
+    methods: list
+    properties: list
 
 
 @dataclass(slots=True, eq=False)

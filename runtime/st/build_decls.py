@@ -14,6 +14,7 @@ from .build_stmts import StmtBuilder
 from .lexer import Tok
 
 _NAME_TYPES = frozenset(("NAME", "SET", "RESET"))
+_OOP_MODIFIERS = frozenset(("ABSTRACT", "FINAL", "PUBLIC", "PRIVATE", "PROTECTED", "INTERNAL"))
 
 
 def identifier_from_path(path: str) -> str:
@@ -38,6 +39,8 @@ class AstBuilder(StmtBuilder, SfcBuilder):
         for d in c:
             if isinstance(d, list):
                 decls.extend(d)
+            elif isinstance(d, (ast.Method, ast.Property)):
+                self._attach_member(d, decls)
             elif isinstance(d, ast.VarBlock) and d.kind != "VAR_GLOBAL":
                 self.ctx.report(
                     "E005",
@@ -49,6 +52,22 @@ class AstBuilder(StmtBuilder, SfcBuilder):
             else:
                 decls.append(d)
         return ast.SourceFile(self.ctx.path, decls, self.qualified_bases, pos=ast.Pos(self.file, 1, 1))
+
+    def _attach_member(self, m, decls: list) -> None:
+        """A METHOD or PROPERTY after END_FUNCTION_BLOCK (as TwinCAT and
+        blark export them) belongs to the FUNCTION_BLOCK before it."""
+        owner = next((d for d in reversed(decls) if isinstance(d, (ast.POU, ast.Interface))), None)
+        if isinstance(owner, ast.POU) and owner.kind == "FUNCTION_BLOCK":
+            (owner.methods if isinstance(m, ast.Method) else owner.properties).append(m)
+        elif isinstance(owner, ast.Interface):
+            (owner.methods if isinstance(m, ast.Method) else owner.properties).append(m)
+        else:
+            self.ctx.report(
+                "E005",
+                f"{'METHOD' if isinstance(m, ast.Method) else 'PROPERTY'} {m.name} belongs to no FUNCTION_BLOCK",
+                m.pos,
+                "put it inside a FUNCTION_BLOCK or INTERFACE, or right after one",
+            )
 
     def bare_source(self, c):
         body = [s for s in c if s is not None]
@@ -98,7 +117,24 @@ class AstBuilder(StmtBuilder, SfcBuilder):
         return self._pou("FUNCTION", c)
 
     def function_block(self, c):
-        return self._pou("FUNCTION_BLOCK", c)
+        mods = tuple(t.type for t in c[1:] if isinstance(t, Tok) and t.type in _OOP_MODIFIERS)
+        name = c[1 + len(mods)]
+        rest = [c[0], name, *c[2 + len(mods) :]]
+        pou = self._pou("FUNCTION_BLOCK", [x for x in rest if not isinstance(x, (tuple, ast.Method, ast.Property))])
+        pou.modifiers = mods
+        for x in c:
+            if isinstance(x, tuple) and x[0] == "EXTENDS":
+                if pou.extends is not None:
+                    self.ctx.report("E005", "a FUNCTION_BLOCK EXTENDS one base only", x[1][0][1])
+                else:
+                    pou.extends = x[1][0]
+            elif isinstance(x, tuple):
+                pou.implements += x[1]
+            elif isinstance(x, ast.Method):
+                pou.methods.append(x)
+            elif isinstance(x, ast.Property):
+                pou.properties.append(x)
+        return pou
 
     def action_block(self, c):
         names = [t for t in c if isinstance(t, Tok) and t.type in _NAME_TYPES]
@@ -120,13 +156,54 @@ class AstBuilder(StmtBuilder, SfcBuilder):
         )
 
     def fb_inherit(self, c):
-        self.ctx.diags.warning(
-            "W101",
-            f"{c[0].value.upper()} is ignored: inheritance and interfaces are not supported",
-            self._span(c[0], c[-1]),
-            "declare the inherited variables in this block instead",
+        # EXTENDS a.b / IMPLEMENTS I1, I2: (keyword, [(dotted name, Pos)])
+        return (c[0].type, list(c[1:]))
+
+    def qualified_name(self, c):
+        return ".".join(t.value for t in c), self._span(c[0], c[-1])
+
+    # -- object-oriented ST (checker_oop.py gives them their meaning)
+    def _modifiers_and_name(self, c) -> tuple:
+        mods = []
+        i = 1
+        while isinstance(c[i], Tok) and c[i].type in _OOP_MODIFIERS:
+            mods.append(c[i].type)
+            i += 1
+        return tuple(mods), c[i], i + 1
+
+    def method(self, c):
+        mods, name, i = self._modifiers_and_name(c)
+        ret = c[i]
+        var_blocks = [x for x in c if isinstance(x, ast.VarBlock)]
+        body = next(x for x in c if isinstance(x, list))
+        return ast.Method(name.value, var_blocks, body, ret, mods, pos=self._span(c[0], c[-1]))
+
+    def property(self, c):
+        mods, name, i = self._modifiers_and_name(c)
+        accessors = dict(x for x in c if isinstance(x, tuple))
+        for m in accessors.values():
+            m.name = name.value
+        return ast.Property(
+            name.value, c[i], accessors.get("GET"), accessors.get("SET"), mods, pos=self._span(c[0], c[-1])
         )
-        return None
+
+    def property_accessor(self, c):
+        var_blocks = [x for x in c if isinstance(x, ast.VarBlock)]
+        body = next(x for x in c if isinstance(x, list))
+        return (c[0].type, ast.Method("", var_blocks, body, None, (), pos=self._span(c[0], c[-1])))
+
+    def interface(self, c):
+        bases = next((x for x in c if isinstance(x, tuple)), ())
+        return ast.Interface(
+            c[1].value,
+            list(bases),
+            [x for x in c if isinstance(x, ast.Method)],
+            [x for x in c if isinstance(x, ast.Property)],
+            pos=self._span(c[0], c[-1]),
+        )
+
+    def interface_bases(self, c):
+        return tuple((t.value, self._tpos(t)) for t in c[1:] if t.type != "COMMA")
 
     # -- declarations
     def var_block(self, c):

@@ -6,7 +6,7 @@ from __future__ import annotations
 from . import ast
 from .build_exprs import ExprBuilder
 
-_ASSIGN_OPS = {"ASSIGN": ":=", "S_ASSIGN": "S=", "R_ASSIGN": "R=", "REF_ASSIGN": "REF="}
+_ASSIGN_OPS = {"ASSIGN": ":=", "S_ASSIGN": "S=", "R_ASSIGN": "R=", "REF_ASSIGN": "REF=", "QUERY_ASSIGN": "?="}
 
 
 class StmtBuilder(ExprBuilder):

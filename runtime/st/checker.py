@@ -22,6 +22,7 @@ from .checker_config import ConfigChecks, ConfigInfo
 from .checker_decls import DeclChecks
 from .checker_exprs import ExprChecks
 from .checker_jumps import JumpChecks
+from .checker_oop import OopChecks
 from .checker_operators import OperatorChecks
 from .checker_pointers import PointerChecks
 from .checker_refs import RefChecks
@@ -61,6 +62,7 @@ class Checker(
     JumpChecks,
     SfcChecks,
     NamespaceChecks,
+    OopChecks,
 ):
     """Checker(profile, diags, std_functions, natives=None, image=None).run(files)
     -> CheckedProgram. std_functions: UPPER name -> standard function
@@ -91,6 +93,8 @@ class Checker(
             self._declare_pou_vars(pou)
             self._declare_sfc(pou)
         self._mark_hidden()
+        self._oop_declare()
+        self._check_instances()
         self._check_containment()
         self._check_sizes()
         for st in self.structs:
@@ -109,6 +113,7 @@ class Checker(
             self._check_jumps(pou.node.body)
             self._check_actions(pou)
             self._check_sfc(pou)
+        self._oop_bodies()
         for sf in files:
             for decl in sf.decls:
                 if isinstance(decl, A.Configuration):

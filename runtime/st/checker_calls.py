@@ -16,7 +16,7 @@ from .checker_base import BUILTINS, CheckerBase, Scope
 from .checker_operators import OPERATOR_FUNCTIONS
 from .conversions import generic_fit, is_flexible, same_type
 from .native import NativeFunction
-from .symbols import CallInfo, POUInfo, VarSymbol
+from .symbols import CallInfo, POUInfo, PropertyInfo, VarSymbol
 
 
 class CallChecks(CheckerBase):
@@ -25,6 +25,9 @@ class CallChecks(CheckerBase):
     def call(self, e: A.Call, scope: Scope, as_statement: bool) -> T.Type | None:
         self.trailing_comma(e.trailing_comma)
         callee = e.callee
+        hit = self._oop_call(e, scope, as_statement)  # methods, SUPER^() (checker_oop.py)
+        if hit is not None:
+            return hit[0]
         if isinstance(callee, A.Name):
             key = callee.name.upper()
             local = None
@@ -61,6 +64,8 @@ class CallChecks(CheckerBase):
                 return self._native_call(e, native, scope)
             if key in BUILTINS:
                 return self._builtin_call(e, key, scope)
+            if key == "__QUERYINTERFACE":
+                return self._query_interface(e, scope)
             func = self.std.get(key)
             if func is not None:
                 if key in OPERATOR_FUNCTIONS:
@@ -86,8 +91,8 @@ class CallChecks(CheckerBase):
             if a.value is not None:
                 self.expr(a.value, scope)
 
-    def _fb_call(self, e: A.Call, inst: A.Expr, scope: Scope, as_statement: bool) -> T.Type | None:
-        ity = self.expr(inst, scope)
+    def _fb_call(self, e: A.Call, inst: A.Expr, scope: Scope, as_statement: bool, typed: bool = False) -> T.Type | None:
+        ity = inst.ty if typed else self.expr(inst, scope)
         if ity is None:
             self._check_args_loosely(e, scope)
             return None
@@ -238,6 +243,14 @@ class CallChecks(CheckerBase):
 
     def _mark_boxed(self, e: A.Expr, scope: Scope) -> None:
         """A FUNCTION local passed by reference lives in a cell."""
+        if isinstance(e, (A.Name, A.Member)) and isinstance(e.sym, PropertyInfo):
+            self.d.error(
+                "E147",
+                f"PROPERTY {e.sym.name} is not a variable: it cannot be passed by reference",
+                e.pos,
+                "read it into a variable, pass that, and assign the property after the call",
+            )
+            return
         if isinstance(e, A.Name) and isinstance(e.sym, VarSymbol):
             e.sym.address_taken = True
         if (

@@ -52,6 +52,8 @@ class ExprChecks(CheckerBase):
         if isinstance(e, A.BitAccess):
             return self._bit_access(e, scope)
         if isinstance(e, A.Deref):
+            if isinstance(e.base, A.Name) and e.base.name.upper() in ("THIS", "SUPER"):
+                return self._this_deref(e, scope)  # checker_oop.py
             bty = self.expr(e.base, scope)
             if bty is None:
                 return None
@@ -149,6 +151,10 @@ class ExprChecks(CheckerBase):
             sym = scope.names.get(key) or pou.vars.get(key)
             if sym is None and pou.result is not None and key == pou.name.upper():
                 sym = pou.result
+            if sym is None:  # a METHOD's FB's variables, a PROPERTY (checker_oop.py)
+                hit = self._oop_name(e, key, scope)
+                if hit is not None:
+                    return hit[0]
         if sym is None:
             sym = self.globals.get(key)
             if sym is not None:
@@ -230,8 +236,15 @@ class ExprChecks(CheckerBase):
         bty = self.expr(e.base, scope)
         if bty is None:
             return None
+        return self._member_of(e, bty, scope)
+
+    def _member_of(self, e: A.Member, bty: T.Type, scope: Scope) -> T.Type | None:
+        """The member e.name of a base of type bty (checked already)."""
         b = T.resolve(bty)
         key = e.name.upper()
+        hit = self._oop_member(e, b, scope)  # a PROPERTY, an interface's (checker_oop.py)
+        if hit is not None:
+            return hit[0]
         if isinstance(b, T.StructType):
             f = b.fields.get(key)
             if f is None:
@@ -249,7 +262,8 @@ class ExprChecks(CheckerBase):
                     self._suggest(key, [k for k, s in b.pou.vars.items() if s.section in _SECTIONS_READABLE_OUTSIDE]),
                 )
                 return None
-            if v.section not in ("VAR_INPUT", "VAR_OUTPUT") and scope.pou is not b.pou:
+            inside = scope.pou is b.pou or self.inside_fb(scope, b.pou)
+            if v.section not in ("VAR_INPUT", "VAR_OUTPUT") and not inside:
                 self.d.error(
                     "E013",
                     f"'{v.name}' is internal to {b.name}",

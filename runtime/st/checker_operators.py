@@ -190,10 +190,12 @@ class OperatorChecks(CheckerBase):
             ok = lres is rres
         elif isinstance(lres, T.StringType) and isinstance(rres, T.StringType):
             ok = lres.wide == rres.wide
-        elif isinstance(lres, (T.RefType, T.NullType)) or isinstance(rres, (T.RefType, T.NullType)):
-            # r = 0 / r <> 0 is how CODESYS and TwinCAT test for NULL
+        elif isinstance(lres, (T.RefType, T.NullType, T.InterfaceType)) or isinstance(
+            rres, (T.RefType, T.NullType, T.InterfaceType)
+        ):
+            # r = 0 / r <> 0 is how CODESYS and TwinCAT test for NULL (an interface too)
             def refish(t, side):
-                return isinstance(t, (T.RefType, T.NullType)) or side.const == 0
+                return isinstance(t, (T.RefType, T.NullType, T.InterfaceType)) or side.const == 0
 
             ok = e.op in ("=", "<>") and refish(lres, e.left) and refish(rres, e.right)
         else:

@@ -11,7 +11,7 @@ from . import types as T
 from .checker_base import CheckerBase, Scope
 from .profile import names_where
 from .rt_sfc import STEP_TYPE
-from .symbols import VarSymbol
+from .symbols import PropertyInfo, VarSymbol
 
 
 class StmtChecks(CheckerBase):
@@ -79,6 +79,9 @@ class StmtChecks(CheckerBase):
             self.d.error("E020", f"the {what} condition is {ty}, not BOOL", cond.pos, "compare it, e.g. x <> 0")
 
     def _assign(self, s: A.Assign, scope: Scope) -> None:
+        if s.op == "?=":
+            self._assignment_attempt(s, scope)  # checker_oop.py
+            return
         if s.op == "REF=":
             self.ref_bind(s, scope)
             return
@@ -182,6 +185,11 @@ class StmtChecks(CheckerBase):
             return  # writes through a REFERENCE TO, like r^ := ...
         if isinstance(e, A.Name):
             sym = e.sym
+            if isinstance(sym, PropertyInfo):
+                self._assigned.add(id(e))
+                if sym.setter is None:
+                    self.d.error("E147", f"PROPERTY {sym.name} has no SET: it cannot be assigned", e.pos)
+                return
             if not isinstance(sym, VarSymbol):
                 self.d.error("E031", f"'{e.name}' is not a variable", e.pos)
                 return
@@ -211,8 +219,13 @@ class StmtChecks(CheckerBase):
         elif isinstance(e, A.Member):
             sym = e.sym
             base_ty = T.resolve(e.base.ty) if e.base.ty is not None else None
+            if isinstance(sym, PropertyInfo):
+                self._assigned.add(id(e))
+                if sym.setter is None:
+                    self.d.error("E147", f"PROPERTY {sym.name} has no SET: it cannot be assigned", e.pos)
+                    return
             if isinstance(base_ty, T.FBType) and isinstance(sym, VarSymbol):
-                if sym.section == "VAR_OUTPUT":
+                if sym.section == "VAR_OUTPUT" and not self.inside_fb(scope, base_ty.pou):
                     self.d.error(
                         "E030",
                         f"'{sym.name}' is an output of {base_ty.name}; it is written by the block, not from outside",

@@ -40,6 +40,8 @@ class TypeChecks(CheckerBase):
                 if decl.kind != "FUNCTION":
                     info.fbtype = T.FBType(decl.name, info)
                 self.pous[key] = info
+            elif isinstance(decl, A.Interface):
+                self._collect_interface(decl, library)
 
     def _clash(self, key: str, name: str, pos: A.Pos) -> bool:
         if key in T.ELEMENTARY or key in ("STRING", "WSTRING") or key in T.GENERICS:

@@ -24,6 +24,7 @@ from .codegen_config import ConfigGen
 from .codegen_exprs import ExprGen
 from .codegen_jumps import JumpGen
 from .codegen_pointers import PointerGen
+from .codegen_oop import OopGen
 from .codegen_pous import PouGen
 from .codegen_stmts import StmtGen
 
@@ -39,7 +40,7 @@ class GeneratedModule:
     pou_classes: dict = field(default_factory=dict)  # UPPER POU name -> python name
 
 
-class CodeGen(PouGen, StmtGen, ExprGen, PointerGen, CallGen, ConfigGen, JumpGen):
+class CodeGen(PouGen, StmtGen, ExprGen, PointerGen, CallGen, ConfigGen, JumpGen, OopGen):
     """CodeGen(checked, profile).generate() -> GeneratedModule."""
 
     def generate(self) -> GeneratedModule:
@@ -49,7 +50,7 @@ class CodeGen(PouGen, StmtGen, ExprGen, PointerGen, CallGen, ConfigGen, JumpGen)
         classes = {}
         for st in self.prog.structs:
             self._struct_class(st)
-        for pou in self.prog.pous:
+        for pou in self._class_order(self.prog.pous):  # a base class before those extending it
             if pou.kind == "FUNCTION":
                 self._function(pou)
             else:

@@ -31,6 +31,8 @@ class CallGen(CodeGenBase):
             return self.ex(info.args[0])
         if info.kind == "function":
             return self._function_call(info)
+        if info.kind == "method":
+            return self._method_invoke(e, info)  # codegen_oop.py
         if info.kind == "builtin":
             if info.func == "TIME":
                 return "_NOW_MS"  # the task clock, set once per cycle by the runner
@@ -42,6 +44,9 @@ class CallGen(CodeGenBase):
                 return self.ref_code(info.args[0])
             if info.func == "__ISVALIDREF":
                 return f"({self.ref_value(info.args[0])} is not None)"
+            if info.func == "__QUERYINTERFACE":
+                src, dst = info.args
+                return f"_query_into({self._query_code(src, dst.ty)}, {self.ref_code(dst)})"
             return py_literal(e.const)
         if info.kind == "native":
             if info.func.site:  # the values in their common type, then where the call is (st/native.py)
@@ -148,6 +153,14 @@ class CallGen(CodeGenBase):
     def _function_call(self, info: CallInfo) -> str:
         pou = info.pou
         assert pou is not None  # a call of kind 'function' names its POU
+        return f"{pou.pyname}({self._function_args(info)})"
+
+    def _function_args(self, info: CallInfo, positional: bool = False) -> str:
+        """The keyword arguments of a FUNCTION's or METHOD's call
+        (positional: the leading inputs given without their names, which
+        is a little faster to call)."""
+        pou = info.pou
+        assert pou is not None
         given = {p.name.upper(): (p, a) for p, a in info.inputs}
         given.update({p.name.upper(): (p, a) for p, a in info.inouts})
         parts = []
@@ -166,12 +179,16 @@ class CallGen(CodeGenBase):
                 parts.append(f"{p.pyname}=_copy_value({self.ex(a)})")
             else:
                 parts.append(f"{p.pyname}={self.coerce(self.ex(a), a.ty, p.type, a)}")
+        if positional:
+            for i, part in enumerate(parts):
+                if not part:
+                    break
+                parts[i] = part.split("=", 1)[1]
         for p, target, negated in info.outputs:
             if negated:
                 raise NotImplementedError("negated outputs of a FUNCTION")
             parts.append(f"_o_{p.pyname}={self.ref_code(target)}")
-        args = ", ".join(x for x in parts if x)
-        return f"{pou.pyname}({args})"
+        return ", ".join(x for x in parts if x)
 
     def _call_stmt(self, e: A.Call) -> None:
         info: CallInfo = e.target

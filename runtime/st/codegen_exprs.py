@@ -16,7 +16,7 @@ from . import conversions as C
 from . import ranges as R
 from . import types as T
 from .codegen_base import CodeGenBase, array_type, elementary, py_literal
-from .symbols import CallInfo, VarSymbol
+from .symbols import CallInfo, PropertyInfo, VarSymbol
 
 
 class ExprGen(CodeGenBase):
@@ -39,10 +39,15 @@ class ExprGen(CodeGenBase):
         if isinstance(e, A.Member):
             if e.const is not None:
                 return py_literal(e.const)
+            if isinstance(e.sym, PropertyInfo):
+                return self._property_read(e)  # codegen_oop.py
             return f"{self.ex(e.base)}.{e.sym.pyname}"
         if isinstance(e, A.Index):
             return self._index_target(e)
         if isinstance(e, A.Deref):
+            this = self._this_code(e)  # THIS^, SUPER^ (codegen_oop.py)
+            if this is not None:
+                return this
             base = self.ex(e.base)
             if T.resolve(e.ty).is_aggregate:
                 return f"_deref({base})"
@@ -69,6 +74,8 @@ class ExprGen(CodeGenBase):
 
     def _read_name(self, sym: Any) -> str:
         if not isinstance(sym, VarSymbol):
+            if isinstance(sym, PropertyInfo):  # P inside its block: THIS^.P
+                return f"{self.fn.self_name}.{sym.getter.pyname}()" if sym.getter else "None"
             raise NotImplementedError("name without a variable")
         loop_local = self.fn.for_locals.get(id(sym))
         if loop_local is not None:
@@ -180,7 +187,7 @@ class ExprGen(CodeGenBase):
 
     @staticmethod
     def _is_ref(ty: T.Type | None) -> bool:
-        return ty is not None and isinstance(T.resolve(ty), (T.RefType, T.NullType))
+        return ty is not None and isinstance(T.resolve(ty), (T.RefType, T.NullType, T.InterfaceType))
 
     def _ref_comparison(self, e: A.Binary) -> str:
         """r = NULL, r <> 0, r1 = r2: whether two references designate the

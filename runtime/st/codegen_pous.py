@@ -260,12 +260,13 @@ class PouGen(SfcGen):
         self.pos = pou.node.pos
         self.fn = FnState(pou)
         self.emit("")
-        self.emit(f"class {pou.pyname}:")
+        self.emit(self._class_header(pou))  # class X, or class X(Base) (codegen_oop.py)
         self.indent += 1
         stored = [v for v in pou.vars.values() if v.location is None and not self._temp_local(v)]
         located = [v for v in pou.vars.values() if v.location is not None]
+        own = [v for v in stored if v.owner is pou]  # a base class has the inherited ones
         hidden = [(SFC_SLOT, SFC_SLOT_TYPE)] if pou.sfc is not None else []  # not a variable
-        slots = [v.pyname for v in stored] + [h[0] for h in hidden]
+        slots = [v.pyname for v in own] + [h[0] for h in hidden]
         self.emit(f"__slots__ = ({''.join(repr(n) + ', ' for n in slots)})")
         meta = [(v.name, v.pyname, v.type, v.section) for v in pou.vars.values() if not self._temp_local(v)]
         self.emit(f"_VARS_ = {self.const(tuple(meta))}")
@@ -293,6 +294,7 @@ class PouGen(SfcGen):
         self._emit_ref_inits()
         if pou.sfc is not None:
             self._sfc_init(pou)
+        self._fb_init_calls(pou)  # FB_init, base first (codegen_oop.py)
         self.indent -= 1
         self._assign_copy_methods(pou.pyname, [(v.pyname, v.type) for v in stored] + hidden)
         self.emit("")
@@ -314,6 +316,7 @@ class PouGen(SfcGen):
             self._temps_init(pou)
             self._body(act.node.body)
             self.indent -= 1
+        self._oop_members(pou)
         self.indent -= 1
 
     def _temps_init(self, pou: POUInfo) -> None:
@@ -325,7 +328,9 @@ class PouGen(SfcGen):
                 self._emit_init(target, v.type, v.init_value)
         self._emit_ref_inits()
 
-    def _function(self, pou: POUInfo) -> None:
+    def _function(self, pou: POUInfo, method: bool = False) -> None:
+        """A FUNCTION, or (method) a METHOD or PROPERTY accessor of the
+        class being emitted: the same, with self first."""
         self.pos = pou.node.pos
         self.fn = FnState(pou)
         inputs = pou.params("VAR_INPUT", "VAR_IN_OUT")
@@ -337,6 +342,8 @@ class PouGen(SfcGen):
             else:
                 params.append(f"{v.pyname}={self._scalar_plan_code(v.type, v.init_value)}")
         params += [f"_o_{v.pyname}=None" for v in outputs]
+        if method:
+            params.insert(0, "self")
         self.emit("")
         self.emit(f"def {pou.pyname}({', '.join(params)}):")
         self.indent += 1

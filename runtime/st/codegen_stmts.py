@@ -19,7 +19,7 @@ from . import rtlib
 from . import types as T
 from .codegen_base import CodeGenBase, elementary, py_literal
 from .faults import LOOP_CHECK_EVERY
-from .symbols import VarSymbol
+from .symbols import PropertyInfo, VarSymbol
 
 
 class StmtGen(CodeGenBase):
@@ -258,6 +258,9 @@ class StmtGen(CodeGenBase):
         if s.op == "REF=":
             self.emit_store(s.target, self.bind_code(s.value), s.target.ty, None, trusted=True, bind=True)
             return
+        if s.op == "?=":  # the assignment attempt: the instance, or NULL (codegen_oop.py)
+            self.emit_store(s.target, self._query_code(s.value, s.target.ty), s.target.ty, None, trusted=True)
+            return
         tty = T.resolve(s.target.ty)
         if tty.is_aggregate:
             self.emit(f"_assign_into({self.ex(s.target)}, {self.ex(s.value)})")
@@ -321,6 +324,8 @@ class StmtGen(CodeGenBase):
         code = value_code if trusted else self.coerce(value_code, value_ty, tty, value_expr)
         if target.implicit_ref is not None and not bind:
             self.emit(f"{self.ref_value(target)}.set({code})")
+        elif isinstance(target, (A.Name, A.Member)) and isinstance(target.sym, PropertyInfo):
+            self._property_store(target, code)  # codegen_oop.py
         elif isinstance(target, A.Name):
             self._store_name(target.sym, code)
         elif isinstance(target, A.Member):

@@ -23,6 +23,7 @@ from . import ast as A
 from . import rtlib
 from . import types as T
 from .diagnostics import DiagnosticBag
+from .oop import interface_accepts
 from .profile import Profile, names_where
 from .ranges import is_stored_value
 
@@ -219,6 +220,16 @@ def check_implicit(src: T.Type, dst: T.Type, e: A.Expr, what: str, profile: Prof
         return False
     if same_type(s, d):
         return True
+    if isinstance(d, T.InterfaceType):  # an instance implementing it, NULL or 0 (CODESYS)
+        if isinstance(s, T.NullType) or e.const == 0 or interface_accepts(s, d):
+            return True
+        diags.error(
+            "E020",
+            f"cannot use {src} as {dst} in {what}",
+            e.pos,
+            f"only instances of function blocks that IMPLEMENT {d.name} (or interfaces that extend it) fit",
+        )
+        return False
     if isinstance(d, T.RefType):
         if isinstance(s, T.NullType) or (
             isinstance(s, T.RefType) and (same_type(s.target, d.target) or decays_to(s, d))
@@ -396,6 +407,8 @@ def store_step(src: T.Type | None, dst: T.Type, e: A.Expr | None) -> str:
         if isinstance(s, T.RefType) and decays_to(s, d):
             return TO_FIRST_ELEMENT
         return KEEP if isinstance(s, T.RefType) else TO_NULL
+    if isinstance(d, T.InterfaceType):
+        return KEEP if isinstance(s, (T.FBType, T.InterfaceType)) else TO_NULL
     if isinstance(d, T.StringType):
         return KEEP if isinstance(s, T.StringType) and s.length <= d.length else TRUNCATE
     if isinstance(d, T.SubrangeType):

@@ -22,13 +22,15 @@ Code ranges (keep them stable, users search for them):
   E070-E079  control flow
   E080-E089  direct (located) addresses
   E090-E099  configuration, resources, tasks (E094: a VAR_CONFIG path)
+  E140-E149  object-oriented ST (checker_oop.py): EXTENDS/IMPLEMENTS, members,
+             ABSTRACT, FINAL, access, interfaces, THIS/SUPER, PROPERTY, FB_init
   E150-E159  SFC (st/checker_sfc.py); W150 a step no transition reaches
   E160-E162  references and pointers (checker_refs.py, checker_pointers.py,
              sizes.py): E160 a reference to a REFERENCE TO, E161 pointer
              arithmetic not supported, E162 SIZEOF without a size
   W1xx       warnings (same tens as the error they soften: W121 ~ E021,
              W122 ~ E022, W130 ~ E030 where the profile allows what IEC
-             forbids; W101-W103 the parser: W102 MatIEC embedded C, W103 an
+             forbids; W102-W103 the parser: W102 MatIEC embedded C, W103 an
              attribute not honoured, pragmas.py)
 """
 

@@ -238,6 +238,16 @@ _OPEN_PAREN = re.compile(r"[ \t\f\r\n\v]*\(")
 _SFC_OPENERS = frozenset(("INITIAL_STEP", "STEP", "TRANSITION", "ACTION"))
 _SFC_FOLLOWS = re.compile(r"[ \t\f\r\n\v]+[a-z_]", re.ASCII | re.IGNORECASE)
 _PRIORITY_FOLLOWS = re.compile(r"[ \t\f\r\n\v]*\([ \t\f\r\n\v]*PRIORITY\b", re.ASCII | re.IGNORECASE)
+# After a name, what makes it the start of a statement: the soft keywords
+# of object-oriented ST are names there (Get := 1; property := x;): LALR
+# merges the states after a type name and after a VAR block, so the
+# parser's row has GET after METHOD Get : INT, and METHOD, PROPERTY after
+# the VAR blocks of any POU.
+_STARTS_STATEMENT = re.compile(r"[ \t]*(?::=|\?=|[(.\[^])")
+_OOP_SOFT = frozenset(
+    ("GET", "METHOD", "PROPERTY", "INTERFACE", "ABSTRACT", "FINAL", "PUBLIC", "PRIVATE", "PROTECTED")
+    + ("INTERNAL", "VAR_INST")
+)
 # Tokens that end an operand: after them AND, OR ... are operators.
 _ENDS_OPERAND = frozenset(
     ("NAME", "INT", "REAL", "BASED_INT", "C_HEX", "HASH_LIT", "STRING_LIT", "WSTRING_LIT", "LOCATED", "BIT_REF")
@@ -332,6 +342,8 @@ class Lexer:
                                 if follow is not None and not follow.match(text, pos):
                                     kind = "NAME"
                                 elif kw in _SFC_OPENERS and "NAME" in row and not self._sfc_follows(kw, text, pos):
+                                    kind = "NAME"
+                                elif kw in _OOP_SOFT and _STARTS_STATEMENT.match(text, pos):
                                     kind = "NAME"
                 else:
                     kind = kw

@@ -40,6 +40,7 @@ _FRIENDLY = {
     "S_ASSIGN": "S=",
     "R_ASSIGN": "R=",
     "REF_ASSIGN": "REF=",
+    "QUERY_ASSIGN": "?=",
     "$END": "end of file",
 }
 # Block openers -> their closer, for "END_IF expected to close the IF at line 3".
@@ -56,6 +57,9 @@ _CLOSERS = {
     "STRUCT": "END_STRUCT",
     "CONFIGURATION": "END_CONFIGURATION",
     "RESOURCE": "END_RESOURCE",
+    "METHOD": "END_METHOD",
+    "PROPERTY": "END_PROPERTY",
+    "INTERFACE": "END_INTERFACE",
     **dict.fromkeys(
         (
             "VAR",
@@ -67,6 +71,7 @@ _CLOSERS = {
             "VAR_TEMP",
             "VAR_STAT",
             "VAR_CONFIG",
+            "VAR_INST",
         ),
         "END_VAR",
     ),
@@ -120,12 +125,6 @@ _INSERTABLE = [
 # At the end of the file: closers first; ';' only when nothing else fits.
 _CLOSING = [c for c in _INSERTABLE if c.startswith("END_")] + ["RPAR", "RSQB", SEMI, "THEN", "DO", "OF"]
 _UNSUPPORTED = {
-    "METHOD": "methods",
-    "END_METHOD": "methods",
-    "PROPERTY": "properties",
-    "END_PROPERTY": "properties",
-    "INTERFACE": "interfaces",
-    "END_INTERFACE": "interfaces",
     "ACTION": "actions",  # ACTION where no action can stand: its own message below
     "END_ACTION": "actions",
     "NAMESPACE": "namespaces",

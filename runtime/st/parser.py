@@ -7,7 +7,7 @@ Never raises: every problem becomes a coded diagnostic in ``diags`` (E001
 syntax, E002 invalid character, E003 invalid literal, E004 unterminated
 comment/string/pragma, E005 structural, E006 nested too deeply, E007 file
 too large, E008 comments nested too deeply, E009 internal, E047 an
-ACTION named Pou.Name inside a POU; W101 ignored EXTENDS/IMPLEMENTS, W102
+ACTION named Pou.Name inside a POU; W102
 ignored MatIEC embedded C {{ }}, W103 an attribute accepted but not
 honoured: pragmas.py) and
 the result holds whatever could be parsed.

@@ -66,6 +66,8 @@ def value_range(e: A.Expr | None, known: Mapping[int, Range] | None = None) -> R
         return (be.lo, be.hi)
     if isinstance(e, A.Binary):
         return _binary_range(e.op, value_range(e.left, known), value_range(e.right, known))
+    if isinstance(e, A.Call) and isinstance(e.target, CallInfo) and e.target.kind == "method":
+        return (be.lo, be.hi)  # the method's result variable, stored in its type
     if isinstance(e, A.Call) and isinstance(e.target, CallInfo) and e.target.kind == "operator":
         return value_range(e.target.args[0], known)  # ADD(a, b) is a + b
     if isinstance(e, A.Call) and isinstance(e.target, CallInfo) and e.target.kind == "std":

@@ -61,6 +61,15 @@ class POUInfo:
     native: Any = None  # Python implementation of an external POU
     actions: dict = field(default_factory=dict)  # UPPER -> ActionInfo (PROGRAM, FUNCTION_BLOCK)
     sfc: Any = None  # checker_sfc.SfcInfo of an SFC body
+    # Object-oriented ST (checker_oop.py). A METHOD or PROPERTY accessor is a
+    # POUInfo of kind FUNCTION (its variables live in the call, as a
+    # FUNCTION's) whose fb is the FUNCTION_BLOCK it belongs to.
+    fb: POUInfo | None = None
+    base: POUInfo | None = None  # the FUNCTION_BLOCK this one EXTENDS
+    methods: dict = field(default_factory=dict)  # UPPER -> POUInfo, declared here
+    properties: dict = field(default_factory=dict)  # UPPER -> PropertyInfo, declared here
+    interfaces: list = field(default_factory=list)  # InterfaceType, IMPLEMENTS here
+    modifiers: tuple = ()  # ABSTRACT, FINAL, PUBLIC, PRIVATE, PROTECTED, INTERNAL
 
     def params(self, *sections: str) -> list:
         return [v for v in self.vars.values() if v.section in sections]
@@ -77,10 +86,26 @@ class ActionInfo:
 
 
 @dataclass(eq=False)
+class PropertyInfo:
+    """A PROPERTY (CODESYS, TwinCAT): reading it calls getter, assigning it
+    calls setter (POUInfos of kind FUNCTION; None where it has none)."""
+
+    name: str
+    type: Type
+    pos: Any
+    owner: Any  # the POUInfo of its FUNCTION_BLOCK, or the InterfaceType
+    getter: POUInfo | None = None
+    setter: POUInfo | None = None
+    modifiers: tuple = ()
+
+
+@dataclass(eq=False)
 class CallInfo:
     """A checked call. kind: 'function' (user FUNCTION), 'fb' (instance
     call), 'action' (an ACTION of pou: func is its ActionInfo, instance the
-    FB instance or None inside the POU), 'std' (standard library function), 'builtin' (TIME, LTIME, REF,
+    FB instance or None inside the POU), 'method' (pou: the METHOD;
+    instance: the FB or interface expression, None for THIS; func: 'super'
+    for SUPER^.M(), 'body' for SUPER^()), 'std' (standard library function), 'builtin' (TIME, LTIME, REF,
     ADR, SIZEOF), 'native' (a native function, st/native.py), 'operator'
     (the function form of an operator, ADD(a, b, c): args is [the operator
     expression it stands for, (a + b) + c])."""

@@ -289,6 +289,21 @@ class FBType(Type):
     is_fb = True
 
 
+@dataclass(eq=False)
+class InterfaceType(Type):
+    """An INTERFACE (IEC 61131-3 ed.3 6.6.6): a variable of it designates
+    an FB instance that implements it, or none (0, NULL: None in Python).
+    methods: UPPER -> POUInfo (signatures), properties: UPPER ->
+    PropertyInfo, bases: the InterfaceTypes it EXTENDS (checker_oop.py)."""
+
+    name: str
+    node: Any = None
+    methods: dict = field(default_factory=dict)
+    properties: dict = field(default_factory=dict)
+    bases: list = field(default_factory=list)
+    library: bool = False
+
+
 @dataclass(frozen=True, eq=False)
 class SchneiderAddrType(Type):
     name: str = "ADR#"

@@ -119,6 +119,7 @@ def test_examples_cover_every_section():
         "loopback.toml",
         "modbus_rtu.toml",
         "modbus_tcp.toml",
+        "motors_oop.toml",
         "retain.toml",
         "sfc.toml",
         "tasks.toml",

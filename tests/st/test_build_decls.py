@@ -169,11 +169,12 @@ END_PROGRAM;
     assert span(main) == (15, 1, 18, 12)
 
 
-def test_extends_and_implements_are_parsed_and_ignored_with_a_warning():
+def test_extends_and_implements_are_kept_for_the_checker():
     sf, diags = parse("FUNCTION_BLOCK B EXTENDS A IMPLEMENTS I1, Lib.I2\nVAR x : INT; END_VAR\nEND_FUNCTION_BLOCK")
     [fb] = sf.decls
-    assert fb.name == "B" and len(fb.var_blocks) == 1
-    assert [(d.code, d.severity) for d in diags] == [("W101", "warning"), ("W101", "warning")]
+    assert fb.name == "B" and len(fb.var_blocks) == 1 and diags == []
+    assert fb.extends[0] == "A" and [n for n, _pos in fb.implements] == ["I1", "Lib.I2"]
+    assert fb.implements[1][1].col == 43
 
 
 def test_global_variable_lists_and_type_blocks_stand_alone():

@@ -112,10 +112,10 @@ def test_misspelt_keyword_gets_a_suggestion():
     assert d.hint == "did you mean VAR_INPUT?"
 
 
-def test_methods_are_refused_and_skipped():
-    sf, [d] = parse("FUNCTION_BLOCK f\nMETHOD m : INT\nm := 1;\nEND_METHOD\nEND_FUNCTION_BLOCK\n")
-    assert d.code == "E001" and d.message == "METHOD: methods are not supported" and d.pos.line == 2
-    assert sf.decls[0].name == "f"
+def test_a_method_left_open_is_closed_by_its_block():
+    sf, diags = parse("FUNCTION_BLOCK f\nMETHOD m : INT\nm := 1;\nEND_FUNCTION_BLOCK\n")
+    assert [(d.code, d.pos.line) for d in diags] == [("E001", 4)]
+    assert diags[0].hint == "END_METHOD expected to close the METHOD at line 2"
 
 
 def test_an_expression_alone_is_not_a_statement():

@@ -1,0 +1,95 @@
+"""Object-oriented ST lookups the checker, the conversions and the code
+generator share: members along EXTENDS, the interfaces a block is."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from . import types as T
+
+if TYPE_CHECKING:
+    from .symbols import POUInfo
+
+_ACCESS = ("PUBLIC", "PRIVATE", "PROTECTED", "INTERNAL")
+
+
+def access_of(modifiers: tuple) -> str:
+    return next((m for m in modifiers if m in _ACCESS), "PUBLIC")
+
+
+def is_method_owner(p: POUInfo | None, fb: POUInfo) -> bool:
+    """Whether p is fb or a FUNCTION_BLOCK derived from it."""
+    while p is not None:
+        if p is fb:
+            return True
+        p = p.base
+    return False
+
+
+def find_method(owner, key: str):
+    """The METHOD named key (UPPER) of an FB (inherited too) or an interface."""
+    if isinstance(owner, T.InterfaceType):
+        return _itf_member(owner, key, "methods")
+    p = owner
+    while p is not None:
+        m = p.methods.get(key)
+        if m is not None:
+            return m
+        p = p.base
+    return None
+
+
+def find_property(owner, key: str):
+    if isinstance(owner, T.InterfaceType):
+        return _itf_member(owner, key, "properties")
+    p = owner
+    while p is not None:
+        m = p.properties.get(key)
+        if m is not None:
+            return m
+        p = p.base
+    return None
+
+
+def _itf_member(itf: T.InterfaceType, key: str, what: str, seen: set | None = None):
+    seen = seen if seen is not None else set()
+    if id(itf) in seen:
+        return None
+    seen.add(id(itf))
+    m = getattr(itf, what).get(key)
+    if m is not None:
+        return m
+    for b in itf.bases:
+        m = _itf_member(b, key, what, seen)
+        if m is not None:
+            return m
+    return None
+
+
+def all_interfaces(x) -> list:
+    """Every interface an FB (with its bases) or interface is one of."""
+    out: list = []
+    todo = []
+    if isinstance(x, T.InterfaceType):
+        todo.append(x)
+    else:
+        p = x
+        while p is not None:
+            todo += p.interfaces
+            p = p.base
+    while todo:
+        i = todo.pop()
+        if i not in out:
+            out.append(i)
+            todo += i.bases
+    return out
+
+
+def interface_accepts(src: T.Type, itf: T.InterfaceType) -> bool:
+    """An FB instance or interface value may be stored into a variable of itf."""
+    s = T.resolve(src)
+    if isinstance(s, T.FBType):
+        return s.pou is not None and itf in all_interfaces(s.pou)
+    if isinstance(s, T.InterfaceType):
+        return itf in all_interfaces(s)
+    return False
