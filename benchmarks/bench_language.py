@@ -50,10 +50,10 @@ _F32 = struct.Struct("f")
 _f32_pack, _f32_unpack = _F32.pack, _F32.unpack
 
 
-def f32(x: float) -> float:
-    """Round to IEEE binary32 (a store to REAL); beyond FLT_MAX -> inf."""
+def f32(x: float, _pack=_f32_pack, _unpack=_f32_unpack) -> float:
+    """Round to IEEE binary32 (after each REAL operation); beyond FLT_MAX -> inf."""
     try:
-        return _f32_unpack(_f32_pack(x))[0]
+        return _unpack(_pack(x))[0]
     except OverflowError:
         return math.inf if x > 0 else -math.inf
 
@@ -152,13 +152,13 @@ class NumericHand:
         kp, ki, kd = self.kp, self.ki, self.kd
         for i in range(100):
             err = f32(avg[i * 10] - 20.0)
-            g = f32(integ[i] + ki * err)
+            g = f32(integ[i] + f32(ki * err))  # REAL: binary32 after every operation
             if g > 100.0:
                 g = 100.0
             elif g < -100.0:
                 g = -100.0
             integ[i] = g
-            u = f32(kp * err + g + kd * (err - last_err[i]))
+            u = f32(f32(f32(kp * err) + g) + f32(kd * f32(err - last_err[i])))
             outp[i] = min(max(u, -100.0), 100.0)
             last_err[i] = err
 

@@ -14,7 +14,7 @@ from . import native
 from . import types as T
 from .checker_base import BUILTINS, CheckerBase, Scope
 from .checker_operators import OPERATOR_FUNCTIONS
-from .conversions import generic_fit, is_flexible, same_type
+from .conversions import const_repr, generic_fit, is_flexible, same_type
 from .native import NativeFunction
 from .symbols import CallInfo, POUInfo, PropertyInfo, VarSymbol
 
@@ -406,6 +406,8 @@ class CallChecks(CheckerBase):
                 e.const = self._call_impl(func, e.target, [a.const for a in args])
             except Exception:  # not foldable; evaluated at run time
                 e.const = None
+            if e.const is not None and T.base_elementary(rty) is T.REAL:
+                e.const = const_repr(e.const, T.REAL)  # SQRT(REAL#2.0) is a binary32 value
         return rty
 
     _FOLDABLE_NAMES = (

@@ -10,6 +10,7 @@ from __future__ import annotations
 from . import ast as A
 from . import types as T
 from .checker_base import BUILTINS, CheckerBase, Scope
+from .conversions import const_repr
 
 _TIME_KIND = {
     "time": T.TIME,
@@ -104,7 +105,7 @@ class ExprChecks(CheckerBase):
                     e.const = bool(v)
                     return typed
             elif typed.is_real and e.kind in ("int", "real"):
-                e.const = float(v)
+                e.const = const_repr(v, typed)  # REAL#0.1 is the binary32 value
                 return typed
             elif typed.is_intlike and e.kind == "int":
                 if not T.int_fits(typed, v):
@@ -120,8 +121,9 @@ class ExprChecks(CheckerBase):
         if isinstance(expected, T.EnumType) or isinstance(T.resolve(expected) if expected else None, T.EnumType):
             exp = None
         if e.kind == "real":
-            e.const = float(v)
-            return exp if exp is not None and exp.is_real else T.LREAL
+            ty = exp if exp is not None and exp.is_real else T.LREAL
+            e.const = const_repr(v, ty)  # 0.1 beside a REAL is REAL#0.1
+            return ty
         # untyped integer: the expected type if it fits, else the smallest signed that does
         e.const = v
         if exp is not None and (exp.is_intlike and T.int_fits(exp, v) or exp.is_real):

@@ -14,7 +14,7 @@ from . import ast as A
 from . import rtlib
 from . import types as T
 from .checker_base import CheckerBase, Scope
-from .conversions import common_type, is_flexible
+from .conversions import common_type, const_repr, is_flexible
 from .symbols import CallInfo
 
 # IEC 61131-3 ed.3 Table 29-31: the standard functions that are the operators
@@ -129,7 +129,16 @@ class OperatorChecks(CheckerBase):
             return self._logical(e, lt, rt)
         if op in ("=", "<>", "<", ">", "<=", ">="):
             return self._comparison(e, lt, rt)
-        return self._arithmetic(e, lt, rt, expected)
+        ty = self._arithmetic(e, lt, rt, expected)
+        if ty is T.LREAL and expected is not None and T.base_elementary(expected) is T.REAL and is_flexible(e):
+            # literals only, into a REAL: computed in REAL as REAL#0.1 + REAL#0.2
+            # would be (binary32 after every operation, IEC 61131-3 ed.3 6.4.2)
+            lt = self.expr(e.left, scope, expected)
+            rt = self.expr(e.right, scope, expected)
+            if lt is None or rt is None:
+                return None
+            ty = self._arithmetic(e, lt, rt, expected)
+        return ty
 
     def _takes_context(self, e: A.Expr, scope: Scope) -> bool:
         """An untyped literal, or a bare enumerator name that is no variable:
@@ -272,6 +281,12 @@ class OperatorChecks(CheckerBase):
         return ty
 
     def _fold_arith(self, op: str, a: Any, b: Any, ty: T.ElementaryType, e: A.Expr) -> Any:
+        if ty is T.REAL:
+            # REAL folds as it runs: the operands as binary32, the result rounded to it
+            if op != "**":  # EXPT's exponent keeps its own type
+                a, b = const_repr(a, ty), const_repr(b, ty)
+            r = self._fold_arith(op, a, b, T.LREAL, e)
+            return None if r is None else const_repr(r, ty)
         try:
             if op == "+":
                 return a + b

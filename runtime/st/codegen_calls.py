@@ -25,8 +25,12 @@ class CallGen(CodeGenBase):
     def _call_expr(self, e: A.Call) -> str:
         info: CallInfo = e.target
         if info.kind == "std":
-            args = [self.ex(a) for a in info.args]
-            return self._std_invoke(info, args)
+            pts = info.param_types or []
+            args = [self._std_arg(a, pts[i] if i < len(pts) else None) for i, a in enumerate(info.args)]
+            code = self._std_invoke(info, args)
+            if info.rtypes and T.base_elementary(info.rtypes[0]) is T.REAL and not self._exact_in_real(info):
+                return f"_f32({code})"  # SQRT, SIN, EXPT ... of a REAL: its binary32 result
+            return code
         if info.kind == "operator":  # ADD(a, b): the operator expression a + b
             return self.ex(info.args[0])
         if info.kind == "function":
@@ -59,6 +63,26 @@ class CallGen(CodeGenBase):
             signed = [elementary(t.elem).category == T.SIGNED for t in tables]
             return f"_native({self.const(info.func)}, {values}, {', '.join(map(str, signed))})"
         raise NotImplementedError(info.kind)
+
+    # Standard functions whose REAL result is already a binary32 value: one of
+    # their arguments (or its negation), or a conversion, which rounds itself.
+    _REAL_EXACT = frozenset(("ABS", "MIN", "MAX", "LIMIT", "SEL", "MUX", "MOVE"))
+
+    @classmethod
+    def _exact_in_real(cls, info: CallInfo) -> bool:
+        name = info.func.name
+        return name in cls._REAL_EXACT or "_TO_" in name or name.startswith("TO_")
+
+    def _std_arg(self, a: A.Expr, param_type: T.Type | None) -> str:
+        """An argument of a standard function; an integer into a REAL/LREAL
+        parameter becomes a float of it (MAX(i, r) is a REAL, never i)."""
+        code = self.ex(a)
+        if param_type is None or a.ty is None or a.const is not None:
+            return code
+        pe, ae = T.base_elementary(param_type), T.base_elementary(a.ty)
+        if pe is not None and pe.is_real and ae is not None and ae.is_intlike:
+            return self.coerce(code, a.ty, param_type, a)
+        return code
 
     _INLINE_2 = {"MAX": "max", "MIN": "min"}
 

@@ -173,17 +173,23 @@ class ExprGen(CodeGenBase):
                 return f"({lhs} {pyop} {divisor})"
             t = self.tmp("d")  # truncate toward zero / sign of the dividend (IEC)
             return f"({t} {pyop} {divisor} if ({t} := {lhs}) >= 0 else -(-{t} {pyop} {divisor}))"
-        if op == "/":
-            if be.is_intlike:
-                return f"_idiv({lhs}, {rhs})"
-            if isinstance(e.right.const, (int, float)) and e.right.const != 0:
-                return f"({lhs} / {rhs})"
-            return f"_rdiv({lhs}, {rhs})"
+        if op == "/" and be.is_intlike:
+            return f"_idiv({lhs}, {rhs})"
         if op == "MOD":
             return f"_imod({lhs}, {rhs})"
-        if op == "**":
-            return f"_expt({lhs}, {rhs})"
-        return f"({lhs} {op} {rhs})"
+        if op == "/":
+            nonzero = isinstance(e.right.const, (int, float)) and e.right.const != 0
+            code = f"({lhs} / {rhs})" if nonzero else f"_rdiv({lhs}, {rhs})"
+        elif op == "**":
+            code = f"_expt({lhs}, {rhs})"
+        else:
+            code = f"({lhs} {op} {rhs})"
+        # REAL: binary32 after every operation (IEC 61131-3 ed.3 Table 10: REAL is
+        # IEC 60559 single). The double result of + - * / on two binary32 values
+        # rounds to the same binary32 as the exact one (binary64 has 53 >= 2*24+2
+        # bits: double rounding is innocuous), so one rounding per operation
+        # gives the FPU's result; LREAL and mixed REAL/LREAL stay double.
+        return f"_f32({code})" if be is T.REAL else code
 
     @staticmethod
     def _is_ref(ty: T.Type | None) -> bool:

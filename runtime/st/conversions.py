@@ -25,7 +25,6 @@ from . import types as T
 from .diagnostics import DiagnosticBag
 from .oop import interface_accepts
 from .profile import Profile, names_where
-from .ranges import is_stored_value
 
 # ---------------------------------------------------------------- widening
 # IEC 61131-3 (3rd ed.) Figure 11: implicit conversions that lose nothing.
@@ -334,9 +333,14 @@ def check_implicit(src: T.Type, dst: T.Type, e: A.Expr, what: str, profile: Prof
 
 def const_repr(value: Any, t: T.ElementaryType) -> Any:
     """A constant of elementary type t in the form t stores: REAL rounded to
-    binary32, LREAL a float, BOOL a bool; other values as they are."""
+    binary32 (an integer once, not through a double), LREAL a float, BOOL a
+    bool; other values as they are."""
     if t.is_real:
-        return rtlib.f32(float(value)) if t is T.REAL else float(value)
+        if t is T.LREAL:
+            return float(value)
+        if isinstance(value, int) and not isinstance(value, bool):
+            return rtlib.int_to_f32(value)
+        return rtlib.f32(float(value))
     if t.is_bool:
         return bool(value)
     return value
@@ -377,7 +381,7 @@ TRUNCATE = "truncate"  # a string maybe longer than the destination: cut to its 
 CHECK_RANGE = "check_range"  # into a subrange: the step into its base type, then a bounds check
 TO_BOOL = "to_bool"  # a number into BOOL: value <> 0
 TO_INT = "to_int"  # BOOL into an integer: 0 or 1
-TO_FLOAT = "to_float"  # a number into LREAL
+TO_FLOAT = "to_float"  # a number into LREAL, or an integer exact in binary32 into REAL
 TO_F32 = "to_f32"  # a number into REAL: rounded to binary32
 WRAP = "wrap"  # an integer into an integer type: wrapped to it unless the value provably fits
 CONVERT = "convert"  # the rest (REAL to integer, time units, time to number): the library converter
@@ -423,9 +427,12 @@ def store_step(src: T.Type | None, dst: T.Type, e: A.Expr | None) -> str:
         return KEEP if se.is_bool else TO_BOOL
     if de.is_real:
         if se.is_real:
-            return KEEP if de is T.LREAL or (se is T.REAL and is_stored_value(e)) else TO_F32
+            # every REAL expression is already a binary32 value (the code generator
+            # rounds after each operation), so only an LREAL rounds into a REAL
+            return KEEP if de is T.LREAL or se is T.REAL else TO_F32
         if se.is_bool or se.is_intlike:
-            return TO_FLOAT if de is T.LREAL else TO_F32
+            # an integer that widens to REAL (16 bits at most) is exact in binary32
+            return TO_FLOAT if de is T.LREAL or widens_to(se, T.REAL) else TO_F32
         return CONVERT
     if se.is_real or (se.is_time and se.unit_ns != de.unit_ns) or se.is_time != de.is_time:
         return CONVERT

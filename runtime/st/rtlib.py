@@ -49,6 +49,7 @@ from .rt_numeric import (
     idiv,
     imod,
     int_to_bcd,
+    int_to_f32,
     ln,
     log,
     rdiv,
@@ -100,6 +101,7 @@ from .rt_wrap import wrap, wrap_time, wrapper
 
 __all__ = [
     "f32",
+    "int_to_f32",
     "idiv",
     "imod",
     "rdiv",

@@ -166,11 +166,12 @@ def test_a_folded_constant_converts_at_compile_time(value, src, dst, result):
     [
         (T.INT, T.DINT, None, C.WRAP),  # the code generator skips it when the range fits
         (T.DINT, T.INT, None, C.WRAP),
-        (T.REAL, T.REAL, None, C.TO_F32),
-        (T.REAL, T.REAL, variable(T.REAL), C.KEEP),  # read from storage: already binary32
+        (T.REAL, T.REAL, None, C.KEEP),  # every REAL expression is binary32 (rounded per operation)
+        (T.REAL, T.REAL, variable(T.REAL), C.KEEP),
         (T.REAL, T.LREAL, None, C.KEEP),
         (T.LREAL, T.REAL, variable(T.LREAL), C.TO_F32),
-        (T.INT, T.REAL, None, C.TO_F32),
+        (T.INT, T.REAL, None, C.TO_FLOAT),  # 16 bits: exact in binary32
+        (T.DINT, T.REAL, None, C.TO_F32),  # the CODESYS W121 narrowing rounds
         (T.INT, T.LREAL, None, C.TO_FLOAT),
         (T.REAL, T.INT, None, C.CONVERT),
         (T.TIME, T.LTIME, None, C.CONVERT),
