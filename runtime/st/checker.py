@@ -19,6 +19,7 @@ from .checker_base import AddressSpace, Scope
 from .checker_calls import CallChecks
 from .checker_config import ConfigChecks, ConfigInfo
 from .checker_decls import DeclChecks
+from .checker_eno import EnEnoChecks
 from .checker_exprs import ExprChecks
 from .checker_operators import OperatorChecks
 from .checker_stmts import StmtChecks
@@ -47,6 +48,7 @@ class Checker(
     OperatorChecks,
     StmtChecks,
     CallChecks,
+    EnEnoChecks,
     ConfigChecks,
     VarConfigChecks,
 ):

@@ -61,9 +61,19 @@ class CallChecks(CheckerBase):
                 return self._builtin_call(e, key, scope)
             func = self.std.get(key)
             if func is not None:
+                written = e.args
+                gate = self.split_en_eno(e, scope)  # EN/ENO: st/checker_eno.py
+                if not gate.ok:
+                    e.args = written
+                    self._check_args_loosely(e, scope)
+                    return None
                 if key in OPERATOR_FUNCTIONS:
-                    return self.operator_call(e, func, scope)
-                return self._std_call(e, func, scope)
+                    ty = self.operator_call(e, func, scope)
+                else:
+                    ty = self._std_call(e, func, scope)
+                e.args = written
+                self.attach_gate(e, gate)
+                return ty
             self.d.error(
                 "E043",
                 f"unknown function '{callee.name}'",
@@ -141,6 +151,11 @@ class CallChecks(CheckerBase):
             else:
                 seen_formal = True
                 param = pou.vars.get(a.name.upper())
+                if param is None and a.name.upper() == "EN":  # IEC 61131-3 ed.3 6.6.1.6
+                    self.en_argument(a, info, scope)
+                    continue
+                if param is None and a.name.upper() == "ENO":
+                    param = self.implicit_eno(pou)
                 if param is None or param.section not in ("VAR_INPUT", "VAR_IN_OUT", "VAR_OUTPUT"):
                     names = [v.name for v in pou.params("VAR_INPUT", "VAR_IN_OUT", "VAR_OUTPUT")]
                     self.d.error(

@@ -173,6 +173,7 @@ class DeclChecks(CheckerBase):
                 if pou.kind == "FUNCTION" and sym.location is not None:
                     self.d.error("E081", "a FUNCTION cannot have located (AT) variables", decl.pos)
                 pou.vars[key] = sym
+        self.check_declared_eno(pou)
 
     def _check_location_type(self, sym: VarSymbol) -> None:
         addr = sym.location

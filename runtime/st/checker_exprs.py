@@ -147,6 +147,8 @@ class ExprChecks(CheckerBase):
             sym = pou.vars.get(key)
             if sym is None and pou.result is not None and key == pou.name.upper():
                 sym = pou.result
+            if sym is None and key == "ENO":  # every FUNCTION and FB has one (st/checker_eno.py)
+                sym = self.implicit_eno(pou)
         if sym is None:
             sym = self.globals.get(key)
         if sym is not None:
@@ -234,7 +236,7 @@ class ExprChecks(CheckerBase):
             e.sym = f
             return f.type
         if isinstance(b, T.FBType):
-            v = b.pou.vars.get(key)
+            v = b.pou.vars.get(key) or (self.implicit_eno(b.pou) if key == "ENO" else None)
             if v is None:
                 self.d.error(
                     "E013",

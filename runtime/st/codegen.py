@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 from .codegen_base import Accessor
 from .codegen_calls import CallGen
 from .codegen_config import ConfigGen
+from .codegen_eno import EnoGen
 from .codegen_exprs import ExprGen
 from .codegen_pous import PouGen
 from .codegen_stmts import StmtGen
@@ -37,7 +38,7 @@ class GeneratedModule:
     pou_classes: dict = field(default_factory=dict)  # UPPER POU name -> python name
 
 
-class CodeGen(PouGen, StmtGen, ExprGen, CallGen, ConfigGen):
+class CodeGen(PouGen, StmtGen, ExprGen, CallGen, EnoGen, ConfigGen):
     """CodeGen(checked, profile).generate() -> GeneratedModule."""
 
     def generate(self) -> GeneratedModule:

@@ -26,11 +26,15 @@ class CallGen(CodeGenBase):
         info: CallInfo = e.target
         if info.kind == "std":
             args = [self.ex(a) for a in info.args]
+            if info.en is not None or info.eno is not None:  # EN/ENO: st/codegen_eno.py
+                return self.gated_value(info, self._std_invoke(info, args), e.ty, info.eno)
             return self._std_invoke(info, args)
         if info.kind == "operator":  # ADD(a, b): the operator expression a + b
+            if info.en is not None or info.eno is not None:
+                return self.gated_value(info, self.ex(info.args[0]), e.ty, info.eno)
             return self.ex(info.args[0])
         if info.kind == "function":
-            return self._function_call(info)
+            return self.function_gate(info, self._function_call(info))
         if info.kind == "builtin":
             if info.func == "TIME":
                 return "_NOW_MS"  # the task clock, set once per cycle by the runner
@@ -176,6 +180,19 @@ class CallGen(CodeGenBase):
             t = self.tmp("fb")  # an instance never changes identity: look it up once
             self.emit(f"{t} = {inst}")
             inst = t
+        if info.en is not None:  # IEC 61131-3 ed.3 6.6.1.6: nothing of the call unless EN
+            self.emit(f"if {self.ex(info.en)}:")
+            self.indent += 1
+            self._fb_call_body(info, inst)
+            self.indent -= 1
+            self.emit("else:")
+            self.indent += 1
+            self.fb_skipped(info, inst)
+            self.indent -= 1
+            return
+        self._fb_call_body(info, inst)
+
+    def _fb_call_body(self, info: CallInfo, inst: str) -> None:
         for p, a in info.inputs:
             code = self.ex(a) if T.resolve(p.type).is_aggregate else self.coerce(self.ex(a), a.ty, p.type, a)
             if T.resolve(p.type).is_aggregate:

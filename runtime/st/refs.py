@@ -91,3 +91,16 @@ def same_ref(a, b) -> bool:
     if a is b:
         return True
     return type(a) is type(b) and type(a) in _SCALAR_REFS and a == b
+
+
+def eno_ok(ref, value):
+    """A standard function's call that ran: its ENO => target is TRUE
+    (IEC 61131-3 ed.3 6.6.1.6); the call's value passes through."""
+    ref.set(True)
+    return value
+
+
+def eno_skip(ref, value):
+    """A call that EN kept from running: its ENO => target is FALSE."""
+    ref.set(False)
+    return value

@@ -81,3 +81,5 @@ class CallInfo:
     args: list = field(default_factory=list)  # std/builtin: argument Exprs in parameter order
     rtypes: tuple = ()  # std typed: (result type, arg types...)
     param_types: list = field(default_factory=list)  # std: the type each arg is converted to
+    en: Any = None  # the EN argument (IEC 61131-3 ed.3 6.6.1.6): the call runs only when it is TRUE
+    eno: Any = None  # std/operator: the ENO => target (a POU's own ENO is one of its outputs)
