@@ -14,7 +14,7 @@ from . import native
 from . import types as T
 from .checker_base import BUILTINS, CheckerBase, Scope
 from .checker_operators import OPERATOR_FUNCTIONS
-from .conversions import generic_fit, is_flexible, same_type
+from .conversions import conversion_exists, generic_fit, is_flexible, same_type
 from .native import NativeFunction
 from .symbols import CallInfo, POUInfo, VarSymbol
 
@@ -394,6 +394,9 @@ class CallChecks(CheckerBase):
             if rty is None:
                 self.d.error("E020", f"{func.name}: unknown result type {ret}", e.pos)
                 return None
+        if func.typed and func.name.startswith("TO_") and not conversion_exists(arg_types[0], rty):
+            self.d.error("E020", f"{func.name}: there is no conversion from {arg_types[0]}", args[0].pos)
+            return None
         e.target = CallInfo("std", func=func, args=args, param_types=param_types, rtypes=(rty, *arg_types))
         if all(a.const is not None for a in args) and self._foldable(func):
             try:

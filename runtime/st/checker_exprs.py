@@ -84,6 +84,9 @@ class ExprChecks(CheckerBase):
             e.const = self._time_repr(ty, v, e)
             return ty
         if e.kind in ("string", "wstring"):
+            char = self._char_wanted(e, expected)
+            if char is not None:
+                return self._char_literal(e, char)
             wide = e.kind == "wstring"
             e.const = v
             exp = T.resolve(expected) if expected is not None else None
@@ -127,6 +130,33 @@ class ExprChecks(CheckerBase):
                 return cand
         self.d.error("E022", f"{v} is too large for any integer type", e.pos)
         return None
+
+    @staticmethod
+    def _char_wanted(e: A.Literal, expected: T.Type | None) -> T.ElementaryType | None:
+        """CHAR or WCHAR if the string literal e is a character: CHAR#'A',
+        WCHAR#"A" (IEC 61131-3 ed.3 Table 6), or one character where a CHAR
+        of its width is expected."""
+        if e.type_name in ("CHAR", "WCHAR"):
+            return T.ELEMENTARY[e.type_name]
+        exp = T.base_elementary(expected) if expected is not None else None
+        if e.type_name is not None or exp is None or not exp.is_char or len(e.value) != 1:
+            return None
+        return exp if (exp is T.WCHAR) == (e.kind == "wstring") else None
+
+    def _char_literal(self, e: A.Literal, want: T.ElementaryType) -> T.Type | None:
+        """A character literal: the code of the character (types.py)."""
+        v = e.value
+        if len(v) != 1 or ord(v) > (want.hi or 0):
+            self.d.error(
+                "E028",
+                f"a {want.name} literal is one character"
+                + (f" of code 0..{want.hi}" if len(v) == 1 else f", not {len(v)}"),
+                e.pos,
+                f"write {want.name}#'A'" if want is T.CHAR else f'write {want.name}#"A"',
+            )
+            return None
+        e.const = ord(v)
+        return want
 
     def _time_repr(self, ty: T.ElementaryType, ns: int, e: A.Expr) -> int:
         v = ns // ty.unit_ns if ns >= 0 else -((-ns) // ty.unit_ns)
