@@ -319,12 +319,37 @@ class ExprChecks(CheckerBase):
             return None
         be = T.base_elementary(bty)
         if be is None or not be.is_intlike:
-            self.d.error("E053", f"bit access needs an integer or bit-string variable, not {bty}", e.pos)
+            what = "bit access" if e.size == "X" else "a partial access"
+            self.d.error("E053", f"{what} needs an integer or bit-string variable, not {bty}", e.pos)
             return None
+        if e.size != "X":
+            return self._part_access(e, be)
         if not isinstance(e.bit.const, int) or not 0 <= e.bit.const < be.bits:
             self.d.error("E053", f"bit number must be a constant 0..{be.bits - 1} for {be.name}", e.bit.pos)
             return None
         return T.BOOL
+
+    _PARTS = {"B": T.BYTE, "W": T.WORD, "D": T.DWORD, "L": T.LWORD}
+
+    def _part_access(self, e: A.BitAccess, be: T.ElementaryType) -> T.Type | None:
+        """d.%B0, d.%W1, d.%D0, d.%L0 (IEC 61131-3 ed.3 6.5.3, Table 16;
+        CODESYS and TwinCAT alike): byte, word, double or long word n of an
+        integer or bit string, counted from the least significant; E056
+        when the part is not inside the variable's type."""
+        part = self._PARTS[e.size]
+        count = be.bits // part.bits
+        n = e.bit.const
+        if count == 0 or not isinstance(n, int) or not 0 <= n < count:
+            self.d.error(
+                "E056",
+                f"{be.name} has no %{e.size}{n}: it is {be.bits} bits"
+                + (f", %{e.size}0..%{e.size}{count - 1}" if count else f", smaller than a {part.name}"),
+                e.bit.pos,
+                f"a {be.name} holds %X0..%X{be.bits - 1}"
+                + "".join(f", %{k}0..%{k}{be.bits // t.bits - 1}" for k, t in self._PARTS.items() if t.bits < be.bits),
+            )
+            return None
+        return part
 
     def _address_fits(self, addr: A.LocatedAddress, ty: T.ElementaryType | None, pos: A.Pos) -> bool:
         """Report (E082) a direct address outside the process image, and

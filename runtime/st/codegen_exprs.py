@@ -44,6 +44,9 @@ class ExprGen(CodeGenBase):
                 return f"_deref({base})"
             return f"{base}.get()"
         if isinstance(e, A.BitAccess):
+            if e.size != "X":  # d.%W1: the part, unsigned (ed.3 6.5.3)
+                width = elementary(e.ty).bits
+                return f"({self.ex(e.base)} >> {int(e.bit.const) * width} & {(1 << width) - 1})"
             return f"({self.ex(e.base)} >> {int(e.bit.const)} & 1 != 0)"
         if isinstance(e, A.Located):
             if e.addr.table is not None:
