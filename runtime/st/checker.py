@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 from . import ast as A
 from . import types as T
+from .checker_arrays import ArrayChecks
 from .checker_base import AddressSpace, Scope
 from .checker_calls import CallChecks
 from .checker_config import ConfigChecks, ConfigInfo
@@ -49,6 +50,7 @@ class Checker(
     StmtChecks,
     CallChecks,
     EnEnoChecks,
+    ArrayChecks,
     ConfigChecks,
     VarConfigChecks,
 ):

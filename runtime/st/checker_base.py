@@ -24,7 +24,7 @@ from .profile import Profile, names_where
 from .symbols import CallInfo, POUInfo, VarSymbol
 
 # Called like functions without a declaration (checker_calls._builtin_call).
-BUILTINS = ("TIME", "LTIME", "REF", "ADR", "SIZEOF")
+BUILTINS = ("TIME", "LTIME", "REF", "ADR", "SIZEOF", "LOWER_BOUND", "UPPER_BOUND")
 
 
 class AddressSpace(Protocol):
@@ -157,6 +157,9 @@ class CheckerBase:
         def _bind_args(self, e: A.Call, pou: POUInfo, info: CallInfo, scope: Scope, is_fb: bool) -> None: ...
 
         def _mark_boxed(self, e: A.Expr, scope: Scope) -> None: ...
+
+        # checker_arrays
+        def bound_call(self, e: A.Call, key: str, scope: Scope) -> T.Type | None: ...
 
         # checker_eno
         def check_declared_eno(self, pou: POUInfo) -> None: ...

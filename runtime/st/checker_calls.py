@@ -463,6 +463,8 @@ class CallChecks(CheckerBase):
                 return None
             e.target = CallInfo("builtin", func=key)
             return T.TIME if key == "TIME" else T.LTIME
+        if key in ("LOWER_BOUND", "UPPER_BOUND"):
+            return self.bound_call(e, key, scope)  # st/checker_arrays.py
         if len(args) != 1 or args[0].name is not None or args[0].value is None:
             self.d.error("E041", f"{key} takes one argument", e.pos)
             return None

@@ -38,7 +38,12 @@ class DeclChecks(CheckerBase):
         section = block.kind
         rty = T.resolve(ty)
         if isinstance(rty, T.ArrayType) and rty.variable_length and section != "VAR_IN_OUT":
-            self.d.error("E050", "ARRAY[*] is only allowed for VAR_IN_OUT", decl.pos)
+            self.d.error(
+                "E050",
+                "ARRAY[*] is only allowed for VAR_IN_OUT",
+                decl.pos,
+                "declare it in VAR_IN_OUT (as CODESYS and TwinCAT want); LOWER_BOUND/UPPER_BOUND give its bounds",
+            )
             return None
         prefix = "v_" if owner is not None else "g_"
         sym = VarSymbol(

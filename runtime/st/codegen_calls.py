@@ -13,6 +13,7 @@ import re
 from . import ast as A
 from . import conversions as C
 from . import ranges as R
+from . import rt_varray
 from . import types as T
 from .codegen_base import CodeGenBase, elementary, py_literal
 from .native import CallSite
@@ -42,6 +43,9 @@ class CallGen(CodeGenBase):
                 return "_NOW_NS"
             if info.func in ("REF", "ADR"):
                 return self.ref_code(info.args[0])
+            if info.func in ("LOWER_BOUND", "UPPER_BOUND"):  # of an ARRAY[*] (st/checker_arrays.py)
+                dim = int(info.args[1].const) - 1
+                return f"{self.ex(info.args[0])}.bounds[{dim}][{0 if info.func == 'LOWER_BOUND' else 1}]"
             return py_literal(e.const)
         if info.kind == "native":
             if info.func.site:  # the values in their common type, then where the call is (st/native.py)
@@ -158,7 +162,7 @@ class CallGen(CodeGenBase):
                 continue
             _, a = got
             if p.section == "VAR_IN_OUT":
-                parts.append(f"{p.pyname}={self.ref_code(a)}")
+                parts.append(f"{p.pyname}={self.inout_arg(p, a)}")
             elif T.resolve(p.type).is_aggregate:
                 parts.append(f"{p.pyname}=_copy_value({self.ex(a)})")
             else:
@@ -169,6 +173,16 @@ class CallGen(CodeGenBase):
             parts.append(f"_o_{p.pyname}={self.ref_code(target)}")
         args = ", ".join(x for x in parts if x)
         return f"{pou.pyname}({args})"
+
+    def inout_arg(self, p, a: A.Expr) -> str:
+        """What a VAR_IN_OUT receives: a reference, or for an ARRAY[*] the
+        array with its bounds (st/rt_varray.py)."""
+        pt, at = T.resolve(p.type), T.resolve(a.ty)
+        if isinstance(pt, T.ArrayType) and pt.variable_length and isinstance(at, T.ArrayType):
+            if at.variable_length:
+                return self.ex(a)
+            return f"{self.const(rt_varray.VarArray)}({self.ex(a)}, {self.const(tuple(at.dims))})"
+        return self.ref_code(a)
 
     def _call_stmt(self, e: A.Call) -> None:
         info: CallInfo = e.target
@@ -200,7 +214,7 @@ class CallGen(CodeGenBase):
             else:
                 self.emit(f"{inst}.{p.pyname} = {code}")
         for p, a in info.inouts:
-            self.emit(f"{inst}.{p.pyname} = {self.ref_code(a)}")
+            self.emit(f"{inst}.{p.pyname} = {self.inout_arg(p, a)}")
         self.emit(f"{inst}()")
         for p, target, negated in info.outputs:
             val = f"{inst}.{p.pyname}"

@@ -14,6 +14,7 @@ from typing import Any
 from . import ast as A
 from . import conversions as C
 from . import ranges as R
+from . import rt_varray
 from . import types as T
 from .codegen_base import CodeGenBase, array_type, elementary, py_literal
 from .symbols import CallInfo, VarSymbol
@@ -93,8 +94,21 @@ class ExprGen(CodeGenBase):
     def _index_target(self, e: A.Index) -> str:
         code = self.ex(e.base)
         arr = array_type(e.base.ty)
+        if arr.variable_length:  # ARRAY[*]: the caller's bounds (st/rt_varray.py)
+            return self._varray_items(code, e.indices, arr)
         for ix, dim in zip(e.indices, arr.dims):
             code += f"[{self._index_code(ix, dim)}]"
+        return code
+
+    def _varray_items(self, base: str, indices: list, arr: T.ArrayType, last: bool = True) -> str:
+        """base[i, j] of an ARRAY[*] parameter (a VarArray): each index
+        checked against the bounds the caller's array has; without the last
+        index if not last."""
+        pos = self.const(rt_varray.position)
+        code = f"{base}.data"
+        for k, (ix, dim) in enumerate(zip(indices if last else indices[:-1], arr.dims)):
+            inner = self._index_code(ix, dim) if dim is not None else f"{pos}({self.ex(ix)}, {base}.bounds[{k}])"
+            code += f"[{inner}]"
         return code
 
     def _index_code(self, ix: A.Expr, dim: tuple | None) -> str:
@@ -227,6 +241,17 @@ class ExprGen(CodeGenBase):
             return f"_AttrRef({self.fn.self_name}, {sym.pyname!r})"
         if isinstance(e, A.Member):
             return f"_AttrRef({self.ex(e.base)}, {e.sym.pyname!r})"
+        if isinstance(e, A.Index) and array_type(e.base.ty).variable_length:
+            base = self.ex(e.base)
+            arr = array_type(e.base.ty)
+            k = len(e.indices) - 1
+            last = e.indices[-1]
+            inner = (
+                self._index_code(last, arr.dims[k])
+                if arr.dims[k] is not None
+                else f"{self.const(rt_varray.position)}({self.ex(last)}, {base}.bounds[{k}])"
+            )
+            return f"_ItemRef({self._varray_items(base, e.indices, arr, last=False)}, {inner})"
         if isinstance(e, A.Index):
             base = self.ex(e.base)
             arr = array_type(e.base.ty)
