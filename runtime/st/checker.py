@@ -22,6 +22,7 @@ from .checker_config import ConfigChecks, ConfigInfo
 from .checker_decls import DeclChecks
 from .checker_eno import EnEnoChecks
 from .checker_exprs import ExprChecks
+from .checker_generics import GenericChecks
 from .checker_operators import OperatorChecks
 from .checker_stmts import StmtChecks
 from .checker_storage import StorageChecks
@@ -51,6 +52,7 @@ class Checker(
     CallChecks,
     EnEnoChecks,
     ArrayChecks,
+    GenericChecks,
     ConfigChecks,
     VarConfigChecks,
 ):

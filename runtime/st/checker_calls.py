@@ -221,7 +221,9 @@ class CallChecks(CheckerBase):
                 info.inouts.append((param, a.value))
             else:
                 vty = self.expr(a.value, scope, expected=param.type)
-                if vty is not None:
+                if vty is not None and param.generic is not None:  # st/checker_generics.py
+                    self.generic_argument(param, vty, a.value)
+                elif vty is not None:
                     self.check_convertible(vty, param.type, a.value, f"input '{param.name}'")
                 info.inputs.append((param, a.value))
         for param in pou.params("VAR_IN_OUT"):

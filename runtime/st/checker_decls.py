@@ -32,7 +32,8 @@ class DeclChecks(CheckerBase):
                 f"rename it, e.g. {decl.name}_1",
             )
             return None
-        ty = self.type_of(decl.type, Scope(owner))
+        generic = self.generic_input_type(decl.type, block.kind, owner.kind if owner else None)
+        ty = generic[1] if generic is not None else self.type_of(decl.type, Scope(owner))
         if ty is None:
             return None
         section = block.kind
@@ -58,6 +59,7 @@ class DeclChecks(CheckerBase):
             persistent=block.persistent,
             location=decl.location,
             init=decl.init,
+            generic=generic[0] if generic is not None else None,
         )
         if decl.location is not None:
             self._check_location_type(sym)

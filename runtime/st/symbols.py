@@ -40,6 +40,7 @@ class VarSymbol:
     const_value: Any = None  # compile-time value of a CONSTANT
     boxed: bool = False  # FUNCTION local whose reference is taken: kept in a CellRef
     address_taken: bool = False  # REF/ADR, VAR_IN_OUT or => reaches it: others may read it
+    generic: str | None = None  # ANY_NUM ... of a FUNCTION's input (st/checker_generics.py)
 
     @property
     def is_global(self) -> bool:
