@@ -247,6 +247,8 @@ class CallChecks(CheckerBase):
 
     def _mark_boxed(self, e: A.Expr, scope: Scope) -> None:
         """A FUNCTION local passed by reference lives in a cell."""
+        while isinstance(e, A.BitAccess):  # => w.3: the reference is to w
+            e = e.base
         if isinstance(e, A.Name) and isinstance(e.sym, VarSymbol):
             e.sym.address_taken = True
         if (

@@ -14,7 +14,7 @@ from typing import Any
 from . import ast as A
 from . import conversions as C
 from . import ranges as R
-from . import rt_varray
+from . import refs, rt_varray
 from . import types as T
 from .codegen_base import CodeGenBase, array_type, elementary, py_literal
 from .symbols import CallInfo, VarSymbol
@@ -263,4 +263,10 @@ class ExprGen(CodeGenBase):
         if isinstance(e, A.Located):
             idx = self.accessor(e.addr, T.base_elementary(e.ty))
             return f"_AccessorRef(_A{idx}g, _A{idx}s)"
+        if isinstance(e, A.BitAccess):  # an output bound to w.3 or d.%W1
+            be = elementary(e.base.ty)
+            width = 1 if e.size == "X" else elementary(e.ty).bits
+            signed = be.lo is not None and be.lo < 0
+            shift = int(e.bit.const) * width
+            return f"{self.const(refs.PartRef)}({self.ref_code(e.base)}, {shift}, {width}, {be.bits}, {signed})"
         raise NotImplementedError(f"reference to {type(e).__name__}")

@@ -47,3 +47,32 @@ def test_a_part_beyond_the_type_is_e056_at_compile_time():
     e = diagnostics(src)[0]
     assert e.message == "WORD has no %B2: it is 16 bits, %B0..%B1"
     assert e.hint == "a WORD holds %X0..%X15, %B0..%B1"
+
+
+def test_an_output_bound_to_a_bit_or_a_part_writes_through_it():
+    """=> w.3 and => d.%B1 for outputs of functions, standard functions' ENO
+    and FB outputs (found while adding EN/ENO: it stopped the compiler)."""
+    src = """
+FUNCTION F : INT
+VAR_INPUT a : INT; END_VAR
+VAR_OUTPUT o : BOOL; b : BYTE; END_VAR
+o := TRUE;
+b := 16#AB;
+F := a;
+END_FUNCTION
+
+FUNCTION Local : WORD
+VAR w : WORD; i : INT; END_VAR
+i := F(a := 1, o => w.1, b => w.%B1);
+Local := w;
+END_FUNCTION
+""" + prog(
+        "w : WORD; x : REAL := 4.0; r : REAL; i : INT; lw : WORD; t : TON;",
+        "r := SQRT(EN := TRUE, IN := x, ENO => w.3);\n"
+        "i := F(a := 1, ENO => w.%X4);\n"
+        "i := F(a := 1, o => w.5);\n"
+        "t(EN := FALSE, IN := TRUE, PT := T#1s, ENO => w.6);\n"
+        "lw := Local();",
+    )
+    r = run_st(src)
+    assert (r.get("w"), r.get("lw")) == (8 + 16 + 32, 0xAB02)
