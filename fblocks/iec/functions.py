@@ -82,18 +82,24 @@ _CONV_TYPES = [(n, t, t.name) for n, t in T.ELEMENTARY.items()] + [
 ]
 
 
+_CHARS = ("CHAR", "WCHAR")
+
+
 def _build_conversions() -> None:
     converters: dict = {}
     for sn, st, sspec in _CONV_TYPES:
         for dn, dt, dspec in _CONV_TYPES:
             if st is dt:
                 continue
+            if (st.name in _CHARS or dt.name in _CHARS) and not rtlib.converts_char(st, dt):
+                continue  # CHAR converts with integers, bit strings and strings only
             f = converters.get((st, dt))
             if f is None:
                 f = converters[(st, dt)] = rtlib.make_converter(st, dt)
             _def(f"{sn}_TO_{dn}", (("IN", sspec),), dspec, f)
     for dn, dt, dspec in _CONV_TYPES:
-        _def(f"TO_{dn}", (("IN", "ANY_ELEMENTARY"),), dspec, _generic_to(dt), typed=True)
+        if dn not in _CHARS:  # TO_CHAR: from few types only; CHAR_TO_ / _TO_CHAR name them
+            _def(f"TO_{dn}", (("IN", "ANY_ELEMENTARY"),), dspec, _generic_to(dt), typed=True)
 
 
 def _generic_to(dst: T.Type) -> Callable:
@@ -423,6 +429,7 @@ _TIME_FUNCS = (
     ("SUB_LDT_LDT", ("LDATE_AND_TIME", "LDATE_AND_TIME"), "LTIME"),
     ("CONCAT_DATE_TOD", ("DATE", "TIME_OF_DAY"), "DATE_AND_TIME"),
     ("CONCAT_LDATE_LTOD", ("LDATE", "LTIME_OF_DAY"), "LDATE_AND_TIME"),
+    ("CONCAT_DATE_LTOD", ("DATE", "LTIME_OF_DAY"), "LDATE_AND_TIME"),  # ed.3 Table 37
 )
 for _name, (_in1, _in2), _ret in _TIME_FUNCS:
     _def(_name, (("IN1", _in1), ("IN2", _in2)), _ret, getattr(rtlib, _name))
@@ -431,6 +438,7 @@ _YMD = (("YEAR", "ANY_INT"), ("MONTH", "ANY_INT"), ("DAY", "ANY_INT"))
 _HMSM = (("HOUR", "ANY_INT"), ("MINUTE", "ANY_INT"), ("SECOND", "ANY_INT"), ("MILLISECOND", "ANY_INT"))
 _def("CONCAT_DATE", _YMD, "DATE", rtlib.CONCAT_DATE)
 _def("CONCAT_TOD", _HMSM, "TIME_OF_DAY", rtlib.CONCAT_TOD)
+_def("CONCAT_LDATE", _YMD, "LDATE", rtlib.CONCAT_LDATE)
 _def("CONCAT_LTOD", _HMSM, "LTIME_OF_DAY", rtlib.CONCAT_LTOD)
 _def("CONCAT_DT", _YMD + _HMSM, "DATE_AND_TIME", rtlib.CONCAT_DT)
 _def("CONCAT_LDT", _YMD + _HMSM, "LDATE_AND_TIME", rtlib.CONCAT_LDT)

@@ -132,10 +132,13 @@ class Member(Expr):
 
 @dataclass(slots=True, eq=False)
 class BitAccess(Expr):
-    """``w.3`` or ``w.%X3``: bit 3 of a bit-string or integer variable."""
+    """``w.3`` or ``w.%X3``: bit 3 of a bit-string or integer variable;
+    size "B", "W", "D" or "L" for the partial access ``d.%B0``, ``d.%W1``
+    (IEC 61131-3 ed.3 6.5.3): byte 0, word 1 (bit is then the part's number)."""
 
     base: Expr
     bit: Expr
+    size: str = "X"
 
 
 @dataclass(slots=True, eq=False)
@@ -548,6 +551,8 @@ class Jump(Stmt):
 
     label: str
     target: Label | None = field(default=None, repr=False)
+
+
 # ---------------------------------------------------------------- SFC (IEC 61131-3 ed.3 6.7)
 
 

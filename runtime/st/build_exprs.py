@@ -175,9 +175,11 @@ class ExprBuilder(BuilderBase):
 
     def bit_access(self, c):
         base, t = c
-        if t.type == "BIT_REF":  # %X3
+        size = "X"
+        if t.type == "BIT_REF":  # %X3, or a partial access %B0 %W1 %D0 %L0
+            size = t.value[1].upper()
             t = Tok("INT", t.value[2:], t.start_pos + 2, t.line, t.column + 2)
-        return ast.BitAccess(base, self.int_lit([t]), pos=self._span(base, t))
+        return ast.BitAccess(base, self.int_lit([t]), size, pos=self._span(base, t))
 
     def index(self, c):
         return ast.Index(c[0], list(c[2:-1]), pos=self._span(c[0], c[-1]))

@@ -16,11 +16,14 @@ from dataclasses import dataclass
 from . import ast as A
 from . import types as T
 from .checker_actions import ActionChecks
+from .checker_arrays import ArrayChecks
 from .checker_base import AddressSpace, Scope
 from .checker_calls import CallChecks
 from .checker_config import ConfigChecks, ConfigInfo
 from .checker_decls import DeclChecks
+from .checker_eno import EnEnoChecks
 from .checker_exprs import ExprChecks
+from .checker_generics import GenericChecks
 from .checker_jumps import JumpChecks
 from .checker_oop import OopChecks
 from .checker_operators import OperatorChecks
@@ -56,6 +59,9 @@ class Checker(
     CallChecks,
     RefChecks,
     PointerChecks,
+    EnEnoChecks,
+    ArrayChecks,
+    GenericChecks,
     ConfigChecks,
     VarConfigChecks,
     ActionChecks,

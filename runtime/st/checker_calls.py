@@ -14,7 +14,7 @@ from . import native
 from . import types as T
 from .checker_base import BUILTINS, CheckerBase, Scope
 from .checker_operators import OPERATOR_FUNCTIONS
-from .conversions import const_repr, generic_fit, is_flexible, same_type
+from .conversions import const_repr, conversion_exists, generic_fit, is_flexible, same_type
 from .native import NativeFunction
 from .symbols import CallInfo, POUInfo, PropertyInfo, VarSymbol
 
@@ -68,9 +68,19 @@ class CallChecks(CheckerBase):
                 return self._query_interface(e, scope)
             func = self.std.get(key)
             if func is not None:
+                written = e.args
+                gate = self.split_en_eno(e, scope)  # EN/ENO: st/checker_eno.py
+                if not gate.ok:
+                    e.args = written
+                    self._check_args_loosely(e, scope)
+                    return None
                 if key in OPERATOR_FUNCTIONS:
-                    return self.operator_call(e, func, scope)
-                return self._std_call(e, func, scope)
+                    ty = self.operator_call(e, func, scope)
+                else:
+                    ty = self._std_call(e, func, scope)
+                e.args = written
+                self.attach_gate(e, gate)
+                return ty
             self.d.error(
                 "E043",
                 f"unknown function '{callee.name}'",
@@ -150,6 +160,11 @@ class CallChecks(CheckerBase):
             else:
                 seen_formal = True
                 param = pou.vars.get(a.name.upper())
+                if param is None and a.name.upper() == "EN":  # IEC 61131-3 ed.3 6.6.1.6
+                    self.en_argument(a, info, scope)
+                    continue
+                if param is None and a.name.upper() == "ENO":
+                    param = self.implicit_eno(pou)
                 if param is None or param.section not in ("VAR_INPUT", "VAR_IN_OUT", "VAR_OUTPUT"):
                     names = [v.name for v in pou.params("VAR_INPUT", "VAR_IN_OUT", "VAR_OUTPUT")]
                     self.d.error(
@@ -219,7 +234,9 @@ class CallChecks(CheckerBase):
                 info.inouts.append((param, a.value))
             else:
                 vty = self.expr(a.value, scope, expected=param.type)
-                if vty is not None:
+                if vty is not None and param.generic is not None:  # st/checker_generics.py
+                    self.generic_argument(param, vty, a.value)
+                elif vty is not None:
                     self.check_convertible(vty, param.type, a.value, f"input '{param.name}'")
                 info.inputs.append((param, a.value))
         for param in pou.params("VAR_IN_OUT"):
@@ -251,6 +268,8 @@ class CallChecks(CheckerBase):
                 "read it into a variable, pass that, and assign the property after the call",
             )
             return
+        while isinstance(e, A.BitAccess):  # => w.3: the reference is to w
+            e = e.base
         if isinstance(e, A.Name) and isinstance(e.sym, VarSymbol):
             e.sym.address_taken = True
         if (
@@ -400,6 +419,9 @@ class CallChecks(CheckerBase):
             if rty is None:
                 self.d.error("E020", f"{func.name}: unknown result type {ret}", e.pos)
                 return None
+        if func.typed and func.name.startswith("TO_") and not conversion_exists(arg_types[0], rty):
+            self.d.error("E020", f"{func.name}: there is no conversion from {arg_types[0]}", args[0].pos)
+            return None
         e.target = CallInfo("std", func=func, args=args, param_types=param_types, rtypes=(rty, *arg_types))
         if all(a.const is not None for a in args) and self._foldable(func):
             try:
@@ -475,6 +497,8 @@ class CallChecks(CheckerBase):
                 return None
             e.target = CallInfo("builtin", func=key)
             return T.TIME if key == "TIME" else T.LTIME
+        if key in ("LOWER_BOUND", "UPPER_BOUND"):
+            return self.bound_call(e, key, scope)  # st/checker_arrays.py
         if len(args) != 1 or args[0].name is not None or args[0].value is None:
             self.d.error("E041", f"{key} takes one argument", e.pos)
             return None

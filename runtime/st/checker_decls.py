@@ -32,13 +32,19 @@ class DeclChecks(CheckerBase):
                 f"rename it, e.g. {decl.name}_1",
             )
             return None
-        ty = self.type_of(decl.type, Scope(owner))
+        generic = self.generic_input_type(decl.type, block.kind, owner.kind if owner else None)
+        ty = generic[1] if generic is not None else self.type_of(decl.type, Scope(owner))
         if ty is None:
             return None
         section = block.kind
         rty = T.resolve(ty)
         if isinstance(rty, T.ArrayType) and rty.variable_length and section != "VAR_IN_OUT":
-            self.d.error("E050", "ARRAY[*] is only allowed for VAR_IN_OUT", decl.pos)
+            self.d.error(
+                "E050",
+                "ARRAY[*] is only allowed for VAR_IN_OUT",
+                decl.pos,
+                "declare it in VAR_IN_OUT (as CODESYS and TwinCAT want); LOWER_BOUND/UPPER_BOUND give its bounds",
+            )
             return None
         prefix = "v_" if owner is not None else "g_"
         sym = VarSymbol(
@@ -53,6 +59,7 @@ class DeclChecks(CheckerBase):
             persistent=block.persistent,
             location=decl.location,
             init=decl.init,
+            generic=generic[0] if generic is not None else None,
         )
         if decl.location is not None:
             self._check_location_type(sym)
@@ -173,6 +180,7 @@ class DeclChecks(CheckerBase):
                 if pou.kind == "FUNCTION" and sym.location is not None:
                     self.d.error("E081", "a FUNCTION cannot have located (AT) variables", decl.pos)
                 pou.vars[key] = sym
+        self.check_declared_eno(pou)
 
     def _check_location_type(self, sym: VarSymbol) -> None:
         addr = sym.location

@@ -89,6 +89,9 @@ class ExprChecks(CheckerBase):
             e.const = self._time_repr(ty, v, e)
             return ty
         if e.kind in ("string", "wstring"):
+            char = self._char_wanted(e, expected)
+            if char is not None:
+                return self._char_literal(e, char)
             wide = e.kind == "wstring"
             e.const = v
             exp = T.resolve(expected) if expected is not None else None
@@ -134,6 +137,33 @@ class ExprChecks(CheckerBase):
         self.d.error("E022", f"{v} is too large for any integer type", e.pos)
         return None
 
+    @staticmethod
+    def _char_wanted(e: A.Literal, expected: T.Type | None) -> T.ElementaryType | None:
+        """CHAR or WCHAR if the string literal e is a character: CHAR#'A',
+        WCHAR#"A" (IEC 61131-3 ed.3 Table 6), or one character where a CHAR
+        of its width is expected."""
+        if e.type_name in ("CHAR", "WCHAR"):
+            return T.ELEMENTARY[e.type_name]
+        exp = T.base_elementary(expected) if expected is not None else None
+        if e.type_name is not None or exp is None or not exp.is_char or len(e.value) != 1:
+            return None
+        return exp if (exp is T.WCHAR) == (e.kind == "wstring") else None
+
+    def _char_literal(self, e: A.Literal, want: T.ElementaryType) -> T.Type | None:
+        """A character literal: the code of the character (types.py)."""
+        v = e.value
+        if len(v) != 1 or ord(v) > (want.hi or 0):
+            self.d.error(
+                "E028",
+                f"a {want.name} literal is one character"
+                + (f" of code 0..{want.hi}" if len(v) == 1 else f", not {len(v)}"),
+                e.pos,
+                f"write {want.name}#'A'" if want is T.CHAR else f'write {want.name}#"A"',
+            )
+            return None
+        e.const = ord(v)
+        return want
+
     def _time_repr(self, ty: T.ElementaryType, ns: int, e: A.Expr) -> int:
         v = ns // ty.unit_ns if ns >= 0 else -((-ns) // ty.unit_ns)
         if ty.lo is not None and ty.hi is not None and not (ty.lo <= v <= ty.hi):
@@ -157,6 +187,8 @@ class ExprChecks(CheckerBase):
                 hit = self._oop_name(e, key, scope)
                 if hit is not None:
                     return hit[0]
+            if sym is None and key == "ENO":  # every FUNCTION and FB has one (st/checker_eno.py)
+                sym = self.implicit_eno(pou)
         if sym is None:
             sym = self.globals.get(key)
             if sym is not None:
@@ -255,7 +287,7 @@ class ExprChecks(CheckerBase):
             e.sym = f
             return f.type
         if isinstance(b, T.FBType):
-            v = b.pou.vars.get(key)
+            v = b.pou.vars.get(key) or (self.implicit_eno(b.pou) if key == "ENO" else None)
             if v is None:
                 self.d.error(
                     "E013",
@@ -309,12 +341,37 @@ class ExprChecks(CheckerBase):
             return None
         be = T.base_elementary(bty)
         if be is None or not be.is_intlike:
-            self.d.error("E053", f"bit access needs an integer or bit-string variable, not {bty}", e.pos)
+            what = "bit access" if e.size == "X" else "a partial access"
+            self.d.error("E053", f"{what} needs an integer or bit-string variable, not {bty}", e.pos)
             return None
+        if e.size != "X":
+            return self._part_access(e, be)
         if not isinstance(e.bit.const, int) or not 0 <= e.bit.const < be.bits:
             self.d.error("E053", f"bit number must be a constant 0..{be.bits - 1} for {be.name}", e.bit.pos)
             return None
         return T.BOOL
+
+    _PARTS = {"B": T.BYTE, "W": T.WORD, "D": T.DWORD, "L": T.LWORD}
+
+    def _part_access(self, e: A.BitAccess, be: T.ElementaryType) -> T.Type | None:
+        """d.%B0, d.%W1, d.%D0, d.%L0 (IEC 61131-3 ed.3 6.5.3, Table 16;
+        CODESYS and TwinCAT alike): byte, word, double or long word n of an
+        integer or bit string, counted from the least significant; E056
+        when the part is not inside the variable's type."""
+        part = self._PARTS[e.size]
+        count = be.bits // part.bits
+        n = e.bit.const
+        if count == 0 or not isinstance(n, int) or not 0 <= n < count:
+            self.d.error(
+                "E056",
+                f"{be.name} has no %{e.size}{n}: it is {be.bits} bits"
+                + (f", %{e.size}0..%{e.size}{count - 1}" if count else f", smaller than a {part.name}"),
+                e.bit.pos,
+                f"a {be.name} holds %X0..%X{be.bits - 1}"
+                + "".join(f", %{k}0..%{k}{be.bits // t.bits - 1}" for k, t in self._PARTS.items() if t.bits < be.bits),
+            )
+            return None
+        return part
 
     def _address_fits(self, addr: A.LocatedAddress, ty: T.ElementaryType | None, pos: A.Pos) -> bool:
         """Report (E082) a direct address outside the process image, and

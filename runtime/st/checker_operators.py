@@ -214,6 +214,8 @@ class OperatorChecks(CheckerBase):
                     ok = True
                 elif le.is_time or re_.is_time:
                     ok = le.category == re_.category
+                elif le.is_char or re_.is_char:  # by code; CHAR with CHAR, WCHAR with WCHAR
+                    ok = le is re_
                 elif self._common(le, re_, e, report=False) is not None:
                     ok = True
         if not ok:

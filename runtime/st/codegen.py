@@ -21,10 +21,11 @@ from dataclasses import dataclass, field
 from .codegen_base import Accessor
 from .codegen_calls import CallGen
 from .codegen_config import ConfigGen
+from .codegen_eno import EnoGen
 from .codegen_exprs import ExprGen
 from .codegen_jumps import JumpGen
-from .codegen_pointers import PointerGen
 from .codegen_oop import OopGen
+from .codegen_pointers import PointerGen
 from .codegen_pous import PouGen
 from .codegen_stmts import StmtGen
 
@@ -40,7 +41,7 @@ class GeneratedModule:
     pou_classes: dict = field(default_factory=dict)  # UPPER POU name -> python name
 
 
-class CodeGen(PouGen, StmtGen, ExprGen, PointerGen, CallGen, ConfigGen, JumpGen, OopGen):
+class CodeGen(PouGen, StmtGen, ExprGen, PointerGen, CallGen, EnoGen, ConfigGen, JumpGen, OopGen):
     """CodeGen(checked, profile).generate() -> GeneratedModule."""
 
     def generate(self) -> GeneratedModule:

@@ -13,6 +13,7 @@ import re
 from . import ast as A
 from . import conversions as C
 from . import ranges as R
+from . import rt_varray
 from . import types as T
 from .codegen_base import CodeGenBase, elementary, py_literal
 from .native import CallSite
@@ -29,12 +30,16 @@ class CallGen(CodeGenBase):
             args = [self._std_arg(a, pts[i] if i < len(pts) else None) for i, a in enumerate(info.args)]
             code = self._std_invoke(info, args)
             if info.rtypes and T.base_elementary(info.rtypes[0]) is T.REAL and not self._exact_in_real(info):
-                return f"_f32({code})"  # SQRT, SIN, EXPT ... of a REAL: its binary32 result
+                code = f"_f32({code})"  # SQRT, SIN, EXPT ... of a REAL: its binary32 result
+            if info.en is not None or info.eno is not None:  # EN/ENO: st/codegen_eno.py
+                return self.gated_value(info, code, e.ty, info.eno)
             return code
         if info.kind == "operator":  # ADD(a, b): the operator expression a + b
+            if info.en is not None or info.eno is not None:
+                return self.gated_value(info, self.ex(info.args[0]), e.ty, info.eno)
             return self.ex(info.args[0])
         if info.kind == "function":
-            return self._function_call(info)
+            return self.function_gate(info, self._function_call(info))
         if info.kind == "method":
             return self._method_invoke(e, info)  # codegen_oop.py
         if info.kind == "builtin":
@@ -51,6 +56,9 @@ class CallGen(CodeGenBase):
             if info.func == "__QUERYINTERFACE":
                 src, dst = info.args
                 return f"_query_into({self._query_code(src, dst.ty)}, {self.ref_code(dst)})"
+            if info.func in ("LOWER_BOUND", "UPPER_BOUND"):  # of an ARRAY[*] (st/checker_arrays.py)
+                dim = int(info.args[1].const) - 1
+                return f"{self.ex(info.args[0])}.bounds[{dim}][{0 if info.func == 'LOWER_BOUND' else 1}]"
             return py_literal(e.const)
         if info.kind == "native":
             if info.func.site:  # the values in their common type, then where the call is (st/native.py)
@@ -198,7 +206,7 @@ class CallGen(CodeGenBase):
                 bound = self.bind_code(a)
                 parts.append(f"{p.pyname}={bound if p.section == 'VAR_INPUT' else f'_CellRef({bound})'}")
             elif p.section == "VAR_IN_OUT":
-                parts.append(f"{p.pyname}={self.ref_code(a)}")
+                parts.append(f"{p.pyname}={self.inout_arg(p, a)}")
             elif T.resolve(p.type).is_aggregate:
                 parts.append(f"{p.pyname}=_copy_value({self.ex(a)})")
             else:
@@ -214,6 +222,16 @@ class CallGen(CodeGenBase):
             parts.append(f"_o_{p.pyname}={self.ref_code(target)}")
         return ", ".join(x for x in parts if x)
 
+    def inout_arg(self, p, a: A.Expr) -> str:
+        """What a VAR_IN_OUT receives: a reference, or for an ARRAY[*] the
+        array with its bounds (st/rt_varray.py)."""
+        pt, at = T.resolve(p.type), T.resolve(a.ty)
+        if isinstance(pt, T.ArrayType) and pt.variable_length and isinstance(at, T.ArrayType):
+            if at.variable_length:
+                return self.ex(a)
+            return f"{self.const(rt_varray.VarArray)}({self.ex(a)}, {self.const(tuple(at.dims))})"
+        return self.ref_code(a)
+
     def _call_stmt(self, e: A.Call) -> None:
         info: CallInfo = e.target
         if info.kind not in ("fb", "action"):
@@ -225,6 +243,19 @@ class CallGen(CodeGenBase):
             t = self.tmp("fb")  # an instance never changes identity: look it up once
             self.emit(f"{t} = {inst}")
             inst = t
+        if info.en is not None:  # IEC 61131-3 ed.3 6.6.1.6: nothing of the call unless EN
+            self.emit(f"if {self.ex(info.en)}:")
+            self.indent += 1
+            self._fb_call_body(info, inst)
+            self.indent -= 1
+            self.emit("else:")
+            self.indent += 1
+            self.fb_skipped(info, inst)
+            self.indent -= 1
+            return
+        self._fb_call_body(info, inst)
+
+    def _fb_call_body(self, info: CallInfo, inst: str) -> None:
         for p, a in info.inputs:
             if T.is_reference(p.type):  # bound to the argument (CODESYS)
                 self.emit(f"{inst}.{p.pyname} = {self.bind_code(a)}")
@@ -235,7 +266,7 @@ class CallGen(CodeGenBase):
             else:
                 self.emit(f"{inst}.{p.pyname} = {code}")
         for p, a in info.inouts:
-            ref = f"_CellRef({self.bind_code(a)})" if T.is_reference(p.type) else self.ref_code(a)
+            ref = f"_CellRef({self.bind_code(a)})" if T.is_reference(p.type) else self.inout_arg(p, a)
             self.emit(f"{inst}.{p.pyname} = {ref}")
         self.emit(f"{inst}.{info.func.pyname}()" if info.kind == "action" else f"{inst}()")
         for p, target, negated in info.outputs:

@@ -14,6 +14,7 @@ from typing import Any
 from . import ast as A
 from . import conversions as C
 from . import ranges as R
+from . import refs, rt_varray
 from . import types as T
 from .codegen_base import CodeGenBase, array_type, elementary, py_literal
 from .symbols import CallInfo, PropertyInfo, VarSymbol
@@ -53,6 +54,9 @@ class ExprGen(CodeGenBase):
                 return f"_deref({base})"
             return f"{base}.get()"
         if isinstance(e, A.BitAccess):
+            if e.size != "X":  # d.%W1: the part, unsigned (ed.3 6.5.3)
+                width = elementary(e.ty).bits
+                return f"({self.ex(e.base)} >> {int(e.bit.const) * width} & {(1 << width) - 1})"
             return f"({self.ex(e.base)} >> {int(e.bit.const)} & 1 != 0)"
         if isinstance(e, A.Located):
             if e.addr.table is not None:
@@ -101,8 +105,21 @@ class ExprGen(CodeGenBase):
     def _index_target(self, e: A.Index) -> str:
         code = self.ex(e.base)
         arr = array_type(e.base.ty)
+        if arr.variable_length:  # ARRAY[*]: the caller's bounds (st/rt_varray.py)
+            return self._varray_items(code, e.indices, arr)
         for ix, dim in zip(e.indices, arr.dims):
             code += f"[{self._index_code(ix, dim)}]"
+        return code
+
+    def _varray_items(self, base: str, indices: list, arr: T.ArrayType, last: bool = True) -> str:
+        """base[i, j] of an ARRAY[*] parameter (a VarArray): each index
+        checked against the bounds the caller's array has; without the last
+        index if not last."""
+        pos = self.const(rt_varray.position)
+        code = f"{base}.data"
+        for k, (ix, dim) in enumerate(zip(indices if last else indices[:-1], arr.dims)):
+            inner = self._index_code(ix, dim) if dim is not None else f"{pos}({self.ex(ix)}, {base}.bounds[{k}])"
+            code += f"[{inner}]"
         return code
 
     def _index_code(self, ix: A.Expr, dim: tuple | None) -> str:
@@ -264,6 +281,17 @@ class ExprGen(CodeGenBase):
             return f"_AttrRef({self.fn.self_name}, {sym.pyname!r})"
         if isinstance(e, A.Member):
             return f"_AttrRef({self.ex(e.base)}, {e.sym.pyname!r})"
+        if isinstance(e, A.Index) and array_type(e.base.ty).variable_length:
+            base = self.ex(e.base)
+            arr = array_type(e.base.ty)
+            k = len(e.indices) - 1
+            last = e.indices[-1]
+            inner = (
+                self._index_code(last, arr.dims[k])
+                if arr.dims[k] is not None
+                else f"{self.const(rt_varray.position)}({self.ex(last)}, {base}.bounds[{k}])"
+            )
+            return f"_ItemRef({self._varray_items(base, e.indices, arr, last=False)}, {inner})"
         if isinstance(e, A.Index):
             base = self.ex(e.base)
             arr = array_type(e.base.ty)
@@ -275,4 +303,10 @@ class ExprGen(CodeGenBase):
         if isinstance(e, A.Located):
             idx = self.accessor(e.addr, T.base_elementary(e.ty))
             return f"_AccessorRef(_A{idx}g, _A{idx}s)"
+        if isinstance(e, A.BitAccess):  # an output bound to w.3 or d.%W1
+            be = elementary(e.base.ty)
+            width = 1 if e.size == "X" else elementary(e.ty).bits
+            signed = be.lo is not None and be.lo < 0
+            shift = int(e.bit.const) * width
+            return f"{self.const(refs.PartRef)}({self.ref_code(e.base)}, {shift}, {width}, {be.bits}, {signed})"
         raise NotImplementedError(f"reference to {type(e).__name__}")

@@ -301,6 +301,7 @@ class PouGen(SfcGen):
         self.pos = pou.node.pos
         self.emit("def __call__(self):")
         self.indent += 1
+        self._eno_true(pou)
         self._temps_init(pou)
         if pou.sfc is not None:
             self._sfc_body(pou)
@@ -318,6 +319,19 @@ class PouGen(SfcGen):
             self.indent -= 1
         self._oop_members(pou)
         self.indent -= 1
+
+    def _eno_true(self, pou: POUInfo) -> None:
+        """ENO is TRUE when the body starts (IEC 61131-3 ed.3 6.6.1.6); only
+        a POU whose ENO is named anywhere has one (st/checker_eno.py)."""
+        eno = pou.vars.get("ENO")
+        if eno is not None and eno.section == "VAR_OUTPUT" and self._is_bool_type(eno.type):
+            self.pos = pou.node.pos
+            self._store_name(eno, "True")
+
+    @staticmethod
+    def _is_bool_type(ty: T.Type) -> bool:
+        be = T.base_elementary(ty)
+        return be is not None and be.is_bool
 
     def _temps_init(self, pou: POUInfo) -> None:
         """VAR_TEMP is re-initialised on every call (IEC)."""
@@ -367,6 +381,7 @@ class PouGen(SfcGen):
                 if v.boxed:
                     self.emit(f"{v.pyname} = _CellRef({v.pyname})")
         self._emit_ref_inits()
+        self._eno_true(pou)
         self._body(pou.node.body)
         self._function_epilogue()
         self.indent -= 1

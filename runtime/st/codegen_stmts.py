@@ -342,6 +342,10 @@ class StmtGen(CodeGenBase):
             mask = 1 << bit
             full = (1 << be.bits) - 1
             new = f"(({cur}) | {mask} if {code} else ({cur}) & {full ^ mask})"
+            if target.size != "X":  # d.%W1 := w: the other bits stay (ed.3 6.5.3)
+                width = elementary(tty).bits
+                shift, part = bit * width, (1 << width) - 1
+                new = f"(({cur}) & {full ^ (part << shift)} | ({code}) << {shift})"
             signed = be.lo is not None and be.lo < 0
             self.emit_store(target.base, self.wrap(be, new) if signed else new, target.base.ty, None, trusted=True)
         elif isinstance(target, A.Located):

@@ -439,3 +439,13 @@ def store_step(src: T.Type | None, dst: T.Type, e: A.Expr | None) -> str:
     if se.is_bool:
         return TO_INT
     return WRAP
+
+
+def conversion_exists(src: T.Type, dst: T.Type) -> bool:
+    """Whether TO_<dst> converts a value of src: every pair of elementary
+    types and strings but CHAR and WCHAR, which convert with integers, bit
+    strings, strings and each other only (IEC 61131-3 ed.3 Table 23, 27)."""
+    se, de = T.base_elementary(src), T.base_elementary(dst)
+    if (se is not None and se.is_char) or (de is not None and de.is_char):
+        return rtlib.converts_char(src, dst)
+    return True

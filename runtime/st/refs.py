@@ -257,3 +257,40 @@ def _order(p, esize: int) -> tuple:
     if t is ObjPtr:
         return _key(p.base), p.offset
     return _key(p), 0
+
+
+def eno_ok(ref, value):
+    """A standard function's call that ran: its ENO => target is TRUE
+    (IEC 61131-3 ed.3 6.6.1.6); the call's value passes through."""
+    ref.set(True)
+    return value
+
+
+def eno_skip(ref, value):
+    """A call that EN kept from running: its ENO => target is FALSE."""
+    ref.set(False)
+    return value
+
+
+class PartRef:
+    """A bit or a partial access (x.3, x.%W1) of a variable reached by ref:
+    what an output bound to it (=> w.3) writes through."""
+
+    __slots__ = ("ref", "shift", "mask", "full", "half")
+
+    def __init__(self, ref, shift: int, width: int, bits: int, signed: bool) -> None:
+        self.ref = ref
+        self.shift = shift
+        self.mask = ((1 << width) - 1) << shift
+        self.full = (1 << bits) - 1
+        self.half = 1 << (bits - 1) if signed else 0
+
+    def get(self):
+        v = (self.ref.get() & self.mask) >> self.shift
+        return v != 0 if self.mask == 1 << self.shift else v
+
+    def set(self, value) -> None:
+        new = self.ref.get() & (self.full ^ self.mask) | (int(value) << self.shift) & self.mask
+        if self.half:
+            new = ((new + self.half) & self.full) - self.half
+        self.ref.set(new)

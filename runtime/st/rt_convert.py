@@ -21,6 +21,7 @@ from .rt_wrap import identity, int_wrapper, time_wrapper
 from .types import (
     BITS,
     BOOLCAT,
+    CHARCAT,
     DATECAT,
     DURATION,
     LREAL,
@@ -112,6 +113,61 @@ def _classify(t: Type) -> tuple:
     return "time", e
 
 
+def _is_char(t: Type) -> bool:
+    e = base_elementary(t)
+    return e is not None and e.category == CHARCAT
+
+
+def char_converter(src: Type, dst: Type) -> Callable:
+    """Conversions of CHAR and WCHAR (IEC 61131-3 ed.3 Table 23, 27): with
+    an integer or bit string by the character's code (BYTE_TO_CHAR(65) is
+    CHAR#'A', wrapped to 8/16 bits), with a string as its first character
+    (CHAR_TO_STRING gives a one-character string, STRING_TO_CHAR('') is
+    CHAR#'$00'). A code the destination cannot hold (WCHAR_TO_CHAR of
+    a character beyond Latin-1) becomes '?', as WSTRING_TO_STRING does."""
+    s, d = resolve(src), resolve(dst)
+    if isinstance(d, StringType):
+        limit = 0xFFFF if d.wide else 0xFF
+
+        def char_to_string(v: int) -> str:
+            return chr(v) if v <= limit else "?"
+
+        return char_to_string
+    de = base_elementary(d)
+    if de is None:
+        raise TypeError(f"no conversion to {dst.name}")
+    if de.category == CHARCAT:
+        top = de.hi if de.hi is not None else 0xFF
+        if isinstance(s, StringType):
+
+            def string_to_char(v: str) -> int:
+                code = ord(v[0]) if v else 0
+                return code if code <= top else 63
+
+            return string_to_char
+        se = base_elementary(s)
+        if se is not None and se.category == CHARCAT:
+
+            def char_to_char(v: int) -> int:
+                return v if v <= top else 63
+
+            return char_to_char
+        if se is not None and se.category in (SIGNED, UNSIGNED, BITS):
+            return int_wrapper(de)
+    elif de.category in (SIGNED, UNSIGNED, BITS):
+        return int_wrapper(de)
+    raise TypeError(f"no conversion from {src.name} to {dst.name}")
+
+
+def converts_char(src: Type, dst: Type) -> bool:
+    """Whether <src>_TO_<dst> exists, where either is CHAR or WCHAR."""
+    try:
+        char_converter(src, dst)
+    except TypeError:
+        return False
+    return True
+
+
 def make_converter(src: Type, dst: Type) -> Callable:
     """A closure converting a value of type src to type dst, with IEC /
     CODESYS semantics (the <src>_TO_<dst> function). Bind it once, call it
@@ -137,6 +193,8 @@ def make_converter(src: Type, dst: Type) -> Callable:
                                       'T#1s'); invalid text gives 0 / FALSE
       WSTRING -> STRING               characters beyond Latin-1 -> '?'
     """
+    if _is_char(src) or _is_char(dst):
+        return char_converter(src, dst)
     sk, s = _classify(src)
     dk, d = _classify(dst)
     if s is d and sk != "str":

@@ -149,6 +149,11 @@ def CONCAT_LDATE_LTOD(d: int, tod: int) -> int:
     return (d - d % DAY_NS + tod % DAY_NS) & _M64
 
 
+def CONCAT_DATE_LTOD(d: int, tod: int) -> int:
+    """DATE (seconds) + LTOD -> LDT (IEC 61131-3 ed.3 Table 37)."""
+    return ((d - d % _DAY_S) * 1_000_000_000 + tod % DAY_NS) & _M64
+
+
 # CONCAT_DATE, CONCAT_TOD, CONCAT_DT (IEC 61131-3 ed.3 Table 37): a field
 # outside the calendar (month 13, Feb 30, hour 24, second 60) or a date the
 # type cannot hold (DATE and DT: 1970-01-01 .. 2106-02-07, 32-bit seconds;
@@ -185,6 +190,11 @@ def _stamp(year: int, month: int, day: int, hour: int, minute: int, second: int)
 def CONCAT_DATE(year: int, month: int, day: int) -> int:
     """-> DATE."""
     return _days("CONCAT_DATE", year, month, day, _LAST_DAY_32) * _DAY_S
+
+
+def CONCAT_LDATE(year: int, month: int, day: int) -> int:
+    """-> LDATE (nanoseconds since 1970-01-01, to 2554)."""
+    return _days("CONCAT_LDATE", year, month, day, _M64 // DAY_NS) * DAY_NS
 
 
 def CONCAT_TOD(hour: int, minute: int, second: int, millisecond: int) -> int:

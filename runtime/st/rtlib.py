@@ -35,7 +35,7 @@ functions live in modules by concern:
 
 from __future__ import annotations
 
-from .rt_convert import convert, from_ns, make_converter, to_ns
+from .rt_convert import convert, converts_char, from_ns, make_converter, to_ns
 from .rt_numeric import (
     acos,
     asin,
@@ -73,8 +73,10 @@ from .rt_timedate import (
     ADD_TIME,
     ADD_TOD_TIME,
     CONCAT_DATE,
+    CONCAT_DATE_LTOD,
     CONCAT_DATE_TOD,
     CONCAT_DT,
+    CONCAT_LDATE,
     CONCAT_LDATE_LTOD,
     CONCAT_LDT,
     CONCAT_LTOD,
@@ -112,6 +114,7 @@ __all__ = [
     "wrap_time",
     "wrapper",
     "convert",
+    "converts_char",
     "make_converter",
     "real_to_string",
     "parse_int",
@@ -171,7 +174,9 @@ __all__ = [
     "SUB_LDT_LTIME",
     "CONCAT_DATE_TOD",
     "CONCAT_LDATE_LTOD",
+    "CONCAT_DATE_LTOD",
     "CONCAT_DATE",
+    "CONCAT_LDATE",
     "CONCAT_TOD",
     "CONCAT_LTOD",
     "CONCAT_DT",

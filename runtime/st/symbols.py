@@ -41,6 +41,7 @@ class VarSymbol:
     boxed: bool = False  # FUNCTION local whose reference is taken: kept in a CellRef
     address_taken: bool = False  # REF/ADR, VAR_IN_OUT or => reaches it: others may read it
     hidden: bool = False  # {attribute 'hide'}: left out of listings (namespaces.py)
+    generic: str | None = None  # ANY_NUM ... of a FUNCTION's input (st/checker_generics.py)
 
     @property
     def is_global(self) -> bool:
@@ -120,3 +121,5 @@ class CallInfo:
     args: list = field(default_factory=list)  # std/builtin: argument Exprs in parameter order
     rtypes: tuple = ()  # std typed: (result type, arg types...)
     param_types: list = field(default_factory=list)  # std: the type each arg is converted to
+    en: Any = None  # the EN argument (IEC 61131-3 ed.3 6.6.1.6): the call runs only when it is TRUE
+    eno: Any = None  # std/operator: the ENO => target (a POU's own ENO is one of its outputs)

@@ -15,6 +15,7 @@ runtime library and the JSON encoder):
   LDATE, LDT                            int nanoseconds since 1970-01-01
   LTOD                                  int nanoseconds since midnight
   STRING[n] / WSTRING[n]                str, truncated to n characters on store
+  CHAR / WCHAR                           int, the character's code (0..255 / 0..65535)
   enumeration                           int (the enumerator's value)
   subrange                              int, checked on store
   ARRAY                                 list (nested list per dimension), bounds kept here
@@ -67,6 +68,7 @@ DURATION = "duration"
 DATECAT = "date"
 TODCAT = "tod"
 DTCAT = "dt"
+CHARCAT = "char"  # CHAR, WCHAR: the character's code (IEC 61131-3 ed.3 6.4.2, Table 10)
 
 
 @dataclass(frozen=True, eq=False)
@@ -107,6 +109,10 @@ class ElementaryType(Type):
     def is_time(self) -> bool:
         return self.category in (DURATION, DATECAT, TODCAT, DTCAT)
 
+    @property
+    def is_char(self) -> bool:
+        return self.category == CHARCAT
+
 
 def _signed(name: str, bits: int) -> ElementaryType:
     return ElementaryType(name, SIGNED, bits, -(1 << (bits - 1)), (1 << (bits - 1)) - 1)
@@ -139,6 +145,8 @@ DT = ElementaryType("DATE_AND_TIME", DTCAT, 32, 0, (1 << 32) - 1, unit_ns=1_000_
 LDATE = ElementaryType("LDATE", DATECAT, 64, 0, (1 << 64) - 1, unit_ns=1)
 LTOD = ElementaryType("LTIME_OF_DAY", TODCAT, 64, 0, (1 << 64) - 1, unit_ns=1)
 LDT = ElementaryType("LDATE_AND_TIME", DTCAT, 64, 0, (1 << 64) - 1, unit_ns=1)
+CHAR = ElementaryType("CHAR", CHARCAT, 8, 0, 255)
+WCHAR = ElementaryType("WCHAR", CHARCAT, 16, 0, 65535)
 
 ELEMENTARY: dict[str, ElementaryType] = {
     t.name: t
@@ -166,6 +174,8 @@ ELEMENTARY: dict[str, ElementaryType] = {
         LDATE,
         LTOD,
         LDT,
+        CHAR,
+        WCHAR,
     )
 }
 # Short spellings.
@@ -378,8 +388,10 @@ def is_generic_member(t: Type, generic: str) -> bool:
         t = t.base
     if g == "ANY_DERIVED":
         return not t.is_elementary and not t.is_string
-    if g in ("ANY_STRING", "ANY_CHARS"):
+    if g == "ANY_STRING":
         return t.is_string
+    if g == "ANY_CHARS":  # ed.3 Figure 5: ANY_CHARS is ANY_STRING and ANY_CHAR
+        return t.is_string or isinstance(t, ElementaryType) and t.category == CHARCAT
     if g == "ANY_ELEMENTARY":
         return t.is_elementary or t.is_string
     if not isinstance(t, ElementaryType):
@@ -403,6 +415,8 @@ def is_generic_member(t: Type, generic: str) -> bool:
         return c in (DATECAT, TODCAT, DTCAT)
     if g == "ANY_DURATION":
         return c == DURATION
+    if g == "ANY_CHAR":
+        return c == CHARCAT
     raise ValueError(f"unknown generic type {generic}")
 
 
@@ -421,6 +435,7 @@ GENERICS = (
     "ANY_DATE",
     "ANY_DURATION",
     "ANY_CHARS",
+    "ANY_CHAR",
 )
 
 

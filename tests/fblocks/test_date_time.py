@@ -111,3 +111,26 @@ def test_is_valid_bcd():
     )
     b.step()
     assert [b[f"r{i}"] for i in range(1, 8)] == [True, False, True, False, True, False, True]
+
+
+def test_the_l_variants_split_and_concat_to_the_millisecond():
+    """SPLIT_LDATE, SPLIT_LTOD, SPLIT_LDT and CONCAT_LDATE, CONCAT_DATE_LTOD
+    (IEC 61131-3 ed.3 Table 37; the L-types count nanoseconds, to 2554)."""
+    b = Bench(
+        f"{_DECLS} ly, lmo, ld : INT; th, tmi, ts, tms : INT; dy, dmo, dd, dh, dmi, ds, dms : INT;"
+        "back : LDATE; stamp : LDT; same : BOOL;",
+        "SPLIT_LDATE(IN := LDATE#2400-02-29, YEAR => ly, MONTH => lmo, DAY => ld);\n"
+        "SPLIT_LTOD(IN := LTOD#23:59:59.999999, HOUR => th, MINUTE => tmi, SECOND => ts, MILLISECOND => tms);\n"
+        "SPLIT_LDT(IN := LDT#2554-07-21-23:34:33.709, YEAR => dy, MONTH => dmo, DAY => dd,\n"
+        "          HOUR => dh, MINUTE => dmi, SECOND => ds, MILLISECOND => dms);\n"
+        "back := CONCAT_LDATE(2400, 2, 29);\n"
+        "same := back = LDATE#2400-02-29;\n"
+        "stamp := CONCAT_DATE_LTOD(D#2024-05-01, LTOD#12:00:00.5);",
+    )
+    b.step()
+    assert [b[n] for n in ("ly", "lmo", "ld")] == [2400, 2, 29]
+    assert [b[n] for n in ("th", "tmi", "ts", "tms")] == [23, 59, 59, 999]
+    assert [b[n] for n in ("dy", "dmo", "dd", "dh", "dmi", "ds", "dms")] == [2554, 7, 21, 23, 34, 33, 709]
+    assert b["same"] is True
+    stamp = datetime.datetime(2024, 5, 1, 12, 0, 0, 500000, tzinfo=datetime.UTC)
+    assert b["stamp"] == int(stamp.timestamp()) * 1_000_000_000 + 500_000_000

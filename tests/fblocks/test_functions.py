@@ -8,6 +8,7 @@ import pytest
 
 from softplc.fblocks.iec.functions import STANDARD_FUNCTIONS as F
 from softplc.fblocks.iec.functions import StdFunc, parse_typespec
+from softplc.runtime.st import rtlib
 from softplc.runtime.st import types as T
 from softplc.runtime.st.faults import RangeFault
 
@@ -95,7 +96,7 @@ def sample(t: T.Type, extreme: bool):
         return (math.nan if t is T.REAL else -math.inf) if extreme else -2.5
     if c in (T.SIGNED, T.DURATION):
         return t.lo if extreme else -7
-    if c in (T.UNSIGNED, T.BITS):
+    if c in (T.UNSIGNED, T.BITS, T.CHARCAT):
         return t.hi if extreme else 0x21
     day = 86_400 * 10**9 // t.unit_ns
     if c == T.TODCAT:
@@ -136,7 +137,7 @@ def bind(f: StdFunc, choice: dict):
 
 MAY_DIVIDE_BY_ZERO = {"DIV", "MOD", "DIV_TIME", "DIV_LTIME"}
 # a sample year, month ... that is no date or time of day is a range fault
-MAY_BE_NO_DATE = {"CONCAT_DATE", "CONCAT_TOD", "CONCAT_LTOD", "CONCAT_DT", "CONCAT_LDT"}
+MAY_BE_NO_DATE = {"CONCAT_DATE", "CONCAT_LDATE", "CONCAT_TOD", "CONCAT_LTOD", "CONCAT_DT", "CONCAT_LDT"}
 
 
 def test_table_is_well_formed():
@@ -188,9 +189,13 @@ def test_all_conversion_pairs_exist():
     names = list(T.ELEMENTARY) + ["STRING", "WSTRING"]
     for s in names:
         for d in names:
-            if concrete(s) is not concrete(d):
+            if concrete(s) is concrete(d):
+                continue
+            if "CHAR" in (s, d) or "WCHAR" in (s, d):  # with integers, bit strings, strings (ed.3 Table 23, 27)
+                assert (f"{s}_TO_{d}" in F) == rtlib.converts_char(concrete(s), concrete(d)), (s, d)
+            else:
                 assert f"{s}_TO_{d}" in F
-        assert f"TO_{s}" in F
+        assert (f"TO_{s}" in F) == (s not in ("CHAR", "WCHAR"))
     assert "INT_TO_INT" not in F
     assert "TOD_TO_TIME_OF_DAY" not in F  # one type, two spellings
 

@@ -40,6 +40,8 @@ _INIT = {
     "REAL": "2.0",
     "LREAL": "2.0",
     "INT_YEAR": "2024",
+    "CHAR": "CHAR#'A'",
+    "WCHAR": 'WCHAR#"A"',
 }
 
 

@@ -11,13 +11,14 @@ from softplc.runtime.st import rt_convert, rt_numeric, rt_strings, rt_text, rt_t
 # Every name rtlib had before it was split by concern: none may go.
 NAMES = """
     int_to_f32
-    f32 idiv imod rdiv expt round_half_away trunc wrap wrap_time wrapper convert make_converter real_to_string
+    f32 idiv imod rdiv expt round_half_away trunc wrap wrap_time wrapper convert converts_char make_converter
+    real_to_string
     parse_int parse_real parse_bool parse_temporal iec_literal to_ns from_ns shl shr rol ror bcd_to_int int_to_bcd
     sqrt ln log exp sin cos tan asin acos atan atan2 LEN LEFT RIGHT MID CONCAT INSERT DELETE REPLACE FIND
     ADD_TIME SUB_TIME MUL_TIME DIV_TIME ADD_LTIME SUB_LTIME MUL_LTIME DIV_LTIME ADD_TOD_TIME ADD_LTOD_LTIME
     ADD_DT_TIME ADD_LDT_LTIME SUB_DATE_DATE SUB_LDATE_LDATE SUB_TOD_TOD SUB_LTOD_LTOD SUB_DT_DT SUB_LDT_LDT
     SUB_TOD_TIME SUB_LTOD_LTIME SUB_DT_TIME SUB_LDT_LTIME CONCAT_DATE_TOD CONCAT_LDATE_LTOD CONCAT_DATE
-    CONCAT_TOD CONCAT_LTOD CONCAT_DT CONCAT_LDT DAY_OF_WEEK
+    CONCAT_TOD CONCAT_LTOD CONCAT_DT CONCAT_LDT DAY_OF_WEEK CONCAT_LDATE CONCAT_DATE_LTOD
 """.split()
 
 
