@@ -28,23 +28,20 @@ def is_method_owner(p: POUInfo | None, fb: POUInfo) -> bool:
 
 def find_method(owner, key: str):
     """The METHOD named key (UPPER) of an FB (inherited too) or an interface."""
-    if isinstance(owner, T.InterfaceType):
-        return _itf_member(owner, key, "methods")
-    p = owner
-    while p is not None:
-        m = p.methods.get(key)
-        if m is not None:
-            return m
-        p = p.base
-    return None
+    return _find_member(owner, key, "methods")
 
 
 def find_property(owner, key: str):
+    """The PROPERTY named key (UPPER) of an FB (inherited too) or an interface."""
+    return _find_member(owner, key, "properties")
+
+
+def _find_member(owner, key: str, kind: str):
     if isinstance(owner, T.InterfaceType):
-        return _itf_member(owner, key, "properties")
+        return _itf_member(owner, key, kind)
     p = owner
     while p is not None:
-        m = p.properties.get(key)
+        m = getattr(p, kind).get(key)
         if m is not None:
             return m
         p = p.base
