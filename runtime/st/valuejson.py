@@ -20,6 +20,8 @@ The encoding, per type (see types.py for how values are held in Python):
   STRUCT, FUNCTION_BLOCK       objects: variable name as declared -> value
   REF_TO, POINTER TO           null when NULL, else the string "<ref>" (a
                                reference has no value of its own to show)
+  an INTERFACE                 null when unassigned, else "<ref>" too: it
+                               designates an instance, which has its own entry
 
 An instance dump (``encode_instance``) lists a POU's own state: VAR,
 VAR_INPUT, VAR_OUTPUT, VAR_GLOBAL and struct fields. VAR_IN_OUT and
@@ -58,7 +60,7 @@ def encode_value(t: T.Type, v: Any) -> Any:
         return _encode_array(len(t.dims), t.elem, v)
     if isinstance(t, (T.StructType, T.FBType)):
         return encode_instance(v)
-    if isinstance(t, T.RefType):
+    if isinstance(t, (T.RefType, T.InterfaceType)):
         return None if v is None else "<ref>"
     # Anything else (ADR# addresses, NULL) has no better form than its text.
     return None if v is None else str(v)

@@ -172,3 +172,36 @@ def test_program_dump_time_literals(dump):
 
 def test_fb_dump_leaves_out_in_out_and_temp(dump):
     assert dump["ax"] == {"enable": True, "pos": {"x": 2, "y": 0}}
+
+
+def test_an_interface_variable_dumps_as_a_reference():
+    """An INTERFACE variable designates an instance (CODESYS): unassigned it
+    is null, assigned it shows "<ref>" as a REF_TO does, not a Python repr;
+    the instance itself has its own entry."""
+    from softplc.runtime.program import compile_files
+
+    src = """
+INTERFACE I_Run
+METHOD Go : INT
+END_METHOD
+END_INTERFACE
+FUNCTION_BLOCK Motor IMPLEMENTS I_Run
+VAR n : INT; END_VAR
+METHOD Go : INT
+n := n + 1;
+Go := n;
+END_METHOD
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR m : Motor; used : I_Run; unused : I_Run; k : INT; END_VAR
+used := m;
+k := used.Go();
+END_PROGRAM
+"""
+    runner = compile_files([], texts={"main.st": src}).runner("Main")
+    runner.run(2)
+    dump = encode_instance(runner.instance)
+    json.dumps(dump)
+    assert dump["used"] == "<ref>"
+    assert dump["unused"] is None
+    assert dump["m"] == {"n": 2} and dump["k"] == 2
