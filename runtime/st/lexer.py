@@ -101,6 +101,21 @@ def line_col(text: str, offset: int) -> tuple:
     return line, offset - (text.rfind("\n", 0, offset) + 1) + 1
 
 
+def _closer(text: str, start: int, opener: str, closer: str, kind: str, error: Callable) -> int:
+    """Where the first closer after the opener at start is, or -1 after an
+    E004 (the comment or pragma then runs to the end of the text)."""
+    close = text.find(closer, start + len(opener))
+    if close < 0:
+        error(
+            "E004",
+            f"unterminated {kind}: '{opener}' is never closed",
+            start,
+            start + len(opener),
+            f"close it with '{closer}'",
+        )
+    return close
+
+
 def strip_comments(text: str, error: Callable, nested: bool = True) -> tuple:
     """Return (text with comments and pragmas blanked, [Pragma]).
     ``error(code, message, start_offset, end_offset, hint)`` reports a problem.
@@ -134,40 +149,26 @@ def strip_comments(text: str, error: Callable, nested: bool = True) -> tuple:
             nl = text.find("\n", start)
             end = len(text) if nl < 0 else nl
         elif what == "/*":
-            close = text.find("*/", start + 2)
-            if close < 0:
-                error("E004", "unterminated comment: '/*' is never closed", start, start + 2, "close it with '*/'")
-                end = len(text)
-            else:
-                end = close + 2
+            close = _closer(text, start, "/*", "*/", "comment", error)
+            end = len(text) if close < 0 else close + 2
         elif what == "{" and text.startswith("{{", start):
             # MatIEC's embedded C, {{ ... }}: it may hold single braces and
             # span lines; the first '}}' ends it. Its text keeps one brace
             # each side ('{ ... }'), which tells it from other pragmas.
-            close = text.find("}}", start + 2)
-            if close < 0:
-                error("E004", "unterminated pragma: '{{' is never closed", start, start + 2, "close it with '}}'")
-                end = len(text)
-            else:
-                end = close + 2
+            close = _closer(text, start, "{{", "}}", "pragma", error)
+            end = len(text) if close < 0 else close + 2
+            if close >= 0:
                 pragmas.append(Pragma(text[start + 1 : end - 1], line_col(text, start), line_col(text, end)))
         elif what == "{":
-            close = text.find("}", start + 1)
-            if close < 0:
-                error("E004", "unterminated pragma: '{' is never closed", start, start + 1, "close it with '}'")
-                end = len(text)
-            else:
-                end = close + 1
+            close = _closer(text, start, "{", "}", "pragma", error)
+            end = len(text) if close < 0 else close + 1
+            if close >= 0:
                 pragmas.append(Pragma(text[start + 1 : close].strip(), line_col(text, start), line_col(text, end)))
         elif not nested:  # "(*": the first '*)' ends it
-            close = text.find("*)", start + 2)
-            if close < 0:
-                error("E004", "unterminated comment: '(*' is never closed", start, start + 2, "close it with '*)'")
-                end = len(text)
-            else:
-                end = close + 2
-                if text.find("(*", start + 2, close) >= 0:
-                    inner_open = start
+            close = _closer(text, start, "(*", "*)", "comment", error)
+            end = len(text) if close < 0 else close + 2
+            if close >= 0 and text.find("(*", start + 2, close) >= 0:
+                inner_open = start
         else:  # "(*": comments nest
             end = _nested_comment_end(text, start, error)
         pieces.append(text[done:start])
