@@ -60,7 +60,8 @@ def value_range(e: A.Expr | None, known: Mapping[int, Range] | None = None) -> R
         if rng is not None:
             return rng
     be = T.base_elementary(e.ty) if e.ty is not None else None
-    if be is None or not be.is_intlike or be.lo is None or be.hi is None:
+    # TIME and the dates are wrapped ints too (ranges of their stored values)
+    if be is None or not (be.is_intlike or be.is_time) or be.lo is None or be.hi is None:
         return None
     if is_stored_value(e) and not isinstance(e, A.Call):
         return (be.lo, be.hi)
@@ -68,6 +69,9 @@ def value_range(e: A.Expr | None, known: Mapping[int, Range] | None = None) -> R
         return _binary_range(e.op, value_range(e.left, known), value_range(e.right, known))
     if isinstance(e, A.Call) and isinstance(e.target, CallInfo) and e.target.kind == "method":
         return (be.lo, be.hi)  # the method's result variable, stored in its type
+    if isinstance(e, A.Call) and isinstance(e.target, CallInfo) and e.target.kind == "builtin":
+        if e.target.func in ("TIME", "LTIME"):
+            return (be.lo, be.hi)  # the task clock, wrapped to its type (program/context.py)
     if isinstance(e, A.Call) and isinstance(e.target, CallInfo) and e.target.kind == "operator":
         return value_range(e.target.args[0], known)  # ADD(a, b) is a + b
     if isinstance(e, A.Call) and isinstance(e.target, CallInfo) and e.target.kind == "std":

@@ -87,3 +87,18 @@ def test_within_and_fits():
     assert R.within((0, 9), 0, 9) and not R.within((0, 10), 0, 9) and not R.within(None, 0, 9)
     assert R.fits(T.BYTE, (0, 255)) and not R.fits(T.BYTE, (-1, 3)) and R.fits(T.INT, (-5, 510))
     assert not R.fits(T.INT, None)
+
+
+@pytest.mark.parametrize(
+    "expr,rng",
+    [
+        ("t", (-(1 << 31), (1 << 31) - 1)),  # a stored TIME is a wrapped 32-bit value
+        ("TIME()", (-(1 << 31), (1 << 31) - 1)),  # the task clock, wrapped to TIME
+        ("TIME() - t", (-(1 << 32) + 1, (1 << 32) - 1)),  # a difference may wrap
+    ],
+)
+def test_interval_of_time_expressions(expr, rng):
+    """TON's ET := PT copies a TIME without a wrap; TIME() - start wraps."""
+    got = R.value_range(value(expr, "t : TIME; x : TIME;"))
+    assert got == rng
+    assert R.fits(T.TIME, got) == (rng[1] - rng[0] < 1 << 32)
