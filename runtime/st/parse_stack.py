@@ -91,10 +91,12 @@ class ParserCore:
         it was."""
         states, values = self.state_stack, self.value_stack
         rows, gotos, builder, end_state = self.g.rows, self.g.goto, self.builder, self.g.end_state
+        chains = self.g.unit_chains
         ttype = token.type
         undo = None
         while True:
-            action: Any = rows[states[-1]].get(ttype)  # a state (int), a Reduce or None
+            top = states[-1]
+            action: Any = rows[top].get(ttype)  # a state (int), a Reduce or None
             if action.__class__ is int:  # (the fastest test)
                 states.append(action)
                 values.append(token)
@@ -103,6 +105,17 @@ class ParserCore:
                 if undo:
                     self._undo(undo)
                 raise Rejected
+            if action.unit:  # a chain of pass-throughs: one new top state
+                goto = chains.get((states[-2], top, ttype))
+                if goto is None:
+                    goto = self.g.unit_chain(states[-2], top, ttype)
+                states[-1] = goto
+                if undo is None:
+                    undo = []
+                undo.append(top)
+                if is_end and goto == end_state:
+                    return values[-1]
+                continue
             size = action.size
             if size:
                 children = values[-size:]
@@ -125,6 +138,9 @@ class ParserCore:
     def _undo(self, undo: list) -> None:
         states, values, gotos = self.state_stack, self.value_stack, self.g.goto
         for entry in reversed(undo):
+            if entry.__class__ is int:  # pass-throughs: the top state they replaced
+                states[-1] = entry
+                continue
             action, children = entry[0], entry[1]
             states.pop()
             values.pop()

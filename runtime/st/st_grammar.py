@@ -54,15 +54,18 @@ class Reduce:
     it takes, ``build`` (None: the value passes through, a ?rule with one
     child), the rule's name (for the goto), its symbols (to redo the states
     when a reduction is undone) and ``alias``: the child whose list the
-    shaping reuses and extends in place (undo cuts it back)."""
+    shaping reuses and extends in place (undo cuts it back). ``unit``: a
+    ?rule's pass-through of its one child (the value stays, only the state
+    changes: expression -> or_expr -> ... -> primary is a chain of them)."""
 
-    __slots__ = ("size", "build", "origin", "symbols", "alias")
+    __slots__ = ("size", "build", "origin", "symbols", "alias", "unit")
 
     def __init__(self, rule: RuleInfo, builder: type) -> None:
         self.size = len(rule.expansion)
         self.symbols = tuple(sym.name for sym in rule.expansion)
         self.origin = rule.origin
         self.build, self.alias = _shape(rule, builder)
+        self.unit = self.size == 1 and self.build is None and self.alias is None
 
 
 def _shape(rule: RuleInfo, builder: type) -> tuple[Build | None, int | None]:
@@ -191,6 +194,28 @@ class Grammar:
             n for n, t in self.terminals.items() if t.literal is not None and t.literal.isidentifier()
         )
         self.keywords = sorted(self.spelling(n) for n in self.keyword_terminals)
+        # (state below, state on top, token type) -> the state on top after
+        # every pass-through reduction the token calls for there (unit_chain)
+        self.unit_chains: dict[tuple[int, int, str], int] = {}
+
+    def unit_chain(self, below: int, top: int, ttype: str) -> int:
+        """The state on top of the stack after the chain of pass-through
+        reductions (``Reduce.unit``) that a token of type ttype calls for
+        with ``top`` on ``below``: each replaces the top state only, so the
+        chain depends on these two states and the token, and is remembered
+        (the parser takes 10 of them after a typical operand)."""
+        key = (below, top, ttype)
+        found = self.unit_chains.get(key)
+        if found is None:
+            rows, gotos, found = self.rows, self.goto[below], top
+            action = rows[found].get(ttype)
+            while action is not None and action.__class__ is not int and action.unit:  # type: ignore[union-attr]
+                found = gotos[action.origin]  # type: ignore[union-attr]
+                if found == self.end_state:
+                    break
+                action = rows[found].get(ttype)
+            self.unit_chains[key] = found  # (a race writes the same value)
+        return found
 
     def spelling(self, name: str) -> str:
         """Terminal name -> how it is written ('SEMICOLON' -> ';', '_ELSE' -> 'ELSE')."""

@@ -59,6 +59,33 @@ def test_a_rejected_token_leaves_the_stacks_as_they_were():
     assert [s.target.name for s in pou.body] == ["x", "y"]
 
 
+def test_chains_of_pass_through_reductions_leave_the_stack_the_table_gives():
+    """Feeding takes a chain of ?rule pass-throughs (expression -> ... ->
+    primary) in one step; the states must be those of the plain table."""
+    g = grammar()
+    text = "PROGRAM p x := (a + b * -c) MOD 3 > 2 OR d AND NOT e; IF x THEN y := x[1].f; END_IF END_PROGRAM"
+    core = ParserCore(text, "t.st", DiagnosticBag(), g)
+    chained = 0
+    for tok in g.lexer.tokens(text, lambda: g.rows[core.state_stack[-1]], None):
+        reduced: list = []
+        expected = g.simulate(core.state_stack, tok.type, reduced)
+        core._feed(tok)
+        assert core.state_stack == expected, tok
+        chained += len(reduced) > 1
+    assert chained > 5 and g.unit_chains
+    # reductions (some of them a pass-through chain) taken back on rejection
+    text = "PROGRAM p x := a + b"
+    core = ParserCore(text, "t.st", DiagnosticBag(), g)
+    for tok in g.lexer.tokens(text, lambda: g.rows[core.state_stack[-1]], None):
+        core._feed(tok)
+    states, values = list(core.state_stack), list(core.value_stack)
+    reduced: list = []
+    assert g.simulate(states, "DO", reduced) is None and "primary" in reduced and "expr" in reduced
+    with pytest.raises(Rejected):
+        core._feed(Tok("DO", "DO", len(text), 1, len(text) + 1))
+    assert core.state_stack == states and core.value_stack == values
+
+
 def test_the_value_of_the_start_rule_ends_the_parse():
     g = grammar()
     core = ParserCore("", "t.st", DiagnosticBag(), g)
