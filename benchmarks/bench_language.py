@@ -7,10 +7,10 @@
 Part 1 runs four ST programs (numeric loops, bit/word manipulation, 100 FB
 instances, 100 method calls through an interface) and a hand-written Python implementation of the same logic, checks
 that both end in the same state and prints us/cycle and the ratio
-generated / hand-written (target: within 1.3x).
+generated / hand-written (target: within 1.2x).
 
 Part 2 generates a 10,000-line ST file and times the front end phase by phase
-(target: < 2 s in total).
+and compile_files() end to end (target: 10,000 lines/s, i.e. under 1 s).
 
 Nothing here is asserted: the script prints figures measured in this run.
 """
@@ -37,8 +37,8 @@ from softplc.runtime.st.parser import parse_source
 from softplc.runtime.st.profile import get_profile
 
 HERE = Path(__file__).resolve().parent
-RATIO_TARGET = 1.3
-FRONT_END_TARGET_S = 2.0
+RATIO_TARGET = 1.2
+FRONT_END_TARGET_LINES_S = 10_000
 FRONT_END_LINES = 10_000
 
 
@@ -409,7 +409,9 @@ def bench_front_end(repeats: int) -> dict:
     text = generate_st(FRONT_END_LINES)
     lines = text.count("\n")
     profile = get_profile("codesys")
-    library_texts = loader._library_sources()
+    # the library files compile_files() takes for this text (not every device's)
+    words = {w.upper() for w in loader._WORD.findall(text)}
+    library_texts = loader._needed_library(loader._always_sources(), loader._on_demand_sources(), words)
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "generated_10k.st"
         path.write_text(text, encoding="utf-8")
@@ -443,9 +445,14 @@ def bench_front_end(repeats: int) -> dict:
             }
             if not best or t["total"] < best["total"]:
                 best = t
-        t0 = time.perf_counter()
-        compile_files([str(path)])  # the public API end to end, once
-        best["compile_files()"] = time.perf_counter() - t0
+        # the public API end to end, best of repeats (parts 1 and the phases
+        # above have loaded the registry and analysed the grammar)
+        for _ in range(repeats):
+            gc.collect()
+            t0 = time.perf_counter()
+            compile_files([str(path)])
+            t = time.perf_counter() - t0
+            best["compile_files()"] = min(t, best.get("compile_files()", t))
     best["lines"] = lines
     best["python lines"] = gen.source.count("\n")
     best["pous"] = sum(1 for line in text.splitlines() if line.startswith(("FUNCTION ", "FUNCTION_BLOCK ", "PROGRAM ")))
@@ -503,8 +510,9 @@ def main() -> int:
     print(f"2. Front end on a generated {FRONT_END_LINES:,}-line ST file")
     fe = bench_front_end(1 if args.quick else 3)
     print(f"   {fe['lines']:,} ST lines, {fe['pous']} POUs -> {fe['python lines']:,} Python lines")
-    for phase in ("parse", "parse library", "check", "codegen", "python compile", "total", "compile_files()"):
-        print(f"   {phase:<16} {fe[phase]:7.3f} s  {fe['lines'] / fe[phase]:>10,.0f} lines/s")
+    phases = ("parse", "parse library", "check", "codegen", "python compile", "total")
+    for phase in (*phases, "compile_files()"):
+        print(f"   {phase:<21} {fe[phase]:7.3f} s  {fe['lines'] / fe[phase]:>10,.0f} lines/s")
     print()
 
     print("Summary")
@@ -516,9 +524,10 @@ def main() -> int:
             f"{'<= ' + str(RATIO_TARGET) + 'x':>10}  {'met' if ok else 'MISSED'}"
             f"{'' if r['same'] else ' (results differ)'}"
         )
-    ok = fe["total"] < FRONT_END_TARGET_S
-    print(f"   {'front end, 10k lines (s)':<36} {fe['total']:>9.2f}s  {'< 2 s':>10}  {'met' if ok else 'MISSED'}")
-    print(f"   {'front end throughput (lines/s)':<36} {fe['lines'] / fe['total']:>10,.0f}")
+    speed = fe["lines"] / fe["compile_files()"]
+    ok = speed >= FRONT_END_TARGET_LINES_S
+    target = f">= {FRONT_END_TARGET_LINES_S:,}"
+    print(f"   {'compile_files(), 10k lines (lines/s)':<36} {speed:>10,.0f}  {target:>10}  {'met' if ok else 'MISSED'}")
     return 0
 
 
