@@ -108,6 +108,8 @@ class Program:
             "_AccessorRef": refs.AccessorRef,
             "_assign_into": values.assign_into,
             "_copy_value": values.copy_value,
+            "_slot_assign": values.slot_assign,
+            "_slot_copy": values.slot_copy,
             "_with_fields": _with_fields,
             "_deref": refs.deref,
             "_elem_ptr": refs.elem_ptr,

@@ -296,7 +296,11 @@ class PouGen(SfcGen):
             self._sfc_init(pou)
         self._fb_init_calls(pou)  # FB_init, base first (codegen_oop.py)
         self.indent -= 1
-        self._assign_copy_methods(pou.pyname, [(v.pyname, v.type) for v in stored] + hidden)
+        plan = tuple((name, T.resolve(ty).is_aggregate) for name, ty in [(v.pyname, v.type) for v in stored] + hidden)
+        self.emit("")
+        self.emit(f"_COPY_ = {self.const(plan)}")  # for _slot_assign and _slot_copy (st/values.py)
+        self.emit("_assign = _slot_assign")
+        self.emit("_copy = _slot_copy")
         self.emit("")
         self.pos = pou.node.pos
         self.emit("def __call__(self):")

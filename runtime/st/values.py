@@ -35,3 +35,29 @@ def assign_into(dst, src) -> None:
         return
     for i in range(len(dst)):  # a process-image word table
         dst[i] = src[i]
+
+
+# A FUNCTION_BLOCK's or PROGRAM's class takes these as its _assign and _copy,
+# driven by its _COPY_ plan ((slot, aggregate?) for every stored variable,
+# inherited ones included): instances are seldom copied (fb1 := fb2), and
+# unrolled methods would be a third of the generated lines for every block
+# (codegen_pous.py). A STRUCT keeps unrolled ones: structs are copied often.
+
+
+def slot_assign(self, o) -> None:
+    """self := o for an FB instance, in place (aggregates into their objects)."""
+    for name, aggregate in self._COPY_:
+        if aggregate:
+            assign_into(getattr(self, name), getattr(o, name))
+        else:
+            setattr(self, name, getattr(o, name))
+
+
+def slot_copy(self):
+    """A copy of an FB instance: a new object of its class, aggregates deep."""
+    cls = type(self)
+    n = cls.__new__(cls)
+    for name, aggregate in self._COPY_:
+        value = getattr(self, name)
+        setattr(n, name, copy_value(value) if aggregate else value)
+    return n
