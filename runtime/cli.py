@@ -201,6 +201,41 @@ def compile_cmd(files, emit_python: bool, output_dir: str | None, profile: str) 
     _echo_err(f"wrote {target}")
 
 
+@cli.command("export-st")
+@click.argument("source", type=click.Path(exists=True, dir_okay=False))
+@click.option(
+    "-o", "--output", type=click.Path(dir_okay=False), help="Write the ST to this file instead of printing it."
+)
+def export_st_cmd(source: str, output: str | None) -> None:
+    """Write an imported file (PLCopen XML) as plain ST, for review."""
+    from .st.diagnostics import DiagnosticBag, SourceSet
+    from .st.importers import st_export
+
+    diags = DiagnosticBag()
+    try:
+        text = Path(source).read_text(encoding="utf-8-sig")
+    except (OSError, UnicodeDecodeError) as e:
+        _echo_err(f"softplc: cannot read {source}: {getattr(e, 'strerror', None) or e}")
+        sys.exit(EXIT_COMPILE)
+    st = st_export(source, text, diags)
+    if diags.items:
+        sources = SourceSet()
+        sources.add(source, text)
+        errors, warnings = _report(diags.sorted(), sources)
+        if errors:
+            _summary(errors, warnings)
+            sys.exit(EXIT_COMPILE)
+    if output is None:
+        click.echo(st, nl=False)
+        return
+    try:
+        Path(output).write_text(st, encoding="utf-8")
+    except OSError as e:
+        _echo_err(f"softplc: cannot write {output}: {e.strerror or e}")
+        sys.exit(EXIT_COMPILE)
+    _echo_err(f"wrote {output}")
+
+
 @cli.command("exec")
 @FILES_ARGUMENT
 @click.option("--entry", metavar="NAME", help="PROGRAM or FUNCTION to run [default: the only PROGRAM in FILES].")

@@ -27,6 +27,7 @@ from ..st import ast as A
 from ..st.checker import CheckedProgram, Checker
 from ..st.codegen import CodeGen
 from ..st.diagnostics import CompileError, DiagnosticBag, SourceSet
+from ..st.importers import st_views
 from ..st.limits import MAX_SOURCE_CHARS
 from ..st.parser import parse_source
 from ..st.profile import Profile, get_profile
@@ -148,9 +149,10 @@ def _read_sources(paths: list, texts: dict | None, diags: DiagnosticBag, sources
     parsed = []
     words: set = set()
     for name, text in files:
-        sources.add(name, text)
-        parsed.append(parse_source(text, name, diags, profile))
-        words.update(w.upper() for w in _WORD.findall(text))
+        sources.add(name, text)  # an imported file's own text: diagnostics show its lines
+        for view in st_views(name, text, diags):  # st/importers: PLCopen XML as ST
+            parsed.append(parse_source(view, name, diags, profile))
+            words.update(w.upper() for w in _WORD.findall(view))
     return parsed, words
 
 

@@ -1,0 +1,56 @@
+"""An ST text laid out on the lines of another file (an XML export): what
+the importer writes at (line, column) of the original lands at that line and
+column of the view, so the parser's and the checker's positions are those of
+the original file with no mapping (diagnostics, runtime faults, watch).
+"""
+
+from __future__ import annotations
+
+
+class LineView:
+    """A text of ``lines`` lines, written in order: each ``put`` goes at or
+    after what is already on its line."""
+
+    def __init__(self, lines: int) -> None:
+        self.lines: list[str] = [""] * (lines + 1)  # index 0 unused: lines count from 1
+        self.pad: list[int] = [0] * (lines + 1)  # blanks put before a line's first text
+        self.written: set[int] = set()  # lines some text went to (an empty body line too)
+        self.indent: dict[int, int] = {}  # line -> its indentation in plain()
+
+    @property
+    def used(self) -> bool:
+        return bool(self.written)
+
+    def put(self, line: int, col: int, text: str, indent: int = 0) -> None:
+        """text at (line, col), one-based; a text of several lines goes on
+        the following lines from column 1 on. Where the line already holds
+        more than col - 1 characters, it goes after them and a space.
+        indent: the blanks before the first line in plain()."""
+        for k, part in enumerate(text.split("\n")):
+            n = line + k
+            while n >= len(self.lines):
+                self.lines.append("")
+                self.pad.append(0)
+            cur = self.lines[n]
+            start = col if k == 0 else 1
+            if len(cur) < start - 1:
+                if not cur:
+                    self.pad[n] = start - 1
+                cur += " " * (start - 1 - len(cur))
+            elif cur and part:
+                cur += " "
+            self.lines[n] = cur + part
+            if n not in self.written and k == 0 and indent:
+                self.indent[n] = indent
+            self.written.add(n)
+
+    def text(self) -> str:
+        """The view: the original's lines and columns."""
+        return "\n".join(self.lines[1:]) + "\n"
+
+    def plain(self) -> str:
+        """The view as plain ST to read: the lines that hold ST, without the
+        blanks that placed them in the original's columns."""
+        return "".join(
+            " " * self.indent.get(n, 0) + self.lines[n][self.pad[n] :].rstrip() + "\n" for n in sorted(self.written)
+        )
