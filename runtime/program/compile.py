@@ -27,7 +27,7 @@ from ..st import ast as A
 from ..st.checker import CheckedProgram, Checker
 from ..st.codegen import CodeGen
 from ..st.diagnostics import CompileError, DiagnosticBag, SourceSet
-from ..st.importers import st_views
+from ..st.importers import source_files, st_views
 from ..st.limits import MAX_SOURCE_CHARS
 from ..st.parser import parse_source
 from ..st.profile import Profile, get_profile
@@ -126,31 +126,38 @@ def _natives(extra: tuple = ()) -> dict:
     return found
 
 
+def _read_text(p, diags: DiagnosticBag) -> str | None:
+    """A source file's text (UTF-8, or Latin-1 as Windows tools still write
+    it), or None with E000 when it cannot be read."""
+    try:
+        with open(p, "rb") as f:
+            # no more than can hold MAX_SOURCE_CHARS characters and one:
+            # the parser reports a larger file (E007) without reading on
+            data = f.read(4 * MAX_SOURCE_CHARS + 4)
+    except OSError as exc:
+        diags.error("E000", f"cannot read the file: {exc.strerror or exc}", A.Pos(str(p), 1, 1))
+        return None
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        return data.decode("latin-1")
+
+
 def _read_sources(paths: list, texts: dict | None, diags: DiagnosticBag, sources: SourceSet, profile: Profile) -> tuple:
     """(parsed files, the set of words in them, upper case), parsed as the
     profile reads ST."""
     files = []
-    for p in paths:
-        try:
-            with open(p, "rb") as f:
-                # no more than can hold MAX_SOURCE_CHARS characters and one:
-                # the parser reports a larger file (E007) without reading on
-                data = f.read(4 * MAX_SOURCE_CHARS + 4)
-        except OSError as exc:
-            diags.error("E000", f"cannot read the file: {exc.strerror or exc}", A.Pos(str(p), 1, 1))
-            continue
-        try:
-            text = data.decode("utf-8-sig")
-        except UnicodeDecodeError:  # Windows tools still write Latin-1 ST files
-            text = data.decode("latin-1")
-        files.append((str(p), text))
+    for p in source_files(paths, lambda p: _read_text(p, diags), diags):  # a .plcproj: its files
+        text = _read_text(p, diags)
+        if text is not None:
+            files.append((str(p), text))
     for name, text in (texts or {}).items():
         files.append((name, text))
     parsed = []
     words: set = set()
     for name, text in files:
         sources.add(name, text)  # an imported file's own text: diagnostics show its lines
-        for view in st_views(name, text, diags):  # st/importers: PLCopen XML as ST
+        for view in st_views(name, text, diags):  # st/importers: PLCopen XML, TwinCAT as ST
             parsed.append(parse_source(view, name, diags, profile))
             words.update(w.upper() for w in _WORD.findall(view))
     return parsed, words

@@ -33,6 +33,7 @@ from ..engine.build import build_engine
 from ..engine.scan import Engine
 from ..plugin.registry import registry
 from ..program import compile_files
+from ..st.importers import is_imported
 from .places import PathError, Resolver
 from .trace import Trace
 from .values import duration_value_ns
@@ -123,7 +124,8 @@ class PLC:
         tables: dict | None = None,
         virtual_time: bool = True,
     ) -> PLC:
-        """A PLC of ST sources: each a Path or a str ending in '.st' (a file)
+        """A PLC of ST sources: each a Path or a str ending in '.st' (a file;
+        also a PLCopen .xml, TwinCAT .TcPOU ... and .plcproj)
         or ST text. Without tasks, every PROGRAM runs in one task of period
         cycle (unless the sources declare a CONFIGURATION); tasks are
         [[task]] tables as dicts ({"name": "Fast", "interval": "5ms",
@@ -133,7 +135,9 @@ class PLC:
         files: list = []
         texts: dict = {}
         for i, item in enumerate(items):
-            if isinstance(item, Path) or (isinstance(item, str) and "\n" not in item and item.lower().endswith(".st")):
+            if isinstance(item, Path) or (
+                isinstance(item, str) and "\n" not in item and (item.lower().endswith(".st") or is_imported(item))
+            ):
                 files.append(Path(item))
             elif isinstance(item, str):
                 texts[f"<st {i + 1}>.st" if len(items) > 1 else "<st>.st"] = item

@@ -1,20 +1,45 @@
 """Source files other than plain ST, read as ST (issue 18): a PLCopen XML
-export (plcopen.py). ``st_views`` gives the texts to parse for a file; the
-diagnostics' positions are those of the original file (view.py)."""
+export (plcopen.py), TwinCAT 3 files and projects (twincat.py).
+``st_views`` gives the texts to parse for a file; the diagnostics'
+positions are those of the original file (view.py). ``source_files``
+replaces a project file (.plcproj) by the sources it lists."""
 
 from __future__ import annotations
 
 from ..diagnostics import DiagnosticBag
 from .plcopen import plcopen_views
+from .twincat import plcproj_files, twincat_views
 
-__all__ = ["is_imported", "st_export", "st_views"]
+__all__ = ["is_imported", "source_files", "st_export", "st_views"]
 
-_READERS = {".xml": plcopen_views}
+_READERS = {
+    ".xml": plcopen_views,
+    ".tcpou": twincat_views,
+    ".tcdut": twincat_views,
+    ".tcgvl": twincat_views,
+    ".tcio": twincat_views,
+}
+_PROJECTS = {".plcproj": plcproj_files}
+
+
+def source_files(paths: list, read, diags: DiagnosticBag) -> list:
+    """paths with each project file replaced by the files it lists (read(path)
+    gives a file's text, or None when it cannot be read: reported there)."""
+    out = []
+    for p in paths:
+        lister = next((f for suffix, f in _PROJECTS.items() if str(p).lower().endswith(suffix)), None)
+        if lister is None:
+            out.append(p)
+            continue
+        text = read(p)
+        if text is not None:
+            out.extend(lister(text, str(p), diags))
+    return out
 
 
 def is_imported(path: str) -> bool:
     """Whether path is read through an importer (by its suffix)."""
-    return path.lower().endswith(tuple(_READERS))
+    return path.lower().endswith((*_READERS, *_PROJECTS))
 
 
 def st_views(path: str, text: str, diags: DiagnosticBag) -> list[str]:

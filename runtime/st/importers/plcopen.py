@@ -24,7 +24,7 @@ from typing import Any
 from ..ast import Pos
 from ..diagnostics import DiagnosticBag
 from .view import LineView
-from .xmlsafe import PosElement, XmlError, parse_xml
+from .xmlsafe import PosElement, TextPositions, XmlError, parse_xml
 
 ELEMENTARY = {
     t.lower(): t
@@ -75,11 +75,7 @@ def plcopen_views(text: str, path: str, diags: DiagnosticBag) -> list[LineView]:
 
 class _Reader:
     def __init__(self, text: str, path: str, diags: DiagnosticBag, main: LineView, actions: LineView) -> None:
-        self.raw = text
-        self.line_starts = [0]
-        for i, ch in enumerate(text):
-            if ch == "\n":
-                self.line_starts.append(i + 1)
+        self.texts = TextPositions(text)
         self.path = path
         self.diags = diags
         self.main = main
@@ -306,18 +302,7 @@ class _Reader:
         assert st is not None
         holder = st.kids()[0] if st.kids() else st  # <xhtml:p> (or the text in <ST> itself)
         text = "".join(holder.itertext())
-        line, col = self._text_start(holder, text)
-        view.put(line, col, text)
-
-    def _text_start(self, el: PosElement, text: str) -> tuple[int, int]:
-        """Where the text of el starts in the XML: after its start tag and
-        <![CDATA[. Entities (&lt;) shift the columns of their line only."""
-        off = self.line_starts[el.line - 1] + el.col - 1
-        off = self.raw.find(">", off) + 1
-        if self.raw.startswith("<![CDATA[", off):
-            off += len("<![CDATA[")
-        line = self.raw.count("\n", 0, off) + 1
-        return line, off - self.line_starts[line - 1] + 1
+        view.put(*self.texts.start(holder), text)
 
     # ------------------------------------------------------------ configuration
 

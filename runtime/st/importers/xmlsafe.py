@@ -42,6 +42,27 @@ class PosElement(ET.Element):
         return [e for e in self.iter() if isinstance(e, PosElement) and e.name == name and e is not self]
 
 
+class TextPositions:
+    """Where an element's text starts in the XML file it was read from."""
+
+    def __init__(self, raw: str) -> None:
+        self.raw = raw
+        self.line_starts = [0]
+        for i, ch in enumerate(raw):
+            if ch == "\n":
+                self.line_starts.append(i + 1)
+
+    def start(self, el: PosElement) -> tuple[int, int]:
+        """(line, column) of el's text: after its start tag and <![CDATA[.
+        Entities (&lt;) shift the columns of their own line only."""
+        off = self.line_starts[el.line - 1] + el.col - 1
+        off = self.raw.find(">", off) + 1
+        if self.raw.startswith("<![CDATA[", off):
+            off += len("<![CDATA[")
+        line = self.raw.count("\n", 0, off) + 1
+        return line, off - self.line_starts[line - 1] + 1
+
+
 class _Builder(ET.TreeBuilder):
     def __init__(self) -> None:
         super().__init__(element_factory=PosElement)
