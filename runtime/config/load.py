@@ -27,6 +27,8 @@ from typing import Any
 from pydantic import Field, ValidationError, create_model
 
 from ..plugin.registry import Registry, registry
+from ..program.libraries import Library
+from ..st.build_decls import identifier_from_path
 from .errors import ConfigError, in_file_order, key_text, not_finite, translate
 from .plc import CORE_SECTIONS, DEFAULT_SPIN_NS, RetainConfig, SafeOutput, TaskConfig, with_safe_defaults
 from .relations import Relations
@@ -43,6 +45,8 @@ class PlcConfig:
     programs: list[Path]  # the ST files, absolute
     on_fault: str  # "task" | "plc"
     start: str  # "warm" | "cold"
+    #: the user's libraries ([plc] libraries), compiled in as far as the programs use them
+    libraries: list[Library] = field(default_factory=list)
     #: the real clock busy-waits this long before each release ([plc] spin)
     spin_ns: int = DEFAULT_SPIN_NS
     tasks: list[TaskConfig] = field(default_factory=list)
@@ -213,6 +217,10 @@ def config_from_dict(data: dict, path=None, *, base_dir=None) -> PlcConfig:
         base_dir=base_dir,
         profile=plc.profile,
         programs=list(plc.programs),
+        libraries=[
+            Library(lib.path, lib.namespace or identifier_from_path(str(lib.path)), lib.profile)
+            for lib in plc.libraries
+        ],
         on_fault=plc.on_fault,
         start=plc.start,
         spin_ns=plc.spin,

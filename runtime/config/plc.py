@@ -22,6 +22,7 @@ from .section import Section
 from .values import (
     SPIN_EXPECTED,
     Duration,
+    LibraryPath,
     Model,
     StFile,
     Watchdog,
@@ -95,9 +96,29 @@ class _Plc(Model):
     programs: list[StFile] = Field(
         min_length=1, description='an array of ST files such as ["../st_programs/conveyor.st"]'
     )
+    libraries: list[_Library] = Field(
+        default_factory=list, description='an array of library folders such as ["../libs/oscat"]'
+    )
     on_fault: Annotated[str, choice(("task", "plc"))] = Field("task", description="'task' or 'plc'")
     start: Annotated[str, choice(("warm", "cold"))] = Field("warm", description="'warm' or 'cold'")
     spin: Annotated[int, PlainValidator(spin_duration)] = Field(DEFAULT_SPIN_NS, description=SPIN_EXPECTED)
+
+
+class _Library(Model):
+    path: LibraryPath = Field(description='the path of a library folder such as "../libs/oscat"')
+    namespace: Annotated[str, identifier("a namespace")] | None = Field(
+        None, description='a namespace such as "OSCAT" (default: the folder\'s name)'
+    )
+    profile: Annotated[str, choice(PROFILES)] | None = Field(None, description=f"one of {', '.join(PROFILES)}")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _short_form(cls, value):
+        if isinstance(value, str):
+            return {"path": value}
+        if not isinstance(value, dict):
+            raise fail('a folder such as "../libs/oscat" or a table { path = "...", namespace = "OSCAT" }', value)
+        return value
 
 
 class _Retain(Model):

@@ -206,6 +206,21 @@ def existing_file(text: str, info: ValidationInfo) -> Path:
     return resolved
 
 
+def library_path(value, info: ValidationInfo) -> Path:
+    """An existing folder (or file) of library sources, relative to the
+    config file's directory."""
+    if not isinstance(value, str) or not value.strip() or "\0" in value:
+        raise fail('the path of a library folder such as "../libs/oscat"', value)
+    resolved = _resolved(value, info)
+    if _stat(resolved) is None:
+        raise PydanticCustomError(
+            "config",
+            "no such folder: {path} (relative paths start at the config file's directory)",
+            {"path": str(resolved)},
+        )
+    return resolved
+
+
 def data_file(value, info: ValidationInfo) -> Path:
     # a NUL byte: no file has it in its name, and opening one raises ValueError
     if not isinstance(value, str) or not value.strip() or "\0" in value:
@@ -247,6 +262,7 @@ def _stat(path: Path) -> os.stat_result | None:
 Duration = Annotated[int, PlainValidator(positive_duration)]
 Watchdog = Annotated[Any, PlainValidator(watchdog)]
 StFile = Annotated[Path, PlainValidator(st_file)]
+LibraryPath = Annotated[Path, PlainValidator(library_path)]
 
 
 UNIT_NS = {"ms": 1_000_000, "us": 1_000}

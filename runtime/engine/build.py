@@ -54,7 +54,7 @@ def build_engine(
     extra_tasks: TaskConfigs run beside the configured ones (a test's);
     retain=False: no retain file is read or written (a test's plant)."""
     if program is None:
-        program = compile_files(config.programs, profile=config.profile)
+        program = compile_files(config.programs, profile=config.profile, libraries=tuple(config.libraries))
     where = str(config.path) if config.path else "<config>"
     tasks = plan_tasks(program, config.tasks, where, none_ok=bool(extra_tasks)) + list(extra_tasks)
     retain_store = RetainStore(config.retain.file) if config.retain and retain else None

@@ -13,10 +13,12 @@ locate, global_variable, StructWriter.
 
 from .compile import check_files, compile_files
 from .context import ExecContext
+from .libraries import Library
 from .loaded import Program, Runner
 from .variables import StructWriter, global_variable, locate
 
 __all__ = [
+    "Library",
     "ExecContext",
     "Program",
     "Runner",

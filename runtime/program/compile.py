@@ -31,6 +31,7 @@ from ..st.importers import source_files, st_views
 from ..st.limits import MAX_SOURCE_CHARS
 from ..st.parser import parse_source
 from ..st.profile import Profile, get_profile
+from .libraries import parse_cached
 from .loaded import Program
 
 _gen_counter = itertools.count(1)
@@ -167,13 +168,59 @@ def _decl_names(sf: A.SourceFile) -> set:
     return {d.name.upper() for d in sf.decls if isinstance(d, (A.POU, A.TypeDecl))}
 
 
-def _front_end(paths: list, profile: Profile, texts: dict | None, natives: tuple = ()):
+def _user_libraries(libraries: tuple, profile: Profile, words: set, diags: DiagnosticBag, sources: SourceSet):
+    """(the parsed files of the user's libraries that the words name, and
+    the words those use in turn; the namespaces for the checker). Errors in
+    a library file that is taken are reported; the others cost nothing."""
+    units = []  # (declared, used, name, text, profile) per file
+    namespaces: dict = {}
+    for lib in libraries:
+        prof = get_profile(lib.profile) if lib.profile else profile
+        declared_all: set = set()
+        for f in lib.files():
+            text = _read_text(f, diags)
+            if text is None:
+                continue
+            files, _ = parse_cached(str(f), text, prof)
+            declared = set().union(*(_declared(sf) for sf in files)) if files else set()
+            declared_all |= declared
+            units.append((declared, {w.upper() for w in _WORD.findall(text)}, str(f), text, prof))
+        namespaces[lib.namespace.upper()] = (lib.namespace, frozenset(declared_all))
+    taken: list = []
+    words = set(words)
+    grew = True
+    while grew:
+        grew = False
+        for unit in list(units):
+            if unit[0] & words:
+                taken.append(unit)
+                units.remove(unit)
+                words |= unit[1]
+                grew = True
+    parsed = []
+    for _declared_names, _used, name, text, prof in taken:
+        sources.add(name, text)
+        files, items = parse_cached(name, text, prof)
+        diags.extend(d for d in items if d.is_error)
+        parsed.extend(files)
+    return parsed, words, namespaces
+
+
+def _front_end(paths: list, profile: Profile, texts: dict | None, natives: tuple = (), libraries: tuple = ()):
     diags = DiagnosticBag()
     sources = SourceSet()
     user, user_words = _read_sources(paths, texts, diags, sources, profile)
     user_names = set().union(*(_decl_names(sf) for sf in user)) if user else set()
     lib_diags = DiagnosticBag()
     library = []
+    namespaces: dict = {}
+    if libraries:
+        taken, user_words, namespaces = _user_libraries(tuple(libraries), profile, user_words, diags, sources)
+        for sf in taken:  # a user POU of the same name replaces the library's
+            sf.decls = [
+                d for d in sf.decls if not (isinstance(d, (A.POU, A.TypeDecl)) and d.name.upper() in user_names)
+            ]
+        library.extend(taken)
     for name, text in _needed_library(_always_sources(), _on_demand_sources(), user_words):
         sources.add(name, text)
         # written to read alike in every profile (tests/program/test_compile.py)
@@ -187,7 +234,7 @@ def _front_end(paths: list, profile: Profile, texts: dict | None, natives: tuple
         _natives(natives),
         ProcessImage(profile.addressing),
     )
-    checked = checker.run(library + user, library_files=tuple(sf.path for sf in library))
+    checked = checker.run(library + user, library_files=tuple(sf.path for sf in library), namespaces=namespaces)
     diags.extend(d for d in lib_diags.items if d.is_error)
     return diags, sources, checked, user
 
@@ -217,26 +264,38 @@ def _first_position(paths: list, texts: dict | None) -> A.Pos:
     return A.Pos(names[0] if names else "<input>", 1, 1)
 
 
-def check_files(paths: list, profile: str | Profile = "codesys", texts: dict | None = None, natives: tuple = ()):
+def check_files(
+    paths: list,
+    profile: str | Profile = "codesys",
+    texts: dict | None = None,
+    natives: tuple = (),
+    libraries: tuple = (),
+):
     """Diagnostics of the files (errors and warnings, sorted) and their texts.
     Never raises for problems in the sources. Reports exactly what
     compile_files would: the back end runs too when the front end is clean."""
     prof = get_profile(profile) if isinstance(profile, str) else profile
-    diags, sources, checked, _ = _front_end(list(paths), prof, texts, natives)
+    diags, sources, checked, _ = _front_end(list(paths), prof, texts, natives, tuple(libraries))
     if not diags.has_errors:
         _back_end(checked, prof, diags, _first_position(paths, texts))
     return diags.sorted(), sources
 
 
 def compile_files(
-    paths: list, profile: str | Profile = "codesys", *, texts: dict | None = None, natives: tuple = ()
+    paths: list,
+    profile: str | Profile = "codesys",
+    *,
+    texts: dict | None = None,
+    natives: tuple = (),
+    libraries: tuple = (),
 ) -> Program:
     """Compile ST files (and/or in-memory texts: name -> source) into a
     loadable Program. Raises CompileError with every diagnostic on errors.
     natives: NativeFunctions beyond the registered ones (st/native.py); the
-    ExecContext's services execute them (the test runner binds its own)."""
+    ExecContext's services execute them (the test runner binds its own).
+    libraries: the user's libraries (program/libraries.py Library)."""
     prof = get_profile(profile) if isinstance(profile, str) else profile
-    diags, sources, checked, user = _front_end(list(paths), prof, texts, natives)
+    diags, sources, checked, user = _front_end(list(paths), prof, texts, natives, tuple(libraries))
     built = None if diags.has_errors else _back_end(checked, prof, diags, _first_position(paths, texts))
     if built is None:
         raise CompileError(diags.sorted(), sources)

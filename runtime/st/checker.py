@@ -75,8 +75,11 @@ class Checker(
     (fblocks/iec/functions.py); natives: UPPER name -> NativeFunction
     (st/native.py); image: where direct addresses are checked (None: not)."""
 
-    def run(self, files: list, library_files: tuple = ()) -> CheckedProgram:
+    def run(self, files: list, library_files: tuple = (), namespaces: dict | None = None) -> CheckedProgram:
+        """namespaces: the user's libraries, UPPER namespace -> (its spelling,
+        the UPPER names it declares), for OSCAT.DEC_2 (namespaces.py)."""
         self.library_files = set(library_files)
+        self.user_namespaces: dict = namespaces or {}
         for sf in files:
             self._collect(sf)
         self._collect_actions(files)

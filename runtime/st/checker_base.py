@@ -77,6 +77,8 @@ class CheckerBase:
         self.structs: list = []
         self.configs: list = []
         self.library_files: set = set()
+        #: the user's libraries: UPPER namespace -> (spelling, UPPER names) (namespaces.py)
+        self.user_namespaces: dict = {}
         self._inited: set = set()  # ids of VarSymbols whose initial value is checked
         self._image_probe = image  # to validate direct addresses (None: not checked)
         self._setter_only: list = []  # uses of a PROPERTY without GET (checker_oop.py)

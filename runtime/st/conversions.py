@@ -103,6 +103,9 @@ def generic_fit(t: T.Type, generic: str, profile: Profile) -> T.Type:
         return T.REAL if widens_to(te, T.REAL) else T.LREAL
     if te is not None and te.is_bits and g in ("ANY_INT", "ANY_UNSIGNED") and profile.int_bits_mix:
         return {8: T.USINT, 16: T.UINT, 32: T.UDINT, 64: T.ULINT}[te.bits]
+    if te is not None and te.is_intlike and not te.is_bits and g == "ANY_BIT" and profile.int_bits_mix:
+        # SHR(size, 2) with size : UINT (OSCAT): CODESYS shifts the integer's bits
+        return {8: T.BYTE, 16: T.WORD, 32: T.DWORD, 64: T.LWORD}[te.bits]
     return t
 
 

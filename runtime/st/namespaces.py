@@ -87,7 +87,8 @@ class NamespaceChecks(CheckerBase):
                 _Rewrite(self, global_names).file(sf)
 
     def _namespace_hint(self) -> str:
-        known = sorted(LIBRARY_NAMESPACES.values()) + sorted(self._list_names.values())
+        known = sorted(LIBRARY_NAMESPACES.values()) + sorted(s for s, _ in self.user_namespaces.values())
+        known += sorted(self._list_names.values())
         return "known namespaces: " + ", ".join(known) if known else ""
 
     def _check_qualified_only(self, e: A.Name) -> None:
@@ -192,6 +193,8 @@ class _Rewrite:
             return A.Name(e.name, pos=e.pos, qualifier=self.c._list_names[ns])
         if ns in LIBRARY_NAMESPACES:
             return self.library(LIBRARY_NAMESPACES[ns], e.name, e.pos)
+        if ns in self.c.user_namespaces:
+            return self.user_library(ns, e.name, e.pos)
         if ns in self.c._lists:
             self.c.d.error(
                 "E019",
@@ -220,6 +223,18 @@ class _Rewrite:
             )
         return A.Name(name, pos=pos)
 
+    def user_library(self, ns: str, name: str, pos: A.Pos) -> A.Name:
+        """OSCAT.DEC_2: a name of one of the user's libraries (program/libraries.py)."""
+        spelled, names = self.c.user_namespaces[ns]
+        if name.upper() not in names:
+            self.c.d.error(
+                "E019",
+                f"the library {spelled} has no '{name}'",
+                pos,
+                self.c._suggest(name.upper(), sorted(names)) or None,
+            )
+        return A.Name(name, pos=pos)
+
     def unknown(self, ns: str, name: str, pos: A.Pos) -> None:
         what = OTHER_LIBRARIES.get(ns.upper())
         message = (
@@ -232,6 +247,8 @@ class _Rewrite:
         ns = ".".join(path)
         if len(path) == 1 and path[0].upper() in LIBRARY_NAMESPACES:
             self.library(LIBRARY_NAMESPACES[path[0].upper()], name, spec.pos)
+        elif len(path) == 1 and path[0].upper() in self.c.user_namespaces:
+            self.user_library(path[0].upper(), name, spec.pos)
         else:
             self.unknown(ns, name, spec.pos)
         spec.name = name

@@ -76,7 +76,9 @@ class TestSuite:
         self.files = [str(f) for f in files]
         mine = {Path(f).resolve() for f in self.files}
         plant = [p for p in config.programs if Path(p).resolve() not in mine]
-        self.program = compile_files(plant + self.files, profile=config.profile, natives=NATIVES)
+        self.program = compile_files(
+            plant + self.files, profile=config.profile, natives=NATIVES, libraries=tuple(config.libraries)
+        )
         self.tests = discover(self.program, self.files)
         intervals = [t.interval_ns for t in config.tasks if t.interval_ns]
         self.interval_ns = min(intervals, default=DEFAULT_INTERVAL_NS)

@@ -157,7 +157,7 @@ def test_unknown_key_with_suggestion(tmp_path):
 def test_unknown_key_without_suggestion(tmp_path):
     assert error(tmp_path, PLC + 'colour = "blue"\n') == (
         "plc.colour",
-        "unknown key (expected one of profile, programs, on_fault, start, spin)",
+        "unknown key (expected one of profile, programs, libraries, on_fault, start, spin)",
     )
 
 

@@ -326,3 +326,13 @@ def test_only_the_digits_0_and_1_stand_for_bool(value):
     for profile in ("codesys", "matiec"):
         [d] = diagnostics(src, profile)
         assert d.code == "E020" and d.hint == "compare it instead, e.g. x <> 0", (profile, value)
+
+
+def test_a_shift_takes_an_integer_where_the_profile_mixes_integers_and_bits():
+    """OSCAT's ARRAY_ functions shift a byte count: SHR(size, 2) with size :
+    UINT. CODESYS accepts an integer in SHL/SHR/ROL/ROR and shifts its
+    bits; IEC 61131-3 (Table 26) wants ANY_BIT."""
+    src = prog("size : UINT := 20; n : INT; w : WORD;", "n := UINT_TO_INT(SHR(size, 2)) - 1; w := SHL(size, 1);")
+    r = run_st(src)
+    assert (r.get("n"), r.get("w")) == (4, 40)
+    assert codes(src, "iec") == ["E020", "E020"]

@@ -1,0 +1,114 @@
+"""Libraries of the user: a folder of POUs (OSCAT BASIC, a company's own
+blocks) that programs use by name, plain (``DEC_2``) or in the library's
+namespace (``OSCAT.DEC_2``).
+
+    lib = Library(Path("libs/oscat"), "OSCAT")
+    prog = compile_files(["main.st"], libraries=[lib])
+
+Every source file of the folder (``.st`` and the imported kinds, in
+sub-folders too) is a unit that a program takes only when it names
+something the file declares, as the on-demand files of the standard
+library (compile.py): unused POUs cost nothing, neither at compile time
+nor at run time. Parsing a file is done once per content: the parse and
+its index (what it declares, the words it uses) are kept by the hash of
+the text, the profile and softplc's grammar, in memory and in a cache
+folder (``$SOFTPLC_CACHE``, else ``$XDG_CACHE_HOME/softplc``, else
+``~/.cache/softplc``; a cache that cannot be written is skipped).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import os
+import pickle
+from pathlib import Path
+
+from ..st import ast as A
+from ..st.diagnostics import DiagnosticBag
+from ..st.importers import is_imported, st_views
+from ..st.parser import parse_source
+from ..st.profile import Profile
+
+_GRAMMAR = Path(__file__).resolve().parent.parent / "st" / "grammar.lark"
+_PARSES: dict[str, bytes] = {}  # key -> pickled (list of SourceFiles, diagnostics)
+
+
+@dataclasses.dataclass(frozen=True)
+class Library:
+    """A folder (or one file) of POUs, types and global constants, known in
+    ST under ``namespace``; ``profile``: how its files read (None: as the
+    program's)."""
+
+    path: Path
+    namespace: str
+    profile: str | None = None
+
+    def files(self) -> list[Path]:
+        """The library's source files, sorted (sub-folders included)."""
+        if self.path.is_file():
+            return [self.path]
+        found = [
+            p
+            for p in self.path.rglob("*")
+            if p.is_file() and (p.suffix.lower() == ".st" or is_imported(p.name)) and not p.name.startswith(".")
+        ]
+        return sorted(found)
+
+
+def _cache_dir() -> Path:
+    env = os.environ.get("SOFTPLC_CACHE")
+    if env:
+        return Path(env)
+    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(base) / "softplc"
+
+
+def _version_salt() -> bytes:
+    """What makes an old parse invalid besides the text: the grammar and
+    the AST's definition."""
+    h = hashlib.sha256()
+    for f in (_GRAMMAR, Path(A.__file__)):
+        try:
+            h.update(f.read_bytes())
+        except OSError:
+            pass
+    return h.digest()
+
+
+_SALT: bytes | None = None
+
+
+def parse_cached(name: str, text: str, profile: Profile) -> tuple[list, list]:
+    """(SourceFiles, diagnostics) of a library file, parsed once per content:
+    from memory, else from the cache folder, else parsed (and kept in both).
+    Every call returns new objects: the checker annotates them."""
+    global _SALT
+    if _SALT is None:
+        _SALT = _version_salt()
+    key = hashlib.sha256(_SALT + profile.name.encode() + b"\0" + name.encode() + b"\0" + text.encode()).hexdigest()
+    data = _PARSES.get(key)
+    if data is None:
+        path = _cache_dir() / "st" / f"{key}.pickle"
+        try:
+            data = path.read_bytes()
+            pickle.loads(data)  # a damaged entry is parsed again
+        except Exception:
+            data = None
+        if data is None:
+            diags = DiagnosticBag()
+            files = [parse_source(view, name, diags, profile) for view in st_views(name, text, diags)]
+            data = pickle.dumps((files, diags.items), protocol=pickle.HIGHEST_PROTOCOL)
+            _store(path, data)
+        _PARSES[key] = data
+    return pickle.loads(data)
+
+
+def _store(path: Path, data: bytes) -> None:
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
+        tmp = path.with_suffix(f".{os.getpid()}.tmp")
+        tmp.write_bytes(data)
+        os.replace(tmp, path)  # whole or not at all, also with two compilers at once
+    except OSError:
+        pass  # a read-only home: parse each time

@@ -1,0 +1,158 @@
+"""The user's libraries (runtime/program/libraries.py): a folder of POUs in
+OSCAT's style (global constant structures, EN/ENO, FBs calling FBs, array
+functions through pointers) used plain and in its namespace; unused files
+cost nothing; parses are kept by content hash; [plc] libraries = [...]."""
+
+from __future__ import annotations
+
+import pickle
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from softplc.runtime.program import Library, check_files, compile_files, libraries
+from softplc.runtime.st.diagnostics import CompileError
+
+LIB = Library(Path(__file__).parent / "oscat_style", "OSCAT")
+
+MAIN = """
+PROGRAM Main
+VAR
+    area : LREAL;
+    cc : OSCAT.CYCLE_COUNT;        (* a type in the namespace *)
+    level : REAL;
+    up : BOOL := TRUE;
+    checked : INT;
+    ok : BOOL := TRUE;
+    inside : INT;
+    ok2 : BOOL;
+    width : INT;
+END_VAR
+area := OSCAT.CIRCLE_AREA(2.0);   (* MATH.PI, a global constant of the library *)
+IF up THEN level := level + 15.0; ELSE level := level - 15.0; END_IF
+IF level >= 100.0 THEN up := FALSE; ELSIF level <= 0.0 THEN up := TRUE; END_IF
+cc(IN := level);
+checked := LIMIT_CHECK(x := 120, lo := 0, hi := 100, ENO => ok);
+inside := LIMIT_CHECK(x := 50, lo := 0, hi := 100, ENO => ok2);
+width := OSCAT.STRING_LENGTH;
+END_PROGRAM
+"""
+
+
+@pytest.fixture(autouse=True)
+def _own_cache(tmp_path, monkeypatch):
+    """A cache folder of the test's own, and no parses kept from other tests."""
+    monkeypatch.setenv("SOFTPLC_CACHE", str(tmp_path / "cache"))
+    monkeypatch.setattr(libraries, "_PARSES", {})
+
+
+def run(cycles: int, source: str = MAIN, libraries=(LIB,)):
+    prog = compile_files([], texts={"main.st": source}, libraries=libraries)
+    r = prog.runner("Main")
+    r.run(cycles)
+    return prog, r
+
+
+def test_a_program_uses_the_library_plain_and_in_its_namespace():
+    _, r = run(20)
+    assert r.get("area") == pytest.approx(3.14159265358979 * 4)
+    # level: 15, 30 ... 105 (cycle 7), down to 0 (cycle 14), up again: HYST_1's Q rises
+    # above 80 in cycles 6 and 19, so the FB inside the FB counts two edges
+    assert r.get("cc.COUNT") == 2
+    assert (r.get("checked"), r.get("ok"), r.get("inside"), r.get("ok2")) == (100, False, 50, True)
+    assert r.get("width") == 254
+
+
+def test_unused_library_files_are_not_compiled():
+    prog, _ = run(1)
+    src = prog.python_source.upper()
+    assert "HYST_1" in src and "CYCLE_COUNT" in src  # CYCLE_COUNT needs HYST_1
+    assert "NEVER_USED" not in src and "ARRAY_SUM" not in src
+
+
+def test_an_unused_broken_file_costs_nothing_and_a_used_one_is_reported(tmp_path):
+    lib = tmp_path / "lib"
+    lib.mkdir()
+    (lib / "good.st").write_text("FUNCTION GOOD : INT\nGOOD := 7;\nEND_FUNCTION\n")
+    (lib / "broken.st").write_text("FUNCTION BROKEN : INT\nBROKEN := nothing;\nEND_FUNCTION\n")
+    src = "PROGRAM Main\nVAR x : INT; END_VAR\nx := LIBX.GOOD();\nEND_PROGRAM\n"
+    _, r = run(1, src, (Library(lib, "LIBX"),))
+    assert r.get("x") == 7
+    with pytest.raises(CompileError) as exc:
+        run(1, src.replace("LIBX.GOOD()", "BROKEN()"), (Library(lib, "LIBX"),))
+    [d] = exc.value.diagnostics
+    assert d.code == "E010" and d.pos.file == str(lib / "broken.st") and d.pos.line == 2
+
+
+def test_a_name_the_library_lacks_is_e019_with_a_suggestion():
+    diags, _ = check_files(
+        [], texts={"main.st": MAIN.replace("OSCAT.CIRCLE_AREA", "OSCAT.CIRCLE_AREAS")}, libraries=(LIB,)
+    )
+    d = next(d for d in diags if d.is_error)
+    assert d.code == "E019" and d.message == "the library OSCAT has no 'CIRCLE_AREAS'"
+    assert "CIRCLE_AREA" in (d.hint or "")
+
+
+def test_a_user_pou_of_the_same_name_replaces_the_librarys():
+    src = MAIN + "FUNCTION CIRCLE_AREA : LREAL\nVAR_INPUT r : LREAL; END_VAR\nCIRCLE_AREA := r;\nEND_FUNCTION\n"
+    _, r = run(1, src)
+    assert r.get("area") == 2.0
+
+
+def test_parses_are_kept_by_content_hash(tmp_path):
+    cache = tmp_path / "cache" / "st"
+    run(1)
+    first = sorted(p.name for p in cache.glob("*.pickle"))
+    # every library file was parsed once (to know what it declares), then kept
+    assert len(first) == len(LIB.files()) == 7
+    # a damaged entry is parsed again and rewritten, not an error
+    victim = cache / first[0]
+    victim.write_bytes(b"not a pickle")
+    libraries._PARSES.clear()  # (as a new process)
+    _, r = run(20)
+    assert r.get("cc.COUNT") == 2
+    assert pickle.loads(victim.read_bytes())
+    # a second process reads the cache: the same entries, none added
+    code = (
+        "from pathlib import Path; from softplc.runtime.program import compile_files, Library;"
+        f"compile_files([], texts={{'main.st': {MAIN!r}}}, libraries=[Library(Path({str(LIB.path)!r}), 'OSCAT')])"
+    )
+    env_run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert env_run.returncode == 0, env_run.stderr
+    assert sorted(p.name for p in cache.glob("*.pickle")) == first
+
+
+def test_a_changed_library_file_is_parsed_again(tmp_path):
+    lib = tmp_path / "lib"
+    lib.mkdir()
+    f = lib / "k.st"
+    f.write_text("FUNCTION K : INT\nK := 1;\nEND_FUNCTION\n")
+    src = "PROGRAM Main\nVAR x : INT; END_VAR\nx := K();\nEND_PROGRAM\n"
+    assert run(1, src, (Library(lib, "L"),))[1].get("x") == 1
+    f.write_text("FUNCTION K : INT\nK := 2;\nEND_FUNCTION\n")
+    assert run(1, src, (Library(lib, "L"),))[1].get("x") == 2
+
+
+def test_the_config_names_libraries(tmp_path):
+    from softplc.testing import PLC
+
+    (tmp_path / "main.st").write_text(MAIN)
+    lib = Path(__file__).parent / "oscat_style"
+    (tmp_path / "plant.toml").write_text(
+        f'[plc]\nprograms = ["main.st"]\nlibraries = [{{ path = "{lib}", namespace = "OSCAT" }}]\n'
+    )
+    with PLC.from_config(tmp_path / "plant.toml") as plc:
+        plc.run_for("200ms")
+        assert plc.read("Main.cc.COUNT") == 2 and plc.read("Main.width") == 254
+
+
+def test_a_library_folder_that_does_not_exist_names_the_key(tmp_path):
+    from softplc.runtime.config import ConfigError, load_config
+
+    (tmp_path / "main.st").write_text(MAIN)
+    (tmp_path / "plant.toml").write_text('[plc]\nprograms = ["main.st"]\nlibraries = ["nowhere"]\n')
+    with pytest.raises(ConfigError) as exc:
+        load_config(tmp_path / "plant.toml")
+    assert "plc.libraries[0]" in str(exc.value) and "no such folder" in str(exc.value)
