@@ -154,19 +154,37 @@ def cli() -> None:
 
 
 @cli.command()
-@FILES_ARGUMENT
+@click.argument("files", nargs=-1, required=True, type=click.Path(exists=True, readable=True))
 @PROFILE_OPTION
 def check(files, profile: str) -> None:
-    """Check ST files and report errors and warnings with file:line:column."""
+    """Check ST files (and PLCopen XML, TwinCAT files; a folder: every source
+    in it, with a summary table) and report errors and warnings with
+    file:line:column."""
+    from .check_summary import expand_sources, summary
     from .program import check_files
 
-    diagnostics, sources = check_files(list(files), profile=profile)
+    folders = any(Path(f).is_dir() for f in files)
+    files = expand_sources(list(files))
+    if not files:
+        _echo_err("softplc: no ST sources in the folder")
+        sys.exit(EXIT_USAGE)
+    # a test file (test_*.st, softplc test) is checked with the assertions it calls
+    tests = any(Path(f).name.lower().startswith("test_") for f in files)
+    diagnostics, sources = check_files(files, profile=profile, natives=_test_natives() if tests else ())
     errors, warnings = _report(diagnostics, sources)
+    if folders:
+        _echo_err(summary({f: sources.text(f) or "" for f in files if sources.text(f) is not None}, diagnostics))
     _echo_err(f"profile: {get_profile(profile).name}")  # what decided the dialect's questions
     if errors or warnings:
         _profile_hint(files, get_profile(profile).name, errors, warnings)
     _summary(errors, warnings)
     sys.exit(EXIT_COMPILE if errors else EXIT_OK)
+
+
+def _test_natives() -> tuple:
+    from .testing.natives import NATIVES
+
+    return NATIVES
 
 
 @cli.command("compile")
@@ -199,6 +217,29 @@ def compile_cmd(files, emit_python: bool, output_dir: str | None, profile: str) 
         _echo_err(f"softplc: cannot write {target}: {e.strerror or e}")
         sys.exit(EXIT_COMPILE)
     _echo_err(f"wrote {target}")
+
+
+@cli.command("new")
+@click.argument("name")
+@click.option("--dir", "where", type=click.Path(file_okay=False), default=".", help="Create it in DIR (default: here).")
+def new_cmd(name: str, where: str) -> None:
+    """Create a project folder NAME that runs at once on the simulated plant:
+    plc.toml, src/main.st, a test in tests/, the plant's programs, a README."""
+    from .scaffold import new_project
+
+    try:
+        root = new_project(name, Path(where))
+    except FileExistsError:
+        raise click.UsageError(f"{Path(where) / name} exists already") from None
+    except ValueError as e:
+        raise click.UsageError(str(e)) from None
+    except OSError as e:
+        _echo_err(f"softplc: cannot create {Path(where) / name}: {e.strerror or e}")
+        sys.exit(EXIT_USAGE)
+    _echo_err(
+        f"created {root}\n  cd {root}\n  softplc run plc.toml --virtual-time --duration 10s --watch motorStarts\n"
+        "  softplc test plc.toml tests/test_main.st"
+    )
 
 
 @cli.command("export-st")

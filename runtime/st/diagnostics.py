@@ -102,6 +102,11 @@ class SourceSet:
     def add(self, path: str, text: str) -> None:
         self._texts[path] = text.splitlines()
 
+    def text(self, path: str) -> str | None:
+        """The whole text of a source, None if it is not there."""
+        lines = self._texts.get(path)
+        return None if lines is None else "\n".join(lines) + "\n"
+
     def line(self, path: str, line: int) -> str | None:
         lines = self._texts.get(path)
         if lines is None or not (1 <= line <= len(lines)):

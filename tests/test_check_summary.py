@@ -1,0 +1,42 @@
+"""softplc check on a folder (runtime/check_summary.py): every source in
+it, one table with POUs, errors and warnings per file, the frequent codes."""
+
+from __future__ import annotations
+
+from softplc.runtime.check_summary import expand_sources
+from tests.test_cli import softplc
+
+
+def _folder(tmp_path):
+    (tmp_path / "src").mkdir()
+    (tmp_path / "src" / "a.st").write_text(
+        "FUNCTION_BLOCK A\nVAR_INPUT i : INT; END_VAR\ni := 1;\nEND_FUNCTION_BLOCK\n"  # W130: input assigned
+        "PROGRAM Main\nVAR x : INT; END_VAR\nx := y;\nx := z;\nEND_PROGRAM\n"  # two E010
+    )
+    (tmp_path / "src" / "b.st").write_text("FUNCTION F : INT\nF := 1;\nEND_FUNCTION\n")
+    (tmp_path / ".git").mkdir()
+    (tmp_path / ".git" / "junk.st").write_text("not ST")
+    (tmp_path / "notes.txt").write_text("not a source")
+    return tmp_path
+
+
+def test_a_folder_is_its_sources(tmp_path):
+    root = _folder(tmp_path)
+    assert expand_sources([str(root)]) == [str(root / "src" / "a.st"), str(root / "src" / "b.st")]
+
+
+def test_check_on_a_folder_prints_the_table(tmp_path):
+    root = _folder(tmp_path)
+    r = softplc("check", root)
+    assert r.returncode == 1
+    table = r.stderr[r.stderr.index("file ") :].splitlines()
+    assert table[1].split() == [str(root / "src" / "a.st"), "2", "2", "1"]
+    assert table[2].split() == [str(root / "src" / "b.st"), "1", "0", "0"]
+    assert table[3].split() == ["2", "files", "3", "2", "1"]
+    assert table[4] == "most frequent: E010 x2, W130 x1"
+    assert r.stderr.rstrip().endswith("2 errors, 1 warning")
+
+
+def test_an_empty_folder_is_a_usage_error(tmp_path):
+    r = softplc("check", tmp_path)
+    assert r.returncode == 2 and "no ST sources" in r.stderr
