@@ -93,7 +93,7 @@ class ParserCore:
         rows, gotos, builder, end_state = self.g.rows, self.g.goto, self.builder, self.g.end_state
         chains = self.g.unit_chains
         ttype = token.type
-        undo = None
+        undo: list | None = None  # shifted states and reductions, to take back
         while True:
             top = states[-1]
             action: Any = rows[top].get(ttype)  # a state (int), a Reduce or None
