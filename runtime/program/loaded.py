@@ -125,6 +125,7 @@ class Program:
             "_loop": ctx.loop_range,
             "_native": ctx.call_native,
             "_SfcStep": rt_sfc.Step,
+            "_SfcAction": rt_sfc.ActionFlags,
             "_SfcState": rt_sfc.SfcState,
         }
         ns.update(self.generated.consts)
