@@ -156,3 +156,33 @@ def test_the_actions_of_an_sfc_pou_may_stand_outside_it_as_codesys_exports_them(
     # the same name inside and outside is E152
     src = sfc("INITIAL_STEP a: act(N); END_STEP\nACTION act: n := 1; END_ACTION\n", "n : INT;")
     assert codes(src + "ACTION main.act: n := 2; END_ACTION\n") == ["E152"]
+
+
+def test_a_network_may_open_with_its_actions():
+    # the textual SFC elements come in any order (ed.3 6.7, Table 54-56
+    # textual forms); an ACTION before the first step is one of the chart's
+    net = """
+    ACTION count: n := n + 1; END_ACTION
+    INITIAL_STEP a: count(N); END_STEP
+    """
+    r = run_st(sfc(net, "n : INT;"), cycles=3)
+    assert (r.get("n"), r.get("count.Q")) == (3, True)
+
+
+def test_an_action_written_in_sfc_and_statements_before_a_network_are_e158():
+    # CODESYS lets an action be an SFC chart of its own; here a POU's body
+    # is its only network: E158 with the way around it
+    src = sfc("INITIAL_STEP a: seq(N); END_STEP\nACTION seq: INITIAL_STEP x: END_STEP END_ACTION\n", "n : INT;")
+    [d] = diagnostics(src)
+    assert (d.code, d.pos.line, d.message) == (
+        "E158",
+        6,
+        "ACTION seq is written in SFC: an action's SFC network is not supported",
+    )
+    assert d.hint == "make the sequence the body of a FUNCTION_BLOCK and call an instance of it in the action"
+    src = "FUNCTION_BLOCK fb\nACTION seq:\nINITIAL_STEP x: END_STEP\nEND_ACTION\nEND_FUNCTION_BLOCK\n"
+    assert codes(src) == ["E158"]
+    src = sfc("n := 1;\nINITIAL_STEP a: END_STEP\n", "n : INT;")
+    [d] = diagnostics(src)
+    assert (d.code, d.pos.line) == ("E158", 5)
+    assert d.message == "statements before an SFC network: a POU's body is either statements or an SFC network"
