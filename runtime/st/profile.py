@@ -69,6 +69,11 @@ class Profile:
     # only where its value fits; schneider, which narrows nothing
     # implicitly, is as strict.
     literal_range: str = "error"
+    # JMP and labels in ST: a CODESYS and TwinCAT extension (CODESYS "ST
+    # Statement: JMP"); Schneider's ST has them too. IEC 61131-3 ed.3's ST
+    # statements (7.3.3, Table 72) have no jump, only IL has JMP, and
+    # MatIEC's ST grammar follows it: E159 there.
+    jumps_in_st: bool = True
     # Length of a STRING declared without one.
     default_string_length: int = 80
 
@@ -85,6 +90,7 @@ IEC = Profile(
     own_input_assignment="error",
     trailing_comma_in_calls=False,
     bool_from_0_1=False,
+    jumps_in_st=False,
 )
 
 CODESYS = Profile(
