@@ -74,6 +74,12 @@ class Profile:
     # statements (7.3.3, Table 72) have no jump, only IL has JMP, and
     # MatIEC's ST grammar follows it: E159 there.
     jumps_in_st: bool = True
+    # An enumeration without {attribute 'strict'} is its base integer type
+    # in arithmetic, comparisons and assignments (CODESYS, TwinCAT: the
+    # attribute makes those errors, "Attribute 'strict'"); IEC 61131-3
+    # enumerated values are no numbers (ed.3 6.4.4.3), so elsewhere every
+    # enumeration is strict.
+    loose_enums: bool = False
     # Length of a STRING declared without one.
     default_string_length: int = 80
 
@@ -106,6 +112,7 @@ CODESYS = Profile(
     trailing_comma_in_calls=False,
     bool_from_0_1=True,
     literal_range="warning",
+    loose_enums=True,
 )
 
 TWINCAT = replace(CODESYS, name="twincat", trailing_comma_in_calls=True)
