@@ -540,7 +540,7 @@ class Engine:
         entry = self.instances.get(first.upper())
         if entry is not None and rest:
             return locate(rest, (entry[2],))
-        return locate(path, (self.ns["_G"],))
+        return self.program.locate(path, (self.ns["_G"],))  # GVL.x too
 
     def get(self, path: str):
         """The value of a variable ('Main.count', 'G_total') or of a direct address ('%QW0')."""

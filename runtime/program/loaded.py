@@ -80,6 +80,20 @@ class Program:
     def python_source(self) -> str:
         return self.generated.source
 
+    def locate(self, path: str, roots: tuple) -> tuple:
+        """variables.locate, and a global named by its list as in ST
+        (``GVL.speed``: the variable speed of the global variable list of
+        GVL.st, namespaces.py) where no variable of the roots is named
+        like the list."""
+        try:
+            return locate(path, roots)
+        except KeyError:
+            first, _, rest = path.partition(".")
+            names = self.checked.global_lists.get(first.upper())
+            if not names or rest.partition(".")[0].upper() not in names:
+                raise
+            return locate(rest, roots[-1:])
+
     def pou(self, name: str):
         for info in self.checked.pous:
             if info.name.upper() == name.upper():
@@ -127,6 +141,7 @@ class Program:
             "_loop": ctx.loop_range,
             "_native": ctx.call_native,
             "_SfcStep": rt_sfc.Step,
+            "_SfcAction": rt_sfc.ActionFlags,
             "_SfcState": rt_sfc.SfcState,
         }
         ns.update(self.generated.consts)
@@ -227,5 +242,5 @@ class Runner:
     def get(self, path: str):
         """The value of a variable by its ST path, e.g. 'counter.CV' or 'G_speed'."""
         roots = ((self.instance,) if self.instance is not None else ()) + (self.globals,)
-        holder, attr, _ty = locate(path, roots)
+        holder, attr, _ty = self.program.locate(path, roots)
         return getattr(holder, attr)

@@ -91,7 +91,11 @@ class AstBuilder(StmtBuilder, SfcBuilder):
                 "SFC is for PROGRAMs and FUNCTION_BLOCKs (IEC 61131-3 ed.3 6.7): they keep the active steps",
             )
             sfc = None
-        body = [] if sfc is not None else next((x for x in c if isinstance(x, list)), [])
+        body = next((x for x in c if isinstance(x, list)), [])
+        if sfc is not None:
+            if body:
+                self.sfc_after_statements(body, sfc)
+            body = []
         ret = c[2] if kind == "FUNCTION" else None
         pou = ast.POU(kind, c[1].value, var_blocks, body, return_type=ret, pos=self._span(c[0], c[-1]), sfc=sfc)
         for act in (x for x in c if isinstance(x, ast.Action)):
@@ -138,7 +142,9 @@ class AstBuilder(StmtBuilder, SfcBuilder):
 
     def action_block(self, c):
         names = [t for t in c if isinstance(t, Tok) and t.type in _NAME_TYPES]
-        body = next(x for x in c if isinstance(x, list))
+        body = next((x for x in c if isinstance(x, list)), None)
+        if body is None:  # written in SFC
+            body = self.sfc_in_action(names[-1].value, next(x for x in c if isinstance(x, ast.SfcNetwork)))
         if len(names) > 2:
             self.ctx.report(
                 "E047",

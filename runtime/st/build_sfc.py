@@ -1,6 +1,7 @@
 """The AST builder's SFC part: the textual form of Sequential Function Chart
 (IEC 61131-3 ed.3 6.7, ed.2 2.6) in a PROGRAM or FUNCTION_BLOCK body:
-steps with their action associations, transitions and actions."""
+steps with their action associations, transitions and actions. E158: an
+ACTION written in SFC, statements before a network."""
 
 from __future__ import annotations
 
@@ -59,5 +60,26 @@ class SfcBuilder(BuilderBase):
         return ast.SfcTransition(name, c[2], sources, targets, body=cond, pos=pos)
 
     def sfc_action(self, c):
-        # ACTION ident body END_ACTION
-        return ast.SfcAction(c[1].value, c[2], pos=self._span(c[0], c[-1]))
+        # ACTION ident (body | sfc_network) END_ACTION
+        body = c[2] if isinstance(c[2], list) else self.sfc_in_action(c[1].value, c[2])
+        return ast.SfcAction(c[1].value, body, pos=self._span(c[0], c[-1]))
+
+    def sfc_in_action(self, name: str, net: ast.SfcNetwork) -> list:
+        """E158 for an ACTION written in SFC (CODESYS allows it; here the
+        network of a POU is its body only); the action's statements: none."""
+        self.ctx.report(
+            "E158",
+            f"ACTION {name} is written in SFC: an action's SFC network is not supported",
+            net.pos,
+            "make the sequence the body of a FUNCTION_BLOCK and call an instance of it in the action",
+        )
+        return []
+
+    def sfc_after_statements(self, body: list, net: ast.SfcNetwork) -> None:
+        """E158 for statements before the first step of an SFC body."""
+        self.ctx.report(
+            "E158",
+            "statements before an SFC network: a POU's body is either statements or an SFC network",
+            self._span(body[0], body[-1]),
+            "move the statements into an ACTION and associate it with the steps it belongs to, e.g. a(N)",
+        )

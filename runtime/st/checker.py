@@ -11,7 +11,7 @@ them); this module runs the passes in order.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from . import ast as A
 from . import types as T
@@ -47,6 +47,8 @@ class CheckedProgram:
     structs: list  # StructType in declaration order
     configurations: list  # ConfigInfo
     types: dict  # UPPER -> Type
+    # the global variable lists (namespaces.py): UPPER list name -> its UPPER variable names
+    global_lists: dict = field(default_factory=dict)
 
 
 class Checker(
@@ -129,5 +131,10 @@ class Checker(
                     self._configuration(decl)
         self._check_placeholders()
         return CheckedProgram(
-            list(self.pous.values()), list(self.globals.values()), self.structs, self.configs, self.types
+            list(self.pous.values()),
+            list(self.globals.values()),
+            self.structs,
+            self.configs,
+            self.types,
+            self._lists,
         )

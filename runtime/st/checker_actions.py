@@ -85,7 +85,8 @@ class ActionChecks(CheckerBase):
         variables are declared)."""
         for key, act in list(pou.actions.items()):
             var = pou.vars.get(key)
-            if var is not None:
+            sfc = self.is_sfc_action(pou, key)  # its flags variable has its name (checker_sfc.py)
+            if var is not None and not sfc:
                 self.d.error(
                     "E047",
                     f"{pou.name} has a variable and an action named '{act.name}'",
@@ -94,7 +95,10 @@ class ActionChecks(CheckerBase):
                 )
                 del pou.actions[key]
                 continue
-            self._stmts(act.node.body, Scope(pou))
+            scope = Scope(pou)
+            if sfc:
+                scope.sfc_part = "an ACTION"
+            self._stmts(act.node.body, scope)
             self._check_jumps(act.node.body)
 
     # ------------------------------------------------------------ calls

@@ -168,6 +168,9 @@ class CheckerBase:
 
         def member_action_call(self, e: A.Call, scope: Scope, as_statement: bool) -> bool: ...
 
+        # checker_sfc
+        def is_sfc_action(self, pou: POUInfo, key: str) -> bool: ...
+
         # checker_calls
         def call(self, e: A.Call, scope: Scope, as_statement: bool) -> T.Type | None: ...
 

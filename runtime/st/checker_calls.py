@@ -33,7 +33,8 @@ class CallChecks(CheckerBase):
             local = None
             if scope.pou is not None:
                 local = scope.pou.vars.get(key)
-                if local is None and self.own_action_call(e, scope, as_statement):
+                sfc_action = local is not None and self.is_sfc_action(scope.pou, key)  # its flags share its name
+                if (local is None or sfc_action) and self.own_action_call(e, scope, as_statement):
                     return None
             if local is None and key not in self.pous:
                 local = self.globals.get(key)

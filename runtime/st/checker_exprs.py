@@ -208,6 +208,8 @@ class ExprChecks(CheckerBase):
             if pick:
                 e.const = pick[0][1]
                 e.sym = pick[0][0]
+                if pick[0][0].qualified_only:
+                    self._enum_qualified_only(e, pick[0][0])
                 return pick[0][0]
             self.d.error(
                 "E010",
@@ -229,6 +231,17 @@ class ExprChecks(CheckerBase):
             "E010", f"unknown name '{e.name}'", e.pos, self._suggest(key, names) or "declare it in a VAR block"
         )
         return None
+
+    def _enum_qualified_only(self, e: A.Name, ty: T.EnumType) -> None:
+        """E018: a bare value of an enumeration with {attribute
+        'qualified_only'} (CODESYS, TwinCAT: "the enumeration values can
+        only be accessed with the type name")."""
+        self.d.error(
+            "E018",
+            f"'{e.name}' is a value of the enumeration {ty.name}, which is qualified_only",
+            e.pos,
+            f"write {ty.name}.{ty.spelled[e.name.upper()]} ({{attribute 'qualified_only'}} before its TYPE)",
+        )
 
     def _enum_literal(self, e: A.EnumLiteral, expected: T.Type | None) -> T.Type | None:
         if e.type_name is None:

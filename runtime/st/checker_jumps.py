@@ -11,12 +11,17 @@ rules, after CODESYS:
   (like EXIT, the FOR variable keeps its value), but never jump into one
   (CODESYS C0117 "No such label within the scope of the 'JMP' statement").
   A label out of reach or unknown is E075.
+
+IEC 61131-3 ed.3's ST has no jumps (7.3.3, Table 72: the statements are
+assignment, call, RETURN, IF, CASE, FOR, WHILE, REPEAT, EXIT, CONTINUE):
+a JMP is E159 in the profiles that follow it (profile.jumps_in_st).
 """
 
 from __future__ import annotations
 
 from . import ast as A
 from .checker_base import CheckerBase
+from .profile import names_where
 
 
 def statement_lists(s: A.Stmt) -> list:
@@ -38,6 +43,14 @@ class JumpChecks(CheckerBase):
         labels: dict = {}  # UPPER -> Label, the whole body
         jumps: list = []  # (Jump, [the label dicts of the lists it sees])
         self._gather_jumps(body, [], labels, jumps)
+        for jmp, _visible in jumps if not self.profile.jumps_in_st else ():
+            self.d.error(
+                "E159",
+                f"JMP {jmp.label}: IEC 61131-3 ST has no jumps (only IL has JMP)",
+                jmp.pos,
+                "use IF, a loop with EXIT or CONTINUE, or a CASE state machine; the "
+                f"{names_where(lambda p: p.jumps_in_st)} profiles accept JMP",
+            )
         for jmp, visible in jumps:
             key = jmp.label.upper()
             target = next((lists[key] for lists in reversed(visible) if key in lists), None)

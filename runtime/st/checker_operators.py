@@ -194,6 +194,9 @@ class OperatorChecks(CheckerBase):
 
     def _comparison(self, e: A.Binary, lt: T.Type, rt: T.Type) -> T.Type | None:
         lres, rres = T.resolve(lt), T.resolve(rt)
+        if (lres is not rres) and (isinstance(lres, T.EnumType) or isinstance(rres, T.EnumType)):
+            lt, rt = self._loose_enum(lt), self._loose_enum(rt)  # CODESYS: a non-strict one is an integer
+            lres, rres = T.resolve(lt), T.resolve(rt)
         ok = False
         if isinstance(lres, T.EnumType) or isinstance(rres, T.EnumType):
             ok = lres is rres
@@ -249,11 +252,24 @@ class OperatorChecks(CheckerBase):
             )
         return c
 
+    def _loose_enum(self, ty: T.Type) -> T.Type:
+        """An enumeration without {attribute 'strict'} as its base integer
+        type where the profile says so (CODESYS, TwinCAT), else ty."""
+        r = T.resolve(ty)
+        if isinstance(r, T.EnumType) and self.profile.loose_enums and not r.strict:
+            return r.base
+        return ty
+
     def _arithmetic(self, e: A.Binary, lt: T.Type, rt: T.Type, expected: T.Type | None) -> T.Type | None:
         op = e.op
+        lt, rt = self._loose_enum(lt), self._loose_enum(rt)
         le, re_ = T.base_elementary(lt), T.base_elementary(rt)
         if le is None or re_ is None or isinstance(T.resolve(lt), T.EnumType) or isinstance(T.resolve(rt), T.EnumType):
-            self.d.error("E023", f"{self._label(e)} needs numbers, not {lt} and {rt}", e.pos)
+            strict = next((t for t in (T.resolve(lt), T.resolve(rt)) if isinstance(t, T.EnumType) and t.strict), None)
+            hint = None
+            if strict is not None and self.profile.loose_enums:
+                hint = f"{strict.name} is {{attribute 'strict'}}: no arithmetic on its values"
+            self.d.error("E023", f"{self._label(e)} needs numbers, not {lt} and {rt}", e.pos, hint)
             return None
         if le.is_time or re_.is_time:
             return self._time_arith(e, le, re_)

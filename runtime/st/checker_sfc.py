@@ -2,12 +2,16 @@
 PROGRAM or FUNCTION_BLOCK (IEC 61131-3 ed.3 6.7, ed.2 2.6).
 
 Each step becomes a variable of the POU (``s.X``, ``s.T``: rt_sfc.STEP_TYPE,
-read-only to the program); the result, ``SfcInfo`` on ``POUInfo.sfc``, is
+read-only to the program), each ACTION one too (``a.Q``, ``a.A``:
+rt_sfc.ACTION_TYPE) and an action of the POU (checker_actions.py: a
+method, called by the network while A and by ``a();`` or ``inst.a();``
+like any ACTION); the result, ``SfcInfo`` on ``POUInfo.sfc``, is
 what codegen_sfc.py emits. Diagnostics:
 
   E150  no INITIAL_STEP, or more than one
   E151  a transition names a step the network does not have
-  E152  a step or action declared twice, or named like a variable
+  E152  a step or action declared twice, or named like a variable or
+        another ACTION of the POU
   E153  a transition condition that is not BOOL
   E154  an association names neither an ACTION nor a BOOL variable
   E155  a bad qualifier, a timed one without its TIME, or a time where
@@ -24,8 +28,8 @@ from dataclasses import dataclass, field
 from . import ast as A
 from . import types as T
 from .checker_base import CheckerBase, Scope
-from .rt_sfc import QUALIFIERS, STEP_TYPE, TIMED
-from .symbols import POUInfo, VarSymbol, pyname
+from .rt_sfc import ACTION_TYPE, QUALIFIERS, STEP_TYPE, TIMED
+from .symbols import ActionInfo, POUInfo, VarSymbol, pyname
 
 
 @dataclass(eq=False)
@@ -42,6 +46,8 @@ class SfcActionInfo:
     pos: A.Pos
     body: list | None = None  # an ACTION's statements, or
     target: A.Name | None = None  # the BOOL variable the action sets
+    flags: VarSymbol | None = None  # an ACTION's Q and A
+    method: str | None = None  # the pyname of an ACTION's method
 
 
 @dataclass(eq=False)
@@ -56,6 +62,7 @@ class SfcInfo:
     transitions: list = field(default_factory=list)
     actions: list = field(default_factory=list)
     assocs: list = field(default_factory=list)
+    by_name: dict = field(default_factory=dict)  # UPPER action name -> index in actions
 
 
 class SfcChecks(CheckerBase):
@@ -83,6 +90,13 @@ class SfcChecks(CheckerBase):
                 info.initial = len(info.steps)
             info.steps.append(sym)
             info.nodes.append(step)
+        for act in net.actions:
+            self._declare_sfc_action(pou, act, info)
+        for key, outside in list(pou.actions.items()):
+            # ACTION Pou.Name outside the POU: how CODESYS and TwinCAT export
+            # the actions of an SFC POU (each is an object of its own)
+            if key not in info.by_name and key not in pou.vars:
+                self._sfc_action_flags(pou, outside.node, info, outside.pyname)
         if not initial:
             self.d.error(
                 "E150",
@@ -99,6 +113,39 @@ class SfcChecks(CheckerBase):
             )
         pou.sfc = info
 
+    def _declare_sfc_action(self, pou: POUInfo, act: A.SfcAction, info: SfcInfo) -> None:
+        """An ACTION of the network: its flags variable and its method."""
+        key = act.name.upper()
+        first = pou.vars.get(key)
+        if first is not None:
+            self._sfc_twice(act.name, act.pos, first.pos)
+            return
+        other = pou.actions.get(key)
+        if other is not None:  # ACTION Pou.Name outside the POU
+            self._sfc_twice(act.name, act.pos, other.node.name_pos)
+            return
+        node = A.Action(act.name, act.body, pos=act.pos, name_pos=act.pos)
+        method = pyname("a_", act.name)
+        pou.actions[key] = ActionInfo(act.name, node, pou, method)
+        self.action_names.add(key)
+        self._sfc_action_flags(pou, node, info, method)
+
+    def _sfc_action_flags(self, pou: POUInfo, node: A.Action, info: SfcInfo, method: str) -> None:
+        # ed.3 6.7.4: an action's Q (and A) can be read as name.Q; CODESYS
+        # and TwinCAT have the same as the implicit variable _name.x
+        key = node.name.upper()
+        flags = VarSymbol(node.name, "VAR", ACTION_TYPE, node.name_pos, pyname("v_", node.name), pou)
+        self._inited.add(id(flags))
+        pou.vars[key] = flags
+        info.by_name[key] = len(info.actions)
+        info.actions.append(SfcActionInfo(node.name, node.name_pos, body=node.body, flags=flags, method=method))
+
+    def is_sfc_action(self, pou: POUInfo, key: str) -> bool:
+        """Whether key names an ACTION of pou's SFC network (its flags
+        variable has the same name)."""
+        info = pou.sfc
+        return info is not None and key in info.by_name and info.actions[info.by_name[key]].flags is not None
+
     def _sfc_twice(self, name: str, pos: A.Pos, first: A.Pos) -> None:
         self.d.error("E152", f"'{name}' is declared twice", pos, f"the first declaration is at {first}")
 
@@ -108,7 +155,7 @@ class SfcChecks(CheckerBase):
             return
         net: A.SfcNetwork = pou.node.sfc
         index = {s.name.upper(): i for i, s in enumerate(info.steps)}
-        self._sfc_actions(pou, net, info)
+        self._sfc_actions(pou, info)
         order = []
         for k, tr in enumerate(net.transitions):
             scope = Scope(pou)
@@ -129,11 +176,6 @@ class SfcChecks(CheckerBase):
                 order.append((priority, k, t))
         # lower PRIORITY first, then source order (ed.3 6.7.3: left to right)
         info.transitions = [t for _p, _k, t in sorted(order, key=lambda x: x[:2])]
-        for action in info.actions:
-            if action.body is not None:
-                scope = Scope(pou)
-                scope.sfc_part = "an ACTION"
-                self._stmts(action.body, scope)
         self._sfc_reachable(info)
 
     def _sfc_steps(self, names: list, index: dict) -> tuple | None:
@@ -161,26 +203,13 @@ class SfcChecks(CheckerBase):
                 "compare it, e.g. level >= 80",
             )
 
-    def _sfc_actions(self, pou: POUInfo, net: A.SfcNetwork, info: SfcInfo) -> None:
-        """The ACTIONs, then the associations of each step (an association
-        to a BOOL variable adds that variable as an action)."""
-        by_name: dict = {}
-        for act in net.actions:
-            key = act.name.upper()
-            first = by_name.get(key)
-            other = pou.vars.get(key)
-            if first is not None:
-                self._sfc_twice(act.name, act.pos, info.actions[first].pos)
-                continue
-            if other is not None:
-                self._sfc_twice(act.name, act.pos, other.pos)
-                continue
-            by_name[key] = len(info.actions)
-            info.actions.append(SfcActionInfo(act.name, act.pos, body=act.body))
+    def _sfc_actions(self, pou: POUInfo, info: SfcInfo) -> None:
+        """The associations of each step (an association to a BOOL variable
+        adds that variable as an action; the ACTIONs are declared)."""
         for step in info.nodes:
             assocs = []
             for a in step.assocs:
-                found = self._sfc_association(pou, a, info, by_name)
+                found = self._sfc_association(pou, a, info, info.by_name)
                 if found is not None:
                     assocs.append(found)
             info.assocs.append(assocs)

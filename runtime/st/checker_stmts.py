@@ -10,7 +10,7 @@ from . import ast as A
 from . import types as T
 from .checker_base import CheckerBase, Scope
 from .profile import names_where
-from .rt_sfc import STEP_TYPE
+from .rt_sfc import ACTION_TYPE, STEP_TYPE
 from .symbols import PropertyInfo, VarSymbol
 
 
@@ -206,6 +206,13 @@ class StmtChecks(CheckerBase):
                     f"'{sym.name}' is an SFC step: its flags X and T are set by the sequence",
                     e.pos,
                     "change the step through the transitions; an action can set a variable instead",
+                )
+            elif sym.type is ACTION_TYPE:
+                self.d.error(
+                    "E157",
+                    f"'{sym.name}' is an SFC action: its flags Q and A are set by the action control",
+                    e.pos,
+                    "change the action through its steps' qualifiers (S, R, ...); it can set a variable instead",
                 )
             elif sym.section == "VAR_INPUT" and sym.owner is not None and sym.owner is scope.pou:
                 self._own_input_assigned(sym, e.pos)

@@ -12,6 +12,7 @@ from . import types as T
 from .checker_base import CheckerBase, Scope
 from .checker_refs import spec_kind
 from .limits import MAX_STRING_LENGTH, MAX_VAR_ELEMENTS
+from .pragmas import has_attribute
 from .symbols import POUInfo, pyname
 
 
@@ -93,6 +94,8 @@ class TypeChecks(CheckerBase):
                 ty: T.Type = st
             elif isinstance(spec, A.EnumTypeSpec):
                 ty = self._enum_type(decl.name, spec)
+                ty.qualified_only = has_attribute(decl, "qualified_only")
+                ty.strict = has_attribute(decl, "strict")
             else:
                 target = self.type_of(spec)
                 if target is None:

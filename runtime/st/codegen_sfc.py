@@ -8,8 +8,9 @@ The POU's ``__call__`` becomes, per cycle::
     _f0 = _steps[0].v_x and (<condition>)         # enabled transitions only,
     ...                                           # all before any step changes
     _sfc.evolve(_steps, (_f0, ...), _NOW_MS)      # clear and activate at once
-    _qa = _sfc.control(_steps, (<durations>,), _NOW_MS)
-    if _qa[0][1]: <action body>                   # while Q, and once as Q falls
+    _qa = _sfc.control(_steps, (<durations>,), _NOW_MS, (self.v_fill, None))
+    if self.v_fill.v_a:                           # Fill.A: while Q, and once
+        self.a_fill()                             # more (Q FALSE) as Q falls
     self.v_lamp = _qa[1][0]                       # a BOOL variable as action: Q
 
 Transitions are evaluated and fire in priority order (checker_sfc.py sorts
@@ -86,13 +87,15 @@ class SfcGen(CodeGenBase):
         self.pos = pou.node.sfc.pos
         self.emit(f"_sfc.evolve(_steps, ({''.join(f + ', ' for f in fires)}), _NOW_MS)")
         times = "".join(f"{self.ex(d)}, " for d in durations)
-        self.emit(f"_qa = _sfc.control(_steps, ({times}), _NOW_MS)")
+        flags = ""
+        if any(a.flags is not None for a in info.actions):
+            each = "".join(f"self.{a.flags.pyname}, " if a.flags is not None else "None, " for a in info.actions)
+            flags = f", ({each})"
+        self.emit(f"_qa = _sfc.control(_steps, ({times}), _NOW_MS{flags})")
         for j, action in enumerate(info.actions):
             self.pos = action.pos
-            if action.body is not None:
-                self.emit(f"if _qa[{j}][1]:")
-                self.indent += 1
-                self._body(action.body)
-                self.indent -= 1
+            if action.flags is not None:  # an ACTION: its method (codegen_pous.py), while A
+                self.emit(f"if self.{action.flags.pyname}.v_a:")
+                self.emit(f"    self.{action.method}()")
             else:
                 self.emit_store(action.target, f"_qa[{j}][0]", T.BOOL, None, trusted=True)

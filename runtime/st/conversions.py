@@ -263,13 +263,25 @@ def check_implicit(src: T.Type, dst: T.Type, e: A.Expr, what: str, profile: Prof
             and widens_to(s.base, d)
         ):
             return True
+        from_int = isinstance(s, T.ElementaryType) and s.is_intlike
+        if isinstance(d, T.EnumType) and from_int and profile.loose_enums and not d.strict:
+            # CODESYS, TwinCAT: an enumeration without {attribute 'strict'} takes an integer
+            diags.warning(
+                "W151",
+                f"{src} into the enumeration {dst} in {what}: the value may be none of its enumerators",
+                e.pos,
+                f"use an enumerator, e.g. {enum_example(d)}; "
+                "{attribute 'strict'} before the TYPE makes this an error",
+            )
+            return True
+        hint = f"use an enumerator of {dst}, e.g. {enum_example(d)}"
+        if from_int and profile.loose_enums:
+            hint = f"{dst} is {{attribute 'strict'}}: " + hint
         diags.error(
             "E020",
             f"cannot use {src} as {dst} in {what}",
             e.pos,
-            f"use an enumerator of {dst}, e.g. {enum_example(d)}"
-            if isinstance(d, T.EnumType)
-            else "enumerations convert only explicitly",
+            hint if isinstance(d, T.EnumType) else "enumerations convert only explicitly",
         )
         return False
     if isinstance(d, T.StringType):

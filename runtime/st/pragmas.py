@@ -12,7 +12,10 @@ syntax error. This module says what softplc makes of them:
   the warning says so. ``matiec`` warns too: that is where it matters.
 * ``{attribute 'name'}`` and ``{attribute 'name' := 'value'}`` (CODESYS,
   TwinCAT): ``qualified_only`` before a VAR_GLOBAL list and ``hide``
-  before a declaration are honoured (namespaces.py); ``call_after_init``
+  before a declaration are honoured (namespaces.py), so are
+  ``qualified_only`` and ``strict`` before an enumeration's TYPE
+  (types.EnumType, read by checker_exprs.py, checker_operators.py and
+  conversions.py); ``call_after_init``
   (a method called after FB_init) and ``monitoring := 'call'`` (a property
   read by calling it) are ignored with W103; ``monitoring := 'variable'``
   is what softplc does anyway. Every other attribute, and every other

@@ -69,6 +69,17 @@ class Profile:
     # only where its value fits; schneider, which narrows nothing
     # implicitly, is as strict.
     literal_range: str = "error"
+    # JMP and labels in ST: a CODESYS and TwinCAT extension (CODESYS "ST
+    # Statement: JMP"); Schneider's ST has them too. IEC 61131-3 ed.3's ST
+    # statements (7.3.3, Table 72) have no jump, only IL has JMP, and
+    # MatIEC's ST grammar follows it: E159 there.
+    jumps_in_st: bool = True
+    # An enumeration without {attribute 'strict'} is its base integer type
+    # in arithmetic, comparisons and assignments (CODESYS, TwinCAT: the
+    # attribute makes those errors, "Attribute 'strict'"); IEC 61131-3
+    # enumerated values are no numbers (ed.3 6.4.4.3), so elsewhere every
+    # enumeration is strict.
+    loose_enums: bool = False
     # Length of a STRING declared without one.
     default_string_length: int = 80
 
@@ -85,6 +96,7 @@ IEC = Profile(
     own_input_assignment="error",
     trailing_comma_in_calls=False,
     bool_from_0_1=False,
+    jumps_in_st=False,
 )
 
 CODESYS = Profile(
@@ -100,6 +112,7 @@ CODESYS = Profile(
     trailing_comma_in_calls=False,
     bool_from_0_1=True,
     literal_range="warning",
+    loose_enums=True,
 )
 
 TWINCAT = replace(CODESYS, name="twincat", trailing_comma_in_calls=True)

@@ -8,6 +8,11 @@ A POU with an SFC body keeps, besides its variables,
   the task clock like TON; it keeps its value when the step is cleared, ed.3
   6.7.2). They are ordinary members of the instance, so ``--watch``,
   traces and the testing API see them like any struct.
+* one ``ActionFlags`` per ACTION, a variable of the POU named like it, of
+  the type ``ACTION_TYPE``: ``a.Q`` (the action control's output Q) and
+  ``a.A`` (whether the action runs this cycle: Q, or its final scan as Q
+  falls), as IEC 61131-3 ed.3 6.7.4 exposes an action's Q and A and
+  CODESYS/TwinCAT their ``_a.x``. Seen like the steps.
 * one ``SfcState``: an ``ActionControl`` per action.
 
 Per cycle the generated code (codegen_sfc.py) calls ``elapse``, evaluates
@@ -32,6 +37,17 @@ STEP_TYPE = T.StructType(
         "T": T.StructField("T", T.TIME, pyname="v_t"),
     },
     pyclass="_SfcStep",
+)
+
+# An action's flags, as STEP_TYPE (its class is ActionFlags, bound as
+# _SfcAction in the generated module).
+ACTION_TYPE = T.StructType(
+    "SFC_ACTION",
+    {
+        "Q": T.StructField("Q", T.BOOL, pyname="v_q"),
+        "A": T.StructField("A", T.BOOL, pyname="v_a"),
+    },
+    pyclass="_SfcAction",
 )
 
 # Qualifiers (ed.3 6.7.4, ed.2 2.6.4) and those that take a duration.
@@ -64,6 +80,26 @@ class Step:
 
     def _copy(self) -> Step:
         n = Step.__new__(Step)
+        n._assign(self)
+        return n
+
+
+class ActionFlags:
+    """An SFC ACTION's flags: Q (its control output) and A (it runs this
+    cycle: while Q, and once more with Q FALSE as Q falls)."""
+
+    __slots__ = ("v_q", "v_a")
+    _VARS_ = (("Q", "v_q", T.BOOL, "FIELD"), ("A", "v_a", T.BOOL, "FIELD"))
+
+    def __init__(self) -> None:
+        self.v_q = False
+        self.v_a = False
+
+    def _assign(self, o: ActionFlags) -> None:
+        self.v_q, self.v_a = o.v_q, o.v_a
+
+    def _copy(self) -> ActionFlags:
+        n = ActionFlags.__new__(ActionFlags)
         n._assign(self)
         return n
 
@@ -199,10 +235,12 @@ class SfcState:
             s.v_t = 0
             s.start = now
 
-    def control(self, steps: tuple, times: tuple, now: int) -> list:
+    def control(self, steps: tuple, times: tuple, now: int, flags: tuple = ()) -> list:
         """(Q, A) of every action after the evolution: Q its control output,
         A whether it runs this cycle (while Q, and once more when Q falls:
-        ed.3 6.7.4, ed.2 2.6.4; CODESYS and TwinCAT alike)."""
+        ed.3 6.7.4, ed.2 2.6.4; CODESYS and TwinCAT alike). flags: the
+        ActionFlags of each ACTION (None for a BOOL variable as action),
+        set before any action runs, so that its final scan sees Q FALSE."""
         inputs: list = [{} for _ in range(self.net.n_actions)]
         for i, s in enumerate(steps):
             if s.v_x:
@@ -215,4 +253,7 @@ class SfcState:
             was = c.q
             q = c.update(got, now)
             out.append((q, q or was))
+        for f, (q, a) in zip(flags, out, strict=False):
+            if f is not None:
+                f.v_q, f.v_a = q, a
         return out

@@ -214,6 +214,9 @@ class EnumType(Type):
     spelled: dict  # UPPER name -> name as declared
     base: ElementaryType = INT
     default: int | None = None  # TYPE E : (a, b) := b; -- else the first value
+    # CODESYS/TwinCAT attributes before its TYPE (st/pragmas.py)
+    qualified_only: bool = False  # its values only as E.a (or E#a)
+    strict: bool = False  # no arithmetic, no integer assigned (where the profile allows them)
     is_enum = True
 
     def name_of(self, value: int) -> str | None:

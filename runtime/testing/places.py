@@ -112,11 +112,22 @@ class Resolver:
             obj, done, rest = entry[2], entry[0], steps[1:]
             place = self._member(obj, rest[0], done, path)
         else:
-            place = self._member(self.engine.ns["_G"], first, "", path, top=True)
-            rest = steps
+            rest = self._without_list(steps)
+            place = self._member(self.engine.ns["_G"], rest[0], "", path, top=True)
         for step in rest[1:]:
             place = self._step(place, step, path)
         return place
+
+    def _without_list(self, steps: list) -> list:
+        """GVL.speed names the global speed of the list GVL (the file GVL.st,
+        st/namespaces.py), unless a global is called GVL."""
+        first, second = steps[0], steps[1] if len(steps) > 1 else None
+        names = self.engine.program.checked.global_lists.get(first.upper())
+        if not names or not isinstance(second, str) or second.upper() not in names:
+            return steps
+        if any(v[0].upper() == first.upper() for v in getattr(type(self.engine.ns["_G"]), "_VARS_", ())):
+            return steps
+        return steps[1:]
 
     # ------------------------------------------------------------ parsing
 

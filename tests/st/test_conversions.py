@@ -16,6 +16,8 @@ from .conftest import codes, diagnostics, prog, run_st
 
 SUB = T.SubrangeType(T.INT, 1, 3)
 COLOUR = T.EnumType("Colour", {"RED": 0, "GREEN": 1}, {"RED": "Red", "GREEN": "Green"})
+# {attribute 'strict'} before its TYPE (CODESYS, TwinCAT)
+STRICT = T.EnumType("Strict", {"RED": 0, "GREEN": 1}, {"RED": "Red", "GREEN": "Green"}, strict=True)
 
 
 def variable(ty: T.Type) -> A.Expr:
@@ -98,7 +100,10 @@ def test_generic_parameters_take_their_argument(t, generic, profile, fit):
         (T.StringType(10), T.StringType(5, wide=True), "iec", (False, ["E020"])),
         (COLOUR, T.INT, "codesys", (True, [])),
         (COLOUR, T.INT, "iec", (False, ["E020"])),
-        (T.INT, COLOUR, "codesys", (False, ["E020"])),
+        # CODESYS: an integer goes into an enumeration unless it is strict
+        (T.INT, COLOUR, "codesys", (True, ["W151"])),
+        (T.INT, STRICT, "twincat", (False, ["E020"])),
+        (T.INT, COLOUR, "iec", (False, ["E020"])),
         (T.INT, SUB, "iec", (True, [])),
     ],
 )
@@ -123,13 +128,19 @@ def test_the_hints_say_how_to_convert():
     diags = DiagnosticBag()
     C.check_implicit(T.INT, T.BOOL, variable(T.INT), "the assignment", IEC, diags)
     C.check_implicit(T.DINT, T.INT, variable(T.DINT), "input 'IN'", CODESYS, diags)
-    C.check_implicit(T.INT, COLOUR, variable(T.INT), "the assignment", CODESYS, diags)
+    C.check_implicit(T.INT, STRICT, variable(T.INT), "the assignment", CODESYS, diags)
+    C.check_implicit(T.INT, COLOUR, variable(T.INT), "the assignment", IEC, diags)
     assert [(d.code, d.message, d.hint) for d in diags.items] == [
         ("E020", "cannot use INT as BOOL in the assignment", "compare it instead, e.g. x <> 0"),
         (
             "W121",
             "implicit conversion from DINT to INT in input 'IN' may lose data",
             "convert explicitly: DINT_TO_INT(...)",
+        ),
+        (
+            "E020",
+            "cannot use INT as Strict in the assignment",
+            "Strict is {attribute 'strict'}: use an enumerator of Strict, e.g. Strict#Red",
         ),
         ("E020", "cannot use INT as Colour in the assignment", "use an enumerator of Colour, e.g. Colour#Red"),
     ]

@@ -196,3 +196,15 @@ END_PROGRAM
     checked, diags = check_st(src)
     assert diags == []
     assert run_st(src).get("x") == 1
+
+
+@pytest.mark.parametrize("profile", ["iec", "matiec"])
+def test_jmp_is_e159_where_the_profile_follows_iec_st(profile):
+    # IEC 61131-3 ed.3 7.3.3 (Table 72): ST has no jump statement, only IL
+    # has JMP; MatIEC's ST follows the standard. CODESYS, TwinCAT (and
+    # Schneider) add it to ST.
+    src = prog("n : INT;", "again: n := n + 1;\nIF n < 3 THEN JMP again; END_IF;")
+    [d] = diagnostics(src, profile)
+    assert (d.code, d.pos.line, d.message) == ("E159", 6, "JMP again: IEC 61131-3 ST has no jumps (only IL has JMP)")
+    assert d.hint.endswith("the codesys, twincat and schneider profiles accept JMP")
+    assert run_st(src, cycles=1, profile="twincat").get("n") == 3

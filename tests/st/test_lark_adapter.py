@@ -241,6 +241,15 @@ ACTION act: n := n + 1; END_ACTION
 ACTION other n := 0; END_ACTION;
 END_FUNCTION_BLOCK
 """,
+    # actions before the network; an action (and an SFC one) written in SFC
+    """
+PROGRAM p
+ACTION first: ; END_ACTION
+INITIAL_STEP s1: first(N); END_STEP
+ACTION inner: INITIAL_STEP x: END_STEP END_ACTION
+END_PROGRAM
+ACTION p.seq: STEP y: END_STEP END_ACTION
+""",
 ]
 
 

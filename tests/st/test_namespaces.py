@@ -159,3 +159,38 @@ def test_a_name_the_standard_library_does_not_hold_is_e019():
     src = "PROGRAM main\nVAR x : INT; END_VAR\nx := Standard.SQRTX(4);\nEND_PROGRAM\n"
     message = "'SQRTX' is not in the Standard library as softplc has it"
     assert ("E019", "main.st", 3, 6, message) in found({"main.st": src})
+
+
+# ---------------------------------------------------------------- GVL.x as a path
+
+
+def test_a_path_names_a_global_by_its_list_as_st_does(tmp_path):
+    # CODESYS and TwinCAT monitor a GVL's variable as <GVL name>.<variable>:
+    # --watch, the testing API and a runner's get() take GVL.speed (and speed)
+    from softplc.runtime.engine.monitor import Watch
+    from softplc.testing import PLC
+
+    main = "PROGRAM main\nVAR a : INT; END_VAR\nGVL.speed := GVL.speed + 1;\na := GVL.speed;\nEND_PROGRAM\n"
+    runner = run({"GVL.st": GVL, "main.st": main}, cycles=2)
+    assert runner.get("GVL.speed") == 7 and runner.get("gvl.SPEED") == 7
+    with pytest.raises(KeyError):
+        runner.get("GVL.level")  # not a variable of that list
+    (tmp_path / "GVL.st").write_text(GVL, encoding="utf-8")
+    (tmp_path / "main.st").write_text(main, encoding="utf-8")
+    with PLC.from_st([tmp_path / "GVL.st", tmp_path / "main.st"]) as plc:
+        plc.watch("GVL.speed")
+        plc.step(3)
+        assert plc["GVL.speed"] == 8 and plc["Main.a"] == 8
+        plc["GVL.speed"] = 100
+        plc.step(1)
+        assert plc["Main.a"] == 101
+        assert plc.trace.changes("GVL.speed")[-1][1] == 101
+        assert dict(Watch(plc.engine, ["GVL.speed"]).shown()) == {"GVL.speed": "101"}
+
+
+def test_a_global_named_like_a_list_wins_in_a_path():
+    pair = "TYPE Pair : STRUCT speed : INT := 100; END_STRUCT END_TYPE\n"
+    glob = "VAR_GLOBAL GVL : Pair; END_VAR\n"
+    main = "PROGRAM main\nVAR a : INT; END_VAR\na := 1;\nEND_PROGRAM\n"
+    runner = run({"types.st": pair + glob, "GVL.st": GVL.replace("speed", "other"), "main.st": main})
+    assert runner.get("GVL.speed") == 100

@@ -50,3 +50,36 @@ def test_watch_and_final_json_show_a_step_as_x_and_t():
         _name, info, instance = next(iter(plc.engine.instances.values()))
         encoded = encode_value(info.fbtype, instance)
         assert encoded["wait"] == {"X": False, "T": "T#0ms"} and encoded["work"]["X"] is True
+
+
+PUMPING = """
+PROGRAM Main
+VAR go : BOOL; END_VAR
+INITIAL_STEP idle: END_STEP
+STEP fill: pump(N); END_STEP
+TRANSITION FROM idle TO fill := go; END_TRANSITION
+TRANSITION FROM fill TO idle := NOT go; END_TRANSITION
+ACTION pump: ; END_ACTION
+END_PROGRAM
+"""
+
+
+def test_an_actions_q_and_a_are_watched_and_traced_like_a_steps_flags():
+    # Main.pump.Q / Main.pump.A (ed.3 6.7.4; CODESYS and TwinCAT watch _pump.x)
+    with PLC.from_st(PUMPING) as plc:
+        plc.watch("Main.pump.Q", "Main.pump.A", "Main.fill.X")
+        plc.step(1)
+        plc["Main.go"] = True
+        plc.step(2)
+        plc["Main.go"] = False
+        plc.step(2)
+        ms = 1_000_000
+        # fill is active at t = 10, 20 ms; pump's final scan (A, not Q) at t = 30 ms
+        assert plc.trace.changes("Main.fill.X") == [(0, False), (10 * ms, True), (30 * ms, False)]
+        assert plc.trace.changes("Main.pump.Q") == [(0, False), (10 * ms, True), (30 * ms, False)]
+        assert plc.trace.changes("Main.pump.A") == [(0, False), (10 * ms, True), (40 * ms, False)]
+        watch = Watch(plc.engine, ["Main.pump.Q", "Main.pump"])
+        assert [s.kind for s in watch.signals()] == ["bool", "text"]
+        assert json.loads(watch.raw()[1]) == {"Q": False, "A": False}
+        _name, info, instance = next(iter(plc.engine.instances.values()))
+        assert encode_value(info.fbtype, instance)["pump"] == {"Q": False, "A": False}
