@@ -1,6 +1,7 @@
-"""``softplc check`` on folders: the sources a folder holds, and the table
-that sums up a check of many files (files, POUs, errors, warnings, and the
-most frequent codes)."""
+"""What ``softplc check`` adds to the diagnostics: the sources a folder
+holds, the table that sums up a check of many files (files, POUs, errors,
+warnings, the most frequent codes), and which other profiles would accept
+an error's construct."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ from .st import ast as A
 from .st.diagnostics import DiagnosticBag
 from .st.importers import is_imported, st_views
 from .st.parser import parse_source
+from .st.profile import PROFILES
 
 # Folders a project has that hold no sources of its own.
 _SKIPPED = {".git", "__pycache__", ".venv", "venv", "node_modules", "_Boot", "_CompileInfo", "_Libraries"}
@@ -73,3 +75,30 @@ def summary(files: dict, diagnostics: list) -> str:
     if codes:
         lines.append("most frequent: " + ", ".join(f"{c} x{n}" for c, n in codes.most_common(8)))
     return "\n".join(lines)
+
+
+def note_other_profiles(files: list, profile: str, diagnostics: list, check) -> None:
+    """Add to the hint of each error which other profiles accept the
+    construct: checked with such a profile, the same place has no error and
+    the files have no more errors than with this one (so the error did not
+    just hide behind an earlier one). check(files, profile) -> diagnostics."""
+    errors = [d for d in diagnostics if d.is_error]
+    if not errors:
+        return
+    accepted: dict = {}
+    for other in PROFILES:
+        if other == profile:
+            continue
+        theirs = [d for d in check(files, other) if d.is_error]
+        if len(theirs) > len(errors):
+            continue
+        places = {(d.pos.file, d.pos.line, d.pos.col) for d in theirs}
+        for d in errors:
+            if (d.pos.file, d.pos.line, d.pos.col) not in places:
+                accepted.setdefault(id(d), []).append(other)
+    for d in errors:
+        others = accepted.get(id(d))
+        if others and not all(o in (d.hint or "") for o in others):  # (unless the hint says so)
+            who = f"the profiles {', '.join(others)} accept" if len(others) > 1 else f"the profile {others[0]} accepts"
+            note = f"{who} this (--profile {others[0]})"
+            d.hint = f"{d.hint}; {note}" if d.hint else note

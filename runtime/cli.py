@@ -160,7 +160,7 @@ def check(files, profile: str) -> None:
     """Check ST files (and PLCopen XML, TwinCAT files; a folder: every source
     in it, with a summary table) and report errors and warnings with
     file:line:column."""
-    from .check_summary import expand_sources, summary
+    from .check_summary import expand_sources, note_other_profiles, summary
     from .program import check_files
 
     folders = any(Path(f).is_dir() for f in files)
@@ -170,7 +170,11 @@ def check(files, profile: str) -> None:
         sys.exit(EXIT_USAGE)
     # a test file (test_*.st, softplc test) is checked with the assertions it calls
     tests = any(Path(f).name.lower().startswith("test_") for f in files)
-    diagnostics, sources = check_files(files, profile=profile, natives=_test_natives() if tests else ())
+    natives = _test_natives() if tests else ()
+    diagnostics, sources = check_files(files, profile=profile, natives=natives)
+    note_other_profiles(
+        files, get_profile(profile).name, diagnostics, lambda f, p: check_files(f, p, natives=natives)[0]
+    )
     errors, warnings = _report(diagnostics, sources)
     if folders:
         _echo_err(summary({f: sources.text(f) or "" for f in files if sources.text(f) is not None}, diagnostics))

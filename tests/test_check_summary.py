@@ -40,3 +40,14 @@ def test_check_on_a_folder_prints_the_table(tmp_path):
 def test_an_empty_folder_is_a_usage_error(tmp_path):
     r = softplc("check", tmp_path)
     assert r.returncode == 2 and "no ST sources" in r.stderr
+
+
+def test_an_error_names_the_profiles_that_accept_the_construct(tmp_path):
+    f = tmp_path / "p.st"
+    f.write_text("PROGRAM p\nVAR i : INT; w : WORD; END_VAR\nw := SHL(i, 1);\nx := 2;\nEND_PROGRAM\n")
+    r = softplc("check", "--profile", "iec", f)
+    assert r.returncode == 1
+    shl, unknown = r.stderr.split("error E0")[1:3]
+    # SHL of an INT: CODESYS shifts an integer's bits; IEC wants ANY_BIT
+    assert "hint: the profiles codesys, twincat, schneider accept this (--profile codesys)" in shl
+    assert "accept" not in unknown  # an unknown name is an error everywhere
