@@ -52,6 +52,8 @@ class OopGen(CodeGenBase):
         """The methods and property accessors of a FUNCTION_BLOCK's class,
         and the names of the interfaces it implements (for ?= and
         __QUERYINTERFACE)."""
+        if pou.kind == "PROGRAM" and (pou.methods or pou.properties):
+            self.emit("_INST_ = None")  # the program's instance, for Prog.M() elsewhere
         itfs = sorted(i.name.upper() for i in all_interfaces(pou))
         if itfs:
             self.emit(f"_ITFS_ = {tuple(itfs)!r}")  # interface names: checked identifiers
@@ -69,6 +71,10 @@ class OopGen(CodeGenBase):
         every start initialises all variables (retained values are written
         into the instances afterwards). TwinCAT "Behavior with derived
         function blocks": the base's FB_init runs, then the derived one's."""
+        if pou.kind == "PROGRAM" and (pou.methods or pou.properties):
+            # CODESYS: a PROGRAM is one instance; Prog.M() from another POU
+            # reaches the one created last (the task's, after a restart too)
+            self.emit(f"{pou.pyname}._INST_ = self")
         chain = []
         p: POUInfo | None = pou
         while p is not None:
@@ -93,6 +99,13 @@ class OopGen(CodeGenBase):
         the block's own; through an interface, a check that it holds one."""
         if inst is None:
             return self.fn.self_name
+        if isinstance(inst, A.Name) and isinstance(inst.sym, POUInfo):  # Prog.M(), Prog.P
+            prog = inst.sym
+            here = self.fn.pou
+            if here is prog or (here is not None and here.fb is prog):
+                return self.fn.self_name
+            # a program no task runs is created at its first use (it exists in CODESYS)
+            return f"({prog.pyname}._INST_ or {prog.pyname}())"
         code = self.ex(inst)
         if isinstance(T.resolve(inst.ty), T.InterfaceType):
             return f"({code} or _no_itf())"
