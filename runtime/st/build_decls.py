@@ -294,6 +294,13 @@ class AstBuilder(StmtBuilder, SfcBuilder):
         ranges = [r for r in c[2:-1] if not isinstance(r, Tok)]
         return ast.ArrayTypeSpec(ranges, c[-1], pos=self._span(c[0], c[-1]))
 
+    def fb_init_array_type(self, c):
+        # ARRAY [ ranges ] OF FB_X [ (n := 1), (n := 2) ]: the FB_init inputs of each element
+        inits = [x for x in c if isinstance(x, ast.StructInit)]
+        elem_at = next(i for i, x in enumerate(c) if isinstance(x, ast.NamedType))
+        ranges = [r for r in c[2 : elem_at - 1] if not isinstance(r, Tok)]
+        return ast.ArrayTypeSpec(ranges, c[elem_at], fb_inits=inits, pos=self._span(c[0], c[-1]))
+
     def array_range(self, c):
         return None if len(c) == 1 else (c[0], c[1])
 

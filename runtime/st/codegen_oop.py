@@ -18,7 +18,7 @@ from __future__ import annotations
 from . import ast as A
 from . import types as T
 from .codegen_base import CodeGenBase
-from .oop import all_interfaces
+from .oop import all_interfaces, fb_init_inputs
 from .symbols import CallInfo, POUInfo, PropertyInfo
 
 
@@ -84,7 +84,25 @@ class OopGen(CodeGenBase):
             p = p.base
         for m in reversed(chain):
             assert m.fb is not None
-            self.emit(f"{m.fb.pyname}.{m.pyname}(self, True, False)")
+            names = tuple(v.pyname for v in m.params("VAR_INPUT")[2:])
+            further = f", **_fb_args(_fbi, {names!r})" if names else ""  # pynames: checked identifiers
+            self.emit(f"{m.fb.pyname}.{m.pyname}(self, True, False{further})")
+
+    @staticmethod
+    def _init_params(pou: POUInfo) -> str:
+        """The parameter of __init__ that takes the FB_init inputs of a
+        declaration (a dict by their Python names), where FB_init has them."""
+        return ", _fbi=None" if pou.kind == "FUNCTION_BLOCK" and fb_init_inputs(pou) else ""
+
+    def _fb_init_construct(self, ty: T.Type, plan: tuple) -> str:
+        """A new instance given FB_init inputs: ``FB_x({'v_nstart': 5})``,
+        with the instance's own initial values, if any, set around it."""
+        _kind, bound, inner = plan
+        t = T.resolve(ty)
+        assert isinstance(t, T.FBType)  # the checker gives FB_init inputs to instances only
+        args = ", ".join(f"{p.pyname!r}: {self.coerce(self.ex(e), e.ty, p.type, e)}" for p, e in bound)
+        ctor = f"{t.pou.pyname}()"
+        return self._aggregate_expr(ty, inner).replace(ctor, f"{t.pou.pyname}({{{args}}})", 1)
 
     def _method_def(self, m: POUInfo) -> None:
         saved = self.fn

@@ -112,3 +112,21 @@ def fb_hint(src: T.Type, dst: T.Type) -> str | None:
     if not isinstance(s, T.FBType) or not isinstance(d, T.FBType):
         return None
     return f"{s.name} does not EXTEND {d.name}: pass an instance of {d.name} or of a block that EXTENDS it"
+
+
+def fb_init_inputs(pou: POUInfo | None) -> list:
+    """The further inputs of the FB_init methods of a block and its bases
+    (after bInitRetains and bInCopyCode), the derived block's first, each
+    name once: what a declaration ``fb : FB_X(nStart := 5)`` sets."""
+    out: list = []
+    seen: set = set()
+    p = pou
+    while p is not None:
+        m = p.methods.get("FB_INIT")
+        if m is not None:
+            for v in m.params("VAR_INPUT")[2:]:
+                if v.name.upper() not in seen:
+                    seen.add(v.name.upper())
+                    out.append(v)
+        p = p.base
+    return out
