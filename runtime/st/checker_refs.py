@@ -164,7 +164,9 @@ class RefChecks(CheckerBase):
                 "E160",
                 f"__ISVALIDREF needs a REFERENCE TO, not {ty}",
                 a.pos,
-                "for a POINTER TO or REF_TO compare it with NULL: p <> NULL",
+                "an interface is 0 until assigned: test it with itf <> 0"
+                if isinstance(T.resolve(ty), T.InterfaceType)
+                else "for a POINTER TO or REF_TO compare it with NULL: p <> NULL",
             )
             return None
         return T.BOOL
