@@ -23,7 +23,7 @@ from . import ast as A
 from . import types as T
 from .checker_base import Scope
 from .checker_oop_rules import OopRules
-from .oop import access_of, all_interfaces, find_method, find_property, is_method_owner
+from .oop import access_of, all_interfaces, find_action, find_method, find_property, is_method_owner
 from .symbols import CallInfo, POUInfo, PropertyInfo, VarSymbol, pyname
 
 # The marker of THIS^ and SUPER^ (Name.sym of THIS / SUPER under ^).
@@ -448,8 +448,8 @@ class OopChecks(OopRules):
                 base = callee.base
                 is_super = isinstance(base, A.Deref) and getattr(base.base, "sym", None) == SUPER
                 return (self._method_call(e, m, base, "super" if is_super else None, scope, as_statement),)
-            if key in b.pou.actions:
-                return None  # inst.Act(): an ACTION of the block (checker_actions.py)
+            if find_action(b.pou, key) is not None:
+                return None  # inst.Act(): an ACTION of the block or its base (checker_actions.py)
         callee.ty = self._member_of(callee, bty, scope)
         return (self._fb_call(e, callee, scope, as_statement, typed=True),)
 

@@ -141,6 +141,17 @@ class OopGen(CodeGenBase):
             return f"{m.fb.pyname}.{m.pyname}({self.fn.self_name}{sep}{args})"
         return f"{self._instance_code(info.instance)}.{m.pyname}({args})"
 
+    @staticmethod
+    def _action_invoke(info: CallInfo, inst: str) -> str:
+        """inst.a_act(); SUPER^.Act(): the base's own action, not the
+        derived block's that overwrites it (CODESYS lets a derived block
+        overwrite an inherited action as it does a method)."""
+        act = info.func
+        base = info.instance
+        if isinstance(base, A.Deref) and isinstance(base.base, A.Name) and base.base.sym == "SUPER":
+            return f"{act.pou.pyname}.{act.pyname}({inst})"
+        return f"{inst}.{act.pyname}()"
+
     def _accessor_call(self, e: A.Name | A.Member, acc: POUInfo, arg: str) -> str:
         """inst.pg_p() / inst.ps_p(v); SUPER^.P: the base's accessor itself."""
         base = e.base if isinstance(e, A.Member) else None

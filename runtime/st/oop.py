@@ -130,3 +130,16 @@ def fb_init_inputs(pou: POUInfo | None) -> list:
                     out.append(v)
         p = p.base
     return out
+
+
+def find_action(pou: POUInfo | None, key: str):
+    """The ACTION named key (UPPER) of a PROGRAM or FUNCTION_BLOCK, or one
+    it inherits through EXTENDS (an action is code of the block that
+    works on its variables, which a derived block has too)."""
+    p = pou
+    while p is not None:
+        a = p.actions.get(key)
+        if a is not None:
+            return a
+        p = p.base
+    return None
