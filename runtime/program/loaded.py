@@ -133,6 +133,7 @@ class Program:
             "_no_itf": rt_oop.no_interface,
             "_query_itf": rt_oop.query_interface,
             "_query_into": rt_oop.query_into,
+            "_fb_args": rt_oop.fb_init_args,
             "_check_index": _check_index,
             "_check_range": _check_range,
             "_out_of_bounds": out_of_bounds,

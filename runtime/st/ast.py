@@ -239,6 +239,7 @@ class ArrayTypeSpec(TypeSpec):
 
     ranges: list
     elem: TypeSpec
+    fb_inits: list | None = None  # CODESYS OF FB_X[(n := 1), ...]: a StructInit per element
 
 
 @dataclass(slots=True, eq=False)

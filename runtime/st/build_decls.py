@@ -57,7 +57,7 @@ class AstBuilder(StmtBuilder, SfcBuilder):
         """A METHOD or PROPERTY after END_FUNCTION_BLOCK (as TwinCAT and
         blark export them) belongs to the FUNCTION_BLOCK before it."""
         owner = next((d for d in reversed(decls) if isinstance(d, (ast.POU, ast.Interface))), None)
-        if isinstance(owner, ast.POU) and owner.kind == "FUNCTION_BLOCK":
+        if isinstance(owner, ast.POU) and owner.kind in ("FUNCTION_BLOCK", "PROGRAM"):
             (owner.methods if isinstance(m, ast.Method) else owner.properties).append(m)
         elif isinstance(owner, ast.Interface):
             (owner.methods if isinstance(m, ast.Method) else owner.properties).append(m)
@@ -66,7 +66,7 @@ class AstBuilder(StmtBuilder, SfcBuilder):
                 "E005",
                 f"{'METHOD' if isinstance(m, ast.Method) else 'PROPERTY'} {m.name} belongs to no FUNCTION_BLOCK",
                 m.pos,
-                "put it inside a FUNCTION_BLOCK or INTERFACE, or right after one",
+                "put it inside a FUNCTION_BLOCK, PROGRAM or INTERFACE, or right after one",
             )
 
     def bare_source(self, c):
@@ -115,7 +115,10 @@ class AstBuilder(StmtBuilder, SfcBuilder):
         return pou
 
     def program(self, c):
-        return self._pou("PROGRAM", c)
+        pou = self._pou("PROGRAM", [x for x in c if not isinstance(x, (ast.Method, ast.Property))])
+        pou.methods = [x for x in c if isinstance(x, ast.Method)]  # CODESYS: METHODs of a PROGRAM
+        pou.properties = [x for x in c if isinstance(x, ast.Property)]
+        return pou
 
     def function(self, c):
         return self._pou("FUNCTION", c)
@@ -296,6 +299,13 @@ class AstBuilder(StmtBuilder, SfcBuilder):
     def array_type(self, c):
         ranges = [r for r in c[2:-1] if not isinstance(r, Tok)]
         return ast.ArrayTypeSpec(ranges, c[-1], pos=self._span(c[0], c[-1]))
+
+    def fb_init_array_type(self, c):
+        # ARRAY [ ranges ] OF FB_X [ (n := 1), (n := 2) ]: the FB_init inputs of each element
+        inits = [x for x in c if isinstance(x, ast.StructInit)]
+        elem_at = next(i for i, x in enumerate(c) if isinstance(x, ast.NamedType))
+        ranges = [r for r in c[2 : elem_at - 1] if not isinstance(r, Tok)]
+        return ast.ArrayTypeSpec(ranges, c[elem_at], fb_inits=inits, pos=self._span(c[0], c[-1]))
 
     def array_range(self, c):
         return None if len(c) == 1 else (c[0], c[1])

@@ -23,6 +23,7 @@ from .checker_config import ConfigChecks, ConfigInfo
 from .checker_decls import DeclChecks
 from .checker_eno import EnEnoChecks
 from .checker_exprs import ExprChecks
+from .checker_fbinit import FbInitChecks
 from .checker_generics import GenericChecks
 from .checker_jumps import JumpChecks
 from .checker_oop import OopChecks
@@ -71,6 +72,7 @@ class Checker(
     SfcChecks,
     NamespaceChecks,
     OopChecks,
+    FbInitChecks,
 ):
     """Checker(profile, diags, std_functions, natives=None, image=None).run(files)
     -> CheckedProgram. std_functions: UPPER name -> standard function

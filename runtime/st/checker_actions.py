@@ -18,6 +18,7 @@ from __future__ import annotations
 from . import ast as A
 from . import types as T
 from .checker_base import CheckerBase, Scope
+from .oop import find_action
 from .symbols import ActionInfo, CallInfo, POUInfo, pyname
 
 
@@ -108,7 +109,7 @@ class ActionChecks(CheckerBase):
         name is an action of the POU that is being checked."""
         assert isinstance(e.callee, A.Name)
         pou = scope.pou
-        act = pou.actions.get(e.callee.name.upper()) if pou is not None else None
+        act = find_action(pou, e.callee.name.upper())  # its own, or inherited (EXTENDS)
         if act is None:
             return False
         self._own_action_call(e, act, scope, as_statement)
@@ -157,9 +158,10 @@ class ActionChecks(CheckerBase):
             self._check_args_loosely(e, scope)
             return True
         fbt = T.resolve(bty)
-        if not isinstance(fbt, T.FBType) or key not in fbt.pou.actions:
+        act = find_action(fbt.pou, key) if isinstance(fbt, T.FBType) else None
+        if act is None:
             return False
-        self._action_call(e, fbt.pou.actions[key], base, scope, as_statement)
+        self._action_call(e, act, base, scope, as_statement)
         return True
 
     def _action_call(self, e: A.Call, act: ActionInfo, inst: A.Expr | None, scope: Scope, as_statement: bool) -> None:

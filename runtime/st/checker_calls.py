@@ -16,6 +16,7 @@ from .checker_base import BUILTINS, CheckerBase, Scope
 from .checker_operators import OPERATOR_FUNCTIONS
 from .conversions import const_repr, conversion_exists, generic_fit, is_flexible, same_type
 from .native import NativeFunction
+from .oop import extends_fb, fb_hint
 from .symbols import CallInfo, POUInfo, PropertyInfo, VarSymbol
 
 
@@ -228,7 +229,7 @@ class CallChecks(CheckerBase):
                         "E020",
                         f"VAR_IN_OUT '{param.name}' is {param.type}; got {vty}",
                         a.value.pos,
-                        "a reference parameter needs exactly its type",
+                        fb_hint(vty, param.type) or "a reference parameter needs exactly its type",
                     )
                     continue
                 self._mark_boxed(a.value, scope)
@@ -257,7 +258,7 @@ class CallChecks(CheckerBase):
             return len(a.dims) == len(p.dims) and same_type(a.elem, p.elem)
         if isinstance(p, T.StringType) and isinstance(a, T.StringType):
             return a.wide == p.wide
-        return same_type(a, p)
+        return same_type(a, p) or extends_fb(a, p)
 
     def _mark_boxed(self, e: A.Expr, scope: Scope) -> None:
         """A FUNCTION local passed by reference lives in a cell."""

@@ -32,8 +32,9 @@ class DeclChecks(CheckerBase):
                 f"rename it, e.g. {decl.name}_1",
             )
             return None
-        generic = self.generic_input_type(decl.type, block.kind, owner.kind if owner else None)
-        ty = generic[1] if generic is not None else self.type_of(decl.type, Scope(owner))
+        spec, fb_init = self.fb_init_spec(decl.type)  # FB_X(nStart := 5): checker_fbinit.py
+        generic = self.generic_input_type(spec, block.kind, owner.kind if owner else None)
+        ty = generic[1] if generic is not None else self.type_of(spec, Scope(owner))
         if ty is None:
             return None
         section = block.kind
@@ -60,6 +61,7 @@ class DeclChecks(CheckerBase):
             location=decl.location,
             init=decl.init,
             generic=generic[0] if generic is not None else None,
+            fb_init=fb_init,
         )
         if decl.location is not None:
             self._check_location_type(sym)
@@ -204,6 +206,9 @@ class DeclChecks(CheckerBase):
 
     def _check_var_init(self, sym: VarSymbol, scope: Scope) -> None:
         if id(sym) in self._inited:
+            return
+        if sym.fb_init is not None:
+            self._check_fb_init_var(sym, scope)
             return
         if sym.init is None:
             sym.init_value = T.declared_default(sym.type)

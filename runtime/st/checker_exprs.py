@@ -280,6 +280,9 @@ class ExprChecks(CheckerBase):
                 ty = self._enum_literal(lit, None)
                 e.const = lit.const
                 return ty
+            hit = self._program_property(e, scope)  # Prog.P (checker_oop.py)
+            if hit is not None:
+                return hit[0]
         bty = self.expr(e.base, scope)
         if bty is None:
             return None

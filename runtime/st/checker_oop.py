@@ -23,7 +23,7 @@ from . import ast as A
 from . import types as T
 from .checker_base import Scope
 from .checker_oop_rules import OopRules
-from .oop import access_of, all_interfaces, find_method, find_property, is_method_owner
+from .oop import access_of, all_interfaces, find_action, find_method, find_property, is_method_owner
 from .symbols import CallInfo, POUInfo, PropertyInfo, VarSymbol, pyname
 
 # The marker of THIS^ and SUPER^ (Name.sym of THIS / SUPER under ^).
@@ -55,7 +55,7 @@ class OopChecks(OopRules):
             self._declare_interface(itf)
         done: set = set()
         for pou in list(self.pous.values()):
-            if pou.kind == "FUNCTION_BLOCK":
+            if pou.kind in ("FUNCTION_BLOCK", "PROGRAM"):  # CODESYS: methods of programs too
                 self._declare_fb(pou, done, [])
 
     def _declare_interface(self, itf: T.InterfaceType) -> None:
@@ -238,13 +238,13 @@ class OopChecks(OopRules):
 
     @staticmethod
     def owner_fb(scope: Scope) -> POUInfo | None:
-        """The FUNCTION_BLOCK whose body or method scope is."""
+        """The FUNCTION_BLOCK (or PROGRAM) whose body or method scope is."""
         p = scope.pou
         if p is None:
             return None
         if p.fb is not None:
             return p.fb
-        return p if p.kind == "FUNCTION_BLOCK" else None
+        return p if p.kind in ("FUNCTION_BLOCK", "PROGRAM") else None
 
     def _property_use(self, e: A.Name | A.Member, prop: PropertyInfo) -> tuple:
         e.sym = prop
@@ -258,7 +258,7 @@ class OopChecks(OopRules):
         fb = self.owner_fb(scope)
         if fb is None:
             return None
-        if key in (THIS, SUPER):
+        if key in (THIS, SUPER) and fb.kind == "FUNCTION_BLOCK":  # a PROGRAM has none: a name like any
             self.d.error(
                 "E146",
                 f"{e.name} is a pointer to the instance: write {e.name}^",
@@ -281,7 +281,7 @@ class OopChecks(OopRules):
         name: A.Name = e.base  # type: ignore[assignment]
         key = name.name.upper()
         fb = self.owner_fb(scope)
-        if fb is None:
+        if fb is None or fb.kind != "FUNCTION_BLOCK":
             self.d.error("E146", f"{name.name}^ is only defined in a FUNCTION_BLOCK or its METHODs", e.pos)
             return None
         if key == SUPER:
@@ -335,6 +335,34 @@ class OopChecks(OopRules):
                 self._check_access(prop.modifiers, prop.owner, f"{prop.owner.name}.{prop.name}", e.pos, scope)
                 return self._property_use(e, prop)
         return None
+
+    def program_named(self, base: A.Expr, scope: Scope) -> POUInfo | None:
+        """The PROGRAM base names (``Prog`` in ``Prog.M()``, ``Prog.P``) when
+        it has methods or properties and no variable has that name. CODESYS
+        calls a program's methods from other POUs: a PROGRAM is one
+        instance."""
+        if not isinstance(base, A.Name) or base.qualifier is not None:
+            return None
+        key = base.name.upper()
+        if (scope.pou is not None and key in scope.pou.vars) or key in self.globals:
+            return None
+        fb = self.owner_fb(scope)
+        if fb is not None and fb is not scope.pou and key in fb.vars:
+            return None
+        prog = self.pous.get(key)
+        if prog is None or prog.kind != "PROGRAM" or not (prog.methods or prog.properties):
+            return None
+        return prog
+
+    def _program_property(self, e: A.Member, scope: Scope) -> tuple | None:
+        """Prog.P: a PROPERTY of a PROGRAM, read or written from anywhere."""
+        prog = self.program_named(e.base, scope)
+        prop = find_property(prog, e.name.upper()) if prog is not None else None
+        if prog is None or prop is None or not isinstance(e.base, A.Name):
+            return None
+        e.base.sym = prog
+        self._check_access(prop.modifiers, prog, f"{prog.name}.{prop.name}", e.pos, scope)
+        return self._property_use(e, prop)
 
     def inside_fb(self, scope: Scope, fb: POUInfo) -> bool:
         """Whether scope is fb's body or method, or a derived block's."""
@@ -392,6 +420,11 @@ class OopChecks(OopRules):
         key = callee.name.upper()
         if key in self.action_names and isinstance(callee.base, A.Name) and callee.base.name.upper() in self.pous:
             return None  # Prog.Act(): an ACTION (checker_actions.py)
+        prog = self.program_named(callee.base, scope)
+        m = find_method(prog, key) if prog is not None else None
+        if m is not None and isinstance(callee.base, A.Name):  # Prog.M(): a PROGRAM's method (CODESYS)
+            callee.base.sym = prog
+            return (self._method_call(e, m, callee.base, None, scope, as_statement),)
         bty = self.expr(callee.base, scope)
         if bty is None:
             self._check_args_loosely(e, scope)
@@ -415,8 +448,8 @@ class OopChecks(OopRules):
                 base = callee.base
                 is_super = isinstance(base, A.Deref) and getattr(base.base, "sym", None) == SUPER
                 return (self._method_call(e, m, base, "super" if is_super else None, scope, as_statement),)
-            if key in b.pou.actions:
-                return None  # inst.Act(): an ACTION of the block (checker_actions.py)
+            if find_action(b.pou, key) is not None:
+                return None  # inst.Act(): an ACTION of the block or its base (checker_actions.py)
         callee.ty = self._member_of(callee, bty, scope)
         return (self._fb_call(e, callee, scope, as_statement, typed=True),)
 

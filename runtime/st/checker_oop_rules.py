@@ -17,8 +17,8 @@ class OopRules(CheckerBase):
 
     def _check_override(self, pou: POUInfo, info: POUInfo, m: A.Method) -> None:
         inherited = find_method(pou.base, info.name.upper()) if pou.base is not None else None
-        if inherited is None:
-            return
+        if inherited is None or info.name.upper() == "FB_INIT":
+            return  # each FB_init of the chain runs, with the inputs it declares (checker_fbinit.py)
         if "FINAL" in inherited.modifiers:
             self.d.error("E143", f"{inherited.fb.name}.{inherited.name} is FINAL: it cannot be overridden", m.pos)
         elif not self._same_signature(inherited, info):
@@ -133,13 +133,15 @@ class OopRules(CheckerBase):
     def _check_lifecycle(self, pou: POUInfo) -> None:
         """FB_init(bInitRetains, bInCopyCode), FB_exit(bInCopyCode) and
         FB_reinit(), which the engine calls itself, take exactly these BOOL
-        inputs (further FB_init inputs, set where an instance is declared,
-        are not supported)."""
+        inputs; FB_init may take further inputs, set where an instance is
+        declared (CODESYS "FB_init": ``fb : FB_X(nStart := 5);``)."""
         for key, names in self._LIFECYCLE.items():
             m = pou.methods.get(key)
             if m is None:
                 continue
             got = [(v.name.upper(), v.type) for v in m.params("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT")]
+            if key == "FB_INIT" and all(v.section == "VAR_INPUT" for v in m.params("VAR_INPUT", "VAR_OUTPUT")):
+                got = got[: len(names)]  # further inputs: set where an instance is declared (checker_fbinit.py)
             if [n for n, _t in got] != [n.upper() for n in names] or any(t is not T.BOOL for _n, t in got):
                 want = "; ".join(f"{n} : BOOL" for n in names) or "nothing"
                 self.d.error(
@@ -162,6 +164,8 @@ class OopRules(CheckerBase):
             t = T.resolve(v.type)
             while isinstance(t, T.ArrayType):
                 t = T.resolve(t.elem)
+            if isinstance(t, T.FBType) and v.fb_init is None:
+                self._fb_init_required(t.pou, v.name, v.pos)  # checker_fbinit.py
             if isinstance(t, T.FBType) and t.pou is not None and "ABSTRACT" in t.pou.modifiers:
                 self.d.error(
                     "E142",

@@ -15,6 +15,7 @@ from . import rtlib
 from . import types as T
 from .checker_base import CheckerBase, Scope
 from .conversions import common_type, const_repr, is_flexible
+from .oop import interface_accepts
 from .symbols import CallInfo
 
 # IEC 61131-3 ed.3 Table 29-31: the standard functions that are the operators
@@ -206,10 +207,12 @@ class OperatorChecks(CheckerBase):
             rres, (T.RefType, T.NullType, T.InterfaceType)
         ):
             # r = 0 / r <> 0 is how CODESYS and TwinCAT test for NULL (an interface too)
-            def refish(t, side):
-                return isinstance(t, (T.RefType, T.NullType, T.InterfaceType)) or side.const == 0
+            def refish(t, side, other):
+                # itf = inst: whether itf designates that instance (CODESYS)
+                instance = isinstance(other, T.InterfaceType) and interface_accepts(t, other)
+                return isinstance(t, (T.RefType, T.NullType, T.InterfaceType)) or side.const == 0 or instance
 
-            ok = e.op in ("=", "<>") and refish(lres, e.left) and refish(rres, e.right)
+            ok = e.op in ("=", "<>") and refish(lres, e.left, rres) and refish(rres, e.right, lres)
         else:
             le, re_ = T.base_elementary(lres), T.base_elementary(rres)
             if le is not None and re_ is not None:

@@ -17,6 +17,7 @@ from . import sizes
 from . import types as T
 from .checker_base import CheckerBase, Scope
 from .conversions import same_type
+from .oop import extends_fb, fb_hint
 from .symbols import VarSymbol
 
 
@@ -81,8 +82,9 @@ class RefChecks(CheckerBase):
             return False
         if isinstance(T.resolve(vty), T.NullType) or (isinstance(value, A.Literal) and value.const == 0):
             return True  # bound to nothing
-        if not same_type(rt.target, vty):
-            self.d.error("E020", f"{what} is {rt}; got {vty}", value.pos, f"bind it to a variable of type {rt.target}")
+        if not same_type(rt.target, vty) and not extends_fb(vty, rt.target):
+            hint = fb_hint(vty, rt.target) or f"bind it to a variable of type {rt.target}"
+            self.d.error("E020", f"{what} is {rt}; got {vty}", value.pos, hint)
             return False
         if not self._is_lvalue_expr(value) or isinstance(value, (A.BitAccess, A.Located)):
             self.d.error(
@@ -162,7 +164,9 @@ class RefChecks(CheckerBase):
                 "E160",
                 f"__ISVALIDREF needs a REFERENCE TO, not {ty}",
                 a.pos,
-                "for a POINTER TO or REF_TO compare it with NULL: p <> NULL",
+                "an interface is 0 until assigned: test it with itf <> 0"
+                if isinstance(T.resolve(ty), T.InterfaceType)
+                else "for a POINTER TO or REF_TO compare it with NULL: p <> NULL",
             )
             return None
         return T.BOOL

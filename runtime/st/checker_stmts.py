@@ -11,7 +11,7 @@ from . import types as T
 from .checker_base import CheckerBase, Scope
 from .profile import names_where
 from .rt_sfc import ACTION_TYPE, STEP_TYPE
-from .symbols import PropertyInfo, VarSymbol
+from .symbols import POUInfo, PropertyInfo, VarSymbol
 
 
 class StmtChecks(CheckerBase):
@@ -231,6 +231,8 @@ class StmtChecks(CheckerBase):
                 if sym.setter is None:
                     self.d.error("E147", f"PROPERTY {sym.name} has no SET: it cannot be assigned", e.pos)
                     return
+                if isinstance(e.base, A.Name) and isinstance(e.base.sym, POUInfo):
+                    return  # Prog.P := v: a PROGRAM's property (checker_oop.py)
             if isinstance(base_ty, T.FBType) and isinstance(sym, VarSymbol):
                 if sym.section == "VAR_OUTPUT" and not self.inside_fb(scope, base_ty.pou):
                     self.d.error(

@@ -268,7 +268,7 @@ class CallGen(CodeGenBase):
         for p, a in info.inouts:
             ref = f"_CellRef({self.bind_code(a)})" if T.is_reference(p.type) else self.inout_arg(p, a)
             self.emit(f"{inst}.{p.pyname} = {ref}")
-        self.emit(f"{inst}.{info.func.pyname}()" if info.kind == "action" else f"{inst}()")
+        self.emit(self._action_invoke(info, inst) if info.kind == "action" else f"{inst}()")
         for p, target, negated in info.outputs:
             val = f"{inst}.{p.pyname}"
             if negated:

@@ -212,10 +212,15 @@ class ExprGen(CodeGenBase):
     def _is_ref(ty: T.Type | None) -> bool:
         return ty is not None and isinstance(T.resolve(ty), (T.RefType, T.NullType, T.InterfaceType))
 
+    @staticmethod
+    def _is_instance(ty: T.Type | None) -> bool:
+        return ty is not None and isinstance(T.resolve(ty), T.FBType)
+
     def _ref_comparison(self, e: A.Binary) -> str:
         """r = NULL, r <> 0, r1 = r2: whether two references designate the
         same storage (NULL and the 0 CODESYS allows are no reference)."""
-        sides = [side if self._is_ref(side.ty) else None for side in (e.left, e.right)]
+        # an FB instance compared with an interface (itf = inst) is itself: the interface holds it
+        sides = [side if self._is_ref(side.ty) or self._is_instance(side.ty) else None for side in (e.left, e.right)]
         codes = ["None" if side is None or isinstance(side.ty, T.NullType) else self.ex(side) for side in sides]
         negate = "not " if e.op == "<>" else ""
         if "None" in codes:

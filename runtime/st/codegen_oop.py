@@ -18,7 +18,7 @@ from __future__ import annotations
 from . import ast as A
 from . import types as T
 from .codegen_base import CodeGenBase
-from .oop import all_interfaces
+from .oop import all_interfaces, fb_init_inputs
 from .symbols import CallInfo, POUInfo, PropertyInfo
 
 
@@ -52,6 +52,8 @@ class OopGen(CodeGenBase):
         """The methods and property accessors of a FUNCTION_BLOCK's class,
         and the names of the interfaces it implements (for ?= and
         __QUERYINTERFACE)."""
+        if pou.kind == "PROGRAM" and (pou.methods or pou.properties):
+            self.emit("_INST_ = None")  # the program's instance, for Prog.M() elsewhere
         itfs = sorted(i.name.upper() for i in all_interfaces(pou))
         if itfs:
             self.emit(f"_ITFS_ = {tuple(itfs)!r}")  # interface names: checked identifiers
@@ -69,6 +71,10 @@ class OopGen(CodeGenBase):
         every start initialises all variables (retained values are written
         into the instances afterwards). TwinCAT "Behavior with derived
         function blocks": the base's FB_init runs, then the derived one's."""
+        if pou.kind == "PROGRAM" and (pou.methods or pou.properties):
+            # CODESYS: a PROGRAM is one instance; Prog.M() from another POU
+            # reaches the one created last (the task's, after a restart too)
+            self.emit(f"{pou.pyname}._INST_ = self")
         chain = []
         p: POUInfo | None = pou
         while p is not None:
@@ -78,7 +84,25 @@ class OopGen(CodeGenBase):
             p = p.base
         for m in reversed(chain):
             assert m.fb is not None
-            self.emit(f"{m.fb.pyname}.{m.pyname}(self, True, False)")
+            names = tuple(v.pyname for v in m.params("VAR_INPUT")[2:])
+            further = f", **_fb_args(_fbi, {names!r})" if names else ""  # pynames: checked identifiers
+            self.emit(f"{m.fb.pyname}.{m.pyname}(self, True, False{further})")
+
+    @staticmethod
+    def _init_params(pou: POUInfo) -> str:
+        """The parameter of __init__ that takes the FB_init inputs of a
+        declaration (a dict by their Python names), where FB_init has them."""
+        return ", _fbi=None" if pou.kind == "FUNCTION_BLOCK" and fb_init_inputs(pou) else ""
+
+    def _fb_init_construct(self, ty: T.Type, plan: tuple) -> str:
+        """A new instance given FB_init inputs: ``FB_x({'v_nstart': 5})``,
+        with the instance's own initial values, if any, set around it."""
+        _kind, bound, inner = plan
+        t = T.resolve(ty)
+        assert isinstance(t, T.FBType)  # the checker gives FB_init inputs to instances only
+        args = ", ".join(f"{p.pyname!r}: {self.coerce(self.ex(e), e.ty, p.type, e)}" for p, e in bound)
+        ctor = f"{t.pou.pyname}()"
+        return self._aggregate_expr(ty, inner).replace(ctor, f"{t.pou.pyname}({{{args}}})", 1)
 
     def _method_def(self, m: POUInfo) -> None:
         saved = self.fn
@@ -93,6 +117,13 @@ class OopGen(CodeGenBase):
         the block's own; through an interface, a check that it holds one."""
         if inst is None:
             return self.fn.self_name
+        if isinstance(inst, A.Name) and isinstance(inst.sym, POUInfo):  # Prog.M(), Prog.P
+            prog = inst.sym
+            here = self.fn.pou
+            if here is prog or (here is not None and here.fb is prog):
+                return self.fn.self_name
+            # a program no task runs is created at its first use (it exists in CODESYS)
+            return f"({prog.pyname}._INST_ or {prog.pyname}())"
         code = self.ex(inst)
         if isinstance(T.resolve(inst.ty), T.InterfaceType):
             return f"({code} or _no_itf())"
@@ -109,6 +140,17 @@ class OopGen(CodeGenBase):
             sep = ", " if args else ""
             return f"{m.fb.pyname}.{m.pyname}({self.fn.self_name}{sep}{args})"
         return f"{self._instance_code(info.instance)}.{m.pyname}({args})"
+
+    @staticmethod
+    def _action_invoke(info: CallInfo, inst: str) -> str:
+        """inst.a_act(); SUPER^.Act(): the base's own action, not the
+        derived block's that overwrites it (CODESYS lets a derived block
+        overwrite an inherited action as it does a method)."""
+        act = info.func
+        base = info.instance
+        if isinstance(base, A.Deref) and isinstance(base.base, A.Name) and base.base.sym == "SUPER":
+            return f"{act.pou.pyname}.{act.pyname}({inst})"
+        return f"{inst}.{act.pyname}()"
 
     def _accessor_call(self, e: A.Name | A.Member, acc: POUInfo, arg: str) -> str:
         """inst.pg_p() / inst.ps_p(v); SUPER^.P: the base's accessor itself."""

@@ -156,6 +156,8 @@ class PouGen(SfcGen):
     def _aggregate_expr(self, ty: T.Type, plan: Any) -> str:
         """An expression building an aggregate with an initial value plan."""
         t = T.resolve(ty)
+        if isinstance(plan, tuple) and plan[0] == "fbinit":  # FB_X(nStart := 5) (codegen_oop.py)
+            return self._fb_init_construct(ty, plan)
         if isinstance(t, T.ArrayType):
             return self._array_code(t, plan)
         if plan is None:
@@ -207,6 +209,8 @@ class PouGen(SfcGen):
         """(where, REF() call) for each reference an aggregate's initial
         value takes: its fields and elements, at any depth."""
         t = T.resolve(ty)
+        if isinstance(plan, tuple) and plan[0] == "fbinit":
+            plan = plan[2]  # the instance's own initial values, if any
         if _is_ref_plan(plan):
             yield code, plan[1], ty
         elif isinstance(plan, tuple) and plan[0] == "struct" and isinstance(t, (T.StructType, T.FBType)):
@@ -275,7 +279,7 @@ class PouGen(SfcGen):
             idx = self.accessor(v.location, T.base_elementary(v.type))
             self.emit(f"{v.pyname} = property(lambda self: _A{idx}g())")
         self.emit("")
-        self.emit("def __init__(self):")
+        self.emit(f"def __init__(self{self._init_params(pou)}):")  # FB_init inputs (codegen_oop.py)
         self.indent += 1
         self.emit("pass")
         for v in pou.vars.values():

@@ -23,7 +23,7 @@ from . import ast as A
 from . import rtlib
 from . import types as T
 from .diagnostics import DiagnosticBag
-from .oop import interface_accepts
+from .oop import extends_fb, fb_hint, interface_accepts
 from .profile import Profile, names_where
 
 # ---------------------------------------------------------------- widening
@@ -234,7 +234,8 @@ def check_implicit(src: T.Type, dst: T.Type, e: A.Expr, what: str, profile: Prof
         return False
     if isinstance(d, T.RefType):
         if isinstance(s, T.NullType) or (
-            isinstance(s, T.RefType) and (same_type(s.target, d.target) or decays_to(s, d))
+            isinstance(s, T.RefType)
+            and (same_type(s.target, d.target) or decays_to(s, d) or extends_fb(s.target, d.target))
         ):
             return True
         if isinstance(s, T.RefType) and d.pointer and T.resolve(d.target) is T.BYTE:
@@ -251,7 +252,8 @@ def check_implicit(src: T.Type, dst: T.Type, e: A.Expr, what: str, profile: Prof
             "E020",
             f"cannot use {src} as {dst} in {what}",
             e.pos,
-            "take a reference with REF(variable) or ADR(variable)",
+            (fb_hint(s.target, d.target) if isinstance(s, T.RefType) else None)
+            or "take a reference with REF(variable) or ADR(variable)",
         )
         return False
     if isinstance(d, T.EnumType) or isinstance(s, T.EnumType):

@@ -28,6 +28,8 @@ Code ranges (keep them stable, users search for them):
   E160-E162  references and pointers (checker_refs.py, checker_pointers.py,
              sizes.py): E160 a reference to a REFERENCE TO, E161 pointer
              arithmetic not supported, E162 SIZEOF without a size
+  E170-E174  object-oriented ST, continued: E170 FB_init inputs set where an
+             instance is declared (checker_fbinit.py)
   W1xx       warnings (same tens as the error they soften: W121 ~ E021,
              W122 ~ E022, W130 ~ E030 where the profile allows what IEC
              forbids; W102-W103 the parser: W102 MatIEC embedded C, W103 an

@@ -90,3 +90,56 @@ def interface_accepts(src: T.Type, itf: T.InterfaceType) -> bool:
     if isinstance(s, T.InterfaceType):
         return itf in all_interfaces(s)
     return False
+
+
+def extends_fb(src: T.Type, dst: T.Type) -> bool:
+    """src is a FUNCTION_BLOCK type that EXTENDS dst (at any depth): an
+    instance of it may stand for one of dst where a reference to dst is
+    taken (VAR_IN_OUT, REFERENCE TO, REF_TO, POINTER TO). CODESYS
+    "Extension of a Function Block": "an instance of the derived FB can be
+    used wherever an instance of the base FB is expected"; calls of
+    methods through the reference then run the derived block's overrides."""
+    s, d = T.resolve(src), T.resolve(dst)
+    if not isinstance(s, T.FBType) or not isinstance(d, T.FBType) or s.pou is None or d.pou is None:
+        return False
+    return s.pou is not d.pou and is_method_owner(s.pou, d.pou)
+
+
+def fb_hint(src: T.Type, dst: T.Type) -> str | None:
+    """The hint of an E020 where one FUNCTION_BLOCK type stands for another
+    it does not extend; None when they are not both blocks."""
+    s, d = T.resolve(src), T.resolve(dst)
+    if not isinstance(s, T.FBType) or not isinstance(d, T.FBType):
+        return None
+    return f"{s.name} does not EXTEND {d.name}: pass an instance of {d.name} or of a block that EXTENDS it"
+
+
+def fb_init_inputs(pou: POUInfo | None) -> list:
+    """The further inputs of the FB_init methods of a block and its bases
+    (after bInitRetains and bInCopyCode), the derived block's first, each
+    name once: what a declaration ``fb : FB_X(nStart := 5)`` sets."""
+    out: list = []
+    seen: set = set()
+    p = pou
+    while p is not None:
+        m = p.methods.get("FB_INIT")
+        if m is not None:
+            for v in m.params("VAR_INPUT")[2:]:
+                if v.name.upper() not in seen:
+                    seen.add(v.name.upper())
+                    out.append(v)
+        p = p.base
+    return out
+
+
+def find_action(pou: POUInfo | None, key: str):
+    """The ACTION named key (UPPER) of a PROGRAM or FUNCTION_BLOCK, or one
+    it inherits through EXTENDS (an action is code of the block that
+    works on its variables, which a derived block has too)."""
+    p = pou
+    while p is not None:
+        a = p.actions.get(key)
+        if a is not None:
+            return a
+        p = p.base
+    return None

@@ -34,6 +34,14 @@ def query_into(found: Any, ref: Any) -> bool:
     return True
 
 
+def fb_init_args(given: dict | None, names: tuple) -> dict:
+    """Of the FB_init inputs a declaration gives (by Python name), those
+    one FB_init of the chain declares; the others keep their defaults."""
+    if not given:
+        return {}
+    return {k: v for k, v in given.items() if k in names}
+
+
 def exit_instances(namespace: dict, roots: list) -> None:
     """FB_exit(bInCopyCode := FALSE) of every instance reachable from roots
     (program instances, the globals), when the program is taken down:

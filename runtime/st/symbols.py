@@ -42,6 +42,7 @@ class VarSymbol:
     address_taken: bool = False  # REF/ADR, VAR_IN_OUT or => reaches it: others may read it
     hidden: bool = False  # {attribute 'hide'}: left out of listings (namespaces.py)
     generic: str | None = None  # ANY_NUM ... of a FUNCTION's input (st/checker_generics.py)
+    fb_init: Any = None  # CODESYS FB_init inputs set in the declaration (st/checker_fbinit.py)
 
     @property
     def is_global(self) -> bool:

@@ -228,6 +228,8 @@ END_CONFIGURATION
     "x := 1; y(z := 2);",
     "FUNCTION_BLOCK fb2\n;\nACTION A: ; END_ACTION\nEND_FUNCTION_BLOCK\nACTION fb2.B x := 1; END_ACTION;",
     "top: x := 1;\nJMP top;",
+    "PROGRAM pm\nMETHOD m : INT m := 1; END_METHOD\nPROPERTY p : INT GET p := 2; END_GET END_PROPERTY\n;\nEND_PROGRAM",
+    "VAR_GLOBAL fbs : ARRAY[1..2] OF FB_X[(n := 1), (n := 2)]; f : FB_X(n := 3); END_VAR",
     "PROGRAM p VAR t : Tc2_Standard.TON; END_VAR END_PROGRAM",
     """
 FUNCTION_BLOCK seq
