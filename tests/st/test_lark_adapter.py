@@ -241,6 +241,7 @@ ACTION act: n := n + 1; END_ACTION
 ACTION other n := 0; END_ACTION;
 END_FUNCTION_BLOCK
 """,
+    "x := (p + 2)^ + (ps)^.a + (pa)^[1, 2] + (pp)^^ + (pf)^.m(1);",
 ]
 
 
