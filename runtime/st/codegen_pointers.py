@@ -9,7 +9,7 @@ references and code without pointers never reach this module.
 from __future__ import annotations
 
 from . import ast as A
-from . import sizes
+from . import rt_bytes, sizes
 from . import types as T
 from .codegen_base import CodeGenBase, array_type
 
@@ -44,6 +44,17 @@ class PointerGen(CodeGenBase):
         esize = sizes.sizeof(arr.elem)
         shape = tuple(hi - lo + 1 for lo, hi in arr.dims)
         return f"_elem_ptr({code}, {esize}, {shape!r})"
+
+    def byte_view_code(self, code: str, src: T.Type | None, dst: T.Type) -> str:
+        """A pointer seen as a POINTER TO BYTE (WORD, ...) over its target's
+        bytes (st/rt_bytes.py)."""
+        assert src is not None
+        s, d = T.resolve(src), T.resolve(dst)
+        assert isinstance(s, T.RefType) and isinstance(d, T.RefType)
+        unit = rt_bytes.view_unit(d.target)
+        assert unit is not None
+        lay = self.const(rt_bytes.layout_of(s.target))
+        return f"{self.const(rt_bytes.byte_view)}({code}, {lay}, {self.const(unit[0])}, {unit[1]!r})"
 
     def adr_code(self, e: A.Expr) -> str:
         """ADR(x): REF(x), but an element of a multi-dimensional array or an

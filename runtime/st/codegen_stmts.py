@@ -282,6 +282,8 @@ class StmtGen(CodeGenBase):
             s = T.resolve(src)
             assert isinstance(s, T.RefType)
             return self.decay_code(code, s.target)
+        if step == C.TO_BYTES:
+            return self.byte_view_code(code, src, dst)  # codegen_pointers.py
         d = T.resolve(dst)
         if step == C.TRUNCATE and isinstance(d, T.StringType):
             return f"({code})[:{d.length}]"

@@ -1,0 +1,117 @@
+"""Byte pointers into strings (st/rt_bytes.py, refs.BytePtr): a program and
+the values its variables hold after a cycle.
+
+CODESYS keeps a STRING(n) in n+1 bytes, its characters and a terminating 0
+("Data Type: STRING"), a WSTRING(n) in 2(n+1) (UTF-16); OSCAT BASIC walks
+them through `POINTER TO BYTE` and `POINTER TO ARRAY[1..255] OF BYTE` taken
+with ADR ("Operator: ADR"). Here writing 0 ends the string, a byte past its
+end reads 0, and a byte beyond its n+1 is a 'reference' fault (where a PLC
+would reach the next variable's memory).
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from softplc.runtime.st.faults import STFault
+
+from .conftest import prog, run_st
+
+# as OSCAT's UPPERCASE: the result string, walked through an array pointer
+_UPPER = """
+FUNCTION upper1 : STRING(20)
+VAR_INPUT s : STRING(20); END_VAR
+VAR pt : POINTER TO ARRAY[1..255] OF BYTE; i : INT; END_VAR
+upper1 := s;
+pt := ADR(upper1);
+i := 1;
+WHILE pt^[i] <> 0 DO
+    IF pt^[i] >= 97 AND pt^[i] <= 122 THEN pt^[i] := pt^[i] - 32; END_IF
+    i := i + 1;
+END_WHILE
+END_FUNCTION
+"""
+
+# as OSCAT's BYTE_TO_STRB: filled from the end, the terminator first
+_BIN8 = """
+FUNCTION bin8 : STRING(8)
+VAR_INPUT x : BYTE; END_VAR
+VAR pt : POINTER TO BYTE; v : BYTE; i : INT; END_VAR
+v := x;
+pt := ADR(bin8) + 8;
+pt^ := 0;
+FOR i := 1 TO 8 DO
+    pt := pt - 1;
+    pt^ := BYTE#48 + (v AND 1);
+    v := SHR(v, 1);
+END_FOR
+END_FUNCTION
+"""
+
+
+def test_an_array_pointer_reads_the_characters_and_the_terminating_zero():
+    src = prog(
+        "str : STRING(10) := 'abc'; pt : POINTER TO ARRAY[1..255] OF BYTE; c1, c3, c4, c11 : BYTE;",
+        "pt := ADR(str);\nc1 := pt^[1]; c3 := pt^[3]; c4 := pt^[4]; c11 := pt^[11];",
+    )
+    r = run_st(src)
+    # 'a', 'c', the terminator, and the last of STRING(10)'s 11 bytes
+    assert (r.get("c1"), r.get("c3"), r.get("c4"), r.get("c11")) == (97, 99, 0, 0)
+
+
+def test_writing_bytes_changes_extends_and_ends_the_string():
+    src = prog(
+        "str : STRING(10) := 'abc'; pb : POINTER TO BYTE; pt : POINTER TO ARRAY[1..255] OF BYTE; i : INT := 2;"
+        "s1 : STRING(10); s2 : STRING(10); s3 : STRING(10); n : INT;",
+        "pb := ADR(str) + i - 1; pb^ := pb^ - 32; s1 := str;\n"  # OSCAT's pb^ := pb^ + 32 on one character
+        "pt := ADR(str); pt^[4] := 100; pt^[5] := 0; s2 := str;\n"  # a character at the end: one longer
+        "pt^[2] := 0; s3 := str; n := LEN(str);",  # 0 ends the string
+    )
+    r = run_st(src)
+    assert (r.get("s1"), r.get("s2"), r.get("s3"), r.get("n")) == ("aBc", "aBcd", "a", 1)
+
+
+def test_oscat_style_functions_over_their_result_string():
+    src = _UPPER + _BIN8 + prog("u : STRING(20); b : STRING(8);", "u := upper1('hello, world');\nb := bin8(16#A5);")
+    r = run_st(src)
+    assert (r.get("u"), r.get("b")) == ("HELLO, WORLD", "10100101")
+
+
+def test_char_and_wchar_pointers_and_a_word_pointer_over_a_wstring():
+    src = prog(
+        "s : STRING(5) := 'xyz'; pc : POINTER TO CHAR; c : CHAR;"
+        'ws : WSTRING(5) := "AB"; pw : POINTER TO WORD; pwc : POINTER TO ARRAY[0..5] OF WCHAR; w1 : WORD; wc : WCHAR;',
+        "pc := ADR(s) + 2; c := pc^; pc^ := CHAR#'Z';\n"
+        "pw := ADR(ws) + 2; w1 := pw^; pw := pw + 2; pw^ := 16#43;\n"  # WSTRING: 2 bytes a character
+        'pwc := ADR(ws); wc := pwc^[0]; pwc^[3] := WCHAR#"D";',
+    )
+    r = run_st(src)
+    assert (r.get("c"), r.get("s"), r.get("w1"), r.get("wc"), r.get("ws")) == (122, "xyZ", 66, 65, "ABCD")
+
+
+def test_a_byte_loop_copies_a_string_as_memcpy_would():
+    # OSCAT copies memory with loops over POINTER TO BYTE
+    src = prog(
+        "src : STRING(10) := 'copy me'; dst : STRING(10); ps : POINTER TO BYTE; pd : POINTER TO BYTE; i : INT;",
+        "ps := ADR(src); pd := ADR(dst);\n"
+        "FOR i := 1 TO LEN(src) + 1 DO pd^ := ps^; ps := ps + 1; pd := pd + 1; END_FOR",
+    )
+    assert run_st(src).get("dst") == "copy me"
+
+
+@pytest.mark.parametrize(
+    "body,message",
+    [
+        # STRING(10) is 11 bytes: the 12th is another variable's on a PLC
+        ("pt := ADR(str); c := pt^[12];", "byte offset 11 in 11 bytes"),
+        ("pb := ADR(str) - 1; pb^ := 1;", "byte offset -1"),
+        # the 11th byte is the terminator of the longest string: it takes 0 only
+        ("pt := ADR(str); pt^[11] := 65;", "terminating 0 of a STRING(10)"),
+    ],
+)
+def test_outside_the_string_is_a_located_fault(body, message):
+    decls = "str : STRING(10) := 'abc'; pt : POINTER TO ARRAY[1..255] OF BYTE; pb : POINTER TO BYTE; c : BYTE;"
+    with pytest.raises(STFault) as err:
+        run_st(prog(decls, body))
+    assert err.value.kind == "reference" and err.value.pos.line == 5
+    assert message in err.value.message
