@@ -115,3 +115,34 @@ def test_outside_the_string_is_a_located_fault(body, message):
         run_st(prog(decls, body))
     assert err.value.kind == "reference" and err.value.pos.line == 5
     assert message in err.value.message
+
+
+def test_oscat_buffer_functions_take_any_array_through_a_large_byte_array_pointer():
+    # OSCAT BASIC's _BUFFER_* and _STRING_TO_BUFFER declare PT : POINTER TO ARRAY[0..32767]
+    # OF BYTE and are passed ADR(buffer) of whatever size; SIZE keeps them inside it
+    src = """
+FUNCTION buffer_clear : BOOL
+VAR_INPUT PT : POINTER TO BYTE; SIZE : UINT; END_VAR
+VAR p : POINTER TO BYTE; k : UINT; END_VAR
+p := PT;
+FOR k := 1 TO SIZE DO p^ := 0; p := p + 1; END_FOR
+buffer_clear := TRUE;
+END_FUNCTION
+FUNCTION string_to_buffer : INT
+VAR_INPUT str : STRING(255); PT : POINTER TO ARRAY[0..32767] OF BYTE; pos : INT; size : UINT; END_VAR
+VAR ps : POINTER TO BYTE; i : INT; stop : INT; END_VAR
+ps := ADR(str);
+stop := MIN(pos + LEN(str), UINT_TO_INT(size)) - 1;
+FOR i := pos TO stop DO PT^[i] := ps^; ps := ps + 1; END_FOR
+string_to_buffer := i;
+END_FUNCTION
+PROGRAM main
+VAR buf : ARRAY[0..9] OF BYTE := [1, 2, 3, 4, 5, 6, 7, 8, 9, 10]; ok : BOOL; n : INT;
+    w : ARRAY[0..3] OF WORD := [1, 2, 3, 4]; END_VAR
+ok := buffer_clear(ADR(buf), 4);
+n := string_to_buffer('AB', ADR(buf), 5, SIZEOF(buf));
+ok := buffer_clear(ADR(w), SIZEOF(w) - 2);
+END_PROGRAM
+"""
+    r = run_st(src)
+    assert (r.get("buf"), r.get("n"), r.get("w")) == ([0, 0, 0, 0, 5, 65, 66, 8, 9, 10], 7, [0, 0, 0, 4])
