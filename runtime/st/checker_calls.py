@@ -281,8 +281,8 @@ class CallChecks(CheckerBase):
                 "read it into a variable, pass that, and assign the property after the call",
             )
             return
-        while isinstance(e, A.BitAccess):  # => w.3: the reference is to w
-            e = e.base
+        while isinstance(e, A.BitAccess) or (isinstance(e, A.Index) and isinstance(T.resolve(e.base.ty), T.StringType)):
+            e = e.base  # => w.3, ADR(s[i]): the reference is to w, to s
         if isinstance(e, A.Name) and isinstance(e.sym, VarSymbol):
             e.sym.address_taken = True
         if (

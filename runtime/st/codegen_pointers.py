@@ -60,7 +60,7 @@ class PointerGen(CodeGenBase):
         """ADR(x): REF(x), but an element of a multi-dimensional array or an
         aggregate element is an ElemPtr into the whole array, so that
         arithmetic can step across rows and over structures."""
-        if not isinstance(e, A.Index):
+        if not isinstance(e, A.Index) or isinstance(T.resolve(e.base.ty), T.StringType):
             return self.ref_code(e)
         arr = array_type(e.base.ty)
         if arr.variable_length or (len(arr.dims) == 1 and not T.resolve(arr.elem).is_aggregate):

@@ -30,7 +30,7 @@ from bisect import bisect_right
 from . import sizes
 from . import types as T
 from .faults import RangeFault
-from .refs import AttrRef, BytePtr, ElemPtr, ItemRef, ObjPtr
+from .refs import AttrRef, BytePtr, CellRef, ElemPtr, ItemRef, ObjPtr
 
 
 class Leaf:
@@ -140,6 +140,32 @@ class StrLeaf(Leaf):
         while codes and codes[-1] == 0:
             codes.pop()
         ref.set("".join(map(chr, codes)))
+
+    def _char_index(self, i: int) -> None:
+        if not 0 <= i <= self.length:
+            raise RangeFault(
+                "bounds",
+                f"string index {i} is outside 0..{self.length} of a {'W' * (self.cs == 2)}STRING({self.length})",
+            )
+
+    def byte_at(self, s: str, i: int) -> int:
+        """s[i] (CODESYS, TwinCAT): the i-th byte, 0 past the string's end
+        (a WSTRING's i-th character code)."""
+        self._char_index(i)
+        return ord(s[i]) & (0xFF if self.cs == 1 else 0xFFFF) if i < len(s) else 0
+
+    def byte_ref(self, ref, i: int) -> BytePtr:
+        """ADR(s[i]), s[i] passed to a VAR_IN_OUT: a byte view at the i-th
+        character of the string ref designates."""
+        self._char_index(i)
+        return BytePtr(ref, self, i * self.cs, IntLeaf(self.cs, False), None)
+
+    def with_byte(self, s: str, i: int, value: int) -> str:
+        """s after s[i] := value, as a byte written through a pointer."""
+        self._char_index(i)
+        cell = CellRef(s)
+        self.write(cell, i * self.cs, (int(value) & (0xFF if self.cs == 1 else 0xFFFF)).to_bytes(self.cs, "little"))
+        return cell.value
 
 
 class ArrayLayout:
