@@ -223,6 +223,9 @@ class BytePtr:
             if not skew and 0 <= i < lay.count:
                 item = lay.element(self.holder, i)
                 return (id(item.seq), item.index)
+        for start, pyname, flay in getattr(lay, "fields", ()):  # on a field of a structure: as AttrRef
+            if start == self.offset and flay.leaf and flay.size == self.unit.size:
+                return (id(self.holder), pyname)
         return (id(self.holder), "+", self.offset)
 
 

@@ -85,3 +85,20 @@ def test_a_byte_view_of_what_has_no_fixed_bytes_is_e161(decls, body, words):
     d = [x for x in diagnostics(prog(decls, body)) if x.severity == "error"]
     assert [(x.code, x.pos.line, x.pos.col) for x in d] == [("E161", 5, 7)]
     assert words in d[0].message and d[0].hint
+
+
+def test_a_field_pointer_steps_to_the_next_field_of_its_structure():
+    # CODESYS lays a STRUCT out field after field (st/sizes.py): ADR(s.a) + SIZEOF(s.a) is s.b
+    src = """
+TYPE S : STRUCT a : INT; b : INT; c : DINT; r : REAL; END_STRUCT END_TYPE
+PROGRAM main
+VAR s : S; p : POINTER TO INT; x, y : INT; same : BOOL; d : DINT; pr : POINTER TO REAL; rv : REAL; END_VAR
+s.a := 1; s.b := 2; s.c := 70000; s.r := 2.5;
+p := ADR(s.a); x := p^; p := p + SIZEOF(s.a); y := p^; p^ := 20;
+same := p = ADR(s.b); d := ADR(s.b) - ADR(s.a);
+pr := ADR(s.r); rv := pr^; pr^ := rv * 2.0;
+END_PROGRAM
+"""
+    r = run_st(src)
+    assert (r.get("x"), r.get("y"), r.get("same"), r.get("d")) == (1, 2, True, 2)
+    assert (r.get("s.b"), r.get("s.r")) == (20, 5.0)
