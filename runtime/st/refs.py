@@ -247,6 +247,12 @@ class ByteArrayView:
         p = self.ptr
         p.write(p.offset + i * p.unit.size, value)
 
+    def __len__(self) -> int:  # a := p^ and p^ := a copy the elements the ARRAY declares
+        return self.ptr.count or 0
+
+    def __iter__(self):
+        return (self[i] for i in range(len(self)))
+
 
 _SCALAR_REFS = (AttrRef, ItemRef, AccessorRef)
 _POINTERS = (ElemPtr, ObjPtr, BytePtr)

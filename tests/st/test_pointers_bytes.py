@@ -146,3 +146,13 @@ END_PROGRAM
 """
     r = run_st(src)
     assert (r.get("buf"), r.get("n"), r.get("w")) == ([0, 0, 0, 0, 5, 65, 66, 8, 9, 10], 7, [0, 0, 0, 4])
+
+
+def test_the_array_a_byte_view_points_to_is_copied_whole():
+    # p^ of a POINTER TO ARRAY[0..3] OF BYTE is those 4 bytes, copied in and out as an array
+    src = prog(
+        "s : STRING(10) := 'abc'; pt : POINTER TO ARRAY[0..3] OF BYTE; a : ARRAY[0..3] OF BYTE;",
+        "pt := ADR(s);\na := pt^; a[1] := 66; a[3] := 0; pt^ := a;",
+    )
+    r = run_st(src)
+    assert (r.get("a"), r.get("s")) == ([97, 66, 99, 0], "aBc")
