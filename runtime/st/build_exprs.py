@@ -187,6 +187,10 @@ class ExprBuilder(BuilderBase):
     def deref(self, c):
         return ast.Deref(c[0], pos=self._span(c[0], c[1]))
 
+    def paren_deref(self, c):
+        """(expr)^: the parenthesised pointer, dereferenced (CODESYS)."""
+        return ast.Deref(self.paren(c[:3]), pos=self._span(c[0], c[3]))
+
     def call(self, c):
         callee, lpar, args, rpar = c
         if (

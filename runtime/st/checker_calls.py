@@ -139,7 +139,7 @@ class CallChecks(CheckerBase):
         return pou.return_type if pou.return_type is not None else T.BOOL
 
     def _bind_args(self, e: A.Call, pou: POUInfo, info: CallInfo, scope: Scope, is_fb: bool) -> None:
-        positional = pou.params("VAR_INPUT", "VAR_IN_OUT")
+        positional = self._positional_params(e, pou)
         bound: set = set()
         pos_i = 0
         seen_formal = False
@@ -184,7 +184,7 @@ class CallChecks(CheckerBase):
                 continue
             bound.add(key)
             if param.section == "VAR_OUTPUT":
-                if not a.output:
+                if not a.output and a.name is not None:  # positional: the target variable
                     self.d.error(
                         "E040",
                         f"'{param.name}' is an output; bind it with =>",
@@ -252,6 +252,19 @@ class CallChecks(CheckerBase):
         for _, target, _n in info.outputs:
             self._mark_boxed(target, scope)
 
+    @staticmethod
+    def _positional_params(e: A.Call, pou: POUInfo) -> list:
+        """The parameters a call's positional arguments bind, in order. A
+        non-formal call lists the parameters in declaration order, outputs
+        included, EN and ENO left out (IEC 61131-3 ed.3 6.6.1.4.2; TwinCAT:
+        "the order of declaration ... is used for nonformal calls"):
+        SPLIT_TOD(t, h, m, s, ms). A call with no more positional arguments
+        than inputs and in-outs binds those alone, outputs skipped."""
+        ins = pou.params("VAR_INPUT", "VAR_IN_OUT")
+        if sum(1 for a in e.args if a.name is None) <= len(ins):
+            return ins
+        return [v for v in pou.params("VAR_INPUT", "VAR_IN_OUT", "VAR_OUTPUT") if v.name.upper() not in ("EN", "ENO")]
+
     def _inout_compatible(self, arg: T.Type, param: T.Type) -> bool:
         a, p = T.resolve(arg), T.resolve(param)
         if isinstance(p, T.ArrayType) and isinstance(a, T.ArrayType) and p.variable_length:
@@ -270,8 +283,8 @@ class CallChecks(CheckerBase):
                 "read it into a variable, pass that, and assign the property after the call",
             )
             return
-        while isinstance(e, A.BitAccess):  # => w.3: the reference is to w
-            e = e.base
+        while isinstance(e, A.BitAccess) or (isinstance(e, A.Index) and isinstance(T.resolve(e.base.ty), T.StringType)):
+            e = e.base  # => w.3, ADR(s[i]): the reference is to w, to s
         if isinstance(e, A.Name) and isinstance(e.sym, VarSymbol):
             e.sym.address_taken = True
         if (

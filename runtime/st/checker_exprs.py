@@ -337,8 +337,7 @@ class ExprChecks(CheckerBase):
             return None
         b = T.resolve(bty)
         if isinstance(b, T.StringType):
-            self.d.error("E050", "strings are not indexed", e.pos, "use MID(s, 1, pos)")
-            return None
+            return self.string_index(e, b)  # checker_pointers.py
         if not isinstance(b, T.ArrayType):
             self.d.error("E050", f"{bty} is not an array", e.pos)
             return None

@@ -22,6 +22,7 @@ from . import sizes
 from . import types as T
 from .checker_base import CheckerBase
 from .conversions import same_type
+from .profile import names_where
 from .symbols import CallInfo
 
 
@@ -99,6 +100,28 @@ class PointerChecks(CheckerBase):
             )
             return None
         return elem, size
+
+    def string_index(self, e: A.Index, b: T.StringType) -> T.Type | None:
+        """s[i]: where the profile allows it (CODESYS V3, TwinCAT 3), the
+        i-th byte of a STRING(n), from 0 to n (the last terminator), read
+        and written as a BYTE; of a WSTRING the i-th character as a WORD.
+        Its bytes are the byte view's (st/rt_bytes.py StrLeaf)."""
+        if not self.profile.string_index:
+            where = names_where(lambda p: p.string_index)
+            self.d.error(
+                "E050",
+                "strings are not indexed",
+                e.pos,
+                f"use MID(s, 1, pos) (the {where} profiles read s[i] as a byte)",
+            )
+            return None
+        if len(e.indices) != 1:
+            self.d.error("E050", f"a string takes one index, {len(e.indices)} given", e.pos)
+            return None
+        ix = e.indices[0]
+        if isinstance(ix.const, int) and not 0 <= ix.const <= b.length:
+            self.d.error("E051", f"index {ix.const} is outside 0..{b.length} of {b}", ix.pos)
+        return T.WORD if b.wide else T.BYTE
 
     def _pointer_error(self, e: A.Binary, message: str, hint: str) -> T.Type | None:
         self.d.error("E161", message, e.pos, hint)

@@ -14,7 +14,7 @@ from typing import Any
 from . import ast as A
 from . import conversions as C
 from . import ranges as R
-from . import refs, rt_varray
+from . import refs, rt_bytes, rt_varray
 from . import types as T
 from .codegen_base import CodeGenBase, array_type, elementary, py_literal
 from .symbols import CallInfo, PropertyInfo, VarSymbol
@@ -104,12 +104,20 @@ class ExprGen(CodeGenBase):
 
     def _index_target(self, e: A.Index) -> str:
         code = self.ex(e.base)
+        if isinstance(T.resolve(e.base.ty), T.StringType):  # s[i]: a byte (codesys, twincat)
+            return f"{self.string_leaf(e)}.byte_at({code}, {self.ex(e.indices[0])})"
         arr = array_type(e.base.ty)
         if arr.variable_length:  # ARRAY[*]: the caller's bounds (st/rt_varray.py)
             return self._varray_items(code, e.indices, arr)
         for ix, dim in zip(e.indices, arr.dims):
             code += f"[{self._index_code(ix, dim)}]"
         return code
+
+    def string_leaf(self, e: A.Index) -> str:
+        """The byte layout of s in s[i] (st/rt_bytes.py StrLeaf)."""
+        st = T.resolve(e.base.ty)
+        assert isinstance(st, T.StringType)
+        return self.const(rt_bytes.StrLeaf(st.length, st.wide))
 
     def _varray_items(self, base: str, indices: list, arr: T.ArrayType, last: bool = True) -> str:
         """base[i, j] of an ARRAY[*] parameter (a VarArray): each index
@@ -286,6 +294,8 @@ class ExprGen(CodeGenBase):
             return f"_AttrRef({self.fn.self_name}, {sym.pyname!r})"
         if isinstance(e, A.Member):
             return f"_AttrRef({self.ex(e.base)}, {e.sym.pyname!r})"
+        if isinstance(e, A.Index) and isinstance(T.resolve(e.base.ty), T.StringType):  # ADR(s[i]): a byte view
+            return f"{self.string_leaf(e)}.byte_ref({self.ref_code(e.base)}, {self.ex(e.indices[0])})"
         if isinstance(e, A.Index) and array_type(e.base.ty).variable_length:
             base = self.ex(e.base)
             arr = array_type(e.base.ty)

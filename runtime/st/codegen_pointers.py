@@ -9,7 +9,7 @@ references and code without pointers never reach this module.
 from __future__ import annotations
 
 from . import ast as A
-from . import sizes
+from . import refs, rt_bytes, sizes
 from . import types as T
 from .codegen_base import CodeGenBase, array_type
 
@@ -45,11 +45,41 @@ class PointerGen(CodeGenBase):
         shape = tuple(hi - lo + 1 for lo, hi in arr.dims)
         return f"_elem_ptr({code}, {esize}, {shape!r})"
 
+    def byte_view_code(self, code: str, src: T.Type | None, dst: T.Type) -> str:
+        """A pointer seen as a POINTER TO BYTE (WORD, ...) over its target's
+        bytes (st/rt_bytes.py)."""
+        assert src is not None
+        s, d = T.resolve(src), T.resolve(dst)
+        assert isinstance(s, T.RefType) and isinstance(d, T.RefType)
+        unit = rt_bytes.view_unit(d.target)
+        assert unit is not None
+        lay = self.const(rt_bytes.layout_of(s.target))
+        return f"{self.const(rt_bytes.byte_view)}({code}, {lay}, {self.const(unit[0])}, {unit[1]!r})"
+
+    def _field_view(self, e: A.Member) -> str | None:
+        """ADR(s.a) of an elementary field of a STRUCT: a byte view of the
+        structure at the field's offset, so that ADR(s.a) + SIZEOF(s.a)
+        reaches the next field as in CODESYS's memory (st/rt_bytes.py)."""
+        st = T.resolve(e.base.ty)
+        if not isinstance(st, T.StructType) or not isinstance(e.sym, T.StructField):
+            return None
+        unit = rt_bytes.layout_of(e.ty)
+        lay = rt_bytes.layout_of(st)
+        offsets = sizes.field_offsets(st)
+        if unit is None or lay is None or offsets is None or isinstance(unit, rt_bytes.StrLeaf) or not unit.leaf:
+            return None
+        offset = offsets[e.name.upper()][0]
+        return f"{self.const(refs.BytePtr)}({self.ex(e.base)}, {self.const(lay)}, {offset}, {self.const(unit)}, None)"
+
     def adr_code(self, e: A.Expr) -> str:
         """ADR(x): REF(x), but an element of a multi-dimensional array or an
         aggregate element is an ElemPtr into the whole array, so that
         arithmetic can step across rows and over structures."""
-        if not isinstance(e, A.Index):
+        if isinstance(e, A.Member) and e.implicit_ref is None:
+            field = self._field_view(e)
+            if field is not None:
+                return field
+        if not isinstance(e, A.Index) or isinstance(T.resolve(e.base.ty), T.StringType):
             return self.ref_code(e)
         arr = array_type(e.base.ty)
         if arr.variable_length or (len(arr.dims) == 1 and not T.resolve(arr.elem).is_aggregate):

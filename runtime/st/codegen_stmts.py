@@ -282,6 +282,8 @@ class StmtGen(CodeGenBase):
             s = T.resolve(src)
             assert isinstance(s, T.RefType)
             return self.decay_code(code, s.target)
+        if step == C.TO_BYTES:
+            return self.byte_view_code(code, src, dst)  # codegen_pointers.py
         d = T.resolve(dst)
         if step == C.TRUNCATE and isinstance(d, T.StringType):
             return f"({code})[:{d.length}]"
@@ -330,6 +332,10 @@ class StmtGen(CodeGenBase):
             self._store_name(target.sym, code)
         elif isinstance(target, A.Member):
             self.emit(f"{self.ex(target.base)}.{target.sym.pyname} = {code}")
+        elif isinstance(target, A.Index) and isinstance(T.resolve(target.base.ty), T.StringType):
+            base, ix = self.ex(target.base), self.ex(target.indices[0])
+            new = f"{self.string_leaf(target)}.with_byte({base}, {ix}, {code})"
+            self.emit_store(target.base, new, target.base.ty, None, trusted=True)
         elif isinstance(target, A.Index):
             self.emit(f"{self._index_target(target)} = {code}")
         elif isinstance(target, A.Deref):

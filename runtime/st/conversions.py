@@ -20,7 +20,7 @@ from __future__ import annotations
 from typing import Any
 
 from . import ast as A
-from . import rtlib
+from . import rt_bytes, rtlib
 from . import types as T
 from .diagnostics import DiagnosticBag
 from .oop import extends_fb, fb_hint, interface_accepts
@@ -238,12 +238,15 @@ def check_implicit(src: T.Type, dst: T.Type, e: A.Expr, what: str, profile: Prof
             and (same_type(s.target, d.target) or decays_to(s, d) or extends_fb(s.target, d.target))
         ):
             return True
-        if isinstance(s, T.RefType) and d.pointer and T.resolve(d.target) is T.BYTE:
+        if isinstance(s, T.RefType) and d.pointer and not s.reference and rt_bytes.view_unit(d.target) is not None:
+            if rt_bytes.layout_of(s.target) is not None:
+                return True  # a byte view (st/rt_bytes.py): CODESYS type punning
             diags.error(
                 "E161",
-                f"a POINTER TO BYTE over {s.target} (its bytes) is not supported",
+                f"a {d} over {s.target} (its bytes) is not supported",
                 e.pos,
-                "values are not kept as bytes here: point at the value itself, or convert it (e.g. DWORD_TO_BYTE, SHR)",
+                "byte views reach elementary values, strings, and arrays and structures of them; "
+                "not function block instances, pointers or ARRAY[*]",
             )
             return False
         if e.const == 0 and isinstance(s, T.ElementaryType) and s.is_intlike:
@@ -404,6 +407,7 @@ WRAP = "wrap"  # an integer into an integer type: wrapped to it unless the value
 CONVERT = "convert"  # the rest (REAL to integer, time units, time to number): the library converter
 TO_FIRST_ELEMENT = "to_first_element"  # a POINTER TO an ARRAY into a POINTER TO its element
 TO_NULL = "to_null"  # NULL (or the 0 CODESYS allows) into a reference: no reference
+TO_BYTES = "to_bytes"  # a pointer into a POINTER TO BYTE (WORD, ...) over its bytes (st/rt_bytes.py)
 
 
 def decays_to(s: T.RefType, d: T.RefType) -> bool:
@@ -419,6 +423,19 @@ def decays_to(s: T.RefType, d: T.RefType) -> bool:
     )
 
 
+def reinterprets(s: T.RefType, d: T.RefType) -> bool:
+    """A pointer stored as a POINTER TO BYTE, WORD, REAL ... (or an ARRAY
+    of them) over another type: a byte view of its target (CODESYS type
+    punning, st/rt_bytes.py)."""
+    return (
+        d.pointer
+        and not s.reference
+        and not same_type(s.target, d.target)
+        and rt_bytes.view_unit(d.target) is not None
+        and rt_bytes.layout_of(s.target) is not None
+    )
+
+
 def store_step(src: T.Type | None, dst: T.Type, e: A.Expr | None) -> str:
     """What storing a value of type src (the expression e, if known) into
     dst does to it: one of the steps above."""
@@ -427,6 +444,8 @@ def store_step(src: T.Type | None, dst: T.Type, e: A.Expr | None) -> str:
     if isinstance(d, T.RefType):
         if isinstance(s, T.RefType) and decays_to(s, d):
             return TO_FIRST_ELEMENT
+        if isinstance(s, T.RefType) and reinterprets(s, d):
+            return TO_BYTES
         return KEEP if isinstance(s, T.RefType) else TO_NULL
     if isinstance(d, T.InterfaceType):
         return KEEP if isinstance(s, (T.FBType, T.InterfaceType)) else TO_NULL

@@ -82,6 +82,9 @@ class Profile:
     loose_enums: bool = False
     # Length of a STRING declared without one.
     default_string_length: int = 80
+    # s[i] is the i-th byte of a STRING (from 0; a WSTRING's i-th WORD),
+    # read and written: CODESYS V3 and TwinCAT 3. IEC strings are not indexed.
+    string_index: bool = False
 
 
 IEC = Profile(
@@ -113,6 +116,7 @@ CODESYS = Profile(
     bool_from_0_1=True,
     literal_range="warning",
     loose_enums=True,
+    string_index=True,
 )
 
 TWINCAT = replace(CODESYS, name="twincat", trailing_comma_in_calls=True)

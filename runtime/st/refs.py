@@ -172,8 +172,90 @@ class ObjPtr:
         return (*_key(self.base), "+", self.offset) if self.offset else _key(self.base)
 
 
+class BytePtr:
+    """A byte view (st/rt_bytes.py): a pointer to unit (an elementary
+    layout; an ARRAY of count of them when count is not None) at a byte
+    offset into holder, an object of the given layout (a scalar reference
+    for a leaf, else the list or structure itself)."""
+
+    __slots__ = ("holder", "layout", "offset", "unit", "count")
+
+    def __init__(self, holder, layout, offset: int, unit, count: int | None) -> None:
+        self.holder = holder
+        self.layout = layout
+        self.offset = offset
+        self.unit = unit
+        self.count = count
+
+    def read(self, offset: int):
+        n = self.unit.size
+        if offset < 0 or offset + n > self.layout.size:
+            raise RangeFault(
+                "reference",
+                f"byte pointer outside its variable: byte offset {offset} in {self.layout.size} bytes",
+            )
+        return self.unit.decode(self.layout.read(self.holder, offset, n))
+
+    def write(self, offset: int, value) -> None:
+        n = self.unit.size
+        if offset < 0 or offset + n > self.layout.size:
+            raise RangeFault(
+                "reference",
+                f"byte pointer outside its variable: byte offset {offset} in {self.layout.size} bytes",
+            )
+        self.layout.write(self.holder, offset, self.unit.encode(value))
+
+    def get(self):
+        if self.count is not None:
+            return ByteArrayView(self)
+        return self.read(self.offset)
+
+    def set(self, value) -> None:
+        self.write(self.offset, value)
+
+    def key(self) -> tuple:
+        lay = self.layout
+        if lay.leaf:
+            base = _key(self.holder)
+            return (*base, "+", self.offset) if self.offset else base
+        if hasattr(lay, "shape") and lay.elem.leaf:  # on an element: as ElemPtr and ItemRef say it
+            i, skew = divmod(self.offset, lay.esize)
+            if not skew and 0 <= i < lay.count:
+                item = lay.element(self.holder, i)
+                return (id(item.seq), item.index)
+        for start, pyname, flay in getattr(lay, "fields", ()):  # on a field of a structure: as AttrRef
+            if start == self.offset and flay.leaf and flay.size == self.unit.size:
+                return (id(self.holder), pyname)
+        return (id(self.holder), "+", self.offset)
+
+
+class ByteArrayView:
+    """p^ of a byte view that points to an ARRAY: p^[i] reads and writes
+    the i-th unit from p (i from 0 here: the code generator subtracts the
+    array's lower bound and checks its upper one)."""
+
+    __slots__ = ("ptr",)
+
+    def __init__(self, ptr: BytePtr) -> None:
+        self.ptr = ptr
+
+    def __getitem__(self, i: int):
+        p = self.ptr
+        return p.read(p.offset + i * p.unit.size)
+
+    def __setitem__(self, i: int, value) -> None:
+        p = self.ptr
+        p.write(p.offset + i * p.unit.size, value)
+
+    def __len__(self) -> int:  # a := p^ and p^ := a copy the elements the ARRAY declares
+        return self.ptr.count or 0
+
+    def __iter__(self):
+        return (self[i] for i in range(len(self)))
+
+
 _SCALAR_REFS = (AttrRef, ItemRef, AccessorRef)
-_POINTERS = (ElemPtr, ObjPtr)
+_POINTERS = (ElemPtr, ObjPtr, BytePtr)
 
 
 def _key(r) -> tuple:
@@ -214,6 +296,8 @@ def elem_ptr(array, esize: int, shape: tuple):
     """A pointer to an array, taken as a pointer to its first element."""
     if array is None:
         return None
+    if type(array) is BytePtr and array.count is not None:
+        return BytePtr(array.holder, array.layout, array.offset, array.unit, None)
     if type(array) in _POINTERS:
         return array
     return ElemPtr(array, 0, esize, shape)
@@ -226,6 +310,8 @@ def ptr_add(p, delta: int, esize: int):
     t = type(p)
     if t is ElemPtr:
         return ElemPtr(p.root, p.offset + delta, p.esize, p.shape)
+    if t is BytePtr:
+        return BytePtr(p.holder, p.layout, p.offset + delta, p.unit, None)
     if t is ObjPtr:
         if p.offset + delta == 0:
             return p.base
@@ -256,6 +342,8 @@ def _order(p, esize: int) -> tuple:
         return id(p.seq), p.index * esize
     if t is ObjPtr:
         return _key(p.base), p.offset
+    if t is BytePtr:
+        return (_key(p.holder) if p.layout.leaf else id(p.holder)), p.offset
     return _key(p), 0
 
 

@@ -252,6 +252,7 @@ ACTION inner: INITIAL_STEP x: END_STEP END_ACTION
 END_PROGRAM
 ACTION p.seq: STEP y: END_STEP END_ACTION
 """,
+    "x := (p + 2)^ + (ps)^.a + (pa)^[1, 2] + (pp)^^ + (pf)^.m(1);",
 ]
 
 
