@@ -62,19 +62,24 @@ def summary(files: dict, diagnostics: list) -> str:
     warnings; then the totals and the codes by frequency."""
     errors: collections.Counter = collections.Counter()
     warnings: collections.Counter = collections.Counter()
-    codes: collections.Counter = collections.Counter()
     for d in diagnostics:
         (errors if d.is_error else warnings)[d.pos.file] += 1
-        codes[d.code] += 1
     rows = [(name, pou_count(name, text), errors[name], warnings[name]) for name, text in files.items()]
     width = max([len("file"), *(len(r[0]) for r in rows)])
     lines = [f"{'file':<{width}}  {'POUs':>5}  {'errors':>6}  {'warnings':>8}"]
     lines += [f"{n:<{width}}  {p:>5}  {e:>6}  {w:>8}" for n, p, e, w in rows]
     total = (sum(r[1] for r in rows), sum(r[2] for r in rows), sum(r[3] for r in rows))
     lines.append(f"{f'{len(rows)} files':<{width}}  {total[0]:>5}  {total[1]:>6}  {total[2]:>8}")
-    if codes:
-        lines.append("most frequent: " + ", ".join(f"{c} x{n}" for c, n in codes.most_common(8)))
+    frequent = most_frequent(diagnostics)
+    if frequent:
+        lines.append(frequent)
     return "\n".join(lines)
+
+
+def most_frequent(diagnostics: list) -> str:
+    """'most frequent: E010 x2, W130 x1' (the eight most frequent codes), or ''."""
+    codes = collections.Counter(d.code for d in diagnostics)
+    return "most frequent: " + ", ".join(f"{c} x{n}" for c, n in codes.most_common(8)) if codes else ""
 
 
 def note_other_profiles(files: list, profile: str, diagnostics: list, check) -> None:

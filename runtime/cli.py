@@ -160,7 +160,7 @@ def check(files, profile: str) -> None:
     """Check ST files (and PLCopen XML, TwinCAT files; a folder: every source
     in it, with a summary table) and report errors and warnings with
     file:line:column."""
-    from .check_summary import expand_sources, note_other_profiles, summary
+    from .check_summary import expand_sources, most_frequent, note_other_profiles, summary
     from .program import check_files
 
     folders = any(Path(f).is_dir() for f in files)
@@ -178,6 +178,8 @@ def check(files, profile: str) -> None:
     errors, warnings = _report(diagnostics, sources)
     if folders:
         _echo_err(summary({f: sources.text(f) or "" for f in files if sources.text(f) is not None}, diagnostics))
+    elif len({d.code for d in diagnostics}) > 1:
+        _echo_err(most_frequent(diagnostics))
     _echo_err(f"profile: {get_profile(profile).name}")  # what decided the dialect's questions
     if errors or warnings:
         _profile_hint(files, get_profile(profile).name, errors, warnings)

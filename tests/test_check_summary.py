@@ -51,3 +51,10 @@ def test_an_error_names_the_profiles_that_accept_the_construct(tmp_path):
     # SHL of an INT: CODESYS shifts an integer's bits; IEC wants ANY_BIT
     assert "hint: the profiles codesys, twincat, schneider accept this (--profile codesys)" in shl
     assert "accept" not in unknown  # an unknown name is an error everywhere
+
+
+def test_a_check_with_several_codes_ends_with_the_most_frequent(tmp_path):
+    f = tmp_path / "p.st"
+    f.write_text("PROGRAM p\nVAR i : INT; END_VAR\nx := 1;\ny := 2;\ni := 1.5;\nEND_PROGRAM\n")
+    r = softplc("check", f)
+    assert "most frequent: E010 x2, W121 x1" in r.stderr
