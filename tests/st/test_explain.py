@@ -87,3 +87,8 @@ def test_near_codes_are_the_numerically_closest_of_the_same_kind():
     assert explain.near("W101", 2) == ["W102", "W103"]
     assert explain.near("E30", 1) == ["E030"]  # a digit left out
     assert explain.near("EO30", 1) == ["E030"]  # a letter O for a zero: by spelling
+
+
+def test_the_last_line_of_a_check_names_the_most_frequent_code():
+    assert explain.more_line(["W130", "E010", "E010"]) == "for more on a code: softplc check --explain E010"
+    assert explain.more_line(["E020", "E010"]).endswith("--explain E020")  # a tie: the first found

@@ -10,6 +10,7 @@ still draws its code (its fix does not).
 
 from __future__ import annotations
 
+import collections
 import difflib
 import re
 from importlib import resources
@@ -46,3 +47,10 @@ def near(code: str, n: int = 5) -> list[str]:
     letter, number = m.group(1), int(m.group(2))
     same = [c for c in known if c[0] == letter] or known
     return sorted(same, key=lambda c: (abs(int(c[1:]) - number), c))[:n]
+
+
+def more_line(found: list[str]) -> str:
+    """The last line of a check with diagnostics: how to read the page of
+    the most frequent of the codes found (the first of them on a tie)."""
+    top = collections.Counter(found).most_common(1)[0][0]
+    return f"for more on a code: softplc check --explain {top}"
