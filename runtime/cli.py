@@ -1,6 +1,7 @@
 """The ``softplc`` command.
 
     softplc check FILE...                    report diagnostics
+    softplc check --explain CODE             the page of a diagnostic code (E030)
     softplc compile FILE... --emit-python    show the generated Python
     softplc exec FILE... --cycles N          run a PROGRAM (or FUNCTION) in virtual
                                              time and print its variables as JSON
@@ -154,15 +155,21 @@ def cli() -> None:
 
 
 @cli.command()
-@click.argument("files", nargs=-1, required=True, type=click.Path(exists=True, readable=True))
+@click.argument("files", nargs=-1, type=click.Path(exists=True, readable=True))
 @PROFILE_OPTION
-def check(files, profile: str) -> None:
+@click.option("--explain", "code", metavar="CODE", help="Print the page of a diagnostic code (e.g. E030); no FILES.")
+def check(files, profile: str, code: str | None) -> None:
     """Check ST files (and PLCopen XML, TwinCAT files; a folder: every source
     in it, with a summary table) and report errors and warnings with
     file:line:column."""
     from .check_summary import expand_sources, most_frequent, note_other_profiles, summary
     from .program import check_files
+    from .st import explain
 
+    if code is not None:
+        _explain(code)
+    if not files:
+        raise click.UsageError("Missing argument 'FILES...'.")
     folders = any(Path(f).is_dir() for f in files)
     files = expand_sources(list(files))
     if not files:
@@ -184,7 +191,23 @@ def check(files, profile: str) -> None:
     if errors or warnings:
         _profile_hint(files, get_profile(profile).name, errors, warnings)
     _summary(errors, warnings)
+    if diagnostics:
+        _echo_err(explain.more_line([d.code for d in diagnostics]))
     sys.exit(EXIT_COMPILE if errors else EXIT_OK)
+
+
+def _explain(code: str) -> None:
+    """Print code's page and exit 0; exit 2 naming the nearest codes if it has none."""
+    from .st import explain
+
+    text = explain.page(code)
+    if text is None:
+        near = explain.near(code)
+        _echo_err(f"softplc: no diagnostic code {code!r}" + (f"; near: {', '.join(near)}" if near else ""))
+        _echo_err("hint: a code is a letter and three digits, as check prints it: error E030, warning W130")
+        sys.exit(EXIT_USAGE)
+    click.echo(text, nl=False)
+    sys.exit(EXIT_OK)
 
 
 def _test_natives() -> tuple:

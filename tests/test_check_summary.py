@@ -34,7 +34,7 @@ def test_check_on_a_folder_prints_the_table(tmp_path):
     assert table[2].split() == [str(root / "src" / "b.st"), "1", "0", "0"]
     assert table[3].split() == ["2", "files", "3", "2", "1"]
     assert table[4] == "most frequent: E010 x2, W130 x1"
-    assert r.stderr.rstrip().endswith("2 errors, 1 warning")
+    assert r.stderr.rstrip().endswith("2 errors, 1 warning\nfor more on a code: softplc check --explain E010")
 
 
 def test_an_empty_folder_is_a_usage_error(tmp_path):

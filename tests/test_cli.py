@@ -131,14 +131,17 @@ def test_check_broken_file(st):
     assert first.startswith(f"{path}:5:6: error E")  # file:line:col: error CODE
     assert "undeclared" in proc.stderr
     assert "x := undeclared + 1;" in proc.stderr  # the source excerpt
-    assert "1 error" in proc.stderr.splitlines()[-1]
+    # the count, then where to read more on the code (softplc check --explain)
+    assert "1 error" in proc.stderr.splitlines()[-2]
+    assert proc.stderr.splitlines()[-1] == "for more on a code: softplc check --explain E010"
 
 
 def test_check_reports_warnings_but_succeeds(st):
     proc = softplc("check", st("narrow.st", WARNS), "--profile", "codesys")
     assert proc.returncode == 0
     assert ": warning W" in proc.stderr
-    assert proc.stderr.splitlines()[-1].startswith("0 errors, ")
+    assert proc.stderr.splitlines()[-2].startswith("0 errors, ")
+    assert proc.stderr.splitlines()[-1] == "for more on a code: softplc check --explain W121"
 
 
 @pytest.mark.parametrize("profile", ["iec", "matiec", "MatIEC"])
@@ -146,7 +149,7 @@ def test_check_profile_changes_severity(st, profile):
     proc = softplc("check", st("narrow.st", WARNS), "--profile", profile)
     assert proc.returncode == 1
     assert ": error E" in proc.stderr
-    assert proc.stderr.splitlines()[-2:] == [f"profile: {profile.lower()}", "1 error, 0 warnings"]
+    assert proc.stderr.splitlines()[-3:-1] == [f"profile: {profile.lower()}", "1 error, 0 warnings"]
 
 
 def test_check_syntax_error(st):
@@ -370,7 +373,7 @@ def test_check_suggests_schneider_for_the_schneider_samples():
     proc = softplc("check", REPO / "st_programs" / "ltmr_read_sdo.st")
     assert proc.returncode == 1
     no_traceback(proc)
-    assert proc.stderr.splitlines()[-3:-1] == [
+    assert proc.stderr.splitlines()[-4:-2] == [
         "profile: codesys",
         "reads like schneider (0x literals, %MW..:X bits and %MW..:n tables, ADR#); try --profile schneider",
     ]
@@ -410,7 +413,7 @@ END_PROGRAM
 def test_check_suggests_the_profile_a_file_reads_like(st, name, text, line):
     proc = softplc("check", st(name, text))
     assert proc.returncode == 1
-    assert proc.stderr.splitlines()[-2] == line
+    assert proc.stderr.splitlines()[-3] == line
 
 
 def test_check_suggests_nothing_when_no_other_profile_does_better(st):
@@ -418,4 +421,23 @@ def test_check_suggests_nothing_when_no_other_profile_does_better(st):
     proc = softplc("check", st("bad.st", "PROGRAM p\nVAR x : INT; END_VAR\n{{ x++; }}\nx := y;\nEND_PROGRAM\n"))
     assert proc.returncode == 1
     assert "reads like" not in proc.stderr
-    assert proc.stderr.splitlines()[-2] == "profile: codesys"
+    assert proc.stderr.splitlines()[-3] == "profile: codesys"
+
+
+def test_check_explain_prints_the_page_of_a_code():
+    # like rustc --explain: the page on stdout, no FILES needed, any case
+    proc = softplc("check", "--explain", "e030")
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.startswith("# E030: ") and "```st" in proc.stdout and proc.stderr == ""
+
+
+def test_check_explain_of_an_unknown_code_names_the_near_ones():
+    proc = softplc("check", "--explain", "E032")
+    assert proc.returncode == 2 and proc.stdout == ""
+    assert "no diagnostic code 'E032'; near: E031, E030, E028" in proc.stderr
+    no_traceback(proc)
+
+
+def test_check_without_files_or_explain_is_a_usage_error():
+    proc = softplc("check")
+    assert proc.returncode == 2 and "Missing argument" in proc.stderr
