@@ -14,6 +14,12 @@ from typing import Any
 from defusedxml import DefusedXmlException
 from defusedxml.ElementTree import DefusedXMLParser
 
+_REFUSED = {
+    "DTDForbidden": "it has a DTD (<!DOCTYPE ...>)",
+    "EntitiesForbidden": "it declares entities (<!ENTITY ...>)",
+    "ExternalReferenceForbidden": "it refers to an external entity",
+}
+
 
 class XmlError(Exception):
     """The file is not well-formed or refused; args: message, line, column, hint."""
@@ -90,7 +96,7 @@ def parse_xml(text: str) -> PosElement:
     except DefusedXmlException as exc:
         line = builder.expat.CurrentLineNumber if builder.expat is not None else 1
         raise XmlError(
-            f"refused XML: {type(exc).__name__} ({exc})",
+            f"refused XML: {_REFUSED.get(type(exc).__name__, type(exc).__name__)}",
             line,
             1,
             "a DTD, entity declarations and external entities are not accepted (PLCopen and TwinCAT exports have none)",
