@@ -30,7 +30,7 @@ from ..st.diagnostics import CompileError, DiagnosticBag, SourceSet
 from ..st.importers import source_files, st_views
 from ..st.limits import MAX_SOURCE_CHARS
 from ..st.parser import parse_source
-from ..st.profile import Profile, get_profile
+from ..st.profile import DEFAULT, Profile, get_profile
 from .libraries import parse_cached
 from .loaded import Program
 
@@ -90,8 +90,9 @@ def _declared(sf: A.SourceFile) -> set:
 def _library_index(name: str, text: str) -> tuple:
     """(names the file declares, words it uses) of an on-demand library file,
     parsed once per process: the choice of files then costs no parsing."""
+    files, _ = parse_cached(name, text, DEFAULT)
     return (
-        frozenset(_declared(parse_source(text, name, DiagnosticBag()))),
+        frozenset(set().union(*(_declared(sf) for sf in files))),
         frozenset(w.upper() for w in _WORD.findall(text)),
     )
 
@@ -223,8 +224,10 @@ def _front_end(paths: list, profile: Profile, texts: dict | None, natives: tuple
         library.extend(taken)
     for name, text in _needed_library(_always_sources(), _on_demand_sources(), user_words):
         sources.add(name, text)
-        # written to read alike in every profile (tests/program/test_compile.py)
-        sf = parse_source(text, name, lib_diags)
+        # written to read alike in every profile (tests/program/test_compile.py);
+        # parsed once per content, as the user's libraries (libraries.py)
+        [sf], items = parse_cached(name, text, DEFAULT)
+        lib_diags.extend(items)
         sf.decls = [d for d in sf.decls if not (isinstance(d, (A.POU, A.TypeDecl)) and d.name.upper() in user_names)]
         library.append(sf)
     checker = Checker(
