@@ -24,7 +24,7 @@ from typing import Any
 from ..ast import Pos
 from ..diagnostics import DiagnosticBag
 from .view import LineView
-from .xmlsafe import PosElement, TextPositions, XmlError, parse_xml
+from .xmlsafe import PosElement, TextPositions, parse_xml
 
 ELEMENTARY = {
     t.lower(): t
@@ -53,11 +53,8 @@ class ImportProblem(Exception):
 def plcopen_views(text: str, path: str, diags: DiagnosticBag) -> list[LineView]:
     """The ST views of a PLCopen XML file (one or two, laid out on its
     lines); problems become diagnostics at their XML position."""
-    try:
-        root = parse_xml(text)
-    except XmlError as exc:
-        message, line, col, hint = exc.args
-        diags.error("E180" if message.startswith("not well") else "E181", message, Pos(path, line, col), hint)
+    root = parse_xml(text, path, diags)
+    if root is None:
         return []
     if root.name != "project":
         diags.error(

@@ -22,7 +22,7 @@ from pathlib import PureWindowsPath
 from ..ast import Pos
 from ..diagnostics import DiagnosticBag
 from .view import LineView
-from .xmlsafe import PosElement, TextPositions, XmlError, parse_xml
+from .xmlsafe import PosElement, TextPositions, parse_xml
 
 SOURCE_SUFFIXES = (".tcpou", ".tcdut", ".tcgvl", ".tcio", ".st")
 # The POU kind a declaration opens, after its pragmas and comments.
@@ -33,7 +33,7 @@ _KIND = re.compile(
 
 def twincat_views(text: str, path: str, diags: DiagnosticBag) -> list[LineView]:
     """The ST views of a .TcPOU, .TcDUT, .TcGVL or .TcIO file."""
-    root = _read(text, path, diags)
+    root = parse_xml(text, path, diags)
     if root is None:
         return []
     lines = text.count("\n") + 1
@@ -59,7 +59,7 @@ def twincat_views(text: str, path: str, diags: DiagnosticBag) -> list[LineView]:
 def plcproj_files(text: str, path: str, diags: DiagnosticBag) -> list[str]:
     """The source files a TwinCAT .plcproj compiles, in its order: each
     <Compile Include="POUs\\MAIN.TcPOU"/>, relative to the project's folder."""
-    root = _read(text, path, diags)
+    root = parse_xml(text, path, diags)
     if root is None:
         return []
     base = os.path.dirname(path)
@@ -69,15 +69,6 @@ def plcproj_files(text: str, path: str, diags: DiagnosticBag) -> list[str]:
         if inc.lower().endswith(SOURCE_SUFFIXES):
             out.append(os.path.join(base, *PureWindowsPath(inc).parts))
     return out
-
-
-def _read(text: str, path: str, diags: DiagnosticBag) -> PosElement | None:
-    try:
-        return parse_xml(text)
-    except XmlError as exc:
-        message, line, col, hint = exc.args
-        diags.error("E180" if message.startswith("not well") else "E181", message, Pos(path, line, col), hint)
-        return None
 
 
 class _Reader:

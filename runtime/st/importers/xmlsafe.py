@@ -14,15 +14,14 @@ from typing import Any
 from defusedxml import DefusedXmlException
 from defusedxml.ElementTree import DefusedXMLParser
 
+from ..ast import Pos
+from ..diagnostics import DiagnosticBag
+
 _REFUSED = {
     "DTDForbidden": "it has a DTD (<!DOCTYPE ...>)",
     "EntitiesForbidden": "it declares entities (<!ENTITY ...>)",
     "ExternalReferenceForbidden": "it refers to an external entity",
 }
-
-
-class XmlError(Exception):
-    """The file is not well-formed or refused; args: message, line, column, hint."""
 
 
 class PosElement(ET.Element):
@@ -85,8 +84,9 @@ class _Builder(ET.TreeBuilder):
         return el
 
 
-def parse_xml(text: str) -> PosElement:
-    """The root element of text, or XmlError."""
+def parse_xml(text: str, path: str, diags: DiagnosticBag) -> PosElement | None:
+    """The root element of text; None when it is not well-formed (E180) or
+    refused (E181), reported at its position."""
     builder = _Builder()
     parser = DefusedXMLParser(target=builder, forbid_dtd=True, forbid_entities=True, forbid_external=True)
     builder.expat = parser.parser
@@ -94,15 +94,16 @@ def parse_xml(text: str) -> PosElement:
         parser.feed(text)
         root = parser.close()
     except DefusedXmlException as exc:
-        line = builder.expat.CurrentLineNumber if builder.expat is not None else 1
-        raise XmlError(
+        diags.error(
+            "E181",
             f"refused XML: {_REFUSED.get(type(exc).__name__, type(exc).__name__)}",
-            line,
-            1,
+            Pos(path, builder.expat.CurrentLineNumber, 1),
             "a DTD, entity declarations and external entities are not accepted (PLCopen and TwinCAT exports have none)",
-        ) from None
+        )
+        return None
     except ET.ParseError as exc:
         line, col = exc.position
-        raise XmlError(f"not well-formed XML: {exc.msg if hasattr(exc, 'msg') else exc}", line, col + 1, None) from None
+        diags.error("E180", f"not well-formed XML: {exc.msg if hasattr(exc, 'msg') else exc}", Pos(path, line, col + 1))
+        return None
     assert isinstance(root, PosElement)  # (the element factory)
     return root
