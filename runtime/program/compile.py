@@ -86,34 +86,45 @@ def _declared(sf: A.SourceFile) -> set:
     return names
 
 
+def _declared_in(files: list) -> set:
+    """Every name the parsed files declare (a file's views: several)."""
+    return set().union(*(_declared(sf) for sf in files))
+
+
 @functools.cache
 def _library_index(name: str, text: str) -> tuple:
     """(names the file declares, words it uses) of an on-demand library file,
     parsed once per process: the choice of files then costs no parsing."""
     files, _ = parse_cached(name, text, DEFAULT)
     return (
-        frozenset(set().union(*(_declared(sf) for sf in files))),
+        frozenset(_declared_in(files)),
         frozenset(w.upper() for w in _WORD.findall(text)),
     )
+
+
+def _take_named(units: list, words: set, index) -> tuple:
+    """(the units whose declared names the words name, and then those that
+    the taken units' words name in turn, in that order; all the words).
+    index(unit) -> (names it declares, words it uses), upper case."""
+    pending, taken, words = list(units), [], set(words)
+    grew = True
+    while grew:
+        grew = False
+        for unit in list(pending):
+            declared, used = index(unit)
+            if declared & words:
+                taken.append(unit)
+                pending.remove(unit)
+                words |= used
+                grew = True
+    return taken, words
 
 
 def _needed_library(always: list, on_demand: list, user_words: set) -> list:
     """(name, text) of the always-compiled files, and of the on-demand ones
     that the user's words (or an already needed library file's words) name."""
-    needed = list(always)
-    pending = list(on_demand)
-    words = set(user_words)
-    grew = True
-    while grew:
-        grew = False
-        for name, text in list(pending):
-            declared, used = _library_index(name, text)
-            if declared & words:
-                needed.append((name, text))
-                pending.remove((name, text))
-                words |= used
-                grew = True
-    return needed
+    taken, _ = _take_named(on_demand, user_words, lambda unit: _library_index(*unit))
+    return list(always) + taken
 
 
 def _std_functions() -> dict:
@@ -173,7 +184,7 @@ def _user_libraries(libraries: tuple, profile: Profile, words: set, diags: Diagn
     """(the parsed files of the user's libraries that the words name, and
     the words those use in turn; the namespaces for the checker). Errors in
     a library file that is taken are reported; the others cost nothing."""
-    units = []  # (declared, used, name, text, profile) per file
+    units = []  # (declared, used, name, text, parsed files, parse diagnostics) per file
     namespaces: dict = {}
     for lib in libraries:
         prof = get_profile(lib.profile) if lib.profile else profile
@@ -182,28 +193,17 @@ def _user_libraries(libraries: tuple, profile: Profile, words: set, diags: Diagn
             text = _read_text(f, diags)
             if text is None:
                 continue
-            files, _ = parse_cached(str(f), text, prof)
-            declared = set().union(*(_declared(sf) for sf in files)) if files else set()
+            files, items = parse_cached(str(f), text, prof)
+            declared = _declared_in(files)
             declared_all |= declared
-            units.append((declared, {w.upper() for w in _WORD.findall(text)}, str(f), text, prof))
+            units.append((declared, {w.upper() for w in _WORD.findall(text)}, str(f), text, files, items))
         namespaces[lib.namespace.upper()] = (lib.namespace, frozenset(declared_all))
-    taken: list = []
-    words = set(words)
-    grew = True
-    while grew:
-        grew = False
-        for unit in list(units):
-            if unit[0] & words:
-                taken.append(unit)
-                units.remove(unit)
-                words |= unit[1]
-                grew = True
+    taken, words = _take_named(units, words, lambda unit: unit[:2])
     parsed = []
-    for _declared_names, _used, name, text, prof in taken:
+    for _declared_names, _used, name, text, files, items in taken:
         sources.add(name, text)
-        files, items = parse_cached(name, text, prof)
         diags.extend(d for d in items if d.is_error)
-        parsed.extend(files)
+        parsed.extend(files)  # (new objects of this compilation: parse_cached)
     return parsed, words, namespaces
 
 
