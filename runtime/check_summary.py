@@ -10,7 +10,7 @@ from pathlib import Path
 
 from .st import ast as A
 from .st.diagnostics import DiagnosticBag
-from .st.importers import is_imported, st_views
+from .st.importers import is_source, st_views
 from .st.parser import parse_source
 from .st.profile import PROFILES
 
@@ -31,9 +31,7 @@ def expand_sources(paths: list) -> list[str]:
         found = sorted(
             f
             for f in p.rglob("*")
-            if f.is_file()
-            and not _SKIPPED.intersection(f.relative_to(p).parts[:-1])
-            and (f.suffix.lower() == ".st" or is_imported(f.name))
+            if f.is_file() and not _SKIPPED.intersection(f.relative_to(p).parts[:-1]) and is_source(f.name)
         )
         projects = [f for f in found if f.suffix.lower() == ".plcproj"]
         if projects:

@@ -184,7 +184,7 @@ def check(files, profile: str, code: str | None) -> None:
     )
     errors, warnings = _report(diagnostics, sources)
     if folders:
-        _echo_err(summary({f: sources.text(f) or "" for f in files if sources.text(f) is not None}, diagnostics))
+        _echo_err(summary({f: text for f in files if (text := sources.text(f)) is not None}, diagnostics))
     elif len({d.code for d in diagnostics}) > 1:
         _echo_err(most_frequent(diagnostics))
     _echo_err(f"profile: {get_profile(profile).name}")  # what decided the dialect's questions

@@ -26,7 +26,7 @@ from pathlib import Path
 
 from ..st import ast as A
 from ..st.diagnostics import DiagnosticBag
-from ..st.importers import is_imported, st_views
+from ..st.importers import is_source, st_views
 from ..st.parser import parse_source
 from ..st.profile import Profile
 
@@ -48,11 +48,7 @@ class Library:
         """The library's source files, sorted (sub-folders included)."""
         if self.path.is_file():
             return [self.path]
-        found = [
-            p
-            for p in self.path.rglob("*")
-            if p.is_file() and (p.suffix.lower() == ".st" or is_imported(p.name)) and not p.name.startswith(".")
-        ]
+        found = [p for p in self.path.rglob("*") if p.is_file() and is_source(p.name) and not p.name.startswith(".")]
         return sorted(found)
 
 
@@ -88,20 +84,22 @@ def parse_cached(name: str, text: str, profile: Profile) -> tuple[list, list]:
         _SALT = _version_salt()
     key = hashlib.sha256(_SALT + profile.name.encode() + b"\0" + name.encode() + b"\0" + text.encode()).hexdigest()
     data = _PARSES.get(key)
+    if data is not None:
+        return pickle.loads(data)
+    path = _cache_dir() / "st" / f"{key}.pickle"
+    try:
+        data = path.read_bytes()
+        parsed = pickle.loads(data)  # our own cache, in the user's folder; a damaged entry is parsed again
+    except Exception:
+        data = None
     if data is None:
-        path = _cache_dir() / "st" / f"{key}.pickle"
-        try:
-            data = path.read_bytes()
-            pickle.loads(data)  # a damaged entry is parsed again
-        except Exception:
-            data = None
-        if data is None:
-            diags = DiagnosticBag()
-            files = [parse_source(view, name, diags, profile) for view in st_views(name, text, diags)]
-            data = pickle.dumps((files, diags.items), protocol=pickle.HIGHEST_PROTOCOL)
-            _store(path, data)
-        _PARSES[key] = data
-    return pickle.loads(data)
+        diags = DiagnosticBag()
+        files = [parse_source(view, name, diags, profile) for view in st_views(name, text, diags)]
+        parsed = (files, diags.items)  # (new objects: only their pickle is kept)
+        data = pickle.dumps(parsed, protocol=pickle.HIGHEST_PROTOCOL)
+        _store(path, data)
+    _PARSES[key] = data
+    return parsed
 
 
 def _store(path: Path, data: bytes) -> None:

@@ -33,7 +33,7 @@ from ..engine.build import build_engine
 from ..engine.scan import Engine
 from ..plugin.registry import registry
 from ..program import compile_files
-from ..st.importers import is_imported
+from ..st.importers import is_source
 from .places import PathError, Resolver
 from .trace import Trace
 from .values import duration_value_ns
@@ -135,9 +135,7 @@ class PLC:
         files: list = []
         texts: dict = {}
         for i, item in enumerate(items):
-            if isinstance(item, Path) or (
-                isinstance(item, str) and "\n" not in item and (item.lower().endswith(".st") or is_imported(item))
-            ):
+            if isinstance(item, Path) or (isinstance(item, str) and "\n" not in item and is_source(item)):
                 files.append(Path(item))
             elif isinstance(item, str):
                 texts[f"<st {i + 1}>.st" if len(items) > 1 else "<st>.st"] = item

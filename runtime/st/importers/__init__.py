@@ -10,7 +10,7 @@ from ..diagnostics import DiagnosticBag
 from .plcopen import plcopen_views
 from .twincat import plcproj_files, twincat_views
 
-__all__ = ["is_imported", "source_files", "st_export", "st_views"]
+__all__ = ["is_imported", "is_source", "source_files", "st_export", "st_views"]
 
 _READERS = {
     ".xml": plcopen_views,
@@ -40,6 +40,12 @@ def source_files(paths: list, read, diags: DiagnosticBag) -> list:
 def is_imported(path: str) -> bool:
     """Whether path is read through an importer (by its suffix)."""
     return path.lower().endswith((*_READERS, *_PROJECTS))
+
+
+def is_source(name: str) -> bool:
+    """Whether a file of that name is a source softplc reads: ST, or a kind
+    it imports (a project file included)."""
+    return name.lower().endswith(".st") or is_imported(name)
 
 
 def st_views(path: str, text: str, diags: DiagnosticBag) -> list[str]:
