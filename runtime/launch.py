@@ -90,6 +90,7 @@ def run_plc(
     from .plugin.driver import DriverError
     from .st.diagnostics import CompileError
     from .st.faults import STFault
+    from .surfaces.host import SERVERS, SurfaceError, Surfaces
     from .trace.plot import PlotUnavailable, parse_units, plot
 
     plots = [t for t in traces if Path(t).suffix.lower() in PLOT_SUFFIXES]
@@ -146,7 +147,13 @@ def run_plc(
             except OSError as e:
                 return _fail(f"--trace: cannot write {e.filename}: {e.strerror or e}", EXIT_CONFIG)
             engine.after_tick.append(_announce_first_scan)
-            reporter = StatusReporter(engine, sys.stderr, watched, tty)
+            surfaces = Surfaces(engine, {key: cfg.sections.get(key) for key in SERVERS})
+            try:
+                surfaces.start()
+            except SurfaceError as e:
+                return _fail(str(e), EXIT_CONFIG)
+            cleanup.callback(surfaces.stop)
+            reporter = StatusReporter(engine, sys.stderr, watched, tty, hub=surfaces.hub)
             cleanup.enter_context(_signals(engine))
             _start_console_commands(engine)
             reporter.start()

@@ -4,6 +4,7 @@ engine is built from.
 
     cfg = load_config("io_config/plant.toml")     # PlcConfig, or ConfigError
     cfg.tasks, cfg.sims, cfg.can, cfg.modbus ...  # a bus's section by its key
+    cfg.sections["web"]                            # a server's ServerConfig, or None
 
 Pass 1 validates the whole document against one pydantic model composed of
 the sections' models; pass 2 runs each section's relations on the raw data
@@ -33,6 +34,7 @@ from .errors import ConfigError, in_file_order, key_text, not_finite, translate
 from .plc import CORE_SECTIONS, DEFAULT_SPIN_NS, RetainConfig, SafeOutput, TaskConfig, with_safe_defaults
 from .relations import Relations
 from .section import Section
+from .servers import SERVER_SECTIONS
 from .sims import SimConfig, SimSection
 from .values import Model, got
 
@@ -148,8 +150,8 @@ class _Document:
             section.bind(reg)
         # the document's keys in this order ("expected one of plc, retain ..."); the
         # simulated devices are checked last, when the buses they sit on are known
-        self.sections: list[Section] = [*CORE_SECTIONS, self.sims, *bus_sections]
-        self.check_order: list[Section] = [*CORE_SECTIONS, *bus_sections, self.sims]
+        self.sections: list[Section] = [*CORE_SECTIONS, *SERVER_SECTIONS, self.sims, *bus_sections]
+        self.check_order: list[Section] = [*CORE_SECTIONS, *SERVER_SECTIONS, *bus_sections, self.sims]
         fields: dict[str, Any] = {}
         for section in self.sections:
             # list[model], built as a call: mypy takes no runtime value as a type argument

@@ -14,6 +14,7 @@ from typing import TextIO
 from ..image.address import default_type, parse_address
 from ..st import types as T
 from ..st.valuejson import encode_value
+from .snapshot import Snapshot, SnapshotHub
 
 
 @dataclass(frozen=True)
@@ -57,6 +58,8 @@ class Watch:
     def __init__(self, engine, paths: list) -> None:
         self.engine = engine
         self.paths = list(paths)
+        #: the paths as declared, once a SnapshotHub watches them (status_text)
+        self.canonical: list = []
         self._resolved_at = None
         self._cells: list = []
         for path in self.paths:  # fail early, with the path in the message
@@ -142,23 +145,40 @@ def _us(ns: float) -> str:
 
 
 def status_line(engine, watch: Watch | None = None) -> str:
+    """The status line of the engine as it is now (a stopped engine, a test)."""
+    hub = SnapshotHub(engine, attach=False)
+    return status_text(hub.capture() if watch is None else _watched(hub, watch), watch)
+
+
+def _watched(hub: SnapshotHub, watch: Watch) -> Snapshot:
+    watch.canonical = hub.watch("status", watch.paths)
+    return hub.current()
+
+
+def status_text(snap: Snapshot, watch: Watch | None = None) -> str:
     """One line: time, ticks, per task cycle times / jitter / overruns, faults,
-    the drivers' status, watched values."""
-    parts = [f"t={engine.clock.now_ns() / 1e9:.2f}s", f"cycles={engine.cycle}"]
-    for task in engine.tasks:
-        s = task.stats
-        state = " FAULT" if task.fault is not None else ""
+    the drivers' status, watched values; from a snapshot (engine/snapshot.py)."""
+    parts = [f"t={snap.time_ns / 1e9:.2f}s", f"cycles={snap.cycle}"]
+    for s in snap.tasks:
+        state = " FAULT" if s.fault is not None else ""
         parts.append(
-            f"{task.name}{state}: {_us(s.last_ns)}/{_us(s.mean_ns)}/{_us(s.max_ns)} "
+            f"{s.name}{state}: {_us(s.last_ns)}/{_us(s.mean_ns)}/{_us(s.max_ns)} "
             f"jitter {_us(s.jitter_max_ns)} overruns {s.overruns}"
         )
-    parts.append(f"faults={len(engine.faults)}" + (" outputs SAFE" if engine.outputs_safe else ""))
-    for driver in engine.drivers:  # a bus driver's word on its bus: "canopen: 1/1 up"
-        status = driver.status()
-        if status.message:
-            parts.append(status.message if status.ok else f"{status.message} (!)")
+    parts.append(f"faults={len(snap.faults)}" + (" outputs SAFE" if snap.outputs_safe else ""))
+    for driver in snap.drivers:  # a bus driver's word on its bus: "canopen: 1/1 up"
+        if driver.message:
+            parts.append(driver.message if driver.ok else f"{driver.message} (!)")
     if watch is not None and watch.paths:
-        parts.append(" ".join(f"{p}={v}" for p, v in watch.shown()))
+        shown = []
+        for path, canonical in zip(watch.paths, watch.canonical or watch.paths):
+            text = (
+                json.dumps(snap.json(canonical), separators=(",", ":"), ensure_ascii=False)
+                if canonical in snap.values
+                else "?"
+            )
+            shown.append(f"{path}={text}")
+        parts.append(" ".join(shown))
     return " | ".join(parts)
 
 
@@ -197,6 +217,7 @@ class StatusReporter:
         tty: bool,
         every_s: float = 5.0,
         columns: int | None = None,
+        hub: SnapshotHub | None = None,
     ) -> None:
         self.engine = engine
         self.stream = stream
@@ -204,6 +225,9 @@ class StatusReporter:
         self.tty = tty
         self.columns = columns  # None: ask the terminal
         self.period = 0.25 if tty else every_s
+        self.hub = hub if hub is not None else SnapshotHub(engine, period_s=self.period)
+        if watch is not None and watch.paths:
+            watch.canonical = self.hub.watch("status", watch.paths)
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._loop, name="softplc-status", daemon=True)
 
@@ -216,8 +240,8 @@ class StatusReporter:
 
     def show(self, final: bool = False) -> None:
         try:
-            line = status_line(self.engine, self.watch)
-        except Exception as exc:  # a watched value changing shape mid-read: skip this refresh
+            line = status_text(self.hub.current(), self.watch)
+        except Exception as exc:  # no scan yet, a watched value changing shape: skip this refresh
             line = f"(status unavailable: {exc})"
         if self.tty and not final:
             self.stream.write("\r\x1b[K" + fit(line, self.columns or terminal_columns(self.stream)))

@@ -22,6 +22,7 @@ of finishing it, and that tick hands the drivers the safe output values.
 from __future__ import annotations
 
 import logging
+import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -167,6 +168,16 @@ class Engine:
         #: forced values by key (a path): each callable stores its value again;
         #: tick() calls them after the inputs are read and after the tasks ran
         self.forces: dict[str, Callable[[], None]] = {}
+        #: the forced values as the one who forced them gave them, by key (engine/access.py)
+        self.forced_values: dict = {}
+        #: the thread in run(), None outside it (engine/access.py queues writes for it)
+        self.scan_thread: int | None = None
+        #: +1 whenever program instances are replaced (a restart, an online
+        #: change): whoever holds a variable's place resolves its path again
+        self.generation = 0
+        #: called with the engine in each tick after the inputs are read,
+        #: before the forces and the tasks: writes from other threads land here
+        self.before_tasks: list[Callable] = []
 
     # ------------------------------------------------------------ set-up
 
@@ -270,16 +281,20 @@ class Engine:
         clock = self.clock
         end_ns = None if duration_ns is None else clock.now_ns() + duration_ns
         ran = 0
-        while not self._stop_requested and (cycles is None or ran < cycles):
-            release = self.next_release()
-            if end_ns is not None and release >= end_ns:
-                clock.sleep_until(end_ns)
-                break
-            clock.sleep_until(release)
-            if self._stop_requested:  # asked for while sleeping: no new scan
-                break
-            self.tick()
-            ran += 1
+        self.scan_thread = threading.get_ident()
+        try:
+            while not self._stop_requested and (cycles is None or ran < cycles):
+                release = self.next_release()
+                if end_ns is not None and release >= end_ns:
+                    clock.sleep_until(end_ns)
+                    break
+                clock.sleep_until(release)
+                if self._stop_requested:  # asked for while sleeping: no new scan
+                    break
+                self.tick()
+                ran += 1
+        finally:
+            self.scan_thread = None
         return ran
 
     def next_release(self) -> int:
@@ -304,6 +319,8 @@ class Engine:
                 driver.advance_to(now)
         for driver in self.drivers:
             driver.read_inputs(image)
+        for callback in self.before_tasks:
+            callback(self)
         forces = list(self.forces.values())
         for apply in forces:  # over what the drivers read ...
             apply()
@@ -324,7 +341,7 @@ class Engine:
         if now >= self._next_retain_ns and self.retain_store is not None:
             self._next_retain_ns = now + self.retain_period_ns
             self.save_retain()
-        for callback in self.after_tick:
+        for callback in tuple(self.after_tick):  # a callback may remove itself
             callback(self)
 
     def _run_task(self, task: Task, t0: int | None = None, now: int | None = None) -> int | None:
@@ -459,6 +476,7 @@ class Engine:
             task.late_cycles = 0
         self.outputs_safe = False
         self.restarts += 1
+        self.generation += 1
         assert self.diag is not None  # a task faulted, so start() ran
         self.diag.set(Faulted=False, OutputsSafe=False, Restarts=self.restarts)
         log.warning("restarted task(s) %s; outputs live again", ", ".join(t.name for t in faulted))
@@ -530,6 +548,7 @@ class Engine:
 
     def unforce(self, key: str) -> bool:
         """Release a force; the variable keeps its value until someone writes it. False if key was not forced."""
+        self.forced_values.pop(key, None)
         return self.forces.pop(key, None) is not None
 
     def variable(self, path: str):

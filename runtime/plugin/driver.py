@@ -70,6 +70,12 @@ class Driver:
         """The loaded program's globals, once after start-up: a driver that
         shows diagnostics to the program (CANOPEN_NODE ...) keeps them."""
 
+    def details(self) -> dict:
+        """What the monitors show of the bus beyond status(): its nodes, their
+        states, errors and EMCY history, as JSON data (called from the scan
+        thread at a snapshot, so it must be quick)."""
+        return {}
+
     def read_inputs(self, image: ProcessImage) -> None:
         raise NotImplementedError
 

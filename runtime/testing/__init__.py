@@ -36,10 +36,10 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from .places import PathError
+    from ..engine.places import PathError
+    from ..engine.values import EnumValue
     from .plc import PLC, duration_ns
     from .trace import Row, Trace
-    from .values import EnumValue
 
 # The names are imported on first use (PEP 562): the pytest plugins live in
 # this package, and a pytest run that never builds a PLC must not pay for
@@ -47,10 +47,10 @@ if TYPE_CHECKING:
 _WHERE = {
     "PLC": ".plc",
     "duration_ns": ".plc",
-    "PathError": ".places",
+    "PathError": "..engine.places",
     "Row": ".trace",
     "Trace": ".trace",
-    "EnumValue": ".values",
+    "EnumValue": "..engine.values",
 }
 
 

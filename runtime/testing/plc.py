@@ -29,14 +29,15 @@ from pathlib import Path
 from typing import Any
 
 from ..config import PlcConfig, config_from_dict, default_config_path
+from ..engine.access import Access, Permission
 from ..engine.build import build_engine
+from ..engine.places import PathError
 from ..engine.scan import Engine
+from ..engine.values import duration_value_ns
 from ..plugin.registry import registry
 from ..program import compile_files
 from ..st.importers import is_source
-from .places import PathError, Resolver
 from .trace import Trace
-from .values import duration_value_ns
 
 log = logging.getLogger("softplc.testing")
 
@@ -69,11 +70,11 @@ class PLC:
         self._watched: list[str] = []
         self._due: list = []  # heap of (time_ns, order, action, text)
         self._order = itertools.count()
-        self._forced: dict[str, Any] = {}
         self._places: dict = {}  # watched path -> Place, while the instances stay the same
-        self._restarts = engine.restarts
+        self._generation = engine.generation
         engine.load()
-        self._resolver = Resolver(engine)
+        #: the engine's one write/force API (engine/access.py); a test may change anything
+        self.access = Access(engine, {"test": Permission(("*",))})
         engine.after_tick.append(self._after_tick)
 
     # ------------------------------------------------------------ construction
@@ -201,7 +202,7 @@ class PLC:
         AssertionError names the condition and shows the trace around it."""
         if isinstance(condition, str):
             path = condition
-            self._resolver.place(path)  # a wrong path fails now, not at the timeout
+            self.access.place(path)  # a wrong path fails now, not at the timeout
             if path not in self._watched:
                 self.watch(path)
 
@@ -240,7 +241,7 @@ class PLC:
         """The value at path with its ST type (values.py): enums as EnumValue
         (equal to 'Running'), TIME as timedelta, structs as dicts, arrays as
         lists. A wrong path raises KeyError naming it."""
-        return self._resolver.place(path).read()
+        return self.access.place(path).read()
 
     def __getitem__(self, path: str) -> Any:
         return self.read(path)
@@ -252,32 +253,25 @@ class PLC:
         """Store value once (the program and the buses may change it at the
         next scan). Checked against the ST type: ValueError names the path,
         its type and what it takes."""
-        self._resolver.place(path).writer(value)()
+        self.access.write(path, value, surface="test")
 
     def force(self, path: str, value: Any) -> None:
         """Hold path at value against the program and the buses: stored now,
         and in every scan after the inputs are read and again after the
         tasks ran, until unforce. A forced output reaches its bus as forced."""
-        place = self._resolver.place(path)
-        apply = place.writer(value)
-        self.engine.force(place.path.upper(), apply)
-        self._forced[place.path] = value
+        self.access.force(path, value, surface="test")
 
     def unforce(self, path: str) -> None:
         """Release a force; the variable keeps its value until written."""
-        place = self._resolver.place(path)
-        if not self.engine.unforce(place.path.upper()):
-            raise KeyError(f"{path} is not forced (forced: {', '.join(self._forced) or 'nothing'})")
-        self._forced.pop(place.path, None)
+        self.access.unforce(path, surface="test")
 
     def unforce_all(self) -> None:
-        for path in list(self._forced):
-            self.unforce(path)
+        self.access.unforce_all(surface="test")
 
     @property
     def forced(self) -> dict:
         """The forced paths and their values."""
-        return dict(self._forced)
+        return self.access.forced
 
     # ------------------------------------------------------------ simulated devices
 
@@ -343,7 +337,7 @@ class PLC:
                 when, path, value = event
             except (TypeError, ValueError):
                 raise ValueError(f"script: each event is (time, path, value), not {event!r}") from None
-            self.at(when, self._resolver.place(path).writer(value), f"{path} := {value!r}")
+            self.at(when, self.access.place(path).writer(value), f"{path} := {value!r}")
 
     def _fire(self, now_ns: int) -> None:
         while self._due and self._due[0][0] <= now_ns:
@@ -355,7 +349,7 @@ class PLC:
     def watch(self, *paths: str) -> None:
         """Record these paths' values after every scan in plc.trace (a row when one changes)."""
         for path in paths:
-            self._resolver.place(path)  # a wrong path fails here
+            self.access.place(path)  # a wrong path fails here
             if path not in self._watched:
                 self._watched.append(path)
         self.trace.paths = list(self._watched)
@@ -364,13 +358,13 @@ class PLC:
     def _record(self) -> None:
         if not self._watched:
             return
-        if self._restarts != self.engine.restarts:  # restarted tasks have new instances
+        if self._generation != self.engine.generation:  # restarted tasks or a new program: new instances
             self._places.clear()
-            self._restarts = self.engine.restarts
+            self._generation = self.engine.generation
         places = self._places
         for p in self._watched:
             if p not in places:
-                places[p] = self._resolver.place(p)
+                places[p] = self.access.place(p)
         values = {p: places[p].read() for p in self._watched}
         if values:
             self.trace.record(self.engine.now_ns(), self.engine.cycle, values)

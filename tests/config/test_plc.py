@@ -34,7 +34,16 @@ def test_minimal_file_and_defaults(tmp_path):
         tasks=[],
         retain=None,
         safe_outputs=[],
-        sections={"loopback": [], "can": [], "canopen": None, "plaincan": [], "modbus": []},
+        sections={
+            "web": None,
+            "opcua": None,
+            "modbus_server": None,
+            "loopback": [],
+            "can": [],
+            "canopen": None,
+            "plaincan": [],
+            "modbus": [],
+        },
         raw={"plc": {"programs": ["main.st"]}},
     )
 
@@ -164,7 +173,8 @@ def test_unknown_key_without_suggestion(tmp_path):
 def test_later_sections_are_unknown_for_now(tmp_path):
     assert error(tmp_path, PLC + "[mpu2s]\nx = 1\n") == (
         "mpu2s",
-        "unknown key (expected one of plc, retain, task, outputs, sim, loopback, can, canopen, plaincan, modbus)",
+        "unknown key (expected one of plc, retain, task, outputs, web, opcua, modbus_server, sim, "
+        "loopback, can, canopen, plaincan, modbus)",
     )
 
 
@@ -592,3 +602,24 @@ def test_outputs_unknown_key_and_type(tmp_path):
     assert errors(tmp_path, PLC + '[outputs]\nsafe = ["%QX0.0"]\n') == [
         ("outputs.safe", 'expected a table of %Q address = value, such as { "%QX0.0" = false } (got an array)')
     ]
+
+
+# ====================================================================== servers
+
+
+def test_a_server_section_defaults_to_loopback_and_warns_when_it_listens_beyond(tmp_path):
+    cfg = load(tmp_path, PLC + "[web]\n[opcua]\nhost = '0.0.0.0'\nwritable = ['Main.Setpoint']\n")
+    web, opcua = cfg.sections["web"], cfg.sections["opcua"]
+    assert (web.host, web.port, web.writable, web.public) == ("127.0.0.1", 8080, ("*",), False)
+    assert (opcua.host, opcua.port, opcua.writable, opcua.public) == ("0.0.0.0", 4840, ("Main.Setpoint",), True)
+    assert cfg.sections["modbus_server"] is None
+    assert [w.split(": ", 1)[1] for w in cfg.warnings] == [
+        "opcua.host: listens on 0.0.0.0: the PLC is reachable from the network (127.0.0.1 keeps it local)"
+    ]
+
+
+def test_a_bad_server_key_names_the_key(tmp_path):
+    assert error(tmp_path, PLC + "[modbus_server]\nport = 70000\n") == (
+        "modbus_server.port",
+        "expected an integer from 0 to 65535 (got 70000)",
+    )

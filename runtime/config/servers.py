@@ -1,0 +1,140 @@
+"""The sections of the servers a running PLC offers: [web] (the monitor
+page), [opcua] (an OPC UA server) and [modbus_server] (a Modbus TCP server
+for HMIs). Each listens on 127.0.0.1 unless `host` says otherwise; another
+host is allowed but logged as a warning, since it opens the PLC to the
+network. `writable` lists the variables the surface may write and force
+(fnmatch patterns over ST paths and addresses: "Main.*", "%QX*", "*").
+
+    [web]
+    port = 8080                   # host = "127.0.0.1", writable = ["*"]
+
+    [opcua]
+    port = 4840
+    writable = ["Main.Setpoint"]  # read-only unless listed
+
+    [modbus_server]
+    port = 5020                   # writable = ["%Q*", "%M*"]
+"""
+
+from __future__ import annotations
+
+import ipaddress
+from dataclasses import dataclass, field
+from typing import Annotated, Any
+
+from pydantic import Field, PlainValidator
+
+from .relations import Relations
+from .section import Section
+from .values import DURATION_EXAMPLES, Model, fail, int_range, positive_duration
+
+LOOPBACK = "127.0.0.1"
+
+
+def _host(value) -> str:
+    if isinstance(value, str) and value.strip() and not any(c.isspace() for c in value):
+        return value
+    raise fail('a host name or address to listen on, such as "127.0.0.1" or "0.0.0.0"', value)
+
+
+def _patterns(value) -> tuple:
+    if isinstance(value, list) and all(isinstance(v, str) and v.strip() for v in value):
+        return tuple(v.strip() for v in value)
+    raise fail('an array of variable paths or patterns such as ["Main.Setpoint", "%QX*", "*"]', value)
+
+
+Host = Annotated[str, PlainValidator(_host)]
+Port = Annotated[int, int_range(0, 65535)]
+Patterns = Annotated[tuple, PlainValidator(_patterns)]
+Period = Annotated[int, PlainValidator(positive_duration)]
+
+
+@dataclass(frozen=True)
+class ServerConfig:
+    """What every server section has; a section's own keys in `options`."""
+
+    key: str  # the section: "web", "opcua", "modbus_server"
+    host: str
+    port: int
+    writable: tuple
+    period_ns: int  # how often the server takes the engine's values
+    options: dict = field(default_factory=dict)
+    where: str = ""  # "[opcua] writable in plant.toml", for a refused write
+
+    @property
+    def public(self) -> bool:
+        """True when the server listens beyond this machine."""
+        return not _is_loopback(self.host)
+
+
+def _is_loopback(host: str) -> bool:
+    if host == "localhost":
+        return True
+    try:
+        return ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        return False
+
+
+class _Web(Model):
+    host: Host = Field(LOOPBACK, description='an address such as "127.0.0.1"')
+    port: Port = Field(8080, description="a TCP port, 0 for any free one")
+    writable: Patterns = Field(("*",), description='an array of patterns such as ["Main.*"]')
+    period: Period = Field(250_000_000, description=f"a duration such as {DURATION_EXAMPLES}")
+
+
+class _Opcua(Model):
+    host: Host = Field(LOOPBACK, description='an address such as "127.0.0.1"')
+    port: Port = Field(4840, description="a TCP port, 0 for any free one")
+    writable: Patterns = Field((), description='an array of patterns such as ["Main.Setpoint"]')
+    period: Period = Field(100_000_000, description=f"a duration such as {DURATION_EXAMPLES}")
+
+
+class _ModbusServer(Model):
+    host: Host = Field(LOOPBACK, description='an address such as "127.0.0.1"')
+    port: Port = Field(5020, description="a TCP port, 0 for any free one")
+    writable: Patterns = Field(("%Q*", "%M*"), description='an array of patterns such as ["%QX*", "%MW*"]')
+    period: Period = Field(100_000_000, description=f"a duration such as {DURATION_EXAMPLES}")
+
+
+class _ServerSection(Section):
+    def build(self, model: Any, ctx: Relations) -> ServerConfig | None:
+        if model is None:
+            return None
+        values = model.model_dump()
+        common = {k: values.pop(k) for k in ("host", "port", "writable", "period")}
+        if not _is_loopback(common["host"]):
+            ctx.warning(
+                (self.key, "host"),
+                f"listens on {common['host']}: the PLC is reachable from the network (127.0.0.1 keeps it local)",
+            )
+        return ServerConfig(
+            key=self.key,
+            host=common["host"],
+            port=common["port"],
+            writable=tuple(common["writable"]),
+            period_ns=common["period"],
+            options=values,
+            where=f"[{self.key}] writable",
+        )
+
+
+class WebSection(_ServerSection):
+    key = "web"
+    model = _Web
+    description = "a [web] table"
+
+
+class OpcuaSection(_ServerSection):
+    key = "opcua"
+    model = _Opcua
+    description = "an [opcua] table"
+
+
+class ModbusServerSection(_ServerSection):
+    key = "modbus_server"
+    model = _ModbusServer
+    description = "a [modbus_server] table"
+
+
+SERVER_SECTIONS = (WebSection(), OpcuaSection(), ModbusServerSection())

@@ -1,0 +1,68 @@
+"""Starting and stopping the servers of a configuration ([web], [opcua],
+[modbus_server], config/servers.py) around one SnapshotHub and one Access.
+
+    surfaces = Surfaces(engine, {"web": cfg.sections["web"], ...})
+    surfaces.start()      # each server in its own thread; the scan never waits for one
+    surfaces.urls         # {"web": "http://127.0.0.1:8080/", ...}
+    surfaces.stop()
+
+A server module (surfaces/<key>/ or surfaces/<key>.py) offers
+``start(surfaces, config) -> handle``: the handle has ``url`` and
+``stop()``. Modules are imported only when their section is present, so a
+PLC without a web page does not load a web framework.
+"""
+
+from __future__ import annotations
+
+import importlib
+import logging
+from typing import Any
+
+from ..config.servers import ServerConfig
+from ..engine.access import Access, Permission
+from ..engine.snapshot import SnapshotHub
+
+log = logging.getLogger("softplc.surfaces")
+
+#: section key -> module (relative to this package) offering start(surfaces, config)
+SERVERS = {"web": ".web", "opcua": ".opcua", "modbus_server": ".modbus_server"}
+
+
+class SurfaceError(Exception):
+    """A server could not start (its port taken, a bad certificate ...): the message says which and why."""
+
+
+class Surfaces:
+    def __init__(self, engine, servers: dict, period_s: float = 0.1) -> None:
+        self.engine = engine
+        self.configs: dict[str, ServerConfig] = {k: v for k, v in servers.items() if v is not None}
+        periods = [c.period_ns / 1e9 for c in self.configs.values()]
+        self.hub = SnapshotHub(engine, period_s=min([period_s, *periods]))
+        self.access = Access(engine, {k: Permission(tuple(c.writable), where=c.where) for k, c in self.configs.items()})
+        self.handles: dict[str, Any] = {}
+
+    @property
+    def urls(self) -> dict:
+        return {key: handle.url for key, handle in self.handles.items()}
+
+    def start(self) -> None:
+        for key, config in self.configs.items():
+            if config.public:
+                log.warning("%s listens on %s:%d, reachable from the network", key, config.host, config.port)
+            module = importlib.import_module(SERVERS[key], __package__)
+            try:
+                self.handles[key] = module.start(self, config)
+            except OSError as exc:
+                self.stop()
+                raise SurfaceError(
+                    f"[{key}] cannot listen on {config.host}:{config.port}: {exc.strerror or exc}"
+                ) from None
+            log.info("%s: %s", key, self.handles[key].url)
+
+    def stop(self) -> None:
+        for key, handle in reversed(list(self.handles.items())):
+            try:
+                handle.stop()
+            except Exception as exc:  # one server's trouble does not keep the others running
+                log.error("%s: stopping: %s", key, exc)
+        self.handles.clear()
