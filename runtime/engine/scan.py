@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import logging
 import time
+from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -148,6 +149,12 @@ class Engine:
         self.outputs_safe = False
         self.faults: list[FaultRecord] = []
         self.restarts = 0
+        #: bumped whenever program instances are replaced (a restart, an
+        #: online change): whoever holds resolved paths resolves them again
+        self.generation = 0
+        #: called with the engine at the start of the next tick, before the
+        #: inputs are read (an online change's swap); any thread may append
+        self.between_scans: deque = deque()
         self.cycle = 0  # ticks since start
         self.started = False
         self.stopped = False
@@ -293,6 +300,8 @@ class Engine:
         if self._restart_requested:
             self._restart_requested = False
             self.restart()
+        while self.between_scans:
+            self.between_scans.popleft()(self)
         now = self.clock.now_ns()
         self.ctx.set_time(now)
         image = self.image
@@ -459,6 +468,7 @@ class Engine:
             task.late_cycles = 0
         self.outputs_safe = False
         self.restarts += 1
+        self.generation += 1
         assert self.diag is not None  # a task faulted, so start() ran
         self.diag.set(Faulted=False, OutputsSafe=False, Restarts=self.restarts)
         log.warning("restarted task(s) %s; outputs live again", ", ".join(t.name for t in faulted))

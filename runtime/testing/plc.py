@@ -71,7 +71,7 @@ class PLC:
         self._order = itertools.count()
         self._forced: dict[str, Any] = {}
         self._places: dict = {}  # watched path -> Place, while the instances stay the same
-        self._restarts = engine.restarts
+        self._generation = engine.generation
         engine.load()
         self._resolver = Resolver(engine)
         engine.after_tick.append(self._after_tick)
@@ -201,7 +201,7 @@ class PLC:
         AssertionError names the condition and shows the trace around it."""
         if isinstance(condition, str):
             path = condition
-            self._resolver.place(path)  # a wrong path fails now, not at the timeout
+            self._place(path)  # a wrong path fails now, not at the timeout
             if path not in self._watched:
                 self.watch(path)
 
@@ -240,7 +240,7 @@ class PLC:
         """The value at path with its ST type (values.py): enums as EnumValue
         (equal to 'Running'), TIME as timedelta, structs as dicts, arrays as
         lists. A wrong path raises KeyError naming it."""
-        return self._resolver.place(path).read()
+        return self._place(path).read()
 
     def __getitem__(self, path: str) -> Any:
         return self.read(path)
@@ -252,20 +252,20 @@ class PLC:
         """Store value once (the program and the buses may change it at the
         next scan). Checked against the ST type: ValueError names the path,
         its type and what it takes."""
-        self._resolver.place(path).writer(value)()
+        self._place(path).writer(value)()
 
     def force(self, path: str, value: Any) -> None:
         """Hold path at value against the program and the buses: stored now,
         and in every scan after the inputs are read and again after the
         tasks ran, until unforce. A forced output reaches its bus as forced."""
-        place = self._resolver.place(path)
+        place = self._place(path)
         apply = place.writer(value)
         self.engine.force(place.path.upper(), apply)
         self._forced[place.path] = value
 
     def unforce(self, path: str) -> None:
         """Release a force; the variable keeps its value until written."""
-        place = self._resolver.place(path)
+        place = self._place(path)
         if not self.engine.unforce(place.path.upper()):
             raise KeyError(f"{path} is not forced (forced: {', '.join(self._forced) or 'nothing'})")
         self._forced.pop(place.path, None)
@@ -343,7 +343,7 @@ class PLC:
                 when, path, value = event
             except (TypeError, ValueError):
                 raise ValueError(f"script: each event is (time, path, value), not {event!r}") from None
-            self.at(when, self._resolver.place(path).writer(value), f"{path} := {value!r}")
+            self.at(when, self._place(path).writer(value), f"{path} := {value!r}")
 
     def _fire(self, now_ns: int) -> None:
         while self._due and self._due[0][0] <= now_ns:
@@ -355,7 +355,7 @@ class PLC:
     def watch(self, *paths: str) -> None:
         """Record these paths' values after every scan in plc.trace (a row when one changes)."""
         for path in paths:
-            self._resolver.place(path)  # a wrong path fails here
+            self._place(path)  # a wrong path fails here
             if path not in self._watched:
                 self._watched.append(path)
         self.trace.paths = list(self._watched)
@@ -364,16 +364,26 @@ class PLC:
     def _record(self) -> None:
         if not self._watched:
             return
-        if self._restarts != self.engine.restarts:  # restarted tasks have new instances
-            self._places.clear()
-            self._restarts = self.engine.restarts
+        self._fresh()
         places = self._places
         for p in self._watched:
             if p not in places:
-                places[p] = self._resolver.place(p)
+                places[p] = self._place(p)
         values = {p: places[p].read() for p in self._watched}
         if values:
             self.trace.record(self.engine.now_ns(), self.engine.cycle, values)
+
+    def _fresh(self) -> None:
+        """After a restart or an online change (new instances, and after an
+        online change new classes) paths are resolved again."""
+        if self._generation != self.engine.generation:
+            self._places.clear()
+            self._resolver = Resolver(self.engine)
+            self._generation = self.engine.generation
+
+    def _place(self, path: str):
+        self._fresh()
+        return self._resolver.place(path)
 
     def _after_tick(self, _engine: Engine) -> None:
         self._record()
