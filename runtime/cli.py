@@ -438,6 +438,12 @@ class Duration(click.ParamType):
     flag_value="warm",
     help='Warm start: RETAIN and PERSISTENT variables restored (the default unless the config says start = "cold").',
 )
+@click.option(
+    "--online-change/--no-online-change",
+    default=None,
+    help="Watch the ST files and swap a changed program in between two scans, keeping the values "
+    "(SIGHUP: now) [default: on in real time, off with --virtual-time].",
+)
 def run_cmd(
     config: str | None,
     virtual_time: bool,
@@ -448,12 +454,14 @@ def run_cmd(
     units: tuple,
     final_json: str | None,
     start_mode: str | None,
+    online_change: bool | None,
 ) -> None:
     """Run the PLC: the tasks of CONFIG (a TOML file; without it the embedded
     default example) until Ctrl-C, SIGTERM, --duration or --cycles.
 
     SIGUSR1 (or typing `restart` on a terminal) restarts tasks stopped by a
-    runtime fault. Exit codes: 0 stopped cleanly, 1 compile errors, 2 bad
+    runtime fault; SIGHUP compiles the ST files and swaps them in (online
+    change: README "Online change"). Exit codes: 0 stopped cleanly, 1 compile errors, 2 bad
     configuration or option, 3 a runtime fault happened during the run.
     """
     from .launch import run_plc
@@ -473,6 +481,7 @@ def run_cmd(
             final_json=final_json,
             start_mode=start_mode,
             report_compile_errors=lambda e: _summary(*_report(e.diagnostics, e.sources)),
+            online_change=online_change,
         )
     )
 

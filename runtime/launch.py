@@ -80,6 +80,7 @@ def run_plc(
     final_json: str | None,
     start_mode: str | None,
     report_compile_errors: Callable,
+    online_change: bool | None = None,
 ) -> int:
     from .config import ConfigError, default_config_path, load_config
     from .engine.build import build_engine
@@ -154,7 +155,8 @@ def run_plc(
                 return _fail(str(e), EXIT_CONFIG)
             cleanup.callback(surfaces.stop)
             reporter = StatusReporter(engine, sys.stderr, watched, tty, hub=surfaces.hub)
-            cleanup.enter_context(_signals(engine))
+            changer = _start_online_change(engine, cfg, online_change, virtual_time, cleanup)
+            cleanup.enter_context(_signals(engine, changer))
             _start_console_commands(engine)
             reporter.start()
             cleanup.callback(reporter.stop)
@@ -239,6 +241,21 @@ def _close_vcd(writer, engine) -> None:
     writer.close(engine.clock.now_ns())
 
 
+def _start_online_change(engine, cfg, wanted: bool | None, virtual_time: bool, cleanup: ExitStack):
+    """The online change's file watcher (README "Online change"). On by
+    default in real time, where the PLC runs a machine and is edited while
+    it runs; off by default in virtual time, where a run is a simulation
+    that must give the same result each time (--online-change turns it on)."""
+    if not (wanted if wanted is not None else not virtual_time):
+        return None
+    from .engine.online_change import OnlineChange
+
+    changer = OnlineChange(engine, cfg)
+    changer.start()
+    cleanup.callback(changer.stop)
+    return changer
+
+
 def _announce_first_scan(engine) -> None:
     """Log once that the scan is under way (the first cycle went through)."""
     engine.after_tick.remove(_announce_first_scan)
@@ -248,10 +265,12 @@ def _announce_first_scan(engine) -> None:
 class _signals:
     """SIGINT/SIGTERM stop the engine after the current scan (a task in a
     loop ends its cycle at the loop's next watchdog check); SIGUSR1 restarts
-    faulted tasks. The handlers only set flags the scan reads."""
+    faulted tasks; SIGHUP asks the online change (if on) to compile and swap
+    in the ST files now. The handlers only set flags the scan reads."""
 
-    def __init__(self, engine) -> None:
+    def __init__(self, engine, changer=None) -> None:
         self.engine = engine
+        self.changer = changer
         self.previous: dict = {}
 
     def __enter__(self):
@@ -264,6 +283,9 @@ class _signals:
             (signal.SIGUSR1, lambda *_: self.engine.request_restart()),
         ):
             self.previous[sig] = signal.signal(sig, handler)
+        if self.changer is not None and hasattr(signal, "SIGHUP"):
+            changer = self.changer
+            self.previous[signal.SIGHUP] = signal.signal(signal.SIGHUP, lambda *_: changer.wake("SIGHUP"))
         return self
 
     def __exit__(self, *exc) -> None:

@@ -540,3 +540,46 @@ def test_log_lines_carry_wall_time_and_engine_time():
     wall = r"\d{4}-\d\d-\d\d \d\d:\d\d:\d\d,\d{3}"
     assert re.fullmatch(wall + r" softplc INFO: before the engine", before)
     assert re.fullmatch(wall + r" t=12\.340s softplc WARNING: node 20 lost", after)
+
+
+@pytest.mark.realtime  # the real clock runs the PLC; the test waits for log lines, never for a time
+def test_online_change_on_sighup_keeps_values_and_refuses_a_broken_file(tmp_path):
+    counter = "PROGRAM Main\nVAR n : DINT; {} END_VAR\nn := n + 1;\nEND_PROGRAM\n"
+    cfg = write_config(tmp_path, '[plc]\nprograms = ["p.st"]\n', {"p.st": counter.format("")})
+    out = tmp_path / "final.json"
+    proc = spawn("run", cfg, "--final-json", out)
+    wait_for_line(proc, "online change: watching 1 file(s)")
+    wait_for_line(proc, "running;")
+    (tmp_path / "p.st").write_text(counter.format("added : INT := 7;"))
+    proc.send_signal(signal.SIGHUP)  # or the watcher sees the file first: either way one change
+    lines = wait_for_line(proc, "applied before scan")
+    assert any("online change (" in line for line in lines)
+    (tmp_path / "p.st").write_text(counter.format("added : INT := 7; broken"))
+    proc.send_signal(signal.SIGHUP)
+    lines = wait_for_line(proc, "NOT applied")
+    lines += wait_for_line(proc, "p.st:2:")  # the diagnostic, with its file:line:column
+    proc.send_signal(signal.SIGINT)
+    _stdout, stderr = proc.communicate(timeout=60)
+    assert proc.returncode == 0, stderr
+    final = json.loads(out.read_text())
+    assert final["Main"]["added"] == 7 and final["Main"]["n"] > 1  # the counter went on, the new variable is there
+
+
+def test_no_online_change_in_virtual_time_unless_asked(tmp_path):
+    cfg = write_config(tmp_path, '[plc]\nprograms = ["p.st"]\n', {"p.st": "PROGRAM Main\nEND_PROGRAM\n"})
+    plain = subprocess.run(
+        [sys.executable, "-m", "softplc.runtime.cli", "run", cfg, "--virtual-time", "--cycles", "3"],
+        capture_output=True,
+        text=True,
+        env=_env(),
+        timeout=120,
+    )
+    asked = subprocess.run(
+        [sys.executable, "-m", "softplc.runtime.cli", "run", cfg, "--virtual-time", "--cycles", "3", "--online-change"],
+        capture_output=True,
+        text=True,
+        env=_env(),
+        timeout=120,
+    )
+    assert plain.returncode == asked.returncode == 0
+    assert "online change" not in plain.stderr and "online change: watching 1 file(s)" in asked.stderr

@@ -52,8 +52,8 @@ def signal_info(path: str, ty) -> SignalInfo:
 
 class Watch:
     """Watched variables ('Main.speed', 'G_total', 'motor.run') and direct
-    addresses ('%QW1'). Paths are resolved again after a restart, because a
-    restart replaces the faulted tasks' program instances."""
+    addresses ('%QW1'). Paths are resolved again after a restart or an
+    online change, which replace program instances (Engine.generation)."""
 
     def __init__(self, engine, paths: list) -> None:
         self.engine = engine
@@ -79,9 +79,9 @@ class Watch:
             ) from None
 
     def _current(self) -> list:
-        if self._resolved_at != self.engine.restarts:
+        if self._resolved_at != self.engine.generation:
             self._cells = [self._resolve(p) for p in self.paths]
-            self._resolved_at = self.engine.restarts
+            self._resolved_at = self.engine.generation
         return self._cells
 
     def signals(self) -> list:

@@ -24,6 +24,7 @@ from __future__ import annotations
 import logging
 import threading
 import time
+from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -149,6 +150,12 @@ class Engine:
         self.outputs_safe = False
         self.faults: list[FaultRecord] = []
         self.restarts = 0
+        #: bumped whenever program instances are replaced (a restart, an
+        #: online change): whoever holds resolved paths resolves them again
+        self.generation = 0
+        #: called with the engine at the start of the next tick, before the
+        #: inputs are read (an online change's swap); any thread may append
+        self.between_scans: deque = deque()
         self.cycle = 0  # ticks since start
         self.started = False
         self.stopped = False
@@ -172,9 +179,6 @@ class Engine:
         self.forced_values: dict = {}
         #: the thread in run(), None outside it (engine/access.py queues writes for it)
         self.scan_thread: int | None = None
-        #: +1 whenever program instances are replaced (a restart, an online
-        #: change): whoever holds a variable's place resolves its path again
-        self.generation = 0
         #: called with the engine in each tick after the inputs are read,
         #: before the forces and the tasks: writes from other threads land here
         self.before_tasks: list[Callable] = []
@@ -308,6 +312,8 @@ class Engine:
         if self._restart_requested:
             self._restart_requested = False
             self.restart()
+        while self.between_scans:
+            self.between_scans.popleft()(self)
         now = self.clock.now_ns()
         self.ctx.set_time(now)
         image = self.image

@@ -104,6 +104,16 @@ class Program:
         """Execute the generated module in a fresh namespace bound to ctx;
         returns the namespace (classes, functions, globals ``_G``)."""
         ctx = ctx or ExecContext(ProcessImage(self.profile.addressing))
+        ns = self.module(ctx)
+        self.attach(ns, ctx)
+        self.make_globals(ns)
+        return ns
+
+    def module(self, ctx: ExecContext) -> dict:
+        """The generated module executed in a fresh namespace bound to ctx's
+        image and services, but not yet reading its clock and with no
+        globals object: load()'s first half, which touches nothing that is
+        running (an online change prepares it off the scan thread)."""
         ns: dict[str, Any] = {
             "__builtins__": _BUILTINS,
             "__name__": "softplc_generated",
@@ -144,6 +154,9 @@ class Program:
             "_SfcStep": rt_sfc.Step,
             "_SfcAction": rt_sfc.ActionFlags,
             "_SfcState": rt_sfc.SfcState,
+            # FB_init's (bInitRetains, bInCopyCode): an online change makes
+            # its instances with (FALSE, TRUE), as CODESYS does
+            "_INIT_FLAGS": (True, False),
         }
         ns.update(self.generated.consts)
         image = ctx.image
@@ -153,16 +166,23 @@ class Program:
             else:
                 get, set_ = image.accessor(acc.addr, acc.type)
                 ns[f"_A{idx}g"], ns[f"_A{idx}s"] = get, set_
+        exec(self.code, ns)
+        return ns
+
+    @staticmethod
+    def attach(ns: dict, ctx: ExecContext) -> None:
+        """The module reads ctx's clock from now on (TIME())."""
         ctx.namespaces.append(ns)
         ctx.set_time(ctx.now_ns)
-        exec(self.code, ns)
+
+    def make_globals(self, ns: dict) -> None:
+        """The globals object ``_G`` with its initial values (STFault when one faults)."""
         try:
             # _G is bound first: initial values may take references to globals
             ns["_G"] = glob = ns["_Globals"].__new__(ns["_Globals"])
             glob.__init__()
         except Exception as exc:
             raise fault_from_exception(exc, self.linemaps) from None
-        return ns
 
     def configured(self, ns: dict, instance: str, obj) -> Any:
         """What a task calls each cycle for the program instance obj of the

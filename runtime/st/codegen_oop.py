@@ -69,7 +69,8 @@ class OopGen(CodeGenBase):
         """At the end of __init__, the FB_init methods of the block and its
         bases, base first, with bInitRetains TRUE and bInCopyCode FALSE:
         every start initialises all variables (retained values are written
-        into the instances afterwards). TwinCAT "Behavior with derived
+        into the instances afterwards); the module's _INIT_FLAGS hold the
+        two, (FALSE, TRUE) while an online change makes its instances. TwinCAT "Behavior with derived
         function blocks": the base's FB_init runs, then the derived one's."""
         if pou.kind == "PROGRAM" and (pou.methods or pou.properties):
             # CODESYS: a PROGRAM is one instance; Prog.M() from another POU
@@ -86,7 +87,7 @@ class OopGen(CodeGenBase):
             assert m.fb is not None
             names = tuple(v.pyname for v in m.params("VAR_INPUT")[2:])
             further = f", **_fb_args(_fbi, {names!r})" if names else ""  # pynames: checked identifiers
-            self.emit(f"{m.fb.pyname}.{m.pyname}(self, True, False{further})")
+            self.emit(f"{m.fb.pyname}.{m.pyname}(self, *_INIT_FLAGS{further})")
 
     @staticmethod
     def _init_params(pou: POUInfo) -> str:

@@ -42,12 +42,13 @@ def fb_init_args(given: dict | None, names: tuple) -> dict:
     return {k: v for k, v in given.items() if k in names}
 
 
-def exit_instances(namespace: dict, roots: list) -> None:
-    """FB_exit(bInCopyCode := FALSE) of every instance reachable from roots
-    (program instances, the globals), when the program is taken down:
-    an instance's own before its variables', and in a derived block the
-    derived one's before the base's (TwinCAT "Behavior with derived
-    function blocks"). Nothing is walked unless some block has FB_exit."""
+def exit_instances(namespace: dict, roots: list, in_copy_code: bool = False) -> None:
+    """FB_exit(bInCopyCode := in_copy_code) of every instance reachable from
+    roots (program instances, the globals), when the program is taken down
+    (FALSE) or replaced by an online change (TRUE): an instance's own before
+    its variables', and in a derived block the derived one's before the
+    base's (TwinCAT "Behavior with derived function blocks"). Nothing is
+    walked unless some block has FB_exit."""
     if not any(isinstance(c, type) and "m_fb_exit" in c.__dict__ for c in namespace.values()):
         return
     seen: set = set()
@@ -66,7 +67,7 @@ def exit_instances(namespace: dict, roots: list) -> None:
         for cls in type(obj).__mro__:
             fn = cls.__dict__.get("m_fb_exit")
             if fn is not None:
-                fn(obj, False)
+                fn(obj, in_copy_code)
         inner = []
         for _name, attr, ty, section in meta:
             if section in ("VAR_IN_OUT", "VAR_EXTERNAL") or isinstance(T.resolve(ty), (T.RefType, T.InterfaceType)):
@@ -75,3 +76,15 @@ def exit_instances(namespace: dict, roots: list) -> None:
             if isinstance(value, list) or hasattr(type(value), "_VARS_"):
                 inner.append(value)
         todo += reversed(inner)
+
+
+def reinit_instance(obj: Any) -> bool:
+    """FB_reinit() of an instance an online change copied, if its block
+    has one: the most derived block's only (a base's runs when that one
+    calls SUPER^.FB_reinit(), CODESYS "Method: FB_Init, FB_Reinit, FB_Exit").
+    True if there was one."""
+    fn = getattr(type(obj), "m_fb_reinit", None)
+    if fn is None:
+        return False
+    fn(obj)
+    return True

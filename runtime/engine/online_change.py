@@ -1,0 +1,500 @@
+"""Online change: a newly compiled program swapped into the running engine
+between two scans, its variables keeping their values (engine/carry.py has
+the rules), without a scan missed or run twice.
+
+    change = OnlineChange(engine, config)   # softplc run makes one
+    change.start()                          # watches the ST files; SIGHUP calls wake()
+    report = change.request("web page")     # compile now, swap at the next scan, wait
+    print(report.summary())
+
+What runs where:
+
+  * compiling, planning the tasks and executing the generated module
+    (Program.module) run in the caller's thread (the watcher's, a web
+    request's), never in the scan thread; a compile error leaves the running
+    program untouched and the report carries the diagnostics;
+  * the swap (apply_program) runs in the scan thread at the start of the
+    next tick (Engine.between_scans), before the inputs are read: the new
+    globals and program instances are made (FB_init with bInitRetains FALSE,
+    bInCopyCode TRUE), the old instances get FB_exit(bInCopyCode := TRUE),
+    the values are carried, the copied instances get FB_reinit (CODESYS's
+    "Online Change" operating case); then the drivers are bound to the new
+    globals, PLC_DIAG, the retain plan and the forces follow, and
+    Engine.generation moves on so that watchers resolve their paths again.
+    That tick then runs as any other: same release grid, same time.
+
+A change of the tasks (a task's interval, priority or watchdog, a program
+instance added, removed or of another PROGRAM) is refused: it needs a
+restart. The process image is the machine's: the swap writes nothing into
+it (a located variable's initial value included).
+"""
+
+from __future__ import annotations
+
+import logging
+import re
+import threading
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from ..program import Program, compile_files
+from ..st import rt_oop
+from ..st import types as T
+from ..st.diagnostics import CompileError
+from ..st.faults import fault_from_exception
+from ..st.values import assign_into, copy_value
+from .carry import Carry, global_members, members
+from .diag import DiagVariable
+from .retain import type_signature
+from .tasks import TaskSetupError, plan_tasks
+
+log = logging.getLogger("softplc.online_change")
+
+POLL_S = 0.5  # how often the watcher looks at the files' modification times (wall time)
+WAIT_S = 10.0  # how long request() waits for the scan to take the change
+
+
+@dataclass
+class ChangeReport:
+    """What an online change did (applied) or why it did not (errors)."""
+
+    reason: str
+    applied: bool = False
+    errors: list = field(default_factory=list)  # lines: compile diagnostics (file:line:col: error E..), refusals
+    diagnostics: list = field(default_factory=list)  # the compile errors as Diagnostic objects
+    kept: list = field(default_factory=list)
+    initialised: list = field(default_factory=list)
+    reset: list = field(default_factory=list)  # (path, why)
+    dropped: list = field(default_factory=list)
+    forces: list = field(default_factory=list)  # (key, "kept" or "released: why")
+    notes: list = field(default_factory=list)
+    cycle: int | None = None  # the scan it was applied before
+
+    def summary(self) -> str:
+        if not self.applied:
+            return f"online change ({self.reason}) NOT applied: " + (self.errors[0] if self.errors else "?")
+        released = sum(1 for _k, how in self.forces if how != "kept")
+        return (
+            f"online change ({self.reason}) applied before scan {self.cycle}: "
+            f"{len(self.kept)} kept, {len(self.initialised)} initialised, {len(self.reset)} reset, "
+            f"{len(self.dropped)} dropped" + (f", {released} force(s) released" if released else "")
+        )
+
+    def lines(self) -> list:
+        """The summary and the details, a line each, for the log."""
+        out = [self.summary()]
+        if not self.applied:
+            return out + self.errors[1:]
+        out += [f"  initialised: {p}" for p in self.initialised]
+        out += [f"  reset: {p}: {why}" for p, why in self.reset]
+        out += [f"  dropped: {p}" for p in self.dropped]
+        out += [f"  force {k}: {how}" for k, how in self.forces]
+        out += [f"  note: {n}" for n in self.notes]
+        return out
+
+
+# ================================================================ the swap
+
+
+def apply_program(engine, program: Program, reason: str = "", module: dict | None = None) -> ChangeReport:
+    """Swap program into engine now, carrying the values; call it between
+    two scans in the scan thread (Engine.between_scans), or before the
+    first. module: program.module(engine.ctx), made beforehand off the scan
+    thread. The engine is left as it was when the report is not applied."""
+    report = ChangeReport(reason)
+    engine.load()
+    refusal = _instances_refused(engine, program)
+    if refusal:
+        report.errors.append(refusal)
+        return report
+    ns = module if module is not None else program.module(engine.ctx)
+    saved = _EngineState(engine)
+    image = {area: bytes(data) for area, data in engine.image.areas.items()}
+    Program.attach(ns, engine.ctx)
+    try:
+        ns["_INIT_FLAGS"] = (False, True)  # FB_init(bInitRetains := FALSE, bInCopyCode := TRUE)
+        try:
+            program.make_globals(ns)
+            engine.program, engine.ns = program, ns
+            for task in engine.tasks:
+                task.instances = [(n, program.pou(_type_of(task, n)), None) for n, _i, _o in task.instances]
+            engine._instantiate(engine.tasks)
+        finally:
+            ns["_INIT_FLAGS"] = (True, False)
+            for area, data in image.items():  # initial values of located variables: the image keeps its own
+                engine.image.areas[area][:] = data
+        roots = [obj for _n, _i, obj in saved.instances.values()] + [saved.ns["_G"]]
+        try:
+            rt_oop.exit_instances(saved.ns, roots, in_copy_code=True)
+        except Exception as exc:
+            raise _Refused(f"FB_exit: {fault_from_exception(exc, saved.program.linemaps)}") from None
+        carried = _carry(saved, engine, program)
+        engine._retain_plan = engine._plan_retain()  # ValueError: two retained variables of one path
+    except Exception as exc:  # STFault of an initial value or FB_init, a refusal: the old program goes on
+        saved.restore(engine)
+        if ns in engine.ctx.namespaces:
+            engine.ctx.namespaces.remove(ns)
+        report.errors.append(f"the new program cannot start: {exc}")
+        return report
+    if saved.ns in engine.ctx.namespaces:
+        engine.ctx.namespaces.remove(saved.ns)
+    for name in ("kept", "initialised", "reset", "dropped", "notes"):
+        getattr(report, name).extend(getattr(carried.out, name))
+    engine.diag = DiagVariable(ns["_G"])
+    report.forces = _rebind_forces(engine, saved)
+    if engine.started:
+        for driver in engine.drivers:
+            driver.bind_program(ns["_G"])
+    for obj in carried.copied:
+        try:
+            rt_oop.reinit_instance(obj)
+        except Exception as exc:
+            report.notes.append(f"FB_reinit: {fault_from_exception(exc, program.linemaps)}")
+    engine.generation += 1
+    report.applied = True
+    report.cycle = engine.cycle
+    return report
+
+
+class _Refused(Exception):
+    pass
+
+
+class _EngineState:
+    """What the swap replaces, to put back when the new program cannot start."""
+
+    def __init__(self, engine) -> None:
+        self.program, self.ns, self.diag = engine.program, engine.ns, engine.diag
+        self.instances = dict(engine.instances)
+        self.tasks = [(t.instances, t.calls) for t in engine.tasks]
+        self.retain_plan = engine._retain_plan
+        self.forces = dict(engine.forces)
+        self.forced_values = dict(engine.forced_values)
+
+    def restore(self, engine) -> None:
+        engine.program, engine.ns, engine.diag = self.program, self.ns, self.diag
+        engine.instances = dict(self.instances)
+        for task, (instances, calls) in zip(engine.tasks, self.tasks):
+            task.instances, task.calls = instances, calls
+        engine._retain_plan = self.retain_plan
+
+
+def _type_of(task, instance: str) -> str:
+    for inst in task.spec.programs:
+        if inst.instance.upper() == instance.upper():
+            return inst.program
+    raise KeyError(instance)
+
+
+def _instances_refused(engine, program: Program) -> str | None:
+    """Why program cannot replace the running one without a restart, or None."""
+    programs = {name.upper() for name, kind in program.pous.items() if kind == "PROGRAM"}
+    for task in engine.tasks:
+        for inst in task.spec.programs:
+            if inst.program.upper() not in programs:
+                return (
+                    f"program instance {inst.instance}: PROGRAM {inst.program} is not in the new "
+                    "sources: that needs a restart"
+                )
+    return None
+
+
+def tasks_refused(engine, specs: list) -> str | None:
+    """Why the planned tasks specs differ from the running ones (a restart is needed), or None."""
+
+    def key(spec) -> tuple:
+        insts = tuple((i.instance.upper(), i.program.upper()) for i in spec.programs)
+        return (spec.interval_ns, spec.pause_ns, spec.priority, spec.watchdog_ns, spec.sensitivity, insts)
+
+    running = {t.spec.name.upper(): t.spec for t in engine.tasks}
+    planned = {s.name.upper(): s for s in specs}
+    for name in running.keys() | planned.keys():
+        old, new = running.get(name), planned.get(name)
+        if old is None or new is None:
+            what = f"{new.name} is new" if new is not None else f"{old.name} is gone" if old is not None else ""
+            return f"task {what}: a change of the tasks needs a restart"
+        if key(old) != key(new):
+            return f"task {new.name} changed (interval, priority, watchdog or program instances): that needs a restart"
+    return None
+
+
+def _carry(saved: _EngineState, engine, program: Program) -> Carry:
+    old_program = saved.program
+    old_g, new_g = saved.ns["_G"], engine.ns["_G"]
+    quiet = frozenset(n.upper() for n in program.library_globals | old_program.library_globals)
+    carry = Carry(quiet)
+    carry.moved[id(old_g)] = new_g
+    carry.members("", global_members(old_program.checked), global_members(program.checked), old_g, new_g)
+    for key, (name, info, obj) in engine.instances.items():
+        _old_name, old_info, old_obj = saved.instances[key]
+        carry.moved[id(old_obj)] = obj
+        carry.members(name, members(None, old_info), members(None, info), old_obj, obj)
+    carry.finish()
+    return carry
+
+
+# ================================================================ forces
+
+
+_STEP = re.compile(r"\s*(?:\.?\s*([A-Za-z_][A-Za-z0-9_]*)|\[([^\]]*)\])")
+
+
+def _cell(program: Program, ns: dict, instances: dict, path: str):
+    """(get, set, type) of the variable at path ('Main.a.b[2, 3].c', a global,
+    'GVL.x') in a loaded program; KeyError if there is none."""
+    steps = [(m.group(1), m.group(2)) for m in _STEP.finditer(path)]
+    if not steps or steps[0][0] is None:
+        raise KeyError(path)
+    first = steps[0][0].upper()
+    entry = instances.get(first)
+    if entry is not None and len(steps) > 1:
+        obj, steps = entry[2], steps[1:]
+    else:
+        obj = ns["_G"]
+        if first in program.checked.global_lists and len(steps) > 1:
+            steps = steps[1:]  # GVL.x: the list's name
+    holder: Any = obj
+    attr: Any = None  # an attribute name, or a list index
+    ty: Any = None
+    for name, index in steps:
+        if attr is not None:
+            holder = holder[attr] if isinstance(attr, int) else getattr(holder, attr)
+        if name is not None:
+            found = [(a, t) for n, a, t, _s in getattr(type(holder), "_VARS_", ()) if n.upper() == name.upper()]
+            if not found:
+                raise KeyError(path)
+            attr, ty = found[0]
+            continue
+        arr = T.resolve(ty)
+        if not isinstance(arr, T.ArrayType):
+            raise KeyError(path)
+        subs = [int(x) for x in index.split(",")]
+        for k, i in enumerate(subs):
+            lo, hi = arr.dims[k]
+            if not lo <= i <= hi:
+                raise KeyError(path)
+            if k:
+                holder = holder[attr] if isinstance(attr, int) else getattr(holder, attr)
+            attr = i - lo
+        ty = arr.elem
+    if attr is None:
+        raise KeyError(path)
+    return _accessors(holder, attr, ty)
+
+
+def _accessors(holder, attr, ty) -> tuple:
+    if isinstance(attr, int):
+        return (lambda: holder[attr]), (lambda v: holder.__setitem__(attr, v)), ty
+    return (lambda: getattr(holder, attr)), (lambda v: setattr(holder, attr, v)), ty
+
+
+def _rebind_forces(engine, saved: _EngineState) -> list:
+    """Every force of a variable is re-resolved by its key in the new
+    program: it stays, holding the value it held, where the variable is
+    still there with the same type, else it is released. A force of an
+    address stays as it is (the image is the same)."""
+    out = []
+    for key in list(saved.forces):
+        if key.startswith("%"):
+            continue
+        try:
+            get, _set, old_t = _cell(saved.program, saved.ns, saved.instances, key)
+            value = copy_value(get())  # the forced value: the force stored it after the last scan's tasks
+        except (KeyError, ValueError, TypeError, IndexError):
+            old_t = None
+        try:
+            get, set_, new_t = _cell(engine.program, engine.ns, engine.instances, key)
+        except (KeyError, ValueError, TypeError, IndexError):
+            new_t = None
+        if old_t is None or new_t is None:
+            engine.unforce(key)
+            out.append((key, "released: the variable is gone"))
+        elif type_signature(old_t) != type_signature(new_t):
+            engine.unforce(key)
+            out.append((key, "released: its type changed"))
+        else:
+            engine.forces[key] = _store(get, set_, new_t, value)
+            out.append((key, "kept"))
+    return out
+
+
+def _store(get, set_, ty, value) -> Callable[[], None]:
+    if T.resolve(ty).is_aggregate:
+        return lambda: assign_into(get(), value)
+    return lambda: set_(value)
+
+
+# ================================================================ requests and the watcher
+
+
+class ChangeRequest:
+    """A compiled change waiting for the scan (or already refused); wait() gives its report."""
+
+    def __init__(self, reason: str, program: Program | None = None, module: dict | None = None) -> None:
+        self.reason = reason
+        self.program = program
+        self.module = module
+        self.report: ChangeReport | None = None
+        self.done = threading.Event()
+
+    def refused(self, report: ChangeReport) -> ChangeRequest:
+        self.report = report
+        self.done.set()
+        return self
+
+    def __call__(self, engine) -> None:  # in the scan thread, between two scans
+        assert self.program is not None
+        try:
+            self.report = apply_program(engine, self.program, self.reason, self.module)
+        except Exception as exc:  # never into the scan
+            self.report = ChangeReport(self.reason, errors=[f"the online change failed: {exc!r}"])
+        self.program = self.module = None
+        self.done.set()
+
+    def wait(self, timeout: float = WAIT_S) -> ChangeReport:
+        if not self.done.wait(timeout):
+            return ChangeReport(
+                self.reason,
+                errors=[f"not applied yet: no scan within {timeout:g} s (it is applied at the next one)"],
+            )
+        assert self.report is not None
+        return self.report
+
+
+class OnlineChange:
+    """softplc run's online change: the configuration's ST files (and its
+    libraries') compiled again when one changes, on SIGHUP (wake()) or on
+    request(), and swapped in at the next scan. compile: what to compile
+    (default: the configuration's programs, profile and libraries)."""
+
+    def __init__(self, engine, config, *, compile: Callable[[], Program] | None = None) -> None:
+        self.engine = engine
+        self.config = config
+        self._compile = compile or self._compile_config
+        self._lock = threading.Lock()  # one compile at a time
+        self._wake = threading.Event()
+        self._woken_by = "SIGHUP"
+        self._stop = threading.Event()
+        self._thread: threading.Thread | None = None
+        self.reports: list[ChangeReport] = []
+        self._mtimes = self._stat()
+
+    # ------------------------------------------------------------ compiling and asking the scan
+
+    def _compile_config(self) -> Program:
+        cfg = self.config
+        return compile_files(cfg.programs, profile=cfg.profile, libraries=tuple(cfg.libraries))
+
+    def submit(self, reason: str) -> ChangeRequest:
+        """Compile now (in this thread) and queue the swap for the next scan;
+        the request is done already when the sources do not compile or the
+        tasks changed."""
+        with self._lock:
+            request = ChangeRequest(reason)
+            try:
+                program = self._compile()
+            except CompileError as exc:
+                errors = [d for d in exc.diagnostics if d.is_error]
+                report = ChangeReport(reason, diagnostics=errors)
+                report.errors = [f"{len(errors)} compile error(s); the running program is unchanged"]
+                report.errors += [d.format(exc.sources) for d in errors]
+                return request.refused(report)
+            try:
+                where = str(self.config.path) if getattr(self.config, "path", None) else "<config>"
+                refusal = tasks_refused(self.engine, plan_tasks(program, list(self.config.tasks), where))
+                module = None if refusal else program.module(self.engine.ctx)
+            except TaskSetupError as exc:
+                refusal = str(exc)
+            except Exception as exc:  # the module refused by the image (an address it does not have) ...
+                refusal = f"the new program cannot be loaded: {exc}"
+            if refusal:
+                return request.refused(ChangeReport(reason, errors=[refusal]))
+            request.program, request.module = program, module
+            self.engine.between_scans.append(request)
+            return request
+
+    def request(self, reason: str, timeout: float = WAIT_S) -> ChangeReport:
+        """Compile, swap at the next scan, wait for it: the report (logged
+        too). What the web page calls."""
+        return self.record(self.submit(reason).wait(timeout))
+
+    def record(self, report: ChangeReport) -> ChangeReport:
+        """Keep and log a report."""
+        self.reports.append(report)
+        level = logging.INFO if report.applied else logging.ERROR
+        for line in report.lines():
+            log.log(level, "%s", line)
+        return report
+
+    # ------------------------------------------------------------ watching the files
+
+    def files(self) -> list[Path]:
+        """The files a change of which starts an online change."""
+        cfg = self.config
+        if cfg is None:
+            return []
+        out = [Path(p) for p in cfg.programs]
+        for lib in cfg.libraries:
+            out += lib.files()
+        return out
+
+    def _stat(self) -> dict:
+        out: dict = {}
+        for path in self.files():
+            try:
+                st = path.stat()
+                out[path] = (st.st_mtime_ns, st.st_size)
+            except OSError:
+                out[path] = None
+        return out
+
+    def poll(self) -> list[Path]:
+        """The files changed since the last poll (modification time or size)."""
+        now = self._stat()
+        changed = [p for p in now.keys() | self._mtimes.keys() if now.get(p) != self._mtimes.get(p)]
+        self._mtimes = now
+        return sorted(changed)
+
+    def check(self) -> ChangeRequest | None:
+        """One pass of the watcher: the files changed, or a wake() came →
+        submit(); None when neither."""
+        woken = self._wake.is_set()
+        self._wake.clear()
+        changed = self.poll()
+        if not changed and not woken:
+            return None
+        reason = self._woken_by if woken else "changed: " + ", ".join(p.name for p in changed)
+        return self.submit(reason)
+
+    def wake(self, reason: str = "SIGHUP") -> None:
+        """Ask the watcher thread for an online change now (safe from a signal handler)."""
+        self._woken_by = reason
+        self._wake.set()
+
+    def start(self) -> None:
+        self._thread = threading.Thread(target=self._run, name="softplc-online-change", daemon=True)
+        self._thread.start()
+        log.info("online change: watching %d file(s); SIGHUP compiles and swaps in now", len(self._mtimes))
+
+    def _run(self) -> None:
+        while not self._stop.is_set():
+            self._wake.wait(POLL_S)
+            if self._stop.is_set():
+                return
+            try:
+                request = self.check()
+                if request is not None:
+                    self.record(request.wait())
+            except Exception:  # never let the watcher die silently
+                log.exception("online change failed")
+
+    def stop(self) -> None:
+        self._stop.set()
+        self._wake.set()
+        if self._thread is not None:
+            self._thread.join(timeout=5)
+
+
+__all__ = ["ChangeReport", "ChangeRequest", "OnlineChange", "apply_program", "tasks_refused"]
