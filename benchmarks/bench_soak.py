@@ -54,7 +54,7 @@ import tracemalloc
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from softplc.runtime.engine.retain import RetainFileError, read_file
+from softplc.runtime.engine.retain_file import RetainFileError, read_file
 from softplc.testing import PLC
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-from softplc.runtime.engine.retain import read_file
+from softplc.runtime.engine.retain_file import read_file
 
 from .test_cli import softplc
 

@@ -10,7 +10,7 @@ from ..plugin.seams import BuildContext
 from ..program import compile_files
 from ..st.profile import get_profile
 from .clock import RealClock, VirtualClock
-from .retain import RetainStore
+from .retain_file import RetainStore
 from .scan import Engine
 from .sim_schedule import SimSchedule
 from .tasks import plan_tasks

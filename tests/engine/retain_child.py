@@ -16,7 +16,8 @@ import os
 import sys
 from pathlib import Path
 
-from softplc.runtime.engine.retain import RetainData, write_file
+from softplc.runtime.engine.retain import RetainData
+from softplc.runtime.engine.retain_file import write_file
 
 
 def block(counter: int) -> list:

@@ -17,7 +17,8 @@ from pathlib import Path
 import pytest
 
 from softplc.runtime.engine import retain as R
-from softplc.runtime.engine.retain import RetainData, RetainFileError, RetainStore, read_file, write_file
+from softplc.runtime.engine.retain import RetainData
+from softplc.runtime.engine.retain_file import RetainFileError, RetainStore, read_file, write_file
 from softplc.runtime.image.memory import ProcessImage
 from softplc.runtime.program import ExecContext, compile_files
 from softplc.runtime.st import rtlib

@@ -3,7 +3,7 @@ the retain period on the virtual clock."""
 
 from __future__ import annotations
 
-from softplc.runtime.engine.retain import RetainStore, read_file
+from softplc.runtime.engine.retain_file import RetainStore, read_file
 
 from .conftest import MS, compile_st, make_engine, task
 
