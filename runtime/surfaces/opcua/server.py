@@ -200,14 +200,14 @@ class OpcuaServer:
         stamp: Any = datetime.fromtimestamp(snap.wall, UTC)  # asyncua annotates ua.DateTime
         iserver = self._server.iserver
         written = 0
-        for var in self.tree.variables:
+        for nid, var in self._variables.items():
             changed = [p for p in var.watched if values.get(p, last.get(p)) != last.get(p)]
             if not changed:
                 continue
             for p in changed:
                 last[p] = values[p]
-            dv = ua.DataValue(variant(var, last), SourceTimestamp=stamp, ServerTimestamp=stamp)
-            await iserver.write_attribute_value(node_id(var.path, self._idx), dv)
+            dv = _SharedDataValue(variant(var, last), SourceTimestamp=stamp, ServerTimestamp=stamp)
+            await iserver.write_attribute_value(nid, dv)
             written += 1
         self.published += 1
         return written
@@ -215,6 +215,17 @@ class OpcuaServer:
     def _written(self, var: Variable, value: ua.DataValue) -> None:
         """A client's write was made: the next snapshot that differs from it is published."""
         self._last.update(dict.fromkeys(var.watched, None))
+
+
+class _SharedDataValue(ua.DataValue):
+    """A DataValue published once and never changed afterwards: asyncua's
+    monitored items deep-copy what they are given, to keep it from being
+    changed under them: publishing 1,000 changed variables to a subscription
+    took 119 ms of the server thread with the copies, 35 ms without. This
+    one is made for a single publish and never changed: theirs to keep."""
+
+    def __deepcopy__(self, memo: dict) -> _SharedDataValue:
+        return self
 
 
 def _never(_path: str) -> bool:

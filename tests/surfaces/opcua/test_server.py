@@ -277,3 +277,45 @@ def test_a_taken_port_is_an_error_naming_it():
         finally:
             engine.stop()
     assert not [t for t in threading.enumerate() if t.name == "opcua"]
+
+
+def many(n: int) -> str:
+    decl = "\n".join(f"v{i} : DINT;" for i in range(n))
+    body = "\n".join(f"v{i} := v{i} + {i};" for i in range(n))
+    return f"PROGRAM Main\nVAR\n{decl}\nEND_VAR\n{body}\nEND_PROGRAM\n"
+
+
+def test_a_thousand_variables_are_published_to_a_subscription(running):
+    plc = running(many(1000), TASKS, period_ms=50)
+    seen: dict = {}
+
+    class Handler:
+        def datachange_notification(self, node, val, data) -> None:
+            seen[node.nodeid.Identifier] = val
+
+    async def check() -> None:
+        async with Client(plc.url, timeout=TIMEOUT_S) as c:
+            main = c.get_node("ns=2;s=Main")
+            assert len(await main.get_children()) == 1000
+            sub = await c.create_subscription(50, Handler())
+            await sub.subscribe_data_change([c.get_node(f"ns=2;s=Main.v{i}") for i in range(1000)])
+            first = await until(lambda: _gt(value(c, "Main.v999"), 0), "Main.v999 to move")
+
+            async def all_moved():
+                return len(seen) == 1000 and seen["Main.v999"] > first and seen["Main.v1"] > 0
+
+            await until(all_moved, "data changes of all 1,000 variables")
+            await sub.delete()
+
+    run(check())
+
+
+def test_beyond_max_variables_the_rest_is_left_out_with_a_warning(running, caplog):
+    plc = running(many(50), TASKS, max_variables=20)
+
+    async def check() -> None:
+        async with Client(plc.url, timeout=TIMEOUT_S) as c:
+            assert await names(c.get_node("ns=2;s=Main")) == [f"v{i}" for i in range(20)]
+
+    run(check())
+    assert "30 variable(s) not published: more than 20 values ([opcua] max_variables)" in caplog.text
