@@ -319,3 +319,35 @@ def test_beyond_max_variables_the_rest_is_left_out_with_a_warning(running, caplo
 
     run(check())
     assert "30 variable(s) not published: more than 20 values ([opcua] max_variables)" in caplog.text
+
+
+def test_an_online_change_rebuilds_the_tree(running):
+    from types import SimpleNamespace
+
+    from softplc.runtime.engine.online_change import OnlineChange
+
+    from ...engine.conftest import compile_st
+
+    plc = running(SRC, TASKS)
+    after = SRC.replace("    small : SINT;\n", "    added : INT := 42;\n")
+    config = SimpleNamespace(tasks=TASKS, path=None, programs=[], libraries=[])
+
+    async def check() -> None:
+        async with Client(plc.url, timeout=TIMEOUT_S) as c:
+            main = c.get_node("ns=2;s=Main")
+            assert "small" in await names(main)
+            report = await asyncio.to_thread(
+                OnlineChange(plc.engine, config, compile=lambda: compile_st(after)).request, "test", TIMEOUT_S
+            )
+            assert report.applied, report.errors
+
+            async def rebuilt():
+                return "added" in await names(main)
+
+            await until(rebuilt, "the new variable in the tree")
+            assert "small" not in await names(main)
+            assert await value(c, "Main.added") == 42
+            n = await value(c, "Main.n")
+            await until(lambda: _gt(value(c, "Main.n"), n), "Main.n to count on after the change")
+
+    run(check())
