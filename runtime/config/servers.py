@@ -20,13 +20,14 @@ from __future__ import annotations
 
 import ipaddress
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Annotated, Any
 
-from pydantic import Field, PlainValidator
+from pydantic import Field, PlainValidator, ValidationInfo
 
 from .relations import Relations
 from .section import Section
-from .values import DURATION_EXAMPLES, Model, fail, int_range, positive_duration
+from .values import DURATION_EXAMPLES, Model, existing_file, fail, int_range, positive_duration
 
 LOOPBACK = "127.0.0.1"
 
@@ -43,6 +44,22 @@ def _patterns(value) -> tuple:
     raise fail('an array of variable paths or patterns such as ["Main.Setpoint", "%QX*", "*"]', value)
 
 
+def _users(value) -> dict:
+    if isinstance(value, dict) and all(isinstance(k, str) and isinstance(v, str) and v for k, v in value.items()):
+        return dict(value)
+    raise fail('a table of user names and passwords (or hashes) such as { operator = "pbkdf2_sha256$..." }', value)
+
+
+def _optional_file(value, info: ValidationInfo) -> Path | None:
+    if value is None:
+        return None
+    if not isinstance(value, str) or not value.strip():
+        raise fail('the path of a file such as "pki/server.der"', value)
+    return existing_file(value, info)
+
+
+Users = Annotated[dict, PlainValidator(_users)]
+OptionalFile = Annotated[Path | None, PlainValidator(_optional_file)]
 Host = Annotated[str, PlainValidator(_host)]
 Port = Annotated[int, int_range(0, 65535)]
 Patterns = Annotated[tuple, PlainValidator(_patterns)]
@@ -88,6 +105,14 @@ class _Opcua(Model):
     port: Port = Field(4840, description="a TCP port, 0 for any free one")
     writable: Patterns = Field((), description='an array of patterns such as ["Main.Setpoint"]')
     period: Period = Field(100_000_000, description=f"a duration such as {DURATION_EXAMPLES}")
+    # the server's own keys (surfaces/opcua, README "OPC UA")
+    namespace: str = Field("urn:softplc", description='a namespace URI such as "urn:softplc"')
+    max_variables: Annotated[int, int_range(1, 1_000_000)] = Field(10_000, description="an integer")
+    anonymous: bool = Field(True, description="true or false")
+    users: Users = Field(default_factory=dict, description='a table of user = "password or hash"')
+    users_file: OptionalFile = Field(None, description="the path of a TOML file with a [users] table")
+    certificate: OptionalFile = Field(None, description="the path of the server certificate (DER or PEM)")
+    private_key: OptionalFile = Field(None, description="the path of the certificate's private key (PEM)")
 
 
 class _ModbusServer(Model):
