@@ -148,15 +148,15 @@ class _Api:
         try:
             if not isinstance(path, str):
                 raise PathError(f"path: a variable path such as 'Motor.Auto', not {path!r}")
+            place = self.access.check(op, path, SURFACE)  # a refusal first, whatever the value
             if op == "unforce":
-                place = self.access.check(op, path, SURFACE)
                 if place.path.upper() not in self.engine.forces:
                     raise _NotForced(f"{place.path} is not forced")
                 value = None
             else:
                 if "value" not in body:
-                    return _error(400, f"{path}: no value to {op}")
-                value = _typed(self.access.place(path), body["value"])
+                    return _error(400, f"{place.path}: no value to {op}")
+                value = _typed(place, body["value"])
             future = self.access.submit(op, path, value, surface=SURFACE)
             # shielded: a page that goes away does not cancel a change the scan is to apply
             done = await asyncio.wait_for(asyncio.shield(asyncio.wrap_future(future)), APPLY_TIMEOUT_S)

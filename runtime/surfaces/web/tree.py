@@ -7,7 +7,7 @@ and the library's globals (CANOPEN_NODE, PLC_DIAG ...), one level at a time.
     children(resolver, "Line.parts", offset=100)  # elements 100.. of a big array
 
 Each child is a dict: name, path (to read, watch, write it), type (its ST
-type as declared), kind ("var" for a scalar, "struct", "array", "program",
+type by name), kind ("var" for a scalar, "struct", "array", "program",
 "group") and, for an array, size. A level holds at most LIMIT children; the
 rest is paged with offset ("more" says how many follow). Values are not
 here: they come with the snapshots (stream.py).
@@ -102,7 +102,7 @@ def _bounds(place: Place, r: T.ArrayType) -> tuple:
 
 def _child(name: str, place: Place) -> dict:
     r = T.resolve(place.type)
-    item: dict = {"name": name, "path": place.path, "type": type_text(place.type)}
+    item: dict = {"name": name, "path": place.path, "type": str(place.type)}
     if isinstance(r, T.ArrayType):
         lo, hi = _bounds(place, r)
         item.update(kind="array", size=hi - lo + 1)

@@ -241,24 +241,36 @@ const ms = (ns) => (ns / 1e6).toFixed(3);
 
 function showTasks(tasks, faults, count) {
   const body = $("tasks").tBodies[0];
-  body.textContent = "";
   for (const t of tasks) {
-    const state = t.fault
-      ? el("td", { class: "text fault" }, "FAULT: " + t.fault + " ",
-        el("button", { type: "button", class: "restart", onclick: restart }, "Restart"))
-      : el("td", { class: "state-ok", text: "running" });
-    body.append(el("tr", { "data-task": t.name },
-      el("td", { text: t.name }),
-      el("td", { text: t.interval_ns === null ? "free" : ms(t.interval_ns) + " ms" }),
-      el("td", { text: String(t.cycles) }),
-      el("td", { text: ms(t.last_ns) }),
-      el("td", { text: ms(t.mean_ns) }),
-      el("td", { text: ms(t.max_ns) }),
-      el("td", { text: ms(t.jitter_max_ns) }),
-      el("td", { class: t.overruns ? "state-bad" : "", text: String(t.overruns) }),
-      state));
+    let tr = body.querySelector(`tr[data-task="${CSS.escape(t.name)}"]`);
+    if (!tr) {
+      tr = el("tr", { "data-task": t.name }, el("td", { text: t.name }));
+      for (let i = 0; i < 8; i++) tr.append(el("td"));
+      body.append(tr);
+    }
+    const cells = tr.cells;
+    const texts = [t.interval_ns === null ? "free" : +(t.interval_ns / 1e6).toPrecision(6) + " ms",
+      String(t.cycles), ms(t.last_ns), ms(t.mean_ns), ms(t.max_ns), ms(t.jitter_max_ns), String(t.overruns)];
+    texts.forEach((text, i) => { if (cells[i + 1].textContent !== text) cells[i + 1].textContent = text; });
+    cells[7].className = t.overruns ? "state-bad" : "";
+    // the state cell is drawn again only when it changes, so that its Restart button stays put
+    const state = cells[8];
+    if (state.dataset.fault !== String(t.fault)) {
+      state.dataset.fault = String(t.fault);
+      state.textContent = "";
+      if (t.fault) {
+        state.className = "text fault";
+        state.append("FAULT: " + t.fault + " ", el("button", { type: "button", class: "restart", onclick: restart }, "Restart"));
+      } else {
+        state.className = "state-ok";
+        state.textContent = "running";
+      }
+    }
   }
   const f = $("faults");
+  const key = count + JSON.stringify(faults.slice(-5));
+  if (f.dataset.key === key) return;
+  f.dataset.key = key;
   f.textContent = "";
   if (count) {
     f.append(el("div", { class: "fault", text: `${count} runtime fault(s) since the start; the latest:` }));
