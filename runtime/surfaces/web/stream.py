@@ -51,6 +51,7 @@ class Broadcaster:
         self.closing = False
         self.clients: dict[str, tuple] = {}  # client id -> its watched paths (canonical)
         self.streams = 0  # open event streams (changed in the event loop only)
+        self._stream_of: dict[str, object] = {}  # client id -> its newest stream (a reconnection replaces it)
         self._loop: asyncio.AbstractEventLoop | None = None
         self._changed: asyncio.Event | None = None
         self._wanted = threading.Event()  # set while a stream is open
@@ -155,6 +156,7 @@ class Broadcaster:
         """The event stream of one page, until it goes or the server stops."""
         self.streams += 1
         self._wanted.set()
+        token = self._stream_of[client] = object()
         sent = 0
         logged = 0
         try:
@@ -174,8 +176,10 @@ class Broadcaster:
             self.streams -= 1
             if self.streams <= 0:
                 self._wanted.clear()
-            self.clients.pop(client, None)
-            self.hub.unwatch(_reader(client))
+            if self._stream_of.get(client) is token:  # not when the page reconnected meanwhile
+                del self._stream_of[client]
+                self.clients.pop(client, None)
+                self.hub.unwatch(_reader(client))
 
 
 def _reader(client: str) -> str:

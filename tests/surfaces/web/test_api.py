@@ -6,6 +6,8 @@ and a clean stop."""
 
 from __future__ import annotations
 
+import contextlib
+import itertools
 import json
 import logging
 import socket
@@ -133,6 +135,25 @@ def test_the_event_stream_sends_the_watched_values_the_forces_and_the_log(web_pl
     broadcaster = web.surfaces.handles["web"].broadcaster
     web.wait_for(lambda: broadcaster.streams == 0 and broadcaster.clients == {}, "the streams closed")
     assert web.surfaces.hub.watch("probe", []) == [] and web.surfaces.hub.capture().values == {}
+
+
+def test_a_page_that_reconnects_keeps_its_watched_values(web_plc):
+    web = web_plc()
+    web.post("watch", client="page", paths=["Main.n"])
+    broadcaster = web.surfaces.handles["web"].broadcaster
+    first = contextlib.ExitStack()
+    old = first.enter_context(web.http.stream("GET", "/api/events", params={"client": "page"}))
+    old_lines = old.iter_lines()  # held: a dropped iterator would close the connection
+    next(line for line in old_lines if line.startswith("data:"))
+    # the browser reconnects (EventSource) before the server noticed the old stream was gone
+    with httpx.Client(base_url=web.url, timeout=10) as other:
+        with other.stream("GET", "/api/events", params={"client": "page"}) as new:
+            lines = new.iter_lines()
+            next(line for line in lines if line.startswith("data:"))
+            first.close()
+            web.wait_for(lambda: broadcaster.streams == 1, "the old stream noticed gone")
+            later = [json.loads(line[5:]) for line in itertools.islice(lines, 40) if line.startswith("data:")][-1]
+            assert "Main.n" in later["values"]  # the old stream's end did not unwatch the page
 
 
 def test_restart_brings_back_a_task_stopped_by_a_fault(web_plc):
