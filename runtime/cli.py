@@ -444,6 +444,13 @@ class Duration(click.ParamType):
     help="Watch the ST files and swap a changed program in between two scans, keeping the values "
     "(SIGHUP: now) [default: on in real time, off with --virtual-time].",
 )
+@click.option(
+    "--web",
+    metavar="[HOST:]PORT",
+    callback=lambda ctx, param, value: _listen(value),
+    help="Serve the web monitor on PORT (0: any free one; 127.0.0.1 unless HOST says otherwise), "
+    'with the [web] section\'s settings or, without one, its defaults (README "Web monitor").',
+)
 def run_cmd(
     config: str | None,
     virtual_time: bool,
@@ -455,6 +462,7 @@ def run_cmd(
     final_json: str | None,
     start_mode: str | None,
     online_change: bool | None,
+    web: str | None,
 ) -> None:
     """Run the PLC: the tasks of CONFIG (a TOML file; without it the embedded
     default example) until Ctrl-C, SIGTERM, --duration or --cycles.
@@ -482,8 +490,21 @@ def run_cmd(
             start_mode=start_mode,
             report_compile_errors=lambda e: _summary(*_report(e.diagnostics, e.sources)),
             online_change=online_change,
+            web=web,
         )
     )
+
+
+def _listen(value: str | None) -> str | None:
+    """--web's value, checked before anything starts."""
+    from .config.servers import parse_listen
+
+    if value is not None:
+        try:
+            parse_listen(value)
+        except ValueError as e:
+            raise click.BadParameter(str(e), param_hint="--web") from None
+    return value
 
 
 @cli.command("plot")

@@ -81,8 +81,10 @@ def run_plc(
     start_mode: str | None,
     report_compile_errors: Callable,
     online_change: bool | None = None,
+    web: str | None = None,
 ) -> int:
     from .config import ConfigError, default_config_path, load_config
+    from .config.servers import web_option
     from .engine.build import build_engine
     from .engine.monitor import StatusReporter, Watch
     from .engine.scan import EngineError
@@ -119,6 +121,12 @@ def run_plc(
             return _fail(str(e), EXIT_CONFIG)
         for warning in cfg.warnings:
             log.warning("%s", warning)
+        servers = {key: cfg.sections.get(key) for key in SERVERS}
+        if web is not None:  # --web [HOST:]PORT: the page without a [web] section, or on another port
+            try:
+                servers["web"] = web_option(web, servers["web"])
+            except ValueError as e:
+                return _fail(f"--web: {e}", EXIT_CONFIG)
         try:
             engine = build_engine(cfg, virtual_time=virtual_time, start_mode=start_mode)
         except CompileError as e:
@@ -148,7 +156,7 @@ def run_plc(
             except OSError as e:
                 return _fail(f"--trace: cannot write {e.filename}: {e.strerror or e}", EXIT_CONFIG)
             engine.after_tick.append(_announce_first_scan)
-            surfaces = Surfaces(engine, {key: cfg.sections.get(key) for key in SERVERS})
+            surfaces = Surfaces(engine, servers)
             try:
                 surfaces.start()
             except SurfaceError as e:
@@ -156,6 +164,7 @@ def run_plc(
             cleanup.callback(surfaces.stop)
             reporter = StatusReporter(engine, sys.stderr, watched, tty, hub=surfaces.hub)
             changer = _start_online_change(engine, cfg, online_change, virtual_time, cleanup)
+            surfaces.online_change = changer  # the web page's "Online change" button
             cleanup.enter_context(_signals(engine, changer))
             _start_console_commands(engine)
             reporter.start()

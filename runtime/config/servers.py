@@ -18,6 +18,7 @@ network. `writable` lists the variables the surface may write and force
 
 from __future__ import annotations
 
+import dataclasses
 import ipaddress
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -163,3 +164,25 @@ class ModbusServerSection(_ServerSection):
 
 
 SERVER_SECTIONS = (WebSection(), OpcuaSection(), ModbusServerSection())
+
+
+def parse_listen(text: str) -> tuple:
+    """`--web [HOST:]PORT` -> (host or None, port): "8080", "0.0.0.0:8080",
+    "localhost:0", "[::1]:8080". ValueError says what is expected."""
+    expected = f"expected [HOST:]PORT such as 8080 or 127.0.0.1:8080, not {text!r}"
+    host, sep, port = text.strip().rpartition(":")
+    if host.startswith("[") and host.endswith("]"):
+        host = host[1:-1]
+    if (sep and not host) or any(c.isspace() for c in host) or not port.isdigit() or int(port) > 65535:
+        raise ValueError(expected)
+    return (host or None), int(port)
+
+
+def web_option(text: str, section: ServerConfig | None) -> ServerConfig:
+    """The [web] server of `softplc run --web [HOST:]PORT`: the section's
+    settings (or its defaults, without one) on that address."""
+    host, port = parse_listen(text)
+    if section is None:
+        d = _Web.model_validate({})
+        section = ServerConfig("web", d.host, d.port, tuple(d.writable), d.period, where="[web] writable")
+    return dataclasses.replace(section, host=host or section.host, port=port)

@@ -40,6 +40,8 @@ class Surfaces:
         self.hub = SnapshotHub(engine, period_s=min([period_s, *periods]))
         self.access = Access(engine, {k: Permission(tuple(c.writable), where=c.where) for k, c in self.configs.items()})
         self.handles: dict[str, Any] = {}
+        #: softplc run's OnlineChange, if on: what the web page's "Online change" button calls
+        self.online_change: Any = None
 
     @property
     def urls(self) -> dict:

@@ -39,6 +39,7 @@ from .cia301 import (
     CONSUMER_HEARTBEAT,
     NMT_RESET_COMMUNICATION,
     NMT_START,
+    STATE_NAMES,
     STATE_OPERATIONAL,
     cob_emcy,
     cob_heartbeat,
@@ -522,5 +523,42 @@ class CanopenDriver(Driver):
             )
         return DriverStatus(True, f"canopen: {up}/{len(self.nodes)} up{malformed}")
 
+    def details(self) -> dict:
+        """For the monitors: each node's state, the NMT state its heartbeat
+        or guarding reply last gave, its last error and latest emergencies."""
+        with self._lock:
+            nodes = [_node_details(n) for n in self.nodes.values()]
+        return {"bus_ok": self._bus_ok, "malformed": self.malformed, "nodes": nodes}
+
     def node_state(self, node_id: int) -> NodeState:
         return self.nodes[node_id].sup.state
+
+
+def _node_details(node: _Node) -> dict:
+    sup = node.sup
+    nmt = None if sup.nmt_state is None else STATE_NAMES.get(sup.nmt_state & 0x7F, f"0x{sup.nmt_state:02X}")
+    return {
+        "id": node.cfg.node_id,
+        "name": node.cfg.name,
+        "mandatory": node.cfg.mandatory,
+        "state": sup.state.name,
+        "nmt": nmt,
+        "error": sup.message,
+        "boots": sup.boots,
+        "emergencies": sup.emergencies,
+        "emcy": [_emcy_details(node, e) for e in sup.emcy_history],
+    }
+
+
+def _emcy_details(node: _Node, emcy: Emergency) -> dict:
+    try:
+        text = node.emcy_text(emcy.code, emcy.register, emcy.data) if node.emcy_text is not None else ""
+    except Exception:  # a device's words are a nicety: the numbers are shown anyway
+        text = ""
+    return {
+        "time_ns": emcy.time_ns,
+        "code": emcy.code,
+        "register": emcy.register,
+        "data": emcy.data.hex(" "),
+        "text": text or ("error reset" if emcy.code == 0 else ""),
+    }

@@ -20,10 +20,14 @@ answers again is booted afresh, as one whose heartbeat comes back.
 
 from __future__ import annotations
 
+from collections import deque
 from dataclasses import dataclass
 from enum import IntEnum
 
 from .cia301 import STATE_BOOTUP, STATE_NAMES, STATE_OPERATIONAL
+
+#: the emergencies a node keeps for the monitors (Driver.details), newest last
+EMCY_HISTORY = 10
 
 
 class NodeState(IntEnum):
@@ -77,6 +81,7 @@ class NodeSupervisor:
         self.emergencies = 0
         self.malformed = 0  # its frames dropped as malformed (an EMCY or heartbeat of the wrong length ...)
         self.last_emcy: Emergency | None = None
+        self.emcy_history: deque[Emergency] = deque(maxlen=EMCY_HISTORY)
         self.message = ""
         self.version = 0  # bumped on every change the program can see
 
@@ -193,6 +198,7 @@ class NodeSupervisor:
     def emergency(self, emcy: Emergency) -> None:
         self.emergencies += 1
         self.last_emcy = emcy
+        self.emcy_history.append(emcy)
         self.version += 1
 
     def malformed_frame(self) -> None:

@@ -339,3 +339,29 @@ def test_a_pdo_on_a_restricted_cob_id_is_refused(plants):
         assert plant.master.rx_short == 0
     finally:
         node.stop()
+
+
+def test_details_give_each_node_its_states_last_error_and_emergencies_for_the_monitors(plants):
+    plant = plants(WATCH, program="Watch")
+    plant.run_until(lambda: plant.get("Watch.operational"), 200, "node 40 operational")
+    sim = plant.sims[40]
+    sim.send_emcy(0x1000, 0x01, bytes([109, 0]))  # the LTMR's trip 109, as its simulator reports it
+    sim.send_emcy(0x0000, 0x00)  # error reset
+    plant.run_ms(250)  # two heartbeats: the node's NMT state is known
+    (node,) = plant.master.details()["nodes"]
+    assert (node["id"], node["name"], node["state"], node["nmt"], node["error"]) == (
+        40,
+        "motor",
+        "OPERATIONAL",
+        "operational",
+        "",
+    )
+    assert [(e["code"], e["register"], e["data"]) for e in node["emcy"]] == [
+        (0x1000, 0x01, "6d 00 00 00 00"),
+        (0x0000, 0x00, "00 00 00 00 00"),
+    ]
+    assert node["emcy"][1]["text"] == "error reset" and node["emergencies"] == 2
+    sim.unplug()  # the heartbeat stops: the node is lost, and the monitors say why
+    plant.run_ms(500)
+    (node,) = plant.master.details()["nodes"]
+    assert node["state"] == "LOST" and "heartbeat lost" in node["error"]

@@ -1,0 +1,229 @@
+"""The web monitor's ASGI application (Starlette): the page, its files and
+its JSON API. Every read goes through the SnapshotHub (stream.py), every
+change through the one Access with the [web] permissions.
+
+    GET  /                     the page (static/index.html, app.js, style.css: no CDN, no build)
+    GET  /api/info             what the page needs to know once: writable patterns, online change ...
+    GET  /api/tree?path=&offset=   one level of the variable tree (tree.py)
+    POST /api/watch            {"client", "paths"}: the values that client's stream sends
+    GET  /api/events?client=   its server-sent events (stream.py)
+    POST /api/write            {"path", "value"}   once, at the next scan
+    POST /api/force            {"path", "value"}   held until unforced
+    POST /api/unforce          {"path"}
+    POST /api/restart          restart the tasks a runtime fault stopped
+    POST /api/online-change    compile the ST files and swap them in (softplc run only)
+
+An error is {"error": message} with the status saying what kind: 400 a
+value the type cannot hold, 403 a variable [web] writable does not cover,
+404 no such variable, 409 unforce of a variable not forced, 504 no scan took
+the change in time. A POST must be JSON (Content-Type application/json): a
+page of another site cannot send one without the browser asking first (a
+CORS preflight, which this server does not grant).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import re
+from pathlib import Path
+from typing import Any
+
+from starlette.applications import Starlette
+from starlette.middleware import Middleware
+from starlette.middleware.trustedhost import TrustedHostMiddleware
+from starlette.requests import Request
+from starlette.responses import FileResponse, JSONResponse, Response, StreamingResponse
+from starlette.routing import Mount, Route
+from starlette.staticfiles import StaticFiles
+
+from ...config.servers import ServerConfig
+from ...engine.access import AccessDenied
+from ...engine.places import PathError
+from ...st import types as T
+from . import tree
+from .stream import MAX_CLIENTS, Broadcaster
+
+STATIC = Path(__file__).parent / "static"
+SURFACE = "web"
+#: how long a write, force or unforce waits for the scan that applies it
+APPLY_TIMEOUT_S = 5.0
+_CLIENT = re.compile(r"^[A-Za-z0-9_-]{1,64}$")
+
+
+def make_app(surfaces, config: ServerConfig, broadcaster: Broadcaster) -> Starlette:
+    api = _Api(surfaces, config, broadcaster)
+
+    @contextlib.asynccontextmanager
+    async def lifespan(_app):
+        broadcaster.start(asyncio.get_running_loop())
+        try:
+            yield
+        finally:
+            broadcaster.stop()
+
+    routes = [
+        Route("/", api.index),
+        Route("/api/info", api.info),
+        Route("/api/tree", api.tree),
+        Route("/api/watch", api.watch, methods=["POST"]),
+        Route("/api/events", api.events),
+        Route("/api/{op:str}", api.change, methods=["POST"]),
+        Mount("/static", app=StaticFiles(directory=STATIC), name="static"),
+    ]
+    middleware = []
+    if not config.public:  # a page of another site reaching 127.0.0.1 by a name of its own (DNS rebinding)
+        middleware.append(Middleware(TrustedHostMiddleware, allowed_hosts=["127.0.0.1", "localhost"]))
+    return Starlette(routes=routes, middleware=middleware, lifespan=lifespan)
+
+
+def _error(status: int, message: str) -> JSONResponse:
+    return JSONResponse({"error": message}, status_code=status)
+
+
+class _Api:
+    def __init__(self, surfaces, config: ServerConfig, broadcaster: Broadcaster) -> None:
+        self.surfaces = surfaces
+        self.config = config
+        self.broadcaster = broadcaster
+        self.engine = surfaces.engine
+        self.access = surfaces.access
+
+    async def index(self, _request: Request) -> Response:
+        return FileResponse(STATIC / "index.html")
+
+    async def info(self, _request: Request) -> Response:
+        return JSONResponse(
+            {
+                "writable": list(self.config.writable),
+                "period_s": self.config.period_ns / 1e9,
+                "online_change": getattr(self.surfaces, "online_change", None) is not None,
+                "tasks": [t.name for t in self.engine.tasks],
+            }
+        )
+
+    def tree(self, request: Request) -> Response:  # sync: Starlette runs it in a worker thread
+        path = request.query_params.get("path", "")
+        try:
+            offset = int(request.query_params.get("offset", "0"))
+            return JSONResponse(tree.children(self.broadcaster.hub.resolver, path, offset))
+        except PathError as exc:
+            return _error(404, str(exc))
+        except ValueError as exc:
+            return _error(400, f"offset: {exc}")
+
+    async def watch(self, request: Request) -> Response:
+        body = await _json(request)
+        if isinstance(body, Response):
+            return body
+        client, paths = body.get("client"), body.get("paths")
+        if not isinstance(client, str) or not _CLIENT.match(client):
+            return _error(400, "client: a name of letters, digits, - and _ (the page makes one)")
+        if not isinstance(paths, list) or not all(isinstance(p, str) for p in paths):
+            return _error(400, 'paths: a list of variable paths such as ["Motor.state"]')
+        good, errors = self.broadcaster.watch(client, paths)
+        return JSONResponse({"paths": good, "errors": errors})
+
+    async def events(self, request: Request) -> Response:
+        client = request.query_params.get("client", "")
+        if not _CLIENT.match(client):
+            return _error(400, "client: a name of letters, digits, - and _ (the page makes one)")
+        if self.broadcaster.streams >= MAX_CLIENTS:
+            return _error(503, f"{MAX_CLIENTS} pages are open already; close one")
+        headers = {"Cache-Control": "no-store", "X-Accel-Buffering": "no"}
+        return StreamingResponse(self.broadcaster.events(client), media_type="text/event-stream", headers=headers)
+
+    async def change(self, request: Request) -> Response:
+        op = request.path_params["op"]
+        if op == "restart":
+            return await self.restart(request)
+        if op == "online-change":
+            return await self.online_change(request)
+        if op not in ("write", "force", "unforce"):
+            return _error(404, f"no operation {op!r} (write, force, unforce, restart, online-change)")
+        body = await _json(request)
+        if isinstance(body, Response):
+            return body
+        path = body.get("path")
+        try:
+            if not isinstance(path, str):
+                raise PathError(f"path: a variable path such as 'Motor.Auto', not {path!r}")
+            place = self.access.check(op, path, SURFACE)  # a refusal first, whatever the value
+            if op == "unforce":
+                if place.path.upper() not in self.engine.forces:
+                    raise _NotForced(f"{place.path} is not forced")
+                value = None
+            else:
+                if "value" not in body:
+                    return _error(400, f"{place.path}: no value to {op}")
+                value = _typed(place, body["value"])
+            future = self.access.submit(op, path, value, surface=SURFACE)
+            # shielded: a page that goes away does not cancel a change the scan is to apply
+            done = await asyncio.wait_for(asyncio.shield(asyncio.wrap_future(future)), APPLY_TIMEOUT_S)
+        except AccessDenied as exc:
+            return _error(403, str(exc))
+        except PathError as exc:
+            return _error(404, str(exc))
+        except _NotForced as exc:
+            return _error(409, str(exc))
+        except (ValueError, TypeError) as exc:
+            return _error(400, str(exc))
+        except TimeoutError:
+            return _error(
+                504,
+                f"{path}: no scan took the {op} within {APPLY_TIMEOUT_S:g} s (is the PLC running?); "
+                "it waits for the next",
+            )
+        except Exception as exc:  # the scan refused it (a fault while storing): tell the page, keep serving
+            return _error(422, f"{path}: {exc}")
+        return JSONResponse({"path": done, "op": op})
+
+    async def restart(self, request: Request) -> Response:
+        body = await _json(request)
+        if isinstance(body, Response):
+            return body
+        faulted = [t.name for t in self.engine.faulted_tasks()]
+        if not faulted:
+            return _error(409, "no task is stopped by a fault")
+        self.engine.request_restart()
+        return JSONResponse({"restarting": faulted})
+
+    async def online_change(self, request: Request) -> Response:
+        body = await _json(request)
+        if isinstance(body, Response):
+            return body
+        changer = getattr(self.surfaces, "online_change", None)
+        if changer is None:
+            return _error(404, "online change is off (softplc run --online-change turns it on)")
+        # compiling takes a while: in a worker thread, the event loop keeps serving
+        report = await asyncio.to_thread(changer.request, "web page")
+        return JSONResponse({"applied": report.applied, "summary": report.summary(), "lines": report.lines()})
+
+
+class _NotForced(Exception):
+    pass
+
+
+async def _json(request: Request) -> Any:
+    """The request's JSON object, or the error response to send."""
+    if not request.headers.get("content-type", "").split(";")[0].strip().lower() == "application/json":
+        return _error(415, "send JSON (Content-Type: application/json)")
+    try:
+        body = await request.json()
+    except ValueError as exc:
+        return _error(400, f"not JSON: {exc}")
+    if not isinstance(body, dict):
+        return _error(400, "send a JSON object")
+    return body
+
+
+def _typed(place, value: Any) -> Any:
+    """A value typed on the page is text: a REAL takes it as a number (the
+    other types read their literals themselves: TRUE, 16#FF, T#2s, an enumerator)."""
+    r = T.resolve(place.type)
+    if isinstance(value, str) and isinstance(r, T.ElementaryType) and r.is_real:
+        try:
+            return float(value.strip())
+        except ValueError:
+            raise ValueError(f"{place.path} is {r.name}: write a number, not {value!r}") from None
+    return value

@@ -1,0 +1,238 @@
+"""The live values of the web page: server-sent events fed by one thread.
+
+One thread (the Broadcaster's) waits for snapshots of the engine
+(SnapshotHub.wait_fresh), at most one per period (the [web] period, 250 ms
+by default: 4 updates a second), while at least one page is open, and hands
+each to the event loop; every page's event stream (``events``) waits there
+for the next one and sends what that page watches. So the scan only ever
+pays the hub's capture, whatever the number of pages, the event loop never
+blocks on the engine, and a slow page only slows its own stream.
+
+Each page has a client id; ``Broadcaster.watch(client, paths)`` sets its
+watched paths (through ``hub.watch``) and its event stream sends:
+
+    event: state
+    data: {"sequence", "cycle", "time_ns", "generation", "outputs_safe",
+           "tasks": [...], "drivers": [...], "faults": [...], "forced": {path: value},
+           "values": {path: value as JSON}, "numbers": {path: float}, "log": [records]}
+"""
+
+from __future__ import annotations
+
+import asyncio
+import dataclasses
+import json
+import logging
+import math
+import threading
+import time
+from collections.abc import AsyncIterator
+from typing import Any
+
+from ...engine.snapshot import Snapshot, SnapshotHub
+from .logbuffer import LogBuffer
+
+log = logging.getLogger("softplc.web")
+
+#: a comment line this often keeps proxies and the browser from closing a quiet stream
+KEEPALIVE_S = 10.0
+#: the faults a page gets (the latest); the count says how many there were
+FAULTS_SHOWN = 20
+#: event streams at once: more are refused (503) rather than load the PLC
+MAX_CLIENTS = 20
+
+
+class Broadcaster:
+    def __init__(self, hub: SnapshotHub, period_s: float, logs: LogBuffer) -> None:
+        self.hub = hub
+        self.period_s = period_s
+        self.logs = logs
+        self.snapshot: Snapshot | None = None
+        self.closing = False
+        self.clients: dict[str, tuple] = {}  # client id -> its watched paths (canonical)
+        self.streams = 0  # open event streams (changed in the event loop only)
+        self._stream_of: dict[str, object] = {}  # client id -> its newest stream (a reconnection replaces it)
+        self._loop: asyncio.AbstractEventLoop | None = None
+        self._changed: asyncio.Event | None = None
+        self._wanted = threading.Event()  # set while a stream is open
+        self._stop = threading.Event()
+        self._thread: threading.Thread | None = None
+
+    # ------------------------------------------------------------ lifecycle (the event loop)
+
+    def start(self, loop: asyncio.AbstractEventLoop) -> None:
+        self._loop = loop
+        self._changed = asyncio.Event()
+        self._thread = threading.Thread(target=self._run, name="softplc-web-snapshots", daemon=True)
+        self._thread.start()
+
+    def close(self) -> None:
+        """End every event stream (from any thread): the server can then stop."""
+        self.closing = True
+        loop = self._loop
+        if loop is not None and not loop.is_closed():
+            try:
+                loop.call_soon_threadsafe(self._wake_streams)
+            except RuntimeError:  # the loop closed meanwhile
+                pass
+
+    def stop(self) -> None:
+        self.closing = True
+        self._stop.set()
+        self._wanted.set()
+        if self._thread is not None:
+            self._thread.join(timeout=5)
+
+    # ------------------------------------------------------------ the snapshot thread
+
+    def _run(self) -> None:
+        while not self._stop.is_set():
+            if not self._wanted.wait(0.5):
+                continue
+            started = time.monotonic()
+            snap = self._take()
+            loop = self._loop
+            if snap is not None and loop is not None and not self._stop.is_set():
+                try:
+                    loop.call_soon_threadsafe(self._publish, snap)
+                except RuntimeError:  # the loop closed: the server stops
+                    return
+            self._stop.wait(max(self.period_s - (time.monotonic() - started), 0.0))
+
+    def _take(self) -> Snapshot | None:
+        try:
+            return self.hub.wait_fresh(timeout=0.5)
+        except TimeoutError:
+            if self.hub.engine.scan_thread is None:  # not running (stopped, or stepped by a test)
+                return self._capture()
+            return None
+
+    def _capture(self) -> Snapshot | None:
+        try:
+            return self.hub.capture()
+        except Exception as exc:  # an engine not started yet ...: nothing to show, say why once
+            log.debug("web: no snapshot: %s", exc)
+            return None
+
+    # ------------------------------------------------------------ the event loop
+
+    def _publish(self, snap: Snapshot) -> None:
+        self.snapshot = snap
+        self._wake_streams()
+
+    def _wake_streams(self) -> None:
+        changed, self._changed = self._changed, asyncio.Event()
+        if changed is not None:
+            changed.set()
+
+    async def next_snapshot(self, after: int) -> Snapshot | None:
+        """The first snapshot newer than sequence after; None after KEEPALIVE_S or when closing."""
+        while not self.closing:
+            snap = self.snapshot
+            if snap is not None and snap.sequence > after:
+                return snap
+            changed = self._changed
+            assert changed is not None
+            try:
+                await asyncio.wait_for(changed.wait(), timeout=KEEPALIVE_S)
+            except TimeoutError:
+                return None
+        return None
+
+    def watch(self, client: str, paths: list) -> tuple:
+        """Watch paths for client: (the canonical paths, {path: why not} for the others)."""
+        good, errors = [], {}
+        resolver = self.hub.resolver
+        for path in paths:
+            try:
+                good.append(resolver.place(path).path)
+            except (KeyError, ValueError) as exc:  # PathError is a KeyError
+                errors[path] = str(exc)
+        self.hub.watch(_reader(client), good)
+        self.clients[client] = tuple(good)
+        return good, errors
+
+    async def events(self, client: str) -> AsyncIterator[str]:
+        """The event stream of one page, until it goes or the server stops."""
+        self.streams += 1
+        self._wanted.set()
+        token = self._stream_of[client] = object()
+        sent = 0
+        logged = 0
+        try:
+            yield "retry: 2000\n\n"
+            while not self.closing:
+                snap = await self.next_snapshot(sent)
+                if snap is None:
+                    if self.closing:
+                        break
+                    yield ": keep-alive\n\n"
+                    continue
+                sent = snap.sequence
+                records, logged = self.logs.since(logged)
+                payload = state_payload(snap, self.clients.get(client, ()), records)
+                yield "event: state\ndata: " + json.dumps(payload, separators=(",", ":")) + "\n\n"
+        finally:
+            self.streams -= 1
+            if self.streams <= 0:
+                self._wanted.clear()
+            if self._stream_of.get(client) is token:  # not when the page reconnected meanwhile
+                del self._stream_of[client]
+                self.clients.pop(client, None)
+                self.hub.unwatch(_reader(client))
+
+
+def _reader(client: str) -> str:
+    return f"web:{client}"
+
+
+def state_payload(snap: Snapshot, paths, records: list) -> dict:
+    """What one page gets of a snapshot: the engine's state and its watched values."""
+    values: dict = {}
+    numbers: dict = {}
+    for path in paths:
+        if path not in snap.values:
+            continue
+        values[path] = _finite(snap.json(path))
+        raw = snap.values[path]
+        if isinstance(raw, (bool, int, float)) and math.isfinite(raw):
+            numbers[path] = float(raw)
+    return {
+        "sequence": snap.sequence,
+        "cycle": snap.cycle,
+        "time_ns": snap.time_ns,
+        "generation": snap.generation,
+        "outputs_safe": snap.outputs_safe,
+        "tasks": [dataclasses.asdict(t) for t in snap.tasks],
+        "drivers": [_finite(dataclasses.asdict(d)) for d in snap.drivers],
+        "faults": list(snap.faults[-FAULTS_SHOWN:]),
+        "fault_count": len(snap.faults),
+        "forced": {path: _jsonable(value) for path, value in snap.forced.items()},
+        "values": values,
+        "numbers": numbers,
+        "log": records,
+    }
+
+
+def _jsonable(value: Any) -> Any:
+    """A forced value as its forcer gave it: JSON data, or its text."""
+    if value is None or isinstance(value, (bool, int, str)):
+        return value
+    if isinstance(value, float):
+        return value if math.isfinite(value) else str(value)
+    if isinstance(value, (list, tuple)):
+        return [_jsonable(v) for v in value]
+    if isinstance(value, dict):
+        return {str(k): _jsonable(v) for k, v in value.items()}
+    return str(value)
+
+
+def _finite(value: Any) -> Any:
+    """JSON has no NaN or infinity: those go as text ("nan", "inf")."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return str(value)
+    if isinstance(value, list):
+        return [_finite(v) for v in value]
+    if isinstance(value, dict):
+        return {k: _finite(v) for k, v in value.items()}
+    return value
