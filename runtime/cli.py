@@ -451,6 +451,28 @@ class Duration(click.ParamType):
     help="Serve the web monitor on PORT (0: any free one; 127.0.0.1 unless HOST says otherwise), "
     'with the [web] section\'s settings or, without one, its defaults (README "Web monitor").',
 )
+@click.option(
+    "--log-file",
+    type=click.Path(dir_okay=False),
+    metavar="FILE",
+    help="Write the log (wall time, engine time, level, message) to FILE too, as a service does.",
+)
+@click.option(
+    "--log-max-bytes",
+    type=click.IntRange(min=0),
+    default=10_000_000,
+    show_default=True,
+    metavar="N",
+    help="Rotate the log file when it reaches N bytes: FILE becomes FILE.1 (0: never).",
+)
+@click.option(
+    "--log-backups",
+    type=click.IntRange(min=0),
+    default=5,
+    show_default=True,
+    metavar="N",
+    help="Keep N rotated log files (FILE.1 .. FILE.N), the oldest dropped.",
+)
 def run_cmd(
     config: str | None,
     virtual_time: bool,
@@ -463,6 +485,9 @@ def run_cmd(
     start_mode: str | None,
     online_change: bool | None,
     web: str | None,
+    log_file: str | None,
+    log_max_bytes: int,
+    log_backups: int,
 ) -> None:
     """Run the PLC: the tasks of CONFIG (a TOML file; without it the embedded
     default example) until Ctrl-C, SIGTERM, --duration or --cycles.
@@ -491,6 +516,9 @@ def run_cmd(
             report_compile_errors=lambda e: _summary(*_report(e.diagnostics, e.sources)),
             online_change=online_change,
             web=web,
+            log_file=log_file,
+            log_max_bytes=log_max_bytes,
+            log_backups=log_backups,
         )
     )
 

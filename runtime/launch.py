@@ -60,6 +60,19 @@ def _setup_logging(tty: bool, stream=None) -> tuple:
     return handler, engine_time
 
 
+def _log_file(path: str, max_bytes: int, backups: int, engine_time: _EngineTime) -> logging.Handler:
+    """The log also to a file (``--log-file``), the stderr lines without the
+    status line, renamed to PATH.1 .. PATH.<backups> when it reaches
+    max_bytes (0: never), the oldest dropped; OSError if it cannot be written."""
+    from logging.handlers import RotatingFileHandler
+
+    handler = RotatingFileHandler(path, maxBytes=max_bytes, backupCount=backups, encoding="utf-8")
+    handler.setFormatter(_LineFormatter(tty=False))
+    handler.addFilter(engine_time)
+    log.addHandler(handler)
+    return handler
+
+
 def _fail(message: str, code: int) -> int:
     from .config.values import cut
 
@@ -82,6 +95,9 @@ def run_plc(
     report_compile_errors: Callable,
     online_change: bool | None = None,
     web: str | None = None,
+    log_file: str | None = None,
+    log_max_bytes: int = 10_000_000,
+    log_backups: int = 5,
 ) -> int:
     from .config import ConfigError, default_config_path, load_config
     from .config.servers import web_option
@@ -113,7 +129,13 @@ def run_plc(
             return _fail(f"--trace {plots[0]}: {e}", EXIT_CONFIG)
     tty = sys.stderr.isatty()
     handler, engine_time = _setup_logging(tty)
+    file_handler = None
     try:
+        if log_file:
+            try:
+                file_handler = _log_file(log_file, log_max_bytes, log_backups, engine_time)
+            except OSError as e:
+                return _fail(f"--log-file: cannot write {log_file}: {e.strerror or e}", EXIT_CONFIG)
         path = Path(config) if config else default_config_path()
         try:
             cfg = load_config(path)
@@ -205,6 +227,9 @@ def run_plc(
         return EXIT_OK
     finally:
         log.removeHandler(handler)
+        if file_handler is not None:
+            log.removeHandler(file_handler)
+            file_handler.close()
 
 
 def run_for(engine, cycles: int | None, duration_ns: int | None) -> int:

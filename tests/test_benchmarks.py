@@ -22,6 +22,7 @@ def test_there_are_benchmarks():
         "bench_language.py",
         "bench_loops.py",
         "bench_modbus.py",
+        "bench_modbus_server.py",
         "bench_soak.py",
         "bench_spin.py",
     ]

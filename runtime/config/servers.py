@@ -13,7 +13,7 @@ network. `writable` lists the variables the surface may write and force
     writable = ["Main.Setpoint"]  # read-only unless listed
 
     [modbus_server]
-    port = 5020                   # writable = ["%Q*", "%M*"]
+    port = 5020                   # writable = ["%Q*", "%M*"], unit = 0 (answers any unit id)
 """
 
 from __future__ import annotations
@@ -121,6 +121,7 @@ class _ModbusServer(Model):
     port: Port = Field(5020, description="a TCP port, 0 for any free one")
     writable: Patterns = Field(("%Q*", "%M*"), description='an array of patterns such as ["%QX*", "%MW*"]')
     period: Period = Field(100_000_000, description=f"a duration such as {DURATION_EXAMPLES}")
+    unit: Annotated[int, int_range(0, 255)] = Field(0, description="a unit id 1..255, 0 for any")
 
 
 class _ServerSection(Section):
