@@ -28,6 +28,10 @@ from pathlib import Path
 
 import click
 
+from .cli_report import echo_err as _echo_err
+from .cli_report import report as _report
+from .cli_report import summary as _summary
+from .cli_run import Duration, run_cmd
 from .durations import EXAMPLES, parse_duration_ns
 from .plugin.registry import PluginError
 from .st.profile import DEFAULT, PROFILES, get_profile
@@ -77,30 +81,6 @@ FILES_ARGUMENT = click.argument(
 
 
 # ---------------------------------------------------------------- helpers
-
-
-def _echo_err(text: str) -> None:
-    click.echo(text, err=True)
-
-
-def _report(diagnostics, sources) -> tuple[int, int]:
-    """Print every diagnostic (errors and warnings) to stderr; return the counts."""
-    errors = warnings = 0
-    for d in diagnostics:
-        _echo_err(d.format(sources))
-        if d.is_error:
-            errors += 1
-        else:
-            warnings += 1
-    return errors, warnings
-
-
-def _plural(n: int, word: str) -> str:
-    return f"{n} {word}" if n == 1 else f"{n} {word}s"
-
-
-def _summary(errors: int, warnings: int) -> None:
-    _echo_err(f"{_plural(errors, 'error')}, {_plural(warnings, 'warning')}")
 
 
 def _compile(files, profile: str):
@@ -376,165 +356,6 @@ def _pick_entry(pous: dict, entry: str | None) -> str:
     return entry
 
 
-class Duration(click.ParamType):
-    """A positive duration of engine time: 30s, 1m30s, 500ms, T#2s."""
-
-    name = "duration"
-
-    def convert(self, value, param, ctx) -> int:
-        if isinstance(value, int):
-            return value
-        ns = parse_duration_ns(value)
-        if ns is None or ns <= 0:
-            self.fail(f"{value!r} is not a positive duration (examples: {EXAMPLES})", param, ctx)
-        return ns
-
-
-@cli.command("run")
-@click.argument("config", required=False, type=click.Path(dir_okay=False))
-@click.option(
-    "--virtual-time", is_flag=True, help="Run on the virtual clock: jump from deadline to deadline (no waiting)."
-)
-@click.option(
-    "--duration", type=Duration(), metavar="DURATION", help="Stop after this much engine time (30s, 1m, T#500ms)."
-)
-@click.option("--cycles", type=click.IntRange(min=1), metavar="N", help="Stop after N scans.")
-@click.option(
-    "--watch",
-    "watch",
-    multiple=True,
-    metavar="VAR",
-    help="Show VAR in the status line and the trace: Instance.var, a global, or an "
-    "address such as %QW1. Repeat the option or separate names with commas.",
-)
-@click.option(
-    "--trace",
-    "traces",
-    multiple=True,
-    type=click.Path(dir_okay=False),
-    metavar="FILE",
-    help="Write the watched values over engine time; the ending says how: .csv (a row per scan), "
-    ".vcd (GTKWave), .png/.svg/.pdf (a plot at the end). Repeat for several.",
-)
-@click.option(
-    "--unit",
-    "units",
-    multiple=True,
-    metavar="VAR=UNIT",
-    help="Label a watched number's plot axis with UNIT; numbers with the same unit share an axis.",
-)
-@click.option(
-    "--final-json",
-    type=click.Path(dir_okay=False, allow_dash=True),
-    metavar="FILE",
-    help="At the end, write every program's variables as JSON (as `exec` prints them; - for stdout).",
-)
-@click.option(
-    "--cold", "start_mode", flag_value="cold", help="Cold start: every variable initialised, the retain file ignored."
-)
-@click.option(
-    "--warm",
-    "start_mode",
-    flag_value="warm",
-    help='Warm start: RETAIN and PERSISTENT variables restored (the default unless the config says start = "cold").',
-)
-@click.option(
-    "--online-change/--no-online-change",
-    default=None,
-    help="Watch the ST files and swap a changed program in between two scans, keeping the values "
-    "(SIGHUP: now) [default: on in real time, off with --virtual-time].",
-)
-@click.option(
-    "--web",
-    metavar="[HOST:]PORT",
-    callback=lambda ctx, param, value: _listen(value),
-    help="Serve the web monitor on PORT (0: any free one; 127.0.0.1 unless HOST says otherwise), "
-    'with the [web] section\'s settings or, without one, its defaults (README "Web monitor").',
-)
-@click.option(
-    "--log-file",
-    type=click.Path(dir_okay=False),
-    metavar="FILE",
-    help="Write the log (wall time, engine time, level, message) to FILE too, as a service does.",
-)
-@click.option(
-    "--log-max-bytes",
-    type=click.IntRange(min=0),
-    default=10_000_000,
-    show_default=True,
-    metavar="N",
-    help="Rotate the log file when it reaches N bytes: FILE becomes FILE.1 (0: never).",
-)
-@click.option(
-    "--log-backups",
-    type=click.IntRange(min=0),
-    default=5,
-    show_default=True,
-    metavar="N",
-    help="Keep N rotated log files (FILE.1 .. FILE.N), the oldest dropped.",
-)
-def run_cmd(
-    config: str | None,
-    virtual_time: bool,
-    duration: int | None,
-    cycles: int | None,
-    watch: tuple,
-    traces: tuple,
-    units: tuple,
-    final_json: str | None,
-    start_mode: str | None,
-    online_change: bool | None,
-    web: str | None,
-    log_file: str | None,
-    log_max_bytes: int,
-    log_backups: int,
-) -> None:
-    """Run the PLC: the tasks of CONFIG (a TOML file; without it the embedded
-    default example) until Ctrl-C, SIGTERM, --duration or --cycles.
-
-    SIGUSR1 (or typing `restart` on a terminal) restarts tasks stopped by a
-    runtime fault; SIGHUP compiles the ST files and swaps them in (online
-    change: README "Online change"). Exit codes: 0 stopped cleanly, 1 compile errors, 2 bad
-    configuration or option, 3 a runtime fault happened during the run.
-    """
-    from .launch import run_plc
-
-    if duration is not None and cycles is not None:
-        raise click.UsageError("give --duration or --cycles, not both")
-    paths = [p.strip() for item in watch for p in item.split(",") if p.strip()]
-    sys.exit(
-        run_plc(
-            config,
-            virtual_time=virtual_time,
-            duration_ns=duration,
-            cycles=cycles,
-            watch=paths,
-            traces=list(traces),
-            units=list(units),
-            final_json=final_json,
-            start_mode=start_mode,
-            report_compile_errors=lambda e: _summary(*_report(e.diagnostics, e.sources)),
-            online_change=online_change,
-            web=web,
-            log_file=log_file,
-            log_max_bytes=log_max_bytes,
-            log_backups=log_backups,
-        )
-    )
-
-
-def _listen(value: str | None) -> str | None:
-    """--web's value, checked before anything starts."""
-    from .config.servers import parse_listen
-
-    if value is not None:
-        try:
-            parse_listen(value)
-        except ValueError as e:
-            raise click.BadParameter(str(e), param_hint="--web") from None
-    return value
-
-
 @cli.command("plot")
 @click.argument("trace", type=click.Path(exists=True, dir_okay=False))
 @click.option(
@@ -616,6 +437,9 @@ def test_cmd(paths: tuple, junit: str | None, pattern: str | None, timeout: int)
 
 
 # ---------------------------------------------------------------- entry point
+
+
+cli.add_command(run_cmd)
 
 
 def main(argv: list | None = None) -> None:
