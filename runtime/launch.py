@@ -159,12 +159,28 @@ def run_plc(
         engine_time.clock = engine.clock
         log.info("%s: %s start, %s clock", path, engine.start_mode, "virtual" if virtual_time else "real")
         try:
-            engine.start()
+            engine.load()
         except STFault as e:
             return _fail(f"initial values: {e}", EXIT_FAULT)
+        except EngineError as e:
+            return _fail(str(e), EXIT_CONFIG)
+        # The servers start before the engine does, so that the first scans
+        # run at their release times, not late by a server's start-up.
+        surfaces = Surfaces(engine, servers)
+        try:
+            surfaces.start()
+        except SurfaceError as e:
+            return _fail(str(e), EXIT_CONFIG)
+        try:
+            engine.start()
+        except STFault as e:
+            surfaces.stop()
+            return _fail(f"initial values: {e}", EXIT_FAULT)
         except (EngineError, DriverError) as e:
+            surfaces.stop()
             return _fail(str(e), EXIT_CONFIG)
         with ExitStack() as cleanup:
+            cleanup.callback(surfaces.stop)  # after the engine stopped
             cleanup.callback(engine.stop)
             try:
                 watched = Watch(engine, watch)
@@ -178,12 +194,6 @@ def run_plc(
             except OSError as e:
                 return _fail(f"--trace: cannot write {e.filename}: {e.strerror or e}", EXIT_CONFIG)
             engine.after_tick.append(_announce_first_scan)
-            surfaces = Surfaces(engine, servers)
-            try:
-                surfaces.start()
-            except SurfaceError as e:
-                return _fail(str(e), EXIT_CONFIG)
-            cleanup.callback(surfaces.stop)
             reporter = StatusReporter(engine, sys.stderr, watched, tty, hub=surfaces.hub)
             changer = _start_online_change(engine, cfg, online_change, virtual_time, cleanup)
             surfaces.online_change = changer  # the web page's "Online change" button
