@@ -77,7 +77,6 @@ class Access:
         self.permissions: dict[str, Permission] = dict(permissions or {})
         engine.load()
         self._resolver = Resolver(engine)
-        self._generation = engine.generation
         self._queue: collections.deque = collections.deque()
         self._scan_thread: int | None = None
         engine.before_tasks.append(self._drain)
@@ -87,9 +86,7 @@ class Access:
 
     @property
     def resolver(self) -> Resolver:
-        if self._generation != self.engine.generation:
-            self._resolver = Resolver(self.engine)
-            self._generation = self.engine.generation
+        self._resolver = self._resolver.fresh()
         return self._resolver
 
     def place(self, path: str) -> Place:

@@ -81,6 +81,7 @@ class Resolver:
 
     def __init__(self, engine) -> None:
         self.engine = engine
+        self.generation = engine.generation  # the program instances it knows
         self.image = engine.image
         self.located: dict = {}  # (class, attribute) -> LocatedAddress
         ns = engine.ns
@@ -94,6 +95,11 @@ class Resolver:
         for var in checked.globals:
             if var.location is not None:
                 self.located[(gcls, var.pyname)] = var.location
+
+    def fresh(self) -> Resolver:
+        """This resolver, or a new one when the engine's program instances
+        were replaced since (a restart, an online change: new classes too)."""
+        return self if self.generation == self.engine.generation else Resolver(self.engine)
 
     def place(self, path: str) -> Place:
         if not isinstance(path, str) or not path.strip():

@@ -92,7 +92,6 @@ class SnapshotHub:
         self.period_s = period_s
         engine.load()
         self._resolver = resolver if resolver is not None else Resolver(engine)
-        self._generation = engine.generation
         self._watched: dict[str, tuple] = {}  # reader -> its paths
         self._places: dict[str, Place] = {}  # path -> Place, the union of the readers' paths
         self._lock = threading.Lock()  # readers change _watched; the scan thread reads _places
@@ -109,9 +108,7 @@ class SnapshotHub:
     @property
     def resolver(self) -> Resolver:
         """Paths of the engine's current program (a new one after an online change)."""
-        if self._generation != self.engine.generation:
-            self._resolver = Resolver(self.engine)
-            self._generation = self.engine.generation
+        self._resolver = self._resolver.fresh()
         return self._resolver
 
     def watch(self, reader: str, paths) -> list:
@@ -161,18 +158,19 @@ class SnapshotHub:
         self._requested = False
         self.capture()
 
-    def current(self) -> Snapshot:
-        """The latest snapshot while another thread scans; one taken now when
-        none does (before the first scan, after the run, in a test)."""
+    def current(self, fresh: bool = False) -> Snapshot:
+        """The latest snapshot while another thread scans (fresh: one taken
+        after this call, with what was watched just before); one taken now
+        when none does (before the first scan, after the run, in a test)."""
         scanning = self.engine.scan_thread
         if scanning is None or scanning == threading.get_ident():
             return self.capture()
-        return self.latest if self.latest is not None else self.wait_fresh()
+        return self.latest if self.latest is not None and not fresh else self.wait_fresh()
 
     def capture(self) -> Snapshot:
         """Take a snapshot now (the scan thread, or a test between two scans)."""
         engine = self.engine
-        if self._generation != engine.generation:
+        if self._resolver.generation != engine.generation:
             self._rewatch()
         values: dict = {}
         types: dict = {}

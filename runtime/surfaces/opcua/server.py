@@ -159,7 +159,8 @@ class OpcuaServer:
                 self.limit,
             )
         hub.watch(READER, tree.watched)
-        snap = hub.current()  # at start no scan runs yet: taken now; later the latest
+        # with the paths just watched: taken now before the first scan, else at the end of the next
+        snap = await asyncio.to_thread(hub.current, True)
         if self.tree is not None:
             await server.delete_nodes([server.get_node(node_id(r.node_id, self._idx)) for r in self.tree.roots], True)
         enums = await add_enums(server, self._idx, {n: e for n, e in tree.enums.items() if not self._has_enum(n)})

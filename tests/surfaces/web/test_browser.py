@@ -1,8 +1,9 @@
 """The web monitor in a real headless Chromium (Debian's /usr/bin/chromium,
-driven by Playwright), against the default plant running on the real
-clock: the page shows the Motor program start the LTMR, a force from the
-page stops it (the program reacts, the forced value is marked with a red F)
-and the unforce lets it start again. A screenshot of the page is checked:
+driven by Playwright), against the default plant in virtual time, paced
+by a pause after each scan so that a page can follow it: the page shows
+the Motor program start the LTMR, a force from the page stops it (the
+program reacts, the forced value is marked with a red F) and the unforce
+lets it start again. A screenshot of the page is checked:
 a PNG of the window's size, the forced marker drawn in the forced red,
 no such red on the row of a variable that is not forced, and the trend
 chart with its line drawn.
@@ -30,7 +31,7 @@ sync_api = pytest.importorskip("playwright.sync_api", reason="playwright is not 
 pytestmark = [
     pytest.mark.skipif(shutil.which(CHROMIUM) is None, reason=f"no Chromium at {CHROMIUM} (apt-get install chromium)"),
     pytest.mark.slow,
-    pytest.mark.realtime,  # the plant runs on the real clock; the test waits for what the page shows, never for a time
+    pytest.mark.realtime,  # a browser and a server in threads; the test waits for what the page shows, never for a time
 ]
 
 VIEWPORT = {"width": 1280, "height": 900}
@@ -50,7 +51,8 @@ def browser():
 
 
 def test_the_page_shows_the_motor_start_and_a_force_that_stops_it(web_plc, browser, tmp_path):
-    web = web_plc(PLC.from_config(virtual_time=False), web_config(writable=("Motor.*",), period_ms=250), pause_s=0)
+    # virtual time: a busy CI host cannot fault the plant's tasks with its watchdog
+    web = web_plc(PLC.from_config(), web_config(writable=("Motor.*",), period_ms=250), pause_s=0.005)
     elsewhere: list = []
     expect = sync_api.expect
     page = browser.new_page(viewport=VIEWPORT)
@@ -107,7 +109,7 @@ def test_the_page_shows_the_motor_start_and_a_force_that_stops_it(web_plc, brows
         edge = page.screenshot(
             clip={"x": box["x"] + box["width"] - 60, "y": box["y"], "width": 60, "height": box["height"]}
         )
-        assert _share(_png(edge), TREND_BLUE, tolerance=40) > 0.002  # the trend's line is drawn
+        assert _share(_png(edge), TREND_BLUE, tolerance=40) > 0.0005  # the trend's line is drawn (a few pixels)
         # unforce from the forced list (Auto keeps its value, as in CODESYS), then write TRUE:
         # the sequence starts the motor again
         page.locator("#forced-list button").click()

@@ -79,7 +79,7 @@ def test_softplc_run_web_serves_the_page_with_its_online_change(tmp_path):
             source.write_text(counter.format("added : INT := 7;"))
             report = http.post("/api/online-change", json={}).json()
             # the file watcher may have swapped it in first: then the button's change keeps everything
-            assert report["applied"] is True
+            assert report["applied"] is True, report
             tree = http.get("/api/tree", params={"path": "Main"}).json()
             assert [c["name"] for c in tree["children"]] == ["n", "added"]
         proc.send_signal(signal.SIGINT)
