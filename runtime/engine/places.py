@@ -38,6 +38,10 @@ class Place:
     get: Callable[[], Any]
     set: Callable[[Any], None] | None  # None for an aggregate (written part by part)
     parts: Callable[[], dict] | None = None  # aggregate: its parts by key (field name or index)
+    #: a plain variable's object and attribute (get is getattr(holder, attr)): readers of many
+    #: variables fetch those of one object at once (engine/snapshot.py)
+    holder: Any = None
+    attr: str | None = None
 
     def read(self) -> Any:
         return to_python(self.type, self.get())
@@ -195,7 +199,7 @@ class Resolver:
             return self._array_place(lambda: getattr(obj, attr), r, text)
         if isinstance(r, (T.StructType, T.FBType)):
             return self._struct_place(getattr(obj, attr), ty, text)
-        return Place(text, ty, lambda: getattr(obj, attr), lambda v: setattr(obj, attr, v))
+        return Place(text, ty, lambda: getattr(obj, attr), lambda v: setattr(obj, attr, v), holder=obj, attr=attr)
 
     def _struct_place(self, value: Any, ty: T.Type, text: str) -> Place:
         def parts() -> dict:

@@ -21,11 +21,13 @@ captures the scan pays one clock read.
 
 from __future__ import annotations
 
+import operator
 import threading
 import time
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..st import types as T
 from ..st.valuejson import encode_value
 from .places import PathError, Place, Resolver
 
@@ -94,7 +96,8 @@ class SnapshotHub:
         self._resolver = resolver if resolver is not None else Resolver(engine)
         self._watched: dict[str, tuple] = {}  # reader -> its paths
         self._places: dict[str, Place] = {}  # path -> Place, the union of the readers' paths
-        self._lock = threading.Lock()  # readers change _watched; the scan thread reads _places
+        self._plan: tuple = _plan_of({})  # how capture() reads them
+        self._lock = threading.Lock()  # readers change _watched; the scan thread reads _plan
         self._fresh = threading.Condition()
         self._requested = False
         self._next = 0.0
@@ -121,13 +124,17 @@ class SnapshotHub:
             places = dict(self._places)
             for place in resolved:
                 places[place.path] = place
-            self._places = self._prune(places)
+            self._set_places(self._prune(places))
         return [p.path for p in resolved]
 
     def unwatch(self, reader: str) -> None:
         with self._lock:
             self._watched.pop(reader, None)
-            self._places = self._prune(dict(self._places))
+            self._set_places(self._prune(dict(self._places)))
+
+    def _set_places(self, places: dict) -> None:
+        self._places = places
+        self._plan = _plan_of(places)  # one assignment: the scan thread sees the old plan or the new
 
     def _prune(self, places: dict) -> dict:
         wanted = {p for paths in self._watched.values() for p in paths}
@@ -172,17 +179,19 @@ class SnapshotHub:
         engine = self.engine
         if self._resolver.generation != engine.generation:
             self._rewatch()
+        groups, others, types = self._plan
         values: dict = {}
-        types: dict = {}
-        for path, place in self._places.items():
+        for fetch, holder, paths in groups:  # the plain variables of one object, in one call
             try:
-                value = place.get()
+                values.update(zip(paths, fetch(holder)))
+            except AttributeError:  # not there (yet): left out, as a path that cannot be read
+                continue
+        for path, get, aggregate in others:
+            try:
+                value = get()
             except Exception:  # an element gone with a resized string or an index: leave it out
                 continue
-            if not isinstance(value, (bool, int, float, str)):  # an array or a struct: a copy
-                value = encode_value(place.type, value)
-            values[path] = value
-            types[path] = place.type
+            values[path] = value if aggregate is None else encode_value(aggregate, value)  # a copy
         snap = Snapshot(
             sequence=self._sequence + 1,
             cycle=engine.cycle,
@@ -217,7 +226,41 @@ class SnapshotHub:
                 except PathError:
                     continue
         with self._lock:
-            self._places = places
+            self._set_places(places)
+
+
+def _plan_of(places: dict) -> tuple:
+    """How to read places fast: (groups, others, types). A group is the
+    plain variables of one object (an elementary, string, enumeration or
+    subrange value in an attribute), read with one attrgetter call; the
+    others (located variables, array elements, aggregates, references) each
+    through its place, an aggregate copied as JSON data."""
+    by_holder: dict = {}
+    others = []
+    for path, place in places.items():
+        t = T.resolve(place.type)
+        if place.holder is not None and isinstance(t, _PLAIN):
+            by_holder.setdefault(id(place.holder), (place.holder, [], []))
+            _holder, attrs, paths = by_holder[id(place.holder)]
+            attrs.append(place.attr)
+            paths.append(path)
+        else:
+            plain = isinstance(t, _PLAIN)
+            others.append((path, place.get, None if plain else place.type))
+    groups = tuple((_fetch(attrs), holder, tuple(paths)) for holder, attrs, paths in by_holder.values())
+    return groups, tuple(others), {path: place.type for path, place in places.items()}
+
+
+def _fetch(attrs: list):
+    """A callable giving the attributes' values of an object as a tuple."""
+    if len(attrs) == 1:
+        (attr,) = attrs
+        return lambda obj: (getattr(obj, attr),)
+    return operator.attrgetter(*attrs)
+
+
+#: the types a snapshot holds as stored: immutable values (bool, int, float, str)
+_PLAIN = (T.ElementaryType, T.StringType, T.EnumType, T.SubrangeType)
 
 
 def _task_state(task) -> TaskState:
