@@ -23,7 +23,6 @@ patterns over the variable's path as declared, case-insensitive ("Main.*",
 
 from __future__ import annotations
 
-import collections
 import fnmatch
 import threading
 from collections.abc import Callable
@@ -77,9 +76,6 @@ class Access:
         self.permissions: dict[str, Permission] = dict(permissions or {})
         engine.load()
         self._resolver = Resolver(engine)
-        self._queue: collections.deque = collections.deque()
-        self._scan_thread: int | None = None
-        engine.before_tasks.append(self._drain)
 
     def allow(self, surface: str, permission: Permission) -> None:
         self.permissions[surface] = permission
@@ -123,7 +119,7 @@ class Access:
         if self._now():
             _run(action, future)
         else:
-            self._queue.append((action, future))
+            self.engine.before_tasks.append(lambda _engine: _run(action, future))
         return future
 
     def write(self, path: str, value: Any, *, surface: str, timeout: float = 5.0) -> str:
@@ -179,12 +175,6 @@ class Access:
         """Change at once: in the scan thread, or when no other thread scans."""
         scanning = self.engine.scan_thread
         return scanning is None or scanning == threading.get_ident()
-
-    def _drain(self, engine) -> None:
-        queue = self._queue
-        while queue:
-            action, future = queue.popleft()
-            _run(action, future)
 
 
 def _run(action: Callable[[], str], future: Future) -> None:

@@ -179,9 +179,10 @@ class Engine:
         self.forced_values: dict = {}
         #: the thread in run(), None outside it (engine/access.py queues writes for it)
         self.scan_thread: int | None = None
-        #: called with the engine in each tick after the inputs are read,
-        #: before the forces and the tasks: writes from other threads land here
-        self.before_tasks: list[Callable] = []
+        #: called once with the engine in the next tick, after the inputs are
+        #: read, before the forces and the tasks (a surface's write); any
+        #: thread may append
+        self.before_tasks: deque = deque()
 
     # ------------------------------------------------------------ set-up
 
@@ -325,8 +326,8 @@ class Engine:
                 driver.advance_to(now)
         for driver in self.drivers:
             driver.read_inputs(image)
-        for callback in self.before_tasks:
-            callback(self)
+        while self.before_tasks:
+            self.before_tasks.popleft()(self)
         forces = list(self.forces.values())
         for apply in forces:  # over what the drivers read ...
             apply()
