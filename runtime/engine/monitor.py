@@ -114,16 +114,20 @@ class Watch:
                 out.append(json.dumps(encode_value(ty, value), separators=(",", ":")))
         return out
 
-    def shown(self) -> list:
-        """(path, text) pairs for the status line, values as `exec` writes them."""
+    def shown(self, snap: Snapshot | None = None) -> list:
+        """(path, text) pairs for the status line, values as `exec` writes
+        them, from snap (default: a snapshot taken now); "?" for a path the
+        snapshot could not read."""
+        if snap is None:
+            hub = SnapshotHub(self.engine, attach=False)
+            self.canonical = hub.watch("status", self.paths)
+            snap = hub.capture()
         out = []
-        for path, cell in zip(self.paths, self._current()):
-            if cell[0] == "image":
-                value = self.engine.image.read(cell[1])
+        for path, canonical in zip(self.paths, self.canonical or self.paths):
+            if canonical in snap.values:
+                out.append((path, json.dumps(snap.json(canonical), separators=(",", ":"), ensure_ascii=False)))
             else:
-                holder, attr, ty = cell
-                value = encode_value(ty, getattr(holder, attr))
-            out.append((path, json.dumps(value, separators=(",", ":"), ensure_ascii=False)))
+                out.append((path, "?"))
         return out
 
 
@@ -147,12 +151,9 @@ def _us(ns: float) -> str:
 def status_line(engine, watch: Watch | None = None) -> str:
     """The status line of the engine as it is now (a stopped engine, a test)."""
     hub = SnapshotHub(engine, attach=False)
-    return status_text(hub.capture() if watch is None else _watched(hub, watch), watch)
-
-
-def _watched(hub: SnapshotHub, watch: Watch) -> Snapshot:
-    watch.canonical = hub.watch("status", watch.paths)
-    return hub.current()
+    if watch is not None and watch.paths:
+        watch.canonical = hub.watch("status", watch.paths)
+    return status_text(hub.capture(), watch)
 
 
 def status_text(snap: Snapshot, watch: Watch | None = None) -> str:
@@ -170,15 +171,7 @@ def status_text(snap: Snapshot, watch: Watch | None = None) -> str:
         if driver.message:
             parts.append(driver.message if driver.ok else f"{driver.message} (!)")
     if watch is not None and watch.paths:
-        shown = []
-        for path, canonical in zip(watch.paths, watch.canonical or watch.paths):
-            text = (
-                json.dumps(snap.json(canonical), separators=(",", ":"), ensure_ascii=False)
-                if canonical in snap.values
-                else "?"
-            )
-            shown.append(f"{path}={text}")
-        parts.append(" ".join(shown))
+        parts.append(" ".join(f"{p}={v}" for p, v in watch.shown(snap)))
     return " | ".join(parts)
 
 
