@@ -1,6 +1,13 @@
-"""Engines built from ST text, on the virtual clock."""
+"""Engines built from ST text, on the virtual clock; an engine scanning in
+a thread of its own (Scanning), for tests of what other threads see of it;
+wait_until, for a condition another thread makes true."""
 
 from __future__ import annotations
+
+import threading
+import time
+from collections.abc import Callable
+from typing import Any
 
 import pytest
 
@@ -80,3 +87,36 @@ def engines():
     yield factory
     for e in made:
         e.stop()
+
+
+class Scanning:
+    """engine.run() in a thread until stop(); in virtual time each scan
+    waits pause_s of wall time (0: none), so the scan does not eat a core
+    and a client can follow it."""
+
+    def __init__(self, engine, pause_s: float = 0.002) -> None:
+        self.engine = engine
+        if pause_s:
+            engine.after_tick.append(lambda _e: time.sleep(pause_s))
+        self.thread = threading.Thread(target=engine.run, name="test-scan", daemon=True)
+
+    def start(self) -> Scanning:
+        self.thread.start()
+        return self
+
+    def stop(self, timeout: float = 10.0) -> None:
+        self.engine.request_stop("test over")
+        self.thread.join(timeout)
+        assert not self.thread.is_alive(), "the scan did not stop"
+
+
+def wait_until(check: Callable[[], Any], what: str, timeout: float = 20.0, poll_s: float = 0.01) -> Any:
+    """check()'s first true result, polled; fails naming what was awaited after timeout."""
+    deadline = time.monotonic() + timeout
+    while True:
+        result = check()
+        if result:
+            return result
+        if time.monotonic() > deadline:
+            pytest.fail(f"not within {timeout} s: {what} (last: {result!r})")
+        time.sleep(poll_s)

@@ -5,15 +5,13 @@ variable and where to allow it."""
 
 from __future__ import annotations
 
-import threading
-
 import pytest
 
 from softplc.runtime.engine.access import Access, AccessDenied, Permission
 from softplc.runtime.engine.places import PathError
 from softplc.runtime.engine.snapshot import SnapshotHub
 
-from .conftest import task
+from .conftest import Scanning, task
 
 SRC = """
 TYPE E_Mode : (Idle, Run, Fault); END_TYPE
@@ -74,20 +72,12 @@ def test_snapshots_are_taken_at_the_end_of_a_scan_while_the_engine_runs_in_its_t
     hub.watch("test", ["Main.n"])
     e.run(cycles=2)
     assert hub.latest is not None and hub.latest.values["Main.n"] == 1  # the first scan's, then the period
-    stop = threading.Event()
-
-    def scan() -> None:
-        while not stop.is_set():
-            e.run(cycles=1)
-
-    thread = threading.Thread(target=scan)
-    thread.start()
+    scan = Scanning(e, pause_s=0).start()
     try:
         first = hub.wait_fresh(timeout=30)
         second = hub.wait_fresh(timeout=30)
     finally:
-        stop.set()
-        thread.join()
+        scan.stop()
     assert second.sequence > first.sequence and second.values["Main.n"] > first.values["Main.n"] >= 2
 
 
@@ -129,21 +119,13 @@ def test_a_write_from_another_thread_lands_at_the_start_of_the_next_scan(engines
     access = Access(e, {"web": Permission(("*",))})
     hub = SnapshotHub(e, period_s=3600)
     hub.watch("test", ["Main.n", "%QW2"])
-    stop = threading.Event()
-
-    def scan() -> None:
-        while not stop.is_set():
-            e.run(cycles=1)
-
-    thread = threading.Thread(target=scan)
-    thread.start()
+    scan = Scanning(e, pause_s=0).start()
     try:
         hub.wait_fresh(timeout=30)
         access.write("Main.n", -1000, surface="web")  # waits for the scan that applies it
         snap = hub.wait_fresh(timeout=30)
     finally:
-        stop.set()
-        thread.join()
+        scan.stop()
     # the program ran after the write in the same scan: n went -1000 -> -999 (and on)
     n = snap.values["Main.n"]
     assert -1000 < n < 0 and snap.values["%QW2"] == (n * 10) & 0xFFFF  # %QW2 read as a WORD

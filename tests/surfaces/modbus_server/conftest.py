@@ -4,8 +4,6 @@ client talking to it."""
 
 from __future__ import annotations
 
-import threading
-import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -18,7 +16,7 @@ from softplc.runtime.engine.access import Access, Permission
 from softplc.runtime.engine.scan import Engine
 from softplc.runtime.surfaces.host import Surfaces
 
-from ...engine.conftest import make_engine, task
+from ...engine.conftest import Scanning, make_engine, task
 
 SRC = """
 PROGRAM Main
@@ -42,18 +40,6 @@ END_PROGRAM
 """
 
 TIMEOUT_S = 20.0
-
-
-def wait_until(check: Callable[[], Any], what: str, timeout: float = TIMEOUT_S) -> Any:
-    """check()'s first true result; fails naming what was awaited after timeout."""
-    deadline = time.monotonic() + timeout
-    while True:
-        result = check()
-        if result:
-            return result
-        if time.monotonic() > deadline:
-            pytest.fail(f"not within {timeout} s: {what} (last: {result!r})")
-        time.sleep(0.01)
 
 
 @dataclass
@@ -94,14 +80,7 @@ def plc():
         surfaces.start()
         stack.append(surfaces.stop)
         test = Access(engine, {"test": Permission(("*",))})
-        thread = threading.Thread(target=engine.run, name="test-scan")
-        thread.start()
-
-        def stop_scan() -> None:
-            engine.request_stop("test over")
-            thread.join()
-
-        stack.append(stop_scan)
+        stack.append(Scanning(engine, pause_s=0).start().stop)
         handle = surfaces.handles["modbus_server"]
         client = ModbusTcpClient("127.0.0.1", port=handle.port, timeout=5, retries=0)
         assert client.connect()

@@ -14,8 +14,7 @@ from pymodbus.exceptions import ConnectionException, ModbusIOException
 
 from softplc.runtime.surfaces.host import SurfaceError, Surfaces
 
-from ...engine.conftest import make_engine, task
-from .conftest import wait_until
+from ...engine.conftest import make_engine, task, wait_until
 
 ILLEGAL_DATA_ADDRESS = 2
 

@@ -5,7 +5,6 @@ listens on 127.0.0.1 on a free port; everything is stopped after the test."""
 from __future__ import annotations
 
 import asyncio
-import threading
 import time
 from collections.abc import Awaitable, Callable
 from dataclasses import dataclass
@@ -16,7 +15,7 @@ from softplc.runtime.config.servers import ServerConfig
 from softplc.runtime.engine.scan import Engine
 from softplc.runtime.surfaces.host import Surfaces
 
-from ...engine.conftest import make_engine
+from ...engine.conftest import Scanning, make_engine
 
 #: generous: a loaded machine is slow, a condition met is met at once
 TIMEOUT_S = 30.0
@@ -26,7 +25,7 @@ TIMEOUT_S = 30.0
 class Running:
     engine: Engine
     surfaces: Surfaces
-    scan: threading.Thread
+    scan: Scanning
 
     @property
     def server(self):
@@ -37,8 +36,7 @@ class Running:
         return self.server.url
 
     def stop(self) -> None:
-        self.engine.request_stop("test over")
-        self.scan.join(TIMEOUT_S)
+        self.scan.stop(TIMEOUT_S)
         self.surfaces.stop()
         self.engine.stop()
 
@@ -62,13 +60,11 @@ def running():
 
     def factory(source, tasks, writable=(), pace_s: float = 0.002, **options) -> Running:
         engine = make_engine(source, tasks)
-        engine.after_tick.append(lambda _e: time.sleep(pace_s))  # virtual time at a pace a client can follow
         surfaces = Surfaces(engine, {"opcua": opcua_config(writable, **options)})
         surfaces.start()
-        scan = threading.Thread(target=engine.run, name="scan", daemon=True)
-        r = Running(engine, surfaces, scan)
+        r = Running(engine, surfaces, Scanning(engine, pace_s))  # virtual time at a pace a client can follow
         made.append(r)
-        scan.start()
+        r.scan.start()
         return r
 
     yield factory

@@ -7,7 +7,6 @@ the end."""
 from __future__ import annotations
 
 import threading
-import time
 
 import httpx
 import pytest
@@ -15,6 +14,8 @@ import pytest
 from softplc.runtime.config.servers import ServerConfig
 from softplc.runtime.surfaces.host import Surfaces
 from softplc.testing import PLC
+
+from ...engine.conftest import Scanning, wait_until
 
 PLANT = """
 TYPE E_Mode : (Idle, Run, Hold); END_TYPE
@@ -53,26 +54,6 @@ def web_config(writable=WRITABLE, period_ms: int = 100) -> ServerConfig:
     return ServerConfig("web", "127.0.0.1", 0, tuple(writable), period_ms * 1_000_000, where="[web] writable")
 
 
-class Scanning:
-    """engine.run() in a thread until stop(); in virtual time each scan
-    waits pause_s of wall time, so the scan does not eat a core."""
-
-    def __init__(self, engine, pause_s: float = 0.002) -> None:
-        self.engine = engine
-        if pause_s:
-            engine.after_tick.append(lambda _e: time.sleep(pause_s))
-        self.thread = threading.Thread(target=engine.run, name="test-scan", daemon=True)
-
-    def start(self) -> Scanning:
-        self.thread.start()
-        return self
-
-    def stop(self) -> None:
-        self.engine.request_stop("test over")
-        self.thread.join(10)
-        assert not self.thread.is_alive(), "the scan did not stop"
-
-
 class Web:
     """A PLC, its surfaces with the web server, the scan thread and an HTTP client."""
 
@@ -90,14 +71,7 @@ class Web:
 
     def wait_for(self, condition, what: str, timeout: float = 10.0):
         """Wait until condition() is true (its value), checking often; fail naming what."""
-        deadline = time.monotonic() + timeout
-        while True:
-            value = condition()
-            if value:
-                return value
-            if time.monotonic() > deadline:
-                raise AssertionError(f"{what}: not within {timeout} s")
-            time.sleep(0.02)
+        return wait_until(condition, what, timeout, poll_s=0.02)
 
     def close(self) -> None:
         self.http.close()
