@@ -33,11 +33,10 @@ from typing import Any
 
 from ..st import refs, rt_sfc
 from ..st import types as T
+from ..st.valuejson import SKIPPED_SECTIONS
 from ..st.values import assign_into
 from .retain import type_signature
 
-# Sections that hold no state of the instance's own (references, nothing between calls).
-_NOT_STATE = frozenset({"VAR_IN_OUT", "VAR_EXTERNAL", "VAR_TEMP"})
 _SFC_SLOT = "_sfc"  # st/codegen_sfc.py: the action control blocks of an SFC POU
 
 
@@ -61,7 +60,7 @@ def members(holder_type: T.Type | None, pou=None) -> dict:
         return {
             key: (v.name, v.pyname, v.type)
             for key, v in pou.vars.items()
-            if v.section not in _NOT_STATE and v.location is None and not v.constant
+            if v.section not in SKIPPED_SECTIONS and v.location is None and not v.constant
         }
     if isinstance(holder_type, T.StructType):
         return {f.name.upper(): (f.name, f.pyname, f.type) for f in holder_type.fields.values()}
@@ -72,7 +71,7 @@ def global_members(checked) -> dict:
     return {
         g.name.upper(): (g.name, g.pyname, g.type)
         for g in checked.globals
-        if g.location is None and not g.constant and g.section not in _NOT_STATE
+        if g.location is None and not g.constant and g.section not in SKIPPED_SECTIONS
     }
 
 

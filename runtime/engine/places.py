@@ -19,6 +19,7 @@ from typing import Any
 
 from ..image.address import AddressError, default_type, parse_address
 from ..st import types as T
+from ..st.valuejson import SKIPPED_SECTIONS
 from .values import from_python, to_python
 
 _STEP = re.compile(r"\s*(?:(\.)?\s*([A-Za-z_][A-Za-z0-9_]*)|\[([^\]]*)\])\s*")
@@ -206,7 +207,7 @@ class Resolver:
             return {
                 st_name.upper(): self._attr_place(value, attr, vty, f"{text}.{st_name}")
                 for st_name, attr, vty, section in type(value)._VARS_
-                if section not in ("VAR_IN_OUT", "VAR_EXTERNAL", "VAR_TEMP")
+                if section not in SKIPPED_SECTIONS
             }
 
         return Place(text, ty, lambda: value, None, parts)

@@ -47,15 +47,13 @@ from operator import attrgetter
 from typing import Any
 
 from ..st import types as T
+from ..st.valuejson import SKIPPED_SECTIONS
 
 RETAIN = "RETAIN"
 PERSISTENT = "PERSISTENT"
 
 FORMAT = "softplc-retain"
 VERSION = 1
-
-# Members that are not part of an instance's own state (as in valuejson).
-_SKIPPED_SECTIONS = frozenset({"VAR_IN_OUT", "VAR_EXTERNAL", "VAR_TEMP"})
 
 
 # ================================================================ type signatures
@@ -100,7 +98,7 @@ def _members(t: T.StructType | T.FBType) -> list:
     return [
         (v.name, v.pyname, v.type)
         for v in pou.vars.values()
-        if v.section not in _SKIPPED_SECTIONS and v.location is None
+        if v.section not in SKIPPED_SECTIONS and v.location is None
     ]
 
 
@@ -318,7 +316,7 @@ def plan_retain(checked, instances: dict, globals_obj) -> list:
 
 
 def _visit(plan: list, path: str, sym, holder, active: set) -> None:
-    if sym.section in _SKIPPED_SECTIONS or sym.location is not None or sym.constant:
+    if sym.section in SKIPPED_SECTIONS or sym.location is not None or sym.constant:
         return
     kind = _kind(sym)
     if kind is not None:

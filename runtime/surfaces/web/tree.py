@@ -20,13 +20,12 @@ from typing import Any
 from ...engine.places import PathError, Place, Resolver
 from ...engine.values import type_text
 from ...st import types as T
+from ...st.valuejson import SKIPPED_SECTIONS
 
 #: the most children one level shows at once (a big array is paged)
 LIMIT = 100
 #: the groups at the root: the program's globals and those of the libraries
 GLOBALS, LIBRARY = "@globals", "@library"
-#: sections that are not the instance's own variables (shown where they live)
-HIDDEN_SECTIONS = ("VAR_IN_OUT", "VAR_EXTERNAL", "VAR_TEMP")
 
 
 def children(resolver: Resolver, path: str, offset: int = 0) -> dict:
@@ -63,7 +62,7 @@ def _globals(resolver: Resolver, library: bool) -> list:
     lib = {name.upper() for name in engine.program.library_globals}
     out = []
     for st_name, _attr, _ty, section in getattr(type(engine.ns["_G"]), "_VARS_", ()):
-        if section in HIDDEN_SECTIONS or (st_name.upper() in lib) != library:
+        if section in SKIPPED_SECTIONS or (st_name.upper() in lib) != library:
             continue
         out.append(_child(st_name, resolver.place(st_name)))
     return out
@@ -73,7 +72,7 @@ def _instance(resolver: Resolver, name: str, obj: Any) -> list:
     return [
         _child(st_name, resolver.place(f"{name}.{st_name}"))
         for st_name, _attr, _ty, section in getattr(type(obj), "_VARS_", ())
-        if section not in HIDDEN_SECTIONS
+        if section not in SKIPPED_SECTIONS
     ]
 
 
