@@ -128,13 +128,18 @@ class _ServerSection(Section):
     def build(self, model: Any, ctx: Relations) -> ServerConfig | None:
         if model is None:
             return None
-        values = model.model_dump()
-        common = {k: values.pop(k) for k in ("host", "port", "writable", "period")}
-        if not _is_loopback(common["host"]):
+        config = self.config(model)
+        if config.public:
             ctx.warning(
                 (self.key, "host"),
-                f"listens on {common['host']}: the PLC is reachable from the network (127.0.0.1 keeps it local)",
+                f"listens on {config.host}: the PLC is reachable from the network (127.0.0.1 keeps it local)",
             )
+        return config
+
+    def config(self, model: Any) -> ServerConfig:
+        """The ServerConfig of a validated table (the section's own keys in options)."""
+        values = model.model_dump()
+        common = {k: values.pop(k) for k in ("host", "port", "writable", "period")}
         return ServerConfig(
             key=self.key,
             host=common["host"],
@@ -183,7 +188,6 @@ def web_option(text: str, section: ServerConfig | None) -> ServerConfig:
     """The [web] server of `softplc run --web [HOST:]PORT`: the section's
     settings (or its defaults, without one) on that address."""
     host, port = parse_listen(text)
-    if section is None:
-        d = _Web.model_validate({})
-        section = ServerConfig("web", d.host, d.port, tuple(d.writable), d.period, where="[web] writable")
+    if section is None:  # the [web] defaults
+        section = WebSection().config(_Web.model_validate({}))
     return dataclasses.replace(section, host=host or section.host, port=port)
