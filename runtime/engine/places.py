@@ -43,6 +43,8 @@ class Place:
     #: variables fetch those of one object at once (engine/snapshot.py)
     holder: Any = None
     attr: str | None = None
+    #: an element of an array of plain values: get is holder[index] (holder the list)
+    index: int | None = None
 
     def read(self) -> Any:
         return to_python(self.type, self.get())
@@ -168,11 +170,12 @@ class Resolver:
         try:
             addr = parse_address(path, self.image.addressing)
             ty = default_type(addr)
-            self.image.read(addr, ty)
+            get = self.image.reader(addr, ty)
+            get()
         except (AddressError, ValueError) as exc:
             raise PathError(f"{path}: {exc}") from None
         image = self.image
-        return Place(addr.text, ty, lambda: image.read(addr, ty), lambda v: image.write(addr, v, ty))
+        return Place(addr.text, ty, get, lambda v: image.write(addr, v, ty))
 
     def _member(self, obj: Any, name: str, done: str, path: str, top: bool = False) -> Place:
         here = f"{done}.{name}" if done else name
@@ -194,7 +197,11 @@ class Resolver:
         if location is not None:
             image = self.image
             elem = T.base_elementary(ty) or default_type(location)
-            return Place(text, ty, lambda: image.read(location, elem), lambda v: image.write(location, v, elem))
+            try:
+                get = image.reader(location, elem)
+            except (AddressError, ValueError):  # read says so when asked
+                get = lambda: image.read(location, elem)  # noqa: E731
+            return Place(text, ty, get, lambda v: image.write(location, v, elem))
         r = T.resolve(ty)
         if isinstance(r, T.ArrayType):
             return self._array_place(lambda: getattr(obj, attr), r, text)
@@ -243,7 +250,7 @@ class Resolver:
             return self._array_place(lambda: holder[pos], r, here)
         if isinstance(r, (T.StructType, T.FBType)):
             return self._struct_place(holder[pos], t.elem, here)
-        return Place(here, t.elem, lambda: holder[pos], lambda v: holder.__setitem__(pos, v))
+        return Place(here, t.elem, lambda: holder[pos], lambda v: holder.__setitem__(pos, v), holder=holder, index=pos)
 
     def _step(self, place: Place, step, path: str) -> Place:
         r = T.resolve(place.type)

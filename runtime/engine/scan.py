@@ -160,6 +160,9 @@ class Engine:
         self.started = False
         self.stopped = False
         self.after_tick: list[Callable] = []  # called with the engine after the outputs are written
+        #: called with the engine at the start of every tick, before anything
+        #: else (the snapshot hub waits there for a copy still being taken)
+        self.before_tick: list[Callable] = []
         self.restore_report: R.RestoreReport | None = None
         self._stop_requested = False
         #: why the run stopped (request_stop's reason), None until then
@@ -310,6 +313,8 @@ class Engine:
 
     def tick(self) -> None:
         """One scan at the clock's current time."""
+        for callback in self.before_tick:
+            callback(self)
         if self._restart_requested:
             self._restart_requested = False
             self.restart()

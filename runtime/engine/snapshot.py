@@ -17,19 +17,34 @@ A snapshot is taken at most every ``period_s`` seconds of wall time (the
 readers are people and HMIs, on the wall clock, whatever clock the engine
 runs on), and at the end of the next scan after ``request()``. Between two
 captures the scan pays one clock read.
+
+On the real clock the copy is made in the time between two scans, by a
+thread of the hub's, not in the scan: copying a few thousand values costs
+about a millisecond on a busy machine, which would stretch the scan that
+pays for it. The next scan starts only once the copy is done
+(``Engine.before_tick``), so a snapshot is still the state at the end of
+one scan; it is late only when the copy outlasts the gap before the next
+scan. In virtual time (a test stepping the engine) the copy is made in the
+scan, so a test sees it as soon as the scan ends.
 """
 
 from __future__ import annotations
 
+import functools
+import logging
 import operator
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 from ..st import types as T
 from ..st.valuejson import encode_value
 from .places import PathError, Place, Resolver
+
+log = logging.getLogger("softplc.engine")
 
 
 @dataclass(frozen=True)
@@ -75,15 +90,58 @@ class Snapshot:
     faults: tuple  # str per runtime fault since start
     outputs_safe: bool
     forced: dict  # path -> value as forced
-    values: dict
-    types: dict
-    image: dict  # area letter -> bytes
+    layout: Layout  # the paths raw holds, and their types
+    raw: tuple  # the values as read, one tuple per group of the layout (None: not readable)
+    image: dict
     generation: int  # engine.generation: a new program or restarted instances
+
+    @cached_property
+    def values(self) -> dict:
+        """path -> value, built when first asked (by a reader, not the scan)."""
+        return self.layout.values(self.raw)
+
+    @property
+    def types(self) -> dict:
+        return self.layout.types
 
     def json(self, path: str) -> Any:
         """The value at path as JSON data (enumerations by name, TIME as T#...)."""
         value = self.values[path]
         return value if isinstance(value, (dict, list)) else encode_value(self.types[path], value)
+
+
+class Layout:
+    """What a capture reads: groups of paths, each read with one call
+    (the plain variables of one object with one attrgetter, the elements of
+    one array of plain values with one itemgetter, anything else alone), and
+    the paths' ST types. A layout sent to another process (pickled) keeps
+    its paths and types only: it can build values from raw, not read."""
+
+    def __init__(self, paths: tuple, types: dict, readers: tuple = ()) -> None:
+        self.paths = paths  # per group, its paths
+        self.types = types  # path -> ST type
+        self.readers = readers  # per group, a callable giving its values as a tuple
+
+    def values(self, raw: tuple) -> dict:
+        out: dict = {}
+        for paths, group in zip(self.paths, raw):
+            if group is not None:
+                out.update(zip(paths, group))
+        return out
+
+    def read(self) -> tuple:
+        """Each group's values (None for a group that cannot be read now)."""
+        raw: list = []
+        append = raw.append
+        for reader in self.readers:
+            try:
+                append(reader())
+            except Exception:  # not there (yet), an element gone with a resized array: left out
+                append(None)
+        return tuple(raw)
+
+    def __getstate__(self) -> dict:
+        return {"paths": self.paths, "types": self.types, "readers": ()}
 
 
 class SnapshotHub:
@@ -96,15 +154,21 @@ class SnapshotHub:
         self._resolver = resolver if resolver is not None else Resolver(engine)
         self._watched: dict[str, tuple] = {}  # reader -> its paths
         self._places: dict[str, Place] = {}  # path -> Place, the union of the readers' paths
-        self._plan: tuple = _plan_of({})  # how capture() reads them
-        self._lock = threading.Lock()  # readers change _watched; the scan thread reads _plan
+        self._layout: Layout = _layout_of({})  # how capture() reads them
+        self._lock = threading.Lock()  # readers change _watched; the scan thread reads _layout
         self._fresh = threading.Condition()
         self._requested = False
         self._next = 0.0
         self._sequence = 0
+        self._capturing = threading.Lock()  # one capture at a time
+        self._copying = threading.Lock()  # held while the copier copies: the next scan waits for it
+        self._copy_due = threading.Event()
+        self._copier: threading.Thread | None = None
+        self._copier_lock = threading.Lock()  # the copier ends, or is started, never both
         self.latest: Snapshot | None = None
         if attach:  # else: capture() only, when asked (a status line of a stopped engine)
             engine.after_tick.append(self._after_tick)
+            engine.before_tick.append(self._copied)
 
     # ------------------------------------------------------------ readers
 
@@ -119,7 +183,7 @@ class SnapshotHub:
         watched before). Returns the paths as resolved (canonical spelling);
         PathError names the first path that names no variable."""
         resolved = [self.resolver.place(p) for p in paths]
-        with self._lock:
+        with self._capturing, self._lock:  # after a capture under way: the next one has them
             self._watched[reader] = tuple(p.path for p in resolved)
             places = dict(self._places)
             for place in resolved:
@@ -134,7 +198,7 @@ class SnapshotHub:
 
     def _set_places(self, places: dict) -> None:
         self._places = places
-        self._plan = _plan_of(places)  # one assignment: the scan thread sees the old plan or the new
+        self._layout = _layout_of(places)  # one assignment: the scan thread sees the old layout or the new
 
     def _prune(self, places: dict) -> dict:
         wanted = {p for paths in self._watched.values() for p in paths}
@@ -154,6 +218,18 @@ class SnapshotHub:
             assert self.latest is not None
             return self.latest
 
+    def next_after(self, sequence: int, timeout: float) -> Snapshot | None:
+        """The latest snapshot once it is newer than sequence (None after
+        timeout); asks for none: what forwards every capture waits here."""
+        with self._fresh:
+            self._fresh.wait_for(lambda: self._sequence > sequence, timeout)
+            return self.latest if self._sequence > sequence else None
+
+    @property
+    def scanning(self) -> bool:
+        """A thread scans the engine: a write waits for a scan and a snapshot after it."""
+        return self.engine.scan_thread is not None
+
     # ------------------------------------------------------------ the scan thread
 
     def _after_tick(self, engine) -> None:
@@ -163,7 +239,39 @@ class SnapshotHub:
                 return
             self._next = now + self.period_s
         self._requested = False
-        self.capture()
+        if engine.clock.virtual or engine.scan_thread != threading.get_ident():
+            self.capture()  # a test's tick, or one outside run(): no time between scans to use
+            return
+        self._copying.acquire()  # free: this tick began after the last copy was done
+        with self._copier_lock:
+            self._copy_due.set()
+            if self._copier is None:
+                self._copier = threading.Thread(target=self._copy, name="softplc-snapshot", daemon=True)
+                self._copier.start()
+
+    def _copied(self, engine) -> None:
+        """At the start of a tick: wait for the copy of the last one's end."""
+        if self._copying.locked():
+            with self._copying:
+                pass
+
+    def _copy(self) -> None:
+        """The copier: a capture each time the scan asks for one, between
+        two scans; it ends when the engine stops scanning."""
+        while True:
+            if not self._copy_due.wait(1.0):
+                with self._copier_lock:
+                    if self.engine.scan_thread is None and not self._copy_due.is_set():
+                        self._copier = None
+                        return
+                continue
+            self._copy_due.clear()
+            try:
+                self.capture()
+            except Exception as exc:  # a snapshot lost, never the next scan
+                log.error("snapshot: %s", exc)
+            finally:
+                self._copying.release()
 
     def current(self, fresh: bool = False) -> Snapshot:
         """The latest snapshot while another thread scans (fresh: one taken
@@ -176,22 +284,15 @@ class SnapshotHub:
 
     def capture(self) -> Snapshot:
         """Take a snapshot now (the scan thread, or a test between two scans)."""
+        with self._capturing:
+            return self._capture()
+
+    def _capture(self) -> Snapshot:
         engine = self.engine
         if self._resolver.generation != engine.generation:
             self._rewatch()
-        groups, others, types = self._plan
-        values: dict = {}
-        for fetch, holder, paths in groups:  # the plain variables of one object, in one call
-            try:
-                values.update(zip(paths, fetch(holder)))
-            except AttributeError:  # not there (yet): left out, as a path that cannot be read
-                continue
-        for path, get, aggregate in others:
-            try:
-                value = get()
-            except Exception:  # an element gone with a resized string or an index: leave it out
-                continue
-            values[path] = value if aggregate is None else encode_value(aggregate, value)  # a copy
+        layout = self._layout
+        raw = layout.read()
         snap = Snapshot(
             sequence=self._sequence + 1,
             cycle=engine.cycle,
@@ -202,8 +303,8 @@ class SnapshotHub:
             faults=tuple(str(f) for f in engine.faults),
             outputs_safe=engine.outputs_safe,
             forced=dict(engine.forced_values.values()),
-            values=values,
-            types=types,
+            layout=layout,
+            raw=raw,
             image={area: bytes(data) for area, data in engine.image.areas.items()},
             generation=engine.generation,
         )
@@ -229,34 +330,48 @@ class SnapshotHub:
             self._set_places(places)
 
 
-def _plan_of(places: dict) -> tuple:
-    """How to read places fast: (groups, others, types). A group is the
-    plain variables of one object (an elementary, string, enumeration or
-    subrange value in an attribute), read with one attrgetter call; the
-    others (located variables, array elements, aggregates, references) each
-    through its place, an aggregate copied as JSON data."""
+def _layout_of(places: dict) -> Layout:
+    """How to read places fast. A group is the plain variables (an
+    elementary, string, enumeration or subrange value) of one object, read
+    with one attrgetter call, or the plain elements of one array, read with
+    one itemgetter call; anything else (a located variable, an aggregate, a
+    reference) is a group of its own, read through its place, an aggregate
+    copied as JSON data."""
     by_holder: dict = {}
-    others = []
+    alone = []
     for path, place in places.items():
-        t = T.resolve(place.type)
-        if place.holder is not None and isinstance(t, _PLAIN):
-            by_holder.setdefault(id(place.holder), (place.holder, [], []))
-            _holder, attrs, paths = by_holder[id(place.holder)]
-            attrs.append(place.attr)
+        plain = isinstance(T.resolve(place.type), _PLAIN)
+        if plain and place.holder is not None:
+            key = (id(place.holder), place.attr is None)
+            _holder, keys, paths = by_holder.setdefault(key, (place.holder, [], []))
+            keys.append(place.attr if place.attr is not None else place.index)
             paths.append(path)
         else:
-            plain = isinstance(t, _PLAIN)
-            others.append((path, place.get, None if plain else place.type))
-    groups = tuple((_fetch(attrs), holder, tuple(paths)) for holder, attrs, paths in by_holder.values())
-    return groups, tuple(others), {path: place.type for path, place in places.items()}
+            alone.append(((path,), _one(place.get, None if plain else place.type)))
+    groups = [(tuple(paths), _fetch(holder, keys)) for holder, keys, paths in by_holder.values()]
+    groups.extend(alone)
+    return Layout(
+        tuple(paths for paths, _reader in groups),
+        {path: place.type for path, place in places.items()},
+        tuple(reader for _paths, reader in groups),
+    )
 
 
-def _fetch(attrs: list):
-    """A callable giving the attributes' values of an object as a tuple."""
-    if len(attrs) == 1:
-        (attr,) = attrs
-        return lambda obj: (getattr(obj, attr),)
-    return operator.attrgetter(*attrs)
+def _fetch(holder, keys: list) -> Callable[[], tuple]:
+    """A callable giving holder's attributes (str keys) or items (int keys) as a tuple."""
+    if len(keys) == 1:
+        (key,) = keys
+        if isinstance(key, str):
+            return lambda: (getattr(holder, key),)
+        return lambda: (holder[key],)
+    getter = operator.attrgetter(*keys) if isinstance(keys[0], str) else operator.itemgetter(*keys)
+    return functools.partial(getter, holder)
+
+
+def _one(get: Callable[[], Any], aggregate) -> Callable[[], tuple]:
+    if aggregate is None:
+        return lambda: (get(),)
+    return lambda: (encode_value(aggregate, get()),)  # a copy
 
 
 #: the types a snapshot holds as stored: immutable values (bool, int, float, str)

@@ -20,6 +20,8 @@ syntax and default types are in address.py.
 from __future__ import annotations
 
 import struct
+from collections.abc import Callable
+from typing import Any
 
 from ..st import types as T
 from ..st.ast import LocatedAddress
@@ -222,6 +224,16 @@ class ProcessImage:
         if addr.table is not None:
             return list(self.table(addr, signed=ty.category == T.SIGNED))
         return self.accessor(addr, ty)[0]()
+
+    def reader(self, where, ty: T.ElementaryType | None = None) -> Callable[[], Any]:
+        """A callable giving read(where, ty), checked once here (AddressError
+        as read gives it): what reads the same address every scan uses."""
+        addr = self._resolve(where)
+        ty = ty or default_type(addr)
+        check_type(addr, ty)
+        if addr.table is not None:
+            return lambda: self.read(addr, ty)
+        return self.accessor(addr, ty)[0]
 
     def write(self, where, value, ty: T.ElementaryType | None = None) -> None:
         """Store value at an address (see read). Integers must fit the

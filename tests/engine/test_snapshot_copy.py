@@ -1,0 +1,49 @@
+"""On the real clock the snapshot hub copies between two scans, in a thread
+of its own (engine/snapshot.py): every snapshot is still the state at the
+end of one scan, and a scan never runs while a copy is under way."""
+
+from __future__ import annotations
+
+import threading
+
+from softplc.runtime.engine.clock import RealClock
+from softplc.runtime.engine.snapshot import SnapshotHub
+
+from .conftest import task
+
+SRC = """
+VAR_GLOBAL seen AT %QD2 : DINT; END_VAR
+PROGRAM Main
+VAR
+    n : DINT;
+    copies : ARRAY[1..500] OF DINT;
+    i : INT;
+END_VAR
+n := n + 1;
+FOR i := 1 TO 500 DO copies[i] := n; END_FOR
+seen := n;
+END_PROGRAM
+"""
+
+
+def test_every_snapshot_on_the_real_clock_is_the_end_of_one_scan(engines):
+    e = engines(SRC, [task("Main", 2, "Main")], clock=RealClock(spin_ns=0))
+    hub = SnapshotHub(e, period_s=0)  # a copy after every scan: the copier is always busy
+    paths = ["Main.n", "seen", *(f"Main.copies[{i}]" for i in range(1, 501))]
+    hub.watch("test", paths)
+    scan = threading.Thread(target=e.run, kwargs={"cycles": 150}, name="test-scan")
+    scan.start()
+    snaps = []
+    seen = 0
+    while scan.is_alive() or (hub.latest is not None and hub.latest.sequence > seen):
+        snap = hub.next_after(seen, timeout=1.0)
+        if snap is not None:
+            snaps.append(snap)
+            seen = snap.sequence
+    scan.join()
+    assert len(snaps) >= 20, len(snaps)
+    for snap in snaps:  # the scan's n everywhere: an element, the located global, the counter
+        n = snap.values["Main.n"]
+        assert n == snap.cycle, (snap.sequence, n, snap.cycle)
+        assert snap.values["seen"] == n and {snap.values[p] for p in paths[2:]} == {n}, snap.sequence
+    assert [s.values["Main.n"] for s in snaps] == sorted({s.values["Main.n"] for s in snaps})
