@@ -1,12 +1,16 @@
 """The live values of the web page: server-sent events fed by one thread.
 
-One thread (the Broadcaster's) waits for snapshots of the engine
-(SnapshotHub.wait_fresh), at most one per period (the [web] period, 250 ms
-by default: 4 updates a second), while at least one page is open, and hands
-each to the event loop; every page's event stream (``events``) waits there
-for the next one and sends what that page watches. So the scan only ever
-pays the hub's capture, whatever the number of pages, the event loop never
-blocks on the engine, and a slow page only slows its own stream.
+One thread (the Broadcaster's) waits for snapshots of the engine, at most
+one per period (the [web] period, 250 ms by default: 4 updates a second),
+while at least one page is open, and hands each to the event loop; every
+page's event stream (``events``) waits there for the next one and sends
+what that page watches. The snapshots are the hub's own when it takes them
+at least as often (it does under surfaces/host.py, at the fastest server's
+period), else asked for (SnapshotHub.wait_fresh). What every page gets
+alike (tasks, drivers, faults, forces) is encoded once per snapshot. So the
+scan only ever pays the hub's capture, whatever the number of pages, the
+event loop never blocks on the engine, and a slow page only slows its own
+stream.
 
 Each page has a client id; ``Broadcaster.watch(client, paths)`` sets its
 watched paths (through ``hub.watch``) and its event stream sends:
@@ -20,7 +24,6 @@ watched paths (through ``hub.watch``) and its event stream sends:
 from __future__ import annotations
 
 import asyncio
-import dataclasses
 import json
 import logging
 import math
@@ -57,6 +60,8 @@ class Broadcaster:
         self._wanted = threading.Event()  # set while a stream is open
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
+        self._since: dict[str, int] = {}  # client id -> the last snapshot taken before its watch
+        self._common: tuple = (0, "")  # (sequence, the JSON every page gets of that snapshot)
 
     # ------------------------------------------------------------ lifecycle (the event loop)
 
@@ -100,8 +105,15 @@ class Broadcaster:
             self._stop.wait(max(self.period_s - (time.monotonic() - started), 0.0))
 
     def _take(self) -> Snapshot | None:
+        hub = self.hub
         try:
-            return self.hub.wait_fresh(timeout=0.5)
+            if hub.period_s > self.period_s:  # the hub's own snapshots come too seldom
+                return hub.wait_fresh(timeout=0.5)
+            seen = self.snapshot.sequence if self.snapshot is not None else 0
+            snap = hub.next_after(seen, timeout=0.5)
+            if snap is None:
+                raise TimeoutError
+            return snap
         except TimeoutError:
             if self.hub.engine.scan_thread is None:  # not running (stopped, or stepped by a test)
                 return self._capture()
@@ -149,6 +161,9 @@ class Broadcaster:
             except (KeyError, ValueError) as exc:  # PathError is a KeyError
                 errors[path] = str(exc)
         self.hub.watch(_reader(client), good)
+        latest = self.hub.latest
+        self._since[client] = latest.sequence if latest is not None else 0  # the next one has them
+        self.hub.request()
         self.clients[client] = tuple(good)
         return good, errors
 
@@ -162,7 +177,7 @@ class Broadcaster:
         try:
             yield "retry: 2000\n\n"
             while not self.closing:
-                snap = await self.next_snapshot(sent)
+                snap = await self.next_snapshot(max(sent, self._since.get(client, 0)))
                 if snap is None:
                     if self.closing:
                         break
@@ -170,8 +185,9 @@ class Broadcaster:
                     continue
                 sent = snap.sequence
                 records, logged = self.logs.since(logged)
-                payload = state_payload(snap, self.clients.get(client, ()), records)
-                yield "event: state\ndata: " + json.dumps(payload, separators=(",", ":")) + "\n\n"
+                values, numbers = watched_payload(snap, self.clients.get(client, ()))
+                tail = _dumps({"values": values, "numbers": numbers, "log": records})
+                yield "event: state\ndata: " + self._common_json(snap) + "," + tail[1:] + "\n\n"
         finally:
             self.streams -= 1
             if self.streams <= 0:
@@ -179,39 +195,55 @@ class Broadcaster:
             if self._stream_of.get(client) is token:  # not when the page reconnected meanwhile
                 del self._stream_of[client]
                 self.clients.pop(client, None)
+                self._since.pop(client, None)
                 self.hub.unwatch(_reader(client))
+
+    def _common_json(self, snap: Snapshot) -> str:
+        """common_payload(snap) as JSON without its closing brace, made once per snapshot."""
+        sequence, text = self._common
+        if sequence != snap.sequence:
+            text = _dumps(common_payload(snap))[:-1]
+            self._common = (snap.sequence, text)
+        return text
 
 
 def _reader(client: str) -> str:
     return f"web:{client}"
 
 
-def state_payload(snap: Snapshot, paths, records: list) -> dict:
-    """What one page gets of a snapshot: the engine's state and its watched values."""
-    values: dict = {}
-    numbers: dict = {}
-    for path in paths:
-        if path not in snap.values:
-            continue
-        values[path] = _finite(snap.json(path))
-        raw = snap.values[path]
-        if isinstance(raw, (bool, int, float)) and math.isfinite(raw):
-            numbers[path] = float(raw)
+def _dumps(data: dict) -> str:
+    return json.dumps(data, separators=(",", ":"))
+
+
+def common_payload(snap: Snapshot) -> dict:
+    """What every page gets of a snapshot: the engine's state."""
     return {
         "sequence": snap.sequence,
         "cycle": snap.cycle,
         "time_ns": snap.time_ns,
         "generation": snap.generation,
         "outputs_safe": snap.outputs_safe,
-        "tasks": [dataclasses.asdict(t) for t in snap.tasks],
-        "drivers": [_finite(dataclasses.asdict(d)) for d in snap.drivers],
+        "tasks": [dict(vars(t)) for t in snap.tasks],
+        "drivers": [_finite(dict(vars(d))) for d in snap.drivers],
         "faults": list(snap.faults[-FAULTS_SHOWN:]),
         "fault_count": len(snap.faults),
         "forced": {path: _jsonable(value) for path, value in snap.forced.items()},
-        "values": values,
-        "numbers": numbers,
-        "log": records,
     }
+
+
+def watched_payload(snap: Snapshot, paths) -> tuple:
+    """What one page gets of its watched paths: (values as JSON, the numbers among them for the trend)."""
+    values: dict = {}
+    numbers: dict = {}
+    snap_values = snap.values
+    for path in paths:
+        if path not in snap_values:
+            continue
+        values[path] = _finite(snap.json(path))
+        raw = snap_values[path]
+        if isinstance(raw, (bool, int, float)) and math.isfinite(raw):
+            numbers[path] = float(raw)
+    return values, numbers
 
 
 def _jsonable(value: Any) -> Any:
