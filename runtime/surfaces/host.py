@@ -10,6 +10,16 @@ A server module (surfaces/<key>/ or surfaces/<key>.py) offers
 ``start(surfaces, config) -> handle``: the handle has ``url`` and
 ``stop()``. Modules are imported only when their section is present, so a
 PLC without a web page does not load a web framework.
+
+The OPC UA and Modbus servers run in a process of their own (process.py,
+child.py): they publish and poll thousands of values a second, and in the
+PLC's process that work would hold the interpreter lock the scan needs. The
+web page stays in the PLC's process: it restarts tasks, triggers an online
+change and shows the log, and a few people looking at it cost the scan
+little. A server reaches the PLC only through ``hub`` (snapshots),
+``access`` (writes) and ``call`` (a function of its own run with the PLC's
+surfaces, such as the OPC UA server's walk of the program), which work the
+same in both processes.
 """
 
 from __future__ import annotations
@@ -21,11 +31,14 @@ from typing import Any
 from ..config.servers import ServerConfig
 from ..engine.access import Access, Permission
 from ..engine.snapshot import SnapshotHub
+from .process import ProcessError, SurfaceProcess
 
 log = logging.getLogger("softplc.surfaces")
 
 #: section key -> module (relative to this package) offering start(surfaces, config)
 SERVERS = {"web": ".web", "opcua": ".opcua", "modbus_server": ".modbus_server"}
+#: the servers run in the servers' process (the others in the PLC's)
+OWN_PROCESS = frozenset(("opcua", "modbus_server"))
 
 
 class SurfaceError(Exception):
@@ -42,15 +55,34 @@ class Surfaces:
         self.handles: dict[str, Any] = {}
         #: softplc run's OnlineChange, if on: what the web page's "Online change" button calls
         self.online_change: Any = None
+        self.process: SurfaceProcess | None = None  # the servers' process, when one runs
 
     @property
     def urls(self) -> dict:
         return {key: handle.url for key, handle in self.handles.items()}
 
+    def call(self, function, *args) -> Any:
+        """function(self, *args): a server's function run with the PLC's
+        surfaces (child.py's RemoteSurfaces sends it here)."""
+        return function(self, *args)
+
     def start(self) -> None:
         for key, config in self.configs.items():
             if config.public:
                 log.warning("%s listens on %s:%d, reachable from the network", key, config.host, config.port)
+        apart = {k: c for k, c in self.configs.items() if k in OWN_PROCESS}
+        if apart:
+            self.process = SurfaceProcess(self, apart)
+            try:
+                self.handles.update(self.process.start())
+            except ProcessError as exc:
+                self.process = None
+                raise SurfaceError(str(exc)) from None
+            for key, handle in self.handles.items():
+                log.info("%s: %s", key, handle.url)
+        for key, config in self.configs.items():
+            if key in apart:
+                continue
             module = importlib.import_module(SERVERS[key], __package__)
             try:
                 self.handles[key] = module.start(self, config)
@@ -68,3 +100,6 @@ class Surfaces:
             except Exception as exc:  # one server's trouble does not keep the others running
                 log.error("%s: stopping: %s", key, exc)
         self.handles.clear()
+        if self.process is not None:
+            self.process.stop()
+            self.process = None

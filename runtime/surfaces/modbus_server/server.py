@@ -1,6 +1,7 @@
-"""The Modbus TCP server's thread: a pymodbus ModbusTcpServer on its own
-event loop whose datastore is the PLC (the snapshot's image for reads,
-Access for writes).
+"""The Modbus TCP server's thread (in the servers' process:
+surfaces/process.py): a pymodbus ModbusTcpServer on its own event loop
+whose datastore is the PLC (the snapshot's image for reads, Access for
+writes).
 
 What an HMI sees:
   * a read answers from the latest snapshot (taken at the end of a scan at
@@ -160,7 +161,7 @@ class PlcDatastore(ModbusServerContext):
         except Exception as exc:  # a write that faulted in the scan
             log.warning("modbus_server: write refused: %s", exc)
             return ExcCodes.ILLEGAL_VALUE
-        if self.surfaces.engine.scan_thread is None:
+        if not hub.scanning:
             return None  # carried out at once (no scan running): no snapshot to wait for
         waited = 0.0
         while waited < WRITE_TIMEOUT_S and (hub.latest is None or not seen or hub.latest.sequence <= seen[0]):

@@ -1,6 +1,7 @@
 """The OPC UA server of a running PLC: an asyncua Server in its own thread
-with its own event loop, publishing the engine's variables from the
-snapshot hub and writing through the one write API.
+with its own event loop (in the servers' process: surfaces/process.py),
+publishing the engine's variables from the snapshot hub and writing through
+the one write API.
 
     handle = start(surfaces, config)   # returns once the endpoint listens
     handle.url                         # opc.tcp://127.0.0.1:4840/softplc/
@@ -25,14 +26,13 @@ from asyncua import Server, ua
 
 from ...config.servers import ServerConfig
 from .space import add_enums, add_tree, variant
-from .tree import Tree, Variable, walk
+from .tree import READER, Tree, Variable, published
 from .typemap import node_id
 from .users import PlcUsers, load_users
 from .writes import PlcAttributeService
 
 log = logging.getLogger("softplc.surfaces.opcua")
 
-READER = "opcua"
 NAMESPACE = "urn:softplc"
 PATH = "/softplc/"
 #: published variables (array elements count one each) unless [opcua] max_variables says otherwise
@@ -150,15 +150,14 @@ class OpcuaServer:
         server = self._server
         assert server is not None
         hub = self.surfaces.hub
-        permission = self.surfaces.access.permissions.get(READER)
-        tree = walk(self.surfaces.engine, hub.resolver, permission.allows if permission else _never, self.limit)
+        tree = await asyncio.to_thread(self.surfaces.call, published, self.limit)
         if tree.left_out:
             log.warning(
                 "opcua: %d variable(s) not published: more than %d values ([opcua] max_variables)",
                 tree.left_out,
                 self.limit,
             )
-        hub.watch(READER, tree.watched)
+        await asyncio.to_thread(hub.watch, READER, tree.watched)
         # with the paths just watched: taken now before the first scan, else at the end of the next
         snap = await asyncio.to_thread(hub.current, True)
         if self.tree is not None:
@@ -227,10 +226,6 @@ class _SharedDataValue(ua.DataValue):
 
     def __deepcopy__(self, memo: dict) -> _SharedDataValue:
         return self
-
-
-def _never(_path: str) -> bool:
-    return False
 
 
 def _fix_endpoint_urls(server: Server, url: str) -> None:

@@ -28,6 +28,7 @@ from ...st import types as T
 from ...st.valuejson import SKIPPED_SECTIONS
 from .typemap import UaType, ua_type
 
+READER = "opcua"  # the surface's name: its snapshot reader and its permission
 #: an array of structs or FB instances shows at most this many elements as objects
 ELEMENT_OBJECTS = 100
 GLOBALS = "Globals"
@@ -75,6 +76,19 @@ class Tree:
             if v.ua.enum is not None:
                 out.setdefault(v.ua.enum.name, v.ua.enum)
         return out
+
+
+def published(surfaces, limit: int) -> Tree:
+    """The tree of the engine's current program as [opcua] publishes it,
+    its writable variables those [opcua] writable names. Called with the
+    PLC's surfaces (surfaces/host.py ``Surfaces.call``): from the servers'
+    process, it runs in the PLC's and the tree comes back."""
+    permission = surfaces.access.permissions.get(READER)
+    return walk(surfaces.engine, surfaces.hub.resolver, permission.allows if permission else _never, limit)
+
+
+def _never(_path: str) -> bool:
+    return False
 
 
 def walk(engine, resolver: Resolver, writable: Callable[[str], bool], limit: int) -> Tree:

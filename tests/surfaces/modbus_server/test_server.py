@@ -5,14 +5,15 @@ in OpenPLC's mapping (runtime/surfaces/modbus_server/mapping.py)."""
 from __future__ import annotations
 
 import logging
+import multiprocessing
 import socket
-import threading
 
 import pytest
 from pymodbus.client import ModbusTcpClient
 from pymodbus.exceptions import ConnectionException, ModbusIOException
 
 from softplc.runtime.surfaces.host import SurfaceError, Surfaces
+from softplc.runtime.surfaces.modbus_server import Mapping
 
 from ...engine.conftest import make_engine, task, wait_until
 
@@ -25,8 +26,10 @@ def test_an_hmi_reads_the_outputs_inputs_and_markers_of_the_image(plc):
     p.test.write("%IW4", 41, surface="test")
     client = p.client
     wait_until(lambda: client.read_holding_registers(2).registers == [1000], "the count reaches 1000 in %QW2")
-    assert client.read_discrete_inputs(0, count=8).bits[:8] == [False, False, True] + [False] * 5
-    assert client.read_input_registers(4).registers == [41]
+    # the count may have reached 1000 before the writes: a snapshot after them is a period away
+    expected = [False, False, True] + [False] * 5
+    wait_until(lambda: client.read_discrete_inputs(0, count=8).bits[:8] == expected, "discrete input 2 = %IX0.2")
+    wait_until(lambda: client.read_input_registers(4).registers == [41], "input register 4 = %IW4")
     wait_until(lambda: client.read_holding_registers(10).registers == [42], "%QW10 = %IW4 + 1")
     assert client.read_coils(0, count=8).bits == [False] * 5 + [True, False, False]  # coil 5 = %QX0.5 = sensor
     # holding 1023 is %QW1023, 1024 is %MW0: one read across both
@@ -67,7 +70,8 @@ def test_a_write_outside_writable_is_refused_with_exception_02_naming_the_addres
     ), messages
     # an input cannot be written at all: discrete inputs and input registers have no write function,
     # and no coil or holding register reaches %I
-    assert all(not path.startswith("%I") for path in p.handle.datastore.mapping.paths("holding registers", 0, 2000))
+    mapping = Mapping(len(p.surfaces.hub.current().image["Q"]))
+    assert all(not path.startswith("%I") for path in mapping.paths("holding registers", 0, 2000))
 
 
 def test_an_address_outside_the_mapping_gets_exception_02(plc):
@@ -100,14 +104,14 @@ def test_any_unit_id_is_answered_by_default(plc):
     assert [client.read_coils(0, device_id=unit).isError() for unit in (0, 1, 99, 255)] == [False] * 4
 
 
-def test_stop_closes_the_listener_and_the_connections_and_ends_the_thread(plc):
+def test_stop_closes_the_listener_and_the_connections_and_ends_the_servers_process(plc):
     p = plc()
     assert not p.client.read_coils(0).isError()
     port = p.port
     p.surfaces.stop()
     with pytest.raises(OSError):
         socket.create_connection(("127.0.0.1", port), timeout=2).close()
-    assert not [t for t in threading.enumerate() if t.name == "softplc-modbus-server"]
+    assert not [c for c in multiprocessing.active_children() if c.name == "softplc-servers"]
     with pytest.raises(ConnectionException):  # the server closed the connection
         p.client.read_coils(0)
 
@@ -121,6 +125,7 @@ def test_a_port_in_use_is_reported_naming_the_section_and_port(plc):
         other = Surfaces(engine, {"modbus_server": server_config(port=p.port)})
         with pytest.raises(SurfaceError, match=rf"\[modbus_server\] cannot listen on 127.0.0.1:{p.port}: "):
             other.start()
-        assert not [t for t in threading.enumerate() if t.name == "softplc-modbus-server" and t.is_alive()][1:]
+        # no servers' process left behind: only the first PLC's runs
+        assert len([c for c in multiprocessing.active_children() if c.name == "softplc-servers"]) == 1
     finally:
         engine.stop()

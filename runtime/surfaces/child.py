@@ -1,0 +1,269 @@
+"""The servers' process (see process.py for the PLC's side and the messages).
+
+The OPC UA and Modbus servers run here unchanged: they are given a
+``RemoteSurfaces`` in place of the PLC's ``Surfaces``, whose ``hub`` holds
+the snapshots the PLC sends and whose ``access`` carries writes to the PLC,
+where the one permission check and the one write API do the rest.
+
+The process runs at a lower priority than the PLC (``NICE``): on a busy
+machine the scan comes first, as CODESYS's communication comes after its
+IEC tasks. It ignores SIGINT and SIGHUP (the PLC's to handle) and ends when
+the PLC says stop or its end of the pipe closes.
+"""
+
+from __future__ import annotations
+
+import importlib
+import itertools
+import logging
+import os
+import signal
+import threading
+from concurrent.futures import Future
+from typing import Any
+
+from ..engine.snapshot import Layout, Snapshot
+
+#: added to the servers' niceness: they yield the CPU to the scan
+NICE = 5
+CALL_TIMEOUT_S = 30.0
+
+
+class PlcGone(ConnectionError):
+    """The PLC's process ended or closed the pipe."""
+
+
+class _Link:
+    """The pipe to the PLC: calls with their replies, one sender at a time."""
+
+    def __init__(self, conn) -> None:
+        self.conn = conn
+        self._lock = threading.Lock()
+        self._ids = itertools.count(1)
+        self._waiting: dict[int, Future] = {}  # call id -> the reply's future
+        self._done: dict[int, Future] = {}  # submit id -> the write's future
+        self.closed = threading.Event()
+
+    def send(self, message: tuple) -> None:
+        if self.closed.is_set():
+            raise PlcGone("the PLC is gone")
+        with self._lock:
+            try:
+                self.conn.send(message)
+            except OSError as exc:
+                raise PlcGone(f"the PLC is gone: {exc}") from None
+
+    def call(self, name: str, *args, done: Future | None = None) -> Any:
+        call_id = next(self._ids)
+        reply: Future = Future()
+        self._waiting[call_id] = reply
+        if done is not None:
+            self._done[call_id] = done
+        try:
+            self.send(("call", call_id, name, args))
+            return reply.result(CALL_TIMEOUT_S)
+        except BaseException:
+            self._done.pop(call_id, None)
+            raise
+        finally:
+            self._waiting.pop(call_id, None)
+
+    def answered(self, kind: str, call_id: int, ok: bool, value: Any, sequence: int, hub: RemoteHub) -> None:
+        future = (self._waiting if kind == "reply" else self._done).get(call_id)
+        if kind == "done" or not ok:
+            self._done.pop(call_id, None)
+        if future is None:
+            return
+        if kind == "done":  # once the snapshot before the write is here: the next one is after it
+            hub.after(sequence, lambda: _settle(future, ok, value))
+        else:
+            _settle(future, ok, value)
+
+    def close(self) -> None:
+        """The PLC is gone: every call waiting and every write not confirmed fails."""
+        self.closed.set()
+        for future in [*self._waiting.values(), *self._done.values()]:
+            if not future.done():
+                future.set_exception(PlcGone("the PLC is gone"))
+
+
+def _settle(future: Future, ok: bool, value: Any) -> None:
+    if future.done():  # the PLC went meanwhile (close())
+        return
+    if ok:
+        future.set_result(value)
+    else:
+        future.set_exception(value)
+
+
+class RemoteHub:
+    """The snapshot hub's face to the servers, fed by the PLC."""
+
+    def __init__(self, link: _Link) -> None:
+        self._link = link
+        self.latest: Snapshot | None = None
+        self.scanning = False
+        self._layout: Layout | None = None
+        self._fresh = threading.Condition()
+        self._parked: list = []  # (sequence, callable): run once that snapshot is here
+
+    def after(self, sequence: int, action) -> None:
+        """action() once the snapshot of sequence (or a later one) is here (the receiving thread)."""
+        if self.latest is not None and self.latest.sequence >= sequence or sequence == 0:
+            action()
+        else:
+            self._parked.append((sequence, action))
+
+    def received(self, message: tuple) -> None:
+        if message[0] == "layout":
+            self._layout = message[1]
+            return
+        fields, scanning = message[1], message[2]
+        assert self._layout is not None  # the PLC sends a layout before the first snapshot
+        snap = Snapshot(layout=self._layout, **dict(zip(_FIELDS, fields)))
+        with self._fresh:
+            if self.latest is None or snap.sequence > self.latest.sequence:
+                self.latest = snap
+            self.scanning = scanning
+            self._fresh.notify_all()
+        if self._parked:
+            due = [action for seq, action in self._parked if seq <= snap.sequence]
+            self._parked = [(seq, action) for seq, action in self._parked if seq > snap.sequence]
+            for action in due:
+                action()
+
+    def watch(self, reader: str, paths) -> list:
+        return self._link.call("watch", reader, list(paths))
+
+    def unwatch(self, reader: str) -> None:
+        try:
+            self._link.call("unwatch", reader)
+        except PlcGone:  # stopping after the PLC: nothing is watched anymore
+            pass
+
+    def request(self) -> None:
+        self._link.send(("call", None, "request", ()))
+
+    def current(self, fresh: bool = False) -> Snapshot:
+        sequence = self._link.call("current", fresh)
+        with self._fresh:
+            if not self._fresh.wait_for(lambda: self.latest is not None and self.latest.sequence >= sequence, 5):
+                raise TimeoutError("the PLC's snapshot did not arrive")
+            assert self.latest is not None
+            return self.latest
+
+
+class RemoteAccess:
+    """Access's face to the servers: each call checked and carried out in the PLC."""
+
+    def __init__(self, link: _Link, permissions: dict) -> None:
+        self._link = link
+        self.permissions = {k: v for k, v in permissions.items() if v is not None}
+
+    def check(self, op: str, path: str, surface: str) -> str:
+        """The path as declared if surface may do op there (AccessDenied, PathError as Access.check)."""
+        return self._link.call("check", op, path, surface)
+
+    def submit(self, op: str, path: str, value: Any = None, *, surface: str) -> Future:
+        done: Future = Future()
+        self._link.call("submit", op, path, value, surface, done=done)
+        return done
+
+
+class RemoteSurfaces:
+    """What a server module's start(surfaces, config) is given in this process."""
+
+    def __init__(self, link: _Link, permissions: dict) -> None:
+        self.link = link
+        self.hub = RemoteHub(link)
+        self.access = RemoteAccess(link, permissions)
+
+    def call(self, function, *args) -> Any:
+        """function(the PLC's Surfaces, *args), run in the PLC's process."""
+        return self.link.call("call", function.__module__, function.__qualname__, args)
+
+
+def main(conn, configs: dict, permissions: dict, level: int) -> None:
+    """The process's entry point (process.py starts it)."""
+    for signum in (signal.SIGINT, signal.SIGHUP):
+        signal.signal(signum, signal.SIG_IGN)
+    try:
+        os.nice(NICE)
+    except OSError:  # not allowed here: the same priority as the PLC
+        pass
+    link = _Link(conn)
+    _log_to(link, level)
+    surfaces = RemoteSurfaces(link, permissions)
+    stop = threading.Event()
+    reader = threading.Thread(target=_receive, args=(link, surfaces.hub, stop), name="plc", daemon=True)
+    reader.start()
+    from .host import SERVERS  # host imports process, which names this module
+
+    handles: dict = {}
+    errors: dict = {}
+    for key, config in configs.items():
+        try:
+            handles[key] = importlib.import_module(SERVERS[key], __package__).start(surfaces, config)
+        except OSError as exc:
+            errors[key] = f"cannot listen on {config.host}:{config.port}: {exc.strerror or exc}"
+            break
+        except Exception as exc:  # a bad certificate, a users file ...: the PLC reports it
+            errors[key] = f"{type(exc).__name__}: {exc}"
+            break
+    urls = {key: (handle.url, getattr(handle, "port", None)) for key, handle in handles.items()}
+    try:
+        link.send(("started", urls, errors))
+        if not errors:
+            stop.wait()
+    finally:
+        for handle in reversed(list(handles.values())):
+            try:
+                handle.stop()
+            except Exception as exc:  # one server's trouble does not keep the others running
+                logging.getLogger("softplc.surfaces").error("stopping: %s", exc)
+        link.close()
+
+
+def _receive(link: _Link, hub: RemoteHub, stop: threading.Event) -> None:
+    try:
+        while True:
+            message = link.conn.recv()
+            kind = message[0]
+            if kind in ("layout", "snapshot"):
+                hub.received(message)
+            elif kind in ("reply", "done"):
+                _kind, call_id, ok, value, sequence = message
+                link.answered(kind, call_id, ok, value, sequence, hub)
+            elif kind == "stop":
+                break
+    except (EOFError, OSError):  # the PLC is gone
+        pass
+    finally:
+        link.close()
+        stop.set()
+
+
+class _ToPlc(logging.Handler):
+    """Log records to the PLC's log (its file, its rotation)."""
+
+    def __init__(self, link: _Link) -> None:
+        super().__init__()
+        self.link = link
+
+    def emit(self, record: logging.LogRecord) -> None:
+        try:
+            self.link.send(("log", record.name, record.levelno, self.format(record)))
+        except Exception:  # the PLC is gone: nobody to tell
+            pass
+
+
+def _log_to(link: _Link, level: int) -> None:
+    """softplc's records from level on, the libraries' (asyncua, pymodbus)
+    warnings and errors: what the PLC's process shows of them."""
+    root = logging.getLogger()
+    root.handlers[:] = [_ToPlc(link)]
+    root.setLevel(logging.WARNING)
+    logging.getLogger("softplc").setLevel(level)
+
+
+_FIELDS = tuple(f for f in Snapshot.__dataclass_fields__ if f != "layout")
