@@ -51,6 +51,8 @@ class PlcConfig:
     libraries: list[Library] = field(default_factory=list)
     #: the real clock busy-waits this long before each release ([plc] spin)
     spin_ns: int = DEFAULT_SPIN_NS
+    #: the scan thread's SCHED_FIFO priority on the real clock, 0: the normal scheduler ([plc] realtime_priority)
+    realtime_priority: int = 0
     tasks: list[TaskConfig] = field(default_factory=list)
     retain: RetainConfig | None = None
     safe_outputs: list[SafeOutput] = field(default_factory=list)
@@ -226,6 +228,7 @@ def config_from_dict(data: dict, path=None, *, base_dir=None) -> PlcConfig:
         on_fault=plc.on_fault,
         start=plc.start,
         spin_ns=plc.spin,
+        realtime_priority=plc.realtime_priority,
         sections=built,
         raw=raw,
         warnings=[f"{label}: {key_text(loc)}: {message}" for loc, message in in_file_order(ctx.warnings, data)],

@@ -44,6 +44,8 @@ DEFAULT_PAUSE_NS = 1_000_000
 DEFAULT_SPIN_NS = 200_000
 DEFAULT_RETAIN_PERIOD_NS = 1_000_000_000
 PRIORITY_MAX = 31
+#: [plc] realtime_priority: Linux's SCHED_FIFO priorities are 1 .. 99
+REALTIME_MAX = 99
 
 
 @dataclass
@@ -102,6 +104,9 @@ class _Plc(Model):
     on_fault: Annotated[str, choice(("task", "plc"))] = Field("task", description="'task' or 'plc'")
     start: Annotated[str, choice(("warm", "cold"))] = Field("warm", description="'warm' or 'cold'")
     spin: Annotated[int, PlainValidator(spin_duration)] = Field(DEFAULT_SPIN_NS, description=SPIN_EXPECTED)
+    realtime_priority: Annotated[int, int_range(0, REALTIME_MAX)] = Field(
+        0, description=f"0 (off) or a SCHED_FIFO priority from 1 to {REALTIME_MAX}"
+    )
 
 
 class _Library(Model):

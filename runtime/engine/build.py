@@ -58,7 +58,11 @@ def build_engine(
     where = str(config.path) if config.path else "<config>"
     tasks = plan_tasks(program, config.tasks, where, none_ok=bool(extra_tasks)) + list(extra_tasks)
     retain_store = RetainStore(config.retain.file) if config.retain and retain else None
-    clock = VirtualClock() if virtual_time else RealClock(spin_ns=config.spin_ns)
+    clock = (
+        VirtualClock()
+        if virtual_time
+        else RealClock(spin_ns=config.spin_ns, realtime_priority=config.realtime_priority)
+    )
     simulators: dict = {}
     drivers = make_drivers(config, clock, simulators)
     return Engine(

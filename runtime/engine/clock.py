@@ -7,7 +7,10 @@ RealClock    the wall (monotonic) clock: sleeps until `spin_ns` before a
              while a spin on perf_counter is late by about a microsecond.
              The spin costs CPU (spin_ns per release) and holds the GIL, so
              it is short and configurable ([plc] spin; the figures of
-             benchmarks/bench_spin.py in benchmarks/README.md).
+             benchmarks/bench_spin.py in benchmarks/README.md). With
+             realtime_priority the scan thread runs under SCHED_FIFO
+             ([plc] realtime_priority): no process of normal priority
+             delays its wake-up.
 VirtualClock jumps straight to the next deadline: a 10-minute sequence runs
              in milliseconds and always the same way. Simulators read the
              same clock.
@@ -19,6 +22,7 @@ PeriodicService  a real-time thread that serves a bus or a simulated
 from __future__ import annotations
 
 import logging
+import os
 import threading
 import time
 from collections.abc import Callable
@@ -28,11 +32,22 @@ from ..config import DEFAULT_SPIN_NS
 log = logging.getLogger(__name__)
 
 
+def _threads() -> list[int]:
+    """The native ids of this process's threads (Linux), the caller's alone elsewhere."""
+    try:
+        return [int(tid) for tid in os.listdir("/proc/self/task")]
+    except OSError:
+        return [threading.get_native_id()]
+
+
 class VirtualClock:
     virtual = True
 
     def __init__(self, start_ns: int = 0) -> None:
         self._now = start_ns
+
+    def claim_thread(self) -> None:
+        """Virtual time needs no priority: nothing waits for the wall clock."""
 
     def now_ns(self) -> int:
         return self._now
@@ -45,9 +60,42 @@ class VirtualClock:
 class RealClock:
     virtual = False
 
-    def __init__(self, spin_ns: int = DEFAULT_SPIN_NS) -> None:
+    def __init__(self, spin_ns: int = DEFAULT_SPIN_NS, realtime_priority: int = 0) -> None:
         self.spin_ns = spin_ns
+        self.realtime_priority = realtime_priority
         self._t0 = time.perf_counter_ns()
+        self._claimed: set = set()  # the threads given the priority (or told they cannot have it)
+
+    def claim_thread(self) -> None:
+        """With realtime_priority: the calling thread (the scan's) under
+        SCHED_FIFO at that priority and every other thread of the process
+        (buses, simulators, the web page) one below, once. A thread started
+        later inherits its starter's. The process's threads all take turns
+        at Python's interpreter lock: one of them left at normal priority
+        would make the scan wait behind every other program of the machine
+        while it holds the lock. A warning when the system refuses (it takes
+        root or CAP_SYS_NICE: deploy/softplc.service grants it); the scan
+        then runs at normal priority."""
+        ident = threading.get_ident()
+        if not self.realtime_priority or ident in self._claimed:
+            return
+        self._claimed.add(ident)
+        scan = threading.get_native_id()
+        try:
+            for tid in _threads():
+                priority = self.realtime_priority if tid == scan else max(1, self.realtime_priority - 1)
+                try:
+                    os.sched_setscheduler(tid, os.SCHED_FIFO, os.sched_param(priority))
+                except ProcessLookupError:  # a thread that ended meanwhile
+                    continue
+        except (OSError, AttributeError) as exc:  # AttributeError: not Linux
+            log.warning(
+                "[plc] realtime_priority = %d: the scan runs at normal priority (%s; it takes root or CAP_SYS_NICE)",
+                self.realtime_priority,
+                getattr(exc, "strerror", None) or exc,
+            )
+            return
+        log.info("the PLC runs under SCHED_FIFO, the scan at priority %d", self.realtime_priority)
 
     def now_ns(self) -> int:
         return time.perf_counter_ns() - self._t0

@@ -290,6 +290,7 @@ class Engine:
         end_ns = None if duration_ns is None else clock.now_ns() + duration_ns
         ran = 0
         self.scan_thread = threading.get_ident()
+        self.clock.claim_thread()
         try:
             while not self._stop_requested and (cycles is None or ran < cycles):
                 release = self.next_release()

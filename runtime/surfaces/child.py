@@ -187,6 +187,10 @@ def main(conn, configs: dict, permissions: dict, level: int) -> None:
     """The process's entry point (process.py starts it)."""
     for signum in (signal.SIGINT, signal.SIGHUP):
         signal.signal(signum, signal.SIG_IGN)
+    try:  # a PLC under SCHED_FIFO ([plc] realtime_priority) passed it on: the servers do without
+        os.sched_setscheduler(0, os.SCHED_OTHER, os.sched_param(0))
+    except (OSError, AttributeError):  # not Linux
+        pass
     try:
         os.nice(NICE)
     except OSError:  # not allowed here: the same priority as the PLC

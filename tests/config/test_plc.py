@@ -166,7 +166,7 @@ def test_unknown_key_with_suggestion(tmp_path):
 def test_unknown_key_without_suggestion(tmp_path):
     assert error(tmp_path, PLC + 'colour = "blue"\n') == (
         "plc.colour",
-        "unknown key (expected one of profile, programs, libraries, on_fault, start, spin)",
+        "unknown key (expected one of profile, programs, libraries, on_fault, start, spin, realtime_priority)",
     )
 
 
@@ -623,3 +623,19 @@ def test_a_bad_server_key_names_the_key(tmp_path):
         "modbus_server.port",
         "expected an integer from 0 to 65535 (got 70000)",
     )
+
+
+@pytest.mark.parametrize("written", ["100", "-1"])
+def test_realtime_priority_out_of_range(tmp_path, written):
+    assert error(tmp_path, PLC + f"realtime_priority = {written}\n") == (
+        "plc.realtime_priority",
+        f"expected an integer from 0 to 99 (got {written})",
+    )
+
+
+def test_realtime_priority_reaches_the_real_clock(tmp_path):
+    from softplc.runtime.engine.build import build_engine
+
+    cfg = load(tmp_path, PLC + 'realtime_priority = 40\n[[task]]\nname = "T"\ninterval = 10\nprograms = ["Main"]\n')
+    assert cfg.realtime_priority == 40
+    assert build_engine(cfg, virtual_time=False).clock.realtime_priority == 40
