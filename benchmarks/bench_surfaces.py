@@ -9,12 +9,17 @@ The plant is the embedded default (io_config/default.toml) plus a program
 of 1,000 DINT globals, 100 of them changed per scan (so the OPC UA
 subscription has data changes to send), in a task of its own; the baseline
 runs the same plant. Per scan is the wall time of one tick (inputs, tasks,
-outputs and the after-tick work, the snapshot among it), taken around
-Engine.tick. The two runs alternate (baseline, loaded, baseline, loaded ...)
-so that a drift of the host hits both.
+outputs and the after-tick work), taken around Engine.tick. Late is how
+long after its release a tick began (the kernel's wake-up, the interpreter
+lock); overruns are the releases missed (the tasks' counters); PLC CPU is
+the CPU time of the PLC's process (every thread of it) per scan. The
+measurement begins once every client has received data. The two runs
+alternate (baseline, loaded, baseline, loaded ...) so that a drift of the
+host hits both.
 
     python benchmarks/bench_surfaces.py                 # 2 rounds of 10 s each way
     python benchmarks/bench_surfaces.py --seconds 5 --rounds 1
+    python benchmarks/bench_surfaces.py --realtime-priority 40   # both runs under SCHED_FIFO (root)
 """
 
 from __future__ import annotations
@@ -24,6 +29,7 @@ import asyncio
 import http.client
 import json
 import multiprocessing
+import os
 import statistics
 import tempfile
 import threading
@@ -54,7 +60,7 @@ def bulk_st() -> str:
     )
 
 
-def build(tmp: Path):
+def build(tmp: Path, realtime_priority: int = 0):
     path = default_config_path()
     data = tomllib.loads(path.read_text())
     base = path.parent
@@ -63,22 +69,26 @@ def build(tmp: Path):
     bulk.write_text(bulk_st())
     data["plc"]["programs"].append(str(bulk))
     data["task"].append({"name": "BulkTask", "interval": "10ms", "priority": 5, "programs": ["Bulk"]})
+    data["plc"]["realtime_priority"] = realtime_priority
     return build_engine(config_from_dict(data, path), virtual_time=False)
 
 
-def timed_ticks(engine) -> list:
-    """Wrap engine.tick to record each tick's wall time (ns)."""
+def timed_ticks(engine) -> tuple:
+    """Wrap engine.tick to record each tick's wall time and how late it began (ns)."""
     durations: list = []
+    late: list = []
     tick = engine.tick
     counter = time.perf_counter_ns
+    clock = engine.clock
 
     def timed() -> None:
+        late.append(clock.now_ns() - engine.next_release())
         t0 = counter()
         tick()
         durations.append(counter() - t0)
 
     engine.tick = timed
-    return durations
+    return durations, late
 
 
 def server(key: str, **options) -> ServerConfig:
@@ -86,6 +96,14 @@ def server(key: str, **options) -> ServerConfig:
 
 
 # ------------------------------------------------------------ clients
+
+
+def normal_priority() -> None:
+    """A client is an HMI at the normal priority, whatever the PLC's (SCHED_FIFO is inherited)."""
+    try:
+        os.sched_setscheduler(0, os.SCHED_OTHER, os.sched_param(0))
+    except (OSError, AttributeError):
+        pass
 
 
 def web_client(url: str, name: str, paths: list, stop: threading.Event, seen: list) -> None:
@@ -111,6 +129,7 @@ def web_client(url: str, name: str, paths: list, stop: threading.Event, seen: li
 
 def web_clients(url: str, paths: list, stop, seen) -> None:
     """Five open pages, each its own connection, in one client process."""
+    normal_priority()
     pages = [threading.Thread(target=web_client, args=(url, f"bench{n}", paths, stop, seen)) for n in range(5)]
     for page in pages:
         page.start()
@@ -120,6 +139,8 @@ def web_clients(url: str, paths: list, stop, seen) -> None:
 
 def opcua_client(url: str, paths: list, stop: threading.Event, seen: list) -> None:
     from asyncua import Client
+
+    normal_priority()
 
     class Handler:
         def datachange_notification(self, node, val, data) -> None:
@@ -141,6 +162,7 @@ def opcua_client(url: str, paths: list, stop: threading.Event, seen: list) -> No
 def modbus_client(url: str, stop: threading.Event, seen: list) -> None:
     from pymodbus.client import ModbusTcpClient
 
+    normal_priority()
     host, port = url.split("//", 1)[1].rsplit(":", 1)
     client = ModbusTcpClient(host, port=int(port))
     client.connect()
@@ -156,11 +178,11 @@ def modbus_client(url: str, stop: threading.Event, seen: list) -> None:
 # ------------------------------------------------------------ runs
 
 
-def run(seconds: float, loaded: bool, only: tuple = ("web", "opcua", "modbus")) -> dict:
+def run(seconds: float, loaded: bool, only: tuple = ("web", "opcua", "modbus"), realtime_priority: int = 0) -> dict:
     with tempfile.TemporaryDirectory() as tmp:
-        engine = build(Path(tmp))
+        engine = build(Path(tmp), realtime_priority)
         engine.start()
-        durations = timed_ticks(engine)
+        durations, late = timed_ticks(engine)
         surfaces = None
         ctx = multiprocessing.get_context("spawn")
         stop = ctx.Event()
@@ -184,9 +206,18 @@ def run(seconds: float, loaded: bool, only: tuple = ("web", "opcua", "modbus")) 
                     clients.append(ctx.Process(target=target, args=(*args, stop, counts[key])))
                 for p in clients:
                     p.start()
-                engine.run(duration_ns=int(2e9))  # the clients connect and subscribe
-                durations.clear()
+                waited = 0
+                while waited < 60 and not all(counts[key].value for key in only):
+                    engine.run(duration_ns=int(1e9))  # the clients connect and subscribe
+                    waited += 1
+                engine.run(duration_ns=int(1e9))
+            durations.clear()
+            late.clear()
+            overruns = sum(t.stats.overruns for t in engine.tasks)
+            cpu = os.times()
             engine.run(duration_ns=int(seconds * 1e9))
+            cpu_s = sum(os.times()[:2]) - sum(cpu[:2])
+            overruns = sum(t.stats.overruns for t in engine.tasks) - overruns
         finally:
             stop.set()
             for p in clients:
@@ -197,11 +228,16 @@ def run(seconds: float, loaded: bool, only: tuple = ("web", "opcua", "modbus")) 
                 surfaces.stop()
             engine.stop()
     ticks = sorted(durations)
+    lateness = sorted(late)
     return {
         "ticks": len(ticks),
         "mean_us": statistics.fmean(ticks) / 1e3,
         "median_us": ticks[len(ticks) // 2] / 1e3,
         "p99_us": ticks[int(len(ticks) * 0.99)] / 1e3,
+        "late_mean_us": statistics.fmean(lateness) / 1e3,
+        "late_p99_us": lateness[int(len(lateness) * 0.99)] / 1e3,
+        "overruns": overruns,
+        "plc_cpu_us": cpu_s * 1e6 / len(ticks),
         "received": {k: v.value for k, v in counts.items()},
     }
 
@@ -213,19 +249,24 @@ def main() -> None:
     parser.add_argument(
         "--only", action="append", choices=("web", "opcua", "modbus"), help="these clients only (repeatable)"
     )
+    parser.add_argument(
+        "--realtime-priority", type=int, default=0, help="[plc] realtime_priority of both runs (SCHED_FIFO; root)"
+    )
     args = parser.parse_args()
     base, load = [], []
+    rt = args.realtime_priority
     for r in range(args.rounds):
-        b = run(args.seconds, loaded=False)
-        m = run(args.seconds, loaded=True, only=tuple(args.only or ("web", "opcua", "modbus")))
+        b = run(args.seconds, loaded=False, realtime_priority=rt)
+        m = run(args.seconds, loaded=True, only=tuple(args.only or ("web", "opcua", "modbus")), realtime_priority=rt)
         base.append(b)
         load.append(m)
         print(f"round {r + 1}: no clients {json.dumps(b)}")
         print(f"round {r + 1}: clients    {json.dumps(m)}", flush=True)
-    for what in ("mean_us", "median_us", "p99_us"):
+    for what in ("mean_us", "median_us", "p99_us", "late_mean_us", "late_p99_us", "overruns", "plc_cpu_us"):
         b = statistics.fmean(x[what] for x in base)
         m = statistics.fmean(x[what] for x in load)
-        print(f"{what:<10} no clients {b:8.1f} us   clients {m:8.1f} us   ratio {m / b:5.2f}")
+        ratio = f"{m / b:5.2f}" if b else "  -  "
+        print(f"{what:<12} no clients {b:8.1f}   clients {m:8.1f}   ratio {ratio}")
     b = statistics.fmean(x["mean_us"] for x in base)
     m = statistics.fmean(x["mean_us"] for x in load)
     print(
