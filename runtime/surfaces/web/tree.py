@@ -6,6 +6,9 @@ and the library's globals (CANOPEN_NODE, PLC_DIAG ...), one level at a time.
     children(resolver, "Motor.ltmr")  # an FB instance's (or a struct's) variables
     children(resolver, "Line.parts", offset=100)  # elements 100.. of a big array
 
+Variables marked {attribute 'hide'} are left out, as CODESYS's monitoring
+and the OPC UA server leave them out (a path typed in still reaches them).
+
 Each child is a dict: name, path (to read, watch, write it), type (its ST
 type by name), kind ("var" for a scalar, "struct", "array", "program",
 "group") and, for an array, size. A level holds at most LIMIT children; the
@@ -60,20 +63,28 @@ def _roots(resolver: Resolver) -> list:
 def _globals(resolver: Resolver, library: bool) -> list:
     engine = resolver.engine
     lib = {name.upper() for name in engine.program.library_globals}
+    globals_ = engine.ns["_G"]
+    hidden = _hidden(globals_)
     out = []
-    for st_name, _attr, _ty, section in getattr(type(engine.ns["_G"]), "_VARS_", ()):
-        if section in SKIPPED_SECTIONS or (st_name.upper() in lib) != library:
+    for st_name, _attr, _ty, section in getattr(type(globals_), "_VARS_", ()):
+        if section in SKIPPED_SECTIONS or (st_name.upper() in lib) != library or st_name in hidden:
             continue
         out.append(_child(st_name, resolver.place(st_name)))
     return out
 
 
 def _instance(resolver: Resolver, name: str, obj: Any) -> list:
+    hidden = _hidden(obj)
     return [
         _child(st_name, resolver.place(f"{name}.{st_name}"))
         for st_name, _attr, _ty, section in getattr(type(obj), "_VARS_", ())
-        if section not in SKIPPED_SECTIONS
+        if section not in SKIPPED_SECTIONS and st_name not in hidden
     ]
+
+
+def _hidden(obj: Any) -> frozenset:
+    """The names of obj's {attribute 'hide'} variables."""
+    return getattr(type(obj), "_HIDDEN_", frozenset())
 
 
 def _aggregate(resolver: Resolver, place: Place, offset: int) -> dict:
@@ -88,7 +99,9 @@ def _aggregate(resolver: Resolver, place: Place, offset: int) -> dict:
         for i in range(start, stop + 1):
             items.append(_child(f"[{i}]", resolver.place(f"{place.path}[{i}]")))
         return {"path": place.path, "children": items, "more": max(hi - stop, 0)}
-    items = [_child(p.path.rsplit(".", 1)[-1], p) for p in place.parts().values()]
+    hidden = _hidden(place.get())
+    named = ((p.path.rsplit(".", 1)[-1], p) for p in place.parts().values())
+    items = [_child(name, p) for name, p in named if name not in hidden]
     return {"path": place.path, "children": items, "more": 0}
 
 

@@ -26,6 +26,8 @@ VAR_GLOBAL
     G_crash : BOOL;
     G_zero : INT;
     G_big : ARRAY[0..999] OF INT;
+    {attribute 'hide'}
+    G_internal : INT;
 END_VAR
 
 PROGRAM Main
@@ -38,6 +40,8 @@ VAR
     timer : TON;
     locked : INT := 7;
     quotient : INT;
+    {attribute 'hide'}
+    scratch : INT;
 END_VAR
 IF enable THEN n := n + 1; END_IF;
 timer(IN := enable, PT := T#1s);

@@ -53,6 +53,8 @@ def test_the_tree_shows_programs_fb_instances_and_globals_a_level_at_a_time(web_
     main = {c["name"]: c for c in web.http.get("/api/tree", params={"path": "Main"}).json()["children"]}
     assert (main["n"]["kind"], main["n"]["path"], main["n"]["type"]) == ("var", "Main.n", "DINT")
     assert main["mode"]["values"] == ["Idle", "Run", "Hold"]  # an enumeration: the page offers its names
+    assert "scratch" not in main  # {attribute 'hide'}: not shown, as in CODESYS's monitoring
+    assert web.post("watch", client="t0", paths=["Main.scratch"]).json()["paths"] == ["Main.scratch"]  # typed in
     assert (main["timer"]["kind"], main["timer"]["type"]) == ("struct", "TON")  # an FB instance
     timer = web.http.get("/api/tree", params={"path": "Main.timer"}).json()["children"]
     assert {"Main.timer.Q", "Main.timer.ET"} <= {c["path"] for c in timer}
@@ -60,7 +62,7 @@ def test_the_tree_shows_programs_fb_instances_and_globals_a_level_at_a_time(web_
     assert [c["path"] for c in point["children"]] == ["Main.point.x", "Main.point.y"]
 
     globals_ = {c["name"]: c for c in web.http.get("/api/tree", params={"path": "@globals"}).json()["children"]}
-    assert set(globals_) == {"G_count", "G_crash", "G_zero", "G_big"}  # the libraries' are apart
+    assert set(globals_) == {"G_count", "G_crash", "G_zero", "G_big"}  # the libraries' apart, G_internal hidden
     assert (globals_["G_big"]["kind"], globals_["G_big"]["size"]) == ("array", 1000)
     library = web.http.get("/api/tree", params={"path": "@library"}).json()["children"]
     assert "PLC_DIAG" in [c["name"] for c in library]
