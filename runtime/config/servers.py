@@ -99,6 +99,8 @@ class _Web(Model):
     port: Port = Field(8080, description="a TCP port, 0 for any free one")
     writable: Patterns = Field(("*",), description='an array of patterns such as ["Main.*"]')
     period: Period = Field(250_000_000, description=f"a duration such as {DURATION_EXAMPLES}")
+    #: the page may restart the tasks a fault stopped and trigger an online change
+    control: bool = Field(True, description="true or false")
 
 
 class _Opcua(Model):

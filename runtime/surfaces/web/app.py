@@ -16,9 +16,11 @@ change through the one Access with the [web] permissions.
 An error is {"error": message} with the status saying what kind: 400 a
 value the type cannot hold, 403 a variable [web] writable does not cover,
 404 no such variable, 409 unforce of a variable not forced, 504 no scan took
-the change in time. A POST must be JSON (Content-Type application/json): a
-page of another site cannot send one without the browser asking first (a
-CORS preflight, which this server does not grant).
+the change in time; restart and online-change answer 403 when [web]
+control is false (a page that watches and writes, and no more). A POST
+must be JSON (Content-Type application/json): a page of another site cannot
+send one without the browser asking first (a CORS preflight, which this
+server does not grant).
 """
 
 from __future__ import annotations
@@ -97,7 +99,8 @@ class _Api:
             {
                 "writable": list(self.config.writable),
                 "period_s": self.config.period_ns / 1e9,
-                "online_change": getattr(self.surfaces, "online_change", None) is not None,
+                "online_change": self.control and getattr(self.surfaces, "online_change", None) is not None,
+                "control": self.control,
                 "tasks": [t.name for t in self.engine.tasks],
             }
         )
@@ -178,10 +181,22 @@ class _Api:
             return _error(422, f"{path}: {exc}")
         return JSONResponse({"path": done, "op": op})
 
+    @property
+    def control(self) -> bool:
+        return bool(self.config.options.get("control", True))
+
+    def _refused(self, what: str) -> Response | None:
+        if self.control:
+            return None
+        return _error(403, f"the page may not {what}: [web] control = false")
+
     async def restart(self, request: Request) -> Response:
         body = await _json(request)
         if isinstance(body, Response):
             return body
+        refused = self._refused("restart tasks")
+        if refused is not None:
+            return refused
         faulted = [t.name for t in self.engine.faulted_tasks()]
         if not faulted:
             return _error(409, "no task is stopped by a fault")
@@ -192,6 +207,9 @@ class _Api:
         body = await _json(request)
         if isinstance(body, Response):
             return body
+        refused = self._refused("make an online change")
+        if refused is not None:
+            return refused
         changer = getattr(self.surfaces, "online_change", None)
         if changer is None:
             return _error(404, "online change is off (softplc run --online-change turns it on)")

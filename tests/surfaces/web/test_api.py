@@ -7,6 +7,7 @@ and a clean stop."""
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import itertools
 import json
 import logging
@@ -23,7 +24,7 @@ from softplc.runtime.surfaces.host import SurfaceError, Surfaces
 from softplc.runtime.surfaces.web.tree import LIMIT
 from softplc.testing import PLC
 
-from .conftest import PLANT
+from .conftest import PLANT, web_config
 
 
 def states(web, client: str, count: int = 100, until=None) -> list:
@@ -197,6 +198,33 @@ def test_the_online_change_button_compiles_and_swaps_the_program_in(web_plc, tmp
     source.write_text(PLANT.replace("n := n + 1;", "n := n + ;"), encoding="utf-8")
     broken = web.post("online-change").json()
     assert broken["applied"] is False and "compile error" in broken["summary"]
+
+
+def test_with_control_off_the_page_neither_restarts_tasks_nor_changes_the_program(web_plc, tmp_path):
+    source = tmp_path / "plant.st"
+    source.write_text(PLANT, encoding="utf-8")
+    plc = PLC.from_config(
+        {"plc": {"programs": [str(source)]}, "task": [{"name": "T", "interval": "10ms", "programs": ["Main"]}]}
+    )
+    config = dataclasses.replace(web_config(), options={"control": False})
+    web = web_plc(plc, config)
+    web.surfaces.online_change = OnlineChange(web.engine, plc.config)  # what softplc run does
+    info = web.http.get("/api/info").json()
+    assert info["control"] is False and info["online_change"] is False  # the page shows neither button
+    source.write_text(PLANT.replace("    quotient : INT;", "    quotient : INT;\n    added : INT;"), encoding="utf-8")
+    refused = web.post("online-change")
+    assert (refused.status_code, refused.json()["error"]) == (
+        403,
+        "the page may not make an online change: [web] control = false",
+    )
+    web.post("write", path="G_crash", value=True)  # writes are [web] writable's, as before
+    states(web, "t", until=lambda s: s["tasks"][0]["fault"])
+    refused = web.post("restart")
+    message = "the page may not restart tasks: [web] control = false"
+    assert (refused.status_code, refused.json()["error"]) == (403, message)
+    assert web.engine.faulted_tasks() and "added" not in [
+        c["name"] for c in web.http.get("/api/tree", params={"path": "Main"}).json()["children"]
+    ]
 
 
 def test_the_page_and_its_files_are_served_from_the_plc_itself(web_plc):

@@ -9,7 +9,7 @@ const rows = new Map(); // path -> {el, item}
 const expanded = new Set(); // paths of the open tree nodes
 const trend = new Map(); // path -> {color, points: [[wall ms, value]]}
 const COLORS = ["#1f5fbf", "#c62828", "#1a7f37", "#8e44ad", "#d35400", "#00838f", "#6d4c41", "#455a64"];
-let info = { writable: [], online_change: false, period_s: 0.25 };
+let info = { writable: [], online_change: false, control: false, period_s: 0.25 };
 let generation = null;
 let selected = null;
 let lastForced = {};
@@ -260,7 +260,8 @@ function showTasks(tasks, faults, count) {
       state.textContent = "";
       if (t.fault) {
         state.className = "text fault";
-        state.append("FAULT: " + t.fault + " ", el("button", { type: "button", class: "restart", onclick: restart }, "Restart"));
+        state.append("FAULT: " + t.fault + " ");
+        if (info.control) state.append(el("button", { type: "button", class: "restart", onclick: restart }, "Restart"));
       } else {
         state.className = "state-ok";
         state.textContent = "running";
