@@ -72,6 +72,17 @@ def running():
         r.stop()
 
 
+def client(url: str):
+    """An asyncua Client for the tests. Its health probe (a read of the
+    server's state every watchdog_intervall, failing the connection after
+    as long again) waits as long as a request may: a test's own compile
+    of an online change holds the test process's interpreter lock for
+    seconds on a loaded machine, and the client's event loop with it."""
+    from asyncua import Client
+
+    return Client(url, timeout=TIMEOUT_S, watchdog_intervall=TIMEOUT_S)
+
+
 async def until(condition: Callable[[], Awaitable], what: str, timeout: float = TIMEOUT_S):
     """The first true result of condition(), polled; fails naming what after timeout."""
     deadline = time.monotonic() + timeout

@@ -15,7 +15,7 @@ from asyncua import Client, ua
 from softplc.runtime.surfaces.host import SurfaceError, Surfaces
 
 from ...engine.conftest import make_engine, task
-from .conftest import TIMEOUT_S, opcua_config, until
+from .conftest import TIMEOUT_S, client, opcua_config, until
 
 SRC = """
 TYPE E_Mode : (Idle := 0, Run := 5, Fault := 6); END_TYPE
@@ -82,7 +82,7 @@ def test_a_client_browses_programs_fb_instances_structs_arrays_globals_and_enums
     plc = running(SRC, TASKS)
 
     async def check() -> None:
-        async with Client(plc.url, timeout=TIMEOUT_S) as c:
+        async with client(plc.url) as c:
             assert await c.get_namespace_index("urn:softplc") == 2
             top = await names(c.nodes.objects)
             assert "Main" in top and "Globals" in top
@@ -131,7 +131,7 @@ def test_values_follow_the_program(running):
     plc = running(SRC, TASKS)
 
     async def check() -> None:
-        async with Client(plc.url, timeout=TIMEOUT_S) as c:
+        async with client(plc.url) as c:
             n = await until(lambda: value(c, "Main.n"), "Main.n to count")
             await until(lambda: _gt(value(c, "Main.n"), n + 3), "Main.n to count on")
             assert await value(c, "total") > 0
@@ -161,7 +161,7 @@ def test_a_subscription_receives_data_changes(running):
             seen.append(val)
 
     async def check() -> None:
-        async with Client(plc.url, timeout=TIMEOUT_S) as c:
+        async with client(plc.url) as c:
             sub = await c.create_subscription(20, Handler())
             await sub.subscribe_data_change(c.get_node("ns=2;s=Main.n"))
 
@@ -179,7 +179,7 @@ def test_a_write_changes_the_plc_variable_and_the_program_reacts(running):
     plc = running(SRC, TASKS, writable=WRITABLE)
 
     async def check() -> None:
-        async with Client(plc.url, timeout=TIMEOUT_S) as c:
+        async with client(plc.url) as c:
             setpoint = c.get_node("ns=2;s=Main.setpoint")
             await setpoint.write_value(ua.DataValue(ua.Variant(20.0, ua.VariantType.Float)))
             assert plc.surfaces.access.place("Main.setpoint").read() == 20.0  # the PLC's, not only the node's
@@ -210,7 +210,7 @@ def test_writes_are_refused_where_not_allowed_or_of_the_wrong_type(running):
     V = ua.VariantType
 
     async def check() -> None:
-        async with Client(plc.url, timeout=TIMEOUT_S) as c:
+        async with client(plc.url) as c:
             assert await refused(c, "Main.n", ua.Variant(5, V.Int16)) == ua.StatusCodes.BadNotWritable
             assert await refused(c, "total", ua.Variant(5, V.Int32)) == ua.StatusCodes.BadNotWritable
             assert await refused(c, "Main.setpoint", ua.Variant("fast", V.String)) == ua.StatusCodes.BadTypeMismatch
@@ -235,15 +235,15 @@ def test_with_users_only_a_logged_in_client_writes(running, tmp_path):
     setpoint = ua.Variant(30.0, ua.VariantType.Float)
 
     async def check() -> None:
-        async with Client(plc.url, timeout=TIMEOUT_S) as anonymous:
+        async with client(plc.url) as anonymous:
             assert await value(anonymous, "Main.setpoint") == 12.5  # reading stays open
             assert await refused(anonymous, "Main.setpoint", setpoint) == ua.StatusCodes.BadUserAccessDenied
-        wrong = Client(plc.url, timeout=TIMEOUT_S)
+        wrong = client(plc.url)
         wrong.set_user("operator")
         wrong.set_password("guess")
         with pytest.raises(ua.uaerrors.BadUserAccessDenied):
             await wrong.connect()
-        operator = Client(plc.url, timeout=TIMEOUT_S)
+        operator = client(plc.url)
         operator.set_user("operator")
         operator.set_password("s3cret")
         async with operator:
@@ -294,7 +294,7 @@ def test_a_thousand_variables_are_published_to_a_subscription(running):
             seen[node.nodeid.Identifier] = val
 
     async def check() -> None:
-        async with Client(plc.url, timeout=TIMEOUT_S) as c:
+        async with client(plc.url) as c:
             main = c.get_node("ns=2;s=Main")
             assert len(await main.get_children()) == 1000
             sub = await c.create_subscription(50, Handler())
@@ -314,7 +314,7 @@ def test_beyond_max_variables_the_rest_is_left_out_with_a_warning(running, caplo
     plc = running(many(50), TASKS, max_variables=20)
 
     async def check() -> None:
-        async with Client(plc.url, timeout=TIMEOUT_S) as c:
+        async with client(plc.url) as c:
             assert await names(c.get_node("ns=2;s=Main")) == [f"v{i}" for i in range(20)]
 
     run(check())
@@ -333,7 +333,7 @@ def test_an_online_change_rebuilds_the_tree(running):
     config = SimpleNamespace(tasks=TASKS, path=None, programs=[], libraries=[])
 
     async def check() -> None:
-        async with Client(plc.url, timeout=TIMEOUT_S) as c:
+        async with client(plc.url) as c:
             main = c.get_node("ns=2;s=Main")
             assert "small" in await names(main)
             report = await asyncio.to_thread(
