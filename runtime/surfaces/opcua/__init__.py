@@ -8,7 +8,8 @@ read-only by default, user/password and certificate modes.
 
 Modules: server.py (the thread, the loop, publishing), tree.py (what is
 published), space.py (the nodes), typemap.py (IEC <-> OPC UA types and
-values), writes.py (a client's write), users.py (logins, password hashes).
+values), writes.py (a client's write), users.py (logins, password hashes),
+security.py (the certificate mode's files).
 """
 
 from .server import OpcuaServer, start

@@ -25,6 +25,7 @@ from typing import Any
 from asyncua import Server, ua
 
 from ...config.servers import ServerConfig
+from .security import load_credentials
 from .space import add_enums, add_tree, variant
 from .tree import READER, Tree, Variable, published
 from .typemap import node_id
@@ -123,7 +124,9 @@ class OpcuaServer:
             await server.stop()
 
     async def _make_server(self) -> Server:
-        users = PlcUsers(self.users, self.anonymous)
+        secure = self.certificate is not None or self.private_key is not None
+        credentials = load_credentials(self.certificate, self.private_key) if secure else None
+        users = PlcUsers(self.users, self.anonymous, encrypted_only=secure)
         server = Server(user_manager=users)
         await server.init()
         server.set_endpoint(f"opc.tcp://{self.config.host}:{self.config.port}{PATH}")
@@ -133,9 +136,8 @@ class OpcuaServer:
         if self.users:
             tokens.append(ua.UserNameIdentityToken)
         server.set_identity_tokens(tokens)
-        if self.certificate is not None and self.private_key is not None:
-            await server.load_certificate(str(self.certificate))
-            await server.load_private_key(str(self.private_key))
+        if credentials is not None:
+            server.iserver.certificate, server.iserver.private_key = credentials  # what load_certificate() sets
             server.set_security_policy([ua.SecurityPolicyType.Basic256Sha256_SignAndEncrypt])
         else:
             server.set_security_policy([ua.SecurityPolicyType.NoSecurity])

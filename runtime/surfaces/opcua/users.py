@@ -28,6 +28,7 @@ import sys
 import tomllib
 from pathlib import Path
 
+from asyncua import ua
 from asyncua.crypto.permission_rules import User, UserRole
 from asyncua.server.user_managers import UserManager
 
@@ -82,13 +83,24 @@ def load_users(users: dict, users_file: Path | None) -> dict:
 class PlcUsers(UserManager):
     """asyncua's user manager: a known name with its password is a User of
     that name, no name a User without one (asyncua's role Anonymous may not
-    even browse), anything else is refused."""
+    even browse), anything else is refused.
 
-    def __init__(self, users: dict, anonymous: bool = True) -> None:
+    With ``encrypted_only`` (the certificate mode) a session on a channel
+    without security is refused (BadSecurityModeInsufficient) whoever asks:
+    asyncua lists only the encrypted endpoint but lets any client open an
+    unencrypted channel (for discovery, as OPC UA requires) and, on it, a
+    session that reads everything. Such a channel carries no client
+    certificate; an encrypted one always does."""
+
+    def __init__(self, users: dict, anonymous: bool = True, encrypted_only: bool = False) -> None:
         self.users = users
         self.anonymous = anonymous
+        self.encrypted_only = encrypted_only
 
     def get_user(self, iserver, username=None, password=None, certificate=None) -> User | None:
+        if self.encrypted_only and not certificate:
+            log.warning("opcua: a session without encryption refused (certificate mode)")
+            raise ua.uaerrors.BadSecurityModeInsufficient
         if username is None:
             return User(role=UserRole.User) if self.anonymous else None
         stored = self.users.get(username)
