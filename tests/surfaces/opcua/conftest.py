@@ -93,3 +93,19 @@ async def until(condition: Callable[[], Awaitable], what: str, timeout: float = 
         if time.monotonic() > deadline:
             raise AssertionError(f"timed out waiting for {what} (last: {result!r})")
         await asyncio.sleep(0.02)
+
+
+def run(coro):
+    """coro in an event loop of its own, failing after three request timeouts."""
+    return asyncio.run(asyncio.wait_for(coro, 3 * TIMEOUT_S))
+
+
+async def value(client, path: str):
+    """The value of the PLC variable at path, read by client."""
+    return await client.get_node(f"ns=2;s={path}").read_value()
+
+
+async def greater(read, than):
+    """The awaited read when it is greater than than, else None (for until())."""
+    got = await read
+    return got if got > than else None

@@ -6,7 +6,6 @@ and the errors of a bad certificate file or a key that does not match."""
 
 from __future__ import annotations
 
-import asyncio
 import ipaddress
 import socket
 import threading
@@ -29,7 +28,7 @@ from cryptography.x509.oid import ExtendedKeyUsageOID
 from softplc.runtime.surfaces.host import SurfaceError, Surfaces
 
 from ...engine.conftest import make_engine, task, wait_until
-from .conftest import TIMEOUT_S, opcua_config, until
+from .conftest import client, greater, opcua_config, run, until, value
 
 SRC = """
 PROGRAM Main
@@ -91,24 +90,11 @@ def pki(tmp_path_factory) -> Pki:
     return pki
 
 
-def run(coro):
-    return asyncio.run(asyncio.wait_for(coro, 3 * TIMEOUT_S))
-
-
 async def secure_client(url: str, pki: Pki) -> Client:
-    client = Client(url, timeout=TIMEOUT_S)
-    client.application_uri = CLIENT_URI  # as the client's certificate says
-    await client.set_security_string(f"{SIGN_AND_ENCRYPT},{pki.client_cert},{pki.client_key}")
-    return client
-
-
-async def value(client: Client, path: str):
-    return await client.get_node(f"ns=2;s={path}").read_value()
-
-
-async def _gt(read, than):
-    got = await read
-    return got if got > than else None
+    secure = client(url)
+    secure.application_uri = CLIENT_URI  # as the client's certificate says
+    await secure.set_security_string(f"{SIGN_AND_ENCRYPT},{pki.client_cert},{pki.client_key}")
+    return secure
 
 
 def test_a_client_with_a_certificate_reads_and_a_logged_in_one_writes(running, pki):
@@ -127,7 +113,7 @@ def test_a_client_with_a_certificate_reads_and_a_logged_in_one_writes(running, p
             assert reader.security_policy.URI == SecurityPolicyBasic256Sha256.URI
             assert reader.security_policy.Mode == ua.MessageSecurityMode.SignAndEncrypt
             n = await until(lambda: value(reader, "Main.n"), "Main.n to count")
-            await until(lambda: _gt(value(reader, "Main.n"), n + 3), "Main.n to count on")
+            await until(lambda: greater(value(reader, "Main.n"), n + 3), "Main.n to count on")
             with pytest.raises(ua.uaerrors.BadUserAccessDenied):  # anonymous: reads only
                 await reader.get_node("ns=2;s=Main.setpoint").write_value(setpoint)
         operator = await secure_client(plc.url, pki)
@@ -165,19 +151,19 @@ def test_only_the_encrypted_endpoint_is_offered_and_nothing_is_read_without_it(r
     plc = running(SRC, TASKS, certificate=pki.server_cert, private_key=pki.server_key)
 
     async def check() -> None:
-        endpoints = await Client(plc.url, timeout=TIMEOUT_S).connect_and_get_server_endpoints()  # discovery: open
+        endpoints = await client(plc.url).connect_and_get_server_endpoints()  # discovery: open
         assert [(e.SecurityPolicyUri, e.SecurityMode) for e in endpoints] == [
             (SecurityPolicyBasic256Sha256.URI, ua.MessageSecurityMode.SignAndEncrypt)
         ]
         assert endpoints[0].ServerCertificate == pki.server_cert.read_bytes()
         assert endpoints[0].Server.ApplicationUri == SERVER_URI  # as the certificate says
         with pytest.raises(ua.UaError, match="No matching endpoints"):  # what a plain asyncua client says
-            await Client(plc.url, timeout=TIMEOUT_S).connect()
+            await client(plc.url).connect()
         # a client that does not look at the endpoints opens an unencrypted session all the same:
         # the server refuses it
         monkeypatch.setattr(Client, "find_endpoint", staticmethod(careless))
         with pytest.raises(ua.uaerrors.BadSecurityModeInsufficient):
-            await Client(plc.url, timeout=TIMEOUT_S).connect()
+            await client(plc.url).connect()
 
     run(check())
 

@@ -15,7 +15,7 @@ from asyncua import Client, ua
 from softplc.runtime.surfaces.host import SurfaceError, Surfaces
 
 from ...engine.conftest import make_engine, task
-from .conftest import TIMEOUT_S, client, opcua_config, until
+from .conftest import TIMEOUT_S, client, greater, opcua_config, run, until, value
 
 SRC = """
 TYPE E_Mode : (Idle := 0, Run := 5, Fault := 6); END_TYPE
@@ -57,16 +57,8 @@ TASKS = [task("Main", 10, "Main")]
 WRITABLE = ["Main.setpoint", "Main.small", "Main.mode", "Main.levels", "Main.dwell", "Main.day"]
 
 
-def run(coro):
-    return asyncio.run(asyncio.wait_for(coro, 3 * TIMEOUT_S))
-
-
 async def names(node) -> list:
     return [(await child.read_browse_name()).Name for child in await node.get_children()]
-
-
-async def value(client: Client, path: str):
-    return await client.get_node(f"ns=2;s={path}").read_value()
 
 
 async def refused(client: Client, path: str, variant: ua.Variant) -> int:
@@ -133,7 +125,7 @@ def test_values_follow_the_program(running):
     async def check() -> None:
         async with client(plc.url) as c:
             n = await until(lambda: value(c, "Main.n"), "Main.n to count")
-            await until(lambda: _gt(value(c, "Main.n"), n + 3), "Main.n to count on")
+            await until(lambda: greater(value(c, "Main.n"), n + 3), "Main.n to count on")
             assert await value(c, "total") > 0
             assert await until(lambda: value(c, "Main.t.Q"), "the TON's Q after 1 s of PLC time") is True
             assert await value(c, "Main.t.ET") == 1000.0  # TIME in milliseconds, held at PT
@@ -145,11 +137,6 @@ def test_values_follow_the_program(running):
             assert day.replace(tzinfo=UTC) == datetime(2024, 1, 2, tzinfo=UTC)
 
     run(check())
-
-
-async def _gt(read, than):
-    got = await read
-    return got if got > than else None
 
 
 def test_a_subscription_receives_data_changes(running):
@@ -299,7 +286,7 @@ def test_a_thousand_variables_are_published_to_a_subscription(running):
             assert len(await main.get_children()) == 1000
             sub = await c.create_subscription(50, Handler())
             await sub.subscribe_data_change([c.get_node(f"ns=2;s=Main.v{i}") for i in range(1000)])
-            first = await until(lambda: _gt(value(c, "Main.v999"), 0), "Main.v999 to move")
+            first = await until(lambda: greater(value(c, "Main.v999"), 0), "Main.v999 to move")
 
             async def all_moved():
                 return len(seen) == 1000 and seen["Main.v999"] > first and seen["Main.v1"] > 0
@@ -351,6 +338,6 @@ def test_an_online_change_rebuilds_the_tree(running):
             assert "small" not in await names(main)
             assert await value(c, "Main.added") == 42
             n = await value(c, "Main.n")
-            await until(lambda: _gt(value(c, "Main.n"), n), "Main.n to count on after the change")
+            await until(lambda: greater(value(c, "Main.n"), n), "Main.n to count on after the change")
 
     run(check())
