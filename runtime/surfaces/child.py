@@ -212,7 +212,8 @@ def main(conn, configs: dict, permissions: dict, level: int) -> None:
             errors[key] = f"cannot listen on {config.host}:{config.port}: {exc.strerror or exc}"
             break
         except Exception as exc:  # a bad certificate, a users file ...: the PLC reports it
-            errors[key] = f"{type(exc).__name__}: {exc}"
+            text, prefix = str(exc), f"[{key}] "  # the PLC puts the section in front
+            errors[key] = text[len(prefix) :] if text.startswith(prefix) else f"{type(exc).__name__}: {text}"
             break
     urls = {key: (handle.url, getattr(handle, "port", None)) for key, handle in handles.items()}
     try:

@@ -76,6 +76,7 @@ class Surfaces:
             try:
                 self.handles.update(self.process.start())
             except ProcessError as exc:
+                self.process.stop()  # its threads too
                 self.process = None
                 raise SurfaceError(str(exc)) from None
             for key, handle in self.handles.items():

@@ -83,6 +83,7 @@ class SurfaceProcess:
         self._ctx = multiprocessing.get_context("spawn")  # a fresh interpreter: no lock or thread of ours copied
         self._conn: Any = None
         self._process: Any = None
+        self._receiver: threading.Thread | None = None  # the current process's receiving thread
         self._send_lock = threading.Lock()
         self._sent = 0  # the sequence of the last snapshot sent
         self._layout: Any = None  # the last layout sent
@@ -127,9 +128,10 @@ class SurfaceProcess:
         child_conn.close()  # the child's end lives in the child: EOF here when it dies
         started: dict = {}
         ready = threading.Event()
-        threading.Thread(
+        self._receiver = threading.Thread(
             target=self._receive, args=(conn, process, started, ready), name="softplc-servers-receive", daemon=True
-        ).start()
+        )
+        self._receiver.start()
         if not ready.wait(START_TIMEOUT_S) or "urls" not in started:
             self._end()
             raise ProcessError(f"the servers' process did not start within {START_TIMEOUT_S:g} s")
@@ -140,7 +142,7 @@ class SurfaceProcess:
         return started["urls"]
 
     def _end(self) -> None:
-        process, conn = self._process, self._conn
+        process, conn, receiver = self._process, self._conn, self._receiver
         self._process = None  # an end asked for: not a crash to recover from
         if process is None:
             return
@@ -161,6 +163,8 @@ class SurfaceProcess:
                 process.kill()
                 process.join(STOP_TIMEOUT_S)
         conn.close()
+        if receiver is not None and receiver is not threading.current_thread():
+            receiver.join(STOP_TIMEOUT_S)  # it has read the end of the pipe
 
     def _restart(self) -> None:
         """After the process ended on its own: a new one, tried again and again
