@@ -164,6 +164,15 @@ class OpcuaSection(_ServerSection):
     model = _Opcua
     description = "an [opcua] table"
 
+    def check(self, value: Any, ctx: Relations) -> None:
+        if not isinstance(value, dict) or ("certificate" in value) == ("private_key" in value):
+            return
+        given, missing = ("certificate", "private_key") if "certificate" in value else ("private_key", "certificate")
+        ctx.error(
+            (self.key, given),
+            f"{given} without {missing}: the certificate mode needs both (without them no encryption)",
+        )
+
 
 class ModbusServerSection(_ServerSection):
     key = "modbus_server"

@@ -24,8 +24,21 @@ def test_the_opcua_keys_are_read_with_paths_from_the_config_directory(tmp_path):
 
 def test_a_bad_opcua_key_names_the_key(tmp_path):
     assert error(tmp_path, PLC + "[opcua]\nusers = { viewer = 3 }\n")[0] == "opcua.users"
-    assert error(tmp_path, PLC + "[opcua]\ncertificate = 'nowhere.der'\n")[0] == "opcua.certificate"
+    (tmp_path / "server.pem").write_bytes(b"")
+    assert error(tmp_path, PLC + "[opcua]\ncertificate = 'nowhere.der'\nprivate_key = 'server.pem'\n")[0] == (
+        "opcua.certificate"
+    )
     assert error(tmp_path, PLC + "[opcua]\nmax_variables = 0\n") == (
         "opcua.max_variables",
         "expected an integer from 1 to 1000000 (got 0)",
     )
+
+
+def test_a_certificate_without_its_key_is_refused_when_the_config_is_read(tmp_path):
+    (tmp_path / "server.der").write_bytes(b"")
+    (tmp_path / "server.pem").write_bytes(b"")
+    assert error(tmp_path, PLC + "[opcua]\ncertificate = 'server.der'\n") == (
+        "opcua.certificate",
+        "certificate without private_key: the certificate mode needs both (without them no encryption)",
+    )
+    assert error(tmp_path, PLC + "[opcua]\nprivate_key = 'server.pem'\n")[0] == "opcua.private_key"
