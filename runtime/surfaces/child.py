@@ -23,6 +23,7 @@ from concurrent.futures import Future
 from typing import Any
 
 from ..engine.snapshot import Layout, Snapshot
+from .process import FIELDS
 
 #: added to the servers' niceness: they yield the CPU to the scan
 NICE = 5
@@ -120,7 +121,7 @@ class RemoteHub:
             return
         fields, scanning = message[1], message[2]
         assert self._layout is not None  # the PLC sends a layout before the first snapshot
-        snap = Snapshot(layout=self._layout, **dict(zip(_FIELDS, fields)))
+        snap = Snapshot(layout=self._layout, **dict(zip(FIELDS, fields)))
         with self._fresh:
             if self.latest is None or snap.sequence > self.latest.sequence:
                 self.latest = snap
@@ -269,6 +270,3 @@ def _log_to(link: _Link, level: int) -> None:
     root.handlers[:] = [_ToPlc(link)]
     root.setLevel(logging.WARNING)
     logging.getLogger("softplc").setLevel(level)
-
-
-_FIELDS = tuple(f for f in Snapshot.__dataclass_fields__ if f != "layout")
