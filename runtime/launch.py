@@ -167,6 +167,9 @@ def run_plc(
         # The servers start before the engine does, so that the first scans
         # run at their release times, not late by a server's start-up.
         surfaces = Surfaces(engine, servers)
+        # made before the servers start, so that a page loaded at once offers its button
+        changer = _online_change(engine, cfg, online_change, virtual_time)
+        surfaces.online_change = changer  # the web page's "Online change" button
         try:
             surfaces.start()
         except SurfaceError as e:
@@ -195,8 +198,9 @@ def run_plc(
                 return _fail(f"--trace: cannot write {e.filename}: {e.strerror or e}", EXIT_CONFIG)
             engine.after_tick.append(_announce_first_scan)
             reporter = StatusReporter(engine, sys.stderr, watched, tty, hub=surfaces.hub)
-            changer = _start_online_change(engine, cfg, online_change, virtual_time, cleanup)
-            surfaces.online_change = changer  # the web page's "Online change" button
+            if changer is not None:  # its file watcher
+                changer.start()
+                cleanup.callback(changer.stop)
             cleanup.enter_context(_signals(engine, changer))
             _start_console_commands(engine)
             reporter.start()
@@ -285,19 +289,17 @@ def _close_vcd(writer, engine) -> None:
     writer.close(engine.clock.now_ns())
 
 
-def _start_online_change(engine, cfg, wanted: bool | None, virtual_time: bool, cleanup: ExitStack):
-    """The online change's file watcher (README "Online change"). On by
-    default in real time, where the PLC runs a machine and is edited while
-    it runs; off by default in virtual time, where a run is a simulation
-    that must give the same result each time (--online-change turns it on)."""
+def _online_change(engine, cfg, wanted: bool | None, virtual_time: bool):
+    """The online change (README "Online change"), its file watcher not
+    started yet, or None. On by default in real time, where the PLC runs a
+    machine and is edited while it runs; off by default in virtual time,
+    where a run is a simulation that must give the same result each time
+    (--online-change turns it on)."""
     if not (wanted if wanted is not None else not virtual_time):
         return None
     from .engine.online_change import OnlineChange
 
-    changer = OnlineChange(engine, cfg)
-    changer.start()
-    cleanup.callback(changer.stop)
-    return changer
+    return OnlineChange(engine, cfg)
 
 
 def _announce_first_scan(engine) -> None:
