@@ -185,16 +185,18 @@ class _Api:
     def control(self) -> bool:
         return bool(self.config.options.get("control", True))
 
-    def _refused(self, what: str) -> Response | None:
-        if self.control:
-            return None
-        return _error(403, f"the page may not {what}: [web] control = false")
-
-    async def restart(self, request: Request) -> Response:
+    async def _refused(self, request: Request, what: str) -> Response | None:
+        """The answer to a restart or an online change that may not go on
+        (not JSON, or [web] control = false), None when it may."""
         body = await _json(request)
         if isinstance(body, Response):
             return body
-        refused = self._refused("restart tasks")
+        if not self.control:
+            return _error(403, f"the page may not {what}: [web] control = false")
+        return None
+
+    async def restart(self, request: Request) -> Response:
+        refused = await self._refused(request, "restart tasks")
         if refused is not None:
             return refused
         faulted = [t.name for t in self.engine.faulted_tasks()]
@@ -204,10 +206,7 @@ class _Api:
         return JSONResponse({"restarting": faulted})
 
     async def online_change(self, request: Request) -> Response:
-        body = await _json(request)
-        if isinstance(body, Response):
-            return body
-        refused = self._refused("make an online change")
+        refused = await self._refused(request, "make an online change")
         if refused is not None:
             return refused
         changer = getattr(self.surfaces, "online_change", None)

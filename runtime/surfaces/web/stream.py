@@ -115,7 +115,7 @@ class Broadcaster:
                 raise TimeoutError
             return snap
         except TimeoutError:
-            if self.hub.engine.scan_thread is None:  # not running (stopped, or stepped by a test)
+            if not self.hub.scanning:  # not running (stopped, or stepped by a test)
                 return self._capture()
             return None
 
