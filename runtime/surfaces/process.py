@@ -33,7 +33,6 @@ from __future__ import annotations
 import importlib
 import logging
 import multiprocessing
-import pickle
 import threading
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
@@ -213,21 +212,24 @@ class SurfaceProcess:
             if snap.sequence <= self._sent:
                 return
             if snap.layout is not self._layout:
-                self._conn.send(("layout", self._portable(snap.layout)))
+                self._send_layout(snap.layout)
                 self._layout = snap.layout
             self._conn.send(("snapshot", tuple(getattr(snap, f) for f in FIELDS), self.surfaces.hub.scanning))
             self._sent = snap.sequence
 
-    def _portable(self, layout):
-        """The layout as it pickles (its types left out when one of them cannot be)."""
+    def _send_layout(self, layout) -> None:
+        """The layout to the servers (under the send lock); without its types
+        when one of them does not pickle (Connection.send pickles the whole
+        message before it writes a byte, so a refusal sends nothing)."""
         try:
-            pickle.dumps(layout)
-            return layout
+            self._conn.send(("layout", layout))
+        except OSError:
+            raise
         except Exception as exc:  # an ST type of a watched path that does not pickle
             if self._types_sent:
                 log.warning("the servers' process gets the snapshots without their ST types: %s", exc)
                 self._types_sent = False
-            return type(layout)(layout.paths, {})
+            self._conn.send(("layout", type(layout)(layout.paths, {})))
 
     # ------------------------------------------------------------ from the servers
 
@@ -299,10 +301,12 @@ class SurfaceProcess:
         if call_id is None:
             return
         try:
-            pickle.dumps(value)
-        except Exception:  # an exception (or a result) that does not pickle: its text does
-            value, ok = RuntimeError(str(value)), False
-        try:
-            self._send((kind, call_id, ok, value, sequence))
+            try:
+                self._send((kind, call_id, ok, value, sequence))
+            except OSError:
+                raise
+            except Exception:  # an exception (or a result) that does not pickle: its text does
+                # (Connection.send pickles the whole message before it writes a byte)
+                self._send((kind, call_id, False, RuntimeError(str(value)), sequence))
         except OSError:  # the servers' process ended meanwhile
             pass
