@@ -444,6 +444,10 @@ class SourceFile(Node):
     # Tc2_Standard.TON, 'motor' of motor.speed. namespaces.py reads a file
     # only when one of them may be a namespace.
     qualified_bases: set = field(default_factory=set)
+    # (first line, last line) of each part whose ST softplc wrote from another
+    # language (IL, FBD, LD, graphical SFC): a JMP there is the language's own
+    # and allowed in every profile (checker_jumps.py).
+    lowered: list = field(default_factory=list)
     # Statements outside any POU (a Schneider section pasted as is): wrapped
     # by the parser into a PROGRAM named after the file.
 

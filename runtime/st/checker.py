@@ -83,6 +83,10 @@ class Checker(
         """namespaces: the user's libraries, UPPER namespace -> (its spelling,
         the UPPER names it declares), for OSCAT.DEC_2 (namespaces.py)."""
         self.library_files = set(library_files)
+        self.lowered_lines: dict = {}  # file -> (first, last) lines of ST written from another language
+        for sf in files:
+            if sf.lowered:
+                self.lowered_lines.setdefault(sf.path, []).extend(sf.lowered)
         self.user_namespaces: dict = namespaces or {}
         for sf in files:
             self._collect(sf)

@@ -77,6 +77,7 @@ class CheckerBase:
         self.structs: list = []
         self.configs: list = []
         self.library_files: set = set()
+        self.lowered_lines: dict = {}
         #: the user's libraries: UPPER namespace -> (spelling, UPPER names) (namespaces.py)
         self.user_namespaces: dict = {}
         self._inited: set = set()  # ids of VarSymbols whose initial value is checked

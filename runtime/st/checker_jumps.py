@@ -44,6 +44,8 @@ class JumpChecks(CheckerBase):
         jumps: list = []  # (Jump, [the label dicts of the lists it sees])
         self._gather_jumps(body, [], labels, jumps)
         for jmp, _visible in jumps if not self.profile.jumps_in_st else ():
+            if self._lowered(jmp.pos):
+                continue  # written from IL or a graphical body, where JMP is the language's own
             self.d.error(
                 "E159",
                 f"JMP {jmp.label}: IEC 61131-3 ST has no jumps (only IL has JMP)",
@@ -72,6 +74,10 @@ class JumpChecks(CheckerBase):
                     self._suggest(key, [lab.name for lab in labels.values()])
                     or f"write '{jmp.label}:' before the statement to jump to",
                 )
+
+    def _lowered(self, pos: A.Pos) -> bool:
+        """Whether pos lies in ST that an importer wrote from another language."""
+        return any(first <= pos.line <= last for first, last in self.lowered_lines.get(pos.file, ()))
 
     def _gather_jumps(self, stmts: list, outer: list, labels: dict, jumps: list) -> None:
         here: dict = {}  # the labels of this list

@@ -188,11 +188,17 @@ class _Parse(Recovery):
                 target.external = True
 
 
-def parse_source(text: str, path: str, diags: DiagnosticBag, profile: Profile = DEFAULT) -> ast.SourceFile:
+def parse_source(
+    text: str, path: str, diags: DiagnosticBag, profile: Profile = DEFAULT, lowered: tuple | list = ()
+) -> ast.SourceFile:
     """Parse one ST file into an ``ast.SourceFile`` as the profile reads ST
-    (its comments). Never raises; every problem goes into diags."""
+    (its comments). Never raises; every problem goes into diags.
+    lowered: (first, last) line ranges whose ST an importer wrote from
+    another language (``SourceFile.lowered``)."""
     try:
-        return _Parse(text, path, diags, grammar(), profile).run()
+        sf = _Parse(text, path, diags, grammar(), profile).run()
+        sf.lowered.extend(lowered)
+        return sf
     except Exception as e:  # a bug here must not become a traceback for the user
         diags.error(
             "E009",

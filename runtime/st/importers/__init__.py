@@ -9,8 +9,9 @@ from __future__ import annotations
 from ..diagnostics import DiagnosticBag
 from .plcopen import plcopen_views
 from .twincat import plcproj_files, twincat_views
+from .view import StView
 
-__all__ = ["is_imported", "is_source", "source_files", "st_export", "st_views"]
+__all__ = ["StView", "is_imported", "is_source", "source_files", "st_export", "st_views"]
 
 _READERS = {
     ".xml": plcopen_views,
@@ -48,13 +49,13 @@ def is_source(name: str) -> bool:
     return name.lower().endswith(".st") or is_imported(name)
 
 
-def st_views(path: str, text: str, diags: DiagnosticBag) -> list[str]:
+def st_views(path: str, text: str, diags: DiagnosticBag) -> list[StView]:
     """The ST texts of a source file: the text itself for ST, the views of
     an imported file (each parsed as a file of that name)."""
     for suffix, reader in _READERS.items():
         if path.lower().endswith(suffix):
-            return [v.text() for v in reader(text, path, diags)]
-    return [text]
+            return [v.view() for v in reader(text, path, diags)]
+    return [StView(text)]
 
 
 def st_export(path: str, text: str, diags: DiagnosticBag) -> str:

@@ -23,6 +23,7 @@ from typing import Any
 
 from ..ast import Pos
 from ..diagnostics import DiagnosticBag
+from .bodies import BodyOut, ImportProblem, body_language, supported, translate
 from .view import LineView
 from .xmlsafe import PosElement, TextPositions, parse_xml
 
@@ -44,10 +45,6 @@ _SECTIONS = {
 }
 _POU_KINDS = {"program": "PROGRAM", "function": "FUNCTION", "functionBlock": "FUNCTION_BLOCK"}
 _CODESYS_METHOD = "http://www.3s-software.com/plcopenxml/method"
-
-
-class ImportProblem(Exception):
-    """An element that cannot become ST; args: message, element, hint."""
 
 
 def plcopen_views(text: str, path: str, diags: DiagnosticBag) -> list[LineView]:
@@ -213,15 +210,17 @@ class _Reader:
         if kind is None:
             raise ImportProblem(f"POU {name}: unknown pouType {pou.get('pouType')!r}", pou, None)
         body = pou.kid("body")
-        lang = self._body_language(body)
-        if lang != "ST":
+        lang = body_language(body)
+        if not supported(lang):
             self.problem(
                 "E182",
-                f"POU {name} is written in {lang or 'no language'}: only ST bodies are imported",
+                f"POU {name} is written in {lang.name if lang is not None else 'no language'}: "
+                "only ST bodies are imported",
                 body if body is not None else pou,
                 "rewrite it in ST, or export it as ST from the editor; the other POUs are imported",
             )
             return
+        assert body is not None and lang is not None
         itf = pou.kid("interface")
         header = f"{kind} {name}"
         if kind == "FUNCTION_BLOCK":
@@ -231,17 +230,28 @@ class _Reader:
             header += f" : {self.type_text(rt)}" if rt is not None else ""
         self.main.put(pou.line, pou.col, header)
         self.interface(itf, self.main)
+        hidden: list[str] = []
         actions = pou.kid("actions")
         if actions is not None:
             for act in actions.kids("action"):
-                self.action(name, act)
-        assert body is not None
-        self.body(body, self.main)
+                self.action(name, act, hidden)
+        self.body_with_decls(body, lang, name, hidden)
         self.main.put(body.end_line, 1, f"END_{kind}")
         for data in pou.walk("data"):
             if data.get("name") == _CODESYS_METHOD:
                 for m in data.kids("Method"):
                     self.method(m)
+
+    def body_with_decls(self, body: PosElement, lang: PosElement, pou: str, hidden: list) -> None:
+        """A POU's or method's body into the main view, after a VAR block of
+        the variables it and hidden (those its actions need) declare."""
+        scratch = LineView(len(self.main.lines))
+        out = BodyOut(scratch, self.texts, self.path, self.diags, pou)
+        translate(lang, out)
+        decls = [*hidden, *(d for d in out.decls if d not in hidden)]
+        if decls:
+            self.main.put(body.line, body.col, "VAR " + " ".join(decls) + " END_VAR")
+        self.main.absorb(scratch)
 
     def _inheritance(self, pou: PosElement) -> str:
         """EXTENDS and IMPLEMENTS: CODESYS writes them into the POU's addData
@@ -258,48 +268,41 @@ class _Reader:
             out += " IMPLEMENTS " + ", ".join(_ident((i.text or "").strip(), i) for i in implements)
         return out
 
-    def action(self, pou_name: str, act: PosElement) -> None:
+    def action(self, pou_name: str, act: PosElement, hidden: list) -> None:
+        """An action of pou_name into the actions view; the variables its
+        body needs go to hidden (declared with the POU's)."""
         body = act.kid("body")
+        lang = body_language(body)
         name = _ident(act.get("name", ""), act)
-        if self._body_language(body) != "ST":
+        if not supported(lang):
             self.problem(
                 "E182",
-                f"action {pou_name}.{name} is not written in ST: only ST bodies are imported",
+                f"action {pou_name}.{name} is written in {lang.name if lang is not None else 'no language'}: "
+                "only ST bodies are imported",
                 act,
                 "rewrite it in ST; the rest of the POU is imported",
             )
             return
+        assert lang is not None
         self.actions.put(act.line, act.col, f"ACTION {pou_name}.{name}:")
-        assert body is not None
-        self.body(body, self.actions)
+        out = BodyOut(self.actions, self.texts, self.path, self.diags, pou_name)
+        translate(lang, out)
+        hidden.extend(d for d in out.decls if d not in hidden)
         self.actions.put(act.end_line, 1, "END_ACTION")
 
     def method(self, m: PosElement) -> None:
         name = _ident(m.get("name", ""), m)
         itf = m.kid("interface")
         rt = itf.kid("returnType") if itf is not None else None
+        body = m.kid("body")
+        lang = body_language(body)
+        if not supported(lang):
+            raise ImportProblem(f"method {name} is not written in a language softplc imports", m, None)
+        assert body is not None and lang is not None
         self.main.put(m.line, m.col, f"METHOD {name}" + (f" : {self.type_text(rt)}" if rt is not None else ""))
         self.interface(itf, self.main)
-        body = m.kid("body")
-        if self._body_language(body) != "ST":
-            raise ImportProblem(f"method {name} is not written in ST", m, None)
-        assert body is not None
-        self.body(body, self.main)
+        self.body_with_decls(body, lang, name, [])
         self.main.put(m.end_line, 1, "END_METHOD")
-
-    @staticmethod
-    def _body_language(body: PosElement | None) -> str | None:
-        if body is None:
-            return None
-        langs = [k.name for k in body.kids() if k.name not in ("documentation", "addData")]
-        return langs[0] if langs else None
-
-    def body(self, body: PosElement, view: LineView) -> None:
-        st = body.kid("ST")
-        assert st is not None
-        holder = st.kids()[0] if st.kids() else st  # <xhtml:p> (or the text in <ST> itself)
-        text = "".join(holder.itertext())
-        view.put(*self.texts.start(holder), text)
 
     # ------------------------------------------------------------ configuration
 

@@ -6,6 +6,17 @@ the original file with no mapping (diagnostics, runtime faults, watch).
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True, slots=True)
+class StView:
+    """One ST text to parse for a source file, as ``parse_source(text, path,
+    diags, profile, lowered)`` takes it."""
+
+    text: str
+    lowered: tuple = ()  # (first, last) line ranges written from another language
+
 
 class LineView:
     """A text of ``lines`` lines, written in order: each ``put`` goes at or
@@ -16,6 +27,7 @@ class LineView:
         self.pad: list[int] = [0] * (lines + 1)  # blanks put before a line's first text
         self.written: set[int] = set()  # lines some text went to (an empty body line too)
         self.indent: dict[int, int] = {}  # line -> its indentation in plain()
+        self.lowered: list[tuple[int, int]] = []  # (first, last) lines of ST written from another language
 
     @property
     def used(self) -> bool:
@@ -43,6 +55,22 @@ class LineView:
             if n not in self.written and k == 0 and indent:
                 self.indent[n] = indent
             self.written.add(n)
+
+    def absorb(self, other: LineView) -> None:
+        """Put what other holds into this view, line by line (as if it had
+        been put here in the first place, after what is here already)."""
+        for n in sorted(other.written):
+            self.put(n, other.pad[n] + 1, other.lines[n][other.pad[n] :], other.indent.get(n, 0))
+        self.lowered.extend(other.lowered)
+
+    def mark_lowered(self, first: int, last: int) -> None:
+        """Lines first..last hold ST written from IL or a graphical body
+        (``SourceFile.lowered``: a JMP there is allowed in every profile)."""
+        self.lowered.append((first, last))
+
+    def view(self) -> StView:
+        """What the parser reads: the text and its lowered lines."""
+        return StView(self.text(), tuple(self.lowered))
 
     def text(self) -> str:
         """The view: the original's lines and columns."""

@@ -136,7 +136,7 @@ def test_an_attribute_that_is_no_identifier_becomes_no_st(attr):
     diags = DiagnosticBag()
     views = st_views("inject.xml", text, diags)
     assert [d.code for d in diags.items] == ["E183"] and "is not an ST identifier" in diags.items[0].message
-    assert not any("END_VAR VAR y" in v for v in views)
+    assert not any("END_VAR VAR y" in v.text for v in views)
 
 
 def test_an_initial_value_cannot_end_its_declaration():
