@@ -30,6 +30,13 @@ Code ranges (keep them stable, users search for them):
              arithmetic not supported, E162 SIZEOF without a size
   E170-E174  object-oriented ST, continued: E170 FB_init inputs set where an
              instance is declared (checker_fbinit.py)
+  E180-E189  imported files (st/importers/): E180 XML not well-formed, E181
+             refused XML, E182 a language or object not imported, E183 an
+             element that cannot become ST, E184-E189 the project's structure
+  E190-E199  IL, instruction list (st/il.py)
+  E200-E209  FBD and LD networks (st/importers/: graphical bodies)
+  E210-E219  graphical SFC (st/importers/)
+  E220-E229  projects as a whole (check of a project: libraries, entries)
   W1xx       warnings (same tens as the error they soften: W121 ~ E021,
              W122 ~ E022, W130 ~ E030 where the profile allows what IEC
              forbids; W102-W103 the parser: W102 MatIEC embedded C, W103 an
