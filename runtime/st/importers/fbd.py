@@ -115,7 +115,7 @@ def out_variable(net: Net, node: Node) -> None:
     assert value is not None
     el = node.el
     negated = el.get("negated", el.get("negatedIn", "false")) == "true"
-    value = modified(net, node, value, False, el.get("edge", "")) if not negated else value
+    value = modified(net, node, value, negated, el.get("edge", ""))
     assign(net, node, expression(net, node), value, el.get("storage", ""))
 
 

@@ -211,9 +211,8 @@ class Graph:
                     node.outs.append((v.get("formalParameter", ""), v, point))
         else:
             cp = el.kid("connectionPointIn")
-            if cp is not None:
-                neg = el.get("negated", el.get("negatedIn", "false")) == "true"
-                node.ins.append(PointIn(el, _links(cp), "", neg, el.get("edge", "")))
+            if cp is not None:  # the element's modifiers are its own (a coil's, a contact's): fbd.py, ld.py
+                node.ins.append(PointIn(el, _links(cp)))
         return node
 
     def node(self, link: Link) -> Node:
@@ -266,8 +265,8 @@ class Net:
         """One statement on the next line of the body, each piece at its origin."""
         before = ""
         for text, origin in pieces:
-            tight = not before or before.endswith("(") or text.startswith((")", ",", ";", ".")) or text == "("
-            self.out.put(self.line, 1, text, origin, "" if tight and before[-1:] != "," else " ")
+            tight = before.endswith("(") or text.startswith((")", ",", ";", "."))
+            self.out.put(self.line, 1, text, origin, "" if tight else " ")
             before = text
         if self.line < self.last:
             self.line += 1
@@ -298,7 +297,7 @@ class Net:
         parts = [self.link_value(link) for link in point.links]
         expr = parts[0]
         for more in parts[1:]:
-            expr = [*group(expr, owner), (" OR ", owner.origin), *group(more, owner)]
+            expr = [*group(expr, owner), ("OR", owner.origin), *group(more, owner)]
         if point.negated:
             expr = [("NOT", owner.origin), *group(expr, owner, always=True)]
         if point.edge in ("rising", "falling"):
