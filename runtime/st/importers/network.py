@@ -150,6 +150,7 @@ def _links(cp: PosElement | None) -> list[Link]:
     return found
 
 
+_TAKES_INPUT = frozenset(("outVariable", "inOutVariable", "coil", "contact", "jump", "return", "connector"))
 _IGNORED = frozenset(("comment", "rightPowerRail", "documentation", "addData", "vendorElement"))
 
 
@@ -211,7 +212,7 @@ class Graph:
                     node.outs.append((v.get("formalParameter", ""), v, point))
         else:
             cp = el.kid("connectionPointIn")
-            if cp is not None:  # the element's modifiers are its own (a coil's, a contact's): fbd.py, ld.py
+            if cp is not None or el.name in _TAKES_INPUT:  # its modifiers are its own (a coil's): fbd.py, ld.py
                 node.ins.append(PointIn(el, _links(cp)))
         return node
 
