@@ -117,3 +117,27 @@ def test_contacts_wired_to_an_sfc_transition_give_its_condition():
     assert out.decls == ["_RT3 : R_TRIG;"]
     assert out.view.plain() == "_RT3(CLK := go);\n"  # the edge memory is called before the condition
     assert not diags.has_errors
+
+
+def test_a_block_in_a_rung_takes_the_flow_at_en_and_gives_it_at_eno(tmp_path):
+    # rung 6 rewired: b's contact drives the TON's EN, its IN is the rail, its ENO drives q7
+    text = (
+        LD.read_text()
+        .replace(
+            '<variable formalParameter="IN">\n                  <connectionPointIn><relPosition x="0" y="30" />'
+            '<connection refLocalId="51" />',
+            '<variable formalParameter="EN">\n                  <connectionPointIn><relPosition x="0" y="30" />'
+            '<connection refLocalId="51" /></connectionPointIn>\n                </variable>\n'
+            '                <variable formalParameter="IN">\n                  <connectionPointIn>'
+            '<connection refLocalId="50" />',
+        )
+        .replace('<coil localId="54" height="15" width="21" edge="falling">', '<coil localId="54">')
+        .replace(
+            '<connection refLocalId="52" formalParameter="Q" />', '<connection refLocalId="52" formalParameter="ENO" />'
+        )
+    )
+    path = tmp_path / "eno.xml"
+    path.write_text(text)
+    got = run(path, 30)
+    assert all(c["q7"] == c["b"] for c in got)  # ENO is EN: the flow passes when b is closed
+    assert any(c["b"] for c in got) and not all(c["b"] for c in got)
