@@ -7,11 +7,15 @@ replaces a project file (.plcproj) by the sources it lists."""
 from __future__ import annotations
 
 from ..diagnostics import DiagnosticBag
+from .bodies import LANGUAGES
 from .plcopen import plcopen_views
+from .sfc import sfc_body
 from .twincat import plcproj_files, twincat_views
 from .view import StView
 
 __all__ = ["StView", "is_imported", "is_source", "source_files", "st_export", "st_views"]
+
+LANGUAGES["SFC"] = sfc_body  # graphical SFC bodies (sfc.py)
 
 _READERS = {
     ".xml": plcopen_views,
