@@ -352,3 +352,42 @@ def test_no_mutation_of_the_chart_gives_a_traceback(tmp_path):
         path.write_text(variant)
         diags, _ = check_files([str(path)])
         assert all(re.fullmatch(r"[EW]\d{3}", d.code) for d in diags), k
+
+
+def _run(tmp_path, text: str, cycles: int, inputs: dict | None = None):
+    path = tmp_path / "chart.xml"
+    path.write_text(text)
+    r = compile_files([str(path)]).runner("Main", cycle_time_ms=10)
+    for k in range(cycles):
+        for name, value in (inputs or {}).get(k, {}).items():
+            put(r, name, value)
+        r.run(1)
+    return r
+
+
+def test_a_condition_naming_no_named_transition_is_a_bool_variable(tmp_path):
+    text = chart(*GOOD).replace("<inline><ST><xhtml:p>go</xhtml:p></ST></inline>", '<reference name="go" />')
+    r = _run(tmp_path, text, 3)
+    assert (r.get("S1.X"), r.get("S2.X")) == (True, False)
+    r = _run(tmp_path, text, 3, {1: {"go": True}, 2: {"go": False}})
+    assert (r.get("S1.X"), r.get("S2.X")) == (False, True)
+
+
+DUPLICATE = """<addData><data name="http://www.3s-software.com/plcopenxml/sfc/element" handleUnknown="implementation">
+<attributes xmlns=""><attribute guid="62e1754b-7629-4e63-9cec-10ae0c536f1f">TRUE</attribute></attributes>
+</data></addData>"""
+
+
+def test_a_codesys_step_drawn_twice_is_one_step(tmp_path):
+    # S1 -> S2, and S2 drawn again (CODESYS's duplicate flag) -> S1: one
+    # step S2 with the transitions of both drawings
+    again = step(6, "S2", None).replace("</step>", DUPLICATE + "</step>")
+    elements = (*GOOD[:3], again, transition(4, 6, "NOT go"), jump(5, 4, "S1"))
+    r = _run(tmp_path, chart(*elements), 4, {1: {"go": True}, 3: {"go": False}})
+    assert (r.get("S1.X"), r.get("S2.X")) == (True, False)
+    r = _run(tmp_path, chart(*elements), 3, {1: {"go": True}})
+    assert (r.get("S1.X"), r.get("S2.X")) == (False, True)
+    # without the flag, the same name twice is a step declared twice
+    plain = step(6, "S2", None)
+    errors = _errors(tmp_path, chart(*GOOD[:3], plain, transition(4, 6, "NOT go"), jump(5, 4, "S1")))
+    assert [d.code for d in errors] == ["E152"]
