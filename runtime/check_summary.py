@@ -50,7 +50,7 @@ def pou_count(path: str, text: str) -> int:
     return sum(
         1
         for view in st_views(path, text, diags)
-        for d in parse_source(view.text, path, diags, lowered=view.lowered).decls
+        for d in parse_source(view.text, path, diags, lowered=view.lowered, origins=view.origins).decls
         if isinstance(d, (A.POU, A.Interface))
     )
 

@@ -171,7 +171,7 @@ def _read_sources(paths: list, texts: dict | None, diags: DiagnosticBag, sources
     for name, text in files:
         sources.add(name, text)  # an imported file's own text: diagnostics show its lines
         for view in st_views(name, text, diags):  # st/importers: PLCopen XML, TwinCAT as ST
-            parsed.append(parse_source(view.text, name, diags, profile, view.lowered))
+            parsed.append(parse_source(view.text, name, diags, profile, view.lowered, view.origins))
             words.update(w.upper() for w in _WORD.findall(view.text))
     return parsed, words
 

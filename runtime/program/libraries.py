@@ -94,7 +94,7 @@ def parse_cached(name: str, text: str, profile: Profile) -> tuple[list, list]:
         data = None
     if data is None:
         diags = DiagnosticBag()
-        files = [parse_source(v.text, name, diags, profile, v.lowered) for v in st_views(name, text, diags)]
+        files = [parse_source(v.text, name, diags, profile, v.lowered, v.origins) for v in st_views(name, text, diags)]
         parsed = (files, diags.items)  # (new objects: only their pickle is kept)
         data = pickle.dumps(parsed, protocol=pickle.HIGHEST_PROTOCOL)
         _store(path, data)

@@ -50,9 +50,12 @@ __all__ = ["MAX_ERRORS", "parse_source"]
 class _Parse(Recovery):
     """One run of the parser over one file."""
 
-    def __init__(self, text: str, path: str, diags: DiagnosticBag, g: Grammar, profile: Profile = DEFAULT) -> None:
+    def __init__(
+        self, text: str, path: str, diags: DiagnosticBag, g: Grammar, profile: Profile = DEFAULT, origins: tuple = ()
+    ) -> None:
         super().__init__(text, path, diags, g)
         self.profile = profile
+        self.origins = origins
 
     def run(self) -> ast.SourceFile:
         if self.raw.startswith("\ufeff"):
@@ -78,6 +81,8 @@ class _Parse(Recovery):
         try:
             self.text, pragmas = strip_comments(text, comment_error, self.profile.nested_comments)
             self.tokens = self.g.lexer.tokens(self.text, self._accepts, self._bad_characters, self._fits)
+            if self.origins:
+                self.tokens = _relocated(self.tokens, self.origins)
             result = self._drive()
         except GiveUp:
             self.diags.error("E001", f"too many errors; stopped after {MAX_ERRORS}", self._eof_pos())
@@ -188,15 +193,31 @@ class _Parse(Recovery):
                 target.external = True
 
 
+def _relocated(tokens, origins: tuple):
+    """The tokens, those an importer placed apart from where they come from
+    at their origin (StView.origins: (line, column, orig_line, orig_column),
+    sorted: a token at or after (line, column) and before the next is at
+    orig_column + its offset from column on orig_line)."""
+    starts = [(o[0], o[1]) for o in origins]
+    for tok in tokens:
+        i = bisect_left(starts, (tok.line, tok.column + 1)) - 1
+        if i >= 0 and origins[i][0] == tok.line:
+            _, col, oline, ocol = origins[i]
+            tok.line, tok.column = oline, ocol + tok.column - col
+            tok.end_column = tok.column + len(tok.value)
+        yield tok
+
+
 def parse_source(
-    text: str, path: str, diags: DiagnosticBag, profile: Profile = DEFAULT, lowered: tuple | list = ()
+    text: str, path: str, diags: DiagnosticBag, profile: Profile = DEFAULT, lowered: tuple | list = (), origins=()
 ) -> ast.SourceFile:
     """Parse one ST file into an ``ast.SourceFile`` as the profile reads ST
     (its comments). Never raises; every problem goes into diags.
     lowered: (first, last) line ranges whose ST an importer wrote from
-    another language (``SourceFile.lowered``)."""
+    another language (``SourceFile.lowered``); origins: where pieces of
+    such ST come from (StView.origins), for the tokens' positions."""
     try:
-        sf = _Parse(text, path, diags, grammar(), profile).run()
+        sf = _Parse(text, path, diags, grammar(), profile, tuple(origins)).run()
         sf.lowered.extend(lowered)
         return sf
     except Exception as e:  # a bug here must not become a traceback for the user

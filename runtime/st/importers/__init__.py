@@ -7,6 +7,7 @@ replaces a project file (.plcproj) by the sources it lists."""
 from __future__ import annotations
 
 from ..diagnostics import DiagnosticBag
+from . import fbd, ld  # noqa: F401  (they register the FBD and LD body languages)
 from .bodies import LANGUAGES
 from .plcopen import plcopen_views
 from .sfc import sfc_body

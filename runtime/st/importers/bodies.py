@@ -54,8 +54,11 @@ class BodyOut:
         self.owner = owner  # the element whose <body> it is (<pou>: an SFC reads its <transitions>)
         self.decls: list[str] = []  # hidden variables: "name : TYPE;" each
 
-    def put(self, line: int, col: int, text: str) -> None:
-        self.view.put(line, col, text)
+    def put(self, line: int, col: int, text: str, origin: tuple | None = None, sep: str = " ") -> None:
+        """text at (line, col); origin: the (line, column) it comes from when
+        that is elsewhere; sep: what separates it from the line's text
+        before it (view.LineView.put)."""
+        self.view.put(line, col, text, origin=origin, sep=sep)
 
     def declare(self, decl: str) -> None:
         """A variable of the POU the body needs ("name : TYPE;" or with an

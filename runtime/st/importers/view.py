@@ -16,6 +16,7 @@ class StView:
 
     text: str
     lowered: tuple = ()  # (first, last) line ranges written from another language
+    origins: tuple = ()  # (line, column, orig_line, orig_column): text placed apart from where it comes from
 
 
 class LineView:
@@ -28,16 +29,26 @@ class LineView:
         self.written: set[int] = set()  # lines some text went to (an empty body line too)
         self.indent: dict[int, int] = {}  # line -> its indentation in plain()
         self.lowered: list[tuple[int, int]] = []  # (first, last) lines of ST written from another language
+        self.origins: list[tuple[int, int, int, int]] = []  # (line, col, orig_line, orig_col): see put
 
     @property
     def used(self) -> bool:
         return bool(self.written)
 
-    def put(self, line: int, col: int, text: str, indent: int = 0) -> None:
+    def put(self, line: int, col: int, text: str, indent: int = 0, origin: tuple | None = None, sep: str = " ") -> None:
         """text at (line, col), one-based; a text of several lines goes on
         the following lines from column 1 on. Where the line already holds
         more than col - 1 characters, it goes after them and a space.
-        indent: the blanks before the first line in plain()."""
+        indent: the blanks before the first line in plain().
+        origin: (line, column) of the original the text (one line) comes
+        from when it is not placed there (a graphical body's ST, written in
+        evaluation order): the parser gives its tokens positions from there
+        on (StView.origins). sep: what goes between the line's text and
+        text when it goes after it."""
+        if origin is not None:
+            cur = self.lines[line] if line < len(self.lines) else ""
+            start = max(col, len(cur) + (1 + len(sep) if cur else 1))
+            self.origins.append((line, start, *origin))
         for k, part in enumerate(text.split("\n")):
             n = line + k
             while n >= len(self.lines):
@@ -50,7 +61,7 @@ class LineView:
                     self.pad[n] = start - 1
                 cur += " " * (start - 1 - len(cur))
             elif cur and part:
-                cur += " "
+                cur += sep
             self.lines[n] = cur + part
             if n not in self.written and k == 0 and indent:
                 self.indent[n] = indent
@@ -59,7 +70,13 @@ class LineView:
     def absorb(self, other: LineView) -> None:
         """Put what other holds into this view, line by line (as if it had
         been put here in the first place, after what is here already)."""
+        by_line: dict[int, list] = {}
+        for o in other.origins:
+            by_line.setdefault(o[0], []).append(o)
         for n in sorted(other.written):
+            cur, was = self.lines[n] if n < len(self.lines) else "", other.pad[n] + 1
+            shift = len(cur) + 2 - was if cur and len(cur) >= was - 1 else 0
+            self.origins.extend((ln, c + shift, ol, oc) for ln, c, ol, oc in by_line.get(n, ()))
             self.put(n, other.pad[n] + 1, other.lines[n][other.pad[n] :], other.indent.get(n, 0))
         self.lowered.extend(other.lowered)
 
@@ -70,7 +87,7 @@ class LineView:
 
     def view(self) -> StView:
         """What the parser reads: the text and its lowered lines."""
-        return StView(self.text(), tuple(self.lowered))
+        return StView(self.text(), tuple(self.lowered), tuple(sorted(self.origins)))
 
     def text(self) -> str:
         """The view: the original's lines and columns."""

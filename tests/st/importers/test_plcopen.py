@@ -85,7 +85,7 @@ def test_a_pou_in_another_language_is_named_and_the_rest_imported(tmp_path):
         "    </pous>",
         """      <pou name="Blinker" pouType="functionBlock">
         <interface />
-        <body><FBD /></body>
+        <body><CFC /></body>
       </pou>
     </pous>""",
     )
@@ -93,8 +93,8 @@ def test_a_pou_in_another_language_is_named_and_the_rest_imported(tmp_path):
     path.write_text(text)
     diags, _ = check_files([str(path)])
     [d] = [d for d in diags if d.is_error]
-    assert d.code == "E182" and d.message == "POU Blinker is written in FBD: only ST bodies are imported"
-    assert d.pos.line == _position_of(text, "<body><FBD />")[0]
+    assert d.code == "E182" and d.message == "POU Blinker is written in CFC: only ST bodies are imported"
+    assert d.pos.line == _position_of(text, "<body><CFC />")[0]
 
 
 BILLION_LAUGHS = """<?xml version="1.0"?>
