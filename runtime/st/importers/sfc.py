@@ -10,7 +10,9 @@ END_ACTION`` at its ``<action>``. A condition is an inline ST expression,
 the name of one of the POU's ``<transitions>`` (its body, in any imported
 language, written as ``TRANSITION name FROM ... : body END_TRANSITION``
 at the named transition's own lines for its first use, a copy at the
-``<transition>`` for a further one), or a graph wired to it (sfc_wired.py).
+``<transition>`` for a further one), a BOOL variable, or a graph wired to
+it (sfc_wired.py: the blocks it calls go into an ACTION of their own, S
+on the initial step).
 
 Of the transitions that leave one step (a selection divergence) the first
 in IEC order fires: lower ``priority`` attribute first, then left to right
@@ -23,9 +25,9 @@ from __future__ import annotations
 
 from .bodies import BodyOut, body_language, supported, translate
 from .sfc_codesys import sfc_settings
-from .sfc_graph import Chart, Transition
+from .sfc_graph import Assoc, Chart, Transition
 from .sfc_text import ST_FORMS, has_line_comment, one_line, st_form
-from .sfc_wired import wired_condition
+from .sfc_wired import Wired, wired_condition
 from .view import LineView
 from .xmlsafe import PosElement
 
@@ -178,11 +180,14 @@ class _Writer:
                 return named.el.line, lambda p: self._named_here(t, named, p)
             return t.el.line, lambda p: self._named_copy(t, named, p)
         if kind.name == "connectionPointIn":
-            found = wired_condition(self.chart, t, kind)
-            if found is None:
+            wired = wired_condition(self.chart, t, kind)
+            if wired is None:
                 return None
-            anchor, where, text = found
-            return anchor, lambda p: self._expression(t, p, anchor, (where, text))
+            if wired.calls.written:
+                action = self._calls_action(t)
+                return t.el.line, lambda p: self._wired_calls(t, wired, action, p)
+            at = ((t.el.line, t.el.col), wired.expr)
+            return t.el.line, lambda p: self._expression(t, p, t.el.line, at, wired.origin)
         self.out.error("E216", f"a condition <{kind.name}>: softplc does not import it", kind, None)
         return None
 
@@ -211,15 +216,43 @@ class _Writer:
             + f" FROM {_steps(t.sources)} TO {_steps(t.targets)}"
         )
 
-    def _expression(self, t: Transition, priority: int | None, anchor: int, cond: tuple) -> None:
+    def _expression(
+        self, t: Transition, priority: int | None, anchor: int, cond: tuple, origin: tuple | None = None
+    ) -> None:
         """TRANSITION ... := cond; END_TRANSITION, the header at the anchor
-        line, cond = ((line, col), text)."""
+        line, cond = ((line, col), text); origin: where text comes from
+        when it is not placed there."""
         (line, col), text = cond
         self.out.put(anchor, t.el.col, self._header(t, priority) + " :=")
-        self.out.put(line, col, text)
+        self.out.put(line, col, text, origin)
         # after the condition on its last line, unless a // comment ends that line
         last = t.el.end_line if has_line_comment(text) else line + text.count("\n")
         self.out.put(last, t.el.col, "; END_TRANSITION")
+
+    def _calls_action(self, t: Transition) -> str:
+        """The ACTION holding the block calls of t's wired condition, named
+        after the transition and associated S with the initial step: they
+        run every cycle (sfc_wired.py)."""
+        lid = t.el.get("localId", "")
+        name = f"T{lid if lid.isdigit() else t.index}_blocks"
+        taken = {s.name.upper() for s in self.chart.steps} | set(self.named)
+        while name.upper() in taken:
+            name += "_"
+        initial = next((s for s in self.chart.steps if s.initial), None)
+        if initial is not None:
+            initial.assocs.append(Assoc(name, "S", t.el))
+        return name
+
+    def _wired_calls(self, t: Transition, wired: Wired, name: str, priority: int | None) -> None:
+        """ACTION name: the calls END_ACTION, then the transition reading
+        what they give, on the <transition>'s lines."""
+        el = t.el
+        self.out.put(el.line, el.col, f"ACTION {name}:")
+        self.out.view.absorb(wired.calls)
+        self.out.lowered(min(wired.calls.written), max(wired.calls.written))
+        self.out.put(el.end_line, el.col, f"END_ACTION {self._header(t, priority)} :=")
+        self.out.put(el.end_line, el.col, wired.expr, wired.origin)
+        self.out.put(el.end_line, el.col, "; END_TRANSITION")
 
     def _named_here(self, t: Transition, named: _Named, priority: int | None) -> None:
         """The first use of a named transition: at its own lines."""
@@ -232,18 +265,22 @@ class _Writer:
     def _named_copy(self, t: Transition, named: _Named, priority: int | None) -> None:
         """A further use of a named transition: its body's lines copied in
         order onto the lines of the <transition> (the last of them holding
-        what does not fit)."""
+        what does not fit), each with the position it comes from (for
+        diagnostics and faults: those of the named transition's text)."""
         el, view = t.el, named.body
         assert view is not None
         self.out.put(el.line, el.col, f"{self._header(t, priority, named.name)} {named.marker}".rstrip())
-        rows = [(view.pad[n], view.lines[n][view.pad[n] :]) for n in sorted(view.written)]
+        rows = [(n, view.pad[n], view.lines[n][view.pad[n] :]) for n in sorted(view.written)]
         room = list(range(el.line + 1, el.end_line + 1)) or [el.line]
+        joined = None
         if len(rows) > len(room):
             keep = len(room) - 1
-            tail = one_line([text for _pad, text in rows[keep:]])
-            rows = [*rows[:keep], (rows[keep][0], tail)]
-        for line, (pad, text) in zip(room, rows, strict=False):
-            self.out.put(line, pad + 1, text)
+            joined = (rows[keep][0], rows[keep][1], one_line([text for _n, _pad, text in rows[keep:]]))
+            rows = [*rows[:keep], joined]
+        for line, (n, pad, text) in zip(room, rows, strict=False):
+            self.out.put(line, pad + 1, text, (n, pad + 1))
+            if (n, pad, text) is not joined and line != el.line:  # the pieces placed apart in the body itself
+                self.out.view.origins.extend((line, c, ol, oc) for ln, c, ol, oc in view.origins if ln == n)
         if view.lowered:
             self.out.lowered(room[0], room[min(len(rows), len(room)) - 1])
         self.out.put(el.end_line, el.col, f"{named.closing}END_TRANSITION")

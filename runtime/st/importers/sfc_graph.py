@@ -109,6 +109,7 @@ class Chart:
         self.transitions: list[Transition] = []
         self.inlines: list[Inline] = []
         self.bad: set = set()  # ids of elements with a reported problem
+        self.graph: object = None  # the FBD/LD graph drawn in the chart (sfc_wired.py), False: unreadable
 
     # ------------------------------------------------------------ reading
 

@@ -1,98 +1,83 @@
-"""A transition condition wired to the chart's own graph (TC6: the
-transition's ``<condition><connectionPointIn>``), in the two shapes that
-need no FBD/LD evaluation: a variable or literal (``<inVariable>``, as
-CODESYS writes every transition: ``<expression>TRUE</expression>``), and
-a series of contacts from the left power rail (``var AND NOT var2``). A
-graph with blocks, parallel branches or edge contacts is E216 (the FBD/LD
-evaluation of the graphical bodies will take it).
+"""A transition condition wired to a graph drawn in the chart (TC6: the
+transition's ``<condition><connectionPointIn>``): an ``<inVariable>`` (as
+CODESYS draws every condition), LD contacts from the left rail, FBD
+blocks. network.py evaluates it (``condition``): an ST expression, and
+the statements it needs before it (function block calls, edge memories).
+
+Those statements run every cycle, as Beremiz runs them (in an action of
+the initial step, S) and CODESYS (which evaluates every transition each
+cycle unless CalcActiveTransOnly): they become an ACTION of their own,
+associated S with the initial step, and the condition reads the blocks'
+outputs as that action left them.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
+from .bodies import BodyOut, ImportProblem
+from .network import Graph, GraphError, condition
 from .sfc_graph import Chart, Transition
+from .view import LineView
 from .xmlsafe import PosElement
 
-_NOT_TEXT = ("\n", ";", "//", "(*", "*)", "/*", "{", "}")
+
+@dataclass(eq=False)
+class Wired:
+    """A wired condition: its expression (with the original position of an
+    inVariable's text, else None) and the statements it needs (a view at
+    the transition's lines; empty for a plain expression)."""
+
+    expr: str
+    origin: tuple | None
+    calls: LineView
 
 
-def wired_condition(chart: Chart, t: Transition, cpi: PosElement) -> tuple | None:
-    """(anchor line, (line, column), expression) of t's wired condition:
-    an <inVariable> drawn just before the transition (CODESYS) is where
-    the condition is written; else the <condition>. None: reported."""
-    refs = chart.inputs(t.condition) if t.condition is not None else []
+def wired_condition(chart: Chart, t: Transition, cpi: PosElement) -> Wired | None:
+    """t's condition wired from cpi; None when it cannot be evaluated
+    (reported at the element, with network.py's code)."""
+    out = chart.out
+    if chart.graph is None:
+        try:
+            chart.graph = Graph(chart.sfc, out, foreign=True)
+        except GraphError as exc:
+            code, message, el, hint = exc.args
+            out.error(code, message, el, hint)
+            chart.graph = False
+    if not isinstance(chart.graph, Graph):
+        return None
+    calls = LineView(len(out.view.lines))
+    sub = BodyOut(calls, out.texts, out.path, out.diags, out.pou, out.owner)
+    first = t.el.line + 1 if t.el.end_line > t.el.line else t.el.line
+    try:
+        expr = condition(chart.graph, cpi, sub, first, t.el.end_line)
+    except GraphError as exc:  # (one condition() raises before it turns them into ImportProblem)
+        code, message, el, hint = exc.args
+        out.error(code, message, el, hint)
+        return None
+    except ImportProblem as exc:
+        message, el, hint = exc.args
+        code, sep, rest = message.partition(": ")
+        if not (sep and len(code) == 4 and code[0] in "EW" and code[1:].isdigit()):
+            code, rest = "E216", message
+        out.error(code, rest, el if el is not None else t.el, hint)
+        return None
+    for d in sub.decls:
+        out.declare(d)
+    return _positioned(chart, cpi, Wired(expr, None, calls))
+
+
+def _positioned(chart: Chart, cpi: PosElement, wired: Wired) -> Wired:
+    """A condition wired straight to an <inVariable>: its own text, with
+    the position of its <expression> for the positions of its tokens."""
+    refs = [c.get("refLocalId", "") for c in cpi.kids("connection")]
     el = chart.nodes.get(refs[0]) if len(refs) == 1 else None
-    if el is not None and el.name == "inVariable":
-        expr = el.kid("expression")
-        text = _expression(chart, expr if expr is not None else el)
-        if text is None:
-            return None
-        negated = el.get("negated") == "true"
-        kids = chart.sfc.kids()
-        k = next(i for i, x in enumerate(kids) if x is t.el)
-        if not negated and expr is not None and k > 0 and kids[k - 1] is el:
-            return el.line, chart.out.texts.start(expr), text
-        return t.el.line, (cpi.line, cpi.col), f"NOT ({text})" if negated else text
-    if el is not None and el.name == "contact":
-        text = _contacts(chart, el)
-        return None if text is None else (t.el.line, (cpi.line, cpi.col), text)
-    what = f"<{el.name}>" if el is not None else "more than one element" if refs else "nothing"
-    chart.out.error(
-        "E216",
-        f"a transition condition wired to {what}: softplc imports a wired condition only as a variable "
-        "or a series of contacts, not yet a graph of blocks",
-        t.condition or t.el,
-        "write the condition as an inline ST expression, or as a named transition in ST",
-    )
-    return None
-
-
-def _contacts(chart: Chart, el: PosElement) -> str | None:
-    """The AND of a series of contacts back to the left power rail."""
-    parts: list = []
-    seen: set = set()
-    while el.name == "contact" and id(el) not in seen:
-        seen.add(id(el))
-        if (el.get("edge") or "none") != "none":
-            chart.out.error(
-                "E216",
-                f"a condition with an edge contact ({el.get('edge')}): not imported yet",
-                el,
-                "write the condition as an inline ST expression with R_TRIG/F_TRIG in an action",
-            )
-            return None
-        var = el.kid("variable")
-        text = _expression(chart, var if var is not None else el)
-        if text is None:
-            return None
-        text = text if all(c.isalnum() or c in "_.#[]" for c in text) else f"({text})"
-        parts.append(f"NOT {text}" if el.get("negated") == "true" else text)
-        refs = chart.inputs(el)
-        nxt = chart.nodes.get(refs[0]) if len(refs) == 1 else None
-        if nxt is None:
-            chart.out.error(
-                "E216",
-                "a condition's contacts in parallel or unconnected: not imported yet",
-                el,
-                "write the condition as an inline ST expression",
-            )
-            return None
-        el = nxt
-    if el.name != "leftPowerRail":
-        chart.out.error("E216", f"a condition's contact follows <{el.name}>: not imported yet", el, None)
-        return None
-    return " AND ".join(parts)
-
-
-def _expression(chart: Chart, el: PosElement) -> str | None:
-    """An element's text as one ST expression (nothing that would end it
-    or open a comment)."""
-    text = "".join(el.itertext()).strip()
-    if not text or any(bad in text for bad in _NOT_TEXT):
-        chart.out.error(
-            "E216",
-            f"{text[:40]!r} is not one line of ST expression" if text else "an empty expression",
-            el,
-            "a wired condition's variable holds a variable, a literal or an expression on one line",
-        )
-        return None
-    return text
+    expr = el.kid("expression") if el is not None and el.name == "inVariable" else None
+    raw = "".join(expr.itertext()) if expr is not None else ""
+    text = raw.strip()
+    if expr is None or "\n" in text or wired.expr not in (text, f"( {text} )"):
+        return wired
+    line, col = chart.out.texts.start(expr)
+    if "\n" in raw[: raw.index(text)]:
+        return wired
+    return Wired(text, (line, col + raw.index(text)), wired.calls)

@@ -13,6 +13,7 @@ import pytest
 
 from softplc.runtime.program import check_files, compile_files
 from softplc.runtime.st.diagnostics import DiagnosticBag
+from softplc.runtime.st.faults import STFault
 from softplc.runtime.st.importers import st_export
 
 HERE = Path(__file__).parent
@@ -82,11 +83,14 @@ def test_the_beremiz_chart_runs_as_its_textual_twin():
     assert active(got[6], *steps) == ["A", "B"] and got[6]["cnt"] == 4  # and Count's final scan
     assert got[6]["blink"] and not got[11]["blink"]  # L T#50ms: cycles 6 .. 10
     assert not got[8]["delayed"] and got[9]["delayed"]  # D T#30ms
-    assert active(got[14], *steps) == ["A", "B"]  # the convergence waits for NOT hold (an LD contact)
+    assert active(got[14], *steps) == ["A", "B"]  # the convergence waits for NOT hold (an LD contact) ...
     assert active(got[15], *steps) == ["Done"] and not got[15]["motor"]  # R
     assert active(got[20], *steps) == ["Idle"]  # the jump back
     assert active(got[30], *steps) == ["Done"]  # abort (left, a named transition) before start
     assert active(got[40], *steps) == ["Run"] and active(got[41], *steps) == ["Done"]  # abort again, by a copy
+    # ... and for tWait.Q (an FBD TON wired to the condition, called every cycle): B active 20 ms
+    assert active(got[51], *steps) == ["A", "B"] and active(got[53], *steps) == ["A", "B"]
+    assert active(got[54], *steps) == ["Done"]
 
 
 def test_the_codesys_chart_runs_as_its_textual_twin():
@@ -107,12 +111,14 @@ def test_the_codesys_chart_runs_as_its_textual_twin():
 def test_export_st_writes_the_textual_sfc():
     diags = DiagnosticBag()
     text = st_export(str(CODESYS), CODESYS.read_text(), diags)
-    assert "TRANSITION FROM Init TO Fill :=\ngo ; END_TRANSITION" in text
+    assert "TRANSITION FROM Init TO Fill := go ; END_TRANSITION" in text
     assert "STEP Fill:\nFill_entry(P1);\nFill_active(N);\nFill_exit(P0);\nEND_STEP" in text
     text = st_export(str(BEREMIZ), BEREMIZ.read_text(), diags)
     assert "TRANSITION Enough (PRIORITY := 4) FROM Run TO (A, B) :" in text  # a named transition, statements
     assert "TRANSITION Abort (PRIORITY := 2) FROM Run TO Done :=" in text  # its second use: a copy
-    assert "TRANSITION FROM (A, B) TO Done :=\nNOT hold ; END_TRANSITION" in text  # contacts wired to it
+    # a TON and a contact wired to the condition: the block runs in an action of the initial step
+    assert "INITIAL_STEP Idle:\nlamp(N);\nT18_blocks(S);\nEND_STEP" in text
+    assert "ACTION T18_blocks:\ntWait(IN := B.X, PT := T#20ms);\nEND_ACTION TRANSITION FROM (A, B) TO Done :=" in text
     assert "ACTION Run_inline1:\npulses := pulses + 1;\nEND_ACTION" in text
     assert not [d for d in diags.items if d.is_error]
 
@@ -267,7 +273,7 @@ def test_the_malformed_cases_start_from_a_chart_that_compiles(tmp_path):
             "<action localId",
             "takes a duration",
         ),
-        # a condition wired to a block (the FBD/LD evaluation is not here)
+        # a condition wired to a graph network.py cannot evaluate: its own code
         (
             (
                 step(1, "S1", None, True),
@@ -277,9 +283,20 @@ def test_the_malformed_cases_start_from_a_chart_that_compiles(tmp_path):
                 "</transition>\n",
                 jump(3, 2, "S1"),
             ),
+            "E201",
+            '<connection refLocalId="9" />',
+            "names no output",
+        ),
+        # an inline condition in another language than ST
+        (
+            (
+                *GOOD[:3],
+                transition(4, 3).replace("<ST><xhtml:p>go</xhtml:p></ST>", "<IL><xhtml:p>LD go</xhtml:p></IL>"),
+                GOOD[4],
+            ),
             "E216",
-            "<condition>",
-            "wired to <block>",
+            "<inline><IL>",
+            "an inline condition in IL",
         ),
     ],
     ids=[
@@ -293,7 +310,8 @@ def test_the_malformed_cases_start_from_a_chart_that_compiles(tmp_path):
         "macro step",
         "bad qualifier",
         "D without duration",
-        "wired to a block",
+        "wired to a broken graph",
+        "inline IL condition",
     ],
 )
 def test_a_malformed_chart_gives_a_coded_error_at_its_element(tmp_path, elements, code, at, message):
@@ -391,3 +409,25 @@ def test_a_codesys_step_drawn_twice_is_one_step(tmp_path):
     plain = step(6, "S2", None)
     errors = _errors(tmp_path, chart(*GOOD[:3], plain, transition(4, 6, "NOT go"), jump(5, 4, "S1")))
     assert [d.code for d in errors] == ["E152"]
+
+
+def test_an_error_in_a_named_transition_used_twice_points_at_its_text_for_both_uses(tmp_path):
+    text = BEREMIZ.read_text().replace("<![CDATA[abort]]>", "<![CDATA[abortt]]>")
+    errors = _errors(tmp_path, text)
+    assert [d.code for d in errors] == ["E010", "E010"]  # its first use and its copy
+    assert {(d.pos.line, d.pos.col) for d in errors} == {_position_of(text, "abortt")}
+
+
+def test_a_runtime_fault_in_a_chart_points_at_its_element(tmp_path):
+    # the inline action of Done divides by cnt - 8: cnt is 8 when Done is reached the third time
+    text = BEREMIZ.read_text().replace("stored := stored + 1;", "stored := stored + 80 / (cnt - 8);")
+    path = tmp_path / "fault.xml"
+    path.write_text(text)
+    r = compile_files([str(path)]).runner("Main", cycle_time_ms=10)
+    with pytest.raises(STFault) as err:
+        for k in range(70):
+            for name, value in BEREMIZ_INPUTS.get(k, {}).items():
+                put(r, name, value)
+            r.run(1)
+    assert err.value.kind == "division" and r.get("Done.X") and r.get("cnt") == 8
+    assert (err.value.pos.file, err.value.pos.line) == (str(path), _position_of(text, "stored := stored + 80")[0])
