@@ -8,11 +8,15 @@ from __future__ import annotations
 
 from ..diagnostics import DiagnosticBag
 from . import fbd, ld  # noqa: F401  (they register the FBD and LD body languages)
+from .bodies import LANGUAGES
 from .plcopen import plcopen_views
+from .sfc import sfc_body
 from .twincat import plcproj_files, twincat_views
 from .view import StView
 
 __all__ = ["StView", "is_imported", "is_source", "source_files", "st_export", "st_views"]
+
+LANGUAGES["SFC"] = sfc_body  # graphical SFC bodies (sfc.py)
 
 _READERS = {
     ".xml": plcopen_views,

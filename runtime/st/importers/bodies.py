@@ -37,12 +37,21 @@ class ImportProblem(Exception):
 class BodyOut:
     """Where a body's ST goes, and what the body needs beside it."""
 
-    def __init__(self, view: LineView, texts: TextPositions, path: str, diags: DiagnosticBag, pou: str = "") -> None:
+    def __init__(
+        self,
+        view: LineView,
+        texts: TextPositions,
+        path: str,
+        diags: DiagnosticBag,
+        pou: str = "",
+        owner: PosElement | None = None,
+    ) -> None:
         self.view = view
         self.texts = texts
         self.path = path
         self.diags = diags
         self.pou = pou  # the POU the body belongs to (for messages)
+        self.owner = owner  # the element whose <body> it is (<pou>: an SFC reads its <transitions>)
         self.decls: list[str] = []  # hidden variables: "name : TYPE;" each
 
     def put(self, line: int, col: int, text: str, origin: tuple | None = None, sep: str = " ") -> None:

@@ -235,22 +235,28 @@ class _Reader:
         if actions is not None:
             for act in actions.kids("action"):
                 self.action(name, act, hidden)
-        self.body_with_decls(body, lang, name, hidden)
+        self.body_with_decls(body, lang, name, hidden, pou)
         self.main.put(body.end_line, 1, f"END_{kind}")
         for data in pou.walk("data"):
             if data.get("name") == _CODESYS_METHOD:
                 for m in data.kids("Method"):
                     self.method(m)
 
-    def body_with_decls(self, body: PosElement, lang: PosElement, pou: str, hidden: list) -> None:
+    def body_with_decls(
+        self, body: PosElement, lang: PosElement, pou: str, hidden: list, owner: PosElement | None = None
+    ) -> None:
         """A POU's or method's body into the main view, after a VAR block of
-        the variables it and hidden (those its actions need) declare."""
+        the variables it and hidden (those its actions need) declare. (An
+        SFC body writes its POU's named <transitions> before the <body>: the
+        VAR block goes before them.)"""
         scratch = LineView(len(self.main.lines))
-        out = BodyOut(scratch, self.texts, self.path, self.diags, pou)
+        out = BodyOut(scratch, self.texts, self.path, self.diags, pou, owner)
         translate(lang, out)
         decls = [*hidden, *(d for d in out.decls if d not in hidden)]
         if decls:
-            self.main.put(body.line, body.col, "VAR " + " ".join(decls) + " END_VAR")
+            first = min(scratch.written, default=body.line)
+            at = (body.line, body.col) if first >= body.line else (first, 1)
+            self.main.put(*at, "VAR " + " ".join(decls) + " END_VAR")
         self.main.absorb(scratch)
 
     def _inheritance(self, pou: PosElement) -> str:
