@@ -391,6 +391,18 @@ class Net:
             stack.extend(link for p in src.ins for link in p.links)
         return found
 
+    def reach(self, node: Node) -> set[str]:
+        """The units node reads, and those they read in turn (every block a
+        condition needs called: an SR feeding the TON it reads too)."""
+        found: set[str] = set()
+        todo = [node]
+        while todo:
+            for unit in self.deps(todo.pop()) - found:
+                found.add(unit)
+                if unit in self.g.nodes:
+                    todo.append(self.g.nodes[unit])
+        return found
+
     def order(self) -> list[Node]:
         units = [n for n in self.g.nodes.values() if self.is_unit(n)]
         ordered = sorted((n for n in units if n.order > 0), key=lambda n: (n.order, n.key))
@@ -512,7 +524,7 @@ def condition(graph: Graph, point: PosElement, out: BodyOut, line: int | None = 
     net = Net(graph, out, first, first if last is None else last)
     holder = Node("transition", "transition", point, 0, (0, 0, 0), [PointIn(point, _links(point), "")])
     try:
-        for unit in net._data_flow([graph.nodes[i] for i in sorted(net.deps(holder)) if i in graph.nodes]):
+        for unit in net._data_flow([graph.nodes[i] for i in sorted(net.reach(holder)) if i in graph.nodes]):
             if unit.id not in net.done:
                 net.done.add(unit.id)
                 UNIT[unit.kind](net, unit)

@@ -431,3 +431,41 @@ def test_a_runtime_fault_in_a_chart_points_at_its_element(tmp_path):
             r.run(1)
     assert err.value.kind == "division" and r.get("Done.X") and r.get("cnt") == 8
     assert (err.value.pos.file, err.value.pos.line) == (str(path), _position_of(text, "stored := stored + 80")[0])
+
+
+def test_a_wired_condition_calls_the_blocks_its_blocks_read(tmp_path):
+    # tWait's IN from another TON (tPre, 10 ms after B.X) instead of B.X itself:
+    # both run every cycle, in data-flow order, so B stays 10 ms longer
+    text = BEREMIZ.read_text()
+    text = text.replace(
+        '<variable name="tWait"><type><derived name="TON"/></type></variable>',
+        '<variable name="tWait"><type><derived name="TON"/></type></variable>\n'
+        '            <variable name="tPre"><type><derived name="TON"/></type></variable>',
+    )
+    tpre = """<block localId="90" width="60" height="60" typeName="TON" instanceName="tPre">
+              <position x="100" y="420"/>
+              <inputVariables>
+                <variable formalParameter="IN"><connectionPointIn><connection refLocalId="28"/></connectionPointIn>
+                </variable>
+                <variable formalParameter="PT"><connectionPointIn><connection refLocalId="91"/></connectionPointIn>
+                </variable>
+              </inputVariables>
+              <outputVariables><variable formalParameter="Q"><connectionPointOut/></variable></outputVariables>
+            </block>
+            <inVariable localId="91" height="30" width="60"><position x="40" y="450"/>
+              <connectionPointOut/><expression>T#10ms</expression></inVariable>
+            <block localId="30" """
+    text = text.replace('<block localId="30" ', tpre, 1)
+    text = text.replace(
+        '<connection refLocalId="28"/>\n                  </connectionPointIn>\n                </variable>\n'
+        '                <variable formalParameter="PT">',
+        '<connection refLocalId="90" formalParameter="Q"/>\n                  </connectionPointIn>\n'
+        '                </variable>\n                <variable formalParameter="PT">',
+        1,
+    )
+    path = tmp_path / "chained.xml"
+    path.write_text(text)
+    got = trace(path, "Main", BEREMIZ_WATCH, BEREMIZ_INPUTS, 70)
+    steps = ("Idle", "Run", "A", "B", "Done")
+    assert active(got[54], *steps) == ["A", "B"]  # 20 ms would have left B here ...
+    assert active(got[55], *steps) == ["Done"]  # ... 10 + 20 ms do
