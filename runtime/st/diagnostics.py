@@ -35,9 +35,9 @@ Code ranges (keep them stable, users search for them):
              element that cannot become ST, E184-E189 the project's structure
   E190-E199  IL, instruction list (st/il.py)
   E200-E209  FBD and LD networks (st/importers/: graphical bodies)
-  E210-E219  graphical SFC (st/importers/sfc*.py); W210-W212 what CODESYS
-             writes beside TC6 about an SFC (step time limits, entry/exit
-             actions, SFC flags)
+  E210-E219  graphical SFC (st/importers/sfc*.py); W210, W212 what CODESYS
+             writes beside TC6 about an SFC and softplc does not honour
+             (step time limits, SFC flags)
   E220-E229  projects as a whole (check of a project: libraries, entries)
   W1xx       warnings (same tens as the error they soften: W121 ~ E021,
              W122 ~ E022, W130 ~ E030 where the profile allows what IEC

@@ -18,7 +18,7 @@ Of the transitions that leave one step (a selection divergence) the first
 in IEC order fires: lower ``priority`` attribute first, then left to right
 (``<position x>``), then document order; written as PRIORITY where the
 text order would differ. Problems: E182 (a body's language not imported),
-E183, E210-E216, W210-W212 (sfc_graph.py, sfc_codesys.py).
+E183, E210-E216, W210, W212 (sfc_graph.py, sfc_codesys.py).
 """
 
 from __future__ import annotations
@@ -137,6 +137,10 @@ class _Writer:
         for k, assoc in enumerate(step.assocs):
             put(min(el.line + 1 + k, el.end_line), el.col + 4, assoc.text())
         put(el.end_line, el.col, "END_STEP")
+        for assoc in step.assocs:
+            if assoc.once:  # a CODESYS entry or exit action: its statements once, not in the final scan too
+                once = f"ACTION {assoc.once}: IF {assoc.once}.Q THEN {assoc.action}(); END_IF; END_ACTION"
+                put(el.end_line, el.col, once, origin=(assoc.el.line, assoc.el.col))
 
     def _inline(self, inline) -> None:
         if not supported(inline.lang):

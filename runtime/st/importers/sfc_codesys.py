@@ -4,7 +4,10 @@ keyed by GUID) and of its POU (``.../sfcsettings``).
 
 A step's attributes name its step action (run while the step is active),
 its entry action and its exit action; they become the IEC ed.3
-associations N, P1 and P0. Its minimum and maximum time are not
+associations N, P1 and P0, the last two through an action of their own
+that calls the entry or exit action only while its Q is TRUE: an IEC P1
+or P0 action runs twice (its pulse and its final scan), CODESYS runs an
+entry or exit action once. Its minimum and maximum time are not
 supervised here (W210), and the SFC flags a POU declares for use
 (SFCInit, SFCReset, SFCPause ...) are not driven (W212).
 """
@@ -36,9 +39,10 @@ def _attributes(el: PosElement) -> dict:
 
 
 def codesys_step(step: PosElement, out: BodyOut) -> tuple:
-    """(duplicated, [(action, qualifier, element)]) of a step: whether
+    """(duplicated, [(action, qualifier, element, once)]) of a step: whether
     CODESYS marks it as another drawing of a step of the same name, and
-    the associations its step, entry and exit actions make."""
+    the associations its step, entry and exit actions make (once: "entry"
+    or "exit" for an action CODESYS runs once, else None)."""
     attrs = _attributes(step)
     assocs = []
     for guid, qualifier, what in ((_ENTRY, "P1", "entry"), (_MAIN, "N", "step"), (_EXIT, "P0", "exit")):
@@ -49,16 +53,7 @@ def codesys_step(step: PosElement, out: BodyOut) -> tuple:
         if not (name.isascii() and name.replace("_", "a").isalnum() and not name[0].isdigit()):
             out.error("E183", f"the {what} action {name!r} is not an ST identifier", attr)
             continue
-        assocs.append((name, qualifier, attr))
-        if qualifier != "N":
-            out.warning(
-                "W211",
-                f"step {step.get('name')}: its {what} action {name} runs as {name}({qualifier}), an IEC action: "
-                "in the cycle it pulses and once more as its Q falls (its final scan); "
-                f"CODESYS runs an {what} action once",
-                attr,
-                f"run its statements only while {name}.Q is TRUE (IF {name}.Q THEN ... END_IF) to run them once",
-            )
+        assocs.append((name, qualifier, attr, what if qualifier != "N" else None))
     for guid, what in ((_MIN_TIME, "minimum"), (_MAX_TIME, "maximum")):
         attr = attrs.get(guid)
         value = (attr.text or "").strip() if attr is not None else ""

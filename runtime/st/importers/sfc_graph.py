@@ -60,10 +60,13 @@ class Assoc:
     el: PosElement
     duration: str | None = None
     indicator: str | None = None
+    # a CODESYS entry or exit action: run once, through an action of its own
+    # that calls it while its Q is TRUE (sfc.py), named here
+    once: str | None = None
 
     def text(self) -> str:
         args = [self.qualifier, *(a for a in (self.duration, self.indicator) if a)]
-        return f"{self.action}({', '.join(args)});"
+        return f"{self.once or self.action}({', '.join(args)});"
 
 
 @dataclass(eq=False)
@@ -221,7 +224,9 @@ class Chart:
         if name is None:
             return
         dup, found = codesys_step(el, self.out)
-        assocs = [Assoc(action, qualifier, attr) for action, qualifier, attr in found]
+        assocs = [
+            Assoc(action, qualifier, attr, once=once and f"_{name}_{once}") for action, qualifier, attr, once in found
+        ]
         step = Step(el, name, el.get("initialStep") == "true", assocs)
         first = self.by_name.get(name.upper())
         if first is not None and dup:

@@ -101,8 +101,9 @@ def test_the_codesys_chart_runs_as_its_textual_twin():
     # Fill.T >= T#50ms (an inVariable wired to the transition, as CODESYS draws it)
     assert active(got[6], *steps) == ["Fill"] and active(got[7], *steps) == ["Rinse"]
     assert got[6]["Fill.T"] == 40 and got[7]["Fill.T"] == 50
-    # the step action (N) ran while Fill was active and once more; entry P1, exit P0 (twice each: pulse and final scan)
-    assert (got[7]["ticks"], got[8]["entries"], got[8]["exits"]) == (6, 2, 2)
+    # the step action (N) ran while Fill was active and once more; the entry and exit actions once each
+    assert (got[7]["ticks"], got[8]["entries"], got[8]["exits"]) == (6, 1, 1)
+    assert (got[2]["entries"], got[6]["exits"], got[7]["exits"]) == (1, 0, 1)  # entry as Fill starts, exit as it ends
     assert got[7]["valve"] and got[8]["valve"] and not got[9]["valve"]  # SL T#20ms
     assert active(got[12], *steps) == ["Init"]  # NOT go, then the jump to Init
     assert active(got[23], *steps) == ["Init"]  # stop, the right branch of Fill's divergence
@@ -112,7 +113,8 @@ def test_export_st_writes_the_textual_sfc():
     diags = DiagnosticBag()
     text = st_export(str(CODESYS), CODESYS.read_text(), diags)
     assert "TRANSITION FROM Init TO Fill := go ; END_TRANSITION" in text
-    assert "STEP Fill:\nFill_entry(P1);\nFill_active(N);\nFill_exit(P0);\nEND_STEP" in text
+    assert "STEP Fill:\n_Fill_entry(P1);\nFill_active(N);\n_Fill_exit(P0);\nEND_STEP" in text
+    assert "ACTION _Fill_entry: IF _Fill_entry.Q THEN Fill_entry(); END_IF; END_ACTION" in text
     text = st_export(str(BEREMIZ), BEREMIZ.read_text(), diags)
     assert "TRANSITION Enough (PRIORITY := 4) FROM Run TO (A, B) :" in text  # a named transition, statements
     assert "TRANSITION Abort (PRIORITY := 2) FROM Run TO Done :=" in text  # its second use: a copy
@@ -128,8 +130,6 @@ def test_codesys_step_data_beside_iec_is_reported_where_it_is():
     found = {(d.code, _line_text(CODESYS, d.pos.line).strip()) for d in diags}
     assert found == {
         ("W210", '<attribute guid="b693554c-1b01-4a8d-afde-9e3a46f7465d">T#5s</attribute>'),
-        ("W211", '<attribute guid="a6b08bd8-b696-47e3-9cbf-7408b61c9ff8">Fill_entry</attribute>'),
-        ("W211", '<attribute guid="a2621e18-7de3-4ea6-ae6d-89e9e0b7befd">Fill_exit</attribute>'),
         ("W212", '<Init Declare="true" Use="true" />'),
     }
 
