@@ -15,7 +15,8 @@ the result holds whatever could be parsed.
 How it works:
   1. lexer.strip_comments blanks out comments and pragmas, keeping every
      line and column (whether (* *) comments nest is the profile's
-     choice); lexer.Lexer cuts the rest into tokens.
+     choice); il.py lowers IL bodies to ST on their own lines;
+     lexer.Lexer cuts the rest into tokens.
   2. The LALR(1) table comes from lark (grammar.lark, analysed once per
      process, on first use, through lark_adapter.py; st_grammar.py). The
      token loop is ours (parse_stack.py): it runs the table and calls the
@@ -36,6 +37,7 @@ from bisect import bisect_left
 
 from . import ast
 from .diagnostics import DiagnosticBag
+from .il import lower_il, relocate
 from .lexer import INVALID_RUN, Tok, line_col, strip_comments
 from .limits import MAX_ERRORS, MAX_NESTING, MAX_SOURCE_CHARS
 from .parse_recovery import Recovery
@@ -78,8 +80,11 @@ class _Parse(Recovery):
             )
             return ast.SourceFile(self.path, [], pos=ast.Pos(self.path, 1, 1))
         pragmas: list = []
+        il_ranges: list = []
+        il_where: dict = {}
         try:
             self.text, pragmas = strip_comments(text, comment_error, self.profile.nested_comments)
+            self.text, il_ranges, il_where = lower_il(self.text, self.path, self.diags, self.g.lexer)
             self.tokens = self.g.lexer.tokens(self.text, self._accepts, self._bad_characters, self._fits)
             if self.origins:
                 self.tokens = _relocated(self.tokens, self.origins)
@@ -98,6 +103,8 @@ class _Parse(Recovery):
             result = None
         if not isinstance(result, ast.SourceFile):
             result = ast.SourceFile(self.path, [], pos=ast.Pos(self.path, 1, 1))
+        result.lowered.extend(il_ranges)
+        relocate(result, il_where)
         if pragmas:
             warn_ignored(pragmas, self.path, self.diags)
             self._attach(pragmas)
