@@ -27,10 +27,9 @@ from __future__ import annotations
 
 import re
 from bisect import bisect_right
-
 from dataclasses import fields
 
-from .ast import Node, Pos, SourceFile, Stmt
+from .ast import Binary, Node, Pos, SourceFile, Stmt
 from .diagnostics import DiagnosticBag
 from .il_lower import Layout, Lowering
 from .il_parse import BARE_OPS, OPS, PAREN_OPS, read_il
@@ -53,9 +52,7 @@ _END = re.compile(
 )
 _POU = re.compile(r"^[ \t]*(?:PROGRAM|FUNCTION_BLOCK|FUNCTION)\b", re.I | re.M)
 _VARS = re.compile(r"\bVAR\w*\b(.*?)\bEND_VAR\b", re.I | re.S)
-_DECL = re.compile(
-    r"([A-Za-z_]\w*(?:\s*,\s*[A-Za-z_]\w*)*)\s*(?:AT\s+%\S+\s*)?:(?!=)\s*([A-Za-z_]\w*)", re.A
-)
+_DECL = re.compile(r"([A-Za-z_]\w*(?:\s*,\s*[A-Za-z_]\w*)*)\s*(?:AT\s+%\S+\s*)?:(?!=)\s*([A-Za-z_]\w*)", re.A)
 _TYPES = re.compile(r"\bTYPE\b(.*?)\bEND_TYPE\b", re.I | re.S)
 _TYPE_NAME = re.compile(r"([A-Za-z_]\w*)\s*:(?!=)", re.A)
 ELEMENTARY = frozenset(
@@ -91,9 +88,9 @@ def lower_il(text: str, path: str, diags: DiagnosticBag, lexer) -> tuple:
         before = errors[0]
         items = read_il(texts, first, last, lexer, report)
         out = Layout(first, last)
-        indent = {n: len(t) - len(t.lstrip()) + 1 for n, t in texts.items() if t.strip()}
-        lowering = Lowering(items, out, report, _fb_names(text, start, types), indent)
-        lowering.run()
+        if errors[0] == before:  # (IL that does not read is not lowered: what would follow is noise)
+            indent = {n: len(t) - len(t.lstrip()) + 1 for n, t in texts.items() if t.strip()}
+            Lowering(items, out, report, _fb_names(text, start, types), indent).run()
         failed = errors[0] > before
         for n in range(first, last + 1):
             lines[n - 1] = "" if failed else out.lines[n]
@@ -131,14 +128,27 @@ class _Relocate:
             for item in value:
                 self.value(item)
 
+    def _operator(self, node: Binary) -> tuple | None:
+        """The IL position of a binary operation's operator: of the first
+        piece between its operands (it says more than the left operand,
+        where the ST node starts: AND b, not the LD three lines above)."""
+        after = (node.left.pos.end_line, node.left.pos.end_col)
+        before = (node.right.pos.line, node.right.pos.col)
+        for line in range(after[0], before[0] + 1):
+            for first, _after, il_line, il_col in self.where.get(line, ()):
+                if after <= (line, first) < before:
+                    return il_line, il_col
+        return None
+
     def node(self, node: Node) -> None:
         pos = node.pos
         if pos.line in self.where and pos.file == self.path and not isinstance(node, Stmt):
-            start = self._at(pos.line, pos.col)
+            start = self._operator(node) if isinstance(node, Binary) else None
+            start = start or self._at(pos.line, pos.col)
             if start is not None:
                 end = self._at(pos.end_line, pos.end_col - 1)
                 end = (end[0], end[1] + 1) if end is not None and end >= start else (start[0], start[1] + 1)
-                node.pos = Pos(pos.file, *start, *end)
+                node.pos = Pos(pos.file, start[0], start[1], end[0], end[1])
         names = self.fields.get(type(node))
         if names is None:
             names = self.fields[type(node)] = tuple(f.name for f in fields(node) if f.name not in _NOT_CHILDREN)
@@ -236,7 +246,7 @@ def _fb_names(text: str, start: int, types: set) -> set:
     head = 0
     for m in _POU.finditer(text, 0, start):
         head = m.start()
-    names = set()
+    names: set = set()
     for block in _VARS.findall(text, head, start):
         for decl in _DECL.finditer(block):
             ty = decl.group(2).upper()

@@ -39,73 +39,15 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from .il_parse import Arg, Instr, Label, Operand
+from .il_emit import ATOM, ST_OP, UNARY, Ex, Layout, Piece, binop, earliest, negate, wrap
+from .il_parse import Instr, Label, Operand
 
-PREC = {"OR": 1, "XOR": 2, "AND": 3, "=": 4, "<>": 4, "<": 5, ">": 5, "<=": 5, ">=": 5, "+": 6, "-": 6}
-PREC.update({"*": 7, "/": 7, "MOD": 7})
-ST_OP = {"AND": "AND", "OR": "OR", "XOR": "XOR", "ADD": "+", "SUB": "-", "MUL": "*", "DIV": "/", "MOD": "MOD"}
-ST_OP.update({"GT": ">", "GE": ">=", "EQ": "=", "NE": "<>", "LE": "<=", "LT": "<"})
-_UNARY = 9
-_ATOM = 10
 # Instructions that do not read the CR (after a label: the CR is not needed)
 _NO_READ = frozenset(("LD", "FORMAL"))
 # Instructions that only compute a new CR (what may follow a label the CR crosses)
 _PURE = frozenset((*ST_OP, "NOT", "FUNC"))
 # Not inside parentheses (MatIEC's simple_instr_list: operators, LD, ST, calls)
 _NOT_IN_PARENS = frozenset(("S", "R", "INPUT", "JMP", "CAL", "RET"))
-
-
-class Piece:
-    __slots__ = ("text", "line", "col")
-
-    def __init__(self, text: str, line: int, col: int) -> None:
-        self.text, self.line, self.col = text, line, col
-
-
-class Ex:
-    """The CR as an ST expression: its pieces, the precedence of its top
-    operator, the names it reads, the function calls in it (name, Ex),
-    whether it is a literal or a plain variable (simple), the first line
-    where it may fault (risky, 0: none), whether a statement has read it."""
-
-    __slots__ = ("pieces", "prec", "reads", "calls", "simple", "risky", "used")
-
-    def __init__(self, pieces, prec=_ATOM, reads=frozenset(), calls=(), simple=False, risky=0) -> None:
-        self.pieces: list = pieces
-        self.prec = prec
-        self.reads: frozenset = reads
-        self.calls: tuple = calls
-        self.simple = simple
-        self.risky = risky
-        self.used = False
-
-
-def _risky(*lines: int) -> int:
-    found = [n for n in lines if n]
-    return min(found) if found else 0
-
-
-def _wrap(e: Ex) -> list:
-    first, last = e.pieces[0], e.pieces[-1]
-    return [Piece("(", first.line, max(first.col - 1, 0)), *e.pieces, Piece(")", last.line, 0)]
-
-
-def binop(left: Ex, op: str, right: Ex, at: Piece, risky: int = 0) -> Ex:
-    p = PREC[op]
-    lp = _wrap(left) if left.prec < p else left.pieces
-    rp = _wrap(right) if right.prec <= p else right.pieces
-    return Ex(
-        [*lp, at, *rp],
-        p,
-        left.reads | right.reads,
-        left.calls + right.calls,
-        risky=_risky(left.risky, right.risky, risky),
-    )
-
-
-def negate(e: Ex, at: Piece) -> Ex:
-    pieces = _wrap(e) if e.prec < _UNARY else e.pieces
-    return Ex([at, *pieces], _UNARY, e.reads, e.calls, risky=e.risky)
 
 
 class Undef:
@@ -120,34 +62,6 @@ class Undef:
 
 _START = Undef("at the start of the body", hint="start with LD (or LDN) to load the current result")
 _ERROR = Undef("", code="")  # after a reported problem: nothing more is said
-
-
-class Layout:
-    """The ST text of a body's lines, written in order: a piece goes at its
-    line and column, or after what is already there (line 0: where the
-    last piece went). ``where``: line -> [(first column, column after, IL
-    line, IL column)] of the pieces that come from a place in the IL (their
-    own, unless put elsewhere: src), for il.relocate."""
-
-    def __init__(self, first: int, last: int) -> None:
-        self.lines = {n: "" for n in range(first, last + 1)}
-        self.cur = first
-        self.where: dict = {}
-
-    def put(self, text: str, line: int, col: int, src: tuple | None = None) -> None:
-        if src is None and col > 0:
-            src = (line, col)
-        if line < self.cur:
-            line = self.cur
-        self.cur = line
-        s = self.lines[line]
-        if len(s) < col - 1:
-            s += " " * (col - 1 - len(s))
-        elif s and s[-1] not in " (" and text[0] not in "),;":
-            s += " "
-        if src is not None:
-            self.where.setdefault(line, []).append((len(s) + 1, len(s) + 1 + len(text), *src))
-        self.lines[line] = s + text
 
 
 Report = Callable[[str, str, int, int, int, str], None]
@@ -174,8 +88,11 @@ class Lowering:
         self.prefix: dict = {}  # group -> (first, last) item of the code after it that reads the CR, or "bad"
 
     def report(self, code: str, message: str, line: int, col: int, end_col: int, hint: str) -> None:
+        """Only the first problem: the body is left out, and what follows
+        one problem is often another only because of it."""
+        if not self.failed:
+            self._report(code, message, line, col, end_col, hint)
         self.failed = True
-        self._report(code, message, line, col, end_col, hint)
 
     # ------------------------------------------------------------ the body
 
@@ -353,8 +270,8 @@ class Lowering:
                 return
             inner = self._read(it)
             left, opener = self.stack.pop()
-            if inner.prec < _UNARY:  # IL's parentheses stay, for the reader
-                inner = Ex(_wrap(inner), _ATOM, inner.reads, inner.calls, risky=inner.risky)
+            if inner.prec < UNARY:  # IL's parentheses stay, for the reader
+                inner = Ex(wrap(inner), ATOM, inner.reads, inner.calls, risky=inner.risky)
             if opener.neg:
                 inner = negate(inner, self._piece("NOT", it.line, 0))
             self.cr = self._binop(left, opener, inner)
@@ -394,14 +311,15 @@ class Lowering:
             pieces.append(Piece(")", 0, 0))
             reads = frozenset().union(*(e.reads for e in parts))
             calls = sum((e.calls for e in parts), ())
-            risky = _risky(*(e.risky for e in parts))
+            risky = earliest(*(e.risky for e in parts))
         else:
             self._discard()
-            pieces = [self._piece(it.name + "(", it.line, it.col), *self._args(it.args)]
+            args = it.args or []
+            pieces = [self._piece(it.name + "(", it.line, it.col), *self._args(args)]
             pieces.append(self._piece(")", *it.close))
-            reads = frozenset().union(*(a.value.reads for a in it.args if a.value is not None))
+            reads = frozenset().union(*(a.value.reads for a in args if a.value is not None))
             calls, risky = (), 0
-        e = Ex(pieces, _ATOM, reads, (), risky=risky)
+        e = Ex(pieces, ATOM, reads, (), risky=risky)
         e.calls = (*calls, (it.name, e))
         self.cr = e
 
@@ -447,8 +365,12 @@ class Lowering:
             self._put(");", 0, 0)
             value.used = True
         else:
-            value_text = ":= TRUE;" if it.op == "S" else ":= FALSE;"
-            self._if(value, it, lambda: (self._put(target.text, target.line, target.col), self._put(value_text, 0, 0)))
+
+            def assign() -> None:
+                self._put(target.text, target.line, target.col)
+                self._put(":= TRUE;" if it.op == "S" else ":= FALSE;", 0, 0)
+
+            self._if(value, it, assign)
         self._after_effect(value, it, {target.root})
 
     def _cal(self, it: Instr) -> None:
@@ -460,6 +382,7 @@ class Lowering:
                 self._put(p.text, p.line, p.col)
             self._put(");", *(it.close if it.args is not None else (fb.line, 0)))
 
+        value: Ex | None = None
         if it.cond:
             value = self._read(it)
             self._if(value, it, call)
@@ -515,7 +438,9 @@ class Lowering:
                 self._discard()
                 effect(None)
             self.cr = Undef(
-                f"after {it.name}: nothing leads to this instruction", hint="put a label before it, or remove it", dead=True
+                f"after {it.name}: nothing leads to this instruction",
+                hint="put a label before it, or remove it",
+                dead=True,
             )
             return
         value = self._read(it)
@@ -564,7 +489,7 @@ class Lowering:
                     call.used = True
 
     def _atom(self, o: Operand) -> Ex:
-        prec = _UNARY if o.signed else _ATOM
+        prec = UNARY if o.signed else ATOM
         return Ex(
             [self._piece(o.text, o.line, o.col)],
             prec,
@@ -610,4 +535,4 @@ class Lowering:
 
 
 _RPAR_HINT = "')' ends an operand opened with AND(, OR(, ADD( ...; remove it or open one"
-__all__ = ["Arg", "Layout", "Lowering"]
+__all__ = ["Layout", "Lowering"]

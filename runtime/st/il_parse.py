@@ -144,7 +144,7 @@ def tokenize(text: str, line: int, lexer) -> list:
             if ch in "'\"":
                 raise ILError("E004", "unterminated string", (line, pos + 1, n + 1), f"close it with {ch} on its line")
             raise ILError("E002", f"invalid character {ch!r}", (line, pos + 1, pos + 2), None)
-        group: str = m.lastgroup  # type: ignore[assignment]
+        group = str(m.lastgroup)
         value = m.group(group)
         kind = value if group == "PUNCT" and value in punct else group
         toks.append(Tk(kind, value, line, m.start(group), m.end()))
@@ -171,10 +171,7 @@ class _Reader:
             try:
                 self.line(toks)
             except ILError as e:
-                code, message, where, hint = e.args
-                if isinstance(where, Tk):
-                    where = (where.line, where.col, where.col + len(where.value))
-                report(code, message, *where, hint)
+                _report(report, e)
             self.r += 1
         return self.items
 
@@ -244,7 +241,12 @@ class _Reader:
         elif op == "JMP":
             t = self._need(toks, i, ins, "a label: JMP done")
             if t.kind != "NAME" or _reserved(t):
-                raise ILError("E198", f"{ins.name} needs a label, not {t.value!r}", t, "JMP done, with done: before an instruction")
+                raise ILError(
+                    "E198",
+                    f"{ins.name} needs a label, not {t.value!r}",
+                    t,
+                    "JMP done, with done: before an instruction",
+                )
             ins.operands.append(Operand(t.value, t.line, t.col, t.col + len(t.value), path=True))
             self._nothing_after(toks, i + 1, ins.name)
         elif ins.paren and i >= len(toks):
@@ -291,7 +293,7 @@ class _Reader:
                 if toks[i].kind != ",":
                     raise ILError("E192", f"unexpected {toks[i].value!r} after the operand", toks[i], _ONE_HINT)
                 i += 1
-                self._need(toks, i, ins, f"an operand after ','")
+                self._need(toks, i, ins, "an operand after ','")
         self.items.append(ins)
 
     def _need(self, toks: list, i: int, ins: Instr, what: str) -> Tk:
@@ -344,7 +346,8 @@ class _Reader:
 
     def _index(self, toks: list, i: int) -> tuple:
         """The subscript [ ... ] at toks[i]: (index after ']', names read)."""
-        depth, names, start = 0, set(), toks[i]
+        depth, start = 0, toks[i]
+        names: set = set()
         while i < len(toks):
             t = toks[i]
             if t.kind in ("[", "("):
@@ -372,10 +375,11 @@ class _Reader:
         this line or a later one): ([Arg], (line, col) of ')')."""
         args: list = []
         want, comma = True, None  # an argument may come next; the ',' before it
+        opener = toks[i - 1]
         while True:
             while i >= len(toks):  # the list goes on on the next line
                 if self.r + 1 >= len(self.rows):
-                    raise ILError("E193", "the argument list is not closed by ')'", toks[-1], "close it with ')'")
+                    raise ILError("E193", "the argument list is not closed by ')'", opener, "close it with ')'")
                 self.r += 1
                 toks, i = self.rows[self.r][1], 0
             t = toks[i]
@@ -417,7 +421,12 @@ class _Reader:
             return None, i
         value, j = self.operand(toks, i)
         if value.literal:
-            raise ILError("E198", f"an output goes to a variable, not {value.text}", (value.line, value.col, value.end_col), _ARG_HINT)
+            raise ILError(
+                "E198",
+                f"an output goes to a variable, not {value.text}",
+                (value.line, value.col, value.end_col),
+                _ARG_HINT,
+            )
         return value, j
 
 
@@ -454,6 +463,12 @@ _EXAMPLE = {
 }
 
 
+def _report(report: Report, e: ILError) -> None:
+    code, message, where, hint = e.args
+    line, col, end = (where.line, where.col, where.col + len(where.value)) if isinstance(where, Tk) else where
+    report(code, message, line, col, end, hint)
+
+
 def read_il(texts: dict, first: int, last: int, lexer, report: Report) -> list:
     """The labels and instructions of lines first..last (texts: line ->
     blanked text). Problems go to report(code, message, line, col, end_col,
@@ -466,8 +481,7 @@ def read_il(texts: dict, first: int, last: int, lexer, report: Report) -> list:
         try:
             toks = tokenize(text, n, lexer)
         except ILError as e:
-            code, message, where, hint = e.args
-            report(code, message, *where, hint)
+            _report(report, e)
             continue
         if toks:
             rows.append((n, toks))
