@@ -64,10 +64,11 @@ MAX_IL_ERRORS = 50  # per file
 _NOT_CHILDREN = frozenset(("pos", "ty", "const", "sym", "pragmas", "qualifier"))
 
 
-def lower_il(text: str, path: str, diags: DiagnosticBag, lexer) -> tuple:
+def lower_il(text: str, path: str, diags: DiagnosticBag, lexer, plain: dict | None = None) -> tuple:
     """(text with its IL bodies lowered to ST, [(first, last) line of each],
     where the pieces of ST come from: line -> [(column, column after, IL
-    line, IL column)], for relocate)."""
+    line, IL column)], for relocate). plain: gets line -> the ST of the
+    line with one blank between its pieces (for a reader)."""
     bodies = _find_bodies(text)
     if not bodies:
         return text, [], {}
@@ -97,6 +98,8 @@ def lower_il(text: str, path: str, diags: DiagnosticBag, lexer) -> tuple:
         ranges.append((first, last))
         if not failed:
             where.update(out.where)
+            if plain is not None:
+                plain.update(out.plain)
     return "\n".join(lines), ranges, where
 
 
@@ -256,25 +259,52 @@ def _fb_names(text: str, start: int, types: set) -> set:
 
 
 def lowered_for_reading(text: str, lexer) -> dict:
-    """For ``softplc export-st``: line -> the ST of that line of an IL body
-    of text (comments not blanked yet), with the line's comments; only the
-    lines that hold something in the IL ("" where nothing is left). {} when
-    text has no IL, or IL with errors (then the IL is shown as it is)."""
+    """For ``softplc export-st``: line -> the ST of the IL bodies of text
+    (comments not blanked yet), one statement a line where it took several
+    (n := n + 1; not n := n / + 1;), with the comments of its lines; ""
+    where nothing is left of an IL line. Only the lines that hold
+    something in the IL. {} when text has no IL, or IL with errors (then
+    the IL is shown as it is)."""
     blank, _ = strip_comments(text, lambda *_: None)
     diags = DiagnosticBag()
-    lowered, ranges, _where = lower_il(blank, "", diags, lexer)
+    plain: dict = {}
+    _lowered, ranges, _where = lower_il(blank, "", diags, lexer, plain)
     if not ranges or diags.has_errors:
         return {}
-    origs, blanks, lows = text.split("\n"), blank.split("\n"), lowered.split("\n")
-    out = {}
+    origs, blanks = text.split("\n"), blank.split("\n")
+    out: dict = {}
     for first, last in ranges:
+        group: list = []  # lines of one statement: (line, code, comments after)
         for n in range(first, last + 1):
-            orig = origs[n - 1]
-            if not orig.strip():
+            if not origs[n - 1].strip():
                 continue
-            before, after = _comments(orig, blanks[n - 1])
-            out[n] = " ".join(part for part in (before, lows[n - 1].strip(), after) if part)
+            before, after = _comments(origs[n - 1], blanks[n - 1])
+            code = plain[n]
+            if not code and not group:  # a line of comments
+                out[n] = after
+                continue
+            if before or after.count("(*") != after.count("*)") or after.count("/*") != after.count("*/"):
+                _flush(group, out)  # a comment of several lines: the line stays as it is
+                out[n] = " ".join(part for part in (before, code, after) if part)
+                continue
+            group.append((n, code, after))
+            if code.endswith((";", ":")):
+                _flush(group, out)
+        _flush(group, out)
     return out
+
+
+def _flush(group: list, out: dict) -> None:
+    """The lines of group as one: the code on the first line that has some,
+    the comments after it; the other lines empty, but for their comments."""
+    if not group:
+        return
+    code = " ".join(c for _n, c, _a in group if c)
+    at = next((n for n, c, _a in group if c), group[0][0])
+    for n, _c, _a in group:
+        out[n] = ""
+    out[at] = " ".join(part for part in (code, *(a for _n, _c, a in group if a)) if part)
+    group.clear()
 
 
 def _comments(orig: str, blank: str) -> tuple:

@@ -72,10 +72,12 @@ class Layout:
     line and column, or after what is already there (line 0: where the
     last piece went). ``where``: line -> [(first column, column after, IL
     line, IL column)] of the pieces that come from a place in the IL (their
-    own, unless put elsewhere: src), for il.relocate."""
+    own, unless put elsewhere: src), for il.relocate. ``plain``: the same
+    lines with one blank between pieces, for a reader (export-st)."""
 
     def __init__(self, first: int, last: int) -> None:
         self.lines = dict.fromkeys(range(first, last + 1), "")
+        self.plain = dict.fromkeys(range(first, last + 1), "")
         self.cur = first
         self.where: dict = {}
 
@@ -93,3 +95,5 @@ class Layout:
         if src is not None:
             self.where.setdefault(line, []).append((len(s) + 1, len(s) + 1 + len(text), *src))
         self.lines[line] = s + text
+        p = self.plain[line]
+        self.plain[line] = p + (" " if p and p[-1] != "(" and text[0] not in "),;" else "") + text
