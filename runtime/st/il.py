@@ -82,6 +82,7 @@ def lower_il(text: str, path: str, diags: DiagnosticBag, lexer, plain: dict | No
             diags.error(code, message, Pos(path, line, col, line, end_col), hint or None)
 
     types = {m.upper() for block in _TYPES.findall(text) for m in _TYPE_NAME.findall(block)}
+    heads = [m.start() for m in _POU.finditer(text)]
     for start, end in bodies:
         first = bisect_right(starts, start)
         last = bisect_right(starts, end - 1) if end > start else first
@@ -91,7 +92,7 @@ def lower_il(text: str, path: str, diags: DiagnosticBag, lexer, plain: dict | No
         out = Layout(first, last)
         if errors[0] == before:  # (IL that does not read is not lowered: what would follow is noise)
             indent = {n: len(t) - len(t.lstrip()) + 1 for n, t in texts.items() if t.strip()}
-            Lowering(items, out, report, _fb_names(text, start, types), indent).run()
+            Lowering(items, out, report, _fb_names(text, start, types, heads), indent).run()
         failed = errors[0] > before
         for n in range(first, last + 1):
             lines[n - 1] = "" if failed else out.lines[n]
@@ -125,11 +126,22 @@ class _Relocate:
         return None
 
     def value(self, value) -> None:
-        if isinstance(value, Node):
-            self.node(value)
-        elif isinstance(value, (list, tuple)):
-            for item in value:
-                self.value(item)
+        """Every node in value, each before its children (an explicit stack:
+        a chain of a thousand IL operators is a tree that deep)."""
+        stack = [value]
+        while stack:
+            item = stack.pop()
+            if isinstance(item, Node):
+                self.node(item)
+                stack.extend(getattr(item, name) for name in self._children(item))
+            elif isinstance(item, (list, tuple)):
+                stack.extend(item)
+
+    def _children(self, node: Node) -> tuple:
+        names = self.fields.get(type(node))
+        if names is None:
+            names = self.fields[type(node)] = tuple(f.name for f in fields(node) if f.name not in _NOT_CHILDREN)
+        return names
 
     def _operator(self, node: Binary) -> tuple | None:
         """The IL position of a binary operation's operator: of the first
@@ -152,11 +164,6 @@ class _Relocate:
                 end = self._at(pos.end_line, pos.end_col - 1)
                 end = (end[0], end[1] + 1) if end is not None and end >= start else (start[0], start[1] + 1)
                 node.pos = Pos(pos.file, start[0], start[1], end[0], end[1])
-        names = self.fields.get(type(node))
-        if names is None:
-            names = self.fields[type(node)] = tuple(f.name for f in fields(node) if f.name not in _NOT_CHILDREN)
-        for name in names:
-            self.value(getattr(node, name))
 
 
 def _line_starts(text: str) -> list:
@@ -242,13 +249,12 @@ def _il_start(text: str, pos: int) -> int:
     return start if rest and _OPERAND_START.match(rest) and not rest.startswith(":=") else -1
 
 
-def _fb_names(text: str, start: int, types: set) -> set:
+def _fb_names(text: str, start: int, types: set, heads: list) -> set:
     """The upper names the POU around offset start declares with a type that
     is not elementary and not a TYPE of this text: its function block
-    instances (S and R on them call them)."""
-    head = 0
-    for m in _POU.finditer(text, 0, start):
-        head = m.start()
+    instances (S and R on them call them). heads: where the POUs start."""
+    k = bisect_right(heads, start)
+    head = heads[k - 1] if k else 0
     names: set = set()
     for block in _VARS.findall(text, head, start):
         for decl in _DECL.finditer(block):

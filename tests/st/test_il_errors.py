@@ -127,6 +127,13 @@ END_PROGRAM
     assert err.value.kind == "bounds" and err.value.pos.line == 7
 
 
+def test_a_chain_too_long_is_e006_as_in_st():
+    """A thousand IL operators make a thousand-deep ST expression: E006, as
+    the same in ST, not an internal error."""
+    got = diagnostics("LD n\n" + "ADD 1\n" * 999 + "ST n\n")
+    assert [code for code, _line, _col in got] == ["E006"]
+
+
 @pytest.mark.parametrize("profile", ["iec", "matiec"])
 def test_jmp_in_il_is_no_e159_in_profiles_without_jumps_in_st(profile):
     assert diagnostics("LD a\nJMPC skip\nLD b\nST x\nskip: LD c\nJMPCN skip\n", profile) == []
