@@ -1,6 +1,6 @@
 """IL, the instruction list of IEC 61131-3 ed.2, in an ST text: each IL body
 is lowered to ST in place, before the parse (parser.py calls ``lower_il``
-on the text whose comments are blanked).
+on the text whose comments are blanked, when it did not parse as ST).
 
     text, ranges = lower_il(text, path, diags, lexer)
 
@@ -19,8 +19,9 @@ unchanged, and the ST's positions are the IL's). ``ranges`` are the
 IL's own, allowed in every profile). A body with a problem (E002, E004,
 E190-E198) is left empty, so that only its own diagnostics are reported.
 
-Looking for IL costs one regular-expression scan of the text for END_VAR
-and POU headers, and a look at what follows each of them.
+Looking for IL costs a few str.find passes over the text for END_VAR and
+POU headers, and a look at what follows each; parser.py looks only in a
+file that did not parse as ST.
 """
 
 from __future__ import annotations
@@ -35,7 +36,7 @@ from .il_lower import Layout, Lowering
 from .il_parse import BARE_OPS, OPS, PAREN_OPS, read_il
 from .lexer import strip_comments
 
-__all__ = ["lower_il", "lowered_for_reading", "relocate"]
+__all__ = ["has_il", "lower_il", "lowered_for_reading", "relocate"]
 
 # What an IL body follows: the end of a VAR block (or of a method, before
 # the body of its FB), or a header line (PROGRAM p, ACTION a:, ...)
@@ -164,6 +165,11 @@ class _Relocate:
                 end = self._at(pos.end_line, pos.end_col - 1)
                 end = (end[0], end[1] + 1) if end is not None and end >= start else (start[0], start[1] + 1)
                 node.pos = Pos(pos.file, start[0], start[1], end[0], end[1])
+
+
+def has_il(text: str) -> bool:
+    """Whether text (comments blanked) holds an IL body."""
+    return bool(_find_bodies(text))
 
 
 def _line_starts(text: str) -> list:
