@@ -41,7 +41,7 @@ __all__ = ["has_il", "lower_il", "lowered_for_reading", "relocate"]
 # What an IL body follows: the end of a VAR block (or of a method, before
 # the body of its FB), or a header line (PROGRAM p, ACTION a:, ...)
 _AFTER = ("END_VAR", "END_METHOD", "END_PROPERTY")
-_HEADERS = ("PROGRAM", "FUNCTION", "METHOD", "ACTION")
+_HEADERS = ("PROGRAM", "FUNCTION", "METHOD", "ACTION", "TRANSITION")
 _BLANK = re.compile(r"[ \t\f\r\v]*\n[ \t\f\r\n\v]*")
 _LABEL = re.compile(r"([A-Za-z_]\w*)[ \t]*:(?!=)[ \t\f\r\n\v]*", re.A)
 _WORD = re.compile(r"(&N?|[A-Za-z_]\w*)[ \t]*(\(?)[ \t]*", re.A)
@@ -84,7 +84,7 @@ def lower_il(text: str, path: str, diags: DiagnosticBag, lexer, plain: dict | No
 
     types = {m.upper() for block in _TYPES.findall(text) for m in _TYPE_NAME.findall(block)}
     heads = [m.start() for m in _POU.finditer(text)]
-    for start, end in bodies:
+    for start, end, colon in bodies:
         first = bisect_right(starts, start)
         last = bisect_right(starts, end - 1) if end > start else first
         texts = {n: lines[n - 1] for n in range(first, last + 1)}
@@ -93,10 +93,18 @@ def lower_il(text: str, path: str, diags: DiagnosticBag, lexer, plain: dict | No
         out = Layout(first, last)
         if errors[0] == before:  # (IL that does not read is not lowered: what would follow is noise)
             indent = {n: len(t) - len(t.lstrip()) + 1 for n, t in texts.items() if t.strip()}
-            Lowering(items, out, report, _fb_names(text, start, types, heads), indent).run()
+            lowering = Lowering(items, out, report, _fb_names(text, start, types, heads), indent)
+            lowering.condition = colon >= 0
+            lowering.run()
         failed = errors[0] > before
         for n in range(first, last + 1):
             lines[n - 1] = "" if failed else out.lines[n]
+        if colon >= 0:  # TRANSITION ... : IL  ->  TRANSITION ... := condition;
+            at = bisect_right(starts, colon)
+            col = colon - starts[at - 1]
+            lines[at - 1] = lines[at - 1][:col] + ":=" + lines[at - 1][col + 1 :]
+            if failed:
+                lines[first - 1] = "FALSE;"  # (its problem is reported: no other)
         ranges.append((first, last))
         if not failed:
             where.update(out.where)
@@ -181,11 +189,12 @@ def _line_starts(text: str) -> list:
 
 
 def _find_bodies(text: str) -> list:
-    """(start, end) offsets of the IL bodies: start at the line of the first
-    label or instruction, end before the line that closes the body."""
+    """(start, end, colon) offsets of the IL bodies: start at the line of
+    the first label or instruction, end before the line that closes the
+    body; colon: of a transition's ':' (-1: the body is no transition's)."""
     bodies: list = []
     pos = 0
-    for after in _contexts(text):
+    for after, colon in _contexts(text):
         if after < pos:
             continue
         start = _il_start(text, after)
@@ -193,16 +202,17 @@ def _find_bodies(text: str) -> list:
             continue
         e = _END.search(text, start)
         end = e.start() if e is not None else len(text)
-        bodies.append((text.rfind("\n", 0, start) + 1, end))
+        bodies.append((text.rfind("\n", 0, start) + 1, end, colon))
         pos = end
     return bodies
 
 
 def _contexts(text: str) -> list:
-    """The offsets after which an IL body may start: after END_VAR,
+    """(offset, colon) after which an IL body may start: after END_VAR,
     END_METHOD, END_PROPERTY, and at the end of a header line (one with no
-    ';' that starts with PROGRAM, FUNCTION, FUNCTION_BLOCK, METHOD or
-    ACTION). str.find, not a regular expression: this runs on every file."""
+    ';' that starts with PROGRAM, FUNCTION, FUNCTION_BLOCK, METHOD, ACTION,
+    or TRANSITION and ends with ':', whose offset is colon; -1 for the
+    others)."""
     up, found = text.upper(), []
     n = len(up)
     for kw in (*_AFTER, *_HEADERS):
@@ -211,12 +221,16 @@ def _contexts(text: str) -> list:
             q = p + len(kw)
             if (p == 0 or not _wordy(up[p - 1])) and (q == n or not _wordy(up[q]) or up.startswith("_BLOCK", q)):
                 if kw in _AFTER:
-                    found.append(q)
+                    found.append((q, -1))
                 elif not up[up.rfind("\n", 0, p) + 1 : p].strip():  # first on its line
                     eol = up.find("\n", q)
                     eol = n if eol < 0 else eol
-                    if ";" not in up[q:eol]:
-                        found.append(eol)
+                    if ";" in up[q:eol]:
+                        pass
+                    elif kw != "TRANSITION":
+                        found.append((eol, -1))
+                    elif up[q:eol].rstrip().endswith(":"):  # TRANSITION FROM s1 TO s2 :
+                        found.append((eol, q + len(up[q:eol].rstrip()) - 1))
             p = up.find(kw, q)
     return sorted(found)
 

@@ -46,6 +46,8 @@ from .il_parse import Instr, Label, Operand
 _NO_READ = frozenset(("LD", "FORMAL"))
 # Instructions that only compute a new CR (what may follow a label the CR crosses)
 _PURE = frozenset((*ST_OP, "NOT", "FUNC"))
+# What a transition's condition may hold
+_CONDITION = frozenset((*_PURE, "LD", "FORMAL", ")"))
 # Not inside parentheses (MatIEC's simple_instr_list: operators, LD, ST, calls)
 _NOT_IN_PARENS = frozenset(("S", "R", "INPUT", "JMP", "CAL", "RET"))
 
@@ -84,6 +86,7 @@ class Lowering:
         # went, a statement of them alone on this line (None: not copying)
         self.pin: int | None = None
         self.failed = False
+        self.condition = False  # a transition's condition: only the CR, written at the end
         self.groups: dict = {}  # UPPER label -> index of its group's first item
         self.prefix: dict = {}  # group -> (first, last) item of the code after it that reads the CR, or "bad"
 
@@ -101,6 +104,18 @@ class Lowering:
         items, i = self.items, 0
         while i < len(items):
             it = items[i]
+            if self.condition and (isinstance(it, Label) or it.op not in _CONDITION):
+                what = f"label {it.name}" if isinstance(it, Label) else it.name
+                self.report(
+                    "E199",
+                    f"{what} in a transition's condition",
+                    it.line,
+                    it.col,
+                    it.col + len(what),
+                    "the IL of a transition computes its condition: LD, operators, parentheses and function calls; "
+                    "the current result at its end is the condition",
+                )
+                return
             if isinstance(it, Label):
                 i = self._group(i)
                 continue
@@ -119,6 +134,14 @@ class Lowering:
             i += 1
         if self.stack:
             self._unclosed()
+        if self.condition:
+            last = items[-1] if items else None
+            if isinstance(self.cr, Undef) and isinstance(last, Instr):
+                self._read(last, why="the transition's condition")
+            elif isinstance(self.cr, Ex):
+                self._pieces(self.cr)
+                self._put(";", 0, 0)
+            return
         self._discard()
 
     def _unclosed(self) -> None:

@@ -790,3 +790,63 @@ def test_a_file_without_il_is_left_as_it_is():
     diags = DiagnosticBag()
     text, ranges, where = lower_il(BOOL_ST, "main.st", diags, grammar().lexer)
     assert (text, ranges, where, diags.items) == (BOOL_ST, [], {}, [])
+
+
+# ---------------------------------------------------------------- textual SFC: IL in actions and transitions
+
+SFC_HEAD = """
+PROGRAM Main
+VAR n, runs : INT; fast : BOOL; END_VAR
+INITIAL_STEP Idle: END_STEP
+"""
+SFC_IL = (
+    SFC_HEAD
+    + """TRANSITION FROM Idle TO Run :
+    LD n
+    MOD 3
+    EQ 0
+    OR( fast
+    ANDN fast
+    )
+END_TRANSITION
+STEP Run: Count(N); END_STEP
+TRANSITION FROM Run TO Idle:
+    LD n
+    MOD( 4
+    ADD 0
+    )
+    EQ 3
+END_TRANSITION
+ACTION Count:
+    LD n
+    ADD 1
+    ST n
+    GT 5
+    ST fast
+    LD runs
+    ADD 1
+    ST runs
+END_ACTION
+END_PROGRAM
+"""
+)
+SFC_ST = (
+    SFC_HEAD
+    + """TRANSITION FROM Idle TO Run := n MOD 3 = 0 OR (fast AND NOT fast); END_TRANSITION
+STEP Run: Count(N); END_STEP
+TRANSITION FROM Run TO Idle := n MOD 4 = 3; END_TRANSITION
+ACTION Count:
+    n := n + 1;
+    fast := n > 5;
+    runs := runs + 1;
+END_ACTION
+END_PROGRAM
+"""
+)
+
+
+def test_il_in_textual_sfc_transitions_and_actions():
+    """Beremiz writes an IL transition so: TRANSITION FROM a TO b : IL
+    END_TRANSITION, the current result at its end the condition."""
+    rows = twins(SFC_IL, SFC_ST, ["n", "runs", "Idle.X", "Run.X", "fast"], cycles=16)
+    assert varies(rows, "Idle.X") == {"True", "False"} and rows[-1]["runs"] > 3

@@ -73,6 +73,7 @@ def diagnostics(body: str, profile: str = "codesys") -> list:
         ("LD a\nCAL t(IN := a PT := T#1s)\n", [("E198", 2, 15)]),
         ("LD n\nST k[1\n", [("E198", 2, 5)]),
         ("IF: LD a\nST x\n", [("E198", 1, 1)]),
+        # E199 is a transition's (test_a_transition_in_il_computes_a_condition_only)
         # characters and strings, as in ST
         ("LD a\nAND b @\nST x\n", [("E002", 2, 7)]),
         ("LD 'abc\nST x\n", [("E004", 1, 4)]),
@@ -155,3 +156,22 @@ def test_softplc_check_exits_1_on_il_errors(tmp_path):
     out = proc.stdout + proc.stderr
     assert f"bad.st:{FIRST + 2}:1: error E190" in out and f"bad.st:{FIRST + 4}:1: error E191" in out
     assert "Traceback" not in out
+
+
+def test_a_transition_in_il_computes_a_condition_only():
+    src = """PROGRAM Main
+VAR n : INT; x : BOOL; END_VAR
+INITIAL_STEP Idle: END_STEP
+TRANSITION FROM Idle TO Run :
+    LD n
+    JMPC Idle
+END_TRANSITION
+STEP Run: END_STEP
+TRANSITION FROM Run TO Idle :
+    LD n
+    AND(
+END_TRANSITION
+END_PROGRAM
+"""
+    diags, _ = check_files([], texts={"main.st": src})
+    assert [(d.code, d.pos.line, d.pos.col) for d in diags if d.is_error] == [("E199", 6, 5), ("E193", 11, 5)]
