@@ -67,6 +67,10 @@ def negate(e: Ex, at: Piece) -> Ex:
     return Ex([at, *pieces], UNARY, e.reads, e.calls, risky=e.risky)
 
 
+# Two pieces that would open or close a comment if they touched (%I* then ')')
+_COMMENTS = frozenset(("(*", "*)", "//", "/*", "*/"))
+
+
 class Layout:
     """The ST text of a body's lines, written in order: a piece goes at its
     line and column, or after what is already there (line 0: where the
@@ -90,10 +94,11 @@ class Layout:
         s = self.lines[line]
         if len(s) < col - 1:
             s += " " * (col - 1 - len(s))
-        elif s and s[-1] not in " (" and text[0] not in "),;":
+        elif s and (s[-1] not in " (" and text[0] not in "),;" or s[-1] + text[0] in _COMMENTS):
             s += " "
         if src is not None:
             self.where.setdefault(line, []).append((len(s) + 1, len(s) + 1 + len(text), *src))
         self.lines[line] = s + text
         p = self.plain[line]
-        self.plain[line] = p + (" " if p and p[-1] != "(" and text[0] not in "),;" else "") + text
+        apart = p and (p[-1] != "(" and text[0] not in "),;" or p[-1] + text[0] in _COMMENTS)
+        self.plain[line] = p + (" " if apart else "") + text

@@ -235,6 +235,126 @@ def test_arithmetic_comparisons_and_typed_literals():
     assert varies(rows, "c1") == {"True", "False"} and len(varies(rows, "t")) > 3
 
 
+MORE_VARS = """
+VAR
+    n : INT;
+    a, b, c : BOOL;
+    y1, y2, y3, y4, y5, y6, y7, y8, y9 : BOOL;
+    k1, k2 : INT;
+    down : CTD;
+    zero : BOOL;
+END_VAR
+"""
+
+MORE_IL = f"""PROGRAM Main{MORE_VARS}
+LD n
+ADD 1
+ST n
+MOD 2
+EQ 1
+ST a
+LD n
+MOD 3
+NE 0
+ST b
+LD n
+LT 6
+ST c
+LD a
+ORN( b
+XORN c
+)
+ST y1
+LD b
+XORN( a
+&N c
+)
+ST y2
+LD a
+&( b
+OR c
+)
+ST y3
+LD c
+&N( a
+)
+ST y4
+LD n
+MUL( n
+SUB 1
+)
+DIV( 2
+)
+ST k1
+LD 100
+DIV( n
+ADD 1
+)
+ST k2
+GT( n
+MUL 3
+)
+ST y5
+LD k1
+GE( k2
+)
+ST y6
+LD k1
+EQ( n
+MUL 2
+)
+ST y7
+LD k2
+NE( 10
+)
+ST y8
+LD n
+LE( 4
+)
+ST y9
+LD 4
+PV down
+LD n
+MOD 2
+EQ 0
+CD down
+LD down.Q
+ST zero
+END_PROGRAM
+"""
+
+MORE_ST = f"""PROGRAM Main{MORE_VARS}
+n := n + 1;
+a := n MOD 2 = 1;
+b := n MOD 3 <> 0;
+c := n < 6;
+y1 := a OR NOT (b XOR NOT c);
+y2 := b XOR NOT (a AND NOT c);
+y3 := a AND (b OR c);
+y4 := c AND NOT a;
+k1 := (n * (n - 1)) / 2;
+k2 := 100 / (n + 1);
+y5 := k2 > n * 3;
+y6 := k1 >= k2;
+y7 := k1 = n * 2;
+y8 := k2 <> 10;
+y9 := n <= 4;
+down(PV := 4);
+down(CD := n MOD 2 = 0);
+zero := down.Q;
+END_PROGRAM
+"""
+
+
+def test_the_other_parenthesised_forms_and_cd():
+    """ORN( XORN( &( &N( MUL( DIV( GT( GE( EQ( NE( LE(, and CD."""
+    names = ["y1", "y2", "y3", "y4", "y5", "y6", "y7", "y8", "y9", "k1", "k2", "zero", "down.CV"]
+    rows = twins(MORE_IL, MORE_ST, names, cycles=12)
+    for name in ("y1", "y2", "y4", "y5", "y6", "y9"):
+        assert varies(rows, name) == {"True", "False"}, name
+    assert [r["down.CV"] for r in rows][:4] == [0, -1, -1, -2] and rows[4]["k1"] == 10
+
+
 # ---------------------------------------------------------------- calls
 
 CALLS_IL = """
@@ -850,3 +970,15 @@ def test_il_in_textual_sfc_transitions_and_actions():
     END_TRANSITION, the current result at its end the condition."""
     rows = twins(SFC_IL, SFC_ST, ["n", "runs", "Idle.X", "Run.X", "fast"], cycles=16)
     assert varies(rows, "Idle.X") == {"True", "False"} and rows[-1]["runs"] > 3
+
+
+def test_two_pieces_never_touch_into_a_comment_opener_or_closer():
+    """export-st's text is read again with its comments: '(' then '*' (or
+    '*' then ')', '/' then '/') must not touch."""
+    from softplc.runtime.st.il_emit import Layout
+
+    out = Layout(1, 1)
+    for text in ("(", "*x", "%I*", ")", "/", "/"):
+        out.put(text, 0, 0)
+    for s in (out.lines[1], out.plain[1]):
+        assert not any(c in s for c in ("(*", "*)", "//")), s
