@@ -18,7 +18,13 @@ where IL has an effect:
   label:            label:    (CODESYS ST labels)
 
 After JMPC, JMPCN, RETC and RETCN not taken the CR is known: FALSE after C,
-TRUE after CN (IEC: the CR is unchanged, and it was that value).
+TRUE after CN (IEC: the CR is unchanged, and it was that value). After S,
+R, CAL and the FB input operators it stays, as in MatIEC; read again, the
+expression is evaluated again: E197 where the instruction changed what it
+reads, or where it would call a function again. A CR dropped unread still
+makes the function calls in it, as statements. A TRANSITION's IL
+(condition) holds LD, operators and calls only; its last CR is written as
+the condition.
 
 The CR across a label a jump reaches: when the code after the label reads
 the CR, it must do so with operators, function calls and parentheses ending
