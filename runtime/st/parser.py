@@ -15,7 +15,9 @@ the result holds whatever could be parsed.
 How it works:
   1. lexer.strip_comments blanks out comments and pragmas, keeping every
      line and column (whether (* *) comments nest is the profile's
-     choice); lexer.Lexer cuts the rest into tokens.
+     choice); lexer.Lexer cuts the rest into tokens. Where that
+     text does not parse and holds IL bodies, it is read again with
+     them lowered to ST on their own lines first (il.py).
   2. The LALR(1) table comes from lark (grammar.lark, analysed once per
      process, on first use, through lark_adapter.py; st_grammar.py). The
      token loop is ours (parse_stack.py): it runs the table and calls the
@@ -36,6 +38,7 @@ from bisect import bisect_left
 
 from . import ast
 from .diagnostics import DiagnosticBag
+from .il import has_il, lower_il, relocate
 from .lexer import INVALID_RUN, Tok, line_col, strip_comments
 from .limits import MAX_ERRORS, MAX_NESTING, MAX_SOURCE_CHARS
 from .parse_recovery import Recovery
@@ -51,11 +54,20 @@ class _Parse(Recovery):
     """One run of the parser over one file."""
 
     def __init__(
-        self, text: str, path: str, diags: DiagnosticBag, g: Grammar, profile: Profile = DEFAULT, origins: tuple = ()
+        self,
+        text: str,
+        path: str,
+        diags: DiagnosticBag,
+        g: Grammar,
+        profile: Profile = DEFAULT,
+        origins: tuple = (),
+        il: bool = False,
     ) -> None:
         super().__init__(text, path, diags, g)
         self.profile = profile
         self.origins = origins
+        self.il = il  # lower IL bodies first (il.py)
+        self.text = ""  # the text the tokens come from: comments blanked (IL lowered)
 
     def run(self) -> ast.SourceFile:
         if self.raw.startswith("\ufeff"):
@@ -78,8 +90,12 @@ class _Parse(Recovery):
             )
             return ast.SourceFile(self.path, [], pos=ast.Pos(self.path, 1, 1))
         pragmas: list = []
+        il_ranges: list = []
+        il_where: dict = {}
         try:
             self.text, pragmas = strip_comments(text, comment_error, self.profile.nested_comments)
+            if self.il:
+                self.text, il_ranges, il_where = lower_il(self.text, self.path, self.diags, self.g.lexer)
             self.tokens = self.g.lexer.tokens(self.text, self._accepts, self._bad_characters, self._fits)
             if self.origins:
                 self.tokens = _relocated(self.tokens, self.origins)
@@ -98,6 +114,8 @@ class _Parse(Recovery):
             result = None
         if not isinstance(result, ast.SourceFile):
             result = ast.SourceFile(self.path, [], pos=ast.Pos(self.path, 1, 1))
+        result.lowered.extend(il_ranges)
+        relocate(result, il_where)
         if pragmas:
             warn_ignored(pragmas, self.path, self.diags)
             self._attach(pragmas)
@@ -217,7 +235,16 @@ def parse_source(
     another language (``SourceFile.lowered``); origins: where pieces of
     such ST come from (StView.origins), for the tokens' positions."""
     try:
-        sf = _Parse(text, path, diags, grammar(), profile, tuple(origins)).run()
+        # A file is read as ST first: IL (il.py) is looked for only when
+        # that fails, for IL is never valid ST, so a file without IL costs
+        # nothing more; one with IL is read twice.
+        g, attempt = grammar(), DiagnosticBag()
+        first = _Parse(text, path, attempt, g, profile, tuple(origins))
+        sf = first.run()
+        if attempt.has_errors and has_il(first.text):
+            sf = _Parse(text, path, diags, g, profile, tuple(origins), il=True).run()
+        else:
+            diags.extend(attempt.items)
         sf.lowered.extend(lowered)
         return sf
     except Exception as e:  # a bug here must not become a traceback for the user

@@ -237,4 +237,101 @@ d := q - ADR(arr); n := SIZEOF(Pair);
 END_PROGRAM
 """,
     ),
+    # IL bodies (st/il.py): operators with modifiers, parentheses, calls,
+    # jumps across labels with the current result, an IL action
+    (
+        "matiec",
+        """
+FUNCTION Mean2 : INT
+VAR_INPUT a, b : INT; END_VAR
+    LD a
+    ADD b
+    DIV 2
+    ST Mean2
+END_FUNCTION
+
+FUNCTION_BLOCK Tally
+VAR_INPUT clear : BOOL; step : INT; END_VAR
+VAR_OUTPUT total : INT; full : BOOL; END_VAR
+VAR latch : SR; END_VAR
+    LD clear
+    JMPC zero
+    LD total
+    ADD step
+    JMP keep
+zero: LD 0
+keep: ST total
+    GE 50
+    S1 latch
+    LD clear
+    R latch
+    LD latch.Q1
+    ST full
+END_FUNCTION_BLOCK
+
+PROGRAM main
+VAR
+    n, m, k : INT; t : Tally; trig : R_TRIG; ton1 : TON;
+    a, b, x, y : BOOL; w : WORD := 16#00F0; r : REAL;
+END_VAR
+    LD n
+    ADD 1
+    ST n
+    MOD 4
+    EQ 0
+    ST a
+    LD n
+    GT 2
+    ST b
+    LD a
+    AND( b
+    ORN x
+    )
+    XOR y
+    ST x
+    LDN x
+    S y
+    LD b
+    R y
+    LD n
+    MOD 9
+    EQ 0
+    ST t.clear
+    CAL t(step := n)
+    LD t.full
+    CLK trig
+    LD b
+    IN ton1
+    LD T#20ms
+    PT ton1
+    LD n
+    Mean2 t.total
+    MAX 3, 4
+    ST m
+    LD w
+    AND 16#FF00
+    OR 2#1
+    ST w
+    LD n
+    INT_TO_REAL
+    MUL 1.5
+    ST r
+    LD 0
+    ST k
+again: LD k
+    ADD 1
+    ST k
+    LT 3
+    JMPC again
+    LD a
+    RETC
+    CAL Bump
+ACTION Bump:
+    LD m
+    ADD 1
+    ST m
+END_ACTION
+END_PROGRAM
+""",
+    ),
 ]

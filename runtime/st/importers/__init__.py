@@ -7,6 +7,8 @@ replaces a project file (.plcproj) by the sources it lists."""
 from __future__ import annotations
 
 from ..diagnostics import DiagnosticBag
+from ..il import lowered_for_reading
+from ..st_grammar import grammar
 from . import fbd, ld  # noqa: F401  (they register the FBD and LD body languages)
 from .bodies import LANGUAGES
 from .plcopen import plcopen_views
@@ -64,9 +66,13 @@ def st_views(path: str, text: str, diags: DiagnosticBag) -> list[StView]:
 
 
 def st_export(path: str, text: str, diags: DiagnosticBag) -> str:
-    """An imported file as one plain ST text to read (softplc export-st);
-    an ST file as it is."""
+    """An imported file as one plain ST text to read (softplc export-st),
+    its IL bodies as the ST they are lowered to (st/il.py); an ST file as it
+    is."""
     for suffix, reader in _READERS.items():
         if path.lower().endswith(suffix):
-            return "\n".join(v.plain() for v in reader(text, path, diags))
+            views = reader(text, path, diags)
+            for v in views:
+                v.replace(lowered_for_reading(v.text(), grammar().lexer))
+            return "\n".join(v.plain() for v in views)
     return text

@@ -86,7 +86,14 @@ def st_body(lang: PosElement, out: BodyOut) -> None:
     out.put(*out.texts.start(holder), text)
 
 
-LANGUAGES: dict[str, Callable[[PosElement, BodyOut], None]] = {"ST": st_body}
+def il_body(lang: PosElement, out: BodyOut) -> None:
+    """<IL><xhtml:p>text</xhtml:p></IL>: put where it stands, like ST; the
+    parser lowers it to ST (st/il.py): it follows the POU's VAR blocks, or
+    the ACTION header, in the view."""
+    st_body(lang, out)
+
+
+LANGUAGES: dict[str, Callable[[PosElement, BodyOut], None]] = {"ST": st_body, "IL": il_body}
 
 
 def body_language(body: PosElement | None) -> PosElement | None:

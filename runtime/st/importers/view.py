@@ -85,6 +85,18 @@ class LineView:
         (``SourceFile.lowered``: a JMP there is allowed in every profile)."""
         self.lowered.append((first, last))
 
+    def replace(self, lines: dict) -> None:
+        """Put other text on some lines (line -> text; "" empties a line):
+        for plain(), the ST of an IL body instead of the IL."""
+        for n, text in lines.items():
+            if not text:
+                self.written.discard(n)
+                continue
+            lead = len(text) - len(text.lstrip())
+            self.lines[n] = " " * min(self.pad[n], lead) + text.lstrip() if self.pad[n] else text
+            self.pad[n] = min(self.pad[n], lead)
+            self.written.add(n)
+
     def view(self) -> StView:
         """What the parser reads: the text and its lowered lines."""
         return StView(self.text(), tuple(self.lowered), tuple(sorted(self.origins)))
