@@ -1,0 +1,92 @@
+"""The errors a missing library causes, one line per library
+(runtime/project/missing.py): by the table of what vendor libraries
+declare, by a qualified name, through a variable or a parameter whose type
+is the library's; the rest stay errors of their own."""
+
+from __future__ import annotations
+
+from softplc.runtime.project import open_projects
+from softplc.runtime.project.analysis import analyse
+from softplc.runtime.project.missing import NOT_FOUND, group, vendor_table
+from tests.project.builders import BROKEN, LOGGER, line_of, twincat
+
+
+def _grouped(root, libraries=()):
+    [project] = open_projects([str(root)])
+    analysis = analyse(project, subset=False)
+    return analysis, *group(analysis.diagnostics, analysis.units, project.libraries, frozenset(libraries))
+
+
+def test_a_referenced_library_is_one_line_at_its_reference(tmp_path):
+    root = twincat(tmp_path, ("FB_Logger", LOGGER), ("FB_Broken", BROKEN))
+    analysis, groups, rest = _grouped(root)
+    [g] = groups
+    d = g.diagnostic()
+    plcproj = root / "Plant" / "Plc" / "Plc.plcproj"
+    assert (d.code, d.pos.file, d.pos.line) == ("E223", str(plcproj), line_of(plcproj, 'Include="Tc2_System"'))
+    # T_MaxString once as a type, three times through sLine; MEMCPY once
+    assert d.message == "needs Tc2_System (T_MaxString, MEMCPY: 5 references): not installed"
+    assert dict(g.names) == {"T_MaxString": 4, "MEMCPY": 1}
+    assert {x.code for x in g.replaced} == {"E012", "E010", "E043"}
+    # the broken block's own error (a near name is declared) is not the library's
+    assert [(x.code, x.message) for x in rest if x.is_error] == [("E010", "unknown name 'nCuont'")]
+    assert len(analysis.errors) == len(g.replaced) + 1
+
+
+def test_a_library_given_to_the_compiler_is_not_missing(tmp_path):
+    root = twincat(tmp_path, ("FB_Logger", LOGGER))
+    _analysis, groups, rest = _grouped(root, {"Tc2_System"})
+    assert groups == [] and {x.code for x in rest if x.is_error} == {"E010", "E012", "E043"}
+
+
+def test_a_qualified_name_names_its_library_and_the_standard_one_is_there(tmp_path):
+    pou = (
+        "FUNCTION_BLOCK FB_Files\nVAR\n    tWait : Tc2_Standard.TON;\n    hFile : SysFile.RTS_IEC_HANDLE;\nEND_VAR\n",
+        "tWait(IN := TRUE, PT := T#1S);",
+    )
+    _analysis, [g], rest = _grouped(twincat(tmp_path, ("FB_Files", pou)))
+    # SysFile is not referenced by the project: the qualified name says it
+    # (its two errors, E019 and E012, are at one place: one reference)
+    assert g.diagnostic().message.startswith("needs SysFile (RTS_IEC_HANDLE: 1 reference): not installed")
+    assert "does not reference it" in g.diagnostic().message
+    assert not [x for x in rest if x.is_error]  # Tc2_Standard.TON is softplc's own TON
+
+
+def test_a_parameter_whose_type_is_missing_is_the_library_s_too(tmp_path):
+    """The declaration of sText fails; the call that sets it then says 'has
+    no parameter sText': one more reference to the library, not an error."""
+    writer = (
+        "FUNCTION_BLOCK FB_Writer\nVAR_INPUT\n    sText : T_MaxString;\n    nMode : INT;\nEND_VAR\n",
+        "nMode := nMode + 1;",
+    )
+    user = ("PROGRAM P_Write\nVAR fbW : FB_Writer; END_VAR\n", "fbW(sText := 'abc', nMode := 2);")
+    _analysis, [g], rest = _grouped(twincat(tmp_path, ("FB_Writer", writer), ("P_Write", user)))
+    assert g.name == "Tc2_System" and g.names["T_MaxString"] == 2
+    assert "E040" in {x.code for x in g.replaced} and not [x for x in rest if x.is_error]
+
+
+def test_unknown_names_in_a_project_that_lacks_libraries_are_names_not_found(tmp_path):
+    user = ("FUNCTION_BLOCK FB_Alarm\nVAR fbRaise : FB_SpecialAlarm; END_VAR\n", "fbRaise(bTrigger := TRUE);")
+    _analysis, groups, _rest = _grouped(twincat(tmp_path, ("FB_Alarm", user)))
+    [g] = groups
+    assert g.name == NOT_FOUND and g.maybe == ("Tc2_System",)
+    assert g.diagnostic().code == "E224"
+    # the declaration and the call of the instance whose type is unknown
+    assert g.diagnostic().message == "names not found (FB_SpecialAlarm: 2 references), maybe from Tc2_System"
+
+
+def test_without_libraries_referenced_an_unknown_name_is_an_error_of_its_own(tmp_path):
+    src = tmp_path / "p.st"
+    src.write_text("PROGRAM P\nVAR x : INT; END_VAR\nx := y;\nMEMCPY(ADR(x), ADR(x), 2);\nEND_PROGRAM\n")
+    _analysis, groups, rest = _grouped(src)
+    # MEMCPY is Tc2_System's by the table; y is nobody's
+    assert [g.name for g in groups] == ["Tc2_System"]
+    assert [x.message for x in rest if x.is_error] == ["unknown name 'y'"]
+
+
+def test_the_table_of_vendor_libraries_is_well_formed():
+    table = vendor_table()
+    names = [lib.name for lib in table]
+    assert len(names) == len(set(names)) and {"Tc2_System", "Util", "OSCAT BASIC", "Python"} <= set(names)
+    for lib in table:
+        assert all(n.replace("_", "a").isalnum() for n in lib.names), lib.name
