@@ -57,14 +57,11 @@ def open_or_exit(paths: list) -> list:
 
 def _grouped(analysis, all_errors: bool, libraries: tuple = ()) -> tuple:
     """(missing-library groups, the diagnostics shown one by one)."""
-    from .project.missing import group
+    from .project.missing import group_analysis
 
     if all_errors:
         return [], list(analysis.diagnostics)
-    project = analysis.project
-    own = (project.name, *(Path(f).stem for f in project.files))
-    installed = frozenset(lib.namespace for lib in libraries)
-    return group(analysis.diagnostics, analysis.units, project.libraries, installed, own)
+    return group_analysis(analysis, frozenset(lib.namespace for lib in libraries))
 
 
 def print_diagnostics(analysis, groups: list, rest: list) -> tuple[int, int, int]:

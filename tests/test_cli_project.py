@@ -57,6 +57,17 @@ def test_check_of_a_twincat_solution_prints_the_table_and_one_line_per_library(t
     assert "profile: twincat (the project's)\n1 error, 5 more from 1 missing library, 0 warnings\n" in r.stderr
 
 
+def test_a_pou_that_does_not_become_st_is_a_row_of_its_own(tmp_path):
+    root = twincat(tmp_path, ("FB_Bad", ("FUNCTION_BLOCK FB_Bad\n", "")))
+    bad = root / "Plant" / "Plc" / "POUs" / "FB_Bad.TcPOU"
+    bad.write_text(bad.read_text().replace("</Implementation>", ""))  # not well-formed any more
+    r = softplc("check", root)
+    rows = _table(r.stderr)
+    assert rows["POUs/FB_Bad.TcPOU"] == ["0/1", "1", "0", "0"]
+    assert rows["FB_Bad"] == ["no", "1", "0", "0", "not", "imported"]
+    assert "total: 5 files, 3 POUs, 2 compiled (67 %); 1 error; 0 warnings" in r.stderr
+
+
 def test_check_all_errors_shows_each_use_of_the_missing_library(tmp_path):
     root = twincat(tmp_path, ("FB_Logger", LOGGER))
     r = softplc("check", "--all-errors", root)

@@ -16,6 +16,7 @@ copy of the parse and prunes it, so no file is read or parsed again.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 
 from ..program.compile import build_parsed
@@ -29,6 +30,8 @@ from .model import Project
 from .units import Unit, Units, prune
 
 MAX_ROUNDS = 12
+# A POU element of a PLCopen XML file (<pou name="X">) or a TwinCAT file (<POU Name="X">).
+_POU_ELEMENT = re.compile(r'<(?:pou|POU)\s[^>]*?\b[Nn]ame="([A-Za-z_][A-Za-z0-9_]*)"')
 
 
 @dataclass
@@ -41,6 +44,9 @@ class Analysis:
     dropped: set = field(default_factory=set)  # ids of the units left out
     #: id of a unit left out for a name it uses (not an error of its own) -> that name
     because: dict = field(default_factory=dict)
+    #: file -> (name, line) of each POU its XML declares that did not become
+    #: ST (in a language not imported, or its file not read)
+    lost: dict = field(default_factory=dict)
     clean: bool = False  # the part left compiled
     program: Program | None = None  # that part's Program (None when nothing compiles)
     rounds: int = 0
@@ -112,6 +118,7 @@ def analyse(
     parsed = {path: _parse(path, text, prof, parse_items) for path, text in texts.items()}
     units = Units(parsed)
     words = frozenset().union(*(u.words for u in units.all))
+    lost = {path: _lost(path, text, units) for path, text in texts.items() if path.lower().endswith(_XML_KINDS)}
 
     def fresh() -> dict:
         return {path: _parse(path, text, prof, None) for path, text in texts.items()}
@@ -121,7 +128,7 @@ def analyse(
     files = [sf for views in parsed.values() for sf in views]
     program = build_parsed(files, words, prof, sources, compiled_diags, natives=natives, libraries=libraries)
     diags.extend(compiled_diags.items)
-    result = Analysis(project, prof, diags.sorted(), sources, units)
+    result = Analysis(project, prof, diags.sorted(), sources, units, lost={p: x for p, x in lost.items() if x})
     _check_tasks(result, program)
     result.diagnostics = sorted(result.diagnostics, key=lambda d: (d.pos.file, d.pos.line, d.pos.col, d.code))
     if program is not None:
@@ -148,6 +155,19 @@ def analyse(
             return result
         errors = [d for d in round_diags.items if d.is_error]
     return result
+
+
+_XML_KINDS = (".xml", ".tcpou")
+
+
+def _lost(path: str, text: str, units: Units) -> list:
+    """(name, line) of the POUs the file's XML declares that no unit is."""
+    have = {u.name.upper() for u in units.by_file.get(path, ()) if u.is_pou}
+    out = []
+    for m in _POU_ELEMENT.finditer(text):
+        if m.group(1).upper() not in have:
+            out.append((m.group(1), text.count("\n", 0, m.start()) + 1))
+    return out
 
 
 def _inside(d: Diagnostic, units: Units, dropped: set) -> bool:

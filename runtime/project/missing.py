@@ -26,6 +26,7 @@ import re
 import tomllib
 from dataclasses import dataclass, field
 from importlib import resources
+from pathlib import Path
 
 from ..st.ast import Pos
 from ..st.diagnostics import Diagnostic
@@ -53,6 +54,7 @@ class VendorLibrary:
     name: str
     namespaces: frozenset  # UPPER: the name and the other namespaces
     names: frozenset  # UPPER
+    tools: frozenset  # the kinds of project that have it (empty: any)
 
 
 @functools.cache
@@ -64,6 +66,7 @@ def vendor_table() -> tuple:
             name,
             frozenset([name.upper(), *(n.upper() for n in entry.get("namespaces", ()))]),
             frozenset(n.upper() for n in entry.get("names", "").split()),
+            frozenset(entry.get("tools", ())),
         )
         for name, entry in data.items()
     )
@@ -136,8 +139,10 @@ def _subject(d: Diagnostic, declared: frozenset) -> str | None:
 
 
 class _Resolver:
-    def __init__(self, refs: list, installed: frozenset, own: frozenset) -> None:
+    def __init__(self, refs: list, installed: frozenset, own: frozenset, kind: str | None = None) -> None:
         self.refs = refs
+        #: the libraries of the table this kind of project can have
+        self.table = tuple(lib for lib in vendor_table() if not lib.tools or kind is None or kind in lib.tools)
         self.installed = installed
         self.own = own  # UPPER: the project's own names (its name, its objects' names)
         self.ref_of: dict = {}
@@ -158,7 +163,7 @@ class _Resolver:
             ref = self.ref_of.get(ns)
             if ref is not None:
                 return None if self._has(ref.name, ref.namespace) else ref.name
-            for lib in vendor_table():
+            for lib in self.table:
                 if ns in lib.namespaces:
                     return lib.name
             return None
@@ -168,7 +173,7 @@ class _Resolver:
         ref = self.ref_of.get(key)
         if ref is not None:  # IBaseLibrary.TypeClass: the namespace itself is unknown
             return None if self._has(ref.name, ref.namespace) else ref.name
-        candidates = [lib for lib in vendor_table() if key in lib.names and lib.name.upper() not in self.own]
+        candidates = [lib for lib in self.table if key in lib.names and lib.name.upper() not in self.own]
         if any(self._has(lib.name, *lib.namespaces) for lib in candidates):
             return None  # a library the compilation had: the error is the code's own
         if candidates:
@@ -177,14 +182,22 @@ class _Resolver:
         return NOT_FOUND if self.lacking else None
 
 
-def group(diagnostics: list, units: Units, refs: list, installed: frozenset = frozenset(), own: tuple = ()) -> tuple:
+def group(
+    diagnostics: list,
+    units: Units,
+    refs: list,
+    installed: frozenset = frozenset(),
+    own: tuple = (),
+    kind: str | None = None,
+) -> tuple:
     """(the MissingLibrary groups, the diagnostics they do not replace).
     installed: the names of the libraries the compilation had; own: the
     project's own names (its name; its files' stems, which name TwinCAT
-    objects even when one does not parse)."""
+    objects even when one does not parse); kind: the kind of project
+    (twincat, codesys, beremiz), whose tool's libraries the table offers."""
     have = frozenset(installed) | frozenset(LIBRARY_NAMESPACES) | frozenset(LIBRARY_NAMESPACES.values())
     declared = frozenset().union(*(u.declares for u in units.all))
-    resolver = _Resolver(refs, frozenset(n.upper() for n in have), declared | frozenset(n.upper() for n in own))
+    resolver = _Resolver(refs, frozenset(n.upper() for n in have), declared | frozenset(n.upper() for n in own), kind)
     groups: dict[str, MissingLibrary] = {}
     rest = []
     subjects = [_subject(d, declared) if d.is_error else None for d in diagnostics]
@@ -254,3 +267,12 @@ def _declaring(units: Units, name: str, d: Diagnostic) -> list:
     first = [u for u in units.all if u.name.upper() == key]
     here = units.hit(d.pos.file, d.pos.line, d.pos.col)
     return [*first, *([here] if here is not None else []), *units.all]
+
+
+def group_analysis(analysis, installed: frozenset = frozenset()) -> tuple:
+    """group() for an analysis.Analysis of a project: its references, its
+    own names, its kind."""
+    project = analysis.project
+    own = (project.name, *(Path(f).stem for f in project.files))
+    kind = project.kind if project.kind in ("twincat", "codesys", "beremiz") else None
+    return group(analysis.diagnostics, analysis.units, project.libraries, installed, own, kind)

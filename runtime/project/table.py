@@ -109,20 +109,25 @@ def rows(analysis: Analysis, groups: list, rest: list) -> tuple[list[Row], Total
         label = analysis.project.label(path)
         file_units = units.by_file.get(path, [])
         items = [u for u in file_units if u.is_pou]
+        lost = analysis.lost.get(path, [])
         e, lib, w = per_file[path]
-        pous += len(items)
+        pous += len(items) + len(lost)
         done = [u for u in items if analysis.compiled(u)]
         compiled += len(done)
-        if len(items) <= 1:
+        if len(items) <= 1 and not lost:
             whole = items or [u for u in file_units if u.parent is None]
             ok = "-" if not whole else ("yes" if all(analysis.compiled(u) for u in whole) else "no")
             out.append(Row(label, ok, e, lib, w, _note(analysis, whole, per_unit)))
             continue
-        out.append(Row(label, f"{len(done)}/{len(items)}", e, lib, w))
-        for u in items:
-            ue, ulib, uw, _libs = per_unit[u.id]
-            ok = "yes" if analysis.compiled(u) else "no"
-            out.append(Row(f"  {u.name}", ok, ue, ulib, uw, _note(analysis, [u], per_unit)))
+        out.append(Row(label, f"{len(done)}/{len(items) + len(lost)}", e, lib, w))
+        rows_here = [(u.spans[0][0][0], u) for u in items] + [(line, name) for name, line in lost]
+        for _line, item in sorted(rows_here, key=lambda r: r[0]):
+            if isinstance(item, str):
+                out.append(Row(f"  {item[:60]}", "no", _lost_errors(analysis, path, item), 0, 0, "not imported"))
+                continue
+            ue, ulib, uw, _libs = per_unit[item.id]
+            ok = "yes" if analysis.compiled(item) else "no"
+            out.append(Row(f"  {item.name}", ok, ue, ulib, uw, _note(analysis, [item], per_unit)))
     errors = sum(1 for d in rest if d.is_error and d.code not in ("E223", "E224"))
     warnings = sum(1 for d in rest if not d.is_error)
     refs = sum(g.count for g in groups)
@@ -131,6 +136,27 @@ def rows(analysis: Analysis, groups: list, rest: list) -> tuple[list[Row], Total
         len(analysis.project.files), pous, compiled, errors, refs, named + (1 if len(groups) > named else 0), warnings
     )
     return out, totals
+
+
+def _lost_errors(analysis: Analysis, path: str, name: str) -> int:
+    """The errors outside every unit of path between the POU element of
+    name and the next POU (what kept it from becoming ST)."""
+    starts = sorted(
+        [line for _n, line in analysis.lost.get(path, [])]
+        + [u.spans[0][0][0] for u in analysis.units.by_file.get(path, []) if u.is_pou]
+    )
+    first = next(line for n, line in analysis.lost[path] if n == name)
+    later = [line for line in starts if line > first]
+    last = later[0] if later else 10**9
+    units = analysis.units
+    return sum(
+        1
+        for d in analysis.diagnostics
+        if d.is_error
+        and d.pos.file == path
+        and first <= d.pos.line < last
+        and units.hit(path, d.pos.line, d.pos.col) is None
+    )
 
 
 def _note(analysis: Analysis, units: list, per_unit: dict) -> str:

@@ -5,10 +5,12 @@ is the library's; the rest stay errors of their own."""
 
 from __future__ import annotations
 
+import shutil
+
 from softplc.runtime.project import open_projects
 from softplc.runtime.project.analysis import analyse
-from softplc.runtime.project.missing import NOT_FOUND, group, vendor_table
-from tests.project.builders import BROKEN, LOGGER, line_of, twincat
+from softplc.runtime.project.missing import NOT_FOUND, group, group_analysis, vendor_table
+from tests.project.builders import BROKEN, HERE, LOGGER, line_of, twincat
 
 
 def _grouped(root, libraries=()):
@@ -90,3 +92,27 @@ def test_the_table_of_vendor_libraries_is_well_formed():
     assert len(names) == len(set(names)) and {"Tc2_System", "Util", "OSCAT BASIC", "Python"} <= set(names)
     for lib in table:
         assert all(n.replace("_", "a").isalnum() for n in lib.names), lib.name
+
+
+def test_the_table_offers_the_libraries_of_the_project_s_tool(tmp_path):
+    """PID is a function block of Beremiz's additional library and of
+    CODESYS's Util: a Beremiz project needs the first."""
+    plc = (HERE / "beremiz" / "plc.xml").read_text()
+    folder = tmp_path / "beremiz"
+    shutil.copytree(HERE / "beremiz", folder)
+    (folder / "plc.xml").write_text(plc.replace('<derived name="TON"/>', '<derived name="PID"/>'))
+    _analysis, groups, _rest = _grouped_analysis(folder)
+    assert [g.name for g in groups] == ["Additional function blocks"]
+    (folder / "beremiz.xml").unlink()  # now a PLCopen file of no known tool: any library's
+    xml = folder / "plc.xml"
+    xml.write_text(
+        xml.read_text().replace('companyName="Beremiz" productName="Beremiz"', 'companyName="x" productName="y"')
+    )
+    _analysis, groups, _rest = _grouped_analysis(xml)
+    assert [g.name for g in groups] == ["Util"]
+
+
+def _grouped_analysis(path):
+    [project] = open_projects([str(path)])
+    analysis = analyse(project, subset=False)
+    return analysis, *group_analysis(analysis)
