@@ -40,11 +40,15 @@ _MESSAGES = (
     re.compile(r"softplc has no library \S+ \('([^']+)'\)"),
     re.compile(r"unknown namespace '[^']+' in '([^']+)'"),
     re.compile(r"VAR_EXTERNAL '([^']+)' has no VAR_GLOBAL"),
+    # F := x in FUNCTION F whose return type is missing (a follow-on only: see _variable_type)
+    re.compile(r"^'([^']+)' is a POU, not a variable"),
 )
 _BASE = re.compile(r"'([^']+)' is not (?:a FUNCTION_BLOCK|an INTERFACE)")
 _CODES = ("E010", "E012", "E019", "E043", "E140")
 _PARAMETER = re.compile(r"^(\w+) has no parameter '(\w+)'")
 _NO_RETURN = re.compile(r"^METHOD (\w+) has no return type")
+_TOO_MANY = re.compile(r"^too many arguments for (\w+) \(it takes \d+\)")
+_NO_MEMBER = re.compile(r"^(\w+) has no member '\w+'")
 #: names that are not a library's: the language of another tool
 _NOT_LIBRARY = frozenset(("BIT", "UNION"))
 
@@ -197,7 +201,9 @@ def group(
     (twincat, codesys, beremiz), whose tool's libraries the table offers."""
     have = frozenset(installed) | frozenset(LIBRARY_NAMESPACES) | frozenset(LIBRARY_NAMESPACES.values())
     declared = frozenset().union(*(u.declares for u in units.all))
-    resolver = _Resolver(refs, frozenset(n.upper() for n in have), declared | frozenset(n.upper() for n in own), kind)
+    # the names of the project's own POUs and types (a variable may be named like a library's type)
+    own_types = frozenset().union(*(u.declares for u in units.all if u.kind not in ("VAR_GLOBAL", "CONFIGURATION")))
+    resolver = _Resolver(refs, frozenset(n.upper() for n in have), own_types | frozenset(n.upper() for n in own), kind)
     groups: dict[str, MissingLibrary] = {}
     rest = []
     subjects = [_subject(d, declared) if d.is_error else None for d in diagnostics]
@@ -206,8 +212,8 @@ def group(
         typed = None
         if subject and d.code in ("E010", "E043"):  # a variable (an instance) whose declaration failed?
             typed = _variable_type(d, subject, units)
-        elif subject is None and d.is_error and d.code in ("E040", "E148"):
-            typed = _parameter_type(d, units)  # a parameter (a return type) whose declaration failed?
+        elif subject is None and d.is_error and d.code in ("E013", "E040", "E041", "E148"):
+            typed = _parameter_type(d, units, unknown)  # a parameter (a return type, a base) whose declaration failed?
         if typed is not None:  # named by its type, when that is a missing library's
             lib = resolver.library(typed) if typed.upper() in unknown else None
             subject = typed
@@ -239,24 +245,30 @@ def _variable_type(d: Diagnostic, name: str, units: Units) -> str | None:
     return None
 
 
-def _parameter_type(d: Diagnostic, units: Units) -> str | None:
-    """E040 'F has no parameter P' and E148 'METHOD M has no return type':
-    the type of P (of M's return) where F (M) is declared, when its
-    declaration failed."""
-    m = _PARAMETER.search(d.message)
-    if m:
-        callee, name = m.group(1), m.group(2)
-        for u in _declaring(units, callee, d):
-            found = u.declares_variable(name)
-            if found is not None:
-                return found
-        return None
-    m = _NO_RETURN.search(d.message)
+def _parameter_type(d: Diagnostic, units: Units, unknown: frozenset) -> str | None:
+    """E040 'F has no parameter P', E148 'METHOD M has no return type',
+    E041 'too many arguments for F (it takes 0)', E013 'FB has no member
+    M': the type of P (of M's return, of an input of F, of FB's base) where
+    F (M, FB) is declared, when its declaration failed."""
+    m = _TOO_MANY.search(d.message)
     if m:
         for u in _declaring(units, m.group(1), d):
-            found = u.declares_variable(m.group(1))
-            if found is not None:
-                return found
+            inputs = u.signatures.get(m.group(1).upper())
+            if inputs is not None:
+                return next((t for t in inputs if t.upper() in unknown), None)
+        return None
+    m = _NO_MEMBER.search(d.message) if d.code == "E013" else None
+    if m:
+        owner = [u for u in units.all if u.name.upper() == m.group(1).upper()]
+        member = d.message.split("'")[1]
+        found = [u.declares_variable(member) for u in owner] + [u.extends for u in owner]
+        return next((t for t in found if t is not None and t.upper() in unknown), None)
+    m = _PARAMETER.search(d.message) or _NO_RETURN.search(d.message)
+    if m:
+        callee = m.group(1)
+        name = m.group(2) if m.re is _PARAMETER else callee
+        types = (u.declares_variable(name) for u in _declaring(units, callee, d))
+        return next((t for t in types if t is not None and t.upper() in unknown), None)
     return None
 
 

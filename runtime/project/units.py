@@ -38,6 +38,10 @@ class Unit:
     #: METHOD's name gives its return type
     scopes: list = field(default_factory=list)
     locals: frozenset = frozenset()  # UPPER names of its own variables (they hide globals)
+    #: UPPER name of the POU and of each of its methods -> the types (as
+    #: written) of its inputs, in order
+    signatures: dict = field(default_factory=dict)
+    extends: str | None = None  # the block it EXTENDS, as written
     members: list = field(default_factory=list)  # ids of the units inside it (a block's variables)
     parent: int | None = None  # the unit holding it
 
@@ -132,6 +136,16 @@ def _typed(blocks: list) -> dict:
     return out
 
 
+def _inputs(blocks: list) -> list:
+    """The types (as written; '' when not a named type) of the inputs of a POU or method."""
+    return [
+        _named(d.type) or ""
+        for b in blocks
+        if isinstance(b, A.VarBlock) and b.kind in ("VAR_INPUT", "VAR_IN_OUT")
+        for d in b.decls
+    ]
+
+
 def _scopes(node: object) -> list:
     """(spans, variable -> type) of a declaration: its own variables (and
     its methods' return types), then each method's, property's and
@@ -139,6 +153,8 @@ def _scopes(node: object) -> list:
     if isinstance(node, A.VarDecl):
         return [(None, _typed([A.VarBlock("VAR_GLOBAL", [node])]))]
     own = _typed(getattr(node, "var_blocks", []))
+    if isinstance(node, A.POU) and _named(node.return_type) is not None:
+        own[node.name.upper()] = _named(node.return_type)  # F := x sets the result
     inner = []
     for m in getattr(node, "methods", ()):
         if _named(m.return_type) is not None:
@@ -245,6 +261,10 @@ class Units:
             declared.update(str(v[0]).upper() for v in decl.spec.values if isinstance(v, tuple) and v)
         u.declares = frozenset(declared)
         u.uses = u.uses - declared
+        if isinstance(decl, A.POU):
+            u.extends = str(decl.extends[0]) if decl.extends else None
+            u.signatures = {decl.name.upper(): _inputs(decl.var_blocks)}
+            u.signatures.update((m.name.upper(), _inputs(m.var_blocks)) for m in decl.methods)
         self.of_key[key] = u.id
         return u
 
