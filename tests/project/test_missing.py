@@ -116,3 +116,34 @@ def _grouped_analysis(path):
     [project] = open_projects([str(path)])
     analysis = analyse(project, subset=False)
     return analysis, *group_analysis(analysis)
+
+
+def test_what_follows_from_a_missing_type_is_the_library_s_too(tmp_path):
+    """A FUNCTION's result, a method's inputs, a base block, a property:
+    declared with a missing library's types, they fail, and so does each
+    use of them; all of it is the library's."""
+    text = (
+        "FUNCTION F_Text : T_MaxString\n",
+        "F_Text := 'x';",
+    )
+    sender = (
+        "FUNCTION_BLOCK FB_Sender\nVAR n : INT; END_VAR\n",
+        "n := n + 1;",
+    )
+    uses = (
+        "PROGRAM P_Use\nVAR fb : FB_Sender; s : STRING; END_VAR\n",
+        "fb.Send('hello');\nF_Text();",
+    )
+    root = twincat(tmp_path, ("F_Text", text), ("FB_Sender", sender), ("P_Use", uses))
+    pou = root / "Plant" / "Plc" / "POUs" / "FB_Sender.TcPOU"
+    method = (
+        '    <Method Name="Send" Id="{1}">\n      <Declaration><![CDATA[METHOD Send : BOOL\n'
+        "VAR_INPUT\n    sMsg : T_MaxString;\nEND_VAR]]></Declaration>\n"
+        "      <Implementation>\n        <ST><![CDATA[Send := TRUE;]]></ST>\n      </Implementation>\n    </Method>\n"
+    )
+    pou.write_text(pou.read_text().replace("  </POU>", method + "  </POU>"))
+    analysis, groups, rest = _grouped(root)
+    assert [g.name for g in groups] == ["Tc2_System"]
+    codes = {d.code for d in groups[0].replaced}
+    assert {"E012", "E010", "E041"} <= codes  # the type, F_Text := ..., Send('hello')
+    assert not [d for d in rest if d.is_error], [d.message for d in rest if d.is_error]
