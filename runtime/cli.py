@@ -280,8 +280,8 @@ def exec_cmd(files, entry: str | None, cycles: int, cycle_time: int, profile: st
         prog = _compile(project.files, profile or DEFAULT.name)
         _report(prog.warnings, prog.sources)
     else:
-        prog, _analysis = compile_project(project, profile, partial)
-        entry = entry or task_entry(project, prog)
+        prog, analysis = compile_project(project, profile, partial)
+        entry = entry or task_entry(project, prog, analysis)
     entry = _pick_entry(prog.pous, entry)
     try:
         runner = prog.runner(entry, cycle_time_ms=cycle_time)

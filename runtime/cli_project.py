@@ -177,8 +177,15 @@ def compile_project(project, profile: str | None, partial: bool, all_errors: boo
     return analysis.program, analysis
 
 
-def task_entry(project, program) -> str | None:
-    """The PROGRAM the project's tasks call, when they call exactly one."""
+def task_entry(project, program, analysis=None) -> str | None:
+    """The PROGRAM the project's tasks call, when they call exactly one.
+    A usage error when the project has PROGRAMs and none compiled."""
+    if analysis is not None and not any(k == "PROGRAM" for k in program.pous.values()):
+        programs = [u.name for u in analysis.units.all if u.kind == "PROGRAM"]
+        if programs:
+            raise click.UsageError(
+                f"no PROGRAM of the project compiles ({', '.join(programs[:5])}: softplc check says why)"
+            )
     called = {name.upper(): name for t in project.tasks for name, _pos in t.programs}
     known = {n.upper(): n for n, k in program.pous.items() if k == "PROGRAM"}
     found = [known[k] for k in called if k in known]

@@ -257,3 +257,23 @@ def test_no_traceback_on_broken_project_files(tmp_path):
         r = softplc(*command, root)
         no_traceback(r)
         assert r.returncode in (1, 2) and "E220" in r.stderr + "no ST sources", (command, r.stderr)
+
+
+def test_an_importer_that_fails_on_a_file_loses_no_project(tmp_path):
+    """A string whose length is a constant of a list (CODESYS writes
+    length="GVL.LEN"): whatever the importer makes of it, the project is
+    checked and exported, and nothing ends in exit 4."""
+    xml = (HERE / "codesys" / "Line.xml").read_text()
+    xml = xml.replace(
+        '<variable name="pulse"><type><BOOL /></type></variable>',
+        (
+            '<variable name="pulse"><type><BOOL /></type></variable>\n'
+            '            <variable name="topic"><type><string length="GVL.TOPIC_LEN" /></type></variable>'
+        ),
+    )
+    odd = tmp_path / "Line.xml"
+    odd.write_text(xml)
+    for command in (["check"], ["export-st", "-o", f"{tmp_path}/out/"], ["exec", "--partial"]):
+        r = softplc(*command, odd)
+        no_traceback(r)
+        assert r.returncode in (0, 1, 2) and "internal error: ValueError" not in r.stderr, (command, r.stderr)

@@ -55,7 +55,10 @@ def export(analysis: Analysis, notes: dict | None = None) -> list[ExportedFile]:
             errors = [d for d in analysis.diagnostics if d.pos.file == path and d.is_error]
             out.append(ExportedFile(path, label, "", skipped=[(label, errors)]))
             continue
-        views = st_plain_lines(path, text, DiagnosticBag())
+        try:
+            views = st_plain_lines(path, text, DiagnosticBag())
+        except Exception:  # an importer's own failure: E009 of the analysis says so
+            views = []
         top = [u for u in units.by_file.get(path, []) if u.parent is None]
         owned = _owners(views, top)
         result = ExportedFile(path, label, "")
