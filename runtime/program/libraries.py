@@ -24,7 +24,6 @@ import os
 import pickle
 from pathlib import Path
 
-from ..st import ast as A
 from ..st.diagnostics import DiagnosticBag
 from ..st.importers import is_source, st_views
 from ..st.parser import parse_source
@@ -61,12 +60,16 @@ def _cache_dir() -> Path:
 
 
 def _version_salt() -> bytes:
-    """What makes an old parse invalid besides the text: the grammar and
-    the AST's definition."""
+    """What makes an old parse invalid besides the text: the language's
+    code (the grammar, the lexer and parser, the AST and its builders) and
+    the importers' (an imported file's parse is what its importer wrote,
+    and a newer softplc imports more: a cached parse of a PLCopen file
+    from before its FBD bodies were read would keep them out)."""
     h = hashlib.sha256()
-    for f in (_GRAMMAR, Path(A.__file__)):
+    st = _GRAMMAR.parent
+    for f in sorted([*st.glob("*.py"), *st.glob("*.lark"), *(st / "importers").glob("*.py")]):
         try:
-            h.update(f.read_bytes())
+            h.update(f.name.encode() + b"\0" + f.read_bytes())
         except OSError:
             pass
     return h.digest()
