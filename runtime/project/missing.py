@@ -285,6 +285,7 @@ def group_analysis(analysis, installed: frozenset = frozenset()) -> tuple:
     """group() for an analysis.Analysis of a project: its references, its
     own names, its kind."""
     project = analysis.project
-    own = (project.name, *(Path(f).stem for f in project.files))
+    lost = [name for names in analysis.lost.values() for name, _line in names]  # its POUs not imported
+    own = (project.name, *(Path(f).stem for f in project.files), *lost)
     kind = project.kind if project.kind in ("twincat", "codesys", "beremiz") else None
     return group(analysis.diagnostics, analysis.units, project.libraries, installed, own, kind)

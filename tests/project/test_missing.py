@@ -147,3 +147,22 @@ def test_what_follows_from_a_missing_type_is_the_library_s_too(tmp_path):
     codes = {d.code for d in groups[0].replaced}
     assert {"E012", "E010", "E041"} <= codes  # the type, F_Text := ..., Send('hello')
     assert not [d for d in rest if d.is_error], [d.message for d in rest if d.is_error]
+
+
+def test_a_pou_of_the_project_that_did_not_import_is_no_library_s(tmp_path):
+    """A block in a language the importer does not read is the project's
+    own: its uses stay errors, not 'names not found, maybe from Native'."""
+    folder = tmp_path / "beremiz"
+    shutil.copytree(HERE / "beremiz", folder)
+    xml = folder / "plc.xml"
+    ghost = (
+        '      <pou name="ghost" pouType="functionBlock">\n'
+        '        <interface><localVars><variable name="n"><type><INT/></type></variable></localVars></interface>\n'
+        "        <body><CFC/></body>\n      </pou>\n"
+    )
+    text = xml.read_text().replace("    </pous>", ghost + "    </pous>")
+    use = '<variable name="g"><type><derived name="ghost"/></type></variable>\n            '
+    xml.write_text(text.replace('<variable name="toggles">', use + '<variable name="toggles">'))
+    analysis, groups, rest = _grouped_analysis(folder)
+    assert groups == [] and analysis.lost == {str(xml): [("ghost", line_of(xml, 'pou name="ghost"'))]}
+    assert [d.message for d in rest if d.is_error and d.code == "E012"] == ["unknown type 'ghost'"]
