@@ -25,6 +25,7 @@ from ..program.loaded import Program
 from ..st.ast import Pos
 from ..st.diagnostics import Diagnostic, DiagnosticBag, SourceSet
 from ..st.limits import MAX_SOURCE_CHARS
+from ..st.parser import parse_source
 from ..st.profile import DEFAULT, Profile, get_profile
 from .model import Project
 from .units import Unit, Units, prune
@@ -47,6 +48,7 @@ class Analysis:
     #: file -> (name, line) of each POU its XML declares that did not become
     #: ST (in a language not imported, or its file not read)
     lost: dict = field(default_factory=dict)
+    texts: dict = field(default_factory=dict)  # file -> the text parsed (ST a project file gives, for one)
     clean: bool = False  # the part left compiled
     program: Program | None = None  # that part's Program (None when nothing compiles)
     rounds: int = 0
@@ -110,18 +112,32 @@ def analyse(
     diags.extend(project.diags.items)
     texts: dict[str, str] = {}
     for path in project.files:
+        if path in project.generated:  # ST the project's files give (messages show those files)
+            texts[path] = project.generated[path]
+            continue
         text = _read(path, diags)
         if text is not None:
             texts[path] = text
             sources.add(path, text)
     parse_items = DiagnosticBag()
-    parsed = {path: _parse(path, text, prof, parse_items) for path, text in texts.items()}
+
+    def parse(path: str, text: str, into: DiagnosticBag | None) -> list:
+        if path in project.generated:
+            bag = into if into is not None else DiagnosticBag()
+            return [parse_source(text, path, bag, prof)]
+        return _parse(path, text, prof, into)
+
+    parsed = {path: parse(path, text, parse_items) for path, text in texts.items()}
     units = Units(parsed)
     words = frozenset().union(*(u.words for u in units.all))
-    lost = {path: _lost(path, text, units) for path, text in texts.items() if path.lower().endswith(_XML_KINDS)}
+    lost = {
+        path: _lost(path, text, units)
+        for path, text in texts.items()
+        if path.lower().endswith(_XML_KINDS) and path not in project.generated
+    }
 
     def fresh() -> dict:
-        return {path: _parse(path, text, prof, None) for path, text in texts.items()}
+        return {path: parse(path, text, None) for path, text in texts.items()}
 
     compiled_diags = DiagnosticBag()
     compiled_diags.extend(parse_items.items)
@@ -129,6 +145,7 @@ def analyse(
     program = build_parsed(files, words, prof, sources, compiled_diags, natives=natives, libraries=libraries)
     diags.extend(compiled_diags.items)
     result = Analysis(project, prof, diags.sorted(), sources, units, lost={p: x for p, x in lost.items() if x})
+    result.texts = texts
     _check_tasks(result, program)
     result.diagnostics = sorted(result.diagnostics, key=lambda d: (d.pos.file, d.pos.line, d.pos.col, d.code))
     if program is not None:

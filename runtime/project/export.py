@@ -49,14 +49,17 @@ def export(analysis: Analysis, notes: dict | None = None) -> list[ExportedFile]:
     broken = _not_imported(analysis)
     out = []
     for path in analysis.project.files:
-        text = analysis.sources.text(path)
+        text = analysis.texts.get(path)
         label = analysis.project.label(path)
         if text is None:
             errors = [d for d in analysis.diagnostics if d.pos.file == path and d.is_error]
             out.append(ExportedFile(path, label, "", skipped=[(label, errors)]))
             continue
         try:
-            views = st_plain_lines(path, text, DiagnosticBag())
+            if path in analysis.project.generated:  # ST already, laid on the lines of its file
+                views = [[(n, line.strip()) for n, line in enumerate(text.splitlines(), 1) if line.strip()]]
+            else:
+                views = st_plain_lines(path, text, DiagnosticBag())
         except Exception:  # an importer's own failure: E009 of the analysis says so
             views = []
         top = [u for u in units.by_file.get(path, []) if u.parent is None]

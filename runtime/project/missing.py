@@ -177,7 +177,7 @@ class _Resolver:
         ref = self.ref_of.get(key)
         if ref is not None:  # IBaseLibrary.TypeClass: the namespace itself is unknown
             return None if self._has(ref.name, ref.namespace) else ref.name
-        candidates = [lib for lib in self.table if key in lib.names and lib.name.upper() not in self.own]
+        candidates = [lib for lib in self.table if key in lib.names]
         if any(self._has(lib.name, *lib.namespaces) for lib in candidates):
             return None  # a library the compilation had: the error is the code's own
         if candidates:

@@ -58,6 +58,9 @@ class Project:
     diags: DiagnosticBag = field(default_factory=DiagnosticBag)
     #: the texts of the project's own files (.plcproj, .TcTTO ...), for excerpts in messages
     texts: dict = field(default_factory=dict)
+    #: file -> the ST it gives, laid on its lines (the variables of a Beremiz Python
+    #: extension): compiled as that file, its messages show the file's own lines
+    generated: dict = field(default_factory=dict)
 
     @property
     def profile(self) -> str | None:

@@ -12,6 +12,7 @@ from pathlib import Path
 from xml.sax.saxutils import unescape
 
 from ..st.ast import Pos
+from ..st.importers.view import LineView
 from ..st.importers.xmlsafe import parse_xml
 from .model import LibraryRef, Project
 from .readtext import read_text
@@ -76,6 +77,9 @@ def read_beremiz(folder: Path, project: Project) -> None:
         if sub.is_dir() and "@" in sub.name:
             name, _, kind = sub.name.partition("@")
             project.extensions.append((name, kind))
+    for name, kind in project.extensions:
+        if kind in ("py_ext", "wxglade_hmi"):  # (a wxGlade HMI is a Python file too)
+            python_variables(folder / f"{name}@{kind}" / "pyfile.xml", project)
     kinds = {kind for _name, kind in project.extensions}
     enabled = dict(BEREMIZ_LIBRARIES, SVGHMI="svghmi" in kinds)
     config = folder / "beremiz.xml"
@@ -91,3 +95,44 @@ def read_beremiz(folder: Path, project: Project) -> None:
                 if value is not None:
                     enabled[lib] = value.strip().lower() == "true"
     project.libraries.extend(LibraryRef(lib, lib, where) for lib, on in enabled.items() if on)
+
+
+_TYPE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(?:\s*[\[(]\s*\d{1,5}\s*[\])])?\Z")
+# An initial value as ST may take it: a number, TRUE/FALSE, a duration, a string without
+# quotes, '$' or line ends inside (nothing that could end the declaration or open a comment).
+_INITIAL = re.compile(r"(?:[+-]?\d+(?:\.\d+)?(?:[eE][+-]?\d+)?|TRUE|FALSE|T#[0-9a-zA-Z_.]+|'[^'$\n\r;]*')\Z", re.I)
+
+
+def python_variables(pyfile: Path, project: Project) -> None:
+    """The PLC variables a Beremiz Python extension declares (``<variable
+    name="WiiButtons" type="WORD" initial="0"/>`` in its pyfile.xml), which
+    the PLC's POUs name as VAR_EXTERNAL: a VAR_GLOBAL block laid on the
+    lines of pyfile.xml. The Python code itself does not run in softplc."""
+    if not pyfile.is_file():
+        return
+    text = read_text(pyfile, project)
+    root = parse_xml(text, str(pyfile), project.diags) if text is not None else None
+    block = root.kid("variables") if root is not None else None
+    if block is None or text is None:
+        return
+    view = LineView(text.count("\n") + 1)
+    written = 0
+    for var in block.kids("variable"):
+        name, type_, initial = var.get("name", ""), var.get("type", "").strip(), var.get("initial")
+        ok = _IDENT.match(name) and _TYPE.match(type_) and (initial is None or _INITIAL.match(initial.strip()))
+        if not ok:
+            project.diags.error(
+                "E183",
+                f"the extension's variable {name[:40]!r} ({type_[:40]!r}) cannot become an ST declaration",
+                Pos(str(pyfile), var.line, var.col),
+                "a variable needs an identifier for its name, a type name and a literal initial value",
+            )
+            continue
+        value = f" := {initial.strip()}" if initial is not None else ""
+        view.put(var.line, 1, f"{name} : {type_.replace(' ', '')}{value};")
+        written += 1
+    if written:
+        view.put(block.line, 1, "VAR_GLOBAL")
+        view.put(block.end_line, 1, "END_VAR")
+        project.generated[str(pyfile)] = view.text()
+        project.files.append(str(pyfile))

@@ -140,3 +140,51 @@ def test_a_task_object_that_cannot_run_is_e222(tmp_path):
     tto.write_text(good.replace("<Name>MAIN</Name>", "<Name>MAIN; x := 1</Name>"))
     [p] = open_projects([str(root)])
     assert _codes(p) == [("E222", "PlcTask.TcTTO", line_of(tto, "<Name>"))] and p.tasks[0].programs == ()
+
+
+PYFILE = """<?xml version='1.0' encoding='utf-8'?>
+<PyFile xmlns:xhtml="http://www.w3.org/1999/xhtml">
+  <variables>
+    <variable name="Setpoint" type="INT" initial="42"/>
+    <variable name="Label" type="STRING" initial="'tank'"/>
+    <variable name="Evil" type="INT; END_VAR PROGRAM X" initial="1"/>
+    <variable name="Worse" type="INT" initial="1; (* "/>
+  </variables>
+  <globals>
+    <xhtml:p><![CDATA[
+def Poll():
+    PLCGlobals.Setpoint += 1
+]]></xhtml:p>
+  </globals>
+</PyFile>
+"""
+
+
+def test_the_variables_of_a_beremiz_python_extension_are_global_variables(tmp_path):
+    from softplc.runtime.project.analysis import analyse
+
+    folder = _copy(tmp_path, "beremiz")
+    pyfile = folder / "py_ext_0@py_ext" / "pyfile.xml"
+    pyfile.write_text(PYFILE)
+    xml = folder / "plc.xml"
+    xml.write_text(
+        xml.read_text()
+        .replace(
+            "<localVars>",
+            '<externalVars><variable name="Setpoint"><type><INT/></type></variable></externalVars>\n<localVars>',
+            1,
+        )
+        .replace("toggles := toggles + 1;", "toggles := toggles + Setpoint;")
+    )
+    [p] = open_projects([str(folder)])
+    assert p.files == [str(xml), str(pyfile)]
+    # what could end a declaration or open a comment stays out, named at its line
+    assert _codes(p) == [("E183", "pyfile.xml", 6), ("E183", "pyfile.xml", 7)]
+    analysis = analyse(p)
+    assert analysis.clean and [d.code for d in analysis.errors] == ["E183", "E183"]
+    # the program adds Setpoint where the project beside it adds 1
+    r = analysis.program.runner("blinker", cycle_time_ms=50)
+    plain = analyse(open_projects([str(HERE / "beremiz")])[0]).program.runner("blinker", cycle_time_ms=50)
+    r.run(21)
+    plain.run(21)
+    assert plain.get("toggles") > 1 and r.get("toggles") == 42 * plain.get("toggles")
