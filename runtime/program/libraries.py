@@ -78,10 +78,12 @@ def _version_salt() -> bytes:
 _SALT: bytes | None = None
 
 
-def parse_cached(name: str, text: str, profile: Profile) -> tuple[list, list]:
+def parse_cached(name: str, text: str, profile: Profile, disk: bool = True) -> tuple[list, list]:
     """(SourceFiles, diagnostics) of a library file, parsed once per content:
     from memory, else from the cache folder, else parsed (and kept in both).
-    Every call returns new objects: the checker annotates them."""
+    Every call returns new objects: the checker annotates them. disk=False:
+    memory only (a project's own sources, which change with every edit,
+    would fill the cache folder)."""
     global _SALT
     if _SALT is None:
         _SALT = _version_salt()
@@ -91,6 +93,8 @@ def parse_cached(name: str, text: str, profile: Profile) -> tuple[list, list]:
         return pickle.loads(data)
     path = _cache_dir() / "st" / f"{key}.pickle"
     try:
+        if not disk:
+            raise FileNotFoundError(path)
         data = path.read_bytes()
         parsed = pickle.loads(data)  # our own cache, in the user's folder; a damaged entry is parsed again
     except Exception:
@@ -100,7 +104,8 @@ def parse_cached(name: str, text: str, profile: Profile) -> tuple[list, list]:
         files = [parse_source(v.text, name, diags, profile, v.lowered, v.origins) for v in st_views(name, text, diags)]
         parsed = (files, diags.items)  # (new objects: only their pickle is kept)
         data = pickle.dumps(parsed, protocol=pickle.HIGHEST_PROTOCOL)
-        _store(path, data)
+        if disk:
+            _store(path, data)
     _PARSES[key] = data
     return parsed
 

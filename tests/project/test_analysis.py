@@ -99,3 +99,18 @@ def test_a_configuration_keeps_the_program_instances_that_compile(tmp_path):
     assert analysis.clean and _compiled(analysis) == {"Good": True, "Bad": False}
     [config] = analysis.program.checked.configurations
     assert [p["name"] for p in config.programs] == ["g"]
+
+
+def test_a_project_s_sources_are_not_kept_in_the_cache_folder(tmp_path, monkeypatch):
+    """They change with every edit: each version kept would fill the cache
+    (the libraries they use are kept, once)."""
+    monkeypatch.setenv("SOFTPLC_CACHE", str(tmp_path / "cache"))
+    root = twincat(tmp_path)
+    main = root / "Plant" / "Plc" / "POUs" / "MAIN.TcPOU"
+    counts = []
+    for step in (1, 2, 3):
+        main.write_text(main.read_text().replace("]]></ST>", f"\n// edit {step}]]></ST>", 1))
+        [project] = open_projects([str(root)])
+        assert analyse(project).clean
+        counts.append(len(list((tmp_path / "cache").rglob("*.pickle"))))
+    assert counts[0] == counts[1] == counts[2]
