@@ -13,6 +13,7 @@ from pathlib import Path
 import click
 
 from .cli_report import echo_err, plural, report
+from .st.profile import PROFILES
 
 KIND_NAMES = {
     "twincat": "TwinCAT PLC project",
@@ -25,7 +26,7 @@ KIND_NAMES = {
 
 PROFILE_OPTION = click.option(
     "--profile",
-    type=click.Choice(["iec", "matiec", "codesys", "twincat", "schneider"], case_sensitive=False),
+    type=click.Choice(list(PROFILES), case_sensitive=False),
     default=None,
     help=(
         "Dialect: strict IEC 61131-3, MatIEC (OpenPLC, Beremiz), CODESYS, TwinCAT or Schneider Unity/Control "

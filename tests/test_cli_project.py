@@ -277,3 +277,16 @@ def test_an_importer_that_fails_on_a_file_loses_no_project(tmp_path):
         r = softplc(*command, odd)
         no_traceback(r)
         assert r.returncode in (0, 1, 2) and "internal error: ValueError" not in r.stderr, (command, r.stderr)
+
+
+def test_a_task_calling_what_is_no_program_is_e222_at_its_line(tmp_path):
+    root = tmp_path / "twincat"
+    shutil.copytree(HERE / "twincat", root)
+    tto = root / "Plant" / "Plc" / "PlcTask.TcTTO"
+    tto.write_text(tto.read_text().replace("<Name>MAIN</Name>", "<Name>FB_Tank</Name>"))
+    r = softplc("check", root)
+    at = line_of(tto, "<Name>FB_Tank")
+    assert r.returncode == 1
+    assert f"{tto}:{at}:7: error E222: task PlcTask calls FB_Tank, which is a FUNCTION_BLOCK" in r.stderr
+    r = softplc("run", root, "--virtual-time", "--cycles", "1")
+    assert r.returncode == 1 and "E222" in r.stderr
