@@ -70,7 +70,7 @@ def print_diagnostics(analysis, groups: list, rest: list) -> tuple[int, int, int
     references to missing libraries, warnings)."""
     errors, warnings = report(rest, analysis.sources)
     report([g.diagnostic() for g in groups], analysis.sources)
-    return errors, sum(g.count for g in groups), warnings
+    return errors, sum(len(g.replaced) for g in groups), warnings
 
 
 def counts_line(errors: int, library_refs: int, libraries: int, warnings: int) -> str:

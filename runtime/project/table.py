@@ -130,7 +130,7 @@ def rows(analysis: Analysis, groups: list, rest: list) -> tuple[list[Row], Total
             out.append(Row(f"  {item.name}", ok, ue, ulib, uw, _note(analysis, [item], per_unit)))
     errors = sum(1 for d in rest if d.is_error and d.code not in ("E223", "E224"))
     warnings = sum(1 for d in rest if not d.is_error)
-    refs = sum(g.count for g in groups)
+    refs = sum(len(g.replaced) for g in groups)  # errors (a place may hold two)
     named = len([g for g in groups if g.name != NOT_FOUND])
     totals = Totals(
         len(analysis.project.files), pous, compiled, errors, refs, named + (1 if len(groups) > named else 0), warnings
