@@ -28,13 +28,15 @@ from pathlib import Path
 
 import click
 
+from .cli_project import ALL_ERRORS_OPTION, PARTIAL_OPTION
+from .cli_project import PROFILE_OPTION as PROJECT_PROFILE_OPTION
 from .cli_report import echo_err as _echo_err
 from .cli_report import report as _report
 from .cli_report import summary as _summary
 from .cli_run import Duration, run_cmd
 from .durations import EXAMPLES, parse_duration_ns
 from .plugin.registry import PluginError
-from .st.profile import DEFAULT, PROFILES, get_profile
+from .st.profile import DEFAULT, PROFILES
 
 EXIT_OK = 0
 EXIT_COMPILE = 1
@@ -136,44 +138,27 @@ def cli() -> None:
 
 @cli.command()
 @click.argument("files", nargs=-1, type=click.Path(exists=True, readable=True))
-@PROFILE_OPTION
+@PROJECT_PROFILE_OPTION
+@ALL_ERRORS_OPTION
 @click.option("--explain", "code", metavar="CODE", help="Print the page of a diagnostic code (e.g. E030); no FILES.")
-def check(files, profile: str, code: str | None) -> None:
-    """Check ST files (and PLCopen XML, TwinCAT files; a folder: every source
-    in it, with a summary table) and report errors and warnings with
-    file:line:column."""
-    from .check_summary import expand_sources, most_frequent, note_other_profiles, summary
-    from .program import check_files
-    from .st import explain
+def check(files, profile: str | None, all_errors: bool, code: str | None) -> None:
+    """Check ST files, PLCopen XML and TwinCAT files, and projects: a
+    TwinCAT .sln/.tsproj/.plcproj, a CODESYS export, a Beremiz folder, a
+    folder. Diagnostics with file:line:column; for a project a table per
+    file and POU (compiled, errors, warnings) and one line per missing
+    library."""
+    from .cli_project import check_projects
 
     if code is not None:
         _explain(code)
     if not files:
         raise click.UsageError("Missing argument 'FILES...'.")
-    folders = any(Path(f).is_dir() for f in files)
-    files = expand_sources(list(files))
-    if not files:
-        _echo_err("softplc: no ST sources in the folder")
-        sys.exit(EXIT_USAGE)
-    # a test file (test_*.st, softplc test) is checked with the assertions it calls
-    tests = any(Path(f).name.lower().startswith("test_") for f in files)
-    natives = _test_natives() if tests else ()
-    diagnostics, sources = check_files(files, profile=profile, natives=natives)
-    note_other_profiles(
-        files, get_profile(profile).name, diagnostics, lambda f, p: check_files(f, p, natives=natives)[0]
-    )
-    errors, warnings = _report(diagnostics, sources)
-    if folders:
-        _echo_err(summary({f: text for f in files if (text := sources.text(f)) is not None}, diagnostics))
-    elif len({d.code for d in diagnostics}) > 1:
-        _echo_err(most_frequent(diagnostics))
-    _echo_err(f"profile: {get_profile(profile).name}")  # what decided the dialect's questions
-    if errors or warnings:
-        _profile_hint(files, get_profile(profile).name, errors, warnings)
-    _summary(errors, warnings)
-    if diagnostics:
-        _echo_err(explain.more_line([d.code for d in diagnostics]))
-    sys.exit(EXIT_COMPILE if errors else EXIT_OK)
+    sys.exit(check_projects(list(files), profile, all_errors, _natives_for))
+
+
+def _natives_for(files: list) -> tuple:
+    """A test file (test_*.st, softplc test) is checked with the assertions it calls."""
+    return _test_natives() if any(Path(f).name.lower().startswith("test_") for f in files) else ()
 
 
 def _explain(code: str) -> None:
@@ -252,42 +237,25 @@ def new_cmd(name: str, where: str) -> None:
 
 
 @cli.command("export-st")
-@click.argument("source", type=click.Path(exists=True, dir_okay=False))
+@click.argument("sources", nargs=-1, required=True, type=click.Path(exists=True))
 @click.option(
-    "-o", "--output", type=click.Path(dir_okay=False), help="Write the ST to this file instead of printing it."
+    "-o",
+    "--output",
+    type=click.Path(),
+    help="Write the ST to OUT.st, or with DIR/ (an existing folder, or a name ending in /) one .st per source.",
 )
-def export_st_cmd(source: str, output: str | None) -> None:
-    """Write an imported file (PLCopen XML) as plain ST, for review."""
-    from .st.diagnostics import DiagnosticBag, SourceSet
-    from .st.importers import st_export
+@PROJECT_PROFILE_OPTION
+def export_st_cmd(sources: tuple, output: str | None, profile: str | None) -> None:
+    """Write imported files and projects (PLCopen XML, TwinCAT, a folder) as
+    plain ST, for review and porting: every POU that imports (one that does
+    not compile is marked so); the rest are listed with their errors."""
+    from .cli_project import export_projects
 
-    diags = DiagnosticBag()
-    try:
-        text = Path(source).read_text(encoding="utf-8-sig")
-    except (OSError, UnicodeDecodeError) as e:
-        _echo_err(f"softplc: cannot read {source}: {getattr(e, 'strerror', None) or e}")
-        sys.exit(EXIT_COMPILE)
-    st = st_export(source, text, diags)
-    if diags.items:
-        sources = SourceSet()
-        sources.add(source, text)
-        errors, warnings = _report(diags.sorted(), sources)
-        if errors:
-            _summary(errors, warnings)
-            sys.exit(EXIT_COMPILE)
-    if output is None:
-        click.echo(st, nl=False)
-        return
-    try:
-        Path(output).write_text(st, encoding="utf-8")
-    except OSError as e:
-        _echo_err(f"softplc: cannot write {output}: {e.strerror or e}")
-        sys.exit(EXIT_COMPILE)
-    _echo_err(f"wrote {output}")
+    sys.exit(export_projects(list(sources), output, profile))
 
 
 @cli.command("exec")
-@FILES_ARGUMENT
+@click.argument("files", nargs=-1, required=True, type=click.Path(exists=True, readable=True))
 @click.option("--entry", metavar="NAME", help="PROGRAM or FUNCTION to run [default: the only PROGRAM in FILES].")
 @click.option("--cycles", type=click.IntRange(min=0), default=1, show_default=True, help="Number of cycles to run.")
 @click.option(
@@ -297,14 +265,23 @@ def export_st_cmd(source: str, output: str | None) -> None:
     show_default=True,
     help="Virtual time per cycle, whole milliseconds: 10ms, 1s, T#250ms.",
 )
-@PROFILE_OPTION
-def exec_cmd(files, entry: str | None, cycles: int, cycle_time: int, profile: str) -> None:
+@PROJECT_PROFILE_OPTION
+@PARTIAL_OPTION
+def exec_cmd(files, entry: str | None, cycles: int, cycle_time: int, profile: str | None, partial: bool) -> None:
     """Run a PROGRAM for N cycles in virtual time and print its variables as
-    one JSON object; for a FUNCTION print {"return": value}."""
+    one JSON object; for a FUNCTION print {"return": value}. FILES may be a
+    project (a TwinCAT .sln/.plcproj, a CODESYS export, a Beremiz folder, a
+    folder); its task's PROGRAM is the default entry."""
+    from .cli_project import compile_project, one_project, task_entry
     from .st.faults import STFault
 
-    prog = _compile(files, profile)
-    _report(prog.warnings, prog.sources)
+    project = one_project(list(files), "exec")
+    if project.kind == "files" and not partial:
+        prog = _compile(project.files, profile or DEFAULT.name)
+        _report(prog.warnings, prog.sources)
+    else:
+        prog, analysis = compile_project(project, profile, partial)
+        entry = entry or task_entry(project, prog, analysis)
     entry = _pick_entry(prog.pous, entry)
     try:
         runner = prog.runner(entry, cycle_time_ms=cycle_time)

@@ -5,10 +5,12 @@ not load the engine)."""
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 
 import click
 
-from .cli_report import report, summary
+from .cli_project import PARTIAL_OPTION, PROFILE_OPTION, compile_project, one_project
+from .cli_report import echo_err, report, summary
 from .durations import EXAMPLES, parse_duration_ns
 
 
@@ -27,7 +29,7 @@ class Duration(click.ParamType):
 
 
 @click.command("run")
-@click.argument("config", required=False, type=click.Path(dir_okay=False))
+@click.argument("config", required=False, type=click.Path(), metavar="[CONFIG|PROJECT]")
 @click.option(
     "--virtual-time", is_flag=True, help="Run on the virtual clock: jump from deadline to deadline (no waiting)."
 )
@@ -109,6 +111,8 @@ class Duration(click.ParamType):
     metavar="N",
     help="Keep N rotated log files (FILE.1 .. FILE.N), the oldest dropped.",
 )
+@PROFILE_OPTION
+@PARTIAL_OPTION
 def run_cmd(
     config: str | None,
     virtual_time: bool,
@@ -124,9 +128,14 @@ def run_cmd(
     log_file: str | None,
     log_max_bytes: int,
     log_backups: int,
+    profile: str | None,
+    partial: bool,
 ) -> None:
     """Run the PLC: the tasks of CONFIG (a TOML file; without it the embedded
-    default example) until Ctrl-C, SIGTERM, --duration or --cycles.
+    default example) until Ctrl-C, SIGTERM, --duration or --cycles. A
+    PROJECT instead (a TwinCAT .sln/.plcproj, a CODESYS export, a Beremiz
+    folder, a folder) runs its programs with its own tasks (.TcTTO, its
+    CONFIGURATION, else every PROGRAM every 10 ms), without buses.
 
     SIGUSR1 (or typing `restart` on a terminal) restarts tasks stopped by a
     runtime fault; SIGHUP compiles the ST files and swaps them in (online
@@ -137,6 +146,11 @@ def run_cmd(
 
     if duration is not None and cycles is not None:
         raise click.UsageError("give --duration or --cycles, not both")
+    prepared = None
+    if config is not None and is_project(config):
+        prepared = _project(config, profile, partial)
+    elif profile is not None or partial:
+        raise click.UsageError("--profile and --partial are for a project; a configuration's [plc] decides")
     paths = [p.strip() for item in watch for p in item.split(",") if p.strip()]
     sys.exit(
         run_plc(
@@ -155,8 +169,34 @@ def run_cmd(
             log_file=log_file,
             log_max_bytes=log_max_bytes,
             log_backups=log_backups,
+            prepared=prepared,
         )
     )
+
+
+def is_project(path: str) -> bool:
+    """Whether run's argument is a project rather than a TOML configuration."""
+    from .project.discover import is_project_file
+    from .st.importers import is_source
+
+    p = Path(path)
+    return p.is_dir() or is_project_file(path) or (p.suffix.lower() != ".toml" and is_source(p.name))
+
+
+def _project(path: str, profile: str | None, partial: bool) -> tuple:
+    """(PlcConfig, Program) of a project, or exit: 1 for compile errors, 2
+    when its tasks cannot run."""
+    from .project.running import ProjectRunError, project_config
+
+    if not Path(path).exists():
+        raise click.BadParameter(f"{path} does not exist", param_hint="PROJECT")
+    project = one_project([path], "run")
+    program, analysis = compile_project(project, profile, partial)
+    try:
+        return project_config(analysis, program), program
+    except ProjectRunError as e:
+        echo_err(f"softplc: {e}")
+        sys.exit(2)
 
 
 def _listen(value: str | None) -> str | None:

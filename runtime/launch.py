@@ -98,7 +98,10 @@ def run_plc(
     log_file: str | None = None,
     log_max_bytes: int = 10_000_000,
     log_backups: int = 5,
+    prepared: tuple | None = None,
 ) -> int:
+    """Run the PLC of config (a TOML file; None: the embedded default), or
+    of prepared: (PlcConfig, Program) a project gave (softplc run PROJECT)."""
     from .config import ConfigError, default_config_path, load_config
     from .config.servers import web_option
     from .engine.build import build_engine
@@ -136,11 +139,16 @@ def run_plc(
                 file_handler = _log_file(log_file, log_max_bytes, log_backups, engine_time)
             except OSError as e:
                 return _fail(f"--log-file: cannot write {log_file}: {e.strerror or e}", EXIT_CONFIG)
-        path = Path(config) if config else default_config_path()
-        try:
-            cfg = load_config(path)
-        except ConfigError as e:
-            return _fail(str(e), EXIT_CONFIG)
+        program = None
+        if prepared is not None:
+            cfg, program = prepared
+            path = cfg.path
+        else:
+            path = Path(config) if config else default_config_path()
+            try:
+                cfg = load_config(path)
+            except ConfigError as e:
+                return _fail(str(e), EXIT_CONFIG)
         for warning in cfg.warnings:
             log.warning("%s", warning)
         servers = {key: cfg.sections.get(key) for key in SERVERS}
@@ -150,7 +158,7 @@ def run_plc(
             except ValueError as e:
                 return _fail(f"--web: {e}", EXIT_CONFIG)
         try:
-            engine = build_engine(cfg, virtual_time=virtual_time, start_mode=start_mode)
+            engine = build_engine(cfg, virtual_time=virtual_time, start_mode=start_mode, program=program)
         except CompileError as e:
             report_compile_errors(e)
             return EXIT_COMPILE

@@ -34,3 +34,23 @@ def test_benchmark_starts(script):
     done = subprocess.run([sys.executable, str(script), "--help"], capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     assert done.stdout.startswith("usage:")
+
+
+REAL_PROJECTS = BENCHMARKS[0].parent / "real_projects.py"
+
+
+def test_real_projects_reads_projects_of_each_kind():
+    """benchmarks/real_projects.py on the tests' own small projects: one row each."""
+    here = Path(__file__).resolve().parent / "project"
+    args = [str(here / name) for name in ("twincat", "codesys/Line.xml", "beremiz", "folder")]
+    done = subprocess.run(
+        [sys.executable, str(REAL_PROJECTS), *args, "--cycles", "5"], capture_output=True, text=True, timeout=300
+    )
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    assert lines[0].startswith("host: timeit factor ")
+    assert lines[1].split()[:3] == ["project", "kind", "files"]
+    rows = {line.split()[0]: line.split()[1:] for line in lines[2:6]}
+    assert rows["Plc"][:6] == ["twincat", "4", "2", "2", "(100", "%)"] and rows["Plc"][6] == "1/1"
+    assert rows["Line"][0] == "codesys" and rows["beremiz"][0] == "beremiz" and rows["folder"][0] == "folder"
+    assert lines[-1].startswith("all: 4 projects, 7 POUs, 7 compiled (100 %), 4/4 PROGRAMs ran, 0 errors")

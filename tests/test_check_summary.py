@@ -1,9 +1,10 @@
-"""softplc check on a folder (runtime/check_summary.py): every source in
-it, one table with POUs, errors and warnings per file, the frequent codes."""
+"""softplc check on a folder (runtime/check_summary.py, runtime/project/):
+every source in it, one table with the POUs, whether they compiled, the
+errors and warnings per file and POU, the frequent codes."""
 
 from __future__ import annotations
 
-from softplc.runtime.check_summary import expand_sources
+from softplc.runtime.project import open_projects
 from tests.test_cli import softplc
 
 
@@ -22,18 +23,23 @@ def _folder(tmp_path):
 
 def test_a_folder_is_its_sources(tmp_path):
     root = _folder(tmp_path)
-    assert expand_sources([str(root)]) == [str(root / "src" / "a.st"), str(root / "src" / "b.st")]
+    [project] = open_projects([str(root)])
+    assert project.files == [str(root / "src" / "a.st"), str(root / "src" / "b.st")]
 
 
 def test_check_on_a_folder_prints_the_table(tmp_path):
     root = _folder(tmp_path)
     r = softplc("check", root)
     assert r.returncode == 1
-    table = r.stderr[r.stderr.index("file ") :].splitlines()
-    assert table[1].split() == [str(root / "src" / "a.st"), "2", "2", "1"]
-    assert table[2].split() == [str(root / "src" / "b.st"), "1", "0", "0"]
-    assert table[3].split() == ["2", "files", "3", "2", "1"]
-    assert table[4] == "most frequent: E010 x2, W130 x1"
+    table = r.stderr[r.stderr.index("file / POU") :].splitlines()
+    assert table[0].split() == ["file", "/", "POU", "compiled", "errors", "libraries", "warnings"]
+    # a.st: Main has the two errors and does not compile, A (a warning) does
+    assert table[1].split() == ["src/a.st", "1/2", "2", "0", "1"]
+    assert table[2].split() == ["A", "yes", "0", "0", "1"]
+    assert table[3].split() == ["Main", "no", "2", "0", "0"]
+    assert table[4].split() == ["src/b.st", "yes", "0", "0", "0"]
+    assert table[5] == "total: 2 files, 3 POUs, 2 compiled (67 %); 2 errors; 1 warning"
+    assert table[6] == "most frequent: E010 x2, W130 x1"
     assert r.stderr.rstrip().endswith("2 errors, 1 warning\nfor more on a code: softplc check --explain E010")
 
 

@@ -7,11 +7,11 @@ namespace bound to a process image and run cycle by cycle.
     r.run(100)                                              # STFault on a runtime fault
     r.get("counter.CV")
 
-Public names: compile_files, check_files, Program, Runner, ExecContext,
+Public names: compile_files, check_files, build_parsed, Program, Runner, ExecContext,
 locate, global_variable, StructWriter.
 """
 
-from .compile import check_files, compile_files
+from .compile import build_parsed, check_files, compile_files
 from .context import ExecContext
 from .libraries import Library
 from .loaded import Program, Runner
@@ -19,6 +19,7 @@ from .variables import StructWriter, global_variable, locate
 
 __all__ = [
     "Library",
+    "build_parsed",
     "ExecContext",
     "Program",
     "Runner",

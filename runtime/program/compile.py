@@ -211,6 +211,14 @@ def _front_end(paths: list, profile: Profile, texts: dict | None, natives: tuple
     diags = DiagnosticBag()
     sources = SourceSet()
     user, user_words = _read_sources(paths, texts, diags, sources, profile)
+    checked = _check(user, user_words, profile, natives, libraries, diags, sources)
+    return diags, sources, checked, user
+
+
+def _check(
+    user: list, user_words: set, profile: Profile, natives: tuple, libraries: tuple, diags: DiagnosticBag, sources
+) -> CheckedProgram:
+    """Check the user's parsed files with the libraries their words name."""
     user_names = set().union(*(_decl_names(sf) for sf in user)) if user else set()
     lib_diags = DiagnosticBag()
     library = []
@@ -239,7 +247,7 @@ def _front_end(paths: list, profile: Profile, texts: dict | None, natives: tuple
     )
     checked = checker.run(library + user, library_files=tuple(sf.path for sf in library), namespaces=namespaces)
     diags.extend(d for d in lib_diags.items if d.is_error)
-    return diags, sources, checked, user
+    return checked
 
 
 def _back_end(checked: CheckedProgram, prof: Profile, diags: DiagnosticBag, where: A.Pos):
@@ -302,6 +310,36 @@ def compile_files(
     built = None if diags.has_errors else _back_end(checked, prof, diags, _first_position(paths, texts))
     if built is None:
         raise CompileError(diags.sorted(), sources)
+    gen, code, filename = built
+    user_pous = {d.name: d.kind for sf in user for d in sf.decls if isinstance(d, A.POU)}
+    return Program(
+        prof, checked, gen, code, filename, [d for d in diags.sorted() if not d.is_error], sources, user_pous
+    )
+
+
+def build_parsed(
+    user: list,
+    words: set | frozenset,
+    profile: str | Profile,
+    sources: SourceSet,
+    diags: DiagnosticBag,
+    *,
+    natives: tuple = (),
+    libraries: tuple = (),
+) -> Program | None:
+    """A Program of already parsed files (SourceFiles the caller parsed, and
+    may have pruned: runtime/project/ compiles the part of a project that
+    compiles), or None with the errors in diags. words: the names the files
+    use, upper case (which on-demand libraries they take); sources: their
+    texts, for the messages. The checker annotates the files: give fresh
+    ones each time (libraries.parse_cached)."""
+    prof = get_profile(profile) if isinstance(profile, str) else profile
+    checked = _check(user, set(words), prof, natives, tuple(libraries), diags, sources)
+    if diags.has_errors:
+        return None
+    built = _back_end(checked, prof, diags, A.Pos(user[0].path if user else "<input>", 1, 1))
+    if built is None:
+        return None
     gen, code, filename = built
     user_pous = {d.name: d.kind for sf in user for d in sf.decls if isinstance(d, A.POU)}
     return Program(

@@ -24,7 +24,6 @@ import os
 import pickle
 from pathlib import Path
 
-from ..st import ast as A
 from ..st.diagnostics import DiagnosticBag
 from ..st.importers import is_source, st_views
 from ..st.parser import parse_source
@@ -61,12 +60,16 @@ def _cache_dir() -> Path:
 
 
 def _version_salt() -> bytes:
-    """What makes an old parse invalid besides the text: the grammar and
-    the AST's definition."""
+    """What makes an old parse invalid besides the text: the language's
+    code (the grammar, the lexer and parser, the AST and its builders) and
+    the importers' (an imported file's parse is what its importer wrote,
+    and a newer softplc imports more: a cached parse of a PLCopen file
+    from before its FBD bodies were read would keep them out)."""
     h = hashlib.sha256()
-    for f in (_GRAMMAR, Path(A.__file__)):
+    st = _GRAMMAR.parent
+    for f in sorted([*st.glob("*.py"), *st.glob("*.lark"), *(st / "importers").glob("*.py")]):
         try:
-            h.update(f.read_bytes())
+            h.update(f.name.encode() + b"\0" + f.read_bytes())
         except OSError:
             pass
     return h.digest()
@@ -75,10 +78,12 @@ def _version_salt() -> bytes:
 _SALT: bytes | None = None
 
 
-def parse_cached(name: str, text: str, profile: Profile) -> tuple[list, list]:
+def parse_cached(name: str, text: str, profile: Profile, disk: bool = True) -> tuple[list, list]:
     """(SourceFiles, diagnostics) of a library file, parsed once per content:
     from memory, else from the cache folder, else parsed (and kept in both).
-    Every call returns new objects: the checker annotates them."""
+    Every call returns new objects: the checker annotates them. disk=False:
+    memory only (a project's own sources, which change with every edit,
+    would fill the cache folder)."""
     global _SALT
     if _SALT is None:
         _SALT = _version_salt()
@@ -88,6 +93,8 @@ def parse_cached(name: str, text: str, profile: Profile) -> tuple[list, list]:
         return pickle.loads(data)
     path = _cache_dir() / "st" / f"{key}.pickle"
     try:
+        if not disk:
+            raise FileNotFoundError(path)
         data = path.read_bytes()
         parsed = pickle.loads(data)  # our own cache, in the user's folder; a damaged entry is parsed again
     except Exception:
@@ -97,7 +104,8 @@ def parse_cached(name: str, text: str, profile: Profile) -> tuple[list, list]:
         files = [parse_source(v.text, name, diags, profile, v.lowered, v.origins) for v in st_views(name, text, diags)]
         parsed = (files, diags.items)  # (new objects: only their pickle is kept)
         data = pickle.dumps(parsed, protocol=pickle.HIGHEST_PROTOCOL)
-        _store(path, data)
+        if disk:
+            _store(path, data)
     _PARSES[key] = data
     return parsed
 

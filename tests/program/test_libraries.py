@@ -6,6 +6,7 @@ cost nothing; parses are kept by content hash; [plc] libraries = [...]."""
 from __future__ import annotations
 
 import pickle
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -165,3 +166,16 @@ def test_a_library_folder_that_does_not_exist_names_the_key(tmp_path):
     with pytest.raises(ConfigError) as exc:
         load_config(tmp_path / "plant.toml")
     assert "plc.libraries[0]" in str(exc.value) and "no such folder" in str(exc.value)
+
+
+def test_a_parse_is_kept_no_longer_than_the_importer_that_made_it(tmp_path, monkeypatch):
+    """A cached parse of an imported file is what its importer wrote: a
+    softplc whose importers read more (FBD bodies) must parse again."""
+    st = tmp_path / "st"
+    shutil.copytree(Path(libraries.__file__).resolve().parents[1] / "st", st)
+    monkeypatch.setattr(libraries, "_GRAMMAR", st / "grammar.lark")
+    before = libraries._version_salt()
+    assert libraries._version_salt() == before
+    plcopen = st / "importers" / "plcopen.py"
+    plcopen.write_text(plcopen.read_text() + "\n# reads more now\n")
+    assert libraries._version_salt() != before

@@ -16,7 +16,7 @@ from .sfc import sfc_body
 from .twincat import plcproj_files, twincat_views
 from .view import StView
 
-__all__ = ["StView", "is_imported", "is_source", "source_files", "st_export", "st_views"]
+__all__ = ["StView", "is_imported", "is_source", "source_files", "st_export", "st_plain_lines", "st_views"]
 
 LANGUAGES["SFC"] = sfc_body  # graphical SFC bodies (sfc.py)
 
@@ -63,6 +63,16 @@ def st_views(path: str, text: str, diags: DiagnosticBag) -> list[StView]:
         if path.lower().endswith(suffix):
             return [v.view() for v in reader(text, path, diags)]
     return [StView(text)]
+
+
+def st_plain_lines(path: str, text: str, diags: DiagnosticBag) -> list[list[tuple[int, str]]]:
+    """Per view of a source file, (line of the file, plain ST) of each line
+    that holds ST: what st_export writes, with the lines it comes from (a
+    project's export writes a file's POUs one by one)."""
+    for suffix, reader in _READERS.items():
+        if path.lower().endswith(suffix):
+            return [v.plain_lines() for v in reader(text, path, diags)]
+    return [[(n, line.rstrip()) for n, line in enumerate(text.splitlines(), 1)]]
 
 
 def st_export(path: str, text: str, diags: DiagnosticBag) -> str:

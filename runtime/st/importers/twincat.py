@@ -26,9 +26,28 @@ from .xmlsafe import PosElement, TextPositions, parse_xml
 
 SOURCE_SUFFIXES = (".tcpou", ".tcdut", ".tcgvl", ".tcio", ".st")
 # The POU kind a declaration opens, after its pragmas and comments.
-_KIND = re.compile(
-    r"(?:\s+|\{[^}]*\}|\(\*.*?\*\)|/\*.*?\*/|//[^\n]*)*(FUNCTION_BLOCK|FUNCTION|PROGRAM)\b", re.S | re.I | re.A
+# What may come before a declaration's keyword: blanks, pragmas, comments,
+# as one atomic group: a repeated group that could give back would try every
+# way of splitting a run of blanks or of '//' before failing (for ever on a
+# declaration of blanks).
+_LEAD = r"(?>(?:\s|\{[^}]*\}|\(\*.*?\*\)|/\*.*?\*/|//[^\n]*)*)"
+_KIND = re.compile(_LEAD + r"(FUNCTION_BLOCK|FUNCTION|PROGRAM)\b", re.S | re.I | re.A)
+
+
+# A declaration's header, after its pragmas and comments, up to the end of
+# its line: "METHOD PUBLIC Close : RTS_IEC_RESULT;" (TwinCAT takes the ';').
+_HEADER = re.compile(
+    r"(" + _LEAD + r"(?:FUNCTION_BLOCK|FUNCTION|PROGRAM|METHOD|PROPERTY|INTERFACE)\b[^\n;]*?)"
+    r";([ \t]*(?://[^\n]*|\(\*.*?\*\))?[ \t]*)$",
+    re.S | re.I | re.A | re.M,
 )
+
+
+def _without_header_semicolon(text: str) -> str:
+    """A declaration whose header line ends with ';' (which TwinCAT takes and
+    IEC 61131-3 does not) with a blank in its place: the columns stay."""
+    m = _HEADER.match(text)
+    return text if m is None else text[: m.end(1)] + " " + text[m.end(1) + 1 :]
 
 
 def twincat_views(text: str, path: str, diags: DiagnosticBag) -> list[LineView]:
@@ -82,6 +101,8 @@ class _Reader:
         if el is None:
             return ""
         text = "".join(el.itertext())
+        if el.name == "Declaration":
+            text = _without_header_semicolon(text)
         if text.strip():
             view.put(*self.texts.start(el), text)
         return text

@@ -108,6 +108,8 @@ class LineView:
     def plain(self) -> str:
         """The view as plain ST to read: the lines that hold ST, without the
         blanks that placed them in the original's columns."""
-        return "".join(
-            " " * self.indent.get(n, 0) + self.lines[n][self.pad[n] :].rstrip() + "\n" for n in sorted(self.written)
-        )
+        return "".join(text + "\n" for _n, text in self.plain_lines())
+
+    def plain_lines(self) -> list[tuple[int, str]]:
+        """(line of the original, its text in plain()) of each line that holds ST."""
+        return [(n, " " * self.indent.get(n, 0) + self.lines[n][self.pad[n] :].rstrip()) for n in sorted(self.written)]

@@ -99,3 +99,55 @@ def test_the_testing_api_takes_the_twincat_project():
     with PLC.from_st([str(PROJECT)], cycle="10ms") as plc:
         plc.run_for("120ms")
         assert plc.read("MAIN.nRunning") == 3 and plc.read("MAIN.fbMotor.stStatus.nStarts") == 2
+
+
+SEMICOLONS = """<?xml version="1.0" encoding="utf-8"?>
+<TcPlcObject Version="1.1.0.1">
+  <POU Name="FB_Sum" Id="{1}" SpecialFunc="None">
+    <Declaration><![CDATA[// TwinCAT takes a ';' after a header
+FUNCTION_BLOCK FB_Sum;
+VAR
+    nTotal : DINT;
+END_VAR]]></Declaration>
+    <Implementation>
+      <ST><![CDATA[nTotal := Add(nTotal, 2);]]></ST>
+    </Implementation>
+    <Method Name="Add" Id="{2}">
+      <Declaration><![CDATA[METHOD PUBLIC Add : DINT; // the sum
+VAR_INPUT
+    a : DINT;
+    b : DINT;
+END_VAR]]></Declaration>
+      <Implementation>
+        <ST><![CDATA[Add := a + b;]]></ST>
+      </Implementation>
+    </Method>
+  </POU>
+</TcPlcObject>
+"""
+
+
+def test_a_semicolon_after_a_header_is_taken_as_twincat_takes_it(tmp_path):
+    pou = tmp_path / "FB_Sum.TcPOU"
+    pou.write_text(SEMICOLONS)
+    main = tmp_path / "main.st"
+    main.write_text("PROGRAM Main\nVAR fb : FB_Sum; END_VAR\nfb();\nEND_PROGRAM\n")
+    r = compile_files([str(pou), str(main)], profile="twincat").runner("Main", cycle_time_ms=10)
+    r.run(4)
+    assert r.get("fb.nTotal") == 8
+    # the column of what follows stays: an error there points at the .TcPOU's own column
+    broken = SEMICOLONS.replace("Add := a + b;", "Add := a + c;")
+    pou.write_text(broken)
+    diags, _ = check_files([str(pou), str(main)], profile="twincat")
+    [d] = [d for d in diags if d.is_error]
+    line = broken.split("Add := a + c;")[0].count("\n") + 1
+    assert (d.code, d.pos.line, d.pos.col) == ("E010", line, len("        <ST><![CDATA[Add := a + ") + 1)
+
+
+def test_a_declaration_of_blanks_is_named_at_once():
+    """Blanks or '//' runs before no keyword: named (E183), not tried every way."""
+    for lead in (" " * 5000, "\n" * 5000, "//" * 5000):
+        text = SEMICOLONS.replace("// TwinCAT takes a ';' after a header\nFUNCTION_BLOCK FB_Sum;", lead)
+        diags = DiagnosticBag()
+        st_views("FB_Sum.TcPOU", text, diags)
+        assert [d.code for d in diags.items] == ["E183"]
