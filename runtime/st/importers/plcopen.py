@@ -37,6 +37,8 @@ naming no PROGRAM of the file E185.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from ..ast import Pos
 from ..diagnostics import DiagnosticBag
 from . import codesys
@@ -142,16 +144,16 @@ class _Reader(PouReader):
             self.data_types.setdefault(dt.get("name", "").upper(), dt)
         for pou in pous:
             self.pou_elements.setdefault(pou.get("name", "").upper(), pou)
-        for dt in data_types:
-            self.guard(self.data_type, dt)
-        for itf in interfaces:
-            self.guard(self.interface_decl, itf)
-        for pou in pous:
-            self.guard(self.pou, pou)
-            if pou.get("name", "").upper() not in self.pou_kinds:
-                self.refused.add(pou.get("name", "").upper())  # (reported: no cascade at its instances)
-        for gv in sorted(lists, key=lambda e: e.line):
-            self.guard(self.global_list, gv)
+        # In document order: what shares a line (a file without line breaks)
+        # is written after what comes before it.
+        items: list[tuple[PosElement, Callable[[PosElement], None]]] = [(dt, self.data_type) for dt in data_types]
+        items += [(i, self.interface_decl) for i in interfaces]
+        items += [(p, self.pou) for p in pous]
+        items += [(gv, self.global_list) for gv in lists]
+        for el, read in sorted(items, key=lambda item: (item[0].line, item[0].col)):
+            self.guard(read, el)
+            if read == self.pou and el.get("name", "").upper() not in self.pou_kinds:
+                self.refused.add(el.get("name", "").upper())  # (reported: no cascade at its instances)
         for conf in configurations:
             self.guard(self.configuration, conf)
 

@@ -10,6 +10,7 @@ as codesys_twin/ (the same project in plain ST) does."""
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pytest
@@ -59,6 +60,20 @@ def test_the_codesys_export_runs_as_its_plain_st_twin(duration):
         assert got["PRG_Main.win"] == [26, 27, 28, 29]  # ARRAY[0..GVL_Cfg.N - 1], 100 cycles over 4
         assert got["PRG_Main.sample"]["id"] == 12 and got["PRG_Main.sample"]["label"] == "none"  # ST_Base's member
         assert got["PRG_Main.url"] == "http://x//y" and got["GVL_Cfg.gUrl"] == "http://plc.local//x"
+
+
+@pytest.mark.parametrize("layout", ["CRLF and a BOM", "no line breaks between tags"])
+def test_the_same_export_laid_out_otherwise_runs_the_same(layout, tmp_path):
+    text = XML.read_text()
+    if layout == "CRLF and a BOM":
+        data = ("\ufeff" + text.replace("\n", "\r\n")).encode()
+    else:  # what shares a line is written in the order of the file
+        data = re.sub(r">\s+<", "><", text).encode()
+    path = tmp_path / "project.xml"
+    path.write_bytes(data)
+    diags, _ = check_files([str(path)])
+    assert diags == []
+    assert values([path], "200ms") == values([XML], "200ms")
 
 
 def test_the_export_imports_without_a_diagnostic():
