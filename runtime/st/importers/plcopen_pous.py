@@ -20,7 +20,7 @@ from __future__ import annotations
 from . import codesys
 from .bodies import BodyOut, ImportProblem, body_language, supported, translate
 from .plcopen_text import ident
-from .plcopen_types import SECTIONS, TypeReader, put_head
+from .plcopen_types import SECTIONS, TypeReader, describe, put_head
 from .view import LineView
 from .xmlsafe import PosElement
 
@@ -74,7 +74,7 @@ class PouReader(TypeReader):
         actions = pou.kid("actions")
         if actions is not None:
             for act in actions.kids("action"):
-                self.guard(self.action, act, name, hidden)
+                self.guard(lambda a: self.action(name, a, hidden), act)
         if body is not None and lang is not None:
             self.body_with_decls(body, lang, name, hidden, pou)
             end = body.end_line
@@ -133,7 +133,8 @@ class PouReader(TypeReader):
             translate(lang, out)
         except ImportProblem as exc:
             message, where, hint = exc.args
-            self.problem("E183", message, where if where is not None else body, hint)
+            where = where if where is not None else body
+            self.problem("E183", f"{describe(where)}: {message}", where, hint)
             out.decls.clear()
             scratch = LineView(0)
         decls = [*hidden, *(d for d in out.decls if d not in hidden)]
@@ -143,7 +144,7 @@ class PouReader(TypeReader):
             self.main.put(line, col, "VAR " + " ".join(decls) + " END_VAR", own_line=True)
         self.main.absorb(scratch, own_line=True)
 
-    def action(self, act: PosElement, pou_name: str, hidden: list) -> None:
+    def action(self, pou_name: str, act: PosElement, hidden: list) -> None:
         """An action of pou_name into the actions view; the variables its
         body needs go to hidden (declared with the POU's)."""
         body = act.kid("body")

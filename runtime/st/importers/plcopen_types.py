@@ -72,13 +72,14 @@ class ReaderBase:
         self.diags.error(code, message, Pos(self.path, line, col), hint)
 
     def guard(self, fn: Callable[..., Any], el: PosElement, *args: Any) -> Any:
-        """fn(el, *args); an ImportProblem becomes an E183 at its element
-        (and the element is left out: None)."""
+        """fn(el, *args); an ImportProblem becomes an E183 at its element,
+        named in the message (and the element is left out: None)."""
         try:
             return fn(el, *args)
         except ImportProblem as exc:
             message, where, hint = exc.args
-            self.problem("E183", message, where if where is not None else el, hint)
+            where = where if where is not None else el
+            self.problem("E183", f"{describe(where)}: {message}", where, hint)
             return None
 
     def unknown_data(self, el: PosElement | None, handled: tuple = ()) -> None:
@@ -337,6 +338,15 @@ class TypeReader(ReaderBase):
         return self._inherited_members(base, [*seen, base_name.upper()]) + [
             joined(self.declaration(v)) for v in members[0].kids("variable")
         ]
+
+
+def describe(el: PosElement) -> str:
+    """An element as a message names it: <variable name='speed'>."""
+    name = el.get("name") or el.get("Name")
+    if name is None:
+        return f"<{el.name}>"
+    shown = name if len(name) <= 40 else name[:37] + "..."
+    return f"<{el.name} name={shown!r}>"
 
 
 def joined(parts: list[Part]) -> str:
