@@ -127,7 +127,7 @@ class PouReader(TypeReader):
         declare (an SFC body writes its POU's named <transitions> before the
         <body>: the VAR block goes before them). owner: the element whose
         body it is. A body that cannot become ST is reported and left empty."""
-        scratch = LineView(len(self.main.lines))
+        scratch = LineView(0)
         out = BodyOut(scratch, self.texts, self.path, self.diags, pou, owner)
         try:
             translate(lang, out)
@@ -161,7 +161,7 @@ class PouReader(TypeReader):
             return
         assert lang is not None
         self.unknown_data(act)
-        scratch = LineView(len(self.actions.lines))
+        scratch = LineView(0)
         out = BodyOut(scratch, self.texts, self.path, self.diags, pou_name)
         translate(lang, out)  # (an ImportProblem leaves the action out: guard)
         self.actions.put(act.line, act.col, f"ACTION {pou_name}.{name}:", own_line=True)

@@ -15,8 +15,9 @@ the FB_init inputs CODESYS writes as inputassignments (``fb : FB_X(n :=
 
 from __future__ import annotations
 
+import contextlib
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from typing import Any
 
 from ..ast import Pos
@@ -44,6 +45,7 @@ SECTIONS = {
     "globalVars": "VAR_GLOBAL",
 }
 QUALIFIERS = (("CONSTANT", "constant"), ("RETAIN", "retain"), ("NON_RETAIN", "nonretain"), ("PERSISTENT", "persistent"))
+MAX_NESTING = 100  # types and values nested deeper are refused (E183)
 # CODESYS writes a type TC6 has no element for by its ST name: REFERENCE TO INT.
 _REFERENCE = re.compile(r"(REFERENCE\s+TO|POINTER\s+TO|REF_TO)\s+(\S.*)\Z", re.IGNORECASE | re.ASCII)
 Part = tuple[int, int, str]  # (line, column, ST text): where a piece of a declaration goes
@@ -66,6 +68,7 @@ class ReaderBase:
         self.pou_elements: dict[str, PosElement] = {}  # UPPER name -> the <pou> (FB_init inputs)
         self.warned: set[str] = set()  # addData names reported unknown (W181 once each)
         self.defined: dict[str, tuple[str, int]] = {}  # UPPER name -> (what, line): POUs, types, interfaces
+        self.depth = 0  # how deep type_text and value_parts are (nested)
 
     def problem(self, code: str, message: str, el: PosElement | None, hint: str | None = None) -> None:
         line, col = (el.line, el.col) if el is not None else (1, 1)
@@ -98,6 +101,18 @@ class ReaderBase:
                 "part of the program; check that the program does not need it",
             )
 
+    @contextlib.contextmanager
+    def nested(self, el: PosElement | None) -> Iterator[None]:
+        """One level deeper into a type or value (E183 beyond MAX_NESTING:
+        no export nests so deep, and Python's stack has an end)."""
+        if self.depth >= MAX_NESTING:
+            raise ImportProblem(f"types or values nested more than {MAX_NESTING} deep", el, None)
+        self.depth += 1
+        try:
+            yield
+        finally:
+            self.depth -= 1
+
     def once(self, what: str, name: str, el: PosElement) -> bool:
         """Whether name is new in the file (else E184 at el: the second is
         left out; POUs, types and interfaces share ST's one namespace)."""
@@ -125,6 +140,10 @@ class TypeReader(ReaderBase):
 
     def type_text(self, t: PosElement | None, owner: PosElement | None = None) -> str:
         """The ST type of a <type>, <baseType> or <returnType>."""
+        with self.nested(t or owner):
+            return self._type_text(t, owner)
+
+    def _type_text(self, t: PosElement | None, owner: PosElement | None) -> str:
         if t is None:
             raise ImportProblem("no type given", owner, None)
         kids = [k for k in t.kids() if k.name not in _NOT_ST]
@@ -193,6 +212,10 @@ class TypeReader(ReaderBase):
     def value_parts(self, iv: PosElement) -> list[Part]:
         """An <initialValue> (or a <value> in one) as ST, in parts placed
         where the XML has them (a simpleValue's text at its value)."""
+        with self.nested(iv):
+            return self._value_parts(iv)
+
+    def _value_parts(self, iv: PosElement) -> list[Part]:
         kids = [k for k in iv.kids() if k.name not in _NOT_ST]
         if not kids:
             raise ImportProblem("an empty initial value", iv, None)
@@ -268,7 +291,7 @@ class TypeReader(ReaderBase):
         """The inputs of fb's FB_init after the two BOOLs (its base's when it
         has none of its own)."""
         pou = self.pou_elements.get(fb.upper())
-        if pou is None or fb.upper() in seen:
+        if pou is None or fb.upper() in seen or len(seen) > MAX_NESTING:
             return []
         for data in codesys.data_named(pou, "method"):
             for m in data.kids("Method"):
@@ -324,7 +347,7 @@ class TypeReader(ReaderBase):
         if not extends:
             return []
         base_name = ident((extends[0].text or "").strip(), extends[0], "the base type")
-        if base_name.upper() in seen:
+        if base_name.upper() in seen or len(seen) > MAX_NESTING:
             raise ImportProblem(f"STRUCT {dt.get('name')} EXTENDS itself (through {base_name})", extends[0], None)
         base = self.data_types.get(base_name.upper())
         struct = base.kid("baseType") if base is not None else None

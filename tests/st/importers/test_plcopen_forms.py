@@ -414,3 +414,24 @@ def test_an_attribute_that_is_no_pragma_is_e183(attr):
 def test_a_list_name_that_is_no_identifier_is_e183(name):
     text = export(program("Main", ""), add=data("globalvars", gvl(name, var("g", "<INT />"))))
     assert [c for c, _ in diagnostics(text)] == ["E183"]
+
+
+@pytest.mark.parametrize("depth, codes", [(20, []), (5000, ["E183"])])
+def test_types_and_values_nested_deep_end_in_e183(depth, codes):
+    array = '<array><dimension lower="0" upper="1" /><baseType>'
+    deep_type = array * depth + "<INT />" + "</baseType></array>" * depth
+    deep_value = "<arrayValue><value>" * depth + '<simpleValue value="1" />' + "</value></arrayValue>" * depth
+    value = f"<initialValue>{deep_value}</initialValue>"
+    text = export(program("Main", "", f'<variable name="v"><type><INT /></type>{value}</variable>'))
+    found = [c for c, _ in diagnostics(export(program("Main", "", var("t", deep_type))))]
+    assert found == codes
+    # an INT with a nested array value: the checker's error (E024), unless the importer refuses it
+    assert ("E183" in [c for c, _ in diagnostics(text)]) == bool(codes)
+    chain = "".join(
+        f'<dataType name="S{i}"><baseType><struct>{var(f"m{i}", "<INT />")}</struct></baseType>'
+        f"<addData>{data('datatypeinheritance', f'<Inheritance><Extends>S{i + 1}</Extends></Inheritance>')}</addData>"
+        "</dataType>"
+        for i in range(depth)
+    )
+    # a chain of STRUCT EXTENDS (S0 EXTENDS S1 ...): its end is no type of the file, or too far
+    assert "E183" in [c for c, _ in diagnostics(export(program("Main", ""), types=chain))]
