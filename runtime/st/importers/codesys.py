@@ -109,22 +109,16 @@ def attributes(*holders: PosElement | None) -> list[PosElement]:
     return [a for h in holders for d in data_named(h, "attributes") for b in d.kids("Attributes") for a in b.kids()]
 
 
-def input_assignments(var: PosElement) -> list[tuple[PosElement, str | None, str | None]]:
-    """(element, input name, value text) of a variable's FB_init inputs:
-    <InputAssignment><Name>n</Name><Value>5</Value></InputAssignment>."""
-    out = []
-    for d in data_named(var, "inputassignments"):
-        for group in d.kids("InputAssignments"):
-            for a in group.kids("InputAssignment"):
-                name, value = a.kid("Name"), a.kid("Value")
-                out.append(
-                    (
-                        a,
-                        (name.text or "") if name is not None else None,
-                        (value.text or "") if value is not None else None,
-                    )
-                )
-    return out
+def input_assignments(var: PosElement) -> list[tuple[PosElement, PosElement | None, PosElement | None]]:
+    """(<InputAssignment>, its <Name> or None, its <Value> or None) of a
+    variable's FB_init inputs: <InputAssignment><Name>n</Name><Value>5</Value>
+    (CODESYS leaves the Name out of a positional input)."""
+    return [
+        (a, a.kid("Name"), a.kid("Value"))
+        for d in data_named(var, "inputassignments")
+        for group in d.kids("InputAssignments")
+        for a in group.kids("InputAssignment")
+    ]
 
 
 def mixed_blocks(gv: PosElement) -> list[PosElement]:

@@ -18,12 +18,14 @@ handleUnknown says ``discard`` (CODESYS's device tree) and reported once
 
 Every piece of ST is written at the line and column of the XML it comes
 from (view.LineView), so diagnostics and runtime faults point into the XML
-file. Three views hold it, each parsed as a file of its own: the main one
-(types, POUs, interfaces, lists), the actions (``ACTION Pou.Name:``, after
-their POU in ST, before its body in XML) and the configurations (their
-resources' tasks at their lines, the program instances at the end of the
-resource, so the ST order holds whatever the XML's; the resources' global
-variables go to the main view, where they mean the same).
+file; a piece that must stand elsewhere (IMPLEMENTS in the header, written
+at the end of the interface) keeps its tokens' XML positions (the view's
+origins). Three views hold it, each parsed as a file of its own: the main
+one (types, POUs, interfaces, lists), the actions (``ACTION Pou.Name:``,
+after their POU in ST, before its body in XML) and the configurations
+(their resources' tasks at their lines, the program instances at the end of
+the resource, so the ST order holds whatever the XML's; the resources'
+global variables go to the main view, where they mean the same).
 
 A global variable list with a name gets ``{attribute 'gvl_name' :=
 'GVL_MQTT'}`` before its VAR_GLOBAL blocks (namespaces.py names the list by
@@ -45,7 +47,7 @@ from . import codesys
 from .codesys import LibraryRef
 from .plcopen_pous import PouReader
 from .plcopen_text import duration, ident, integer, pragma
-from .plcopen_types import QUALIFIERS, joined, put_head, put_parts
+from .plcopen_types import QUALIFIERS, joined, put_at, put_head, put_parts
 from .view import LineView
 from .xmlsafe import PosElement, parse_xml
 
@@ -185,7 +187,7 @@ class _Reader(PouReader):
             put_head(self.main, at, head, " ".join(["VAR_GLOBAL", *q]))
             for _, parts in decls:
                 put_parts(self.main, parts)
-            self.main.put(last.end_line, 1, "END_VAR", own_line=True)
+            put_at(self.main, last.end_line, 1, "END_VAR", own_line=True)
 
     def _new_global(self, v: PosElement, text: str) -> bool:
         """Whether v is a global not declared yet; the same declaration
@@ -212,26 +214,26 @@ class _Reader(PouReader):
         name = ident(conf.get("name"), conf, "the configuration name")
         self.unknown_data(conf)
         resources = [(res, self.guard(self.resource_text, res)) for res in conf.kids("resource")]
-        self.config.put(conf.line, conf.col, f"CONFIGURATION {name}", own_line=True)
+        put_at(self.config, conf.line, conf.col, f"CONFIGURATION {name}", own_line=True)
         for res, parts in resources:
             if parts is None:
                 continue
             head, tasks, programs = parts
-            self.config.put(res.line, res.col, head, 4, own_line=True)
+            put_at(self.config, res.line, res.col, head, 4, own_line=True)
             for task, text in tasks:
-                self.config.put(task.line, task.col, text, 8, own_line=True)
-            for program in programs:
-                self.config.put(res.end_line, 1, program, 8, own_line=True)
-            self.config.put(res.end_line, 1, "END_RESOURCE", 4, own_line=True)
+                put_at(self.config, task.line, task.col, text, 8, own_line=True)
+            for program, inst in programs:  # at the end of the resource, the tokens at the pouInstance
+                self.config.put(res.end_line, 1, program, 8, origin=(inst.line, inst.col), own_line=True)
+            put_at(self.config, res.end_line, 1, "END_RESOURCE", 4, own_line=True)
         for block in conf.kids("configVars"):
             self.var_block(block, self.config, "VAR_CONFIG")
         for block in conf.kids("accessVars"):
             self.problem("E182", "<accessVars> (VAR_ACCESS) is not imported", block, "softplc has no VAR_ACCESS")
-        self.config.put(conf.end_line, 1, "END_CONFIGURATION", own_line=True)
+        put_at(self.config, conf.end_line, 1, "END_CONFIGURATION", own_line=True)
 
     def resource_text(self, res: PosElement) -> tuple[str, list, list]:
-        """(RESOURCE line, [(task, TASK line)], [PROGRAM lines]): a task or
-        instance that cannot become ST is reported and left out."""
+        """(RESOURCE line, [(task, TASK line)], [(PROGRAM line, pouInstance)]):
+        a task or instance that cannot become ST is reported and left out."""
         name = ident(res.get("name"), res, "the resource name")
         self.unknown_data(res, _APPLICATION_DATA)
         tasks, programs = [], []
@@ -241,8 +243,8 @@ class _Reader(PouReader):
                 continue
             tname, text = done
             tasks.append((task, text))
-            programs += [p for inst in task.kids("pouInstance") if (p := self.guard(self.instance_text, inst, tname))]
-        programs += [p for inst in res.kids("pouInstance") if (p := self.guard(self.instance_text, inst, None))]
+            programs += [(p, i) for i in task.kids("pouInstance") if (p := self.guard(self.instance_text, i, tname))]
+        programs += [(p, i) for i in res.kids("pouInstance") if (p := self.guard(self.instance_text, i, None))]
         return f"RESOURCE {name} ON PLC", tasks, programs
 
     def task_text(self, task: PosElement) -> tuple[str, str]:

@@ -20,13 +20,14 @@ from __future__ import annotations
 from . import codesys
 from .bodies import BodyOut, ImportProblem, body_language, supported, translate
 from .plcopen_text import ident
-from .plcopen_types import SECTIONS, TypeReader, describe, put_head
+from .plcopen_types import SECTIONS, TypeReader, describe, put_at, put_head
 from .view import LineView
 from .xmlsafe import PosElement
 
 POU_KINDS = {"program": "PROGRAM", "function": "FUNCTION", "functionBlock": "FUNCTION_BLOCK"}
 _MEMBER_DATA = ("method", "property")
 _POU_DATA = ("pouinheritance", "attributes", "accessmodifiers")
+Piece = tuple[str, tuple[int, int]]  # a header's text and the (line, column) of the XML it comes from
 
 
 class PouReader(TypeReader):
@@ -57,12 +58,12 @@ class PouReader(TypeReader):
             )
             return
         itf = pou.kid("interface")
-        pragmas, header = self.pragmas(itf, pou), f"{kind} {' '.join([*codesys.modifiers(itf, pou), name])}"
+        pragmas = self.pragmas(itf, pou)
+        header = self.heading(pou, " ".join([kind, *codesys.modifiers(itf, pou)]), name)
         if kind != "FUNCTION":
             header += self.inheritance(itf, pou)
         else:
-            rt = itf.kid("returnType") if itf is not None else None
-            header += f" : {self.type_text(rt, pou)}" if rt is not None else ""
+            header += self.return_type(itf, pou)
         if not self.once("POU", name, pou):
             return
         self.pou_kinds[name.upper()] = kind
@@ -81,8 +82,8 @@ class PouReader(TypeReader):
         else:  # no <body>: an empty one
             end = pou.end_line
             if hidden:
-                self.main.put(end, 1, "VAR " + " ".join(hidden) + " END_VAR", own_line=True)
-        self.main.put(end, 1, f"END_{kind}", own_line=True)
+                put_at(self.main, end, 1, "VAR " + " ".join(hidden) + " END_VAR", own_line=True)
+        put_at(self.main, end, 1, f"END_{kind}", own_line=True)
         for data in codesys.add_data(pou):
             what = codesys.short_name(data)
             for m in data.kids("Method" if what == "method" else "Property" if what == "property" else "-"):
@@ -91,20 +92,48 @@ class PouReader(TypeReader):
                     continue
                 self.guard(self.method if m.name == "Method" else self.property, m, name)
 
-    def inheritance(self, *holders: PosElement | None) -> str:
-        """EXTENDS Base IMPLEMENTS I_a, I_b (CODESYS's pouinheritance)."""
+    def heading(self, el: PosElement, keywords: str, name: str) -> list[Piece]:
+        """[keywords at el, the name at its attribute]: a header's pieces."""
+        return [(keywords, (el.line, el.col)), (name, self.texts.attribute(el, "name"))]
+
+    def return_type(self, itf: PosElement | None, owner: PosElement) -> list[Piece]:
+        """[': TYPE' at its element] of an interface's <returnType>, or []."""
+        rt = itf.kid("returnType") if itf is not None else None
+        if rt is None:
+            return []
+        line, col = self.type_position(rt, owner)
+        return [(f": {self.type_text(rt, owner)}", (line, max(1, col - 2)))]
+
+    def inheritance(self, *holders: PosElement | None, keyword: str = "IMPLEMENTS") -> list[Piece]:
+        """EXTENDS Base IMPLEMENTS I_a, I_b (CODESYS's pouinheritance), each
+        name at its text; an INTERFACE (keyword EXTENDS) takes every
+        Extends as a base."""
         extends, implements = codesys.inheritance(*holders)
-        out = ""
+        if keyword == "EXTENDS":
+            extends, implements = [], extends
+        out: list[Piece] = []
         if extends:
-            out += f" EXTENDS {ident((extends[0].text or '').strip(), extends[0], 'the base')}"
-        names = [
-            ident(part.strip(), i, "the interface")
-            for i in implements
-            for part in (i.text or "").split(",")
-            if part.strip()
-        ]
+            e = extends[0]
+            out += [("EXTENDS", (e.line, e.col)), *self.names(e, "the base")[:1]]
+        names = [n for el in implements for n in self.names(el, "the interface")]
         if names:
-            out += " IMPLEMENTS " + ", ".join(names)
+            out.append((keyword, (implements[0].line, implements[0].col)))
+            for k, n in enumerate(names):
+                out += [(",", n[1]), n] if k else [n]
+        return out
+
+    def names(self, el: PosElement, what: str) -> list[Piece]:
+        """The names of an element's text ('I_a, I_b'), each at its place."""
+        line, col = self.texts.start(el)
+        text = el.text or ""
+        out: list[Piece] = []
+        offset = 0
+        for part in text.split(","):
+            if part.strip():
+                lead = len(part) - len(part.lstrip())
+                at = (line, col + offset + lead) if "\n" not in text[: offset + lead] else (el.line, el.col)
+                out.append((ident(part.strip(), el, what), at))
+            offset += len(part) + 1
         return out
 
     def interface_vars(self, itf: PosElement | None, view: LineView) -> None:
@@ -141,7 +170,7 @@ class PouReader(TypeReader):
         if decls:
             first = min(scratch.written, default=body.line)
             line, col = (body.line, body.col) if first >= body.line else (first, 1)
-            self.main.put(line, col, "VAR " + " ".join(decls) + " END_VAR", own_line=True)
+            put_at(self.main, line, col, "VAR " + " ".join(decls) + " END_VAR", own_line=True)
         self.main.absorb(scratch, own_line=True)
 
     def action(self, pou_name: str, act: PosElement, hidden: list) -> None:
@@ -164,10 +193,10 @@ class PouReader(TypeReader):
         scratch = LineView(0)
         out = BodyOut(scratch, self.texts, self.path, self.diags, pou_name)
         translate(lang, out)  # (an ImportProblem leaves the action out: guard)
-        self.actions.put(act.line, act.col, f"ACTION {pou_name}.{name}:", own_line=True)
+        put_at(self.actions, act.line, act.col, f"ACTION {pou_name}.{name}:", own_line=True)
         self.actions.absorb(scratch, own_line=True)
         hidden.extend(d for d in out.decls if d not in hidden)
-        self.actions.put(act.end_line, 1, "END_ACTION", own_line=True)
+        put_at(self.actions, act.end_line, 1, "END_ACTION", own_line=True)
 
     # ------------------------------------------------------------ members
 
@@ -176,7 +205,6 @@ class PouReader(TypeReader):
         INTERFACE the signature only."""
         name = ident(m.get("name"), m, "the method name")
         itf = m.kid("interface")
-        rt = itf.kid("returnType") if itf is not None else None
         body = None if signature_only else m.kid("body")
         lang = body_language(body)
         if body is not None and not supported(lang):
@@ -188,15 +216,15 @@ class PouReader(TypeReader):
                 "rewrite it in ST; the rest of the POU is imported",
             )
             return
-        pragmas, head = self.pragmas(itf, m), f"METHOD {' '.join([*codesys.modifiers(itf, m), name])}"
-        head += f" : {self.type_text(rt, m)}" if rt is not None else ""
+        pragmas = self.pragmas(itf, m)
+        head = self.heading(m, " ".join(["METHOD", *codesys.modifiers(itf, m)]), name) + self.return_type(itf, m)
         self.unknown_data(itf, _POU_DATA)
         self.unknown_data(m, _POU_DATA)
         put_head(self.main, m, pragmas, head)
         self.interface_vars(itf, self.main)
         if body is not None and lang is not None:
             self.body_with_decls(body, lang, f"{owner}.{name}", [], m)
-        self.main.put(m.end_line, 1, "END_METHOD", own_line=True)
+        put_at(self.main, m.end_line, 1, "END_METHOD", own_line=True)
 
     def property(self, p: PosElement, owner: str, signature_only: bool = False) -> None:
         """PROPERTY [modifiers] name : type with its GET and SET accessors
@@ -207,7 +235,7 @@ class PouReader(TypeReader):
         if rt is None:
             raise ImportProblem(f"property {owner}.{name} has no type (<returnType>)", p, None)
         pragmas = self.pragmas(itf, p)
-        head = f"PROPERTY {' '.join([*codesys.modifiers(itf, p), name])} : {self.type_text(rt, p)}"
+        head = self.heading(p, " ".join(["PROPERTY", *codesys.modifiers(itf, p)]), name) + self.return_type(itf, p)
         self.unknown_data(itf, _POU_DATA)
         self.unknown_data(p, _POU_DATA)
         put_head(self.main, p, pragmas, head)
@@ -227,18 +255,15 @@ class PouReader(TypeReader):
             self.interface_vars(acc_itf, self.main)
             if body is not None and lang is not None:
                 self.body_with_decls(body, lang, f"{owner}.{name}", [])
-            self.main.put(acc.end_line, 1, f"END_{kw}", own_line=True)
-        self.main.put(p.end_line, 1, "END_PROPERTY", own_line=True)
+            put_at(self.main, acc.end_line, 1, f"END_{kw}", own_line=True)
+        put_at(self.main, p.end_line, 1, "END_PROPERTY", own_line=True)
 
     def interface_decl(self, itf: PosElement) -> None:
         """A CODESYS INTERFACE (<Interface name> in the interface data):
         its methods' and properties' signatures."""
         name = ident(itf.get("name"), itf, "the interface name")
-        extends, _ = codesys.inheritance(itf)
-        bases = [
-            ident(part.strip(), e, "the base") for e in extends for part in (e.text or "").split(",") if part.strip()
-        ]
-        pragmas, head = self.pragmas(itf), f"INTERFACE {name}" + (" EXTENDS " + ", ".join(bases) if bases else "")
+        pragmas = self.pragmas(itf)
+        head = self.heading(itf, "INTERFACE", name) + self.inheritance(itf, keyword="EXTENDS")
         if not self.once("INTERFACE", name, itf):
             return
         self.unknown_data(itf, ("pouinheritance", "attributes", "property", "method"))
@@ -250,4 +275,4 @@ class PouReader(TypeReader):
                 self.guard(self.method, k, name, True)
             elif k.name == "Property":
                 self.guard(self.property, k, name, True)
-        self.main.put(itf.end_line, 1, "END_INTERFACE", own_line=True)
+        put_at(self.main, itf.end_line, 1, "END_INTERFACE", own_line=True)

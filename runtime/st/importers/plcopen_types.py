@@ -48,7 +48,11 @@ QUALIFIERS = (("CONSTANT", "constant"), ("RETAIN", "retain"), ("NON_RETAIN", "no
 MAX_NESTING = 100  # types and values nested deeper are refused (E183)
 # CODESYS writes a type TC6 has no element for by its ST name: REFERENCE TO INT.
 _REFERENCE = re.compile(r"(REFERENCE\s+TO|POINTER\s+TO|REF_TO)\s+(\S.*)\Z", re.IGNORECASE | re.ASCII)
-Part = tuple[int, int, str]  # (line, column, ST text): where a piece of a declaration goes
+# A piece of ST: (line, column) it is placed at, its text, and the (line,
+# column) of the XML its tokens come from (view.LineView.put's origin): a
+# piece placed apart from its XML (an FB_init input before the initial
+# value it follows in the XML) keeps its tokens' positions.
+Part = tuple[int, int, str, tuple[int, int]]
 # Elements of a declaration that are no part of its ST.
 _NOT_ST = ("documentation", "addData")
 
@@ -201,13 +205,12 @@ class TypeReader(ReaderBase):
         return joined(self.init_parts(v))
 
     def init_parts(self, v: PosElement) -> list[Part]:
-        """' := value' of v's <initialValue>, each value at its attribute."""
+        """':= value' of v's <initialValue>, each value at its attribute."""
         iv = v.kid("initialValue")
         if iv is None:
             return []
         parts = self.value_parts(iv)
-        line, col, _ = parts[0]
-        return [(line, max(1, col - 3), ":="), *parts]
+        return [here(parts[0][0], max(1, parts[0][1] - 3), ":="), *parts]
 
     def value_parts(self, iv: PosElement) -> list[Part]:
         """An <initialValue> (or a <value> in one) as ST, in parts placed
@@ -221,59 +224,75 @@ class TypeReader(ReaderBase):
             raise ImportProblem("an empty initial value", iv, None)
         k = kids[0]
         if k.name == "simpleValue":
-            return [(*self.texts.attribute(k, "value"), st_value(k.get("value"), k, "the initial value"))]
+            return [here(*self.texts.attribute(k, "value"), st_value(k.get("value"), k, "the initial value"))]
         if k.name not in ("arrayValue", "structValue"):
             raise ImportProblem(f"the initial value <{k.name}> is not supported", k, None)
-        parts: list[Part] = [(k.line, k.col, "[" if k.name == "arrayValue" else "(")]
+        parts: list[Part] = [here(k.line, k.col, "[" if k.name == "arrayValue" else "(")]
         for i, v in enumerate(k.kids("value")):
             if i:
-                parts.append((v.line, v.col, ","))
+                parts.append(here(v.line, v.col, ","))
             if k.name == "structValue":
-                parts.append((v.line, v.col, f"{ident(v.get('member'), v, 'the member')} :="))
+                parts.append(here(*self.texts.attribute(v, "member"), f"{ident(v.get('member'), v, 'the member')} :="))
                 parts += self.value_parts(v)
             elif v.get("repetitionValue"):
                 inner = self.value_parts(v)
-                parts.append((v.line, v.col, f"{integer(v.get('repetitionValue'), v, 'the repetition')}("))
-                parts += [*inner, (inner[-1][0], inner[-1][1], ")")]
+                parts.append(here(v.line, v.col, f"{integer(v.get('repetitionValue'), v, 'the repetition')}("))
+                parts += [*inner, here(inner[-1][0], inner[-1][1], ")")]
             else:
                 parts += self.value_parts(v)
         if len(parts) == 1:
             raise ImportProblem(f"an empty <{k.name}>", k, None)
-        parts.append((k.end_line, 1, "]" if k.name == "arrayValue" else ")"))
+        parts.append(here(k.end_line, 1, "]" if k.name == "arrayValue" else ")"))
         return parts
 
     def declaration(self, v: PosElement) -> list[Part]:
-        """A <variable> as ``name [AT %addr] : type [:= value];`` (its
-        attributes as pragmas before it, its FB_init inputs after the
-        type), in parts at the variable and its values."""
+        """A <variable> as ``name [AT %addr] : type [:= value];`` in parts
+        at the XML they come from: its attributes as pragmas before it, the
+        name and address at theirs, the type at its element, the FB_init
+        inputs after the type (their tokens at the inputassignments), the
+        initial value at its values."""
         name = ident(v.get("name"), v, "the variable name")
-        at = v.get("address")
-        located = f" AT {address(at, v)}" if at else ""
-        ty = self.type_text(v.kid("type"), v)
-        inputs = codesys.input_assignments(v)
-        if inputs:
-            t = v.kid("type")
-            derived = t.kid("derived") if t is not None else None
-            if derived is None:
-                raise ImportProblem(
-                    f"{name}: FB_init inputs for a variable that is no function block instance", v, None
-                )
-            ty += f"({', '.join(self._fb_init_args(derived.get('name', ''), inputs))})"
-        self.unknown_data(v, ("inputassignments", "attributes"))
         pragmas = self.pragmas(v).strip()
-        parts: list[Part] = [(v.line, v.col, pragmas)] if pragmas else []
-        parts += [(v.line, v.col, f"{name}{located} : {ty}"), *self.init_parts(v)]
-        line, col, _ = parts[-1]
-        return [*parts, (line, col, ";")]
+        parts: list[Part] = [here(v.line, v.col, pragmas)] if pragmas else []
+        parts.append(here(*self.texts.attribute(v, "name"), name))
+        if v.get("address") is not None:
+            line, col = self.texts.attribute(v, "address")
+            parts.append((line, col, f"AT {address(v.get('address'), v)}", (line, max(1, col - 3))))
+        t = v.kid("type")
+        ty = self.type_text(t, v)
+        line, col = self.type_position(t, v)
+        inputs = codesys.input_assignments(v)
+        derived = t.kid("derived") if t is not None else None
+        if inputs and derived is None:
+            raise ImportProblem(f"{name}: FB_init inputs for a variable that is no block instance", v, None)
+        parts.append((line, col, f": {ty}" + ("(" if inputs else ""), (line, max(1, col - 2))))
+        if inputs and derived is not None:
+            parts += self._fb_init_parts(derived.get("name", ""), inputs, line, col)
+        self.unknown_data(v, ("inputassignments", "attributes"))
+        parts += self.init_parts(v)
+        return [*parts, here(parts[-1][0], parts[-1][1], ";")]
 
-    def _fb_init_args(self, fb: str, inputs: list) -> list[str]:
-        """name := value of each FB_init input; one CODESYS writes without
-        its name (a positional input) is named after the FB_init inputs of
-        the block (of this file) after bInitRetains and bInCopyCode."""
+    def type_position(self, t: PosElement | None, owner: PosElement) -> tuple[int, int]:
+        """Where a type's name is in the XML: a derived type's name
+        attribute, else its element."""
+        kids = [k for k in t.kids() if k.name not in _NOT_ST] if t is not None else []
+        if not kids:
+            return (t.line, t.col) if t is not None else (owner.line, owner.col)
+        if kids[0].name == "derived":
+            return self.texts.attribute(kids[0], "name")
+        return kids[0].line, kids[0].col
+
+    def _fb_init_parts(self, fb: str, inputs: list, line: int, col: int) -> list[Part]:
+        """name := value, ...) of the FB_init inputs, placed after the type
+        and its '(' at (line, col), each token at its <Name> and <Value>. One CODESYS
+        writes without its name (a positional input) is named after the
+        FB_init inputs of the block (of this file) after bInitRetains and
+        bInCopyCode."""
         declared: list[str] | None = None
-        out = []
-        for i, (el, arg, value) in enumerate(inputs):
-            if not (arg or "").strip():
+        parts: list[Part] = []
+        for i, (el, name_el, value_el) in enumerate(inputs):
+            arg = (name_el.text or "") if name_el is not None else ""
+            if not arg.strip():
                 if declared is None:
                     declared = self._fb_init_inputs(fb, [])
                 if i >= len(declared):
@@ -284,8 +303,14 @@ class TypeReader(ReaderBase):
                         None,
                     )
                 arg = declared[i]
-            out.append(f"{ident(arg, el, 'the FB_init input')} := {st_value(value, el, 'the FB_init value')}")
-        return out
+            value = (value_el.text or "") if value_el is not None else ""
+            where = self.texts.start(name_el) if name_el is not None else (el.line, el.col)
+            at = self.texts.start(value_el) if value_el is not None else (el.line, el.col)
+            if i:
+                parts.append((line, col, ",", at))
+            parts.append((line, col, f"{ident(arg, el, 'the FB_init input')} :=", where))
+            parts.append((line, col, st_value(value, value_el or el, "the FB_init value"), at))
+        return [*parts, (line, col, ")", parts[-1][3])]
 
     def _fb_init_inputs(self, fb: str, seen: list) -> list[str]:
         """The inputs of fb's FB_init after the two BOOLs (its base's when it
@@ -306,12 +331,12 @@ class TypeReader(ReaderBase):
         """A block of variables (an interface's section, a global list) at
         its lines; a variable that cannot become ST is reported and left out."""
         quals = [q for q, attr in QUALIFIERS if block.get(attr, "").strip().lower() in ("true", "1")]
-        view.put(block.line, block.col, head + " ".join([keyword or SECTIONS[block.name], *quals]), own_line=True)
+        put_at(view, block.line, block.col, head + " ".join([keyword or SECTIONS[block.name], *quals]), own_line=True)
         for v in block.kids("variable"):
             parts = self.guard(self.declaration, v)
             if parts is not None:
                 put_parts(view, parts)
-        view.put(block.end_line, 1, "END_VAR", own_line=True)
+        put_at(view, block.end_line, 1, "END_VAR", own_line=True)
 
     # ------------------------------------------------------------ data types
 
@@ -331,15 +356,15 @@ class TypeReader(ReaderBase):
             fields = [self.guard(self.declaration, v) for v in kids[0].kids("variable")]
             put_head(self.main, dt, pragmas, head + " STRUCT")
             for member in inherited:
-                self.main.put(dt.line, dt.col, member, 4, own_line=True)
+                put_at(self.main, dt.line, dt.col, member, 4, own_line=True)
             for parts in fields:
                 if parts is not None:
                     put_parts(self.main, parts)
-            self.main.put(kids[0].end_line, 1, "END_STRUCT;", own_line=True)
+            put_at(self.main, kids[0].end_line, 1, "END_STRUCT;", own_line=True)
         else:
             init = self.init_text(dt)
             put_head(self.main, dt, pragmas, f"{head} {self.type_text(base, dt)}{' ' + init if init else ''};")
-        self.main.put(dt.end_line, 1, "END_TYPE", own_line=True)
+        put_at(self.main, dt.end_line, 1, "END_TYPE", own_line=True)
 
     def _inherited_members(self, dt: PosElement, seen: list) -> list[str]:
         """The members a STRUCT inherits (its bases', base first)."""
@@ -372,29 +397,61 @@ def describe(el: PosElement) -> str:
     return f"<{el.name} name={shown!r}>"
 
 
+def here(line: int, col: int, text: str) -> Part:
+    """A piece placed where its XML is."""
+    return line, col, text, (line, col)
+
+
 def joined(parts: list[Part]) -> str:
     """The parts of a declaration or value as one text."""
-    return " ".join(text for _, _, text in parts).replace(" ;", ";").replace(" ,", ",")
+    out = ""
+    for part in parts:
+        text = part[2]
+        out += text if not out or out.endswith(("(", "[")) or text.startswith((")", "]", ",", ";")) else " " + text
+    return out
+
+
+def placed(view: LineView, line: int, col: int) -> tuple[int, int]:
+    """Where view.put(line, col, ...) places a text (after what the line
+    holds): as an origin, its tokens keep their place. A text after a
+    pragma must: the parser attaches a pragma to what follows it."""
+    cur = view.lines.get(line, "")
+    return line, max(col, len(cur) + 2 if cur else col)
+
+
+def put_at(view: LineView, line: int, col: int, text: str, indent: int = 0, *, own_line: bool = False) -> None:
+    """view.put, the tokens' positions those of the place it lands (not
+    those of a text on the line before it that comes from elsewhere)."""
+    view.put(line, col, text, indent, origin=placed(view, line, col), own_line=own_line)
 
 
 def put_parts(view: LineView, parts: list[Part], indent: int = 4) -> None:
     """A declaration's parts at their places: in plain(), its pragmas on
     lines of their own, then the declaration on one line."""
     head = True
+    after_pragma = False
     before = ""
-    for line, col, text in parts:
+    for line, col, text, origin in parts:
+        if after_pragma:
+            origin = placed(view, line, col)
         tight = before.endswith(("(", "[")) or text.startswith((")", "]", ",", ";"))
-        view.put(line, col, text, indent, sep="" if tight else " ", join=not head, own_line=head)
-        head = text.startswith("{")
+        view.put(line, col, text, indent, origin=origin, sep="" if tight else " ", join=not head, own_line=head)
+        head = after_pragma = text.startswith("{")
         before = text
 
 
-def put_head(view: LineView, el: PosElement, pragmas: str, text: str, indent: int = 0) -> None:
+def put_head(view: LineView, el: PosElement, pragmas: str, pieces: str | list, indent: int = 0) -> None:
     """A header (TYPE, a POU's, METHOD ...) at el, after its pragmas; in
-    plain() each on a line of its own."""
+    plain() each on a line of its own. pieces: the header's text, or
+    [(text, origin (line, column) of its tokens)]."""
+    if isinstance(pieces, str):
+        pieces = [(pieces, (el.line, el.col))]
     if pragmas:
-        view.put(el.line, el.col, pragmas.strip(), indent, own_line=True)
-    view.put(el.line, el.col, text, indent, own_line=True)
+        view.put(el.line, el.col, pragmas.strip(), indent, origin=placed(view, el.line, el.col), own_line=True)
+    for i, (text, origin) in enumerate(pieces):
+        if i == 0 and pragmas:
+            origin = placed(view, el.line, el.col)
+        view.put(el.line, el.col, text, indent, origin=origin, own_line=i == 0)
 
 
 def _derived(name: str, el: PosElement) -> str:

@@ -6,6 +6,9 @@ malformed element gets."""
 
 from __future__ import annotations
 
+import re
+from pathlib import Path
+
 import pytest
 
 from softplc.runtime.program import check_files, compile_files
@@ -15,6 +18,7 @@ from softplc.runtime.st.importers.bodies import ImportProblem
 from softplc.runtime.st.importers.plcopen_text import duration
 from softplc.testing import PLC
 
+HERE = Path(__file__).parent
 CODESYS = "http://www.3s-software.com/plcopenxml/"
 
 
@@ -435,3 +439,68 @@ def test_types_and_values_nested_deep_end_in_e183(depth, codes):
     )
     # a chain of STRUCT EXTENDS (S0 EXTENDS S1 ...): its end is no type of the file, or too far
     assert "E183" in [c for c, _ in diagnostics(export(program("Main", ""), types=chain))]
+
+
+# ---------------------------------------------------------------- where a checker's error points
+
+
+def _at(text: str, needle: str, nth: int = 0) -> tuple:
+    start = -1
+    for _ in range(nth + 1):
+        start = text.index(needle, start + 1)
+    before = text[:start]
+    return before.count("\n") + 1, len(before) - before.rfind("\n")
+
+
+def _errors(text: str) -> list:
+    diags, _ = check_files([], texts={"forms.xml": text})
+    return [(d.code, d.pos.line, d.pos.col) for d in diags if d.is_error]
+
+
+def test_an_error_in_a_header_a_type_or_an_fb_init_value_points_at_its_xml():
+    """EXTENDS/IMPLEMENTS stand in the interface's addData, after its
+    variables; a type at its <derived>; FB_init inputs after the initial
+    value in the XML and before it in ST: each error points where the XML
+    has the name."""
+    implements = data("pouinheritance", "<Inheritance>\n<Implements>I_Nope</Implements></Inheritance>")
+    fb = f"""      <pou name="FB_A" pouType="functionBlock">
+        <interface>
+          <localVars>
+            <variable name="x">
+              <type>
+                <derived name="T_Nope" />
+              </type>
+            </variable>
+          </localVars>
+          <addData>{implements}</addData>
+        </interface>
+        {st_body("")}
+      </pou>"""
+    method = (
+        '<Method name="FB_init"><interface><returnType><BOOL /></returnType><inputVars>'
+        + var("bInitRetains", "<BOOL />")
+        + var("bInCopyCode", "<BOOL />")
+        + var("nStart", "<INT />")
+        + f"</inputVars></interface>{st_body('n := nStart;')}</Method>"
+    )
+    fb_init = f"""      <pou name="FB_I" pouType="functionBlock">
+        <interface><localVars>{var("n", "<INT />")}</localVars></interface>
+        {st_body("")}
+        <addData>{data("method", method)}</addData>
+      </pou>"""
+    inputs = "<InputAssignments><InputAssignment><Name>nStart</Name>\n<Value>1 + nope</Value></InputAssignment>"
+    init = '<initialValue><structValue><value member="n"><simpleValue value="2" /></value></structValue></initialValue>'
+    add = f"\n{init}<addData>{data('inputassignments', inputs + '</InputAssignments>')}</addData>"
+    timer = var("t", '<derived name="FB_I" />', add=add)
+    text = export(fb + fb_init + program("Main", "", timer))
+    found = _errors(text)
+    assert ("E140", *_at(text, "I_Nope")) in found
+    assert ("E012", *_at(text, "T_Nope")) in found
+    assert ("E010", *_at(text, "nope<")) in found
+
+
+def test_an_error_in_an_export_on_one_line_points_at_its_column():
+    text = re.sub(r">\s+<", "><", (HERE / "codesys" / "project.xml").read_text())
+    text = text.replace("last := GVL_Cfg.gTicks;", "last := GVL_Cfg.gTick;")
+    [(code, line, col)] = _errors(text)
+    assert (code, line, col) == ("E019", *_at(text, "GVL_Cfg.gTick;"))
