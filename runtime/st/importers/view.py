@@ -27,7 +27,7 @@ class LineView:
     def __init__(self, lines: int) -> None:
         self.size = lines  # the original's lines (text() has at least these)
         self.lines: dict[int, str] = {}  # line (from 1) -> its text; a line not here is empty
-        self.pad: dict[int, int] = {}  # blanks put before a line's first text
+        self.pad: dict[int, int] = {}  # blanks put before a line's first text (each line written has one)
         self.written: set[int] = set()  # lines some text went to (an empty body line too)
         self.indent: dict[int, int] = {}  # line -> its indentation in plain()
         self.lowered: list[tuple[int, int]] = []  # (first, last) lines of ST written from another language
@@ -77,9 +77,9 @@ class LineView:
 
     def _place(self, n: int, start: int, part: str, sep: str, indent: int) -> None:
         cur = self.lines.get(n, "")
+        if not cur:
+            self.pad[n] = max(start - 1, 0)
         if len(cur) < start - 1:
-            if not cur:
-                self.pad[n] = start - 1
             cur += " " * (start - 1 - len(cur))
         elif cur and part:
             cur += sep

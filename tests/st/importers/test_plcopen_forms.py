@@ -504,3 +504,39 @@ def test_an_error_in_an_export_on_one_line_points_at_its_column():
     text = text.replace("last := GVL_Cfg.gTicks;", "last := GVL_Cfg.gTick;")
     [(code, line, col)] = _errors(text)
     assert (code, line, col) == ("E019", *_at(text, "GVL_Cfg.gTick;"))
+
+
+def test_a_named_transition_in_fbd_used_twice_runs_as_in_st():
+    """A named transition's body written at column 1 (an FBD network's
+    statements) and copied to its second use: the views keep every line's
+    placing (once a KeyError, an internal error E009)."""
+    st_version = (HERE / "sfc_beremiz.xml").read_text()
+    fbd = """<transition name="Abort">
+            <body>
+              <FBD>
+                <inVariable localId="901" height="30" width="50">
+                  <position x="10" y="10"/>
+                  <connectionPointOut><relPosition x="50" y="15"/></connectionPointOut>
+                  <expression>abort</expression>
+                </inVariable>
+                <outVariable localId="902" height="30" width="50">
+                  <position x="100" y="10"/>
+                  <connectionPointIn><relPosition x="0" y="15"/><connection refLocalId="901"/></connectionPointIn>
+                  <expression>Abort</expression>
+                </outVariable>
+              </FBD>
+            </body>
+          </transition>"""
+    fbd_version = re.sub(r'<transition name="Abort">.*?</transition>', fbd, st_version, count=1, flags=re.S)
+    assert fbd_version != st_version
+    diags, _ = check_files([], profile="matiec", texts={"sfc.xml": fbd_version})
+    assert [d.code for d in diags if d.is_error] == []
+    prog_fbd = compile_files([], profile="matiec", texts={"sfc.xml": fbd_version})
+    prog_st = compile_files([], profile="matiec", texts={"sfc.xml": st_version})
+    entry = next(name for name, kind in prog_st.pous.items() if kind == "PROGRAM")
+    runs = []
+    for prog in (prog_fbd, prog_st):
+        r = prog.runner(entry, cycle_time_ms=10)
+        r.run(30)
+        runs.append(r.get("pulses"))
+    assert runs[0] == runs[1]
