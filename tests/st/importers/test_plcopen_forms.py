@@ -540,3 +540,15 @@ def test_a_named_transition_in_fbd_used_twice_runs_as_in_st():
         r.run(30)
         runs.append(r.get("pulses"))
     assert runs[0] == runs[1]
+
+
+@pytest.mark.parametrize("export_file", ["fbd_beremiz.xml", "sfc_beremiz.xml"])
+@pytest.mark.parametrize("number", ["1e999", "-inf", "nan"])
+def test_a_position_that_is_no_finite_number_is_no_crash(export_file, number):
+    """The importers' fuzzing found it: x="1e999" on a graphical element was
+    an OverflowError in int(float(...))."""
+    text = re.sub(r'<position x="\d+"', f'<position x="{number}"', (HERE / export_file).read_text())
+    text = re.sub(r' priority="\d+"', f' priority="{number}"', text)
+    diags, _ = check_files([], profile="matiec", texts={"g.xml": text})
+    assert all(d.code != "E009" for d in diags)
+    assert st_export("g.xml", text, DiagnosticBag())
