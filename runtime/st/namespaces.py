@@ -6,7 +6,10 @@ file, named by the file (``build_decls.identifier_from_path``: ``GVL.st``
 gives ``GVL``), as CODESYS names a GVL object and TwinCAT a ``.TcGVL`` file.
 ``GVL.x`` is its variable x wherever no variable called GVL is in scope;
 ``{attribute 'qualified_only'}`` before a block makes the list's variables
-reachable only so (E018 for a bare ``x``), as in CODESYS.
+reachable only so (E018 for a bare ``x``), as in CODESYS. ``{attribute
+'gvl_name' := 'GVL_Main'}`` before a block names its list otherwise than by
+the file: a PLCopen XML export holds several named lists in one file
+(importers/plcopen.py writes it), and so may any ST file.
 
 ``Standard.TON`` (CODESYS) and ``Tc2_Standard.TON`` (TwinCAT) name our
 standard blocks and string functions (``STANDARD_LIBRARY``); other vendor
@@ -24,12 +27,13 @@ variable of the file, so code without namespaces pays nothing.
 from __future__ import annotations
 
 import dataclasses
+import re
 from typing import Any
 
 from . import ast as A
 from .build_decls import identifier_from_path
 from .checker_base import CheckerBase
-from .pragmas import has_attribute
+from .pragmas import attribute_value, has_attribute
 
 # The CODESYS "Standard" library and TwinCAT's "Tc2_Standard": the IEC
 # timers, counters, edge detectors and bistables and the string functions
@@ -46,6 +50,7 @@ OTHER_LIBRARIES = {
     for n in ("Util", "Tc2_Utilities", "Tc2_System", "Tc2_MC2", "Tc2_EtherCAT", "Tc3_Module", "CAA_Types", "SysTime")
 }
 
+_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*", re.ASCII)
 # Fields of AST nodes that never hold a node to rewrite.
 _NOT_CHILDREN = frozenset(("pos", "ty", "const", "sym", "pragmas", "qualifier"))
 _CHILD_FIELDS: dict[type, tuple] = {}
@@ -64,10 +69,11 @@ class NamespaceChecks(CheckerBase):
             blocks = [b for b in sf.decls if isinstance(b, A.VarBlock) and b.kind == "VAR_GLOBAL"]
             if not blocks or sf.path in self.library_files:  # the libraries' globals are no lists
                 continue
-            name = identifier_from_path(sf.path)
-            names = lists.setdefault(name.upper(), set())
-            spelled.setdefault(name.upper(), name)
+            file_list = identifier_from_path(sf.path)
             for b in blocks:
+                name = self._list_name(b) or file_list
+                names = lists.setdefault(name.upper(), set())
+                spelled.setdefault(name.upper(), name)
                 only = has_attribute(b, "qualified_only")
                 for d in b.decls:
                     key = d.name.upper()
@@ -85,6 +91,22 @@ class NamespaceChecks(CheckerBase):
             local = _declared_names(sf)
             if sf.qualified_bases - local - global_names - set(self.types) - set(self.type_decls):
                 _Rewrite(self, global_names).file(sf)
+
+    def _list_name(self, block: A.VarBlock) -> str | None:
+        """The name {attribute 'gvl_name' := 'GVL_Main'} gives a VAR_GLOBAL
+        block (a PLCopen XML file holds several named lists), else None."""
+        name = attribute_value(block, "gvl_name")
+        if name is None:
+            return None
+        if not _IDENTIFIER.fullmatch(name):
+            self.d.error(
+                "E019",
+                f"{{attribute 'gvl_name' := '{name}'}}: a global variable list is named by an identifier",
+                block.pos,
+                "the list keeps the name of its file",
+            )
+            return None
+        return name
 
     def _namespace_hint(self) -> str:
         known = sorted(LIBRARY_NAMESPACES.values()) + sorted(s for s, _ in self.user_namespaces.values())

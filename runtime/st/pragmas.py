@@ -54,6 +54,16 @@ def has_attribute(node: Any, name: str) -> bool:
     return any((a := attribute(str(p))) is not None and a[0] == name for p in getattr(node, "pragmas", ()))
 
 
+def attribute_value(node: Any, name: str) -> str | None:
+    """The value of node's ``{attribute 'name' := 'value'}`` pragma (the
+    first one), else None."""
+    for p in getattr(node, "pragmas", ()):
+        a = attribute(str(p))
+        if a is not None and a[0] == name:
+            return a[1]
+    return None
+
+
 def is_embedded_c(text: str) -> bool:
     """The text of a ``{{ ... }}`` pragma as the lexer keeps it ('{ ... }')."""
     return text.startswith("{")

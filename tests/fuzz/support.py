@@ -10,9 +10,10 @@ Two runs of every property (test_*.py defines both with `short` and `long`):
 
         pytest -m fuzz --hypothesis-seed=1 -p no:randomly tests/fuzz
 
-    The totals are 100,000 ST inputs, 10,000 configurations and 100,000 bus
-    frames, shared among the tests of each area; SOFTPLC_FUZZ_ST,
-    SOFTPLC_FUZZ_CONFIGS and SOFTPLC_FUZZ_FRAMES set other totals. Each long
+    The totals are 100,000 ST inputs, 10,000 configurations, 100,000 bus
+    frames and 10,000 imported files, shared among the tests of each area;
+    SOFTPLC_FUZZ_ST, SOFTPLC_FUZZ_CONFIGS, SOFTPLC_FUZZ_FRAMES and
+    SOFTPLC_FUZZ_IMPORTS set other totals. Each long
     test runs in SOFTPLC_FUZZ_SHARDS shards (default 10; conftest.py
     parametrizes `shard`), each a tenth of its inputs from a seed of its own
     (the --hypothesis-seed, the test and the shard), so a long run spreads
@@ -45,6 +46,7 @@ TOTALS = {
     "st": ("SOFTPLC_FUZZ_ST", 100_000),
     "configs": ("SOFTPLC_FUZZ_CONFIGS", 10_000),
     "frames": ("SOFTPLC_FUZZ_FRAMES", 100_000),
+    "imports": ("SOFTPLC_FUZZ_IMPORTS", 10_000),
 }
 LIMIT_S = float(os.environ.get("SOFTPLC_FUZZ_LIMIT_S", "20"))
 # A CPU-time limit does not fire because the host is busy (a shard sharing
@@ -57,7 +59,7 @@ _HEALTH = [HealthCheck.too_slow, HealthCheck.data_too_large, HealthCheck.filter_
 
 
 def total(area: str) -> int:
-    """The long run's inputs of an area ("st", "configs", "frames")."""
+    """The long run's inputs of an area ("st", "configs", "frames", "imports")."""
     var, default = TOTALS[area]
     return int(os.environ.get(var, default))
 

@@ -51,6 +51,27 @@ END_PROGRAM
     assert (runner.get("speed"), runner.get("a"), runner.get("b")) == (8, 16, 80)
 
 
+def test_gvl_name_names_a_list_otherwise_than_its_file():
+    # A PLCopen XML export holds several named lists in one file
+    # (importers/plcopen.py writes {attribute 'gvl_name' := ...}); so may ST.
+    lists = """{attribute 'gvl_name' := 'GVL_A'}
+VAR_GLOBAL a : INT := 1; END_VAR
+{attribute 'qualified_only'} {attribute 'gvl_name' := 'GVL_B'}
+VAR_GLOBAL b : INT := 2; END_VAR
+VAR_GLOBAL c : INT := 3; END_VAR
+"""
+    main = "PROGRAM main\nVAR x : INT; END_VAR\nx := GVL_A.a + GVL_B.b * 10 + lists.c * 100 + a;\nEND_PROGRAM\n"
+    assert run({"lists.st": lists, "main.st": main}).get("x") == 322
+    wrong = "PROGRAM main\nVAR x : INT; END_VAR\nx := lists.b + GVL_A.c;\nEND_PROGRAM\n"
+    assert [(f[0], f[4]) for f in found({"lists.st": lists, "main.st": wrong})] == [
+        ("E019", "the global variable list lists has no variable 'b'"),
+        ("E019", "the global variable list GVL_A has no variable 'c'"),
+    ]
+    bad = "{attribute 'gvl_name' := 'GVL A'}\nVAR_GLOBAL a : INT; END_VAR\n"
+    [(code, _file, line, _col, message)] = found({"lists.st": bad, "main.st": "PROGRAM main\nEND_PROGRAM\n"})
+    assert code == "E019" and line == 2 and "named by an identifier" in message
+
+
 def test_qualified_only_makes_a_bare_name_an_error():
     # CODESYS {attribute 'qualified_only'} before a GVL: "the variables can
     # only be accessed with the GVL name" (CODESYS Online Help, Attribute

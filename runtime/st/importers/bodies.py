@@ -83,7 +83,8 @@ def st_body(lang: PosElement, out: BodyOut) -> None:
     where it stands."""
     holder = lang.kids()[0] if lang.kids() else lang
     text = "".join(holder.itertext())
-    out.put(*out.texts.start(holder), text)
+    line, col = out.texts.start(holder)
+    out.put(line, col, text, origin=(line, col))  # (its first line's tokens there, whatever shares the line)
 
 
 def il_body(lang: PosElement, out: BodyOut) -> None:

@@ -131,7 +131,7 @@ def _xy(el: PosElement | None) -> tuple[int, int] | None:
         return None
     try:
         return int(float(el.get("x", "0"))), int(float(el.get("y", "0")))
-    except ValueError:
+    except (ValueError, OverflowError):  # (not a number; inf or 1e999)
         return None
 
 

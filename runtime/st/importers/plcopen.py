@@ -1,58 +1,67 @@
-"""PLCopen XML (IEC 61131-10 / TC6 XML, versions 0200 and 0201, as CODESYS,
-Beremiz and others export it) read as Structured Text.
+"""PLCopen XML (IEC 61131-10 / TC6 XML, versions 0200 and 0201) read as
+Structured Text, as CODESYS V3, TwinCAT 3 and Beremiz write it.
 
     views = plcopen_views(xml_text, path, diags)    # ST texts to parse
+    libs = plcopen_libraries(xml_text)              # the libraries it names
 
-What becomes ST: data types (structures, enumerations, arrays, subranges,
-aliases), POUs with ST bodies (their interface, actions, and the methods
-CODESYS puts in its addData), global variable lists and the configuration
-(resources, tasks, program instances). A body in another language (FBD, LD,
-IL, SFC) is reported by the POU's name (E182) and the POU is left out.
+What becomes ST, wherever the file keeps it: data types (``<types>``, and
+CODESYS's ``datatype`` data in a resource), POUs (``<types><pous>``, and
+the ``pou`` data CODESYS puts in a resource: the application's POUs) with
+their actions, methods, properties and inheritance (plcopen_pous.py),
+CODESYS's INTERFACEs (``interface`` data), global variable lists (named
+ones as such: ``GVL_MQTT.x`` works) and the configurations: resources,
+tasks (an IEC ``T#20ms`` or XSD ``PT0.02S`` interval), program instances
+(``typeName=""``: the program of the instance's name). The addData rules
+are codesys.py's: what softplc does not know is dropped when its
+handleUnknown says ``discard`` (CODESYS's device tree) and reported once
+(W181) otherwise.
 
 Every piece of ST is written at the line and column of the XML it comes
-from (view.LineView): a body at its text, a declaration at its <variable>,
-so diagnostics and runtime faults point into the XML file. The actions come
-before the body in the XML but after it in ST; they go into a second view
-as ``ACTION Pou.Name: ... END_ACTION``, parsed as a file of its own.
+from (view.LineView), so diagnostics and runtime faults point into the XML
+file; a piece that must stand elsewhere (IMPLEMENTS in the header, written
+at the end of the interface) keeps its tokens' XML positions (the view's
+origins). Three views hold it, each parsed as a file of its own: the main
+one (types, POUs, interfaces, lists), the actions (``ACTION Pou.Name:``,
+after their POU in ST, before its body in XML) and the configurations
+(their resources' tasks at their lines, the program instances at the end of
+the resource, so the ST order holds whatever the XML's; the resources'
+global variables go to the main view, where they mean the same).
+
+A global variable list with a name gets ``{attribute 'gvl_name' :=
+'GVL_MQTT'}`` before its VAR_GLOBAL blocks (namespaces.py names the list by
+it, export-st keeps it). CODESYS writes a list as one ``<globalVars>``
+holding every variable, with the true CONSTANT/RETAIN blocks in its
+``mixedattrsvarlist`` data: each variable gets the qualifiers of its block
+there. A definition that comes twice (two applications of one export) is
+E184, unless it is the same variable with the same text; a program instance
+naming no PROGRAM of the file E185.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any
 
 from ..ast import Pos
 from ..diagnostics import DiagnosticBag
-from .bodies import BodyOut, ImportProblem, body_language, supported, translate
+from . import codesys
+from .codesys import LibraryRef
+from .plcopen_pous import PouReader
+from .plcopen_text import duration, ident, integer, pragma
+from .plcopen_types import QUALIFIERS, joined, put_at, put_head, put_parts
 from .view import LineView
-from .xmlsafe import PosElement, TextPositions, parse_xml
+from .xmlsafe import PosElement, parse_xml
 
-ELEMENTARY = {
-    t.lower(): t
-    for t in (
-        "BOOL SINT INT DINT LINT USINT UINT UDINT ULINT REAL LREAL TIME LTIME DATE LDATE DT LDT TOD LTOD "
-        "BYTE WORD DWORD LWORD CHAR WCHAR DATE_AND_TIME TIME_OF_DAY"
-    ).split()
-}
-_SECTIONS = {
-    "inputVars": "VAR_INPUT",
-    "outputVars": "VAR_OUTPUT",
-    "inOutVars": "VAR_IN_OUT",
-    "localVars": "VAR",
-    "tempVars": "VAR_TEMP",
-    "externalVars": "VAR_EXTERNAL",
-    "globalVars": "VAR_GLOBAL",
-}
-_POU_KINDS = {"program": "PROGRAM", "function": "FUNCTION", "functionBlock": "FUNCTION_BLOCK"}
-_CODESYS_METHOD = "http://www.3s-software.com/plcopenxml/method"
+__all__ = ["LibraryRef", "plcopen_libraries", "plcopen_views"]
+
+GVL_NAME = "gvl_name"  # the attribute that names a global variable list (namespaces.py)
+# What a resource's addData may hold (CODESYS: the application's objects).
+_APPLICATION_DATA = ("pou", "datatype", "interface", "globalvars", "libraries")
 
 
-def plcopen_views(text: str, path: str, diags: DiagnosticBag) -> list[LineView]:
-    """The ST views of a PLCopen XML file (one or two, laid out on its
-    lines); problems become diagnostics at their XML position."""
+def _project(text: str, path: str, diags: DiagnosticBag) -> PosElement | None:
     root = parse_xml(text, path, diags)
     if root is None:
-        return []
+        return None
     if root.name != "project":
         diags.error(
             "E180",
@@ -60,305 +69,212 @@ def plcopen_views(text: str, path: str, diags: DiagnosticBag) -> list[LineView]:
             Pos(path, root.line, root.col),
             'PLCopen XML (TC6) files start with <project xmlns="http://www.plcopen.org/xml/tc6_0201">',
         )
+        return None
+    return root
+
+
+def plcopen_views(text: str, path: str, diags: DiagnosticBag) -> list[LineView]:
+    """The ST views of a PLCopen XML file (laid out on its lines); problems
+    become diagnostics at their XML position."""
+    root = _project(text, path, diags)
+    if root is None:
         return []
-    lines = text.count("\n") + 1
-    r = _Reader(text, path, diags, LineView(lines), LineView(lines))
+    r = _Reader(text, path, diags)
     r.project(root)
-    return [v for v in (r.main, r.actions) if v.used]
+    return [v for v in (r.main, r.actions, r.config) if v.used]
 
 
-class _Reader:
-    def __init__(self, text: str, path: str, diags: DiagnosticBag, main: LineView, actions: LineView) -> None:
-        self.texts = TextPositions(text)
-        self.path = path
-        self.diags = diags
-        self.main = main
-        self.actions = actions
+def plcopen_libraries(text: str, path: str = "project.xml") -> list[LibraryRef]:
+    """The libraries a PLCopen XML file references (CODESYS's libraries
+    data, in the project and in each application), each once, in order:
+    what the program needs beside its own POUs. [] for a file that does
+    not read."""
+    root = _project(text, path, DiagnosticBag())
+    if root is None:
+        return []
+    out: list[LibraryRef] = []
+    for holder in [root, *_resources(root)]:
+        for data in codesys.data_named(holder, "libraries"):
+            out.extend(lib for lib in codesys.library_refs(data) if lib not in out)
+    return out
 
-    def problem(self, code: str, message: str, el: PosElement | None, hint: str | None = None) -> None:
-        line, col = (el.line, el.col) if el is not None else (1, 1)
-        self.diags.error(code, message, Pos(self.path, line, col), hint)
+
+def _configurations(root: PosElement) -> list[PosElement]:
+    return [c for i in root.kids("instances") for g in i.kids("configurations") for c in g.kids("configuration")]
+
+
+def _resources(root: PosElement) -> list[PosElement]:
+    return [r for c in _configurations(root) for r in c.kids("resource")]
+
+
+def _qualifiers(block: PosElement) -> tuple:
+    return tuple(q for q, attr in QUALIFIERS if block.get(attr, "").strip().lower() in ("true", "1"))
+
+
+class _Reader(PouReader):
+    def __init__(self, text: str, path: str, diags: DiagnosticBag) -> None:
+        super().__init__(text, path, diags)
+        self.globals: dict[str, tuple[str, int]] = {}  # UPPER global -> (its declaration, line)
 
     # ------------------------------------------------------------ project
 
     def project(self, root: PosElement) -> None:
-        self.parents = {c: p for p in root.iter() for c in p}
-        for dt in root.walk("dataType"):
-            self._guard(self.data_type, dt)
-        for pou in root.walk("pou"):
-            self._guard(self.pou, pou)
-        for gv in root.walk("globalVars"):
-            if not self._inside(gv, ("interface", "resource", "configuration")):
-                self._guard(self.var_block, gv, self.main, "VAR_GLOBAL")
-        for conf in root.walk("configuration"):
-            self._guard(self.configuration, conf)
+        types = root.kids("types")
+        data_types = [dt for t in types for g in t.kids("dataTypes") for dt in g.kids("dataType")]
+        pous = [p for t in types for g in t.kids("pous") for p in g.kids("pou")]
+        interfaces: list[PosElement] = []
+        lists: list[PosElement] = []
+        configurations = _configurations(root)
+        self.unknown_data(root, _APPLICATION_DATA)
+        for header in root.kids("contentHeader"):
+            self.unknown_data(header)
+        for holder in [root, *_resources(root)]:
+            for data in codesys.add_data(holder):
+                what = codesys.short_name(data)
+                if what == "datatype":
+                    data_types += data.kids("dataType")
+                elif what == "pou":
+                    pous += data.kids("pou")
+                elif what == "interface":
+                    interfaces += data.kids("Interface")
+                elif what == "globalvars":
+                    lists += data.kids("globalVars")
+        for conf in configurations:
+            lists += conf.kids("globalVars")
+            lists += [gv for res in conf.kids("resource") for gv in res.kids("globalVars")]
+        for dt in data_types:
+            self.data_types.setdefault(dt.get("name", "").upper(), dt)
+        for pou in pous:
+            self.pou_elements.setdefault(pou.get("name", "").upper(), pou)
+        # In document order: what shares a line (a file without line breaks)
+        # is written after what comes before it.
+        items: list[tuple[PosElement, Callable[[PosElement], None]]] = [(dt, self.data_type) for dt in data_types]
+        items += [(i, self.interface_decl) for i in interfaces]
+        items += [(p, self.pou) for p in pous]
+        items += [(gv, self.global_list) for gv in lists]
+        for el, read in sorted(items, key=lambda item: (item[0].line, item[0].col)):
+            self.guard(read, el)
+            if read == self.pou and el.get("name", "").upper() not in self.pou_kinds:
+                self.refused.add(el.get("name", "").upper())  # (reported: no cascade at its instances)
+        for conf in configurations:
+            self.guard(self.configuration, conf)
 
-    def _guard(self, fn: Callable[..., None], el: PosElement, *args: Any) -> None:
-        try:
-            fn(el, *args)
-        except ImportProblem as exc:
-            message, where, hint = exc.args
-            self.problem("E183", message, where, hint)
+    # ------------------------------------------------------------ global variables
 
-    def _inside(self, el: PosElement, names: tuple) -> bool:
-        p = self.parents.get(el)
-        while p is not None:
-            if p.name in names:  # type: ignore[attr-defined]
-                return True
-            p = self.parents.get(p)
+    def global_list(self, gv: PosElement) -> None:
+        """A <globalVars> into the main view: VAR_GLOBAL blocks at its
+        variables' lines, named by a pragma when the list has a name."""
+        head = self.pragmas(gv)
+        if gv.get("name"):
+            head += pragma(GVL_NAME, ident(gv.get("name"), gv, "the list name"), gv)
+        self.unknown_data(gv, ("attributes", "mixedattrsvarlist"))
+        own = _qualifiers(gv)
+        quals = {
+            v.get("name", "").upper(): _qualifiers(b) for b in codesys.mixed_blocks(gv) for v in b.kids("variable")
+        }
+        runs: list[tuple[tuple, list]] = []  # (qualifiers, [(variable, declaration parts)])
+        for v in gv.kids("variable"):
+            parts = self.guard(self.declaration, v)
+            q = quals.get(v.get("name", "").upper(), own)
+            if parts is None or not self._new_global(v, " ".join(q) + " " + head + joined(parts)):
+                continue
+            if not runs or runs[-1][0] != q:
+                runs.append((q, []))
+            runs[-1][1].append((v, parts))
+        for i, (q, decls) in enumerate(runs):
+            first, last = decls[0][0], decls[-1][0]
+            at = gv if i == 0 else first  # (the first block at the list's start tag)
+            put_head(self.main, at, head, " ".join(["VAR_GLOBAL", *q]))
+            for _, parts in decls:
+                put_parts(self.main, parts)
+            put_at(self.main, last.end_line, 1, "END_VAR", own_line=True)
+
+    def _new_global(self, v: PosElement, text: str) -> bool:
+        """Whether v is a global not declared yet; the same declaration
+        again (a second application's copy of a list) is dropped, another
+        one is E184."""
+        key = v.get("name", "").upper()
+        first = self.globals.get(key)
+        if first is None:
+            self.globals[key] = (text, v.line)
+            return True
+        if first[0] != text:
+            self.problem(
+                "E184",
+                f"global variable {v.get('name')} is declared twice in the file (line {first[1]}): "
+                "this one is left out",
+                v,
+                "with several applications (CODESYS devices) in one export, export one of them",
+            )
         return False
 
-    # ------------------------------------------------------------ types
-
-    def type_text(self, t: PosElement | None) -> str:
-        """The ST type of a <type> or <baseType> element."""
-        if t is None:
-            raise ImportProblem("a variable without a type", None, None)
-        kids = t.kids()
-        if not kids:
-            raise ImportProblem(f"<{t.name}> names no type", t, None)
-        k = kids[0]
-        n = k.name
-        if n.lower() in ELEMENTARY:
-            return ELEMENTARY[n.lower()]
-        if n in ("string", "wstring"):
-            length = k.get("length")
-            return n.upper() + (f"[{int(length)}]" if length else "")
-        if n == "derived":
-            return _ident(k.get("name", ""), k)
-        if n == "array":
-            dims = ", ".join(f"{_int(d.get('lower'), d)}..{_int(d.get('upper'), d)}" for d in k.kids("dimension"))
-            return f"ARRAY[{dims}] OF {self.type_text(k.kid('baseType'))}"
-        if n == "pointer":
-            return f"POINTER TO {self.type_text(k.kid('baseType'))}"
-        if n in ("subrangeSigned", "subrangeUnsigned"):
-            rng = k.kid("range")
-            if rng is None:
-                raise ImportProblem("a subrange without <range>", k, None)
-            return f"{self.type_text(k.kid('baseType'))}({_int(rng.get('lower'), rng)}..{_int(rng.get('upper'), rng)})"
-        if n == "enum":
-            values = []
-            for v in k.walk("value"):
-                name = _ident(v.get("name", ""), v)
-                values.append(f"{name} := {_int(v.get('value'), v)}" if v.get("value") is not None else name)
-            base = k.kid("baseType")
-            return f"({', '.join(values)})" + (f" {self.type_text(base)}" if base is not None and base.kids() else "")
-        if n == "struct":
-            fields = []
-            for v in k.kids("variable"):
-                fields.append(f"{_ident(v.get('name', ''), v)} : {self.type_text(v.kid('type'))}{self.init_text(v)};")
-            return "STRUCT " + " ".join(fields) + " END_STRUCT"
-        raise ImportProblem(f"the type <{n}> is not supported", k, None)
-
-    def init_text(self, v: PosElement) -> str:
-        iv = v.kid("initialValue")
-        return "" if iv is None else " := " + self.value_text(iv)
-
-    def value_text(self, iv: PosElement) -> str:
-        kids = iv.kids()
-        if not kids:
-            raise ImportProblem("an empty initial value", iv, None)
-        k = kids[0]
-        if k.name == "simpleValue":
-            return _no_newline(k.get("value", ""), k)
-        if k.name == "arrayValue":
-            items = []
-            for v in k.kids("value"):
-                rep = v.get("repetitionValue")
-                inner = self.value_text(v)
-                items.append(f"{_int(rep, v)}({inner})" if rep else inner)
-            return "[" + ", ".join(items) + "]"
-        if k.name == "structValue":
-            items = [f"{_ident(v.get('member', ''), v)} := {self.value_text(v)}" for v in k.kids("value")]
-            return "(" + ", ".join(items) + ")"
-        raise ImportProblem(f"the initial value <{k.name}> is not supported", k, None)
-
-    def data_type(self, dt: PosElement) -> None:
-        name = _ident(dt.get("name", ""), dt)
-        self.main.put(dt.line, dt.col, f"TYPE {name} : {self.type_text(dt.kid('baseType'))}{self.init_text(dt)};")
-        self.main.put(dt.end_line, 1, "END_TYPE")
-
-    # ------------------------------------------------------------ variables
-
-    def var_block(self, block: PosElement, view: LineView, keyword: str | None = None) -> None:
-        kw = keyword or _SECTIONS[block.name]
-        quals = [
-            q
-            for q, attr in (("CONSTANT", "constant"), ("RETAIN", "retain"), ("PERSISTENT", "persistent"))
-            if block.get(attr) == "true"
-        ]
-        view.put(block.line, block.col, " ".join([kw, *quals]))
-        for v in block.kids("variable"):
-            name = _ident(v.get("name", ""), v)
-            at = v.get("address")
-            located = f" AT {_no_newline(at, v)}" if at else ""
-            view.put(v.line, v.col, f"{name}{located} : {self.type_text(v.kid('type'))}{self.init_text(v)};", 4)
-        view.put(block.end_line, 1, "END_VAR")
-
-    def interface(self, itf: PosElement | None, view: LineView) -> None:
-        if itf is None:
-            return
-        for block in itf.kids():
-            if block.name in _SECTIONS:
-                self.var_block(block, view)
-
-    # ------------------------------------------------------------ POUs
-
-    def pou(self, pou: PosElement) -> None:
-        name = _ident(pou.get("name", ""), pou)
-        kind = _POU_KINDS.get(pou.get("pouType", ""))
-        if kind is None:
-            raise ImportProblem(f"POU {name}: unknown pouType {pou.get('pouType')!r}", pou, None)
-        body = pou.kid("body")
-        lang = body_language(body)
-        if not supported(lang):
-            self.problem(
-                "E182",
-                f"POU {name} is written in {lang.name if lang is not None else 'no language'}: "
-                "only ST bodies are imported",
-                body if body is not None else pou,
-                "rewrite it in ST, or export it as ST from the editor; the other POUs are imported",
-            )
-            return
-        assert body is not None and lang is not None
-        itf = pou.kid("interface")
-        header = f"{kind} {name}"
-        if kind == "FUNCTION_BLOCK":
-            header += self._inheritance(pou)
-        if kind == "FUNCTION":
-            rt = itf.kid("returnType") if itf is not None else None
-            header += f" : {self.type_text(rt)}" if rt is not None else ""
-        self.main.put(pou.line, pou.col, header)
-        self.interface(itf, self.main)
-        hidden: list[str] = []
-        actions = pou.kid("actions")
-        if actions is not None:
-            for act in actions.kids("action"):
-                self.action(name, act, hidden)
-        self.body_with_decls(body, lang, name, hidden, pou)
-        self.main.put(body.end_line, 1, f"END_{kind}")
-        for data in pou.walk("data"):
-            if data.get("name") == _CODESYS_METHOD:
-                for m in data.kids("Method"):
-                    self.method(m)
-
-    def body_with_decls(
-        self, body: PosElement, lang: PosElement, pou: str, hidden: list, owner: PosElement | None = None
-    ) -> None:
-        """A POU's or method's body into the main view, after a VAR block of
-        the variables it and hidden (those its actions need) declare. (An
-        SFC body writes its POU's named <transitions> before the <body>: the
-        VAR block goes before them.)"""
-        scratch = LineView(len(self.main.lines))
-        out = BodyOut(scratch, self.texts, self.path, self.diags, pou, owner)
-        translate(lang, out)
-        decls = [*hidden, *(d for d in out.decls if d not in hidden)]
-        if decls:
-            first = min(scratch.written, default=body.line)
-            at = (body.line, body.col) if first >= body.line else (first, 1)
-            self.main.put(*at, "VAR " + " ".join(decls) + " END_VAR")
-        self.main.absorb(scratch)
-
-    def _inheritance(self, pou: PosElement) -> str:
-        """EXTENDS and IMPLEMENTS: CODESYS writes them into the POU's addData
-        as <Extends>Base</Extends> and <Implements>I_x</Implements>."""
-        out = ""
-        add = pou.kid("addData")
-        if add is None:
-            return out
-        extends = [e for e in add.walk("Extends") if not self._inside(e, ("Method",))]
-        implements = [e for e in add.walk("Implements") if not self._inside(e, ("Method",))]
-        if extends:
-            out += f" EXTENDS {_ident((extends[0].text or '').strip(), extends[0])}"
-        if implements:
-            out += " IMPLEMENTS " + ", ".join(_ident((i.text or "").strip(), i) for i in implements)
-        return out
-
-    def action(self, pou_name: str, act: PosElement, hidden: list) -> None:
-        """An action of pou_name into the actions view; the variables its
-        body needs go to hidden (declared with the POU's)."""
-        body = act.kid("body")
-        lang = body_language(body)
-        name = _ident(act.get("name", ""), act)
-        if not supported(lang):
-            self.problem(
-                "E182",
-                f"action {pou_name}.{name} is written in {lang.name if lang is not None else 'no language'}: "
-                "only ST bodies are imported",
-                act,
-                "rewrite it in ST; the rest of the POU is imported",
-            )
-            return
-        assert lang is not None
-        self.actions.put(act.line, act.col, f"ACTION {pou_name}.{name}:")
-        out = BodyOut(self.actions, self.texts, self.path, self.diags, pou_name)
-        translate(lang, out)
-        hidden.extend(d for d in out.decls if d not in hidden)
-        self.actions.put(act.end_line, 1, "END_ACTION")
-
-    def method(self, m: PosElement) -> None:
-        name = _ident(m.get("name", ""), m)
-        itf = m.kid("interface")
-        rt = itf.kid("returnType") if itf is not None else None
-        body = m.kid("body")
-        lang = body_language(body)
-        if not supported(lang):
-            raise ImportProblem(f"method {name} is not written in a language softplc imports", m, None)
-        assert body is not None and lang is not None
-        self.main.put(m.line, m.col, f"METHOD {name}" + (f" : {self.type_text(rt)}" if rt is not None else ""))
-        self.interface(itf, self.main)
-        self.body_with_decls(body, lang, name, [])
-        self.main.put(m.end_line, 1, "END_METHOD")
-
-    # ------------------------------------------------------------ configuration
+    # ------------------------------------------------------------ configurations
 
     def configuration(self, conf: PosElement) -> None:
-        v = self.main
-        v.put(conf.line, conf.col, f"CONFIGURATION {_ident(conf.get('name', ''), conf)}")
-        for gv in conf.kids("globalVars"):
-            self.var_block(gv, v, "VAR_GLOBAL")
-        for res in conf.kids("resource"):
-            v.put(res.line, res.col, f"RESOURCE {_ident(res.get('name', ''), res)} ON PLC", 4)
-            for gv in res.kids("globalVars"):
-                self.var_block(gv, v, "VAR_GLOBAL")
-            for task in res.kids("task"):
-                params = []
-                if task.get("interval"):
-                    params.append(f"INTERVAL := {_no_newline(task.get('interval', ''), task)}")
-                if task.get("single"):
-                    params.append(f"SINGLE := {_ident(task.get('single', ''), task)}")
-                params.append(f"PRIORITY := {_int(task.get('priority', '0'), task)}")
-                tname = _ident(task.get("name", ""), task)
-                v.put(task.line, task.col, f"TASK {tname}({', '.join(params)});", 8)
-                for inst in task.kids("pouInstance"):
-                    iname, tn = _ident(inst.get("name", ""), inst), _ident(inst.get("typeName", ""), inst)
-                    v.put(inst.line, inst.col, f"PROGRAM {iname} WITH {tname} : {tn};", 8)
-            for inst in res.kids("pouInstance"):
-                iname, tn = _ident(inst.get("name", ""), inst), _ident(inst.get("typeName", ""), inst)
-                v.put(inst.line, inst.col, f"PROGRAM {iname} : {tn};", 8)
-            v.put(res.end_line, 1, "END_RESOURCE", 4)
-        v.put(conf.end_line, 1, "END_CONFIGURATION")
+        name = ident(conf.get("name"), conf, "the configuration name")
+        self.unknown_data(conf)
+        resources = [(res, self.guard(self.resource_text, res)) for res in conf.kids("resource")]
+        put_at(self.config, conf.line, conf.col, f"CONFIGURATION {name}", own_line=True)
+        for res, parts in resources:
+            if parts is None:
+                continue
+            head, tasks, programs = parts
+            put_at(self.config, res.line, res.col, head, 4, own_line=True)
+            for task, text in tasks:
+                put_at(self.config, task.line, task.col, text, 8, own_line=True)
+            for program, inst in programs:  # at the end of the resource, the tokens at the pouInstance
+                self.config.put(res.end_line, 1, program, 8, origin=(inst.line, inst.col), own_line=True)
+            put_at(self.config, res.end_line, 1, "END_RESOURCE", 4, own_line=True)
+        for block in conf.kids("configVars"):
+            self.var_block(block, self.config, "VAR_CONFIG")
+        for block in conf.kids("accessVars"):
+            self.problem("E182", "<accessVars> (VAR_ACCESS) is not imported", block, "softplc has no VAR_ACCESS")
+        put_at(self.config, conf.end_line, 1, "END_CONFIGURATION", own_line=True)
 
+    def resource_text(self, res: PosElement) -> tuple[str, list, list]:
+        """(RESOURCE line, [(task, TASK line)], [(PROGRAM line, pouInstance)]):
+        a task or instance that cannot become ST is reported and left out."""
+        name = ident(res.get("name"), res, "the resource name")
+        self.unknown_data(res, _APPLICATION_DATA)
+        tasks, programs = [], []
+        for task in res.kids("task"):
+            done = self.guard(self.task_text, task)
+            if done is None:
+                continue
+            tname, text = done
+            tasks.append((task, text))
+            programs += [(p, i) for i in task.kids("pouInstance") if (p := self.guard(self.instance_text, i, tname))]
+        programs += [(p, i) for i in res.kids("pouInstance") if (p := self.guard(self.instance_text, i, None))]
+        return f"RESOURCE {name} ON PLC", tasks, programs
 
-def _ident(name: str, el: PosElement | None) -> str:
-    """An identifier from an attribute: only what ST allows (no ST is made
-    of an attribute that could end a declaration or open a comment)."""
-    parts = name.split(".")
-    if not name or not all(p.replace("_", "a").isalnum() and p.isascii() and not p[0].isdigit() for p in parts):
-        raise ImportProblem(f"{name!r} is not an ST identifier", el, None)
-    return name
+    def task_text(self, task: PosElement) -> tuple[str, str]:
+        name = ident(task.get("name"), task, "the task name")
+        params = []
+        if task.get("interval") is not None:
+            params.append(f"INTERVAL := {duration(task.get('interval'), task)}")
+        if task.get("single"):
+            params.append(f"SINGLE := {ident(task.get('single'), task, 'the SINGLE variable')}")
+        params.append(f"PRIORITY := {integer(task.get('priority', '0'), task, 'the priority')}")
+        self.unknown_data(task)
+        return name, f"TASK {name}({', '.join(params)});"
 
-
-def _int(value: str | None, el: PosElement | None) -> str:
-    v = (value or "").strip()
-    if not (v.lstrip("+-").isdigit()):
-        raise ImportProblem(f"{value!r} is not an integer", el, None)
-    return v
-
-
-def _no_newline(value: str, el: PosElement | None) -> str:
-    """A literal or address attribute: one line, no ';' or comment opener
-    that would let it run into the next declaration."""
-    if any(bad in value for bad in ("\n", ";", "(*", "*)", "//", "/*", "{")):
-        raise ImportProblem(f"{value!r} cannot be an ST value here", el, None)
-    return value.strip()
+    def instance_text(self, inst: PosElement, task: str | None) -> str | None:
+        """PROGRAM name [WITH task] : Type; None when the program was left
+        out (reported there) or is no PROGRAM of the file (E185)."""
+        name = ident(inst.get("name"), inst, "the instance name")
+        type_name = ident(inst.get("typeName") or name, inst, "the program")  # CODESYS: typeName=""
+        self.unknown_data(inst)
+        key = type_name.upper()
+        if key in self.refused:
+            return None
+        kind = self.pou_kinds.get(key)
+        if kind != "PROGRAM":
+            self.problem(
+                "E185",
+                f"the program instance {name} names {type_name}, "
+                + (f"a {kind}, not a PROGRAM" if kind else "which is no POU of this file"),
+                inst,
+                "a task runs PROGRAMs declared in the same file (typeName, or the instance's name)",
+            )
+            return None
+        return f"PROGRAM {name}" + (f" WITH {task}" if task else "") + f" : {type_name};"

@@ -404,7 +404,7 @@ def _int_attr(value: str | None) -> int:
     v = (value or "").strip()
     try:
         return int(float(v)) if v else 0
-    except ValueError:
+    except (ValueError, OverflowError):  # (not a number; inf or 1e999)
         return 0
 
 

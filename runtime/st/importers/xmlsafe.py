@@ -8,6 +8,8 @@ its start tag) and ``end_line`` (of its end tag) from expat.
 
 from __future__ import annotations
 
+import bisect
+import re
 import xml.etree.ElementTree as ET
 from typing import Any
 
@@ -66,6 +68,17 @@ class TextPositions:
             off += len("<![CDATA[")
         line = self.raw.count("\n", 0, off) + 1
         return line, off - self.line_starts[line - 1] + 1
+
+    def attribute(self, el: PosElement, name: str) -> tuple[int, int]:
+        """(line, column) of the value of el's attribute name (in its start
+        tag), else of el itself. Entities shift the columns of their line."""
+        off = self.line_starts[el.line - 1] + el.col - 1
+        end = self.raw.find(">", off)
+        m = re.compile(rf"\s{re.escape(name)}\s*=\s*[\"']").search(self.raw, off, end if end >= 0 else len(self.raw))
+        if m is None:
+            return el.line, el.col
+        line = bisect.bisect_right(self.line_starts, m.end())
+        return line, m.end() - self.line_starts[line - 1] + 1
 
 
 class _Builder(ET.TreeBuilder):

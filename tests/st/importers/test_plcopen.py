@@ -150,10 +150,14 @@ def test_export_st_writes_the_project_as_plain_st():
     diags = DiagnosticBag()
     st = st_export(str(XML), XML.read_text(), diags)
     assert diags.items == []
-    assert st.startswith("TYPE ST_Point : STRUCT x : INT; y : INT := 2; END_STRUCT;\nEND_TYPE\n")
+    assert st.startswith("TYPE ST_Point : STRUCT\n    x : INT;\n    y : INT := 2;\nEND_STRUCT;\nEND_TYPE\n")
     assert "FUNCTION_BLOCK FB_Twice EXTENDS FB_Counter" in st and "METHOD Double : INT" in st
     assert "IF enable THEN\n    count := count + 1;\n" in st  # a body keeps its indentation
-    assert st.endswith("ACTION FB_Counter.Reset:\ncount := 0;\nmode := E_Mode.Idle;\nEND_ACTION\n")
+    assert "\nACTION FB_Counter.Reset:\ncount := 0;\nmode := E_Mode.Idle;\nEND_ACTION\n" in st
+    assert st.endswith(
+        "TASK MainTask(INTERVAL := T#10ms, PRIORITY := 1);\n"
+        "        PROGRAM MainInst WITH MainTask : Main;\n    END_RESOURCE\nEND_CONFIGURATION\n"
+    )
     # and it compiles to the same program
     assert compile_files([], texts={"export.st": st}).runner("Main").ns is not None
 
