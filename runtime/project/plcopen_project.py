@@ -9,19 +9,14 @@ from __future__ import annotations
 
 import re
 from pathlib import Path
-from xml.sax.saxutils import unescape
 
 from ..st.ast import Pos
+from ..st.importers.plcopen import plcopen_libraries
 from ..st.importers.view import LineView
 from ..st.importers.xmlsafe import parse_xml
 from .model import LibraryRef, Project
 from .readtext import read_text
 
-_LIBRARIES_DATA = re.compile(
-    r'<data\s+name="http://www\.3s-software\.com/plcopenxml/libraries"[^>]*>(.*?)</data>', re.S
-)
-_LIBRARY = re.compile(r"<Library\s([^>]*)>")
-_ATTR = re.compile(r'([A-Za-z_][\w.-]*)="([^"]*)"')
 _IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 #: what tells a CODESYS export from other PLCopen XML
 _CODESYS = re.compile(r'productName="CODESYS|3s-software\.com/plcopenxml', re.I)
@@ -46,25 +41,15 @@ def sniff(text: str) -> str | None:
 
 
 def codesys_libraries(text: str, path: str) -> list[LibraryRef]:
-    """The libraries a CODESYS export lists: ``<Library Name="#Util"
-    Namespace="Util" DefaultResolution="Util, * (System)">`` (a
-    placeholder, resolved by DefaultResolution) or ``<Library
-    Name="NETWORK, 1.3.5.3 (OSCAT)" Namespace="OSCAT_NETWORK">``."""
+    """The libraries a CODESYS export lists (st/importers/plcopen.py reads
+    ``<Library Name="#Util" Namespace="Util">`` and its redirections), each
+    by its short name (``NETWORK, 1.3.5.3 (OSCAT)`` -> ``NETWORK``), at its
+    <Library> element."""
     out: dict[str, LibraryRef] = {}
-    for block in _LIBRARIES_DATA.finditer(text):
-        for m in _LIBRARY.finditer(text, block.start(1), block.end(1)):
-            attrs = {k: unescape(v, {"&quot;": '"'}) for k, v in _ATTR.findall(m.group(1))}
-            raw = attrs.get("DefaultResolution") or attrs.get("Name", "")
-            name = raw.lstrip("#").split(",")[0].strip()
-            namespace = attrs.get("Namespace", "")
-            if not name:
-                continue
-            if not _IDENT.match(namespace):
-                namespace = name
-            offset = m.start()
-            line = text.count("\n", 0, offset) + 1
-            pos = Pos(path, line, offset - (text.rfind("\n", 0, offset) + 1) + 1)
-            out.setdefault(name.upper(), LibraryRef(name, namespace, pos))
+    for lib in plcopen_libraries(text, path):
+        name = lib.name.split(",")[0].strip()
+        namespace = lib.namespace if _IDENT.match(lib.namespace) else name
+        out.setdefault(name.upper(), LibraryRef(name, namespace, Pos(path, lib.line, lib.col)))
     return list(out.values())
 
 

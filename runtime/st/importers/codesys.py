@@ -130,11 +130,20 @@ def mixed_blocks(gv: PosElement) -> list[PosElement]:
 class LibraryRef(NamedTuple):
     """A library the project references: its name (the redirected one for
     a placeholder: 'MQTT, 1.2.0.6 (Stefan Dreyer)'), its namespace
-    ('MQTT') and the placeholder it was named by ('' if none)."""
+    ('MQTT'), the placeholder it was named by ('' if none) and the line and
+    column of its <Library> element (not compared)."""
 
     name: str
     namespace: str
     placeholder: str
+    line: int = 0
+    col: int = 0
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, LibraryRef) and self[:3] == other[:3]
+
+    def __hash__(self) -> int:
+        return hash(self[:3])
 
 
 def library_refs(data: PosElement) -> list[LibraryRef]:
@@ -154,5 +163,5 @@ def library_refs(data: PosElement) -> list[LibraryRef]:
             if placeholder:
                 name = redirect.get(placeholder, "") or placeholder
             if name:
-                out.append(LibraryRef(name, lib.get("Namespace", "").strip(), placeholder))
+                out.append(LibraryRef(name, lib.get("Namespace", "").strip(), placeholder, lib.line, lib.col))
     return out
