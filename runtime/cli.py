@@ -102,27 +102,6 @@ def _compile(files, profile: str):
     return prog
 
 
-def _profile_hint(files, profile: str, errors: int, warnings: int) -> None:
-    """When the files read like another dialect (st/dialects.py) and that
-    profile checks them with fewer errors (or, with none, fewer warnings),
-    say so: 'reads like schneider (0x literals ...); try --profile schneider'."""
-    from .program import check_files
-    from .st import dialects
-
-    texts = []
-    for f in files:
-        try:
-            texts.append(Path(f).read_text(encoding="utf-8", errors="replace"))
-        except OSError:
-            return
-    for other, whats in dialects.candidates(texts, profile):
-        diagnostics, _sources = check_files(list(files), profile=other)
-        e = sum(1 for d in diagnostics if d.is_error)
-        if e < errors or (e == errors == 0 and len(diagnostics) < warnings):
-            _echo_err(dialects.hint(other, whats))
-            return
-
-
 # ---------------------------------------------------------------- commands
 
 
