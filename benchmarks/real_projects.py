@@ -115,7 +115,8 @@ def main(argv: list | None = None) -> int:
     parser.add_argument("--cycles", type=int, default=100, help="cycles each PROGRAM runs (default 100)")
     parser.add_argument("--codes", type=int, default=8, help="error codes and libraries shown per project (default 8)")
     args = parser.parse_args(argv)
-    print(timeit_factor().line())
+    host = timeit_factor()
+    print(host.line())
     rows = [measure(project, args.cycles) for path in args.paths for project in open_projects([path])]
     print(render(rows, args.cycles, args.codes))
     total = sum(r.seconds for r in rows)
@@ -124,7 +125,8 @@ def main(argv: list | None = None) -> int:
     print(
         f"all: {len(rows)} projects, {pous} POUs, {compiled} compiled ({_share(compiled, pous)}), "
         f"{sum(r.ran for r in rows)}/{sum(r.programs for r in rows)} PROGRAMs ran, {errors} errors "
-        f"({_share(library, errors)} from missing libraries), {total:.1f} s"
+        f"({_share(library, errors)} from missing libraries), {total:.1f} s "
+        f"({host.scaled(total):.1f} s on the reference host)"
     )
     return 0
 
