@@ -77,6 +77,38 @@ PROFILE_OPTION = click.option(
     ),
 )
 
+
+class LibraryArg(click.ParamType):
+    """--library NAME|PATH: a library softplc ships (Tc2_System) or a folder
+    of the user's (its name is its namespace)."""
+
+    name = "library"
+
+    def convert(self, value, param, ctx):
+        from .program import Library
+        from .program.shipped import is_shipped_name, shipped_named
+
+        if isinstance(value, Library):
+            return value
+        if is_shipped_name(value):
+            lib = shipped_named(value)
+            assert lib is not None
+            return lib
+        path = Path(value)
+        if not path.exists():
+            self.fail(f"{value!r} is neither a library softplc ships nor a folder or file", param, ctx)
+        return Library(path, path.stem if path.is_file() else path.name)
+
+
+LIBRARY_OPTION = click.option(
+    "--library",
+    "libraries",
+    type=LibraryArg(),
+    multiple=True,
+    metavar="NAME|PATH",
+    help="A library to compile with: one softplc ships (Tc2_System) or a folder of yours. Repeatable.",
+)
+
 FILES_ARGUMENT = click.argument(
     "files", nargs=-1, required=True, type=click.Path(exists=True, dir_okay=False, readable=True)
 )
@@ -85,13 +117,13 @@ FILES_ARGUMENT = click.argument(
 # ---------------------------------------------------------------- helpers
 
 
-def _compile(files, profile: str):
+def _compile(files, profile: str, libraries: tuple = ()):
     """Compile or exit 1 with the diagnostics. Warnings go to stderr either way."""
     from .program import compile_files
     from .st.diagnostics import CompileError
 
     try:
-        prog = compile_files(list(files), profile=profile)
+        prog = compile_files(list(files), profile=profile, libraries=libraries)
     except CompileError as e:
         errors, warnings = _report(e.diagnostics, e.sources)
         _summary(errors, warnings)
@@ -119,8 +151,9 @@ def cli() -> None:
 @click.argument("files", nargs=-1, type=click.Path(exists=True, readable=True))
 @PROJECT_PROFILE_OPTION
 @ALL_ERRORS_OPTION
+@LIBRARY_OPTION
 @click.option("--explain", "code", metavar="CODE", help="Print the page of a diagnostic code (e.g. E030); no FILES.")
-def check(files, profile: str | None, all_errors: bool, code: str | None) -> None:
+def check(files, profile: str | None, all_errors: bool, libraries: tuple, code: str | None) -> None:
     """Check ST files, PLCopen XML and TwinCAT files, and projects: a
     TwinCAT .sln/.tsproj/.plcproj, a CODESYS export, a Beremiz folder, a
     folder. Diagnostics with file:line:column; for a project a table per
@@ -132,7 +165,7 @@ def check(files, profile: str | None, all_errors: bool, code: str | None) -> Non
         _explain(code)
     if not files:
         raise click.UsageError("Missing argument 'FILES...'.")
-    sys.exit(check_projects(list(files), profile, all_errors, _natives_for))
+    sys.exit(check_projects(list(files), profile, all_errors, _natives_for, libraries))
 
 
 def _natives_for(files: list) -> tuple:
@@ -170,11 +203,12 @@ def _test_natives() -> tuple:
     help="With --emit-python: write DIR/<stem of the first FILE>.py instead of printing.",
 )
 @PROFILE_OPTION
-def compile_cmd(files, emit_python: bool, output_dir: str | None, profile: str) -> None:
+@LIBRARY_OPTION
+def compile_cmd(files, emit_python: bool, output_dir: str | None, profile: str, libraries: tuple) -> None:
     """Compile ST files to Python; with --emit-python show the result."""
     if output_dir and not emit_python:
         raise click.UsageError("-o/--output-dir needs --emit-python")
-    prog = _compile(files, profile)
+    prog = _compile(files, profile, libraries)
     _report(prog.warnings, prog.sources)
     if not emit_python:
         _summary(0, len(prog.warnings))
@@ -224,13 +258,14 @@ def new_cmd(name: str, where: str) -> None:
     help="Write the ST to OUT.st, or with DIR/ (an existing folder, or a name ending in /) one .st per source.",
 )
 @PROJECT_PROFILE_OPTION
-def export_st_cmd(sources: tuple, output: str | None, profile: str | None) -> None:
+@LIBRARY_OPTION
+def export_st_cmd(sources: tuple, output: str | None, profile: str | None, libraries: tuple) -> None:
     """Write imported files and projects (PLCopen XML, TwinCAT, a folder) as
     plain ST, for review and porting: every POU that imports (one that does
     not compile is marked so); the rest are listed with their errors."""
     from .cli_project import export_projects
 
-    sys.exit(export_projects(list(sources), output, profile))
+    sys.exit(export_projects(list(sources), output, profile, libraries))
 
 
 @cli.command("exec")
@@ -246,7 +281,10 @@ def export_st_cmd(sources: tuple, output: str | None, profile: str | None) -> No
 )
 @PROJECT_PROFILE_OPTION
 @PARTIAL_OPTION
-def exec_cmd(files, entry: str | None, cycles: int, cycle_time: int, profile: str | None, partial: bool) -> None:
+@LIBRARY_OPTION
+def exec_cmd(
+    files, entry: str | None, cycles: int, cycle_time: int, profile: str | None, partial: bool, libraries: tuple
+) -> None:
     """Run a PROGRAM for N cycles in virtual time and print its variables as
     one JSON object; for a FUNCTION print {"return": value}. FILES may be a
     project (a TwinCAT .sln/.plcproj, a CODESYS export, a Beremiz folder, a
@@ -256,10 +294,10 @@ def exec_cmd(files, entry: str | None, cycles: int, cycle_time: int, profile: st
 
     project = one_project(list(files), "exec")
     if project.kind == "files" and not partial:
-        prog = _compile(project.files, profile or DEFAULT.name)
+        prog = _compile(project.files, profile or DEFAULT.name, libraries)
         _report(prog.warnings, prog.sources)
     else:
-        prog, analysis = compile_project(project, profile, partial)
+        prog, analysis = compile_project(project, profile, partial, libraries=libraries)
         entry = entry or task_entry(project, prog, analysis)
     entry = _pick_entry(prog.pous, entry)
     try:

@@ -56,13 +56,13 @@ def open_or_exit(paths: list) -> list:
     return projects
 
 
-def _grouped(analysis, all_errors: bool, libraries: tuple = ()) -> tuple:
+def _grouped(analysis, all_errors: bool) -> tuple:
     """(missing-library groups, the diagnostics shown one by one)."""
     from .project.missing import group_analysis
 
     if all_errors:
         return [], list(analysis.diagnostics)
-    return group_analysis(analysis, frozenset(lib.namespace for lib in libraries))
+    return group_analysis(analysis, frozenset(lib.namespace for lib in analysis.libraries))
 
 
 def print_diagnostics(analysis, groups: list, rest: list) -> tuple[int, int, int]:
@@ -82,7 +82,7 @@ def counts_line(errors: int, library_refs: int, libraries: int, warnings: int) -
     return f"{plural(errors, 'error')}, {library_refs} more from {libs}, {plural(warnings, 'warning')}"
 
 
-def check_projects(paths: list, profile: str | None, all_errors: bool, natives_for) -> int:
+def check_projects(paths: list, profile: str | None, all_errors: bool, natives_for, libraries: tuple = ()) -> int:
     """`softplc check` of files, folders and projects: the exit code."""
     from .check_summary import most_frequent, note_other_profiles
     from .program import check_files
@@ -97,7 +97,7 @@ def check_projects(paths: list, profile: str | None, all_errors: bool, natives_f
         plain = project.kind in ("files", "folder", "plcopen")
         if project.kind != "files":
             echo_err(f"{KIND_NAMES[project.kind]} {project.name}: {plural(len(project.files), 'source file')}")
-        analysis = analyse(project, profile, natives=natives, subset=project.kind != "files")
+        analysis = analyse(project, profile, natives=natives, libraries=libraries, subset=project.kind != "files")
         prof = analysis.profile.name
         if plain:
             note_other_profiles(project.files, prof, analysis.diagnostics, _checker(check_files, natives))
@@ -153,13 +153,13 @@ def one_project(paths: list, what: str):
     return projects[0]
 
 
-def compile_project(project, profile: str | None, partial: bool, all_errors: bool = False):
+def compile_project(project, profile: str | None, partial: bool, all_errors: bool = False, libraries: tuple = ()):
     """(the Program of the project, or of the part that compiles with
     partial, the analysis); exits 1 with the diagnostics when there is
     none to run."""
     from .project.analysis import analyse
 
-    analysis = analyse(project, profile, subset=partial)
+    analysis = analyse(project, profile, libraries=libraries, subset=partial)
     groups, rest = _grouped(analysis, all_errors)
     if analysis.errors and not partial:
         errors, refs, warnings = print_diagnostics(analysis, groups, rest)
@@ -193,7 +193,7 @@ def task_entry(project, program, analysis=None) -> str | None:
     return found[0] if len(found) == 1 else None
 
 
-def export_projects(paths: list, output: str | None, profile: str | None) -> int:
+def export_projects(paths: list, output: str | None, profile: str | None, libraries: tuple = ()) -> int:
     """`softplc export-st`: every POU that imports as ST, to stdout, one
     file (-o OUT.st) or one .st per source (-o DIR/); the rest listed with
     their errors. The exit code: 1 when something did not import."""
@@ -207,7 +207,7 @@ def export_projects(paths: list, output: str | None, profile: str | None) -> int
     written = skipped = 0
     lists: list[str] = []  # global variable lists named by their files
     for project in projects:
-        analysis = analyse(project, profile, subset=True)
+        analysis = analyse(project, profile, libraries=libraries, subset=True)
         groups, rest = _grouped(analysis, False)
         files = export(analysis, notes(analysis, groups, rest))
         own = [d for d in analysis.diagnostics if d.pos.file not in project.files]  # the project files'

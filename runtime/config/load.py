@@ -29,6 +29,7 @@ from pydantic import Field, ValidationError, create_model
 
 from ..plugin.registry import Registry, registry
 from ..program.libraries import Library
+from ..program.shipped import shipped_named
 from ..st.build_decls import identifier_from_path
 from .errors import ConfigError, in_file_order, key_text, not_finite, translate
 from .plc import CORE_SECTIONS, DEFAULT_SPIN_NS, RetainConfig, SafeOutput, TaskConfig, with_safe_defaults
@@ -222,7 +223,9 @@ def config_from_dict(data: dict, path=None, *, base_dir=None) -> PlcConfig:
         profile=plc.profile,
         programs=list(plc.programs),
         libraries=[
-            Library(lib.path, lib.namespace or identifier_from_path(str(lib.path)), lib.profile)
+            _shipped(lib.shipped)
+            if lib.shipped is not None
+            else Library(lib.path, lib.namespace or identifier_from_path(str(lib.path)), lib.profile)
             for lib in plc.libraries
         ],
         on_fault=plc.on_fault,
@@ -234,3 +237,9 @@ def config_from_dict(data: dict, path=None, *, base_dir=None) -> PlcConfig:
         warnings=[f"{label}: {key_text(loc)}: {message}" for loc, message in in_file_order(ctx.warnings, data)],
         **core,
     )
+
+
+def _shipped(name: str) -> Library:
+    lib = shipped_named(name)
+    assert lib is not None  # (the section's check: config/values.shipped_library)
+    return lib

@@ -13,6 +13,7 @@ from pydantic import Field, PlainValidator, model_validator
 
 from ..durations import EXAMPLES as DURATION_EXAMPLES
 from ..image import address as _address
+from ..program.shipped import is_shipped_name
 from ..st.ast import LocatedAddress
 from ..st.profile import DEFAULT as _DEFAULT_PROFILE
 from ..st.profile import PROFILES
@@ -34,6 +35,7 @@ from .values import (
     identifier,
     int_range,
     is_ident,
+    shipped_library,
     spin_duration,
 )
 
@@ -110,7 +112,11 @@ class _Plc(Model):
 
 
 class _Library(Model):
-    path: LibraryPath = Field(description='the path of a library folder such as "../libs/oscat"')
+    path: LibraryPath | None = Field(None, description='the path of a library folder such as "../libs/oscat"')
+    #: a library softplc ships, by name (program/shipped.py): "Tc2_System"
+    shipped: Annotated[str, PlainValidator(shipped_library)] | None = Field(
+        None, description='the name of a library softplc ships, such as "Tc2_System"'
+    )
     namespace: Annotated[str, identifier("a namespace")] | None = Field(
         None, description='a namespace such as "OSCAT" (default: the folder\'s name)'
     )
@@ -120,10 +126,21 @@ class _Library(Model):
     @classmethod
     def _short_form(cls, value):
         if isinstance(value, str):
-            return {"path": value}
+            # a bare name of a shipped library is that library; anything else a path
+            return {"shipped": value} if is_shipped_name(value) else {"path": value}
         if not isinstance(value, dict):
-            raise fail('a folder such as "../libs/oscat" or a table { path = "...", namespace = "OSCAT" }', value)
+            raise fail(
+                'a folder such as "../libs/oscat", a library softplc ships such as "Tc2_System", '
+                'or a table { path = "...", namespace = "OSCAT" }',
+                value,
+            )
         return value
+
+    @model_validator(mode="after")
+    def _one_of(self):
+        if (self.path is None) == (self.shipped is None):
+            raise fail('a path = "..." or the name of a library softplc ships', None)
+        return self
 
 
 class _Retain(Model):

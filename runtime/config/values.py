@@ -265,6 +265,21 @@ StFile = Annotated[Path, PlainValidator(st_file)]
 LibraryPath = Annotated[Path, PlainValidator(library_path)]
 
 
+def shipped_library(value, _info: ValidationInfo | None = None) -> str:
+    """The name of a library softplc ships, as the library spells it."""
+    from ..program.shipped import shipped
+
+    spec = shipped().get(value.strip().upper()) if isinstance(value, str) else None
+    if spec is None:
+        names = ", ".join(sorted(s.name for s in set(shipped().values()))) or "none yet"
+        raise PydanticCustomError(
+            "config",
+            "no library softplc ships is named {value} (it ships: {names})",
+            {"value": str(value)[:60], "names": names},
+        )
+    return spec.name
+
+
 UNIT_NS = {"ms": 1_000_000, "us": 1_000}
 
 

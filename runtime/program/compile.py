@@ -18,6 +18,7 @@ import functools
 import itertools
 import re
 from importlib import resources
+from pathlib import Path
 
 from ...fblocks.iec.functions import STANDARD_FUNCTIONS
 from ..image.memory import ProcessImage
@@ -33,6 +34,7 @@ from ..st.parser import parse_source
 from ..st.profile import DEFAULT, Profile, get_profile
 from .libraries import parse_cached
 from .loaded import Program
+from .shipped import Elsewhere, functions_of
 
 _gen_counter = itertools.count(1)
 
@@ -197,7 +199,8 @@ def _user_libraries(libraries: tuple, profile: Profile, words: set, diags: Diagn
             declared = _declared_in(files)
             declared_all |= declared
             units.append((declared, {w.upper() for w in _WORD.findall(text)}, str(f), text, files, items))
-        namespaces[lib.namespace.upper()] = (lib.namespace, frozenset(declared_all))
+        for ns in (lib.namespace, *lib.namespaces):
+            namespaces[ns.upper()] = (ns, frozenset(declared_all))
     taken, words = _take_named(units, words, lambda unit: unit[:2])
     parsed = []
     for _declared_names, _used, name, text, files, items in taken:
@@ -205,6 +208,21 @@ def _user_libraries(libraries: tuple, profile: Profile, words: set, diags: Diagn
         diags.extend(d for d in items if d.is_error)
         parsed.extend(files)  # (new objects of this compilation: parse_cached)
     return parsed, words, namespaces
+
+
+def _unavailable(libraries: tuple, taken: list, user: list, diags: DiagnosticBag) -> None:
+    """W230 once for each library the program uses that cannot do its work
+    here (shipped.py: a library of hardware or a runtime service)."""
+    used = {str(Path(sf.path).resolve()) for sf in taken}
+    where = A.Pos(user[0].path if user else "<input>", 1, 1)
+    for lib in libraries:
+        if lib.unavailable and any(str(f.resolve()) in used for f in lib.files()):
+            diags.warning(
+                "W230",
+                f"{lib.namespace} is declared but not available here: {lib.unavailable}",
+                where,
+                "the program compiles and runs; the library's blocks answer through their error outputs",
+            )
 
 
 def _front_end(paths: list, profile: Profile, texts: dict | None, natives: tuple = (), libraries: tuple = ()):
@@ -230,6 +248,7 @@ def _check(
                 d for d in sf.decls if not (isinstance(d, (A.POU, A.TypeDecl)) and d.name.upper() in user_names)
             ]
         library.extend(taken)
+        _unavailable(tuple(libraries), taken, user, diags)
     for name, text in _needed_library(_always_sources(), _on_demand_sources(), user_words):
         sources.add(name, text)
         # written to read alike in every profile (tests/program/test_compile.py);
@@ -241,9 +260,10 @@ def _check(
     checker = Checker(
         profile,
         lib_diags if not user else diags,
-        _std_functions(),
+        {**_std_functions(), **functions_of(tuple(libraries))},
         _natives(natives),
         ProcessImage(profile.addressing),
+        Elsewhere(tuple(libraries)),
     )
     checked = checker.run(library + user, library_files=tuple(sf.path for sf in library), namespaces=namespaces)
     diags.extend(d for d in lib_diags.items if d.is_error)

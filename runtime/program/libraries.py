@@ -37,11 +37,17 @@ _PARSES: dict[str, bytes] = {}  # key -> pickled (list of SourceFiles, diagnosti
 class Library:
     """A folder (or one file) of POUs, types and global constants, known in
     ST under ``namespace``; ``profile``: how its files read (None: as the
-    program's)."""
+    program's). A library softplc ships (shipped.py) may also have further
+    ``namespaces``, ``functions`` written in Python (a module with a
+    FUNCTIONS table of StdFuncs) and a reason it is ``unavailable`` here
+    (hardware, a runtime service: one warning when a program uses it)."""
 
     path: Path
     namespace: str
     profile: str | None = None
+    namespaces: tuple = ()
+    functions: str | None = None
+    unavailable: str = ""
 
     def files(self) -> list[Path]:
         """The library's source files, sorted (sub-folders included)."""

@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 from ..program.compile import build_parsed
 from ..program.libraries import parse_cached
 from ..program.loaded import Program
+from ..program.shipped import shipped_named
 from ..st.ast import Pos
 from ..st.diagnostics import Diagnostic, DiagnosticBag, SourceSet
 from ..st.limits import MAX_SOURCE_CHARS
@@ -54,6 +55,7 @@ class Analysis:
     clean: bool = False  # the part left compiled
     program: Program | None = None  # that part's Program (None when nothing compiles)
     rounds: int = 0
+    libraries: tuple = ()  # the libraries compiled with: given, and the shipped ones the project references
 
     def compiled(self, unit: Unit) -> bool:
         return self.clean and unit.id not in self.dropped
@@ -61,6 +63,20 @@ class Analysis:
     @property
     def errors(self) -> list:
         return [d for d in self.diagnostics if d.is_error]
+
+
+def with_referenced(libraries: tuple, project: Project) -> tuple:
+    """libraries, and the libraries softplc ships that the project references
+    (by name, or by the namespace a CODESYS export gives it) and libraries
+    does not have yet."""
+    have = {lib.namespace.upper() for lib in libraries}
+    out = list(libraries)
+    for ref in project.libraries:
+        lib = shipped_named(ref.name) or shipped_named(ref.namespace)
+        if lib is not None and lib.namespace.upper() not in have:
+            have.add(lib.namespace.upper())
+            out.append(lib)
+    return tuple(out)
 
 
 def _read(path: str, diags: DiagnosticBag) -> str | None:
@@ -107,6 +123,7 @@ def analyse(
     """Check project; with subset, find the part that compiles (see the
     module docstring)."""
     prof = profile if isinstance(profile, Profile) else get_profile(profile or project.profile or DEFAULT.name)
+    libraries = with_referenced(tuple(libraries), project)
     sources = SourceSet()
     for name, text in project.texts.items():
         sources.add(name, text)
@@ -147,6 +164,7 @@ def analyse(
     program = build_parsed(files, words, prof, sources, compiled_diags, natives=natives, libraries=libraries)
     diags.extend(compiled_diags.items)
     result = Analysis(project, prof, diags.sorted(), sources, units, lost={p: x for p, x in lost.items() if x})
+    result.libraries = libraries
     result.texts = texts
     _check_tasks(result, program)
     result.diagnostics = sorted(result.diagnostics, key=lambda d: (d.pos.file, d.pos.line, d.pos.col, d.code))

@@ -10,7 +10,7 @@ to the library where it has one.
 
 Which library a name belongs to: a qualified name names it
 (``Tc2_System.MEMCPY``, by the library's name or namespace); else the
-table of what the common vendor libraries declare (vendor_libraries.toml),
+table of what the common vendor libraries declare (fblocks/libs/catalogue.toml),
 preferring a library the project references; else, when the project
 references libraries softplc lacks, the name goes to E224 ``names not
 found (…), maybe from LibA, LibB``. A library softplc has (its standard
@@ -21,13 +21,11 @@ compiler) is never missing.
 from __future__ import annotations
 
 import collections
-import functools
 import re
-import tomllib
 from dataclasses import dataclass, field
-from importlib import resources
 from pathlib import Path
 
+from ..program.shipped import catalogue
 from ..st.ast import Pos
 from ..st.diagnostics import Diagnostic
 from ..st.namespaces import LIBRARY_NAMESPACES
@@ -53,27 +51,9 @@ _NO_MEMBER = re.compile(r"^(\w+) has no member '\w+'")
 _NOT_LIBRARY = frozenset(("BIT", "UNION"))
 
 
-@dataclass
-class VendorLibrary:
-    name: str
-    namespaces: frozenset  # UPPER: the name and the other namespaces
-    names: frozenset  # UPPER
-    tools: frozenset  # the kinds of project that have it (empty: any)
-
-
-@functools.cache
 def vendor_table() -> tuple:
-    """The libraries of vendor_libraries.toml, in its order."""
-    data = tomllib.loads(resources.files(__package__).joinpath("vendor_libraries.toml").read_text("utf-8"))
-    return tuple(
-        VendorLibrary(
-            name,
-            frozenset([name.upper(), *(n.upper() for n in entry.get("namespaces", ()))]),
-            frozenset(n.upper() for n in entry.get("names", "").split()),
-            frozenset(entry.get("tools", ())),
-        )
-        for name, entry in data.items()
-    )
+    """The libraries of the catalogue (fblocks/libs/catalogue.toml), in its order."""
+    return catalogue()
 
 
 @dataclass

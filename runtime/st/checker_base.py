@@ -15,6 +15,7 @@ is declared at the end of CheckerBase, for the type checker.
 from __future__ import annotations
 
 import difflib
+from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any, Protocol
 
 from . import ast as A
@@ -62,11 +63,16 @@ class CheckerBase:
         std_functions: dict,
         natives: dict | None = None,
         image: AddressSpace | None = None,
+        elsewhere: Mapping | None = None,
     ) -> None:
         self.profile = profile
         self.d = diags
         self.std = std_functions
         self.natives: dict = natives or {}  # UPPER -> native.NativeFunction
+        #: UPPER name -> where it is declared when not in the program: a library
+        #: softplc knows ("Tc2_System; add it to libraries = [...]"), looked up
+        #: only for a name that is unknown (so it may be built lazily)
+        self.elsewhere: Mapping = elsewhere or {}
         self.type_decls: dict = {}  # UPPER -> TypeDecl
         self.types: dict = {}  # UPPER -> Type (resolved)
         self._resolving: dict = {}  # UPPER -> name as declared, of the types being resolved, in order
@@ -104,6 +110,12 @@ class CheckerBase:
                 pos,
                 f"remove it (the {names_where(lambda p: p.trailing_comma_in_calls)} profile accepts it)",
             )
+
+    def _elsewhere(self, name: str) -> str:
+        """' (Tc2_System; add it to libraries = [...])' for an unknown name a
+        library softplc knows declares, else ''."""
+        where = self.elsewhere.get(name.upper()) if self.elsewhere else None
+        return f" ({where})" if where else ""
 
     def _suggest(self, key: str, names: list) -> str | None:
         close = difflib.get_close_matches(key, [n.upper() for n in names], n=1, cutoff=0.75)

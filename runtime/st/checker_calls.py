@@ -85,7 +85,7 @@ class CallChecks(CheckerBase):
                 return ty
             self.d.error(
                 "E043",
-                f"unknown function '{callee.name}'",
+                f"unknown function '{callee.name}'{self._elsewhere(callee.name)}",
                 callee.pos,
                 self._suggest(key, list(self.pous) + list(self.std) + list(BUILTINS)) or "declare it as a FUNCTION",
             )

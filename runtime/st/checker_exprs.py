@@ -228,7 +228,10 @@ class ExprChecks(CheckerBase):
         if pou is not None:
             names += [v.name for v in pou.vars.values()]
         self.d.error(
-            "E010", f"unknown name '{e.name}'", e.pos, self._suggest(key, names) or "declare it in a VAR block"
+            "E010",
+            f"unknown name '{e.name}'{self._elsewhere(e.name)}",
+            e.pos,
+            self._suggest(key, names) or "declare it in a VAR block",
         )
         return None
 

@@ -178,7 +178,7 @@ class TypeChecks(CheckerBase):
                 return None
             self.d.error(
                 "E012",
-                f"unknown type '{spec.name}'",
+                f"unknown type '{spec.name}'{self._elsewhere(spec.name)}",
                 spec.pos,
                 self._suggest(
                     key,

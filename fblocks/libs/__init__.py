@@ -1,0 +1,53 @@
+"""The vendor libraries softplc ships, as softplc libraries (issue 30):
+Beckhoff's Tc2_*, CODESYS's Standard/Util/StringUtils/CAA types, TcUnit
+and the like, each a folder of ST files (a sub-package of this one), with
+the Python functions it needs beside them.
+
+A program gets a library when it asks for it: ``[plc] libraries =
+["Tc2_System"]`` in a configuration, ``--library Tc2_System`` on the
+command line, or a project that references it (a TwinCAT .plcproj's
+PlaceholderReference, a CODESYS export's libraries). Its files are then
+compiled in as far as the program names what they declare, like a user
+library (runtime/program/libraries.py), and its names may be qualified by
+the library's name (``Tc2_System.MEMCPY``) or its other namespaces.
+
+``catalogue.toml`` lists what the common vendor libraries declare, shipped
+or not, so that an unknown name says which library it comes from.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class LibrarySpec:
+    """A library softplc ships.
+
+    name: as the vendor names it (``Tc2_System``), also its namespace;
+    package: the sub-package holding its ST files (``softplc.fblocks.libs.tc2_system``);
+    tools: the kinds of project that have it (``twincat``, ``codesys``, ``beremiz``);
+    profile: how its files read (None: as the program's);
+    namespaces: further names its names may be qualified with (``CAA``);
+    aliases: other names a project references it by (a CODESYS placeholder);
+    functions: a module whose ``FUNCTIONS`` (name -> fblocks.iec.functions.StdFunc)
+      are functions of the library written in Python;
+    unavailable: why it cannot do its work here ('' when it can): a library
+      of hardware or a runtime service (EtherCAT, ADS, NC axes, the event
+      logger) is declared with its real signatures so that a project
+      compiles, its blocks answer "not available" through their own error
+      outputs, and a program that uses it gets one warning saying so.
+    """
+
+    name: str
+    package: str
+    tools: tuple = ()
+    profile: str | None = None
+    namespaces: tuple = ()
+    aliases: tuple = ()
+    functions: str | None = None
+    unavailable: str = ""
+
+
+#: the shipped libraries (helpers add theirs here)
+SHIPPED: tuple[LibrarySpec, ...] = ()
