@@ -83,12 +83,16 @@ class CallGen(CodeGenBase):
 
     def _std_arg(self, a: A.Expr, param_type: T.Type | None) -> str:
         """An argument of a standard function; an integer into a REAL/LREAL
-        parameter becomes a float of it (MAX(i, r) is a REAL, never i)."""
+        parameter becomes a float of it (MAX(i, r) is a REAL, never i), and
+        a REAL into an integer parameter (W121 where the profile allows it:
+        MAX(1.5, i) with i an INT is an INT) the integer it converts to."""
         code = self.ex(a)
-        if param_type is None or a.ty is None or a.const is not None:
+        if param_type is None or a.ty is None:
             return code
         pe, ae = T.base_elementary(param_type), T.base_elementary(a.ty)
-        if pe is not None and pe.is_real and ae is not None and ae.is_intlike:
+        if pe is None or ae is None:
+            return code
+        if (pe.is_real and ae.is_intlike and a.const is None) or (pe.is_intlike and ae.is_real):
             return self.coerce(code, a.ty, param_type, a)
         return code
 

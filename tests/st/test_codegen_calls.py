@@ -50,6 +50,18 @@ def test_limit_with_mn_above_mx_gives_mx_inline_folded_and_in_the_library():
     assert (r.get("v"), r.get("c"), r.get("r")) == (0, 0, 1.5)
 
 
+def test_a_real_literal_into_an_integer_parameter_is_that_integer():
+    # MAX(1.5, n) with n an INT: T is INT (W121 in codesys), 1.5 converts to 2 as LREAL_TO_INT
+    # rounds; it went into max() as 1.5 and the INT then held a float (a fault at the next AND)
+    src = prog(
+        "n : INT := 1; lim : INT; low : INT; w : WORD; k : DINT := 7;",
+        "lim := MAX(1.5, n); low := MIN(k, 2.5); w := INT_TO_WORD(lim) AND 16#FF;",
+    )
+    r = run_st(src, cycles=2)
+    assert (r.get("lim"), r.get("low"), r.get("w")) == (2, 3, 2)  # 2.5 -> 3, as LREAL_TO_DINT rounds
+    assert isinstance(r.get("lim"), int) and isinstance(r.get("low"), int)
+
+
 def test_fb_instances_in_an_array_are_called_by_index():
     src = """
 PROGRAM main
