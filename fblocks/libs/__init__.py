@@ -32,6 +32,11 @@ class LibrarySpec:
     aliases: other names a project references it by (a CODESYS placeholder);
     functions: a module whose ``FUNCTIONS`` (name -> fblocks.iec.functions.StdFunc)
       are functions of the library written in Python;
+    natives: a module whose ``NATIVES`` (a tuple of st.native.NativeFunction)
+      are native functions of the library, served by the runtime (the clock
+      of SysTime);
+    requires: names of shipped libraries this one's files use (SysCom's
+      RTS_IEC_HANDLE is SysTypes2 Interfaces'), chosen with it;
     unavailable: why it cannot do its work here ('' when it can): a library
       of hardware or a runtime service (EtherCAT, ADS, NC axes, the event
       logger) is declared with its real signatures so that a project
@@ -47,7 +52,20 @@ class LibrarySpec:
     aliases: tuple = ()
     functions: str | None = None
     unavailable: str = ""
+    natives: str | None = None
+    requires: tuple = ()
 
+
+_CODESYS = ("codesys",)
 
 #: the shipped libraries (helpers add theirs here)
-SHIPPED: tuple[LibrarySpec, ...] = ()
+SHIPPED: tuple[LibrarySpec, ...] = (
+    # ---------------------------------------------------------------- CODESYS
+    LibrarySpec(
+        "Standard",
+        "softplc.fblocks.libs.standard",
+        tools=_CODESYS,
+        profile="codesys",
+        functions="softplc.fblocks.libs.standard.functions",
+    ),
+)

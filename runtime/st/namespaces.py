@@ -213,10 +213,10 @@ class _Rewrite:
         key = e.name.upper()
         if ns in self.c._lists and key in self.c._lists[ns]:
             return A.Name(e.name, pos=e.pos, qualifier=self.c._list_names[ns])
+        if self._chosen(ns, key):
+            return self.user_library(ns, e.name, e.pos)
         if ns in LIBRARY_NAMESPACES:
             return self.library(LIBRARY_NAMESPACES[ns], e.name, e.pos)
-        if ns in self.c.user_namespaces:
-            return self.user_library(ns, e.name, e.pos)
         if ns in self.c._lists:
             self.c.d.error(
                 "E019",
@@ -230,6 +230,14 @@ class _Rewrite:
             self.unknown(e.base.name, e.name, e.pos)
             return A.Name(e.name, pos=e.pos)
         return None
+
+    def _chosen(self, ns: str, key: str) -> bool:
+        """Whether ns.key names a library the program chose: a user's, or one
+        softplc ships (the CODESYS Standard library's CTU, when chosen, before
+        the IEC one the namespace Standard names otherwise)."""
+        if ns not in self.c.user_namespaces:
+            return False
+        return ns not in LIBRARY_NAMESPACES or key in self.c.user_namespaces[ns][1]
 
     def _known(self, key: str) -> bool:
         """A POU, standard function or global variable that a namespace may hold."""
@@ -267,10 +275,10 @@ class _Rewrite:
     def type_name(self, spec: A.NamedType) -> None:
         *path, name = spec.name.split(".")
         ns = ".".join(path)
-        if len(path) == 1 and path[0].upper() in LIBRARY_NAMESPACES:
-            self.library(LIBRARY_NAMESPACES[path[0].upper()], name, spec.pos)
-        elif len(path) == 1 and path[0].upper() in self.c.user_namespaces:
+        if len(path) == 1 and self._chosen(path[0].upper(), name.upper()):
             self.user_library(path[0].upper(), name, spec.pos)
+        elif len(path) == 1 and path[0].upper() in LIBRARY_NAMESPACES:
+            self.library(LIBRARY_NAMESPACES[path[0].upper()], name, spec.pos)
         else:
             self.unknown(ns, name, spec.pos)
         spec.name = name
