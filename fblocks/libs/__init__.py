@@ -68,4 +68,5 @@ SHIPPED: tuple[LibrarySpec, ...] = (
         profile="codesys",
         functions="softplc.fblocks.libs.standard.functions",
     ),
+    LibrarySpec("Util", "softplc.fblocks.libs.util", tools=_CODESYS, profile="codesys"),
 )
