@@ -57,6 +57,7 @@ class LibrarySpec:
 
 
 _CODESYS = ("codesys",)
+_SYSTEM = ("codesys", "twincat")  # CODESYS's system libraries, which TwinCAT 3 has too
 
 #: the shipped libraries (helpers add theirs here)
 SHIPPED: tuple[LibrarySpec, ...] = (
@@ -69,4 +70,49 @@ SHIPPED: tuple[LibrarySpec, ...] = (
         functions="softplc.fblocks.libs.standard.functions",
     ),
     LibrarySpec("Util", "softplc.fblocks.libs.util", tools=_CODESYS, profile="codesys"),
+    LibrarySpec(
+        "CAA Types",
+        "softplc.fblocks.libs.caa_types",
+        tools=_CODESYS,
+        profile="codesys",
+        namespaces=("CAA",),
+        aliases=("CAA_Types", "CAA Types Extern"),
+    ),
+    LibrarySpec(
+        "SysTypes2 Interfaces",
+        "softplc.fblocks.libs.systypes",
+        tools=_SYSTEM,
+        profile="codesys",
+        namespaces=("SysTypes", "CmpErrors", "Errors"),
+        aliases=("SysTypes", "SysTypes2", "CmpErrors", "CmpErrors Interfaces", "CmpErrors2 Interfaces"),
+    ),
+    LibrarySpec(
+        "SysTime",
+        "softplc.fblocks.libs.systime",
+        tools=_SYSTEM,
+        profile="codesys",
+        namespaces=("SysTimeRtc",),
+        aliases=("SysTimeRtc", "SysTimeCore"),
+        natives="softplc.fblocks.libs.systime.natives",
+        requires=("SysTypes2 Interfaces",),
+    ),
+    *(
+        LibrarySpec(
+            name,
+            f"softplc.fblocks.libs.{name.lower()}",
+            tools=_SYSTEM,
+            profile="codesys",
+            requires=("SysTypes2 Interfaces",),
+            unavailable=why,
+        )
+        for name, why in (
+            ("SysFile", "softplc gives a program no file system (every call answers ERR_NOTIMPLEMENTED)"),
+            ("SysDir", "softplc gives a program no file system (every call answers ERR_NOTIMPLEMENTED)"),
+            ("SysSocket", "softplc gives a program no sockets of its own (every call answers ERR_NOTIMPLEMENTED)"),
+            (
+                "SysCom",
+                "a program's serial ports are softplc's Modbus RTU buses (every call answers ERR_NOTIMPLEMENTED)",
+            ),
+        )
+    ),
 )

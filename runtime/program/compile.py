@@ -80,11 +80,14 @@ def _library_sources() -> list:
 
 
 def _declared(sf: A.SourceFile) -> set:
-    """Every name a library file declares: POUs, types and globals."""
+    """Every name a library file declares: POUs, types, globals and the
+    values of its enumerations (``SysFile.AM_READ``, a bare ``AM_READ``)."""
     names = _decl_names(sf)
     for d in sf.decls:
         if isinstance(d, A.VarBlock):
             names.update(v.name.upper() for v in d.decls)
+        elif isinstance(d, A.TypeDecl) and isinstance(d.spec, A.EnumTypeSpec):
+            names.update(value[0].upper() for value in d.spec.values)
     return names
 
 

@@ -170,6 +170,8 @@ class _Rewrite:
 
     def walk(self, node: Any) -> Any:
         """node with its qualified names rewritten (a new node or node itself)."""
+        if isinstance(node, A.Member) and isinstance(node.base, A.Member):
+            node = self.nested(node)
         if isinstance(node, A.Member) and isinstance(node.base, A.Name):
             new = self.member(node)
             if new is not None:
@@ -204,6 +206,29 @@ class _Rewrite:
             for k, v in value.items():
                 value[k] = self.value(v)
         return value
+
+    def nested(self, e: A.Member) -> A.Member:
+        """``SysFile.SysTypes.RTS_INVALID_HANDLE``, ``SysDir.CmpErrors.Errors.ERR_OK``:
+        a name behind several namespaces of the chosen libraries (CODESYS
+        reaches a library's own references through it) as behind the last
+        one; anything else as it is."""
+        parts: list = []
+        base: A.Expr = e.base
+        while isinstance(base, A.Member):
+            parts.append(base.name)
+            base = base.base
+        if not isinstance(base, A.Name):
+            return e
+        chain = [base.name, *reversed(parts)]
+        first = chain[0].upper()
+        if first in self.local or first in self.global_names:
+            return e
+        if not all(self._namespace(n.upper()) for n in chain):
+            return e
+        return A.Member(A.Name(chain[-1], pos=base.pos), e.name, pos=e.pos)
+
+    def _namespace(self, ns: str) -> bool:
+        return ns in self.c.user_namespaces or ns in LIBRARY_NAMESPACES
 
     def member(self, e: A.Member) -> A.Expr | None:
         assert isinstance(e.base, A.Name)
@@ -274,6 +299,8 @@ class _Rewrite:
 
     def type_name(self, spec: A.NamedType) -> None:
         *path, name = spec.name.split(".")
+        if len(path) > 1 and all(self._namespace(p.upper()) for p in path):
+            path = path[-1:]  # SysFile.SysTypes.RTS_IEC_RESULT: as SysTypes.RTS_IEC_RESULT
         ns = ".".join(path)
         if len(path) == 1 and self._chosen(path[0].upper(), name.upper()):
             self.user_library(path[0].upper(), name, spec.pos)
