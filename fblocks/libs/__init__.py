@@ -58,6 +58,7 @@ class LibrarySpec:
 
 _CODESYS = ("codesys",)
 _SYSTEM = ("codesys", "twincat")  # CODESYS's system libraries, which TwinCAT 3 has too
+_TWINCAT = ("twincat",)
 
 #: the shipped libraries (helpers add theirs here)
 SHIPPED: tuple[LibrarySpec, ...] = (
@@ -113,6 +114,18 @@ SHIPPED: tuple[LibrarySpec, ...] = (
                 "SysCom",
                 "a program's serial ports are softplc's Modbus RTU buses (every call answers ERR_NOTIMPLEMENTED)",
             ),
+        )
+    ),
+    # ---------------------------------------------------------------- Beckhoff, of hardware or a service
+    *(
+        LibrarySpec(name, f"softplc.fblocks.libs.{name.lower()}", tools=_TWINCAT, profile="twincat", unavailable=why)
+        for name, why in (
+            ("Tc2_EtherCAT", "it needs TwinCAT's EtherCAT master (a call fails with ADS error 16#701)"),
+            ("Tc2_TcpIp", "it needs the TwinCAT TCP/IP Connection Server (a call fails with ADS error 16#701)"),
+            ("Tc2_ModbusSrv", "it needs the TwinCAT Modbus TCP server (a call fails with ADS error 16#701)"),
+            ("Tc2_IoFunctions", "it needs the TwinCAT I/O server (a call fails with ADS error 16#701)"),
+            ("Tc2_SerialCom", "its serial lines are TwinCAT's (ErrorID COMERROR_MODENOTSUPPORTED)"),
+            ("Tc2_MC2", "its axes are TwinCAT NC's (a command fails with ErrorID 16#701)"),
         )
     ),
 )

@@ -95,8 +95,12 @@ def shipped_named(name: str) -> Library | None:
 
 def with_required(libraries: tuple) -> tuple:
     """libraries, and the shipped libraries they require (in turn), each once."""
-    out = list(libraries)
-    have = {lib.namespace.upper() for lib in out}
+    out: list = []
+    have: set = set()
+    for lib in libraries:
+        if lib.namespace.upper() not in have:
+            have.add(lib.namespace.upper())
+            out.append(lib)
     i = 0
     while i < len(out):
         for name in getattr(out[i], "requires", ()):
