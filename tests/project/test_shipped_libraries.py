@@ -12,7 +12,7 @@ from softplc.runtime.program import compile_files
 from softplc.runtime.program.shipped import shipped_named
 from softplc.runtime.project import open_projects
 from softplc.runtime.project.analysis import analyse
-from tests.project.builders import HERE, twincat
+from tests.project.builders import twincat
 
 # PLC_PRG of the CODESYS export and of its ST twin: CODESYS names throughout
 DECLS = """blink : Util.BLINK; scale : Util.LIN_TRAFO; count : Standard.CTU; size : CAA.SIZE;
@@ -28,9 +28,12 @@ bytes := SIZEOF(size);"""
 
 EXPORT = """<?xml version="1.0" encoding="utf-8"?>
 <project xmlns="http://www.plcopen.org/xml/tc6_0200">
-  <fileHeader companyName="" productName="CODESYS" productVersion="CODESYS V3.5 SP19" creationDateTime="2026-11-28T10:00:00" />
+  <fileHeader companyName="" productName="CODESYS" productVersion="CODESYS V3.5 SP19"
+              creationDateTime="2026-11-28T10:00:00" />
   <contentHeader name="Lamp.project" modificationDateTime="2026-11-28T10:00:00">
-    <coordinateInfo><fbd><scaling x="1" y="1" /></fbd><ld><scaling x="1" y="1" /></ld><sfc><scaling x="1" y="1" /></sfc></coordinateInfo>
+    <coordinateInfo>
+      <fbd><scaling x="1" y="1" /></fbd><ld><scaling x="1" y="1" /></ld><sfc><scaling x="1" y="1" /></sfc>
+    </coordinateInfo>
   </contentHeader>
   <types>
     <dataTypes />
@@ -73,7 +76,8 @@ EXPORT = """<?xml version="1.0" encoding="utf-8"?>
       <Libraries>
         <Library Name="#Standard" Namespace="Standard" SystemLibrary="false" DefaultResolution="Standard, * (System)" />
         <Library Name="#Util" Namespace="Util" SystemLibrary="false" DefaultResolution="Util, * (System)" />
-        <Library Name="#CAA Types" Namespace="CAA" SystemLibrary="true" DefaultResolution="CAA Types, * (CAA Technical Workgroup)" />
+        <Library Name="#CAA Types" Namespace="CAA" SystemLibrary="true"
+                 DefaultResolution="CAA Types, * (CAA Technical Workgroup)" />
       </Libraries>
     </data>
   </addData>

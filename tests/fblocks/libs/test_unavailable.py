@@ -23,7 +23,8 @@ sdo(sNetId := '', nSlaveAddr := 1001, nIndex := 16#1018, nSubIndex := 1, pDstBuf
     bExecute := n >= 2);
 count(sNetId := '', bExecute := n >= 3);
 sock(nMode := CONNECT_MODE_ENABLEDBG, bEnable := TRUE);
-send(hSocket := sock.hSocket, sRemoteHost := '10.0.0.1', nRemotePort := 514, cbLen := 4, pSrc := ADR(buf), bExecute := TRUE);
+send(hSocket := sock.hSocket, sRemoteHost := '10.0.0.1', nRemotePort := 514, cbLen := 4, pSrc := ADR(buf),
+    bExecute := TRUE);
 coils(sIPAddr := '10.0.0.2', nQuantity := 8, nMBAddr := 0, cbLength := 1, pDestAddr := ADR(buf), bExecute := TRUE);
 name(NETID := '', DEVICEID := 1, BOXADDR := 1001, START := TRUE);
 line(Mode := SERIALLINEMODE_PC_COM_PORT, pComIn := 0, pComOut := 0, SizeComIn := 0, TxBuffer := tx, RxBuffer := rx);
