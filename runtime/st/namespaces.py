@@ -109,7 +109,7 @@ class NamespaceChecks(CheckerBase):
         return name
 
     def _namespace_hint(self) -> str:
-        known = sorted(LIBRARY_NAMESPACES.values()) + sorted(s for s, _ in self.user_namespaces.values())
+        known = sorted(set(LIBRARY_NAMESPACES.values()) | {s for s, _ in self.user_namespaces.values()})
         known += sorted(self._list_names.values())
         return "known namespaces: " + ", ".join(known) if known else ""
 
@@ -292,9 +292,13 @@ class _Rewrite:
 
     def unknown(self, ns: str, name: str, pos: A.Pos) -> None:
         what = OTHER_LIBRARIES.get(ns.upper())
-        message = (
-            f"softplc has no library {what} ('{ns}.{name}')" if what else f"unknown namespace '{ns}' in '{ns}.{name}'"
-        )
+        where = self.c._elsewhere(name)  # " (Util; add it to libraries = [...])": a library softplc ships
+        if where and "add it to" in where:
+            message = f"'{ns}.{name}' is of a library the program did not choose{where}"
+        elif what:
+            message = f"softplc has no library {what} ('{ns}.{name}')"
+        else:
+            message = f"unknown namespace '{ns}' in '{ns}.{name}'"
         self.c.d.error("E019", message, pos, self.c._namespace_hint())
 
     def type_name(self, spec: A.NamedType) -> None:
