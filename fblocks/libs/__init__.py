@@ -32,6 +32,11 @@ class LibrarySpec:
     aliases: other names a project references it by (a CODESYS placeholder);
     functions: a module whose ``FUNCTIONS`` (name -> fblocks.iec.functions.StdFunc)
       are functions of the library written in Python;
+    natives: a module whose ``NATIVES`` (a tuple of st.native.NativeFunction)
+      are native functions of the library, served by the runtime (the clock
+      of SysTime);
+    requires: names of shipped libraries this one's files use (SysCom's
+      RTS_IEC_HANDLE is SysTypes2 Interfaces'), chosen with it;
     unavailable: why it cannot do its work here ('' when it can): a library
       of hardware or a runtime service (EtherCAT, ADS, NC axes, the event
       logger) is declared with its real signatures so that a project
@@ -47,7 +52,80 @@ class LibrarySpec:
     aliases: tuple = ()
     functions: str | None = None
     unavailable: str = ""
+    natives: str | None = None
+    requires: tuple = ()
 
+
+_CODESYS = ("codesys",)
+_SYSTEM = ("codesys", "twincat")  # CODESYS's system libraries, which TwinCAT 3 has too
+_TWINCAT = ("twincat",)
 
 #: the shipped libraries (helpers add theirs here)
-SHIPPED: tuple[LibrarySpec, ...] = ()
+SHIPPED: tuple[LibrarySpec, ...] = (
+    # ---------------------------------------------------------------- CODESYS
+    LibrarySpec(
+        "Standard",
+        "softplc.fblocks.libs.standard",
+        tools=_CODESYS,
+        profile="codesys",
+        functions="softplc.fblocks.libs.standard.functions",
+    ),
+    LibrarySpec("Util", "softplc.fblocks.libs.util", tools=_CODESYS, profile="codesys"),
+    LibrarySpec(
+        "CAA Types",
+        "softplc.fblocks.libs.caa_types",
+        tools=_CODESYS,
+        profile="codesys",
+        namespaces=("CAA",),
+        aliases=("CAA_Types", "CAA Types Extern"),
+    ),
+    LibrarySpec(
+        "SysTypes2 Interfaces",
+        "softplc.fblocks.libs.systypes",
+        tools=_SYSTEM,
+        profile="codesys",
+        namespaces=("SysTypes", "CmpErrors", "Errors"),
+        aliases=("SysTypes", "SysTypes2", "CmpErrors", "CmpErrors Interfaces", "CmpErrors2 Interfaces"),
+    ),
+    LibrarySpec(
+        "SysTime",
+        "softplc.fblocks.libs.systime",
+        tools=_SYSTEM,
+        profile="codesys",
+        namespaces=("SysTimeRtc",),
+        aliases=("SysTimeRtc", "SysTimeCore"),
+        natives="softplc.fblocks.libs.systime.natives",
+        requires=("SysTypes2 Interfaces",),
+    ),
+    *(
+        LibrarySpec(
+            name,
+            f"softplc.fblocks.libs.{name.lower()}",
+            tools=_SYSTEM,
+            profile="codesys",
+            requires=("SysTypes2 Interfaces",),
+            unavailable=why,
+        )
+        for name, why in (
+            ("SysFile", "softplc gives a program no file system (every call answers ERR_NOTIMPLEMENTED)"),
+            ("SysDir", "softplc gives a program no file system (every call answers ERR_NOTIMPLEMENTED)"),
+            ("SysSocket", "softplc gives a program no sockets of its own (every call answers ERR_NOTIMPLEMENTED)"),
+            (
+                "SysCom",
+                "a program's serial ports are softplc's Modbus RTU buses (every call answers ERR_NOTIMPLEMENTED)",
+            ),
+        )
+    ),
+    # ---------------------------------------------------------------- Beckhoff, of hardware or a service
+    *(
+        LibrarySpec(name, f"softplc.fblocks.libs.{name.lower()}", tools=_TWINCAT, profile="twincat", unavailable=why)
+        for name, why in (
+            ("Tc2_EtherCAT", "it needs TwinCAT's EtherCAT master (a call fails with ADS error 16#701)"),
+            ("Tc2_TcpIp", "it needs the TwinCAT TCP/IP Connection Server (a call fails with ADS error 16#701)"),
+            ("Tc2_ModbusSrv", "it needs the TwinCAT Modbus TCP server (a call fails with ADS error 16#701)"),
+            ("Tc2_IoFunctions", "it needs the TwinCAT I/O server (a call fails with ADS error 16#701)"),
+            ("Tc2_SerialCom", "its serial lines are TwinCAT's (ErrorID COMERROR_MODENOTSUPPORTED)"),
+            ("Tc2_MC2", "its axes are TwinCAT NC's (a command fails with ErrorID 16#701)"),
+        )
+    ),
+)

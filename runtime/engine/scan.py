@@ -132,6 +132,8 @@ class Engine:
         self._tick_cpu_ns = 0
         if self.clock.virtual:
             self.ctx.timer = time.thread_time
+        else:  # the date SysTimeRtcGet reads: the wall clock's (virtual time starts at the epoch)
+            self.ctx.utc_at_zero_ns = time.time_ns() - self.clock.now_ns()
         self.drivers = list(drivers)
         #: the simulated devices of the configuration's [[sim]] tables, by name:
         #: what a test or a scheduled fault reaches (their inject() ...)

@@ -34,7 +34,7 @@ from ..st.parser import parse_source
 from ..st.profile import DEFAULT, Profile, get_profile
 from .libraries import parse_cached
 from .loaded import Program
-from .shipped import Elsewhere, functions_of
+from .shipped import Elsewhere, functions_of, natives_of, with_required
 
 _gen_counter = itertools.count(1)
 
@@ -80,11 +80,14 @@ def _library_sources() -> list:
 
 
 def _declared(sf: A.SourceFile) -> set:
-    """Every name a library file declares: POUs, types and globals."""
+    """Every name a library file declares: POUs, types, globals and the
+    values of its enumerations (``SysFile.AM_READ``, a bare ``AM_READ``)."""
     names = _decl_names(sf)
     for d in sf.decls:
         if isinstance(d, A.VarBlock):
             names.update(v.name.upper() for v in d.decls)
+        elif isinstance(d, A.TypeDecl) and isinstance(d.spec, A.EnumTypeSpec):
+            names.update(value[0].upper() for value in d.spec.values)
     return names
 
 
@@ -237,6 +240,7 @@ def _check(
     user: list, user_words: set, profile: Profile, natives: tuple, libraries: tuple, diags: DiagnosticBag, sources
 ) -> CheckedProgram:
     """Check the user's parsed files with the libraries their words name."""
+    libraries = with_required(tuple(libraries))
     user_names = set().union(*(_decl_names(sf) for sf in user)) if user else set()
     lib_diags = DiagnosticBag()
     library = []
@@ -249,19 +253,22 @@ def _check(
             ]
         library.extend(taken)
         _unavailable(tuple(libraries), taken, user, diags)
+    # a chosen library's POU replaces the IEC one of the same name (CODESYS
+    # Standard's CTU with RESET), as a user's POU replaces either
+    replaced = user_names.union(*(_decl_names(sf) for sf in library))
     for name, text in _needed_library(_always_sources(), _on_demand_sources(), user_words):
         sources.add(name, text)
         # written to read alike in every profile (tests/program/test_compile.py);
         # parsed once per content, as the user's libraries (libraries.py)
         [sf], items = parse_cached(name, text, DEFAULT)
         lib_diags.extend(items)
-        sf.decls = [d for d in sf.decls if not (isinstance(d, (A.POU, A.TypeDecl)) and d.name.upper() in user_names)]
+        sf.decls = [d for d in sf.decls if not (isinstance(d, (A.POU, A.TypeDecl)) and d.name.upper() in replaced)]
         library.append(sf)
     checker = Checker(
         profile,
         lib_diags if not user else diags,
         {**_std_functions(), **functions_of(tuple(libraries))},
-        _natives(natives),
+        _natives(tuple(natives) + natives_of(libraries)),
         ProcessImage(profile.addressing),
         Elsewhere(tuple(libraries)),
     )

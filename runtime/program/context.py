@@ -24,6 +24,7 @@ from ..image.memory import ProcessImage
 from ..st import rtlib
 from ..st import types as T
 from ..st.faults import LOOP_CHECK_EVERY, StopRequested, WatchdogFault
+from ..st.native import CLOCK
 
 
 class ExecContext:
@@ -50,8 +51,12 @@ class ExecContext:
         #: why the run is stopping (e.g. "SIGTERM"), set from a signal handler:
         #: a running loop ends its cycle at its next check; None while running
         self.stop_reason: str | None = None
-        # native function services (st/native.py) by name, bound by the drivers
-        self.services: dict = {}
+        #: the UTC date (ns since 1970) at which the task clock read 0: the
+        #: engine sets it from the wall clock in real time; 0 in virtual time
+        self.utc_at_zero_ns = 0
+        # native function services (st/native.py) by name, bound by the drivers;
+        # the clock's is the context's own
+        self.services: dict = {CLOCK: _Clock(self)}
         self.namespaces: list = []  # loaded modules that read the clock
 
     def set_time(self, now_ns: int) -> None:
@@ -109,3 +114,14 @@ class ExecContext:
             yield part
             start += every
             self.check_watchdog()
+
+
+class _Clock:
+    """The service st.native.CLOCK: the date of the task clock in ms since
+    1970-01-01 00:00 UTC (constant within a cycle, as TIME() is)."""
+
+    def __init__(self, ctx: ExecContext) -> None:
+        self.ctx = ctx
+
+    def request(self, name: str, *args) -> int:
+        return (self.ctx.utc_at_zero_ns + self.ctx.now_ns) // 1_000_000

@@ -39,8 +39,10 @@ class Library:
     ST under ``namespace``; ``profile``: how its files read (None: as the
     program's). A library softplc ships (shipped.py) may also have further
     ``namespaces``, ``functions`` written in Python (a module with a
-    FUNCTIONS table of StdFuncs) and a reason it is ``unavailable`` here
-    (hardware, a runtime service: one warning when a program uses it)."""
+    FUNCTIONS table of StdFuncs), ``natives`` (a module with a NATIVES
+    tuple), the shipped libraries it ``requires`` and a reason it is
+    ``unavailable`` here (hardware, a runtime service: one warning when a
+    program uses it)."""
 
     path: Path
     namespace: str
@@ -48,6 +50,8 @@ class Library:
     namespaces: tuple = ()
     functions: str | None = None
     unavailable: str = ""
+    natives: str | None = None
+    requires: tuple = ()
 
     def files(self) -> list[Path]:
         """The library's source files, sorted (sub-folders included)."""

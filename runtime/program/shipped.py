@@ -82,6 +82,8 @@ def as_library(spec: LibrarySpec) -> Library:
         namespaces=tuple(spec.namespaces),
         functions=spec.functions,
         unavailable=spec.unavailable,
+        natives=spec.natives,
+        requires=tuple(spec.requires),
     )
 
 
@@ -89,6 +91,34 @@ def shipped_named(name: str) -> Library | None:
     """The shipped library of that name or alias, or None."""
     spec = shipped().get(name.strip().upper())
     return as_library(spec) if spec is not None else None
+
+
+def with_required(libraries: tuple) -> tuple:
+    """libraries, and the shipped libraries they require (in turn), each once."""
+    out: list = []
+    have: set = set()
+    for lib in libraries:
+        if lib.namespace.upper() not in have:
+            have.add(lib.namespace.upper())
+            out.append(lib)
+    i = 0
+    while i < len(out):
+        for name in getattr(out[i], "requires", ()):
+            lib = shipped_named(name)
+            if lib is not None and lib.namespace.upper() not in have:
+                have.add(lib.namespace.upper())
+                out.append(lib)
+        i += 1
+    return tuple(out)
+
+
+def natives_of(libraries: tuple) -> tuple:
+    """The native functions of the libraries (st/native.py NativeFunctions)."""
+    out: list = []
+    for lib in libraries:
+        if lib.natives:
+            out.extend(importlib.import_module(lib.natives).NATIVES)
+    return tuple(out)
 
 
 def functions_of(libraries: tuple) -> dict:

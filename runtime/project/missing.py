@@ -36,6 +36,7 @@ NOT_FOUND = ""  # the group of names no table knows
 _MESSAGES = (
     re.compile(r"unknown (?:name|function|type) '([^']+)'"),
     re.compile(r"softplc has no library \S+ \('([^']+)'\)"),
+    re.compile(r"^'([^']+)' is of a library the program did not choose"),
     re.compile(r"unknown namespace '[^']+' in '([^']+)'"),
     re.compile(r"VAR_EXTERNAL '([^']+)' has no VAR_GLOBAL"),
     # F := x in FUNCTION F whose return type is missing (a follow-on only: see _variable_type)

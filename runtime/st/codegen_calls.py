@@ -65,11 +65,11 @@ class CallGen(CodeGenBase):
                 typed = [self.coerce(self.ex(a), a.ty, t, a) for a, t in zip(info.args, info.rtypes)]
                 site = CallSite(e.pos.file, e.pos.line, e.pos.col, tuple(info.rtypes))
                 return f"_native({self.const(info.func)}, {', '.join([*typed, self.const(site)])})"
-            values = ", ".join(self.ex(a) for a in info.args)
+            values = [self.ex(a) for a in info.args]
             # the service stores words into the tables: it needs each table's signedness (st/native.py)
             tables = [t for t in map(T.resolve, info.rtypes) if isinstance(t, T.ArrayType)]
-            signed = [elementary(t.elem).category == T.SIGNED for t in tables]
-            return f"_native({self.const(info.func)}, {values}, {', '.join(map(str, signed))})"
+            signed = [str(elementary(t.elem).category == T.SIGNED) for t in tables]
+            return f"_native({', '.join([self.const(info.func), *values, *signed])})"
         raise NotImplementedError(info.kind)
 
     # Standard functions whose REAL result is already a binary32 value: one of

@@ -109,7 +109,7 @@ class NamespaceChecks(CheckerBase):
         return name
 
     def _namespace_hint(self) -> str:
-        known = sorted(LIBRARY_NAMESPACES.values()) + sorted(s for s, _ in self.user_namespaces.values())
+        known = sorted(set(LIBRARY_NAMESPACES.values()) | {s for s, _ in self.user_namespaces.values()})
         known += sorted(self._list_names.values())
         return "known namespaces: " + ", ".join(known) if known else ""
 
@@ -170,6 +170,8 @@ class _Rewrite:
 
     def walk(self, node: Any) -> Any:
         """node with its qualified names rewritten (a new node or node itself)."""
+        if isinstance(node, A.Member) and isinstance(node.base, A.Member):
+            node = self.nested(node)
         if isinstance(node, A.Member) and isinstance(node.base, A.Name):
             new = self.member(node)
             if new is not None:
@@ -205,6 +207,29 @@ class _Rewrite:
                 value[k] = self.value(v)
         return value
 
+    def nested(self, e: A.Member) -> A.Member:
+        """``SysFile.SysTypes.RTS_INVALID_HANDLE``, ``SysDir.CmpErrors.Errors.ERR_OK``:
+        a name behind several namespaces of the chosen libraries (CODESYS
+        reaches a library's own references through it) as behind the last
+        one; anything else as it is."""
+        parts: list = []
+        base: A.Expr = e.base
+        while isinstance(base, A.Member):
+            parts.append(base.name)
+            base = base.base
+        if not isinstance(base, A.Name):
+            return e
+        chain = [base.name, *reversed(parts)]
+        first = chain[0].upper()
+        if first in self.local or first in self.global_names:
+            return e
+        if not all(self._namespace(n.upper()) for n in chain):
+            return e
+        return A.Member(A.Name(chain[-1], pos=base.pos), e.name, pos=e.pos)
+
+    def _namespace(self, ns: str) -> bool:
+        return ns in self.c.user_namespaces or ns in LIBRARY_NAMESPACES
+
     def member(self, e: A.Member) -> A.Expr | None:
         assert isinstance(e.base, A.Name)
         ns = e.base.name.upper()
@@ -213,10 +238,10 @@ class _Rewrite:
         key = e.name.upper()
         if ns in self.c._lists and key in self.c._lists[ns]:
             return A.Name(e.name, pos=e.pos, qualifier=self.c._list_names[ns])
+        if self._chosen(ns, key):
+            return self.user_library(ns, e.name, e.pos)
         if ns in LIBRARY_NAMESPACES:
             return self.library(LIBRARY_NAMESPACES[ns], e.name, e.pos)
-        if ns in self.c.user_namespaces:
-            return self.user_library(ns, e.name, e.pos)
         if ns in self.c._lists:
             self.c.d.error(
                 "E019",
@@ -230,6 +255,14 @@ class _Rewrite:
             self.unknown(e.base.name, e.name, e.pos)
             return A.Name(e.name, pos=e.pos)
         return None
+
+    def _chosen(self, ns: str, key: str) -> bool:
+        """Whether ns.key names a library the program chose: a user's, or one
+        softplc ships (the CODESYS Standard library's CTU, when chosen, before
+        the IEC one the namespace Standard names otherwise)."""
+        if ns not in self.c.user_namespaces:
+            return False
+        return ns not in LIBRARY_NAMESPACES or key in self.c.user_namespaces[ns][1]
 
     def _known(self, key: str) -> bool:
         """A POU, standard function or global variable that a namespace may hold."""
@@ -259,18 +292,24 @@ class _Rewrite:
 
     def unknown(self, ns: str, name: str, pos: A.Pos) -> None:
         what = OTHER_LIBRARIES.get(ns.upper())
-        message = (
-            f"softplc has no library {what} ('{ns}.{name}')" if what else f"unknown namespace '{ns}' in '{ns}.{name}'"
-        )
+        where = self.c._elsewhere(name)  # " (Util; add it to libraries = [...])": a library softplc ships
+        if where and "add it to" in where:
+            message = f"'{ns}.{name}' is of a library the program did not choose{where}"
+        elif what:
+            message = f"softplc has no library {what} ('{ns}.{name}')"
+        else:
+            message = f"unknown namespace '{ns}' in '{ns}.{name}'"
         self.c.d.error("E019", message, pos, self.c._namespace_hint())
 
     def type_name(self, spec: A.NamedType) -> None:
         *path, name = spec.name.split(".")
+        if len(path) > 1 and all(self._namespace(p.upper()) for p in path):
+            path = path[-1:]  # SysFile.SysTypes.RTS_IEC_RESULT: as SysTypes.RTS_IEC_RESULT
         ns = ".".join(path)
-        if len(path) == 1 and path[0].upper() in LIBRARY_NAMESPACES:
-            self.library(LIBRARY_NAMESPACES[path[0].upper()], name, spec.pos)
-        elif len(path) == 1 and path[0].upper() in self.c.user_namespaces:
+        if len(path) == 1 and self._chosen(path[0].upper(), name.upper()):
             self.user_library(path[0].upper(), name, spec.pos)
+        elif len(path) == 1 and path[0].upper() in LIBRARY_NAMESPACES:
+            self.library(LIBRARY_NAMESPACES[path[0].upper()], name, spec.pos)
         else:
             self.unknown(ns, name, spec.pos)
         spec.name = name

@@ -117,3 +117,19 @@ class CallSite:
 
     def __str__(self) -> str:
         return f"{self.file}:{self.line}:{self.col}"
+
+
+#: The service of the runtime's own clock, which every ExecContext serves
+#: (runtime/program/context.py): ``request(name)`` answers the date of the
+#: task clock as milliseconds since 1970-01-01 00:00 UTC. The date of the
+#: wall clock when the engine runs in real time; in virtual time (a test,
+#: ``exec``, a simulation) the epoch plus the virtual clock, so that a run
+#: is the same every time.
+CLOCK = "clock"
+
+
+class NoClock:
+    """The clock service's fallback (a context always serves it): the epoch."""
+
+    def request(self, name: str, *args: Any) -> int:
+        return 0

@@ -330,10 +330,8 @@ def test_f_trig_first_call_high():
 @pytest.mark.parametrize(
     "fb, set_name, reset_name, both",
     [
-        ("SR", "SET1", "RESET", True),  # set dominant; CODESYS/TwinCAT Standard names
-        ("RS", "SET", "RESET1", False),  # reset dominant
-        ("SR", "S1", "R", True),  # the IEC 61131-3 ed.3 Table 43 names
-        ("RS", "S", "R1", False),
+        ("SR", "S1", "R", True),  # set dominant; the IEC 61131-3 ed.3 Table 43 names
+        ("RS", "S", "R1", False),  # reset dominant
     ],
 )
 def test_bistables(fb, set_name, reset_name, both):
@@ -350,21 +348,21 @@ def test_bistables(fb, set_name, reset_name, both):
 
 @pytest.mark.parametrize("fb, both", [("SR", True), ("RS", False)])
 def test_bistables_positional_set_then_reset(fb, both):
-    """SR(set, reset) and RS(set, reset), as CODESYS's Q1 = SR(SET1, RESET)."""
+    """SR(set, reset) and RS(set, reset), positionally as in CODESYS."""
     b = Bench(f"b : {fb}; s : BOOL; r : BOOL; q : BOOL;", "b(s, r); q := b.Q1;")
     assert b.step(s=True)["q"] is True
     assert b.step(s=False, r=True)["q"] is False
     assert b.step(s=True, r=True)["q"] is both
 
 
-def test_bistable_spellings_mix():
-    """A set by the IEC name is reset by the CODESYS one, and back."""
-    b = Bench("b : SR; s : BOOL; r : BOOL; q : BOOL;", "b(S1 := s, RESET := r); q := b.Q1;")
-    assert b.step(s=True)["q"] is True
-    assert b.step(s=False, r=True)["q"] is False
-    c = Bench("b : RS; s : BOOL; r : BOOL; q : BOOL;", "b(SET := s, R1 := r); q := b.Q1;")
-    assert c.step(s=True)["q"] is True
-    assert c.step(s=True, r=True)["q"] is False
+def test_the_codesys_names_are_the_standard_librarys():
+    """SR(SET1, RESET) is CODESYS's (fblocks/libs/standard): a program that
+    does not choose that library has the IEC inputs only."""
+    from softplc.runtime.program import check_files
+
+    src = "PROGRAM Main VAR b : SR; s : BOOL; END_VAR b(SET1 := s); END_PROGRAM"
+    diags, _ = check_files([], texts={"main.st": src})
+    assert [d.code for d in diags if d.is_error] and "SET1" in diags[0].message
 
 
 def test_user_pou_replaces_a_standard_block():

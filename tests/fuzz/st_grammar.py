@@ -108,8 +108,8 @@ STANDARD_FBS = {
     ),
     "R_TRIG": ([("CLK", elem("BOOL"))], [("Q", elem("BOOL"))]),
     "F_TRIG": ([("CLK", elem("BOOL"))], [("Q", elem("BOOL"))]),
-    "SR": ([("SET1", elem("BOOL")), ("RESET", elem("BOOL"))], [("Q1", elem("BOOL"))]),
-    "RS": ([("SET", elem("BOOL")), ("RESET1", elem("BOOL"))], [("Q1", elem("BOOL"))]),
+    "SR": ([("S1", elem("BOOL")), ("R", elem("BOOL"))], [("Q1", elem("BOOL"))]),
+    "RS": ([("S", elem("BOOL")), ("R1", elem("BOOL"))], [("Q1", elem("BOOL"))]),
 }
 
 

@@ -1,0 +1,2 @@
+"""CODESYS's CAA Types (namespace CAA): the basic types of the CAA
+libraries (CAA.HANDLE, CAA.SIZE ...)."""

@@ -1,0 +1,1 @@
+"""CODESYS's SysCom, declared: its functions answer ERR_NOTIMPLEMENTED."""

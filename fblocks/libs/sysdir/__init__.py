@@ -1,0 +1,1 @@
+"""CODESYS's SysDir, declared: its functions answer ERR_NOTIMPLEMENTED."""

@@ -1,0 +1,1 @@
+"""CODESYS's SysFile, declared: its functions answer ERR_NOTIMPLEMENTED."""

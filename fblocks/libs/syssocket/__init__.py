@@ -1,0 +1,1 @@
+"""CODESYS's SysSocket, declared: its functions answer ERR_NOTIMPLEMENTED."""

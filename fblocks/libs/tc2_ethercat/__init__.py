@@ -1,0 +1,1 @@
+"""Beckhoff's Tc2_ethercat, declared: see its ST files."""

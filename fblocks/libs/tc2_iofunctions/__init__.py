@@ -1,0 +1,1 @@
+"""Beckhoff's Tc2_iofunctions, declared: see its ST files."""

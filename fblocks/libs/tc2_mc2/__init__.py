@@ -1,0 +1,1 @@
+"""Beckhoff's Tc2_mc2, declared: see its ST files."""

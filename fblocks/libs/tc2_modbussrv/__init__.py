@@ -1,0 +1,1 @@
+"""Beckhoff's Tc2_modbussrv, declared: see its ST files."""

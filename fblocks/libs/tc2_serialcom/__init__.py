@@ -1,0 +1,1 @@
+"""Beckhoff's Tc2_serialcom, declared: see its ST files."""

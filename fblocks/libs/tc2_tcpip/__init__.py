@@ -1,0 +1,1 @@
+"""Beckhoff's Tc2_tcpip, declared: see its ST files."""
