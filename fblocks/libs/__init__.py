@@ -32,6 +32,10 @@ class LibrarySpec:
     aliases: other names a project references it by (a CODESYS placeholder);
     functions: a module whose ``FUNCTIONS`` (name -> fblocks.iec.functions.StdFunc)
       are functions of the library written in Python;
+    natives: a module whose ``NATIVES`` (runtime.st.native.NativeFunction) are
+      functions of the library that a service of the runtime answers (TcUnit's
+      test bookkeeping, bound by the test runner), declared whenever the
+      library is chosen;
     unavailable: why it cannot do its work here ('' when it can): a library
       of hardware or a runtime service (EtherCAT, ADS, NC axes, the event
       logger) is declared with its real signatures so that a project
@@ -46,6 +50,7 @@ class LibrarySpec:
     namespaces: tuple = ()
     aliases: tuple = ()
     functions: str | None = None
+    natives: str | None = None
     unavailable: str = ""
 
 

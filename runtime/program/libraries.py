@@ -39,14 +39,17 @@ class Library:
     ST under ``namespace``; ``profile``: how its files read (None: as the
     program's). A library softplc ships (shipped.py) may also have further
     ``namespaces``, ``functions`` written in Python (a module with a
-    FUNCTIONS table of StdFuncs) and a reason it is ``unavailable`` here
-    (hardware, a runtime service: one warning when a program uses it)."""
+    FUNCTIONS table of StdFuncs), ``natives`` a runtime service answers (a
+    module with a NATIVES tuple, st/native.py) and a reason it is
+    ``unavailable`` here (hardware, a runtime service: one warning when a
+    program uses it)."""
 
     path: Path
     namespace: str
     profile: str | None = None
     namespaces: tuple = ()
     functions: str | None = None
+    natives: str | None = None
     unavailable: str = ""
 
     def files(self) -> list[Path]:

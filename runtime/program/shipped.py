@@ -81,6 +81,7 @@ def as_library(spec: LibrarySpec) -> Library:
         spec.profile,
         namespaces=tuple(spec.namespaces),
         functions=spec.functions,
+        natives=spec.natives,
         unavailable=spec.unavailable,
     )
 
@@ -99,6 +100,16 @@ def functions_of(libraries: tuple) -> dict:
         if lib.functions:
             out.update(importlib.import_module(lib.functions).FUNCTIONS)
     return out
+
+
+def natives_of(libraries: tuple) -> tuple:
+    """The native functions of the libraries (st/native.py), declared for the
+    checker and the code generator beside the registered buses' ones."""
+    out: list = []
+    for lib in libraries:
+        if lib.natives:
+            out.extend(importlib.import_module(lib.natives).NATIVES)
+    return tuple(out)
 
 
 class Elsewhere(Mapping):

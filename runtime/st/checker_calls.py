@@ -537,15 +537,14 @@ class CallChecks(CheckerBase):
     # ---------------------------------------------------------------- native functions
 
     def _native_call(self, e: A.Call, fn: NativeFunction, scope: Scope) -> T.Type | None:
-        """A call of a native function (st/native.py): positional arguments
-        checked against the declaration's parameter kinds; the arguments of
-        parameters that share a type variable get one common type."""
-        args = e.args
-        if len(args) != len(fn.params) or any(a.name is not None or a.value is None for a in args):
-            self.d.error("E041", f"{fn.name} takes {len(fn.params)} positional arguments", e.pos, fn.usage)
+        """A call of a native function (st/native.py): positional arguments,
+        or every one named, checked against the declaration's parameter
+        kinds; the arguments of parameters that share a type variable get
+        one common type."""
+        vals = self._native_args(e, fn)
+        if vals is None:
             self._check_args_loosely(e, scope)
             return None
-        vals = [a.value for a in args]
         found = [
             self.expr(v, scope, expected=T.BOOL if p.kind == native.BOOL else None) for p, v in zip(fn.params, vals)
         ]
@@ -567,6 +566,41 @@ class CallChecks(CheckerBase):
                     self.d.error("E020", f"{fn.name}: {param.label(i + 1)} needs {param.min_words} words", value.pos)
         e.target = CallInfo("native", func=fn, args=vals, rtypes=tuple(tys))
         return T.ELEMENTARY[fn.result]
+
+    def _native_args(self, e: A.Call, fn: NativeFunction) -> list | None:
+        """The argument of each parameter in order (a parameter's default
+        where a call by name leaves it out), or None after E041."""
+        args = e.args
+        if any(a.value is None or a.output for a in args):
+            self.d.error("E041", f"{fn.name} has no outputs to connect", e.pos, fn.usage)
+            return None
+        if not any(a.name is not None for a in args):
+            if len(args) == len(fn.params):
+                return [a.value for a in args]
+            self.d.error("E041", f"{fn.name} takes {len(fn.params)} positional arguments", e.pos, fn.usage)
+            return None
+        if any(a.name is None for a in args):
+            self.d.error("E041", f"{fn.name}: name every argument or none", e.pos, fn.usage)
+            return None
+        given: dict = {}
+        for a in args:
+            key = a.name.upper()
+            if key in given or not any(p.name.upper() == key for p in fn.params):
+                known = ", ".join(p.name for p in fn.params)
+                what = "twice" if key in given else f"is not an input of {fn.name} ({known})"
+                self.d.error("E041", f"'{a.name}' {what}", a.pos, fn.usage)
+                return None
+            given[key] = a.value
+        vals = []
+        for p in fn.params:
+            value = given.get(p.name.upper())
+            if value is None and p.default is not None:
+                value = A.Literal("string" if isinstance(p.default, str) else "bool", p.default, pos=e.pos)
+            if value is None:
+                self.d.error("E041", f"{fn.name} needs its input {p.name}", e.pos, fn.usage)
+                return None
+            vals.append(value)
+        return vals
 
     def _native_common(self, e: A.Call, fn: NativeFunction, vals: list, tys: list, scope: Scope) -> list | None:
         """The argument types with every type variable bound to the common
@@ -609,6 +643,8 @@ class CallChecks(CheckerBase):
         if param.kind == native.ANY_INT:
             be = T.base_elementary(ty)
             return be is not None and be.is_intlike
+        if param.kind == native.ANY:
+            return not isinstance(T.resolve(ty), T.FBType)
         t = T.resolve(ty)  # WORDS: a one-dimensional table of 16-bit words
         if not isinstance(t, T.ArrayType) or len(t.dims) != 1:
             return False
