@@ -55,4 +55,13 @@ class LibrarySpec:
 
 
 #: the shipped libraries (helpers add theirs here)
-SHIPPED: tuple[LibrarySpec, ...] = ()
+SHIPPED: tuple[LibrarySpec, ...] = (
+    # TcUnit (tcunit.org), the unit-test framework of TwinCAT: its API, run by `softplc test`
+    LibrarySpec(
+        "TcUnit",
+        "softplc.fblocks.libs.tcunit",
+        tools=("twincat",),
+        profile="twincat",
+        natives="softplc.fblocks.libs.tcunit.natives",
+    ),
+)

@@ -163,4 +163,5 @@ def _declared(spec: LibrarySpec) -> set:
                 elif isinstance(d, A.VarBlock):
                     names.update(v.name.upper() for v in d.decls)
     names.update(functions_of((lib,)))
+    names.update(fn.name for fn in natives_of((lib,)) if not fn.name.startswith("__"))
     return names

@@ -166,3 +166,15 @@ def test_a_pou_of_the_project_that_did_not_import_is_no_library_s(tmp_path):
     analysis, groups, rest = _grouped_analysis(folder)
     assert groups == [] and analysis.lost == {str(xml): [("ghost", line_of(xml, 'pou name="ghost"'))]}
     assert [d.message for d in rest if d.is_error and d.code == "E012"] == ["unknown type 'ghost'"]
+
+
+def test_a_library_softplc_ships_but_the_program_did_not_choose_says_how_to_choose_it(tmp_path):
+    (tmp_path / "tests.st").write_text(
+        "FUNCTION_BLOCK FB_T EXTENDS TcUnit.FB_TestSuite\nTEST('t');\nTEST_FINISHED();\nEND_FUNCTION_BLOCK\n"
+    )
+    [project] = open_projects([str(tmp_path / "tests.st")])
+    analysis = analyse(project, subset=False)
+    [g], _rest = group_analysis(analysis, frozenset())
+    d = g.diagnostic()
+    assert d.message.startswith("needs TcUnit (") and "which softplc ships: not chosen" in d.message
+    assert d.hint.startswith('add it: [plc] libraries = ["TcUnit"] or --library TcUnit')
