@@ -607,14 +607,16 @@ class CallChecks(CheckerBase):
         type of its arguments (an untyped literal takes the others' type)."""
         bindings: dict = {}
         for param, value, ty in zip(fn.params, vals, tys):
-            if param.same and not is_flexible(value):
+            if param.same and param.kind == native.ANY and not is_flexible(value):
+                bindings.setdefault(param.same, ty)  # each keeps its type: only a literal takes it
+            elif param.same and not is_flexible(value):
                 cur = bindings.get(param.same)
                 bindings[param.same] = ty if cur is None else self._unify(cur, ty, e)
                 if bindings[param.same] is None:
                     return None
         out = list(tys)
         for i, (param, value, ty) in enumerate(zip(fn.params, vals, tys)):
-            if not param.same:
+            if not param.same or (param.kind == native.ANY and not is_flexible(value)):
                 continue
             want = bindings.setdefault(param.same, ty)  # only literals: the first one's type
             if param.kind == native.ANY_REAL:
@@ -625,7 +627,7 @@ class CallChecks(CheckerBase):
                     return None
                 self.check_convertible(got, want, value, f"argument {i + 1} of {fn.name}")
             out[i] = want
-        return [bindings[p.same] if p.same else t for p, t in zip(fn.params, out)]
+        return [bindings[p.same] if p.same and p.kind != native.ANY else t for p, t in zip(fn.params, out)]
 
     @staticmethod
     def _native_arg_fits(param: native.Param, ty: T.Type) -> bool:

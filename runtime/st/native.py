@@ -28,7 +28,9 @@ literals (an assertion of a test, runtime/testing).
 Parameters of the generic kinds (BOOL, ANY_ELEMENTARY, ANY_REAL) may share a
 type variable (``same="T"``): their arguments are brought to one common type,
 as the standard functions' ``T:ANY_NUM`` are, so that ASSERT_EQUAL(5, x)
-compares 5 as x's type.
+compares 5 as x's type. Parameters of kind ANY sharing one keep their own
+types (AssertEquals(ANY) tells an INT from a UINT); only an untyped literal
+takes the type of the others (AssertEquals(5, myUint) passes 5 as a UINT).
 """
 
 from __future__ import annotations
@@ -46,7 +48,7 @@ ANY_ELEMENTARY = "ANY_ELEMENTARY"  # any elementary value: number, bit string, B
 ANY_REAL = "ANY_REAL"  # a REAL or LREAL (an integer literal too)
 ANY = "ANY"  # a value of any type: elementary, STRING, ARRAY (ARRAY[*] too), STRUCT; passed as stored
 
-GENERIC_KINDS = (BOOL, ANY_ELEMENTARY, ANY_REAL)
+GENERIC_KINDS = (BOOL, ANY_ELEMENTARY, ANY_REAL, ANY)
 
 _EXPECTED = {
     ANY_INT: "an integer",

@@ -86,7 +86,7 @@ NATIVES: tuple[NativeFunction, ...] = (
     ),
     _fn(
         "ASSERTEQUALS",
-        (Param("Expected", N.ANY, "Expected"), Param("Actual", N.ANY, "Actual"), _MSG),
+        (Param("Expected", N.ANY, "Expected", same="T"), Param("Actual", N.ANY, "Actual", same="T"), _MSG),
         "AssertEquals(Expected := a, Actual := b, Message := 'a and b differ')",
         site=True,
     ),

@@ -248,3 +248,17 @@ def test_a_long_failure_message_is_cut_as_tcunit_cuts_it_for_the_ads_log(tcunit)
     # TcUnit fits the format ('..., MSG: %s') and the message in 253 characters
     assert len(line) == 253 - len("%s") and line.endswith("x...TestMsg too long")
     assert run.results[0].failures[0].message == long[:250]  # softplc's own report keeps it whole
+
+
+def test_a_literal_given_to_assert_equals_takes_the_other_values_type(tcunit):
+    decls = "VAR u : UINT := 5; r : REAL := 2.5; s : STRING(20) := 'abc'; i : INT := 5; END_VAR"
+    body = (
+        "AssertEquals(Expected := 5, Actual := u, Message := 'a UINT');\n"
+        "AssertEquals(Expected := 2.5, Actual := r, Message := 'a REAL');\n"
+        "AssertEquals(Expected := 'abc', Actual := s, Message := 'a STRING');\n"
+        "AssertEquals(Expected := i, Actual := u, Message := 'two types');"
+    )
+    run = tcunit(suite("FB_Lit", method("Literals", body, decls), "Literals();"), {"Lit": "FB_Lit"})
+    assert failures(run) == [
+        "FAILED TEST 'PRG_TEST.Lit@Literals', EXP: (Type class = INT), ACT: (Type class = UINT), MSG: two types"
+    ]
