@@ -291,3 +291,17 @@ def test_tcunit_adslogstr_and_write_protected(tcunit):
     assert outcomes(run) == {"PRG_TEST.Tools@Writes": PASSED}
     assert [(line.level, line.text) for line in run.log if line.kind == "user"] == [("error", "Test number 1")]
     assert run.errors == []  # the user's own messages are not TcUnit's errors
+
+
+def test_without_softplc_test_run_does_nothing():
+    from softplc.runtime.program import compile_files
+    from softplc.runtime.testing.tcunit import tcunit_library
+
+    source = "VAR_GLOBAL nCalls : INT; END_VAR\n" + suite(
+        "FB_Counted", method("T", "AssertTrue(FALSE, 'm');"), "nCalls := nCalls + 1;\nT();"
+    )
+    source += "PROGRAM PRG_TEST\nVAR s : FB_Counted; END_VAR\nTcUnit.RUN();\nEND_PROGRAM\n"
+    program = compile_files([], texts={"suites.st": source}, profile="twincat", libraries=[tcunit_library()])
+    runner = program.runner("PRG_TEST", cycle_time_ms=10)
+    runner.run(3)  # softplc run: the natives' fallback, no test runner
+    assert runner.get("nCalls") == 0
