@@ -393,7 +393,7 @@ def plot_cmd(trace: str, output: str | None, signals: str | None, units: tuple) 
 
 
 @cli.command("test")
-@click.argument("paths", nargs=-1, required=True, type=click.Path(dir_okay=False), metavar="[CONFIG] FILE...")
+@click.argument("paths", nargs=-1, required=True, type=click.Path(), metavar="[CONFIG] FILE... | PROJECT")
 @click.option(
     "--junit", type=click.Path(dir_okay=False), metavar="FILE.xml", help="Write the results as JUnit XML (for CI)."
 )
@@ -412,13 +412,19 @@ def test_cmd(paths: tuple, junit: str | None, pattern: str | None, timeout: int)
     """Run the tests written in ST in FILE... (FUNCTION_BLOCKs named TEST_...
     calling ASSERT_EQUAL, ASSERT_TRUE ...), each in a fresh PLC in virtual
     time, against the programs and simulated devices of CONFIG (a TOML file;
-    without it the tests run alone).
+    without it the tests run alone); and TcUnit's test suites, of FILE... or
+    of a PROJECT (a TwinCAT .sln/.tsproj/.plcproj, a folder) run with its
+    own tasks until TcUnit reports every test finished.
 
     Exit codes: 0 every test passed, 1 a test failed, 2 bad configuration,
     ST files or option, or no test found.
     """
     from .testing.command import run_tests
 
+    if len(paths) == 1 and is_test_project(paths[0]):
+        from .cli_project import test_project
+
+        sys.exit(test_project(paths[0], junit=junit, pattern=pattern, timeout_ns=timeout))
     sys.exit(
         run_tests(
             paths,
@@ -428,6 +434,14 @@ def test_cmd(paths: tuple, junit: str | None, pattern: str | None, timeout: int)
             report_compile_errors=lambda e: _summary(*_report(e.diagnostics, e.sources)),
         )
     )
+
+
+def is_test_project(path: str) -> bool:
+    """Whether test's one argument is a project (a folder, a TwinCAT
+    .sln/.tsproj/.plcproj) rather than a test file."""
+    from .project.discover import is_project_file
+
+    return Path(path).is_dir() or is_project_file(path)
 
 
 # ---------------------------------------------------------------- entry point

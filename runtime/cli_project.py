@@ -178,6 +178,32 @@ def compile_project(project, profile: str | None, partial: bool, all_errors: boo
     return analysis.program, analysis
 
 
+def test_project(path: str, *, junit: str | None, pattern: str | None, timeout_ns: int) -> int:
+    """`softplc test PROJECT`: the project's TcUnit suites (the library
+    is offered whether the project references it or not), run with the
+    project's tasks; its errors are reported as `check` does (exit 2)."""
+    from .project.analysis import analyse
+    from .project.running import ProjectRunError, project_config
+    from .testing.command import run_project_tests
+    from .testing.tcunit import tcunit_library
+
+    project = one_project([path], "test")
+    analysis = analyse(project, None, libraries=(tcunit_library(),), subset=False)
+    groups, rest = _grouped(analysis, False)
+    if analysis.errors or analysis.program is None:
+        errors, refs, warnings = print_diagnostics(analysis, groups, rest)
+        echo_err(counts_line(errors, refs, len(groups), warnings))
+        return 2
+    report([d for d in rest if not d.is_error], analysis.sources)
+    try:
+        config = project_config(analysis, analysis.program)
+    except ProjectRunError as e:
+        echo_err(f"softplc test: {e}")
+        return 2
+    label = f"{KIND_NAMES[project.kind]} {project.name}"
+    return run_project_tests(analysis.program, config, label, junit=junit, pattern=pattern, timeout_ns=timeout_ns)
+
+
 def task_entry(project, program, analysis=None) -> str | None:
     """The PROGRAM the project's tasks call, when they call exactly one.
     A usage error when the project has PROGRAMs and none compiled."""

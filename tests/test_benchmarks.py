@@ -4,6 +4,7 @@ understands its command line."""
 
 from __future__ import annotations
 
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -54,3 +55,58 @@ def test_real_projects_reads_projects_of_each_kind():
     assert rows["Plc"][:6] == ["twincat", "4", "2", "2", "(100", "%)"] and rows["Plc"][6] == "1/1"
     assert rows["Line"][0] == "codesys" and rows["beremiz"][0] == "beremiz" and rows["folder"][0] == "folder"
     assert lines[-1].startswith("all: 4 projects, 7 POUs, 7 compiled (100 %), 4/4 PROGRAMs ran, 0 errors")
+
+
+TCUNIT_VERIFIER = BENCHMARKS[0].parent / "tcunit_verifier.py"
+TCUNIT_DEMO = Path(__file__).resolve().parent / "testing" / "data" / "tcunit" / "TcUnitDemo"
+VERIFIER_CLASS = """\
+using System.Collections.Generic;
+
+namespace TcUnit.Verifier
+{
+    class FB_Lamp_Test : TestFunctionBlockAssert
+    {
+        public FB_Lamp_Test(IEnumerable<ErrorList.Error> errors, string testFunctionBlockInstance = null)
+            : base(errors, testFunctionBlockInstance)
+        {
+            Presses();
+            Counts();
+        }
+
+        private void Presses()
+        {
+            string testMessage = CreateFailedTestMessage("ExpectsTooManyPresses", "5", "4", "five presses");
+            AssertContainsMessage(testMessage, EnvDTE80.vsBuildErrorLevel.vsBuildErrorLevelHigh);
+            AssertContainsMessage("no such message", EnvDTE80.vsBuildErrorLevel.vsBuildErrorLevelHigh);
+        }
+
+        private void Counts()
+        {
+            string testMessage = CreateFailedTestMessage("CountsEachPress", "2", "2", "two presses");
+            AssertDoesNotContainMessage(testMessage, EnvDTE80.vsBuildErrorLevel.vsBuildErrorLevelHigh);
+            AssertMessageCount("Test name=CountsEachPress", 1, EnvDTE80.vsBuildErrorLevel.vsBuildErrorLevelLow);
+        }
+    }
+}
+"""
+
+
+def test_tcunit_verifier_counts_the_expectations_that_hold(tmp_path):
+    """benchmarks/tcunit_verifier.py on a small verifier of its own: the
+    tests' TcUnit project and one class of expectations in the verifier's C#."""
+    verifier = tmp_path / "TcUnit-Verifier"
+    project = verifier / "TcUnit-Verifier_TwinCAT" / "TcUnitDemo"
+    shutil.copytree(TCUNIT_DEMO, project)
+    prg = project / "Test" / "PRG_TEST.TcPOU"
+    prg.write_text(prg.read_text().replace("fbLamp_Test", "Lamp_Test"))
+    dotnet = verifier / "TcUnit-Verifier_DotNet" / "TcUnit-Verifier"
+    dotnet.mkdir(parents=True)
+    (dotnet / "FB_Lamp_Test.cs").write_text(VERIFIER_CLASS)
+    done = subprocess.run(
+        [sys.executable, str(TCUNIT_VERIFIER), str(verifier)], capture_output=True, text=True, timeout=300
+    )
+    assert done.returncode == 0, done.stderr
+    out = done.stdout
+    assert "ran 1 test suites, 4 tests: {'passed': 2, 'failed': 1, 'skipped': 1, 'error': 0}" in out
+    assert "  FB_Lamp_Test: 3/4\n      FAIL contains 'no such message'" in out
+    assert out.rstrip().endswith("total: 3/4 checks hold")

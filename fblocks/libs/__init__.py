@@ -32,9 +32,10 @@ class LibrarySpec:
     aliases: other names a project references it by (a CODESYS placeholder);
     functions: a module whose ``FUNCTIONS`` (name -> fblocks.iec.functions.StdFunc)
       are functions of the library written in Python;
-    natives: a module whose ``NATIVES`` (a tuple of st.native.NativeFunction)
-      are native functions of the library, served by the runtime (the clock
-      of SysTime);
+    natives: a module whose ``NATIVES`` (runtime.st.native.NativeFunction) are
+      functions of the library that a service of the runtime answers (the
+      clock of SysTime, TcUnit's test bookkeeping bound by the test runner),
+      declared whenever the library is chosen;
     requires: names of shipped libraries this one's files use (SysCom's
       RTS_IEC_HANDLE is SysTypes2 Interfaces'), chosen with it;
     unavailable: why it cannot do its work here ('' when it can): a library
@@ -51,8 +52,8 @@ class LibrarySpec:
     namespaces: tuple = ()
     aliases: tuple = ()
     functions: str | None = None
-    unavailable: str = ""
     natives: str | None = None
+    unavailable: str = ""
     requires: tuple = ()
 
 
@@ -127,5 +128,14 @@ SHIPPED: tuple[LibrarySpec, ...] = (
             ("Tc2_SerialCom", "its serial lines are TwinCAT's (ErrorID COMERROR_MODENOTSUPPORTED)"),
             ("Tc2_MC2", "its axes are TwinCAT NC's (a command fails with ErrorID 16#701)"),
         )
+    ),
+    # ---------------------------------------------------------------- TcUnit
+    # TcUnit (tcunit.org), the unit-test framework of TwinCAT: its API, run by `softplc test`
+    LibrarySpec(
+        "TcUnit",
+        "softplc.fblocks.libs.tcunit",
+        tools=("twincat",),
+        profile="twincat",
+        natives="softplc.fblocks.libs.tcunit.natives",
     ),
 )

@@ -31,6 +31,7 @@ from ..st.diagnostics import CompileError, DiagnosticBag, SourceSet
 from ..st.importers import source_files, st_views
 from ..st.limits import MAX_SOURCE_CHARS
 from ..st.parser import parse_source
+from ..st.pragmas import attribute_value
 from ..st.profile import DEFAULT, Profile, get_profile
 from .libraries import parse_cached
 from .loaded import Program
@@ -81,11 +82,15 @@ def _library_sources() -> list:
 
 def _declared(sf: A.SourceFile) -> set:
     """Every name a library file declares: POUs, types, globals and the
-    values of its enumerations (``SysFile.AM_READ``, a bare ``AM_READ``)."""
+    values of its enumerations (``SysFile.AM_READ``, a bare ``AM_READ``) and
+    the global variable lists it names ({attribute 'gvl_name' := 'GVL_Param'})."""
     names = _decl_names(sf)
     for d in sf.decls:
         if isinstance(d, A.VarBlock):
             names.update(v.name.upper() for v in d.decls)
+            listed = attribute_value(d, "gvl_name")
+            if listed:
+                names.add(listed.upper())
         elif isinstance(d, A.TypeDecl) and isinstance(d.spec, A.EnumTypeSpec):
             names.update(value[0].upper() for value in d.spec.values)
     return names
@@ -182,7 +187,7 @@ def _read_sources(paths: list, texts: dict | None, diags: DiagnosticBag, sources
 
 
 def _decl_names(sf: A.SourceFile) -> set:
-    return {d.name.upper() for d in sf.decls if isinstance(d, (A.POU, A.TypeDecl))}
+    return {d.name.upper() for d in sf.decls if isinstance(d, (A.POU, A.TypeDecl, A.Interface))}
 
 
 def _user_libraries(libraries: tuple, profile: Profile, words: set, diags: DiagnosticBag, sources: SourceSet):
@@ -268,7 +273,7 @@ def _check(
         profile,
         lib_diags if not user else diags,
         {**_std_functions(), **functions_of(tuple(libraries))},
-        _natives(tuple(natives) + natives_of(libraries)),
+        _natives((*natives, *natives_of(tuple(libraries)))),
         ProcessImage(profile.addressing),
         Elsewhere(tuple(libraries)),
     )

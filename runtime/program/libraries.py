@@ -39,8 +39,9 @@ class Library:
     ST under ``namespace``; ``profile``: how its files read (None: as the
     program's). A library softplc ships (shipped.py) may also have further
     ``namespaces``, ``functions`` written in Python (a module with a
-    FUNCTIONS table of StdFuncs), ``natives`` (a module with a NATIVES
-    tuple), the shipped libraries it ``requires`` and a reason it is
+    FUNCTIONS table of StdFuncs), ``natives`` a runtime service answers (a
+    module with a NATIVES tuple, st/native.py), the shipped libraries it
+    ``requires`` and a reason it is
     ``unavailable`` here (hardware, a runtime service: one warning when a
     program uses it)."""
 
@@ -49,8 +50,8 @@ class Library:
     profile: str | None = None
     namespaces: tuple = ()
     functions: str | None = None
-    unavailable: str = ""
     natives: str | None = None
+    unavailable: str = ""
     requires: tuple = ()
 
     def files(self) -> list[Path]:

@@ -81,8 +81,8 @@ def as_library(spec: LibrarySpec) -> Library:
         spec.profile,
         namespaces=tuple(spec.namespaces),
         functions=spec.functions,
-        unavailable=spec.unavailable,
         natives=spec.natives,
+        unavailable=spec.unavailable,
         requires=tuple(spec.requires),
     )
 
@@ -134,8 +134,10 @@ def functions_of(libraries: tuple) -> dict:
 class Elsewhere(Mapping):
     """UPPER name -> "Tc2_System; add it to libraries = [...]" (a shipped
     library the program did not choose declares it) or "Tc2_MC2, which
-    softplc does not have" (only catalogue.toml knows it); built when the
-    checker first asks, that is only when a name is unknown."""
+    softplc does not have" (only catalogue.toml knows it); "UTIL." (a
+    namespace, with its dot) -> "Util; add it ...": a qualified name behind
+    an unchosen library's namespace. Built when the checker first asks, that
+    is only when a name is unknown."""
 
     def __init__(self, chosen: tuple) -> None:
         self._chosen = {lib.namespace.upper() for lib in chosen}
@@ -150,10 +152,12 @@ class Elsewhere(Mapping):
                     continue
                 for name in _declared(spec):
                     table.setdefault(name, f"{spec.name}; add it to libraries = [...]")
+                for ns in (spec.name, *spec.namespaces, *spec.aliases):
+                    table.setdefault(ns.upper() + ".", f"{spec.name}; add it to libraries = [...]")
             for lib in catalogue():
                 if lib.name.upper() in self._chosen or lib.name.upper() in have:
                     continue
-                for name in lib.names:
+                for name in (*lib.names, lib.name.upper() + "."):
                     table.setdefault(name, f"{lib.name}, a library softplc does not have")
             self._table = table
         return self._table
@@ -182,4 +186,5 @@ def _declared(spec: LibrarySpec) -> set:
                 elif isinstance(d, A.VarBlock):
                     names.update(v.name.upper() for v in d.decls)
     names.update(functions_of((lib,)))
+    names.update(fn.name for fn in natives_of((lib,)) if not fn.name.startswith("__"))
     return names

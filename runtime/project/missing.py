@@ -25,7 +25,7 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..program.shipped import catalogue
+from ..program.shipped import catalogue, shipped
 from ..st.ast import Pos
 from ..st.diagnostics import Diagnostic
 from ..st.namespaces import LIBRARY_NAMESPACES
@@ -100,6 +100,13 @@ class MissingLibrary:
                 "the project references libraries softplc does not have; --all-errors shows each use",
             )
         where = "" if self.referenced else " (the project does not reference it either)"
+        if self.name.upper() in shipped():
+            return Diagnostic(
+                "E223",
+                f"needs {self.name} ({used}), which softplc ships: not chosen{where}",
+                self.pos,
+                f'add it: [plc] libraries = ["{self.name}"] or --library {self.name}; --all-errors shows each use',
+            )
         return Diagnostic(
             "E223",
             f"needs {self.name} ({used}): not installed{where}",

@@ -537,15 +537,14 @@ class CallChecks(CheckerBase):
     # ---------------------------------------------------------------- native functions
 
     def _native_call(self, e: A.Call, fn: NativeFunction, scope: Scope) -> T.Type | None:
-        """A call of a native function (st/native.py): positional arguments
-        checked against the declaration's parameter kinds; the arguments of
-        parameters that share a type variable get one common type."""
-        args = e.args
-        if len(args) != len(fn.params) or any(a.name is not None or a.value is None for a in args):
-            self.d.error("E041", f"{fn.name} takes {len(fn.params)} positional arguments", e.pos, fn.usage)
+        """A call of a native function (st/native.py): positional arguments,
+        or every one named, checked against the declaration's parameter
+        kinds; the arguments of parameters that share a type variable get
+        one common type."""
+        vals = self._native_args(e, fn)
+        if vals is None:
             self._check_args_loosely(e, scope)
             return None
-        vals = [a.value for a in args]
         found = [
             self.expr(v, scope, expected=T.BOOL if p.kind == native.BOOL else None) for p, v in zip(fn.params, vals)
         ]
@@ -568,19 +567,56 @@ class CallChecks(CheckerBase):
         e.target = CallInfo("native", func=fn, args=vals, rtypes=tuple(tys))
         return T.ELEMENTARY[fn.result]
 
+    def _native_args(self, e: A.Call, fn: NativeFunction) -> list | None:
+        """The argument of each parameter in order (a parameter's default
+        where a call by name leaves it out), or None after E041."""
+        args = e.args
+        if any(a.value is None or a.output for a in args):
+            self.d.error("E041", f"{fn.name} has no outputs to connect", e.pos, fn.usage)
+            return None
+        if not any(a.name is not None for a in args):
+            if len(args) == len(fn.params):
+                return [a.value for a in args]
+            self.d.error("E041", f"{fn.name} takes {len(fn.params)} positional arguments", e.pos, fn.usage)
+            return None
+        if any(a.name is None for a in args):
+            self.d.error("E041", f"{fn.name}: name every argument or none", e.pos, fn.usage)
+            return None
+        given: dict = {}
+        for a in args:
+            key = a.name.upper()
+            if key in given or not any(p.name.upper() == key for p in fn.params):
+                known = ", ".join(p.name for p in fn.params)
+                what = "twice" if key in given else f"is not an input of {fn.name} ({known})"
+                self.d.error("E041", f"'{a.name}' {what}", a.pos, fn.usage)
+                return None
+            given[key] = a.value
+        vals = []
+        for p in fn.params:
+            value = given.get(p.name.upper())
+            if value is None and p.default is not None:
+                value = A.Literal("string" if isinstance(p.default, str) else "bool", p.default, pos=e.pos)
+            if value is None:
+                self.d.error("E041", f"{fn.name} needs its input {p.name}", e.pos, fn.usage)
+                return None
+            vals.append(value)
+        return vals
+
     def _native_common(self, e: A.Call, fn: NativeFunction, vals: list, tys: list, scope: Scope) -> list | None:
         """The argument types with every type variable bound to the common
         type of its arguments (an untyped literal takes the others' type)."""
         bindings: dict = {}
         for param, value, ty in zip(fn.params, vals, tys):
-            if param.same and not is_flexible(value):
+            if param.same and param.kind == native.ANY and not is_flexible(value):
+                bindings.setdefault(param.same, ty)  # each keeps its type: only a literal takes it
+            elif param.same and not is_flexible(value):
                 cur = bindings.get(param.same)
                 bindings[param.same] = ty if cur is None else self._unify(cur, ty, e)
                 if bindings[param.same] is None:
                     return None
         out = list(tys)
         for i, (param, value, ty) in enumerate(zip(fn.params, vals, tys)):
-            if not param.same:
+            if not param.same or (param.kind == native.ANY and not is_flexible(value)):
                 continue
             want = bindings.setdefault(param.same, ty)  # only literals: the first one's type
             if param.kind == native.ANY_REAL:
@@ -591,7 +627,7 @@ class CallChecks(CheckerBase):
                     return None
                 self.check_convertible(got, want, value, f"argument {i + 1} of {fn.name}")
             out[i] = want
-        return [bindings[p.same] if p.same else t for p, t in zip(fn.params, out)]
+        return [bindings[p.same] if p.same and p.kind != native.ANY else t for p, t in zip(fn.params, out)]
 
     @staticmethod
     def _native_arg_fits(param: native.Param, ty: T.Type) -> bool:
@@ -609,6 +645,8 @@ class CallChecks(CheckerBase):
         if param.kind == native.ANY_INT:
             be = T.base_elementary(ty)
             return be is not None and be.is_intlike
+        if param.kind == native.ANY:
+            return not isinstance(T.resolve(ty), T.FBType)
         t = T.resolve(ty)  # WORDS: a one-dimensional table of 16-bit words
         if not isinstance(t, T.ArrayType) or len(t.dims) != 1:
             return False

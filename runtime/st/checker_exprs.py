@@ -166,13 +166,18 @@ class ExprChecks(CheckerBase):
 
     def _time_repr(self, ty: T.ElementaryType, ns: int, e: A.Expr) -> int:
         v = ns // ty.unit_ns if ns >= 0 else -((-ns) // ty.unit_ns)
-        if ty.lo is not None and ty.hi is not None and not (ty.lo <= v <= ty.hi):
+        hi = ty.hi
+        if ty.category == T.DURATION and self.profile.unsigned_durations and hi is not None:
+            hi = (1 << ty.bits) - 1  # (TwinCAT: profile.py)
+        if ty.lo is not None and hi is not None and not (ty.lo <= v <= hi):
             self.d.error(
                 "E022",
                 f"the literal is outside the range of {ty.name}",
                 e.pos,
                 "use the L-type (LTIME, LDT ...) for larger values",
             )
+        elif ty.hi is not None and v > ty.hi:
+            v -= 1 << ty.bits  # stored in the type's bits
         return v
 
     def _name(self, e: A.Name, scope: Scope, expected: T.Type | None) -> T.Type | None:

@@ -67,11 +67,14 @@ class NamespaceChecks(CheckerBase):
         spelled: dict[str, str] = {}
         for sf in files:
             blocks = [b for b in sf.decls if isinstance(b, A.VarBlock) and b.kind == "VAR_GLOBAL"]
-            if not blocks or sf.path in self.library_files:  # the libraries' globals are no lists
+            if not blocks:
                 continue
-            file_list = identifier_from_path(sf.path)
+            # a library's globals are a list only where it names one (TcUnit's GVL_Param_TcUnit)
+            file_list = None if sf.path in self.library_files else identifier_from_path(sf.path)
             for b in blocks:
                 name = self._list_name(b) or file_list
+                if name is None:
+                    continue
                 names = lists.setdefault(name.upper(), set())
                 spelled.setdefault(name.upper(), name)
                 only = has_attribute(b, "qualified_only")
@@ -84,6 +87,7 @@ class NamespaceChecks(CheckerBase):
                     if only:
                         self.qualified_only.add(key)
         self._lists, self._list_names = lists, spelled
+        self._unqualify_bases(files)
         if not any(sf.qualified_bases for sf in files):
             return
         global_names = set(self.list_of)
@@ -91,6 +95,35 @@ class NamespaceChecks(CheckerBase):
             local = _declared_names(sf)
             if sf.qualified_bases - local - global_names - set(self.types) - set(self.type_decls):
                 _Rewrite(self, global_names).file(sf)
+
+    def _unqualify_bases(self, files: list) -> None:
+        """EXTENDS TcUnit.FB_TestSuite, IMPLEMENTS Lib.I_X: the base named in
+        a library's namespace is the plain name (E019 when the library has
+        none such); another dotted name is left to the checker (E140)."""
+        for sf in files:
+            for d in sf.decls:
+                if not isinstance(d, A.POU):
+                    continue
+                if d.extends is not None and "." in d.extends[0]:
+                    d.extends = (self._unqualified(*d.extends), d.extends[1])
+                d.implements = [(self._unqualified(n, p) if "." in n else n, p) for n, p in d.implements]
+
+    def _unqualified(self, name: str, pos: A.Pos) -> str:
+        ns, _, rest = name.rpartition(".")
+        key = ns.upper()
+        if key in self.user_namespaces:
+            spelled, names = self.user_namespaces[key]
+            if rest.upper() not in names:
+                self.d.error(
+                    "E019",
+                    f"the library {spelled} has no '{rest}'",
+                    pos,
+                    self._suggest(rest.upper(), sorted(names)) or None,
+                )
+            return rest
+        if key in LIBRARY_NAMESPACES:
+            return rest  # (the standard library declares no FUNCTION_BLOCK to extend: E140 says so)
+        return name
 
     def _list_name(self, block: A.VarBlock) -> str | None:
         """The name {attribute 'gvl_name' := 'GVL_Main'} gives a VAR_GLOBAL
@@ -172,6 +205,14 @@ class _Rewrite:
         """node with its qualified names rewritten (a new node or node itself)."""
         if isinstance(node, A.Member) and isinstance(node.base, A.Member):
             node = self.nested(node)
+        if isinstance(node, A.Member) and isinstance(node.base, A.Member):
+            node.base = self.walk(node.base)  # TcUnit.GVL_Param_TcUnit.x: the list in a library's namespace
+            base = node.base
+            if isinstance(base, A.Name) and base.qualifier is None and base.name.upper() in self.c._lists:
+                new = self.member(node)
+                if new is not None:
+                    return new
+            return node
         if isinstance(node, A.Member) and isinstance(node.base, A.Name):
             new = self.member(node)
             if new is not None:
@@ -291,8 +332,12 @@ class _Rewrite:
         return A.Name(name, pos=pos)
 
     def unknown(self, ns: str, name: str, pos: A.Pos) -> None:
-        what = OTHER_LIBRARIES.get(ns.upper())
-        where = self.c._elsewhere(name)  # " (Util; add it to libraries = [...])": a library softplc ships
+        # " (Util; add it to libraries = [...])": a library softplc ships, by
+        # the namespace written (Util.LEN) or else by the name (X.BLINK);
+        # " (Tc3_JsonXml, a library softplc does not have)": the catalogue's
+        known = self.c._elsewhere(ns + ".")
+        what = OTHER_LIBRARIES.get(ns.upper()) or (known[2:].split(",")[0] if "does not have" in known else None)
+        where = known if "add it to" in known else self.c._elsewhere(name)
         if where and "add it to" in where:
             message = f"'{ns}.{name}' is of a library the program did not choose{where}"
         elif what:

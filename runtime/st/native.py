@@ -13,8 +13,10 @@ PLC without the network module).
         "READ_VAR", (Param("address", ADDRESS), ...), service="sdo",
         fallback=NoBus(), usage="READ_VAR(ADR#0.1.SYS, 'SDO', ...)")
 
-Every native function is a statement-like call with positional arguments.
-The service is called as ``service.request(NAME, *args, *signed)``, where
+A native function is called with positional arguments, or with every
+argument named (``AssertEquals(Expected := a, Actual := b, Message := 'm')``,
+the parameters' names, any case); a parameter with a default may then be
+left out. The service is called as ``service.request(NAME, *args, *signed)``, where
 ``signed`` holds, for each word-table argument in order, whether its
 elements are signed (INT) or not (WORD, UINT): the service stores words into
 the tables and must keep their type's representation. A declaration with
@@ -26,7 +28,9 @@ literals (an assertion of a test, runtime/testing).
 Parameters of the generic kinds (BOOL, ANY_ELEMENTARY, ANY_REAL) may share a
 type variable (``same="T"``): their arguments are brought to one common type,
 as the standard functions' ``T:ANY_NUM`` are, so that ASSERT_EQUAL(5, x)
-compares 5 as x's type.
+compares 5 as x's type. Parameters of kind ANY sharing one keep their own
+types (AssertEquals(ANY) tells an INT from a UINT); only an untyped literal
+takes the type of the others (AssertEquals(5, myUint) passes 5 as a UINT).
 """
 
 from __future__ import annotations
@@ -42,8 +46,9 @@ WORDS = "WORDS"  # a one-dimensional table of 16-bit words: ARRAY OF WORD/INT/UI
 BOOL = "BOOL"  # a BOOL
 ANY_ELEMENTARY = "ANY_ELEMENTARY"  # any elementary value: number, bit string, BOOL, time, STRING, enumeration
 ANY_REAL = "ANY_REAL"  # a REAL or LREAL (an integer literal too)
+ANY = "ANY"  # a value of any type: elementary, STRING, ARRAY (ARRAY[*] too), STRUCT; passed as stored
 
-GENERIC_KINDS = (BOOL, ANY_ELEMENTARY, ANY_REAL)
+GENERIC_KINDS = (BOOL, ANY_ELEMENTARY, ANY_REAL, ANY)
 
 _EXPECTED = {
     ANY_INT: "an integer",
@@ -53,6 +58,7 @@ _EXPECTED = {
     BOOL: "a BOOL",
     ANY_ELEMENTARY: "an elementary value (a number, BOOL, STRING, time or enumeration)",
     ANY_REAL: "a REAL or LREAL",
+    ANY: "a value",
 }
 
 
@@ -65,7 +71,9 @@ class Param:
     """One positional parameter. what: how a message names it ('the node';
     '' for 'argument n' alone); expect: what a wrong argument is told it
     must be (default: from the kind); min_words: a word table's least size;
-    same: a type variable shared with other parameters of a generic kind."""
+    same: a type variable shared with other parameters of a generic kind;
+    default: the value of a STRING or BOOL parameter a call by name leaves
+    out (None: it must be given)."""
 
     name: str
     kind: str
@@ -73,12 +81,18 @@ class Param:
     expect: str = ""
     min_words: int = 0
     same: str = ""
+    default: Any = None
 
     def __post_init__(self) -> None:
         if self.kind not in _EXPECTED:
             raise ValueError(f"{self.name}: unknown parameter kind {self.kind!r}")
         if self.same and self.kind not in GENERIC_KINDS:
             raise ValueError(f"{self.name}: only {', '.join(GENERIC_KINDS)} parameters share a type")
+        if self.default is not None and not (
+            (self.kind == STRING and isinstance(self.default, str))
+            or (self.kind == BOOL and isinstance(self.default, bool))
+        ):
+            raise ValueError(f"{self.name}: a default is a str for STRING, a bool for BOOL")
 
     @property
     def expected(self) -> str:

@@ -85,6 +85,12 @@ class Profile:
     # s[i] is the i-th byte of a STRING (from 0; a WSTRING's i-th WORD),
     # read and written: CODESYS V3 and TwinCAT 3. IEC strings are not indexed.
     string_index: bool = False
+    # TIME and LTIME literals up to the unsigned maximum of their bits
+    # (T#49d17h2m47s295ms, LTIME#213503d23h34m33s709ms551us615ns): TwinCAT's
+    # TIME and LTIME are unsigned (Beckhoff Information System, "TIME",
+    # "LTIME": 0 .. 2^32-1 ms, 0 .. 2^64-1 ns), and TcUnit's documentation
+    # and tests use the largest LTIME. The value is kept in the type's bits.
+    unsigned_durations: bool = False
 
 
 IEC = Profile(
@@ -119,7 +125,7 @@ CODESYS = Profile(
     string_index=True,
 )
 
-TWINCAT = replace(CODESYS, name="twincat", trailing_comma_in_calls=True)
+TWINCAT = replace(CODESYS, name="twincat", trailing_comma_in_calls=True, unsigned_durations=True)
 
 # MatIEC, the compiler of OpenPLC and Beremiz: strict IEC types (it converts
 # nothing implicitly, bit operators want ANY_BIT). Its process image is the

@@ -34,11 +34,12 @@ class TestCase:
     file: str  # the test file, as given
     line: int
     timeout_ns: int | None = None  # its own, from {attribute 'timeout' := '...'}
+    classname: str | None = None  # a TcUnit test's suite (PRG_TEST.fbSum_Test)
 
     @property
     def suite(self) -> str:
-        """The JUnit classname: the file's stem."""
-        return Path(self.file).stem
+        """The JUnit classname: the file's stem, or a TcUnit test's suite."""
+        return self.classname or Path(self.file).stem
 
 
 def _is_test(pou) -> bool:

@@ -111,13 +111,15 @@ class Failure:
     expected: str
     actual: str
     time_ns: int  # engine time of the cycle it failed in
+    detail: str = ""  # a further line (TcUnit's own message of a failed assert)
 
     def describe(self) -> str:
         """The lines a report shows."""
         head = f"{self.site}: {self.function} failed"
         if self.message:
             head += f": {self.message}"
-        return f"{head}\n  expected: {self.expected}\n  actual:   {self.actual}"
+        text = f"{head}\n  expected: {self.expected}\n  actual:   {self.actual}"
+        return f"{text}\n  {self.detail}" if self.detail else text
 
 
 @dataclass

@@ -14,6 +14,7 @@ runtime fault stops a task, or at the timeout (engine time).
 from __future__ import annotations
 
 import logging
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -30,6 +31,7 @@ from ..config import load_config as _load_config
 from ..engine.build import build_engine
 from ..plugin.registry import registry
 from ..program import compile_files
+from ..program.shipped import shipped_named
 from ..st.faults import STFault
 from .discover import TestCase, discover
 from .natives import NATIVES, SERVICE, Failure, Recorder, Simulated
@@ -37,14 +39,14 @@ from .natives import NATIVES, SERVICE, Failure, Recorder, Simulated
 DEFAULT_TIMEOUT_NS = 60_000_000_000  # st_pytest_plugin.py has it too
 DEFAULT_INTERVAL_NS = 10_000_000
 
-PASSED, FAILED, ERROR = "passed", "failed", "error"
+PASSED, FAILED, ERROR, SKIPPED = "passed", "failed", "error", "skipped"  # (SKIPPED: a disabled TcUnit test)
 
 
 @dataclass
 class TestResult:
     __test__ = False  # not a pytest class
     case: TestCase
-    outcome: str  # PASSED, FAILED (an assertion or the timeout), ERROR (a runtime fault, the plant)
+    outcome: str  # PASSED, FAILED (an assertion or the timeout), ERROR (a runtime fault, the plant), SKIPPED
     time_ns: int  # engine time when it ended
     failures: list[Failure] = field(default_factory=list)
     error: str = ""  # the timeout or the fault, when there is no failed assertion
@@ -57,6 +59,22 @@ class TestResult:
         if self.error:
             parts.append(self.error)
         return "\n".join(parts)
+
+
+_TCUNIT = re.compile(r"\bFB_TestSuite\b", re.IGNORECASE)
+
+
+def _names_tcunit(files: list) -> bool:
+    """Whether a test file declares TcUnit test suites (names FB_TestSuite):
+    then it is compiled with the TcUnit library, whose TEST_FINISHED() is
+    TcUnit's, not the ST tests' (natives.py)."""
+    for f in files:
+        try:
+            if _TCUNIT.search(Path(f).read_text(encoding="utf-8", errors="replace")):
+                return True
+        except OSError:
+            pass  # (the compiler says it cannot read it)
+    return False
 
 
 def _no_plant(files: list) -> PlcConfig:
@@ -76,9 +94,12 @@ class TestSuite:
         self.files = [str(f) for f in files]
         mine = {Path(f).resolve() for f in self.files}
         plant = [p for p in config.programs if Path(p).resolve() not in mine]
-        self.program = compile_files(
-            plant + self.files, profile=config.profile, natives=NATIVES, libraries=tuple(config.libraries)
-        )
+        libraries = tuple(config.libraries)
+        tcunit = shipped_named("TcUnit")  # TcUnit's test suites are tests too (tcunit.py)
+        if tcunit is not None and _names_tcunit(self.files):
+            if all(lib.namespace.upper() != tcunit.namespace.upper() for lib in libraries):
+                libraries += (tcunit,)
+        self.program = compile_files(plant + self.files, profile=config.profile, natives=NATIVES, libraries=libraries)
         self.tests = discover(self.program, self.files)
         intervals = [t.interval_ns for t in config.tasks if t.interval_ns]
         self.interval_ns = min(intervals, default=DEFAULT_INTERVAL_NS)
@@ -87,6 +108,37 @@ class TestSuite:
     def load(cls, config: str | Path | None, files: list) -> TestSuite:
         """ConfigError for the configuration, CompileError for the ST files."""
         return cls(_load_config(Path(config)) if config else _no_plant(files), files)
+
+    def tcunit_tasks(self) -> tuple:
+        """The task that runs the PROGRAMs of the test files (TcUnit's
+        PRG_TEST) beside a configured plant's tasks; none without [[task]]
+        tables (every PROGRAM is in the default task then)."""
+        if not self.config.tasks:
+            return ()
+        tasked = {inst.program.upper() for t in self.config.tasks for inst in t.programs}
+        mine = [
+            info
+            for info in self.program.checked.pous
+            if info.kind == "PROGRAM" and not info.library and info.node.pos.file in self.files
+        ]
+        calls = [
+            ProgramInstance(i.name, i.name, f"{i.node.pos.file}: {i.name}")
+            for i in mine
+            if i.name.upper() not in tasked
+        ]
+        if not calls:
+            return ()
+        task = TaskConfig(
+            name="TcUnit",
+            interval_ns=self.interval_ns,
+            pause_ns=DEFAULT_PAUSE_NS,
+            priority=PRIORITY_MAX,
+            watchdog_ns=default_watchdog_ns(self.interval_ns),
+            sensitivity=1,
+            programs=calls,
+            key="TcUnit",
+        )
+        return (task,)
 
     def _task(self, case: TestCase) -> TaskConfig:
         return TaskConfig(
@@ -137,16 +189,16 @@ class TestSuite:
                 engine.request_stop()
 
         engine.after_tick.append(watch)
-        quiet = _Quiet()
+        quiet_ = quiet()
         start_fault = None
         try:
-            with quiet:
+            with quiet_:
                 engine.start()
                 engine.run(duration_ns=timeout_ns)
         except STFault as e:  # an initial value of the plant or the test
             start_fault = f"initial values: {e}"
         finally:
-            with quiet:
+            with quiet_:
                 engine.stop()
         result = TestResult(case, PASSED, engine.now_ns(), list(recorder.failures), asserts=recorder.asserts)
         if start_fault is not None:
@@ -161,6 +213,11 @@ class TestSuite:
             result.error = f"timed out after {timeout_ns / 1e9:g} s of engine time without TEST_FINISHED()"
         result.wall_s = time.perf_counter() - started
         return result
+
+
+def quiet() -> _Quiet:
+    """A context in which the plant's log below ERROR is not shown."""
+    return _Quiet()
 
 
 class _Quiet:

@@ -1,7 +1,11 @@
 """pytest runs ST tests too: every test_*.st file it collects is compiled
 (with the configuration's programs) and each test FUNCTION_BLOCK in it is a
 pytest item; a failure shows the ST file:line:column, the message and both
-values. Registered as the pytest11 entry point ``softplc_st``.
+values. A file with TcUnit test suites (blocks that EXTEND
+TcUnit.FB_TestSuite, run by its PROGRAM calling TcUnit.RUN()) is one more
+item, "TcUnit": TcUnit's tests are known only once they run, all in one
+PLC, so the item runs them all and fails with every failed test.
+Registered as the pytest11 entry point ``softplc_st``.
 
     pytest --softplc-config io_config/default.toml st_programs/tests/
 
@@ -76,6 +80,10 @@ class StFile(pytest.File):
             raise StCollectError("\n".join(d.format(e.sources) for d in e.diagnostics)) from None
         for case in suite.tests:
             yield StItem.from_parent(self, name=case.name, suite=suite, case=case)
+        from .tcunit import uses_tcunit
+
+        if uses_tcunit(suite.program):
+            yield TcUnitItem.from_parent(self, name="TcUnit", suite=suite)
 
     def repr_failure(self, excinfo, style=None):
         if isinstance(excinfo.value, StCollectError):
@@ -111,3 +119,43 @@ class StItem(pytest.Item):
 
     def reportinfo(self):
         return self.path, self.case.line - 1, f"ST test {self.case.name}"
+
+
+class TcUnitFailed(Exception):
+    def __init__(self, text: str) -> None:
+        super().__init__(text)
+        self.text = text
+
+
+class TcUnitItem(pytest.Item):
+    """The TcUnit test suites of a test_*.st file, run together."""
+
+    def __init__(self, *, suite, **kwargs) -> None:
+        super().__init__(**kwargs)
+        self.suite = suite
+
+    def runtest(self) -> None:
+        from .command import WORDS
+        from .runner import PASSED, SKIPPED
+        from .tcunit import run_tcunit
+
+        run = run_tcunit(
+            self.suite.config, self.suite.program, _timeout_ns(self.config), None, self.suite.tcunit_tasks()
+        )
+        self.user_properties.append(("engine_time", f"{run.time_ns / 1e9:.3f}"))
+        lines = [] if run.ran else ["no task calls a PROGRAM that calls TcUnit.RUN()"]
+        for r in run.results:
+            if r.outcome not in (PASSED, SKIPPED):
+                lines.append(f"{WORDS[r.outcome]} {r.case.classname}@{r.case.name} ({r.case.file}:{r.case.line})")
+                lines.append("  " + r.describe().replace("\n", "\n  "))
+        lines += [f"TcUnit: {text}" for text in run.errors]
+        if lines:
+            raise TcUnitFailed("\n".join(lines))
+
+    def repr_failure(self, excinfo, style=None):
+        if isinstance(excinfo.value, TcUnitFailed):
+            return excinfo.value.text
+        return super().repr_failure(excinfo)
+
+    def reportinfo(self):
+        return self.path, 0, "TcUnit test suites"

@@ -179,3 +179,90 @@ def test_a_parse_is_kept_no_longer_than_the_importer_that_made_it(tmp_path, monk
     plcopen = st / "importers" / "plcopen.py"
     plcopen.write_text(plcopen.read_text() + "\n# reads more now\n")
     assert libraries._version_salt() != before
+
+
+SUITE_LIB = {
+    "GVL_Param_Suite.st": """
+        {attribute 'gvl_name' := 'GVL_Param_Suite'}
+        {attribute 'qualified_only'}
+        VAR_GLOBAL CONSTANT
+            BufferSize : UDINT := 16;
+        END_VAR
+    """,
+    "params_unnamed.st": "VAR_GLOBAL CONSTANT Unlisted : INT := 7; END_VAR",
+    "FB_Suite.st": """
+        FUNCTION_BLOCK FB_Suite
+        VAR calls : INT; END_VAR
+        METHOD PUBLIC Count : INT
+        calls := calls + 1;
+        Count := calls;
+        END_METHOD
+        END_FUNCTION_BLOCK
+    """,
+    "I_Named.st": "INTERFACE I_Named METHOD Name : STRING END_METHOD END_INTERFACE",
+}
+
+
+def _suite_lib(tmp_path) -> Library:
+    folder = tmp_path / "SuiteLib"
+    folder.mkdir(exist_ok=True)
+    for name, text in SUITE_LIB.items():
+        (folder / name).write_text(text)
+    return Library(folder, "SuiteLib")
+
+
+def test_a_block_extends_and_implements_names_of_a_library_in_its_namespace(tmp_path):
+    src = """
+    FUNCTION_BLOCK FB_Mine EXTENDS SuiteLib.FB_Suite IMPLEMENTS SuiteLib.I_Named
+    VAR n : INT; END_VAR
+    METHOD Name : STRING
+    Name := 'mine';
+    END_METHOD
+    n := Count();
+    END_FUNCTION_BLOCK
+    PROGRAM Main
+    VAR fb : FB_Mine; who : STRING; itf : SuiteLib.I_Named; END_VAR
+    fb();
+    itf := fb;
+    who := itf.Name();
+    END_PROGRAM
+    """
+    _, r = run(3, src, libraries=(_suite_lib(tmp_path),))
+    assert r.get("fb.n") == 3 and r.get("who") == "mine"
+
+
+def test_extending_what_the_library_lacks_is_e019(tmp_path):
+    src = "FUNCTION_BLOCK FB_Mine EXTENDS SuiteLib.FB_Nope END_FUNCTION_BLOCK"
+    diags, _ = check_files([], texts={"main.st": src}, libraries=[_suite_lib(tmp_path)])
+    assert ("E019", "the library SuiteLib has no 'FB_Nope'") in [(d.code, d.message) for d in diags]
+
+
+def test_a_library_names_a_global_list_that_programs_qualify_with_and_without_its_namespace(tmp_path):
+    src = """
+    PROGRAM Main
+    VAR
+        a : ARRAY[0..SuiteLib.GVL_Param_Suite.BufferSize - 1] OF BYTE;
+        size : UDINT := GVL_Param_Suite.BufferSize;
+        top : DINT;
+    END_VAR
+    top := UPPER_BOUND(a, 1);
+    END_PROGRAM
+    """
+    _, r = run(1, src, libraries=(_suite_lib(tmp_path),))
+    assert r.get("size") == 16 and r.get("top") == 15
+    # qualified_only, as TcUnit's GVL_Param_TcUnit: a bare name is E018
+    diags, _ = check_files(
+        [],
+        texts={"main.st": src.replace("GVL_Param_Suite.BufferSize;", "BufferSize;")},
+        libraries=[_suite_lib(tmp_path)],
+    )
+    assert [d.code for d in diags if d.is_error] == ["E018"]
+
+
+def test_a_library_file_that_names_no_list_keeps_its_globals_unlisted(tmp_path):
+    src = "PROGRAM Main VAR n : INT; END_VAR n := Unlisted; END_PROGRAM"
+    _, r = run(1, src, libraries=(_suite_lib(tmp_path),))
+    assert r.get("n") == 7
+    bad = "PROGRAM Main VAR n : INT; END_VAR n := params_unnamed.Unlisted; END_PROGRAM"
+    diags, _ = check_files([], texts={"main.st": bad}, libraries=[_suite_lib(tmp_path)])
+    assert any(d.is_error for d in diags)

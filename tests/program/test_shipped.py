@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from softplc.runtime.program import Library, check_files, compile_files
-from softplc.runtime.program.shipped import catalogue, functions_of, shipped, shipped_named
+from softplc.runtime.program.shipped import catalogue, functions_of, natives_of, shipped, shipped_named
 
 USES = """
 PROGRAM Main
@@ -86,6 +86,7 @@ def test_the_catalogue_and_the_shipped_libraries_are_well_formed():
         assert lib is not None and lib.namespace == spec.name
         assert lib.files(), f"{spec.name}: no ST files in {spec.package}"
         functions_of((lib,))  # its Python functions import
+        assert all(fn.name == fn.name.upper() for fn in natives_of((lib,)))  # and its natives
 
 
 def test_library_on_the_command_line_takes_a_folder_and_refuses_what_is_none(fieldbus, tmp_path):
@@ -114,3 +115,13 @@ def test_a_configuration_names_a_library_by_its_path_or_fails_naming_the_key(fie
     with pytest.raises(ConfigError) as err:
         load_config(tmp_path / "plc.toml")
     assert "plc.libraries[1]" in str(err.value) and "no such folder" in str(err.value)
+
+
+def test_a_shipped_library_declares_its_natives_when_chosen_and_names_them_when_not():
+    src = "PROGRAM Main VAR ok : BOOL; END_VAR ok := AssertEquals(Expected := 1, Actual := 1); END_PROGRAM"
+    diags, _ = check_files([], texts={"main.st": src}, profile="twincat")
+    assert [d.message for d in diags if d.is_error] == [
+        "unknown function 'AssertEquals' (TcUnit; add it to libraries = [...])"
+    ]
+    diags, _ = check_files([], texts={"main.st": src}, profile="twincat", libraries=[shipped_named("TcUnit")])
+    assert [d for d in diags if d.is_error] == []

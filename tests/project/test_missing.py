@@ -48,8 +48,9 @@ def test_a_qualified_name_names_its_library_and_the_standard_one_is_there(tmp_pa
     )
     _analysis, [g], rest = _grouped(twincat(tmp_path, ("FB_Files", pou)))
     # SysFile is not referenced by the project: the qualified name says it
-    # (its two errors, E019 and E012, are at one place: one reference)
-    assert g.diagnostic().message.startswith("needs SysFile (RTS_IEC_HANDLE: 1 reference): not installed")
+    # (its two errors, E019 and E012, are at one place: one reference);
+    # softplc ships SysFile (unavailable: no file system), so it says so
+    assert g.diagnostic().message.startswith("needs SysFile (RTS_IEC_HANDLE: 1 reference), which softplc ships")
     assert "does not reference it" in g.diagnostic().message
     assert not [x for x in rest if x.is_error]  # Tc2_Standard.TON is softplc's own TON
 
@@ -166,3 +167,15 @@ def test_a_pou_of_the_project_that_did_not_import_is_no_library_s(tmp_path):
     analysis, groups, rest = _grouped_analysis(folder)
     assert groups == [] and analysis.lost == {str(xml): [("ghost", line_of(xml, 'pou name="ghost"'))]}
     assert [d.message for d in rest if d.is_error and d.code == "E012"] == ["unknown type 'ghost'"]
+
+
+def test_a_library_softplc_ships_but_the_program_did_not_choose_says_how_to_choose_it(tmp_path):
+    (tmp_path / "tests.st").write_text(
+        "FUNCTION_BLOCK FB_T EXTENDS TcUnit.FB_TestSuite\nTEST('t');\nTEST_FINISHED();\nEND_FUNCTION_BLOCK\n"
+    )
+    [project] = open_projects([str(tmp_path / "tests.st")])
+    analysis = analyse(project, subset=False)
+    [g], _rest = group_analysis(analysis, frozenset())
+    d = g.diagnostic()
+    assert d.message.startswith("needs TcUnit (") and "which softplc ships: not chosen" in d.message
+    assert d.hint.startswith('add it: [plc] libraries = ["TcUnit"] or --library TcUnit')

@@ -95,13 +95,31 @@ def test_a_native_call_is_typed_from_its_declaration(args):
 
 
 @pytest.mark.parametrize(
-    "args", ["ADR#0.1.SYS, 'SDO', n", "ADR#0.1.SYS, 'SDO', n, t4, 1", "ADR#0.1.SYS, 'SDO', n, table := t4", ""]
+    "args, message",
+    [
+        ("ADR#0.1.SYS, 'SDO', n", "PROBE takes 4 positional arguments"),
+        ("ADR#0.1.SYS, 'SDO', n, t4, 1", "PROBE takes 4 positional arguments"),
+        ("", "PROBE takes 4 positional arguments"),
+        ("ADR#0.1.SYS, 'SDO', n, table := t4", "PROBE: name every argument or none"),
+        ("address := ADR#0.1.SYS, label := 'SDO', node := n", "PROBE needs its input table"),
+        ("address := ADR#0.1.SYS, label := 'SDO', node := n, table := t4, ok => ok", "PROBE has no outputs to connect"),
+    ],
 )
-def test_a_native_call_with_the_wrong_arguments_shows_the_usage(args):
+def test_a_native_call_with_the_wrong_arguments_shows_the_usage(args, message):
     _, found = native_call(args)
-    assert found == [
-        ("E041", "PROBE takes 4 positional arguments", "PROBE(ADR#0.1.SYS, 'x', <node>, %MW<table>:4)", 5, 7)
-    ]
+    assert found == [("E041", message, "PROBE(ADR#0.1.SYS, 'x', <node>, %MW<table>:4)", 5, 7)]
+
+
+def test_a_native_call_may_name_its_arguments_in_any_order_and_case():
+    call, found = native_call("NODE := n, table := t4, Label := 'SDO', address := ADR#0.1.SYS")
+    assert found == []
+    by_name = {a.name.upper(): a.value for a in call.args}
+    assert call.target.args == [by_name[p.name.upper()] for p in PROBE.params]  # in the declaration's order
+
+
+def test_a_named_native_argument_that_is_no_input_names_the_inputs():
+    _, found = native_call("address := ADR#0.1.SYS, label := 'SDO', nod := n, table := t4")
+    assert found == [("E041", "'nod' is not an input of PROBE (address, label, node, table)", PROBE.usage, 5, 53)]
 
 
 def test_the_arguments_of_a_wrong_native_call_are_still_checked():

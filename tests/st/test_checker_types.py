@@ -59,3 +59,16 @@ def test_an_array_type_with_more_elements_than_a_variable_may_have_is_e054():
     assert d.message == f"the array has more than 100,000,000 elements; one variable may have {MAX_VAR_ELEMENTS:,}"
     [d] = diagnostics(prog(f"a : ARRAY[0..{MAX_VAR_ELEMENTS}] OF BYTE;", ""))
     assert d.message == f"the array has {MAX_VAR_ELEMENTS + 1:,} elements; one variable may have {MAX_VAR_ELEMENTS:,}"
+
+
+def test_twincat_takes_the_unsigned_range_of_time_and_ltime_literals():
+    # TwinCAT's LTIME is 0 .. 2^64-1 ns (TcUnit's documentation asserts on its largest value)
+    src = prog(
+        "a : LTIME := LTIME#213503D23H34M33S709MS551US615NS; b : LTIME := LTIME#213503d23h34m33s709ms551us615ns;"
+        " t : TIME := T#49d17h2m47s295ms; same : BOOL; other : BOOL;",
+        "same := a = b; other := a = LTIME#1000d15h23m12s34ms2us44ns;",
+    )
+    r = run_st(src, profile="twincat")
+    assert (r.get("same"), r.get("other")) == (True, False)
+    assert codes(src, "codesys") == ["E022", "E022", "E022"]
+    assert codes(src.replace("T#49d17h2m47s295ms", "T#49d17h2m47s296ms"), "twincat") == ["E022"]
