@@ -41,9 +41,11 @@ class Profile:
     # (unless run with -n): there the first '*)' ends the comment.
     nested_comments: bool
     # Assigning a VAR_INPUT inside its own POU is an 'error' (E030) or a
-    # 'warning' (W130). IEC 61131-3 reads inputs only and MatIEC rejects
-    # the assignment; CODESYS and TwinCAT accept it: the input then holds
-    # the new value until the next call passes another.
+    # 'warning' (W130). IEC 61131-3 reads inputs only; CODESYS, TwinCAT and
+    # MatIEC accept it (MatIEC's lvalue checks refuse writes to FOR
+    # variables, constants and another block's outputs, not to the POU's
+    # own inputs: OSCAT's port to Beremiz writes them in 39 places): the
+    # input then holds the new value until the next call passes another.
     own_input_assignment: str
     # A comma may end a call's argument list, F(a := 1, b := 2,): TwinCAT 3
     # accepts it (blark, a parser of TwinCAT sources, does too). The IEC
@@ -125,7 +127,12 @@ TWINCAT = replace(CODESYS, name="twincat", trailing_comma_in_calls=True)
 # nothing implicitly, bit operators want ANY_BIT). Its process image is the
 # runtime's business (OpenPLC's per-size areas are not modelled): byte
 # offsets as in IEC.
-MATIEC = replace(IEC, name="matiec", bool_from_0_1=True)
+MATIEC = replace(
+    IEC,
+    name="matiec",
+    bool_from_0_1=True,
+    own_input_assignment="warning",
+)
 
 SCHNEIDER = Profile(
     name="schneider",
