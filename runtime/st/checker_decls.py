@@ -20,7 +20,7 @@ class DeclChecks(CheckerBase):
     """Variable declarations and initial values."""
 
     def _make_var(self, decl: A.VarDecl, block: A.VarBlock, owner: POUInfo | None) -> VarSymbol | None:
-        if decl.name.upper() in T.ELEMENTARY:
+        if decl.name.upper() in T.ELEMENTARY and not self._ed2_name(decl, owner):
             # an IEC keyword (CODESYS and TwinCAT refuse it too); as a global it
             # would also hide the standard function of that name (TIME()) from
             # every POU, the library's included, whose errors would then point
@@ -72,6 +72,13 @@ class DeclChecks(CheckerBase):
             self._check_var_init(sym, Scope(owner))
             self._inited.add(id(sym))
         return sym
+
+    def _ed2_name(self, decl: A.VarDecl, owner: POUInfo | None) -> bool:
+        """A POU's variable named as an ed.3 type (LTIME, LDT ...) where the
+        profile reads ed.2 (MatIEC): a plain name there, which hides the
+        type's functions in that POU only (a global would hide them from
+        every POU, the library's too)."""
+        return owner is not None and not self.profile.ed3_type_names_reserved and decl.name.upper() in T.ED3_NAMES
 
     def _check_retained(self, sym: VarSymbol, block: A.VarBlock) -> None:
         """W111 where RETAIN/PERSISTENT cannot keep anything: the engine

@@ -87,6 +87,13 @@ class Profile:
     # s[i] is the i-th byte of a STRING (from 0; a WSTRING's i-th WORD),
     # read and written: CODESYS V3 and TwinCAT 3. IEC strings are not indexed.
     string_index: bool = False
+    # The names IEC 61131-3 ed.3 gave its new elementary types (LTIME,
+    # LDATE, LTOD, LDT, LTIME_OF_DAY, LDATE_AND_TIME, CHAR, WCHAR) name no
+    # variable (E011; CODESYS and TwinCAT refuse them too). MatIEC reads
+    # ed.2, where they are plain names: a POU's variable may take one (the
+    # OSCAT port to Beremiz has a variable LTIME and one LDT); it hides the
+    # clock function LTIME() in that POU only. A global still may not.
+    ed3_type_names_reserved: bool = True
 
 
 IEC = Profile(
@@ -132,6 +139,7 @@ MATIEC = replace(
     name="matiec",
     bool_from_0_1=True,
     own_input_assignment="warning",
+    ed3_type_names_reserved=False,
 )
 
 SCHNEIDER = Profile(
