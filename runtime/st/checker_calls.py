@@ -17,7 +17,7 @@ from .checker_operators import OPERATOR_FUNCTIONS
 from .conversions import const_repr, conversion_exists, generic_fit, is_flexible, same_type
 from .native import NativeFunction
 from .oop import extends_fb, fb_hint
-from .symbols import CallInfo, POUInfo, PropertyInfo, VarSymbol
+from .symbols import CallInfo, POUInfo, PropertyInfo, VarSymbol, copied_in_out
 
 
 class CallChecks(CheckerBase):
@@ -242,7 +242,7 @@ class CallChecks(CheckerBase):
                     self.check_convertible(vty, param.type, a.value, f"input '{param.name}'")
                 info.inputs.append((param, a.value))
         for param in pou.params("VAR_IN_OUT"):
-            if param.name.upper() not in bound:
+            if param.name.upper() not in bound and not copied_in_out(param, self.profile):
                 self.d.error(
                     "E042",
                     f"VAR_IN_OUT '{param.name}' of {pou.name} is not connected",

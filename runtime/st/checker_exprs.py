@@ -11,6 +11,7 @@ from . import ast as A
 from . import types as T
 from .checker_base import BUILTINS, CheckerBase, Scope
 from .conversions import const_repr
+from .symbols import copied_in_out
 
 _TIME_KIND = {
     "time": T.TIME,
@@ -316,6 +317,8 @@ class ExprChecks(CheckerBase):
                 )
                 return None
             inside = scope.pou is b.pou or self.inside_fb(scope, b.pou)
+            if copied_in_out(v, self.profile):
+                inside = True  # the instance's own copy (MatIEC): read and written as an input
             if v.section not in ("VAR_INPUT", "VAR_OUTPUT") and not inside:
                 self.d.error(
                     "E013",

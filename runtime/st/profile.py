@@ -94,6 +94,14 @@ class Profile:
     # OSCAT port to Beremiz has a variable LTIME and one LDT); it hides the
     # clock function LTIME() in that POU only. A global still may not.
     ed3_type_names_reserved: bool = True
+    # A FUNCTION_BLOCK's VAR_IN_OUT is a variable of the instance, copied
+    # from the argument before the call and back into it after (MatIEC: the
+    # FB's C structure holds the value, the call sets it and reads it back).
+    # So inst.io is read and written from outside as an input is, and a call
+    # may leave it out: the body then works on the value the instance holds.
+    # Elsewhere a VAR_IN_OUT is a reference bound at each call: E042 when a
+    # call leaves it out, E013 when named from outside.
+    fb_in_out_copied: bool = False
 
 
 IEC = Profile(
@@ -140,6 +148,7 @@ MATIEC = replace(
     bool_from_0_1=True,
     own_input_assignment="warning",
     ed3_type_names_reserved=False,
+    fb_in_out_copied=True,
 )
 
 SCHNEIDER = Profile(

@@ -43,9 +43,15 @@ def test_matiec_differs_from_iec_only_where_it_says_so():
     # grammar takes as the standard's does (the iec profile is stricter),
     # and for what its compiler accepts beyond the standard (the OSCAT port
     # to Beremiz leans on each): a POU writing its own inputs, ed.3's type
-    # names as variables
+    # names as variables, an FB's in-out kept as the instance's copy
     differing = {f for f in IEC.__dataclass_fields__ if getattr(IEC, f) != getattr(MATIEC, f)}
-    assert differing == {"name", "bool_from_0_1", "own_input_assignment", "ed3_type_names_reserved"}
+    assert differing == {
+        "name",
+        "bool_from_0_1",
+        "own_input_assignment",
+        "ed3_type_names_reserved",
+        "fb_in_out_copied",
+    }
 
 
 ED2_NAMES = """
@@ -86,3 +92,52 @@ def test_a_global_named_as_an_ed3_type_is_refused_in_matiec_too():
     # it would hide LTIME() from every POU, the standard blocks' included
     src = "VAR_GLOBAL LTIME : UDINT; END_VAR\n" + prog("x : INT;", "x := 1;")
     assert codes(src, "matiec") == ["E011"]
+
+
+IN_OUT_COPIED = """
+FUNCTION_BLOCK Ramp
+VAR_INPUT up : BOOL; END_VAR
+VAR_IN_OUT rmp : INT; pt : ARRAY[1..3] OF INT; END_VAR
+IF up THEN rmp := rmp + 1; ELSE rmp := rmp - 1; END_IF;
+pt[1] := pt[1] + 10;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR r : Ramp; out : INT := 5; seen : INT; last : INT; n : INT;
+    a : ARRAY[1..3] OF INT; b : ARRAY[1..3] OF INT; END_VAR
+r(up := TRUE, rmp := out, pt := a);  (* copied in, and back out into out, a *)
+seen := r.rmp;                       (* the instance's copy, read from outside *)
+r.rmp := 100;                        (* and written *)
+r(up := FALSE);                      (* not connected: the body works on the copy *)
+last := r.rmp;
+n := r.pt[1];
+r.pt := b;
+r();
+b := r.pt;
+END_PROGRAM
+"""
+
+
+def test_matiec_keeps_an_fb_in_out_as_the_instances_copy():
+    # MatIEC's C holds an FB's VAR_IN_OUT in the instance, sets it before the
+    # call and reads it back after; OSCAT's port leans on it: `rmp(..., rmp
+    # := out); out := rmp.RMP;` and `fb.pt := pt; fb(); pt := fb.pt;`
+    r = run_st(IN_OUT_COPIED, cycles=1, profile="matiec")
+    assert (r.get("out"), r.get("seen"), r.get("last")) == (6, 6, 99)
+    assert r.get("a") == [10, 0, 0] and r.get("n") == 20 and r.get("b") == [10, 0, 0]
+    r.run(1)  # the next cycle copies out (6) in again: 7, and a[1] 20
+    assert (r.get("out"), r.get("a")[0], r.get("n")) == (7, 20, 30)
+
+
+def test_elsewhere_an_fb_in_out_is_a_reference_bound_at_each_call():
+    assert codes(IN_OUT_COPIED, "codesys") == [
+        "E013",
+        "E013",
+        "E042",
+        "E042",
+        "E013",
+        "E013",
+        "E013",
+        "E042",
+        "E042",
+        "E013",
+    ]
