@@ -69,7 +69,7 @@ class ExprChecks(CheckerBase):
         if isinstance(e, A.Binary):
             return self._binary(e, scope, expected)
         if isinstance(e, A.Call):
-            return self.call(e, scope, as_statement=False)
+            return self.call(e, scope, as_statement=False, expected=expected)
         if isinstance(e, A.Located):
             return self._located(e)
         if isinstance(e, A.SchneiderAddress):

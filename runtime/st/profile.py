@@ -102,6 +102,12 @@ class Profile:
     # Elsewhere a VAR_IN_OUT is a reference bound at each call: E042 when a
     # call leaves it out, E013 when named from outside.
     fb_in_out_copied: bool = False
+    # TRUNC(x), the name without a type, gives the integer type its context
+    # wants: the target of the assignment, the parameter, the other operand
+    # (MatIEC declares TRUNC once per integer type, as IEC 61131-3 ed.2
+    # Table 22 gives it ANY_REAL -> ANY_INT, and picks the one that fits),
+    # DINT without one. Elsewhere TRUNC is DINT (CODESYS).
+    trunc_from_context: bool = False
 
 
 IEC = Profile(
@@ -149,6 +155,7 @@ MATIEC = replace(
     own_input_assignment="warning",
     ed3_type_names_reserved=False,
     fb_in_out_copied=True,
+    trunc_from_context=True,
 )
 
 SCHNEIDER = Profile(

@@ -43,7 +43,8 @@ def test_matiec_differs_from_iec_only_where_it_says_so():
     # grammar takes as the standard's does (the iec profile is stricter),
     # and for what its compiler accepts beyond the standard (the OSCAT port
     # to Beremiz leans on each): a POU writing its own inputs, ed.3's type
-    # names as variables, an FB's in-out kept as the instance's copy
+    # names as variables, an FB's in-out kept as the instance's copy, TRUNC
+    # typed by its context
     differing = {f for f in IEC.__dataclass_fields__ if getattr(IEC, f) != getattr(MATIEC, f)}
     assert differing == {
         "name",
@@ -51,6 +52,7 @@ def test_matiec_differs_from_iec_only_where_it_says_so():
         "own_input_assignment",
         "ed3_type_names_reserved",
         "fb_in_out_copied",
+        "trunc_from_context",
     }
 
 
@@ -141,3 +143,23 @@ def test_elsewhere_an_fb_in_out_is_a_reference_bound_at_each_call():
         "E042",
         "E013",
     ]
+
+
+TRUNC_IN_CONTEXT = prog(
+    "i : INT; low : INT := 2; high : INT := 10; r : REAL := 0.75; b : BYTE; s : SINT; d : DINT; ok : BOOL;",
+    """i := TRUNC(r * INT_TO_REAL(high - low + 1)) + low;
+b := INT_TO_BYTE(TRUNC(r * 255.0));
+s := TRUNC(r * -10.0);
+d := TRUNC(r * 1.0E6);
+ok := TRUNC(r * 10.0) > low;""",
+)
+
+
+def test_matiec_types_trunc_by_its_context():
+    # OSCAT's RDM2 and RANGE_TO_BYTE as ported to Beremiz: MatIEC declares
+    # TRUNC once per integer type and picks the one the context wants
+    r = run_st(TRUNC_IN_CONTEXT, cycles=1, profile="matiec")
+    assert (r.get("i"), r.get("b"), r.get("s"), r.get("d"), r.get("ok")) == (8, 191, -7, 750000, True)
+    # elsewhere TRUNC is a DINT: storing it into an INT narrows
+    assert codes(TRUNC_IN_CONTEXT, "iec") == ["E021", "E021", "E021"]
+    assert codes(TRUNC_IN_CONTEXT, "codesys") == ["W121", "W121", "W121"]
