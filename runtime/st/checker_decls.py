@@ -217,18 +217,21 @@ class DeclChecks(CheckerBase):
         if sym.fb_init is not None:
             self._check_fb_init_var(sym, scope)
             return
+        # VAR_INPUT CONSTANT (CODESYS): an input the POU cannot change, whose
+        # value the call gives: read-only, but no compile-time constant
+        folded = sym.constant and sym.section not in ("VAR_INPUT", "VAR_IN_OUT")
         if sym.init is None:
             sym.init_value = T.declared_default(sym.type)
-            if sym.constant:
+            if folded:
                 sym.const_value = self.default_value(sym.type)
             return
         function_input = sym.owner is not None and sym.owner.kind == "FUNCTION" and sym.section == "VAR_INPUT"
         sym.init_value = self.init_value(sym.type, sym.init, scope, sym.name, ref_ok=not function_input)
         if (
-            sym.constant
+            folded
             and sym.init_value is not None
             and T.base_elementary(sym.type) is not None
-            or (sym.constant and isinstance(T.resolve(sym.type), T.StringType))
+            or (folded and isinstance(T.resolve(sym.type), T.StringType))
         ):
             sym.const_value = sym.init_value
 

@@ -58,7 +58,6 @@ EXPORT_NOT_COMPILED = {
     "SCALE_B2": "the same",
     "SCALE_B4": "the same",
     "SCALE_B8": "the same",
-    "SCHEDULER_2": "MOD by a VAR_INPUT CONSTANT, taken for the constant 0",
     "FIFO_16": "an array bound naming a VAR CONSTANT declared after it",
     "FIFO_32": "the same",
     "STACK_16": "the same",
