@@ -433,6 +433,10 @@ _TIME_FUNCS = (
 )
 for _name, (_in1, _in2), _ret in _TIME_FUNCS:
     _def(_name, (("IN1", _in1), ("IN2", _in2)), _ret, getattr(rtlib, _name))
+# IEC 61131-3 ed.2 Table 30 spelled these MULTIME and DIVTIME (ed.3 renamed
+# them); MatIEC keeps both names and OSCAT's port calls MULTIME.
+_def("MULTIME", (("IN1", "TIME"), ("IN2", "ANY_NUM")), "TIME", rtlib.MUL_TIME)
+_def("DIVTIME", (("IN1", "TIME"), ("IN2", "ANY_NUM")), "TIME", rtlib.DIV_TIME)
 
 _YMD = (("YEAR", "ANY_INT"), ("MONTH", "ANY_INT"), ("DAY", "ANY_INT"))
 _HMSM = (("HOUR", "ANY_INT"), ("MINUTE", "ANY_INT"), ("SECOND", "ANY_INT"), ("MILLISECOND", "ANY_INT"))

@@ -55,11 +55,25 @@ class Library:
     requires: tuple = ()
 
     def files(self) -> list[Path]:
-        """The library's source files, sorted (sub-folders included)."""
+        """The library's source files, sorted (sub-folders included, but for
+        hidden and generated ones)."""
         if self.path.is_file():
             return [self.path]
-        found = [p for p in self.path.rglob("*") if p.is_file() and is_source(p.name) and not p.name.startswith(".")]
+        found = [
+            p
+            for p in self.path.rglob("*")
+            if p.is_file() and is_source(p.name) and not _skipped(p.relative_to(self.path))
+        ]
         return sorted(found)
+
+
+# Folders of a library that hold no sources of its own: a Beremiz project's
+# build/ (matiec's input, generated_plc.st, copies every POU), hidden ones.
+_GENERATED = frozenset(("build", "__pycache__"))
+
+
+def _skipped(rel: Path) -> bool:
+    return any(part.startswith(".") or part in _GENERATED for part in rel.parts[:-1]) or rel.name.startswith(".")
 
 
 def _cache_dir() -> Path:

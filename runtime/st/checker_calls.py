@@ -17,13 +17,13 @@ from .checker_operators import OPERATOR_FUNCTIONS
 from .conversions import const_repr, conversion_exists, generic_fit, is_flexible, same_type
 from .native import NativeFunction
 from .oop import extends_fb, fb_hint
-from .symbols import CallInfo, POUInfo, PropertyInfo, VarSymbol
+from .symbols import CallInfo, POUInfo, PropertyInfo, VarSymbol, copied_in_out
 
 
 class CallChecks(CheckerBase):
     """Binding and typing every kind of call."""
 
-    def call(self, e: A.Call, scope: Scope, as_statement: bool) -> T.Type | None:
+    def call(self, e: A.Call, scope: Scope, as_statement: bool, expected: T.Type | None = None) -> T.Type | None:
         self.trailing_comma(e.trailing_comma)
         callee = e.callee
         hit = self._oop_call(e, scope, as_statement)  # methods, SUPER^() (checker_oop.py)
@@ -69,6 +69,8 @@ class CallChecks(CheckerBase):
             if key == "__QUERYINTERFACE":
                 return self._query_interface(e, scope)
             func = self.std.get(key)
+            if key == "TRUNC" and func is not None:
+                func = self.trunc_for(expected, func)
             if func is not None:
                 written = e.args
                 gate = self.split_en_eno(e, scope)  # EN/ENO: st/checker_eno.py
@@ -242,7 +244,7 @@ class CallChecks(CheckerBase):
                     self.check_convertible(vty, param.type, a.value, f"input '{param.name}'")
                 info.inputs.append((param, a.value))
         for param in pou.params("VAR_IN_OUT"):
-            if param.name.upper() not in bound:
+            if param.name.upper() not in bound and not copied_in_out(param, self.profile):
                 self.d.error(
                     "E042",
                     f"VAR_IN_OUT '{param.name}' of {pou.name} is not connected",
@@ -356,6 +358,25 @@ class CallChecks(CheckerBase):
             )
             return None
         return out
+
+    def trunc_for(self, expected: T.Type | None, func):
+        """TRUNC of the integer type expected where the profile takes it from
+        the context (Profile.trunc_from_context, MatIEC: one TRUNC per
+        integer type, IEC 61131-3 ed.2 Table 22), else func (DINT)."""
+        be = T.base_elementary(expected) if expected is not None else None
+        if self.profile.trunc_from_context and be in T.INTEGERS:
+            return self.std.get(f"TRUNC_{be.name}", func)
+        return func
+
+    def is_context_trunc(self, e: A.Expr) -> bool:
+        """A call of TRUNC that takes its type from the context (see trunc_for)."""
+        return (
+            self.profile.trunc_from_context
+            and isinstance(e, A.Call)
+            and isinstance(e.callee, A.Name)
+            and e.callee.name.upper() == "TRUNC"
+            and "TRUNC" not in self.pous
+        )
 
     def _std_call(self, e: A.Call, func, scope: Scope) -> T.Type | None:
         args = self._std_args(e, func, scope)

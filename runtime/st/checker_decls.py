@@ -20,7 +20,7 @@ class DeclChecks(CheckerBase):
     """Variable declarations and initial values."""
 
     def _make_var(self, decl: A.VarDecl, block: A.VarBlock, owner: POUInfo | None) -> VarSymbol | None:
-        if decl.name.upper() in T.ELEMENTARY:
+        if decl.name.upper() in T.ELEMENTARY and not self._ed2_name(decl, owner):
             # an IEC keyword (CODESYS and TwinCAT refuse it too); as a global it
             # would also hide the standard function of that name (TIME()) from
             # every POU, the library's included, whose errors would then point
@@ -72,6 +72,13 @@ class DeclChecks(CheckerBase):
             self._check_var_init(sym, Scope(owner))
             self._inited.add(id(sym))
         return sym
+
+    def _ed2_name(self, decl: A.VarDecl, owner: POUInfo | None) -> bool:
+        """A POU's variable named as an ed.3 type (LTIME, LDT ...) where the
+        profile reads ed.2 (MatIEC): a plain name there, which hides the
+        type's functions in that POU only (a global would hide them from
+        every POU, the library's too)."""
+        return owner is not None and not self.profile.ed3_type_names_reserved and decl.name.upper() in T.ED3_NAMES
 
     def _check_retained(self, sym: VarSymbol, block: A.VarBlock) -> None:
         """W111 where RETAIN/PERSISTENT cannot keep anything: the engine
@@ -210,18 +217,21 @@ class DeclChecks(CheckerBase):
         if sym.fb_init is not None:
             self._check_fb_init_var(sym, scope)
             return
+        # VAR_INPUT CONSTANT (CODESYS): an input the POU cannot change, whose
+        # value the call gives: read-only, but no compile-time constant
+        folded = sym.constant and sym.section not in ("VAR_INPUT", "VAR_IN_OUT")
         if sym.init is None:
             sym.init_value = T.declared_default(sym.type)
-            if sym.constant:
+            if folded:
                 sym.const_value = self.default_value(sym.type)
             return
         function_input = sym.owner is not None and sym.owner.kind == "FUNCTION" and sym.section == "VAR_INPUT"
         sym.init_value = self.init_value(sym.type, sym.init, scope, sym.name, ref_ok=not function_input)
         if (
-            sym.constant
+            folded
             and sym.init_value is not None
             and T.base_elementary(sym.type) is not None
-            or (sym.constant and isinstance(T.resolve(sym.type), T.StringType))
+            or (folded and isinstance(T.resolve(sym.type), T.StringType))
         ):
             sym.const_value = sym.init_value
 

@@ -11,6 +11,7 @@ from . import ast as A
 from . import types as T
 from .checker_base import BUILTINS, CheckerBase, Scope
 from .conversions import const_repr
+from .symbols import copied_in_out
 
 _TIME_KIND = {
     "time": T.TIME,
@@ -68,7 +69,7 @@ class ExprChecks(CheckerBase):
         if isinstance(e, A.Binary):
             return self._binary(e, scope, expected)
         if isinstance(e, A.Call):
-            return self.call(e, scope, as_statement=False)
+            return self.call(e, scope, as_statement=False, expected=expected)
         if isinstance(e, A.Located):
             return self._located(e)
         if isinstance(e, A.SchneiderAddress):
@@ -321,6 +322,8 @@ class ExprChecks(CheckerBase):
                 )
                 return None
             inside = scope.pou is b.pou or self.inside_fb(scope, b.pou)
+            if copied_in_out(v, self.profile):
+                inside = True  # the instance's own copy (MatIEC): read and written as an input
             if v.section not in ("VAR_INPUT", "VAR_OUTPUT") and not inside:
                 self.d.error(
                     "E013",

@@ -146,7 +146,7 @@ class OperatorChecks(CheckerBase):
         its type comes from the other operand (`state <> Idle` with Idle an
         enumerator of several types picks the one of state, as CODESYS and
         TwinCAT do)."""
-        if is_flexible(e):
+        if is_flexible(e) or self.is_context_trunc(e):
             return True
         if not isinstance(e, A.Name):
             return False

@@ -255,9 +255,9 @@ class StmtChecks(CheckerBase):
 
     def _own_input_assigned(self, sym: VarSymbol, pos: A.Pos) -> None:
         """An input assigned inside its own POU: E030 where the profile
-        reads inputs only (IEC, MatIEC), W130 where it lets the POU change
-        them (CODESYS, TwinCAT: the value holds until the next call passes
-        another)."""
+        reads inputs only (IEC), W130 where it lets the POU change them
+        (CODESYS, TwinCAT, MatIEC: the value holds until the next call
+        passes another)."""
         owner = sym.owner.name if sym.owner is not None else "its POU"
         if self.profile.own_input_assignment == "error":
             self.d.error(

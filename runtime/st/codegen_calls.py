@@ -17,7 +17,7 @@ from . import rt_varray
 from . import types as T
 from .codegen_base import CodeGenBase, elementary, py_literal
 from .native import CallSite
-from .symbols import CallInfo
+from .symbols import CallInfo, copied_in_out
 
 
 class CallGen(CodeGenBase):
@@ -269,10 +269,23 @@ class CallGen(CodeGenBase):
                 self.emit(f"_assign_into({inst}.{p.pyname}, {code})")
             else:
                 self.emit(f"{inst}.{p.pyname} = {code}")
+        copied = [(p, a) for p, a in info.inouts if copied_in_out(p, self.profile)]
         for p, a in info.inouts:
+            if (p, a) in copied:  # the instance's own copy (MatIEC): in before the call, out after
+                code = self.ex(a)
+                is_aggregate = T.resolve(p.type).is_aggregate
+                self.emit(
+                    f"_assign_into({inst}.{p.pyname}, {code})" if is_aggregate else f"{inst}.{p.pyname}.set({code})"
+                )
+                continue
             ref = f"_CellRef({self.bind_code(a)})" if T.is_reference(p.type) else self.inout_arg(p, a)
             self.emit(f"{inst}.{p.pyname} = {ref}")
         self.emit(self._action_invoke(info, inst) if info.kind == "action" else f"{inst}()")
+        for p, a in copied:
+            if T.resolve(p.type).is_aggregate:
+                self.emit(f"_assign_into({self.ex(a)}, {inst}.{p.pyname})")
+            else:
+                self.emit_store(a, f"{inst}.{p.pyname}.get()", p.type, None, trusted=True)
         for p, target, negated in info.outputs:
             val = f"{inst}.{p.pyname}"
             if negated:

@@ -17,7 +17,7 @@ from . import ranges as R
 from . import refs, rt_bytes, rt_varray
 from . import types as T
 from .codegen_base import CodeGenBase, array_type, elementary, py_literal
-from .symbols import CallInfo, PropertyInfo, VarSymbol
+from .symbols import CallInfo, PropertyInfo, VarSymbol, copied_in_out
 
 
 class ExprGen(CodeGenBase):
@@ -42,6 +42,8 @@ class ExprGen(CodeGenBase):
                 return py_literal(e.const)
             if isinstance(e.sym, PropertyInfo):
                 return self._property_read(e)  # codegen_oop.py
+            if self._copied_cell(e.sym):
+                return f"{self.ex(e.base)}.{e.sym.pyname}.get()"
             return f"{self.ex(e.base)}.{e.sym.pyname}"
         if isinstance(e, A.Index):
             return self._index_target(e)
@@ -271,6 +273,11 @@ class ExprGen(CodeGenBase):
             return "None"
         return self.ref_code(e)
 
+    def _copied_cell(self, sym) -> bool:
+        """A scalar VAR_IN_OUT of an FB kept as the instance's own cell
+        (Profile.fb_in_out_copied): inst.io is read and set through it."""
+        return isinstance(sym, VarSymbol) and copied_in_out(sym, self.profile) and not T.resolve(sym.type).is_aggregate
+
     def ref_code(self, e: A.Expr) -> str:
         """A reference to the storage of an lvalue (REF, ADR, VAR_IN_OUT, =>)."""
         if e.implicit_ref is not None:  # the storage a REFERENCE TO designates
@@ -293,6 +300,8 @@ class ExprGen(CodeGenBase):
                 return f"{self.fn.self_name}.{sym.pyname}"
             return f"_AttrRef({self.fn.self_name}, {sym.pyname!r})"
         if isinstance(e, A.Member):
+            if self._copied_cell(e.sym):
+                return f"{self.ex(e.base)}.{e.sym.pyname}"
             return f"_AttrRef({self.ex(e.base)}, {e.sym.pyname!r})"
         if isinstance(e, A.Index) and isinstance(T.resolve(e.base.ty), T.StringType):  # ADR(s[i]): a byte view
             return f"{self.string_leaf(e)}.byte_ref({self.ref_code(e.base)}, {self.ex(e.indices[0])})"

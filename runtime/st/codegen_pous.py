@@ -15,7 +15,7 @@ from . import ast as A
 from . import types as T
 from .codegen_base import FnState, py_literal
 from .codegen_sfc import SFC_SLOT, SFC_SLOT_TYPE, SfcGen
-from .symbols import POUInfo
+from .symbols import POUInfo, copied_in_out
 
 
 class PouGen(SfcGen):
@@ -288,6 +288,12 @@ class PouGen(SfcGen):
                 if v.init_value is not None:
                     idx = self.accessor(v.location, T.base_elementary(v.type))
                     self.emit(f"_A{idx}s({py_literal(v.init_value)})")
+                continue
+            if copied_in_out(v, self.profile):  # the instance's own copy (MatIEC)
+                if T.resolve(v.type).is_aggregate:
+                    self._emit_init(f"self.{v.pyname}", v.type, v.init_value)
+                else:
+                    self.emit(f"self.{v.pyname} = _CellRef({self._scalar_plan_code(v.type, v.init_value)})")
                 continue
             if v.section == "VAR_IN_OUT":
                 self.emit(f"self.{v.pyname} = None")

@@ -330,6 +330,8 @@ class StmtGen(CodeGenBase):
             self._property_store(target, code)  # codegen_oop.py
         elif isinstance(target, A.Name):
             self._store_name(target.sym, code)
+        elif isinstance(target, A.Member) and self._copied_cell(target.sym):
+            self.emit(f"{self.ex(target.base)}.{target.sym.pyname}.set({code})")
         elif isinstance(target, A.Member):
             self.emit(f"{self.ex(target.base)}.{target.sym.pyname} = {code}")
         elif isinstance(target, A.Index) and isinstance(T.resolve(target.base.ty), T.StringType):

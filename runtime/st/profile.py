@@ -41,9 +41,11 @@ class Profile:
     # (unless run with -n): there the first '*)' ends the comment.
     nested_comments: bool
     # Assigning a VAR_INPUT inside its own POU is an 'error' (E030) or a
-    # 'warning' (W130). IEC 61131-3 reads inputs only and MatIEC rejects
-    # the assignment; CODESYS and TwinCAT accept it: the input then holds
-    # the new value until the next call passes another.
+    # 'warning' (W130). IEC 61131-3 reads inputs only; CODESYS, TwinCAT and
+    # MatIEC accept it (MatIEC's lvalue checks refuse writes to FOR
+    # variables, constants and another block's outputs, not to the POU's
+    # own inputs: OSCAT's port to Beremiz writes them in 39 places): the
+    # input then holds the new value until the next call passes another.
     own_input_assignment: str
     # A comma may end a call's argument list, F(a := 1, b := 2,): TwinCAT 3
     # accepts it (blark, a parser of TwinCAT sources, does too). The IEC
@@ -91,6 +93,27 @@ class Profile:
     # "LTIME": 0 .. 2^32-1 ms, 0 .. 2^64-1 ns), and TcUnit's documentation
     # and tests use the largest LTIME. The value is kept in the type's bits.
     unsigned_durations: bool = False
+    # The names IEC 61131-3 ed.3 gave its new elementary types (LTIME,
+    # LDATE, LTOD, LDT, LTIME_OF_DAY, LDATE_AND_TIME, CHAR, WCHAR) name no
+    # variable (E011; CODESYS and TwinCAT refuse them too). MatIEC reads
+    # ed.2, where they are plain names: a POU's variable may take one (the
+    # OSCAT port to Beremiz has a variable LTIME and one LDT); it hides the
+    # clock function LTIME() in that POU only. A global still may not.
+    ed3_type_names_reserved: bool = True
+    # A FUNCTION_BLOCK's VAR_IN_OUT is a variable of the instance, copied
+    # from the argument before the call and back into it after (MatIEC: the
+    # FB's C structure holds the value, the call sets it and reads it back).
+    # So inst.io is read and written from outside as an input is, and a call
+    # may leave it out: the body then works on the value the instance holds.
+    # Elsewhere a VAR_IN_OUT is a reference bound at each call: E042 when a
+    # call leaves it out, E013 when named from outside.
+    fb_in_out_copied: bool = False
+    # TRUNC(x), the name without a type, gives the integer type its context
+    # wants: the target of the assignment, the parameter, the other operand
+    # (MatIEC declares TRUNC once per integer type, as IEC 61131-3 ed.2
+    # Table 22 gives it ANY_REAL -> ANY_INT, and picks the one that fits),
+    # DINT without one. Elsewhere TRUNC is DINT (CODESYS).
+    trunc_from_context: bool = False
 
 
 IEC = Profile(
@@ -131,7 +154,15 @@ TWINCAT = replace(CODESYS, name="twincat", trailing_comma_in_calls=True, unsigne
 # nothing implicitly, bit operators want ANY_BIT). Its process image is the
 # runtime's business (OpenPLC's per-size areas are not modelled): byte
 # offsets as in IEC.
-MATIEC = replace(IEC, name="matiec", bool_from_0_1=True)
+MATIEC = replace(
+    IEC,
+    name="matiec",
+    bool_from_0_1=True,
+    own_input_assignment="warning",
+    ed3_type_names_reserved=False,
+    fb_in_out_copied=True,
+    trunc_from_context=True,
+)
 
 SCHNEIDER = Profile(
     name="schneider",

@@ -8,6 +8,7 @@ import re
 from dataclasses import dataclass, field
 from typing import Any
 
+from . import types as T
 from .types import FBType, Type
 
 _IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
@@ -124,3 +125,16 @@ class CallInfo:
     param_types: list = field(default_factory=list)  # std: the type each arg is converted to
     en: Any = None  # the EN argument (IEC 61131-3 ed.3 6.6.1.6): the call runs only when it is TRUE
     eno: Any = None  # std/operator: the ENO => target (a POU's own ENO is one of its outputs)
+
+
+def copied_in_out(sym: VarSymbol, profile: Any) -> bool:
+    """Whether sym is a FUNCTION_BLOCK's VAR_IN_OUT that the profile keeps
+    as the instance's own copy (Profile.fb_in_out_copied, MatIEC): a value
+    of its type, not a reference to the caller's variable. An ARRAY[*], a
+    REFERENCE TO and an FB instance stay references."""
+    if not profile.fb_in_out_copied or sym.section != "VAR_IN_OUT":
+        return False
+    if sym.owner is None or sym.owner.kind != "FUNCTION_BLOCK" or T.is_reference(sym.type):
+        return False
+    t = T.resolve(sym.type)
+    return not (t.is_fb or (isinstance(t, T.ArrayType) and t.variable_length))

@@ -183,6 +183,9 @@ ELEMENTARY["TOD"] = TOD
 ELEMENTARY["DT"] = DT
 ELEMENTARY["LTOD"] = LTOD
 ELEMENTARY["LDT"] = LDT
+# The names IEC 61131-3 ed.3 added (ed.2 and MatIEC have none of these
+# types): plain names in ed.2 code (Profile.ed3_type_names_reserved).
+ED3_NAMES = frozenset(("LTIME", "LDATE", "LTIME_OF_DAY", "LTOD", "LDATE_AND_TIME", "LDT", "CHAR", "WCHAR"))
 
 
 # ---------------------------------------------------------------- strings

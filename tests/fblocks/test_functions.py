@@ -383,6 +383,8 @@ def test_time_entries():
     assert call("SUB_TIME", 1000, 1500) == -500
     assert call("MUL_TIME", 1000, 1.5) == 1500
     assert call("DIV_TIME", 10, 4) == 2
+    # ed.2's names of the last two (MatIEC has them; OSCAT's port calls MULTIME)
+    assert call("MULTIME", 1000, 1.5) == 1500 and call("DIVTIME", 10, 4) == 2
     assert call("ADD_TOD_TIME", 86_399_999, 1) == 0
     assert call("ADD_DT_TIME", DAY, 1500) == DAY + 1
     assert call("SUB_DATE_DATE", DAY + 86_400, DAY) == 86_400_000

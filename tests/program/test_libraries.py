@@ -145,6 +145,18 @@ def test_a_changed_library_file_is_parsed_again(tmp_path):
     assert run(1, src, (Library(lib, "L"),))[1].get("x") == 2
 
 
+def test_a_librarys_generated_and_hidden_folders_are_no_sources(tmp_path):
+    # a Beremiz project as a library (OSCAT's port): build/ holds matiec's
+    # input, a copy of every POU; .git and the like hold nothing to compile
+    lib = tmp_path / "lib"
+    for sub, name, value in (("", "K", 1), ("build", "K", 2), (".git", "K", 3), ("more", "M", 4)):
+        (lib / sub).mkdir(parents=True, exist_ok=True)
+        (lib / sub / f"{name.lower()}.st").write_text(f"FUNCTION {name} : INT\n{name} := {value};\nEND_FUNCTION\n")
+    assert [p.relative_to(lib).as_posix() for p in Library(lib, "L").files()] == ["k.st", "more/m.st"]
+    src = "PROGRAM Main\nVAR x : INT; END_VAR\nx := K() + M();\nEND_PROGRAM\n"
+    assert run(1, src, (Library(lib, "L"),))[1].get("x") == 5
+
+
 def test_the_config_names_libraries(tmp_path):
     from softplc.testing import PLC
 

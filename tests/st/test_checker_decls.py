@@ -3,7 +3,7 @@ their initial values."""
 
 from __future__ import annotations
 
-from .conftest import codes, diagnostics, prog
+from .conftest import codes, diagnostics, prog, run_st
 
 
 def test_retain_where_nothing_can_be_kept_is_a_warning():
@@ -74,3 +74,32 @@ def test_an_elementary_type_name_is_no_variable_name():
     assert "'TIME' is the name of an elementary type" in found[0].message
     assert codes(prog("int : INT; Date : DINT;", "")) == ["E011", "E011"]
     assert codes(prog("time_1 : INT; ton1 : TON;", "")) == []
+
+
+INPUT_CONSTANT = """
+FUNCTION_BLOCK Every
+VAR_INPUT CONSTANT
+    N : UINT;
+    OFS : UINT := 1;
+END_VAR
+VAR_OUTPUT Q : BOOL; END_VAR
+VAR cnt : UINT; END_VAR
+cnt := cnt + 1;
+Q := cnt MOD N = OFS;
+END_FUNCTION_BLOCK
+PROGRAM main
+VAR e : Every; hits : INT; END_VAR
+e(N := 3);
+IF e.Q THEN hits := hits + 1; END_IF;
+END_PROGRAM
+"""
+
+
+def test_a_var_input_constant_is_the_calls_value_not_a_constant():
+    # CODESYS's VAR_INPUT CONSTANT (OSCAT's SCHEDULER_2): read-only in the
+    # block, given by the call; N's declared value (0) is no constant to
+    # fold: MOD N is no division by zero
+    r = run_st(INPUT_CONSTANT, cycles=9)
+    assert r.get("hits") == 3  # cycles 1, 4, 7
+    written = INPUT_CONSTANT.replace("cnt := cnt + 1;", "cnt := cnt + 1;\nN := 2;")
+    assert codes(written) == ["E030"]

@@ -1,5 +1,6 @@
 """Source files other than plain ST, read as ST (issue 18): a PLCopen XML
-export (plcopen.py), TwinCAT 3 files and projects (twincat.py).
+export (plcopen.py), TwinCAT 3 files and projects (twincat.py), a CODESYS
+2.3 export (codesys23.py: a .EXP, or a .TXT holding its markers).
 ``st_views`` gives the texts to parse for a file; the diagnostics'
 positions are those of the original file (view.py). ``source_files``
 replaces a project file (.plcproj) by the sources it lists."""
@@ -11,6 +12,7 @@ from ..il import lowered_for_reading
 from ..st_grammar import grammar
 from . import fbd, ld  # noqa: F401  (they register the FBD and LD body languages)
 from .bodies import LANGUAGES
+from .codesys23 import codesys23_views, is_codesys23
 from .plcopen import plcopen_views
 from .sfc import sfc_body
 from .twincat import plcproj_files, twincat_views
@@ -26,7 +28,10 @@ _READERS = {
     ".tcdut": twincat_views,
     ".tcgvl": twincat_views,
     ".tcio": twincat_views,
+    ".exp": codesys23_views,
 }
+# Suffixes read by an importer only when the text is of its kind.
+_SNIFFED = {".txt": (is_codesys23, codesys23_views)}
 _PROJECTS = {".plcproj": plcproj_files}
 
 
@@ -56,12 +61,25 @@ def is_source(name: str) -> bool:
     return name.lower().endswith(".st") or is_imported(name)
 
 
+def _reader(path: str, text: str):
+    """The importer that reads path (by its suffix, or its text), or None
+    for ST."""
+    low = path.lower()
+    for suffix, reader in _READERS.items():
+        if low.endswith(suffix):
+            return reader
+    for suffix, (is_kind, reader) in _SNIFFED.items():
+        if low.endswith(suffix) and is_kind(text):
+            return reader
+    return None
+
+
 def st_views(path: str, text: str, diags: DiagnosticBag) -> list[StView]:
     """The ST texts of a source file: the text itself for ST, the views of
     an imported file (each parsed as a file of that name)."""
-    for suffix, reader in _READERS.items():
-        if path.lower().endswith(suffix):
-            return [v.view() for v in reader(text, path, diags)]
+    reader = _reader(path, text)
+    if reader is not None:
+        return [v.view() for v in reader(text, path, diags)]
     return [StView(text)]
 
 
@@ -69,9 +87,9 @@ def st_plain_lines(path: str, text: str, diags: DiagnosticBag) -> list[list[tupl
     """Per view of a source file, (line of the file, plain ST) of each line
     that holds ST: what st_export writes, with the lines it comes from (a
     project's export writes a file's POUs one by one)."""
-    for suffix, reader in _READERS.items():
-        if path.lower().endswith(suffix):
-            return [v.plain_lines() for v in reader(text, path, diags)]
+    reader = _reader(path, text)
+    if reader is not None:
+        return [v.plain_lines() for v in reader(text, path, diags)]
     return [[(n, line.rstrip()) for n, line in enumerate(text.splitlines(), 1)]]
 
 
@@ -79,10 +97,10 @@ def st_export(path: str, text: str, diags: DiagnosticBag) -> str:
     """An imported file as one plain ST text to read (softplc export-st),
     its IL bodies as the ST they are lowered to (st/il.py); an ST file as it
     is."""
-    for suffix, reader in _READERS.items():
-        if path.lower().endswith(suffix):
-            views = reader(text, path, diags)
-            for v in views:
-                v.replace(lowered_for_reading(v.text(), grammar().lexer))
-            return "\n".join(v.plain() for v in views)
+    reader = _reader(path, text)
+    if reader is not None:
+        views = reader(text, path, diags)
+        for v in views:
+            v.replace(lowered_for_reading(v.text(), grammar().lexer))
+        return "\n".join(v.plain() for v in views)
     return text

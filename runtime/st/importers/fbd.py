@@ -2,7 +2,8 @@
 blocks, connectors, jumps, labels and returns (network.py orders them).
 
 - ``inVariable``: its <expression>, read where a wire takes it (as Beremiz
-  does); ``outVariable``: ``target := value;``; ``inOutVariable``: both (its
+  does); ``outVariable``: ``target := value;`` (nothing, with W202, when no
+  wire reaches it: Beremiz leaves it out too); ``inOutVariable``: both (its
   assignment first, then what reads it). negated/edge/storage modifiers on
   them as on a coil.
 - ``block`` with an instanceName, or of a FUNCTION_BLOCK type: one call a
@@ -111,6 +112,14 @@ def in_variable(net: Net, node: Node, link: Link) -> Expr:
 
 
 def out_variable(net: Net, node: Node) -> None:
+    if not node.ins[0].links:  # nothing to write (Beremiz leaves it out of its ST)
+        net.out.warning(
+            "W202",
+            f"this {node.kind} is not connected: nothing is written to it",
+            node.el,
+            "connect it, or delete it",
+        )
+        return
     value = net.value(node.ins[0], node)
     assert value is not None
     el = node.el

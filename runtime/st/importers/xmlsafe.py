@@ -49,15 +49,17 @@ class PosElement(ET.Element):
         return [e for e in self.iter() if isinstance(e, PosElement) and e.name == name and e is not self]
 
 
+# A line end as expat counts one (XML 1.0 2.11): CR LF, a lone CR (an old
+# Mac editor's, met mixed with CR LF in real Beremiz projects) or LF.
+_LINE_END = re.compile(r"\r\n?|\n")
+
+
 class TextPositions:
     """Where an element's text starts in the XML file it was read from."""
 
     def __init__(self, raw: str) -> None:
         self.raw = raw
-        self.line_starts = [0]
-        for i, ch in enumerate(raw):
-            if ch == "\n":
-                self.line_starts.append(i + 1)
+        self.line_starts = [0] + [m.end() for m in _LINE_END.finditer(raw)]
 
     def start(self, el: PosElement) -> tuple[int, int]:
         """(line, column) of el's text: after its start tag and <![CDATA[.
@@ -66,7 +68,7 @@ class TextPositions:
         off = self.raw.find(">", off) + 1
         if self.raw.startswith("<![CDATA[", off):
             off += len("<![CDATA[")
-        line = self.raw.count("\n", 0, off) + 1
+        line = bisect.bisect_right(self.line_starts, off)
         return line, off - self.line_starts[line - 1] + 1
 
     def attribute(self, el: PosElement, name: str) -> tuple[int, int]:

@@ -165,6 +165,25 @@ def test_a_malformed_network_is_a_coded_error_at_the_element(tmp_path, code, old
     assert (errors[0].pos.line, errors[0].pos.col) == _position(text, at, after)
 
 
+def test_an_output_variable_with_nothing_connected_writes_nothing(tmp_path):
+    # A wire lost in Beremiz (OSCAT's port has one): its ST leaves the
+    # variable out; so does softplc, with W202, and the network still runs
+    text = BEREMIZ.read_text()
+    old = '<connection refLocalId="13" formalParameter="ET" />'
+    assert text.count(old) == 1
+    text = text.replace(old, "")
+    path = tmp_path / "net.xml"
+    path.write_text(text)
+    diags, _ = check_files([str(path)])
+    [d] = diags
+    assert (d.code, d.severity) == ("W202", "warning") and "nothing is written" in d.message
+    assert (d.pos.line, d.pos.col) == _position(text, '<outVariable localId="11"')
+    got = run(path, 8, ["net.et", "net.done"])
+    want = run(BEREMIZ, 8, ["net.et", "net.done"])
+    assert [c["net.done"] for c in got] == [c["net.done"] for c in want]
+    assert {c["net.et"] for c in got} == {0} and want[5]["net.et"] == 50  # et is never written
+
+
 def test_an_element_of_another_language_is_named(tmp_path):
     text = (
         BEREMIZ.read_text()

@@ -80,6 +80,22 @@ def test_an_error_in_a_later_line_of_a_body_keeps_its_column(tmp_path):
     assert d.code == "E013" and (d.pos.line, d.pos.col) == _position_of(text, "E_Mode.Running")
 
 
+def test_lone_carriage_returns_end_lines_as_in_the_xml_parser(tmp_path):
+    # A Beremiz file edited on several systems mixes CR LF with lone CRs:
+    # expat counts each as a line end, and so does the error's position.
+    text = _xml_with_body("Scale := v * kk;").replace("\n", "\r\n")
+    head, tail = text.split("<pous>", 1)
+    text = head.replace("\r\n", "\r") + "<pous>" + tail
+    path = tmp_path / "mixed_line_ends.xml"
+    path.write_bytes(text.encode())
+    diags, sources = check_files([str(path)])
+    [d] = [d for d in diags if d.is_error]
+    lines = text.splitlines()
+    line = next(i for i, s in enumerate(lines, 1) if "kk;" in s)
+    assert d.code == "E010" and (d.pos.line, d.pos.col) == (line, lines[line - 1].index("kk;") + 1)
+    assert "Scale := v * kk;" in d.format(sources)
+
+
 def test_a_pou_in_another_language_is_named_and_the_rest_imported(tmp_path):
     text = XML.read_text().replace(
         "    </pous>",
