@@ -70,6 +70,7 @@ class Literal(Expr):
     value: Any
     type_name: str | None = None
     c_hex: bool = False  # written C-style (0x1F); allowed by profile only
+    doubled_underscore: bool = False  # a number with '__' (16#7f__ff); by profile only
 
 
 @dataclass(slots=True, eq=False)

@@ -118,6 +118,8 @@ class ExprBuilder(BuilderBase):
         except LiteralError as e:
             self._literal_error(e, token)
             value = fallback
+        if "__" in token.value:
+            extra["doubled_underscore"] = True
         return ast.Literal(kind, value, pos=self._tpos(token), **extra)
 
     def int_lit(self, c):
@@ -138,6 +140,8 @@ class ExprBuilder(BuilderBase):
         except LiteralError as e:
             self._literal_error(e, c[0])
             node = ast.Literal("int", 0)
+        if isinstance(node, ast.Literal) and node.kind in ("int", "real") and "__" in c[0].value:
+            node.doubled_underscore = True
         node.pos = self._tpos(c[0])
         return node
 

@@ -11,6 +11,7 @@ from . import ast as A
 from . import types as T
 from .checker_base import BUILTINS, CheckerBase, Scope
 from .conversions import const_repr
+from .profile import names_where
 
 _TIME_KIND = {
     "time": T.TIME,
@@ -81,6 +82,14 @@ class ExprChecks(CheckerBase):
         if e.c_hex and not self.profile.c_hex_literals:
             self.d.error(
                 "E026", "C-style hexadecimal literal", e.pos, f"write 16#{v:X}, or compile with --profile schneider"
+            )
+        if e.doubled_underscore and not self.profile.doubled_underscores:
+            self.d.error(
+                "E003",
+                "two underscores in a row in a number",
+                e.pos,
+                "an underscore may only stand between two digits (the "
+                f"{names_where(lambda p: p.doubled_underscores)} profiles accept doubled ones)",
             )
         if e.kind in _TIME_KIND:
             ty = _TIME_KIND[e.kind]

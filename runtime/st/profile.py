@@ -85,6 +85,11 @@ class Profile:
     # s[i] is the i-th byte of a STRING (from 0; a WSTRING's i-th WORD),
     # read and written: CODESYS V3 and TwinCAT 3. IEC strings are not indexed.
     string_index: bool = False
+    # Two underscores in a row in a number (16#7f_ff__ff): TwinCAT 3 (and
+    # CODESYS V3, whose compiler it is) skips every underscore between the
+    # digits; IEC 61131-3 (ed.3 Table 5: digit {['_'] digit}) and MatIEC
+    # take one between two digits only (E003).
+    doubled_underscores: bool = False
 
 
 IEC = Profile(
@@ -117,6 +122,7 @@ CODESYS = Profile(
     literal_range="warning",
     loose_enums=True,
     string_index=True,
+    doubled_underscores=True,
 )
 
 TWINCAT = replace(CODESYS, name="twincat", trailing_comma_in_calls=True)
