@@ -108,7 +108,7 @@ class CheckerBase:
                 "E044",
                 "a comma ends the argument list",
                 pos,
-                f"remove it (the {names_where(lambda p: p.trailing_comma_in_calls)} profile accepts it)",
+                f"remove it (the {names_where(lambda p: p.trailing_comma_in_calls)} profiles accept it)",
             )
 
     def _elsewhere(self, name: str) -> str:

@@ -46,9 +46,10 @@ class Profile:
     # the new value until the next call passes another.
     own_input_assignment: str
     # A comma may end a call's argument list, F(a := 1, b := 2,): TwinCAT 3
-    # accepts it (blark, a parser of TwinCAT sources, does too). The IEC
-    # 61131-3 grammar has no such comma, MatIEC rejects it, and no CODESYS
-    # documentation shows one, so only twincat takes it.
+    # accepts it (blark, a parser of TwinCAT sources, does too), and so does
+    # CODESYS V3: a CODESYS export that CODESYS compiles has calls ending
+    # "MqttRetain := TRUE,\n);". The IEC 61131-3 grammar has no such comma
+    # and MatIEC rejects it.
     trailing_comma_in_calls: bool
     # The untyped literals 0 and 1 go into a BOOL (assigned, passed, as an
     # initial value) as FALSE and TRUE: CODESYS, TwinCAT, Schneider and
@@ -117,7 +118,7 @@ CODESYS = Profile(
     c_hex_literals=False,
     nested_comments=True,
     own_input_assignment="warning",
-    trailing_comma_in_calls=False,
+    trailing_comma_in_calls=True,
     bool_from_0_1=True,
     literal_range="warning",
     loose_enums=True,
@@ -125,7 +126,7 @@ CODESYS = Profile(
     doubled_underscores=True,
 )
 
-TWINCAT = replace(CODESYS, name="twincat", trailing_comma_in_calls=True)
+TWINCAT = replace(CODESYS, name="twincat")
 
 # MatIEC, the compiler of OpenPLC and Beremiz: strict IEC types (it converts
 # nothing implicitly, bit operators want ANY_BIT). Its process image is the
