@@ -40,6 +40,8 @@ class TypeChecks(CheckerBase):
                 )
                 if decl.kind != "FUNCTION":
                     info.fbtype = T.FBType(decl.name, info)
+                if library and key == "F_TRIG" and self.profile.f_trig_first_call_edge:
+                    _memory_starts_false(decl)
                 self.pous[key] = info
             elif isinstance(decl, A.Interface):
                 self._collect_interface(decl, library)
@@ -263,3 +265,14 @@ class TypeChecks(CheckerBase):
             return self._enum_type("(anonymous enum)", spec)
         self.d.error("E012", "unsupported type", spec.pos)
         return None
+
+
+def _memory_starts_false(f_trig: A.POU) -> None:
+    """The standard F_TRIG as MatIEC declares it: its memory M (NOT CLK in
+    the last call) without the initial value TRUE of fblocks/iec/standard_fbs.st,
+    so the first call with CLK FALSE is an edge (the matiec profile). The
+    library's AST is this compilation's own copy (parse_cached)."""
+    for block in f_trig.var_blocks:
+        for d in block.decls:
+            if d.name.upper() == "M":
+                d.init = None

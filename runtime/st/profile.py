@@ -91,6 +91,11 @@ class Profile:
     # digits; IEC 61131-3 (ed.3 Table 5: digit {['_'] digit}) and MatIEC
     # take one between two digits only (E003).
     doubled_underscores: bool = False
+    # F_TRIG's memory starts FALSE, so its first call with CLK FALSE is a
+    # falling edge: MatIEC's standard library declares M without an initial
+    # value. IEC 61131-3 ed.3 Table 44, CODESYS and TwinCAT start it TRUE
+    # (no edge until CLK has been TRUE).
+    f_trig_first_call_edge: bool = False
 
 
 IEC = Profile(
@@ -132,7 +137,7 @@ TWINCAT = replace(CODESYS, name="twincat")
 # nothing implicitly, bit operators want ANY_BIT). Its process image is the
 # runtime's business (OpenPLC's per-size areas are not modelled): byte
 # offsets as in IEC.
-MATIEC = replace(IEC, name="matiec", bool_from_0_1=True)
+MATIEC = replace(IEC, name="matiec", bool_from_0_1=True, f_trig_first_call_edge=True)
 
 SCHNEIDER = Profile(
     name="schneider",
