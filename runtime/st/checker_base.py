@@ -90,6 +90,9 @@ class CheckerBase:
         self._image_probe = image  # to validate direct addresses (None: not checked)
         self._setter_only: list = []  # uses of a PROPERTY without GET (checker_oop.py)
         self._assigned: set = set()  # ids of the assignment targets among them
+        #: id -> (Member, VarSymbol, FBType): an FB's internal variable read
+        #: from outside where the profile allows it (W113; E013 when written)
+        self._internal_reads: dict = {}
 
     def _is_bool(self, ty: T.Type) -> bool:
         e = T.base_elementary(ty)
@@ -142,6 +145,10 @@ class CheckerBase:
 
         # checker_exprs
         def expr(self, e: A.Expr, scope: Scope, expected: T.Type | None = None) -> T.Type | None: ...
+
+        def internal_written(self, e: A.Member) -> bool: ...
+
+        def report_internal_reads(self) -> None: ...
 
         def _address_fits(self, addr: A.LocatedAddress, ty: T.ElementaryType | None, pos: A.Pos) -> bool: ...
 

@@ -325,18 +325,53 @@ class ExprChecks(CheckerBase):
                 )
                 return None
             inside = scope.pou is b.pou or self.inside_fb(scope, b.pou)
-            if v.section not in ("VAR_INPUT", "VAR_OUTPUT") and not inside:
+            if v.section in ("VAR", "VAR_STAT") and not inside and self.profile.internal_read == "warning":
+                # read from outside: W113 once checking is done, unless written (E013)
+                self._internal_reads[id(e)] = (e, v, b)
+            elif v.section not in ("VAR_INPUT", "VAR_OUTPUT") and not inside:
                 self.d.error(
                     "E013",
                     f"'{v.name}' is internal to {b.name}",
                     e.pos,
-                    "only VAR_INPUT and VAR_OUTPUT are visible outside a block",
+                    "only VAR_INPUT and VAR_OUTPUT are visible outside a block"
+                    + (
+                        f" (the {names_where(lambda p: p.internal_read == 'warning')} profiles let a VAR be read)"
+                        if v.section in ("VAR", "VAR_STAT")
+                        else ""
+                    ),
                 )
                 return None
             e.sym = v
             return v.type
         self.d.error("E013", f"{bty} has no members", e.pos)
         return None
+
+    def internal_written(self, e: A.Member) -> bool:
+        """E013 when e is an FB's internal variable read from outside where
+        the profile allows reading it (_member_of) and this use writes it."""
+        hit = self._internal_reads.pop(id(e), None)
+        if hit is None:
+            return False
+        _e, v, b = hit
+        self.d.error(
+            "E013",
+            f"'{v.name}' is internal to {b.name}: it may be read from outside, not written",
+            e.pos,
+            "give the block an input (or a method or property) that sets it",
+        )
+        return True
+
+    def report_internal_reads(self) -> None:
+        """W113 for each internal variable of an FB instance read from
+        outside (CODESYS, TwinCAT: static analysis rule SA0102)."""
+        for e, v, b in self._internal_reads.values():
+            self.d.warning(
+                "W113",
+                f"'{v.name}' is internal to {b.name}: read from outside",
+                e.pos,
+                "make it a VAR_OUTPUT (or a property) of the block if it is meant to be read",
+            )
+        self._internal_reads.clear()
 
     def _index(self, e: A.Index, scope: Scope) -> T.Type | None:
         bty = self.expr(e.base, scope)

@@ -234,6 +234,8 @@ class StmtChecks(CheckerBase):
                 if isinstance(e.base, A.Name) and isinstance(e.base.sym, POUInfo):
                     return  # Prog.P := v: a PROGRAM's property (checker_oop.py)
             if isinstance(base_ty, T.FBType) and isinstance(sym, VarSymbol):
+                if self.internal_written(e):  # checker_exprs.py
+                    return
                 if sym.section == "VAR_OUTPUT" and not self.inside_fb(scope, base_ty.pou):
                     self.d.error(
                         "E030",

@@ -41,8 +41,8 @@ Code ranges (keep them stable, users search for them):
   E220-E229  projects as a whole (check of a project: libraries, entries)
   E230-E239  the libraries softplc ships (program/shipped.py, fblocks/libs):
              W230 one that cannot do its work here (hardware, a service)
-  W1xx       warnings (same tens as the error they soften: W121 ~ E021,
-             W122 ~ E022, W130 ~ E030 where the profile allows what IEC
+  W1xx       warnings (same tens as the error they soften: W113 ~ E013,
+             W121 ~ E021, W122 ~ E022, W130 ~ E030 where the profile allows what IEC
              forbids; W102-W103 the parser: W102 MatIEC embedded C, W103 an
              attribute not honoured, pragmas.py)
 """

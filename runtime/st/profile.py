@@ -96,6 +96,11 @@ class Profile:
     # value. IEC 61131-3 ed.3 Table 44, CODESYS and TwinCAT start it TRUE
     # (no edge until CLK has been TRUE).
     f_trig_first_call_edge: bool = False
+    # An FB instance's local VAR read from outside (x := inst.local) is an
+    # 'error' (E013) or a 'warning' (W113): CODESYS and TwinCAT permit read
+    # access (their static analysis flags it, rule SA0102); IEC 61131-3
+    # shows an instance's inputs and outputs only. A write stays E013.
+    internal_read: str = "error"
 
 
 IEC = Profile(
@@ -129,6 +134,7 @@ CODESYS = Profile(
     loose_enums=True,
     string_index=True,
     doubled_underscores=True,
+    internal_read="warning",
 )
 
 TWINCAT = replace(CODESYS, name="twincat")

@@ -1,0 +1,76 @@
+"""Dialect rules of function blocks and methods met in real CODESYS and
+TwinCAT code (issue 30): what each profile takes, seen from a program a user
+compiles and runs."""
+
+from __future__ import annotations
+
+import pytest
+
+from .conftest import codes, diagnostics, run_st
+
+COUNTER = """
+FUNCTION_BLOCK FB_Counter
+VAR_INPUT
+    up : BOOL;
+END_VAR
+VAR
+    count : INT := 7;
+    history : ARRAY[0..2] OF INT := [1, 2, 3];
+END_VAR
+VAR_TEMP
+    scratch : INT;
+END_VAR
+IF up THEN
+    count := count + 1;
+END_IF
+END_FUNCTION_BLOCK
+"""
+
+
+def _main(body: str) -> str:
+    return COUNTER + f"PROGRAM main\nVAR\n    c : FB_Counter;\n    n, h : INT;\nEND_VAR\n{body}\nEND_PROGRAM\n"
+
+
+@pytest.mark.parametrize("profile", ["codesys", "twincat"])
+def test_an_instances_internal_var_is_read_from_outside_with_a_warning(profile):
+    # CODESYS and TwinCAT permit read access (their static analysis flags
+    # it, SA0102): the value is the instance's own
+    src = _main("c(up := TRUE);\nn := c.count;\nh := c.history[2];")
+    ds = diagnostics(src, profile)
+    assert [(d.code, d.pos.line, d.pos.col) for d in ds] == [("W113", 23, 6), ("W113", 24, 6)]
+    assert ds[0].message == "'count' is internal to FB_Counter: read from outside"
+    r = run_st(src, cycles=3, profile=profile)
+    assert (r.get("n"), r.get("h")) == (10, 3)
+
+
+@pytest.mark.parametrize("profile", ["codesys", "twincat"])
+@pytest.mark.parametrize("write", ["c.count := 5;", "c.history[1] := 5;"])
+def test_writing_it_from_outside_stays_an_error(profile, write):
+    ds = diagnostics(_main(write), profile)
+    assert [d.code for d in ds] == ["E013"]
+    assert ds[0].message.endswith("it may be read from outside, not written")
+
+
+def test_passing_it_to_a_var_in_out_is_a_write():
+    src = COUNTER + """
+FUNCTION Bump : BOOL
+VAR_IN_OUT v : INT; END_VAR
+v := v + 1;
+END_FUNCTION
+PROGRAM main
+VAR c : FB_Counter; END_VAR
+Bump(v := c.count);
+END_PROGRAM
+"""
+    assert codes(src) == ["E013"]
+
+
+@pytest.mark.parametrize("profile", ["iec", "matiec", "schneider"])
+def test_the_strict_profiles_refuse_the_read(profile):
+    ds = diagnostics(_main("n := c.count;"), profile)
+    assert [d.code for d in ds] == ["E013"]
+    assert "the codesys and twincat profiles let a VAR be read" in ds[0].hint
+
+
+def test_a_var_temp_is_no_instance_variable_anywhere():
+    assert codes(_main("n := c.scratch;"), "codesys") == ["E013"]
