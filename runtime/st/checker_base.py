@@ -191,6 +191,10 @@ class CheckerBase:
         # checker_sfc
         def is_sfc_action(self, pou: POUInfo, key: str) -> bool: ...
 
+        # checker_oop
+        @staticmethod
+        def owner_fb(scope: Scope) -> POUInfo | None: ...
+
         # checker_calls
         def call(self, e: A.Call, scope: Scope, as_statement: bool) -> T.Type | None: ...
 

@@ -52,7 +52,9 @@ def test_writing_it_from_outside_stays_an_error(profile, write):
 
 
 def test_passing_it_to_a_var_in_out_is_a_write():
-    src = COUNTER + """
+    src = (
+        COUNTER
+        + """
 FUNCTION Bump : BOOL
 VAR_IN_OUT v : INT; END_VAR
 v := v + 1;
@@ -62,6 +64,7 @@ VAR c : FB_Counter; END_VAR
 Bump(v := c.count);
 END_PROGRAM
 """
+    )
     assert codes(src) == ["E013"]
 
 
@@ -74,3 +77,88 @@ def test_the_strict_profiles_refuse_the_read(profile):
 
 def test_a_var_temp_is_no_instance_variable_anywhere():
     assert codes(_main("n := c.scratch;"), "codesys") == ["E013"]
+
+
+MODES = """
+FUNCTION_BLOCK FB_Modes
+VAR CONSTANT
+    MODE_SLOW : INT := 1;
+    MODE_FAST : INT := 2;
+    DEPTH : INT := 3;
+END_VAR
+VAR
+    n : INT;
+    mode : INT := 2;
+    last : INT;
+END_VAR
+n := n + 1;
+END_FUNCTION_BLOCK
+ACTION FB_Modes.Restart:
+n := 0;
+END_ACTION
+METHOD Apply : INT
+VAR
+    buf : ARRAY[1..DEPTH] OF INT;
+END_VAR
+Restart();
+CASE mode OF
+    MODE_SLOW: n := 10;
+    MODE_FAST: n := 20;
+END_CASE
+buf[DEPTH] := n;
+last := buf[DEPTH];
+Apply := DINT_TO_INT(UPPER_BOUND(buf, 1));
+END_METHOD
+PROGRAM main
+VAR
+    m : FB_Modes;
+    bound, before, after : INT;
+END_VAR
+m();
+m();
+before := m.n;
+bound := m.Apply();
+after := m.n;
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("profile", ["codesys", "twincat", "iec"])
+def test_a_method_calls_its_blocks_action_and_uses_its_constants(profile):
+    # CODESYS and TwinCAT: a METHOD sees its block's actions and its VAR
+    # CONSTANTs, as CASE labels and as array bounds alike
+    src = MODES.replace("before := m.n;", "").replace("after := m.n;", "")
+    r = run_st(src, profile=profile)
+    assert r.get("bound") == 3
+    r = run_st(MODES, profile="codesys")
+    assert (r.get("before"), r.get("after"), r.get("m.last")) == (2, 20, 20)
+
+
+def test_a_derived_blocks_method_calls_the_base_action():
+    src = """
+FUNCTION_BLOCK FB_Base
+VAR
+    n : INT;
+END_VAR
+n := n + 1;
+END_FUNCTION_BLOCK
+ACTION FB_Base.Restart:
+n := 0;
+END_ACTION
+FUNCTION_BLOCK FB_Derived EXTENDS FB_Base
+n := 5;
+END_FUNCTION_BLOCK
+METHOD Clear : BOOL
+Restart();
+Clear := n = 0;
+END_METHOD
+PROGRAM main
+VAR
+    d : FB_Derived;
+    cleared : BOOL;
+END_VAR
+d();
+cleared := d.Clear();
+END_PROGRAM
+"""
+    assert run_st(src).get("cleared") is True
