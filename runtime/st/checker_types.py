@@ -104,6 +104,10 @@ class TypeChecks(CheckerBase):
                     return None
                 ty = T.AliasType(decl.name, target)
             self.types[key] = ty
+            if isinstance(ty, T.EnumType) and isinstance(decl.init, A.Name) and decl.init.name.upper() in ty.values:
+                # its own value, written bare in its TYPE (`(NONE, ...) := NONE;`): CODESYS and
+                # TwinCAT take it there even when the enumeration is qualified_only
+                decl.init = A.EnumLiteral(decl.name, decl.init.name, pos=decl.init.pos)
             if decl.init is not None:
                 plan = self.init_value(ty, decl.init, Scope(None), decl.name)
                 if isinstance(ty, T.EnumType):
