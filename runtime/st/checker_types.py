@@ -13,6 +13,7 @@ from .checker_base import CheckerBase, Scope
 from .checker_refs import spec_kind
 from .limits import MAX_STRING_LENGTH, MAX_VAR_ELEMENTS
 from .pragmas import has_attribute
+from .profile import names_where
 from .symbols import POUInfo, pyname
 
 
@@ -158,6 +159,8 @@ class TypeChecks(CheckerBase):
                 return T.ELEMENTARY[key]
             if key in ("STRING", "WSTRING"):
                 return T.StringType(self.profile.default_string_length, key == "WSTRING")
+            if key == "BIT" and self.profile.bit_type and key not in self.type_decls:
+                return T.BIT
             ty = self._resolve_named_type(key, spec.pos)
             if ty is not None:
                 return ty
@@ -180,6 +183,14 @@ class TypeChecks(CheckerBase):
                     f"generic type '{spec.name}' cannot be used in a declaration",
                     spec.pos,
                     "use a concrete type such as INT or REAL",
+                )
+                return None
+            if key == "BIT":
+                self.d.error(
+                    "E012",
+                    "BIT is a CODESYS type",
+                    spec.pos,
+                    f"write BOOL (the {names_where(lambda p: p.bit_type)} profiles have BIT)",
                 )
                 return None
             self.d.error(

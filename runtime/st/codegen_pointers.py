@@ -61,8 +61,8 @@ class PointerGen(CodeGenBase):
         structure at the field's offset, so that ADR(s.a) + SIZEOF(s.a)
         reaches the next field as in CODESYS's memory (st/rt_bytes.py)."""
         st = T.resolve(e.base.ty)
-        if not isinstance(st, T.StructType) or not isinstance(e.sym, T.StructField):
-            return None
+        if not isinstance(st, T.StructType) or not isinstance(e.sym, T.StructField) or e.sym.type is T.BIT:
+            return None  # (ADR of a BIT: a reference to its BOOL)
         unit = rt_bytes.layout_of(e.ty)
         lay = rt_bytes.layout_of(st)
         offsets = sizes.field_offsets(st)

@@ -101,6 +101,10 @@ class Profile:
     # access (their static analysis flags it, rule SA0102); IEC 61131-3
     # shows an instance's inputs and outputs only. A write stays E013.
     internal_read: str = "error"
+    # BIT, CODESYS's one-bit BOOL: consecutive BIT fields of a STRUCT share
+    # a byte ("Data type: BIT"), so SIZEOF, ADR and MEMCPY see them packed.
+    # IEC 61131-3 and the other dialects have no such type (E012).
+    bit_type: bool = False
 
 
 IEC = Profile(
@@ -135,6 +139,7 @@ CODESYS = Profile(
     string_index=True,
     doubled_underscores=True,
     internal_read="warning",
+    bit_type=True,
 )
 
 TWINCAT = replace(CODESYS, name="twincat")

@@ -330,6 +330,10 @@ class NullType(Type):
 ADDR = SchneiderAddrType()
 NULL = NullType()
 
+#: CODESYS's BIT (profiles codesys, twincat): a BOOL in every use, but a run of
+#: BIT fields of a STRUCT shares bytes, one bit each (st/sizes.py)
+BIT = AliasType("BIT", BOOL)
+
 
 def resolve(t: Type) -> Type:
     """Follow aliases."""

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from .conftest import codes, run_st
+from .conftest import codes, diagnostics, run_st
 
 QUALIFIED_DEFAULT = """
 {attribute 'qualified_only'}
@@ -41,3 +41,99 @@ def test_a_qualified_only_enumeration_names_its_default_bare_in_its_type(profile
 
 def test_elsewhere_its_values_stay_qualified():
     assert codes(QUALIFIED_DEFAULT.replace("m = E_Mode.MANUAL", "m = MANUAL")) == ["E018"]
+
+
+BITS = """
+TYPE ST_Status :
+STRUCT
+    bReady : BIT;
+    bBusy : BIT;
+    bError : BIT;
+    nCode : INT;
+    b0, b1, b2, b3, b4, b5, b6, b7, b8 : BIT;
+END_STRUCT
+END_TYPE
+PROGRAM main
+VAR
+    s, copy : ST_Status;
+    size : UDINT;
+    pb, pc : POINTER TO BYTE;
+    flags, code, packed8, ninth : BYTE;
+    i : INT;
+END_VAR
+s.bReady := TRUE;
+s.bError := TRUE;
+s.nCode := 258;
+s.b0 := TRUE;
+s.b7 := TRUE;
+s.b8 := TRUE;
+size := SIZEOF(s);
+pb := ADR(s);
+flags := pb^;
+pb := ADR(s) + 2;
+code := pb^;
+pb := ADR(s) + 4;
+packed8 := pb^;
+pb := ADR(s) + 5;
+ninth := pb^;
+FOR i := 0 TO 5 DO
+    pb := ADR(s) + i;
+    pc := ADR(copy) + i;
+    pc^ := pb^;
+END_FOR
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("profile", ["codesys", "twincat"])
+def test_bit_fields_of_a_struct_share_bytes(profile):
+    # CODESYS "Data type: BIT": consecutive BIT fields are packed eight to a
+    # byte, the first in bit 0: bReady, bBusy, bError in byte 0, nCode at 2,
+    # b0..b7 in byte 4, b8 alone in byte 5; the whole rounded up to INT's 2
+    r = run_st(BITS, profile=profile)
+    assert r.get("size") == 6
+    assert (r.get("flags"), r.get("code"), r.get("packed8"), r.get("ninth")) == (0b101, 2, 0b1000_0001, 1)
+    # a byte-wise copy (as MEMCPY makes it) carries every bit over
+    assert [r.get(f"copy.{f}") for f in ("bReady", "bBusy", "bError", "nCode", "b0", "b6", "b7", "b8")] == [
+        True,
+        False,
+        True,
+        258,
+        True,
+        False,
+        True,
+        True,
+    ]
+
+
+def test_a_bit_is_a_bool_in_expressions():
+    src = """
+FUNCTION_BLOCK FB_Flags
+VAR_INPUT
+    set : BOOL;
+END_VAR
+VAR
+    flag : BIT;
+END_VAR
+VAR_OUTPUT
+    q : BOOL;
+END_VAR
+flag := set OR flag;
+q := flag AND TRUE;
+END_FUNCTION_BLOCK
+PROGRAM main
+VAR
+    f : FB_Flags;
+    q : BOOL;
+END_VAR
+f(set := TRUE);
+f(set := FALSE, q => q);
+END_PROGRAM
+"""
+    assert run_st(src).get("q") is True
+
+
+@pytest.mark.parametrize("profile", ["iec", "matiec", "schneider"])
+def test_bit_is_codesys_only(profile):
+    ds = [d for d in diagnostics(BITS, profile) if d.code == "E012"]
+    assert len(ds) == 12 and ds[0].message == "BIT is a CODESYS type"
