@@ -105,6 +105,12 @@ class Profile:
     # a byte ("Data type: BIT"), so SIZEOF, ADR and MEMCPY see them packed.
     # IEC 61131-3 and the other dialects have no such type (E012).
     bit_type: bool = False
+    # An initial value that is no constant (`nVal : INT := LowerLimit;`,
+    # `topic : STRING := CONCAT(base, '/x');`) is computed when the
+    # variable is initialised, in declaration order: CODESYS and TwinCAT
+    # take "any valid ST expression" there ("Variable Initialization").
+    # IEC 61131-3 and the other dialects want a constant (E024).
+    initial_values_at_start: bool = False
 
 
 IEC = Profile(
@@ -140,6 +146,7 @@ CODESYS = Profile(
     doubled_underscores=True,
     internal_read="warning",
     bit_type=True,
+    initial_values_at_start=True,
 )
 
 TWINCAT = replace(CODESYS, name="twincat")
