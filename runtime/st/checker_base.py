@@ -93,6 +93,9 @@ class CheckerBase:
         #: id -> (Member, VarSymbol, FBType): an FB's internal variable read
         #: from outside where the profile allows it (W113; E013 when written)
         self._internal_reads: dict = {}
+        #: the global variable list whose variable's initial value is being
+        #: checked: its qualified_only names may go bare there (namespaces.py)
+        self.initialising_list: str | None = None
 
     def _is_bool(self, ty: T.Type) -> bool:
         e = T.base_elementary(ty)

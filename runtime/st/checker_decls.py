@@ -209,6 +209,16 @@ class DeclChecks(CheckerBase):
     def _check_var_init(self, sym: VarSymbol, scope: Scope) -> None:
         if id(sym) in self._inited:
             return
+        if sym.owner is None:  # a global: its own list's names may go bare (namespaces.py)
+            self.initialising_list = getattr(self, "list_of", {}).get(sym.name.upper())
+            try:
+                self._var_init(sym, scope)
+            finally:
+                self.initialising_list = None
+            return
+        self._var_init(sym, scope)
+
+    def _var_init(self, sym: VarSymbol, scope: Scope) -> None:
         if sym.fb_init is not None:
             self._check_fb_init_var(sym, scope)
             return

@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import pytest
 
+from softplc.runtime.program import check_files, compile_files
+
 from .conftest import diagnostics, run_st
 
 FROM_INPUT = """
@@ -90,3 +92,30 @@ def test_the_strict_profiles_want_a_constant(profile):
 def test_a_constant_still_wants_a_constant():
     src = "VAR_GLOBAL\n    g : INT := 1;\nEND_VAR\nVAR_GLOBAL CONSTANT\n    c : INT := g + 1;\nEND_VAR\n"
     assert [d.code for d in diagnostics(src) if d.is_error] == ["E024"]
+
+
+QUALIFIED_LIST = """
+{attribute 'qualified_only'}
+VAR_GLOBAL
+    MqttMain : STRING(16) := 'Devices/';
+    MqttKind : STRING(16) := 'PLC/';
+    MqttBase : STRING(100) := CONCAT(MqttMain, MqttKind);
+    Ready : BOOL := MqttBase <> '';
+END_VAR
+"""
+
+
+def test_a_qualified_only_lists_initial_values_name_its_variables_bare():
+    # a CODESYS export's GVL_MQTT builds its topics from its own variables,
+    # unqualified, under {attribute 'qualified_only'}
+    main = (
+        "PROGRAM main\nVAR\n    topic : STRING(100);\n    ok : BOOL;\nEND_VAR\n"
+        "topic := GVL_MQTT.MqttBase;\nok := GVL_MQTT.Ready;\nEND_PROGRAM\n"
+    )
+    prog = compile_files([], texts={"GVL_MQTT.st": QUALIFIED_LIST, "main.st": main})
+    r = prog.runner("main", cycle_time_ms=10)
+    r.run(1)
+    assert (r.get("topic"), r.get("ok")) == ("Devices/PLC/", True)
+    bare = main.replace("GVL_MQTT.MqttBase", "MqttBase")
+    diags, _ = check_files([], texts={"GVL_MQTT.st": QUALIFIED_LIST, "main.st": bare})
+    assert [d.code for d in diags] == ["E018"]  # elsewhere they stay qualified
