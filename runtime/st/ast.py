@@ -246,6 +246,7 @@ class ArrayTypeSpec(TypeSpec):
 @dataclass(slots=True, eq=False)
 class StructTypeSpec(TypeSpec):
     members: list  # VarDecl
+    extends: TypeSpec | None = None  # CODESYS: TYPE B EXTENDS A : STRUCT ... (A's fields first)
 
 
 @dataclass(slots=True, eq=False)

@@ -285,6 +285,11 @@ class AstBuilder(StmtBuilder, SfcBuilder):
         self.ctx.items.append(d)
         return d
 
+    def struct_extends_decl(self, c):
+        name, base, spec = c[0], c[2], c[3]
+        spec.extends = base
+        return self.type_decl([name, spec])
+
     def named_type(self, c):
         return ast.NamedType(c[0].value, pos=self._tpos(c[0]))
 

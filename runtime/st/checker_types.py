@@ -79,6 +79,8 @@ class TypeChecks(CheckerBase):
             spec = decl.spec
             if isinstance(spec, A.StructTypeSpec):
                 st = T.StructType(decl.name, pyclass=pyname("S_", decl.name))
+                if spec.extends is not None:
+                    self._struct_base(st, spec.extends)
                 self.types[key] = st  # before fields: REF_TO self is allowed
                 for m in spec.members:
                     fkey = m.name.upper()
@@ -120,6 +122,27 @@ class TypeChecks(CheckerBase):
             return ty
         finally:
             self._resolving.pop(key, None)
+
+    def _struct_base(self, st: T.StructType, spec: A.TypeSpec) -> None:
+        """TYPE B EXTENDS A : STRUCT (CODESYS "Extension of a structure"): B
+        has A's fields first, at the same places, and a POINTER TO, REFERENCE
+        TO or VAR_IN_OUT of A takes a B (oop.extends_fb)."""
+        assert isinstance(spec, A.NamedType)
+        key = spec.name.upper()
+        if key in self._resolving:
+            chain = [*self._resolving.values(), spec.name]
+            self.d.error("E012", f"STRUCT {st.name} EXTENDS itself: {' -> '.join(chain)}", spec.pos)
+            return
+        base = self.type_of(spec)
+        if base is None:
+            return
+        if not isinstance(T.resolve(base), T.StructType):
+            self.d.error("E012", f"STRUCT {st.name} EXTENDS {base}, which is no STRUCT", spec.pos)
+            return
+        resolved = T.resolve(base)
+        assert isinstance(resolved, T.StructType)
+        st.base = resolved
+        st.fields.update(resolved.fields)
 
     def _enum_type(self, name: str, spec: A.EnumTypeSpec) -> T.EnumType:
         base = T.INT

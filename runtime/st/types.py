@@ -275,8 +275,9 @@ class StructField:
 @dataclass(eq=False)
 class StructType(Type):
     name: str
-    fields: dict = field(default_factory=dict)  # UPPER -> StructField
+    fields: dict = field(default_factory=dict)  # UPPER -> StructField (a base's first)
     pyclass: str = ""  # name of the generated class
+    base: StructType | None = None  # CODESYS STRUCT EXTENDS: the base's fields come first
     is_struct = True
 
 

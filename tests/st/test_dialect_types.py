@@ -137,3 +137,55 @@ END_PROGRAM
 def test_bit_is_codesys_only(profile):
     ds = [d for d in diagnostics(BITS, profile) if d.code == "E012"]
     assert len(ds) == 12 and ds[0].message == "BIT is a CODESYS type"
+
+
+
+EXTENDED = """
+TYPE ST_Base :
+STRUCT
+    id : INT := 3;
+    name : STRING(10);
+END_STRUCT
+END_TYPE
+TYPE ST_Switch EXTENDS ST_Base :
+STRUCT
+    on : BOOL;
+    level : DINT;
+END_STRUCT
+END_TYPE
+FUNCTION Fill : BOOL
+VAR_INPUT
+    pBase : POINTER TO ST_Base;
+    id : INT;
+END_VAR
+pBase^.id := pBase^.id + id;
+pBase^.name := 'sw';
+Fill := TRUE;
+END_FUNCTION
+PROGRAM main
+VAR
+    sw : ST_Switch;
+    ok : BOOL;
+    size : UDINT;
+END_VAR
+ok := Fill(pBase := ADR(sw), id := 7);
+sw.level := 1000;
+size := SIZEOF(sw);
+END_PROGRAM
+"""
+
+
+def test_a_struct_extends_another_and_stands_for_it():
+    # CODESYS "Extension of a structure": ST_Switch has ST_Base's fields
+    # first, and a POINTER TO ST_Base takes it (a CODESYS export fills the
+    # common fields of its messages so)
+    r = run_st(EXTENDED)
+    assert (r.get("ok"), r.get("sw.id"), r.get("sw.name"), r.get("sw.level")) == (True, 10, "sw", 1000)
+    # id INT at 0, name STRING(10) 2..12, on BOOL 13, level DINT 16..19: CODESYS's layout
+    assert r.get("size") == 20
+
+
+def test_a_struct_that_does_not_extend_the_base_is_refused():
+    assert "E020" in codes(EXTENDED.replace("TYPE ST_Switch EXTENDS ST_Base :", "TYPE ST_Switch :"))
+    cycle = EXTENDED.replace("TYPE ST_Base :", "TYPE ST_Base EXTENDS ST_Switch :")
+    assert "E012" in codes(cycle)
