@@ -148,6 +148,9 @@ class Index(Expr):
 
     base: Expr
     indices: list
+    # Set by the checker on a pointer's index p[i] (CODESYS): the Deref of
+    # p moved by i elements it stands for (checker_pointers.py)
+    via: Any = field(default=None, kw_only=True, repr=False)
 
 
 @dataclass(slots=True, eq=False)

@@ -194,6 +194,9 @@ class CheckerBase:
         # checker_sfc
         def is_sfc_action(self, pou: POUInfo, key: str) -> bool: ...
 
+        # checker_pointers
+        def pointer_index(self, e: A.Index, ptr: T.Type, scope: Scope) -> T.Type | None: ...
+
         # checker_oop
         @staticmethod
         def owner_fb(scope: Scope) -> POUInfo | None: ...

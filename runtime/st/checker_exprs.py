@@ -10,6 +10,7 @@ from __future__ import annotations
 from . import ast as A
 from . import types as T
 from .checker_base import BUILTINS, CheckerBase, Scope
+from .checker_pointers import is_pointer
 from .conversions import const_repr
 from .profile import names_where
 
@@ -375,6 +376,8 @@ class ExprChecks(CheckerBase):
 
     def _index(self, e: A.Index, scope: Scope) -> T.Type | None:
         bty = self.expr(e.base, scope)
+        if bty is not None and is_pointer(bty):
+            return self.pointer_index(e, bty, scope)  # p[i] (checker_pointers.py)
         for ix in e.indices:
             ity = self.expr(ix, scope)
             ie = T.base_elementary(ity) if ity is not None else None

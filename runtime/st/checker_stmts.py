@@ -245,6 +245,8 @@ class StmtChecks(CheckerBase):
                     )
                     return
             self._check_writable(e.base, scope)
+        elif isinstance(e, A.Index) and e.via is not None:
+            return  # p[i]: written through the pointer, as p^
         elif isinstance(e, (A.Index, A.BitAccess)):
             self._check_writable(e.base, scope)
         elif isinstance(e, A.Located) and e.addr.table is not None:

@@ -24,6 +24,8 @@ class ExprGen(CodeGenBase):
     """Expressions and references."""
 
     def ex(self, e: A.Expr) -> str:
+        if type(e) is A.Index and e.via is not None:  # p[i]: (p + i elements)^
+            return self.ex(e.via)
         if e.implicit_ref is not None:  # a REFERENCE TO stands for its target
             if T.resolve(e.ty).is_aggregate:
                 return f"_deref({self.ref_value(e)})"
@@ -273,6 +275,8 @@ class ExprGen(CodeGenBase):
 
     def ref_code(self, e: A.Expr) -> str:
         """A reference to the storage of an lvalue (REF, ADR, VAR_IN_OUT, =>)."""
+        if type(e) is A.Index and e.via is not None:
+            return self.ref_code(e.via)
         if e.implicit_ref is not None:  # the storage a REFERENCE TO designates
             return self.ref_value(e)
         ty = T.resolve(e.ty)

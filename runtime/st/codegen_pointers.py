@@ -19,6 +19,8 @@ class PointerGen(CodeGenBase):
 
     def pointer_op(self, e: A.Binary) -> str:
         esize = e.impl.rtypes[0]
+        if e.impl.func == "index":  # p[i] (checker_pointers.py): i elements on
+            return f"_ptr_add({self.pointer_operand(e.left)}, ({self.ex(e.right)}) * {esize}, {esize})"
         if e.impl.func == "move":
             left_is_ptr = isinstance(T.resolve(e.left.ty), T.RefType)
             ptr, delta = (e.left, e.right) if left_is_ptr else (e.right, e.left)

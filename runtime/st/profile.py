@@ -111,6 +111,10 @@ class Profile:
     # take "any valid ST expression" there ("Variable Initialization").
     # IEC 61131-3 and the other dialects want a constant (E024).
     initial_values_at_start: bool = False
+    # p[i] of a POINTER TO: the i-th element from where p points, (p + i *
+    # SIZEOF(p^))^ (CODESYS "Pointer": "index access [] to pointer
+    # variables"). IEC REF_TO takes no index (E050).
+    pointer_index: bool = False
 
 
 IEC = Profile(
@@ -147,6 +151,7 @@ CODESYS = Profile(
     internal_read="warning",
     bit_type=True,
     initial_values_at_start=True,
+    pointer_index=True,
 )
 
 TWINCAT = replace(CODESYS, name="twincat")

@@ -139,7 +139,6 @@ def test_bit_is_codesys_only(profile):
     assert len(ds) == 12 and ds[0].message == "BIT is a CODESYS type"
 
 
-
 EXTENDED = """
 TYPE ST_Base :
 STRUCT
@@ -189,3 +188,81 @@ def test_a_struct_that_does_not_extend_the_base_is_refused():
     assert "E020" in codes(EXTENDED.replace("TYPE ST_Switch EXTENDS ST_Base :", "TYPE ST_Switch :"))
     cycle = EXTENDED.replace("TYPE ST_Base :", "TYPE ST_Base EXTENDS ST_Switch :")
     assert "E012" in codes(cycle)
+
+
+DERIVED = """
+TYPE ST_Base :
+STRUCT
+    id : INT;
+    name : STRING(10);
+END_STRUCT
+END_TYPE
+TYPE ST_Switch EXTENDS ST_Base :
+STRUCT
+    on : BOOL;
+    level : DINT;
+END_STRUCT
+END_TYPE
+FUNCTION_BLOCK FB_Publisher
+METHOD FillCommon : BOOL
+VAR_INPUT
+    pBase : POINTER TO ST_Base;
+    id : INT;
+END_VAR
+pBase^.id := id;
+pBase^.name := 'sw';
+FillCommon := TRUE;
+END_METHOD
+METHOD Checksum : UDINT
+VAR_INPUT
+    pStruct : POINTER TO BYTE;
+    size : UDINT;
+END_VAR
+VAR
+    i : UDINT;
+END_VAR
+FOR i := 0 TO size - 1 DO
+    Checksum := Checksum + pStruct[i];
+END_FOR
+pStruct[0] := 99;
+END_METHOD
+END_FUNCTION_BLOCK
+PROGRAM main
+VAR
+    fb : FB_Publisher;
+    sw : ST_Switch;
+    ok : BOOL;
+    size, sum : UDINT;
+    pInt : POINTER TO INT;
+    ints : ARRAY[0..3] OF INT := [10, 20, 30, 40];
+    third : INT;
+END_VAR
+ok := fb.FillCommon(pBase := ADR(sw), id := 7);
+sw.level := 1000;
+size := SIZEOF(sw);
+sum := fb.Checksum(pStruct := ADR(sw), size := SIZEOF(sw));
+pInt := ADR(ints);
+third := pInt[2];
+pInt[3] := pInt[1] + 1;
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("profile", ["codesys", "twincat"])
+def test_a_pointer_is_indexed_by_elements(profile):
+    # a CODESYS export fills the common fields of several STRUCTs that EXTEND
+    # one base through a POINTER TO the base, and sums a structure's bytes
+    # through an indexed POINTER TO BYTE
+    r = run_st(DERIVED, profile=profile)
+    assert (r.get("ok"), r.get("sw.id"), r.get("sw.name"), r.get("sw.level")) == (True, 99, "sw", 1000)
+    # id INT at 0, name STRING(10) 2..12, on BOOL 13, level DINT 16..19: CODESYS's layout
+    assert r.get("size") == 20
+    assert r.get("sum") == 7 + ord("s") + ord("w") + (1000 & 0xFF) + (1000 >> 8)
+    assert (r.get("third"), r.get("ints")[3]) == (30, 21)  # p[i] counts elements, not bytes
+
+
+@pytest.mark.parametrize("profile", ["iec", "matiec", "schneider"])
+def test_indexing_a_pointer_is_codesys(profile):
+    ds = [d for d in diagnostics(DERIVED, profile) if d.code == "E050"]
+    assert len(ds) == 5
+    assert ds[0].hint == "write (p + i)^ (the codesys and twincat profiles index a pointer)"
