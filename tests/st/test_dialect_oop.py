@@ -162,3 +162,52 @@ cleared := d.Clear();
 END_PROGRAM
 """
     assert run_st(src).get("cleared") is True
+
+
+VALID_IN_OUT = """
+TYPE DUT_EPS :
+STRUCT
+    nFlags : UDINT;
+END_STRUCT
+END_TYPE
+FUNCTION_BLOCK FB_EPS
+VAR_IN_OUT
+    eps : DUT_EPS;
+END_VAR
+END_FUNCTION_BLOCK
+METHOD setBit : BOOL
+VAR_INPUT
+    nBit : BYTE;
+END_VAR
+IF NOT __ISVALIDREF(eps) THEN
+    RETURN;
+END_IF
+eps.nFlags := eps.nFlags OR SHL(UDINT#1, nBit);
+setBit := TRUE;
+END_METHOD
+FUNCTION Bound : BOOL
+VAR_IN_OUT
+    x : INT;
+END_VAR
+Bound := __ISVALIDREF(x);
+END_FUNCTION
+PROGRAM main
+VAR
+    fb : FB_EPS;
+    d : DUT_EPS;
+    before, after, inFunction : BOOL;
+    k : INT;
+END_VAR
+before := fb.setBit(nBit := 1);
+fb(eps := d);
+after := fb.setBit(nBit := 2);
+inFunction := Bound(x := k);
+END_PROGRAM
+"""
+
+
+def test_isvalidref_tells_whether_a_var_in_out_is_bound():
+    # TwinCAT's own example: a METHOD checks the block's VAR_IN_OUT before it
+    # uses it, since the block may not have been called yet
+    r = run_st(VALID_IN_OUT)
+    assert (r.get("before"), r.get("after"), r.get("d.nFlags"), r.get("inFunction")) == (False, True, 4, True)
