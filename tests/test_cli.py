@@ -414,9 +414,9 @@ def test_check_explain_prints_the_page_of_a_code():
 
 
 def test_check_explain_of_an_unknown_code_names_the_near_ones():
-    proc = softplc("check", "--explain", "E032")
+    proc = softplc("check", "--explain", "E034")
     assert proc.returncode == 2 and proc.stdout == ""
-    assert "no diagnostic code 'E032'; near: E031, E030, E028" in proc.stderr
+    assert "no diagnostic code 'E034'; near: E032, E031, E030" in proc.stderr
     no_traceback(proc)
 
 

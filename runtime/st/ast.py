@@ -154,6 +154,14 @@ class Index(Expr):
 
 
 @dataclass(slots=True, eq=False)
+class AssignExpr(Expr):
+    """``(target := value)`` used as a value (CODESYS): the value stored."""
+
+    target: Expr
+    value: Expr
+
+
+@dataclass(slots=True, eq=False)
 class Deref(Expr):
     """``r^``"""
 

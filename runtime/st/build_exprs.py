@@ -191,6 +191,14 @@ class ExprBuilder(BuilderBase):
     def deref(self, c):
         return ast.Deref(c[0], pos=self._span(c[0], c[1]))
 
+    def assign_expr(self, c):
+        """(target := value) as an expression (CODESYS), or target := value
+        unparenthesised as a condition or an assignment's value; the checker
+        decides."""
+        if len(c) == 3:
+            return ast.AssignExpr(c[0], c[2], pos=self._span(c[0], c[2]))
+        return ast.AssignExpr(c[1], c[3], pos=self._span(c[0], c[4]))
+
     def paren_deref(self, c):
         """(expr)^: the parenthesised pointer, dereferenced (CODESYS)."""
         return ast.Deref(self.paren(c[:3]), pos=self._span(c[0], c[3]))

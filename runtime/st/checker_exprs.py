@@ -71,6 +71,8 @@ class ExprChecks(CheckerBase):
             return self._binary(e, scope, expected)
         if isinstance(e, A.Call):
             return self.call(e, scope, as_statement=False)
+        if isinstance(e, A.AssignExpr):
+            return self.assign_expr(e, scope)  # checker_stmts.py
         if isinstance(e, A.Located):
             return self._located(e)
         if isinstance(e, A.SchneiderAddress):

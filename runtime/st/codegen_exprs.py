@@ -47,6 +47,9 @@ class ExprGen(CodeGenBase):
             return f"{self.ex(e.base)}.{e.sym.pyname}"
         if isinstance(e, A.Index):
             return self._index_target(e)
+        if isinstance(e, A.AssignExpr):  # (x := v): stored when evaluated (checker_stmts.py)
+            value = self.coerce(self.ex(e.value), e.value.ty, e.target.ty, e.value)
+            return f"{self.const(refs.assign_get)}({self.ref_code(e.target)}, {value})"
         if isinstance(e, A.Deref):
             this = self._this_code(e)  # THIS^, SUPER^ (codegen_oop.py)
             if this is not None:
@@ -239,6 +242,8 @@ class ExprGen(CodeGenBase):
         return f"({negate}_same_ref({codes[0]}, {codes[1]}))"
 
     def _has_call(self, e: A.Expr) -> bool:
+        if isinstance(e, A.AssignExpr):  # a store: evaluated as a call is
+            return True
         if isinstance(e, A.Call):
             info = e.target
             if isinstance(info, CallInfo) and info.kind == "operator":

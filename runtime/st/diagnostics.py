@@ -13,7 +13,7 @@ Code ranges (keep them stable, users search for them):
              contains itself; E018 a qualified_only list's variable without
              its list, E019 a namespace or list problem: namespaces.py)
   E020-E029  types and conversions
-  E030-E039  assignment targets
+  E030-E039  assignment targets (E032: an assignment used as a value)
   E040-E049  calls (E044: a comma ending an argument list, where the profile
              does not take it)
   E050-E059  arrays, indices, bit access (E054, E055: the element limits of

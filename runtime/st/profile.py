@@ -115,6 +115,10 @@ class Profile:
     # SIZEOF(p^))^ (CODESYS "Pointer": "index access [] to pointer
     # variables"). IEC REF_TO takes no index (E050).
     pointer_index: bool = False
+    # (i := i + 1) as a value (IF (i := i + 1) = 10 THEN): CODESYS
+    # "Assignment as expression" (an extension of IEC 61131-3, which has
+    # assignment statements only: E032 there).
+    assignment_expressions: bool = False
 
 
 IEC = Profile(
@@ -152,6 +156,7 @@ CODESYS = Profile(
     bit_type=True,
     initial_values_at_start=True,
     pointer_index=True,
+    assignment_expressions=True,
 )
 
 TWINCAT = replace(CODESYS, name="twincat")

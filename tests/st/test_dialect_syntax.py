@@ -73,3 +73,113 @@ def test_a_pou_header_may_end_with_a_semicolon(profile):
     # declarations; the semicolon changes nothing
     r = run_st(HEADERS_WITH_SEMICOLONS, cycles=2, profile=profile)
     assert [r.get(v) for v in ("a", "b", "t", "p")] == [2, 20, 4, 3]
+
+
+ASSIGNED_VALUES = """
+TYPE ST_P :
+STRUCT
+    x : INT;
+END_STRUCT
+END_TYPE
+FUNCTION Count : INT
+VAR_INPUT
+    limit : INT;
+END_VAR
+VAR
+    i : INT;
+END_VAR
+WHILE (i := i + 1) < limit DO
+    Count := Count + 1;
+END_WHILE
+END_FUNCTION
+PROGRAM main
+VAR
+    i, hits, c, g : INT;
+    s : ST_P;
+    arr : ARRAY[0..2] OF INT;
+    b : SINT;
+END_VAR
+IF (i := i + 1) = 3 THEN
+    hits := 1;
+END_IF
+c := Count(limit := 5);
+IF (s.x := s.x + 2) > 3 AND (arr[1] := arr[1] + 5) > 0 THEN
+    hits := hits + 10;
+END_IF
+g := (b := b + 100);
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("profile", ["codesys", "twincat"])
+def test_an_assignment_in_parentheses_is_a_value(profile):
+    # CODESYS "Assignment as expression": the target is assigned when the
+    # expression is evaluated (every time a WHILE tests it, both sides of
+    # AND as CODESYS evaluates them), the value is what was stored
+    r = run_st(ASSIGNED_VALUES, cycles=3, profile=profile)
+    assert (r.get("i"), r.get("hits"), r.get("c")) == (3, 11, 4)
+    assert (r.get("s.x"), r.get("arr")[1]) == (6, 15)
+    assert (r.get("b"), r.get("g")) == (44, 44)  # 100, -56 (wrapped), 44: the SINT stored
+
+
+@pytest.mark.parametrize("profile", ["iec", "matiec", "schneider"])
+def test_elsewhere_an_assignment_is_a_statement(profile):
+    assert codes(ASSIGNED_VALUES, profile) == ["E032"] * 5
+
+
+def test_an_aggregate_assignment_is_no_value():
+    src = prog("a, b, c : ARRAY[0..1] OF INT;", "c := (a := b);")
+    assert codes(src) == ["E032"]
+
+
+DOCUMENTED_CHAINS = """
+PROGRAM main
+VAR
+    i, a, b, c, n, neg : INT;
+    r1, r2 : REAL;
+    flag, same : BOOL;
+    s : SINT;
+    short : STRING(3);
+END_VAR
+a := b := c + 9;
+r1 := r2 := c;
+IF flag := (i = 1) THEN
+    n := n + 1;
+END_IF
+IF (s := s + 100) < 0 THEN
+    neg := neg + 1;
+END_IF
+same := (short := 'abcdef') = 'abc';
+i := i + 1;
+c := c + 1;
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("profile", ["codesys", "twincat"])
+def test_the_documented_assignments_as_values(profile):
+    # CODESYS "ExST Assignment as an Expression" (and Beckhoff Infosys, TC3
+    # PLC, "ExST assignment as expression"): a := b := c + 9 gives both the
+    # value; IF b := (i = 1) THEN assigns b, then tests it. The value used is
+    # what the target holds: a SINT's 100 + 100 compares as -56, a
+    # STRING(3) as 'abc'
+    r = run_st(DOCUMENTED_CHAINS, cycles=3, profile=profile)
+    assert (r.get("a"), r.get("b"), r.get("r1"), r.get("r2")) == (11, 11, 2.0, 2.0)
+    assert (r.get("flag"), r.get("n")) == (False, 1)  # TRUE in the 2nd cycle only
+    assert (r.get("s"), r.get("neg")) == (44, 1)  # 100, -56, 44: negative once
+    assert (r.get("short"), r.get("same")) == ("abc", True)
+
+
+def test_a_chain_keeps_each_assignments_type_rules():
+    # "nVarInt := fVarReal1 := nVarInt; (* incorrect assignment, the data
+    # types do not match *)": the REAL stored in an INT draws what n := r
+    # draws (W121 under codesys, an implicit narrowing)
+    decls = "n : INT; r : REAL;"
+    assert codes(prog(decls, "n := r := n;")) == codes(prog(decls, "n := r;")) == ["W121"]
+    assert codes(prog("n : INT; r : REAL;", "r := n := 3;")) == []
+    assert codes(prog("n : INT; b : BOOL;", "IF b := n THEN n := 0; END_IF"))[0] == "E020"
+
+
+@pytest.mark.parametrize("profile", ["iec", "matiec", "schneider"])
+def test_elsewhere_a_chain_is_no_assignment(profile):
+    assert codes(DOCUMENTED_CHAINS, profile) == ["E032"] * 5

@@ -253,6 +253,8 @@ END_PROGRAM
 ACTION p.seq: STEP y: END_STEP END_ACTION
 """,
     "x := (p + 2)^ + (ps)^.a + (pa)^[1, 2] + (pp)^^ + (pf)^.m(1);",
+    "TYPE Sub EXTENDS Base : STRUCT c : INT; END_STRUCT END_TYPE",
+    "a := b := c + 9; IF (i := i + 1) = 10 THEN ; ELSIF f := g THEN ; END_IF",
 ]
 
 
