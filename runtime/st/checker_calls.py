@@ -17,6 +17,7 @@ from .checker_operators import OPERATOR_FUNCTIONS
 from .conversions import const_repr, conversion_exists, generic_fit, is_flexible, same_type
 from .native import NativeFunction
 from .oop import extends_fb, fb_hint
+from .profile import names_where
 from .symbols import CallInfo, POUInfo, PropertyInfo, VarSymbol
 
 
@@ -525,6 +526,17 @@ class CallChecks(CheckerBase):
         if ty is None:
             return None
         e.target = CallInfo("builtin", func=key, args=[a])
+        if key == "ADR" and isinstance(a, A.Literal) and a.kind in ("string", "wstring"):
+            if self.profile.adr_of_literal:  # ADR('TRUE'): to a copy of the text (profile.py)
+                return T.RefType(ty, pointer=True)
+            self.d.error(
+                "E031",
+                "ADR needs a variable, not a string literal",
+                a.pos,
+                f"declare a CONSTANT STRING and take its ADR (the "
+                f"{names_where(lambda p: p.adr_of_literal)} profiles take ADR('text'))",
+            )
+            return None
         if not self._is_lvalue_expr(a) or (isinstance(a, A.Located)):
             self.d.error("E031", f"{key} needs a variable", a.pos)
             return None

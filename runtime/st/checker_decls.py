@@ -347,7 +347,8 @@ class DeclChecks(CheckerBase):
         if not isinstance(T.resolve(ety), T.RefType):
             return None  # NULL or 0: the default
         call = init.target if isinstance(init, A.Call) and isinstance(init.target, CallInfo) else None
-        if call is None or call.func not in ("REF", "ADR") or not self._fixed_place(call.args[0]):
+        literal = call is not None and call.func == "ADR" and isinstance(call.args[0], A.Literal)  # ADR('text')
+        if call is None or call.func not in ("REF", "ADR") or not (literal or self._fixed_place(call.args[0])):
             self.d.error(
                 "E024",
                 f"the initial value of '{what}' is not a reference to a variable at a fixed place",

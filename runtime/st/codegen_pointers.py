@@ -77,6 +77,8 @@ class PointerGen(CodeGenBase):
         """ADR(x): REF(x), but an element of a multi-dimensional array or an
         aggregate element is an ElemPtr into the whole array, so that
         arithmetic can step across rows and over structures."""
+        if isinstance(e, A.Literal):  # ADR('text'): a copy of the literal (profile.adr_of_literal)
+            return f"_CellRef({self.ex(e)})"
         if isinstance(e, A.Member) and e.implicit_ref is None:
             field = self._field_view(e)
             if field is not None:

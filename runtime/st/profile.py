@@ -119,6 +119,13 @@ class Profile:
     # "Assignment as expression" (an extension of IEC 61131-3, which has
     # assignment statements only: E032 there).
     assignment_expressions: bool = False
+    # ADR('text'): a pointer to the literal's characters (CODESYS and
+    # TwinCAT keep string literals in memory; real code passes
+    # str2 := ADR('TRUE') to a POINTER TO STRING input). Here the pointer
+    # is to a copy of the literal made each time ADR is evaluated, so a
+    # write through it changes no later ADR('text'). IEC REF/ADR and
+    # MatIEC want a variable (E031).
+    adr_of_literal: bool = False
 
 
 IEC = Profile(
@@ -157,6 +164,7 @@ CODESYS = Profile(
     initial_values_at_start=True,
     pointer_index=True,
     assignment_expressions=True,
+    adr_of_literal=True,
 )
 
 TWINCAT = replace(CODESYS, name="twincat")

@@ -266,3 +266,63 @@ def test_indexing_a_pointer_is_codesys(profile):
     ds = [d for d in diagnostics(DERIVED, profile) if d.code == "E050"]
     assert len(ds) == 5
     assert ds[0].hint == "write (p + i)^ (the codesys and twincat profiles index a pointer)"
+
+
+ADR_OF_LITERALS = """
+FUNCTION StrEquals : BOOL
+VAR_INPUT
+    str1, str2 : POINTER TO STRING;
+END_VAR
+StrEquals := str1^ = str2^;
+END_FUNCTION
+FUNCTION ByteLen : INT
+VAR_INPUT
+    p : POINTER TO BYTE;
+END_VAR
+WHILE p[ByteLen] <> 0 DO
+    ByteLen := ByteLen + 1;
+END_WHILE
+END_FUNCTION
+PROGRAM main
+VAR
+    payload : STRING := 'STOP';
+    stopped, opened : BOOL;
+    n : INT;
+    p : POINTER TO STRING;
+    pInit : POINTER TO STRING := ADR('start');
+    s, first : STRING;
+    pw : POINTER TO WSTRING;
+    w : WSTRING;
+END_VAR
+stopped := StrEquals(str1 := ADR(payload), str2 := ADR('STOP'));
+opened := StrEquals(str1 := ADR(payload), str2 := ADR('OPEN'));
+n := ByteLen(ADR('CLOSE'));
+first := pInit^;
+p := ADR('x');
+p^ := 'y';
+p := ADR('x');
+s := p^;
+pw := ADR("wide");
+w := pw^;
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("profile", ["codesys", "twincat"])
+def test_adr_of_a_string_literal_points_at_its_text(profile):
+    # codesys, twincat: ADR('TRUE') passed to a POINTER TO STRING input, as
+    # a CODESYS project compares MQTT payloads; its bytes end with a 0 as a
+    # STRING's do; a declaration may start with it. The pointer is to a copy
+    # made each time ADR is evaluated: a write through it leaves the next
+    # ADR('x') 'x' (CODESYS keeps one copy in memory; writing to a literal
+    # is no use either way)
+    r = run_st(ADR_OF_LITERALS, profile=profile)
+    assert (r.get("stopped"), r.get("opened"), r.get("n")) == (True, False, 5)
+    assert (r.get("first"), r.get("s"), r.get("w")) == ("start", "x", "wide")
+
+
+@pytest.mark.parametrize("profile", ["iec", "matiec", "schneider"])
+def test_elsewhere_adr_wants_a_variable(profile):
+    # iec, matiec, schneider: E031, as ADR/REF of any expression
+    found = diagnostics(ADR_OF_LITERALS, profile)
+    assert sum(d.code == "E031" and "string literal" in d.message for d in found) == 7
