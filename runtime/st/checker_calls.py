@@ -410,7 +410,7 @@ class CallChecks(CheckerBase):
                 param_types.append(want)
             elif spec.upper() in T.GENERICS:
                 t = generic_fit(t, spec, self.profile)
-                if not T.is_generic_member(t, spec):
+                if not T.is_generic_member(t, spec) and not self._enum_conversion(func, t):
                     self.d.error("E020", f"{func.name}: argument {i + 1} is {t}, expected {spec}", a.pos)
                     return None
                 param_types.append(t)
@@ -447,6 +447,16 @@ class CallChecks(CheckerBase):
             if e.const is not None and T.base_elementary(rty) is T.REAL:
                 e.const = const_repr(e.const, T.REAL)  # SQRT(REAL#2.0) is a binary32 value
         return rty
+
+    def _enum_conversion(self, func, t: T.Type) -> bool:
+        """TO_STRING(e), TO_INT(e) of an enumeration (profile.enum_conversions):
+        its base type's value, or its name (rt_convert.make_converter)."""
+        return (
+            self.profile.enum_conversions
+            and func.typed
+            and func.name.startswith("TO_")
+            and isinstance(T.resolve(t), T.EnumType)
+        )
 
     _FOLDABLE_NAMES = (
         "ABS",

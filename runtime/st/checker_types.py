@@ -101,6 +101,7 @@ class TypeChecks(CheckerBase):
                 ty = self._enum_type(decl.name, spec)
                 ty.qualified_only = has_attribute(decl, "qualified_only")
                 ty.strict = has_attribute(decl, "strict")
+                ty.to_string = has_attribute(decl, "to_string")
             else:
                 target = self.type_of(spec)
                 if target is None:

@@ -126,6 +126,14 @@ class Profile:
     # write through it changes no later ADR('text'). IEC REF/ADR and
     # MatIEC want a variable (E031).
     adr_of_literal: bool = False
+    # TO_<type>(e) of an enumeration, strict or not: its value converted
+    # from the base type (TO_INT(e) = 5, TO_STRING(e) = '5'); TO_STRING
+    # and TO_WSTRING give the value's name instead where its TYPE has
+    # {attribute 'to_string'} (Beckhoff Infosys, TC3 PLC, "TO_STRING/
+    # TO_WSTRING for enumeration variables"; CODESYS "Attribute:
+    # to_string"). IEC enumerated values are no numbers and convert to
+    # nothing (E020).
+    enum_conversions: bool = False
 
 
 IEC = Profile(
@@ -165,6 +173,7 @@ CODESYS = Profile(
     pointer_index=True,
     assignment_expressions=True,
     adr_of_literal=True,
+    enum_conversions=True,
 )
 
 TWINCAT = replace(CODESYS, name="twincat")

@@ -217,6 +217,7 @@ class EnumType(Type):
     # CODESYS/TwinCAT attributes before its TYPE (st/pragmas.py)
     qualified_only: bool = False  # its values only as E.a (or E#a)
     strict: bool = False  # no arithmetic, no integer assigned (where the profile allows them)
+    to_string: bool = False  # TO_STRING/TO_WSTRING give a value's name, not its number
     is_enum = True
 
     def name_of(self, value: int) -> str | None:

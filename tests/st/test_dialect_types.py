@@ -326,3 +326,73 @@ def test_elsewhere_adr_wants_a_variable(profile):
     # iec, matiec, schneider: E031, as ADR/REF of any expression
     found = diagnostics(ADR_OF_LITERALS, profile)
     assert sum(d.code == "E031" and "string literal" in d.message for d in found) == 7
+
+
+ENUM_TO_STRING = """
+{attribute 'qualified_only'}
+{attribute 'strict'}
+{attribute 'to_string'}
+TYPE E_Sample :
+(
+    eInit := 0,
+    eStart,
+    eStop
+);
+END_TYPE
+{attribute 'qualified_only'}
+{attribute 'strict'}
+TYPE E_Plain :
+(
+    eInit := 0,
+    eStart,
+    eStop
+);
+END_TYPE
+{attribute 'to_string'}
+TYPE COLOR : (red := 0, blue := 1, green := 2); END_TYPE
+PROGRAM main
+VAR
+    eSample : E_Sample;
+    ePlain : E_Plain;
+    nCurrentValue, nPlain : INT;
+    sCurrentValue, sComponent, sPlain, sPlainComponent, sUnnamed, s_show_color : STRING;
+    wsCurrentValue, wsComponent : WSTRING;
+    i_color, odd : COLOR;
+END_VAR
+nCurrentValue := TO_INT(eSample);
+sCurrentValue := TO_STRING(eSample);
+wsCurrentValue := TO_WSTRING(eSample);
+sComponent := TO_STRING(E_Sample.eStart);
+wsComponent := TO_WSTRING(E_Sample.eStop);
+ePlain := E_Plain.eStop;
+sPlain := TO_STRING(ePlain);
+sPlainComponent := TO_STRING(E_Plain.eStart);
+nPlain := TO_INT(ePlain);
+i_color := 1;
+s_show_color := TO_STRING(i_color);
+odd := 7;
+sUnnamed := TO_STRING(odd);
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("profile", ["codesys", "twincat"])
+def test_to_string_of_an_enumeration_gives_its_name_with_the_attribute(profile):
+    # codesys, twincat: the documented examples. Beckhoff Infosys (TC3 PLC,
+    # "TO_STRING/TO_WSTRING for enumeration variables", "Attribute
+    # 'to_string'"): with {attribute 'to_string'} the component's name,
+    # without it its number ('0', '1'); strict or not. CODESYS "Attribute:
+    # to_string": i_color := 1 gives 'blue'. A value with no name (odd := 7):
+    # its number, our choice (neither page says)
+    r = run_st(ENUM_TO_STRING, profile=profile)
+    assert [r.get(v) for v in ("nCurrentValue", "sCurrentValue", "wsCurrentValue")] == [0, "eInit", "eInit"]
+    assert (r.get("sComponent"), r.get("wsComponent")) == ("eStart", "eStop")
+    assert [r.get(v) for v in ("sPlain", "sPlainComponent", "nPlain")] == ["2", "1", 2]
+    assert (r.get("s_show_color"), r.get("sUnnamed")) == ("blue", "7")
+
+
+@pytest.mark.parametrize("profile", ["iec", "matiec", "schneider"])
+def test_elsewhere_an_enumeration_converts_to_nothing(profile):
+    # IEC 61131-3: an enumerated value is no number (E020 for each TO_*)
+    found = [d for d in diagnostics(ENUM_TO_STRING, profile) if "TO_" in d.message]
+    assert {d.code for d in found} == {"E020"} and len(found) == 10
