@@ -183,3 +183,70 @@ def test_a_chain_keeps_each_assignments_type_rules():
 @pytest.mark.parametrize("profile", ["iec", "matiec", "schneider"])
 def test_elsewhere_a_chain_is_no_assignment(profile):
     assert codes(DOCUMENTED_CHAINS, profile) == ["E032"] * 5
+
+
+RUSTY_ACTIONS = """
+FUNCTION_BLOCK fb
+VAR_INPUT
+    x : INT;
+END_VAR
+VAR_OUTPUT
+    y : INT;
+END_VAR
+y := y + x;
+END_FUNCTION_BLOCK
+
+ACTIONS
+    ACTION act
+        y := y + 100;
+    END_ACTION
+END_ACTIONS
+
+ACTIONS fb
+    ACTION act2
+        y := y * 2;
+    END_ACTION
+    ACTION act4
+        y := y - 1;
+    END_ACTION
+END_ACTIONS
+
+ACTION fb.act3
+    y := 0;
+END_ACTION
+
+PROGRAM main
+VAR
+    f : fb;
+    r1, r2, r3 : INT;
+    actions : INT;
+END_VAR
+f(x := 1);
+f.act();
+r1 := f.y;
+f.act2();
+f.act4();
+r2 := f.y;
+f.act3();
+r3 := f.y;
+actions := actions + 1;
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("profile", ["iec", "matiec", "codesys", "twincat", "schneider"])
+def test_rustys_actions_container_holds_a_pous_actions(profile):
+    # RuSTy ("POUs", Action): ACTIONS right below the POU (its actions),
+    # ACTIONS fb (fb's), ACTION fb.act3 (as CODESYS exports). Every profile
+    # takes the container: no dialect spells anything else so, and `actions`
+    # stays a name where no name follows it
+    r = run_st(RUSTY_ACTIONS, cycles=2, profile=profile)
+    # cycle 1: 1, 101, 202, 201, 0; cycle 2: 1, 101, ...
+    assert [r.get(v) for v in ("r1", "r2", "r3", "actions")] == [101, 201, 0, 2]
+
+
+def test_an_actions_container_names_its_pou():
+    stray = "ACTIONS\n ACTION a\n  ;\n END_ACTION\nEND_ACTIONS\n" + prog("n : INT;", "n := 1;")
+    assert codes(stray) == ["E047"]  # nothing above it
+    other = RUSTY_ACTIONS.replace("ACTION act4", "ACTION main.act4")
+    assert codes(other) == ["E047"]  # ACTIONS fb holds fb's actions
