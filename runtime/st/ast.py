@@ -70,6 +70,7 @@ class Literal(Expr):
     value: Any
     type_name: str | None = None
     c_hex: bool = False  # written C-style (0x1F); allowed by profile only
+    doubled_underscore: bool = False  # a number with '__' (16#7f__ff); by profile only
 
 
 @dataclass(slots=True, eq=False)
@@ -147,6 +148,17 @@ class Index(Expr):
 
     base: Expr
     indices: list
+    # Set by the checker on a pointer's index p[i] (CODESYS): the Deref of
+    # p moved by i elements it stands for (checker_pointers.py)
+    via: Any = field(default=None, kw_only=True, repr=False)
+
+
+@dataclass(slots=True, eq=False)
+class AssignExpr(Expr):
+    """``(target := value)`` used as a value (CODESYS): the value stored."""
+
+    target: Expr
+    value: Expr
 
 
 @dataclass(slots=True, eq=False)
@@ -245,6 +257,7 @@ class ArrayTypeSpec(TypeSpec):
 @dataclass(slots=True, eq=False)
 class StructTypeSpec(TypeSpec):
     members: list  # VarDecl
+    extends: TypeSpec | None = None  # CODESYS: TYPE B EXTENDS A : STRUCT ... (A's fields first)
 
 
 @dataclass(slots=True, eq=False)

@@ -41,6 +41,8 @@ class AstBuilder(StmtBuilder, SfcBuilder):
                 decls.extend(d)
             elif isinstance(d, (ast.Method, ast.Property)):
                 self._attach_member(d, decls)
+            elif isinstance(d, tuple) and d[0] == "ACTIONS":
+                self._contained_actions(d[1], d[2], decls)
             elif isinstance(d, ast.VarBlock) and d.kind != "VAR_GLOBAL":
                 self.ctx.report(
                     "E005",
@@ -52,6 +54,23 @@ class AstBuilder(StmtBuilder, SfcBuilder):
             else:
                 decls.append(d)
         return ast.SourceFile(self.ctx.path, decls, self.qualified_bases, pos=ast.Pos(self.file, 1, 1))
+
+    def _contained_actions(self, actions: list, pos, decls: list) -> None:
+        """The actions of an ACTIONS container; those of an unnamed one are
+        the PROGRAM's or FUNCTION_BLOCK's above it (RuSTy)."""
+        if any(a.pou_name is None for a in actions):
+            owner = next((d for d in reversed(decls) if isinstance(d, ast.POU)), None)
+            if owner is None or owner.kind not in ("FUNCTION_BLOCK", "PROGRAM"):
+                self.ctx.report(
+                    "E047",
+                    "ACTIONS without a name follows no PROGRAM or FUNCTION_BLOCK",
+                    pos,
+                    "write ACTIONS Pou, or put the container after the POU its actions belong to",
+                )
+                return
+            for a in actions:
+                a.pou_name = a.pou_name or owner.name
+        decls.extend(actions)
 
     def _attach_member(self, m, decls: list) -> None:
         """A METHOD or PROPERTY after END_FUNCTION_BLOCK (as TwinCAT and
@@ -163,6 +182,24 @@ class AstBuilder(StmtBuilder, SfcBuilder):
             name_pos=self._span(names[0], last),
             pos=self._span(c[0], c[-1]),
         )
+
+    def actions_block(self, c):
+        """RuSTy's ACTIONS [Pou] ... END_ACTIONS: its actions, each naming
+        the POU (source() gives an unnamed container the POU above it)."""
+        owner = c[1].value if isinstance(c[1], Tok) and c[1].type in _NAME_TYPES else None
+        actions = [a for a in c if isinstance(a, ast.Action)]
+        for a in actions:
+            if a.pou_name is None:
+                a.pou_name = owner
+            elif owner is not None and a.pou_name.upper() != owner.upper():
+                self.ctx.report(
+                    "E047",
+                    f"ACTION {a.pou_name}.{a.name} in the ACTIONS of {owner}",
+                    a.name_pos,
+                    f"name it {a.name} alone, or move it out of ACTIONS {owner}",
+                )
+                a.pou_name = owner  # checked as the container's, reported once
+        return ("ACTIONS", actions, self._span(c[0], c[-1]))
 
     def fb_inherit(self, c):
         # EXTENDS a.b / IMPLEMENTS I1, I2: (keyword, [(dotted name, Pos)])
@@ -284,6 +321,11 @@ class AstBuilder(StmtBuilder, SfcBuilder):
         d = ast.TypeDecl(name.value, spec, init, pos=self._span(name, init if init is not None else spec))
         self.ctx.items.append(d)
         return d
+
+    def struct_extends_decl(self, c):
+        name, base, spec = c[0], c[2], c[3]
+        spec.extends = base
+        return self.type_decl([name, spec])
 
     def named_type(self, c):
         return ast.NamedType(c[0].value, pos=self._tpos(c[0]))

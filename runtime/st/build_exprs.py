@@ -118,6 +118,8 @@ class ExprBuilder(BuilderBase):
         except LiteralError as e:
             self._literal_error(e, token)
             value = fallback
+        if "__" in token.value:
+            extra["doubled_underscore"] = True
         return ast.Literal(kind, value, pos=self._tpos(token), **extra)
 
     def int_lit(self, c):
@@ -138,6 +140,8 @@ class ExprBuilder(BuilderBase):
         except LiteralError as e:
             self._literal_error(e, c[0])
             node = ast.Literal("int", 0)
+        if isinstance(node, ast.Literal) and node.kind in ("int", "real") and "__" in c[0].value:
+            node.doubled_underscore = True
         node.pos = self._tpos(c[0])
         return node
 
@@ -186,6 +190,14 @@ class ExprBuilder(BuilderBase):
 
     def deref(self, c):
         return ast.Deref(c[0], pos=self._span(c[0], c[1]))
+
+    def assign_expr(self, c):
+        """(target := value) as an expression (CODESYS), or target := value
+        unparenthesised as a condition or an assignment's value; the checker
+        decides."""
+        if len(c) == 3:
+            return ast.AssignExpr(c[0], c[2], pos=self._span(c[0], c[2]))
+        return ast.AssignExpr(c[1], c[3], pos=self._span(c[0], c[4]))
 
     def paren_deref(self, c):
         """(expr)^: the parenthesised pointer, dereferenced (CODESYS)."""

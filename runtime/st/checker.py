@@ -131,6 +131,7 @@ class Checker(
             self._check_actions(pou)
             self._check_sfc(pou)
         self._oop_bodies()
+        self.report_internal_reads()
         for sf in files:
             for decl in sf.decls:
                 if isinstance(decl, A.Configuration):

@@ -105,10 +105,13 @@ class ActionChecks(CheckerBase):
     # ------------------------------------------------------------ calls
 
     def own_action_call(self, e: A.Call, scope: Scope, as_statement: bool) -> bool:
-        """``Act();`` inside the POU (or one of its actions): True when the
-        name is an action of the POU that is being checked."""
+        """``Act();`` inside the POU (one of its actions, or its METHODs, as
+        CODESYS and TwinCAT allow): True when the name is an action of the
+        POU that is being checked."""
         assert isinstance(e.callee, A.Name)
-        pou = scope.pou
+        pou = self.owner_fb(scope)  # a METHOD's: its block's
+        if pou is None:
+            return False
         act = find_action(pou, e.callee.name.upper())  # its own, or inherited (EXTENDS)
         if act is None:
             return False

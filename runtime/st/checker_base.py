@@ -90,6 +90,12 @@ class CheckerBase:
         self._image_probe = image  # to validate direct addresses (None: not checked)
         self._setter_only: list = []  # uses of a PROPERTY without GET (checker_oop.py)
         self._assigned: set = set()  # ids of the assignment targets among them
+        #: id -> (Member, VarSymbol, FBType): an FB's internal variable read
+        #: from outside where the profile allows it (W113; E013 when written)
+        self._internal_reads: dict = {}
+        #: the global variable list whose variable's initial value is being
+        #: checked: its qualified_only names may go bare there (namespaces.py)
+        self.initialising_list: str | None = None
 
     def _is_bool(self, ty: T.Type) -> bool:
         e = T.base_elementary(ty)
@@ -108,7 +114,7 @@ class CheckerBase:
                 "E044",
                 "a comma ends the argument list",
                 pos,
-                f"remove it (the {names_where(lambda p: p.trailing_comma_in_calls)} profile accepts it)",
+                f"remove it (the {names_where(lambda p: p.trailing_comma_in_calls)} profiles accept it)",
             )
 
     def _elsewhere(self, name: str) -> str:
@@ -143,6 +149,10 @@ class CheckerBase:
         # checker_exprs
         def expr(self, e: A.Expr, scope: Scope, expected: T.Type | None = None) -> T.Type | None: ...
 
+        def internal_written(self, e: A.Member) -> bool: ...
+
+        def report_internal_reads(self) -> None: ...
+
         def _address_fits(self, addr: A.LocatedAddress, ty: T.ElementaryType | None, pos: A.Pos) -> bool: ...
 
         # namespaces
@@ -167,6 +177,8 @@ class CheckerBase:
 
         def lvalue(self, e: A.Expr, scope: Scope) -> T.Type | None: ...
 
+        def assign_expr(self, e: A.AssignExpr, scope: Scope) -> T.Type | None: ...
+
         def _is_lvalue_expr(self, e: A.Expr) -> bool: ...
 
         def _check_writable(self, e: A.Expr, scope: Scope) -> None: ...
@@ -183,6 +195,13 @@ class CheckerBase:
 
         # checker_sfc
         def is_sfc_action(self, pou: POUInfo, key: str) -> bool: ...
+
+        # checker_pointers
+        def pointer_index(self, e: A.Index, ptr: T.Type, scope: Scope) -> T.Type | None: ...
+
+        # checker_oop
+        @staticmethod
+        def owner_fb(scope: Scope) -> POUInfo | None: ...
 
         # checker_calls
         def call(

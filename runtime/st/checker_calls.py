@@ -17,6 +17,7 @@ from .checker_operators import OPERATOR_FUNCTIONS
 from .conversions import const_repr, conversion_exists, generic_fit, is_flexible, same_type
 from .native import NativeFunction
 from .oop import extends_fb, fb_hint
+from .profile import names_where
 from .symbols import CallInfo, POUInfo, PropertyInfo, VarSymbol, copied_in_out
 
 
@@ -430,7 +431,7 @@ class CallChecks(CheckerBase):
                 param_types.append(want)
             elif spec.upper() in T.GENERICS:
                 t = generic_fit(t, spec, self.profile)
-                if not T.is_generic_member(t, spec):
+                if not T.is_generic_member(t, spec) and not self._enum_conversion(func, t):
                     self.d.error("E020", f"{func.name}: argument {i + 1} is {t}, expected {spec}", a.pos)
                     return None
                 param_types.append(t)
@@ -467,6 +468,16 @@ class CallChecks(CheckerBase):
             if e.const is not None and T.base_elementary(rty) is T.REAL:
                 e.const = const_repr(e.const, T.REAL)  # SQRT(REAL#2.0) is a binary32 value
         return rty
+
+    def _enum_conversion(self, func, t: T.Type) -> bool:
+        """TO_STRING(e), TO_INT(e) of an enumeration (profile.enum_conversions):
+        its base type's value, or its name (rt_convert.make_converter)."""
+        return (
+            self.profile.enum_conversions
+            and func.typed
+            and func.name.startswith("TO_")
+            and isinstance(T.resolve(t), T.EnumType)
+        )
 
     _FOLDABLE_NAMES = (
         "ABS",
@@ -546,6 +557,17 @@ class CallChecks(CheckerBase):
         if ty is None:
             return None
         e.target = CallInfo("builtin", func=key, args=[a])
+        if key == "ADR" and isinstance(a, A.Literal) and a.kind in ("string", "wstring"):
+            if self.profile.adr_of_literal:  # ADR('TRUE'): to a copy of the text (profile.py)
+                return T.RefType(ty, pointer=True)
+            self.d.error(
+                "E031",
+                "ADR needs a variable, not a string literal",
+                a.pos,
+                f"declare a CONSTANT STRING and take its ADR (the "
+                f"{names_where(lambda p: p.adr_of_literal)} profiles take ADR('text'))",
+            )
+            return None
         if not self._is_lvalue_expr(a) or (isinstance(a, A.Located)):
             self.d.error("E031", f"{key} needs a variable", a.pos)
             return None

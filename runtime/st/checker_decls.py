@@ -7,12 +7,14 @@ the code generator emits (init_value).
 
 from __future__ import annotations
 
+from dataclasses import fields
 from typing import Any
 
 from . import ast as A
 from . import types as T
 from .checker_base import CheckerBase, Scope
 from .conversions import const_as, same_type
+from .profile import names_where
 from .symbols import CallInfo, POUInfo, VarSymbol, pyname
 
 
@@ -214,6 +216,16 @@ class DeclChecks(CheckerBase):
     def _check_var_init(self, sym: VarSymbol, scope: Scope) -> None:
         if id(sym) in self._inited:
             return
+        if sym.owner is None:  # a global: its own list's names may go bare (namespaces.py)
+            self.initialising_list = getattr(self, "list_of", {}).get(sym.name.upper())
+            try:
+                self._var_init(sym, scope)
+            finally:
+                self.initialising_list = None
+            return
+        self._var_init(sym, scope)
+
+    def _var_init(self, sym: VarSymbol, scope: Scope) -> None:
         if sym.fb_init is not None:
             self._check_fb_init_var(sym, scope)
             return
@@ -226,7 +238,15 @@ class DeclChecks(CheckerBase):
                 sym.const_value = self.default_value(sym.type)
             return
         function_input = sym.owner is not None and sym.owner.kind == "FUNCTION" and sym.section == "VAR_INPUT"
-        sym.init_value = self.init_value(sym.type, sym.init, scope, sym.name, ref_ok=not function_input)
+        at_start = (
+            self.profile.initial_values_at_start
+            and not sym.constant
+            and sym.location is None
+            and not (sym.section == "VAR_INPUT" and sym.owner is not None and sym.owner.kind in ("FUNCTION", "METHOD"))
+        )
+        sym.init_value = self.init_value(
+            sym.type, sym.init, scope, sym.name, ref_ok=not function_input, at_start=sym if at_start else None
+        )
         if (
             folded
             and sym.init_value is not None
@@ -247,13 +267,18 @@ class DeclChecks(CheckerBase):
             return ty.lo if not ty.lo <= 0 <= ty.hi else 0
         return None
 
-    def init_value(self, ty: T.Type, init: Any, scope: Scope, what: str, ref_ok: bool = False) -> Any:
+    def init_value(
+        self, ty: T.Type, init: Any, scope: Scope, what: str, ref_ok: bool = False, at_start: VarSymbol | None = None
+    ) -> Any:
         """Evaluate an initialiser against a type. Returns a plan: a Python
         value for elementary types, ('array', [(count, plan), ...]) for
         arrays (runs in row-major order, as many elements as the array has),
         ('struct', {UPPER: plan}) for structs and FB instances, ('ref', the
         REF()/ADR() call) for a reference (only where ref_ok: a variable's
-        own initial value), None for the default."""
+        own initial value), ('expr', the expression, its type) for a value
+        computed when the variable is initialised (at_start: the variable,
+        where the profile computes initial values then), None for the
+        default."""
         rty = T.resolve(ty)
         if T.is_reference(ty) and isinstance(init, A.Expr):
             return self.reference_init(ty, init, scope, what, ref_ok)
@@ -276,17 +301,55 @@ class DeclChecks(CheckerBase):
             return None
         if not self.check_convertible(ety, ty, init, f"the initial value of '{what}'"):
             return None
+        if init.const is None and not isinstance(rty, T.RefType) and at_start is not None:
+            return self._computed_at_start(at_start, init, ety)
         if init.const is None and not isinstance(rty, T.RefType):
             self.d.error(
                 "E024",
                 f"the initial value of '{what}' is not a constant expression",
                 init.pos,
-                "use literals and CONSTANTs here, or assign the value in the code",
+                "use literals and CONSTANTs here, or assign the value in the code"
+                + (
+                    ""
+                    if self.profile.initial_values_at_start
+                    else f" (the {names_where(lambda p: p.initial_values_at_start)} profiles compute a variable's "
+                    "at start-up)"
+                ),
             )
             return None
         if isinstance(rty, T.RefType):
             return self._ref_init(init, ety, what, ref_ok)
         return const_as(init.const, ety, ty)
+
+    def _computed_at_start(self, sym: VarSymbol, init: A.Expr, ety: T.Type) -> Any:
+        """An initial value CODESYS computes when the variable is initialised
+        ("any valid ST expression ... constants, other variables or
+        functions"; CODESYS "Variable Initialization"): in declaration order,
+        so a variable of the same POU or list it reads must be declared
+        before it (CODESYS would read that one's 0: E024 here)."""
+        for name in _names_in(init):
+            other = name.sym
+            if not isinstance(other, VarSymbol) or other is sym or other.owner is not sym.owner:
+                continue
+            if other.pos.file == sym.pos.file and (other.pos.line, other.pos.col) > (sym.pos.line, sym.pos.col):
+                self.d.error(
+                    "E024",
+                    f"the initial value of '{sym.name}' reads '{other.name}', which is initialised after it",
+                    name.pos,
+                    f"declare '{other.name}' before '{sym.name}': initial values are computed in declaration order",
+                )
+                return None
+            instance_var = sym.owner is not None and sym.owner.kind in ("FUNCTION_BLOCK", "PROGRAM")
+            if instance_var and sym.section != "VAR_TEMP" and other.section in ("VAR_TEMP", "VAR_IN_OUT"):
+                self.d.error(
+                    "E024",
+                    f"the initial value of '{sym.name}' reads {other.section} '{other.name}', which has no value "
+                    "when the instance is initialised",
+                    name.pos,
+                    "assign the value in the code",
+                )
+                return None
+        return ("expr", init, ety)
 
     def _ref_init(self, init: A.Expr, ety: T.Type, what: str, ref_ok: bool) -> Any:
         """A reference's initial value: NULL (or 0), or REF()/ADR() of a
@@ -294,7 +357,8 @@ class DeclChecks(CheckerBase):
         if not isinstance(T.resolve(ety), T.RefType):
             return None  # NULL or 0: the default
         call = init.target if isinstance(init, A.Call) and isinstance(init.target, CallInfo) else None
-        if call is None or call.func not in ("REF", "ADR") or not self._fixed_place(call.args[0]):
+        literal = call is not None and call.func == "ADR" and isinstance(call.args[0], A.Literal)  # ADR('text')
+        if call is None or call.func not in ("REF", "ADR") or not (literal or self._fixed_place(call.args[0])):
             self.d.error(
                 "E024",
                 f"the initial value of '{what}' is not a reference to a variable at a fixed place",
@@ -389,3 +453,22 @@ class DeclChecks(CheckerBase):
             )
             return None
         return e.const
+
+
+def _names_in(e: Any):
+    """The names an expression reads, at any depth (not the types and
+    constants the checker noted on it)."""
+    todo = [e]
+    while todo:
+        node = todo.pop()
+        if isinstance(node, A.Name):
+            yield node
+        elif isinstance(node, A.Node):
+            for f in fields(node):
+                if f.name in ("pos", "ty", "const", "implicit_ref", "target", "sym"):
+                    continue
+                value = getattr(node, f.name, None)
+                if isinstance(value, A.Node):
+                    todo.append(value)
+                elif isinstance(value, list):
+                    todo.extend(v for v in value if isinstance(v, A.Node))

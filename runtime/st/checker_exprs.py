@@ -10,7 +10,9 @@ from __future__ import annotations
 from . import ast as A
 from . import types as T
 from .checker_base import BUILTINS, CheckerBase, Scope
+from .checker_pointers import is_pointer
 from .conversions import const_repr
+from .profile import names_where
 from .symbols import copied_in_out
 
 _TIME_KIND = {
@@ -70,6 +72,8 @@ class ExprChecks(CheckerBase):
             return self._binary(e, scope, expected)
         if isinstance(e, A.Call):
             return self.call(e, scope, as_statement=False, expected=expected)
+        if isinstance(e, A.AssignExpr):
+            return self.assign_expr(e, scope)  # checker_stmts.py
         if isinstance(e, A.Located):
             return self._located(e)
         if isinstance(e, A.SchneiderAddress):
@@ -82,6 +86,14 @@ class ExprChecks(CheckerBase):
         if e.c_hex and not self.profile.c_hex_literals:
             self.d.error(
                 "E026", "C-style hexadecimal literal", e.pos, f"write 16#{v:X}, or compile with --profile schneider"
+            )
+        if e.doubled_underscore and not self.profile.doubled_underscores:
+            self.d.error(
+                "E003",
+                "two underscores in a row in a number",
+                e.pos,
+                "an underscore may only stand between two digits (the "
+                f"{names_where(lambda p: p.doubled_underscores)} profiles accept doubled ones)",
             )
         if e.kind in _TIME_KIND:
             ty = _TIME_KIND[e.kind]
@@ -324,12 +336,20 @@ class ExprChecks(CheckerBase):
             inside = scope.pou is b.pou or self.inside_fb(scope, b.pou)
             if copied_in_out(v, self.profile):
                 inside = True  # the instance's own copy (MatIEC): read and written as an input
-            if v.section not in ("VAR_INPUT", "VAR_OUTPUT") and not inside:
+            if v.section in ("VAR", "VAR_STAT") and not inside and self.profile.internal_read == "warning":
+                # read from outside: W113 once checking is done, unless written (E013)
+                self._internal_reads[id(e)] = (e, v, b)
+            elif v.section not in ("VAR_INPUT", "VAR_OUTPUT") and not inside:
                 self.d.error(
                     "E013",
                     f"'{v.name}' is internal to {b.name}",
                     e.pos,
-                    "only VAR_INPUT and VAR_OUTPUT are visible outside a block",
+                    "only VAR_INPUT and VAR_OUTPUT are visible outside a block"
+                    + (
+                        f" (the {names_where(lambda p: p.internal_read == 'warning')} profiles let a VAR be read)"
+                        if v.section in ("VAR", "VAR_STAT")
+                        else ""
+                    ),
                 )
                 return None
             e.sym = v
@@ -337,8 +357,37 @@ class ExprChecks(CheckerBase):
         self.d.error("E013", f"{bty} has no members", e.pos)
         return None
 
+    def internal_written(self, e: A.Member) -> bool:
+        """E013 when e is an FB's internal variable read from outside where
+        the profile allows reading it (_member_of) and this use writes it."""
+        hit = self._internal_reads.pop(id(e), None)
+        if hit is None:
+            return False
+        _e, v, b = hit
+        self.d.error(
+            "E013",
+            f"'{v.name}' is internal to {b.name}: it may be read from outside, not written",
+            e.pos,
+            "give the block an input (or a method or property) that sets it",
+        )
+        return True
+
+    def report_internal_reads(self) -> None:
+        """W113 for each internal variable of an FB instance read from
+        outside (CODESYS, TwinCAT: static analysis rule SA0102)."""
+        for e, v, b in self._internal_reads.values():
+            self.d.warning(
+                "W113",
+                f"'{v.name}' is internal to {b.name}: read from outside",
+                e.pos,
+                "make it a VAR_OUTPUT (or a property) of the block if it is meant to be read",
+            )
+        self._internal_reads.clear()
+
     def _index(self, e: A.Index, scope: Scope) -> T.Type | None:
         bty = self.expr(e.base, scope)
+        if bty is not None and is_pointer(bty):
+            return self.pointer_index(e, bty, scope)  # p[i] (checker_pointers.py)
         for ix in e.indices:
             ity = self.expr(ix, scope)
             ie = T.base_elementary(ity) if ity is not None else None

@@ -270,6 +270,8 @@ class OopChecks(OopRules):
             sym = fb.vars.get(key)
             if sym is not None:
                 e.sym = sym
+                if sym.constant and sym.const_value is not None:  # the block's VAR CONSTANT
+                    e.const = sym.const_value
                 return (sym.type,)
         prop = find_property(fb, key)
         if prop is not None:

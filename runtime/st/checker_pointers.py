@@ -20,7 +20,7 @@ from __future__ import annotations
 from . import ast as A
 from . import sizes
 from . import types as T
-from .checker_base import CheckerBase
+from .checker_base import CheckerBase, Scope
 from .conversions import same_type
 from .profile import names_where
 from .symbols import CallInfo
@@ -100,6 +100,39 @@ class PointerChecks(CheckerBase):
             )
             return None
         return elem, size
+
+    def pointer_index(self, e: A.Index, ptr: T.Type, scope: Scope) -> T.Type | None:
+        """p[i] where the profile allows it (CODESYS, TwinCAT): the i-th
+        element from where p points, (p + i * SIZEOF(p^))^, read and
+        written. e.via is that dereference."""
+        target = T.resolve(T.resolve(ptr).target)  # type: ignore[attr-defined]
+        if not self.profile.pointer_index:
+            where = names_where(lambda p: p.pointer_index)
+            self.d.error(
+                "E050", f"{ptr} is not an array", e.pos, f"write (p + i)^ (the {where} profiles index a pointer)"
+            )
+            return None
+        if isinstance(target, T.ArrayType) or len(e.indices) != 1:
+            hint = "write p^[i] for an element of the ARRAY it points to" if isinstance(target, T.ArrayType) else None
+            self.d.error("E050", f"{ptr} takes one index, as a pointer to its first element", e.pos, hint)
+            return None
+        ix = e.indices[0]
+        ity = self.expr(ix, scope)
+        ie = T.base_elementary(ity) if ity is not None else None
+        if ity is None or ie is None or not ie.is_intlike or isinstance(T.resolve(ity), T.EnumType):
+            if ity is not None:
+                self.d.error("E050", f"a pointer's index must be an integer, not {ity}", ix.pos)
+            return None
+        size = sizes.sizeof(target)
+        if size is None:
+            self.d.error("E161", f"the size of {target} is not known: a pointer to it cannot be indexed", e.pos)
+            return None
+        move = A.Binary("+", e.base, ix, pos=e.pos)
+        move.ty = T.RefType(T.resolve(ptr).target, pointer=True)  # type: ignore[attr-defined]
+        move.impl = CallInfo("pointer", func="index", rtypes=(size,))
+        e.via = A.Deref(move, pos=e.pos)
+        e.via.ty = move.ty.target
+        return e.via.ty
 
     def string_index(self, e: A.Index, b: T.StringType) -> T.Type | None:
         """s[i]: where the profile allows it (CODESYS V3, TwinCAT 3), the

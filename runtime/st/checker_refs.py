@@ -150,7 +150,9 @@ class RefChecks(CheckerBase):
         return ty
 
     def isvalidref(self, e: A.Call, scope: Scope) -> T.Type | None:
-        """__ISVALIDREF(r): whether a REFERENCE TO is bound (CODESYS)."""
+        """__ISVALIDREF(r): whether a REFERENCE TO is bound (CODESYS), or a
+        VAR_IN_OUT (TwinCAT: "checking the VAR_IN_OUT reference" before a
+        METHOD uses it, when the block may not have been called yet)."""
         args = e.args
         if len(args) != 1 or args[0].name is not None or args[0].value is None:
             self.d.error("E041", "__ISVALIDREF takes one argument", e.pos, "__ISVALIDREF(ref)")
@@ -159,10 +161,11 @@ class RefChecks(CheckerBase):
         ty = self.expr(a, scope)
         if ty is None:
             return None
-        if a.implicit_ref is None:
+        in_out = isinstance(a, A.Name) and isinstance(a.sym, VarSymbol) and a.sym.section == "VAR_IN_OUT"
+        if a.implicit_ref is None and not in_out:
             self.d.error(
                 "E160",
-                f"__ISVALIDREF needs a REFERENCE TO, not {ty}",
+                f"__ISVALIDREF needs a REFERENCE TO or a VAR_IN_OUT, not {ty}",
                 a.pos,
                 "an interface is 0 until assigned: test it with itf <> 0"
                 if isinstance(T.resolve(ty), T.InterfaceType)

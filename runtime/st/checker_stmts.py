@@ -78,6 +78,47 @@ class StmtChecks(CheckerBase):
         if ty is not None and not self._is_bool(ty):
             self.d.error("E020", f"the {what} condition is {ty}, not BOOL", cond.pos, "compare it, e.g. x <> 0")
 
+    def assign_expr(self, e: A.AssignExpr, scope: Scope) -> T.Type | None:
+        """(target := value) used as a value, where the profile allows it
+        (CODESYS "Assignment as expression"): the target is assigned as by a
+        statement when the expression is evaluated, and its value is the
+        target's after the store. Elementary targets only."""
+        if not self.profile.assignment_expressions:
+            self.d.error(
+                "E032",
+                "an assignment is a statement, not a value",
+                e.pos,
+                "assign on a line of its own, then use the variable (the "
+                f"{names_where(lambda p: p.assignment_expressions)} profiles take an assignment as a value)",
+            )
+            self.expr(e.value, scope)
+            return None
+        tty = self.lvalue(e.target, scope)
+        if tty is None:
+            self.expr(e.value, scope)
+            return None
+        vty = self.expr(e.value, scope, expected=tty)
+        target = e.target
+        if (
+            T.resolve(tty).is_aggregate
+            or T.is_reference(tty)
+            or isinstance(target, (A.BitAccess, A.Located))
+            or (isinstance(target, A.Index) and isinstance(T.resolve(target.base.ty), T.StringType))
+            or (isinstance(target, (A.Name, A.Member)) and isinstance(target.sym, PropertyInfo))
+        ):
+            self.d.error(
+                "E032",
+                f"an assignment to {tty} cannot be used as a value here",
+                e.pos,
+                "assign on a line of its own, then use the variable (a variable of an elementary type or "
+                "a STRING may be assigned within an expression)",
+            )
+            return None
+        if vty is None or not self.check_convertible(vty, tty, e.value, "the assignment"):
+            return None
+        self._mark_boxed(target, scope)  # stored through a reference (codegen_exprs.py)
+        return tty
+
     def _assign(self, s: A.Assign, scope: Scope) -> None:
         if s.op == "?=":
             self._assignment_attempt(s, scope)  # checker_oop.py
@@ -234,6 +275,8 @@ class StmtChecks(CheckerBase):
                 if isinstance(e.base, A.Name) and isinstance(e.base.sym, POUInfo):
                     return  # Prog.P := v: a PROGRAM's property (checker_oop.py)
             if isinstance(base_ty, T.FBType) and isinstance(sym, VarSymbol):
+                if self.internal_written(e):  # checker_exprs.py
+                    return
                 if sym.section == "VAR_OUTPUT" and not self.inside_fb(scope, base_ty.pou):
                     self.d.error(
                         "E030",
@@ -243,6 +286,8 @@ class StmtChecks(CheckerBase):
                     )
                     return
             self._check_writable(e.base, scope)
+        elif isinstance(e, A.Index) and e.via is not None:
+            return  # p[i]: written through the pointer, as p^
         elif isinstance(e, (A.Index, A.BitAccess)):
             self._check_writable(e.base, scope)
         elif isinstance(e, A.Located) and e.addr.table is not None:

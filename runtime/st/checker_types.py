@@ -13,6 +13,7 @@ from .checker_base import CheckerBase, Scope
 from .checker_refs import spec_kind
 from .limits import MAX_STRING_LENGTH, MAX_VAR_ELEMENTS
 from .pragmas import has_attribute
+from .profile import names_where
 from .symbols import POUInfo, pyname
 
 
@@ -40,6 +41,8 @@ class TypeChecks(CheckerBase):
                 )
                 if decl.kind != "FUNCTION":
                     info.fbtype = T.FBType(decl.name, info)
+                if library and key == "F_TRIG" and self.profile.f_trig_first_call_edge:
+                    _memory_starts_false(decl)
                 self.pous[key] = info
             elif isinstance(decl, A.Interface):
                 self._collect_interface(decl, library)
@@ -76,6 +79,8 @@ class TypeChecks(CheckerBase):
             spec = decl.spec
             if isinstance(spec, A.StructTypeSpec):
                 st = T.StructType(decl.name, pyclass=pyname("S_", decl.name))
+                if spec.extends is not None:
+                    self._struct_base(st, spec.extends)
                 self.types[key] = st  # before fields: REF_TO self is allowed
                 for m in spec.members:
                     fkey = m.name.upper()
@@ -96,12 +101,17 @@ class TypeChecks(CheckerBase):
                 ty = self._enum_type(decl.name, spec)
                 ty.qualified_only = has_attribute(decl, "qualified_only")
                 ty.strict = has_attribute(decl, "strict")
+                ty.to_string = has_attribute(decl, "to_string")
             else:
                 target = self.type_of(spec)
                 if target is None:
                     return None
                 ty = T.AliasType(decl.name, target)
             self.types[key] = ty
+            if isinstance(ty, T.EnumType) and isinstance(decl.init, A.Name) and decl.init.name.upper() in ty.values:
+                # its own value, written bare in its TYPE (`(NONE, ...) := NONE;`): CODESYS and
+                # TwinCAT take it there even when the enumeration is qualified_only
+                decl.init = A.EnumLiteral(decl.name, decl.init.name, pos=decl.init.pos)
             if decl.init is not None:
                 plan = self.init_value(ty, decl.init, Scope(None), decl.name)
                 if isinstance(ty, T.EnumType):
@@ -113,6 +123,27 @@ class TypeChecks(CheckerBase):
             return ty
         finally:
             self._resolving.pop(key, None)
+
+    def _struct_base(self, st: T.StructType, spec: A.TypeSpec) -> None:
+        """TYPE B EXTENDS A : STRUCT (CODESYS "Extension of a structure"): B
+        has A's fields first, at the same places, and a POINTER TO, REFERENCE
+        TO or VAR_IN_OUT of A takes a B (oop.extends_fb)."""
+        assert isinstance(spec, A.NamedType)
+        key = spec.name.upper()
+        if key in self._resolving:
+            chain = [*self._resolving.values(), spec.name]
+            self.d.error("E012", f"STRUCT {st.name} EXTENDS itself: {' -> '.join(chain)}", spec.pos)
+            return
+        base = self.type_of(spec)
+        if base is None:
+            return
+        if not isinstance(T.resolve(base), T.StructType):
+            self.d.error("E012", f"STRUCT {st.name} EXTENDS {base}, which is no STRUCT", spec.pos)
+            return
+        resolved = T.resolve(base)
+        assert isinstance(resolved, T.StructType)
+        st.base = resolved
+        st.fields.update(resolved.fields)
 
     def _enum_type(self, name: str, spec: A.EnumTypeSpec) -> T.EnumType:
         base = T.INT
@@ -152,6 +183,8 @@ class TypeChecks(CheckerBase):
                 return T.ELEMENTARY[key]
             if key in ("STRING", "WSTRING"):
                 return T.StringType(self.profile.default_string_length, key == "WSTRING")
+            if key == "BIT" and self.profile.bit_type and key not in self.type_decls:
+                return T.BIT
             ty = self._resolve_named_type(key, spec.pos)
             if ty is not None:
                 return ty
@@ -174,6 +207,14 @@ class TypeChecks(CheckerBase):
                     f"generic type '{spec.name}' cannot be used in a declaration",
                     spec.pos,
                     "use a concrete type such as INT or REAL",
+                )
+                return None
+            if key == "BIT":
+                self.d.error(
+                    "E012",
+                    "BIT is a CODESYS type",
+                    spec.pos,
+                    f"write BOOL (the {names_where(lambda p: p.bit_type)} profiles have BIT)",
                 )
                 return None
             self.d.error(
@@ -263,3 +304,14 @@ class TypeChecks(CheckerBase):
             return self._enum_type("(anonymous enum)", spec)
         self.d.error("E012", "unsupported type", spec.pos)
         return None
+
+
+def _memory_starts_false(f_trig: A.POU) -> None:
+    """The standard F_TRIG as MatIEC declares it: its memory M (NOT CLK in
+    the last call) without the initial value TRUE of fblocks/iec/standard_fbs.st,
+    so the first call with CLK FALSE is an edge (the matiec profile). The
+    library's AST is this compilation's own copy (parse_cached)."""
+    for block in f_trig.var_blocks:
+        for d in block.decls:
+            if d.name.upper() == "M":
+                d.init = None

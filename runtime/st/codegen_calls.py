@@ -52,7 +52,12 @@ class CallGen(CodeGenBase):
             if info.func == "REF":
                 return self.ref_code(info.args[0])
             if info.func == "__ISVALIDREF":
-                return f"({self.ref_value(info.args[0])} is not None)"
+                arg = info.args[0]
+                if arg.implicit_ref is None:  # a VAR_IN_OUT: bound by a call of its POU
+                    sym = arg.sym
+                    own = self.fn.is_function and sym.owner is self.fn.pou
+                    return f"({sym.pyname if own else f'{self.fn.self_name}.{sym.pyname}'} is not None)"
+                return f"({self.ref_value(arg)} is not None)"
             if info.func == "__QUERYINTERFACE":
                 src, dst = info.args
                 return f"_query_into({self._query_code(src, dst.ty)}, {self.ref_code(dst)})"

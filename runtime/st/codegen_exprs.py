@@ -24,6 +24,8 @@ class ExprGen(CodeGenBase):
     """Expressions and references."""
 
     def ex(self, e: A.Expr) -> str:
+        if type(e) is A.Index and e.via is not None:  # p[i]: (p + i elements)^
+            return self.ex(e.via)
         if e.implicit_ref is not None:  # a REFERENCE TO stands for its target
             if T.resolve(e.ty).is_aggregate:
                 return f"_deref({self.ref_value(e)})"
@@ -47,6 +49,9 @@ class ExprGen(CodeGenBase):
             return f"{self.ex(e.base)}.{e.sym.pyname}"
         if isinstance(e, A.Index):
             return self._index_target(e)
+        if isinstance(e, A.AssignExpr):  # (x := v): stored when evaluated (checker_stmts.py)
+            value = self.coerce(self.ex(e.value), e.value.ty, e.target.ty, e.value)
+            return f"{self.const(refs.assign_get)}({self.ref_code(e.target)}, {value})"
         if isinstance(e, A.Deref):
             this = self._this_code(e)  # THIS^, SUPER^ (codegen_oop.py)
             if this is not None:
@@ -239,6 +244,8 @@ class ExprGen(CodeGenBase):
         return f"({negate}_same_ref({codes[0]}, {codes[1]}))"
 
     def _has_call(self, e: A.Expr) -> bool:
+        if isinstance(e, A.AssignExpr):  # a store: evaluated as a call is
+            return True
         if isinstance(e, A.Call):
             info = e.target
             if isinstance(info, CallInfo) and info.kind == "operator":
@@ -280,6 +287,8 @@ class ExprGen(CodeGenBase):
 
     def ref_code(self, e: A.Expr) -> str:
         """A reference to the storage of an lvalue (REF, ADR, VAR_IN_OUT, =>)."""
+        if type(e) is A.Index and e.via is not None:
+            return self.ref_code(e.via)
         if e.implicit_ref is not None:  # the storage a REFERENCE TO designates
             return self.ref_value(e)
         ty = T.resolve(e.ty)

@@ -19,6 +19,8 @@ class PointerGen(CodeGenBase):
 
     def pointer_op(self, e: A.Binary) -> str:
         esize = e.impl.rtypes[0]
+        if e.impl.func == "index":  # p[i] (checker_pointers.py): i elements on
+            return f"_ptr_add({self.pointer_operand(e.left)}, ({self.ex(e.right)}) * {esize}, {esize})"
         if e.impl.func == "move":
             left_is_ptr = isinstance(T.resolve(e.left.ty), T.RefType)
             ptr, delta = (e.left, e.right) if left_is_ptr else (e.right, e.left)
@@ -61,8 +63,8 @@ class PointerGen(CodeGenBase):
         structure at the field's offset, so that ADR(s.a) + SIZEOF(s.a)
         reaches the next field as in CODESYS's memory (st/rt_bytes.py)."""
         st = T.resolve(e.base.ty)
-        if not isinstance(st, T.StructType) or not isinstance(e.sym, T.StructField):
-            return None
+        if not isinstance(st, T.StructType) or not isinstance(e.sym, T.StructField) or e.sym.type is T.BIT:
+            return None  # (ADR of a BIT: a reference to its BOOL)
         unit = rt_bytes.layout_of(e.ty)
         lay = rt_bytes.layout_of(st)
         offsets = sizes.field_offsets(st)
@@ -75,6 +77,8 @@ class PointerGen(CodeGenBase):
         """ADR(x): REF(x), but an element of a multi-dimensional array or an
         aggregate element is an ElemPtr into the whole array, so that
         arithmetic can step across rows and over structures."""
+        if isinstance(e, A.Literal):  # ADR('text'): a copy of the literal (profile.adr_of_literal)
+            return f"_CellRef({self.ex(e)})"
         if isinstance(e, A.Member) and e.implicit_ref is None:
             field = self._field_view(e)
             if field is not None:

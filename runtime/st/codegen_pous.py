@@ -199,6 +199,10 @@ class PouGen(SfcGen):
         every variable they may designate exists."""
         for target, call, pos, ty in self._ref_inits:
             self.pos = pos
+            if isinstance(call, tuple):  # ('expr', init, its type): computed now (codesys, twincat)
+                _kind, init, ety = call
+                self.emit(f"{target} = {self.coerce(self.ex(init), ety, ty, init)}")
+                continue
             # REF(x) / ADR(x) (as the variable's type: ADR(arr) into a POINTER TO INT), or the
             # variable a REFERENCE TO is bound to
             code = self.coerce(self.ex(call), call.ty, ty, None) if isinstance(call, A.Call) else self.ref_code(call)
@@ -244,6 +248,10 @@ class PouGen(SfcGen):
         if isinstance(plan, tuple) and plan[0] == "ref":
             self.emit(f"{target} = None")
             self._ref_inits.append((ref_target or target, plan[1], self.pos, ty))
+            return
+        if isinstance(plan, tuple) and plan[0] == "expr":  # computed after the constant ones, in order
+            self.emit(f"{target} = {self._default_code(ty)}")
+            self._ref_inits.append((ref_target or target, plan, self.pos, ty))
             return
         if t.is_aggregate:
             self.emit(f"{target} = {self._aggregate_expr(ty, plan)}")

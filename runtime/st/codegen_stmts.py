@@ -334,6 +334,8 @@ class StmtGen(CodeGenBase):
             self.emit(f"{self.ex(target.base)}.{target.sym.pyname}.set({code})")
         elif isinstance(target, A.Member):
             self.emit(f"{self.ex(target.base)}.{target.sym.pyname} = {code}")
+        elif isinstance(target, A.Index) and target.via is not None:  # p[i] := v
+            self.emit(f"{self.ex(target.via.base)}.set({code})")
         elif isinstance(target, A.Index) and isinstance(T.resolve(target.base.ty), T.StringType):
             base, ix = self.ex(target.base), self.ex(target.indices[0])
             new = f"{self.string_leaf(target)}.with_byte({base}, {ix}, {code})"

@@ -13,7 +13,7 @@ Code ranges (keep them stable, users search for them):
              contains itself; E018 a qualified_only list's variable without
              its list, E019 a namespace or list problem: namespaces.py)
   E020-E029  types and conversions
-  E030-E039  assignment targets
+  E030-E039  assignment targets (E032: an assignment used as a value)
   E040-E049  calls (E044: a comma ending an argument list, where the profile
              does not take it)
   E050-E059  arrays, indices, bit access (E054, E055: the element limits of
@@ -41,8 +41,8 @@ Code ranges (keep them stable, users search for them):
   E220-E229  projects as a whole (check of a project: libraries, entries)
   E230-E239  the libraries softplc ships (program/shipped.py, fblocks/libs):
              W230 one that cannot do its work here (hardware, a service)
-  W1xx       warnings (same tens as the error they soften: W121 ~ E021,
-             W122 ~ E022, W130 ~ E030 where the profile allows what IEC
+  W1xx       warnings (same tens as the error they soften: W113 ~ E013,
+             W121 ~ E021, W122 ~ E022, W130 ~ E030 where the profile allows what IEC
              forbids; W102-W103 the parser: W102 MatIEC embedded C, W103 an
              attribute not honoured, pragmas.py)
 """

@@ -4,8 +4,8 @@ schneider").
 
 A marker is text only one dialect writes (comments and strings do not
 count): C-style ``0x1F`` literals, ``%MW3250:X0`` bits and ``ADR#0.1.SYS``
-(Schneider), ``{{ }}`` embedded C (MatIEC), a comma ending an argument list
-and the ``Tc2_``/``Tc3_`` library namespaces (TwinCAT), ``{attribute ...}``
+(Schneider), ``{{ }}`` embedded C (MatIEC), the ``Tc2_``/``Tc3_`` library
+namespaces (TwinCAT), a comma ending an argument list, ``{attribute ...}``
 pragmas, ``Standard.`` and the object-oriented keywords (CODESYS and
 TwinCAT). The markers only pick the candidates; the command re-checks the
 files with one before it names it (runtime/cli.py), so the hint never
@@ -24,8 +24,8 @@ _MARKERS = (
     ("schneider", "%MW..:X bits and %MW..:n tables", re.compile(r"%M[WD]\d+:X?\d", re.IGNORECASE)),
     ("schneider", "ADR#", re.compile(r"\bADR#", re.IGNORECASE)),
     ("matiec", "{{ }} embedded C", re.compile(r"\{\{")),
-    ("twincat", "a comma ending an argument list", re.compile(r",\s*\)")),
     ("twincat", "Tc2_/Tc3_ libraries", re.compile(r"\bTc[23]_\w+\.", re.IGNORECASE)),
+    ("codesys", "a comma ending an argument list", re.compile(r",\s*\)")),
     ("codesys", "{attribute} pragmas", re.compile(r"\{\s*attribute\b", re.IGNORECASE)),
     ("codesys", "Standard. names", re.compile(r"\bStandard\.\w", re.IGNORECASE)),
     (

@@ -224,10 +224,11 @@ INVALID_RUN = re.compile(r"[^A-Za-z0-9_\s%'\"()\[\];:,.=<>+\-*/&^#]+")
 _ORDER = ("HASH_LIT", "C_HEX", "BASED_INT", "REAL", "INT", "LOCATED", "BIT_REF", "NAME", "STRING_LIT", "WSTRING_LIT")
 _CONTEXTUAL = ("S_ASSIGN", "R_ASSIGN", "REF_ASSIGN", "LABEL_NAME", "JUMP_LABEL")
 # Soft keywords that stay names unless what follows fits: 'JMP done;' but
-# 'jmp := 1;', 'ACTION Reset:' but 'action := 2;'.
+# 'jmp := 1;', 'ACTION Reset:' but 'action := 2;' (and 'actions := 3;').
 _SOFT_FOLLOW = {
     "JMP": re.compile(r"[ \t\f\r\n\v]+[A-Za-z_]"),
     "ACTION": re.compile(r"[ \t\f\r\n\v]+[A-Za-z_]"),
+    "ACTIONS": re.compile(r"[ \t\f\r\n\v]+[A-Za-z_]"),
 }
 # Reserved operator keywords that are also standard functions (AND(a, b)).
 _OPERATOR_FUNCTIONS = frozenset(("AND", "OR", "XOR", "NOT", "MOD"))

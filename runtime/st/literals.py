@@ -80,7 +80,10 @@ MAX_DIGITS = 128  # LWORD in base 2 is 64; more is a typo (and Python's int() ha
 
 
 def _check_underscores(digits: str, text: str) -> str:
-    if not digits or digits.startswith("_") or digits.endswith("_") or "__" in digits:
+    """The digits without their underscores. Doubled underscores pass here
+    (TwinCAT takes 16#7f_ff__ff); the checker refuses them where the profile
+    does (``doubled_underscore``): IEC 61131-3 wants one between two digits."""
+    if not digits or digits.startswith("_") or digits.endswith("_"):
         raise LiteralError(f"invalid number '{text}'", "an underscore may only stand between two digits")
     digits = digits.replace("_", "")
     if len(digits) > MAX_DIGITS:

@@ -151,6 +151,8 @@ class NamespaceChecks(CheckerBase):
         key = e.name.upper()
         if e.qualifier is None and key in self.qualified_only:
             gvl = self.list_of[key]
+            if gvl == self.initialising_list:
+                return  # in an initial value of its own list (CODESYS resolves it there)
             self.d.error(
                 "E018",
                 f"'{e.name}' belongs to the global variable list {gvl}, which is qualified_only",

@@ -100,6 +100,11 @@ def extends_fb(src: T.Type, dst: T.Type) -> bool:
     used wherever an instance of the base FB is expected"; calls of
     methods through the reference then run the derived block's overrides."""
     s, d = T.resolve(src), T.resolve(dst)
+    if isinstance(s, T.StructType) and isinstance(d, T.StructType):  # STRUCT EXTENDS (CODESYS)
+        base = s.base
+        while base is not None and base is not d:
+            base = base.base
+        return base is d
     if not isinstance(s, T.FBType) or not isinstance(d, T.FBType) or s.pou is None or d.pou is None:
         return False
     return s.pou is not d.pou and is_method_owner(s.pou, d.pou)

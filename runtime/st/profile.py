@@ -48,9 +48,10 @@ class Profile:
     # input then holds the new value until the next call passes another.
     own_input_assignment: str
     # A comma may end a call's argument list, F(a := 1, b := 2,): TwinCAT 3
-    # accepts it (blark, a parser of TwinCAT sources, does too). The IEC
-    # 61131-3 grammar has no such comma, MatIEC rejects it, and no CODESYS
-    # documentation shows one, so only twincat takes it.
+    # accepts it (blark, a parser of TwinCAT sources, does too), and so does
+    # CODESYS V3: a CODESYS export that CODESYS compiles has calls ending
+    # "MqttRetain := TRUE,\n);". The IEC 61131-3 grammar has no such comma
+    # and MatIEC rejects it.
     trailing_comma_in_calls: bool
     # The untyped literals 0 and 1 go into a BOOL (assigned, passed, as an
     # initial value) as FALSE and TRUE: CODESYS, TwinCAT, Schneider and
@@ -114,6 +115,54 @@ class Profile:
     # Table 22 gives it ANY_REAL -> ANY_INT, and picks the one that fits),
     # DINT without one. Elsewhere TRUNC is DINT (CODESYS).
     trunc_from_context: bool = False
+    # Two underscores in a row in a number (16#7f_ff__ff): TwinCAT 3 (and
+    # CODESYS V3, whose compiler it is) skips every underscore between the
+    # digits; IEC 61131-3 (ed.3 Table 5: digit {['_'] digit}) and MatIEC
+    # take one between two digits only (E003).
+    doubled_underscores: bool = False
+    # F_TRIG's memory starts FALSE, so its first call with CLK FALSE is a
+    # falling edge: MatIEC's standard library declares M without an initial
+    # value. IEC 61131-3 ed.3 Table 44, CODESYS and TwinCAT start it TRUE
+    # (no edge until CLK has been TRUE).
+    f_trig_first_call_edge: bool = False
+    # An FB instance's local VAR read from outside (x := inst.local) is an
+    # 'error' (E013) or a 'warning' (W113): CODESYS and TwinCAT permit read
+    # access (their static analysis flags it, rule SA0102); IEC 61131-3
+    # shows an instance's inputs and outputs only. A write stays E013.
+    internal_read: str = "error"
+    # BIT, CODESYS's one-bit BOOL: consecutive BIT fields of a STRUCT share
+    # a byte ("Data type: BIT"), so SIZEOF, ADR and MEMCPY see them packed.
+    # IEC 61131-3 and the other dialects have no such type (E012).
+    bit_type: bool = False
+    # An initial value that is no constant (`nVal : INT := LowerLimit;`,
+    # `topic : STRING := CONCAT(base, '/x');`) is computed when the
+    # variable is initialised, in declaration order: CODESYS and TwinCAT
+    # take "any valid ST expression" there ("Variable Initialization").
+    # IEC 61131-3 and the other dialects want a constant (E024).
+    initial_values_at_start: bool = False
+    # p[i] of a POINTER TO: the i-th element from where p points, (p + i *
+    # SIZEOF(p^))^ (CODESYS "Pointer": "index access [] to pointer
+    # variables"). IEC REF_TO takes no index (E050).
+    pointer_index: bool = False
+    # (i := i + 1) as a value (IF (i := i + 1) = 10 THEN): CODESYS
+    # "Assignment as expression" (an extension of IEC 61131-3, which has
+    # assignment statements only: E032 there).
+    assignment_expressions: bool = False
+    # ADR('text'): a pointer to the literal's characters (CODESYS and
+    # TwinCAT keep string literals in memory; real code passes
+    # str2 := ADR('TRUE') to a POINTER TO STRING input). Here the pointer
+    # is to a copy of the literal made each time ADR is evaluated, so a
+    # write through it changes no later ADR('text'). IEC REF/ADR and
+    # MatIEC want a variable (E031).
+    adr_of_literal: bool = False
+    # TO_<type>(e) of an enumeration, strict or not: its value converted
+    # from the base type (TO_INT(e) = 5, TO_STRING(e) = '5'); TO_STRING
+    # and TO_WSTRING give the value's name instead where its TYPE has
+    # {attribute 'to_string'} (Beckhoff Infosys, TC3 PLC, "TO_STRING/
+    # TO_WSTRING for enumeration variables"; CODESYS "Attribute:
+    # to_string"). IEC enumerated values are no numbers and convert to
+    # nothing (E020).
+    enum_conversions: bool = False
 
 
 IEC = Profile(
@@ -141,14 +190,22 @@ CODESYS = Profile(
     c_hex_literals=False,
     nested_comments=True,
     own_input_assignment="warning",
-    trailing_comma_in_calls=False,
+    trailing_comma_in_calls=True,
     bool_from_0_1=True,
     literal_range="warning",
     loose_enums=True,
     string_index=True,
+    doubled_underscores=True,
+    internal_read="warning",
+    bit_type=True,
+    initial_values_at_start=True,
+    pointer_index=True,
+    assignment_expressions=True,
+    adr_of_literal=True,
+    enum_conversions=True,
 )
 
-TWINCAT = replace(CODESYS, name="twincat", trailing_comma_in_calls=True, unsigned_durations=True)
+TWINCAT = replace(CODESYS, name="twincat", unsigned_durations=True)
 
 # MatIEC, the compiler of OpenPLC and Beremiz: strict IEC types (it converts
 # nothing implicitly, bit operators want ANY_BIT). Its process image is the
@@ -162,6 +219,7 @@ MATIEC = replace(
     ed3_type_names_reserved=False,
     fb_in_out_copied=True,
     trunc_from_context=True,
+    f_trig_first_call_edge=True,
 )
 
 SCHNEIDER = Profile(

@@ -303,6 +303,12 @@ def elem_ptr(array, esize: int, shape: tuple):
     return ElemPtr(array, 0, esize, shape)
 
 
+def assign_get(ref, value):
+    """(x := value) as an expression (CODESYS): store through ref, give the value."""
+    ref.set(value)
+    return value
+
+
 def ptr_add(p, delta: int, esize: int):
     """p + delta bytes (CODESYS: p := p + SIZEOF(INT) steps one INT)."""
     if p is None:

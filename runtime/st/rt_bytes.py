@@ -92,6 +92,25 @@ class RealLeaf(Leaf):
         return struct.unpack(self.fmt, data)[0]
 
 
+class BitsLeaf:
+    """A run of BIT fields of a structure in one byte (st/sizes.py): the
+    holder is the structure, the fields' bits are bit 0, 1 ... of the byte."""
+
+    size = 1
+    leaf = False
+
+    def __init__(self, pynames: tuple) -> None:
+        self.pynames = pynames
+
+    def read(self, obj, o: int, n: int) -> bytes:
+        return bytes([sum(1 << i for i, name in enumerate(self.pynames) if getattr(obj, name))])[o : o + n]
+
+    def write(self, obj, o: int, data: bytes) -> None:
+        if o == 0 and data:
+            for i, name in enumerate(self.pynames):
+                setattr(obj, name, bool(data[0] >> i & 1))
+
+
 class StrLeaf(Leaf):
     """STRING(n) / WSTRING(n): the characters, then 0 bytes up to n+1
     characters (CODESYS keeps a string's terminating 0 in its n+1 bytes)."""
@@ -225,7 +244,10 @@ class StructLayout:
             if k >= 0 and o < self.fields[k][0] + self.fields[k][2].size:
                 start, pyname, lay = self.fields[k]
                 chunk = min(n, start + lay.size - o)
-                holder = AttrRef(obj, pyname) if lay.leaf else getattr(obj, pyname)
+                if pyname is None:  # a BitsLeaf: the fields are the structure's own
+                    holder = obj
+                else:
+                    holder = AttrRef(obj, pyname) if lay.leaf else getattr(obj, pyname)
                 yield lay, holder, o - start, chunk
             else:
                 nxt = self.starts[k + 1] if k + 1 < len(self.starts) else self.size
@@ -264,16 +286,20 @@ def layout_of(ty: T.Type):
         elem = layout_of(t.elem)
         return None if elem is None else ArrayLayout(elem, tuple(hi - lo + 1 for lo, hi in t.dims))
     if isinstance(t, T.StructType):
-        offsets = sizes.field_offsets(t)
+        parts = sizes.struct_parts(t)
         size = sizes.sizeof(t)
-        if offsets is None or size is None:
+        if parts is None or size is None:
             return None
-        fields = []
-        for key, f in t.fields.items():
+        fields: list = []
+        for offset, _size, _align, keys in parts:
+            f = t.fields[keys[0]]
+            if f.type is T.BIT:
+                fields.append((offset, None, BitsLeaf(tuple(t.fields[k].pyname for k in keys))))
+                continue
             lay = layout_of(f.type)
             if lay is None:
                 return None
-            fields.append((offsets[key][0], f.pyname, lay))
+            fields.append((offset, f.pyname, lay))
         return StructLayout(size, fields)
     return None
 

@@ -30,6 +30,7 @@ from .types import (
     TODCAT,
     UNSIGNED,
     ElementaryType,
+    EnumType,
     StringType,
     Type,
     base_elementary,
@@ -94,6 +95,20 @@ def _narrow_string(v: str) -> str:
         return v
     except UnicodeEncodeError:
         return v.encode("latin-1", "replace").decode("latin-1")
+
+
+def _enum_namer(t: EnumType) -> Callable:
+    """TO_STRING of an enumeration with {attribute 'to_string'}: the name
+    of the value (the first declared, if several share it); a value
+    without a name as its number."""
+    names: dict = {}
+    for key, value in t.values.items():
+        names.setdefault(value, t.spelled[key])
+
+    def name(v):
+        return names.get(v, str(v))
+
+    return name
 
 
 def _classify(t: Type) -> tuple:
@@ -195,6 +210,9 @@ def make_converter(src: Type, dst: Type) -> Callable:
     """
     if _is_char(src) or _is_char(dst):
         return char_converter(src, dst)
+    named = resolve(src)
+    if isinstance(named, EnumType) and named.to_string and isinstance(resolve(dst), StringType):
+        return _enum_namer(named)
     sk, s = _classify(src)
     dk, d = _classify(dst)
     if s is d and sk != "str":

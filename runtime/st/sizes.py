@@ -18,6 +18,9 @@ lay structures out so by default):
   divisible by its alignment; the structure is aligned to its largest
   field's alignment and its size rounded up to it (so that the elements of
   an array of it stay aligned).
+* BIT (CODESYS "Data type: BIT"): a run of consecutive BIT fields of a
+  STRUCT shares bytes, eight to a byte, the first field in bit 0; a BIT
+  anywhere else is a BOOL's byte.
 
 Function block instances hold what the compiler adds (a vtable pointer ...):
 their size is not known here (None).
@@ -58,15 +61,39 @@ def layout(ty: T.Type, _seen: frozenset = frozenset()) -> tuple[int, int] | None
             n *= hi - lo + 1
         return n * elem[0], elem[1]
     if isinstance(t, T.StructType) and id(t) not in _seen:
-        offset, align = 0, 1
-        for f in t.fields.values():
-            fl = layout(f.type, _seen | {id(t)})
-            if fl is None:
-                return None
-            offset = _round_up(offset, fl[1]) + fl[0]
-            align = max(align, fl[1])
-        return _round_up(offset, align), align
+        parts = struct_parts(t, _seen | {id(t)})
+        if parts is None:
+            return None
+        align = max((a for _o, _s, a, _k in parts), default=1)
+        end = parts[-1][0] + parts[-1][1] if parts else 0
+        return _round_up(end, align), align
     return None
+
+
+def struct_parts(t: T.StructType, _seen: frozenset = frozenset()) -> list | None:
+    """[(byte offset, size, alignment, UPPER field names)] of a structure in
+    order: one field each, or a run of up to eight BIT fields in one byte
+    (their names bit 0 first). None when a field has no fixed layout."""
+    parts: list = []
+    offset = 0
+    run: list | None = None  # the names of the BIT run being filled
+    for key, f in t.fields.items():
+        if f.type is T.BIT:
+            if run is not None and len(run) < 8:
+                run.append(key)
+                continue
+            run = [key]
+            parts.append((offset, 1, 1, run))
+            offset += 1
+            continue
+        run = None
+        fl = layout(f.type, _seen)
+        if fl is None:
+            return None
+        offset = _round_up(offset, fl[1])
+        parts.append((offset, fl[0], fl[1], [key]))
+        offset += fl[0]
+    return parts
 
 
 def sizeof(ty: T.Type) -> int | None:
@@ -76,17 +103,12 @@ def sizeof(ty: T.Type) -> int | None:
 
 
 def field_offsets(t: T.StructType) -> dict | None:
-    """UPPER field name -> (byte offset, size) in a structure."""
-    out = {}
-    offset = 0
-    for key, f in t.fields.items():
-        fl = layout(f.type)
-        if fl is None:
-            return None
-        offset = _round_up(offset, fl[1])
-        out[key] = (offset, fl[0])
-        offset += fl[0]
-    return out
+    """UPPER field name -> (byte offset, size) in a structure (a BIT
+    field: the byte it shares with its run)."""
+    parts = struct_parts(t)
+    if parts is None:
+        return None
+    return {key: (offset, size) for offset, size, _a, keys in parts for key in keys}
 
 
 def _round_up(n: int, align: int) -> int:

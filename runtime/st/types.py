@@ -220,6 +220,7 @@ class EnumType(Type):
     # CODESYS/TwinCAT attributes before its TYPE (st/pragmas.py)
     qualified_only: bool = False  # its values only as E.a (or E#a)
     strict: bool = False  # no arithmetic, no integer assigned (where the profile allows them)
+    to_string: bool = False  # TO_STRING/TO_WSTRING give a value's name, not its number
     is_enum = True
 
     def name_of(self, value: int) -> str | None:
@@ -278,8 +279,9 @@ class StructField:
 @dataclass(eq=False)
 class StructType(Type):
     name: str
-    fields: dict = field(default_factory=dict)  # UPPER -> StructField
+    fields: dict = field(default_factory=dict)  # UPPER -> StructField (a base's first)
     pyclass: str = ""  # name of the generated class
+    base: StructType | None = None  # CODESYS STRUCT EXTENDS: the base's fields come first
     is_struct = True
 
 
@@ -332,6 +334,10 @@ class NullType(Type):
 
 ADDR = SchneiderAddrType()
 NULL = NullType()
+
+#: CODESYS's BIT (profiles codesys, twincat): a BOOL in every use, but a run of
+#: BIT fields of a STRUCT shares bytes, one bit each (st/sizes.py)
+BIT = AliasType("BIT", BOOL)
 
 
 def resolve(t: Type) -> Type:

@@ -16,9 +16,9 @@ CYCLE_MS = 10
 class Bench:
     """One PROGRAM around one block, stepped a cycle at a time."""
 
-    def __init__(self, decls: str, body: str) -> None:
+    def __init__(self, decls: str, body: str, profile: str = "codesys") -> None:
         text = f"PROGRAM bench\nVAR\n{decls}\nEND_VAR\n{body}\nEND_PROGRAM\n"
-        prog = compile_files([], texts={"bench.st": text})
+        prog = compile_files([], texts={"bench.st": text}, profile=profile)
         self.runner = prog.runner("bench", cycle_time_ms=CYCLE_MS)
         self.inst = self.runner.instance
         self._attr = {name.upper(): py for name, py, _t, _s in type(self.inst)._VARS_}
@@ -310,16 +310,27 @@ def test_r_trig():
     assert [q for (q,) in got] == bits("1001000")
 
 
-def test_f_trig():
-    b = Bench("e : F_TRIG; clk : BOOL; q : BOOL;", "e(CLK := clk); q := e.Q;")
+@pytest.mark.parametrize("profile", ["codesys", "twincat", "iec", "schneider"])
+def test_f_trig(profile):
+    b = Bench("e : F_TRIG; clk : BOOL; q : BOOL;", "e(CLK := clk); q := e.Q;", profile)
     got = b.trace(["q"], clk=bits("0011001"))
-    # As in the CODESYS Standard library, the memory starts FALSE: the first
-    # call with CLK FALSE already reports an edge.
+    # The memory starts TRUE (IEC 61131-3 ed.3 Table 44; the CODESYS Standard
+    # and TwinCAT F_TRIG): CLK FALSE at the first call is no edge, only a
+    # fall from TRUE is
+    assert [q for (q,) in got] == bits("0000100")
+
+
+def test_f_trig_in_matiec_fires_once_at_start_up():
+    # MatIEC's library declares the memory without an initial value: the
+    # first call with CLK FALSE reports an edge there
+    b = Bench("e : F_TRIG; clk : BOOL; q : BOOL;", "e(CLK := clk); q := e.Q;", "matiec")
+    got = b.trace(["q"], clk=bits("0011001"))
     assert [q for (q,) in got] == bits("1000100")
 
 
-def test_f_trig_first_call_high():
-    b = Bench("e : F_TRIG; clk : BOOL; q : BOOL;", "e(CLK := clk); q := e.Q;")
+@pytest.mark.parametrize("profile", ["codesys", "matiec"])
+def test_f_trig_first_call_high(profile):
+    b = Bench("e : F_TRIG; clk : BOOL; q : BOOL;", "e(CLK := clk); q := e.Q;", profile)
     got = b.trace(["q"], clk=bits("1100"))
     assert [q for (q,) in got] == bits("0010")
 

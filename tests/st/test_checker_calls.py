@@ -9,7 +9,7 @@ from softplc.runtime.st import types as T
 from softplc.runtime.st.native import ADDRESS, ANY_INT, STRING, WORDS, NativeFunction, Param
 from softplc.runtime.st.symbols import CallInfo
 
-from .conftest import check_st, codes, diagnostics, pou_body
+from .conftest import check_st, codes, diagnostics, pou_body, run_st
 
 
 def test_call_parameters_are_checked():
@@ -251,15 +251,19 @@ END_PROGRAM
 """
 
 
-@pytest.mark.parametrize("profile", ["iec", "matiec", "codesys", "schneider"])
-def test_a_trailing_comma_is_e044_but_in_twincat(profile):
+@pytest.mark.parametrize("profile", ["iec", "matiec", "schneider"])
+def test_a_trailing_comma_is_e044_but_in_codesys_and_twincat(profile):
     ds = diagnostics(TRAILING, profile)
     assert [(d.code, d.pos.line, d.pos.col) for d in ds] == [("E044", 8, 24), ("E044", 9, 15), ("E044", 10, 25)]
     assert ds[0].message == "a comma ends the argument list"
-    assert ds[0].hint == "remove it (the twincat profile accepts it)"
+    assert ds[0].hint == "remove it (the codesys and twincat profiles accept it)"
 
 
-def test_twincat_accepts_a_trailing_comma():
-    # TwinCAT 3 compiles F(a := 1, b := 2,); blark, a parser of TwinCAT
-    # sources, reads it too
-    assert codes(TRAILING, "twincat") == []
+@pytest.mark.parametrize("profile", ["codesys", "twincat"])
+def test_codesys_and_twincat_accept_a_trailing_comma(profile):
+    # TwinCAT 3 compiles F(a := 1, b := 2,) (blark, a parser of TwinCAT
+    # sources, reads it too), and a CODESYS V3 export CODESYS compiles has
+    # such calls; the call runs as without the comma
+    assert codes(TRAILING, profile) == []
+    r = run_st(TRAILING, profile=profile)
+    assert r.get("r") == 3

@@ -53,5 +53,5 @@ def test_configuration_errors():
 
 def test_a_trailing_comma_in_a_program_configuration_is_the_profiles_choice():
     trailing = CONFIG.replace("(limit := g_limit)", "(limit := g_limit,)")
-    assert codes(trailing, "codesys") == ["E044"]
-    assert codes(trailing, "twincat") == []
+    assert codes(trailing, "iec") == ["E044"]
+    assert codes(trailing, "codesys") == codes(trailing, "twincat") == []

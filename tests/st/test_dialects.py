@@ -16,8 +16,13 @@ def test_the_schneider_samples_read_like_schneider():
 
 
 def test_twincat_outranks_codesys_when_a_twincat_only_marker_is_there():
-    text = "{attribute 'qualified_only'}\nVAR_GLOBAL x : INT; END_VAR\nPROGRAM p\nf(a := 1,\n);\nEND_PROGRAM\n"
-    assert candidates([text], "codesys") == [("twincat", ["a comma ending an argument list", "{attribute} pragmas"])]
+    text = (
+        "{attribute 'qualified_only'}\nVAR_GLOBAL x : INT; END_VAR\n"
+        "PROGRAM p\nTc2_Standard.CONCAT(a,\n);\nEND_PROGRAM\n"
+    )
+    assert candidates([text], "codesys") == [
+        ("twincat", ["Tc2_/Tc3_ libraries", "a comma ending an argument list", "{attribute} pragmas"])
+    ]
     assert [p for p, _ in candidates([text], "iec")] == ["twincat", "codesys"]
 
 

@@ -253,6 +253,9 @@ END_PROGRAM
 ACTION p.seq: STEP y: END_STEP END_ACTION
 """,
     "x := (p + 2)^ + (ps)^.a + (pa)^[1, 2] + (pp)^^ + (pf)^.m(1);",
+    "TYPE Sub EXTENDS Base : STRUCT c : INT; END_STRUCT END_TYPE",
+    "PROGRAM p x := 1; END_PROGRAM ACTIONS ACTION a x := 2; END_ACTION END_ACTIONS ACTIONS p END_ACTIONS",
+    "a := b := c + 9; IF (i := i + 1) = 10 THEN ; ELSIF f := g THEN ; END_IF",
 ]
 
 

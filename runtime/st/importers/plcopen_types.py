@@ -6,8 +6,7 @@ elementary ones, ``<string length>`` (a number or a constant expression),
 that are constant expressions: ``0..ciN``, ``1..GVL.N - 1``), ``<pointer>``,
 subranges, enumerations and structures. A ``<dataType>`` becomes ``TYPE
 ... END_TYPE`` with its attributes as pragmas; a STRUCT that EXTENDS
-another of the file (CODESYS datatypeinheritance) gets the base's members
-first (softplc's STRUCT has no EXTENDS). A ``<variable>`` becomes a
+another (CODESYS datatypeinheritance) becomes ``TYPE B EXTENDS A : STRUCT``. A ``<variable>`` becomes a
 declaration at its line: its attributes, address, type, initial value and
 the FB_init inputs CODESYS writes as inputassignments (``fb : FB_X(n :=
 5);``). Every text is checked first (plcopen_text.py).
@@ -352,11 +351,11 @@ class TypeReader(ReaderBase):
         pragmas, head = self.pragmas(dt), f"TYPE {name} :"
         self.unknown_data(dt, ("attributes", "datatypeinheritance", "union"))
         if kids and kids[0].name == "struct":
-            inherited = self._inherited_members(dt, [name.upper()])
+            extends = self._struct_base(dt, [name.upper()])
+            if extends is not None:
+                head = f"TYPE {name} EXTENDS {extends} :"
             fields = [self.guard(self.declaration, v) for v in kids[0].kids("variable")]
             put_head(self.main, dt, pragmas, head + " STRUCT")
-            for member in inherited:
-                put_at(self.main, dt.line, dt.col, member, 4, own_line=True)
             for parts in fields:
                 if parts is not None:
                     put_parts(self.main, parts)
@@ -366,26 +365,19 @@ class TypeReader(ReaderBase):
             put_head(self.main, dt, pragmas, f"{head} {self.type_text(base, dt)}{' ' + init if init else ''};")
         put_at(self.main, dt.end_line, 1, "END_TYPE", own_line=True)
 
-    def _inherited_members(self, dt: PosElement, seen: list) -> list[str]:
-        """The members a STRUCT inherits (its bases', base first)."""
+    def _struct_base(self, dt: PosElement, seen: list) -> str | None:
+        """The STRUCT a data type EXTENDS (CODESYS datatypeinheritance), its
+        chain checked through the file's types for a cycle."""
         extends, _ = codesys.inheritance(dt)
         if not extends:
-            return []
+            return None
         base_name = ident((extends[0].text or "").strip(), extends[0], "the base type")
         if base_name.upper() in seen or len(seen) > MAX_NESTING:
             raise ImportProblem(f"STRUCT {dt.get('name')} EXTENDS itself (through {base_name})", extends[0], None)
         base = self.data_types.get(base_name.upper())
-        struct = base.kid("baseType") if base is not None else None
-        members = struct.kids("struct") if struct is not None else []
-        if base is None or not members:
-            raise ImportProblem(
-                f"STRUCT {dt.get('name')} EXTENDS {base_name}, which is no STRUCT of this file",
-                extends[0],
-                "softplc has no STRUCT EXTENDS: it copies the base's members, so the base must be in the file",
-            )
-        return self._inherited_members(base, [*seen, base_name.upper()]) + [
-            joined(self.declaration(v)) for v in members[0].kids("variable")
-        ]
+        if base is not None:  # (a base of a library is the checker's)
+            self._struct_base(base, [*seen, base_name.upper()])
+        return base_name
 
 
 def describe(el: PosElement) -> str:
