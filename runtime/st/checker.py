@@ -92,6 +92,7 @@ class Checker(
             self._collect(sf)
         self._collect_actions(files)
         self._resolve_namespaces(files)
+        self._declare_early_constants(files)
         for key in list(self.type_decls):
             self._resolve_named_type(key, self.type_decls[key].pos)
         global_blocks: list[tuple[A.VarBlock, A.Configuration | None]] = [
