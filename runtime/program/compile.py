@@ -333,7 +333,15 @@ def compile_files(
     gen, code, filename = built
     user_pous = {d.name: d.kind for sf in user for d in sf.decls if isinstance(d, A.POU)}
     return Program(
-        prof, checked, gen, code, filename, [d for d in diags.sorted() if not d.is_error], sources, user_pous
+        prof,
+        checked,
+        gen,
+        code,
+        filename,
+        [d for d in diags.sorted() if not d.is_error],
+        sources,
+        user_pous,
+        tuple(lib.functions for lib in libraries if lib.functions),
     )
 
 
@@ -363,5 +371,13 @@ def build_parsed(
     gen, code, filename = built
     user_pous = {d.name: d.kind for sf in user for d in sf.decls if isinstance(d, A.POU)}
     return Program(
-        prof, checked, gen, code, filename, [d for d in diags.sorted() if not d.is_error], sources, user_pous
+        prof,
+        checked,
+        gen,
+        code,
+        filename,
+        [d for d in diags.sorted() if not d.is_error],
+        sources,
+        user_pous,
+        tuple(lib.functions for lib in libraries if lib.functions),
     )

@@ -87,6 +87,8 @@ class CallGen(CodeGenBase):
         code = self.ex(a)
         if param_type is None or a.ty is None or a.const is not None:
             return code
+        if isinstance(T.resolve(param_type), T.RefType):  # POINTER TO BYTE: a byte view of any pointer
+            return self.coerce(code, a.ty, param_type, a)
         pe, ae = T.base_elementary(param_type), T.base_elementary(a.ty)
         if pe is not None and pe.is_real and ae is not None and ae.is_intlike:
             return self.coerce(code, a.ty, param_type, a)
@@ -116,7 +118,9 @@ class CallGen(CodeGenBase):
             return inline
         fn = self.const(func.impl)
         if func.typed:
-            return f"{fn}({self.const(info.rtypes)}, {', '.join(args)})"
+            args = [self.const(info.rtypes), *args]
+        if func.context:  # the ExecContext first: the clock, the running task
+            args = ["_ctx", *args]
         return f"{fn}({', '.join(args)})"
 
     def _inline_shift(self, info: CallInfo, args: list) -> str | None:
