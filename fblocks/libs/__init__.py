@@ -36,7 +36,13 @@ class LibrarySpec:
       of hardware or a runtime service (EtherCAT, ADS, NC axes, the event
       logger) is declared with its real signatures so that a project
       compiles, its blocks answer "not available" through their own error
-      outputs, and a program that uses it gets one warning saying so.
+      outputs, and a program that uses it gets one warning saying so;
+    unavailable_parts: ((file name, why), ...): the same for one file of a
+      library that otherwise works (Tc2_System's ADS and file blocks): a
+      program that uses what the file declares gets one warning for it;
+    requires: the names of the shipped libraries its files use (Tc2_Utilities
+      uses Tc2_System's T_MaxString and MEMCPY): a program that chooses it
+      gets them too.
     """
 
     name: str
@@ -47,6 +53,8 @@ class LibrarySpec:
     aliases: tuple = ()
     functions: str | None = None
     unavailable: str = ""
+    unavailable_parts: tuple = ()
+    requires: tuple = ()
 
 
 #: the shipped libraries (helpers add theirs here)

@@ -40,7 +40,9 @@ class Library:
     program's). A library softplc ships (shipped.py) may also have further
     ``namespaces``, ``functions`` written in Python (a module with a
     FUNCTIONS table of StdFuncs) and a reason it is ``unavailable`` here
-    (hardware, a runtime service: one warning when a program uses it)."""
+    (hardware, a runtime service: one warning when a program uses it), or
+    such reasons for some of its files (``unavailable_parts``: (file name,
+    why) pairs)."""
 
     path: Path
     namespace: str
@@ -48,6 +50,8 @@ class Library:
     namespaces: tuple = ()
     functions: str | None = None
     unavailable: str = ""
+    unavailable_parts: tuple = ()
+    requires: tuple = ()  # names of the shipped libraries it uses (shipped.py with_required)
 
     def files(self) -> list[Path]:
         """The library's source files, sorted (sub-folders included)."""

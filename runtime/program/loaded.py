@@ -81,9 +81,11 @@ class Program:
         self.sources = sources
         self.pous = user_pous
         self.linemaps = {filename: gen.linemap}
-        # Globals the libraries declare (PLC_DIAG): not the user's state.
+        # Globals the libraries declare (PLC_DIAG, a shipped library's constants): not the user's state.
         self.library_globals = frozenset(
-            g.name for g in checked.globals if g.pos is not None and g.pos.file.startswith("<lib>/")
+            g.name
+            for g in checked.globals
+            if g.pos is not None and (g.pos.file.startswith("<lib>/") or g.pos.file in checked.library_files)
         )
 
     @property

@@ -82,6 +82,8 @@ def as_library(spec: LibrarySpec) -> Library:
         namespaces=tuple(spec.namespaces),
         functions=spec.functions,
         unavailable=spec.unavailable,
+        unavailable_parts=tuple(spec.unavailable_parts),
+        requires=tuple(spec.requires),
     )
 
 
@@ -89,6 +91,22 @@ def shipped_named(name: str) -> Library | None:
     """The shipped library of that name or alias, or None."""
     spec = shipped().get(name.strip().upper())
     return as_library(spec) if spec is not None else None
+
+
+def with_required(libraries: tuple) -> tuple:
+    """libraries and, after them, the shipped libraries they require
+    (Tc2_Utilities: Tc2_System) that are not among them yet."""
+    out = list(libraries)
+    have = {lib.namespace.upper() for lib in out}
+    i = 0
+    while i < len(out):
+        for name in out[i].requires:
+            lib = shipped_named(name)
+            if lib is not None and lib.namespace.upper() not in have:
+                have.add(lib.namespace.upper())
+                out.append(lib)
+        i += 1
+    return tuple(out)
 
 
 def functions_of(libraries: tuple) -> dict:

@@ -50,6 +50,8 @@ class CheckedProgram:
     types: dict  # UPPER -> Type
     # the global variable lists (namespaces.py): UPPER list name -> its UPPER variable names
     global_lists: dict = field(default_factory=dict)
+    # the paths of the library files (their globals are not the user's state)
+    library_files: frozenset = frozenset()
 
 
 class Checker(
@@ -144,4 +146,5 @@ class Checker(
             self.configs,
             self.types,
             self._lists,
+            frozenset(self.library_files),
         )
