@@ -58,4 +58,13 @@ class LibrarySpec:
 
 
 #: the shipped libraries (helpers add theirs here)
-SHIPPED: tuple[LibrarySpec, ...] = ()
+SHIPPED: tuple[LibrarySpec, ...] = (
+    # Beckhoff TwinCAT 3 (fblocks/libs/tc2_*: README "Libraries softplc ships")
+    LibrarySpec(
+        "Tc2_Standard",
+        "softplc.fblocks.libs.tc2_standard",
+        tools=("twincat",),
+        profile="twincat",
+        functions="softplc.fblocks.libs.tc2_standard.functions",
+    ),
+)
