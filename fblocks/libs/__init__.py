@@ -57,6 +57,8 @@ class LibrarySpec:
     requires: tuple = ()
 
 
+_ADS = "the blocks answer ERR/bError TRUE with ADS error 6, target port not found"
+
 #: the shipped libraries (helpers add theirs here)
 SHIPPED: tuple[LibrarySpec, ...] = (
     # Beckhoff TwinCAT 3 (fblocks/libs/tc2_*: README "Libraries softplc ships")
@@ -66,5 +68,17 @@ SHIPPED: tuple[LibrarySpec, ...] = (
         tools=("twincat",),
         profile="twincat",
         functions="softplc.fblocks.libs.tc2_standard.functions",
+    ),
+    LibrarySpec(
+        "Tc2_System",
+        "softplc.fblocks.libs.tc2_system",
+        tools=("twincat",),
+        profile="twincat",
+        namespaces=("TwinCAT_SystemInfoVarList",),
+        functions="softplc.fblocks.libs.tc2_system.functions",
+        unavailable_parts=(
+            ("ads.st", f"it needs TwinCAT's ADS router ({_ADS})"),
+            ("files.st", f"softplc writes no files for a PLC program ({_ADS})"),
+        ),
     ),
 )

@@ -85,10 +85,10 @@ class CallGen(CodeGenBase):
         """An argument of a standard function; an integer into a REAL/LREAL
         parameter becomes a float of it (MAX(i, r) is a REAL, never i)."""
         code = self.ex(a)
+        if param_type is not None and a.ty is not None and isinstance(T.resolve(param_type), T.RefType):
+            return self.coerce(code, a.ty, param_type, a)  # POINTER TO BYTE: a byte view of any pointer; 0 NULL
         if param_type is None or a.ty is None or a.const is not None:
             return code
-        if isinstance(T.resolve(param_type), T.RefType):  # POINTER TO BYTE: a byte view of any pointer
-            return self.coerce(code, a.ty, param_type, a)
         pe, ae = T.base_elementary(param_type), T.base_elementary(a.ty)
         if pe is not None and pe.is_real and ae is not None and ae.is_intlike:
             return self.coerce(code, a.ty, param_type, a)
