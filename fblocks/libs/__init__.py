@@ -81,4 +81,13 @@ SHIPPED: tuple[LibrarySpec, ...] = (
             ("files.st", f"softplc writes no files for a PLC program ({_ADS})"),
         ),
     ),
+    LibrarySpec(
+        "Tc2_Utilities",
+        "softplc.fblocks.libs.tc2_utilities",
+        tools=("twincat",),
+        profile="twincat",
+        functions="softplc.fblocks.libs.tc2_utilities.functions",
+        unavailable_parts=(("services.st", f"softplc does not act on the computer for a PLC program ({_ADS})"),),
+        requires=("Tc2_System",),
+    ),
 )

@@ -164,6 +164,9 @@ class CallGen(CodeGenBase):
         func = info.func
         if func.typed or "_TO_" not in func.name or "BCD" in func.name or len(func.params) != 1:
             return None
+        head, _, tail = func.name.partition("_TO_")
+        if head not in T.ELEMENTARY or tail not in T.ELEMENTARY:
+            return None  # a library's HOST_TO_BE16 is no conversion
         src = T.ELEMENTARY.get(func.params[0][1].upper())
         dst = T.base_elementary(info.rtypes[0])
         if src is None or dst is None or not src.is_intlike:
