@@ -90,4 +90,5 @@ SHIPPED: tuple[LibrarySpec, ...] = (
         unavailable_parts=(("services.st", f"softplc does not act on the computer for a PLC program ({_ADS})"),),
         requires=("Tc2_System",),
     ),
+    LibrarySpec("Tc2_Math", "softplc.fblocks.libs.tc2_math", tools=("twincat",), profile="twincat"),
 )
