@@ -30,16 +30,16 @@ def test_check_of_a_twincat_solution_prints_the_table_and_one_line_per_library(t
     assert r.returncode == 1
     plcproj = root / "Plant" / "Plc" / "Plc.plcproj"
     assert r.stderr.startswith("TwinCAT PLC project Plc: 7 source files\n")
-    at = line_of(plcproj, 'Include="Tc2_System"')
+    at = line_of(plcproj, 'Include="Tc3_JsonXml"')
     assert (
-        f"{plcproj}:{at}:5: error E223: needs Tc2_System (T_MaxString, MEMCPY: 5 references): not installed"
+        f"{plcproj}:{at}:5: error E223: needs Tc3_JsonXml (SJsonValue, FB_JsonSaxWriter: 5 references): not installed"
     ) in r.stderr
-    assert "unknown function 'MEMCPY'" not in r.stderr and "error E012" not in r.stderr
+    assert "unknown type 'FB_JsonSaxWriter'" not in r.stderr and "error E012" not in r.stderr
     assert "error E010: unknown name 'nCuont'" in r.stderr  # the broken block's own error
     rows = _table(r.stderr)
     assert rows["POUs/FB_Tank.TcPOU"] == ["yes", "0", "0", "0"]
     assert rows["POUs/MAIN.TcPOU"] == ["yes", "0", "0", "0"]
-    assert rows["POUs/FB_Logger.TcPOU"] == ["no", "0", "5", "0", "needs", "Tc2_System"]
+    assert rows["POUs/FB_Logger.TcPOU"] == ["no", "0", "5", "0", "needs", "Tc3_JsonXml"]
     assert rows["POUs/FB_Broken.TcPOU"] == ["no", "1", "0", "0"]
     assert rows["POUs/FB_UsesBroken.TcPOU"] == [
         "no",
@@ -72,7 +72,7 @@ def test_check_all_errors_shows_each_use_of_the_missing_library(tmp_path):
     root = twincat(tmp_path, ("FB_Logger", LOGGER))
     r = softplc("check", "--all-errors", root)
     assert r.returncode == 1 and "E223" not in r.stderr
-    assert "error E043: unknown function 'MEMCPY'" in r.stderr and "unknown type 'T_MaxString'" in r.stderr
+    assert "error E012: unknown type 'FB_JsonSaxWriter'" in r.stderr and "unknown type 'SJsonValue'" in r.stderr
     assert "\n5 errors, 0 warnings\n" in r.stderr
 
 
@@ -198,7 +198,7 @@ def test_export_st_writes_what_imports_and_lists_the_rest(tmp_path):
     assert "not exported from POUs/FB_Syntax.TcPOU: FB_Syntax" in r.stderr and "error E001" in r.stderr
     st = out.read_text()
     assert "FB_Syntax" not in st and "FUNCTION_BLOCK FB_Tank" in st and "PROGRAM MAIN" in st
-    assert "(* not compiled by softplc: needs Tc2_System *)\nFUNCTION_BLOCK FB_Logger" in st
+    assert "(* not compiled by softplc: needs Tc3_JsonXml *)\nFUNCTION_BLOCK FB_Logger" in st
     assert "CONFIGURATION Plc\n" in st and "TASK PlcTask (INTERVAL := T#10ms, PRIORITY := 20);" in st
     # one file holds the list GVL_Plant, which MAIN names as GVL_Plant.x: say so
     assert "note: the global variable lists of GVLs/GVL_Plant.TcGVL are named by their files" in r.stderr
@@ -209,7 +209,7 @@ def test_the_export_to_a_folder_runs_as_the_project_does(tmp_path):
     out = tmp_path / "st"
     r = softplc("export-st", root, "-o", f"{out}/")
     assert r.returncode == 1 and not (out / "POUs" / "FB_Syntax.st").exists()
-    (out / "POUs" / "FB_Logger.st").unlink()  # it needs Tc2_System
+    (out / "POUs" / "FB_Logger.st").unlink()  # it needs Tc3_JsonXml
     a = softplc("run", HERE / "twincat", "--virtual-time", "--duration", "1s", "--final-json", "-")
     b = softplc("run", out, "--virtual-time", "--duration", "1s", "--final-json", "-")
     assert a.returncode == b.returncode == 0, b.stderr

@@ -12,9 +12,16 @@ Each entry names its parameters with a *typespec*:
                                       with the same variable T gets one common
                                       type; a result 'T' is that type
 
+  'POINTER TO BYTE'                   any pointer (ADR(x) of a variable, array,
+                                      structure or string): the impl gets a byte
+                                      view of its target (st/rt_bytes.py), as
+                                      Tc2_System's MEMCPY reads memory
+
 ``extensible`` means the last parameter repeats (ADD(a, b, c), MUX(k, a, b,
 c)). A ``typed`` impl is called as impl(rtypes, *args) with rtypes = (result
-type, type of argument 1, ...); the others as impl(*args).
+type, type of argument 1, ...); the others as impl(*args). A ``context``
+impl gets the ExecContext first (impl(ctx, ...)): the engine's clock and
+date, the task that runs it (a vendor library's F_GetSystemTime).
 
 Integer results of the arithmetic functions are NOT wrapped here: the code
 generator wraps on store, and CODESYS also computes intermediate results
@@ -49,6 +56,7 @@ class StdFunc:
     impl: Callable  # the Python implementation
     extensible: bool = False  # last param repeats (ADD, MUX inputs, MAX, CONCAT, AND...)
     typed: bool = False  # impl(rtypes, *args), rtypes = (result_type, arg1_type, ...)
+    context: bool = False  # impl(ctx, ...): the ExecContext (runtime/program/context.py) first
 
 
 STANDARD_FUNCTIONS: dict[str, StdFunc] = {}

@@ -36,13 +36,17 @@ class LibrarySpec:
       functions of the library that a service of the runtime answers (the
       clock of SysTime, TcUnit's test bookkeeping bound by the test runner),
       declared whenever the library is chosen;
-    requires: names of shipped libraries this one's files use (SysCom's
-      RTS_IEC_HANDLE is SysTypes2 Interfaces'), chosen with it;
     unavailable: why it cannot do its work here ('' when it can): a library
       of hardware or a runtime service (EtherCAT, ADS, NC axes, the event
       logger) is declared with its real signatures so that a project
       compiles, its blocks answer "not available" through their own error
-      outputs, and a program that uses it gets one warning saying so.
+      outputs, and a program that uses it gets one warning saying so;
+    unavailable_parts: ((file name, why), ...): the same for one file of a
+      library that otherwise works (Tc2_System's ADS and file blocks): a
+      program that uses what the file declares gets one warning for it;
+    requires: the names of the shipped libraries its files use (Tc2_Utilities
+      uses Tc2_System's T_MaxString and MEMCPY, SysCom SysTypes2 Interfaces'
+      RTS_IEC_HANDLE): a program that chooses it gets them too.
     """
 
     name: str
@@ -54,6 +58,7 @@ class LibrarySpec:
     functions: str | None = None
     natives: str | None = None
     unavailable: str = ""
+    unavailable_parts: tuple = ()
     requires: tuple = ()
 
 
@@ -61,7 +66,9 @@ _CODESYS = ("codesys",)
 _SYSTEM = ("codesys", "twincat")  # CODESYS's system libraries, which TwinCAT 3 has too
 _TWINCAT = ("twincat",)
 
-#: the shipped libraries (helpers add theirs here)
+_ADS = "the blocks answer ERR/bError TRUE with ADS error 6, target port not found"
+
+#: the shipped libraries
 SHIPPED: tuple[LibrarySpec, ...] = (
     # ---------------------------------------------------------------- CODESYS
     LibrarySpec(
@@ -138,4 +145,34 @@ SHIPPED: tuple[LibrarySpec, ...] = (
         profile="twincat",
         natives="softplc.fblocks.libs.tcunit.natives",
     ),
+    # Beckhoff TwinCAT 3 (fblocks/libs/tc2_*: README "Libraries softplc ships")
+    LibrarySpec(
+        "Tc2_Standard",
+        "softplc.fblocks.libs.tc2_standard",
+        tools=("twincat",),
+        profile="twincat",
+        functions="softplc.fblocks.libs.tc2_standard.functions",
+    ),
+    LibrarySpec(
+        "Tc2_System",
+        "softplc.fblocks.libs.tc2_system",
+        tools=("twincat",),
+        profile="twincat",
+        namespaces=("TwinCAT_SystemInfoVarList",),
+        functions="softplc.fblocks.libs.tc2_system.functions",
+        unavailable_parts=(
+            ("ads.st", f"it needs TwinCAT's ADS router ({_ADS})"),
+            ("files.st", f"softplc writes no files for a PLC program ({_ADS})"),
+        ),
+    ),
+    LibrarySpec(
+        "Tc2_Utilities",
+        "softplc.fblocks.libs.tc2_utilities",
+        tools=("twincat",),
+        profile="twincat",
+        functions="softplc.fblocks.libs.tc2_utilities.functions",
+        unavailable_parts=(("services.st", f"softplc does not act on the computer for a PLC program ({_ADS})"),),
+        requires=("Tc2_System",),
+    ),
+    LibrarySpec("Tc2_Math", "softplc.fblocks.libs.tc2_math", tools=("twincat",), profile="twincat"),
 )

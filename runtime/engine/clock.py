@@ -14,6 +14,12 @@ RealClock    the wall (monotonic) clock: sleeps until `spin_ns` before a
 VirtualClock jumps straight to the next deadline: a 10-minute sequence runs
              in milliseconds and always the same way. Simulators read the
              same clock.
+
+Each has a date (epoch_ns: UTC nanoseconds since 1970 at its zero) for the
+functions that read the calendar (TwinCAT's F_GetSystemTime): the host's
+clock for the real one, 2000-01-01 for the virtual one unless it is given
+(program/context.py VIRTUAL_EPOCH_NS), so that virtual time runs the same
+way on every day too.
 PeriodicService  a real-time thread that serves a bus or a simulated
              device every period on a clock (in virtual time the engine
              advances them at each tick instead).
@@ -28,6 +34,7 @@ import time
 from collections.abc import Callable
 
 from ..config import DEFAULT_SPIN_NS
+from ..program.context import VIRTUAL_EPOCH_NS
 
 log = logging.getLogger(__name__)
 
@@ -43,8 +50,9 @@ def _threads() -> list[int]:
 class VirtualClock:
     virtual = True
 
-    def __init__(self, start_ns: int = 0) -> None:
+    def __init__(self, start_ns: int = 0, epoch_ns: int = VIRTUAL_EPOCH_NS) -> None:
         self._now = start_ns
+        self.epoch_ns = epoch_ns  # the date of the clock's zero
 
     def claim_thread(self) -> None:
         """Virtual time needs no priority: nothing waits for the wall clock."""
@@ -64,6 +72,7 @@ class RealClock:
         self.spin_ns = spin_ns
         self.realtime_priority = realtime_priority
         self._t0 = time.perf_counter_ns()
+        self.epoch_ns = time.time_ns()  # the date now, at the clock's zero
         self._claimed: set = set()  # the threads given the priority (or told they cannot have it)
 
     def claim_thread(self) -> None:

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 from ..image.address import default_type
 from ..image.memory import ProcessImage
-from ..program import ExecContext, Program, locate
+from ..program import ExecContext, Program, TaskState, locate
 from ..st import rt_oop
 from ..st import types as T
 from ..st.faults import STFault, fault_from_exception
@@ -82,6 +82,8 @@ class Task:
         self.late_cycles = 0  # consecutive cycles longer than the watchdog time
         self.fault: STFault | None = None
         self.stats = TaskStats()
+        #: what a program asks of its task (ExecContext.begin_task): index in the configuration's order
+        self.state = TaskState(order + 1, spec.name, spec.interval_ns or 0, spec.priority)
 
     def describe(self) -> str:
         every = (
@@ -132,8 +134,10 @@ class Engine:
         self._tick_cpu_ns = 0
         if self.clock.virtual:
             self.ctx.timer = time.thread_time
-        else:  # the date SysTimeRtcGet reads: the wall clock's (virtual time starts at the epoch)
-            self.ctx.utc_at_zero_ns = time.time_ns() - self.clock.now_ns()
+        # the date and the clock the functions that read them see (F_GetSystemTime)
+        self.ctx.epoch_ns = getattr(self.clock, "epoch_ns", self.ctx.epoch_ns)
+        self.ctx.local_zone = not self.clock.virtual
+        self.ctx.clock_ns = self.clock.now_ns
         self.drivers = list(drivers)
         #: the simulated devices of the configuration's [[sim]] tables, by name:
         #: what a test or a scheduled fault reaches (their inject() ...)
@@ -147,6 +151,7 @@ class Engine:
         self.retain_period_ns = retain_period_ns
         ordered = sorted(enumerate(tasks), key=lambda it: (it[1].priority, it[0]))
         self.tasks = [Task(spec, order) for order, spec in ordered]
+        self.ctx.tasks = [task.state for task in sorted(self.tasks, key=lambda t: t.order)]
         self.safe_q = self._safe_area(safe_outputs)
         self._safe_view = self.image.outputs_view(self.safe_q)
         self.outputs_safe = False
@@ -379,7 +384,11 @@ class Engine:
         # from the tick's start as for the cycle's verdict below
         ctx.deadline = self._tick_cpu_ns * 1e-9 + budget if clock.virtual else ctx.wall_deadline
         ctx.watchdog_s = budget
+        state = task.state
+        state.cycles += 1
+        state.release_ns = released
         try:
+            ctx.begin_task(state)
             for call in task.calls:
                 call()
         except Exception as exc:
@@ -393,6 +402,8 @@ class Engine:
         t1 = counter()
         exec_ns = t1 - t0
         task.stats.record(exec_ns, start_ns - released)
+        state.last_exec_ns = exec_ns
+        state.overran = task.interval_ns is not None and exec_ns > task.interval_ns
         if task.watchdog_ns is not None:
             if exec_ns > task.watchdog_ns and clock.virtual:
                 exec_ns = min(exec_ns, time.thread_time_ns() - self._tick_cpu_ns)

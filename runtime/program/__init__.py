@@ -8,11 +8,11 @@ namespace bound to a process image and run cycle by cycle.
     r.get("counter.CV")
 
 Public names: compile_files, check_files, build_parsed, Program, Runner, ExecContext,
-locate, global_variable, StructWriter.
+TaskState, locate, global_variable, StructWriter.
 """
 
 from .compile import build_parsed, check_files, compile_files
-from .context import ExecContext
+from .context import ExecContext, TaskState
 from .libraries import Library
 from .loaded import Program, Runner
 from .variables import StructWriter, global_variable, locate
@@ -24,6 +24,7 @@ __all__ = [
     "Program",
     "Runner",
     "StructWriter",
+    "TaskState",
     "check_files",
     "compile_files",
     "global_variable",

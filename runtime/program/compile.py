@@ -207,6 +207,7 @@ def _user_libraries(libraries: tuple, profile: Profile, words: set, diags: Diagn
             declared = _declared_in(files)
             declared_all |= declared
             units.append((declared, {w.upper() for w in _WORD.findall(text)}, str(f), text, files, items))
+        declared_all |= set(functions_of((lib,)))  # Tc2_System.MEMCPY: its Python functions too
         for ns in (lib.namespace, *lib.namespaces):
             namespaces[ns.upper()] = (ns, frozenset(declared_all))
     taken, words = _take_named(units, words, lambda unit: unit[:2])
@@ -218,19 +219,33 @@ def _user_libraries(libraries: tuple, profile: Profile, words: set, diags: Diagn
     return parsed, words, namespaces
 
 
-def _unavailable(libraries: tuple, taken: list, user: list, diags: DiagnosticBag) -> None:
+def _unavailable(libraries: tuple, taken: list, user: list, words: set, diags: DiagnosticBag) -> None:
     """W230 once for each library the program uses that cannot do its work
-    here (shipped.py: a library of hardware or a runtime service)."""
-    used = {str(Path(sf.path).resolve()) for sf in taken}
+    here (shipped.py: a library of hardware or a runtime service), and once
+    for each such file of a library that otherwise works (Tc2_System's ADS
+    blocks), naming what the program uses of it."""
+    used: dict = {}  # resolved path -> the taken SourceFiles of it
+    for sf in taken:
+        used.setdefault(str(Path(sf.path).resolve()), []).append(sf)
     where = A.Pos(user[0].path if user else "<input>", 1, 1)
+    hint = "the program compiles and runs; the library's blocks answer through their error outputs"
     for lib in libraries:
         if lib.unavailable and any(str(f.resolve()) in used for f in lib.files()):
-            diags.warning(
-                "W230",
-                f"{lib.namespace} is declared but not available here: {lib.unavailable}",
-                where,
-                "the program compiles and runs; the library's blocks answer through their error outputs",
-            )
+            diags.warning("W230", f"{lib.namespace} is declared but not available here: {lib.unavailable}", where, hint)
+            continue
+        for file_name, why in lib.unavailable_parts:
+            files = [sf for f in lib.files() if f.name == file_name for sf in used.get(str(f.resolve()), ())]
+            if not files:
+                continue
+            names = sorted(_decl_spelled(files, words))
+            what = ", ".join(names[:4]) + (" ..." if len(names) > 4 else "")
+            verb = "is" if len(names) == 1 else "are"
+            diags.warning("W230", f"{lib.namespace} {what} {verb} declared but not available here: {why}", where, hint)
+
+
+def _decl_spelled(files: list, words: set) -> set:
+    """The POUs and types the files declare that the words name, as spelled."""
+    return {d.name for sf in files for d in sf.decls if isinstance(d, (A.POU, A.TypeDecl)) and d.name.upper() in words}
 
 
 def _front_end(paths: list, profile: Profile, texts: dict | None, natives: tuple = (), libraries: tuple = ()):
@@ -251,15 +266,16 @@ def _check(
     library = []
     namespaces: dict = {}
     if libraries:
+        own_words = user_words
         taken, user_words, namespaces = _user_libraries(tuple(libraries), profile, user_words, diags, sources)
         for sf in taken:  # a user POU of the same name replaces the library's
             sf.decls = [
                 d for d in sf.decls if not (isinstance(d, (A.POU, A.TypeDecl)) and d.name.upper() in user_names)
             ]
         library.extend(taken)
-        _unavailable(tuple(libraries), taken, user, diags)
+        _unavailable(tuple(libraries), taken, user, own_words, diags)
     # a chosen library's POU replaces the IEC one of the same name (CODESYS
-    # Standard's CTU with RESET), as a user's POU replaces either
+    # Standard's CTU with RESET, Tc2_Standard's), as a user's POU replaces either
     replaced = user_names.union(*(_decl_names(sf) for sf in library))
     for name, text in _needed_library(_always_sources(), _on_demand_sources(), user_words):
         sources.add(name, text)
@@ -318,7 +334,8 @@ def check_files(
     Never raises for problems in the sources. Reports exactly what
     compile_files would: the back end runs too when the front end is clean."""
     prof = get_profile(profile) if isinstance(profile, str) else profile
-    diags, sources, checked, _ = _front_end(list(paths), prof, texts, natives, tuple(libraries))
+    libraries = with_required(tuple(libraries))
+    diags, sources, checked, _ = _front_end(list(paths), prof, texts, natives, libraries)
     if not diags.has_errors:
         _back_end(checked, prof, diags, _first_position(paths, texts))
     return diags.sorted(), sources
@@ -338,14 +355,23 @@ def compile_files(
     ExecContext's services execute them (the test runner binds its own).
     libraries: the user's libraries (program/libraries.py Library)."""
     prof = get_profile(profile) if isinstance(profile, str) else profile
-    diags, sources, checked, user = _front_end(list(paths), prof, texts, natives, tuple(libraries))
+    libraries = with_required(tuple(libraries))
+    diags, sources, checked, user = _front_end(list(paths), prof, texts, natives, libraries)
     built = None if diags.has_errors else _back_end(checked, prof, diags, _first_position(paths, texts))
     if built is None:
         raise CompileError(diags.sorted(), sources)
     gen, code, filename = built
     user_pous = {d.name: d.kind for sf in user for d in sf.decls if isinstance(d, A.POU)}
     return Program(
-        prof, checked, gen, code, filename, [d for d in diags.sorted() if not d.is_error], sources, user_pous
+        prof,
+        checked,
+        gen,
+        code,
+        filename,
+        [d for d in diags.sorted() if not d.is_error],
+        sources,
+        user_pous,
+        tuple(lib.functions for lib in libraries if lib.functions),
     )
 
 
@@ -366,7 +392,8 @@ def build_parsed(
     texts, for the messages. The checker annotates the files: give fresh
     ones each time (libraries.parse_cached)."""
     prof = get_profile(profile) if isinstance(profile, str) else profile
-    checked = _check(user, set(words), prof, natives, tuple(libraries), diags, sources)
+    libraries = with_required(tuple(libraries))
+    checked = _check(user, set(words), prof, natives, libraries, diags, sources)
     if diags.has_errors:
         return None
     built = _back_end(checked, prof, diags, A.Pos(user[0].path if user else "<input>", 1, 1))
@@ -375,5 +402,13 @@ def build_parsed(
     gen, code, filename = built
     user_pous = {d.name: d.kind for sf in user for d in sf.decls if isinstance(d, A.POU)}
     return Program(
-        prof, checked, gen, code, filename, [d for d in diags.sorted() if not d.is_error], sources, user_pous
+        prof,
+        checked,
+        gen,
+        code,
+        filename,
+        [d for d in diags.sorted() if not d.is_error],
+        sources,
+        user_pous,
+        tuple(lib.functions for lib in libraries if lib.functions),
     )

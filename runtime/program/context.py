@@ -18,6 +18,7 @@ what the checks cost.
 from __future__ import annotations
 
 import time
+from dataclasses import dataclass
 from itertools import chain
 
 from ..image.memory import ProcessImage
@@ -26,13 +27,52 @@ from ..st import types as T
 from ..st.faults import LOOP_CHECK_EVERY, StopRequested, WatchdogFault
 from ..st.native import CLOCK
 
+#: the date of a virtual clock's zero, UTC nanoseconds since 1970-01-01:
+#: 2000-01-01 00:00:00. Virtual time runs the same way every time, so its
+#: calendar starts at a fixed date; the real clock's is the host's.
+VIRTUAL_EPOCH_NS = 946_684_800 * 1_000_000_000
+
+
+@dataclass
+class TaskState:
+    """The task a program runs in, as the program may ask for it (TwinCAT's
+    _TaskInfo and GETCURTASKINDEX, fblocks/libs/tc2_system): the engine
+    keeps one per task and hands it to the context when the task's cycle
+    starts. index: 1.. in the configuration's order of tasks; interval_ns
+    0 for a freewheeling task; cycles: the cycles started, this one
+    included; release_ns: when this cycle was due on the engine clock;
+    last_exec_ns: how long the previous cycle ran; overran: it ran past
+    the interval."""
+
+    index: int = 1
+    name: str = ""
+    interval_ns: int = 0
+    priority: int = 0
+    cycles: int = 0
+    release_ns: int = 0
+    last_exec_ns: int = 0
+    overran: bool = False
+
 
 class ExecContext:
     """What generated code reaches at run time: the task clock, the
-    watchdog, the process image and communication services."""
+    watchdog, the process image and communication services; the date and
+    the running task for the functions that read them (StdFunc context)."""
 
     def __init__(self, image: ProcessImage, watchdog_s: float = 1.0) -> None:
         self.now_ns = 0
+        #: the date at engine time 0, UTC ns since 1970-01-01 (the engine
+        #: takes its clock's): date_ns() is this plus the engine clock
+        self.epoch_ns = VIRTUAL_EPOCH_NS
+        #: local time is the host's zone (real time) or UTC (virtual time,
+        #: the same on every machine)
+        self.local_zone = False
+        #: reads the engine clock now: the task clock (virtual time stands
+        #: still within a cycle); the engine gives it its real clock's
+        self.clock_ns = lambda: self.now_ns
+        #: the task whose cycle runs (begin_task), and every task of the PLC
+        self.task = TaskState()
+        self.tasks: list = [self.task]
         self.image = image
         self.watchdog_s = watchdog_s
         self.deadline = float("inf")
@@ -51,9 +91,6 @@ class ExecContext:
         #: why the run is stopping (e.g. "SIGTERM"), set from a signal handler:
         #: a running loop ends its cycle at its next check; None while running
         self.stop_reason: str | None = None
-        #: the UTC date (ns since 1970) at which the task clock read 0: the
-        #: engine sets it from the wall clock in real time; 0 in virtual time
-        self.utc_at_zero_ns = 0
         # native function services (st/native.py) by name, bound by the drivers;
         # the clock's is the context's own
         self.services: dict = {CLOCK: _Clock(self)}
@@ -67,6 +104,30 @@ class ExecContext:
         for namespace in self.namespaces:
             namespace["_NOW_MS"] = ms
             namespace["_NOW_NS"] = ns
+
+    def begin_task(self, task: TaskState) -> None:
+        """A cycle of task starts: the functions that ask which task runs
+        see it, and the loaded modules' task hooks (a library's task
+        information, fblocks/libs) are told."""
+        self.task = task
+        for namespace in self.namespaces:
+            for hook in namespace.get("_TASK_HOOKS", ()):
+                hook(namespace, self)
+
+    def date_ns(self) -> int:
+        """The date now, UTC nanoseconds since 1970-01-01, on the engine's
+        clock (in virtual time it advances with the virtual clock)."""
+        return self.epoch_ns + self.clock_ns()
+
+    def utc_offset_s(self, utc_s: int) -> int:
+        """Seconds local time is ahead of UTC at that moment: the host's
+        zone in real time, 0 in virtual time."""
+        if not self.local_zone:
+            return 0
+        try:
+            return time.localtime(utc_s).tm_gmtoff
+        except (OverflowError, OSError, ValueError):
+            return 0
 
     def call_native(self, fn, *args):
         """A native function call: to the service bound under its name, or
@@ -118,10 +179,11 @@ class ExecContext:
 
 class _Clock:
     """The service st.native.CLOCK: the date of the task clock in ms since
-    1970-01-01 00:00 UTC (constant within a cycle, as TIME() is)."""
+    1970-01-01 00:00 UTC (constant within a cycle, as TIME() is): the
+    engine clock's date at its zero (epoch_ns) plus the task clock."""
 
     def __init__(self, ctx: ExecContext) -> None:
         self.ctx = ctx
 
     def request(self, name: str, *args) -> int:
-        return (self.ctx.utc_at_zero_ns + self.ctx.now_ns) // 1_000_000
+        return (self.ctx.epoch_ns + self.ctx.now_ns) // 1_000_000

@@ -41,9 +41,9 @@ class Library:
     ``namespaces``, ``functions`` written in Python (a module with a
     FUNCTIONS table of StdFuncs), ``natives`` a runtime service answers (a
     module with a NATIVES tuple, st/native.py), the shipped libraries it
-    ``requires`` and a reason it is
-    ``unavailable`` here (hardware, a runtime service: one warning when a
-    program uses it)."""
+    ``requires``, and a reason it is ``unavailable`` here (hardware, a
+    runtime service: one warning when a program uses it), or such reasons
+    for some of its files (``unavailable_parts``: (file name, why) pairs)."""
 
     path: Path
     namespace: str
@@ -52,7 +52,8 @@ class Library:
     functions: str | None = None
     natives: str | None = None
     unavailable: str = ""
-    requires: tuple = ()
+    unavailable_parts: tuple = ()
+    requires: tuple = ()  # names of the shipped libraries it uses (shipped.py with_required)
 
     def files(self) -> list[Path]:
         """The library's source files, sorted (sub-folders included, but for

@@ -4,6 +4,7 @@ POUs instantiated, run cycle by cycle."""
 from __future__ import annotations
 
 import builtins
+import importlib
 import time
 from typing import Any
 
@@ -14,7 +15,7 @@ from ..st.codegen import GeneratedModule
 from ..st.diagnostics import Diagnostic, SourceSet
 from ..st.faults import RangeFault, fault_from_exception, out_of_bounds, out_of_range
 from ..st.profile import Profile
-from .context import ExecContext
+from .context import ExecContext, TaskState
 from .variables import locate
 
 # The only builtins generated code may use.
@@ -61,8 +62,17 @@ class Program:
         warnings: list,
         sources: SourceSet,
         user_pous: dict,
+        library_modules: tuple = (),
     ) -> None:
         self.profile = profile
+        # the task hooks of the libraries' Python modules (a module's
+        # TASK_START(namespace, ctx), called as each task cycle starts:
+        # TwinCAT's _TaskInfo, fblocks/libs/tc2_system)
+        self.task_hooks = tuple(
+            hook
+            for hook in (getattr(importlib.import_module(m), "TASK_START", None) for m in library_modules)
+            if hook is not None
+        )
         self.checked = checked
         self.generated = gen
         self.code = code
@@ -71,9 +81,11 @@ class Program:
         self.sources = sources
         self.pous = user_pous
         self.linemaps = {filename: gen.linemap}
-        # Globals the libraries declare (PLC_DIAG): not the user's state.
+        # Globals the libraries declare (PLC_DIAG, a shipped library's constants): not the user's state.
         self.library_globals = frozenset(
-            g.name for g in checked.globals if g.pos is not None and g.pos.file.startswith("<lib>/")
+            g.name
+            for g in checked.globals
+            if g.pos is not None and (g.pos.file.startswith("<lib>/") or g.pos.file in checked.library_files)
         )
 
     @property
@@ -157,6 +169,7 @@ class Program:
             # FB_init's (bInitRetains, bInCopyCode): an online change makes
             # its instances with (FALSE, TRUE), as CODESYS does
             "_INIT_FLAGS": (True, False),
+            "_TASK_HOOKS": self.task_hooks,
         }
         ns.update(self.generated.consts)
         image = ctx.image
@@ -216,6 +229,9 @@ class Runner:
             ctx = ExecContext(ProcessImage(program.profile.addressing))
             ctx.timer = time.thread_time  # virtual time: the watchdog counts this thread's CPU time
         self.ctx = ctx
+        # the one task the program runs in (GETCURTASKINDEX answers 1)
+        self.task = TaskState(1, "", self.cycle_ns)
+        ctx.tasks = [self.task]
         self.ns = program.load(self.ctx)
         self.instance = None
         self.result = None
@@ -242,9 +258,13 @@ class Runner:
     def run(self, cycles: int = 1) -> None:
         ctx = self.ctx
         call = self._call
+        task = self.task
         for _ in range(cycles):
             ctx.arm_watchdog()
+            task.cycles += 1
+            task.release_ns = ctx.now_ns
             try:
+                ctx.begin_task(task)
                 call()
             except Exception as exc:
                 raise fault_from_exception(exc, self.program.linemaps) from None

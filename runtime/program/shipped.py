@@ -83,6 +83,7 @@ def as_library(spec: LibrarySpec) -> Library:
         functions=spec.functions,
         natives=spec.natives,
         unavailable=spec.unavailable,
+        unavailable_parts=tuple(spec.unavailable_parts),
         requires=tuple(spec.requires),
     )
 
@@ -94,7 +95,8 @@ def shipped_named(name: str) -> Library | None:
 
 
 def with_required(libraries: tuple) -> tuple:
-    """libraries, and the shipped libraries they require (in turn), each once."""
+    """libraries, and after them the shipped libraries they require (in
+    turn: Tc2_Utilities brings Tc2_System), each once."""
     out: list = []
     have: set = set()
     for lib in libraries:
@@ -103,7 +105,7 @@ def with_required(libraries: tuple) -> tuple:
             out.append(lib)
     i = 0
     while i < len(out):
-        for name in getattr(out[i], "requires", ()):
+        for name in out[i].requires:
             lib = shipped_named(name)
             if lib is not None and lib.namespace.upper() not in have:
                 have.add(lib.namespace.upper())

@@ -50,6 +50,8 @@ class CheckedProgram:
     types: dict  # UPPER -> Type
     # the global variable lists (namespaces.py): UPPER list name -> its UPPER variable names
     global_lists: dict = field(default_factory=dict)
+    # the paths of the library files (their globals are not the user's state)
+    library_files: frozenset = frozenset()
 
 
 class Checker(
@@ -92,6 +94,7 @@ class Checker(
             self._collect(sf)
         self._collect_actions(files)
         self._resolve_namespaces(files)
+        self._declare_early_constants(files)
         for key in list(self.type_decls):
             self._resolve_named_type(key, self.type_decls[key].pos)
         global_blocks: list[tuple[A.VarBlock, A.Configuration | None]] = [
@@ -144,4 +147,5 @@ class Checker(
             self.configs,
             self.types,
             self._lists,
+            frozenset(self.library_files),
         )

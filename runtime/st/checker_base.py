@@ -137,6 +137,9 @@ class CheckerBase:
         return key
 
     if TYPE_CHECKING:
+        # namespaces.py: UPPER global variable list -> its UPPER variable names
+        _lists: dict
+
         # Implemented by the parts: what one part calls of another.
         # checker_types
         def type_of(self, spec: A.TypeSpec, scope: Scope | None = None) -> T.Type | None: ...

@@ -379,6 +379,18 @@ class CallChecks(CheckerBase):
             and "TRUNC" not in self.pous
         )
 
+    def _spec_type(self, spec: str) -> T.Type | None:
+        """The type of a concrete typespec (fblocks/iec/functions.py): an
+        elementary type, STRING or WSTRING (any length), or POINTER TO an
+        elementary type (any pointer passes as a byte view of its target)."""
+        key = spec.upper()
+        if key in ("STRING", "WSTRING"):
+            return T.StringType(self.profile.default_string_length, key == "WSTRING")
+        if key.startswith("POINTER TO "):
+            target = T.ELEMENTARY.get(key[len("POINTER TO ") :].strip())
+            return T.RefType(target, pointer=True) if target is not None else None
+        return T.ELEMENTARY.get(key)
+
     def _std_call(self, e: A.Call, func, scope: Scope) -> T.Type | None:
         args = self._std_args(e, func, scope)
         if args is None:
@@ -390,9 +402,7 @@ class CallChecks(CheckerBase):
         # 1) type every argument; untyped literals wait for their type variable
         arg_types: list = []
         for a, spec in zip(args, specs):
-            exp: T.Type | None = T.ELEMENTARY.get(spec.upper()) if ":" not in spec else None
-            if spec.upper() in ("STRING", "WSTRING"):
-                exp = T.StringType(self.profile.default_string_length, spec.upper() == "WSTRING")
+            exp = self._spec_type(spec) if ":" not in spec else None
             arg_types.append(self.expr(a, scope, expected=exp))
         if any(t is None for t in arg_types):
             return None
@@ -436,9 +446,7 @@ class CallChecks(CheckerBase):
                     return None
                 param_types.append(t)
             else:
-                want = T.ELEMENTARY.get(spec.upper())
-                if want is None and spec.upper() in ("STRING", "WSTRING"):
-                    want = T.StringType(self.profile.default_string_length, spec.upper() == "WSTRING")
+                want = self._spec_type(spec)
                 if want is None:
                     self.d.error("E020", f"{func.name}: unknown parameter type {spec}", a.pos)
                     return None
@@ -502,6 +510,8 @@ class CallChecks(CheckerBase):
     )
 
     def _foldable(self, func) -> bool:
+        if func.context:  # reads the clock or the task at run time
+            return False
         return "_TO_" in func.name or func.name.startswith("TO_") or func.name in self._FOLDABLE_NAMES
 
     def _call_impl(self, func, info: CallInfo, values: list) -> Any:

@@ -14,6 +14,7 @@ from . import ast as A
 from . import types as T
 from .checker_base import CheckerBase, Scope
 from .conversions import const_as, same_type
+from .diagnostics import DiagnosticBag
 from .profile import names_where
 from .symbols import CallInfo, POUInfo, VarSymbol, pyname
 
@@ -102,6 +103,39 @@ class DeclChecks(CheckerBase):
             "variable of a PROGRAM or FUNCTION_BLOCK",
         )
 
+    def _declare_early_constants(self, files: list) -> None:
+        """The global constants of elementary types, declared before the
+        named types are resolved: a STRUCT's ARRAY[1..GVL.MaxN] or
+        UINT(0..MaxN) reads them, as in CODESYS and TwinCAT."""
+        self._early_decls: set = set()
+        for sf in files:
+            for block in sf.decls:
+                if not (isinstance(block, A.VarBlock) and block.kind == "VAR_GLOBAL" and block.constant):
+                    continue
+                for decl in block.decls:
+                    key = decl.name.upper()
+                    spec = decl.type
+                    if (
+                        key in self.globals
+                        or not isinstance(spec, A.NamedType)
+                        or spec.name.upper() not in T.ELEMENTARY
+                    ):
+                        continue
+                    # tried: a constant whose value reads what is declared
+                    # later (a variable, another list's constant) waits for
+                    # its list, where that name is known or its error right
+                    saved, self.d = self.d, DiagnosticBag()
+                    try:
+                        sym = self._make_var(decl, block, None)
+                    finally:
+                        trial, self.d = self.d, saved
+                    if sym is None or trial.has_errors:
+                        continue
+                    self.d.extend(trial.items)
+                    sym.section = "VAR_GLOBAL"
+                    self.globals[key] = sym
+                    self._early_decls.add(id(decl))
+
     def _declare_globals(self, block: A.VarBlock) -> None:
         if block.kind not in ("VAR_GLOBAL", "VAR_CONFIG"):
             self.d.error(
@@ -110,6 +144,8 @@ class DeclChecks(CheckerBase):
             return
         for decl in block.decls:
             key = decl.name.upper()
+            if id(decl) in self._early_decls:
+                continue  # declared before the types (_declare_early_constants)
             if key in self.globals:
                 self.d.error(
                     "E011",

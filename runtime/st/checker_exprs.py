@@ -212,6 +212,13 @@ class ExprChecks(CheckerBase):
             if sym is not None:
                 self._check_qualified_only(e)
             elif e.qualifier is not None:
+                if key in self._lists.get(e.qualifier.upper(), ()):  # declared, but after the data types
+                    self.d.error(
+                        "E010",
+                        f"'{e.qualifier}.{e.name}' is not known yet where the data types are declared",
+                        e.pos,
+                        "only global constants of elementary types size the fields of a TYPE; use a literal",
+                    )
                 return None  # GVL.y where GVL has no y: E019 (namespaces.py)
         if sym is not None:
             e.sym = sym

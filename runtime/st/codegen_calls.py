@@ -92,6 +92,8 @@ class CallGen(CodeGenBase):
         a REAL into an integer parameter (W121 where the profile allows it:
         MAX(1.5, i) with i an INT is an INT) the integer it converts to."""
         code = self.ex(a)
+        if param_type is not None and a.ty is not None and isinstance(T.resolve(param_type), T.RefType):
+            return self.coerce(code, a.ty, param_type, a)  # POINTER TO BYTE: a byte view of any pointer; 0 NULL
         if param_type is None or a.ty is None:
             return code
         pe, ae = T.base_elementary(param_type), T.base_elementary(a.ty)
@@ -125,7 +127,9 @@ class CallGen(CodeGenBase):
             return inline
         fn = self.const(func.impl)
         if func.typed:
-            return f"{fn}({self.const(info.rtypes)}, {', '.join(args)})"
+            args = [self.const(info.rtypes), *args]
+        if func.context:  # the ExecContext first: the clock, the running task
+            args = ["_ctx", *args]
         return f"{fn}({', '.join(args)})"
 
     def _inline_shift(self, info: CallInfo, args: list) -> str | None:
@@ -169,6 +173,9 @@ class CallGen(CodeGenBase):
         func = info.func
         if func.typed or "_TO_" not in func.name or "BCD" in func.name or len(func.params) != 1:
             return None
+        head, _, tail = func.name.partition("_TO_")
+        if head not in T.ELEMENTARY or tail not in T.ELEMENTARY:
+            return None  # a library's HOST_TO_BE16 is no conversion
         src = T.ELEMENTARY.get(func.params[0][1].upper())
         dst = T.base_elementary(info.rtypes[0])
         if src is None or dst is None or not src.is_intlike:

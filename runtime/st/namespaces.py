@@ -144,6 +144,7 @@ class NamespaceChecks(CheckerBase):
     def _namespace_hint(self) -> str:
         known = sorted(set(LIBRARY_NAMESPACES.values()) | {s for s, _ in self.user_namespaces.values()})
         known += sorted(self._list_names.values())
+        known = list(dict.fromkeys(known))  # Tc2_Standard: the standard names and a shipped library
         return "known namespaces: " + ", ".join(known) if known else ""
 
     def _check_qualified_only(self, e: A.Name) -> None:

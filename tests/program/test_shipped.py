@@ -125,3 +125,79 @@ def test_a_shipped_library_declares_its_natives_when_chosen_and_names_them_when_
     ]
     diags, _ = check_files([], texts={"main.st": src}, profile="twincat", libraries=[shipped_named("TcUnit")])
     assert [d for d in diags if d.is_error] == []
+
+
+# ---------------------------------------------------------------- parts, replacements, namespaces
+
+
+@pytest.fixture
+def partly(tmp_path: Path) -> Path:
+    """A library whose ads.st cannot work here and whose math.st can."""
+    lib = tmp_path / "partly"
+    lib.mkdir()
+    (lib / "math.st").write_text("FUNCTION Twice : INT VAR_INPUT x : INT; END_VAR Twice := 2 * x; END_FUNCTION\n")
+    (lib / "ads.st").write_text(
+        textwrap.dedent(
+            """
+            FUNCTION_BLOCK ADSREAD
+            VAR_INPUT READ : BOOL; END_VAR
+            VAR_OUTPUT ERR : BOOL; ERRID : UDINT; END_VAR
+            IF READ THEN ERR := TRUE; ERRID := 6; END_IF
+            END_FUNCTION_BLOCK
+            FUNCTION_BLOCK ADSWRITE
+            VAR_INPUT WRITE : BOOL; END_VAR
+            END_FUNCTION_BLOCK
+            """
+        )
+    )
+    return lib
+
+
+def test_an_unavailable_part_warns_once_naming_what_the_program_uses(partly):
+    lib = Library(partly, "Partly", unavailable_parts=(("ads.st", "it needs an ADS router"),))
+    src = """
+    PROGRAM Main VAR r1, r2 : ADSREAD; n : INT; END_VAR
+    r1(READ := TRUE); r2(READ := FALSE); n := Twice(n + 1);
+    END_PROGRAM
+    """
+    diags, _ = check_files([], texts={"main.st": src}, libraries=[lib])
+    assert [(d.code, d.message) for d in diags] == [
+        ("W230", "Partly ADSREAD is declared but not available here: it needs an ADS router")
+    ]
+    r = compile_files([], texts={"main.st": src}, libraries=[lib]).runner("Main")
+    r.run(2)
+    assert (r.get("r1.ERR"), r.get("r1.ERRID"), r.get("r2.ERR"), r.get("n")) == (True, 6, False, 6)
+
+
+def test_a_program_that_uses_only_the_working_part_gets_no_warning(partly):
+    lib = Library(partly, "Partly", unavailable_parts=(("ads.st", "it needs an ADS router"),))
+    src = "PROGRAM Main VAR n : INT; END_VAR n := Twice(3); END_PROGRAM"
+    assert check_files([], texts={"main.st": src}, libraries=[lib])[0] == []
+
+
+def test_a_library_block_replaces_the_standard_block_of_its_name(tmp_path):
+    # TwinCAT's Tc2_Standard counts with RESET and a WORD, not IEC's R and INT
+    (tmp_path / "counters.st").write_text(
+        "FUNCTION_BLOCK CTU VAR_INPUT CU, RESET : BOOL; PV : WORD; END_VAR VAR_OUTPUT Q : BOOL; CV : WORD; END_VAR\n"
+        "IF RESET THEN CV := 0; ELSIF CU THEN CV := CV + 1; END_IF Q := CV >= PV;\nEND_FUNCTION_BLOCK\n"
+    )
+    lib = Library(tmp_path, "Vendor")
+    src = "PROGRAM Main VAR c : CTU; END_VAR c(CU := TRUE, RESET := c.CV = 2, PV := 5); END_PROGRAM"
+    r = compile_files([], texts={"main.st": src}, libraries=[lib]).runner("Main")
+    r.run(4)
+    assert r.get("c.CV") == 1  # 1, 2, reset, 1
+
+
+def test_a_library_function_written_in_python_takes_its_namespace(tmp_path):
+    lib = Library(tmp_path, "Probe", functions="tests.program.context_library")
+    src = "PROGRAM Main VAR i : DINT; END_VAR i := Probe.TASK_INDEX(); END_PROGRAM"
+    r = compile_files([], texts={"main.st": src}, libraries=[lib]).runner("Main")
+    r.run(1)
+    assert r.get("i") == 1
+
+
+def test_a_library_global_is_not_the_program_state_exec_prints(tmp_path):
+    (tmp_path / "consts.st").write_text("VAR_GLOBAL CONSTANT LIMIT_MAX : INT := 7; END_VAR\n")
+    src = "PROGRAM Main VAR n : INT; END_VAR n := LIMIT_MAX; END_PROGRAM"
+    prog = compile_files([], texts={"main.st": src}, libraries=[Library(tmp_path, "Consts")])
+    assert "LIMIT_MAX" in prog.library_globals and "n" not in prog.library_globals

@@ -9,18 +9,19 @@ from pathlib import Path
 
 HERE = Path(__file__).parent
 
-#: a block that needs Tc2_System (referenced by the project, not in softplc)
+#: a block that needs Tc3_JsonXml (referenced by the project, not in softplc)
 LOGGER = (
     """FUNCTION_BLOCK FB_Logger
 VAR_INPUT
     sIn : STRING;
 END_VAR
 VAR
-    sLine : T_MaxString;
+    sLine : SJsonValue;
+    fbJson : FB_JsonSaxWriter;
     nCopied : UDINT;
 END_VAR
 """,
-    """MEMCPY(ADR(sLine), ADR(sIn), SIZEOF(sIn));
+    """fbJson.AddString(sIn);
 nCopied := nCopied + 1;
 sLine := CONCAT(sLine, '!');""",
 )

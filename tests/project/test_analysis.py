@@ -29,7 +29,7 @@ def test_the_broken_the_library_user_and_their_user_are_left_out(mixed):
     assert _compiled(mixed) == {
         "FB_Tank": True,
         "MAIN": True,
-        "FB_Logger": False,  # T_MaxString, MEMCPY: Tc2_System
+        "FB_Logger": False,  # SJsonValue, FB_JsonSaxWriter: Tc3_JsonXml
         "FB_Broken": False,  # nStep is declared nowhere
         "FB_UsesBroken": False,  # no error of its own: it uses FB_Broken
     }

@@ -36,7 +36,7 @@ def test_a_solution_leads_through_the_system_project_to_the_plc_project():
     ]  # the .TcTTO is a task, the .TcVis a visualisation: neither is compiled
     assert [(r.name, r.namespace) for r in p.libraries] == [
         ("Tc2_Standard", "Tc2_Standard"),
-        ("Tc2_System", "Tc2_System"),
+        ("Tc3_JsonXml", "Tc3_JsonXml"),
     ]
     [task] = p.tasks
     assert (task.name, task.interval_ns, task.priority) == ("PlcTask", 10_000_000, 20)

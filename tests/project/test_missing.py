@@ -25,11 +25,12 @@ def test_a_referenced_library_is_one_line_at_its_reference(tmp_path):
     [g] = groups
     d = g.diagnostic()
     plcproj = root / "Plant" / "Plc" / "Plc.plcproj"
-    assert (d.code, d.pos.file, d.pos.line) == ("E223", str(plcproj), line_of(plcproj, 'Include="Tc2_System"'))
-    # T_MaxString once as a type, three times through sLine; MEMCPY once
-    assert d.message == "needs Tc2_System (T_MaxString, MEMCPY: 5 references): not installed"
-    assert dict(g.names) == {"T_MaxString": 4, "MEMCPY": 1}
-    assert {x.code for x in g.replaced} == {"E012", "E010", "E043"}
+    assert (d.code, d.pos.file, d.pos.line) == ("E223", str(plcproj), line_of(plcproj, 'Include="Tc3_JsonXml"'))
+    # SJsonValue once as a type, twice through sLine; FB_JsonSaxWriter once
+    # as a type, once through fbJson's method call
+    assert d.message == "needs Tc3_JsonXml (SJsonValue, FB_JsonSaxWriter: 5 references): not installed"
+    assert dict(g.names) == {"SJsonValue": 3, "FB_JsonSaxWriter": 2}
+    assert {x.code for x in g.replaced} == {"E012", "E010"}
     # the broken block's own error (a near name is declared) is not the library's
     assert [(x.code, x.message) for x in rest if x.is_error] == [("E010", "unknown name 'nCuont'")]
     assert len(analysis.errors) == len(g.replaced) + 1
@@ -37,8 +38,8 @@ def test_a_referenced_library_is_one_line_at_its_reference(tmp_path):
 
 def test_a_library_given_to_the_compiler_is_not_missing(tmp_path):
     root = twincat(tmp_path, ("FB_Logger", LOGGER))
-    _analysis, groups, rest = _grouped(root, {"Tc2_System"})
-    assert groups == [] and {x.code for x in rest if x.is_error} == {"E010", "E012", "E043"}
+    _analysis, groups, rest = _grouped(root, {"Tc3_JsonXml"})
+    assert groups == [] and {x.code for x in rest if x.is_error} == {"E010", "E012"}
 
 
 def test_a_qualified_name_names_its_library_and_the_standard_one_is_there(tmp_path):
@@ -59,12 +60,12 @@ def test_a_parameter_whose_type_is_missing_is_the_library_s_too(tmp_path):
     """The declaration of sText fails; the call that sets it then says 'has
     no parameter sText': one more reference to the library, not an error."""
     writer = (
-        "FUNCTION_BLOCK FB_Writer\nVAR_INPUT\n    sText : T_MaxString;\n    nMode : INT;\nEND_VAR\n",
+        "FUNCTION_BLOCK FB_Writer\nVAR_INPUT\n    sText : SJsonValue;\n    nMode : INT;\nEND_VAR\n",
         "nMode := nMode + 1;",
     )
     user = ("PROGRAM P_Write\nVAR fbW : FB_Writer; END_VAR\n", "fbW(sText := 'abc', nMode := 2);")
     _analysis, [g], rest = _grouped(twincat(tmp_path, ("FB_Writer", writer), ("P_Write", user)))
-    assert g.name == "Tc2_System" and g.names["T_MaxString"] == 2
+    assert g.name == "Tc3_JsonXml" and g.names["SJsonValue"] == 2
     assert "E040" in {x.code for x in g.replaced} and not [x for x in rest if x.is_error]
 
 
@@ -72,17 +73,17 @@ def test_unknown_names_in_a_project_that_lacks_libraries_are_names_not_found(tmp
     user = ("FUNCTION_BLOCK FB_Alarm\nVAR fbRaise : FB_SpecialAlarm; END_VAR\n", "fbRaise(bTrigger := TRUE);")
     _analysis, groups, _rest = _grouped(twincat(tmp_path, ("FB_Alarm", user)))
     [g] = groups
-    assert g.name == NOT_FOUND and g.maybe == ("Tc2_System",)
+    assert g.name == NOT_FOUND and g.maybe == ("Tc3_JsonXml",)
     assert g.diagnostic().code == "E224"
     # the declaration and the call of the instance whose type is unknown
-    assert g.diagnostic().message == "names not found (FB_SpecialAlarm: 2 references), maybe from Tc2_System"
+    assert g.diagnostic().message == "names not found (FB_SpecialAlarm: 2 references), maybe from Tc3_JsonXml"
 
 
 def test_without_libraries_referenced_an_unknown_name_is_an_error_of_its_own(tmp_path):
     src = tmp_path / "p.st"
     src.write_text("PROGRAM P\nVAR x : INT; END_VAR\nx := y;\nMEMCPY(ADR(x), ADR(x), 2);\nEND_PROGRAM\n")
     _analysis, groups, rest = _grouped(src)
-    # MEMCPY is Tc2_System's by the table; y is nobody's
+    # MEMCPY is Tc2_System's (which softplc ships, not chosen); y is nobody's
     assert [g.name for g in groups] == ["Tc2_System"]
     assert [x.message for x in rest if x.is_error] == ["unknown name 'y'"]
 
@@ -90,7 +91,7 @@ def test_without_libraries_referenced_an_unknown_name_is_an_error_of_its_own(tmp
 def test_the_table_of_vendor_libraries_is_well_formed():
     table = vendor_table()
     names = [lib.name for lib in table]
-    assert len(names) == len(set(names)) and {"Tc2_System", "Util", "OSCAT BASIC", "Python"} <= set(names)
+    assert len(names) == len(set(names)) and {"Tc3_JsonXml", "Util", "OSCAT BASIC", "Python"} <= set(names)
     for lib in table:
         assert all(n.replace("_", "a").isalnum() for n in lib.names), lib.name
 
@@ -124,7 +125,7 @@ def test_what_follows_from_a_missing_type_is_the_library_s_too(tmp_path):
     declared with a missing library's types, they fail, and so does each
     use of them; all of it is the library's."""
     text = (
-        "FUNCTION F_Text : T_MaxString\n",
+        "FUNCTION F_Text : SJsonValue\n",
         "F_Text := 'x';",
     )
     sender = (
@@ -139,12 +140,12 @@ def test_what_follows_from_a_missing_type_is_the_library_s_too(tmp_path):
     pou = root / "Plant" / "Plc" / "POUs" / "FB_Sender.TcPOU"
     method = (
         '    <Method Name="Send" Id="{1}">\n      <Declaration><![CDATA[METHOD Send : BOOL\n'
-        "VAR_INPUT\n    sMsg : T_MaxString;\nEND_VAR]]></Declaration>\n"
+        "VAR_INPUT\n    sMsg : SJsonValue;\nEND_VAR]]></Declaration>\n"
         "      <Implementation>\n        <ST><![CDATA[Send := TRUE;]]></ST>\n      </Implementation>\n    </Method>\n"
     )
     pou.write_text(pou.read_text().replace("  </POU>", method + "  </POU>"))
     analysis, groups, rest = _grouped(root)
-    assert [g.name for g in groups] == ["Tc2_System"]
+    assert [g.name for g in groups] == ["Tc3_JsonXml"]
     codes = {d.code for d in groups[0].replaced}
     assert {"E012", "E010", "E041"} <= codes  # the type, F_Text := ..., Send('hello')
     assert not [d for d in rest if d.is_error], [d.message for d in rest if d.is_error]

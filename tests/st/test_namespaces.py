@@ -114,6 +114,46 @@ def test_a_variable_the_list_does_not_have_is_e019():
 # ---------------------------------------------------------------- hide
 
 
+def test_a_global_constant_sizes_the_fields_of_a_type():
+    # TwinCAT and CODESYS size a STRUCT's fields with a GVL's constants
+    # (TcUnit: ARRAY[1..GVL_Param_TcUnit.MaxNumberOfTestsForEachTestSuite]);
+    # the constants of elementary types are known before the types.
+    params = """{attribute 'qualified_only'}
+VAR_GLOBAL CONSTANT
+    MaxN : UINT := 4;
+    Twice : UINT := GVL_Param.MaxN * 2;
+END_VAR
+"""
+    main = """TYPE ST_R :
+STRUCT
+    id : UINT(0..GVL_Param.MaxN);
+    items : ARRAY[1..GVL_Param.Twice] OF INT;
+END_STRUCT
+END_TYPE
+PROGRAM main
+VAR r : ST_R; n : DINT; END_VAR
+r.items[8] := 3;
+n := UPPER_BOUND(r.items, 1);
+END_PROGRAM
+"""
+    runner = run({"GVL_Param.st": params, "main.st": main})
+    assert (runner.get("n"), runner.get("r.items")[7]) == (8, 3)
+
+
+def test_a_global_of_a_named_type_cannot_size_a_type_and_says_why():
+    params = """TYPE T_Size : UINT; END_TYPE
+VAR_GLOBAL CONSTANT
+    MaxN : T_Size := 4;
+END_VAR
+"""
+    main = """TYPE ST_R : STRUCT items : ARRAY[1..GVL_Param.MaxN] OF INT; END_STRUCT END_TYPE
+PROGRAM main VAR r : ST_R; END_VAR END_PROGRAM
+"""
+    errors = [d for d in found({"GVL_Param.st": params, "main.st": main}) if d[0] != "W"]
+    assert [d[:4] for d in errors] == [("E010", "main.st", 1, 37)], errors
+    assert "'GVL_Param.MaxN' is not known yet where the data types are declared" in [d[4] for d in errors]
+
+
 def test_hide_leaves_a_variable_out_of_listings_but_a_path_still_reaches_it():
     # CODESYS {attribute 'hide'}: the variable is not shown in monitoring.
     main = """PROGRAM main

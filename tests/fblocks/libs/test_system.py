@@ -17,8 +17,9 @@ def test_systime_reads_the_task_clock_and_the_date_in_virtual_time():
     body = "ms := SysTimeGetMs(); SysTimeGetUs(ADR(us)); sec := SysTimeRtcGet(ADR(res)); SysTimeRtcHighResGet(ADR(hr));"
     r = runner(decls, body, "SysTime", cycle_ms=250)
     got = trace(r, 9, "ms", "us", "hr", "sec", "res")
-    # the ninth cycle starts at 2 s: the date is 1970-01-01 00:00:02 UTC in virtual time
-    assert got[8] == (2000, 2_000_000, 2000, 2, 0)
+    # the ninth cycle starts at 2 s: the date is 2000-01-01 00:00:02 UTC in
+    # virtual time (946,684,800 s after 1970; the same date F_GetSystemTime reads)
+    assert got[8] == (2000, 2_000_000, 946_684_802_000, 946_684_802, 0)
 
 
 def test_systimertc_converts_dates_both_ways():
