@@ -224,6 +224,27 @@ def test_hostile_configuration_values_exit_2_naming_file_and_key(tmp_path, text,
     assert len(line) < 400 and "Traceback" not in proc.stderr and "internal error" not in proc.stderr
 
 
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        (_MAIN + "x = " + "[" * 5000 + "]" * 5000 + "\n", ": tables, arrays or dotted keys nested more than 32 deep"),
+        (_MAIN + "x = " + "{a = " * 2000 + "1" + "}" * 2000 + "\n", ": tables, arrays or dotted keys nested more"),
+        (_MAIN + "[outputs]\n" + ".".join(["a"] * 5000) + " = 1\n", ": outputs.a.a.a.a.a.a.a.a.a.a.a.a.a.a.a.a."),
+        (_MAIN + "priority = " + "9" * 5000 + "\n", ":7:12: an integer of 5000 digits: no key takes a number"),
+        (_MAIN + '[outputs]\nsafe = { "%QL65535" = 1 }\n', ': outputs.safe."%QL65535": %QL65535 (bytes 524280'),
+    ],
+    ids=["deep arrays", "deep inline tables", "deep dotted key", "5000 digits", "safe value past the image"],
+)
+def test_hostile_documents_exit_2_not_4(tmp_path, text, message):
+    """Each of these was exit 4: a RecursionError, a ValueError of Python's
+    int(), an AddressError at the start."""
+    cfg = write_config(tmp_path, text, {"p.st": "PROGRAM Main\nEND_PROGRAM\n"})
+    proc = softplc("run", cfg, "--virtual-time", "--cycles", "1")
+    assert proc.returncode == 2, proc.stderr
+    assert proc.stderr.startswith(f"softplc: {cfg}{message}")
+    assert len(proc.stderr) < 2000 and "Traceback" not in proc.stderr and "internal error" not in proc.stderr
+
+
 def test_compile_error_gives_st_location(tmp_path):
     cfg = write_config(
         tmp_path,

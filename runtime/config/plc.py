@@ -329,6 +329,8 @@ class OutputsSection(Section):
                     "expected a single bit, byte, word, dword or lword (got a word table); list the words one by one",
                 )
                 continue
+            if ctx.image_bits(loc, addr) is None:
+                continue  # past the end of the image: the error says so
             ident = (addr.size if addr.size != "" else "X", addr.indices, addr.bit)
             if ident in seen:
                 ctx.error(loc, f"the same address as {key_text(seen[ident])}")

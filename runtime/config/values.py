@@ -50,6 +50,8 @@ def got(value) -> str:
         return "a table"
     if isinstance(value, list):
         return "an empty array" if not value else "an array"
+    if isinstance(value, int) and value.bit_length() > 128:  # repr refuses beyond 4300 digits
+        return f"an integer of about {int(value.bit_length() * 0.30103) + 1} digits"
     if isinstance(value, (int, float)):
         return repr(value)
     return f"a {type(value).__name__}"  # TOML dates and times

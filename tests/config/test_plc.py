@@ -557,6 +557,19 @@ def test_safe_output_address_messages(tmp_path):
 
 
 @pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        ("%QL65535", "%QL65535 (bytes 524280..524287) is outside the 65536-byte %Q area"),
+        ("%QW65535", "%QW65535 (bytes 131070..131071) is outside the 65536-byte %Q area"),
+        ("%QX65536.0", "'%QX65536.0' is outside the 65536-byte %Q area"),
+    ],
+)
+def test_a_safe_value_past_the_image_is_an_error(tmp_path, text, message):
+    """%QL65535 passed the configuration and crashed the start (exit 4)."""
+    assert error(tmp_path, PLC + f'[outputs]\nsafe = {{ "{text}" = 1 }}\n') == (f'outputs.safe."{text}"', message)
+
+
+@pytest.mark.parametrize(
     "text, value, message",
     [
         ("%QW2", "true", "expected an integer for a word address (got true)"),
