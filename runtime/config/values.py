@@ -76,11 +76,29 @@ def fail(expected: str, value) -> PydanticCustomError:
     return PydanticCustomError("config", "expected {expected} (got {got})", {"expected": expected, "got": got(value)})
 
 
+_BARE = re.compile(r"\s*\d+(\.\d*)?\s*")
+
+
 def duration_ns(value) -> int | None:
+    """A duration of the configuration in ns, None when value is none; a
+    number without its unit (10, "10", 2.5: ms or s?) is refused with the
+    hint, unless it is 0 (zero in any unit)."""
+    bare = (isinstance(value, (int, float)) and not isinstance(value, bool)) or (
+        isinstance(value, str) and _BARE.fullmatch(value) is not None
+    )
     try:
-        return parse_duration_ns(value)
+        ns = parse_duration_ns(value)
     except (OverflowError, ValueError):  # inf, nan
         return None
+    if bare and ns and ns > 0:
+        number = value.strip() if isinstance(value, str) else value
+        number = number if len(str(number)) <= 12 else 10
+        raise PydanticCustomError(
+            "config",
+            "expected a duration with its unit, such as {number}ms or {number}s (got {got}: a number alone has none)",
+            {"number": str(number), "got": got(value)},
+        )
+    return ns
 
 
 def positive_duration(value) -> int:
@@ -109,7 +127,7 @@ def negative(text: str) -> bool:
         if text.startswith(prefix):
             text = text[len(prefix) :]
             break
-    return text.startswith("-") and duration_ns(text[1:]) is not None
+    return text.startswith("-") and parse_duration_ns(text[1:]) is not None
 
 
 def watchdog(value):
@@ -285,11 +303,12 @@ def shipped_library(value, _info: ValidationInfo | None = None) -> str:
 UNIT_NS = {"ms": 1_000_000, "us": 1_000}
 
 
-def duration_in(unit: str, *, off: str | None = None, most: tuple | None = None):
+def duration_in(unit: str, *, off: str | None = None, most: tuple | None = None, least: tuple | None = None):
     """A duration as a whole number of unit ("ms" or "us"), rounded from the
     nanoseconds parse_duration_ns gives. off: what 0 / "0ms" / false means
     (None: they are refused); most: (largest value, why) where the bus
-    carries the value in a field of fixed width; never more than a day
+    carries the value in a field of fixed width; least: (the least in ns,
+    as text, why) where a shorter one only costs; never more than a day
     (MAX_DURATION_NS)."""
     per = UNIT_NS[unit]
     or_off = f", or false for {off}" if off else ""
@@ -301,6 +320,8 @@ def duration_in(unit: str, *, off: str | None = None, most: tuple | None = None)
         if ns is None or ns < 0 or (ns == 0 and not off):
             kind = "a duration" if off else "a duration > 0"
             raise fail(f"{kind} such as {DURATION_EXAMPLES}{or_off}", value)
+        if least is not None and 0 < ns < least[0]:
+            raise fail(f"a duration of at least {least[1]} ({least[2]}){or_off}", value)
         count = round(ns / per)
         if ns > 0 and count == 0:
             raise fail(f"a duration of at least 1{unit}{or_off}", value)

@@ -57,7 +57,8 @@ def test_a_retain_file_in_a_directory_that_does_not_exist(tmp_path):
     ],
 )
 def test_durations_longer_than_a_day(tmp_path, key, written, expected):
-    text = f'name = "T"\n{"interval = 10" if key != "interval" else ""}\n{key} = {written}\nprograms = ["Main"]\n'
+    interval = 'interval = "10ms"' if key != "interval" else ""
+    text = f'name = "T"\n{interval}\n{key} = {written}\nprograms = ["Main"]\n'
     assert error(tmp_path, task(text)) == (f"task[0].{key}", f"expected {expected} (got {written[1:-1]!r})")
 
 

@@ -199,7 +199,7 @@ def test_modbus_settings(tmp_path):
         tmp_path,
         PLC + '[[modbus]]\nname = "Line"\ntransport = "RTU"\ndevice = "/dev/ttyS1"\n'
         'baud = 9600\nparity = "e"\nstop_bits = 2\ndata_bits = 7\nframe_gap = "2ms"\n'
-        'timeout = "T#1s"\nretries = 10\nreconnect = 250\nreconnect_max = "1m"\n'
+        'timeout = "T#1s"\nretries = 10\nreconnect = "250ms"\nreconnect_max = "1m"\n'
         '[[modbus]]\nname = "gw"\ntransport = "Tcp"\nhost = "192.168.0.20"\n'
         "port = 5020\nretries = 0\n",
     )
