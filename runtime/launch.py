@@ -180,8 +180,8 @@ def run_plc(
         surfaces.online_change = changer  # the web page's "Online change" button
         try:
             surfaces.start()
-        except SurfaceError as e:
-            return _fail(str(e), EXIT_CONFIG)
+        except SurfaceError as e:  # "[opcua] ...": the section of the file that cannot start
+            return _fail(f"{path}: {e}", EXIT_CONFIG)
         try:
             engine.start()
         except STFault as e:

@@ -210,18 +210,43 @@ _NODE = '[[can]]\ninterface = "virtual"\nchannel = "hostile"\n[canopen]\n[[canop
             "canopen.node[0].sdo[0].value",
             "(got inf)",
         ),
+        (_MAIN.replace('"T"', f'"{"T" * 1_000_000}"'), "task[0].name", "of at most 100 characters (got 'TTTT"),
+        (_MAIN + _NODE.replace('"hostile"', f'"{"c" * 1_000_000}"') + 'eds = "fc280"\n', "can[0].channel", "255"),
+        (_MAIN + f'[web]\nport = 0\nhost = "{"h" * 1_000_000}"\n', "web.host", "(1000000 characters))"),
+        (_MAIN + "[opcua]\nport = 0\nusers_file = 'p.st.bin'\n", "opcua.users_file", "not UTF-8 text (byte 0)"),
+        (
+            _MAIN + _NODE + 'eds = "ltmr"\nsdo = [{ object = "2007:21", value = 999999 }]\n',
+            "canopen.node[0].sdo[0]",
+            "",
+        ),
     ],
-    ids=["count type", "RTU timeout", "program path", "retain path", "5000 chars", "loopback", "guarded", "inf"],
+    ids=[
+        "count type",
+        "RTU timeout",
+        "program path",
+        "retain path",
+        "5000 chars",
+        "loopback",
+        "guarded",
+        "inf",
+        "1 MB task name",
+        "1 MB CAN channel",
+        "1 MB web host",
+        "users file",
+        "SDO value",
+    ],
 )
 def test_hostile_configuration_values_exit_2_naming_file_and_key(tmp_path, text, key, message):
     """Each of these took softplc down (exit 4, a Python error) or named
     neither the file nor the key; the real clock, as a plant runs."""
     cfg = write_config(tmp_path, text, {"p.st": "PROGRAM Main\nEND_PROGRAM\n"})
+    (tmp_path / "p.st.bin").write_bytes(b"\xff\xfe[users]\n")
     proc = softplc("run", cfg, "--duration", "0.1s")
     assert proc.returncode == 2, proc.stderr
     [line] = [ln for ln in proc.stderr.splitlines() if ln.startswith(f"softplc: {cfg}: ")]
     assert line.startswith(f"softplc: {cfg}: {key}: ") and message in line
     assert len(line) < 400 and "Traceback" not in proc.stderr and "internal error" not in proc.stderr
+    assert len(proc.stderr) < 2000  # nothing long echoed into the log either
 
 
 @pytest.mark.parametrize(

@@ -6,6 +6,7 @@ every table. Sections of the core and of the buses build on these."""
 from __future__ import annotations
 
 import difflib
+import ipaddress
 import os
 import re
 import stat
@@ -168,10 +169,19 @@ def is_ident(value: object) -> TypeGuard[str]:
     return isinstance(value, str) and IDENT.fullmatch(value) is not None
 
 
+#: a name of the configuration (a task, a bus, a node ...) has at most this many
+#: characters, so that no log line or message ever has to cut one
+MAX_NAME = LONG
+#: a text value (a CAN channel, a serial port, a host) at most this many
+MAX_TEXT = LONG_RUN
+
+
 def identifier(what: str):
     def check(value) -> str:
-        if is_ident(value):
+        if is_ident(value) and len(value) <= MAX_NAME:
             return value
+        if is_ident(value):
+            raise fail(f"{what}: an IEC identifier of at most {MAX_NAME} characters", value)
         raise fail(f"{what}: an IEC identifier (letters, digits, _; not starting with a digit)", value)
 
     return PlainValidator(check)
@@ -345,18 +355,50 @@ def text_value(expected: str):
     """A non-empty string; an integer is taken as its decimal text (channel = 0)."""
 
     def check(value) -> str:
-        if isinstance(value, str) and value.strip():
+        if isinstance(value, str) and value.strip() and len(value.strip()) <= MAX_TEXT:
             return value.strip()
         if isinstance(value, int) and not isinstance(value, bool):
             return str(value)
-        raise fail(expected, value)
+        raise fail(_at_most(expected, value), value)
 
     return PlainValidator(check)
 
 
 def nonempty(expected: str):
     def check(value) -> str:
-        if isinstance(value, str) and value.strip():
+        if isinstance(value, str) and value.strip() and len(value.strip()) <= MAX_TEXT:
+            return value.strip()
+        raise fail(_at_most(expected, value), value)
+
+    return PlainValidator(check)
+
+
+def _at_most(expected: str, value) -> str:
+    """What a text value of the right type but too long was expected to be."""
+    return f"{expected}, of at most {MAX_TEXT} characters" if isinstance(value, str) and value.strip() else expected
+
+
+_LABEL = re.compile(r"(?!-)[A-Za-z0-9_-]{1,63}(?<!-)", re.A)
+
+
+def is_host(text: str) -> bool:
+    """An IP address (v4, v6), or a host name: at most 253 characters, its
+    labels 1 to 63 letters, digits, - or _ (RFC 1123; the name service
+    refuses more, the IDNA codec with an exception of its own)."""
+    try:
+        ipaddress.ip_address(text[1:-1] if text.startswith("[") and text.endswith("]") else text)
+        return True
+    except ValueError:
+        pass
+    name = text[:-1] if text.endswith(".") else text
+    return 0 < len(name) <= 253 and all(_LABEL.fullmatch(label) for label in name.split("."))
+
+
+def host_value(expected: str):
+    """A host to listen on or to connect to, as is_host takes it."""
+
+    def check(value) -> str:
+        if isinstance(value, str) and is_host(value.strip()):
             return value.strip()
         raise fail(expected, value)
 

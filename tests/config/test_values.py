@@ -119,3 +119,26 @@ def test_cut():
     )
     assert cut("a short message: /a/b.st") == "a short message: /a/b.st"
     assert len(cut("word " * 1000)) == 1000
+
+
+# ====================================================================== long names and texts
+# A 1 MB task name or CAN channel was taken and written whole into the log.
+
+
+def test_a_name_has_at_most_100_characters(tmp_path):
+    body = '[[task]]\nname = "{}"\ninterval = "10ms"\nprograms = ["Main"]\n'
+    assert load(tmp_path, PLC + body.format("T" * 100)).tasks[0].name == "T" * 100
+    assert error(tmp_path, PLC + body.format("T" * 1_000_000)) == (
+        "task[0].name",
+        f"expected a task name: an IEC identifier of at most 100 characters (got '{'T' * 60}…' (1000000 characters))",
+    )
+
+
+def test_a_text_value_has_at_most_255_characters(tmp_path):
+    can = '[[can]]\ninterface = "virtual"\nchannel = "{}"\n'
+    assert load(tmp_path, PLC + can.format("c" * 255)).can[0].channel == "c" * 255
+    assert error(tmp_path, PLC + can.format("c" * 1_000_000)) == (
+        "can[0].channel",
+        'expected a channel such as "can0" or "PCAN_USBBUS1", of at most 255 characters '
+        f"(got '{'c' * 60}…' (1000000 characters))",
+    )

@@ -22,6 +22,7 @@ from ...config.values import (
     choice_int,
     choice_upper,
     duration_in,
+    host_value,
     identifier,
     in_range,
     int_range,
@@ -148,7 +149,7 @@ class _Modbus(Model):
     frame_gap: Annotated[int, PlainValidator(_frame_gap)] | None = Field(
         None, description="a duration such as 2ms (default: 3.5 characters)"
     )
-    host: Annotated[str, nonempty('a host such as "192.168.0.20"')] | None = Field(
+    host: Annotated[str, host_value('a host name or address such as "192.168.0.20"')] | None = Field(
         None, description='a host such as "192.168.0.20"'
     )
     port: Annotated[int, int_range(0, U16_MAX)] | None = Field(None, description="a TCP port such as 502")

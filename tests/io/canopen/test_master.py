@@ -227,6 +227,23 @@ def test_a_node_without_a_heartbeat_consumer_cannot_be_given_a_master_timeout(tm
         build_engine(config_from_dict(data, tmp_path / "plant.toml"), virtual_time=True)
 
 
+def test_an_sdo_value_too_large_for_its_object_names_the_file_and_the_key(tmp_path):
+    """'canopen.node[0].sdo[0]: 999… does not fit' named no file."""
+    from softplc.runtime.config import config_from_dict
+    from softplc.runtime.engine.build import build_engine
+    from softplc.runtime.plugin.driver import DriverError
+
+    from .plant import plant_config
+
+    node = dict(LTMR_NODE, sdo=[{"object": "2007:21", "value": 99_999_999_999}])
+    data = plant_config(tmp_path, WATCH, program="Watch", nodes=[node])
+    with pytest.raises(DriverError) as info:
+        build_engine(config_from_dict(data, tmp_path / "plant.toml"), virtual_time=True)
+    assert (
+        str(info.value) == f"{tmp_path / 'plant.toml'}: canopen.node[0].sdo[0]: 99999999999 does not fit in 2 byte(s)"
+    )
+
+
 # ---------------------------------------------------------------------------- the CAN adapter comes up late
 
 

@@ -301,6 +301,15 @@ def test_modbus_channels(tmp_path):
     ]
 
 
+def test_a_tcp_host_is_checked_as_a_host(tmp_path):
+    """A 1 MB host went to the socket: an idna UnicodeError of Python's."""
+    assert error(tmp_path, PLC + TCP + f'host = "{"h" * 1_000_000}"\n') == (
+        "modbus[0].host",
+        f"expected a host name or address such as \"192.168.0.20\" (got '{'h' * 60}…' (1000000 characters))",
+    )
+    assert load(tmp_path, PLC + TCP + 'host = "drive-3.plant"\n').modbus[0].host == "drive-3.plant"
+
+
 def test_modbus_section_shapes(tmp_path):
     assert error(tmp_path, PLC + '[modbus]\ntransport = "tcp"\n') == (
         "modbus",
@@ -379,7 +388,7 @@ def test_modbus_serial_values_refused(tmp_path):
         ("modbus[0].frame_gap", "expected a duration of at most 1000000us (at most 1s) (got '2s')"),
     ]
     assert errors(tmp_path, PLC + TCP + 'port = 70000\nretries = 11\nhost = ""\n') == [
-        ("modbus[0].host", "expected a host such as \"192.168.0.20\" (got '')"),
+        ("modbus[0].host", "expected a host name or address such as \"192.168.0.20\" (got '')"),
         ("modbus[0].port", "expected an integer from 0 to 65535 (got 70000)"),
         ("modbus[0].retries", "expected an integer from 0 to 10 (got 11)"),
     ]
