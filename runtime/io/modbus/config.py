@@ -303,6 +303,9 @@ def _channel_address(
             f"{count} {'bits' if bits else 'registers'} from {addr.text} run past the end of the %{addr.area} area",
         )
         return
+    what = f"{count} {'bit' if bits else 'register'}{'s' if count > 1 else ''} from '{addr.text}'"
+    if key == "read_to" and not ctx.writes(at + (key,), addr.area, offset, nbytes, what):
+        return  # another channel or bus writes these bytes
     state.addresses[at + (key,)] = addr
 
 

@@ -9,7 +9,7 @@ from softplc.runtime.config import SimConfig, load_config
 from softplc.runtime.io.modbus import ModbusChannelConfig, ModbusConnectionConfig, ModbusUnit
 from softplc.runtime.sim.options import Registers
 
-from ...config.support import EXAMPLES, MS, PLC, ST, addr, error, errors, load
+from ...config.support import EXAMPLES, MS, PLC, ST, addr, error, errors, load, pdo, plant
 from .config_support import READ, RTU, TCP, channel
 
 # ====================================================================== [[modbus]], [[modbus.channel]]
@@ -232,7 +232,7 @@ def test_modbus_channels(tmp_path):
         + channel(1, 'count = 16\nread_to = "%IB0"\n', unit=2)
         + channel(5, 'write_from = "%QB7"\ntrigger = "edge"\nedge = "%MX1.7"\n')
         + TCP
-        + READ,
+        + READ.replace("%IW200", "%IW300"),  # each input byte has one writer
     )
     assert cfg.modbus == [
         connection(
@@ -296,7 +296,7 @@ def test_modbus_channels(tmp_path):
             "tcp",
             device="",
             key="modbus[1]",
-            channels=[read_channel("gateway_0", "gateway", "modbus[1].channel[0]")],
+            channels=[read_channel("gateway_0", "gateway", "modbus[1].channel[0]", read_to="%IW300")],
         ),
     ]
 
@@ -407,12 +407,13 @@ def test_duplicate_connection_names(tmp_path):
 
 
 def test_duplicate_channel_names(tmp_path):
-    assert error(tmp_path, PLC + RTU + READ + 'name = "monitor"\n' + READ + 'name = "Monitor"\n') == (
+    other = READ.replace("%IW200", "%IW300")
+    assert error(tmp_path, PLC + RTU + READ + 'name = "monitor"\n' + other + 'name = "Monitor"\n') == (
         "modbus[0].channel[1].name",
         "duplicate channel name 'Monitor' (channel[0] has it; names are case-insensitive)",
     )
     # channel names are per connection
-    cfg = load(tmp_path, PLC + RTU + READ + 'name = "monitor"\n' + TCP + READ + 'name = "monitor"\n')
+    cfg = load(tmp_path, PLC + RTU + READ + 'name = "monitor"\n' + TCP + other + 'name = "monitor"\n')
     assert [[c.name for c in m.channels] for m in cfg.modbus] == [["monitor"], ["monitor"]]
 
 
@@ -647,4 +648,69 @@ def test_modbus_addresses_follow_the_profile(tmp_path):
             f"{CH}.edge",
             "%MW30:X3 is Schneider addressing; use the schneider profile (IEC addresses a bit as %MX<byte>.<bit>)",
         ),
+    ]
+
+
+# ====================================================================== one writer per image byte
+
+
+def test_two_channels_reading_into_overlapping_inputs_are_refused(tmp_path):
+    """Two channels wrote %IW200.. and %IW203..: which value a program saw
+    depended on the order of their answers."""
+    text = PLC + RTU + channel(3, 'count = 4\nread_to = "%IW200"\n') + channel(4, 'count = 2\nread_to = "%IW203"\n', 2)
+    assert error(tmp_path, text) == (
+        "modbus[0].channel[1].read_to",
+        "2 registers from '%IW203' overlaps modbus[0].channel[0].read_to (4 registers from '%IW200'): "
+        "each image byte has one writer",
+    )
+
+
+def test_channels_of_two_connections_share_no_input_byte_either(tmp_path):
+    other = '[[modbus]]\nname = "gateway"\ntransport = "tcp"\nhost = "10.0.0.2"\n'
+    text = PLC + RTU + channel(1, 'count = 16\nread_to = "%IB10"\n') + other + channel(3, 'read_to = "%IW5"\n')
+    assert error(tmp_path, text) == (
+        "modbus[1].channel[0].read_to",
+        "1 register from '%IW5' overlaps modbus[0].channel[0].read_to (16 bits from '%IB10'): "
+        "each image byte has one writer",
+    )
+
+
+def test_a_read_into_memory_has_one_writer_too(tmp_path):
+    text = PLC + RTU + channel(3, 'count = 2\nread_to = "%MW0"\n') + channel(3, 'read_to = "%MB3"\n', 2)
+    assert error(tmp_path, text)[0] == "modbus[0].channel[1].read_to"
+
+
+def test_a_read_overlapping_a_tpdo_is_refused(tmp_path):
+    """A Modbus read_to over a TPDO's %IW100 passed; each wrote in turn."""
+    text = plant("", "", pdo("tpdo", 1, ("2004:06", "%IW100"))) + RTU + channel(3, 'count = 8\nread_to = "%IW96"\n')
+    assert error(tmp_path, text) == (
+        "modbus[0].channel[0].read_to",
+        "8 registers from '%IW96' overlaps canopen.node[0].tpdo[0].map[0].address ('%IW100'): "
+        "each image byte has one writer",
+    )
+
+
+def test_a_read_overlapping_a_loopback_target_is_refused(tmp_path):
+    loopback = '[[loopback]]\nfrom = "%QB0"\nto = "%IB10"\nbytes = 4\n'
+    assert error(tmp_path, PLC + loopback + RTU + channel(3, 'read_to = "%IW6"\n')) == (
+        "modbus[0].channel[0].read_to",
+        "1 register from '%IW6' overlaps loopback[0].to ('%IB10', 4 bytes): each image byte has one writer",
+    )
+
+
+def test_adjacent_reads_and_shared_writes_are_fine(tmp_path):
+    cfg = load(
+        tmp_path,
+        plant("", "", pdo("tpdo", 1, ("2004:06", "%IW100")))
+        + RTU
+        + channel(3, 'count = 4\nread_to = "%IW96"\n')  # bytes 192..199, the TPDO's 200..201
+        + channel(3, 'count = 2\nread_to = "%IW101"\n', 2)
+        + channel(16, 'count = 2\nwrite_from = "%QW0"\n')  # two channels may send the same outputs
+        + channel(6, 'write_from = "%QW0"\n', 2),
+    )
+    assert [ch.read_to.text if ch.read_to else ch.write_from.text for ch in cfg.modbus[0].channels] == [
+        "%IW96",
+        "%IW101",
+        "%QW0",
+        "%QW0",
     ]
