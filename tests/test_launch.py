@@ -8,6 +8,7 @@ import csv
 import json
 import os
 import random
+import re
 import signal
 import subprocess
 import sys
@@ -353,9 +354,61 @@ def test_a_retain_file_that_cannot_be_written_is_not_said_saved(tmp_path):
     # /proc takes no new file, even from root: every write fails (the start is fine: no file yet)
     cfg.write_text(cfg.read_text().replace('file = "counter.retain"', 'file = "/proc/softplc-test.retain"'))
     result = softplc("run", cfg, "--virtual-time", "--duration", "200ms")
-    assert result.returncode == 0, result.stderr
+    assert result.returncode == 3, result.stderr  # was 0
     assert "retained data saved" not in result.stderr
     assert "retained data NOT saved: " in result.stderr and "cannot write the retain file" in result.stderr
+
+
+def test_a_save_beyond_the_file_size_limit_exits_3_and_keeps_the_last_good_file(tmp_path):
+    """ulimit -f (RLIMIT_FSIZE): every write of the retain file fails with
+    EFBIG (Python ignores SIGXFSZ); the run exited 0."""
+    import resource
+
+    cfg = _retain_config(tmp_path)
+    (tmp_path / "counter.st").write_text(
+        COUNTER.replace("count : UDINT;", "count : UDINT; log : ARRAY[1..2000] OF DINT;")
+    )
+    first = softplc("run", cfg, "--virtual-time", "--cycles", "30")
+    assert first.returncode == 0, first.stderr
+    good = (tmp_path / "counter.retain").read_bytes()  # some 6 kB
+    assert read_file(tmp_path / "counter.retain").vars["Counter.count"]["value"] == 30
+
+    def limit() -> None:
+        resource.setrlimit(resource.RLIMIT_FSIZE, (2048, 2048))
+
+    proc = subprocess.run(
+        [sys.executable, "-m", "softplc.runtime.cli", "run", str(cfg), "--virtual-time", "--cycles", "30"],
+        capture_output=True,
+        text=True,
+        stdin=subprocess.DEVNULL,
+        env=_env(),
+        timeout=120,
+        preexec_fn=limit,
+    )
+    assert proc.returncode == 3, proc.stderr
+    [line] = [ln for ln in proc.stderr.splitlines() if "retained data NOT saved" in ln]
+    said = re.search(
+        re.escape(f"retained data NOT saved: {tmp_path / 'counter.retain'}: cannot write the retain file: ")
+        + r"File too large; (\d+) of (\d+) writes failed during the run, the file holds the last good one$",
+        line,
+    )
+    assert said is not None and said.group(1) == said.group(2) != "0", line
+    assert (tmp_path / "counter.retain").read_bytes() == good  # the first run's, whole
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["counter.retain", "counter.st", "plant.toml"]
+
+
+def test_a_retain_path_softplc_did_not_write_stops_the_start_untouched(tmp_path):
+    """Only a file with softplc's header is softplc's to set aside or write over."""
+    cfg = _retain_config(tmp_path)
+    (tmp_path / "counter.retain").write_text("the plant's notes\n")
+    proc = softplc("run", cfg, "--virtual-time", "--cycles", "3")
+    assert proc.returncode == 2, proc.stderr
+    assert (
+        f"softplc: {tmp_path / 'counter.retain'}: not a softplc retain file (no 'softplc-retain' header on line 1)"
+        ": softplc would write over it; move it away or name another file in [retain] file\n"
+    ) in proc.stderr
+    assert (tmp_path / "counter.retain").read_text() == "the plant's notes\n"
+    assert not (tmp_path / "counter.retain.corrupt").exists()
 
 
 # In its second cycle Main enters a loop of 2^31 passes (minutes of work) and

@@ -259,6 +259,14 @@ def data_file(value, info: ValidationInfo) -> Path:
     found = _stat(resolved)
     if found is not None and stat.S_ISDIR(found.st_mode):
         raise PydanticCustomError("config", "{path} is a directory; expected a file name", {"path": str(resolved)})
+    other = not_regular(resolved)
+    if other is not None:  # /dev/null: renamed to /dev/null.corrupt when softplc ran as root
+        raise PydanticCustomError(
+            "config",
+            "{path} is {other}; expected a regular file or a name not yet taken (softplc writes the file "
+            "and renames it into place)",
+            {"path": str(resolved), "other": other},
+        )
     folder = _stat(resolved.parent)
     if folder is None or not stat.S_ISDIR(folder.st_mode):
         raise PydanticCustomError(
@@ -268,6 +276,27 @@ def data_file(value, info: ValidationInfo) -> Path:
             {"path": str(resolved.parent)},
         )
     return resolved
+
+
+def not_regular(path: Path) -> str | None:
+    """What path is when it exists and is no regular file ("a character
+    device" ...), else None; a symbolic link is not followed (a rename
+    would replace the link, not what it points to)."""
+    try:
+        mode = os.lstat(path).st_mode
+    except (OSError, ValueError):
+        return None  # no such file (or _stat reported why)
+    if stat.S_ISREG(mode):
+        return None
+    kinds = (
+        (stat.S_ISDIR, "a directory"),
+        (stat.S_ISCHR, "a character device"),
+        (stat.S_ISBLK, "a block device"),
+        (stat.S_ISFIFO, "a FIFO"),
+        (stat.S_ISSOCK, "a socket"),
+        (stat.S_ISLNK, "a symbolic link"),
+    )
+    return next((what for test, what in kinds if test(mode)), "no regular file")
 
 
 def _resolved(text: str, info: ValidationInfo) -> Path:

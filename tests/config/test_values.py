@@ -5,6 +5,8 @@ message."""
 
 from __future__ import annotations
 
+import os
+
 import pytest
 
 from softplc.runtime.config.values import cut, got
@@ -46,6 +48,27 @@ def test_a_retain_file_in_a_directory_that_does_not_exist(tmp_path):
         f"no such directory: {tmp_path / 'nowhere'} (the file is written there; relative paths start at "
         "the config file's directory)",
     )
+
+
+def test_a_retain_file_is_a_regular_file_or_not_there_yet(tmp_path):
+    """[retain] file = "/dev/null" was taken; run as root, softplc renamed
+    /dev/null to /dev/null.corrupt (an empty "file" taken for a damaged one)."""
+    expected = "expected a regular file or a name not yet taken (softplc writes the file and renames it into place)"
+    assert error(tmp_path, PLC + '[retain]\nfile = "/dev/null"\n') == (
+        "retain.file",
+        f"/dev/null is a character device; {expected}",
+    )
+    os.mkfifo(tmp_path / "pipe")
+    assert error(tmp_path, PLC + '[retain]\nfile = "pipe"\n') == (
+        "retain.file",
+        f"{tmp_path / 'pipe'} is a FIFO; {expected}",
+    )
+    (tmp_path / "link").symlink_to(tmp_path / "elsewhere")
+    assert error(tmp_path, PLC + '[retain]\nfile = "link"\n') == (
+        "retain.file",
+        f"{tmp_path / 'link'} is a symbolic link; {expected}",
+    )
+    assert load(tmp_path, PLC + '[retain]\nfile = "plant.retain"\n').retain.file == tmp_path / "plant.retain"
 
 
 @pytest.mark.parametrize(
