@@ -123,6 +123,32 @@ def test_a_node_that_falls_to_pre_operational_is_restarted(plants):
     assert plant.node_diag(40, "Boots") == boots + 1  # reset communication, boot-up, configure, start
 
 
+@pytest.mark.parametrize(
+    ("frame", "what"),
+    [((0x000, bytes([0x81, 40])), "NMT reset-node"), ((0x728, b"\x7f"), "bogus pre-operational heartbeat")],
+)
+def test_a_flood_of_resets_or_bogus_heartbeats_boots_the_node_three_times_in_ten_seconds(plants, caplog, frame, what):
+    """Issue 31: a flood of NMT reset-node commands or bogus heartbeat states
+    made the master reset the node 2,000 times in 10 s (and configure it as
+    often: 13 SDO transfers each)."""
+    plant = plants(WATCH, program="Watch")
+    plant.run_until(lambda: plant.get("Watch.operational"), 200, "node 40 operational")
+    plant.frames.clear()
+    caplog.set_level(logging.INFO, logger="softplc.runtime.io.canopen")
+    for _ in range(2000):  # 10 s: one every 5 ms, from another node of the bus
+        plant.spy.send(*frame)
+        plant.run_ms(5)
+    resets = plant.frames_with(0x000).count(NMT_RESET_COMM_40)
+    configurations = plant.frames_with(0x628).count(bytes.fromhex("2B 17 10 00 64 00 00 00"))  # 1017h := 100 ms
+    assert resets <= 4 and configurations <= 4, (what, resets, configurations)
+    assert plant.master.nodes[40].sup.held_off > 1900
+    held = [r.getMessage() for r in caplog.records if "a flood of resets or bogus heartbeats?" in r.getMessage()]
+    assert 1 <= len(held) <= 4 and held[0].startswith("canopen: node motor (40): ")
+    # the flood over, the node is booted when its hold ends and runs
+    plant.run_until(lambda: plant.get("Watch.operational"), 10_000, "node 40 operational after the flood")
+    assert plant.master.status().ok
+
+
 def test_a_failed_bus_is_reported_and_reopened(plants):
     plant = plants(WATCH, program="Watch")
     plant.run_until(lambda: plant.get("Watch.operational"), 200, "node 40 operational")
