@@ -131,7 +131,8 @@ def main() -> None:
     runs = [("quiet", None, True), ("flood, limited", args.frame, True), ("flood, no limit", args.frame, False)]
     print(f"{args.seconds:g} s a run, a {args.frame} frame every ms in the floods")
     print(
-        f"{'run':<16} {'resets':>7} {'configs':>8} {'scans':>6} {'late max':>9} {'late p99':>9} {'tick max':>9} {'overruns':>9}"
+        f"{'run':<16} {'resets':>7} {'configs':>8} {'scans':>6} {'late max':>9} {'late p99':>9} "
+        f"{'tick max':>9} {'overruns':>9}"
     )
     for name, frame, limit in runs:
         r = run(args.seconds, frame, limit)
