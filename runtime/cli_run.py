@@ -140,7 +140,8 @@ def run_cmd(
     SIGUSR1 (or typing `restart` on a terminal) restarts tasks stopped by a
     runtime fault; SIGHUP compiles the ST files and swaps them in (online
     change: README "Online change"). Exit codes: 0 stopped cleanly, 1 compile errors, 2 bad
-    configuration or option, 3 a runtime fault happened during the run.
+    configuration or option, 3 a runtime fault happened during the run (or the retained data
+    could not be saved at the stop).
     """
     from .launch import run_plc
 

@@ -1,7 +1,9 @@
 """Durations as people write them in a command line or a config file:
-'10ms', '1s500ms', '2.5s', 'T#250ms', 'TIME#1h', or a bare number of
-milliseconds. One parser serves the CLI and the TOML configuration, so both
-accept the same spellings."""
+'10ms', '1s500ms', '2.5s', 'T#250ms', 'TIME#1h' (each unit once, the
+largest first, as in IEC 61131-3), or a bare number of milliseconds. One
+parser serves the CLI and the TOML configuration, so both accept the same
+spellings, but for the bare number: the configuration wants its unit
+(config/values.py)."""
 
 from __future__ import annotations
 
@@ -41,11 +43,16 @@ def parse_duration_ns(value) -> int | None:
     if text.isdigit():
         return int(text) * 1_000_000
     pos, total = 0, 0.0
+    last = None  # the unit before: each unit once, the largest first (IEC: T#1h30m, not T#30m1h or T#1s1s)
     while pos < len(text):
         m = _PART.match(text, pos)
         if m is None:
             return None
-        total += float(m.group(1)) * UNITS_NS[m.group(2)]
+        unit = UNITS_NS[m.group(2)]
+        if last is not None and unit >= last:
+            return None
+        last = unit
+        total += float(m.group(1)) * unit
         pos = m.end()
     return round(total) if text else None
 

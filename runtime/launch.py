@@ -2,7 +2,8 @@
 its status, handle signals and commands, stop cleanly, write the results.
 
 Exit codes: 0 stopped cleanly, 1 compile errors, 2 bad configuration or
-option, 3 a runtime fault happened during the run.
+option, 3 a runtime fault happened during the run, or the retained data
+could not be saved at the stop.
 """
 
 from __future__ import annotations
@@ -180,8 +181,8 @@ def run_plc(
         surfaces.online_change = changer  # the web page's "Online change" button
         try:
             surfaces.start()
-        except SurfaceError as e:
-            return _fail(str(e), EXIT_CONFIG)
+        except SurfaceError as e:  # "[opcua] ...": the section of the file that cannot start
+            return _fail(f"{path}: {e}", EXIT_CONFIG)
         try:
             engine.start()
         except STFault as e:
@@ -221,8 +222,15 @@ def run_plc(
             engine.cycle,
             ", retained data saved" if store is not None and store.last_error is None else "",
         )
-        if store is not None and store.last_error is not None:  # the last write, at the stop, failed
-            log.error("retained data NOT saved: %s", store.last_error)
+        # the last write, at the stop, failed: the file holds the last good save (never a torn one)
+        retain_lost = store is not None and store.last_error is not None
+        if retain_lost:
+            log.error(
+                "retained data NOT saved: %s; %d of %d writes failed during the run, the file holds the last good one",
+                store.last_error,
+                store.errors,
+                store.errors + store.writes,
+            )
         if final_json:
             text = json.dumps(engine.dump(), indent=2, ensure_ascii=False) + "\n"
             if final_json == "-":
@@ -246,7 +254,7 @@ def run_plc(
         if engine.faults:
             log.error("%d runtime fault(s) during the run; the first: %s", len(engine.faults), engine.faults[0])
             return EXIT_FAULT
-        return EXIT_OK
+        return EXIT_FAULT if retain_lost else EXIT_OK
     finally:
         log.removeHandler(handler)
         if file_handler is not None:

@@ -17,6 +17,7 @@ BENCHMARKS = sorted((Path(__file__).resolve().parents[1] / "benchmarks").glob("b
 def test_there_are_benchmarks():
     assert [b.name for b in BENCHMARKS] == [
         "bench_canopen.py",
+        "bench_canopen_flood.py",
         "bench_engine.py",
         "bench_examples.py",
         "bench_genset.py",

@@ -8,6 +8,7 @@ import csv
 import json
 import os
 import random
+import re
 import signal
 import subprocess
 import sys
@@ -210,18 +211,64 @@ _NODE = '[[can]]\ninterface = "virtual"\nchannel = "hostile"\n[canopen]\n[[canop
             "canopen.node[0].sdo[0].value",
             "(got inf)",
         ),
+        (_MAIN.replace('"T"', f'"{"T" * 1_000_000}"'), "task[0].name", "of at most 100 characters (got 'TTTT"),
+        (_MAIN + _NODE.replace('"hostile"', f'"{"c" * 1_000_000}"') + 'eds = "fc280"\n', "can[0].channel", "255"),
+        (_MAIN + f'[web]\nport = 0\nhost = "{"h" * 1_000_000}"\n', "web.host", "(1000000 characters))"),
+        (_MAIN + "[opcua]\nport = 0\nusers_file = 'p.st.bin'\n", "opcua.users_file", "not UTF-8 text (byte 0)"),
+        (
+            _MAIN + _NODE + 'eds = "ltmr"\nsdo = [{ object = "2007:21", value = 999999 }]\n',
+            "canopen.node[0].sdo[0]",
+            "",
+        ),
     ],
-    ids=["count type", "RTU timeout", "program path", "retain path", "5000 chars", "loopback", "guarded", "inf"],
+    ids=[
+        "count type",
+        "RTU timeout",
+        "program path",
+        "retain path",
+        "5000 chars",
+        "loopback",
+        "guarded",
+        "inf",
+        "1 MB task name",
+        "1 MB CAN channel",
+        "1 MB web host",
+        "users file",
+        "SDO value",
+    ],
 )
 def test_hostile_configuration_values_exit_2_naming_file_and_key(tmp_path, text, key, message):
     """Each of these took softplc down (exit 4, a Python error) or named
     neither the file nor the key; the real clock, as a plant runs."""
     cfg = write_config(tmp_path, text, {"p.st": "PROGRAM Main\nEND_PROGRAM\n"})
+    (tmp_path / "p.st.bin").write_bytes(b"\xff\xfe[users]\n")
     proc = softplc("run", cfg, "--duration", "0.1s")
     assert proc.returncode == 2, proc.stderr
     [line] = [ln for ln in proc.stderr.splitlines() if ln.startswith(f"softplc: {cfg}: ")]
     assert line.startswith(f"softplc: {cfg}: {key}: ") and message in line
     assert len(line) < 400 and "Traceback" not in proc.stderr and "internal error" not in proc.stderr
+    assert len(proc.stderr) < 2000  # nothing long echoed into the log either
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        (_MAIN + "x = " + "[" * 5000 + "]" * 5000 + "\n", ": tables, arrays or dotted keys nested more than 32 deep"),
+        (_MAIN + "x = " + "{a = " * 2000 + "1" + "}" * 2000 + "\n", ": tables, arrays or dotted keys nested more"),
+        (_MAIN + "[outputs]\n" + ".".join(["a"] * 5000) + " = 1\n", ": outputs.a.a.a.a.a.a.a.a.a.a.a.a.a.a.a.a."),
+        (_MAIN + "priority = " + "9" * 5000 + "\n", ":7:12: an integer of 5000 digits: no key takes a number"),
+        (_MAIN + '[outputs]\nsafe = { "%QL65535" = 1 }\n', ': outputs.safe."%QL65535": %QL65535 (bytes 524280'),
+    ],
+    ids=["deep arrays", "deep inline tables", "deep dotted key", "5000 digits", "safe value past the image"],
+)
+def test_hostile_documents_exit_2_not_4(tmp_path, text, message):
+    """Each of these was exit 4: a RecursionError, a ValueError of Python's
+    int(), an AddressError at the start."""
+    cfg = write_config(tmp_path, text, {"p.st": "PROGRAM Main\nEND_PROGRAM\n"})
+    proc = softplc("run", cfg, "--virtual-time", "--cycles", "1")
+    assert proc.returncode == 2, proc.stderr
+    assert proc.stderr.startswith(f"softplc: {cfg}{message}")
+    assert len(proc.stderr) < 2000 and "Traceback" not in proc.stderr and "internal error" not in proc.stderr
 
 
 def test_compile_error_gives_st_location(tmp_path):
@@ -307,9 +354,61 @@ def test_a_retain_file_that_cannot_be_written_is_not_said_saved(tmp_path):
     # /proc takes no new file, even from root: every write fails (the start is fine: no file yet)
     cfg.write_text(cfg.read_text().replace('file = "counter.retain"', 'file = "/proc/softplc-test.retain"'))
     result = softplc("run", cfg, "--virtual-time", "--duration", "200ms")
-    assert result.returncode == 0, result.stderr
+    assert result.returncode == 3, result.stderr  # was 0
     assert "retained data saved" not in result.stderr
     assert "retained data NOT saved: " in result.stderr and "cannot write the retain file" in result.stderr
+
+
+def test_a_save_beyond_the_file_size_limit_exits_3_and_keeps_the_last_good_file(tmp_path):
+    """ulimit -f (RLIMIT_FSIZE): every write of the retain file fails with
+    EFBIG (Python ignores SIGXFSZ); the run exited 0."""
+    import resource
+
+    cfg = _retain_config(tmp_path)
+    (tmp_path / "counter.st").write_text(
+        COUNTER.replace("count : UDINT;", "count : UDINT; log : ARRAY[1..2000] OF DINT;")
+    )
+    first = softplc("run", cfg, "--virtual-time", "--cycles", "30")
+    assert first.returncode == 0, first.stderr
+    good = (tmp_path / "counter.retain").read_bytes()  # some 6 kB
+    assert read_file(tmp_path / "counter.retain").vars["Counter.count"]["value"] == 30
+
+    def limit() -> None:
+        resource.setrlimit(resource.RLIMIT_FSIZE, (2048, 2048))
+
+    proc = subprocess.run(
+        [sys.executable, "-m", "softplc.runtime.cli", "run", str(cfg), "--virtual-time", "--cycles", "30"],
+        capture_output=True,
+        text=True,
+        stdin=subprocess.DEVNULL,
+        env=_env(),
+        timeout=120,
+        preexec_fn=limit,
+    )
+    assert proc.returncode == 3, proc.stderr
+    [line] = [ln for ln in proc.stderr.splitlines() if "retained data NOT saved" in ln]
+    said = re.search(
+        re.escape(f"retained data NOT saved: {tmp_path / 'counter.retain'}: cannot write the retain file: ")
+        + r"File too large; (\d+) of (\d+) writes failed during the run, the file holds the last good one$",
+        line,
+    )
+    assert said is not None and said.group(1) == said.group(2) != "0", line
+    assert (tmp_path / "counter.retain").read_bytes() == good  # the first run's, whole
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["counter.retain", "counter.st", "plant.toml"]
+
+
+def test_a_retain_path_softplc_did_not_write_stops_the_start_untouched(tmp_path):
+    """Only a file with softplc's header is softplc's to set aside or write over."""
+    cfg = _retain_config(tmp_path)
+    (tmp_path / "counter.retain").write_text("the plant's notes\n")
+    proc = softplc("run", cfg, "--virtual-time", "--cycles", "3")
+    assert proc.returncode == 2, proc.stderr
+    assert (
+        f"softplc: {tmp_path / 'counter.retain'}: not a softplc retain file (no 'softplc-retain' header on line 1)"
+        ": softplc would write over it; move it away or name another file in [retain] file\n"
+    ) in proc.stderr
+    assert (tmp_path / "counter.retain").read_text() == "the plant's notes\n"
+    assert not (tmp_path / "counter.retain.corrupt").exists()
 
 
 # In its second cycle Main enters a loop of 2^31 passes (minutes of work) and

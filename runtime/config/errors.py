@@ -16,6 +16,9 @@ from pydantic_core import ErrorDetails
 
 from .values import KEEP, LONG, cut, got
 
+#: the errors of one file a message shows; the rest are counted ("... 120 more errors")
+SHOWN = 50
+
 
 class ConfigError(Exception):
     """Everything wrong with one configuration file.
@@ -31,8 +34,9 @@ class ConfigError(Exception):
         super().__init__(str(self))
 
     def lines(self) -> list:
+        """One line per error, at most SHOWN of them and then how many more."""
         out = []
-        for key, message in self.errors:
+        for key, message in self.errors[:SHOWN]:
             if self.position is not None and not key:
                 line, col = self.position
                 out.append(f"{self.file}:{line}:{col}: {message}")
@@ -40,6 +44,9 @@ class ConfigError(Exception):
                 out.append(f"{self.file}: {key}: {message}")
             else:
                 out.append(f"{self.file}: {message}")
+        if len(self.errors) > SHOWN:
+            more = len(self.errors) - SHOWN
+            out.append(f"{self.file}: ... {more} more error{'s' if more > 1 else ''}")
         return out
 
     def __str__(self) -> str:
@@ -115,11 +122,12 @@ def translate(root: type[BaseModel], err: ErrorDetails) -> tuple:
     return loc, f"{err['msg']} (got {got(value)})"
 
 
-def not_finite(root: type[BaseModel], loc: tuple, value: float) -> str:
-    """The message for an inf or nan at loc: what the key takes, when the
-    schema says."""
+def not_finite(root: type[BaseModel], loc: tuple, value: float | int, default: str = "a finite number") -> str:
+    """The message for a value no key takes at loc (an inf or nan, an
+    integer of hundreds of digits): what the key takes, when the schema
+    says, else default."""
     info = _field_at(root, loc)
-    described = info.description if info is not None and info.description else "a finite number"
+    described = info.description if info is not None and info.description else default
     return f"expected {described} (got {got(value)})"
 
 

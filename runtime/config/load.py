@@ -14,7 +14,6 @@ errors are all reported at once, in file order.
 
 from __future__ import annotations
 
-import copy
 import math
 import os
 import re
@@ -98,7 +97,31 @@ def load_config(path) -> PlcConfig:
     except tomllib.TOMLDecodeError as exc:
         message, position = _toml_error(str(exc), text)
         raise ConfigError(label, [("", f"invalid TOML: {message}")], position=position) from None
+    except RecursionError:  # the reader recurses into arrays and inline tables
+        raise ConfigError(label, [("", TOO_DEEP)]) from None
+    except ValueError:  # a decimal integer of more digits than Python converts (4300)
+        position, digits = _long_number(text)
+        raise ConfigError(
+            label, [("", f"an integer of {digits} digits: no key takes a number that large")], position=position
+        ) from None
     return config_from_dict(parsed, path)
+
+
+#: tables and arrays nested in one another, at most (the shipped examples nest 8 deep)
+MAX_DEPTH = 32
+TOO_DEEP = f"tables, arrays or dotted keys nested more than {MAX_DEPTH} deep: no key takes that"
+#: an integer of more bits than this is no key's value (an LWORD, the largest, has 64)
+MAX_INT_BITS = 64
+
+
+def _long_number(text: str) -> tuple:
+    """((line, column), digits) of the longest run of digits in text."""
+    best = max(re.finditer(r"[0-9][0-9_]*", text), key=lambda m: len(m.group()), default=None)
+    if best is None:
+        return None, 0
+    line = text.count("\n", 0, best.start()) + 1
+    column = best.start() - (text.rfind("\n", 0, best.start()) + 1) + 1
+    return (line, column), len(best.group().replace("_", ""))
 
 
 _TOML_AT = re.compile(r"\s*\(at line (\d+), column (\d+)\)$")
@@ -117,25 +140,41 @@ def _toml_error(message: str, text: str) -> tuple:
     return message, None
 
 
-def _non_finite(node: Any, here: tuple = ()):
-    """(loc, value) of every inf and nan in the data: TOML writes them, no
-    key takes them (a duration, a count, a parameter's value)."""
-    if isinstance(node, float) and not math.isfinite(node):
-        yield here, node
-    elif isinstance(node, dict):
-        for key, value in node.items():
-            yield from _non_finite(value, here + (key,))
-    elif isinstance(node, list):
-        for i, value in enumerate(node):
-            yield from _non_finite(value, here + (i,))
+def _unusable(root, data: Any) -> list:
+    """(loc, message) of every value no key takes, found without recursion
+    (nothing recursive may see the data before this has cut it): tables and
+    arrays nested more than MAX_DEPTH deep, inf and nan (TOML writes them,
+    no key takes them: a duration, a count, a parameter's value), integers
+    of more than MAX_INT_BITS bits."""
+    found = []
+    stack: list = [((), data)]
+    while stack:
+        here, node = stack.pop()
+        if isinstance(node, (dict, list)):
+            if len(here) >= MAX_DEPTH:
+                found.append((here, TOO_DEEP))
+                continue
+            items = node.items() if isinstance(node, dict) else enumerate(node)
+            stack.extend((here + (key,), value) for key, value in reversed(list(items)))
+        elif isinstance(node, float) and not math.isfinite(node):
+            found.append((here, not_finite(root, here, node)))
+        elif isinstance(node, int) and not isinstance(node, bool) and node.bit_length() > MAX_INT_BITS:
+            found.append((here, not_finite(root, here, node, "an integer of at most 64 bits")))
+    return found
 
 
 def _replaced(data: dict, locs: list) -> dict:
-    """A copy of data with None at each of locs."""
-    out = copy.deepcopy(data)
+    """data with None at each of locs: the tables and arrays on the way to
+    them copied, the rest shared (the caller's data stays as it is)."""
+    out = dict(data)
+    copied: set = {()}
     for loc in locs:
-        node = out
-        for part in loc[:-1]:
+        node: Any = out
+        for i, part in enumerate(loc[:-1]):
+            here = loc[: i + 1]
+            if here not in copied:
+                node[part] = dict(node[part]) if isinstance(node[part], dict) else list(node[part])
+                copied.add(here)
             node = node[part]
         node[loc[-1]] = None
     return out
@@ -192,8 +231,8 @@ def config_from_dict(data: dict, path=None, *, base_dir=None) -> PlcConfig:
         raise ConfigError(label, [("", f"expected a TOML document (got {got(data)})")])
     doc = _current_document()
     raw = data
-    errors = [(loc, not_finite(doc.root, loc, value)) for loc, value in _non_finite(data)]
-    if errors:  # the passes see no inf or nan: None in their place, reported here
+    errors = _unusable(doc.root, data)
+    if errors:  # the passes see none of them: None in their place, reported here
         data = _replaced(data, [loc for loc, _message in errors])
     refused = {loc for loc, _message in errors}
     model = None

@@ -35,11 +35,19 @@ from .values import (
     identifier,
     int_range,
     is_ident,
+    positive_duration,
     shipped_library,
     spin_duration,
 )
 
 DEFAULT_PAUSE_NS = 1_000_000
+#: the least interval of a cyclic task. A scan is Python: some 50-200 us for
+#: the inputs, the smallest program and the outputs, more with a bus, and the
+#: kernel wakes a thread some 50-100 us late; a shorter period only overruns
+#: (1 us gave 2.3 million overruns in 3 s and a busy core). CODESYS and
+#: TwinCAT go down to 50-250 us, on a real-time kernel and native code.
+MIN_INTERVAL_NS = 1_000_000
+MIN_INTERVAL_TEXT = "1ms"
 #: the real clock busy-waits this last stretch before each release: twice
 #: the kernel's usual wake-up lateness, some 2 % of a core at a 10 ms task
 #: (benchmarks/bench_spin.py: lateness against CPU for several settings)
@@ -166,9 +174,23 @@ class _ProgramEntry(Model):
         return value
 
 
+def task_interval(value) -> int:
+    """A cyclic task's interval in ns: a duration of at least MIN_INTERVAL_NS."""
+    ns = positive_duration(value)
+    if ns < MIN_INTERVAL_NS:
+        raise fail(
+            f"an interval of at least {MIN_INTERVAL_TEXT}: a scan runs Python, a shorter period only overruns "
+            "(freewheeling = true runs the cycles back to back)",
+            value,
+        )
+    return ns
+
+
 class _Task(Model):
     name: Annotated[str, identifier("a task name")] = Field(description='a task name such as "Fast"')
-    interval: Duration | None = Field(None, description=f"a duration such as {DURATION_EXAMPLES}")
+    interval: Annotated[int, PlainValidator(task_interval)] | None = Field(
+        None, description=f"a duration such as {DURATION_EXAMPLES}"
+    )
     freewheeling: bool = Field(False, description="true or false")
     pause: Duration | None = Field(None, description=f"a duration such as {DURATION_EXAMPLES}")
     priority: Annotated[int, int_range(0, PRIORITY_MAX)] = Field(1, description=f"an integer from 0 to {PRIORITY_MAX}")
@@ -329,6 +351,8 @@ class OutputsSection(Section):
                     "expected a single bit, byte, word, dword or lword (got a word table); list the words one by one",
                 )
                 continue
+            if ctx.image_bits(loc, addr) is None:
+                continue  # past the end of the image: the error says so
             ident = (addr.size if addr.size != "" else "X", addr.indices, addr.bit)
             if ident in seen:
                 ctx.error(loc, f"the same address as {key_text(seen[ident])}")

@@ -20,6 +20,7 @@ from ..image.memory import ProcessImage
 from ..st.ast import LocatedAddress
 from ..st.profile import DEFAULT as _DEFAULT_PROFILE
 from ..st.profile import PROFILES
+from .errors import key_text
 from .values import got
 
 
@@ -118,3 +119,17 @@ class Relations:
                 return other_loc, other_text
         self.claimed.append((area, first, last, loc, text))
         return None
+
+    def writes(self, loc: tuple, area: str, offset: int, nbytes: int, text: str) -> bool:
+        """The seam by which a section says "what loc configures writes these
+        image bytes" (a bus reads into them: a Modbus channel's read_to, a
+        TPDO's entries, a loopback link's target): bytes offset ..
+        offset + nbytes - 1 of area. Each byte has one writer, across every
+        section and bus (which one wins would be an accident of the scan's
+        order): an overlap with an earlier claim is loc's error. True when
+        claimed."""
+        other = self.claim(area, 8 * offset, 8 * (offset + nbytes) - 1, loc, text)
+        if other is None:
+            return True
+        self.error(loc, f"{text} overlaps {key_text(other[0])} ({other[1]}): each image byte has one writer")
+        return False

@@ -20,21 +20,23 @@ from __future__ import annotations
 
 import dataclasses
 import ipaddress
+import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Annotated, Any
 
 from pydantic import Field, PlainValidator, ValidationInfo
+from pydantic_core import PydanticCustomError
 
 from .relations import Relations
 from .section import Section
-from .values import DURATION_EXAMPLES, Model, existing_file, fail, int_range, positive_duration
+from .values import DURATION_EXAMPLES, Model, existing_file, fail, int_range, is_host, positive_duration
 
 LOOPBACK = "127.0.0.1"
 
 
 def _host(value) -> str:
-    if isinstance(value, str) and value.strip() and not any(c.isspace() for c in value):
+    if isinstance(value, str) and is_host(value):
         return value
     raise fail('a host name or address to listen on, such as "127.0.0.1" or "0.0.0.0"', value)
 
@@ -59,7 +61,43 @@ def _optional_file(value, info: ValidationInfo) -> Path | None:
     return existing_file(value, info)
 
 
+#: a users file larger than this is no list of users
+USERS_FILE_MAX = 1 << 20
+
+
+def _users_file(value, info: ValidationInfo) -> Path | None:
+    """An existing TOML file with a [users] table of name = "password or
+    hash", read here so that a bad one is the key's error, not the server's."""
+    path = _optional_file(value, info)
+    if path is None:
+        return None
+    try:
+        with open(path, "rb") as f:
+            data = f.read(USERS_FILE_MAX + 1)
+    except OSError as exc:
+        raise PydanticCustomError(
+            "config", "cannot read {path}: {why}", {"path": str(path), "why": exc.strerror or str(exc)}
+        ) from None
+    why = None
+    if len(data) > USERS_FILE_MAX:
+        why = f"larger than {USERS_FILE_MAX >> 20} MB"
+    else:
+        try:
+            table = tomllib.loads(data.decode("utf-8")).get("users")
+        except UnicodeDecodeError as exc:
+            why = f"not UTF-8 text (byte {exc.start}); a TOML file is UTF-8"
+        except (ValueError, RecursionError) as exc:  # TOMLDecodeError, a number too long, nesting too deep
+            why = f"invalid TOML: {exc}" if isinstance(exc, tomllib.TOMLDecodeError) else "invalid TOML"
+        else:
+            if not isinstance(table, dict) or not all(isinstance(v, str) and v for v in table.values()):
+                why = 'expected a [users] table of name = "password or hash"'
+    if why is not None:
+        raise PydanticCustomError("config", "{path}: {why}", {"path": str(path), "why": why})
+    return path
+
+
 Users = Annotated[dict, PlainValidator(_users)]
+UsersFile = Annotated[Path | None, PlainValidator(_users_file)]
 OptionalFile = Annotated[Path | None, PlainValidator(_optional_file)]
 Host = Annotated[str, PlainValidator(_host)]
 Port = Annotated[int, int_range(0, 65535)]
@@ -113,7 +151,7 @@ class _Opcua(Model):
     max_variables: Annotated[int, int_range(1, 1_000_000)] = Field(10_000, description="an integer")
     anonymous: bool = Field(True, description="true or false")
     users: Users = Field(default_factory=dict, description='a table of user = "password or hash"')
-    users_file: OptionalFile = Field(None, description="the path of a TOML file with a [users] table")
+    users_file: UsersFile = Field(None, description="the path of a TOML file with a [users] table")
     certificate: OptionalFile = Field(None, description="the path of the server certificate (DER or PEM)")
     private_key: OptionalFile = Field(None, description="the path of the certificate's private key (PEM)")
 

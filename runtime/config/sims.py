@@ -164,7 +164,7 @@ class SimSection(Section):
             options = None
             if device.sim_options is not None:
                 own = {k: getattr(sim, k) for k in device.sim_options.model_fields if getattr(sim, k) is not None}
-                options = device.sim_options.model_validate(own).build()
+                options = device.sim_options.model_construct(**own).build()  # values validated: the table's
             name = sim.name or attachment.name(sim.type, {k: v for k, v in values.items() if v is not None})
             out.append(
                 SimConfig(

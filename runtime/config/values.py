@@ -6,6 +6,7 @@ every table. Sections of the core and of the buses build on these."""
 from __future__ import annotations
 
 import difflib
+import ipaddress
 import os
 import re
 import stat
@@ -50,6 +51,8 @@ def got(value) -> str:
         return "a table"
     if isinstance(value, list):
         return "an empty array" if not value else "an array"
+    if isinstance(value, int) and value.bit_length() > 128:  # repr refuses beyond 4300 digits
+        return f"an integer of about {int(value.bit_length() * 0.30103) + 1} digits"
     if isinstance(value, (int, float)):
         return repr(value)
     return f"a {type(value).__name__}"  # TOML dates and times
@@ -74,11 +77,29 @@ def fail(expected: str, value) -> PydanticCustomError:
     return PydanticCustomError("config", "expected {expected} (got {got})", {"expected": expected, "got": got(value)})
 
 
+_BARE = re.compile(r"\s*\d+(\.\d*)?\s*")
+
+
 def duration_ns(value) -> int | None:
+    """A duration of the configuration in ns, None when value is none; a
+    number without its unit (10, "10", 2.5: ms or s?) is refused with the
+    hint, unless it is 0 (zero in any unit)."""
+    bare = (isinstance(value, (int, float)) and not isinstance(value, bool)) or (
+        isinstance(value, str) and _BARE.fullmatch(value) is not None
+    )
     try:
-        return parse_duration_ns(value)
+        ns = parse_duration_ns(value)
     except (OverflowError, ValueError):  # inf, nan
         return None
+    if bare and ns and ns > 0:
+        number = value.strip() if isinstance(value, str) else value
+        number = number if len(str(number)) <= 12 else 10
+        raise PydanticCustomError(
+            "config",
+            "expected a duration with its unit, such as {number}ms or {number}s (got {got}: a number alone has none)",
+            {"number": str(number), "got": got(value)},
+        )
+    return ns
 
 
 def positive_duration(value) -> int:
@@ -107,7 +128,7 @@ def negative(text: str) -> bool:
         if text.startswith(prefix):
             text = text[len(prefix) :]
             break
-    return text.startswith("-") and duration_ns(text[1:]) is not None
+    return text.startswith("-") and parse_duration_ns(text[1:]) is not None
 
 
 def watchdog(value):
@@ -148,10 +169,19 @@ def is_ident(value: object) -> TypeGuard[str]:
     return isinstance(value, str) and IDENT.fullmatch(value) is not None
 
 
+#: a name of the configuration (a task, a bus, a node ...) has at most this many
+#: characters, so that no log line or message ever has to cut one
+MAX_NAME = LONG
+#: a text value (a CAN channel, a serial port, a host) at most this many
+MAX_TEXT = LONG_RUN
+
+
 def identifier(what: str):
     def check(value) -> str:
-        if is_ident(value):
+        if is_ident(value) and len(value) <= MAX_NAME:
             return value
+        if is_ident(value):
+            raise fail(f"{what}: an IEC identifier of at most {MAX_NAME} characters", value)
         raise fail(f"{what}: an IEC identifier (letters, digits, _; not starting with a digit)", value)
 
     return PlainValidator(check)
@@ -229,6 +259,14 @@ def data_file(value, info: ValidationInfo) -> Path:
     found = _stat(resolved)
     if found is not None and stat.S_ISDIR(found.st_mode):
         raise PydanticCustomError("config", "{path} is a directory; expected a file name", {"path": str(resolved)})
+    other = not_regular(resolved)
+    if other is not None:  # /dev/null: renamed to /dev/null.corrupt when softplc ran as root
+        raise PydanticCustomError(
+            "config",
+            "{path} is {other}; expected a regular file or a name not yet taken (softplc writes the file "
+            "and renames it into place)",
+            {"path": str(resolved), "other": other},
+        )
     folder = _stat(resolved.parent)
     if folder is None or not stat.S_ISDIR(folder.st_mode):
         raise PydanticCustomError(
@@ -238,6 +276,27 @@ def data_file(value, info: ValidationInfo) -> Path:
             {"path": str(resolved.parent)},
         )
     return resolved
+
+
+def not_regular(path: Path) -> str | None:
+    """What path is when it exists and is no regular file ("a character
+    device" ...), else None; a symbolic link is not followed (a rename
+    would replace the link, not what it points to)."""
+    try:
+        mode = os.lstat(path).st_mode
+    except (OSError, ValueError):
+        return None  # no such file (or _stat reported why)
+    if stat.S_ISREG(mode):
+        return None
+    kinds = (
+        (stat.S_ISDIR, "a directory"),
+        (stat.S_ISCHR, "a character device"),
+        (stat.S_ISBLK, "a block device"),
+        (stat.S_ISFIFO, "a FIFO"),
+        (stat.S_ISSOCK, "a socket"),
+        (stat.S_ISLNK, "a symbolic link"),
+    )
+    return next((what for test, what in kinds if test(mode)), "no regular file")
 
 
 def _resolved(text: str, info: ValidationInfo) -> Path:
@@ -283,11 +342,12 @@ def shipped_library(value, _info: ValidationInfo | None = None) -> str:
 UNIT_NS = {"ms": 1_000_000, "us": 1_000}
 
 
-def duration_in(unit: str, *, off: str | None = None, most: tuple | None = None):
+def duration_in(unit: str, *, off: str | None = None, most: tuple | None = None, least: tuple | None = None):
     """A duration as a whole number of unit ("ms" or "us"), rounded from the
     nanoseconds parse_duration_ns gives. off: what 0 / "0ms" / false means
     (None: they are refused); most: (largest value, why) where the bus
-    carries the value in a field of fixed width; never more than a day
+    carries the value in a field of fixed width; least: (the least in ns,
+    as text, why) where a shorter one only costs; never more than a day
     (MAX_DURATION_NS)."""
     per = UNIT_NS[unit]
     or_off = f", or false for {off}" if off else ""
@@ -299,6 +359,8 @@ def duration_in(unit: str, *, off: str | None = None, most: tuple | None = None)
         if ns is None or ns < 0 or (ns == 0 and not off):
             kind = "a duration" if off else "a duration > 0"
             raise fail(f"{kind} such as {DURATION_EXAMPLES}{or_off}", value)
+        if least is not None and 0 < ns < least[0]:
+            raise fail(f"a duration of at least {least[1]} ({least[2]}){or_off}", value)
         count = round(ns / per)
         if ns > 0 and count == 0:
             raise fail(f"a duration of at least 1{unit}{or_off}", value)
@@ -322,18 +384,50 @@ def text_value(expected: str):
     """A non-empty string; an integer is taken as its decimal text (channel = 0)."""
 
     def check(value) -> str:
-        if isinstance(value, str) and value.strip():
+        if isinstance(value, str) and value.strip() and len(value.strip()) <= MAX_TEXT:
             return value.strip()
         if isinstance(value, int) and not isinstance(value, bool):
             return str(value)
-        raise fail(expected, value)
+        raise fail(_at_most(expected, value), value)
 
     return PlainValidator(check)
 
 
 def nonempty(expected: str):
     def check(value) -> str:
-        if isinstance(value, str) and value.strip():
+        if isinstance(value, str) and value.strip() and len(value.strip()) <= MAX_TEXT:
+            return value.strip()
+        raise fail(_at_most(expected, value), value)
+
+    return PlainValidator(check)
+
+
+def _at_most(expected: str, value) -> str:
+    """What a text value of the right type but too long was expected to be."""
+    return f"{expected}, of at most {MAX_TEXT} characters" if isinstance(value, str) and value.strip() else expected
+
+
+_LABEL = re.compile(r"(?!-)[A-Za-z0-9_-]{1,63}(?<!-)", re.A)
+
+
+def is_host(text: str) -> bool:
+    """An IP address (v4, v6), or a host name: at most 253 characters, its
+    labels 1 to 63 letters, digits, - or _ (RFC 1123; the name service
+    refuses more, the IDNA codec with an exception of its own)."""
+    try:
+        ipaddress.ip_address(text[1:-1] if text.startswith("[") and text.endswith("]") else text)
+        return True
+    except ValueError:
+        pass
+    name = text[:-1] if text.endswith(".") else text
+    return 0 < len(name) <= 253 and all(_LABEL.fullmatch(label) for label in name.split("."))
+
+
+def host_value(expected: str):
+    """A host to listen on or to connect to, as is_host takes it."""
+
+    def check(value) -> str:
+        if isinstance(value, str) and is_host(value.strip()):
             return value.strip()
         raise fail(expected, value)
 

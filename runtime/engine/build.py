@@ -5,6 +5,7 @@ make the retain store. Names no bus and no device: the registry does."""
 from __future__ import annotations
 
 from ..config import PlcConfig
+from ..plugin.driver import DriverError
 from ..plugin.registry import registry
 from ..plugin.seams import BuildContext
 from ..program import compile_files
@@ -31,7 +32,11 @@ def make_drivers(config: PlcConfig, clock=None, by_name: dict | None = None) -> 
     simulators, drivers = [], []
     for bus in registry().buses:
         if bus.build is not None:
-            part = bus.build(config, ctx)
+            try:
+                part = bus.build(config, ctx)
+            except DriverError as exc:  # a key of the file that cannot work: the file named first
+                text = str(exc)
+                raise DriverError(text if text.startswith(ctx.where) else f"{ctx.where}: {text}") from None
             simulators += part.simulators
             drivers += part.drivers
     if any(sim.faults for sim in config.sims):

@@ -7,6 +7,7 @@ body; the body is the JSON of RetainData, one variable a line."""
 
 from __future__ import annotations
 
+import errno
 import hashlib
 import json
 import os
@@ -14,17 +15,29 @@ import threading
 from pathlib import Path
 from typing import Any
 
+from ..config.values import not_regular
 from .retain import FORMAT, VERSION, RetainData
 
 
 class RetainFileError(Exception):
     """A retain file that cannot be used; the message names the file and
     what is wrong with it. damaged: the contents are bad (as opposed to the
-    file not being readable at all)."""
+    file not being readable at all); ours: it has softplc's header, so
+    softplc wrote it (and may set it aside)."""
 
-    def __init__(self, message: str, damaged: bool = True) -> None:
+    def __init__(self, message: str, damaged: bool = True, ours: bool = True) -> None:
         super().__init__(message)
         self.damaged = damaged
+        self.ours = ours
+
+
+class ForeignRetainFile(RetainFileError):
+    """The retain path holds something softplc did not write (a device such
+    as /dev/null, a FIFO, a link, a file without softplc's header): it is
+    neither read, renamed nor written over; the PLC does not start."""
+
+    def __init__(self, message: str) -> None:
+        super().__init__(message, damaged=False, ours=False)
 
 
 def _temp_prefix(path: Path) -> str:
@@ -55,6 +68,9 @@ def write_file(path: Path, data: RetainData) -> None:
         {"format": FORMAT, "version": VERSION, "sha256": hashlib.sha256(body).hexdigest(), "length": len(body)}
     )
     directory = path.parent
+    other = not_regular(path)
+    if other is not None:  # never renamed over: root would replace /dev/null
+        raise OSError(errno.EEXIST, f"{other} is there, not a retain file; softplc writes over none")
     tmp = directory / f"{_temp_prefix(path)}{os.getpid()}.{os.urandom(4).hex()}.tmp"
     fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0), 0o644)
     try:
@@ -99,14 +115,14 @@ def read_file(path: Path) -> RetainData | None:
     except OSError as exc:
         raise RetainFileError(f"{path}: cannot read the retain file: {exc.strerror or exc}", damaged=False) from None
     if not raw:
-        raise RetainFileError(f"{path}: the retain file is empty")
+        raise RetainFileError(f"{path}: the retain file is empty", ours=False)
     head, sep, body = raw.partition(b"\n")
     try:
         header = json.loads(head.decode("utf-8"))
     except (UnicodeDecodeError, ValueError, RecursionError):
         header = None
     if not isinstance(header, dict) or header.get("format") != FORMAT:
-        raise RetainFileError(f"{path}: not a softplc retain file (no '{FORMAT}' header on line 1)")
+        raise RetainFileError(f"{path}: not a softplc retain file (no '{FORMAT}' header on line 1)", ours=False)
     version = header.get("version")
     if version != VERSION:
         raise RetainFileError(
@@ -181,15 +197,30 @@ class RetainStore:
     # ------------------------------------------------------------ start
 
     def load(self) -> tuple:
-        """(data, warning). A corrupt file is renamed to <name>.corrupt and
-        kept for a human; the warning says so and data is None. Temporary
-        files left by a killed process are removed first."""
+        """(data, warning). A damaged file that softplc wrote (its header on
+        line 1) is renamed to <name>.corrupt and kept for a human; the
+        warning says so and data is None; an empty one is only written
+        over. ForeignRetainFile when the path holds anything else: nothing
+        but a file softplc wrote is renamed or written over. Temporary files
+        left by a killed process are removed first."""
+        other = not_regular(self.path)
+        if other is not None:  # never read (a FIFO blocks), never renamed (/dev/null)
+            raise ForeignRetainFile(
+                f"{self.path}: {other}, not a retain file: softplc reads, renames and writes over "
+                "nothing but a file of its own; name a file in [retain] file"
+            )
         self._remove_stale_temps()
         try:
             return read_file(self.path), None
         except RetainFileError as exc:
-            if not exc.damaged:  # unreadable (permissions, a directory): nothing to move aside
+            if not exc.damaged:  # unreadable (permissions): nothing to move aside
                 return None, f"{exc}; starting with initial values"
+            if not exc.ours:
+                if self.path.stat().st_size == 0:  # nothing to lose: written at the first save
+                    return None, f"{exc}; starting with initial values"
+                raise ForeignRetainFile(
+                    f"{exc}: softplc would write over it; move it away or name another file in [retain] file"
+                ) from None
             try:
                 kept = self._move_aside()
             except OSError as err:

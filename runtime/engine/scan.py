@@ -38,6 +38,7 @@ from ..st.valuejson import encode_instance
 from . import retain as R
 from .clock import VirtualClock
 from .diag import DiagVariable
+from .retain_file import ForeignRetainFile
 from .stats import TaskStats
 
 log = logging.getLogger("softplc.engine")
@@ -253,7 +254,10 @@ class Engine:
         self.diag = DiagVariable(self.ns["_G"])
         self._retain_plan = self._plan_retain()
         if self.retain_store is not None:
-            data, warning = self.retain_store.load()
+            try:
+                data, warning = self.retain_store.load()
+            except ForeignRetainFile as exc:  # not the PLC's to read, rename or write over: no start
+                raise EngineError(str(exc)) from None
             if warning:
                 log.warning("%s", warning)
             self.restore_report = R.restore(self._retain_plan, data, self.start_mode)

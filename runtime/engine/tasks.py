@@ -15,6 +15,7 @@ from __future__ import annotations
 import difflib
 
 from ..config import DEFAULT_PAUSE_NS, ProgramInstance, TaskConfig, default_watchdog_ns
+from ..config.plc import MIN_INTERVAL_NS, MIN_INTERVAL_TEXT
 from ..config.values import cut
 
 DEFAULT_INTERVAL_NS = 10_000_000  # CODESYS's MainTask: 10 ms
@@ -94,6 +95,11 @@ def _from_st_configuration(program, configs: list) -> list:
                 "are not supported; give it an INTERVAL"
             )
         interval_ns = round(t["interval_ms"] * 1_000_000)
+        if interval_ns < MIN_INTERVAL_NS:
+            raise TaskSetupError(
+                f"{t['pos']}: task {t['name']}: INTERVAL T#{t['interval_ms'] * 1000:g}us is below the least "
+                f"interval, {MIN_INTERVAL_TEXT}: a scan runs Python, a shorter period only overruns"
+            )
         tasks[t["name"].upper()] = TaskConfig(
             name=t["name"],
             interval_ns=interval_ns,

@@ -160,6 +160,19 @@ def _read_text(p, diags: DiagnosticBag) -> str | None:
     except OSError as exc:
         diags.error("E000", f"cannot read the file: {exc.strerror or exc}", A.Pos(str(p), 1, 1))
         return None
+    if data.startswith((b"\xff\xfe", b"\xfe\xff")):  # UTF-16 with its byte order mark, as Windows writes it
+        try:
+            return data.decode("utf-16")
+        except UnicodeDecodeError:
+            pass
+    if b"\0" in data:  # a program (/bin/ls), an image: its bytes were 100 kB of errors
+        diags.error(
+            "E000",
+            f"not a text file (a NUL byte at byte {data.index(0)}): an ST file is text",
+            A.Pos(str(p), 1, 1),
+            "name the .st (or .xml, .TcPOU) file, not a compiled or binary one",
+        )
+        return None
     try:
         return data.decode("utf-8-sig")
     except UnicodeDecodeError:

@@ -195,6 +195,85 @@ def test_toml_duplicate_key(tmp_path):
     assert str(info.value) == f"{path}:3:23: invalid TOML: Cannot overwrite a value"
 
 
+# ====================================================================== hostile documents
+# Each of these ended in a RecursionError or a ValueError of Python's (exit 4).
+
+
+@pytest.mark.parametrize(
+    "body",
+    [
+        "x = " + "[" * 5000 + "]" * 5000,  # arrays: the TOML reader recurses into them
+        "x = " + "{a = " * 2000 + "1" + "}" * 2000,  # inline tables: likewise
+    ],
+    ids=["arrays", "inline tables"],
+)
+def test_values_nested_too_deep_for_the_reader_are_an_error(tmp_path, body):
+    path = write(tmp_path, '[plc]\nprograms = ["main.st"]\n' + body + "\n")
+    with pytest.raises(ConfigError) as info:
+        load_config(path)
+    assert str(info.value) == f"{path}: tables, arrays or dotted keys nested more than 32 deep: no key takes that"
+
+
+def test_dotted_keys_nested_too_deep_are_an_error_at_their_key(tmp_path):
+    """5000 dotted keys: the reader takes them, the checks after it recursed."""
+    path = write(tmp_path, '[plc]\nprograms = ["main.st"]\n[outputs]\n' + ".".join(["a"] * 5000) + " = 1\n")
+    with pytest.raises(ConfigError) as info:
+        load_config(path)
+    assert info.value.errors == [
+        (
+            "outputs." + ".".join(["a"] * 31),
+            "tables, arrays or dotted keys nested more than 32 deep: no key takes that",
+        ),
+        ("outputs.a", "unknown key (expected one of safe)"),
+    ]
+
+
+def test_what_is_nested_deep_enough_still_reads():
+    """The shipped examples nest 8 deep; 32 levels are checked, no more."""
+    data = {"plc": {"programs": []}, "outputs": {"safe": {}}}
+    node = data["outputs"]["safe"]
+    for _ in range(29):  # outputs.safe and 29 more tables: 31 levels, a value at the 32nd
+        node["a"] = {}
+        node = node["a"]
+    with pytest.raises(ConfigError) as info:
+        config_from_dict(data)
+    assert "nested" not in str(info.value)
+
+
+def test_an_integer_of_5000_digits_names_its_line_and_column(tmp_path):
+    path = write(tmp_path, '[plc]\nprograms = ["main.st"]\n[retain]\nfile = "r"\nperiod = ' + "9" * 5000 + "\n")
+    with pytest.raises(ConfigError) as info:
+        load_config(path)
+    assert str(info.value) == f"{path}:5:10: an integer of 5000 digits: no key takes a number that large"
+
+
+def test_an_integer_beyond_64_bits_is_refused_at_its_key(tmp_path):
+    """A hexadecimal integer has no digit limit in the reader; its decimal
+    text (for the message) had: 4800 digits are more than Python writes."""
+    path = write(
+        tmp_path,
+        '[plc]\nprograms = ["main.st"]\n[[task]]\nname = "T"\ninterval = "10ms"\n'
+        'programs = ["Main"]\npriority = 0x' + "f" * 4000 + "\n",
+    )
+    with pytest.raises(ConfigError) as info:
+        load_config(path)
+    assert info.value.errors == [
+        ("task[0].priority", "expected an integer from 0 to 31 (got an integer of about 4817 digits)")
+    ]
+
+
+def test_a_file_of_many_errors_shows_50_and_counts_the_rest(tmp_path):
+    """10,000 tasks gave 2.1 MB of errors."""
+    tasks = "".join(f'[[task]]\nname = "T{i}"\ninterval = "1x"\nprograms = ["Main"]\n' for i in range(1000))
+    path = write(tmp_path, '[plc]\nprograms = ["main.st"]\n' + tasks)
+    with pytest.raises(ConfigError) as info:
+        load_config(path)
+    lines = str(info.value).splitlines()
+    assert len(info.value.errors) == 1000 + 999  # each interval, and each instance Main after the first
+    assert len(lines) == 51 and lines[-1] == f"{path}: ... 1949 more errors"
+    assert lines[0] == f"{path}: task[0].interval: expected a duration such as 10ms, 1s, T#250ms (got '1x')"
+
+
 # ====================================================================== all at once
 
 
@@ -248,7 +327,7 @@ def test_several_errors_reported_together(tmp_path):
 
 def test_config_from_dict(tmp_path):
     (tmp_path / "main.st").write_text(PROG)
-    data = {"plc": {"programs": ["main.st"]}, "task": [{"name": "T", "interval": 5, "programs": ["Main"]}]}
+    data = {"plc": {"programs": ["main.st"]}, "task": [{"name": "T", "interval": "5ms", "programs": ["Main"]}]}
     cfg = config_from_dict(data, tmp_path / "virtual.toml")
     assert cfg.path == tmp_path / "virtual.toml" and cfg.base_dir == tmp_path
     assert cfg.tasks[0].interval_ns == 5 * MS and cfg.raw is data

@@ -59,7 +59,7 @@ def test_every_key_of_the_loopback_example():
         else:
             loaded += 1
     assert not unnamed, f"{len(unnamed)} errors name another key or none:\n" + "\n".join(unnamed)
-    assert refused > 500 and loaded > 20  # the mutations reached both ends
+    assert refused > 500 and loaded > 10  # the mutations reached both ends
 
 
 EVERY_CONFIG = sorted(EXAMPLES.glob("*.toml")) + [default_config_path()]

@@ -20,7 +20,7 @@ def test_faults_in_time_order_with_their_values_and_durations(tmp_path):
         + CAN
         + FC280
         + 'faults = [{ at = "40s", fault = "unplug", for = "2s" }, { at = "T#20s", fault = "Over_Current" },'
-        + ' { at = "1m", fault = "warning", value = 0x40, for = 5000 }]\n',
+        + ' { at = "1m", fault = "warning", value = 0x40, for = "5000ms" }]\n',
     )
     assert cfg.sims[0].faults == (
         FaultEvent(20_000 * MS, "over_current"),

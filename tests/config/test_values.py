@@ -5,6 +5,8 @@ message."""
 
 from __future__ import annotations
 
+import os
+
 import pytest
 
 from softplc.runtime.config.values import cut, got
@@ -48,6 +50,27 @@ def test_a_retain_file_in_a_directory_that_does_not_exist(tmp_path):
     )
 
 
+def test_a_retain_file_is_a_regular_file_or_not_there_yet(tmp_path):
+    """[retain] file = "/dev/null" was taken; run as root, softplc renamed
+    /dev/null to /dev/null.corrupt (an empty "file" taken for a damaged one)."""
+    expected = "expected a regular file or a name not yet taken (softplc writes the file and renames it into place)"
+    assert error(tmp_path, PLC + '[retain]\nfile = "/dev/null"\n') == (
+        "retain.file",
+        f"/dev/null is a character device; {expected}",
+    )
+    os.mkfifo(tmp_path / "pipe")
+    assert error(tmp_path, PLC + '[retain]\nfile = "pipe"\n') == (
+        "retain.file",
+        f"{tmp_path / 'pipe'} is a FIFO; {expected}",
+    )
+    (tmp_path / "link").symlink_to(tmp_path / "elsewhere")
+    assert error(tmp_path, PLC + '[retain]\nfile = "link"\n') == (
+        "retain.file",
+        f"{tmp_path / 'link'} is a symbolic link; {expected}",
+    )
+    assert load(tmp_path, PLC + '[retain]\nfile = "plant.retain"\n').retain.file == tmp_path / "plant.retain"
+
+
 @pytest.mark.parametrize(
     ("key", "written", "expected"),
     [
@@ -57,7 +80,8 @@ def test_a_retain_file_in_a_directory_that_does_not_exist(tmp_path):
     ],
 )
 def test_durations_longer_than_a_day(tmp_path, key, written, expected):
-    text = f'name = "T"\n{"interval = 10" if key != "interval" else ""}\n{key} = {written}\nprograms = ["Main"]\n'
+    interval = 'interval = "10ms"' if key != "interval" else ""
+    text = f'name = "T"\n{interval}\n{key} = {written}\nprograms = ["Main"]\n'
     assert error(tmp_path, task(text)) == (f"task[0].{key}", f"expected {expected} (got {written[1:-1]!r})")
 
 
@@ -118,3 +142,26 @@ def test_cut():
     )
     assert cut("a short message: /a/b.st") == "a short message: /a/b.st"
     assert len(cut("word " * 1000)) == 1000
+
+
+# ====================================================================== long names and texts
+# A 1 MB task name or CAN channel was taken and written whole into the log.
+
+
+def test_a_name_has_at_most_100_characters(tmp_path):
+    body = '[[task]]\nname = "{}"\ninterval = "10ms"\nprograms = ["Main"]\n'
+    assert load(tmp_path, PLC + body.format("T" * 100)).tasks[0].name == "T" * 100
+    assert error(tmp_path, PLC + body.format("T" * 1_000_000)) == (
+        "task[0].name",
+        f"expected a task name: an IEC identifier of at most 100 characters (got '{'T' * 60}…' (1000000 characters))",
+    )
+
+
+def test_a_text_value_has_at_most_255_characters(tmp_path):
+    can = '[[can]]\ninterface = "virtual"\nchannel = "{}"\n'
+    assert load(tmp_path, PLC + can.format("c" * 255)).can[0].channel == "c" * 255
+    assert error(tmp_path, PLC + can.format("c" * 1_000_000)) == (
+        "can[0].channel",
+        'expected a channel such as "can0" or "PCAN_USBBUS1", of at most 255 characters '
+        f"(got '{'c' * 60}…' (1000000 characters))",
+    )

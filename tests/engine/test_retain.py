@@ -9,6 +9,7 @@ import json
 import math
 import os
 import signal
+import stat
 import subprocess
 import sys
 import time
@@ -18,7 +19,7 @@ import pytest
 
 from softplc.runtime.engine import retain as R
 from softplc.runtime.engine.retain import RetainData
-from softplc.runtime.engine.retain_file import RetainFileError, RetainStore, read_file, write_file
+from softplc.runtime.engine.retain_file import ForeignRetainFile, RetainFileError, RetainStore, read_file, write_file
 from softplc.runtime.image.memory import ProcessImage
 from softplc.runtime.program import ExecContext, compile_files
 from softplc.runtime.st import rtlib
@@ -543,12 +544,9 @@ def _version2(raw: bytes) -> bytes:
         (lambda raw: raw[: len(raw) // 2], "truncated"),
         (lambda raw: raw.split(b"\n", 1)[0] + b"\n", "truncated (0 of"),
         (lambda raw: raw + b"\n", "trailing data"),
-        (lambda raw: b"\x00\xffGIF89a garbage" * 50, "not a softplc retain file"),
-        (lambda raw: b"", "empty"),
-        (lambda raw: b'{"layout": "x", "saved_ns": 0, "cycle": 0, "vars": {}}\n', "not a softplc retain file"),
         (_version2, "version 2 is not known"),
     ],
-    ids=["flipped-byte", "truncated", "no-body", "trailing", "garbage", "empty", "no-header", "version"],
+    ids=["flipped-byte", "truncated", "no-body", "trailing", "version"],
 )
 def test_damaged_file_is_refused_and_kept_aside(tmp_path, damage, message):
     path = tmp_path / "plc.retain"
@@ -567,12 +565,73 @@ def test_damaged_file_is_refused_and_kept_aside(tmp_path, damage, message):
     assert corrupt.read_bytes() == bad and not path.exists()
 
 
-def test_unreadable_retain_path_is_reported_not_moved(tmp_path):
+@pytest.mark.parametrize(
+    ("content", "message"),
+    [
+        (b"\x00\xffGIF89a garbage" * 50, "not a softplc retain file"),
+        (b'{"layout": "x", "saved_ns": 0, "cycle": 0, "vars": {}}\n', "not a softplc retain file"),
+        (b"my notes, not a retain file\n", "not a softplc retain file"),
+    ],
+    ids=["garbage", "no-header", "someone's file"],
+)
+def test_a_file_softplc_did_not_write_is_neither_renamed_nor_written_over(tmp_path, content, message):
+    """Only a file with softplc's header is softplc's to set aside; anything
+    else at the retain path stops the start (a save would write over it)."""
     path = tmp_path / "plc.retain"
-    path.mkdir()  # a directory where the file should be
-    data, warning = RetainStore(path, threaded=False).load()
-    assert data is None and f"{path}: cannot read the retain file" in warning
-    assert path.is_dir() and not (tmp_path / "plc.retain.corrupt").exists()
+    path.write_bytes(content)
+    store = RetainStore(path, threaded=False)
+    with pytest.raises(ForeignRetainFile) as err:
+        store.load()
+    assert str(err.value) == (
+        f"{path}: {message} (no 'softplc-retain' header on line 1): softplc would write over it; "
+        "move it away or name another file in [retain] file"
+    )
+    assert os.listdir(tmp_path) == ["plc.retain"] and path.read_bytes() == content
+
+
+def test_an_empty_file_is_written_over_not_set_aside(tmp_path):
+    """Nothing to lose: the first save writes it (it was renamed .corrupt)."""
+    path = tmp_path / "plc.retain"
+    path.write_bytes(b"")
+    store = RetainStore(path, threaded=False)
+    assert store.load() == (None, f"{path}: the retain file is empty; starting with initial values")
+    assert os.listdir(tmp_path) == ["plc.retain"]
+    store.submit(small_data(4))
+    assert read_file(path).cycle == 4
+
+
+@pytest.mark.parametrize("kind", ["fifo", "directory", "link", "device"])
+def test_what_is_no_regular_file_is_never_read_renamed_or_written(tmp_path, kind):
+    """[retain] file = "/dev/null", run as root, renamed /dev/null to
+    /dev/null.corrupt (an empty "file" was taken for a damaged one)."""
+    path = tmp_path / "plc.retain"
+    if kind == "fifo":
+        os.mkfifo(path)  # reading it would block for ever
+        what = "a FIFO"
+    elif kind == "directory":
+        path.mkdir()
+        what = "a directory"
+    elif kind == "link":
+        write_file(tmp_path / "elsewhere.retain", small_data(1))
+        path.symlink_to(tmp_path / "elsewhere.retain")  # the rename would replace the link
+        what = "a symbolic link"
+    else:
+        if os.geteuid() != 0:
+            pytest.skip("creating a device node needs root")
+        os.mknod(path, 0o666 | stat.S_IFCHR, os.makedev(1, 3))  # /dev/null's numbers, here
+        what = "a character device"
+    before = os.lstat(path)
+    store = RetainStore(path, threaded=False)
+    with pytest.raises(ForeignRetainFile) as err:
+        store.load()
+    assert str(err.value).startswith(f"{path}: {what}, not a retain file")
+    store.submit(small_data(2))  # a save does not rename over it either
+    assert store.last_error == (
+        f"{path}: cannot write the retain file: {what} is there, not a retain file; softplc writes over none"
+    )
+    after = os.lstat(path)
+    assert (after.st_ino, after.st_mode) == (before.st_ino, before.st_mode)
+    assert sorted(os.listdir(tmp_path)) == sorted(["plc.retain"] + (["elsewhere.retain"] if kind == "link" else []))
 
 
 def test_checksum_valid_but_malformed_body(tmp_path):
@@ -591,7 +650,8 @@ def test_load_removes_temp_files_and_keeps_earlier_corrupt_files(tmp_path):
     (tmp_path / ".plc.retain.4242.deadbeef.tmp").write_bytes(b"half a retain fi")
     (tmp_path / "other.tmp").write_bytes(b"not ours")
     (tmp_path / "plc.retain.corrupt").write_bytes(b"an older one")
-    path.write_bytes(b"garbage")
+    write_file(path, small_data(2))
+    path.write_bytes(path.read_bytes()[:-5])  # softplc's, truncated
     data, warning = RetainStore(path, threaded=False).load()
     assert data is None and "plc.retain.corrupt.2" in warning
     assert sorted(os.listdir(tmp_path)) == ["other.tmp", "plc.retain.corrupt", "plc.retain.corrupt.2"]

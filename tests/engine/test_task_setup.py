@@ -79,6 +79,11 @@ def test_a_task_naming_no_program_of_the_files():
             "plant.st:15:9: task Lazy: event tasks (SINGLE, or no INTERVAL) are not supported",
         ),
         ("PROGRAM B WITH Lazy : Slow;", "PROGRAM B : Slow;", "program instance B has no task"),
+        (
+            "TASK Quick(INTERVAL := T#5ms, PRIORITY := 0);",
+            "TASK Quick(INTERVAL := LTIME#500us, PRIORITY := 0);",
+            "plant.st:14:9: task Quick: INTERVAL T#500us is below the least interval, 1ms",
+        ),
     ],
 )
 def test_st_configurations_the_engine_cannot_run(original, replacement, message):

@@ -97,6 +97,12 @@ ODD_STRINGS = [
     "task",
     "plc",
     "cold",
+    # issue 31: accepted or exit 4 before
+    "1us",
+    "1s1s1s1s",
+    "%QL65535",
+    "/dev/null",
+    "a" * 1_000_000,
 ]
 HUGE_NUMBERS = [
     -1,
@@ -121,6 +127,8 @@ HUGE_NUMBERS = [
     math.nan,
     0.5,
     -0.0,
+    10,  # a duration without its unit (issue 31)
+    10**1000,  # beyond 64 bits (5,000 digits go in as text: mutated_texts)
 ]
 
 
@@ -180,7 +188,7 @@ def mutated_texts(draw):
     lines = shipped()[name][1].split("\n")
     for _ in range(draw(st.integers(1, 3))):
         i = draw(st.integers(0, len(lines) - 1))
-        how = draw(st.sampled_from(["bytes", "drop line", "duplicate line", "swap lines", "value"]))
+        how = draw(st.sampled_from(["bytes", "drop line", "duplicate line", "swap lines", "value", "deep"]))
         if how == "bytes":
             line = lines[i]
             j = draw(st.integers(0, len(line)))
@@ -196,11 +204,28 @@ def mutated_texts(draw):
         elif how == "swap lines":
             k = draw(st.integers(0, len(lines) - 1))
             lines[i], lines[k] = lines[k], lines[i]
+        elif how == "deep":  # issue 31: the reader's RecursionError was exit 4
+            n = draw(st.sampled_from([33, 1000, 5000]))
+            lines.insert(i, draw(st.sampled_from([f"deep = {'[' * n}{']' * n}", f"deep = {'{a=' * n}1{'}' * n}"])))
+            lines.insert(i, f"{'.'.join(['d'] * n)} = 1")
         elif "=" in lines[i] and not lines[i].lstrip().startswith("#"):
             key = lines[i].split("=", 1)[0]
             literal = draw(
-                st.sampled_from(['""', "-1", "1e999", "inf", "nan", "99999999999999999999", "[]", "{}", "true", "[[]]"])
+                st.sampled_from(
+                    ['""', "-1", "1e999", "inf", "nan", "99999999999999999999", "[]", "{}", "true", "[[]]", "9" * 5000]
+                )
                 | st.sampled_from(ODD_STRINGS).map(lambda s: '"' + s.replace("\\", "\\\\").replace('"', '\\"') + '"')
             )
             lines[i] = f"{key}= {literal}"
     return name, "\n".join(lines)
+
+
+@st.composite
+def huge_texts(draw, most: int):
+    """A shipped file and up to `most` more tables, each with a bad value
+    (issue 31: 10,000 bad tasks printed 2.1 MB of errors)."""
+    name = draw(st.sampled_from(sorted(shipped())))
+    n = draw(st.integers(60, most))
+    bad = draw(st.sampled_from(['interval = "1us"', "interval = 10", f'name = "{"t" * 5000}"', 'priority = "x"']))
+    table = f'[[task]]\nname = "T{{}}"\ninterval = "10ms"\nprograms = ["Main"]\n{bad}\n'
+    return name, shipped()[name][1] + "\n" + "".join(table.format(i) for i in range(n))

@@ -15,11 +15,12 @@ from __future__ import annotations
 
 import pytest
 from hypothesis import given
+from hypothesis import strategies as st
 
 from softplc.runtime.plugin.driver import DriverStatus
 
 from .canopen_frames import answer, events, sdo_plans
-from .canopen_rig import Rig
+from .canopen_rig import LTMR, Rig
 from .support import LogWatch, assert_no_tracebacks, bounded, fuzz, long, short
 
 
@@ -90,11 +91,73 @@ def test_canopen_frames_are_applied_counted_or_dropped(plans, steps):
 def test_long_canopen_frames(tally, shard):
     counts = tally("frames")
 
-    @long("frames", 0.45, shard, per_example=95)
+    @long("frames", 0.4, shard, per_example=95)
     @given(sdo_plans(), events())
     def run(plans, steps):
         frames, outcomes = play((plans, steps))
         counts.inputs += frames
         counts.update({f"canopen {k}": v for k, v in outcomes.items()})
+
+    run()
+
+
+# ------------------------------------------------------------ floods (issue 31)
+# NMT commands to the LTMR (reset node, reset communication, stop, pre-operational)
+# or heartbeats in its name with any state, one every 1-10 ms for seconds: the
+# master booted the node on every frame (999 times in 10 s).
+
+
+@st.composite
+def floods(draw, most_s: int):
+    frame = draw(
+        st.tuples(st.just(0x000), st.sampled_from([0x81, 0x82, 0x02, 0x80]).map(lambda c: bytes([c, LTMR])))
+        | st.tuples(st.just(0x700 + LTMR), st.integers(0, 255).map(lambda b: bytes([b])))
+    )
+    return frame, draw(st.integers(1, 10)), draw(st.integers(2, most_s))
+
+
+def flood(case) -> int:
+    """Frames sent; the boots the master started stay within the limit."""
+    (can_id, data), every_ms, seconds = case
+    configurations = [0]
+    with LogWatch() as watch, bounded("a CANopen flood"):
+        rig = Rig([], answer)
+        try:
+
+            def count(msg) -> None:  # the master configures the LTMR: 1017h first
+                if msg.arbitration_id == 0x600 + LTMR and bytes(msg.data[:4]) == bytes.fromhex("2B 17 10 00"):
+                    configurations[0] += 1
+
+            rig.hostile.add_handler(count)
+            rig.run_ms(500)  # booted
+            for _ in range(seconds * 1000 // every_ms):
+                rig.inject(can_id, data)
+                rig.run_ms(every_ms)
+        finally:
+            rig.close()
+    assert_no_tracebacks(watch, "a CANopen flood")
+    windows = seconds // 10 + 1
+    # BOOT_BURST a window, the timed boot that ends a hold, and the first boot's
+    assert configurations[0] <= 4 * windows + 1, f"{configurations[0]} configurations in {seconds} s"
+    assert len(watch.records) <= 20 + seconds * 20, f"{len(watch.records)} log lines in {seconds} s"
+    return rig.sent
+
+
+@pytest.mark.slow  # whole plants or buses
+@short(4)
+@given(floods(most_s=3))
+def test_floods_boot_a_node_within_the_limit(case):
+    flood(case)
+
+
+@fuzz
+def test_long_canopen_floods(tally, shard):
+    counts = tally("frames")
+
+    @long("frames", 0.05, shard, per_example=3000)
+    @given(floods(most_s=30))
+    def run(case):
+        counts.inputs += flood(case)
+        counts["canopen flood"] += 1
 
     run()

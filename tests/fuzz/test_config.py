@@ -27,6 +27,7 @@ import pytest
 from hypothesis import given
 
 from softplc.runtime.config import ConfigError, PlcConfig, config_from_dict, load_config
+from softplc.runtime.config.errors import SHOWN
 from softplc.runtime.engine.build import build_engine
 from softplc.runtime.engine.scan import EngineError
 from softplc.runtime.engine.tasks import TaskSetupError
@@ -34,7 +35,7 @@ from softplc.runtime.plugin.driver import DriverError
 from softplc.runtime.st.diagnostics import CompileError
 from softplc.runtime.st.faults import STFault
 
-from .configs import CONFIG_DIR, ROOT, mutated_documents, mutated_texts, shipped
+from .configs import CONFIG_DIR, ROOT, huge_texts, mutated_documents, mutated_texts, shipped
 from .support import LogWatch, assert_no_tracebacks, bounded, fuzz, long, short
 
 # The longest error line a mutation may give: a message says what is wrong
@@ -59,6 +60,7 @@ def check_outcome(label: str, load) -> str:
                 assert exc.position is not None or _about_the_file(message), (
                     f"{label}: an error that names no key: {message}"
                 )
+        assert len(str(exc).splitlines()) <= SHOWN + 1, "more than SHOWN errors and the count"
         for line in exc.lines():
             assert line.startswith(label), line
             assert len(line) <= ECHO_LIMIT, f"an error line of {len(line)} characters: {line[:200]}..."
@@ -70,7 +72,9 @@ def check_outcome(label: str, load) -> str:
 
 
 def _about_the_file(message: str) -> bool:
-    return message.startswith(("invalid TOML", "not UTF-8", "no such configuration file", "cannot read", "expected a"))
+    return message.startswith(
+        ("invalid TOML", "not UTF-8", "no such configuration file", "cannot read", "expected a", "tables, arrays or")
+    )
 
 
 @pytest.mark.parametrize("name", sorted(shipped()))
@@ -158,6 +162,12 @@ def test_mutated_files_give_config_errors_or_load(mirror, case):
     mirror.check_text(case)
 
 
+@short(5)
+@given(case=huge_texts(most=2000))
+def test_huge_files_give_a_bounded_message(mirror, case):
+    assert mirror.check_text(case) == "config error"
+
+
 @pytest.mark.slow  # whole plants or buses
 @short(6)
 @given(case=mutated_documents())
@@ -169,7 +179,7 @@ def test_mutated_documents_that_load_build_and_run(mirror, case):
 def test_long_mutated_documents(tally, mirror, shard):
     counts = tally("configs")
 
-    @long("configs", 0.6, shard)
+    @long("configs", 0.59, shard)
     @given(mutated_documents())
     def run(case):
         counts.add(mirror.check_document(case))
@@ -197,5 +207,17 @@ def test_long_mutated_documents_built(tally, mirror, shard):
     @given(mutated_documents())
     def run(case):
         counts.add(mirror.check_document(case, build=True))
+
+    run()
+
+
+@fuzz
+def test_long_huge_files(tally, mirror, shard):
+    counts = tally("configs")
+
+    @long("configs", 0.01, shard)
+    @given(huge_texts(most=10_000))
+    def run(case):
+        counts.add(mirror.check_text(case))
 
     run()

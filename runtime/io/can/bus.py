@@ -37,6 +37,7 @@ from dataclasses import dataclass, field
 import can
 from can.interfaces.virtual import VirtualBus
 
+from ...config.values import cut, got
 from ...plugin.driver import DriverError
 from ..ratelog import RateLimitedLog
 
@@ -59,7 +60,8 @@ class BusSettings:
     options: dict = field(default_factory=dict)
 
     def describe(self) -> str:
-        return f"{self.interface} channel {self.channel!r} at {self.bitrate // 1000} kbit/s"
+        """For the log: the interface and the channel (a long one cut, as a configuration error cuts it)."""
+        return f"{cut(self.interface)} channel {got(self.channel)} at {self.bitrate // 1000} kbit/s"
 
 
 def open_bus(settings: BusSettings) -> can.BusABC:

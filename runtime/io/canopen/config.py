@@ -109,7 +109,14 @@ class CanopenConfig:
 
 # The checks are kept as functions too: _Relations compares the values.
 _master_heartbeat = duration_in("ms", off="no heartbeat")
-_sync_period = duration_in("us", off="no SYNC", most=(0xFFFF_FFFF, "0x1006 holds microseconds in 32 bits"))
+# CiA 301 takes SYNC periods in us; this master sends SYNC from its service
+# thread, which wakes every millisecond: a shorter period is sent no faster
+_sync_period = duration_in(
+    "us",
+    off="no SYNC",
+    most=(0xFFFF_FFFF, "0x1006 holds microseconds in 32 bits"),
+    least=(1_000_000, "1ms", "the master's service runs every millisecond"),
+)
 _timeout_ms = duration_in("ms")
 # manual 001 L964: 0x1017 Producer Heartbeat Time, Unsigned 16, unit 1 ms.
 _node_heartbeat = duration_in("ms", off="no heartbeat", most=(U16_MAX, "0x1017 holds ms in 16 bits"))

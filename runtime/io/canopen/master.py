@@ -434,6 +434,8 @@ class CanopenDriver(Driver):
             self._send(COB_NMT, bytes([NMT_RESET_COMMUNICATION, nid]))
         elif action == "configure":
             self._started_worker.submit_task(lambda: self._configure(node))
+        elif action == "hold":  # booted BOOT_BURST times lately: the next boot waits
+            self._log.warning(("hold", nid), "canopen: node %s (%d): %s", node.cfg.name, nid, node.sup.message)
         elif action == "start":
             for _binding, schedule in node.rpdos:
                 schedule.reset()

@@ -16,6 +16,13 @@ answers with its state and a toggle bit (guard_reply). No good answer for
 guard time x life time factor is a lost node; a reply whose toggle did not
 alternate is no good answer (a reply went missing). A lost node that
 answers again is booted afresh, as one whose heartbeat comes back.
+
+Boots are rate-limited: a node is booted (reset communication, or
+configured after a boot-up it sent unasked) at most BOOT_BURST times in any
+BOOT_WINDOW_NS. A flood of NMT reset-node commands or of bogus heartbeat
+states (anyone on the bus can send them) made the master boot a node 100
+times a second; beyond the limit the node is held LOST until its next boot
+is due, and what it sends meanwhile starts nothing.
 """
 
 from __future__ import annotations
@@ -28,6 +35,9 @@ from .cia301 import STATE_BOOTUP, STATE_NAMES, STATE_OPERATIONAL
 
 #: the emergencies a node keeps for the monitors (Driver.details), newest last
 EMCY_HISTORY = 10
+#: at most BOOT_BURST boots of a node in any BOOT_WINDOW_NS (a flood of resets or bogus heartbeats)
+BOOT_BURST = 3
+BOOT_WINDOW_NS = 10_000_000_000
 
 
 class NodeState(IntEnum):
@@ -78,6 +88,9 @@ class NodeSupervisor:
         self.nmt_state: int | None = None  # last state byte of its heartbeat
         self.deadline_ns: int | None = None  # boot-up wait, heartbeat watch or retry
         self.boots = 0  # boot-ups seen
+        self._booted: deque[int] = deque(maxlen=BOOT_BURST)  # when the latest boots started
+        self.held_until_ns: int | None = None  # boots held off until then (BOOT_BURST reached)
+        self.held_off = 0  # boots the limit held off
         self.emergencies = 0
         self.malformed = 0  # its frames dropped as malformed (an EMCY or heartbeat of the wrong length ...)
         self.last_emcy: Emergency | None = None
@@ -92,12 +105,12 @@ class NodeSupervisor:
         self.version += 1
 
     # ------------------------------------------------------------ events -> actions
-    # Each returns the action the master must take: None, "reset", "configure", "start".
+    # Each returns the action the master must take: None, "reset", "configure", "start",
+    # "hold" (a boot held off: the master logs it).
 
     def tick(self, now_ns: int) -> str | None:
         if self.state == NodeState.UNKNOWN:
-            self._enter(NodeState.BOOTING, now_ns + self.boot_timeout_ns)
-            return "reset"
+            return self._boot(now_ns, timed=True)
         if self.deadline_ns is None or now_ns < self.deadline_ns:
             return None
         if self.state == NodeState.BOOTING:
@@ -112,9 +125,44 @@ class NodeSupervisor:
             )
             self._enter(NodeState.LOST, now_ns + self.retry_ns, lost)
         elif self.state in (NodeState.MISSING, NodeState.LOST, NodeState.CONFIG_ERROR):
-            self._enter(NodeState.BOOTING, now_ns + self.boot_timeout_ns)
-            return "reset"
+            return self._boot(now_ns, timed=True)
         return None
+
+    def _may_boot(self, now_ns: int) -> bool:
+        """Fewer than BOOT_BURST boots in the last BOOT_WINDOW_NS: counts
+        this one; else the node is held off (held_until_ns)."""
+        if len(self._booted) == BOOT_BURST and now_ns < self._booted[0] + BOOT_WINDOW_NS:
+            self.held_off += 1
+            return False
+        self._booted.append(now_ns)
+        self.held_until_ns = None
+        return True
+
+    def _hold(self, now_ns: int, why: str) -> str | None:
+        """Held off: LOST until the next boot is due ("hold" the first time,
+        for the master's log; nothing for what comes meanwhile)."""
+        until = self._booted[0] + BOOT_WINDOW_NS
+        if self.held_until_ns == until and self.state == NodeState.LOST:
+            return None
+        self.held_until_ns = until
+        self._enter(
+            NodeState.LOST,
+            until,
+            f"{why}; booted {BOOT_BURST} times in {BOOT_WINDOW_NS // 1_000_000_000} s (a flood of resets or bogus "
+            f"heartbeats?): the next boot in {(until - now_ns) // 1_000_000} ms",
+        )
+        return "hold"
+
+    def _boot(self, now_ns: int, message: str = "", *, timed: bool = False) -> str | None:
+        """Reset communication (the master sends it), or held off. A timed
+        boot (the first, a retry after the retry time) is paced by its
+        deadline; one a frame asks for counts against BOOT_BURST."""
+        if timed:
+            self.held_until_ns = None
+        elif not self._may_boot(now_ns):
+            return self._hold(now_ns, message or "node heard again")
+        self._enter(NodeState.BOOTING, now_ns + self.boot_timeout_ns, message)
+        return "reset"
 
     def _seen(self, state_byte: int) -> None:
         if state_byte != self.nmt_state:
@@ -126,8 +174,7 @@ class NodeSupervisor:
         if state_byte == STATE_OPERATIONAL:
             return None
         reported = STATE_NAMES.get(state_byte, hex(state_byte))
-        self._enter(NodeState.BOOTING, now_ns + self.boot_timeout_ns, f"node reported {reported}")
-        return "reset"
+        return self._boot(now_ns, f"node reported {reported}")
 
     def heartbeat(self, state_byte: int, now_ns: int) -> str | None:
         state_byte &= 0x7F
@@ -136,6 +183,9 @@ class NodeSupervisor:
             self.boots += 1
             if self.state == NodeState.CONFIGURING:
                 return None  # a second boot-up while configuring: the running writes decide
+            # the answer to our reset communication, or a boot it started by itself (counted)
+            if self.state != NodeState.BOOTING and not self._may_boot(now_ns):
+                return self._hold(now_ns, "node sent a boot-up")
             self._enter(NodeState.CONFIGURING, None)
             return "configure"
         if self.state == NodeState.OPERATIONAL:
@@ -145,8 +195,7 @@ class NodeSupervisor:
                 self.deadline_ns = now_ns + self.heartbeat_timeout_ns
         elif self.state in (NodeState.LOST, NodeState.MISSING):
             # It is back (it never booted again: a cable was cut): boot it afresh.
-            self._enter(NodeState.BOOTING, now_ns + self.boot_timeout_ns)
-            return "reset"
+            return self._boot(now_ns)
         return None
 
     def configured(self, ok: bool, message: str, now_ns: int) -> str | None:
@@ -180,8 +229,7 @@ class NodeSupervisor:
         toggle, state_byte = state_byte & 0x80, state_byte & 0x7F
         self._seen(state_byte)
         if self.state in (NodeState.LOST, NodeState.MISSING):
-            self._enter(NodeState.BOOTING, now_ns + self.boot_timeout_ns)  # it is back: boot it afresh
-            return "reset"
+            return self._boot(now_ns)  # it is back: boot it afresh
         if self.state != NodeState.OPERATIONAL:
             return None
         if state_byte != STATE_OPERATIONAL:

@@ -22,6 +22,7 @@ from ...config.values import (
     choice_int,
     choice_upper,
     duration_in,
+    host_value,
     identifier,
     in_range,
     int_range,
@@ -148,7 +149,7 @@ class _Modbus(Model):
     frame_gap: Annotated[int, PlainValidator(_frame_gap)] | None = Field(
         None, description="a duration such as 2ms (default: 3.5 characters)"
     )
-    host: Annotated[str, nonempty('a host such as "192.168.0.20"')] | None = Field(
+    host: Annotated[str, host_value('a host name or address such as "192.168.0.20"')] | None = Field(
         None, description='a host such as "192.168.0.20"'
     )
     port: Annotated[int, int_range(0, U16_MAX)] | None = Field(None, description="a TCP port such as 502")
@@ -302,6 +303,9 @@ def _channel_address(
             f"{count} {'bits' if bits else 'registers'} from {addr.text} run past the end of the %{addr.area} area",
         )
         return
+    what = f"{count} {'bit' if bits else 'register'}{'s' if count > 1 else ''} from '{addr.text}'"
+    if key == "read_to" and not ctx.writes(at + (key,), addr.area, offset, nbytes, what):
+        return  # another channel or bus writes these bytes
     state.addresses[at + (key,)] = addr
 
 

@@ -71,7 +71,7 @@ def load_users(users: dict, users_file: Path | None) -> dict:
     if users_file is not None:
         try:
             data = tomllib.loads(Path(users_file).read_text(encoding="utf-8"))
-        except (OSError, tomllib.TOMLDecodeError) as exc:
+        except (OSError, ValueError) as exc:  # TOMLDecodeError, UnicodeDecodeError (config/servers.py checks first)
             raise UsersError(f"[opcua] users_file {users_file}: {exc}") from None
         table = data.get("users")
         if not isinstance(table, dict) or not all(isinstance(v, str) for v in table.values()):

@@ -127,10 +127,10 @@ def test_example_canopen():
         ('heartbeat = "1.4ms"', "heartbeat_ms", 1),  # rounded to whole ms
         ('heartbeat = "1.6ms"', "heartbeat_ms", 2),
         ('sync = "2.5ms"', "sync_us", 2500),  # SYNC in microseconds
-        ('sync = "T#100us"', "sync_us", 100),
+        ('sync = "T#1ms"', "sync_us", 1000),
         ("sync = false", "sync_us", 0),
         ('sdo_timeout = "1s"', "sdo_timeout_ms", 1000),
-        ("boot_timeout = 3000", "boot_timeout_ms", 3000),  # a bare number is ms
+        ('boot_timeout = "3000ms"', "boot_timeout_ms", 3000),
         ('retry = "1.5s"', "retry_ms", 1500),
     ],
 )
@@ -149,7 +149,12 @@ def test_master_durations(tmp_path, written, field, value):
         ('heartbeat = "-5ms"', "expected a duration such as 10ms, 1s, T#250ms, or false for no heartbeat (got '-5ms')"),
         ('heartbeat = "0.4ms"', "expected a duration of at least 1ms, or false for no heartbeat (got '0.4ms')"),
         ('sync = "soon"', "expected a duration such as 10ms, 1s, T#250ms, or false for no SYNC (got 'soon')"),
-        ('sync = "0.4us"', "expected a duration of at least 1us, or false for no SYNC (got '0.4us')"),
+        ("sync = 10", "expected a duration with its unit, such as 10ms or 10s (got 10: a number alone has none)"),
+        (
+            'sync = "1us"',
+            "expected a duration of at least 1ms (the master's service runs every millisecond), or false for no "
+            "SYNC (got '1us')",
+        ),
     ],
 )
 def test_master_durations_refused(tmp_path, written, message):
@@ -185,7 +190,7 @@ def test_heartbeat_words_of_the_manual(tmp_path):
 
 
 def test_heartbeat_fields_of_16_bits(tmp_path):
-    n = load(tmp_path, plant("", 'heartbeat = "65535ms"\nheartbeat_timeout = "70s"\nmaster_timeout = 65535\n'))
+    n = load(tmp_path, plant("", 'heartbeat = "65535ms"\nheartbeat_timeout = "70s"\nmaster_timeout = "65535ms"\n'))
     assert (n.canopen.nodes[0].heartbeat_ms, n.canopen.nodes[0].master_timeout_ms) == (65535, 65535)
     assert errors(tmp_path, plant("", 'heartbeat = "65.536s"\nmaster_timeout = "1min"\n')) == [
         (
@@ -394,7 +399,7 @@ def test_pdo_parameters(tmp_path):
                 keys='transmission = 0\ninhibit = "150us"\nevent = "2.5s"\nconfigure = false\n',
             ),
             pdo("tpdo", 512, ("2004:0b", "%IW5"), keys="transmission = 240\n"),
-            pdo("rpdo", 2, ("2008:05", "%QW4"), keys='transmission = 254\ninhibit = "6553.5ms"\nevent = 65535\n'),
+            pdo("rpdo", 2, ("2008:05", "%QW4"), keys='transmission = 254\ninhibit = "6553.5ms"\nevent = "65535ms"\n'),
         ),
     )
     node = cfg.canopen.nodes[0]

@@ -123,6 +123,32 @@ def test_a_node_that_falls_to_pre_operational_is_restarted(plants):
     assert plant.node_diag(40, "Boots") == boots + 1  # reset communication, boot-up, configure, start
 
 
+@pytest.mark.parametrize(
+    ("frame", "what"),
+    [((0x000, bytes([0x81, 40])), "NMT reset-node"), ((0x728, b"\x7f"), "bogus pre-operational heartbeat")],
+)
+def test_a_flood_of_resets_or_bogus_heartbeats_boots_the_node_three_times_in_ten_seconds(plants, caplog, frame, what):
+    """Issue 31: a flood of NMT reset-node commands or bogus heartbeat states
+    made the master reset the node 2,000 times in 10 s (and configure it as
+    often: 13 SDO transfers each)."""
+    plant = plants(WATCH, program="Watch")
+    plant.run_until(lambda: plant.get("Watch.operational"), 200, "node 40 operational")
+    plant.frames.clear()
+    caplog.set_level(logging.INFO, logger="softplc.runtime.io.canopen")
+    for _ in range(2000):  # 10 s: one every 5 ms, from another node of the bus
+        plant.spy.send(*frame)
+        plant.run_ms(5)
+    resets = plant.frames_with(0x000).count(NMT_RESET_COMM_40)
+    configurations = plant.frames_with(0x628).count(bytes.fromhex("2B 17 10 00 64 00 00 00"))  # 1017h := 100 ms
+    assert resets <= 4 and configurations <= 4, (what, resets, configurations)
+    assert plant.master.nodes[40].sup.held_off > 1900
+    held = [r.getMessage() for r in caplog.records if "a flood of resets or bogus heartbeats?" in r.getMessage()]
+    assert 1 <= len(held) <= 4 and held[0].startswith("canopen: node motor (40): ")
+    # the flood over, the node is booted when its hold ends and runs
+    plant.run_until(lambda: plant.get("Watch.operational"), 10_000, "node 40 operational after the flood")
+    assert plant.master.status().ok
+
+
 def test_a_failed_bus_is_reported_and_reopened(plants):
     plant = plants(WATCH, program="Watch")
     plant.run_until(lambda: plant.get("Watch.operational"), 200, "node 40 operational")
@@ -225,6 +251,23 @@ def test_a_node_without_a_heartbeat_consumer_cannot_be_given_a_master_timeout(tm
         r"watch it with node guarding \(guard_time\) instead",
     ):
         build_engine(config_from_dict(data, tmp_path / "plant.toml"), virtual_time=True)
+
+
+def test_an_sdo_value_too_large_for_its_object_names_the_file_and_the_key(tmp_path):
+    """'canopen.node[0].sdo[0]: 999… does not fit' named no file."""
+    from softplc.runtime.config import config_from_dict
+    from softplc.runtime.engine.build import build_engine
+    from softplc.runtime.plugin.driver import DriverError
+
+    from .plant import plant_config
+
+    node = dict(LTMR_NODE, sdo=[{"object": "2007:21", "value": 99_999_999_999}])
+    data = plant_config(tmp_path, WATCH, program="Watch", nodes=[node])
+    with pytest.raises(DriverError) as info:
+        build_engine(config_from_dict(data, tmp_path / "plant.toml"), virtual_time=True)
+    assert (
+        str(info.value) == f"{tmp_path / 'plant.toml'}: canopen.node[0].sdo[0]: 99999999999 does not fit in 2 byte(s)"
+    )
 
 
 # ---------------------------------------------------------------------------- the CAN adapter comes up late

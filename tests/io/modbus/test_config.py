@@ -9,7 +9,7 @@ from softplc.runtime.config import SimConfig, load_config
 from softplc.runtime.io.modbus import ModbusChannelConfig, ModbusConnectionConfig, ModbusUnit
 from softplc.runtime.sim.options import Registers
 
-from ...config.support import EXAMPLES, MS, PLC, ST, addr, error, errors, load
+from ...config.support import EXAMPLES, MS, PLC, ST, addr, error, errors, load, pdo, plant
 from .config_support import READ, RTU, TCP, channel
 
 # ====================================================================== [[modbus]], [[modbus.channel]]
@@ -199,7 +199,7 @@ def test_modbus_settings(tmp_path):
         tmp_path,
         PLC + '[[modbus]]\nname = "Line"\ntransport = "RTU"\ndevice = "/dev/ttyS1"\n'
         'baud = 9600\nparity = "e"\nstop_bits = 2\ndata_bits = 7\nframe_gap = "2ms"\n'
-        'timeout = "T#1s"\nretries = 10\nreconnect = 250\nreconnect_max = "1m"\n'
+        'timeout = "T#1s"\nretries = 10\nreconnect = "250ms"\nreconnect_max = "1m"\n'
         '[[modbus]]\nname = "gw"\ntransport = "Tcp"\nhost = "192.168.0.20"\n'
         "port = 5020\nretries = 0\n",
     )
@@ -232,7 +232,7 @@ def test_modbus_channels(tmp_path):
         + channel(1, 'count = 16\nread_to = "%IB0"\n', unit=2)
         + channel(5, 'write_from = "%QB7"\ntrigger = "edge"\nedge = "%MX1.7"\n')
         + TCP
-        + READ,
+        + READ.replace("%IW200", "%IW300"),  # each input byte has one writer
     )
     assert cfg.modbus == [
         connection(
@@ -296,9 +296,18 @@ def test_modbus_channels(tmp_path):
             "tcp",
             device="",
             key="modbus[1]",
-            channels=[read_channel("gateway_0", "gateway", "modbus[1].channel[0]")],
+            channels=[read_channel("gateway_0", "gateway", "modbus[1].channel[0]", read_to="%IW300")],
         ),
     ]
+
+
+def test_a_tcp_host_is_checked_as_a_host(tmp_path):
+    """A 1 MB host went to the socket: an idna UnicodeError of Python's."""
+    assert error(tmp_path, PLC + TCP + f'host = "{"h" * 1_000_000}"\n') == (
+        "modbus[0].host",
+        f"expected a host name or address such as \"192.168.0.20\" (got '{'h' * 60}…' (1000000 characters))",
+    )
+    assert load(tmp_path, PLC + TCP + 'host = "drive-3.plant"\n').modbus[0].host == "drive-3.plant"
 
 
 def test_modbus_section_shapes(tmp_path):
@@ -379,7 +388,7 @@ def test_modbus_serial_values_refused(tmp_path):
         ("modbus[0].frame_gap", "expected a duration of at most 1000000us (at most 1s) (got '2s')"),
     ]
     assert errors(tmp_path, PLC + TCP + 'port = 70000\nretries = 11\nhost = ""\n') == [
-        ("modbus[0].host", "expected a host such as \"192.168.0.20\" (got '')"),
+        ("modbus[0].host", "expected a host name or address such as \"192.168.0.20\" (got '')"),
         ("modbus[0].port", "expected an integer from 0 to 65535 (got 70000)"),
         ("modbus[0].retries", "expected an integer from 0 to 10 (got 11)"),
     ]
@@ -398,12 +407,13 @@ def test_duplicate_connection_names(tmp_path):
 
 
 def test_duplicate_channel_names(tmp_path):
-    assert error(tmp_path, PLC + RTU + READ + 'name = "monitor"\n' + READ + 'name = "Monitor"\n') == (
+    other = READ.replace("%IW200", "%IW300")
+    assert error(tmp_path, PLC + RTU + READ + 'name = "monitor"\n' + other + 'name = "Monitor"\n') == (
         "modbus[0].channel[1].name",
         "duplicate channel name 'Monitor' (channel[0] has it; names are case-insensitive)",
     )
     # channel names are per connection
-    cfg = load(tmp_path, PLC + RTU + READ + 'name = "monitor"\n' + TCP + READ + 'name = "monitor"\n')
+    cfg = load(tmp_path, PLC + RTU + READ + 'name = "monitor"\n' + TCP + other + 'name = "monitor"\n')
     assert [[c.name for c in m.channels] for m in cfg.modbus] == [["monitor"], ["monitor"]]
 
 
@@ -638,4 +648,69 @@ def test_modbus_addresses_follow_the_profile(tmp_path):
             f"{CH}.edge",
             "%MW30:X3 is Schneider addressing; use the schneider profile (IEC addresses a bit as %MX<byte>.<bit>)",
         ),
+    ]
+
+
+# ====================================================================== one writer per image byte
+
+
+def test_two_channels_reading_into_overlapping_inputs_are_refused(tmp_path):
+    """Two channels wrote %IW200.. and %IW203..: which value a program saw
+    depended on the order of their answers."""
+    text = PLC + RTU + channel(3, 'count = 4\nread_to = "%IW200"\n') + channel(4, 'count = 2\nread_to = "%IW203"\n', 2)
+    assert error(tmp_path, text) == (
+        "modbus[0].channel[1].read_to",
+        "2 registers from '%IW203' overlaps modbus[0].channel[0].read_to (4 registers from '%IW200'): "
+        "each image byte has one writer",
+    )
+
+
+def test_channels_of_two_connections_share_no_input_byte_either(tmp_path):
+    other = '[[modbus]]\nname = "gateway"\ntransport = "tcp"\nhost = "10.0.0.2"\n'
+    text = PLC + RTU + channel(1, 'count = 16\nread_to = "%IB10"\n') + other + channel(3, 'read_to = "%IW5"\n')
+    assert error(tmp_path, text) == (
+        "modbus[1].channel[0].read_to",
+        "1 register from '%IW5' overlaps modbus[0].channel[0].read_to (16 bits from '%IB10'): "
+        "each image byte has one writer",
+    )
+
+
+def test_a_read_into_memory_has_one_writer_too(tmp_path):
+    text = PLC + RTU + channel(3, 'count = 2\nread_to = "%MW0"\n') + channel(3, 'read_to = "%MB3"\n', 2)
+    assert error(tmp_path, text)[0] == "modbus[0].channel[1].read_to"
+
+
+def test_a_read_overlapping_a_tpdo_is_refused(tmp_path):
+    """A Modbus read_to over a TPDO's %IW100 passed; each wrote in turn."""
+    text = plant("", "", pdo("tpdo", 1, ("2004:06", "%IW100"))) + RTU + channel(3, 'count = 8\nread_to = "%IW96"\n')
+    assert error(tmp_path, text) == (
+        "modbus[0].channel[0].read_to",
+        "8 registers from '%IW96' overlaps canopen.node[0].tpdo[0].map[0].address ('%IW100'): "
+        "each image byte has one writer",
+    )
+
+
+def test_a_read_overlapping_a_loopback_target_is_refused(tmp_path):
+    loopback = '[[loopback]]\nfrom = "%QB0"\nto = "%IB10"\nbytes = 4\n'
+    assert error(tmp_path, PLC + loopback + RTU + channel(3, 'read_to = "%IW6"\n')) == (
+        "modbus[0].channel[0].read_to",
+        "1 register from '%IW6' overlaps loopback[0].to ('%IB10', 4 bytes): each image byte has one writer",
+    )
+
+
+def test_adjacent_reads_and_shared_writes_are_fine(tmp_path):
+    cfg = load(
+        tmp_path,
+        plant("", "", pdo("tpdo", 1, ("2004:06", "%IW100")))
+        + RTU
+        + channel(3, 'count = 4\nread_to = "%IW96"\n')  # bytes 192..199, the TPDO's 200..201
+        + channel(3, 'count = 2\nread_to = "%IW101"\n', 2)
+        + channel(16, 'count = 2\nwrite_from = "%QW0"\n')  # two channels may send the same outputs
+        + channel(6, 'write_from = "%QW0"\n', 2),
+    )
+    assert [ch.read_to.text if ch.read_to else ch.write_from.text for ch in cfg.modbus[0].channels] == [
+        "%IW96",
+        "%IW101",
+        "%QW0",
+        "%QW0",
     ]
