@@ -7,7 +7,6 @@ option, 3 a runtime fault happened during the run.
 
 from __future__ import annotations
 
-import json
 import logging
 import signal
 import sys
@@ -112,6 +111,7 @@ def run_plc(
     from .plugin.driver import DriverError
     from .st.diagnostics import CompileError
     from .st.faults import STFault
+    from .st.valuejson import json_text
     from .surfaces.host import SERVERS, SurfaceError, Surfaces
     from .trace.plot import PlotUnavailable, parse_units, plot
 
@@ -224,7 +224,7 @@ def run_plc(
         if store is not None and store.last_error is not None:  # the last write, at the stop, failed
             log.error("retained data NOT saved: %s", store.last_error)
         if final_json:
-            text = json.dumps(engine.dump(), indent=2, ensure_ascii=False) + "\n"
+            text = json_text(engine.dump(), indent=2) + "\n"
             if final_json == "-":
                 sys.stdout.write(text)
             else:

@@ -51,6 +51,8 @@ class Permission:
     force: bool = True
     #: where the patterns come from, for messages: "[opcua] writable in plant.toml"
     where: str = ""
+    #: NaN and infinities may be written into a REAL (the test API); no server's surface may
+    non_finite: bool = False
 
     def allows(self, path: str) -> bool:
         name = path.upper()
@@ -114,13 +116,7 @@ class Access:
         type cannot hold) and carry it out at the start of the next scan; the
         Future's result is the variable's path as declared."""
         place = self.check(op, path, surface)
-        action = self._action(op, place, value)
-        future: Future = Future()
-        if self._now():
-            _run(action, future)
-        else:
-            self.engine.before_tasks.append(lambda _engine: _run(action, future))
-        return future
+        return self._schedule(self._action(op, place, value, finite=self._finite(surface)))
 
     def write(self, path: str, value: Any, *, surface: str, timeout: float = 5.0) -> str:
         """Store value once, at the next scan (the program may change it then)."""
@@ -143,7 +139,7 @@ class Access:
         paths = [path for path, _v in self.engine.forced_values.values()]
         return [self.unforce(p, surface=surface, timeout=timeout) for p in paths]
 
-    def _action(self, op: str, place: Place, value: Any) -> Callable[[], str]:
+    def _action(self, op: str, place: Place, value: Any, *, finite: bool) -> Callable[[], str]:
         engine = self.engine
         key = place.path.upper()
         if op == "unforce":
@@ -153,7 +149,7 @@ class Access:
                 return place.path
 
             return unforce
-        apply = place.writer(value)  # checked here, in the caller's thread
+        apply = place.writer(value, finite=finite)  # checked here, in the caller's thread
         if op == "write":
 
             def write() -> str:
@@ -169,7 +165,20 @@ class Access:
 
         return force
 
+    def _finite(self, surface: str) -> bool:
+        permission = self.permissions.get(surface)
+        return permission is None or not permission.non_finite
+
     # ------------------------------------------------------------ the scan thread
+
+    def _schedule(self, action: Callable[[], Any]) -> Future:
+        """action at the start of the next scan (at once when no other thread scans); its Future."""
+        future: Future = Future()
+        if self._now():
+            _run(action, future)
+        else:
+            self.engine.before_tasks.append(lambda _engine: _run(action, future))
+        return future
 
     def _now(self) -> bool:
         """Change at once: in the scan thread, or when no other thread scans."""
@@ -177,7 +186,7 @@ class Access:
         return scanning is None or scanning == threading.get_ident()
 
 
-def _run(action: Callable[[], str], future: Future) -> None:
+def _run(action: Callable[[], Any], future: Future) -> None:
     try:
         future.set_result(action())
     except Exception as exc:  # a write that faults (a string too long ...): the caller hears it
