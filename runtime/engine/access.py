@@ -96,12 +96,9 @@ class Access:
         if op not in OPERATIONS:
             raise ValueError(f"unknown operation {op!r} (one of {', '.join(OPERATIONS)})")
         place = self.place(path)
-        permission = self.permissions.get(surface)
-        if permission is None or not permission.allows(place.path):
-            where = f" (allow it in {permission.where})" if permission is not None and permission.where else ""
-            raise AccessDenied(f"{place.path}: {surface} may not {op} it{where}")
-        if op == "force" and not permission.force:
-            raise AccessDenied(f"{place.path}: {surface} may write but not force{_where(permission)}")
+        refusal = denied(op, place.path, surface, self.permissions.get(surface))
+        if refusal is not None:
+            raise refusal
         return place
 
     @property
@@ -117,6 +114,15 @@ class Access:
         Future's result is the variable's path as declared."""
         place = self.check(op, path, surface)
         return self._schedule(self._action(op, place, value, finite=self._finite(surface)))
+
+    def submit_many(self, op: str, items: list, *, surface: str) -> Future:
+        """submit for several (path, value) pairs, carried out together at the
+        start of one scan (a Modbus write of two registers holding a REAL: no
+        scan sees half of it). Every one is checked first: one refused, none
+        is made. The Future's result is the list of the paths as declared."""
+        finite = self._finite(surface)
+        actions = [self._action(op, self.check(op, path, surface), value, finite=finite) for path, value in items]
+        return self._schedule(lambda: [action() for action in actions])
 
     def write(self, path: str, value: Any, *, surface: str, timeout: float = 5.0) -> str:
         """Store value once, at the next scan (the program may change it then)."""
@@ -184,6 +190,18 @@ class Access:
         """Change at once: in the scan thread, or when no other thread scans."""
         scanning = self.engine.scan_thread
         return scanning is None or scanning == threading.get_ident()
+
+
+def denied(op: str, path: str, surface: str, permission: Permission | None) -> AccessDenied | None:
+    """Why surface may not do op at path (its path as declared), or None:
+    Access.check's verdict, which a server that knows its paths already
+    (the Modbus server's addresses) asks without a call to the PLC."""
+    if permission is None or not permission.allows(path):
+        where = f" (allow it in {permission.where})" if permission is not None and permission.where else ""
+        return AccessDenied(f"{path}: {surface} may not {op} it{where}")
+    if op == "force" and not permission.force:
+        return AccessDenied(f"{path}: {surface} may write but not force{_where(permission)}")
+    return None
 
 
 def _run(action: Callable[[], Any], future: Future) -> None:

@@ -170,6 +170,12 @@ class RemoteAccess:
         self._link.call("submit", op, path, value, surface, done=done)
         return done
 
+    def submit_many(self, op: str, items: list, *, surface: str) -> Future:
+        """Access.submit_many: the pairs carried out in one scan."""
+        done: Future = Future()
+        self._link.call("submit_many", op, list(items), None, surface, done=done)
+        return done
+
 
 class RemoteSurfaces:
     """What a server module's start(surfaces, config) is given in this process."""
