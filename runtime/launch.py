@@ -7,6 +7,7 @@ option, 3 a runtime fault happened during the run.
 
 from __future__ import annotations
 
+import gc
 import logging
 import signal
 import sys
@@ -20,6 +21,20 @@ PLOT_SUFFIXES = (".png", ".svg", ".pdf")
 TRACE_SUFFIXES = (".csv", ".vcd", *PLOT_SUFFIXES)
 
 log = logging.getLogger("softplc")
+
+
+def settle_heap() -> None:
+    """Before the first scan: collect the garbage of the start-up, then move
+    what is alive (the libraries, the servers, the program) out of the
+    garbage collector's sight (gc.freeze). A full collection holds the
+    interpreter lock, and with it the scan, for as long as it walks every
+    object: 40 to 160 ms for the default plant on a 2-core machine, and the
+    compile of an online change set one off every few changes (a scan 470 ms
+    late). Frozen, that walk covers only what came since. The program alive
+    now stays in memory after an online change replaces it (once: a few MB;
+    the later ones are collected as before)."""
+    gc.collect()
+    gc.freeze()
 
 
 class _EngineTime(logging.Filter):
@@ -182,6 +197,7 @@ def run_plc(
             surfaces.start()
         except SurfaceError as e:
             return _fail(str(e), EXIT_CONFIG)
+        settle_heap()
         try:
             engine.start()
         except STFault as e:
