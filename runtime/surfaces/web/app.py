@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import json
 import re
 from pathlib import Path
 from typing import Any
@@ -47,7 +48,7 @@ from ...config.servers import ServerConfig
 from ...config.values import cut
 from ...engine.access import AccessDenied
 from ...engine.places import PathError
-from ...engine.values import shown
+from ...engine.values import shown, without_lone_surrogates
 from ...io.ratelog import RateLimitedLog
 from ...st import types as T
 from . import tree
@@ -96,8 +97,19 @@ def make_app(surfaces, config: ServerConfig, broadcaster: Broadcaster) -> Guard:
     return guard
 
 
+class _Json(JSONResponse):
+    """A JSON answer whose text holds no lone surrogate: U+FFFD in its place,
+    as the OPC UA server publishes one. A path a client sent ("\\ud800" in
+    its JSON) comes back in the answer's errors, and UTF-8 cannot encode it
+    (Starlette's JSONResponse failed: a 500)."""
+
+    def render(self, content: Any) -> bytes:
+        text = json.dumps(content, ensure_ascii=False, allow_nan=False, separators=(",", ":"))
+        return without_lone_surrogates(text).encode("utf-8")
+
+
 def _error(status: int, message: str) -> JSONResponse:
-    return JSONResponse({"error": cut(message)}, status_code=status)
+    return _Json({"error": cut(message)}, status_code=status)
 
 
 class _EventStream(StreamingResponse):
@@ -129,7 +141,7 @@ class _Api:
         return FileResponse(STATIC / "index.html")
 
     async def info(self, _request: Request) -> Response:
-        return JSONResponse(
+        return _Json(
             {
                 "writable": list(self.config.writable),
                 "period_s": self.config.period_ns / 1e9,
@@ -143,7 +155,7 @@ class _Api:
         path = request.query_params.get("path", "")
         try:
             offset = int(request.query_params.get("offset", "0"))
-            return JSONResponse(tree.children(self.broadcaster.hub.resolver, path, offset))
+            return _Json(tree.children(self.broadcaster.hub.resolver, path, offset))
         except PathError as exc:
             return _error(404, str(exc))
         except ValueError as exc:
@@ -163,7 +175,7 @@ class _Api:
         if not self.watch_rate.take():
             return _error(429, f"more than {WATCH_RATE:g} watches a second: wait and send it again")
         good, errors = self.broadcaster.watch(client, paths)
-        return JSONResponse({"paths": good, "errors": errors})
+        return _Json({"paths": good, "errors": errors})
 
     async def events(self, request: Request) -> Response:
         client = request.query_params.get("client", "")
@@ -218,7 +230,7 @@ class _Api:
             )
         except Exception as exc:  # the scan refused it (a fault while storing): tell the page, keep serving
             return _error(422, f"{path}: {exc}")
-        return JSONResponse({"path": done, "op": op})
+        return _Json({"path": done, "op": op})
 
     @property
     def control(self) -> bool:
@@ -242,7 +254,7 @@ class _Api:
         if not faulted:
             return _error(409, "no task is stopped by a fault")
         self.engine.request_restart()
-        return JSONResponse({"restarting": faulted})
+        return _Json({"restarting": faulted})
 
     async def online_change(self, request: Request) -> Response:
         refused = await self._refused(request, "make an online change")
@@ -258,7 +270,7 @@ class _Api:
             report = await asyncio.to_thread(changer.request, "web page")
         finally:
             self.changing = False
-        return JSONResponse({"applied": report.applied, "summary": report.summary(), "lines": report.lines()})
+        return _Json({"applied": report.applied, "summary": report.summary(), "lines": report.lines()})
 
 
 class _NotForced(Exception):

@@ -173,6 +173,16 @@ def test_a_lone_surrogate_written_through_the_page_is_refused(web_plc):
         assert reply.status_code == 400 and "lone surrogate" in reply.json()["error"]
 
 
+def test_a_path_holding_a_lone_surrogate_is_answered_not_a_500(web_plc):
+    # found by tests/fuzz/test_web_requests.py: the path came back in the answer's errors
+    web = web_plc()
+    headers = {"content-type": "application/json"}
+    reply = web.http.post("/api/watch", content='{"client": "page", "paths": ["a\\ud800"]}', headers=headers)
+    assert reply.status_code == 200 and reply.json()["errors"] == {"a\ufffd": reply.json()["errors"]["a\ufffd"]}
+    reply = web.http.post("/api/write", content='{"path": "\\ud800.x", "value": 1}', headers=headers)
+    assert reply.status_code == 404 and "\ufffd" in reply.json()["error"]
+
+
 def test_a_flood_of_malformed_requests_leaves_a_bounded_number_of_one_line_log_records(web_plc, caplog):
     web = web_plc()
     address = urlsplit(web.url)
