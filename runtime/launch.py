@@ -8,7 +8,7 @@ could not be saved at the stop.
 
 from __future__ import annotations
 
-import json
+import gc
 import logging
 import signal
 import sys
@@ -22,6 +22,20 @@ PLOT_SUFFIXES = (".png", ".svg", ".pdf")
 TRACE_SUFFIXES = (".csv", ".vcd", *PLOT_SUFFIXES)
 
 log = logging.getLogger("softplc")
+
+
+def settle_heap() -> None:
+    """Before the first scan: collect the garbage of the start-up, then move
+    what is alive (the libraries, the servers, the program) out of the
+    garbage collector's sight (gc.freeze). A full collection holds the
+    interpreter lock, and with it the scan, for as long as it walks every
+    object: 40 to 160 ms for the default plant on a 2-core machine, and the
+    compile of an online change set one off every few changes (a scan 470 ms
+    late). Frozen, that walk covers only what came since. The program alive
+    now stays in memory after an online change replaces it (once: a few MB;
+    the later ones are collected as before)."""
+    gc.collect()
+    gc.freeze()
 
 
 class _EngineTime(logging.Filter):
@@ -113,6 +127,7 @@ def run_plc(
     from .plugin.driver import DriverError
     from .st.diagnostics import CompileError
     from .st.faults import STFault
+    from .st.valuejson import json_text
     from .surfaces.host import SERVERS, SurfaceError, Surfaces
     from .trace.plot import PlotUnavailable, parse_units, plot
 
@@ -183,6 +198,7 @@ def run_plc(
             surfaces.start()
         except SurfaceError as e:  # "[opcua] ...": the section of the file that cannot start
             return _fail(f"{path}: {e}", EXIT_CONFIG)
+        settle_heap()
         try:
             engine.start()
         except STFault as e:
@@ -232,7 +248,7 @@ def run_plc(
                 store.errors + store.writes,
             )
         if final_json:
-            text = json.dumps(engine.dump(), indent=2, ensure_ascii=False) + "\n"
+            text = json_text(engine.dump(), indent=2) + "\n"
             if final_json == "-":
                 sys.stdout.write(text)
             else:

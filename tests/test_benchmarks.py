@@ -25,6 +25,7 @@ def test_there_are_benchmarks():
         "bench_loops.py",
         "bench_modbus.py",
         "bench_modbus_server.py",
+        "bench_online_change.py",
         "bench_soak.py",
         "bench_spin.py",
         "bench_surfaces.py",

@@ -411,6 +411,31 @@ def test_a_retain_path_softplc_did_not_write_stops_the_start_untouched(tmp_path)
     assert not (tmp_path / "counter.retain.corrupt").exists()
 
 
+SURROGATE = """
+PROGRAM Main
+VAR RETAIN
+    w : WSTRING[10];
+END_VAR
+w := WCHAR_TO_WSTRING(WORD_TO_WCHAR(16#D800));
+END_PROGRAM
+"""
+
+
+def test_final_json_takes_a_string_holding_a_lone_surrogate(tmp_path):
+    # A program can make one (a WCHAR of code D800h); --final-json exited 4 (UnicodeEncodeError) on
+    # it, and on every later warm start of a retain file holding it. Now: JSON's \ud800 escape.
+    cfg = write_config(
+        tmp_path,
+        '[plc]\nprograms = ["w.st"]\n[retain]\nfile = "w.retain"\n[[task]]\nname = "Main"\n'
+        'interval = "10ms"\nprograms = ["Main"]\n',
+        {"w.st": SURROGATE},
+    )
+    for _run in range(2):
+        result = softplc("run", cfg, "--virtual-time", "--cycles", "2", "--final-json", "-")
+        assert result.returncode == 0, result.stderr
+        assert '"w": "\\ud800"' in result.stdout and json.loads(result.stdout)["Main"]["w"] == "\ud800"
+
+
 # In its second cycle Main enters a loop of 2^31 passes (minutes of work) and
 # has no watchdog: only the signal can end it.
 LONG_LOOP = """

@@ -13,7 +13,8 @@ network. `writable` lists the variables the surface may write and force
     writable = ["Main.Setpoint"]  # read-only unless listed
 
     [modbus_server]
-    port = 5020                   # writable = ["%Q*", "%M*"], unit = 0 (answers any unit id)
+    port = 5020                   # writable = ["%Q*", "%M*"], unit = 0 (answers any unit id),
+                                  # max_connections = 32
 """
 
 from __future__ import annotations
@@ -162,6 +163,7 @@ class _ModbusServer(Model):
     writable: Patterns = Field(("%Q*", "%M*"), description='an array of patterns such as ["%QX*", "%MW*"]')
     period: Period = Field(100_000_000, description=f"a duration such as {DURATION_EXAMPLES}")
     unit: Annotated[int, int_range(0, 255)] = Field(0, description="a unit id 1..255, 0 for any")
+    max_connections: Annotated[int, int_range(1, 1000)] = Field(32, description="an integer 1..1000")
 
 
 class _ServerSection(Section):

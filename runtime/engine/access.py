@@ -51,6 +51,8 @@ class Permission:
     force: bool = True
     #: where the patterns come from, for messages: "[opcua] writable in plant.toml"
     where: str = ""
+    #: NaN and infinities may be written into a REAL (the test API); no server's surface may
+    non_finite: bool = False
 
     def allows(self, path: str) -> bool:
         name = path.upper()
@@ -94,12 +96,9 @@ class Access:
         if op not in OPERATIONS:
             raise ValueError(f"unknown operation {op!r} (one of {', '.join(OPERATIONS)})")
         place = self.place(path)
-        permission = self.permissions.get(surface)
-        if permission is None or not permission.allows(place.path):
-            where = f" (allow it in {permission.where})" if permission is not None and permission.where else ""
-            raise AccessDenied(f"{place.path}: {surface} may not {op} it{where}")
-        if op == "force" and not permission.force:
-            raise AccessDenied(f"{place.path}: {surface} may write but not force{_where(permission)}")
+        refusal = denied(op, place.path, surface, self.permissions.get(surface))
+        if refusal is not None:
+            raise refusal
         return place
 
     @property
@@ -114,13 +113,16 @@ class Access:
         type cannot hold) and carry it out at the start of the next scan; the
         Future's result is the variable's path as declared."""
         place = self.check(op, path, surface)
-        action = self._action(op, place, value)
-        future: Future = Future()
-        if self._now():
-            _run(action, future)
-        else:
-            self.engine.before_tasks.append(lambda _engine: _run(action, future))
-        return future
+        return self._schedule(self._action(op, place, value, finite=self._finite(surface)))
+
+    def submit_many(self, op: str, items: list, *, surface: str) -> Future:
+        """submit for several (path, value) pairs, carried out together at the
+        start of one scan (a Modbus write of two registers holding a REAL: no
+        scan sees half of it). Every one is checked first: one refused, none
+        is made. The Future's result is the list of the paths as declared."""
+        finite = self._finite(surface)
+        actions = [self._action(op, self.check(op, path, surface), value, finite=finite) for path, value in items]
+        return self._schedule(lambda: [action() for action in actions])
 
     def write(self, path: str, value: Any, *, surface: str, timeout: float = 5.0) -> str:
         """Store value once, at the next scan (the program may change it then)."""
@@ -143,7 +145,7 @@ class Access:
         paths = [path for path, _v in self.engine.forced_values.values()]
         return [self.unforce(p, surface=surface, timeout=timeout) for p in paths]
 
-    def _action(self, op: str, place: Place, value: Any) -> Callable[[], str]:
+    def _action(self, op: str, place: Place, value: Any, *, finite: bool) -> Callable[[], str]:
         engine = self.engine
         key = place.path.upper()
         if op == "unforce":
@@ -153,7 +155,7 @@ class Access:
                 return place.path
 
             return unforce
-        apply = place.writer(value)  # checked here, in the caller's thread
+        apply = place.writer(value, finite=finite)  # checked here, in the caller's thread
         if op == "write":
 
             def write() -> str:
@@ -169,7 +171,20 @@ class Access:
 
         return force
 
+    def _finite(self, surface: str) -> bool:
+        permission = self.permissions.get(surface)
+        return permission is None or not permission.non_finite
+
     # ------------------------------------------------------------ the scan thread
+
+    def _schedule(self, action: Callable[[], Any]) -> Future:
+        """action at the start of the next scan (at once when no other thread scans); its Future."""
+        future: Future = Future()
+        if self._now():
+            _run(action, future)
+        else:
+            self.engine.before_tasks.append(lambda _engine: _run(action, future))
+        return future
 
     def _now(self) -> bool:
         """Change at once: in the scan thread, or when no other thread scans."""
@@ -177,7 +192,19 @@ class Access:
         return scanning is None or scanning == threading.get_ident()
 
 
-def _run(action: Callable[[], str], future: Future) -> None:
+def denied(op: str, path: str, surface: str, permission: Permission | None) -> AccessDenied | None:
+    """Why surface may not do op at path (its path as declared), or None:
+    Access.check's verdict, which a server that knows its paths already
+    (the Modbus server's addresses) asks without a call to the PLC."""
+    if permission is None or not permission.allows(path):
+        where = f" (allow it in {permission.where})" if permission is not None and permission.where else ""
+        return AccessDenied(f"{path}: {surface} may not {op} it{where}")
+    if op == "force" and not permission.force:
+        return AccessDenied(f"{path}: {surface} may write but not force{_where(permission)}")
+    return None
+
+
+def _run(action: Callable[[], Any], future: Future) -> None:
     try:
         future.set_result(action())
     except Exception as exc:  # a write that faults (a string too long ...): the caller hears it

@@ -28,6 +28,8 @@ reported member by member.
 
 from __future__ import annotations
 
+import operator
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -88,6 +90,28 @@ class Carry:
         self._refs: list = []  # (path, type, old value, new holder, attribute)
         self._quiet_names = quiet  # UPPER paths carried but not reported (the libraries' globals)
         self._quiet = 0
+        # what depends on the types only, worked out once per type (an array of 1,000 blocks
+        # compares their types once, not 1,000 times): id -> (the type, its value)
+        self._signatures: dict[int, tuple] = {}
+        self._members: dict[int, tuple] = {}
+        self._plans: dict[tuple, tuple] = {}  # (id(old type), id(new type)) -> (the types, their plan)
+
+    def signature(self, t: T.Type) -> str:
+        """type_signature(t), once per type object."""
+        got = self._signatures.get(id(t))
+        if got is None:
+            got = self._signatures[id(t)] = (t, type_signature(t))
+        return got[1]
+
+    def same(self, ro: T.Type, rn: T.Type) -> bool:
+        return ro is rn or self.signature(ro) == self.signature(rn)
+
+    def members_of(self, t: T.Type) -> dict:
+        """members(t), once per type object."""
+        got = self._members.get(id(t))
+        if got is None:
+            got = self._members[id(t)] = (t, members(t))
+        return got[1]
 
     # ------------------------------------------------------------ reporting
 
@@ -130,7 +154,7 @@ class Carry:
     def value(self, path: str, old_t: T.Type, new_t: T.Type, old_value, holder, attr: str) -> None:
         """holder.attr (the new program's) := old_value, by the rules."""
         ro, rn = T.resolve(old_t), T.resolve(new_t)
-        same = type_signature(ro) == type_signature(rn)
+        same = self.same(ro, rn)
         if isinstance(rn, (T.RefType, T.InterfaceType)):
             if same:
                 self._refs.append((path, rn, old_value, holder, attr))
@@ -152,7 +176,13 @@ class Carry:
         when the types are too different (a reset)."""
         if old is None or live is None:
             return False
-        same = type_signature(ro) == type_signature(rn)
+        same = self.same(ro, rn)
+        if same and type(ro) is type(rn):  # the common case: copied by a plan made once per type
+            plan = self.plan(ro, rn)
+            if plan is not None:
+                plan(path, old, live)
+                self._add("kept", path)
+                return True
         if isinstance(live, (rt_sfc.Step, rt_sfc.ActionFlags)):  # SFC flags: X, T and the step's start
             if not same:
                 return False
@@ -163,7 +193,7 @@ class Carry:
             if type(ro) is not type(rn) or ro.name.upper() != rn.name.upper():
                 return False  # another block or struct: a new variable of the same name
             self.moved[id(old)] = live
-            new_members, old_members = members(rn), members(ro)
+            new_members, old_members = self.members_of(rn), self.members_of(ro)
             if not new_members and not old_members:  # a block with no ST declaration of its own
                 if not same:
                     return False
@@ -184,7 +214,7 @@ class Carry:
         if len(ro.dims) != len(rn.dims) or None in ro.dims or None in rn.dims:
             return False
         eo, en = T.resolve(ro.elem), T.resolve(rn.elem)
-        same_elem = type_signature(eo) == type_signature(en)
+        same_elem = self.same(eo, en)
         if isinstance(en, (T.FBType, T.StructType)):
             if type(eo) is not type(en) or eo.name.upper() != en.name.upper():
                 return False
@@ -216,6 +246,104 @@ class Carry:
                 self.into(f"{path}[{i}]", eo, en, o, live[n])
             else:
                 live[n] = o
+
+    # ------------------------------------------------------------ plans: aggregates of the same type
+
+    def plan(self, ro: T.Type, rn: T.Type) -> Callable[[str, Any, Any], None] | None:
+        """copy(path, old, live) for aggregates of two types of the same
+        signature, made once per pair of types: the members' attributes are
+        listed once, the plain ones copied with one attrgetter per object.
+        It does what the rules above do member by member (references last,
+        FB_reinit, an SFC's state), and reports the aggregate as one kept
+        path, as they do. None: no plan (the rules go member by member)."""
+        key = (id(ro), id(rn))
+        got = self._plans.get(key)
+        if got is None:
+            got = self._plans[key] = (ro, rn, self._make_plan(ro, rn))
+        return got[2]
+
+    def _make_plan(self, ro: T.Type, rn: T.Type) -> Callable[[str, Any, Any], None] | None:
+        if rn is rt_sfc.STEP_TYPE or rn is rt_sfc.ACTION_TYPE:
+            return lambda _path, old, live: live._assign(old)
+        if isinstance(ro, T.ArrayType) and isinstance(rn, T.ArrayType):
+            return self._array_plan(ro, rn)
+        if not isinstance(ro, (T.FBType, T.StructType)) or not isinstance(rn, (T.FBType, T.StructType)):
+            return None
+        om, nm = self.members_of(ro), self.members_of(rn)
+        if om.keys() != nm.keys():  # a member constant in one and not in the other
+            return None
+        if not nm:  # a block with no ST declaration of its own
+            return lambda _path, old, live: assign_into(live, old)
+        plain: list = []  # (old attribute, new attribute)
+        deep: list = []  # (name, old attribute, new attribute, plan)
+        refs: list = []  # (name, old attribute, new attribute, type)
+        for key, (name, attr, ty) in nm.items():
+            _oname, oattr, oty = om[key]
+            r, o = T.resolve(ty), T.resolve(oty)
+            if isinstance(r, (T.RefType, T.InterfaceType)):
+                refs.append((name, oattr, attr, r))
+            elif r.is_aggregate:
+                sub = self.plan(o, r)
+                if sub is None:
+                    return None
+                deep.append((name, oattr, attr, sub))
+            else:
+                plain.append((oattr, attr))
+        read = operator.attrgetter(*(o for o, _n in plain)) if plain else None
+        targets = [n for _o, n in plain]
+        block = isinstance(rn, T.FBType)
+
+        def copy(path: str, old: Any, live: Any) -> None:
+            self.moved[id(old)] = live
+            if read is not None:
+                values = read(old)
+                if len(targets) == 1:
+                    setattr(live, targets[0], values)
+                else:
+                    for attr, value in zip(targets, values):
+                        setattr(live, attr, value)
+            for name, oattr, attr, sub in deep:
+                o, n = getattr(old, oattr, None), getattr(live, attr, None)
+                if o is None or n is None:
+                    self._add("reset", (f"{path}.{name}", "not there to carry"))
+                else:
+                    sub(f"{path}.{name}", o, n)
+            for name, oattr, attr, r in refs:
+                self._refs.append((f"{path}.{name}", r, getattr(old, oattr, None), live, attr))
+            if block:
+                self.copied.append(live)
+            self.sfc(path, old, live)
+
+        return copy
+
+    def _array_plan(self, ro: T.ArrayType, rn: T.ArrayType) -> Callable[[str, Any, Any], None] | None:
+        en = T.resolve(rn.elem)
+        if None in rn.dims or isinstance(en, (T.RefType, T.InterfaceType)):
+            return None  # references in arrays are not followed: the rules reset them
+        sub = self.plan(T.resolve(ro.elem), en) if en.is_aggregate else None
+        if en.is_aggregate and sub is None:
+            return None
+        depth = len(rn.dims)
+
+        def rows(path: str, old: list, live: list, level: int) -> None:
+            if level < depth:
+                for o, n in zip(old, live):
+                    rows(path, o, n, level + 1)
+            elif sub is None:
+                live[:] = old
+            else:
+                for o, n in zip(old, live):
+                    sub(path, o, n)
+
+        def copy(path: str, old: list, live: list) -> None:
+            self.moved[id(old)] = live
+            self._quiet += 1  # elements are not listed one by one
+            try:
+                rows(path, old, live, 1)
+            finally:
+                self._quiet -= 1
+
+        return copy
 
     def sfc(self, path: str, old_obj, new_obj) -> None:
         """The action control blocks of an SFC POU's instance, when its network is unchanged."""

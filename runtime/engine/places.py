@@ -17,19 +17,25 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+from ..config.values import cut
 from ..image.address import AddressError, default_type, parse_address
 from ..st import types as T
 from ..st.valuejson import SKIPPED_SECTIONS
-from .values import from_python, to_python
+from .values import from_python, shown, to_python
+
+#: a longer path is refused before it is looked at (no plant has one; a 1 MB path from a
+#: client would take seconds of difflib hints)
+MAX_PATH = 4096
 
 _STEP = re.compile(r"\s*(?:(\.)?\s*([A-Za-z_][A-Za-z0-9_]*)|\[([^\]]*)\])\s*")
 
 
 class PathError(KeyError):
-    """A path that names no variable; the message says which part and what there is."""
+    """A path that names no variable; the message says which part and what
+    there is (a long path in it cut, config/values.py cut)."""
 
     def __str__(self) -> str:
-        return str(self.args[0])
+        return cut(str(self.args[0]))
 
 
 @dataclass
@@ -49,28 +55,29 @@ class Place:
     def read(self) -> Any:
         return to_python(self.type, self.get())
 
-    def writer(self, value: Any) -> Callable[[], None]:
-        """A callable storing value (checked now: ValueError names the path and the type)."""
+    def writer(self, value: Any, *, finite: bool = False) -> Callable[[], None]:
+        """A callable storing value (checked now: ValueError names the path
+        and the type); finite: no NaN or infinity into a REAL (values.py)."""
         r = T.resolve(self.type)
         if self.set is not None:
-            stored = from_python(self.type, value, self.path)
+            stored = from_python(self.type, value, self.path, finite=finite)
             setter = self.set
             return lambda: setter(stored)
         assert self.parts is not None
         parts = self.parts()
         if isinstance(r, T.ArrayType):
             if not isinstance(value, (list, tuple)) or len(value) != len(parts):
-                raise ValueError(f"{self.path} is {r.name}: write a list of {len(parts)} values, not {value!r}")
-            writers = [part.writer(v) for part, v in zip(parts.values(), value)]
+                raise ValueError(f"{self.path} is {r.name}: write a list of {len(parts)} values, not {shown(value)}")
+            writers = [part.writer(v, finite=finite) for part, v in zip(parts.values(), value)]
         else:
             if not isinstance(value, dict):
-                raise ValueError(f"{self.path} is {r.name}: write a dict of its fields, not {value!r}")
+                raise ValueError(f"{self.path} is {r.name}: write a dict of its fields, not {shown(value)}")
             writers = []
             for name, v in value.items():
                 part = parts.get(str(name).upper())
                 if part is None:
-                    raise ValueError(f"{self.path} ({r.name}) has no field {name!r} (it has {_names(parts)})")
-                writers.append(part.writer(v))
+                    raise ValueError(f"{self.path} ({r.name}) has no field {shown(name)} (it has {_names(parts)})")
+                writers.append(part.writer(v, finite=finite))
 
         def write_all() -> None:
             for w in writers:
@@ -111,8 +118,10 @@ class Resolver:
     def place(self, path: str) -> Place:
         if not isinstance(path, str) or not path.strip():
             raise PathError(
-                f"expected a variable path such as 'Main.count' or an address such as '%QX0.0', got {path!r}"
+                f"expected a variable path such as 'Main.count' or an address such as '%QX0.0', got {shown(path)}"
             )
+        if len(path) > MAX_PATH:  # before any search (difflib's hints are quadratic in the length)
+            raise PathError(f"{shown(path)}: longer than any variable's path (at most {MAX_PATH} characters)")
         path = path.strip()
         if path.startswith("%"):
             return self._address(path)

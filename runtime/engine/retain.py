@@ -48,6 +48,7 @@ from typing import Any
 
 from ..st import types as T
 from ..st.valuejson import SKIPPED_SECTIONS
+from .values import lone_surrogate, without_lone_surrogates
 
 RETAIN = "RETAIN"
 PERSISTENT = "PERSISTENT"
@@ -166,10 +167,13 @@ class _BadValue(Exception):
     """A saved value that does not fit its type (a hand-edited file)."""
 
 
-def _check(t: T.Type, data: Any, where: str) -> Any:
+def _check(t: T.Type, data: Any, where: str, repaired: list | None = None) -> Any:
     """The saved data validated against type t (floats made floats); raises
     _BadValue naming the element. Nothing is written here, so a bad value
-    leaves the whole variable untouched."""
+    leaves the whole variable untouched. A string holding a lone surrogate
+    (which an older softplc let a client write) is restored with U+FFFD in
+    its place, the element's path added to repaired: the rest of the text
+    is worth keeping, and no STRING may hold the surrogate."""
     t = T.resolve(t)
     if isinstance(t, T.ElementaryType) and t.is_bool:
         if not isinstance(data, bool):
@@ -194,9 +198,13 @@ def _check(t: T.Type, data: Any, where: str) -> Any:
             raise _BadValue(f"{where}: expected a string, found {_short(data)}")
         if len(data) > t.length:
             raise _BadValue(f"{where}: the string is longer than {t.length} characters")
+        if lone_surrogate(data) is not None:
+            data = without_lone_surrogates(data)
+            if repaired is not None:
+                repaired.append(where)
         return data
     if isinstance(t, T.ArrayType):
-        return _check_array(t.dims, t.elem, data, where)
+        return _check_array(t.dims, t.elem, data, where, repaired)
     if isinstance(t, (T.StructType, T.FBType)):
         if not isinstance(data, dict):
             raise _BadValue(f"{where}: expected an object, found {_short(data)}")
@@ -207,18 +215,18 @@ def _check(t: T.Type, data: Any, where: str) -> Any:
                 continue
             if name.upper() not in by_name:
                 raise _BadValue(f"{where}.{name}: missing")
-            out[name.upper()] = _check(mt, by_name[name.upper()], f"{where}.{name}")
+            out[name.upper()] = _check(mt, by_name[name.upper()], f"{where}.{name}", repaired)
         return out
     raise _BadValue(f"{where}: a {t} cannot be restored")
 
 
-def _check_array(dims: list, elem: T.Type, data: Any, where: str) -> list:
+def _check_array(dims: list, elem: T.Type, data: Any, where: str, repaired: list | None = None) -> list:
     lo, hi = dims[0]
     if not isinstance(data, list) or len(data) != hi - lo + 1:
         raise _BadValue(f"{where}: expected a list of {hi - lo + 1} elements, found {_short(data)}")
     if len(dims) > 1:
-        return [_check_array(dims[1:], elem, row, f"{where}[{lo + i}]") for i, row in enumerate(data)]
-    return [_check(elem, x, f"{where}[{lo + i}]") for i, x in enumerate(data)]
+        return [_check_array(dims[1:], elem, row, f"{where}[{lo + i}]", repaired) for i, row in enumerate(data)]
+    return [_check(elem, x, f"{where}[{lo + i}]", repaired) for i, x in enumerate(data)]
 
 
 def _short(data: Any) -> str:
@@ -380,6 +388,8 @@ class RestoreReport:
     dropped: list  # (path, reason): retained variables that got their initial values in a warm start
     mode: str
     layout_matched: bool
+    #: (path, the strings in it): restored with U+FFFD for a lone surrogate (written by an older softplc)
+    repaired: list = field(default_factory=list)
 
 
 def restore(plan, data: RetainData | None, mode: str) -> RestoreReport:
@@ -411,11 +421,14 @@ def restore(plan, data: RetainData | None, mode: str) -> RestoreReport:
                 (rv.path, f"type changed (saved {_clip(entry.get('type'))}, now {_clip(rv.signature)})")
             )
             continue
+        repaired: list = []
         try:
-            value = _check(rv.type, entry.get("value"), rv.path)
+            value = _check(rv.type, entry.get("value"), rv.path, repaired)
         except _BadValue as exc:
             report.dropped.append((rv.path, f"bad value in the file ({exc})"))
             continue
         _apply(rv.type, rv.holder, rv.attr, value)
         report.restored.append(rv.path)
+        if repaired:
+            report.repaired.append((rv.path, repaired))
     return report

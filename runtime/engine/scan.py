@@ -28,6 +28,7 @@ from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from ..config.values import cut
 from ..image.address import default_type
 from ..image.memory import ProcessImage
 from ..program import ExecContext, Program, TaskState, locate
@@ -289,6 +290,10 @@ class Engine:
             log.info("%s start: %d retained variable(s) restored", report.mode, len(report.restored))
         for path, reason in report.dropped:
             log.warning("%s start: %s initialised: %s", report.mode, path, reason)
+        for path, where in report.repaired:
+            log.warning(
+                "%s start: %s restored, U+FFFD for a lone surrogate: %s", report.mode, path, cut(" ".join(where))
+            )
 
     # ------------------------------------------------------------ running
 

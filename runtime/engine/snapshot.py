@@ -183,12 +183,14 @@ class SnapshotHub:
         watched before). Returns the paths as resolved (canonical spelling);
         PathError names the first path that names no variable."""
         resolved = [self.resolver.place(p) for p in paths]
-        with self._capturing, self._lock:  # after a capture under way: the next one has them
+        with self._lock:  # the new layout is made here, not under the capture's lock: the scan never waits for it
             self._watched[reader] = tuple(p.path for p in resolved)
             places = dict(self._places)
             for place in resolved:
                 places[place.path] = place
             self._set_places(self._prune(places))
+        with self._capturing:  # a capture under way with the old layout ends first: the next one has them
+            pass
         return [p.path for p in resolved]
 
     def unwatch(self, reader: str) -> None:

@@ -10,16 +10,25 @@ dict of variable name -> value.
 
 Writing (``from_python``) is checked: a wrong kind of value or one outside
 the type's range raises ``ValueError`` naming the variable, its ST type and
-what it takes. Nothing is wrapped, truncated or rounded silently.
+what it takes. Nothing is wrapped, truncated or rounded silently. A string
+must fit the declared length and hold no lone surrogate (U+D800..U+DFFF
+alone is no character: no STRING or WSTRING holds one, UTF-8 and UTF-16
+cannot encode it, and an OPC UA or JSON reader would fail on it). A REAL or
+LREAL takes NaN and infinities only when the caller allows them
+(``finite=False``, the test API): every surface of a server writes finite
+numbers only (README "Seeing and changing a running PLC"). The value echoed
+in a message is cut (config/values.py ``got``, ``cut``).
 """
 
 from __future__ import annotations
 
 import math
+import re
 import struct
 from datetime import timedelta
 from typing import Any
 
+from ..config.values import cut, got
 from ..durations import parse_duration_ns
 from ..st import types as T
 from ..st.literals import LiteralError, parse_based, parse_hash_literal
@@ -125,17 +134,40 @@ def type_text(t: T.Type) -> str:
     return r.name
 
 
-def from_python(t: T.Type, value: Any, path: str) -> Any:
+#: a code point of the surrogate range: alone it is no character
+LONE_SURROGATE = re.compile("[\ud800-\udfff]")
+
+
+def lone_surrogate(text: str) -> int | None:
+    """The index of the first lone surrogate in text, or None."""
+    if text.isascii():
+        return None
+    found = LONE_SURROGATE.search(text)
+    return None if found is None else found.start()
+
+
+def without_lone_surrogates(text: str) -> str:
+    """text with each lone surrogate replaced by U+FFFD (as a UTF-16 decoder does)."""
+    return text if lone_surrogate(text) is None else LONE_SURROGATE.sub("\ufffd", text)
+
+
+def shown(value: Any) -> str:
+    """A value as a message echoes it: a long string cut to its first characters and its length."""
+    return got(value) if isinstance(value, str) else cut(repr(value))
+
+
+def from_python(t: T.Type, value: Any, path: str, *, finite: bool = False) -> Any:
     """value, given by a test for the variable at path of ST type t, in the
     form the generated code stores (ints, floats, ms for TIME ...). Raises
-    ValueError naming path, the type and what it takes."""
+    ValueError naming path, the type and what it takes. finite: a REAL
+    takes no NaN or infinity (a server's write)."""
     r = T.resolve(t)
 
     def bad(takes: str) -> ValueError:
-        return ValueError(f"{path} is {type_text(t)}: write {takes}, not {value!r}")
+        return ValueError(cut(f"{path} is {type_text(t)}: write {takes}, not {shown(value)}"))
 
     if isinstance(r, T.ElementaryType):
-        return _elementary_in(r, value, bad)
+        return _elementary_in(r, value, bad, finite)
     if isinstance(r, T.SubrangeType):
         n = _integer(value)
         if n is None or not r.lo <= n <= r.hi:
@@ -148,6 +180,9 @@ def from_python(t: T.Type, value: Any, path: str) -> Any:
             raise bad("a str")
         if len(value) > r.length:
             raise bad(f"a str of at most {r.length} characters")
+        at = lone_surrogate(value)
+        if at is not None:
+            raise bad(f"text (U+{ord(value[at]):04X} at index {at} is a lone surrogate, no character)")
         return value
     raise bad("a value of an elementary type (write arrays and structs element by element or as a list / dict)")
 
@@ -175,7 +210,7 @@ def _integer(value: Any) -> int | None:
     return None
 
 
-def _elementary_in(t: T.ElementaryType, value: Any, bad) -> Any:
+def _elementary_in(t: T.ElementaryType, value: Any, bad, finite: bool = False) -> Any:
     if t.is_bool:
         if isinstance(value, bool) or (isinstance(value, int) and value in (0, 1)):
             return bool(value)
@@ -193,12 +228,18 @@ def _elementary_in(t: T.ElementaryType, value: Any, bad) -> Any:
     if t.is_real:
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise bad("a number")
-        x = float(value)
+        within = f"a number within the {t.name} range (about ±{_REAL_MAX[t.bits]})"
+        try:
+            x = float(value)
+        except OverflowError:  # an int of hundreds of digits
+            raise bad(within) from None
+        if finite and not math.isfinite(x):
+            raise bad(f"a finite number (NaN and infinity are not taken from outside): {within}")
         if t.bits == 32 and math.isfinite(x):
             try:
                 x = struct.unpack("<f", struct.pack("<f", x))[0]
             except OverflowError:
-                raise bad("a number within the REAL range (about ±3.4e38)") from None
+                raise bad(within) from None
         return x
     if t.category == T.DURATION:
         ns = duration_value_ns(value)
@@ -222,6 +263,9 @@ def _elementary_in(t: T.ElementaryType, value: Any, bad) -> Any:
                 return v // t.unit_ns
         raise bad(f"an IEC literal such as {iec_literal(t, 0)!r}")
     raise bad("a value of this type")
+
+
+_REAL_MAX = {32: "3.4e38", 64: "1.8e308"}
 
 
 def duration_value_ns(value: Any) -> int | None:

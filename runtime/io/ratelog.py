@@ -33,6 +33,11 @@ calls made (at a level the logger had enabled).
 
 Thread-safe: a bus logs from its receive thread, its service thread and
 its workers.
+
+``PeerLogFilter`` does the same for a library's loggers (a server's:
+uvicorn, asyncua), as a logging filter on a logger or a handler, and
+writes each record on one line, its exception's type and message in place
+of a traceback.
 """
 
 from __future__ import annotations
@@ -42,6 +47,8 @@ import threading
 import time
 from collections.abc import Callable, Hashable
 from dataclasses import dataclass, field
+
+from ..config.values import cut
 
 #: the default window: one line per key per this much time
 INTERVAL_NS = 10_000_000_000
@@ -184,10 +191,82 @@ class RateLimitedLog:
         return summaries
 
     def _write(self, summaries: list) -> None:
+        for level, msg, args in self._summaries(summaries):
+            self.logger.log(level, msg, *args)
+
+    def _summaries(self, summaries: list) -> list:
+        """(level, format, args) of each summary line due."""
+        out = []
         for over_budget, window in summaries:
             msg, args = window.last
             seconds = self.interval_ns / 1e9
             what = "more messages (over the limit of this log)" if over_budget else "similar messages"
-            self.logger.log(
-                window.level, "suppressed %d %s in %g s; the last: " + msg, window.held, what, seconds, *args
+            out.append(
+                (window.level, "suppressed %d %s in %g s; the last: " + msg, (window.held, what, seconds, *args))
             )
+        return out
+
+    def admit(self, level: int, key: Hashable, msg: str, args: tuple = ()) -> tuple:
+        """For a caller that writes its lines itself (PeerLogFilter): (True if
+        this line may be written, [(level, format, args) of the summaries due])."""
+        now = self.clock()
+        with self._lock:
+            summaries = self._due(now)
+            allowed = self._admit(key, level, msg, args, now)
+        return allowed, self._summaries(summaries)
+
+
+#: a record's attribute: PeerLogFilter let it through already
+_ADMITTED = "softplc_admitted"
+
+
+class PeerLogFilter(logging.Filter):
+    """On a logger or a handler that a peer's requests reach (a server
+    library's: uvicorn, asyncua): every record rate limited as RateLimitedLog
+    limits lines, per logger and format string, and written as one line,
+    its exception's type and message (cut) in place of a traceback. So no
+    client, however it fails, makes the PLC's log grow faster than the
+    budget, nor write a traceback."""
+
+    def __init__(
+        self,
+        clock: Callable[[], int] = monotonic_ns,
+        *,
+        interval_ns: int = INTERVAL_NS,
+        burst: int = 1,
+        budget: int = BUDGET,
+    ) -> None:
+        super().__init__()
+        self.limiter = RateLimitedLog(
+            logging.getLogger(__name__), clock, interval_ns=interval_ns, burst=burst, budget=budget
+        )
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        if getattr(record, _ADMITTED, False):
+            return True
+        text = one_line(record)
+        allowed, summaries = self.limiter.admit(record.levelno, (record.name, str(record.msg)), "%s", (text,))
+        setattr(record, _ADMITTED, True)
+        for level, msg, args in summaries:
+            logger = logging.getLogger(record.name)
+            summary = logger.makeRecord(record.name, level, record.pathname, record.lineno, msg, args, None)
+            setattr(summary, _ADMITTED, True)
+            logger.handle(summary)
+        if not allowed:
+            return False
+        record.msg, record.args = text, None
+        record.exc_info = record.exc_text = record.stack_info = None
+        return True
+
+
+def one_line(record: logging.LogRecord) -> str:
+    """The record's message with its exception's type and message instead of
+    the traceback, on one line, cut (config/values.py cut)."""
+    try:
+        text = record.getMessage()
+    except Exception:  # a library's format and arguments that do not agree
+        text = f"{record.msg!r} {record.args!r}"
+    exc = record.exc_info[1] if record.exc_info else None
+    if exc is not None:
+        text += f": {type(exc).__name__}: {exc}"
+    return cut(" ".join(text.split()))

@@ -33,6 +33,7 @@ calls.
 
 from __future__ import annotations
 
+import json
 import math
 import struct
 from typing import Any
@@ -124,3 +125,15 @@ def _encode_array(ndims: int, elem: T.Type, v: list) -> list:
     if ndims <= 1:
         return [encode_value(elem, item) for item in v]
     return [_encode_array(ndims - 1, elem, row) for row in v]
+
+
+def json_text(data: Any, **options: Any) -> str:
+    """json.dumps(data, ensure_ascii=False, **options) when that is UTF-8
+    text, else (a string holding a lone surrogate, which no UTF-8 writer
+    takes) the same JSON with \\uXXXX escapes: valid JSON all the same."""
+    text = json.dumps(data, ensure_ascii=False, **options)
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError:
+        return json.dumps(data, **options)
+    return text

@@ -23,6 +23,7 @@ from concurrent.futures import Future
 from typing import Any
 
 from ..engine.snapshot import Layout, Snapshot
+from ..io.ratelog import PeerLogFilter
 from .process import FIELDS
 
 #: added to the servers' niceness: they yield the CPU to the scan
@@ -170,6 +171,12 @@ class RemoteAccess:
         self._link.call("submit", op, path, value, surface, done=done)
         return done
 
+    def submit_many(self, op: str, items: list, *, surface: str) -> Future:
+        """Access.submit_many: the pairs carried out in one scan."""
+        done: Future = Future()
+        self._link.call("submit_many", op, list(items), None, surface, done=done)
+        return done
+
 
 class RemoteSurfaces:
     """What a server module's start(surfaces, config) is given in this process."""
@@ -265,8 +272,13 @@ class _ToPlc(logging.Handler):
 
 def _log_to(link: _Link, level: int) -> None:
     """softplc's records from level on, the libraries' (asyncua, pymodbus)
-    warnings and errors: what the PLC's process shows of them."""
+    warnings and errors: what the PLC's process shows of them. What a
+    client drives is in every record here (an OPC UA client's malformed
+    chunks made asyncua write 10,000 tracebacks): each is rate limited and
+    sent as one line, without its traceback (io/ratelog.py PeerLogFilter)."""
     root = logging.getLogger()
-    root.handlers[:] = [_ToPlc(link)]
+    handler = _ToPlc(link)
+    handler.addFilter(PeerLogFilter(burst=3))
+    root.handlers[:] = [handler]
     root.setLevel(logging.WARNING)
     logging.getLogger("softplc").setLevel(level)

@@ -15,7 +15,8 @@ crosses the pipe:
                                                       after the snapshot seq was taken
                      ("stop",)
     servers -> PLC   ("started", urls, errors)   once, after every server tried to listen
-                     ("call", id, name, args)    the hub's and Access's methods, Surfaces.call
+                     ("call", id, name, args)    the hub's and Access's methods (submit,
+                                                 submit_many ...), Surfaces.call
                      ("log", logger, level, message)
 
     process = SurfaceProcess(surfaces, {"opcua": config, ...})
@@ -274,9 +275,12 @@ class SurfaceProcess:
             snap = surfaces.hub.current(*args)
             self.forward(snap)  # there before the reply naming it
             return snap.sequence
-        if name == "submit":
-            op, path, value, surface = args
-            future = surfaces.access.submit(op, path, value, surface=surface)
+        if name in ("submit", "submit_many"):
+            op, what, value, surface = args
+            if name == "submit":
+                future = surfaces.access.submit(op, what, value, surface=surface)
+            else:  # what: the (path, value) pairs
+                future = surfaces.access.submit_many(op, what, surface=surface)
             # answered from a call thread: the scan, which completes the future, never waits on the pipe
             future.add_done_callback(lambda f: self._calls.submit(self._done, call_id, f))
             return None

@@ -74,7 +74,7 @@ class PLC:
         self._generation = engine.generation
         engine.load()
         #: the engine's one write/force API (engine/access.py); a test may change anything
-        self.access = Access(engine, {"test": Permission(("*",))})
+        self.access = Access(engine, {"test": Permission(("*",), non_finite=True)})
         engine.after_tick.append(self._after_tick)
 
     # ------------------------------------------------------------ construction

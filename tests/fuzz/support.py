@@ -11,9 +11,10 @@ Two runs of every property (test_*.py defines both with `short` and `long`):
         pytest -m fuzz --hypothesis-seed=1 -p no:randomly tests/fuzz
 
     The totals are 100,000 ST inputs, 10,000 configurations, 100,000 bus
-    frames and 10,000 imported files, shared among the tests of each area;
-    SOFTPLC_FUZZ_ST, SOFTPLC_FUZZ_CONFIGS, SOFTPLC_FUZZ_FRAMES and
-    SOFTPLC_FUZZ_IMPORTS set other totals. Each long
+    frames, 10,000 imported files and 10,000 server requests, shared among
+    the tests of each area; SOFTPLC_FUZZ_ST, SOFTPLC_FUZZ_CONFIGS,
+    SOFTPLC_FUZZ_FRAMES, SOFTPLC_FUZZ_IMPORTS and SOFTPLC_FUZZ_REQUESTS set
+    other totals. Each long
     test runs in SOFTPLC_FUZZ_SHARDS shards (default 10; conftest.py
     parametrizes `shard`), each a tenth of its inputs from a seed of its own
     (the --hypothesis-seed, the test and the shard), so a long run spreads
@@ -47,6 +48,7 @@ TOTALS = {
     "configs": ("SOFTPLC_FUZZ_CONFIGS", 10_000),
     "frames": ("SOFTPLC_FUZZ_FRAMES", 100_000),
     "imports": ("SOFTPLC_FUZZ_IMPORTS", 10_000),
+    "requests": ("SOFTPLC_FUZZ_REQUESTS", 10_000),
 }
 LIMIT_S = float(os.environ.get("SOFTPLC_FUZZ_LIMIT_S", "20"))
 # A CPU-time limit does not fire because the host is busy (a shard sharing

@@ -10,7 +10,7 @@ import re
 
 import pytest
 
-from softplc.runtime.io.ratelog import RateLimitedLog
+from softplc.runtime.io.ratelog import PeerLogFilter, RateLimitedLog
 
 S = 1_000_000_000
 NAME = "softplc.test.ratelog"
@@ -148,3 +148,32 @@ def test_a_clock_that_starts_again_ends_the_windows(lines):
     limited.flush()
     limited.info(None, "a")
     assert lines() == ["a", "suppressed 1 similar messages in 10 s; the last: a", "a"]
+
+
+def test_a_peer_log_filter_limits_a_librarys_records_and_drops_their_tracebacks(caplog):
+    """As on uvicorn's and asyncua's loggers: 10,000 failures of a client's requests,
+    each with a traceback, are a line per window and the count of the rest."""
+    name = "softplc.test.peer.library"
+    clock = Clock()
+    library = logging.getLogger(name)
+    quiet = PeerLogFilter(clock)
+    library.addFilter(quiet)
+    caplog.set_level(logging.DEBUG, logger=name)
+    try:
+        for i in range(10_000):
+            clock.now = i * 100_000
+            try:
+                raise ValueError("malformed chunk\n" + "x" * 5000)
+            except ValueError:
+                library.exception("Exception raised while parsing message from client %d", i)
+        clock.now = 10 * S
+        library.warning("later")  # the window's summary comes with the next line
+    finally:
+        library.removeFilter(quiet)
+    records = [r for r in caplog.records if r.name == name]
+    text = [r.getMessage() for r in records]
+    assert all(r.exc_info is None and r.exc_text is None and "\n" not in r.getMessage() for r in records)
+    assert text[0].startswith("Exception raised while parsing message from client 0: ValueError: malformed chunk x")
+    assert "(5000 characters)" in text[0] and len(text[0]) < 200  # the value cut, as in config errors
+    assert text[1].startswith("suppressed 9999 similar messages in 10 s; the last: Exception raised")
+    assert text[2:] == ["later"] and 1 + _suppressed(text) == 10_000

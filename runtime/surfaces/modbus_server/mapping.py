@@ -25,20 +25,6 @@ DISCRETE_INPUTS = "discrete inputs"
 INPUT_REGISTERS = "input registers"
 HOLDING_REGISTERS = "holding registers"
 
-#: the Modbus function codes and the table each reaches
-TABLE_OF_FUNCTION = {
-    1: COILS,  # read coils
-    5: COILS,  # write single coil
-    15: COILS,  # write multiple coils
-    2: DISCRETE_INPUTS,
-    4: INPUT_REGISTERS,
-    3: HOLDING_REGISTERS,  # read holding registers
-    6: HOLDING_REGISTERS,  # write single register
-    16: HOLDING_REGISTERS,  # write multiple registers
-    22: HOLDING_REGISTERS,  # mask write register
-    23: HOLDING_REGISTERS,  # read/write multiple registers
-}
-
 #: holding registers 0..1023 are %QW0..%QW1023, from 1024 on %MW0.. (OpenPLC)
 QW_REGISTERS = 1024
 #: Modbus addresses are 16 bits

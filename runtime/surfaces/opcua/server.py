@@ -39,6 +39,12 @@ PATH = "/softplc/"
 #: published variables (array elements count one each) unless [opcua] max_variables says otherwise
 MAX_VARIABLES = 10_000
 START_TIMEOUT_S = 60.0
+#: what one client may make the server hold (asyncua's defaults: 1,000 connections, a message of
+#: 100 MB, 500 parsed messages queued per connection): connections at once, the largest message
+#: taken (a write of a big array fits), messages waiting behind the one in work
+MAX_CONNECTIONS = 32
+MAX_MESSAGE = 16 * 1024 * 1024
+MAX_QUEUED = 50
 
 
 class OpcuaServer:
@@ -129,6 +135,10 @@ class OpcuaServer:
         users = PlcUsers(self.users, self.anonymous, encrypted_only=secure)
         server = Server(user_manager=users)
         await server.init()
+        server.iserver.max_connections = MAX_CONNECTIONS
+        server.iserver.max_pending_messages_per_connection = MAX_QUEUED
+        server.limits.max_message_size = MAX_MESSAGE
+        server.limits.max_chunk_count = -(-MAX_MESSAGE // server.limits.max_recv_buffer)
         server.set_endpoint(f"opc.tcp://{self.config.host}:{self.config.port}{PATH}")
         server.set_server_name("softplc")
         await server.set_application_uri(self.namespace + ":server")

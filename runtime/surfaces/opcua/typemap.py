@@ -29,6 +29,7 @@ from typing import Any, cast
 
 from asyncua import ua
 
+from ...engine.values import without_lone_surrogates
 from ...st import types as T
 from ...st.rtlib import iec_literal
 
@@ -83,8 +84,8 @@ class UaType:
             if st.is_real:
                 return float(raw)
             return int(raw)
-        if isinstance(st, T.StringType):
-            return str(raw)
+        if isinstance(st, T.StringType):  # a lone surrogate no client can decode (engine/values.py)
+            return without_lone_surrogates(str(raw))
         return int(raw)
 
     def from_ua(self, variant: ua.Variant, path: str) -> Any:

@@ -14,8 +14,11 @@ PLC variables, and for PLC variables answers
     BadTimeout            no scan took the write within WRITE_TIMEOUT_S
     BadNodeIdUnknown      the variable is gone (an online change)
 
-Each refusal is logged with the variable and the reason. The server's own
-updates of the nodes go around this service (``write_attribute_value``).
+Each refusal is logged with the variable and the reason (the value in it
+cut; the lines rate limited, child.py). A REAL takes no NaN or infinity
+(BadOutOfRange), a string no lone surrogate: the one write API's rules
+(engine/values.py). The server's own updates of the nodes go around this
+service (``write_attribute_value``).
 """
 
 from __future__ import annotations
@@ -27,6 +30,7 @@ from asyncua import ua
 from asyncua.crypto.permission_rules import User, UserRole
 from asyncua.server.address_space import AttributeService
 
+from ...config.values import cut
 from ...engine.access import Access, AccessDenied
 from ...engine.places import PathError
 from .space import flatten, nest
@@ -58,8 +62,8 @@ class PlcAttributeService(AttributeService):
                 continue
             try:
                 await self._write(var, item.Value, user)
-            except Refused as exc:
-                log.info("opcua: write to %s refused: %s", var.path, exc)
+            except Refused as exc:  # rate limited with every line of this process (child.py)
+                log.info("opcua: write to %s refused: %s", var.path, cut(str(exc)))
                 results.append(ua.StatusCode(ua.UInt32(exc.status)))
                 continue
             self.on_written(var, item.Value)

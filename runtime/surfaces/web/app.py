@@ -15,18 +15,23 @@ change through the one Access with the [web] permissions.
 
 An error is {"error": message} with the status saying what kind: 400 a
 value the type cannot hold, 403 a variable [web] writable does not cover,
-404 no such variable, 409 unforce of a variable not forced, 504 no scan took
-the change in time; restart and online-change answer 403 when [web]
-control is false (a page that watches and writes, and no more). A POST
-must be JSON (Content-Type application/json): a page of another site cannot
-send one without the browser asking first (a CORS preflight, which this
-server does not grant).
+404 no such variable, 409 unforce of a variable not forced (or an online
+change under way), 413 a body over guard.MAX_BODY or a watch of more than
+MAX_WATCHED paths, 429 watches asked faster than WATCH_RATE, 503 more than
+MAX_CLIENTS event streams (or MAX_CONNECTIONS requests at once: uvicorn's
+limit), 504 no scan took the change in time; restart and online-change
+answer 403 when [web] control is false (a page that watches and writes,
+and no more). A value echoed in a message is cut. A POST must be JSON
+(Content-Type application/json): a page of another site cannot send one
+without the browser asking first (a CORS preflight, which this server does
+not grant).
 """
 
 from __future__ import annotations
 
 import asyncio
 import contextlib
+import json
 import re
 from pathlib import Path
 from typing import Any
@@ -40,20 +45,31 @@ from starlette.routing import Mount, Route
 from starlette.staticfiles import StaticFiles
 
 from ...config.servers import ServerConfig
+from ...config.values import cut
 from ...engine.access import AccessDenied
 from ...engine.places import PathError
+from ...engine.values import shown, without_lone_surrogates
+from ...io.ratelog import RateLimitedLog
 from ...st import types as T
 from . import tree
-from .stream import MAX_CLIENTS, Broadcaster
+from .guard import Guard, Rate
+from .stream import MAX_CLIENTS, Broadcaster, log
 
 STATIC = Path(__file__).parent / "static"
 SURFACE = "web"
 #: how long a write, force or unforce waits for the scan that applies it
 APPLY_TIMEOUT_S = 5.0
 _CLIENT = re.compile(r"^[A-Za-z0-9_-]{1,64}$")
+#: paths one watch may name (the page watches what it shows: a level of the tree, 100 elements
+#: of an array at a time, and its trend)
+MAX_WATCHED = 2000
+#: watches a second over all pages (and WATCH_BURST at once): each makes the snapshots'
+#: layout again and asks for a snapshot, and a client posting them in a loop loaded the scan
+WATCH_RATE, WATCH_BURST = 20.0, 40
 
 
-def make_app(surfaces, config: ServerConfig, broadcaster: Broadcaster) -> Starlette:
+def make_app(surfaces, config: ServerConfig, broadcaster: Broadcaster) -> Guard:
+    """The application uvicorn serves: the routes inside the Guard (guard.py)."""
     api = _Api(surfaces, config, broadcaster)
 
     @contextlib.asynccontextmanager
@@ -76,11 +92,39 @@ def make_app(surfaces, config: ServerConfig, broadcaster: Broadcaster) -> Starle
     middleware = []
     if not config.public:  # a page of another site reaching 127.0.0.1 by a name of its own (DNS rebinding)
         middleware.append(Middleware(TrustedHostMiddleware, allowed_hosts=["127.0.0.1", "localhost"]))
-    return Starlette(routes=routes, middleware=middleware, lifespan=lifespan)
+    guard = Guard(Starlette(routes=routes, middleware=middleware, lifespan=lifespan), RateLimitedLog(log, burst=3))
+    guard.api = api  # type: ignore[attr-defined]  # the tests reach its rates and limits
+    return guard
+
+
+class _Json(JSONResponse):
+    """A JSON answer whose text holds no lone surrogate: U+FFFD in its place,
+    as the OPC UA server publishes one. A path a client sent ("\\ud800" in
+    its JSON) comes back in the answer's errors, and UTF-8 cannot encode it
+    (Starlette's JSONResponse failed: a 500)."""
+
+    def render(self, content: Any) -> bytes:
+        text = json.dumps(content, ensure_ascii=False, allow_nan=False, separators=(",", ":"))
+        return without_lone_surrogates(text).encode("utf-8")
 
 
 def _error(status: int, message: str) -> JSONResponse:
-    return JSONResponse({"error": message}, status_code=status)
+    return _Json({"error": cut(message)}, status_code=status)
+
+
+class _EventStream(StreamingResponse):
+    """A page's event stream, whose slot (Broadcaster.open) is given back
+    however the response ends, even before its first byte."""
+
+    def __init__(self, broadcaster: Broadcaster, client: str, token: object, headers: dict) -> None:
+        super().__init__(broadcaster.events(client), media_type="text/event-stream", headers=headers)
+        self.release = lambda: broadcaster.close_stream(client, token)
+
+    async def __call__(self, scope, receive, send) -> None:
+        try:
+            await super().__call__(scope, receive, send)
+        finally:
+            self.release()
 
 
 class _Api:
@@ -90,12 +134,14 @@ class _Api:
         self.broadcaster = broadcaster
         self.engine = surfaces.engine
         self.access = surfaces.access
+        self.watch_rate = Rate(WATCH_RATE, WATCH_BURST)
+        self.changing = False  # an online change asked by a page is under way
 
     async def index(self, _request: Request) -> Response:
         return FileResponse(STATIC / "index.html")
 
     async def info(self, _request: Request) -> Response:
-        return JSONResponse(
+        return _Json(
             {
                 "writable": list(self.config.writable),
                 "period_s": self.config.period_ns / 1e9,
@@ -109,7 +155,7 @@ class _Api:
         path = request.query_params.get("path", "")
         try:
             offset = int(request.query_params.get("offset", "0"))
-            return JSONResponse(tree.children(self.broadcaster.hub.resolver, path, offset))
+            return _Json(tree.children(self.broadcaster.hub.resolver, path, offset))
         except PathError as exc:
             return _error(404, str(exc))
         except ValueError as exc:
@@ -124,17 +170,22 @@ class _Api:
             return _error(400, "client: a name of letters, digits, - and _ (the page makes one)")
         if not isinstance(paths, list) or not all(isinstance(p, str) for p in paths):
             return _error(400, 'paths: a list of variable paths such as ["Motor.state"]')
+        if len(paths) > MAX_WATCHED:
+            return _error(413, f"{len(paths)} paths: a page watches at most {MAX_WATCHED}")
+        if not self.watch_rate.take():
+            return _error(429, f"more than {WATCH_RATE:g} watches a second: wait and send it again")
         good, errors = self.broadcaster.watch(client, paths)
-        return JSONResponse({"paths": good, "errors": errors})
+        return _Json({"paths": good, "errors": errors})
 
     async def events(self, request: Request) -> Response:
         client = request.query_params.get("client", "")
         if not _CLIENT.match(client):
             return _error(400, "client: a name of letters, digits, - and _ (the page makes one)")
-        if self.broadcaster.streams >= MAX_CLIENTS:
+        token = self.broadcaster.open(client)  # the slot taken now: a thousand at once do not all pass
+        if token is None:
             return _error(503, f"{MAX_CLIENTS} pages are open already; close one")
         headers = {"Cache-Control": "no-store", "X-Accel-Buffering": "no"}
-        return StreamingResponse(self.broadcaster.events(client), media_type="text/event-stream", headers=headers)
+        return _EventStream(self.broadcaster, client, token, headers)
 
     async def change(self, request: Request) -> Response:
         op = request.path_params["op"]
@@ -143,14 +194,14 @@ class _Api:
         if op == "online-change":
             return await self.online_change(request)
         if op not in ("write", "force", "unforce"):
-            return _error(404, f"no operation {op!r} (write, force, unforce, restart, online-change)")
+            return _error(404, f"no operation {shown(op)} (write, force, unforce, restart, online-change)")
         body = await _json(request)
         if isinstance(body, Response):
             return body
         path = body.get("path")
         try:
             if not isinstance(path, str):
-                raise PathError(f"path: a variable path such as 'Motor.Auto', not {path!r}")
+                raise PathError(f"path: a variable path such as 'Motor.Auto', not {shown(path)}")
             place = self.access.check(op, path, SURFACE)  # a refusal first, whatever the value
             if op == "unforce":
                 if place.path.upper() not in self.engine.forces:
@@ -179,7 +230,7 @@ class _Api:
             )
         except Exception as exc:  # the scan refused it (a fault while storing): tell the page, keep serving
             return _error(422, f"{path}: {exc}")
-        return JSONResponse({"path": done, "op": op})
+        return _Json({"path": done, "op": op})
 
     @property
     def control(self) -> bool:
@@ -203,7 +254,7 @@ class _Api:
         if not faulted:
             return _error(409, "no task is stopped by a fault")
         self.engine.request_restart()
-        return JSONResponse({"restarting": faulted})
+        return _Json({"restarting": faulted})
 
     async def online_change(self, request: Request) -> Response:
         refused = await self._refused(request, "make an online change")
@@ -212,9 +263,14 @@ class _Api:
         changer = getattr(self.surfaces, "online_change", None)
         if changer is None:
             return _error(404, "online change is off (softplc run --online-change turns it on)")
-        # compiling takes a while: in a worker thread, the event loop keeps serving
-        report = await asyncio.to_thread(changer.request, "web page")
-        return JSONResponse({"applied": report.applied, "summary": report.summary(), "lines": report.lines()})
+        if self.changing:  # one at a time: a compile is work of the PLC's process
+            return _error(409, "an online change is under way: wait for its report")
+        self.changing = True
+        try:  # compiling takes a while: in a worker thread, the event loop keeps serving
+            report = await asyncio.to_thread(changer.request, "web page")
+        finally:
+            self.changing = False
+        return _Json({"applied": report.applied, "summary": report.summary(), "lines": report.lines()})
 
 
 class _NotForced(Exception):
@@ -229,6 +285,8 @@ async def _json(request: Request) -> Any:
         body = await request.json()
     except ValueError as exc:
         return _error(400, f"not JSON: {exc}")
+    except RecursionError:  # [[[[... 100,000 deep
+        return _error(400, "not JSON this server reads: nested too deep")
     if not isinstance(body, dict):
         return _error(400, "send a JSON object")
     return body
@@ -242,5 +300,5 @@ def _typed(place, value: Any) -> Any:
         try:
             return float(value.strip())
         except ValueError:
-            raise ValueError(f"{place.path} is {r.name}: write a number, not {value!r}") from None
+            raise ValueError(f"{place.path} is {r.name}: write a number, not {shown(value)}") from None
     return value

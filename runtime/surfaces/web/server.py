@@ -13,13 +13,16 @@ the process's logging setup.
 
 from __future__ import annotations
 
+import logging
 import socket
 import threading
 import time
+from typing import Any
 
 import uvicorn
 
 from ...config.servers import ServerConfig
+from ...io.ratelog import PeerLogFilter
 from .app import make_app
 from .logbuffer import LogBuffer
 from .stream import Broadcaster
@@ -27,10 +30,16 @@ from .stream import Broadcaster
 #: how long start() waits for uvicorn to serve, and stop() for it to end
 START_TIMEOUT_S = 10.0
 STOP_TIMEOUT_S = 5.0
+#: connections and requests at once (the event streams count): more are answered 503 by uvicorn
+MAX_CONNECTIONS = 64
+#: uvicorn's loggers: what a client's malformed request makes them say is rate limited, one line each
+UVICORN_LOGGERS = ("uvicorn", "uvicorn.error", "uvicorn.access", "uvicorn.asgi")
 
 
 class WebHandle:
-    def __init__(self, server: uvicorn.Server, thread: threading.Thread, url: str, broadcaster, logs) -> None:
+    def __init__(self, server: uvicorn.Server, thread: threading.Thread, url: str, broadcaster, logs, quiet) -> None:
+        self.quiet: logging.Filter = quiet  # on uvicorn's loggers while the server runs
+        self.app: Any = server.config.app  # guard.Guard, its api (app.py _Api) inside
         self.server = server
         self.thread = thread
         self.url = url
@@ -39,6 +48,8 @@ class WebHandle:
 
     def stop(self) -> None:
         self.broadcaster.close()  # the event streams end: nothing keeps the server up
+        for name in UVICORN_LOGGERS:
+            logging.getLogger(name).removeFilter(self.quiet)
         self.server.should_exit = True
         self.thread.join(STOP_TIMEOUT_S)
         if self.thread.is_alive():  # a request that will not end: stop waiting for it
@@ -64,8 +75,13 @@ def start(surfaces, config: ServerConfig) -> WebHandle:
             log_level="warning",
             access_log=False,
             timeout_graceful_shutdown=2,
+            limit_concurrency=MAX_CONNECTIONS,
+            backlog=MAX_CONNECTIONS,
         )
     )
+    quiet = PeerLogFilter()
+    for name in UVICORN_LOGGERS:
+        logging.getLogger(name).addFilter(quiet)
     thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, name="softplc-web", daemon=True)
     logs.attach()
     thread.start()
@@ -75,12 +91,14 @@ def start(surfaces, config: ServerConfig) -> WebHandle:
             server.should_exit = True
             thread.join(STOP_TIMEOUT_S)
             logs.detach()
+            for name in UVICORN_LOGGERS:
+                logging.getLogger(name).removeFilter(quiet)
             sock.close()
             raise OSError(f"the web server did not start within {START_TIMEOUT_S:g} s")
         time.sleep(0.01)
     port = sock.getsockname()[1]
     host = f"[{config.host}]" if ":" in config.host else config.host
-    return WebHandle(server, thread, f"http://{host}:{port}/", broadcaster, logs)
+    return WebHandle(server, thread, f"http://{host}:{port}/", broadcaster, logs, quiet)
 
 
 def _bind(host: str, port: int) -> socket.socket:
@@ -90,7 +108,7 @@ def _bind(host: str, port: int) -> socket.socket:
     try:
         sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
         sock.bind(address)
-        sock.listen(64)
+        sock.listen(MAX_CONNECTIONS)
         sock.setblocking(False)
     except OSError:
         sock.close()

@@ -13,7 +13,13 @@ event loop never blocks on the engine, and a slow page only slows its own
 stream.
 
 Each page has a client id; ``Broadcaster.watch(client, paths)`` sets its
-watched paths (through ``hub.watch``) and its event stream sends:
+watched paths (through ``hub.watch``). What the server keeps per page is
+bounded: at most MAX_CLIENTS event streams (a slot is taken when the
+request comes, so a thousand at once cannot all pass the check), and a
+page that watched without opening its stream is forgotten after
+PENDING_S, or sooner when more than MAX_PENDING such pages wait (the
+oldest first): a client that posts watches under new ids and never reads
+leaves nothing behind. Its event stream sends:
 
     event: state
     data: {"sequence", "cycle", "time_ns", "generation", "outputs_safe",
@@ -32,6 +38,7 @@ import time
 from collections.abc import AsyncIterator
 from typing import Any
 
+from ...config.values import LONG, got
 from ...engine.snapshot import Snapshot, SnapshotHub
 from .logbuffer import LogBuffer
 
@@ -43,6 +50,9 @@ KEEPALIVE_S = 10.0
 FAULTS_SHOWN = 20
 #: event streams at once: more are refused (503) rather than load the PLC
 MAX_CLIENTS = 20
+#: pages that watched but have no stream open: at most this many, each kept this long
+MAX_PENDING = 20
+PENDING_S = 30.0
 
 
 class Broadcaster:
@@ -61,6 +71,7 @@ class Broadcaster:
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
         self._since: dict[str, int] = {}  # client id -> the last snapshot taken before its watch
+        self._pending: dict[str, float] = {}  # client id without a stream -> when it watched (oldest first)
         self._common: tuple = (0, "")  # (sequence, the JSON every page gets of that snapshot)
 
     # ------------------------------------------------------------ lifecycle (the event loop)
@@ -159,7 +170,13 @@ class Broadcaster:
             try:
                 good.append(resolver.place(path).path)
             except (KeyError, ValueError) as exc:  # PathError is a KeyError
-                errors[path] = str(exc)
+                errors[path if len(path) <= LONG else got(path)] = str(exc)  # a long path as a message cuts it
+        self._forget_pending(time.monotonic())
+        if client not in self._stream_of:  # its stream is to come: kept a while
+            self._pending.pop(client, None)
+            self._pending[client] = time.monotonic()
+            while len(self._pending) > MAX_PENDING:
+                self._forget(next(iter(self._pending)))
         self.hub.watch(_reader(client), good)
         latest = self.hub.latest
         self._since[client] = latest.sequence if latest is not None else 0  # the next one has them
@@ -167,36 +184,56 @@ class Broadcaster:
         self.clients[client] = tuple(good)
         return good, errors
 
-    async def events(self, client: str) -> AsyncIterator[str]:
-        """The event stream of one page, until it goes or the server stops."""
+    def _forget_pending(self, now: float) -> None:
+        for client, since in list(self._pending.items()):
+            if now - since > PENDING_S:
+                self._forget(client)
+
+    def _forget(self, client: str) -> None:
+        """Nothing kept of client any more."""
+        self._pending.pop(client, None)
+        self.clients.pop(client, None)
+        self._since.pop(client, None)
+        self.hub.unwatch(_reader(client))
+
+    # ------------------------------------------------------------ event streams (the event loop)
+
+    def open(self, client: str) -> object | None:
+        """Take a stream's slot for client when the request comes: its token,
+        None when MAX_CLIENTS streams are open. close(client, token) gives it back."""
+        if self.streams >= MAX_CLIENTS:
+            return None
         self.streams += 1
         self._wanted.set()
+        self._pending.pop(client, None)
         token = self._stream_of[client] = object()
+        return token
+
+    def close_stream(self, client: str, token: object) -> None:
+        self.streams -= 1
+        if self.streams <= 0:
+            self._wanted.clear()
+        if self._stream_of.get(client) is token:  # not when the page reconnected meanwhile
+            del self._stream_of[client]
+            self._forget(client)
+
+    async def events(self, client: str) -> AsyncIterator[str]:
+        """The event stream of one page (its slot taken by open()), until it goes or the server stops."""
         sent = 0
         logged = 0
-        try:
-            yield "retry: 2000\n\n"
-            while not self.closing:
-                snap = await self.next_snapshot(max(sent, self._since.get(client, 0)))
-                if snap is None:
-                    if self.closing:
-                        break
-                    yield ": keep-alive\n\n"
-                    continue
-                sent = snap.sequence
-                records, logged = self.logs.since(logged)
-                values, numbers = watched_payload(snap, self.clients.get(client, ()))
-                tail = _dumps({"values": values, "numbers": numbers, "log": records})
-                yield "event: state\ndata: " + self._common_json(snap) + "," + tail[1:] + "\n\n"
-        finally:
-            self.streams -= 1
-            if self.streams <= 0:
-                self._wanted.clear()
-            if self._stream_of.get(client) is token:  # not when the page reconnected meanwhile
-                del self._stream_of[client]
-                self.clients.pop(client, None)
-                self._since.pop(client, None)
-                self.hub.unwatch(_reader(client))
+        yield "retry: 2000\n\n"
+        while not self.closing:
+            snap = await self.next_snapshot(max(sent, self._since.get(client, 0)))
+            if snap is None:
+                if self.closing:
+                    break
+                yield ": keep-alive\n\n"
+                continue
+            sent = snap.sequence
+            records, logged = self.logs.since(logged)
+            values, numbers = watched_payload(snap, self.clients.get(client, ()))
+            tail = _dumps({"values": values, "numbers": numbers, "log": records})
+            yield "event: state\ndata: " + self._common_json(snap) + "," + tail[1:] + "\n\n"
 
     def _common_json(self, snap: Snapshot) -> str:
         """common_payload(snap) as JSON without its closing brace, made once per snapshot."""

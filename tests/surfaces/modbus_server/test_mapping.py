@@ -63,8 +63,11 @@ def test_an_address_past_a_table_names_the_table_and_its_range():
 
 
 def test_the_unit_key_defaults_to_any_and_takes_a_modbus_unit_id(tmp_path):
-    assert load(tmp_path, PLC + "[modbus_server]\n").sections["modbus_server"].options == {"unit": 0}
-    assert load(tmp_path, PLC + "[modbus_server]\nunit = 7\n").sections["modbus_server"].options == {"unit": 7}
+    assert load(tmp_path, PLC + "[modbus_server]\n").sections["modbus_server"].options == {
+        "unit": 0,
+        "max_connections": 32,
+    }
+    assert load(tmp_path, PLC + "[modbus_server]\nunit = 7\n").sections["modbus_server"].options["unit"] == 7
     assert error(tmp_path, PLC + "[modbus_server]\nunit = 300\n") == (
         "modbus_server.unit",
         "expected an integer from 0 to 255 (got 300)",

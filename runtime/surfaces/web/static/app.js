@@ -138,6 +138,7 @@ function scheduleWatch() {
 async function sendWatch() {
   const paths = [...new Set([...visibleLeaves(), ...trend.keys()])];
   const r = await api("POST", "/api/watch", { client, paths });
+  if (r.status === 429) setTimeout(scheduleWatch, 1000); // the server's rate of watches: again later
   if (r.ok && Object.keys(r.data.errors).length) message(Object.values(r.data.errors).join("\n"), "error");
 }
 
