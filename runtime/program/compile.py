@@ -373,19 +373,7 @@ def compile_files(
     built = None if diags.has_errors else _back_end(checked, prof, diags, _first_position(paths, texts))
     if built is None:
         raise CompileError(diags.sorted(), sources)
-    gen, code, filename = built
-    user_pous = {d.name: d.kind for sf in user for d in sf.decls if isinstance(d, A.POU)}
-    return Program(
-        prof,
-        checked,
-        gen,
-        code,
-        filename,
-        [d for d in diags.sorted() if not d.is_error],
-        sources,
-        user_pous,
-        tuple(lib.functions for lib in libraries if lib.functions),
-    )
+    return _program(prof, checked, built, diags, sources, user, libraries)
 
 
 def build_parsed(
@@ -412,6 +400,12 @@ def build_parsed(
     built = _back_end(checked, prof, diags, A.Pos(user[0].path if user else "<input>", 1, 1))
     if built is None:
         return None
+    return _program(prof, checked, built, diags, sources, user, libraries)
+
+
+def _program(prof: Profile, checked, built: tuple, diags: DiagnosticBag, sources, user: list, libraries: tuple):
+    """The Program of a checked and generated program (its warnings, the
+    user's POUs by kind, the libraries' Python functions)."""
     gen, code, filename = built
     user_pous = {d.name: d.kind for sf in user for d in sf.decls if isinstance(d, A.POU)}
     return Program(
