@@ -80,6 +80,14 @@ SHIPPED: tuple[LibrarySpec, ...] = (
     ),
     LibrarySpec("Util", "softplc.fblocks.libs.util", tools=_CODESYS, profile="codesys"),
     LibrarySpec(
+        "StringUtils",
+        "softplc.fblocks.libs.stringutils",
+        tools=_CODESYS,
+        profile="codesys",
+        namespaces=("Stu",),
+        functions="softplc.fblocks.libs.stringutils.functions",
+    ),
+    LibrarySpec(
         "CAA Types",
         "softplc.fblocks.libs.caa_types",
         tools=_CODESYS,
