@@ -144,6 +144,14 @@ SHIPPED: tuple[LibrarySpec, ...] = (
             ("Tc2_MC2", "its axes are TwinCAT NC's (a command fails with ErrorID 16#701)"),
         )
     ),
+    LibrarySpec(
+        "Tc3_EventLogger",
+        "softplc.fblocks.libs.tc3_eventlogger",
+        tools=_TWINCAT,
+        profile="twincat",
+        requires=("Tc2_System",),
+        unavailable="it needs TwinCAT's event logger (a call returns the HRESULT 16#98110701)",
+    ),
     # ---------------------------------------------------------------- TcUnit
     # TcUnit (tcunit.org), the unit-test framework of TwinCAT: its API, run by `softplc test`
     LibrarySpec(
