@@ -80,6 +80,14 @@ SHIPPED: tuple[LibrarySpec, ...] = (
     ),
     LibrarySpec("Util", "softplc.fblocks.libs.util", tools=_CODESYS, profile="codesys"),
     LibrarySpec(
+        "StringUtils",
+        "softplc.fblocks.libs.stringutils",
+        tools=_CODESYS,
+        profile="codesys",
+        namespaces=("Stu",),
+        functions="softplc.fblocks.libs.stringutils.functions",
+    ),
+    LibrarySpec(
         "CAA Types",
         "softplc.fblocks.libs.caa_types",
         tools=_CODESYS,
@@ -135,6 +143,14 @@ SHIPPED: tuple[LibrarySpec, ...] = (
             ("Tc2_SerialCom", "its serial lines are TwinCAT's (ErrorID COMERROR_MODENOTSUPPORTED)"),
             ("Tc2_MC2", "its axes are TwinCAT NC's (a command fails with ErrorID 16#701)"),
         )
+    ),
+    LibrarySpec(
+        "Tc3_EventLogger",
+        "softplc.fblocks.libs.tc3_eventlogger",
+        tools=_TWINCAT,
+        profile="twincat",
+        requires=("Tc2_System",),
+        unavailable="it needs TwinCAT's event logger (a call returns the HRESULT 16#98110701)",
     ),
     # ---------------------------------------------------------------- TcUnit
     # TcUnit (tcunit.org), the unit-test framework of TwinCAT: its API, run by `softplc test`

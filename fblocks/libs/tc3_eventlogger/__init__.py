@@ -1,0 +1,1 @@
+"""Beckhoff's Tc3_EventLogger, declared: see its ST files."""
