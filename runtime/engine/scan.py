@@ -21,7 +21,6 @@ of finishing it, and that tick hands the drivers the safe output values.
 
 from __future__ import annotations
 
-import gc
 import logging
 import threading
 import time
@@ -39,6 +38,7 @@ from ..st.faults import STFault, fault_from_exception
 from ..st.valuejson import encode_instance
 from . import retain as R
 from .clock import VirtualClock
+from .cputime import COLLECTOR as _COLLECTOR
 from .diag import DiagVariable
 from .retain_file import ForeignRetainFile
 from .stats import TaskStats
@@ -51,34 +51,6 @@ START_MODES = ("warm", "cold")
 
 class EngineError(Exception):
     """The engine cannot start: the message says where and what to change."""
-
-
-class _CollectorTime:
-    """CPU time the garbage collector has taken (any thread, ns). In virtual
-    time the watchdog judges the program's own CPU time: a full collection
-    of a large heap (a test process that has run thousands of tests) can
-    take half a second, and is no fault of the program."""
-
-    def __init__(self) -> None:
-        self.total_ns = 0
-        self._start_ns = 0
-        gc.callbacks.append(self._phase)
-
-    def _phase(self, phase: str, _info: dict) -> None:
-        if phase == "start":
-            self._start_ns = time.thread_time_ns()
-        else:
-            self.total_ns += max(0, time.thread_time_ns() - self._start_ns)
-
-    def cpu_ns(self) -> int:
-        """This thread's CPU time less the collector's."""
-        return time.thread_time_ns() - self.total_ns
-
-    def cpu_s(self) -> float:
-        return self.cpu_ns() * 1e-9
-
-
-_COLLECTOR = _CollectorTime()
 
 
 @dataclass
