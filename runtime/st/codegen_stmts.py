@@ -256,7 +256,8 @@ class StmtGen(CodeGenBase):
             self.indent -= 1
             return
         if s.op == "REF=":
-            self.emit_store(s.target, self.bind_code(s.value), s.target.ty, None, trusted=True, bind=True)
+            bound = self.cut_ref(self.bind_code(s.value), s.value.ty, C.ref_target(s.target.ty) or s.target.ty)
+            self.emit_store(s.target, bound, s.target.ty, None, trusted=True, bind=True)
             return
         if s.op == "?=":  # the assignment attempt: the instance, or NULL (codegen_oop.py)
             self.emit_store(s.target, self._query_code(s.value, s.target.ty), s.target.ty, None, trusted=True)
@@ -275,7 +276,7 @@ class StmtGen(CodeGenBase):
             return py_literal(C.const_as(e.const, src, dst))
         step = C.store_step(src, dst, e)
         if step == C.KEEP:
-            return code
+            return self.cut_ref(code, C.ref_target(src), C.ref_target(dst))  # POINTER TO STRING[2] into TO STRING[80]
         if step == C.TO_NULL:
             return "None"
         if step == C.TO_FIRST_ELEMENT:
