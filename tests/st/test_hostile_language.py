@@ -11,6 +11,8 @@ import sys
 
 import pytest
 
+from .conftest import run_st
+
 
 def softplc(*args):
     env = dict(os.environ, PYTHONIOENCODING="utf-8")
@@ -65,3 +67,47 @@ def test_a_surrogate_made_at_run_time_is_printed_as_its_json_escape(tmp_path):
     assert proc.returncode == 0
     assert '"w": "\\ud800"' in proc.stdout
     assert json.loads(proc.stdout)["w"] == "\ud800"
+
+
+# ---------------------------------------------------------------- types nested deeply
+
+
+def _nested_types(n: int, reverse: bool = False, arrays: bool = False) -> str:
+    if arrays:
+        types = ["TYPE T0 : ARRAY[1..2] OF INT; END_TYPE"]
+        types += [f"TYPE T{i} : ARRAY[1..1] OF T{i - 1}; END_TYPE" for i in range(1, n)]
+    else:
+        types = ["TYPE T0 : STRUCT x : INT; END_STRUCT END_TYPE"]
+        types += [f"TYPE T{i} : STRUCT a : T{i - 1}; END_STRUCT END_TYPE" for i in range(1, n)]
+    if reverse:
+        types.reverse()
+    return "\n".join(types) + f"\nPROGRAM Main\nVAR v : T{n - 1}; END_VAR\nEND_PROGRAM\n"
+
+
+@pytest.mark.parametrize(("reverse", "arrays"), [(False, False), (True, False), (False, True)])
+def test_600_nested_types_are_one_e006_at_the_first_too_deep(tmp_path, reverse, arrays):
+    path = tmp_path / "nest.st"
+    path.write_text(_nested_types(600, reverse, arrays))
+    proc = softplc("check", path)
+    no_traceback(proc)
+    assert proc.returncode == 1
+    line = 500 if reverse else 101  # T100, the first of 101 levels
+    assert proc.stderr.count("error E006") == 1
+    assert f"nest.st:{line}:6: error E006: type 'T100' is nested too deeply" in proc.stderr
+
+
+def test_structs_100_deep_are_built_copied_and_reached():
+    src = _nested_types(100, reverse=True).replace("v : T99;", "v, w : T99;")
+    path = "v" + ".a" * 99 + ".x"
+    src = src.replace("END_VAR\n", f"END_VAR\n{path} := 7;\nw := v;\n")
+    assert run_st(src, entry="Main").get("w" + ".a" * 99 + ".x") == 7
+
+
+def test_arrays_100_deep_are_built_and_copied():
+    src = _nested_types(100, arrays=True).replace("v : T99;", "v, w : T99;")
+    index = "[1]" * 99
+    src = src.replace("END_VAR\n", f"END_VAR\nv{index}[2] := 7;\nw := v;\n")
+    w = run_st(src, entry="Main").get("w")
+    for _ in range(99):
+        (w,) = w
+    assert w == [0, 7]
