@@ -58,7 +58,7 @@ def bench_strings(cycles: int) -> None:
 
 
 def case_source(n: int, duplicate: bool = False) -> str:
-    labels = "\n".join(f"  {0 if duplicate else k}: x := {k % 100};" for k in range(n))
+    labels = "\n".join(f"{0 if duplicate else k}: x := {k % 10};" for k in range(n))  # 60,000 within 1 MiB
     return f"PROGRAM main\nVAR k, x : DINT; END_VAR\nCASE k OF\n{labels}\nEND_CASE;\nEND_PROGRAM\n"
 
 

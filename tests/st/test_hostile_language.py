@@ -111,3 +111,45 @@ def test_arrays_100_deep_are_built_and_copied():
     for _ in range(99):
         (w,) = w
     assert w == [0, 7]
+
+
+# ---------------------------------------------------------------- a CASE of many branches
+
+
+_SELECTORS = (0, 1, 2, 3, 4, 29_998, 29_999, 30_000, 30_099, 30_100, -10, -50, -51, -9)
+
+
+def _big_case(n: int) -> str:
+    labels = "\n".join(f"{k * 3}, {k * 3 + 1}: x := {k};" for k in range(n))  # 3k+2 goes to ELSE
+    sels = ", ".join(map(str, _SELECTORS))
+    return f"""PROGRAM Main
+VAR sels : ARRAY[0..13] OF DINT := [{sels}]; got : ARRAY[0..13] OF DINT; i : INT; x : DINT; END_VAR
+FOR i := 0 TO 13 DO
+CASE sels[i] OF
+{labels}
+{n * 3}..{n * 3 + 99}, -50..-10: x := -1;
+ELSE
+  x := -2;
+END_CASE;
+got[i] := x;
+END_FOR;
+END_PROGRAM
+"""
+
+
+def test_a_case_of_10000_branches_checks_and_takes_the_right_branch():
+    """Checked in n log n (LabelSet; it was pairwise, 8 s) and compiled to
+    a table and a tree of ifs (an elif chain of 10,000 was E006)."""
+    got = run_st(_big_case(10_000), entry="Main").get("got")
+    assert got == [0, 0, -2, 1, 1, 9_999, -2, -1, -1, -2, -1, -1, -2, -2]
+
+
+def test_duplicate_labels_of_a_big_case_are_reported_against_the_first(tmp_path):
+    labels = "\n".join(f"{k % 100}: x := {k};" for k in range(2_000))
+    path = tmp_path / "dup.st"
+    path.write_text(f"PROGRAM Main\nVAR sel, x : DINT; END_VAR\nCASE sel OF\n{labels}\nEND_CASE;\nEND_PROGRAM\n")
+    proc = softplc("check", path)
+    no_traceback(proc)
+    assert proc.returncode == 1
+    assert "dup.st:104:1: error E061: CASE label overlaps an earlier one" in proc.stderr
+    assert f"the earlier label is at {path}:4:1" in proc.stderr
