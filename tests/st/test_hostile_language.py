@@ -153,3 +153,21 @@ def test_duplicate_labels_of_a_big_case_are_reported_against_the_first(tmp_path)
     assert proc.returncode == 1
     assert "dup.st:104:1: error E061: CASE label overlaps an earlier one" in proc.stderr
     assert f"the earlier label is at {path}:4:1" in proc.stderr
+
+
+def test_thousands_of_duplicate_labels_print_50_errors_and_the_count(tmp_path):
+    """50,000 duplicate labels printed 7.9 MB: 50 errors a file are shown
+    (config.errors.SHOWN, as for a configuration's errors), the rest counted."""
+    labels = "\n".join(f"0: x := {k};" for k in range(5_000))
+    path = tmp_path / "dup.st"
+    path.write_text(f"PROGRAM Main\nVAR sel, x : DINT; END_VAR\nCASE sel OF\n{labels}\nEND_CASE;\nEND_PROGRAM\n")
+    other = tmp_path / "other.st"
+    other.write_text("FUNCTION F : INT\nF := undefined;\nEND_FUNCTION\n")
+    proc = softplc("check", path, other)
+    no_traceback(proc)
+    assert proc.returncode == 1
+    assert proc.stderr.count("error E061") == 50
+    assert f"{path}: ... 4949 more errors\n" in proc.stderr
+    assert f"{other}:2:6: error E010" in proc.stderr  # another file's errors are shown
+    assert "5000 errors, 0 warnings" in proc.stderr
+    assert len(proc.stderr) < 20_000
