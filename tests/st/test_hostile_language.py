@@ -171,3 +171,25 @@ def test_thousands_of_duplicate_labels_print_50_errors_and_the_count(tmp_path):
     assert f"{other}:2:6: error E010" in proc.stderr  # another file's errors are shown
     assert "5000 errors, 0 warnings" in proc.stderr
     assert len(proc.stderr) < 20_000
+
+
+# ---------------------------------------------------------------- line endings
+
+_LINES = ["PROGRAM Main", "VAR", "  x : INT;", "END_VAR", "x := 1;", "x := y;", "x := x +;", "END_PROGRAM", ""]
+
+
+@pytest.mark.parametrize(
+    "ends",
+    [["\n"], ["\r\n"], ["\r"], ["\r\n", "\r", "\n"], ["\r", "\n", "\n", "\r\n"]],
+    ids=["LF", "CRLF", "CR", "mixed", "mixed2"],
+)
+def test_errors_point_at_their_line_whatever_ends_the_lines(tmp_path, ends):
+    text = "".join(line + ends[i % len(ends)] for i, line in enumerate(_LINES[:-1]))
+    path = tmp_path / "ends.st"
+    path.write_bytes(text.encode())
+    proc = softplc("check", path)
+    no_traceback(proc)
+    assert proc.returncode == 1
+    assert "ends.st:7:9: error E001: unexpected ';'" in proc.stderr  # the parser's
+    assert "ends.st:6:6: error E010: unknown name 'y'" in proc.stderr  # the checker's
+    assert "\n    x := x +;\n" in proc.stderr and "\n    x := y;\n" in proc.stderr  # the lines themselves
