@@ -193,3 +193,34 @@ def test_errors_point_at_their_line_whatever_ends_the_lines(tmp_path, ends):
     assert "ends.st:7:9: error E001: unexpected ';'" in proc.stderr  # the parser's
     assert "ends.st:6:6: error E010: unknown name 'y'" in proc.stderr  # the checker's
     assert "\n    x := x +;\n" in proc.stderr and "\n    x := y;\n" in proc.stderr  # the lines themselves
+
+
+# ---------------------------------------------------------------- long expressions
+
+
+def _chain(ty: str, op: str, n: int) -> str:
+    return (
+        f"PROGRAM Main\nVAR a : {ty} := 1; x : {ty}; END_VAR\nx := "
+        + f" {op} ".join(["a"] * (n + 1))
+        + ";\nEND_PROGRAM\n"
+    )
+
+
+@pytest.mark.parametrize(
+    ("ty", "op", "n", "value"), [("DINT", "+", 197, 198), ("BOOL", "AND", 200, True), ("REAL", "+", 100, 101.0)]
+)
+def test_a_chain_within_the_readme_limit_compiles_and_runs(ty, op, n, value):
+    src = _chain(ty, op, n).replace(":= 1;", ":= TRUE;") if ty == "BOOL" else _chain(ty, op, n)
+    assert run_st(src, entry="Main").get("x") == value
+
+
+@pytest.mark.parametrize(("ty", "op"), [("DINT", "+"), ("BOOL", "OR"), ("REAL", "+")])
+def test_a_chain_of_1000_operators_is_a_coded_e006(tmp_path, ty, op):
+    """README: more than 1,000 operators compiled; 198 already failed, some
+    of them as E009 (a RecursionError pickling the parse): now E006."""
+    path = tmp_path / "ops.st"
+    path.write_text(_chain(ty, op, 1000))
+    proc = softplc("check", path)
+    no_traceback(proc)
+    assert proc.returncode == 1
+    assert "ops.st:3:" in proc.stderr and "error E006" in proc.stderr and "E009" not in proc.stderr
