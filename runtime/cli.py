@@ -310,7 +310,10 @@ def exec_cmd(
     except STFault as e:  # also raised by initialisation, before the first cycle
         _echo_err(str(e))
         sys.exit(EXIT_FAULT)
-    click.echo(json.dumps(_exec_result(runner), indent=2, ensure_ascii=False))
+    text = json.dumps(_exec_result(runner), indent=2, ensure_ascii=False)
+    # a WCHAR or WSTRING the program made from a surrogate code (WORD_TO_WCHAR(16#D800)):
+    # printed as its JSON escape \ud800, which UTF-8 cannot hold as a character
+    click.echo(text.encode("utf-8", "backslashreplace").decode("utf-8"))
 
 
 def _exec_result(runner) -> dict:

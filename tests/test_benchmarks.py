@@ -22,6 +22,7 @@ def test_there_are_benchmarks():
         "bench_examples.py",
         "bench_genset.py",
         "bench_language.py",
+        "bench_language_limits.py",
         "bench_loops.py",
         "bench_modbus.py",
         "bench_modbus_server.py",

@@ -129,7 +129,10 @@ def parse_cached(name: str, text: str, profile: Profile, disk: bool = True) -> t
         diags = DiagnosticBag()
         files = [parse_source(v.text, name, diags, profile, v.lowered, v.origins) for v in st_views(name, text, diags)]
         parsed = (files, diags.items)  # (new objects: only their pickle is kept)
-        data = pickle.dumps(parsed, protocol=pickle.HIGHEST_PROTOCOL)
+        try:
+            data = pickle.dumps(parsed, protocol=pickle.HIGHEST_PROTOCOL)
+        except RecursionError:  # an expression hundreds of operators long: parsed, not kept
+            return parsed
         if disk:
             _store(path, data)
     _PARSES[key] = data

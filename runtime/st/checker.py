@@ -95,7 +95,7 @@ class Checker(
         self._collect_actions(files)
         self._resolve_namespaces(files)
         self._declare_early_constants(files)
-        for key in list(self.type_decls):
+        for key in self.type_order():
             self._resolve_named_type(key, self.type_decls[key].pos)
         global_blocks: list[tuple[A.VarBlock, A.Configuration | None]] = [
             (b, None) for sf in files for b in sf.decls if isinstance(b, A.VarBlock)

@@ -76,6 +76,8 @@ class CheckerBase:
         self.type_decls: dict = {}  # UPPER -> TypeDecl
         self.types: dict = {}  # UPPER -> Type (resolved)
         self._resolving: dict = {}  # UPPER -> name as declared, of the types being resolved, in order
+        self._depth: dict = {}  # id of a StructType -> how deep it nests (limits.MAX_TYPE_NESTING)
+        self._too_deep: set = set()  # UPPER names of the types past the limit (reported at the first)
         self.pous: dict = {}  # UPPER -> POUInfo
         self.action_names: set = set()  # UPPER names of all ACTIONs (checker_actions.py)
         self.globals: dict = {}  # UPPER -> VarSymbol

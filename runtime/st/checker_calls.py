@@ -14,7 +14,7 @@ from . import native
 from . import types as T
 from .checker_base import BUILTINS, CheckerBase, Scope
 from .checker_operators import OPERATOR_FUNCTIONS
-from .conversions import const_repr, conversion_exists, generic_fit, is_flexible, same_type
+from .conversions import const_repr, conversion_exists, generic_fit, is_flexible, same_type, string_result
 from .native import NativeFunction
 from .oop import extends_fb, fb_hint
 from .profile import names_where
@@ -464,6 +464,7 @@ class CallChecks(CheckerBase):
             if rty is None:
                 self.d.error("E020", f"{func.name}: unknown result type {ret}", e.pos)
                 return None
+        rty = string_result(func.name, rty, arg_types)  # CONCAT(a, b) may be as long as both
         if func.typed and func.name.startswith("TO_") and not conversion_exists(arg_types[0], rty):
             self.d.error("E020", f"{func.name}: there is no conversion from {arg_types[0]}", args[0].pos)
             return None

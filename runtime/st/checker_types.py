@@ -11,7 +11,7 @@ from . import ast as A
 from . import types as T
 from .checker_base import CheckerBase, Scope
 from .checker_refs import spec_kind
-from .limits import MAX_STRING_LENGTH, MAX_VAR_ELEMENTS
+from .limits import MAX_STRING_LENGTH, MAX_TYPE_NESTING, MAX_VAR_ELEMENTS
 from .pragmas import has_attribute
 from .profile import names_where
 from .symbols import POUInfo, pyname
@@ -74,6 +74,9 @@ class TypeChecks(CheckerBase):
                 "a type cannot contain itself; use REF_TO for recursive structures",
             )
             return None
+        if len(self._resolving) >= MAX_TYPE_NESTING:  # run() resolves what a type holds first: only
+            self._nested_too_deeply(key, decl, MAX_TYPE_NESTING + 1, decl.spec)  # a chain of CODESYS EXTENDS
+            return None
         self._resolving[key] = decl.name
         try:
             spec = decl.spec
@@ -88,6 +91,11 @@ class TypeChecks(CheckerBase):
                         self.d.error("E011", f"field '{m.name}' is declared twice", m.pos)
                         continue
                     fty = self.type_of(m.type)
+                    depth = 1 + self._nesting(fty)
+                    if depth > MAX_TYPE_NESTING:  # the field is dropped: its type is reported
+                        self._nested_too_deeply(key, decl, depth, m.type)
+                        fty = None
+                    self._depth[id(st)] = max(self._depth.get(id(st), 1), depth)
                     # an unknown field type (reported, E012) stays None: uses of the field report no more
                     st.fields[fkey] = T.StructField(
                         m.name,
@@ -107,6 +115,10 @@ class TypeChecks(CheckerBase):
                 if target is None:
                     return None
                 ty = T.AliasType(decl.name, target)
+                depth = self._nesting(ty)
+                if depth > MAX_TYPE_NESTING:
+                    self._nested_too_deeply(key, decl, depth, spec)
+                    return None
             self.types[key] = ty
             if isinstance(ty, T.EnumType) and isinstance(decl.init, A.Name) and decl.init.name.upper() in ty.values:
                 # its own value, written bare in its TYPE (`(NONE, ...) := NONE;`): CODESYS and
@@ -123,6 +135,69 @@ class TypeChecks(CheckerBase):
             return ty
         finally:
             self._resolving.pop(key, None)
+
+    def _nesting(self, t: T.Type | None) -> int:
+        """How deep the type t nests: 1 for a STRUCT of elementary fields,
+        1 more for each STRUCT or ARRAY around it (without recursion)."""
+        d = 0
+        while t is not None:
+            if isinstance(t, T.AliasType):
+                t = t.target
+            elif isinstance(t, T.ArrayType):
+                d, t = d + 1, t.elem
+            elif isinstance(t, T.StructType):
+                return d + self._depth.get(id(t), 1)
+            else:
+                break
+        return d
+
+    def _nested_too_deeply(self, key: str, decl: A.TypeDecl, depth: int, spec: A.TypeSpec) -> None:
+        """E006 at the first type past MAX_TYPE_NESTING; a type holding one
+        already reported (spec: what it holds) is wrong without more errors."""
+        self._too_deep.add(key)
+        self.types.setdefault(key, None)  # a STRUCT stays, without the field; any other type is unknown
+        if self._too_deep.intersection(stored_names(spec)):
+            return
+        self.d.error(
+            "E006",
+            f"type '{decl.name}' is nested too deeply: {depth} levels of STRUCTs and ARRAYs, "
+            f"more than {MAX_TYPE_NESTING}",
+            decl.pos,
+            "flatten the data: fewer STRUCTs inside STRUCTs, an ARRAY with more dimensions",
+        )
+
+    def type_order(self) -> list:
+        """The declared types, each after the types it holds (a field's, an
+        element's, a base's type), so that resolving one recurses no deeper
+        than its own declaration, however deep the types nest. A type that
+        reaches a cycle keeps its place in the declarations (the cycle is
+        reported from where it is first met), after the others."""
+        order: list = []
+        seen: set = set()
+        cyclic: set = set()
+        for root in self.type_decls:
+            if root in seen:
+                continue
+            seen.add(root)
+            stack = [(root, iter(stored_names(self.type_decls[root].spec)))]
+            on_stack = {root}
+            while stack:
+                key, deps = stack[-1]
+                dep = next(
+                    (d for d in deps if d in self.type_decls and (d not in seen or d in cyclic or d in on_stack)), None
+                )
+                if dep is None:
+                    if key not in cyclic:
+                        order.append(key)
+                    on_stack.discard(key)
+                    stack.pop()
+                elif dep in on_stack or dep in cyclic:  # a cycle: everything on the way to it
+                    cyclic.update(on_stack)
+                else:
+                    seen.add(dep)
+                    on_stack.add(dep)
+                    stack.append((dep, iter(stored_names(self.type_decls[dep].spec))))
+        return order + [k for k in self.type_decls if k in cyclic]
 
     def _struct_base(self, st: T.StructType, spec: A.TypeSpec) -> None:
         """TYPE B EXTENDS A : STRUCT (CODESYS "Extension of a structure"): B
@@ -304,6 +379,24 @@ class TypeChecks(CheckerBase):
             return self._enum_type("(anonymous enum)", spec)
         self.d.error("E012", "unsupported type", spec.pos)
         return None
+
+
+def stored_names(spec: A.TypeSpec | None) -> list:
+    """The UPPER names of the types a value of spec holds in itself (not
+    those a REF_TO or POINTER TO points at)."""
+    names: list = []
+    stack = [spec]
+    while stack:
+        s = stack.pop()
+        if isinstance(s, A.NamedType):
+            names.append(s.name.upper())
+        elif isinstance(s, A.ArrayTypeSpec):
+            stack.append(s.elem)
+        elif isinstance(s, A.StructTypeSpec):
+            stack += [m.type for m in s.members] + [s.extends]
+        elif isinstance(s, (A.SubrangeTypeSpec, A.EnumTypeSpec)):
+            stack.append(s.base)
+    return names
 
 
 def _memory_starts_false(f_trig: A.POU) -> None:

@@ -219,7 +219,7 @@ class CallGen(CodeGenBase):
                 continue
             _, a = got
             if T.is_reference(p.type):  # bound to the argument (CODESYS)
-                bound = self.bind_code(a)
+                bound = self.cut_ref(self.bind_code(a), a.ty, C.ref_target(p.type))
                 parts.append(f"{p.pyname}={bound if p.section == 'VAR_INPUT' else f'_CellRef({bound})'}")
             elif p.section == "VAR_IN_OUT":
                 parts.append(f"{p.pyname}={self.inout_arg(p, a)}")
@@ -235,7 +235,7 @@ class CallGen(CodeGenBase):
         for p, target, negated in info.outputs:
             if negated:
                 raise NotImplementedError("negated outputs of a FUNCTION")
-            parts.append(f"_o_{p.pyname}={self.ref_code(target)}")
+            parts.append(f"_o_{p.pyname}={self.cut_ref(self.ref_code(target), target.ty, p.type)}")
         return ", ".join(x for x in parts if x)
 
     def inout_arg(self, p, a: A.Expr) -> str:
@@ -246,7 +246,7 @@ class CallGen(CodeGenBase):
             if at.variable_length:
                 return self.ex(a)
             return f"{self.const(rt_varray.VarArray)}({self.ex(a)}, {self.const(tuple(at.dims))})"
-        return self.ref_code(a)
+        return self.cut_ref(self.ref_code(a), a.ty, p.type)
 
     def _call_stmt(self, e: A.Call) -> None:
         info: CallInfo = e.target
@@ -290,14 +290,18 @@ class CallGen(CodeGenBase):
                     f"_assign_into({inst}.{p.pyname}, {code})" if is_aggregate else f"{inst}.{p.pyname}.set({code})"
                 )
                 continue
-            ref = f"_CellRef({self.bind_code(a)})" if T.is_reference(p.type) else self.inout_arg(p, a)
+            if T.is_reference(p.type):
+                ref = f"_CellRef({self.cut_ref(self.bind_code(a), a.ty, C.ref_target(p.type))})"
+            else:
+                ref = self.inout_arg(p, a)
             self.emit(f"{inst}.{p.pyname} = {ref}")
         self.emit(self._action_invoke(info, inst) if info.kind == "action" else f"{inst}()")
         for p, a in copied:
             if T.resolve(p.type).is_aggregate:
                 self.emit(f"_assign_into({self.ex(a)}, {inst}.{p.pyname})")
             else:
-                self.emit_store(a, f"{inst}.{p.pyname}.get()", p.type, None, trusted=True)
+                cut = isinstance(T.resolve(a.ty), T.StringType)  # cut to the argument's length
+                self.emit_store(a, f"{inst}.{p.pyname}.get()", p.type, None, trusted=not cut)
         for p, target, negated in info.outputs:
             val = f"{inst}.{p.pyname}"
             if negated:

@@ -273,6 +273,16 @@ class ExprGen(CodeGenBase):
             return self._call_expr(e)
         raise NotImplementedError(f"REFERENCE TO in {type(e).__name__}")
 
+    def cut_ref(self, code: str, actual: T.Type | None, formal: T.Type | None) -> str:
+        """A reference to a string of type actual used as one to formal:
+        cut what is stored through it at the actual's length when the
+        formal is longer (IEC 61131-3 ed.3 6.4.2: a string never exceeds
+        its declared length)."""
+        a, f = T.resolve(actual) if actual is not None else None, T.resolve(formal) if formal is not None else None
+        if isinstance(a, T.StringType) and isinstance(f, T.StringType) and a.length < f.length:
+            return f"{self.const(refs.cut_ref)}({code}, {a.length})"
+        return code
+
     def bind_code(self, e: A.Expr) -> str:
         """What a REFERENCE TO bound to e holds (REF=, a reference parameter):
         NULL and 0 bind it to nothing."""

@@ -19,7 +19,11 @@ from . import rtlib
 from . import types as T
 from .codegen_base import CodeGenBase, elementary, py_literal
 from .faults import LOOP_CHECK_EVERY
+from .rt_case import CaseTable
 from .symbols import PropertyInfo, VarSymbol
+
+#: a CASE of more branches is a table and a tree of ifs, not an elif chain
+CASE_CHAIN = 64
 
 
 class StmtGen(CodeGenBase):
@@ -170,6 +174,9 @@ class StmtGen(CodeGenBase):
             t = self.tmp("c")
             self.emit(f"{t} = {sel}")
             sel = t
+        if len(s.branches) > CASE_CHAIN:
+            self._case_table(s, sel)
+            return
         first = True
         for br in s.branches:
             conds = []
@@ -192,6 +199,43 @@ class StmtGen(CodeGenBase):
                 self.indent += 1
                 self._body(s.else_body)
                 self.indent -= 1
+
+    def _case_table(self, s: A.Case, sel: str) -> None:
+        """A CASE of many branches: its branch's number from a table (rt_case),
+        then a binary tree of ifs on it, as deep as log2 of the branches (an
+        elif chain of 10,000 was too deep for Python's compiler)."""
+        labels = []
+        for k, br in enumerate(s.branches):
+            for lab in br.labels:
+                lo, hi = (lab.lo.const, lab.hi.const) if isinstance(lab, A.CaseRange) else (lab.const, lab.const)
+                labels.append((int(lo), int(hi), k))
+        kvar = self.tmp("k")
+        self.emit(f"{kvar} = {self.const(CaseTable(labels))}({sel})")
+        self._case_tree(s.branches, 0, len(s.branches), kvar, s.else_body or [])
+
+    def _case_tree(self, branches: list, first: int, end: int, k: str, else_body: list) -> None:
+        if end - first <= CASE_CHAIN // 2:
+            for i in range(first, end):
+                self.pos = branches[i].pos
+                self.emit(f"{'if' if i == first else 'elif'} {k} == {i}:")
+                self.indent += 1
+                self._body(branches[i].body)
+                self.indent -= 1
+            if first == 0 and else_body:  # only the first leaf can meet -1
+                self.emit(f"elif {k} < 0:")
+                self.indent += 1
+                self._body(else_body)
+                self.indent -= 1
+            return
+        mid = (first + end) // 2
+        self.emit(f"if {k} < {mid}:")
+        self.indent += 1
+        self._case_tree(branches, first, mid, k, else_body)
+        self.indent -= 1
+        self.emit("else:")
+        self.indent += 1
+        self._case_tree(branches, mid, end, k, else_body)
+        self.indent -= 1
 
     def _for(self, s: A.For) -> None:
         var = s.var
@@ -256,7 +300,8 @@ class StmtGen(CodeGenBase):
             self.indent -= 1
             return
         if s.op == "REF=":
-            self.emit_store(s.target, self.bind_code(s.value), s.target.ty, None, trusted=True, bind=True)
+            bound = self.cut_ref(self.bind_code(s.value), s.value.ty, C.ref_target(s.target.ty) or s.target.ty)
+            self.emit_store(s.target, bound, s.target.ty, None, trusted=True, bind=True)
             return
         if s.op == "?=":  # the assignment attempt: the instance, or NULL (codegen_oop.py)
             self.emit_store(s.target, self._query_code(s.value, s.target.ty), s.target.ty, None, trusted=True)
@@ -275,7 +320,7 @@ class StmtGen(CodeGenBase):
             return py_literal(C.const_as(e.const, src, dst))
         step = C.store_step(src, dst, e)
         if step == C.KEEP:
-            return code
+            return self.cut_ref(code, C.ref_target(src), C.ref_target(dst))  # POINTER TO STRING[2] into TO STRING[80]
         if step == C.TO_NULL:
             return "None"
         if step == C.TO_FIRST_ELEMENT:

@@ -477,6 +477,28 @@ def store_step(src: T.Type | None, dst: T.Type, e: A.Expr | None) -> str:
     return WRAP
 
 
+def ref_target(t: T.Type | None) -> T.Type | None:
+    """What a REFERENCE TO / POINTER TO t designates (None for other types)."""
+    r = T.resolve(t) if t is not None else None
+    return r.target if isinstance(r, T.RefType) else None
+
+
+#: the string functions whose result may be longer than any argument
+_GROWING = frozenset(("CONCAT", "INSERT", "REPLACE", "WCONCAT", "WINSERT", "WREPLACE"))
+
+
+def string_result(name: str, rty: T.Type, arg_types: list) -> T.Type:
+    """The result type of a string function with its true length bound:
+    CONCAT, INSERT and REPLACE give at most the sum of their strings'
+    lengths, so a store cuts the result to the destination's length (IEC
+    61131-3 ed.3 6.4.2) unless it surely fits."""
+    r = T.resolve(rty)
+    if name.upper() not in _GROWING or not isinstance(r, T.StringType):
+        return rty
+    n = sum(t.length for t in map(T.resolve, arg_types) if isinstance(t, T.StringType))
+    return T.StringType(n, r.wide)
+
+
 def conversion_exists(src: T.Type, dst: T.Type) -> bool:
     """Whether TO_<dst> converts a value of src: every pair of elementary
     types and strings but CHAR and WCHAR, which convert with integers, bit

@@ -49,6 +49,7 @@ Code ranges (keep them stable, users search for them):
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
@@ -106,6 +107,9 @@ def _excerpt(line: str, start: int, width: int) -> tuple:
     return head + cut + tail, start - first + len(head), width
 
 
+_LINE_END = re.compile(r"\r\n|\r|\n")
+
+
 class SourceSet:
     """The texts of the files being compiled, for excerpts in messages."""
 
@@ -113,7 +117,12 @@ class SourceSet:
         self._texts: dict[str, list[str]] = {}
 
     def add(self, path: str, text: str) -> None:
-        self._texts[path] = text.splitlines()
+        # the lines as the lexer counts them (parser.parse_source): CR, LF and CRLF
+        # end one, a form feed or U+2028 does not (str.splitlines would split there)
+        lines = _LINE_END.split(text)
+        if lines and lines[-1] == "":
+            lines.pop()
+        self._texts[path] = lines
 
     def text(self, path: str) -> str | None:
         """The whole text of a source, None if it is not there."""

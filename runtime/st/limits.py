@@ -12,6 +12,7 @@ where it happens, never a crash or a hang:
   E006  MAX_OPERATORS        binary operators in one expression (a chain
                              a + b + c ... is a tree as deep as it is long)
   E006  (the Python compiler's own: 20 nested loops, 100 levels of blocks)
+  E006  MAX_TYPE_NESTING     STRUCTs and ARRAYs of named types in each other
   E054  MAX_VAR_ELEMENTS     elements of one variable (or array type)
   E055  MAX_TOTAL_ELEMENTS   elements of all variables together
   E022  MAX_STRING_LENGTH    characters of a STRING[n]
@@ -39,6 +40,11 @@ MAX_COMMENT_DEPTH = 100
 # nested brackets).
 MAX_NESTING = 300
 MAX_OPERATORS = 1000
+
+# A STRUCT in a STRUCT (or an ARRAY of an ARRAY type) ... 100 deep: the
+# checker, the code generator and the generated code (each level a nested
+# constructor call) walk a value's type recursively, a few frames a level.
+MAX_TYPE_NESTING = 100
 
 # 10 million elements are 80 MB of references for an array of numbers
 # (equal values are shared). The worst case within both limits, two

@@ -168,7 +168,12 @@ def parse_string(text: str) -> str:
             continue
         code = body[i + 1 : i + 1 + width]
         if len(code) == width and all(c in "0123456789abcdefABCDEF" for c in code):
-            out.append(chr(int(code, 16)))
+            unit = int(code, 16)
+            if 0xD800 <= unit <= 0xDFFF:
+                out.append(_surrogate_pair(unit, body[i + 5 : i + 10]))
+                i += 10
+                continue
+            out.append(chr(unit))
             i += 1 + width
             continue
         raise LiteralError(
@@ -176,6 +181,24 @@ def parse_string(text: str) -> str:
             f"use $$ for '$', $' or $\", $L $N $P $R $T, or ${'h' * width} ({width} hex digits) for a character code",
         )
     return "".join(out)
+
+
+def _surrogate_pair(high: int, rest: str) -> str:
+    """The character of a UTF-16 surrogate pair written $D83D$DE00 (high,
+    then rest: the next escape); a lone surrogate is no character, and no
+    WSTRING may hold one (it could not be encoded for OPC UA, JSON, a
+    retain file)."""
+    low = int(rest[1:], 16) if len(rest) == 5 and rest[0] == "$" and _is_hex(rest[1:]) else -1
+    if 0xD800 <= high <= 0xDBFF and 0xDC00 <= low <= 0xDFFF:
+        return chr(0x10000 + ((high - 0xD800) << 10) + (low - 0xDC00))
+    raise LiteralError(
+        f"'${high:04X}' is a lone UTF-16 surrogate, not a character",
+        "write the character itself, or a high and a low surrogate together ($D83D$DE00)",
+    )
+
+
+def _is_hex(text: str) -> bool:
+    return all(c in "0123456789abcdefABCDEF" for c in text)
 
 
 # ---------------------------------------------------------------- time and date

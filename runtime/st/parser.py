@@ -235,6 +235,8 @@ def parse_source(
     another language (``SourceFile.lowered``); origins: where pieces of
     such ST come from (StView.origins), for the tokens' positions."""
     try:
+        if "\r" in text:  # CR, LF and CRLF each end one line (a CR-only file, a mixed one)
+            text = text.replace("\r\n", "\n").replace("\r", "\n")
         # A file is read as ST first: IL (il.py) is looked for only when
         # that fails, for IL is never valid ST, so a file without IL costs
         # nothing more; one with IL is read twice.

@@ -254,8 +254,36 @@ class ByteArrayView:
         return (self[i] for i in range(len(self)))
 
 
+class CutRef:
+    """A string variable reached through a reference (VAR_IN_OUT, REF=,
+    a POINTER TO STRING) declared longer than the variable: what is
+    stored through it is cut at the variable's own length."""
+
+    __slots__ = ("ref", "length")
+
+    def __init__(self, ref, length: int) -> None:
+        self.ref = ref
+        self.length = length
+
+    def get(self):
+        return self.ref.get()
+
+    def set(self, value) -> None:
+        self.ref.set(value[: self.length])
+
+    def key(self) -> tuple:
+        return _key(self.ref)
+
+
+def cut_ref(ref, length: int):
+    """ref, storing at most length characters (None stays NULL)."""
+    if ref is None or (type(ref) is CutRef and ref.length <= length):
+        return ref
+    return CutRef(ref, length)
+
+
 _SCALAR_REFS = (AttrRef, ItemRef, AccessorRef)
-_POINTERS = (ElemPtr, ObjPtr, BytePtr)
+_POINTERS = (ElemPtr, ObjPtr, BytePtr, CutRef)
 
 
 def _key(r) -> tuple:
@@ -326,7 +354,7 @@ def ptr_add(p, delta: int, esize: int):
         return ElemPtr(p.seq, p.index * esize + delta, esize, (len(p.seq),))
     if delta == 0:
         return p
-    return ObjPtr(p, delta, t not in _SCALAR_REFS and t is not CellRef)
+    return ObjPtr(p, delta, t not in _SCALAR_REFS and t is not CellRef and t is not CutRef)
 
 
 def ptr_diff(a, b, esize: int) -> int:
