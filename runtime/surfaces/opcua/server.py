@@ -10,7 +10,8 @@ the one write API.
 Every ``config.period`` the server looks at the hub's latest snapshot and,
 when it is a new one, writes the values that changed since the last one into
 their nodes, so a subscription sees data changes at that rate. An online
-change (a new ``Snapshot.generation``) rebuilds the tree.
+change (a new ``Snapshot.generation``) rebuilds the tree: only what changed
+(space.add_tree), so subscriptions of what stays go on.
 """
 
 from __future__ import annotations
@@ -26,7 +27,7 @@ from asyncua import Server, ua
 
 from ...config.servers import ServerConfig
 from .security import load_credentials
-from .space import add_enums, add_tree, variant
+from .space import add_enums, add_tree, tree_items, variant
 from .tree import READER, Tree, Variable, published
 from .typemap import node_id
 from .users import PlcUsers, load_users
@@ -67,6 +68,7 @@ class OpcuaServer:
         self._idx = 0
         self._variables: dict = {}  # NodeId -> Variable
         self._last: dict = {}  # path -> value as stored, as last published
+        self._signatures: dict = {}  # NodeId -> what the node is (space.add_tree), for an online change
         self._generation = -1
         self._seen = 0  # the sequence of the last snapshot published
         self._loop = asyncio.new_event_loop()
@@ -172,17 +174,21 @@ class OpcuaServer:
         await asyncio.to_thread(hub.watch, READER, tree.watched)
         # with the paths just watched: taken now before the first scan, else at the end of the next
         snap = await asyncio.to_thread(hub.current, True)
-        if self.tree is not None:
-            await server.delete_nodes([server.get_node(node_id(r.node_id, self._idx)) for r in self.tree.roots], True)
         enums = await add_enums(server, self._idx, {n: e for n, e in tree.enums.items() if not self._has_enum(n)})
         enums.update({n: node_id(f"#type.{n}", self._idx) for n in tree.enums})
-        await add_tree(server, self._idx, tree, enums, snap.values)
+        known = self._signatures
+        self._signatures = await add_tree(server, tree_items(self._idx, tree, enums, snap.values), known)
         self.tree = tree
         self._variables.clear()
         self._variables.update({node_id(v.path, self._idx): v for v in tree.variables})
-        self._last = dict(snap.values)
+        # a node kept from before the change holds the last value published: the
+        # publish below writes what the snapshot has new for it; a new node has it
+        last, self._last = self._last, dict(snap.values)
+        for nid, var in self._variables.items():
+            if known.get(nid) is not None:
+                self._last.update({p: last.get(p) for p in var.watched})
         self._generation = snap.generation
-        self._seen = snap.sequence
+        await self.publish(snap)
         log.info("opcua: %d variables published", len(tree.variables))
 
     def _has_enum(self, name: str) -> bool:

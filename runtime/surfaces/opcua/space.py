@@ -8,6 +8,7 @@ a client shows the names (UaExpert, asyncua's ``load_enums``).
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Any, cast
 
 from asyncua import Server, ua
@@ -16,6 +17,7 @@ from ...st import types as T
 from .tree import Object, Tree, Variable
 from .typemap import node_id
 
+_OBJECTS = node_id(ua.ObjectIds.ObjectsFolder)
 _ORGANIZES = node_id(ua.ObjectIds.Organizes)
 _HAS_COMPONENT = node_id(ua.ObjectIds.HasComponent)
 _BASE_OBJECT = node_id(ua.ObjectIds.BaseObjectType)
@@ -50,18 +52,50 @@ async def add_enums(server: Server, idx: int, enums: dict) -> dict:
     return out
 
 
-async def add_tree(server: Server, idx: int, tree: Tree, enums: dict, values: dict) -> None:
-    """Every object and variable of tree under Objects; values: the first
-    snapshot's (path -> value as stored), a variable without one starts at
-    its type's default."""
+def tree_items(idx: int, tree: Tree, enums: dict, values: dict) -> list:
+    """Every object and variable of tree under Objects as AddNodesItems, each
+    after its parent; values: a snapshot's (path -> value as stored), a
+    variable without one starts at its type's default."""
     items: list = []
-    objects = node_id(ua.ObjectIds.ObjectsFolder)
     for root in tree.roots:
-        _object_items(root, objects, _ORGANIZES, idx, enums, values, items)
-    results = await server.iserver.isession.add_nodes(items)
-    for item, result in zip(items, results):
+        _object_items(root, _OBJECTS, _ORGANIZES, idx, enums, values, items)
+    return items
+
+
+async def add_tree(server: Server, items: list, known: dict | None = None) -> dict:
+    """The nodes of items (tree_items) in the server's address space, and the
+    signature of each (NodeId -> what the node is, its value aside).
+
+    known: what the last call returned, for a tree already in the space (an
+    online change): a node the same as before, under a parent the same as
+    before, stays as it is, so a client's subscription of it goes on; a node
+    that changed or went is deleted with everything under it, and what is
+    new or changed is added. Kept variables' values are the caller's to
+    update (they still hold the last published ones)."""
+    known = known or {}
+    signatures = {item.RequestedNewNodeId: _signature(item) for item in items}
+    kept: set = set()
+    for item in items:  # parents first: a node is kept only under a kept parent
+        nid = item.RequestedNewNodeId
+        if known.get(nid) == signatures[nid] and (item.ParentNodeId == _OBJECTS or item.ParentNodeId in kept):
+            kept.add(nid)
+    gone = [nid for nid, sig in known.items() if nid not in kept and (sig[0] == _OBJECTS or sig[0] in kept)]
+    if gone:  # the topmost of what goes: deleting them takes what is under them too
+        await server.delete_nodes([server.get_node(nid) for nid in gone], True)
+    added = [item for item in items if item.RequestedNewNodeId not in kept]
+    results = await server.iserver.isession.add_nodes(added)
+    for item, result in zip(added, results):
         if not result.StatusCode.is_good():
             raise RuntimeError(f"opcua: cannot add {item.RequestedNewNodeId.Identifier}: {result.StatusCode}")
+    return signatures
+
+
+def _signature(item: ua.AddNodesItem) -> tuple:
+    """What a node is, its value aside: parent first (add_tree reads it)."""
+    attrs = item.NodeAttributes
+    if isinstance(attrs, ua.VariableAttributes):
+        attrs = replace(attrs, Value=ua.Variant())
+    return (item.ParentNodeId, item.ReferenceTypeId, item.BrowseName, item.NodeClass, item.TypeDefinition, attrs)
 
 
 def _object_items(

@@ -341,3 +341,63 @@ def test_an_online_change_rebuilds_the_tree(running):
             await until(lambda: greater(value(c, "Main.n"), n), "Main.n to count on after the change")
 
     run(check())
+
+
+def test_a_subscription_goes_on_through_an_online_change(running):
+    """An HMI subscribed to a variable the change keeps sees it go on counting,
+    with no bad status and no drop: only what changed is deleted and added
+    (the soak found every client's subscription broken at every change); a
+    variable whose type changed is a new node of the new type."""
+    from types import SimpleNamespace
+
+    from softplc.runtime.engine.online_change import OnlineChange
+
+    from ...engine.conftest import compile_st
+
+    plc = running(SRC, TASKS)
+    after = SRC.replace("    small : SINT;\n", "    added : INT := 42;\n").replace(
+        "doubled : REAL;", "doubled : LREAL;"
+    )
+    config = SimpleNamespace(tasks=TASKS, path=None, programs=[], libraries=[])
+    seen: list = []
+    statuses: list = []
+
+    class Handler:
+        def datachange_notification(self, node, val, data) -> None:
+            seen.append(val)
+            statuses.append(data.monitored_item.Value.StatusCode)
+
+        def status_change_notification(self, status) -> None:
+            statuses.append(status)
+
+    async def check() -> None:
+        async with client(plc.url) as c:
+            sub = await c.create_subscription(20, Handler())
+            await sub.subscribe_data_change(c.get_node("ns=2;s=Main.n"))
+            await until(lambda: asyncio.sleep(0, bool(seen)), "a first value of Main.n")
+            report = await asyncio.to_thread(
+                OnlineChange(plc.engine, config, compile=lambda: compile_st(after)).request, "test", TIMEOUT_S
+            )
+            assert report.applied, report.errors
+            main = c.get_node("ns=2;s=Main")
+            await until(lambda: _has(main, "added"), "the new variable in the tree")
+            at_change = len(seen)
+            await until(lambda: asyncio.sleep(0, len(seen) >= at_change + 3), "Main.n to go on after the change")
+            assert seen == sorted(seen)  # one counter, never back to a default
+            assert all(s.is_good() for s in statuses if isinstance(s, ua.StatusCode))
+            assert "small" not in await names(main)
+            assert await value(c, "Main.added") == 42
+            # a variable whose type changed is a new node of its new type
+            doubled = c.get_node("ns=2;s=Main.doubled")
+            assert await doubled.read_data_type() == ua.NodeId(ua.ObjectIds.Double)
+            assert await doubled.read_value() == 25.0
+            await sub.delete()
+
+    run(check())
+
+
+async def _has(node, name: str) -> bool:
+    try:
+        return name in await names(node)
+    except ua.UaStatusCodeError:  # between the old nodes' deletion and the new ones
+        return False
