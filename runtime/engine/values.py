@@ -188,7 +188,8 @@ def from_python(t: T.Type, value: Any, path: str, *, finite: bool = False) -> An
 
 
 def _integer(value: Any) -> int | None:
-    """An int from an int or an ST integer literal ('16#FF', '2#1010', 'INT#5'); None otherwise."""
+    """An int from an int or an ST integer literal ('16#FF', '2#1010', 'INT#5'); None
+    otherwise (a time or date literal too: 'T#2s' is no integer)."""
     if isinstance(value, bool):
         return None
     if isinstance(value, int):
@@ -203,6 +204,8 @@ def _integer(value: Any) -> int | None:
                 if prefix.isdigit():
                     return parse_based(text)
                 lit = parse_hash_literal(text)
+                if getattr(lit, "kind", None) != "int":  # T#2s is no integer (its ns were taken)
+                    return None
                 v = getattr(lit, "value", None)
                 return v if isinstance(v, int) and not isinstance(v, bool) else None
         except (LiteralError, ValueError):

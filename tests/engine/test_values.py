@@ -71,6 +71,33 @@ def test_a_number_beyond_the_real_range_is_refused_not_made_infinite(engines):
     assert a.engine.get("Main.total") == 1e300
 
 
+INTEGERS = """
+PROGRAM Main
+VAR
+    count : DINT;
+    mask : WORD;
+    small : INT (0..100);
+END_VAR
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("literal", ["T#2s", "TIME#1s", "LTIME#5ms", "TOD#00:00:01", "BOOL#1"])
+def test_an_integer_takes_no_time_or_date_literal(engines, literal):
+    """The live soak's web client wrote 'T#2s' into a DINT: accepted as
+    2,000,000,000 (the literal's nanoseconds). In ST `count := T#2s` is a
+    type error; only an integer literal, typed or not, is an integer."""
+    e = engines(INTEGERS, [task("Main", 10, "Main")])
+    a = Access(e, {"web": Permission(("*",), where="[web] writable")})
+    for path in ("Main.count", "Main.mask", "Main.small"):
+        with pytest.raises(ValueError, match="an integer"):
+            a.write(path, literal, surface="web")
+    a.write("Main.count", "DINT#16#7F", surface="web")
+    a.write("Main.mask", "WORD#2#101", surface="web")
+    a.write("Main.small", "INT#42", surface="web")
+    assert (e.get("Main.count"), e.get("Main.mask"), e.get("Main.small")) == (127, 5, 42)
+
+
 def test_a_refusal_echoes_a_long_value_or_path_cut(engines):
     a = access(engines)
     with pytest.raises(ValueError) as long_value:
