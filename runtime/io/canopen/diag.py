@@ -21,8 +21,8 @@ MASTER_FIELDS = (
 
 
 class CanopenDiag:
-    """CANOPEN_NODE[id] and CANOPEN_MASTER, from the master's node
-    supervisors (runtime/io/canopen/node.py)."""
+    """CANOPEN_NODE[id] and CANOPEN_MASTER, from the views of the master's
+    node supervisors (views.py), in the scan thread."""
 
     def __init__(self, globals_obj) -> None:
         nodes = _global(globals_obj, "CANOPEN_NODE")
@@ -31,32 +31,32 @@ class CanopenDiag:
         self._seen: dict = {}  # node id -> version written
         self._master_seen: tuple | None = None  # the master's view written last
 
-    def update(self, snapshot, master: tuple) -> None:
-        """snapshot: (node id, version, node) for every configured node;
-        master: CANOPEN_MASTER's values in MASTER_FIELDS order."""
+    def update(self, views, master: tuple) -> None:
+        """views: a NodeView (views.py) of every configured node; master:
+        CANOPEN_MASTER's values in MASTER_FIELDS order."""
         if master != self._master_seen:
             self._master_seen = master
             self._master.set(**dict(zip(MASTER_FIELDS, master, strict=True)))
-        for node_id, version, node in snapshot:
-            if self._seen.get(node_id) == version or node_id >= len(self._nodes):
+        for view in views:
+            node_id = view.node_id
+            if self._seen.get(node_id) == view.version or node_id >= len(self._nodes):
                 continue
-            self._seen[node_id] = version
-            sup = node.sup
-            emcy = sup.last_emcy
+            self._seen[node_id] = view.version
+            emcy = view.last_emcy
             self._nodes[node_id].set(
                 Configured=True,
-                State=int(sup.state),
-                Operational=sup.state == NodeState.OPERATIONAL,
-                Lost=sup.state == NodeState.LOST,
-                HeartbeatLost=sup.state == NodeState.LOST,
-                Missing=sup.state == NodeState.MISSING,
-                NmtState=sup.nmt_state or 0,
-                Boots=sup.boots,
-                GuardingErrors=sup.toggle_errors,
-                Emergencies=sup.emergencies,
+                State=int(view.state),
+                Operational=view.state == NodeState.OPERATIONAL,
+                Lost=view.state == NodeState.LOST,
+                HeartbeatLost=view.state == NodeState.LOST,
+                Missing=view.state == NodeState.MISSING,
+                NmtState=view.nmt_state or 0,
+                Boots=view.boots,
+                GuardingErrors=view.toggle_errors,
+                Emergencies=view.emergencies,
                 EmcyCode=emcy.code if emcy else 0,
                 EmcyRegister=emcy.register if emcy else 0,
                 EmcyData=int.from_bytes(emcy.data[:4], "little") if emcy else 0,
-                Malformed=sup.malformed,
-                Message=sup.message if sup.state != NodeState.OPERATIONAL else "",
+                Malformed=view.malformed,
+                Message=view.message if view.state != NodeState.OPERATIONAL else "",
             )

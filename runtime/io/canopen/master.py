@@ -6,10 +6,20 @@ emergencies, and serves READ_VAR / WRITE_VAR over SDO.
 Threads (real time): the endpoint's receive thread hands frames to
 _on_frame; a service thread (service(), every millisecond) sends what is
 due (heartbeat, SYNC, RPDOs) and moves the node state machines on; one
-worker thread runs every SDO transfer (sdo_exchange.SdoWorker). The scan
-thread only swaps buffers in read_inputs / write_outputs. In virtual time
-the engine's thread does the receiving, the servicing and the SDO jobs in
-advance_to() (no thread, no wait: sdo.SdoWorker), so runs repeat exactly.
+worker thread runs every SDO transfer (sdo_exchange.SdoWorker). In virtual
+time the engine's thread does the receiving, the servicing and the SDO jobs
+in advance_to() (no thread, no wait: sdo.SdoWorker), so runs repeat exactly.
+
+The scan thread never waits behind supervision (issue 31). Three locks:
+  _lock    supervision: the node state machines and the TPDO table; the
+           scan never takes it. Frames decided under it go to an outbox,
+           sent once it is released (_flush), in the order decided.
+  _sending held by the one thread emptying the outbox; the others leave
+           their frames to it, so no one waits behind a send but the sender.
+  _io      the scan's: the TPDO data received, the RPDO data to send and
+           the nodes' views (views.py, swapped in whole by _publish); held
+           only for a copy, never across a send, a wait or a log line.
+read_inputs / write_outputs / status / details take nothing but _io.
 
 Nothing in here knows a device: an LTMR, an FC 280 or any node with an EDS
 is just a NodeConfig. Plain-CAN devices (the MPU2-S) can share the bus
@@ -39,7 +49,6 @@ from .cia301 import (
     CONSUMER_HEARTBEAT,
     NMT_RESET_COMMUNICATION,
     NMT_START,
-    STATE_NAMES,
     STATE_OPERATIONAL,
     cob_emcy,
     cob_heartbeat,
@@ -51,6 +60,7 @@ from .node import Emergency, NodeState, NodeSupervisor
 from .pdo import PdoBinding, TxSchedule
 from .sdo import SERVICE as SDO_SERVICE
 from .sdo import SchneiderSdoService, SdoJob, SdoWorker
+from .views import NodeView, node_details, view_of
 
 if TYPE_CHECKING:
     from .diag import CanopenDiag
@@ -129,7 +139,11 @@ class CanopenDriver(Driver):
             self.nodes[ncfg.node_id] = self._prepare(ncfg, probe)
         self._by_heartbeat = {cob_heartbeat(n): node for n, node in self.nodes.items()}
         self._by_emcy = {cob_emcy(n): node for n, node in self.nodes.items()}
-        self._lock = threading.RLock()
+        self._lock = threading.RLock()  # supervision (see the module docstring)
+        self._sending = threading.Lock()  # the thread emptying the outbox
+        self._io = threading.Lock()  # the scan's buffers and views: held for a copy only
+        self._outbox: list[tuple[int, bytes, bool]] = []  # (COB-ID, data, remote) decided under _lock, not yet sent
+        self._views: tuple[NodeView, ...] = tuple(view_of(n.sup, n.cfg.mandatory) for n in self.nodes.values())
         self._tpdo_by_cob: dict[int, PdoBinding] = {}
         self._tpdo_node: dict[int, _Node] = {}  # COB-ID -> the node whose TPDO it is
         self._rx_fresh: dict[PdoBinding, bytes] = {}
@@ -231,6 +245,7 @@ class CanopenDriver(Driver):
             self._service = None
         # The last write_outputs (the safe values) goes out before the bus closes.
         self._send_rpdos(self.clock.now_ns(), sync=False, force=True)
+        self._flush()
         worker = self._started_worker
         if self.pump is not None:
             self.pump.settle()
@@ -286,10 +301,10 @@ class CanopenDriver(Driver):
         self._emcy_log.flush(now_ns)
         if self._library_log is not None:
             self._library_log.flush(now_ns)
+        if not self.port.try_open(now_ns):
+            return  # the bus is down (the port opens it again with back-off)
         with self._lock:
             c = self.config
-            if not self.port.try_open(now_ns):
-                return  # the bus is down (the port opens it again with back-off)
             if c.heartbeat_ms and now_ns >= self._next_heartbeat_ns:
                 self._next_heartbeat_ns = now_ns + c.heartbeat_ms * 1_000_000
                 self._send(cob_heartbeat(self.node_id), bytes([STATE_OPERATIONAL]))
@@ -317,6 +332,8 @@ class CanopenDriver(Driver):
             self._send_rpdos(now_ns, sync=sync)
             if sync:
                 self._send(COB_SYNC, b"")
+            self._publish()
+        self._flush()
 
     @property
     def _bus_ok(self) -> bool:
@@ -324,6 +341,30 @@ class CanopenDriver(Driver):
         return self._started and self.port.is_open
 
     def _send(self, can_id: int, data: bytes, *, remote: bool = False) -> None:
+        """A frame decided under _lock: into the outbox, sent by _flush once
+        the lock is released."""
+        self._outbox.append((can_id, data, remote))
+
+    def _flush(self) -> None:
+        """Send the outbox, in order, holding no lock but _sending. A thread
+        that finds another sending leaves its frames to it: the sender looks
+        at the outbox again after it lets go, so none is left behind."""
+        while self._outbox:
+            if not self._sending.acquire(blocking=False):
+                return  # the sender takes these too
+            try:
+                while True:
+                    with self._lock:
+                        frames, self._outbox = self._outbox, []
+                    if not frames:
+                        break
+                    for can_id, data, remote in frames:
+                        self._put(can_id, data, remote)
+            finally:
+                self._sending.release()
+
+    def _put(self, can_id: int, data: bytes, remote: bool) -> None:
+        """One frame on the bus (no lock held but _sending)."""
         endpoint = self._started_endpoint
         if endpoint.send(can_id, data, remote=remote) or not endpoint.connected or not self._bus_ok:
             return
@@ -340,12 +381,14 @@ class CanopenDriver(Driver):
         self._send(can_id, b"", remote=True)
 
     def _send_rpdos(self, now_ns: int, *, sync: bool, force: bool = False) -> None:
+        with self._io:
+            tx_data = dict(self._tx_data)  # what the scan left to send
         with self._lock:
             for node in self.nodes.values():
                 if node.sup.state != NodeState.OPERATIONAL:
                     continue
                 for binding, schedule in node.rpdos:
-                    data = self._tx_data.get(binding)
+                    data = tx_data.get(binding)
                     if data is None or binding.cob_id is None:
                         continue
                     if force and data == schedule.last_sent:
@@ -363,41 +406,68 @@ class CanopenDriver(Driver):
             return  # requests (node guarding): the nodes answer them, not the master
         can_id, data = msg.arbitration_id, bytes(msg.data)
         now = self.clock.now_ns()
+        binding = self._tpdo_by_cob.get(can_id)  # a dict the worker swaps whole
+        if binding is not None and len(data) >= binding.nbytes:
+            with self._io:
+                self._rx_fresh[binding] = data
+            return
+        sdo_answer = False
         with self._lock:
-            binding = self._tpdo_by_cob.get(can_id)
-            if binding is not None:
-                if len(data) < binding.nbytes:
-                    self.rx_short += 1
-                    self._malformed(self._tpdo_node.get(can_id), can_id, data, f"its mapping needs {binding.nbytes}")
-                else:
-                    self._rx_fresh[binding] = data
-                return
-            node = self._by_heartbeat.get(can_id)
-            if node is not None:
-                if len(data) != 1:
-                    self._malformed(node, can_id, data, "a heartbeat has 1")
-                elif node.sup.guard_ns and data[0] & 0x7F:  # a guarding reply (a boot-up is 00)
-                    self._act(node, node.sup.guard_reply(data[0], now))
-                else:
-                    self._act(node, node.sup.heartbeat(data[0], now))
-                return
-            node = self._by_emcy.get(can_id)
-            if node is not None:
-                if len(data) != 8:
-                    self._malformed(node, can_id, data, "an EMCY has 8")
-                    return
-                emcy = Emergency(int.from_bytes(data[0:2], "little"), data[2], data[3:8], now)
-                node.sup.emergency(emcy)
-                self._emcy_log.emergency(
-                    node.cfg.name, node.cfg.node_id, emcy.code, emcy.register, emcy.data, node.emcy_text
-                )
-                return
-            if not cob_sdo_tx(1) <= can_id <= cob_sdo_tx(127):
-                return  # not the master's: SYNC, NMT, other PDOs ...
+            try:
+                sdo_answer = self._supervise(can_id, data, binding, now)
+            finally:
+                self._publish()
+        self._flush()
+        if sdo_answer:
+            self._started_network.notify(can_id, msg.data, msg.timestamp)  # the SDO client's answer
+
+    def _supervise(self, can_id: int, data: bytes, binding: PdoBinding | None, now: int) -> bool:
+        """A received frame that is no good TPDO (_lock held): a short TPDO,
+        a heartbeat or guarding reply, an EMCY; True for an SDO answer to
+        hand to the SDO client."""
+        if binding is not None:
+            self.rx_short += 1
+            self._malformed(self._tpdo_node.get(can_id), can_id, data, f"its mapping needs {binding.nbytes}")
+            return False
+        node = self._by_heartbeat.get(can_id)
+        if node is not None:
+            if len(data) != 1:
+                self._malformed(node, can_id, data, "a heartbeat has 1")
+            elif node.sup.guard_ns and data[0] & 0x7F:  # a guarding reply (a boot-up is 00)
+                self._act(node, node.sup.guard_reply(data[0], now))
+            else:
+                self._act(node, node.sup.heartbeat(data[0], now))
+            return False
+        node = self._by_emcy.get(can_id)
+        if node is not None:
             if len(data) != 8:
-                self._malformed(self.nodes.get(can_id - cob_sdo_tx(0)), can_id, data, "an SDO answer has 8")
-                return
-        self._started_network.notify(can_id, msg.data, msg.timestamp)  # the SDO client's answer
+                self._malformed(node, can_id, data, "an EMCY has 8")
+                return False
+            emcy = Emergency(int.from_bytes(data[0:2], "little"), data[2], data[3:8], now)
+            node.sup.emergency(emcy)
+            self._emcy_log.emergency(
+                node.cfg.name, node.cfg.node_id, emcy.code, emcy.register, emcy.data, node.emcy_text
+            )
+            return False
+        if not cob_sdo_tx(1) <= can_id <= cob_sdo_tx(127):
+            return False  # not the master's: SYNC, NMT, other PDOs ...
+        if len(data) != 8:
+            self._malformed(self.nodes.get(can_id - cob_sdo_tx(0)), can_id, data, "an SDO answer has 8")
+            return False
+        return True
+
+    def _publish(self) -> None:
+        """The nodes' views for the scan (views.py), swapped in whole when a
+        supervisor changed (_lock held)."""
+        views = self._views
+        if all(v.version == n.sup.version for v, n in zip(views, self.nodes.values(), strict=True)):
+            return
+        fresh = tuple(
+            v if v.version == n.sup.version else view_of(n.sup, n.cfg.mandatory)
+            for v, n in zip(views, self.nodes.values(), strict=True)
+        )
+        with self._io:
+            self._views = fresh
 
     def _malformed(self, node: _Node | None, can_id: int, data: bytes, rule: str) -> None:
         """A frame of the wrong length: counted (on its node, if it is one of
@@ -461,10 +531,13 @@ class CanopenDriver(Driver):
         now = self.clock.now_ns()
         with self._lock:
             if not error:
-                self._tpdo_by_cob = {c: b for c, b in self._tpdo_by_cob.items() if b not in node.tpdos}
-                self._tpdo_by_cob.update((b.cob_id, b) for b in node.tpdos if b.cob_id is not None)
+                by_cob = {c: b for c, b in self._tpdo_by_cob.items() if b not in node.tpdos}
+                by_cob.update((b.cob_id, b) for b in node.tpdos if b.cob_id is not None)
+                self._tpdo_by_cob = by_cob  # whole: the receive thread reads it without the lock
                 self._tpdo_node.update((b.cob_id, node) for b in node.tpdos if b.cob_id is not None)
             self._act(node, node.sup.configured(not error, error, now))
+            self._publish()
+        self._flush()
 
     # ------------------------------------------------------------ READ_VAR / WRITE_VAR
 
@@ -484,22 +557,22 @@ class CanopenDriver(Driver):
         self._diag = CanopenDiag(globals_obj)
 
     def read_inputs(self, image: ProcessImage) -> None:
-        with self._lock:
+        with self._io:
             fresh, self._rx_fresh = self._rx_fresh, {}
-            snapshot = [(n.cfg.node_id, n.sup.version, n) for n in self.nodes.values()]
+            views = self._views
         for binding, data in fresh.items():
             binding.unpack(data, image)
         self.sdo_service.collect()
         if self._diag is not None:
-            self._diag.update(snapshot, self._master_view())
+            self._diag.update(views, self._master_view(views))
 
-    def _master_view(self) -> tuple:
+    def _master_view(self, views: tuple[NodeView, ...]) -> tuple:
         """CANOPEN_MASTER's fields, in diag.MASTER_FIELDS order."""
         ep = self.endpoint
         return (
             self._bus_ok,
-            len(self.nodes),
-            sum(n.sup.state == NodeState.OPERATIONAL for n in self.nodes.values()),
+            len(views),
+            sum(v.operational for v in views),
             ep.received if ep else 0,
             ep.sent if ep else 0,
             ep.send_errors if ep else 0,
@@ -508,59 +581,27 @@ class CanopenDriver(Driver):
 
     def write_outputs(self, image: ProcessImage) -> None:
         packed = {binding: binding.pack(image) for node in self.nodes.values() for binding, _s in node.rpdos}
-        with self._lock:
+        with self._io:
             self._tx_data.update(packed)
 
     def status(self) -> DriverStatus:
         if not self._bus_ok:
             return DriverStatus(False, f"canopen: bus down ({self.port.describe_down(self.clock.now_ns())})")
-        bad = [n for n in self.nodes.values() if n.cfg.mandatory and n.sup.state != NodeState.OPERATIONAL]
-        up = sum(n.sup.state == NodeState.OPERATIONAL for n in self.nodes.values())
+        views = self._views
+        bad = [v for v in views if v.mandatory and not v.operational]
+        up = sum(v.operational for v in views)
         malformed = f", {self.malformed} malformed" if self.malformed else ""
         if bad:
-            n = bad[0]
-            why = n.sup.message or n.sup.state.name.lower()
-            return DriverStatus(
-                False, f"canopen: {up}/{len(self.nodes)} up{malformed}; {n.cfg.name} ({n.cfg.node_id}): {why}"
-            )
-        return DriverStatus(True, f"canopen: {up}/{len(self.nodes)} up{malformed}")
+            v = bad[0]
+            why = v.message or v.state.name.lower()
+            return DriverStatus(False, f"canopen: {up}/{len(views)} up{malformed}; {v.name} ({v.node_id}): {why}")
+        return DriverStatus(True, f"canopen: {up}/{len(views)} up{malformed}")
 
     def details(self) -> dict:
         """For the monitors: each node's state, the NMT state its heartbeat
         or guarding reply last gave, its last error and latest emergencies."""
-        with self._lock:
-            nodes = [_node_details(n) for n in self.nodes.values()]
+        nodes = [node_details(v, self.nodes[v.node_id].emcy_text) for v in self._views]
         return {"bus_ok": self._bus_ok, "malformed": self.malformed, "nodes": nodes}
 
     def node_state(self, node_id: int) -> NodeState:
         return self.nodes[node_id].sup.state
-
-
-def _node_details(node: _Node) -> dict:
-    sup = node.sup
-    nmt = None if sup.nmt_state is None else STATE_NAMES.get(sup.nmt_state & 0x7F, f"0x{sup.nmt_state:02X}")
-    return {
-        "id": node.cfg.node_id,
-        "name": node.cfg.name,
-        "mandatory": node.cfg.mandatory,
-        "state": sup.state.name,
-        "nmt": nmt,
-        "error": sup.message,
-        "boots": sup.boots,
-        "emergencies": sup.emergencies,
-        "emcy": [_emcy_details(node, e) for e in sup.emcy_history],
-    }
-
-
-def _emcy_details(node: _Node, emcy: Emergency) -> dict:
-    try:
-        text = node.emcy_text(emcy.code, emcy.register, emcy.data) if node.emcy_text is not None else ""
-    except Exception:  # a device's words are a nicety: the numbers are shown anyway
-        text = ""
-    return {
-        "time_ns": emcy.time_ns,
-        "code": emcy.code,
-        "register": emcy.register,
-        "data": emcy.data.hex(" "),
-        "text": text or ("error reset" if emcy.code == 0 else ""),
-    }

@@ -181,6 +181,7 @@ class NodeSupervisor:
         self._seen(state_byte)
         if state_byte == STATE_BOOTUP:
             self.boots += 1
+            self.version += 1
             if self.state == NodeState.CONFIGURING:
                 return None  # a second boot-up while configuring: the running writes decide
             # the answer to our reset communication, or a boot it started by itself (counted)

@@ -11,6 +11,13 @@ CANopen master when both are on one bus.
     read_inputs     cycle start: each node copies its shadow into %I
     write_outputs   cycle end
 
+No thread waits on the bus while it holds the lock, so the scan's calls
+(read_inputs, write_outputs, status) never wait behind a send or a reopen
+(issue 31): a node's frames (send(), under the lock) go to an outbox that
+the service sends once the lock is released (_flush, one thread at a time,
+in order); in virtual time the scan's own requests go out at the end of
+write_outputs, the engine's thread doing all the bus work there.
+
 A frame a node refuses (MalformedFrame) is counted on the node and dropped;
 one per node and CAN-ID is logged with the frame and its reason every 10 s
 of engine time, the ones held back meanwhile in a "suppressed N" line
@@ -24,6 +31,7 @@ from __future__ import annotations
 
 import logging
 import threading
+from collections import deque
 
 import can
 
@@ -54,6 +62,8 @@ class PlainCanDriver(Driver):
         self.foreign = 0  # frames of the bus that are no node's (CANopen's ...)
         self._service: PeriodicService | None = None
         self._started = False
+        self._outbox: deque[tuple[int, bytes]] = deque()  # the nodes' frames, sent by _flush
+        self._sending = threading.Lock()  # the thread emptying the outbox
 
     def add(self, node: PlainCanNode) -> None:
         for can_id in node.receives:
@@ -86,6 +96,7 @@ class PlainCanDriver(Driver):
         with self.lock:
             for node in self.nodes:
                 node.stop()
+        self._flush()
         self.port.release(self._on_frame)
         self._started = False
 
@@ -101,6 +112,7 @@ class PlainCanDriver(Driver):
         with self.lock:
             for node in self.nodes:
                 node.advance(now_ns)
+        self._flush()
 
     def bind_program(self, globals_obj) -> None:
         for node in self.nodes:
@@ -109,12 +121,32 @@ class PlainCanDriver(Driver):
     # ------------------------------------------------------------ frames
 
     def send(self, can_id: int, data: bytes) -> bool:
-        """For the nodes: one frame out; False when it did not go."""
+        """For the nodes (under the lock): one frame into the outbox, sent
+        once the lock is released; False when the bus is not open."""
+        if not self.port.is_open:
+            return False
+        self._outbox.append((can_id, bytes(data)))
+        return True
+
+    def _flush(self) -> None:
+        """Send the outbox, in order, holding no lock but _sending. A thread
+        that finds another sending leaves its frames to it: the sender looks
+        at the outbox again after it lets go, so none is left behind."""
+        while self._outbox:
+            if not self._sending.acquire(blocking=False):
+                return  # the sender takes these too
+            try:
+                while self._outbox:
+                    self._put(*self._outbox.popleft())
+            finally:
+                self._sending.release()
+
+    def _put(self, can_id: int, data: bytes) -> None:
         endpoint = self.port.endpoint
         if endpoint is None:
-            return False
+            return
         if endpoint.send(can_id, data) or not endpoint.connected:
-            return endpoint.connected
+            return
         if self.port.is_open:
             self.lines.error(
                 "cannot send",
@@ -123,7 +155,6 @@ class PlainCanDriver(Driver):
                 endpoint.last_error,
             )
             self.port.failed(self.clock.now_ns(), endpoint.last_error)
-        return False
 
     def _on_frame(self, msg: can.Message) -> None:
         node = self._by_id.get(msg.arbitration_id)
@@ -158,6 +189,8 @@ class PlainCanDriver(Driver):
         with self.lock:
             for node in self.nodes:
                 node.write_outputs(image)
+        if self.port.pump is not None:  # virtual time: the engine's thread does the bus work (real time: the service)
+            self._flush()
 
     def status(self) -> DriverStatus:
         if self._started and not self.port.is_open:

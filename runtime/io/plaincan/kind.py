@@ -10,8 +10,9 @@ The bus (driver.py) owns the frames: it receives every frame of the [[can]]
 bus through the PLC's shared CanPort, hands a node the frames whose CAN-ID
 it listed in `receives`, counts what a node refuses as malformed and logs
 it (one line per node and CAN-ID every 10 s, rate limited), and calls the
-node at the cycle boundary. A node never waits on the bus; everything it
-does runs under the driver's lock (`NodeContext.lock`), from the receive
+node at the cycle boundary. A node never waits on the bus (what it sends
+goes out once the lock is released); everything it does runs under the
+driver's lock (`NodeContext.lock`), from the receive
 thread (on_frame), the driver's service (advance) or the scan thread
 (read_inputs, write_outputs, its native functions' services).
 """
@@ -74,7 +75,7 @@ class NodeContext:
     clock: Any
     addressing: str
     where: str  # the configuration file, for messages
-    send: Callable[[int, bytes], bool]  # put a frame on the bus (False: not sent)
+    send: Callable[[int, bytes], bool]  # a frame for the bus, sent once the lock is released (False: bus down)
     lock: threading.RLock  # the driver's: held around every call into the node
     shared: dict  # the dict every driver of the engine shares (one service object per device kind ...)
     lines: RateLimitedLog  # the driver's rate-limited log: what a node logs goes through it

@@ -2,7 +2,8 @@
 third-party package would: a beacon that sends a counter in 8-byte frames
 on CAN-ID 0x180 + its number (byte 0 = 0xB0, bytes 1-2 the counter, big
 endian). Its node puts the counter into a %IW word of the configuration's
-choosing.
+choosing and, with poll = true, asks for it (an empty frame on 0x100 + its
+number) at every advance of the driver and at every cycle end.
 
     [[plaincan]]
     type = "beacon"
@@ -24,12 +25,14 @@ from softplc.runtime.plugin.driver import DriverStatus
 from softplc.runtime.plugin.seams import Device
 
 BASE_ID = 0x180
+POLL_ID = 0x100
 MARK = 0xB0
 
 
 class BeaconOptions(NodeOptions):
     number: Annotated[int, int_range(1, 15)] = Field(description="the beacon's number, 1 to 15")
     input: Any = Field(description='where its counter lands, such as "%IW10"')
+    poll: bool = Field(False, description="ask for the counter at every advance and cycle end")
 
     @classmethod
     def check(cls, here, table, ctx) -> None:
@@ -39,7 +42,9 @@ class BeaconOptions(NodeOptions):
     @classmethod
     def ids(cls, table):
         number = table.get("number")
-        return ({BASE_ID + number} if isinstance(number, int) else set()), set()
+        if not isinstance(number, int):
+            return set(), set()
+        return {BASE_ID + number}, ({POLL_ID + number} if table.get("poll") else set())
 
     @classmethod
     def default_name(cls, kind, table):
@@ -56,6 +61,8 @@ class BeaconNode:
         self.input = cfg.options.input
         self.counter: int | None = None
         self.frames = 0
+        self.poll = cfg.options.poll
+        self.send = ctx.send
 
     def on_frame(self, can_id: int, data: bytes, now_ns: int) -> None:
         if len(data) != 8:
@@ -66,14 +73,16 @@ class BeaconNode:
         self.frames += 1
 
     def advance(self, now_ns: int) -> None:
-        pass
+        if self.poll:
+            self.send(POLL_ID + self.number, b"")
 
     def read_inputs(self, image, now_ns: int) -> None:
         if self.counter is not None:
             image.write(self.input, self.counter)
 
     def write_outputs(self, image) -> None:
-        pass
+        if self.poll:
+            self.send(POLL_ID + self.number, b"")
 
     def bind_program(self, globals_obj) -> None:
         pass

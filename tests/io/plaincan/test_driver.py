@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import itertools
 import logging
+import threading
 
 import pytest
 
@@ -17,8 +18,8 @@ from softplc.runtime.io.can.bus import BusSettings, CanEndpoint, open_bus
 from softplc.runtime.io.canopen.master import CanopenDriver
 from softplc.runtime.io.plaincan import PlainCanDriver
 
-from ..can import late_adapter
-from .beacon import MARK
+from ..can import gated_adapter, late_adapter
+from .beacon import MARK, POLL_ID
 
 _channels = itertools.count()
 PROGRAM = "PROGRAM Main\nVAR counter AT %IW10 : WORD; seen : WORD; END_VAR\nseen := counter;\nEND_PROGRAM\n"
@@ -35,8 +36,9 @@ LTMR = {
 def plant(tmp_path):
     made = []
 
-    def make(with_canopen: bool = False, interface: str = "virtual", absent: bool = False):
-        """interface "late" (tests/io/can/late_adapter.py), absent: the adapter is not there yet."""
+    def make(with_canopen: bool = False, interface: str = "virtual", absent: bool = False, poll: bool = False):
+        """interface "late" (tests/io/can/late_adapter.py), absent: the adapter
+        is not there yet; poll: the beacon asks for its counter (beacon.py)."""
         (tmp_path / "main.st").write_text(PROGRAM)
         channel = f"test-plaincan-{next(_channels)}"
         if absent:
@@ -45,7 +47,7 @@ def plant(tmp_path):
             "plc": {"programs": ["main.st"]},
             "task": [{"name": "Main", "interval": "10ms", "programs": ["Main"]}],
             "can": [{"name": "can0", "interface": interface, "channel": channel, "bitrate": 125000}],
-            "plaincan": [{"type": "beacon", "number": 5, "input": "%IW10"}],
+            "plaincan": [{"type": "beacon", "number": 5, "input": "%IW10", "poll": poll}],
         }
         if with_canopen:
             data["canopen"] = {"node": [LTMR], "sdo_timeout": "1s"}
@@ -129,3 +131,44 @@ def test_an_adapter_missing_at_start_is_waited_for(plant, monkeypatch):
     producer.send(0x185, bytes([MARK, 0, 7, 0, 0, 0, 0, 0]))
     engine.run(cycles=2)
     assert engine.get("Main.seen") == 7 and driver.status().ok
+
+
+def test_the_scan_does_not_wait_for_a_send_the_adapter_holds(plant, monkeypatch):
+    """Issue 31: the service held in a send (a full transmit queue:
+    tests/io/can/gated_adapter.py) leaves read_inputs, write_outputs and
+    status free to return; the frames queued meanwhile go out after it, in
+    order. The service runs in a thread of the test, as in real time; the
+    join's timeout only turns a scan that blocks into a failure."""
+    gated_adapter.register(monkeypatch)
+    engine, driver, producer = plant(interface="gated", poll=True)
+    polls: list = []
+    producer.add_handler(lambda msg: polls.append(msg.arbitration_id))
+    producer.send(0x185, bytes([MARK, 0, 42, 0, 0, 0, 0, 0]))
+    engine.run(cycles=2)
+    assert engine.get("Main.seen") == 42 and polls and set(polls) == {POLL_ID + 5}
+    driver.port.pump.settle()  # the last cycle's poll delivered
+    sent = len(polls)
+    gate = gated_adapter.gate(driver.port.settings.channel)
+    gate.shut()
+    service = threading.Thread(target=driver.advance_to, args=(engine.clock.now_ns() + 5_000_000,), daemon=True)
+    try:
+        service.start()
+        assert gate.waiting.wait(30), "the service sent nothing"
+        seen = {}
+
+        def scan() -> None:
+            driver.read_inputs(engine.image)
+            driver.write_outputs(engine.image)  # its poll waits in the outbox
+            seen["status"] = driver.status()
+
+        thread = threading.Thread(target=scan, daemon=True)
+        thread.start()
+        thread.join(30)
+        assert not thread.is_alive(), "the scan waited behind a send of the service"
+        assert seen["status"].ok
+    finally:
+        gate.open()
+    service.join(30)
+    assert not service.is_alive()
+    driver.port.pump.settle()
+    assert len(polls) == sent + 2  # the service's poll, then the scan's
