@@ -9,7 +9,9 @@
    store at the declared length costs.
 2. CASE: checking a CASE of N branches (and N duplicate labels), seconds:
    the label overlap check is sorted, not pairwise.
-3. long expressions: compiling one expression of N operators (+, AND, OR).
+3. long expressions: compiling and running one expression of N operators
+   (DINT +, BOOL AND and OR, REAL *, a + b * c - d ..., literals alone);
+   past MAX_OPERATORS (10,000) or the checker's depth, the E-code.
 
 Nothing here is asserted: the script prints figures measured in this run.
 """
@@ -20,6 +22,7 @@ import argparse
 import time
 
 from softplc.runtime.program import check_files, compile_files
+from softplc.runtime.st.diagnostics import CompileError
 
 STRINGS = """
 PROGRAM main
@@ -63,9 +66,15 @@ def case_source(n: int, duplicate: bool = False) -> str:
 
 
 def expression_source(n: int, op: str) -> str:
-    if op == "+":
-        return f"PROGRAM main\nVAR a, x : DINT; END_VAR\nx := {' + '.join(['a'] * (n + 1))};\nEND_PROGRAM\n"
-    return f"PROGRAM main\nVAR a, x : BOOL; END_VAR\nx := {f' {op} '.join(['a'] * (n + 1))};\nEND_PROGRAM\n"
+    """x := a <op> a <op> ... with n operators; "mixed" is a + b * c - d ...,
+    "literals" a chain of literals alone (a constant: the checker's limit)."""
+    if op == "mixed":
+        chain = "a" + " + b * c - d" * (n // 3) + " + a" * (n % 3)
+        return f"PROGRAM main\nVAR a, b, c, d, x : DINT; END_VAR\nx := {chain};\nEND_PROGRAM\n"
+    if op == "literals":
+        return f"PROGRAM main\nVAR x : DINT; END_VAR\nx := {' + '.join(['1'] * (n + 1))};\nEND_PROGRAM\n"
+    ty = "BOOL" if op in ("AND", "OR") else "REAL" if op == "*" else "DINT"
+    return f"PROGRAM main\nVAR a, x : {ty}; END_VAR\nx := {f' {op} '.join(['a'] * (n + 1))};\nEND_PROGRAM\n"
 
 
 def timed_check(name: str, text: str) -> tuple[float, int]:
@@ -84,14 +93,15 @@ def bench_case(sizes: list[int]) -> None:
 
 def bench_expressions(sizes: list[int]) -> None:
     for n in sizes:
-        for op in ("+", "AND", "OR"):
+        for op in ("+", "AND", "OR", "*", "mixed", "literals"):
             t0 = time.perf_counter()
             try:
-                compile_files([], texts={"expr.st": expression_source(n, op)})
-                what = "compiled"
-            except Exception as exc:  # a compile error is a figure too
-                what = type(exc).__name__
-            print(f"expression of {n:5d} {op:3s}: {time.perf_counter() - t0:6.2f} s, {what}")
+                prog = compile_files([], texts={"expr.st": expression_source(n, op)})
+                prog.runner("main", cycle_time_ms=10).run(1)
+                what = "compiled and ran"
+            except CompileError as exc:  # a limit is a figure too
+                what = ", ".join(sorted({d.code for d in exc.diagnostics if d.is_error}))
+            print(f"expression of {n:5d} {op:8s}: {time.perf_counter() - t0:6.2f} s, {what}")
 
 
 def main() -> None:
@@ -100,7 +110,7 @@ def main() -> None:
     args = ap.parse_args()
     bench_strings(20 if args.quick else 200)
     bench_case([1000] if args.quick else [1000, 10_000, 40_000, 60_000])
-    bench_expressions([200] if args.quick else [200, 1000, 5000])
+    bench_expressions([1000] if args.quick else [200, 1000, 5000, 10_000, 10_001])
 
 
 if __name__ == "__main__":

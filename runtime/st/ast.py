@@ -188,6 +188,9 @@ class Binary(Expr):
     # The function the operation was written as (ADD for ADD(a, b)), for
     # diagnostics; None for the operator form.
     spelling: str | None = field(default=None, kw_only=True, repr=False)
+    # Set by conversions.is_flexible the first time it is asked (a chain of
+    # 10,000 operators is asked at every level).
+    flexible: bool | None = field(default=None, kw_only=True, repr=False)
 
 
 @dataclass(slots=True, eq=False)

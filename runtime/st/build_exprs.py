@@ -68,11 +68,11 @@ class ExprBuilder(BuilderBase):
         """operand, op, operand, ... -> Binary nodes by IEC precedence
         (all operators associate to the left)."""
         file = self.file
-        if len(c) > 2 * MAX_OPERATORS:
-            # the tree of a chain a + b + c ... is as deep as the chain is long
+        if len(c) // 2 > MAX_OPERATORS:  # operand, op, operand, ...: len(c) // 2 operators
+            # a bound on the time and memory one expression takes (README, "Limits")
             self.ctx.report(
                 "E006",
-                f"expression too long (more than {MAX_OPERATORS} operators)",
+                f"expression too long (more than {MAX_OPERATORS:,} operators)",
                 self._span(c[0], c[-1]),
                 "split it, using intermediate variables",
                 always=True,

@@ -89,6 +89,7 @@ class CheckerBase:
         #: the user's libraries: UPPER namespace -> (spelling, UPPER names) (namespaces.py)
         self.user_namespaces: dict = {}
         self._inited: set = set()  # ids of VarSymbols whose initial value is checked
+        self._chain_checked: set = set()  # ids of a long chain's operations checked ahead (checker_exprs.py)
         self._image_probe = image  # to validate direct addresses (None: not checked)
         self._setter_only: list = []  # uses of a PROPERTY without GET (checker_oop.py)
         self._assigned: set = set()  # ids of the assignment targets among them
@@ -172,6 +173,8 @@ class CheckerBase:
         def _unary(self, e: A.Unary, scope: Scope, expected: T.Type | None) -> T.Type | None: ...
 
         def _binary(self, e: A.Binary, scope: Scope, expected: T.Type | None) -> T.Type | None: ...
+
+        def _takes_context(self, e: A.Expr, scope: Scope) -> bool: ...
 
         def _common(
             self, le: T.ElementaryType, re_: T.ElementaryType, e: A.Expr, report: bool = True

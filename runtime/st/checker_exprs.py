@@ -26,21 +26,58 @@ _TIME_KIND = {
     "ldt": T.LDT,
 }
 _SECTIONS_READABLE_OUTSIDE = ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT")
+# A chain of operations this long or longer is checked from its first one
+# up, in a loop (ExprChecks._check_ahead); a shorter one recursively.
+CHAIN_AHEAD = 16
 
 
 class ExprChecks(CheckerBase):
     """Typing and folding expressions."""
 
     def expr(self, e: A.Expr, scope: Scope, expected: T.Type | None = None) -> T.Type | None:
+        ahead: list = []
+        if type(e) is A.Binary:
+            if expected is None and id(e) in self._chain_checked:
+                return e.ty  # checked ahead, as its parent would have (_check_ahead)
+            if type(e.left) is A.Binary:
+                ahead = self._check_ahead(e, scope)
         try:
             ty = self._expr(e, scope, expected)
             if ty is not None and (ty.is_ref or isinstance(ty, T.AliasType)):
                 ty = self.implicit_deref(e, ty)
         except RecursionError:
-            self.d.error("E006", "expression nested too deeply", e.pos, "split it up with variables")
+            self.d.error(
+                "E006",
+                "expression nested too deeply for the checker (about 300 levels: operands nested in each other,"
+                " or a chain of literals alone)",
+                e.pos,
+                "split it up with variables",
+            )
             ty = None
         e.ty = ty
+        self._chain_checked.difference_update(ahead)
         return ty
+
+    def _check_ahead(self, e: A.Binary, scope: Scope) -> list:
+        """A long chain a + b + c ... (a tree as deep as it is long, on its
+        left): its operations below e checked from the first one up, each as
+        its parent would check it (its left operand with no expected type:
+        checker_operators.py), and kept as checked for the parent; a call
+        per operation, not a recursion per operator. The usual short
+        expression is checked recursively as it is. Returns the ids kept."""
+        below: list = []
+        node = e.left
+        while type(node) is A.Binary and id(node) not in self._chain_checked and not self._takes_context(node, scope):
+            below.append(node)
+            node = node.left
+        if len(below) < CHAIN_AHEAD:
+            return []
+        ids = []
+        for node in reversed(below):
+            self.expr(node, scope)
+            self._chain_checked.add(id(node))
+            ids.append(id(node))
+        return ids
 
     def _expr(self, e: A.Expr, scope: Scope, expected: T.Type | None) -> T.Type | None:
         if isinstance(e, A.Literal):

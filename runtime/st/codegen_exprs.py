@@ -19,6 +19,10 @@ from . import types as T
 from .codegen_base import CodeGenBase, array_type, elementary, py_literal
 from .symbols import CallInfo, PropertyInfo, VarSymbol, copied_in_out
 
+# Operations of a chain a + b + c ... nested in the generated Python as they
+# are in the ST; a longer chain is cut into chunks this long (_long_chain).
+CHAIN_CHUNK = 16
+
 
 class ExprGen(CodeGenBase):
     """Expressions and references."""
@@ -168,16 +172,51 @@ class ExprGen(CodeGenBase):
 
     _CMP = {"=": "==", "<>": "!=", "<": "<", ">": ">", "<=": "<=", ">=": ">="}
 
+    def _chained(self, e: A.Binary) -> bool:
+        """Whether e's code takes its left operand's as a string (_operation)."""
+        if e.impl is not None:
+            return e.impl.kind != "pointer"
+        return not (e.op in ("=", "<>") and (self._is_ref(e.left.ty) or self._is_ref(e.right.ty)))
+
     def _binary(self, e: A.Binary) -> str:
+        if not self._chained(e):
+            if e.impl is not None:
+                return self.pointer_op(e)
+            return self._ref_comparison(e)
+        spine = [e]  # a chain a + b + c ...: its operations from the last one
+        while len(spine) <= CHAIN_CHUNK and isinstance(spine[-1].left, A.Binary) and self._chained(spine[-1].left):
+            spine.append(spine[-1].left)
+        if len(spine) <= CHAIN_CHUNK:  # the usual expression: nested as written
+            return self._operation(e, self.ex(e.left), self.ex(e.right))
+        return self._long_chain(e)
+
+    def _long_chain(self, e: A.Binary) -> str:
+        """A chain of more than CHAIN_CHUNK operations (a + b + c ..., of
+        any precedence on the right) without a call per operator and without
+        nesting the Python a level per operator (CPython stops at 200
+        parentheses): chunks of CHAIN_CHUNK operations, each stored into a
+        temporary the next one starts from, in a tuple evaluated left to
+        right: (_c := ((a + b) + c) ..., _c := ((_c + d) + e) ..., ...)[-1].
+        Each operation is generated as in a short expression (the same
+        wrap, rounding and short-circuit rules, the same order)."""
+        spine = [e]
+        while isinstance(spine[-1].left, A.Binary) and self._chained(spine[-1].left):
+            spine.append(spine[-1].left)
+        spine.reverse()
+        t = self.tmp("c")
+        code, steps = self.ex(spine[0].left), []
+        for k, node in enumerate(spine):
+            if k and k % CHAIN_CHUNK == 0:
+                steps.append(f"{t} := {code}")
+                code = t
+            code = self._operation(node, code, self.ex(node.right))
+        return f"({', '.join(steps)}, {code})[-1]"
+
+    def _operation(self, e: A.Binary, lhs: str, rhs: str) -> str:
+        """The code of one operation on the codes of its operands."""
         op = e.op
         if e.impl is not None:
-            info: CallInfo = e.impl
-            if info.kind == "pointer":
-                return self.pointer_op(e)
-            return self._std_invoke(info, [self.ex(e.left), self.ex(e.right)])
-        if op in ("=", "<>") and (self._is_ref(e.left.ty) or self._is_ref(e.right.ty)):
-            return self._ref_comparison(e)
-        lhs, rhs = self.ex(e.left), self.ex(e.right)
+            return self._std_invoke(e.impl, [lhs, rhs])
         if op in self._CMP:
             return f"({lhs} {self._CMP[op]} {rhs})"
         be = elementary(e.ty)
@@ -243,20 +282,25 @@ class ExprGen(CodeGenBase):
             return f"({other} is {negate}None)"
         return f"({negate}_same_ref({codes[0]}, {codes[1]}))"
 
-    def _has_call(self, e: A.Expr) -> bool:
-        if isinstance(e, A.AssignExpr):  # a store: evaluated as a call is
-            return True
-        if isinstance(e, A.Call):
-            info = e.target
-            if isinstance(info, CallInfo) and info.kind == "operator":
-                return self._has_call(info.args[0])
-            return True
-        for attr in ("left", "right", "operand", "base"):
-            sub = getattr(e, attr, None)
-            if isinstance(sub, A.Expr) and self._has_call(sub):
+    @staticmethod
+    def _has_call(e: A.Expr) -> bool:
+        todo = [e]  # a loop, not a call per operator: a chain may be 10,000 long
+        while todo:
+            e = todo.pop()
+            if isinstance(e, A.AssignExpr):  # a store: evaluated as a call is
                 return True
-        if isinstance(e, A.Index):
-            return any(self._has_call(i) for i in e.indices)
+            if isinstance(e, A.Call):
+                info = e.target
+                if isinstance(info, CallInfo) and info.kind == "operator":
+                    todo.append(info.args[0])
+                    continue
+                return True
+            for attr in ("left", "right", "operand", "base"):
+                sub = getattr(e, attr, None)
+                if isinstance(sub, A.Expr):
+                    todo.append(sub)
+            if isinstance(e, A.Index):
+                todo.extend(e.indices)
         return False
 
     # ------------------------------------------------------------ references

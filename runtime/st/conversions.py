@@ -133,14 +133,24 @@ def same_type(a: T.Type, b: T.Type) -> bool:
 
 def is_flexible(e: A.Expr) -> bool:
     """An untyped numeric literal (or a constant expression of them) that
-    takes the type its context needs."""
-    if isinstance(e, A.Literal):
-        return e.type_name is None and e.kind in ("int", "real", "bool")
-    if isinstance(e, A.Unary):
-        return e.op in ("-", "+") and is_flexible(e.operand)
+    takes the type its context needs. A chain a + b + c ... is walked down
+    its left side in a loop, not a call per operator (README, "Limits")."""
+    spine: list[A.Binary] = []
+    while isinstance(e, A.Binary) and e.flexible is None:
+        spine.append(e)
+        e = e.left
     if isinstance(e, A.Binary):
-        return is_flexible(e.left) and is_flexible(e.right)
-    return False
+        result = bool(e.flexible)
+    elif isinstance(e, A.Literal):
+        result = e.type_name is None and e.kind in ("int", "real", "bool")
+    elif isinstance(e, A.Unary):
+        result = e.op in ("-", "+") and is_flexible(e.operand)
+    else:
+        result = False
+    for b in reversed(spine):
+        result = result and is_flexible(b.right)
+        b.flexible = result
+    return result
 
 
 def is_0_or_1(e: A.Expr) -> bool:

@@ -52,7 +52,7 @@ OTHER_LIBRARIES = {
 
 _IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*", re.ASCII)
 # Fields of AST nodes that never hold a node to rewrite.
-_NOT_CHILDREN = frozenset(("pos", "ty", "const", "sym", "pragmas", "qualifier"))
+_NOT_CHILDREN = frozenset(("pos", "ty", "const", "sym", "pragmas", "qualifier", "flexible"))
 _CHILD_FIELDS: dict[type, tuple] = {}
 
 
@@ -223,15 +223,38 @@ class _Rewrite:
         if isinstance(node, A.NamedType) and "." in node.name:
             self.type_name(node)
             return node
-        fields = _CHILD_FIELDS.get(type(node))
-        if fields is None:
-            fields = tuple(f.name for f in dataclasses.fields(node) if f.name not in _NOT_CHILDREN)
-            _CHILD_FIELDS[type(node)] = fields
-        for f in fields:
+        if type(node) is A.Binary and type(node.left) is A.Binary:
+            return self.chain(node)
+        for f in self.fields(node):
             value = getattr(node, f)
             new = self.value(value)
             if new is not value:
                 setattr(node, f, new)
+        return node
+
+    @staticmethod
+    def fields(node: Any) -> tuple:
+        fields = _CHILD_FIELDS.get(type(node))
+        if fields is None:
+            fields = tuple(f.name for f in dataclasses.fields(node) if f.name not in _NOT_CHILDREN)
+            _CHILD_FIELDS[type(node)] = fields
+        return fields
+
+    def chain(self, node: A.Binary) -> A.Binary:
+        """A chain a + b + c ... walked from its first operation up, in a
+        loop (it may be 10,000 operators long), in the order walk takes."""
+        spine = [node]
+        while type(spine[-1].left) is A.Binary:
+            spine.append(spine[-1].left)
+        first = spine[-1]
+        first.left = self.walk(first.left)
+        for op in reversed(spine):
+            for f in self.fields(op):
+                if f != "left":
+                    value = getattr(op, f)
+                    new = self.value(value)
+                    if new is not value:
+                        setattr(op, f, new)
         return node
 
     def value(self, value: Any) -> Any:

@@ -50,7 +50,29 @@ def is_stored_value(e: A.Expr | None) -> bool:
 def value_range(e: A.Expr | None, known: Mapping[int, Range] | None = None) -> Range | None:
     """(lowest, highest) an integer expression can have, or None if
     unknown. known: ranges the caller knows for variables beyond their type,
-    by id of the VarSymbol (a FOR variable read from its loop local)."""
+    by id of the VarSymbol (a FOR variable read from its loop local).
+    A chain a + b + c ... is taken from its first operand on, in a loop."""
+    spine: list[A.Binary] = []
+    while isinstance(e, A.Binary) and _is_range_binary(e):
+        spine.append(e)
+        e = e.left
+    rng = _value_range(e, known)
+    for b in reversed(spine):
+        if rng is None:
+            return None
+        rng = _binary_range(b.op, rng, _value_range(b.right, known))
+    return rng
+
+
+def _is_range_binary(e: A.Binary) -> bool:
+    """Whether value_range takes e from the ranges of its operands."""
+    if e.const is not None:  # a folded value, or one stored (is_stored_value)
+        return False
+    be = T.base_elementary(e.ty) if e.ty is not None else None
+    return be is not None and (be.is_intlike or be.is_time) and be.lo is not None and be.hi is not None
+
+
+def _value_range(e: A.Expr | None, known: Mapping[int, Range] | None) -> Range | None:
     if e is None:
         return None
     if isinstance(e.const, int) and not isinstance(e.const, bool):
@@ -66,7 +88,7 @@ def value_range(e: A.Expr | None, known: Mapping[int, Range] | None = None) -> R
     if is_stored_value(e) and not isinstance(e, A.Call):
         return (be.lo, be.hi)
     if isinstance(e, A.Binary):
-        return _binary_range(e.op, value_range(e.left, known), value_range(e.right, known))
+        return value_range(e, known)
     if isinstance(e, A.Call) and isinstance(e.target, CallInfo) and e.target.kind == "method":
         return (be.lo, be.hi)  # the method's result variable, stored in its type
     if isinstance(e, A.Call) and isinstance(e.target, CallInfo) and e.target.kind == "builtin":

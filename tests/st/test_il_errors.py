@@ -13,6 +13,7 @@ import pytest
 
 from softplc.runtime.program import check_files, compile_files
 from softplc.runtime.st.faults import STFault
+from softplc.runtime.st.limits import MAX_OPERATORS
 
 HEAD = """PROGRAM Main
 VAR
@@ -128,10 +129,16 @@ END_PROGRAM
     assert err.value.kind == "bounds" and err.value.pos.line == 7
 
 
-def test_a_chain_too_long_is_e006_as_in_st():
-    """A thousand IL operators make a thousand-deep ST expression: E006, as
-    the same in ST, not an internal error."""
-    got = diagnostics("LD n\n" + "ADD 1\n" * 999 + "ST n\n")
+def test_a_chain_of_a_thousand_il_operators_runs():
+    """A thousand IL operators make a thousand-operator ST expression: it
+    compiles (it was E006) and adds up; past MAX_OPERATORS it is E006 at the
+    IL's first line, as the same in ST."""
+    adds = 999
+    src = HEAD.replace("n, k : INT;", "n, k : DINT;") + "LD n\n" + "ADD 3\n" * adds + "ST n\nEND_PROGRAM\n"
+    r = compile_files([], texts={"main.st": src}).runner("Main")
+    r.run(2)
+    assert r.get("n") == 2 * 3 * adds
+    got = diagnostics("LD n\n" + "ADD 1\n" * (MAX_OPERATORS + 1) + "ST n\n")
     assert [code for code, _line, _col in got] == ["E006"]
 
 
