@@ -12,10 +12,10 @@ in advance_to() (no thread, no wait: sdo.SdoWorker), so runs repeat exactly.
 
 The scan thread never waits behind supervision (issue 31). Three locks:
   _lock    supervision: the node state machines and the TPDO table; the
-           scan never takes it. Frames decided under it go to an outbox,
-           sent once it is released (_flush), in the order decided.
-  _sending held by the one thread emptying the outbox; the others leave
-           their frames to it, so no one waits behind a send but the sender.
+           scan never takes it. Frames decided under it go to an outbox
+           (io/can/outbox.py), sent once it is released, in the order
+           decided, by one thread at a time: no one waits behind a send
+           but the sender.
   _io      the scan's: the TPDO data received, the RPDO data to send and
            the nodes' views (views.py, swapped in whole by _publish); held
            only for a copy, never across a send, a wait or a log line.
@@ -40,6 +40,7 @@ from ...image.memory import ProcessImage
 from ...plugin.driver import Driver, DriverError, DriverStatus
 from ...plugin.registry import registry
 from ..can.bus import BusSettings, CanEndpoint
+from ..can.outbox import Outbox
 from ..can.port import CanPort
 from ..ratelog import RateLimitedLog
 from .boot import ConfigFailed, boot_steps, configure_node
@@ -140,9 +141,8 @@ class CanopenDriver(Driver):
         self._by_heartbeat = {cob_heartbeat(n): node for n, node in self.nodes.items()}
         self._by_emcy = {cob_emcy(n): node for n, node in self.nodes.items()}
         self._lock = threading.RLock()  # supervision (see the module docstring)
-        self._sending = threading.Lock()  # the thread emptying the outbox
         self._io = threading.Lock()  # the scan's buffers and views: held for a copy only
-        self._outbox: list[tuple[int, bytes, bool]] = []  # (COB-ID, data, remote) decided under _lock, not yet sent
+        self._outbox = Outbox(self._put)  # (COB-ID, data, remote) decided under _lock, not yet sent
         self._views: tuple[NodeView, ...] = tuple(view_of(n.sup, n.cfg.mandatory) for n in self.nodes.values())
         self._tpdo_by_cob: dict[int, PdoBinding] = {}
         self._tpdo_node: dict[int, _Node] = {}  # COB-ID -> the node whose TPDO it is
@@ -245,7 +245,7 @@ class CanopenDriver(Driver):
             self._service = None
         # The last write_outputs (the safe values) goes out before the bus closes.
         self._send_rpdos(self.clock.now_ns(), sync=False, force=True)
-        self._flush()
+        self._outbox.flush()
         worker = self._started_worker
         if self.pump is not None:
             self.pump.settle()
@@ -333,7 +333,7 @@ class CanopenDriver(Driver):
             if sync:
                 self._send(COB_SYNC, b"")
             self._publish()
-        self._flush()
+        self._outbox.flush()
 
     @property
     def _bus_ok(self) -> bool:
@@ -341,30 +341,12 @@ class CanopenDriver(Driver):
         return self._started and self.port.is_open
 
     def _send(self, can_id: int, data: bytes, *, remote: bool = False) -> None:
-        """A frame decided under _lock: into the outbox, sent by _flush once
+        """A frame decided under _lock: into the outbox, sent by its flush once
         the lock is released."""
-        self._outbox.append((can_id, data, remote))
-
-    def _flush(self) -> None:
-        """Send the outbox, in order, holding no lock but _sending. A thread
-        that finds another sending leaves its frames to it: the sender looks
-        at the outbox again after it lets go, so none is left behind."""
-        while self._outbox:
-            if not self._sending.acquire(blocking=False):
-                return  # the sender takes these too
-            try:
-                while True:
-                    with self._lock:
-                        frames, self._outbox = self._outbox, []
-                    if not frames:
-                        break
-                    for can_id, data, remote in frames:
-                        self._put(can_id, data, remote)
-            finally:
-                self._sending.release()
+        self._outbox.add(can_id, data, remote)
 
     def _put(self, can_id: int, data: bytes, remote: bool) -> None:
-        """One frame on the bus (no lock held but _sending)."""
+        """One frame on the bus (no lock held but the outbox's)."""
         endpoint = self._started_endpoint
         if endpoint.send(can_id, data, remote=remote) or not endpoint.connected or not self._bus_ok:
             return
@@ -417,7 +399,7 @@ class CanopenDriver(Driver):
                 sdo_answer = self._supervise(can_id, data, binding, now)
             finally:
                 self._publish()
-        self._flush()
+        self._outbox.flush()
         if sdo_answer:
             self._started_network.notify(can_id, msg.data, msg.timestamp)  # the SDO client's answer
 
@@ -537,7 +519,7 @@ class CanopenDriver(Driver):
                 self._tpdo_node.update((b.cob_id, node) for b in node.tpdos if b.cob_id is not None)
             self._act(node, node.sup.configured(not error, error, now))
             self._publish()
-        self._flush()
+        self._outbox.flush()
 
     # ------------------------------------------------------------ READ_VAR / WRITE_VAR
 

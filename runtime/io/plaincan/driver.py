@@ -14,8 +14,8 @@ CANopen master when both are on one bus.
 No thread waits on the bus while it holds the lock, so the scan's calls
 (read_inputs, write_outputs, status) never wait behind a send or a reopen
 (issue 31): a node's frames (send(), under the lock) go to an outbox that
-the service sends once the lock is released (_flush, one thread at a time,
-in order); in virtual time the scan's own requests go out at the end of
+the service sends once the lock is released (io/can/outbox.py: one thread
+at a time, in order); in virtual time the scan's own requests go out at the end of
 write_outputs, the engine's thread doing all the bus work there.
 
 A frame a node refuses (MalformedFrame) is counted on the node and dropped;
@@ -31,13 +31,13 @@ from __future__ import annotations
 
 import logging
 import threading
-from collections import deque
 
 import can
 
 from ...engine.clock import PeriodicService
 from ...image.memory import ProcessImage
 from ...plugin.driver import Driver, DriverError, DriverStatus
+from ..can.outbox import Outbox
 from ..can.port import CanPort
 from ..ratelog import RateLimitedLog
 from .kind import MalformedFrame, PlainCanNode
@@ -62,8 +62,7 @@ class PlainCanDriver(Driver):
         self.foreign = 0  # frames of the bus that are no node's (CANopen's ...)
         self._service: PeriodicService | None = None
         self._started = False
-        self._outbox: deque[tuple[int, bytes]] = deque()  # the nodes' frames, sent by _flush
-        self._sending = threading.Lock()  # the thread emptying the outbox
+        self._outbox = Outbox(self._put)  # the nodes' frames (COB-ID, data), sent by its flush
 
     def add(self, node: PlainCanNode) -> None:
         for can_id in node.receives:
@@ -96,7 +95,7 @@ class PlainCanDriver(Driver):
         with self.lock:
             for node in self.nodes:
                 node.stop()
-        self._flush()
+        self._outbox.flush()
         self.port.release(self._on_frame)
         self._started = False
 
@@ -112,7 +111,7 @@ class PlainCanDriver(Driver):
         with self.lock:
             for node in self.nodes:
                 node.advance(now_ns)
-        self._flush()
+        self._outbox.flush()
 
     def bind_program(self, globals_obj) -> None:
         for node in self.nodes:
@@ -125,21 +124,8 @@ class PlainCanDriver(Driver):
         once the lock is released; False when the bus is not open."""
         if not self.port.is_open:
             return False
-        self._outbox.append((can_id, bytes(data)))
+        self._outbox.add(can_id, bytes(data))
         return True
-
-    def _flush(self) -> None:
-        """Send the outbox, in order, holding no lock but _sending. A thread
-        that finds another sending leaves its frames to it: the sender looks
-        at the outbox again after it lets go, so none is left behind."""
-        while self._outbox:
-            if not self._sending.acquire(blocking=False):
-                return  # the sender takes these too
-            try:
-                while self._outbox:
-                    self._put(*self._outbox.popleft())
-            finally:
-                self._sending.release()
 
     def _put(self, can_id: int, data: bytes) -> None:
         endpoint = self.port.endpoint
@@ -190,7 +176,7 @@ class PlainCanDriver(Driver):
             for node in self.nodes:
                 node.write_outputs(image)
         if self.port.pump is not None:  # virtual time: the engine's thread does the bus work (real time: the service)
-            self._flush()
+            self._outbox.flush()
 
     def status(self) -> DriverStatus:
         if self._started and not self.port.is_open:
