@@ -18,6 +18,7 @@ def test_there_are_benchmarks():
     assert [b.name for b in BENCHMARKS] == [
         "bench_canopen.py",
         "bench_canopen_flood.py",
+        "bench_check.py",
         "bench_engine.py",
         "bench_examples.py",
         "bench_genset.py",
@@ -28,6 +29,7 @@ def test_there_are_benchmarks():
         "bench_modbus_server.py",
         "bench_online_change.py",
         "bench_soak.py",
+        "bench_soak_live.py",
         "bench_spin.py",
         "bench_surfaces.py",
     ]

@@ -28,13 +28,13 @@ from ..st import ast as A
 from ..st.checker import CheckedProgram, Checker
 from ..st.codegen import CodeGen
 from ..st.diagnostics import CompileError, DiagnosticBag, SourceSet
-from ..st.importers import source_files, st_views
+from ..st.importers import source_files
 from ..st.limits import MAX_SOURCE_CHARS
-from ..st.parser import parse_source
 from ..st.pragmas import attribute_value
 from ..st.profile import DEFAULT, Profile, get_profile
 from .libraries import parse_cached
 from .loaded import Program
+from .reparse import parse_views
 from .shipped import Elsewhere, functions_of, natives_of, with_required
 
 _gen_counter = itertools.count(1)
@@ -179,9 +179,12 @@ def _read_text(p, diags: DiagnosticBag) -> str | None:
         return data.decode("latin-1")
 
 
-def _read_sources(paths: list, texts: dict | None, diags: DiagnosticBag, sources: SourceSet, profile: Profile) -> tuple:
+def _read_sources(
+    paths: list, texts: dict | None, diags: DiagnosticBag, sources: SourceSet, profile: Profile, keep: bool
+) -> tuple:
     """(parsed files, the set of words in them, upper case), parsed as the
-    profile reads ST."""
+    profile reads ST; keep: each file's parse kept for the next check of it
+    (reparse.py)."""
     files = []
     for p in source_files(paths, lambda p: _read_text(p, diags), diags):  # a .plcproj: its files
         text = _read_text(p, diags)
@@ -193,10 +196,15 @@ def _read_sources(paths: list, texts: dict | None, diags: DiagnosticBag, sources
     words: set = set()
     for name, text in files:
         sources.add(name, text)  # an imported file's own text: diagnostics show its lines
-        for view in st_views(name, text, diags):  # st/importers: PLCopen XML, TwinCAT as ST
-            parsed.append(parse_source(view.text, name, diags, profile, view.lowered, view.origins))
-            words.update(w.upper() for w in _WORD.findall(view.text))
+        sfs, items, found = parse_views(name, text, profile, _words, keep)
+        parsed.extend(sfs)
+        diags.extend(items)
+        words |= found
     return parsed, words
+
+
+def _words(text: str) -> set:
+    return {w.upper() for w in _WORD.findall(text)}
 
 
 def _decl_names(sf: A.SourceFile) -> set:
@@ -261,10 +269,12 @@ def _decl_spelled(files: list, words: set) -> set:
     return {d.name for sf in files for d in sf.decls if isinstance(d, (A.POU, A.TypeDecl)) and d.name.upper() in words}
 
 
-def _front_end(paths: list, profile: Profile, texts: dict | None, natives: tuple = (), libraries: tuple = ()):
+def _front_end(
+    paths: list, profile: Profile, texts: dict | None, natives: tuple = (), libraries: tuple = (), keep: bool = False
+):
     diags = DiagnosticBag()
     sources = SourceSet()
-    user, user_words = _read_sources(paths, texts, diags, sources, profile)
+    user, user_words = _read_sources(paths, texts, diags, sources, profile, keep)
     checked = _check(user, user_words, profile, natives, libraries, diags, sources)
     return diags, sources, checked, user
 
@@ -348,7 +358,7 @@ def check_files(
     compile_files would: the back end runs too when the front end is clean."""
     prof = get_profile(profile) if isinstance(profile, str) else profile
     libraries = with_required(tuple(libraries))
-    diags, sources, checked, _ = _front_end(list(paths), prof, texts, natives, libraries)
+    diags, sources, checked, _ = _front_end(list(paths), prof, texts, natives, libraries, keep=True)
     if not diags.has_errors:
         _back_end(checked, prof, diags, _first_position(paths, texts))
     return diags.sorted(), sources

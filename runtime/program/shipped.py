@@ -133,6 +133,12 @@ def functions_of(libraries: tuple) -> dict:
     return out
 
 
+#: the chosen libraries' UPPER namespaces -> Elsewhere's table: the same in
+#: every check of a process (the shipped libraries and the catalogue do not
+#: change), so the re-checks under other profiles do not parse them again
+_ELSEWHERE: dict[frozenset, dict[str, str]] = {}
+
+
 class Elsewhere(Mapping):
     """UPPER name -> "Tc2_System; add it to libraries = [...]" (a shipped
     library the program did not choose declares it) or "Tc2_MC2, which
@@ -146,6 +152,8 @@ class Elsewhere(Mapping):
         self._table: dict[str, str] | None = None
 
     def _built(self) -> dict[str, str]:
+        if self._table is None:
+            self._table = _ELSEWHERE.get(frozenset(self._chosen))
         if self._table is None:
             table: dict[str, str] = {}
             have = {spec.name.upper() for spec in SHIPPED}
@@ -161,7 +169,7 @@ class Elsewhere(Mapping):
                     continue
                 for name in (*lib.names, lib.name.upper() + "."):
                     table.setdefault(name, f"{lib.name}, a library softplc does not have")
-            self._table = table
+            self._table = _ELSEWHERE[frozenset(self._chosen)] = table
         return self._table
 
     def __getitem__(self, key: str) -> str:

@@ -14,7 +14,6 @@ is declared at the end of CheckerBase, for the type checker.
 
 from __future__ import annotations
 
-import difflib
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any, Protocol
 
@@ -22,6 +21,7 @@ from . import ast as A
 from . import types as T
 from .conversions import check_implicit
 from .diagnostics import DiagnosticBag
+from .hints import NameIndex
 from .profile import Profile, names_where
 from .symbols import CallInfo, POUInfo, VarSymbol
 
@@ -99,6 +99,8 @@ class CheckerBase:
         #: the global variable list whose variable's initial value is being
         #: checked: its qualified_only names may go bare there (namespaces.py)
         self.initialising_list: str | None = None
+        #: the name lists hints were looked up in -> their index (hints.py)
+        self._hint_indexes: dict[tuple, NameIndex] = {}
 
     def _is_bool(self, ty: T.Type) -> bool:
         e = T.base_elementary(ty)
@@ -127,17 +129,14 @@ class CheckerBase:
         return f" ({where})" if where else ""
 
     def _suggest(self, key: str, names: list) -> str | None:
-        close = difflib.get_close_matches(key, [n.upper() for n in names], n=1, cutoff=0.75)
-        if close:
-            return f"did you mean '{self._spelled(close[0], names)}'?"
-        return None
-
-    @staticmethod
-    def _spelled(key: str, names: list) -> str:
-        for n in names:
-            if n.upper() == key:
-                return n
-        return key
+        """ "did you mean 'Name'?" for the UPPER key, or None: the closest
+        of names (hints.py), each list indexed once per check."""
+        listed = tuple(names)
+        index = self._hint_indexes.get(listed)
+        if index is None:
+            index = self._hint_indexes[listed] = NameIndex(listed)
+        close = index.closest(key, 0.75)
+        return f"did you mean '{close}'?" if close is not None else None
 
     if TYPE_CHECKING:
         # namespaces.py: UPPER global variable list -> its UPPER variable names
