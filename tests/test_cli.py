@@ -83,7 +83,7 @@ END_PROGRAM
 """
 
 
-def softplc(*args, cwd=None):
+def softplc(*args, cwd=None, timeout=120):
     """Run `python -m softplc.runtime.cli ARGS` (the same main() as the
     console script), without stdin, as CI does."""
     env = dict(os.environ, PYTHONIOENCODING="utf-8")
@@ -95,7 +95,7 @@ def softplc(*args, cwd=None):
         stdin=subprocess.DEVNULL,
         cwd=cwd,
         env=env,
-        timeout=120,
+        timeout=timeout,
     )
 
 

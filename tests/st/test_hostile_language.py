@@ -5,26 +5,15 @@ exit 1, or the value kept, never a traceback and exit 4."""
 from __future__ import annotations
 
 import json
-import os
-import subprocess
-import sys
 
 import pytest
 
+from ..test_cli import softplc as run_cli
 from .conftest import run_st
 
 
 def softplc(*args):
-    env = dict(os.environ, PYTHONIOENCODING="utf-8")
-    env.pop("SOFTPLC_DEBUG", None)
-    return subprocess.run(
-        [sys.executable, "-m", "softplc.runtime.cli", *map(str, args)],
-        capture_output=True,
-        text=True,
-        stdin=subprocess.DEVNULL,
-        env=env,
-        timeout=300,
-    )
+    return run_cli(*args, timeout=300)  # deep inputs on a loaded machine
 
 
 def no_traceback(proc):
