@@ -48,10 +48,9 @@ class ExprChecks(CheckerBase):
         except RecursionError:
             self.d.error(
                 "E006",
-                "expression nested too deeply for the checker (about 300 levels: operands nested in each other,"
-                " or a chain of literals alone)",
+                "expression nested too deeply for the checker (about 300 levels)",
                 e.pos,
-                "split it up with variables",
+                "operands nested in each other, or a chain of literals alone: split it up with variables",
             )
             ty = None
         e.ty = ty
