@@ -102,6 +102,8 @@ def _at(s: str, u: int, after: bool = False) -> int:
     """The index in s of the UTF-16 unit offset u >= 0 (past the end: more
     than len(s)); an offset inside a surrogate pair gives the index of its
     character, or the one after it when after."""
+    if s.isascii():
+        return u
     extra = 0
     for m in _ASTRAL.finditer(s):
         start = m.start() + extra  # the character's first unit
@@ -116,7 +118,9 @@ def _at(s: str, u: int, after: bool = False) -> int:
 def wcut(s: str, n: int) -> str:
     """s cut to at most n UTF-16 units, before a character it would split
     (a WSTRING[n] store)."""
-    if len(s) <= n and (s.isascii() or units(s) <= n):
+    if s.isascii():
+        return s[:n]
+    if len(s) <= n and units(s) <= n:
         return s
     return s[: _at(s, n)]
 
