@@ -111,7 +111,7 @@ class ExprChecks(CheckerBase):
             exp = T.resolve(expected) if expected is not None else None
             if isinstance(exp, T.StringType) and exp.wide == wide:
                 return exp
-            return T.StringType(max(rt_strings.length(v, wide), 1), wide)  # WSTRING: UTF-16 units
+            return T.StringType(max(rt_strings.string_length(v, wide), 1), wide)  # WSTRING: UTF-16 units
         if e.type_name is not None:
             typed = T.ELEMENTARY.get(e.type_name)
             if typed is None:

@@ -183,11 +183,11 @@ WIDE = {
 }
 
 
-def cut(s: str, n: int, wide: bool) -> str:
+def cut_string(s: str, n: int, wide: bool) -> str:
     """s as a STRING[n] (characters) or WSTRING[n] (UTF-16 units) holds it."""
     return wcut(s, n) if wide else s[:n]
 
 
-def length(s: str, wide: bool) -> int:
+def string_length(s: str, wide: bool) -> int:
     """LEN of s as a STRING or a WSTRING."""
     return units(s) if wide else len(s)

@@ -63,9 +63,7 @@ from .rt_numeric import (
     tan,
     trunc,
 )
-from .rt_strings import CONCAT, DELETE, FIND, INSERT, LEFT, LEN, MID, REPLACE, RIGHT, wcut
-from .rt_strings import cut as cut_string
-from .rt_strings import length as string_length
+from .rt_strings import CONCAT, DELETE, FIND, INSERT, LEFT, LEN, MID, REPLACE, RIGHT, cut_string, string_length, wcut
 from .rt_text import iec_literal, parse_bool, parse_int, parse_real, parse_temporal, real_to_string
 from .rt_timedate import (
     ADD_DT_TIME,
