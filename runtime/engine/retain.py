@@ -47,6 +47,7 @@ from operator import attrgetter
 from typing import Any
 
 from ..st import types as T
+from ..st.rtlib import string_length
 from ..st.valuejson import SKIPPED_SECTIONS
 from .values import lone_surrogate, without_lone_surrogates
 
@@ -196,8 +197,10 @@ def _check(t: T.Type, data: Any, where: str, repaired: list | None = None) -> An
     if isinstance(t, T.StringType):
         if not isinstance(data, str):
             raise _BadValue(f"{where}: expected a string, found {_short(data)}")
-        if len(data) > t.length:
-            raise _BadValue(f"{where}: the string is longer than {t.length} characters")
+        if string_length(data, t.wide) > t.length:  # a WSTRING's: UTF-16 units
+            raise _BadValue(
+                f"{where}: the string is longer than {t.length} {'UTF-16 units' if t.wide else 'characters'}"
+            )
         if lone_surrogate(data) is not None:
             data = without_lone_surrogates(data)
             if repaired is not None:

@@ -11,7 +11,8 @@ dict of variable name -> value.
 Writing (``from_python``) is checked: a wrong kind of value or one outside
 the type's range raises ``ValueError`` naming the variable, its ST type and
 what it takes. Nothing is wrapped, truncated or rounded silently. A string
-must fit the declared length and hold no lone surrogate (U+D800..U+DFFF
+must fit the declared length (a WSTRING's counts UTF-16 code units: U+1F600
+counts 2) and hold no lone surrogate (U+D800..U+DFFF
 alone is no character: no STRING or WSTRING holds one, UTF-8 and UTF-16
 cannot encode it, and an OPC UA or JSON reader would fail on it). A REAL or
 LREAL takes NaN and infinities only when the caller allows them
@@ -32,7 +33,7 @@ from ..config.values import cut, got
 from ..durations import parse_duration_ns
 from ..st import types as T
 from ..st.literals import LiteralError, parse_based, parse_hash_literal
-from ..st.rtlib import iec_literal
+from ..st.rtlib import iec_literal, string_length
 from ..st.valuejson import SKIPPED_SECTIONS
 
 
@@ -134,6 +135,9 @@ def type_text(t: T.Type) -> str:
     return r.name
 
 
+#: what a STRING's and a WSTRING's length counts (IEC 61131-3: a WSTRING's are UTF-16 code units)
+_UNITS = {False: "characters", True: "UTF-16 units (a character beyond U+FFFF counts 2)"}
+
 #: a code point of the surrogate range: alone it is no character
 LONE_SURROGATE = re.compile("[\ud800-\udfff]")
 
@@ -178,8 +182,8 @@ def from_python(t: T.Type, value: Any, path: str, *, finite: bool = False) -> An
     if isinstance(r, T.StringType):
         if not isinstance(value, str):
             raise bad("a str")
-        if len(value) > r.length:
-            raise bad(f"a str of at most {r.length} characters")
+        if string_length(value, r.wide) > r.length:
+            raise bad(f"a str of at most {r.length} {_UNITS[r.wide]}")
         at = lone_surrogate(value)
         if at is not None:
             raise bad(f"text (U+{ord(value[at]):04X} at index {at} is a lone surrogate, no character)")

@@ -5,6 +5,7 @@ runtime fills (PLC_DIAG and the drivers' diagnostics)."""
 from __future__ import annotations
 
 from ..st import types as T
+from ..st.rtlib import cut_string
 
 
 def locate(path: str, roots) -> tuple:
@@ -50,12 +51,12 @@ class StructWriter:
 
     def __init__(self, struct) -> None:
         self._struct = struct
-        self._fields: dict = {}  # field name (upper) -> (attr, max length or None)
+        self._fields: dict = {}  # field name (upper) -> (attr, (max length, wide) or None)
         if struct is None:
             return
         for st_name, attr, ty, _section in type(struct)._VARS_:
             t = T.resolve(ty)
-            self._fields[st_name.upper()] = (attr, t.length if isinstance(t, T.StringType) else None)
+            self._fields[st_name.upper()] = (attr, (t.length, t.wide) if isinstance(t, T.StringType) else None)
 
     def set(self, **values) -> None:
         if self._struct is None:
@@ -66,7 +67,7 @@ class StructWriter:
                 continue
             attr, length = entry
             if length is not None:
-                value = str(value)[:length]
+                value = cut_string(str(value), *length)  # a WSTRING's length in UTF-16 units
             setattr(self._struct, attr, value)
 
     def get(self, name: str):

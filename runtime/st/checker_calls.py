@@ -7,10 +7,11 @@ native functions (st/native.py).
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Any
 
 from . import ast as A
-from . import native
+from . import native, rt_strings
 from . import types as T
 from .checker_base import BUILTINS, CheckerBase, Scope
 from .checker_operators import OPERATOR_FUNCTIONS
@@ -465,6 +466,9 @@ class CallChecks(CheckerBase):
                 self.d.error("E020", f"{func.name}: unknown result type {ret}", e.pos)
                 return None
         rty = string_result(func.name, rty, arg_types)  # CONCAT(a, b) may be as long as both
+        wide = rt_strings.WIDE.get(func.impl)  # LEN of a WSTRING counts UTF-16 units
+        if wide is not None and any(isinstance(t, T.StringType) and t.wide for t in map(T.resolve, param_types)):
+            func = replace(func, impl=wide)
         if func.typed and func.name.startswith("TO_") and not conversion_exists(arg_types[0], rty):
             self.d.error("E020", f"{func.name}: there is no conversion from {arg_types[0]}", args[0].pos)
             return None

@@ -8,6 +8,7 @@ checker_operators, calls in checker_calls.
 from __future__ import annotations
 
 from . import ast as A
+from . import rt_strings
 from . import types as T
 from .checker_base import BUILTINS, CheckerBase, Scope
 from .checker_pointers import is_pointer
@@ -146,7 +147,7 @@ class ExprChecks(CheckerBase):
             exp = T.resolve(expected) if expected is not None else None
             if isinstance(exp, T.StringType) and exp.wide == wide:
                 return exp
-            return T.StringType(max(len(v), 1), wide)
+            return T.StringType(max(rt_strings.string_length(v, wide), 1), wide)  # WSTRING: UTF-16 units
         if e.type_name is not None:
             typed = T.ELEMENTARY.get(e.type_name)
             if typed is None:

@@ -324,7 +324,7 @@ class ExprGen(CodeGenBase):
         its declared length)."""
         a, f = T.resolve(actual) if actual is not None else None, T.resolve(formal) if formal is not None else None
         if isinstance(a, T.StringType) and isinstance(f, T.StringType) and a.length < f.length:
-            return f"{self.const(refs.cut_ref)}({code}, {a.length})"
+            return f"{self.const(refs.cut_ref)}({code}, {a.length}, {a.wide})"
         return code
 
     def bind_code(self, e: A.Expr) -> str:

@@ -331,6 +331,8 @@ class StmtGen(CodeGenBase):
             return self.byte_view_code(code, src, dst)  # codegen_pointers.py
         d = T.resolve(dst)
         if step == C.TRUNCATE and isinstance(d, T.StringType):
+            if d.wide:  # UTF-16 units, never half a character (rt_strings.wcut)
+                return f"{self.const(rtlib.wcut)}({code}, {d.length})"
             return f"({code})[:{d.length}]"
         if step == C.CHECK_RANGE and isinstance(d, T.SubrangeType):
             return f"_check_range({self.coerce(code, src, d.base, e)}, {d.lo}, {d.hi})"

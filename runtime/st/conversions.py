@@ -380,7 +380,7 @@ def const_as(value: Any, src: T.Type, dst: T.Type) -> Any:
     """A folded constant converted to the representation of dst."""
     d = T.resolve(dst)
     if isinstance(d, T.StringType):
-        return value[: d.length] if isinstance(value, str) else value
+        return rtlib.cut_string(value, d.length, d.wide) if isinstance(value, str) else value
     de = T.base_elementary(d)
     se = T.base_elementary(src)
     if de is None or se is None:
@@ -460,7 +460,9 @@ def store_step(src: T.Type | None, dst: T.Type, e: A.Expr | None) -> str:
     if isinstance(d, T.InterfaceType):
         return KEEP if isinstance(s, (T.FBType, T.InterfaceType)) else TO_NULL
     if isinstance(d, T.StringType):
-        return KEEP if isinstance(s, T.StringType) and s.length <= d.length else TRUNCATE
+        # a WSTRING's length counts UTF-16 units, a STRING's characters (one may be 2 units)
+        fits = isinstance(s, T.StringType) and s.length <= d.length and (s.wide or not d.wide)
+        return KEEP if fits else TRUNCATE
     if isinstance(d, T.SubrangeType):
         return CHECK_RANGE
     de = T.base_elementary(d)

@@ -14,6 +14,7 @@ variable's memory.
 from __future__ import annotations
 
 from .faults import NULL_REFERENCE, RangeFault
+from .rt_strings import wcut
 
 
 class AttrRef:
@@ -259,27 +260,28 @@ class CutRef:
     a POINTER TO STRING) declared longer than the variable: what is
     stored through it is cut at the variable's own length."""
 
-    __slots__ = ("ref", "length")
+    __slots__ = ("ref", "length", "wide")
 
-    def __init__(self, ref, length: int) -> None:
+    def __init__(self, ref, length: int, wide: bool = False) -> None:
         self.ref = ref
         self.length = length
+        self.wide = wide  # a WSTRING: length in UTF-16 units (rt_strings.wcut)
 
     def get(self):
         return self.ref.get()
 
     def set(self, value) -> None:
-        self.ref.set(value[: self.length])
+        self.ref.set(wcut(value, self.length) if self.wide else value[: self.length])
 
     def key(self) -> tuple:
         return _key(self.ref)
 
 
-def cut_ref(ref, length: int):
-    """ref, storing at most length characters (None stays NULL)."""
+def cut_ref(ref, length: int, wide: bool = False):
+    """ref, storing at most length characters (a WSTRING: UTF-16 units; None stays NULL)."""
     if ref is None or (type(ref) is CutRef and ref.length <= length):
         return ref
-    return CutRef(ref, length)
+    return CutRef(ref, length, wide)
 
 
 _SCALAR_REFS = (AttrRef, ItemRef, AccessorRef)

@@ -123,9 +123,21 @@ class StrLeaf(Leaf):
     def encode(self, value) -> bytes:
         if self.cs == 1:
             data = bytes(ord(c) & 0xFF for c in value)
-        else:
-            data = b"".join((ord(c) & 0xFFFF).to_bytes(2, "little") for c in value)
+        else:  # UTF-16: a character beyond U+FFFF is its surrogate pair (2 WORDs)
+            data = value.encode("utf-16-le", "surrogatepass")
         return data + bytes(self.size - len(data))
+
+    def _codes(self, s: str) -> list:
+        """s's characters (STRING) or UTF-16 units (WSTRING) as integers."""
+        if self.cs == 1:
+            return [ord(c) for c in s]
+        data = s.encode("utf-16-le", "surrogatepass")
+        return list(struct.unpack(f"<{len(data) // 2}H", data))
+
+    def _text(self, codes: list) -> str:
+        if self.cs == 1:
+            return "".join(map(chr, codes))
+        return struct.pack(f"<{len(codes)}H", *codes).decode("utf-16-le", "surrogatepass")
 
     def read(self, ref, o: int, n: int) -> bytes:
         s = ref.get()
@@ -135,7 +147,8 @@ class StrLeaf(Leaf):
 
     def write(self, ref, o: int, data: bytes) -> None:
         s = ref.get()
-        codes = [ord(c) for c in s]
+        codes = self._codes(s)
+        count = len(codes)
         first, last = o // self.cs, (o + len(data) - 1) // self.cs
         if last >= self.length:  # the terminator of the last character stays
             word = bytearray(self.encode(s))
@@ -152,13 +165,13 @@ class StrLeaf(Leaf):
                 if o <= p < o + len(data):
                     b[k] = data[p - o]
             codes[ci] = int.from_bytes(b, "little")
-            if codes[ci] == 0 and ci < len(s) and ends is None:
+            if codes[ci] == 0 and ci < count and ends is None:
                 ends = ci  # a 0 written into the string ends it there
         if ends is not None:
             codes = codes[:ends]
         while codes and codes[-1] == 0:
             codes.pop()
-        ref.set("".join(map(chr, codes)))
+        ref.set(self._text(codes))
 
     def _char_index(self, i: int) -> None:
         if not 0 <= i <= self.length:

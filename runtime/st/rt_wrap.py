@@ -7,6 +7,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from .rt_numeric import f32
+from .rt_strings import wcut
 from .rt_timedate import DAY_NS
 from .types import (
     BITS,
@@ -82,7 +83,10 @@ def identity(v):
     return v
 
 
-def _truncate_string(n: int) -> Callable[[str], str]:
+def _truncate_string(n: int, wide: bool) -> Callable[[str], str]:
+    if wide:  # UTF-16 units, never half a character
+        return lambda v: wcut(v, n)
+
     def trunc_str(v: str) -> str:
         return v if len(v) <= n else v[:n]
 
@@ -103,7 +107,7 @@ def wrapper(t: Type) -> Callable:
         return w
     r = resolve(t)
     if isinstance(r, StringType):
-        w = _truncate_string(r.length)
+        w = _truncate_string(r.length, r.wide)
     else:
         e = base_elementary(r)
         if e is None:

@@ -63,7 +63,7 @@ from .rt_numeric import (
     tan,
     trunc,
 )
-from .rt_strings import CONCAT, DELETE, FIND, INSERT, LEFT, LEN, MID, REPLACE, RIGHT
+from .rt_strings import CONCAT, DELETE, FIND, INSERT, LEFT, LEN, MID, REPLACE, RIGHT, cut_string, string_length, wcut
 from .rt_text import iec_literal, parse_bool, parse_int, parse_real, parse_temporal, real_to_string
 from .rt_timedate import (
     ADD_DT_TIME,
@@ -102,6 +102,9 @@ from .rt_timedate import (
 from .rt_wrap import wrap, wrap_time, wrapper
 
 __all__ = [
+    "wcut",
+    "cut_string",
+    "string_length",
     "f32",
     "int_to_f32",
     "idiv",

@@ -2,7 +2,8 @@
 grew past its STRING[10] every cycle): random string functions stored into
 variables, a STRUCT field and an array element of random declared lengths
 compile, run one cycle and hold exactly what the reference (string_ops.py,
-Python slicing) gives, never more than their declared length."""
+Python slicing; a WSTRING's UTF-16 units) gives, never more than their
+declared length, and LEN of each is the reference's."""
 
 from __future__ import annotations
 
@@ -10,7 +11,7 @@ from hypothesis import given
 
 from softplc.runtime.program import compile_files
 
-from .string_ops import TARGETS, cases, expected, source
+from .string_ops import NAMES, TARGETS, cases, expected, length, source
 from .support import bounded, fuzz, long, short
 
 
@@ -22,8 +23,10 @@ def _check(case) -> str:
     want = expected(case)
     for target in TARGETS:
         got = runner.get("arr")[1] if target == "arr[2]" else runner.get(target)
-        assert len(got) <= case.lengths[target], f"{target} longer than declared:\n{src}"
+        assert length(got, case.wide) <= case.lengths[target], f"{target} longer than declared:\n{src}"
         assert got == want[target], f"{target}: {got!r}, the reference {want[target]!r}\n{src}"
+    for name in NAMES:
+        assert runner.get(f"len_{name}") == want[f"len_{name}"], f"LEN({name})\n{src}"
     return "wide" if case.wide else "narrow"
 
 

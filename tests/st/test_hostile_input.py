@@ -426,8 +426,9 @@ END_PROGRAM
 @given(st.text(st.characters(exclude_categories=("Cs",)), max_size=40))
 def test_any_text_round_trips_through_a_string_literal(text):
     n = max(len(text), 1)
+    nw = max(len(text.encode("utf-16-le")) // 2, 1)  # a WSTRING's length counts UTF-16 units
     src = f"""PROGRAM main
-VAR s : STRING[{n}] := {st_quote(text)}; w : WSTRING[{n}] := {st_quote(text, '"')}; t : STRING[{n}]; END_VAR
+VAR s : STRING[{n}] := {st_quote(text)}; w : WSTRING[{nw}] := {st_quote(text, '"')}; t : STRING[{n}]; END_VAR
 t := {st_quote(text)};
 END_PROGRAM
 """
