@@ -14,7 +14,7 @@ variable's memory.
 from __future__ import annotations
 
 from .faults import NULL_REFERENCE, RangeFault
-from .rt_strings import wcut
+from .rt_strings import cut_string
 
 
 class AttrRef:
@@ -265,13 +265,13 @@ class CutRef:
     def __init__(self, ref, length: int, wide: bool = False) -> None:
         self.ref = ref
         self.length = length
-        self.wide = wide  # a WSTRING: length in UTF-16 units (rt_strings.wcut)
+        self.wide = wide  # a WSTRING: length in UTF-16 units (rt_strings.cut_string)
 
     def get(self):
         return self.ref.get()
 
     def set(self, value) -> None:
-        self.ref.set(wcut(value, self.length) if self.wide else value[: self.length])
+        self.ref.set(cut_string(value, self.length, self.wide))
 
     def key(self) -> tuple:
         return _key(self.ref)
