@@ -14,6 +14,12 @@ page watches 50 variables over the event stream and posts a watch every
     python benchmarks/bench_online_change.py                  # 20 changes, then as long without
     python benchmarks/bench_online_change.py --changes 10 --web
     python benchmarks/bench_online_change.py --bulk 1000      # and a program of 1,000 globals
+    python benchmarks/bench_online_change.py --in-process     # compiled in the PLC's process, as before
+
+The compile runs in the compile process (engine/compile_process.py),
+started and warmed before the changes as softplc run does; --in-process
+compiles in the requester's thread of the PLC's process instead (the
+compile= hook), as every change did before, for the comparison.
 """
 
 from __future__ import annotations
@@ -30,12 +36,15 @@ import time
 import tomllib
 from pathlib import Path
 
+from host import timeit_factor
+
 from softplc.runtime.config import config_from_dict
 from softplc.runtime.config.load import default_config_path
 from softplc.runtime.config.servers import ServerConfig
 from softplc.runtime.engine import online_change
 from softplc.runtime.engine.build import build_engine
 from softplc.runtime.launch import settle_heap
+from softplc.runtime.program import compile_files
 from softplc.runtime.surfaces.host import Surfaces
 
 #: the page's variables: the default plant's
@@ -110,7 +119,7 @@ def page(url: str, stop) -> None:
         time.sleep(0.1)
 
 
-def run(changes: int, web: bool, bulk: int, pause_s: float, freeze: bool) -> dict:
+def run(changes: int, web: bool, bulk: int, pause_s: float, freeze: bool, in_process: bool = False) -> dict:
     with tempfile.TemporaryDirectory() as tmp:
         config, engine = build(Path(tmp), bulk)
         if freeze:
@@ -135,7 +144,16 @@ def run(changes: int, web: bool, bulk: int, pause_s: float, freeze: bool) -> dic
                 first = len(late)
                 t0 = time.monotonic()
                 if phase == "changes":
-                    changer = online_change.OnlineChange(engine, config)
+                    here = (
+                        (lambda: compile_files(config.programs, profile=config.profile, libraries=config.libraries))
+                        if in_process
+                        else None
+                    )
+                    changer = online_change.OnlineChange(engine, config, compile=here)
+                    changer.warm()  # as softplc run's start(): the child's start-up is not a change's
+                    before = sum(t.stats.overruns for t in engine.tasks)
+                    first = len(late)
+                    t0 = time.monotonic()
                     target = Path(config.programs[0])
                     for n in range(changes):
                         target.write_text(target.read_text() + f"\n(* change {n} *)\n")
@@ -143,6 +161,7 @@ def run(changes: int, web: bool, bulk: int, pause_s: float, freeze: bool) -> dic
                         assert report.applied, report.lines()
                         time.sleep(pause_s)
                     spent = time.monotonic() - t0
+                    changer.stop()
                 else:
                     time.sleep(spent)
                 window = late[first:]
@@ -171,13 +190,17 @@ def main() -> None:
     parser.add_argument("--web", action="store_true", help="a page on the event stream, posting watches")
     parser.add_argument("--bulk", type=int, default=0, help="a program of this many DINT globals too")
     parser.add_argument("--pause", type=float, default=0.2, help="seconds between two changes")
+    parser.add_argument("--in-process", action="store_true", help="compile in the PLC's process, as before")
     parser.add_argument("--no-freeze", action="store_true", help="without softplc run's gc.freeze() at the start")
     args = parser.parse_args()
-    result = run(args.changes, args.web, args.bulk, args.pause, not args.no_freeze)
+    host = timeit_factor()
+    print(host.line())
+    result = run(args.changes, args.web, args.bulk, args.pause, not args.no_freeze, args.in_process)
     swaps = result["changes"].pop("swap_ms")
     print(
         f"{args.changes} online changes{' with a web page' if args.web else ''}"
-        f"{f', {args.bulk} globals more' if args.bulk else ''}:"
+        f"{f', {args.bulk} globals more' if args.bulk else ''}"
+        f", compiled {'in the PLC' + chr(39) + 's process' if args.in_process else 'in the compile process'}:"
     )
     print(f"  swap in the scan thread: median {statistics.median(swaps):.2f} ms, max {max(swaps):.2f} ms")
     for phase, r in result.items():

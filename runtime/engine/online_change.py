@@ -10,10 +10,14 @@ lock with the scan: scans may start late while it runs (see the README).
 
 What runs where:
 
-  * compiling, planning the tasks and executing the generated module
-    (Program.module) run in the caller's thread (the watcher's, a web
-    request's), never in the scan thread; a compile error leaves the running
-    program untouched and the report carries the diagnostics;
+  * compiling (parse, check, generate, Python's compile()) runs in the
+    compile process, the PLC's only child, started with the watcher and
+    kept; the caller's thread (the watcher's, a web request's) waits for it
+    without the interpreter lock, reads the Program back (program/
+    transfer.py: no compile() here), plans the tasks and executes the
+    generated module (Program.module), never in the scan thread; a compile
+    error leaves the running program untouched and the report carries the
+    child's diagnostics;
   * the swap (apply_program) runs in the scan thread at the start of the
     next tick (Engine.between_scans), before the inputs are read: the new
     globals and program instances are made (FB_init with bInitRetains FALSE,
@@ -37,18 +41,20 @@ import gc
 import logging
 import re
 import threading
+import weakref
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..program import Program, compile_files
+from ..program import Program
 from ..st import rt_oop
 from ..st import types as T
 from ..st.diagnostics import CompileError
 from ..st.faults import fault_from_exception
 from ..st.values import assign_into, copy_value
 from .carry import Carry, global_members, members
+from .compile_process import CompileProcess, CompileProcessError
 from .diag import DiagVariable
 from .retain import type_signature
 from .tasks import TaskSetupError, plan_tasks
@@ -389,12 +395,15 @@ def _collector_paused():
 class OnlineChange:
     """softplc run's online change: the configuration's ST files (and its
     libraries') compiled again when one changes, on SIGHUP (wake()) or on
-    request(), and swapped in at the next scan. compile: what to compile
-    (default: the configuration's programs, profile and libraries)."""
+    request(), and swapped in at the next scan. compile: what to compile,
+    in the caller's thread (a test's, an embedding's hook); by default the
+    configuration's programs, profile and libraries, in the compile process."""
 
     def __init__(self, engine, config, *, compile: Callable[[], Program] | None = None) -> None:
         self.engine = engine
         self.config = config
+        self.worker = CompileProcess()  # started at the first compile, or by start()
+        self._finalizer = weakref.finalize(self, self.worker.close)  # stop() not called: closed when dropped
         self._compile = compile or self._compile_config
         self._lock = threading.Lock()  # one compile at a time
         self._wake = threading.Event()
@@ -407,8 +416,7 @@ class OnlineChange:
     # ------------------------------------------------------------ compiling and asking the scan
 
     def _compile_config(self) -> Program:
-        cfg = self.config
-        return compile_files(cfg.programs, profile=cfg.profile, libraries=tuple(cfg.libraries))
+        return self.worker.compile(self.config)
 
     def submit(self, reason: str) -> ChangeRequest:
         """Compile now (in this thread) and queue the swap for the next scan;
@@ -434,6 +442,8 @@ class OnlineChange:
             report.errors = [f"{len(errors)} compile error(s); the running program is unchanged"]
             report.errors += [d.format(exc.sources) for d in errors]
             return report
+        except CompileProcessError as exc:
+            return ChangeReport(reason, errors=[str(exc)])
         try:
             where = str(self.config.path) if getattr(self.config, "path", None) else "<config>"
             refusal = tasks_refused(self.engine, plan_tasks(program, list(self.config.tasks), where))
@@ -505,11 +515,26 @@ class OnlineChange:
         self._wake.set()
 
     def start(self) -> None:
+        """The compile process started and warmed (one compile of the
+        configuration, in the background) and the file watcher."""
         self._thread = threading.Thread(target=self._run, name="softplc-online-change", daemon=True)
         self._thread.start()
         log.info("online change: watching %d file(s); SIGHUP compiles and swaps in now", len(self._mtimes))
 
+    def warm(self) -> None:
+        """The compile process started and its caches filled (the
+        configuration compiled once, nothing swapped): start() does it
+        first, so that the first change does not pay the start-up."""
+        if self._compile == self._compile_config:
+            with self._lock:
+                self.worker.warm(self.config)
+
     def _run(self) -> None:
+        try:
+            self.warm()  # its start-up and first parse now, not at the first change
+        except (CompileProcessError, OSError) as exc:
+            if not self._stop.is_set():
+                log.warning("online change: the compile process: %s (started again at the first change)", exc)
         while not self._stop.is_set():
             self._wake.wait(POLL_S)
             if self._stop.is_set():
@@ -526,6 +551,7 @@ class OnlineChange:
         self._wake.set()
         if self._thread is not None:
             self._thread.join(timeout=5)
+        self.worker.close()
 
 
 __all__ = ["ChangeReport", "ChangeRequest", "OnlineChange", "apply_program", "tasks_refused"]

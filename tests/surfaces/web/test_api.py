@@ -184,7 +184,8 @@ def test_the_online_change_button_compiles_and_swaps_the_program_in(web_plc, tmp
     off = web.post("online-change")
     assert off.status_code == 404 and "online change is off" in off.json()["error"]
 
-    web.surfaces.online_change = OnlineChange(web.engine, plc.config)  # what softplc run does
+    web.surfaces.online_change = changer = OnlineChange(web.engine, plc.config)  # what softplc run does
+    changer.warm()  # its compile process started, as softplc run's start() does
     assert web.http.get("/api/info").json()["online_change"] is True
     source.write_text(
         PLANT.replace("    quotient : INT;", "    quotient : INT;\n    added : INT := 42;"), encoding="utf-8"

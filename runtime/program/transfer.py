@@ -1,0 +1,122 @@
+"""A compiled Program as bytes and back: what an online change's compile
+process (engine/compile_process.py) sends to the PLC's process.
+
+    data = dumps(program)        # in the compiling process
+    program = loads(data)        # in the PLC's process: no parsing, no compile()
+
+pickle with three rules of our own (reducer_override), so that the Program
+read back is the one compile_files would have made in this process:
+
+  * the types and other values that are module globals of softplc
+    (types.BOOL, types.LREAL ...) are sent by name and read back as this
+    process's own objects: the checker and the generated code compare
+    types by identity (eq=False);
+  * functions made by a factory (rt_wrap's wrappers, rt_convert's
+    converters: closures) are sent as their code (marshal), their module
+    and the values they closed over;
+  * a source position (ast.Pos, frozen with slots) is made by its class;
+  * code objects (the generated module's, a closure's) are marshal-ed:
+    their bytecode as compiled, with its filename and flags, is loaded
+    without compiling again.
+"""
+
+from __future__ import annotations
+
+import importlib
+import io
+import marshal
+import pickle
+import sys
+import types
+
+from ..st.ast import Pos
+from ..st.types import Type
+
+_PROTOCOL = 5
+
+
+def _module_global(module: str, name: str):
+    return getattr(importlib.import_module(module), name)
+
+
+def _code(data: bytes) -> types.CodeType:
+    return marshal.loads(data)
+
+
+def _cell(value) -> types.CellType:
+    return types.CellType(value)
+
+
+def _closure(module: str, code: types.CodeType, name: str, qualname: str, defaults, kwdefaults, cells: tuple):
+    fn = types.FunctionType(code, vars(importlib.import_module(module)), name, defaults, cells)
+    fn.__qualname__ = qualname
+    fn.__kwdefaults__ = kwdefaults
+    return fn
+
+
+def _singletons() -> dict:
+    """id -> (module, name) of every Type that is a global of a loaded softplc module."""
+    out: dict = {}
+    for mod_name, mod in list(sys.modules.items()):
+        if not mod_name.startswith("softplc.") or mod is None:
+            continue
+        for name, value in list(vars(mod).items()):
+            if isinstance(value, Type) and not name.startswith("__"):
+                out.setdefault(id(value), (mod_name, name))
+    return out
+
+
+class _Pickler(pickle.Pickler):
+    def __init__(self, file) -> None:
+        super().__init__(file, protocol=_PROTOCOL)
+        self._named = _singletons()
+
+    def reducer_override(self, obj):
+        if type(obj) is Pos:  # some 10,000 of them: by the class, not dataclasses' slow __setstate__
+            return (Pos, (obj.file, obj.line, obj.col, obj.end_line, obj.end_col))
+        if isinstance(obj, Type):
+            named = self._named.get(id(obj))
+            return (_module_global, named) if named else NotImplemented
+        if isinstance(obj, types.CodeType):
+            return (_code, (marshal.dumps(obj),))
+        if isinstance(obj, types.CellType):
+            return (_cell, (obj.cell_contents,))
+        if isinstance(obj, types.FunctionType) and obj.__closure__ is not None:
+            return (
+                _closure,
+                (
+                    obj.__module__,
+                    obj.__code__,
+                    obj.__name__,
+                    obj.__qualname__,
+                    obj.__defaults__,
+                    obj.__kwdefaults__,
+                    obj.__closure__,
+                ),
+            )
+        return NotImplemented
+
+
+def dumps(program) -> bytes:
+    """The Program as bytes for loads() in another process of the same softplc."""
+    limit = sys.getrecursionlimit()
+    sys.setrecursionlimit(max(limit, 20_000))  # a deep AST or type graph: pickle recurses per level
+    try:
+        out = io.BytesIO()
+        _Pickler(out).dump(program)
+        return out.getvalue()
+    finally:
+        sys.setrecursionlimit(limit)
+
+
+def loads(data: bytes):
+    """The Program dumps() made."""
+    limit = sys.getrecursionlimit()
+    sys.setrecursionlimit(max(limit, 20_000))
+    try:
+        return pickle.loads(data)
+    finally:
+        sys.setrecursionlimit(limit)
+
+
+__all__ = ["dumps", "loads"]
