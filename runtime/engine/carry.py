@@ -325,21 +325,11 @@ class Carry:
             return None
         depth = len(rn.dims)
 
-        def rows(path: str, old: list, live: list, level: int) -> None:
-            if level < depth:
-                for o, n in zip(old, live):
-                    rows(path, o, n, level + 1)
-            elif sub is None:
-                live[:] = old
-            else:
-                for o, n in zip(old, live):
-                    sub(path, o, n)
-
         def copy(path: str, old: list, live: list) -> None:
             self.moved[id(old)] = live
             self._quiet += 1  # elements are not listed one by one
             try:
-                rows(path, old, live, 1)
+                _copy_rows(path, old, live, depth, sub)
             finally:
                 self._quiet -= 1
 
@@ -368,6 +358,7 @@ class Carry:
                 setattr(holder, attr, new)
                 self._add("kept", path)
         self._refs.clear()
+        self._plans.clear()  # their closures hold this Carry: a ring that only a collection would free
         return self.out
 
     def _moved_ref(self, rn: T.Type, value):
@@ -389,6 +380,20 @@ class Carry:
 
 
 _GONE = object()
+
+
+def _copy_rows(path: str, old: list, live: list, depth: int, sub) -> None:
+    """An array of depth dimensions copied element by element (sub: an
+    element's plan, None for plain values). A function of the module, not a
+    closure that calls itself: that would be a ring holding the Carry."""
+    if depth > 1:
+        for o, n in zip(old, live):
+            _copy_rows(path, o, n, depth - 1, sub)
+    elif sub is None:
+        live[:] = old
+    else:
+        for o, n in zip(old, live):
+            sub(path, o, n)
 
 
 def _changed(ro: T.Type, rn: T.Type) -> str:

@@ -80,6 +80,7 @@ class Program:
         self.warnings: list[Diagnostic] = warnings
         self.sources = sources
         self.pous = user_pous
+        self.read_back = False  # transfer.loads() sets it: taken apart when an online change replaces it
         self.linemaps = {filename: gen.linemap}
         # Globals the libraries declare (PLC_DIAG, a shipped library's constants): not the user's state.
         self.library_globals = frozenset(
