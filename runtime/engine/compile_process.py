@@ -44,6 +44,7 @@ from ..st.diagnostics import CompileError
 
 _HEADER = struct.Struct("!Q")
 SWITCH_S = 0.0005  # the switch interval while the PLC's process reads a program back
+NICE = 10  # the child's niceness: a compile never takes the CPU from the scan
 
 
 class CompileProcessError(Exception):
@@ -68,7 +69,7 @@ def _write(stream, message: object) -> None:
 
 
 @contextlib.contextmanager
-def _switch_interval(seconds: float):
+def switch_interval(seconds: float):
     """The interpreter's switch interval lowered meanwhile: a thread that
     waits for the lock (the scan) gets it after this long, not 5 ms."""
     before = sys.getswitchinterval()
@@ -145,7 +146,7 @@ class CompileProcess:
             raise CompileError(answer[1], answer[2])
         if kind != "program":
             raise CompileProcessError(f"the compile process failed: {answer[1]}")
-        with _switch_interval(SWITCH_S):
+        with switch_interval(SWITCH_S):
             return transfer.loads(answer[1])
 
     def _stop(self) -> None:
@@ -199,6 +200,8 @@ def main() -> None:
     answers = os.fdopen(os.dup(1), "wb")
     os.dup2(2, 1)  # anything printed goes to stderr, not into the answers
     sys.stdin = None
+    with contextlib.suppress(OSError):  # the kernel gives a core to the scan first (2 cores: one each)
+        os.nice(NICE)
     while True:
         request = _read(requests)
         if request is None:

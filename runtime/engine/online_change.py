@@ -54,7 +54,7 @@ from ..st.diagnostics import CompileError
 from ..st.faults import fault_from_exception
 from ..st.values import assign_into, copy_value
 from .carry import Carry, global_members, members
-from .compile_process import CompileProcess, CompileProcessError
+from .compile_process import SWITCH_S, CompileProcess, CompileProcessError, switch_interval
 from .diag import DiagVariable
 from .retain import type_signature
 from .tasks import TaskSetupError, plan_tasks
@@ -107,11 +107,14 @@ class ChangeReport:
 # ================================================================ the swap
 
 
-def apply_program(engine, program: Program, reason: str = "", module: dict | None = None) -> ChangeReport:
+def apply_program(
+    engine, program: Program, reason: str = "", module: dict | None = None, carry: Carry | None = None
+) -> ChangeReport:
     """Swap program into engine now, carrying the values; call it between
     two scans in the scan thread (Engine.between_scans), or before the
-    first. module: program.module(engine.ctx), made beforehand off the scan
-    thread. The engine is left as it was when the report is not applied."""
+    first. module: program.module(engine.ctx), carry: prepared_carry(the
+    running program, program), both made beforehand off the scan thread.
+    The engine is left as it was when the report is not applied."""
     report = ChangeReport(reason)
     engine.load()
     refusal = _instances_refused(engine, program)
@@ -139,7 +142,7 @@ def apply_program(engine, program: Program, reason: str = "", module: dict | Non
             rt_oop.exit_instances(saved.ns, roots, in_copy_code=True)
         except Exception as exc:
             raise _Refused(f"FB_exit: {fault_from_exception(exc, saved.program.linemaps)}") from None
-        carried = _carry(saved, engine, program)
+        carried = _carry(saved, engine, program, carry)
         engine._retain_plan = engine._plan_retain()  # ValueError: two retained variables of one path
     except Exception as exc:  # STFault of an initial value or FB_init, a refusal: the old program goes on
         saved.restore(engine)
@@ -229,11 +232,28 @@ def tasks_refused(engine, specs: list) -> str | None:
     return None
 
 
-def _carry(saved: _EngineState, engine, program: Program) -> Carry:
+def prepared_carry(old: Program, new: Program) -> Carry:
+    """The Carry of a change from old to new, with what depends on the
+    types only worked out (in the requester's thread, before the swap)."""
+    quiet = frozenset(n.upper() for n in new.library_globals | old.library_globals)
+    carry = Carry(quiet)
+    carry.prepare(global_members(old.checked), global_members(new.checked))
+    for info in new.checked.pous:
+        if info.kind == "PROGRAM":
+            try:
+                before = old.pou(info.name)
+            except KeyError:
+                continue
+            carry.prepare(members(None, before), members(None, info))
+    return carry
+
+
+def _carry(saved: _EngineState, engine, program: Program, carry: Carry | None) -> Carry:
     old_program = saved.program
     old_g, new_g = saved.ns["_G"], engine.ns["_G"]
-    quiet = frozenset(n.upper() for n in program.library_globals | old_program.library_globals)
-    carry = Carry(quiet)
+    if carry is None:
+        quiet = frozenset(n.upper() for n in program.library_globals | old_program.library_globals)
+        carry = Carry(quiet)
     carry.moved[id(old_g)] = new_g
     carry.members("", global_members(old_program.checked), global_members(program.checked), old_g, new_g)
     for key, (name, info, obj) in engine.instances.items():
@@ -347,6 +367,7 @@ class ChangeRequest:
         self.module = module
         self.report: ChangeReport | None = None
         self.replaced: tuple | None = None  # (program, module) set by the scan: released by wait()
+        self.carry: tuple | None = None  # (the program it was prepared from, prepared_carry())
         self.done = threading.Event()
 
     def refused(self, report: ChangeReport) -> ChangeRequest:
@@ -357,8 +378,11 @@ class ChangeRequest:
     def __call__(self, engine) -> None:  # in the scan thread, between two scans
         assert self.program is not None
         before, before_ns = engine.program, engine.ns
+        prepared_for, carry = self.carry if self.carry is not None else (None, None)
+        self.carry = None
         try:
-            self.report = apply_program(engine, self.program, self.reason, self.module)
+            carry = carry if prepared_for is before else None  # another change came first: made here
+            self.report = apply_program(engine, self.program, self.reason, self.module, carry)
         except Exception as exc:  # never into the scan
             self.report = ChangeReport(self.reason, errors=[f"the online change failed: {exc!r}"])
         if self.report.applied and before is not self.program:  # what nothing runs now
@@ -377,8 +401,10 @@ class ChangeRequest:
                 errors=[f"not applied yet: no scan within {timeout:g} s (it is applied at the next one)"],
             )
         replaced, self.replaced = self.replaced, None
-        if replaced is not None and replaced[0] is not None and transfer.release(replaced[0]):
-            _dismantle(replaced[1])
+        if replaced is not None and replaced[0] is not None:
+            with switch_interval(SWITCH_S):
+                if transfer.release(replaced[0]):
+                    _dismantle(replaced[1])
         assert self.report is not None
         return self.report
 
@@ -473,10 +499,14 @@ class OnlineChange:
 
             with _collector_paused(read_back):  # and frozen or collected before it is loaded
                 compiled = self._compiled(reason)
-            prepared = compiled if isinstance(compiled, ChangeReport) else self._loaded(reason, compiled)
-            if isinstance(prepared, ChangeReport):
-                return request.refused(prepared)
-            request.program, request.module = prepared
+            with switch_interval(SWITCH_S):  # the scan waits for the interpreter lock 0.5 ms, not 5
+                prepared = compiled if isinstance(compiled, ChangeReport) else self._loaded(reason, compiled)
+                if isinstance(prepared, ChangeReport):
+                    return request.refused(prepared)
+                request.program, request.module = prepared
+                running = self.engine.program
+                if running is not None:
+                    request.carry = (running, prepared_carry(running, request.program))
             self.engine.between_scans.append(request)
             return request
 
@@ -608,4 +638,4 @@ class OnlineChange:
         self.worker.close()
 
 
-__all__ = ["ChangeReport", "ChangeRequest", "OnlineChange", "apply_program", "tasks_refused"]
+__all__ = ["ChangeReport", "ChangeRequest", "OnlineChange", "apply_program", "prepared_carry", "tasks_refused"]

@@ -70,3 +70,26 @@ def test_a_replaced_program_is_freed_without_the_garbage_collector(tmp_path):
             gc.enable()
             gc.unfreeze()  # the change froze the heap: this worker's later garbage is collected as before
             change.stop()
+
+
+def test_two_changes_queued_before_a_scan_both_carry_the_values(tmp_path):
+    # the second change's copy was worked out against the program the first replaces
+    st = tmp_path / "plant.st"
+    st.write_text(SOURCE.replace("{extra}", ""), encoding="utf-8")
+    with PLC.from_st([st], cycle="10ms") as plc:
+        plc.step(3)
+        change = OnlineChange(plc.engine, plc.config)
+        try:
+            st.write_text(SOURCE.replace("{extra}", "a : INT := 1;"), encoding="utf-8")
+            first = change.submit("first")
+            st.write_text(SOURCE.replace("{extra}", "a : INT := 1; b : INT := 2;"), encoding="utf-8")
+            second = change.submit("second")
+            plc.step()
+            reports = [first.wait(0), second.wait(0)]
+            assert [r.applied for r in reports] == [True, True], [r.errors for r in reports]
+            assert "Main.n" in reports[1].kept and "Main.b" in reports[1].initialised
+            assert plc["Main.n"] == 4 and plc["Main.counters[2, 1].total"] == 8
+            assert (plc["Main.a"], plc["Main.b"]) == (1, 2)
+        finally:
+            gc.unfreeze()
+            change.stop()
