@@ -88,16 +88,21 @@ def _version_salt() -> bytes:
 _SALT: bytes | None = None
 
 
+def parser_code() -> bytes:
+    """The hash of the language's code (_version_salt), once per process."""
+    global _SALT
+    if _SALT is None:
+        _SALT = _version_salt()
+    return _SALT
+
+
 def parse_cached(name: str, text: str, profile: Profile, disk: bool = True) -> tuple[list, list]:
     """(SourceFiles, diagnostics) of a library file, parsed once per content:
     from memory, else from the cache folder, else parsed (and kept in both).
     Every call returns new objects: the checker annotates them. disk=False:
     memory only (a project's own sources, which change with every edit,
     would fill the cache folder)."""
-    global _SALT
-    if _SALT is None:
-        _SALT = _version_salt()
-    key = cache.key("st", _SALT, profile.name, name, text)
+    key = cache.key("st", parser_code(), profile.name, name, text)
     data = _PARSES.get(key)
     if data is not None:
         return pickle.loads(data)
