@@ -29,6 +29,7 @@ def test_there_are_benchmarks():
         "bench_online_change.py",
         "bench_soak.py",
         "bench_spin.py",
+        "bench_startup.py",
         "bench_surfaces.py",
     ]
 
