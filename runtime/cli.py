@@ -28,6 +28,7 @@ from pathlib import Path
 
 import click
 
+from . import cache
 from .cli_project import ALL_ERRORS_OPTION, PARTIAL_OPTION
 from .cli_project import PROFILE_OPTION as PROJECT_PROFILE_OPTION
 from .cli_report import echo_err as _echo_err
@@ -139,12 +140,20 @@ def _compile(files, profile: str, libraries: tuple = ()):
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="softplc", prog_name="softplc")
-def cli() -> None:
+@click.option(
+    "--no-cache",
+    is_flag=True,
+    help="Neither read nor write softplc's cache (the parsed grammar and libraries; SOFTPLC_NO_CACHE=1 does the same).",
+)
+@click.pass_context
+def cli(ctx: click.Context, no_cache: bool) -> None:
     """softplc: IEC 61131-3 Structured Text compiled to Python.
 
     Exit codes: 0 ok, 1 compile errors, 2 usage error, 3 runtime fault,
     4 internal error.
     """
+    if no_cache:
+        ctx.with_resource(cache.disabled())
 
 
 @cli.command()

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import click
 
-from .config.errors import SHOWN
+from .st.diagnostics import SHOWN
 
 
 def echo_err(text: str) -> None:

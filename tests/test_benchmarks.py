@@ -31,6 +31,7 @@ def test_there_are_benchmarks():
         "bench_soak.py",
         "bench_soak_live.py",
         "bench_spin.py",
+        "bench_startup.py",
         "bench_surfaces.py",
     ]
 

@@ -14,10 +14,8 @@ from pydantic import BaseModel
 from pydantic.fields import FieldInfo
 from pydantic_core import ErrorDetails
 
+from ..st.diagnostics import SHOWN
 from .values import KEEP, LONG, cut, got
-
-#: the errors of one file a message shows; the rest are counted ("... 120 more errors")
-SHOWN = 50
 
 
 class ConfigError(Exception):

@@ -15,14 +15,25 @@ themselves. Tests add one for a while with ``extended(...)``.
 
 Order is each plugin's ``order`` (then its name): it decides the order of
 configuration checks, of drivers in the scan and of types in messages.
+
+The compile side asks only for the plugins' ST libraries and the names of
+their native functions (``plugin_libraries``, ``plugin_natives``): those
+come from an index kept in softplc's cache (runtime/cache.py, keyed by the
+installed entry points, their distributions' versions and the contents of
+their packages), so a program that uses no bus and no device compiles
+without importing one; a native function's plugin is loaded when a program
+calls it.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+import importlib.util
+from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from importlib import metadata
+from pathlib import Path
 
+from .. import cache
 from ..st.native import NativeFunction
 from .seams import Bus, Device, GeneratedFile, PackageFile, StLibrary
 
@@ -155,3 +166,77 @@ def extended(*plugins: Bus | Device) -> Iterator[Registry]:
     finally:
         for plugin in reversed(added):
             reg.remove(plugin)
+
+
+# ---------------------------------------------------------------- what the compile side asks, lazily
+
+
+def plugin_libraries() -> list[StLibrary]:
+    """The ST files of every bus and device (registry().libraries()),
+    without loading a plugin when the index is in the cache."""
+    if _registry is not None:
+        return _registry.libraries()
+    return [StLibrary(package, file) for package, file in _index()[0]]
+
+
+def plugin_natives(extra: tuple[NativeFunction, ...] = ()) -> Mapping[str, NativeFunction]:
+    """Every native function by ST name (registry().natives()) and extra
+    ones a caller compiles with; a plugin's are loaded when one of their
+    names is looked up."""
+    extras = {fn.name: fn for fn in extra}
+    if _registry is not None:
+        return {**_registry.natives(), **extras}
+    return _LazyNatives(_index()[1], extras)
+
+
+class _LazyNatives(Mapping):
+    def __init__(self, names: tuple, extras: dict) -> None:
+        self._names = frozenset(names) | frozenset(extras)
+        self._extras = extras
+
+    def __getitem__(self, name: str) -> NativeFunction:
+        if name in self._extras:
+            return self._extras[name]
+        if name not in self._names:
+            raise KeyError(name)
+        return registry().natives()[name]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(sorted(self._names))
+
+    def __len__(self) -> int:
+        return len(self._names)
+
+
+def _index() -> tuple:
+    """((package, file) of every plugin's ST library, in registry order;
+    the names of their native functions): from the cache, else from the
+    loaded registry (and kept)."""
+    entries = []
+    for group in (BUS_GROUP, DEVICE_GROUP):
+        for ep in metadata.entry_points(group=group):
+            dist = ep.dist
+            where = (dist.name, dist.version) if dist is not None else ("", "")
+            entries.append(repr((group, ep.name, ep.value, *where)).encode() + _package_code(ep.module))
+    key = cache.key("plugins", *entries)
+    found = cache.load("plugins", key)
+    if isinstance(found, tuple) and len(found) == 2:
+        return found
+    reg = registry()
+    found = (tuple((lib.package, lib.file) for lib in reg.libraries()), tuple(sorted(reg.natives())))
+    cache.store("plugins", key, found)
+    return found
+
+
+def _package_code(module: str) -> bytes:
+    """A hash of the sources of the package (or module) an entry point
+    names, found without importing it (but for its parents)."""
+    try:
+        spec = importlib.util.find_spec(module)
+    except Exception:
+        spec = None
+    if spec is None or spec.origin is None:
+        return b"?"
+    origin = Path(spec.origin)
+    files = sorted(origin.parent.rglob("*.py")) if spec.submodule_search_locations else [origin]
+    return cache.code_hash(*files)

@@ -17,12 +17,14 @@ from __future__ import annotations
 import functools
 import itertools
 import re
+from collections.abc import Mapping
 from importlib import resources
 from pathlib import Path
 
 from ...fblocks.iec.functions import STANDARD_FUNCTIONS
+from .. import cache
 from ..image.memory import ProcessImage
-from ..plugin.registry import registry
+from ..plugin.registry import plugin_libraries, plugin_natives
 from ..plugin.seams import StLibrary
 from ..st import ast as A
 from ..st.checker import CheckedProgram, Checker
@@ -32,7 +34,7 @@ from ..st.importers import source_files
 from ..st.limits import MAX_SOURCE_CHARS
 from ..st.pragmas import attribute_value
 from ..st.profile import DEFAULT, Profile, get_profile
-from .libraries import parse_cached
+from .libraries import parse_cached, parser_code
 from .loaded import Program
 from .reparse import parse_views
 from .shipped import Elsewhere, functions_of, natives_of, with_required
@@ -50,6 +52,7 @@ _IEC_ON_DEMAND = (
     StLibrary("softplc.fblocks.iec", "date_time.st"),
 )
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+_THIS = Path(__file__)
 
 
 def _always_sources() -> list:
@@ -71,7 +74,7 @@ def _on_demand_sources() -> list:
     mentions a device's block does not pay for it, and a user POU that
     replaces a standard block (its own TON) cannot break a device block it
     does not use."""
-    libraries = (*_IEC_ON_DEMAND, *registry().libraries())
+    libraries = (*_IEC_ON_DEMAND, *plugin_libraries())
     return sorted((lib.name, lib.read_text()) for lib in libraries)
 
 
@@ -104,12 +107,19 @@ def _declared_in(files: list) -> set:
 @functools.cache
 def _library_index(name: str, text: str) -> tuple:
     """(names the file declares, words it uses) of an on-demand library file,
-    parsed once per process: the choice of files then costs no parsing."""
-    files, _ = parse_cached(name, text, DEFAULT)
-    return (
-        frozenset(_declared_in(files)),
-        frozenset(w.upper() for w in _WORD.findall(text)),
-    )
+    once per process and kept in softplc's cache (by the text, softplc's
+    version and the code of the parser and of this module): the choice of
+    files then costs no parsing, nor reading a parse."""
+    key = cache.key("libindex", parser_code(), _THIS.read_bytes(), name, text)
+    found = cache.load("libindex", key)
+    if not (isinstance(found, tuple) and len(found) == 2):
+        files, _ = parse_cached(name, text, DEFAULT)
+        found = (
+            frozenset(_declared_in(files)),
+            frozenset(w.upper() for w in _WORD.findall(text)),
+        )
+        cache.store("libindex", key, found)
+    return found
 
 
 def _take_named(units: list, words: set, index) -> tuple:
@@ -141,12 +151,10 @@ def _std_functions() -> dict:
     return STANDARD_FUNCTIONS
 
 
-def _natives(extra: tuple = ()) -> dict:
+def _natives(extra: tuple = ()) -> Mapping:
     """The registered buses' and devices' native functions, and extra ones
     a caller compiles with (the test runner's assertions)."""
-    found = dict(registry().natives())
-    found.update((fn.name, fn) for fn in extra)
-    return found
+    return plugin_natives(extra)
 
 
 def _read_text(p, diags: DiagnosticBag) -> str | None:

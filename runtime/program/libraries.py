@@ -11,19 +11,17 @@ something the file declares, as the on-demand files of the standard
 library (compile.py): unused POUs cost nothing, neither at compile time
 nor at run time. Parsing a file is done once per content: the parse and
 its index (what it declares, the words it uses) are kept by the hash of
-the text, the profile and softplc's grammar, in memory and in a cache
-folder (``$SOFTPLC_CACHE``, else ``$XDG_CACHE_HOME/softplc``, else
-``~/.cache/softplc``; a cache that cannot be written is skipped).
+the text, the profile, softplc's version and its parser's code, in memory
+and in softplc's cache (runtime/cache.py: the user's cache directory).
 """
 
 from __future__ import annotations
 
 import dataclasses
-import hashlib
-import os
 import pickle
 from pathlib import Path
 
+from .. import cache
 from ..st.diagnostics import DiagnosticBag
 from ..st.importers import is_source, st_views
 from ..st.parser import parse_source
@@ -77,31 +75,25 @@ def _skipped(rel: Path) -> bool:
     return any(part.startswith(".") or part in _GENERATED for part in rel.parts[:-1]) or rel.name.startswith(".")
 
 
-def _cache_dir() -> Path:
-    env = os.environ.get("SOFTPLC_CACHE")
-    if env:
-        return Path(env)
-    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-    return Path(base) / "softplc"
-
-
 def _version_salt() -> bytes:
     """What makes an old parse invalid besides the text: the language's
     code (the grammar, the lexer and parser, the AST and its builders) and
     the importers' (an imported file's parse is what its importer wrote,
     and a newer softplc imports more: a cached parse of a PLCopen file
     from before its FBD bodies were read would keep them out)."""
-    h = hashlib.sha256()
     st = _GRAMMAR.parent
-    for f in sorted([*st.glob("*.py"), *st.glob("*.lark"), *(st / "importers").glob("*.py")]):
-        try:
-            h.update(f.name.encode() + b"\0" + f.read_bytes())
-        except OSError:
-            pass
-    return h.digest()
+    return cache.code_hash(*st.glob("*.py"), *st.glob("*.lark"), *(st / "importers").glob("*.py"))
 
 
 _SALT: bytes | None = None
+
+
+def parser_code() -> bytes:
+    """The hash of the language's code (_version_salt), once per process."""
+    global _SALT
+    if _SALT is None:
+        _SALT = _version_salt()
+    return _SALT
 
 
 def parse_cached(name: str, text: str, profile: Profile, disk: bool = True) -> tuple[list, list]:
@@ -110,40 +102,24 @@ def parse_cached(name: str, text: str, profile: Profile, disk: bool = True) -> t
     Every call returns new objects: the checker annotates them. disk=False:
     memory only (a project's own sources, which change with every edit,
     would fill the cache folder)."""
-    global _SALT
-    if _SALT is None:
-        _SALT = _version_salt()
-    key = hashlib.sha256(_SALT + profile.name.encode() + b"\0" + name.encode() + b"\0" + text.encode()).hexdigest()
+    key = cache.key("st", parser_code(), profile.name, name, text)
     data = _PARSES.get(key)
     if data is not None:
         return pickle.loads(data)
-    path = _cache_dir() / "st" / f"{key}.pickle"
-    try:
-        if not disk:
-            raise FileNotFoundError(path)
-        data = path.read_bytes()
-        parsed = pickle.loads(data)  # our own cache, in the user's folder; a damaged entry is parsed again
-    except Exception:
-        data = None
+    data = cache.load_bytes("st", key) if disk else None
+    if data is not None:
+        try:
+            parsed = pickle.loads(data)  # a damaged entry is parsed again (and rewritten)
+        except Exception:
+            data = None
     if data is None:
         diags = DiagnosticBag()
         files = [parse_source(v.text, name, diags, profile, v.lowered, v.origins) for v in st_views(name, text, diags)]
         parsed = (files, diags.items)  # (new objects: only their pickle is kept)
-        try:
-            data = pickle.dumps(parsed, protocol=pickle.HIGHEST_PROTOCOL)
-        except RecursionError:  # an expression hundreds of operators long: parsed, not kept
+        data = cache.dumps(parsed)
+        if data is None:  # an expression hundreds of operators long: parsed, not kept
             return parsed
         if disk:
-            _store(path, data)
+            cache.store_bytes("st", key, data)
     _PARSES[key] = data
     return parsed
-
-
-def _store(path: Path, data: bytes) -> None:
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
-        tmp = path.with_suffix(f".{os.getpid()}.tmp")
-        tmp.write_bytes(data)
-        os.replace(tmp, path)  # whole or not at all, also with two compilers at once
-    except OSError:
-        pass  # a read-only home: parse each time

@@ -181,6 +181,9 @@ class Elsewhere(Mapping):
     def __len__(self) -> int:
         return len(self._built())
 
+    def __bool__(self) -> bool:
+        return True  # (never empty; and a truth test must not build the table)
+
 
 def _declared(spec: LibrarySpec) -> set:
     """UPPER names a shipped library's files declare (POUs, types, globals)."""

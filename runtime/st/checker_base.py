@@ -61,14 +61,14 @@ class CheckerBase:
         profile: Profile,
         diags: DiagnosticBag,
         std_functions: dict,
-        natives: dict | None = None,
+        natives: Mapping | None = None,
         image: AddressSpace | None = None,
         elsewhere: Mapping | None = None,
     ) -> None:
         self.profile = profile
         self.d = diags
         self.std = std_functions
-        self.natives: dict = natives or {}  # UPPER -> native.NativeFunction
+        self.natives: Mapping = natives or {}  # UPPER -> native.NativeFunction
         #: UPPER name -> where it is declared when not in the program: a library
         #: softplc knows ("Tc2_System; add it to libraries = [...]"), looked up
         #: only for a name that is unknown (so it may be built lazily)

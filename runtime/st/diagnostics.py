@@ -92,6 +92,9 @@ class Diagnostic:
 
 
 EXCERPT = 120  # characters of a long source line shown around the column
+#: the errors of one file a message shows (a configuration's, the command's
+#: diagnostics); the rest are counted ("... 120 more errors")
+SHOWN = 50
 
 
 def _excerpt(line: str, start: int, width: int) -> tuple:

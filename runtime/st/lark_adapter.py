@@ -35,21 +35,20 @@ installed lark (a lark upgrade that breaks one fails there, naming it):
      st_grammar.py shapes them itself from the data of 3, and the test
      compares that with lark's own parser on ST programs.
 
-The analysis takes half a second; lark caches it (``cache=``) in the user's
-cache directory.
+The analysis takes half a second; its result, plain data, is kept in
+softplc's cache (runtime/cache.py) by the hash of grammar.lark, this
+module's code and lark's, so a run with the cache warm does not import lark.
 """
 
 from __future__ import annotations
 
-import os
+import importlib.util
 import re
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import lark
-from lark.lexer import PatternStr
-from lark.parsers.lalr_analysis import Shift
+from .. import cache
 
 __all__ = ["CompiledGrammar", "RuleInfo", "SymbolInfo", "Terminal", "compile_grammar", "load_st_grammar"]
 
@@ -98,16 +97,12 @@ class CompiledGrammar:
     terminals: dict[str, Terminal]
 
 
-def compile_grammar(text: str, start: str = "start", cache: str | None = None, **options: Any) -> CompiledGrammar:
+def compile_grammar(text: str, start: str = "start", **options: Any) -> CompiledGrammar:
     """Analyse a lark grammar for LALR(1) parsing; ``options`` go to Lark."""
-    parser = None
-    if cache:
-        try:
-            parser = lark.Lark(text, parser="lalr", start=start, cache=cache, **options)
-        except Exception:
-            pass  # an unwritable or broken cache: build without it
-    if parser is None:
-        parser = lark.Lark(text, parser="lalr", start=start, **options)
+    import lark  # (only when the grammar is analysed: not with a warm cache)
+    from lark.parsers.lalr_analysis import Shift
+
+    parser = lark.Lark(text, parser="lalr", start=start, **options)
     table = parser.parser.parser.parser.parse_table  # assumption 1
     rules: dict[tuple, RuleInfo] = {}
     states: dict[int, dict[str, Action]] = {}
@@ -142,6 +137,8 @@ def _rule_info(rule: Any) -> RuleInfo:
 
 def _terminal(t: Any) -> Terminal:
     """assumption 4"""
+    from lark.lexer import PatternStr
+
     pattern = t.pattern
     literal = pattern.value if isinstance(pattern, PatternStr) else None
     return Terminal(t.name, literal, pattern.to_regexp())
@@ -154,19 +151,20 @@ GRAMMAR_FILE = Path(__file__).with_name("grammar.lark")
 ST_OPTIONS: dict[str, Any] = dict(lexer="basic", maybe_placeholders=True, g_regex_flags=re.ASCII)
 
 
-def cache_file() -> str | None:
-    """Where lark caches its analysis of grammar.lark (0.03 s to load
-    instead of 0.5 s to build): the user's own cache directory, never a
-    shared /tmp file, since lark loads it with pickle."""
-    try:
-        base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-        directory = os.path.join(base, "softplc")
-        os.makedirs(directory, exist_ok=True)
-        return os.path.join(directory, f"st-grammar-lark{lark.__version__}.cache")
-    except Exception:
-        return None
+def _lark_code() -> bytes:
+    """A hash of the installed lark's top module (it holds lark's version),
+    found without importing lark."""
+    spec = importlib.util.find_spec("lark")
+    origin = spec.origin if spec is not None else None
+    return cache.code_hash(Path(origin)) if origin else b"?"
 
 
 def load_st_grammar() -> CompiledGrammar:
-    """grammar.lark, analysed (or loaded from lark's cache)."""
-    return compile_grammar(GRAMMAR_FILE.read_text(encoding="utf-8"), cache=cache_file(), **ST_OPTIONS)
+    """grammar.lark, analysed (or loaded from softplc's cache)."""
+    text = GRAMMAR_FILE.read_text(encoding="utf-8")
+    key = cache.key("grammar", text, repr(sorted(ST_OPTIONS.items())), cache.code_hash(Path(__file__)), _lark_code())
+    compiled = cache.load("grammar", key)
+    if not isinstance(compiled, CompiledGrammar):
+        compiled = compile_grammar(text, **ST_OPTIONS)
+        cache.store("grammar", key, compiled)
+    return compiled
