@@ -1,9 +1,12 @@
 """The servers' process (see process.py for the PLC's side and the messages).
 
-The OPC UA and Modbus servers run here unchanged: they are given a
-``RemoteSurfaces`` in place of the PLC's ``Surfaces``, whose ``hub`` holds
-the snapshots the PLC sends and whose ``access`` carries writes to the PLC,
-where the one permission check and the one write API do the rest.
+The web page, the OPC UA and the Modbus servers run here unchanged: they
+are given a ``RemoteSurfaces`` in place of the PLC's ``Surfaces``, whose
+``hub`` holds the snapshots the PLC sends, whose ``access`` carries writes
+to the PLC, where the one permission check and the one write API do the
+rest, whose ``call`` runs a server's function in the PLC's process (the web
+page's tree, restart, online change: web/plc.py) and whose ``logs`` holds
+the PLC's log records for the web page (sent with the snapshots).
 
 The process runs at a lower priority than the PLC (``NICE``): on a busy
 machine the scan comes first, as CODESYS's communication comes after its
@@ -25,6 +28,7 @@ from typing import Any
 from ..engine.snapshot import Layout, Snapshot
 from ..io.ratelog import PeerLogFilter
 from .process import FIELDS
+from .web.logbuffer import LogBuffer
 
 #: added to the servers' niceness: they yield the CPU to the scan
 NICE = 5
@@ -55,7 +59,7 @@ class _Link:
             except OSError as exc:
                 raise PlcGone(f"the PLC is gone: {exc}") from None
 
-    def call(self, name: str, *args, done: Future | None = None) -> Any:
+    def call(self, name: str, *args, done: Future | None = None, timeout: float = CALL_TIMEOUT_S) -> Any:
         call_id = next(self._ids)
         reply: Future = Future()
         self._waiting[call_id] = reply
@@ -63,7 +67,7 @@ class _Link:
             self._done[call_id] = done
         try:
             self.send(("call", call_id, name, args))
-            return reply.result(CALL_TIMEOUT_S)
+            return reply.result(timeout)
         except BaseException:
             self._done.pop(call_id, None)
             raise
@@ -101,8 +105,10 @@ def _settle(future: Future, ok: bool, value: Any) -> None:
 class RemoteHub:
     """The snapshot hub's face to the servers, fed by the PLC."""
 
-    def __init__(self, link: _Link) -> None:
+    def __init__(self, link: _Link, period_s: float, logs: LogBuffer) -> None:
         self._link = link
+        self.period_s = period_s  # the PLC's hub's: it captures at least this often while scanning
+        self.logs = logs
         self.latest: Snapshot | None = None
         self.scanning = False
         self._layout: Layout | None = None
@@ -120,7 +126,9 @@ class RemoteHub:
         if message[0] == "layout":
             self._layout = message[1]
             return
-        fields, scanning = message[1], message[2]
+        fields, scanning, records = message[1], message[2], message[3]
+        if records:
+            self.logs.extend(records)
         assert self._layout is not None  # the PLC sends a layout before the first snapshot
         snap = Snapshot(layout=self._layout, **dict(zip(FIELDS, fields)))
         with self._fresh:
@@ -145,6 +153,21 @@ class RemoteHub:
 
     def request(self) -> None:
         self._link.send(("call", None, "request", ()))
+
+    def next_after(self, sequence: int, timeout: float) -> Snapshot | None:
+        """SnapshotHub.next_after: the latest snapshot once it is newer than sequence (None after timeout)."""
+        with self._fresh:
+            self._fresh.wait_for(lambda: self.latest is not None and self.latest.sequence > sequence, timeout)
+            latest = self.latest
+            return latest if latest is not None and latest.sequence > sequence else None
+
+    def wait_fresh(self, timeout: float = 5.0) -> Snapshot:
+        """SnapshotHub.wait_fresh: a snapshot taken after this call."""
+        return self.current(fresh=True)
+
+    def capture(self) -> Snapshot:
+        """A snapshot taken now, when the PLC does not scan (else the next one)."""
+        return self.current(fresh=True)
 
     def current(self, fresh: bool = False) -> Snapshot:
         sequence = self._link.call("current", fresh)
@@ -181,17 +204,18 @@ class RemoteAccess:
 class RemoteSurfaces:
     """What a server module's start(surfaces, config) is given in this process."""
 
-    def __init__(self, link: _Link, permissions: dict) -> None:
+    def __init__(self, link: _Link, permissions: dict, period_s: float) -> None:
         self.link = link
-        self.hub = RemoteHub(link)
+        self.logs = LogBuffer()  # the PLC's log records, as they come with the snapshots
+        self.hub = RemoteHub(link, period_s, self.logs)
         self.access = RemoteAccess(link, permissions)
 
-    def call(self, function, *args) -> Any:
+    def call(self, function, *args, timeout: float = CALL_TIMEOUT_S) -> Any:
         """function(the PLC's Surfaces, *args), run in the PLC's process."""
-        return self.link.call("call", function.__module__, function.__qualname__, args)
+        return self.link.call("call", function.__module__, function.__qualname__, args, timeout=timeout)
 
 
-def main(conn, configs: dict, permissions: dict, level: int) -> None:
+def main(conn, configs: dict, permissions: dict, level: int, period_s: float) -> None:
     """The process's entry point (process.py starts it)."""
     for signum in (signal.SIGINT, signal.SIGHUP):
         signal.signal(signum, signal.SIG_IGN)
@@ -205,7 +229,7 @@ def main(conn, configs: dict, permissions: dict, level: int) -> None:
         pass
     link = _Link(conn)
     _log_to(link, level)
-    surfaces = RemoteSurfaces(link, permissions)
+    surfaces = RemoteSurfaces(link, permissions, period_s)
     stop = threading.Event()
     reader = threading.Thread(target=_receive, args=(link, surfaces.hub, stop), name="plc", daemon=True)
     reader.start()

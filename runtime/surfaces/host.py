@@ -11,15 +11,15 @@ A server module (surfaces/<key>/ or surfaces/<key>.py) offers
 ``stop()``. Modules are imported only when their section is present, so a
 PLC without a web page does not load a web framework.
 
-The OPC UA and Modbus servers run in a process of their own (process.py,
-child.py): they publish and poll thousands of values a second, and in the
-PLC's process that work would hold the interpreter lock the scan needs. The
-web page stays in the PLC's process: it restarts tasks, triggers an online
-change and shows the log, and a few people looking at it cost the scan
-little. A server reaches the PLC only through ``hub`` (snapshots),
-``access`` (writes) and ``call`` (a function of its own run with the PLC's
-surfaces, such as the OPC UA server's walk of the program), which work the
-same in both processes.
+The servers run in a process of their own (process.py, child.py): they
+publish, poll and encode thousands of values a second, and in the PLC's
+process that work would hold the interpreter lock the scan needs. A server
+reaches the PLC only through ``hub`` (snapshots), ``access`` (writes) and
+``call`` (a function of its own run with the PLC's surfaces, such as the
+OPC UA server's walk of the program or the web page's restart and online
+change), which work the same in both processes: ``own_process`` names the
+servers started in the servers' process (by default all of them; a test
+that reaches into a server's state starts it in the PLC's).
 """
 
 from __future__ import annotations
@@ -38,7 +38,7 @@ log = logging.getLogger("softplc.surfaces")
 #: section key -> module (relative to this package) offering start(surfaces, config)
 SERVERS = {"web": ".web", "opcua": ".opcua", "modbus_server": ".modbus_server"}
 #: the servers run in the servers' process (the others in the PLC's)
-OWN_PROCESS = frozenset(("opcua", "modbus_server"))
+OWN_PROCESS = frozenset(("web", "opcua", "modbus_server"))
 
 
 class SurfaceError(Exception):
@@ -46,8 +46,9 @@ class SurfaceError(Exception):
 
 
 class Surfaces:
-    def __init__(self, engine, servers: dict, period_s: float = 0.1) -> None:
+    def __init__(self, engine, servers: dict, period_s: float = 0.1, own_process=OWN_PROCESS) -> None:
         self.engine = engine
+        self.own_process = frozenset(own_process)
         self.configs: dict[str, ServerConfig] = {k: v for k, v in servers.items() if v is not None}
         periods = [c.period_ns / 1e9 for c in self.configs.values()]
         self.hub = SnapshotHub(engine, period_s=min([period_s, *periods]))
@@ -70,7 +71,7 @@ class Surfaces:
         for key, config in self.configs.items():
             if config.public:
                 log.warning("%s listens on %s:%d, reachable from the network", key, config.host, config.port)
-        apart = {k: c for k, c in self.configs.items() if k in OWN_PROCESS}
+        apart = {k: c for k, c in self.configs.items() if k in self.own_process}
         if apart:
             self.process = SurfaceProcess(self, apart)
             try:

@@ -1,15 +1,16 @@
 """The servers' process, seen from the PLC's: it is started, fed with every
 snapshot, answers its calls, and is stopped.
 
-The OPC UA and Modbus servers run in a process of their own (child.py) so
-that their work never holds the PLC's interpreter lock: a scan that waits
+The web page, the OPC UA and the Modbus servers run in a process of their
+own (child.py) so that their work never holds the PLC's interpreter lock: a scan that waits
 for the lock behind a server publishing 10,000 values a second is late by
 milliseconds (benchmarks/README.md, "What the surfaces cost the scan"). They
 reach the engine only through the snapshot hub and Access, which is what
 crosses the pipe:
 
     PLC -> servers   ("layout", Layout)          the paths of the snapshots that follow
-                     ("snapshot", fields)        each capture, its values as raw groups
+                     ("snapshot", fields, scanning, records)   each capture, its values as raw
+                                                 groups, and the log records since the last (web)
                      ("reply", id, ok, value, 0)      a call's result (or its exception)
                      ("done", id, ok, value, seq)     a submitted write carried out (or refused)
                                                       after the snapshot seq was taken
@@ -91,11 +92,19 @@ class SurfaceProcess:
         self._stopping = threading.Event()
         self._forwarder = threading.Thread(target=self._forward, name="softplc-servers-forward", daemon=True)
         self._types_sent = True  # False once the layout's types would not pickle (logged once)
+        #: the PLC's log for the web page, sent with the snapshots (the records after _logged)
+        self._logs: Any = None
+        self._logged = 0
 
     # ------------------------------------------------------------ the caller's thread
 
     def start(self) -> dict:
         """Start the process and its servers: their handles; ProcessError if one cannot listen."""
+        if "web" in self.configs:
+            from .web.logbuffer import LogBuffer
+
+            self._logs = LogBuffer()
+            self._logs.attach()
         for key, (url, port) in self._spawn().items():
             self.handles[key] = RemoteHandle(key, url, port)
         self._forwarder.start()
@@ -107,6 +116,8 @@ class SurfaceProcess:
         if self._forwarder.is_alive():
             self._forwarder.join(STOP_TIMEOUT_S)
         self._calls.shutdown(wait=False, cancel_futures=True)
+        if self._logs is not None:
+            self._logs.detach()
 
     def _spawn(self) -> dict:
         """A new process with every server started: {key: (url, port)}."""
@@ -117,13 +128,13 @@ class SurfaceProcess:
         permissions = {k: self.surfaces.access.permissions.get(k) for k in self.configs}
         process = self._ctx.Process(
             target=child.main,
-            args=(child_conn, self.configs, permissions, level),
+            args=(child_conn, self.configs, permissions, level, self.surfaces.hub.period_s),
             name="softplc-servers",
             daemon=True,  # never outlives the PLC
         )
         with self._send_lock:
             self._conn, self._process = conn, process
-            self._sent, self._layout = 0, None
+            self._sent, self._layout, self._logged = 0, None, 0
         process.start()
         child_conn.close()  # the child's end lives in the child: EOF here when it dies
         started: dict = {}
@@ -215,7 +226,11 @@ class SurfaceProcess:
             if snap.layout is not self._layout:
                 self._send_layout(snap.layout)
                 self._layout = snap.layout
-            self._conn.send(("snapshot", tuple(getattr(snap, f) for f in FIELDS), self.surfaces.hub.scanning))
+            records: list = []
+            if self._logs is not None:
+                records, self._logged = self._logs.since(self._logged)
+            fields = tuple(getattr(snap, f) for f in FIELDS)
+            self._conn.send(("snapshot", fields, self.surfaces.hub.scanning, records))
             self._sent = snap.sequence
 
     def _send_layout(self, layout) -> None:

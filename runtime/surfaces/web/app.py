@@ -50,8 +50,7 @@ from ...engine.access import AccessDenied
 from ...engine.places import PathError
 from ...engine.values import shown, without_lone_surrogates
 from ...io.ratelog import RateLimitedLog
-from ...st import types as T
-from . import tree
+from . import plc
 from .guard import Guard, Rate
 from .stream import MAX_CLIENTS, Broadcaster, log
 
@@ -128,26 +127,35 @@ class _EventStream(StreamingResponse):
 
 
 class _Api:
+    """The routes. What they need of the PLC they ask through the surfaces
+    (plc.py's functions, the hub, the one Access): the same in the servers'
+    process as in the PLC's. A call that waits for the PLC's answer is made
+    in a worker thread: the event loop keeps serving the other pages."""
+
     def __init__(self, surfaces, config: ServerConfig, broadcaster: Broadcaster) -> None:
         self.surfaces = surfaces
         self.config = config
         self.broadcaster = broadcaster
-        self.engine = surfaces.engine
         self.access = surfaces.access
         self.watch_rate = Rate(WATCH_RATE, WATCH_BURST)
         self.changing = False  # an online change asked by a page is under way
+
+    async def _ask(self, function, *args) -> Any:
+        """function(the PLC's surfaces, *args), run in the PLC's process, from a worker thread."""
+        return await asyncio.to_thread(self.surfaces.call, function, *args)
 
     async def index(self, _request: Request) -> Response:
         return FileResponse(STATIC / "index.html")
 
     async def info(self, _request: Request) -> Response:
+        plc_info = await self._ask(plc.info)
         return _Json(
             {
                 "writable": list(self.config.writable),
                 "period_s": self.config.period_ns / 1e9,
-                "online_change": self.control and getattr(self.surfaces, "online_change", None) is not None,
+                "online_change": self.control and plc_info["online_change"],
                 "control": self.control,
-                "tasks": [t.name for t in self.engine.tasks],
+                "tasks": plc_info["tasks"],
             }
         )
 
@@ -155,7 +163,7 @@ class _Api:
         path = request.query_params.get("path", "")
         try:
             offset = int(request.query_params.get("offset", "0"))
-            return _Json(tree.children(self.broadcaster.hub.resolver, path, offset))
+            return _Json(self.surfaces.call(plc.tree_level, path, offset))
         except PathError as exc:
             return _error(404, str(exc))
         except ValueError as exc:
@@ -174,7 +182,7 @@ class _Api:
             return _error(413, f"{len(paths)} paths: a page watches at most {MAX_WATCHED}")
         if not self.watch_rate.take():
             return _error(429, f"more than {WATCH_RATE:g} watches a second: wait and send it again")
-        good, errors = self.broadcaster.watch(client, paths)
+        good, errors = await self.broadcaster.watch(client, paths)
         return _Json({"paths": good, "errors": errors})
 
     async def events(self, request: Request) -> Response:
@@ -202,23 +210,16 @@ class _Api:
         try:
             if not isinstance(path, str):
                 raise PathError(f"path: a variable path such as 'Motor.Auto', not {shown(path)}")
-            place = self.access.check(op, path, SURFACE)  # a refusal first, whatever the value
-            if op == "unforce":
-                if place.path.upper() not in self.engine.forces:
-                    raise _NotForced(f"{place.path} is not forced")
-                value = None
-            else:
-                if "value" not in body:
-                    return _error(400, f"{place.path}: no value to {op}")
-                value = _typed(place, body["value"])
-            future = self.access.submit(op, path, value, surface=SURFACE)
+            # a refusal first, whatever the value
+            declared, value = await self._ask(plc.checked, op, path, SURFACE, "value" in body, body.get("value"))
+            future = await asyncio.to_thread(self.access.submit, op, declared, value, surface=SURFACE)
             # shielded: a page that goes away does not cancel a change the scan is to apply
             done = await asyncio.wait_for(asyncio.shield(asyncio.wrap_future(future)), APPLY_TIMEOUT_S)
         except AccessDenied as exc:
             return _error(403, str(exc))
         except PathError as exc:
             return _error(404, str(exc))
-        except _NotForced as exc:
+        except plc.NotForced as exc:
             return _error(409, str(exc))
         except (ValueError, TypeError) as exc:
             return _error(400, str(exc))
@@ -250,31 +251,25 @@ class _Api:
         refused = await self._refused(request, "restart tasks")
         if refused is not None:
             return refused
-        faulted = [t.name for t in self.engine.faulted_tasks()]
+        faulted = await self._ask(plc.restart)
         if not faulted:
             return _error(409, "no task is stopped by a fault")
-        self.engine.request_restart()
         return _Json({"restarting": faulted})
 
     async def online_change(self, request: Request) -> Response:
         refused = await self._refused(request, "make an online change")
         if refused is not None:
             return refused
-        changer = getattr(self.surfaces, "online_change", None)
-        if changer is None:
-            return _error(404, "online change is off (softplc run --online-change turns it on)")
         if self.changing:  # one at a time: a compile is work of the PLC's process
             return _error(409, "an online change is under way: wait for its report")
         self.changing = True
         try:  # compiling takes a while: in a worker thread, the event loop keeps serving
-            report = await asyncio.to_thread(changer.request, "web page")
+            report = await self._ask(plc.online_change, "web page")
+        except plc.OnlineChangeOff as exc:
+            return _error(404, str(exc))
         finally:
             self.changing = False
-        return _Json({"applied": report.applied, "summary": report.summary(), "lines": report.lines()})
-
-
-class _NotForced(Exception):
-    pass
+        return _Json(report)
 
 
 async def _json(request: Request) -> Any:
@@ -290,15 +285,3 @@ async def _json(request: Request) -> Any:
     if not isinstance(body, dict):
         return _error(400, "send a JSON object")
     return body
-
-
-def _typed(place, value: Any) -> Any:
-    """A value typed on the page is text: a REAL takes it as a number (the
-    other types read their literals themselves: TRUE, 16#FF, T#2s, an enumerator)."""
-    r = T.resolve(place.type)
-    if isinstance(value, str) and isinstance(r, T.ElementaryType) and r.is_real:
-        try:
-            return float(value.strip())
-        except ValueError:
-            raise ValueError(f"{place.path} is {r.name}: write a number, not {shown(value)}") from None
-    return value

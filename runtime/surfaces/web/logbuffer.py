@@ -50,6 +50,16 @@ class LogBuffer(logging.Handler):
             }
         )
 
+    def extend(self, records: list) -> None:
+        """Records kept by another buffer (the PLC's, sent to the servers'
+        process with the snapshots), with their numbers."""
+        self.acquire()
+        try:
+            self.records.extend(records)
+            self.sequence = max(self.sequence, records[-1]["seq"])
+        finally:
+            self.release()
+
     def since(self, sequence: int) -> tuple:
         """The records after number sequence (those still kept), and the last number."""
         self.acquire()

@@ -1,4 +1,4 @@
-"""Serving the web monitor: uvicorn in a thread of the PLC process.
+"""Serving the web monitor: uvicorn in a thread of the servers' process (or the PLC's).
 
     handle = start(surfaces, config)   # returns once the server listens
     handle.url                         # "http://127.0.0.1:8080/"
@@ -61,8 +61,11 @@ class WebHandle:
 
 def start(surfaces, config: ServerConfig) -> WebHandle:
     sock = _bind(config.host, config.port)
-    logs = LogBuffer()
-    broadcaster = Broadcaster(surfaces.hub, period_s=config.period_ns / 1e9, logs=logs)
+    # the servers' process has the PLC's records (sent with the snapshots); the PLC's keeps its own
+    given: LogBuffer | None = getattr(surfaces, "logs", None)
+    own = given is None
+    logs = LogBuffer() if given is None else given
+    broadcaster = Broadcaster(surfaces, period_s=config.period_ns / 1e9, logs=logs)
     app = make_app(surfaces, config, broadcaster)
     server = uvicorn.Server(
         uvicorn.Config(
@@ -83,7 +86,8 @@ def start(surfaces, config: ServerConfig) -> WebHandle:
     for name in UVICORN_LOGGERS:
         logging.getLogger(name).addFilter(quiet)
     thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, name="softplc-web", daemon=True)
-    logs.attach()
+    if own:  # (the servers' process's records reach the PLC's log, and come back from there)
+        logs.attach()
     thread.start()
     deadline = time.monotonic() + START_TIMEOUT_S
     while not server.started:

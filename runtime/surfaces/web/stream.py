@@ -36,10 +36,11 @@ import math
 import threading
 import time
 from collections.abc import AsyncIterator
+from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
-from ...config.values import LONG, got
-from ...engine.snapshot import Snapshot, SnapshotHub
+from ...engine.snapshot import Snapshot
+from . import plc
 from .logbuffer import LogBuffer
 
 log = logging.getLogger("softplc.web")
@@ -56,8 +57,9 @@ PENDING_S = 30.0
 
 
 class Broadcaster:
-    def __init__(self, hub: SnapshotHub, period_s: float, logs: LogBuffer) -> None:
-        self.hub = hub
+    def __init__(self, surfaces, period_s: float, logs: LogBuffer) -> None:
+        self.surfaces = surfaces  # host.Surfaces, or child.RemoteSurfaces in the servers' process
+        self.hub = surfaces.hub
         self.period_s = period_s
         self.logs = logs
         self.snapshot: Snapshot | None = None
@@ -73,6 +75,8 @@ class Broadcaster:
         self._since: dict[str, int] = {}  # client id -> the last snapshot taken before its watch
         self._pending: dict[str, float] = {}  # client id without a stream -> when it watched (oldest first)
         self._common: tuple = (0, "")  # (sequence, the JSON every page gets of that snapshot)
+        # watch and unwatch, one at a time and in order, each waiting for the PLC's answer
+        self._hub_calls = ThreadPoolExecutor(max_workers=1, thread_name_prefix="softplc-web-watch")
 
     # ------------------------------------------------------------ lifecycle (the event loop)
 
@@ -98,6 +102,7 @@ class Broadcaster:
         self._wanted.set()
         if self._thread is not None:
             self._thread.join(timeout=5)
+        self._hub_calls.shutdown(wait=True)
 
     # ------------------------------------------------------------ the snapshot thread
 
@@ -162,26 +167,22 @@ class Broadcaster:
                 return None
         return None
 
-    def watch(self, client: str, paths: list) -> tuple:
+    async def watch(self, client: str, paths: list) -> tuple:
         """Watch paths for client: (the canonical paths, {path: why not} for the others)."""
-        good, errors = [], {}
-        resolver = self.hub.resolver
-        for path in paths:
-            try:
-                good.append(resolver.place(path).path)
-            except (KeyError, ValueError) as exc:  # PathError is a KeyError
-                errors[path if len(path) <= LONG else got(path)] = str(exc)  # a long path as a message cuts it
         self._forget_pending(time.monotonic())
         if client not in self._stream_of:  # its stream is to come: kept a while
             self._pending.pop(client, None)
             self._pending[client] = time.monotonic()
             while len(self._pending) > MAX_PENDING:
                 self._forget(next(iter(self._pending)))
-        self.hub.watch(_reader(client), good)
-        latest = self.hub.latest
-        self._since[client] = latest.sequence if latest is not None else 0  # the next one has them
-        self.hub.request()
-        self.clients[client] = tuple(good)
+        loop = asyncio.get_running_loop()
+        # after the unwatches of the pages forgotten: the same thread, in order
+        good, errors, since = await loop.run_in_executor(
+            self._hub_calls, self.surfaces.call, plc.watch, _reader(client), paths
+        )
+        if client in self._pending or client in self._stream_of:  # not forgotten meanwhile
+            self._since[client] = since  # the next snapshot has them
+            self.clients[client] = tuple(good)
         return good, errors
 
     def _forget_pending(self, now: float) -> None:
@@ -194,7 +195,10 @@ class Broadcaster:
         self._pending.pop(client, None)
         self.clients.pop(client, None)
         self._since.pop(client, None)
-        self.hub.unwatch(_reader(client))
+        try:
+            self._hub_calls.submit(self.hub.unwatch, _reader(client))
+        except RuntimeError:  # the server stops: nothing is watched any more
+            pass
 
     # ------------------------------------------------------------ event streams (the event loop)
 
@@ -276,8 +280,9 @@ def watched_payload(snap: Snapshot, paths) -> tuple:
     for path in paths:
         if path not in snap_values:
             continue
-        values[path] = _finite(snap.json(path))
         raw = snap_values[path]
+        # a path without its type (the servers' process got a layout whose types did not pickle): as stored
+        values[path] = _finite(snap.json(path) if path in snap.types else raw)
         if isinstance(raw, (bool, int, float)) and math.isfinite(raw):
             numbers[path] = float(raw)
     return values, numbers

@@ -12,7 +12,7 @@ import httpx
 import pytest
 
 from softplc.runtime.config.servers import ServerConfig
-from softplc.runtime.surfaces.host import Surfaces
+from softplc.runtime.surfaces.host import OWN_PROCESS, Surfaces
 from softplc.testing import PLC
 
 from ...engine.conftest import Scanning, wait_until
@@ -59,12 +59,14 @@ def web_config(writable=WRITABLE, period_ms: int = 100) -> ServerConfig:
 
 
 class Web:
-    """A PLC, its surfaces with the web server, the scan thread and an HTTP client."""
+    """A PLC, its surfaces with the web server (in the servers' process, or in
+    the PLC's for a test that reaches into the server's state), the scan
+    thread and an HTTP client."""
 
-    def __init__(self, plc: PLC, config: ServerConfig, pause_s: float) -> None:
+    def __init__(self, plc: PLC, config: ServerConfig, pause_s: float, in_process: bool = False) -> None:
         self.plc = plc
         self.engine = plc.engine
-        self.surfaces = Surfaces(plc.engine, {"web": config})
+        self.surfaces = Surfaces(plc.engine, {"web": config}, own_process=() if in_process else OWN_PROCESS)
         self.surfaces.start()
         self.url = self.surfaces.urls["web"]
         self.scan = Scanning(plc.engine, pause_s).start()
@@ -92,11 +94,14 @@ def _no_server_threads() -> list:
 
 @pytest.fixture
 def web_plc():
-    """web_plc(plc=None, config=None, pause_s=0.002) -> Web; PLANT in virtual time unless plc is given."""
+    """web_plc(plc=None, config=None, pause_s=0.002, in_process=False) -> Web; PLANT in virtual
+    time unless plc is given; the web server in the servers' process unless in_process."""
     made: list[Web] = []
 
-    def make(plc: PLC | None = None, config: ServerConfig | None = None, pause_s: float = 0.002) -> Web:
-        web = Web(plc if plc is not None else PLC.from_st(PLANT), config or web_config(), pause_s)
+    def make(
+        plc: PLC | None = None, config: ServerConfig | None = None, pause_s: float = 0.002, in_process: bool = False
+    ) -> Web:
+        web = Web(plc if plc is not None else PLC.from_st(PLANT), config or web_config(), pause_s, in_process)
         made.append(web)
         return web
 

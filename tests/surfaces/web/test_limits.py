@@ -36,7 +36,7 @@ def api(web):
 
 
 def test_a_body_over_the_limit_is_refused_before_it_is_read(web_plc):
-    web = web_plc()
+    web = web_plc(in_process=True)  # the server's counters or clock
     big = b'{"path": "Main.n", "value": "' + b"1" * (1 << 20) + b'"}'  # the issue's 200 MB, cut to 1 MB
     declared = web.http.post("/api/write", content=big, headers={"content-type": "application/json"})
     assert declared.status_code == 413 and str(MAX_BODY) in declared.json()["error"]
@@ -55,7 +55,7 @@ def test_a_body_over_the_limit_is_refused_before_it_is_read(web_plc):
 
 
 def test_event_streams_beyond_the_limit_are_refused_even_when_they_come_all_at_once(web_plc):
-    web = web_plc()
+    web = web_plc(in_process=True)  # the server's counters or clock
     broadcaster = web.surfaces.handles["web"].broadcaster
 
     async def open_many(n: int) -> list:
@@ -80,7 +80,7 @@ def test_event_streams_beyond_the_limit_are_refused_even_when_they_come_all_at_o
 
 
 def test_watches_that_never_open_a_stream_are_forgotten(web_plc, monkeypatch):
-    web = web_plc()
+    web = web_plc(in_process=True)  # the server's clock
     broadcaster = web.surfaces.handles["web"].broadcaster
     hub = web.surfaces.hub
     for i in range(WATCH_BURST):  # the issue's 3,000 ids, as many as the rate lets through
@@ -95,7 +95,7 @@ def test_watches_that_never_open_a_stream_are_forgotten(web_plc, monkeypatch):
 
 
 def test_watches_posted_in_a_loop_get_429_once_the_rate_is_spent(web_plc):
-    web = web_plc()
+    web = web_plc(in_process=True)  # the server's counters or clock
     api(web).watch_rate.clock = lambda: 0.0  # the loop takes no time at all
     codes = [web.post("watch", client="loop", paths=["Main.n"]).status_code for _ in range(WATCH_BURST + 10)]
     assert codes == [200] * WATCH_BURST + [429] * 10
@@ -114,7 +114,7 @@ def test_json_nested_100000_deep_is_a_400_and_no_traceback(web_plc, caplog):
 
 
 def test_a_body_dropped_half_way_is_not_an_error(web_plc, caplog):
-    web = web_plc()
+    web = web_plc(in_process=True)  # the server's counters or clock
     address = urlsplit(web.url)
     guard = web.surfaces.handles["web"].app
     with caplog.at_level(logging.INFO):
@@ -195,3 +195,32 @@ def test_a_flood_of_malformed_requests_leaves_a_bounded_number_of_one_line_log_r
     lines = [r for r in caplog.records if r.name.startswith("uvicorn")]
     assert 1 <= len(lines) <= 20, [r.getMessage() for r in lines]
     assert all(r.exc_info is None and "\n" not in r.getMessage() for r in lines)
+
+
+def test_the_limits_hold_in_the_servers_process(web_plc):
+    """The page in the servers' process (the default): a body over MAX_BODY
+    is a 413, the event streams beyond MAX_CLIENTS a 503, watches in a loop
+    a 429 once the burst is spent; what the page watched is watched in the PLC."""
+    web = web_plc()
+    assert web.surfaces.process is not None and "web" in web.surfaces.process.configs
+    big = b'{"path": "Main.n", "value": "' + b"1" * (MAX_BODY + 1) + b'"}'
+    assert web.http.post("/api/write", content=big, headers={"content-type": "application/json"}).status_code == 413
+
+    async def open_many(n: int) -> list:
+        async with httpx.AsyncClient(base_url=web.url, timeout=30) as client:
+
+            async def one(i: int) -> int:
+                async with client.stream("GET", "/api/events", params={"client": f"p{i}"}) as response:
+                    if response.status_code == 200:
+                        await response.aiter_lines().__anext__()
+                    await barrier.wait()
+                    return response.status_code
+
+            barrier = asyncio.Barrier(n)
+            return await asyncio.gather(*(one(i) for i in range(n)))
+
+    statuses = asyncio.run(open_many(MAX_CLIENTS + 5))
+    assert statuses.count(200) == MAX_CLIENTS and statuses.count(503) == 5
+    codes = [web.post("watch", client="loop", paths=["Main.n"]).status_code for _ in range(3 * WATCH_BURST)]
+    assert codes[:WATCH_BURST] == [200] * WATCH_BURST and 429 in codes
+    assert web.surfaces.hub._watched["web:loop"] == ("Main.n",)
