@@ -44,6 +44,9 @@ def global_variable(globals_obj, name: str):
     return getattr(holder, attr)
 
 
+_UNSEEN = object()
+
+
 class StructWriter:
     """Sets the fields of one ST struct instance by their ST names (a
     STRING field cut to its length); does nothing for a None struct."""
@@ -51,6 +54,7 @@ class StructWriter:
     def __init__(self, struct) -> None:
         self._struct = struct
         self._fields: dict = {}  # field name (upper) -> (attr, max length or None)
+        self._known: dict = {}  # a name as set() was given it -> its entry of _fields (None: no such field)
         if struct is None:
             return
         for st_name, attr, ty, _section in type(struct)._VARS_:
@@ -58,16 +62,20 @@ class StructWriter:
             self._fields[st_name.upper()] = (attr, t.length if isinstance(t, T.StringType) else None)
 
     def set(self, **values) -> None:
-        if self._struct is None:
+        struct = self._struct
+        if struct is None:
             return
+        known = self._known
         for name, value in values.items():
-            entry = self._fields.get(name.upper())
+            entry = known.get(name, _UNSEEN)
+            if entry is _UNSEEN:  # the drivers set the same fields every scan: looked up once by name
+                entry = known[name] = self._fields.get(name.upper())
             if entry is None:
                 continue
             attr, length = entry
             if length is not None:
                 value = str(value)[:length]
-            setattr(self._struct, attr, value)
+            setattr(struct, attr, value)
 
     def get(self, name: str):
         entry = self._fields.get(name.upper())
