@@ -235,6 +235,22 @@ class ProcessImage:
             return lambda: self.read(addr, ty)
         return self.accessor(addr, ty)[0]
 
+    def writer(self, where, ty: T.ElementaryType | None = None) -> Callable[[Any], None]:
+        """A callable doing write(where, value, ty), the address checked once
+        here (AddressError as write gives it), the value at each call
+        (ValueError as write gives it): what writes the same address every scan uses."""
+        addr = self._resolve(where)
+        ty = ty or default_type(addr)
+        check_type(addr, ty)
+        if addr.table is not None:
+            return lambda value: self.write(addr, value, ty)
+        store = self.accessor(addr, ty)[1]
+
+        def write(value, addr=addr, ty=ty, store=store) -> None:
+            store(_checked_value(addr, ty, value))
+
+        return write
+
     def write(self, where, value, ty: T.ElementaryType | None = None) -> None:
         """Store value at an address (see read). Integers must fit the
         address's size, signed or unsigned (-1 or 16#FFFF into a word);

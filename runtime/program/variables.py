@@ -45,6 +45,9 @@ def global_variable(globals_obj, name: str):
     return getattr(holder, attr)
 
 
+_UNSEEN = object()
+
+
 def _fields_of(cls) -> dict:
     """StructWriter's table of a struct class, made once per class and kept
     on it (an online change binds the drivers' 385 diagnostic structs of
@@ -68,18 +71,23 @@ class StructWriter:
         self._struct = struct
         # field name (upper) -> (attr, (max length, wide) or None)
         self._fields: dict = {} if struct is None else _fields_of(type(struct))
+        self._known: dict = {}  # a name as set() was given it -> its entry of _fields (None: no such field)
 
     def set(self, **values) -> None:
-        if self._struct is None:
+        struct = self._struct
+        if struct is None:
             return
+        known = self._known
         for name, value in values.items():
-            entry = self._fields.get(name.upper())
+            entry = known.get(name, _UNSEEN)
+            if entry is _UNSEEN:  # the drivers set the same fields every scan: looked up once by name
+                entry = known[name] = self._fields.get(name.upper())
             if entry is None:
                 continue
             attr, length = entry
             if length is not None:
                 value = cut_string(str(value), *length)  # a WSTRING's length in UTF-16 units
-            setattr(self._struct, attr, value)
+            setattr(struct, attr, value)
 
     def get(self, name: str):
         entry = self._fields.get(name.upper())

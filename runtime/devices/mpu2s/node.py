@@ -24,6 +24,7 @@ the password is given again before the next write (A11).
 
 from __future__ import annotations
 
+import struct
 from dataclasses import dataclass
 from typing import Annotated, Any
 
@@ -44,6 +45,8 @@ from .requests import MS, Request, RequestEngine, Result
 from .telegram import TelegramAssembler
 
 WORDS = 69  # Nr 1..69 (ch. 3)
+#: the 69 words into the image at once, as the words' accessors store them one by one (<H)
+_TELEGRAM_WORDS = struct.Struct(f"<{WORDS}H")
 #: MPU2S_DEVICE_T's values (fblocks/vendor/mpu2s.st) -> the telegram's keys (telegram.py)
 VALUES = {
     "FGen": "f_gen",
@@ -175,10 +178,13 @@ class Mpu2sNode:
         self.services = {SERVICE: service}
         self.frames = 0  # telegram frames taken
         self._last_frame: int | None = None
+        self._shown_version = -1  # the assembler's version _shown was decoded from
+        self._shown: dict = {}
         self._up = False
         self._finished: list[tuple[Any, Result]] = []
         self._diag: StructWriter | None = None
         self._setters: list | None = None  # the image's 69 words, once the image is known
+        self._block: tuple | None = None  # (area, byte offset) of the 69 words when they are one run of bytes
 
     # ------------------------------------------------------------ the bus side (under the driver's lock)
 
@@ -224,14 +230,19 @@ class Mpu2sNode:
             if self._setters is None:
                 first = parse_address(self.settings.telegram, image.addressing)
                 word = first.indices[0]
-                self._setters = [
-                    image.accessor(parse_address(f"%IW{word + i}", image.addressing), T.WORD)[1] for i in range(WORDS)
-                ]
+                addresses = [parse_address(f"%IW{word + i}", image.addressing) for i in range(WORDS)]
+                self._setters = [image.accessor(addr, T.WORD)[1] for addr in addresses]
+                area, offset, _ = image.region(addresses[0])
+                if image.region(addresses[-1])[1] == offset + 2 * (WORDS - 1):  # one run of bytes
+                    self._block = (image.areas[area], offset)
             words = self.assembler.words
-            for nr, setter in enumerate(self._setters, start=1):
-                word = words[nr]
-                if word is not None:
-                    setter(word)
+            if self._block is not None and self.assembler.complete:  # every word came: all 69 at once
+                _TELEGRAM_WORDS.pack_into(*self._block, *words[1:])
+            else:
+                for nr, setter in enumerate(self._setters, start=1):
+                    word = words[nr]
+                    if word is not None:
+                        setter(word)
         finished, self._finished = self._finished, []
         for done, result in finished:
             done(result)
@@ -252,25 +263,33 @@ class Mpu2sNode:
         assert self._diag is not None
         age = None if self._last_frame is None else (now_ns - self._last_frame) // MS
         e, t = self.engine, self.assembler
-        values = {field: _float(t.value(key)) for field, key in VALUES.items()}
-        words = {field: t.words[nr] or 0 for field, nr in STATUS_WORDS.items()}
+        if self._shown_version != t.version:  # decoded again only when a frame came
+            self._shown_version = t.version
+            self._shown = self._telegram_fields()
         self._diag.set(
             CommOk=self._up,
-            Complete=t.complete,
             AgeMs=min(age if age is not None else 0xFFFFFFFF, 0xFFFFFFFF),
             Frames=self.frames,
             Requests=e.sent,
             Timeouts=e.timeouts,
             Failed=e.failed,
-            MainsPresent=t.value("mains_present") is True,
-            GenPresent=t.value("generator_present") is True,
-            BusPresent=t.value("busbar_present") is True,
-            Hours=int(t.value("hours") or 0),
-            EnergyKwh=int(t.value("energy_kwh") or 0),
-            Starts=int(t.value("starts") or 0),
-            **values,
-            **words,
+            **self._shown,
         )
+
+    def _telegram_fields(self) -> dict:
+        """MPU2S_DEVICE_T's fields that come from the telegram's words."""
+        t = self.assembler
+        return {
+            "Complete": t.complete,
+            "MainsPresent": t.value("mains_present") is True,
+            "GenPresent": t.value("generator_present") is True,
+            "BusPresent": t.value("busbar_present") is True,
+            "Hours": int(t.value("hours") or 0),
+            "EnergyKwh": int(t.value("energy_kwh") or 0),
+            "Starts": int(t.value("starts") or 0),
+            **{field: _float(t.value(key)) for field, key in VALUES.items()},
+            **{field: t.words[nr] or 0 for field, nr in STATUS_WORDS.items()},
+        }
 
     def status(self) -> DriverStatus:
         if self._up:

@@ -167,6 +167,8 @@ class Mpu2sSimulator(SimulatedDevice):
         self.endpoint: CanEndpoint | None = None
         self.alarms: set[int] = set()  # fault classes 0..3 present
         self._plc = dict.fromkeys(OUTPUT_SIGNALS, False)  # the PLC's contacts, as last written
+        self._outputs: tuple | None = None  # (image, its readers of the wired outputs)
+        self._inputs: tuple | None = None  # (image, its writers of the wired inputs)
         self._t0 = self._now  # the telegram's start
         self._k = 0  # the next frame's number since _t0
         self._last_step = -1
@@ -397,16 +399,26 @@ class Mpu2sSimulator(SimulatedDevice):
 
     def write_outputs(self, image: ProcessImage) -> None:
         """The PLC's outputs onto the plant's contacts (and terminals 3, 6)."""
-        wiring = self.scenario.wiring
+        if self._outputs is None or self._outputs[0] is not image:
+            wiring = self.scenario.wiring
+            readers = [(s, image.reader(wiring[s], T.BOOL)) for s in OUTPUT_SIGNALS if s in wiring]
+            self._outputs = (image, readers)
+        plc = self._plc
         with self._lock:
-            for signal in OUTPUT_SIGNALS:
-                if signal in wiring:
-                    self._plc[signal] = bool(image.read(wiring[signal], T.BOOL))
+            for signal, read in self._outputs[1]:
+                plc[signal] = bool(read())
             self._apply_contacts()
 
     def read_inputs(self, image: ProcessImage) -> None:
         """The plant's state onto the PLC's inputs."""
-        wiring = self.scenario.wiring
+        if self._inputs is None or self._inputs[0] is not image:
+            wiring = self.scenario.wiring
+            writers = [
+                (s, image.writer(wiring[s], T.BOOL if kind == "BOOL" else T.REAL))
+                for s, (_what, kind) in INPUT_SIGNALS.items()
+                if s in wiring
+            ]
+            self._inputs = (image, writers)
         with self._lock:
             p = self._plant
             values = {
@@ -418,7 +430,5 @@ class Mpu2sSimulator(SimulatedDevice):
                 "u_gen": p.u_gen,
                 "u_bus": p.u_bus,
             }
-            for signal, (_what, kind) in INPUT_SIGNALS.items():
-                if signal in wiring:
-                    ty = T.BOOL if kind == "BOOL" else T.REAL
-                    image.write(wiring[signal], values[signal], ty)
+            for signal, write in self._inputs[1]:
+                write(values[signal])

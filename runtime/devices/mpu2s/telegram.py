@@ -440,13 +440,17 @@ class TelegramAssembler:
 
     ``words[nr]`` is the last raw word Nr (None until it came; index 0 is
     unused), ``received_ns[nr]`` when; ``exponents`` the exponents seen so
-    far (signed). Not thread-safe: one owner feeds and reads it."""
+    far (signed); ``version`` counts the changes (every feed() and clear()),
+    so a reader can keep what it computed from the words until it moves.
+    Not thread-safe: one owner feeds and reads it."""
 
     def __init__(self) -> None:
+        self.version = 0
         self.clear()
 
     def clear(self) -> None:
         """Forget everything (the device went away)."""
+        self.version += 1
         self.words: list[int | None] = [None] * (WORDS + 1)
         self.received_ns: list[int | None] = [None] * (WORDS + 1)
         self.exponents: dict[str, int] = {}
@@ -458,6 +462,7 @@ class TelegramAssembler:
             raise ValueError(f"mux {mux} is outside 0..{MUXES - 1}")
         if len(words) != 3 or not all(0 <= w <= 0xFFFF for w in words):
             raise ValueError(f"a telegram frame carries three words 0..FFFFh, not {words!r}")
+        self.version += 1
         for i, word in enumerate(words):
             nr = 3 * mux + i + 1
             self.words[nr] = word
