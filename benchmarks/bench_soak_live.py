@@ -55,6 +55,7 @@ import tempfile
 import time
 from pathlib import Path
 
+from soak_live_host import HostLoad
 from soak_live_report import Life, Monitor, children, percentiles, report, rss_kb, web_post
 
 from softplc.runtime.engine.retain_file import RetainFileError, read_file
@@ -165,6 +166,7 @@ class Soak:
         self.problems: list = []
         self.events: list = []  # (wall, "change" | "kill") for the attribution of late ticks and errors
         self.monitor = Monitor(self.ports["web"])
+        self.host = HostLoad()  # what processes outside the soak's tree used
 
     # ------------------------------------------------------------ a life
 
@@ -299,6 +301,7 @@ class Soak:
         )
         self.t0 = time.time()
         self.monitor.start()
+        self.host.start()
         life = self.start_life()
         up.set()
         if not args.baseline:
@@ -337,6 +340,7 @@ class Soak:
         up.clear()
         self.end_life(life, kill=False)
         self.monitor.stop()
+        self.host.stop()
         self.wall = time.time() - self.t0
         return self.finish_report()
 

@@ -34,7 +34,7 @@ from pathlib import Path
 
 BUCKET_NS = 10_000  # 10 us
 BUCKETS = 10_000  # up to 100 ms; later ticks in the last bucket (the max is kept exactly)
-LATE_MS, LATE_KEPT = 5, 500  # the ticks this late are kept with their wall time (the newest)
+LATE_MS, LATE_KEPT = 5, 5000  # the ticks this late are kept with their wall time (the newest)
 RECOVERY_S = 60.0
 FAULT_GAP_S = (20.0, 60.0)
 FAULT_LENGTH_S = (3.0, 15.0)

@@ -188,7 +188,11 @@ class Monitor:
 
 
 def attribute(wall: float, soak, window_s: float = 3.0) -> str:
-    """What was going on at wall: a life's start-up, an online change, a kill, a bus fault's cut or mend."""
+    """What was going on at wall: other processes on the host busy, a life's
+    start-up, an online change, a kill, a bus fault's cut or mend."""
+    host = getattr(soak, "host", None)
+    if host is not None and host.busy(wall):
+        return "a second when other processes used 0.2 cores or more"
     for when, kind in soak.events:
         if 0 <= wall - when <= window_s:
             return f"{window_s:g} s after an online change" if kind == "change" else f"{window_s:g} s after a kill"
@@ -251,6 +255,8 @@ def report(soak) -> int:
     p50, p99, worst = percentiles(lives)
     n = sum(lf.data.get("late_n", 0) for lf in lives)
     print(f"tick lateness over {n} ticks: p50 {p50:.2f} ms, p99 {p99:.2f} ms, max {worst:.2f} ms")
+    if getattr(soak, "host", None) is not None:
+        print(soak.host.summary())
     causes = late_ticks(soak)
     if causes:
         print("ticks late by 10 ms or more: " + ", ".join(f"{v} in {k}" for k, v in causes.most_common()))

@@ -1,0 +1,89 @@
+"""What else the host was doing during a live soak: every second, the CPU
+that processes outside the soak's own tree (this script, the PLC, its
+servers' and compile processes, the clients) used, in cores. A soak at
+normal priority shares the machine; a tick late because another process
+held the core is the host's, not the PLC's, and the report says which is
+which (soak_live_report.attribute)."""
+
+from __future__ import annotations
+
+import os
+import threading
+import time
+
+_TICK = os.sysconf("SC_CLK_TCK")
+
+
+def _processes() -> dict:
+    """pid -> (ppid, utime + stime in clock ticks) of every process now."""
+    out: dict = {}
+    for name in os.listdir("/proc"):
+        if not name.isdigit():
+            continue
+        try:
+            with open(f"/proc/{name}/stat", "rb") as f:
+                text = f.read().decode("ascii", "replace")
+        except OSError:
+            continue
+        fields = text[text.rfind(")") + 2 :].split()  # after "pid (comm) "
+        out[int(name)] = (int(fields[1]), int(fields[11]) + int(fields[12]))
+    return out
+
+
+def _tree(procs: dict, root: int) -> set:
+    children: dict = {}
+    for pid, (ppid, _t) in procs.items():
+        children.setdefault(ppid, []).append(pid)
+    out, pending = set(), [root]
+    while pending:
+        pid = pending.pop()
+        out.add(pid)
+        pending += children.get(pid, ())
+    return out
+
+
+class HostLoad:
+    """others[int(wall second)] = cores used by processes outside the tree of root."""
+
+    def __init__(self, root: int | None = None, period_s: float = 1.0) -> None:
+        self.root = root or os.getpid()
+        self.period_s = period_s
+        self.others: dict[int, float] = {}
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, name="host-load", daemon=True)
+
+    def start(self) -> None:
+        self._thread.start()
+
+    def stop(self) -> None:
+        self._stop.set()
+        self._thread.join(5)
+
+    def _run(self) -> None:
+        before = _processes()
+        t0 = time.time()
+        while not self._stop.wait(self.period_s):
+            now_procs, t1 = _processes(), time.time()
+            ours = _tree(now_procs, self.root)
+            used = sum(
+                ticks - before.get(pid, (0, ticks))[1]
+                for pid, (ppid, ticks) in now_procs.items()
+                if pid not in ours and ppid != 2 and pid != 2  # not a kernel thread
+            )
+            self.others[int(t1)] = used / _TICK / (t1 - t0)
+            before, t0 = now_procs, t1
+
+    def busy(self, wall: float, cores: float = 0.2) -> bool:
+        """Whether others used at least cores in the second of wall or the one before."""
+        second = int(wall)
+        return max(self.others.get(second, 0.0), self.others.get(second + 1, 0.0)) >= cores
+
+    def summary(self) -> str:
+        if not self.others:
+            return "host: not sampled"
+        values = sorted(self.others.values())
+        busy = sum(1 for v in values if v >= 0.2)
+        return (
+            f"host: other processes used {sum(values) / len(values):.2f} cores on average, "
+            f"max {values[-1]:.2f}; {busy} of {len(values)} s with 0.2 cores or more"
+        )
