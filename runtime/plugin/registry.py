@@ -213,11 +213,13 @@ def _index() -> tuple:
     the names of their native functions): from the cache, else from the
     loaded registry (and kept)."""
     entries = []
+    found_eps = metadata.entry_points()
     for group in (BUS_GROUP, DEVICE_GROUP):
-        for ep in metadata.entry_points(group=group):
-            dist = ep.dist
-            where = (dist.name, dist.version) if dist is not None else ("", "")
-            entries.append(repr((group, ep.name, ep.value, *where)).encode() + _package_code(ep.module))
+        # keyed by the entry point and its package's code, not by its
+        # distribution's name and version: each of those parses a METADATA
+        # file (37 of them: a fifth of `softplc check`'s start-up)
+        for ep in found_eps.select(group=group):
+            entries.append(repr((group, ep.name, ep.value)).encode() + _package_code(ep.module))
     key = cache.key("plugins", *entries)
     found = cache.load("plugins", key)
     if isinstance(found, tuple) and len(found) == 2:
