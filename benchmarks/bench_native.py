@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Where generated Python stands against C (see benchmarks/README.md).
 
-    python benchmarks/bench_native.py            # about a minute
+    python benchmarks/bench_native.py            # about 15 s
     python benchmarks/bench_native.py --quick    # smoke run
     python benchmarks/bench_native.py --check 5  # final states only, no timing
 
