@@ -27,6 +27,7 @@ def test_there_are_benchmarks():
         "bench_loops.py",
         "bench_modbus.py",
         "bench_modbus_server.py",
+        "bench_native.py",
         "bench_online_change.py",
         "bench_soak.py",
         "bench_soak_live.py",
@@ -116,3 +117,46 @@ def test_tcunit_verifier_counts_the_expectations_that_hold(tmp_path):
     assert "ran 1 test suites, 4 tests: {'passed': 2, 'failed': 1, 'skipped': 1, 'error': 0}" in out
     assert "  FB_Lamp_Test: 3/4\n      FAIL contains 'no such message'" in out
     assert out.rstrip().endswith("total: 3/4 checks hold")
+
+
+NATIVE = BENCHMARKS[0].parent / "bench_native.py"
+NATIVE_C = BENCHMARKS[0].parent / "native" / "scan.c"
+WORKLOADS = ("numeric", "bits", "timers", "methods")
+no_cc = pytest.mark.skipif(shutil.which("cc") is None, reason="no C compiler (cc) on PATH to build benchmarks/native")
+
+
+def run_native(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, str(NATIVE), *args], capture_output=True, text=True, timeout=300)
+
+
+@no_cc
+def test_native_twins_end_in_the_generated_programs_state():
+    """benchmarks/native/scan.c, the C version of bench_language.py's four
+    programs, ends in the generated Python's state, every variable."""
+    done = run_native("--check", "30")
+    assert done.returncode == 0, done.stdout + done.stderr
+    for name in WORKLOADS:
+        assert f"   {name:<8} C and generated Python: same state after 30 cycles (" in done.stdout
+
+
+@no_cc
+def test_native_check_reports_a_real_rounded_differently(tmp_path):
+    """A C twin that multiplies in double and rounds once to float (not IEC's
+    REAL * REAL) is caught: the first differing element, exit 1."""
+    source = NATIVE_C.read_text()
+    assert source.count("* 0.01f;") == 1
+    wrong = tmp_path / "scan.c"
+    wrong.write_text(source.replace("* 0.01f;", "* 0.01;"))
+    done = run_native("--check", "5", "--source", str(wrong))
+    assert done.returncode == 1, done.stdout + done.stderr
+    assert "!!! numeric: C AND GENERATED PYTHON DIFFER after 5 cycles" in done.stdout
+    assert "!!!   samples[element " in done.stdout
+    assert "   bits     C and generated Python: same state after 5 cycles" in done.stdout
+
+
+def test_native_is_skipped_without_a_compiler():
+    done = run_native("--cc", "no-such-cc-softplc")
+    assert done.returncode == 0, done.stderr
+    assert (
+        done.stdout == "bench_native: skipped: no C compiler 'no-such-cc-softplc' on PATH (the C reference needs one)\n"
+    )
