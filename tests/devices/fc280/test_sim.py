@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import pytest
 
+from softplc.runtime.devices.fc280 import DEVICE as FC280
 from softplc.runtime.devices.fc280.model import CONTROL_WORD_TIMEOUT, DRIVE_INITIALISED, FIELDBUS_FAULT
 from softplc.runtime.devices.fc280.sim import LOAD_SIGNATURE, SAVE_SIGNATURE, Fc280Simulator
 from softplc.runtime.io.canopen.cia301 import (
@@ -411,6 +412,29 @@ def test_life_guarding_a_lost_master_with_emcy(bench):
     bench.run_ms(10)
     assert bench.frames_with(EMCY) == [bytes(8)]  # D30: "mit dem Inhalt 0"
     assert bench.sdo_read(NODE, 0x1001, 0)[4] == 0
+
+
+@pytest.mark.parametrize(
+    "alarm, emcy, line",
+    [
+        # Tabelle 8.1 bit 2 "Erdschluss"; Tabelle 8.9 has no earth-fault row, 2240h (CiA 402:
+        # earth leakage inside the device) is the one of its two "Kurzschluss" rows that fits (A5)
+        (0x00000004, "40 22 01 01 04 00 00 00", "EMCY 2240h Earth fault, error register 01h"),
+        # Tabelle 8.1 bit 12 "Kurzschluss": 2130h "Kurzschluss"
+        (0x00001000, "30 21 01 01 00 10 00 00", "EMCY 2130h Short circuit, error register 01h"),
+    ],
+)
+def test_earth_fault_and_short_circuit_emcy_say_what_tripped(bench, alarm, emcy, line):
+    sim = fc280(bench, **{"8-07": 1})
+    bench.nmt(NMT_START, NODE)
+    bench.clear()
+    sim.model.trip(alarm)
+    bench.run_ms(10)
+    assert bench.frames_with(EMCY) == [bytes.fromhex(emcy)]
+    frame = bench.frames_with(EMCY)[0]
+    # the line the CANopen master logs for it (Device.emcy_text)
+    logged = FC280.emcy_text(int.from_bytes(frame[:2], "little"), frame[2], frame[3:])
+    assert logged.startswith(line + " (generic error); active: alarm word 16-90")
 
 
 def test_emcy_follows_8_07(bench):
