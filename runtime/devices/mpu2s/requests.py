@@ -105,6 +105,21 @@ def resolve(param_id: int, bit: int) -> P.Parameter | None:
     return None
 
 
+def program_value(p: P.Parameter, value: Any) -> Any:
+    """A value as a program writes it (MPU2S_PARAM's VALUE is an LREAL) as
+    parameters.encode() takes it: a flag or a switch (bit, double bit) 1.0
+    -> TRUE, 0.0 -> FALSE ("a switch or flag is 1.0 / 0.0", fblocks/vendor/
+    mpu2s.st; a switch's TRUE is 11, 4.2.18), a code a whole number -> that
+    int. Anything else is left to encode() to refuse."""
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return value
+    if p.family in ("flag", "switch") and value in (0, 1):
+        return bool(value)
+    if p.family == "code" and float(value).is_integer():
+        return int(value)
+    return value
+
+
 def _number(value: Any) -> float:
     if isinstance(value, bool):
         return 1.0 if value else 0.0
@@ -261,11 +276,12 @@ class RequestEngine:
             return self._result(p, word, factor)
         if p is None:  # a whole word shared by several parameters
             raise Failed(Outcome.UNKNOWN, f"ID {param_id} holds several parameters: give the bit of the one to write")
+        value = program_value(p, request.value)
         try:
             if p.bits:
-                P.merge(p, 0, request.value)  # the value is checked before anything is written
+                P.merge(p, 0, value)  # the value is checked before anything is written
             else:
-                raw = P.encode(p, request.value, factor=factor, variant=self.variant)
+                raw = P.encode(p, value, factor=factor, variant=self.variant)
         except ValueError as exc:
             raise Failed(Outcome.RANGE, str(exc)) from None
         if self.password is not None and not self.authorized:
@@ -273,7 +289,7 @@ class RequestEngine:
             self.authorized = True
         if p.bits:
             word = yield (frames.KIND_READ, param_id, 0)
-            raw = P.merge(p, word, request.value)
+            raw = P.merge(p, word, value)
         yield (frames.KIND_WRITE, param_id, raw)
         back = yield (frames.KIND_READ, param_id, 0)
         if param_id in VT_IDS:

@@ -166,6 +166,27 @@ def test_a_bit_parameter_is_merged_into_the_word_read_first():
     assert f_on.bits == (15, 14)
 
 
+@pytest.mark.parametrize(
+    "key, value, word, expected",
+    [
+        ("breaker_logic", 1.0, 0x000A, 0x010A),  # ID 16 bits 11..8, 0001 Parallel (4.2.43)
+        ("amz_characteristic", 2.0, 0x0000, 0x0002),  # ID 298 bits 1+0, 10 extremely inverse (4.2.78)
+        ("ao1_source", 5.0, 0x0000, 0x0005),  # ID 192, a whole-word code 0..22 (4.2.152, A24)
+    ],
+)
+def test_a_code_comes_from_a_program_as_a_whole_number(key, value, word, expected):
+    # MPU2S_PARAM's VALUE is an LREAL: a code is a whole number in it
+    p = parameter(key)
+    line = Line()
+    line.words[p.id] = word
+    line.submit(p.id, bit=p.bits[0] if p.bits else -1, write=True, value=value)
+    line.submit(p.id, bit=p.bits[0] if p.bits else -1, write=True, value=value + 0.5)
+    line.run(2000)
+    assert line.words[p.id] == expected
+    assert [r.outcome for r in line.results] == [Outcome.OK, Outcome.RANGE]
+    assert line.results[0].value == value
+
+
 def test_a_write_the_device_does_not_take_fails_the_read_back():
     line = Line()
     line.hold.add(DF_MAX.id)
