@@ -41,9 +41,10 @@ import enum
 from collections import deque
 from collections.abc import Callable, Generator
 from dataclasses import dataclass
+from fractions import Fraction
 from typing import Any
 
-from . import frames
+from . import frames, scaling
 from . import parameters as P
 
 PASSWORD_ID = 500  # 4.2.1, code level 2
@@ -79,6 +80,7 @@ class Result:
     value: float = 0.0  # in the parameter's unit (1.0/0.0 for a flag or switch)
     transactions: int = 0  # frames sent, retries included
     message: str = ""
+    exact: Fraction = Fraction(0)  # value as the manual's formula gives it: raw / (its factor)
 
 
 class Failed(Exception):
@@ -299,10 +301,19 @@ class RequestEngine:
         return self._result(p, back, factor)
 
     def _result(self, p: P.Parameter | None, word: int, factor: int | None) -> Result:
-        if p is None:
-            value: Any = word
-        elif p.bits:
-            value = P.extract(p, word)
-        else:
-            value = P.decode(p, word, factor=factor)
-        return Result(Outcome.OK, raw=word, value=_number(value), transactions=self._frames)
+        exact = _exact(p, word, factor)
+        return Result(Outcome.OK, raw=word, value=float(exact), transactions=self._frames, exact=exact)
+
+
+def _exact(p: P.Parameter | None, word: int, factor: int | None) -> Fraction:
+    """The value of a word read, exactly: a scaled parameter's raw divided by
+    its family's factor (59 at f[Hz]·256 is 59/256 Hz, 4.2.47), a flag or
+    switch 1/0, a code or a plain word as it is; digit words (delays, fault
+    classes) 0: read their RAW."""
+    if p is None:
+        return Fraction(word)
+    value = P.extract(p, word) if p.bits else P.decode(p, word, factor=factor)
+    if isinstance(value, float):  # a scaled family
+        raw = word - 0x10000 if p.signed and word & 0x8000 else word
+        return Fraction(raw) / scaling.family(p.family, factor).per_unit
+    return Fraction(_number(value))

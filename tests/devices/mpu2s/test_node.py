@@ -131,6 +131,21 @@ def test_a_write_gives_the_password_first_and_is_read_back(plant):
     assert _requests(seen)[0] == "EE 01 01 F4 04 D2 EB 27"  # V4: password 1234 to ID 500
 
 
+def test_value_read_is_the_device_value_as_the_scaling_gives_it(plant):
+    # issue 33: +df max (ID 26, 4.2.47) is f[Hz]·256: the word 59 is 59/256 = 0.23046875 Hz,
+    # not 0.230; a switch reads 1.0/0.0 and a plain word as it is
+    engine, _driver, sim, _monitor, _seen = plant()
+    sim.store.set_word(26, 59)
+    engine.run(duration_ns=500 * MS)
+    _request(engine, id=26)
+    assert engine.get("Main.par.DONE") and engine.get("Main.par.RAW") == 59
+    assert engine.get("Main.par.VALUE_READ") == 59 / 256 == 0.23046875
+    engine.run(duration_ns=100 * MS)
+    sim.store.set_word(68, 1234)  # the frequency ramp, Hz/s·102.4 (A13): 1234 / 102.4 Hz/s
+    _request(engine, id=68)
+    assert engine.get("Main.par.VALUE_READ") == 1234 * 5 / 512 == 12.05078125
+
+
 def test_a_value_outside_the_range_never_reaches_the_wire(plant):
     engine, _driver, sim, _monitor, seen = plant()
     engine.run(duration_ns=500 * MS)
