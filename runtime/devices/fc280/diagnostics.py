@@ -19,7 +19,8 @@ Decided where the manual is unclear (digest 003 §10):
   is taken: bytes 0-1 the code (little endian), byte 2 the error register
   (1001h), byte 3 the flags of Tabelle 3.4, bytes 4-7 vendor data the
   manual does not describe (kept as they came). The manual maps no alarm
-  to an EMCY code.
+  to an EMCY code. Tabelle 8.9 names 2130h and 2240h both "Kurzschluss":
+  2240h is read as the earth fault (see EMCY_EARTH_FAULT).
 """
 
 from __future__ import annotations
@@ -31,9 +32,12 @@ from dataclasses import dataclass
 
 EMCY_NO_ERROR = 0x0000
 EMCY_GENERIC = 0x1000
-EMCY_INPUT_SHORT_CIRCUIT = 0x2130  # 21xx: current, device input side (CiA 301 groups)
+# Tabelle 8.9 prints "Kurzschluss" for both 2130h and 2240h and has no row for an earth
+# fault (16-90 bit 2 "Erdschluss"): decided (README, A5) 2130h short circuit, 2240h earth
+# fault, as CiA 402 names 2240h "earth leakage (device internal)" and 2130h "short circuit"
+EMCY_SHORT_CIRCUIT = 0x2130
 EMCY_SWITCH_ON_OVERCURRENT = 0x2213
-EMCY_SHORT_CIRCUIT = 0x2240  # 22xx: current inside the device
+EMCY_EARTH_FAULT = 0x2240
 EMCY_CONTINUOUS_OVERCURRENT = 0x2310
 EMCY_DEVICE_CURRENT = 0x2311
 EMCY_MAINS_VOLTAGE = 0x3100
@@ -62,9 +66,9 @@ EMCY_MANUFACTURER = 0xFF00  # FFxx: the high byte FF, any low byte
 EMCY_CODES: dict[int, str] = {
     EMCY_NO_ERROR: "No error",  # Kein Fehler
     EMCY_GENERIC: "Generic error",  # Allgemeiner Fehler
-    EMCY_INPUT_SHORT_CIRCUIT: "Short circuit",  # Kurzschluss
-    EMCY_SWITCH_ON_OVERCURRENT: "Over-current at switch-on",  # Überstrom bei Einschaltung
     EMCY_SHORT_CIRCUIT: "Short circuit",  # Kurzschluss
+    EMCY_SWITCH_ON_OVERCURRENT: "Over-current at switch-on",  # Überstrom bei Einschaltung
+    EMCY_EARTH_FAULT: "Earth fault",  # "Kurzschluss" in Tabelle 8.9 (see above), Erdschluss in 8.1
     EMCY_CONTINUOUS_OVERCURRENT: "Continuous over-current",  # Kontinuierlicher Überstrom
     EMCY_DEVICE_CURRENT: "Current inside the device",  # Strom im Gerät
     EMCY_MAINS_VOLTAGE: "Mains voltage",  # Netzspannung

@@ -10,8 +10,9 @@ active), byte 3 the words that hold an alarm or warning (Tabelle 3.4), and
 bytes 4-7, which the manual leaves undocumented: the simulator's choice,
 the word (16-90, 16-91, 16-97, 16-92 or 16-93) of the event, little endian.
 The manual maps no alarm to an error code: the codes below are the
-simulator's choice from Tabelle 8.9, 1000h "Allgemeiner Fehler" for the
-others. The end of the last event is the all-zero EMCY ("mit dem Inhalt 0").
+simulator's choice from Tabelle 8.9 (2240h, printed "Kurzschluss" like 2130h,
+taken as the earth fault: diagnostics.EMCY_EARTH_FAULT), 1000h "Allgemeiner
+Fehler" for the others. The end of the last event is the all-zero EMCY ("mit dem Inhalt 0").
 """
 
 from __future__ import annotations
@@ -31,7 +32,7 @@ WORD_FLAGS = {"16-90": 0x01, "16-91": 0x02, "16-97": 0x04, "16-92": 0x08, "16-93
 ALARM_CODES = {
     0x00000001: 0x7110,  # brake resistor test: brake chopper
     0x00000002: 0x4310,  # power card over-temperature: drive temperature
-    0x00000004: 0x2130,  # earth fault: short circuit
+    0x00000004: 0x2240,  # earth fault (2240h, decided in diagnostics.py: A5)
     0x00000008: 0x4210,  # control card over-temperature: device temperature
     0x00000010: 0x8100,  # control word timeout: communication
     0x00000020: 0x2310,  # over-current: continuous over-current
@@ -39,7 +40,7 @@ ALARM_CODES = {
     0x00000200: 0x2311,  # inverter overload: current inside the device
     0x00000400: 0x3220,  # DC link under-voltage
     0x00000800: 0x3210,  # DC link over-voltage
-    0x00001000: 0x2240,  # short circuit
+    0x00001000: 0x2130,  # short circuit
     0x00002000: 0x2213,  # inrush fault: over-current at switch-on
     0x00004000: 0x3130,  # mains phase imbalance: phase failure
     0x00020000: 0x6100,  # internal fault: internal software error

@@ -106,7 +106,7 @@ class Fc280Model:
         self._last_word_ns: int | None = None  # the last valid control word (8-03)
         self.word_timed_out = False
         self.master_lost = False
-        self._alarm_at_standstill: dict[str, int] = {}  # 8-04 [5]: source -> alarm bit of 16-90
+        self._alarm_at_standstill: dict[str, int] = {}  # 8-04 [5] latched: source -> alarm bit of 16-90
         self.alarms = dict.fromkeys(ALARM_WORDS, 0)
         self.injected_warnings = dict.fromkeys(WARNING_WORDS, 0)
         self.trip_lock = False
@@ -234,28 +234,42 @@ class Fc280Model:
         ends a timeout ("bis zur Wiederherstellung der Kommunikation")."""
         self._last_word_ns = self._now
         self.word_timed_out = False
-        self._alarm_at_standstill.pop("word", None)
 
     # ------------------------------------------------------------------ the lost master
 
     def comm_lost(self, now_ns: int) -> None:
         """Life guarding found the master gone (100Ch x 100Dh): the 8-04
         function (§3.1.4) and warning 34, 16-92 00400000h (§7.1.8): both (A6).
-        With 8-04 [5] the alarm is 16-90 00400000h "Feldbus-Fehl."."""
+        With 8-04 [5] the alarm is 16-90 00400000h "Feldbus-Fehl." (latched:
+        _stop_and_alarm())."""
         self.advance(now_ns)
         self.master_lost = True
-        if self.settings().timeout_function == STOP_AND_ALARM:
-            self._alarm_at_standstill["master"] = FIELDBUS_FAULT
+        self._stop_and_alarm("master", FIELDBUS_FAULT)
         self._settle()
 
     def comm_restored(self, now_ns: int) -> None:
+        """The master guards again: the 8-04 function ends ([1]..[4]; [2]
+        "automatischer Wiederanlauf"), except a latched [5]."""
         self.advance(now_ns)
         self.master_lost = False
-        self._alarm_at_standstill.pop("master", None)
         self._settle()
+
+    def _stop_and_alarm(self, source: str, alarm_bit: int) -> None:
+        """8-04 [5] "Stopp und Alarm" (chapter 6): "Motor stoppt, setzt den
+        Frequenzumrichter anschließend zurück: über den Feldbus, über die
+        [Reset]-Taste, über einen Digitaleingang". Latched when the timeout
+        comes: the motor ramps down even if communication returns (a restart
+        when it returns is [2]'s), the alarm bit shows as a warning meanwhile
+        and becomes the alarm at standstill (simulator choice, as Danfoss's
+        alarm 17 "ramps down until it stops and then displays an alarm");
+        only reset() clears it."""
+        if self.settings().timeout_function == STOP_AND_ALARM:
+            self._alarm_at_standstill[source] = alarm_bit
 
     def _reaction(self) -> int | None:
         """The 8-04 function in force, None while communication is fine."""
+        if self._alarm_at_standstill:
+            return STOP_AND_ALARM  # latched until the alarm and its reset
         if not (self.word_timed_out or self.master_lost):
             return None
         reaction = self.settings().timeout_function
@@ -299,10 +313,16 @@ class Fc280Model:
     def reset(self) -> None:
         """Acknowledge the alarms (control word bit 7 edge, the LCP [Reset] key):
         an injected alarm's cause is gone by then (simulator choice); a trip
-        lock stays. DSP 402: fault -> switch on disabled (transition 15)."""
+        lock stays. DSP 402: fault -> switch on disabled (transition 15).
+        With 8-04 [5] a timeout still in force trips again (a fieldbus reset
+        is a valid control word: it has ended the 8-03 timeout already)."""
         if self.trip_lock or not self.tripped:
             return
         self.alarms = dict.fromkeys(ALARM_WORDS, 0)
+        if self.word_timed_out:
+            self._stop_and_alarm("word", CONTROL_WORD_TIMEOUT)
+        if self.master_lost:
+            self._stop_and_alarm("master", FIELDBUS_FAULT)
         if self._dsp_state != DspState.START:
             self._dsp_state = DspState.SWITCH_ON_DISABLED
         self._settle()
@@ -322,6 +342,8 @@ class Fc280Model:
             own |= CONTROL_WORD_TIMEOUT
         if self.master_lost:
             own |= FIELDBUS_FAULT
+        for bit in self._alarm_at_standstill.values():  # 8-04 [5] ramping down: the warning first
+            own |= bit
         words["16-92"] |= own & ~self.alarms["16-90"]
         return words
 
@@ -351,12 +373,11 @@ class Fc280Model:
     def _word_timeout(self) -> None:
         """No valid control word within 8-03: the 8-04 function until one comes."""
         self.word_timed_out = True
-        if self.settings().timeout_function == STOP_AND_ALARM:
-            self._alarm_at_standstill["word"] = CONTROL_WORD_TIMEOUT
+        self._stop_and_alarm("word", CONTROL_WORD_TIMEOUT)
 
     def _standstill_alarm(self) -> None:
         """8-04 [5] "Stopp und Alarm": the motor ramps down, then the drive trips
-        (simulator choice: the alarm at standstill)."""
+        (_stop_and_alarm())."""
         if self._alarm_at_standstill and self.out == 0:
             bits = 0
             for bit in self._alarm_at_standstill.values():
@@ -388,7 +409,7 @@ class Fc280Model:
         else:  # the control words or the parameters changed
             base = self._base = self._dsp_motion() if s.dsp else self._fc_motion()
             self._base_key = key
-        if not (self.word_timed_out or self.master_lost):
+        if not (self.word_timed_out or self.master_lost or self._alarm_at_standstill):
             return base
         reaction = self._reaction()
         if reaction is None or (s.dsp and self._dsp_state != DspState.OPERATION_ENABLED):
@@ -587,6 +608,7 @@ class Fc280Model:
             self.trip_lock,
             self.word_timed_out,
             self.master_lost,
+            tuple(self._alarm_at_standstill.values()),
             *alarms.values(),
             *injected.values(),
         )

@@ -9,6 +9,7 @@
     pkw.py        the PKW codec on PDO4
     st_codes.py   fblocks/vendor/ltmr_codes.st from those tables
     eds.py        io_config/eds/ltmr.eds from those tables
+    emcy.py       the emergency messages: what the simulator sends, the master's log line
     defaults.py   the settings at power-up, the simulator's choices, the manual's constants
     thermal.py    the thermal image (class N) as plain functions
     model.py      the motor model: commands, outputs, trips and resets, fallback
@@ -28,6 +29,7 @@ from ...sim.options import RegisterPresets
 from . import st_codes
 from .bits import SAFE_CONTROL_1
 from .eds import ltmr_eds
+from .emcy import emcy_text
 from .registers import REG_CONTROL_1, register_to_object
 from .sim import FAULTS, LtmrSimulator
 
@@ -60,6 +62,7 @@ DEVICE = Device(
         GeneratedFile(EDS, lambda: render_eds(ltmr_eds()), encoding="ascii"),
     ),
     safe_objects={register_to_object(REG_CONTROL_1): int(SAFE_CONTROL_1)},  # 2008:05 = 0: motor off
+    emcy_text=emcy_text,
 )
 
 __all__ = ["DEVICE", "LtmrSimulator"]

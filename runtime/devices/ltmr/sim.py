@@ -26,9 +26,9 @@ What the bus sees (manual 001, shared/manuals/001_*.txt "L<n>", and digest
   the fallback of 682 and the indications of the model. They clear when the
   node is Operational again with heartbeats; the fallback itself ends with
   the first RPDO after that.
-- EMCY: the manual defines no payload (A22). On a trip: error code 0x1000
-  (generic), error register 0x01, the trip code as U16 in the first two
-  manufacturer bytes; on its reset: 0x0000 and error register 0x00.
+- EMCY: the manual defines no payload (A22; emcy.py). On a trip: error code
+  0x1000 (generic), error register 0x01, the trip code as U16 in the first
+  two manufacturer bytes; on its reset: 0x0000 and error register 0x00.
 """
 
 from __future__ import annotations
@@ -58,6 +58,7 @@ from ...plugin.seams import SimFault
 from . import pkw
 from .bits import GENERAL_CONFIG2_RESET_MODE_MASK, NetworkPortStatus
 from .codes import CANOPEN_BAUD_CODES, FallbackStrategy, OperatingMode, ResetMode, fallback_allowed
+from .emcy import EMCY_RESET, EMCY_TRIP, ERROR_REGISTER_DETECTED, trip_payload
 from .model import LtmrModel
 from .profile import PKW_INDEX, RPDO_MAPPABLE_INDICES, TPDO_MAPPABLE_INDICES, pkw_read_only
 from .registers import (
@@ -77,11 +78,6 @@ from .registers import (
     object_to_register,
     register_to_object,
 )
-
-# A22: the manual gives no EMCY content; the simulator's choice
-EMCY_TRIP = 0x1000  # CiA 301 "generic error"
-EMCY_RESET = 0x0000  # CiA 301 "error reset or no error"
-ERROR_REGISTER_GENERIC = 0x01  # 0x1001 bit 0
 
 PRODUCT_CODE_OBJECT = (0x1018, 2)
 REGISTER_INDICES = frozenset(index for _first, _last, index in REGISTER_BLOCKS)
@@ -197,7 +193,7 @@ class LtmrSimulator(SimulatedCanopenSlave):
             return
         self._emcy_trip_code = code
         if code:
-            self.send_emcy(EMCY_TRIP, ERROR_REGISTER_GENERIC, code.to_bytes(2, "little"))
+            self.send_emcy(EMCY_TRIP, ERROR_REGISTER_DETECTED, trip_payload(code))
         else:
             self.send_emcy(EMCY_RESET, 0x00)
 

@@ -7,16 +7,20 @@ READ_VAR and MODBUS_EXCHANGE:
 DEVICE the device number (1..30), ID the parameter ID, BIT the highest bit
 of a bit, double-bit or half-byte parameter (-1: a whole word), WRITE 1 to
 write, 0 to read, VALUE the value to write in thousandths of its unit (a
-DINT: 0.20 Hz is 200; every MPU2-S unit has 0.001 to spare). The call
-queues the request to the device's RequestEngine (requests.py) and returns
-at once; the result lands in MGMT at the start of a later cycle:
+DINT: 0.20 Hz is 200; every MPU2-S unit has 0.001 to spare: the raw word
+is rounded from it). The call queues the request to the device's
+RequestEngine (requests.py) and returns at once; the result lands in MGMT
+at the start of a later cycle:
 
     MGMT[0]  bit 0 activity (set by the call, cleared when it ends), MSB an exchange number
     MGMT[1]  the outcome: 0 done, or requests.Outcome (MPU2S_ERR_* in ST)
     MGMT[2]  the word the device holds (the whole word for a bit parameter)
-    MGMT[3]  the value in thousandths of its unit, a DINT: high word
-    MGMT[4]                                                low word
+    MGMT[3]  the value in its unit as numerator / denominator, two DINTs: the
+    MGMT[4]  numerator's high and low word,
     MGMT[5]  frames sent, retries included
+    MGMT[6]  the denominator's high and low word (1 or more): 59/256 Hz is
+    MGMT[7]  59 / 256, which ST divides in LREAL to the nearest double, as
+             Python's float(Fraction) does (no decimal rounding)
 
 A call while MGMT[0] bit 0 is set starts nothing and returns FALSE.
 """
@@ -30,7 +34,8 @@ from ...st.native import ANY_INT, WORDS, NativeFunction, Param
 from .requests import Outcome, Request, Result
 
 SERVICE = "mpu2s.exchange"
-MGMT_WORDS = 6
+MGMT_WORDS = 8
+DINT_MAX = (1 << 31) - 1
 
 
 def _store(table, i: int, value: int, signed: bool) -> None:
@@ -40,12 +45,17 @@ def _store(table, i: int, value: int, signed: bool) -> None:
 
 def finish(mgmt, signed: bool, result: Result) -> None:
     """The result into the program's table (the scan thread, at a cycle start)."""
-    milli = max(-(1 << 31), min((1 << 31) - 1, round(result.value * 1000)))
+    exact = result.exact
+    if abs(exact.numerator) > DINT_MAX or exact.denominator > DINT_MAX:  # no word's value is
+        exact = exact.limit_denominator(0xFFFF)
+    numerator = max(-DINT_MAX - 1, min(DINT_MAX, exact.numerator))
     _store(mgmt, 1, int(result.outcome), signed)
     _store(mgmt, 2, result.raw, signed)
-    _store(mgmt, 3, (milli >> 16) & 0xFFFF, signed)
-    _store(mgmt, 4, milli & 0xFFFF, signed)
+    _store(mgmt, 3, (numerator >> 16) & 0xFFFF, signed)
+    _store(mgmt, 4, numerator & 0xFFFF, signed)
     _store(mgmt, 5, result.transactions, signed)
+    _store(mgmt, 6, exact.denominator >> 16, signed)
+    _store(mgmt, 7, exact.denominator & 0xFFFF, signed)
     _store(mgmt, 0, int(mgmt[0]) & ~1, signed)
 
 

@@ -41,9 +41,10 @@ import enum
 from collections import deque
 from collections.abc import Callable, Generator
 from dataclasses import dataclass
+from fractions import Fraction
 from typing import Any
 
-from . import frames
+from . import frames, scaling
 from . import parameters as P
 
 PASSWORD_ID = 500  # 4.2.1, code level 2
@@ -79,6 +80,7 @@ class Result:
     value: float = 0.0  # in the parameter's unit (1.0/0.0 for a flag or switch)
     transactions: int = 0  # frames sent, retries included
     message: str = ""
+    exact: Fraction = Fraction(0)  # value as the manual's formula gives it: raw / (its factor)
 
 
 class Failed(Exception):
@@ -103,6 +105,21 @@ def resolve(param_id: int, bit: int) -> P.Parameter | None:
         if p.bits and p.bits[0] == bit:
             return p
     return None
+
+
+def program_value(p: P.Parameter, value: Any) -> Any:
+    """A value as a program writes it (MPU2S_PARAM's VALUE is an LREAL) as
+    parameters.encode() takes it: a flag or a switch (bit, double bit) 1.0
+    -> TRUE, 0.0 -> FALSE ("a switch or flag is 1.0 / 0.0", fblocks/vendor/
+    mpu2s.st; a switch's TRUE is 11, 4.2.18), a code a whole number -> that
+    int. Anything else is left to encode() to refuse."""
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return value
+    if p.family in ("flag", "switch") and value in (0, 1):
+        return bool(value)
+    if p.family == "code" and float(value).is_integer():
+        return int(value)
+    return value
 
 
 def _number(value: Any) -> float:
@@ -261,11 +278,12 @@ class RequestEngine:
             return self._result(p, word, factor)
         if p is None:  # a whole word shared by several parameters
             raise Failed(Outcome.UNKNOWN, f"ID {param_id} holds several parameters: give the bit of the one to write")
+        value = program_value(p, request.value)
         try:
             if p.bits:
-                P.merge(p, 0, request.value)  # the value is checked before anything is written
+                P.merge(p, 0, value)  # the value is checked before anything is written
             else:
-                raw = P.encode(p, request.value, factor=factor, variant=self.variant)
+                raw = P.encode(p, value, factor=factor, variant=self.variant)
         except ValueError as exc:
             raise Failed(Outcome.RANGE, str(exc)) from None
         if self.password is not None and not self.authorized:
@@ -273,7 +291,7 @@ class RequestEngine:
             self.authorized = True
         if p.bits:
             word = yield (frames.KIND_READ, param_id, 0)
-            raw = P.merge(p, word, request.value)
+            raw = P.merge(p, word, value)
         yield (frames.KIND_WRITE, param_id, raw)
         back = yield (frames.KIND_READ, param_id, 0)
         if param_id in VT_IDS:
@@ -283,10 +301,19 @@ class RequestEngine:
         return self._result(p, back, factor)
 
     def _result(self, p: P.Parameter | None, word: int, factor: int | None) -> Result:
-        if p is None:
-            value: Any = word
-        elif p.bits:
-            value = P.extract(p, word)
-        else:
-            value = P.decode(p, word, factor=factor)
-        return Result(Outcome.OK, raw=word, value=_number(value), transactions=self._frames)
+        exact = _exact(p, word, factor)
+        return Result(Outcome.OK, raw=word, value=float(exact), transactions=self._frames, exact=exact)
+
+
+def _exact(p: P.Parameter | None, word: int, factor: int | None) -> Fraction:
+    """The value of a word read, exactly: a scaled parameter's raw divided by
+    its family's factor (59 at f[Hz]·256 is 59/256 Hz, 4.2.47), a flag or
+    switch 1/0, a code or a plain word as it is; digit words (delays, fault
+    classes) 0: read their RAW."""
+    if p is None:
+        return Fraction(word)
+    value = P.extract(p, word) if p.bits else P.decode(p, word, factor=factor)
+    if isinstance(value, float):  # a scaled family
+        raw = word - 0x10000 if p.signed and word & 0x8000 else word
+        return Fraction(raw) / scaling.family(p.family, factor).per_unit
+    return Fraction(_number(value))

@@ -66,7 +66,7 @@ TABELLE_8_9 = {
     0x1000: "Generic error",
     0x2130: "Short circuit",
     0x2213: "Over-current at switch-on",
-    0x2240: "Short circuit",
+    0x2240: "Earth fault",  # printed "Kurzschluss" like 2130h: decided (A5)
     0x2310: "Continuous over-current",
     0x2311: "Current inside the device",
     0x3100: "Mains voltage",

@@ -412,6 +412,23 @@ def test_timeout_stop_and_alarm():
     assert not drive.m.tripped and drive.hz == 15.0
 
 
+def test_stop_and_alarm_is_latched_when_communication_returns_while_ramping_down():
+    # 8-04 [5] (chapter 6): stops, then needs a reset; the restart on return is [2]'s
+    drive = _timed_out(5).after(500)
+    ramping = drive.hz
+    drive.ctw(RUN).after(100)  # a valid word again, the motor still turning
+    assert drive.hz < ramping and drive.m.read("16-92") == CONTROL_WORD_TIMEOUT  # the warning meanwhile
+    drive.sending(RUN, 1000)
+    assert drive.hz == 0 and drive.m.read("16-90") == CONTROL_WORD_TIMEOUT and drive.stw & 0x0008
+    drive.m.press_reset()  # [Reset]: communication is back, so the drive runs
+    drive.sending(RUN, 1500)
+    assert drive.hz == 25.0 and not drive.m.tripped
+    drive = Drive(**{"8-04": 5})
+    drive.m.comm_lost(0)
+    drive.m.press_reset()  # the master still gone: the alarm again
+    assert drive.m.read("16-90") == FIELDBUS_FAULT
+
+
 def test_a_lost_master_gets_the_8_04_function_and_warning_34():
     # A6: §3.1.4 (8-04) and §7.1.8 (warning 34): both
     drive = running_at(**{"8-04": 2, "8-03": 600})

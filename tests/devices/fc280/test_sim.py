@@ -7,7 +7,8 @@ from __future__ import annotations
 
 import pytest
 
-from softplc.runtime.devices.fc280.model import DRIVE_INITIALISED, FIELDBUS_FAULT
+from softplc.runtime.devices.fc280 import DEVICE as FC280
+from softplc.runtime.devices.fc280.model import CONTROL_WORD_TIMEOUT, DRIVE_INITIALISED, FIELDBUS_FAULT
 from softplc.runtime.devices.fc280.sim import LOAD_SIGNATURE, SAVE_SIGNATURE, Fc280Simulator
 from softplc.runtime.io.canopen.cia301 import (
     ABORT_DEVICE_STATE,
@@ -342,6 +343,51 @@ def test_control_word_timeout_reactions(bench, reaction, hz, status, alarm):
     assert sim.model.output_hz == 25.0 and sim.parameter("16-92") == 0 and sim.parameter("16-90") == 0
 
 
+def _guarded_master(bench, word: str, ms: int) -> list[float]:
+    """The master for ms: the RPDO1 word and a guarding request every 100 ms;
+    the output frequency after each step."""
+    seen = []
+    for _ in range(ms // 100):
+        bench.send(RPDO1, word)
+        bench.guard(NODE)
+        bench.run_ms(100)
+        seen.append(bench.devices[0].model.output_hz)
+    return seen
+
+
+@pytest.mark.parametrize("reaction", [2, 5])
+def test_a_short_cut_at_speed_restarts_with_stop_but_not_with_stop_and_alarm(bench, reaction):
+    # issue 33: cut 1 s at 25 Hz, the master sending 047C throughout. 8-04 (chapter 6):
+    # [2] "Stopp und bei Wiederaufnahme der Kommunikation automatischer Wiederanlauf";
+    # [5] "Motor stoppt, setzt den Frequenzumrichter anschließend zurück: über den Feldbus ..."
+    sim = operational(bench, **{"8-04": reaction, "8-03": 5, "3-42": 200})  # 8-03 0.5 s, ramp down 2 s
+    assert bench.sdo_write(NODE, 0x100C, 0, 100, 2) == write_ok(0x100C, 0)  # guarding 100 ms x 3
+    assert bench.sdo_write(NODE, 0x100D, 0, 3, 1) == write_ok(0x100D, 0)
+    _guarded_master(bench, "7C 04 00 20", 3000)
+    assert sim.model.output_hz == 25.0
+    sim.unplug()
+    _guarded_master(bench, "7C 04 00 20", 1000)
+    sim.plug()
+    assert sim.nmt_state == STATE_PRE_OPERATIONAL  # life guarding: CiA 301 without 1029h
+    bench.nmt(NMT_START, NODE)  # the master starts the node it hears again
+    at_return = sim.model.output_hz
+    assert 0 < at_return < 25.0  # still ramping down (3-42: 25 Hz in 1 s)
+    after = _guarded_master(bench, "7C 04 00 20", 3000)
+    if reaction == 2:
+        assert after[-1] == 25.0 and sim.parameter("16-90") == 0  # the automatic restart
+        return
+    # [5]: down to standstill and stays there on the 047C, tripped (16-03 bit 3, Tabelle 4.10)
+    assert all(b <= a for a, b in zip([at_return, *after], after)) and after[-1] == 0.0
+    # as the master reads them: 16-03 (2643h) 0608h, tripped, not running (Tabelle 4.10); 16-90
+    # (269Ah) bit 4 "Steuerwort-Timeout" (8-03) and bit 22 "Feldbus-Fehl." (guarding, A6), Tabelle 8.1
+    assert bench.sdo_read(NODE, 0x2643, 0)[4:6] == bytes.fromhex("08 06")
+    assert int.from_bytes(bench.sdo_read(NODE, 0x269A, 0)[4:8], "little") == CONTROL_WORD_TIMEOUT | FIELDBUS_FAULT
+    # the fieldbus reset: a rising edge of control word bit 7 (§4.4.2), then it runs again
+    _guarded_master(bench, "FC 04 00 20", 100)
+    after = _guarded_master(bench, "7C 04 00 20", 2000)
+    assert after[-1] == 25.0 and sim.parameter("16-90") == 0 and not sim.parameter("16-03") & 0x0008
+
+
 def test_life_guarding_a_lost_master_with_emcy(bench):
     # M12: 100Ch x 100Dh = 300 ms; 8-04 [5]: the alarm; 8-07 [1]: an EMCY (D29, D30)
     sim = fc280(bench, **{"8-04": 5, "8-07": 1})
@@ -366,6 +412,29 @@ def test_life_guarding_a_lost_master_with_emcy(bench):
     bench.run_ms(10)
     assert bench.frames_with(EMCY) == [bytes(8)]  # D30: "mit dem Inhalt 0"
     assert bench.sdo_read(NODE, 0x1001, 0)[4] == 0
+
+
+@pytest.mark.parametrize(
+    "alarm, emcy, line",
+    [
+        # Tabelle 8.1 bit 2 "Erdschluss"; Tabelle 8.9 has no earth-fault row, 2240h (CiA 402:
+        # earth leakage inside the device) is the one of its two "Kurzschluss" rows that fits (A5)
+        (0x00000004, "40 22 01 01 04 00 00 00", "EMCY 2240h Earth fault, error register 01h"),
+        # Tabelle 8.1 bit 12 "Kurzschluss": 2130h "Kurzschluss"
+        (0x00001000, "30 21 01 01 00 10 00 00", "EMCY 2130h Short circuit, error register 01h"),
+    ],
+)
+def test_earth_fault_and_short_circuit_emcy_say_what_tripped(bench, alarm, emcy, line):
+    sim = fc280(bench, **{"8-07": 1})
+    bench.nmt(NMT_START, NODE)
+    bench.clear()
+    sim.model.trip(alarm)
+    bench.run_ms(10)
+    assert bench.frames_with(EMCY) == [bytes.fromhex(emcy)]
+    frame = bench.frames_with(EMCY)[0]
+    # the line the CANopen master logs for it (Device.emcy_text)
+    logged = FC280.emcy_text(int.from_bytes(frame[:2], "little"), frame[2], frame[3:])
+    assert logged.startswith(line + " (generic error); active: alarm word 16-90")
 
 
 def test_emcy_follows_8_07(bench):

@@ -31,10 +31,11 @@ VAR
     go : BOOL;
     write : BOOL;
     id : UINT := 26;
+    bit : INT := -1;
     value : LREAL;
 END_VAR
 mpu(DEVICE := 1);
-par(EXECUTE := go, DEVICE := 1, ID := id, WRITE := write, VALUE := value);
+par(EXECUTE := go, DEVICE := 1, ID := id, BIT := bit, WRITE := write, VALUE := value);
 IF par.DONE OR par.ERROR THEN
     go := FALSE;
 END_IF
@@ -87,8 +88,9 @@ def plant(tmp_path):
         engine.stop()
 
 
-def _request(engine, *, id: int, write: bool = False, value: float = 0.0, limit_ms: int = 3000) -> None:
+def _request(engine, *, id: int, bit: int = -1, write: bool = False, value: float = 0.0, limit_ms: int = 3000) -> None:
     engine.set("Main.id", id)
+    engine.set("Main.bit", bit)
     engine.set("Main.write", write)
     engine.set("Main.value", value)
     engine.set("Main.go", True)
@@ -129,12 +131,59 @@ def test_a_write_gives_the_password_first_and_is_read_back(plant):
     assert _requests(seen)[0] == "EE 01 01 F4 04 D2 EB 27"  # V4: password 1234 to ID 500
 
 
+def test_value_read_is_the_device_value_as_the_scaling_gives_it(plant):
+    # issue 33: +df max (ID 26, 4.2.47) is f[Hz]·256: the word 59 is 59/256 = 0.23046875 Hz,
+    # not 0.230; a switch reads 1.0/0.0 and a plain word as it is
+    engine, _driver, sim, _monitor, _seen = plant()
+    sim.store.set_word(26, 59)
+    engine.run(duration_ns=500 * MS)
+    _request(engine, id=26)
+    assert engine.get("Main.par.DONE") and engine.get("Main.par.RAW") == 59
+    assert engine.get("Main.par.VALUE_READ") == 59 / 256 == 0.23046875
+    engine.run(duration_ns=100 * MS)
+    sim.store.set_word(68, 1234)  # the frequency ramp, Hz/s·102.4 (A13): 1234 / 102.4 Hz/s
+    _request(engine, id=68)
+    assert engine.get("Main.par.VALUE_READ") == 1234 * 5 / 512 == 12.05078125
+
+
 def test_a_value_outside_the_range_never_reaches_the_wire(plant):
     engine, _driver, sim, _monitor, seen = plant()
     engine.run(duration_ns=500 * MS)
     _request(engine, id=parameter("sync_df_max").id, write=True, value=0.6)  # 4.2.47: at most 0.49 Hz
     assert engine.get("Main.par.ERROR") and engine.get("Main.par.ERRORID") == 2  # MPU2S_ERR_RANGE
     assert _requests(seen) == [] and sim.requests == 0
+
+
+@pytest.mark.parametrize(
+    "key, param_id, bit, mask",
+    [
+        ("gcb_monitoring", 17, 12, 0x1000),  # 4.2.59, a bit
+        ("black_start", 19, 5, 0x0030),  # 4.2.55, a double bit: 00 = aus, 11 = ein (4.2.18)
+        ("sync_time_monitoring", 21, 0, 0x0001),  # 4.2.53 (A33)
+        ("earth_fault_monitoring", 248, 9, 0x0200),  # 4.2.123
+    ],
+)
+def test_bit_and_double_bit_parameters_are_written_from_st(plant, key, param_id, bit, mask):
+    # issue 33: MPU2S_PARAM with BIT and VALUE := 1.0 / 0.0 ("a switch or flag is 1.0 / 0.0"):
+    # the whole word read first, the bits merged, written, read back (4.1, 4.2.13 ff.)
+    engine, _driver, sim, _monitor, seen = plant()
+    engine.run(duration_ns=500 * MS)
+    before = sim.store.words[param_id]
+    for value, word in ((1.0, before | mask), (0.0, before & ~mask)):
+        engine.run(duration_ns=100 * MS)  # EXECUTE low for a scan: the next request's edge
+        seen.clear()
+        _request(engine, id=param_id, bit=bit, write=True, value=value)
+        assert engine.get("Main.par.DONE") and engine.get("Main.par.ERRORID") == 0
+        assert (engine.get("Main.par.VALUE_READ"), engine.get("Main.par.RAW")) == (value, word)
+        requests = [frames.read_request(1, param_id), frames.write_request(1, param_id, word)]
+        requests += [frames.read_request(1, param_id)]
+        assert _requests(seen)[-3:] == [r.hex(" ").upper() for r in requests]
+        assert sim.store.flag(key) is bool(value) and sim.store.words[param_id] == word  # the rest kept
+    assert _requests(seen)[-2][12:17] == f"{word >> 8:02X} {word & 0xFF:02X}"  # bytes 4-5, high first
+    engine.run(duration_ns=100 * MS)
+    seen.clear()
+    _request(engine, id=param_id, bit=bit, write=True, value=0.5)  # neither on nor off
+    assert engine.get("Main.par.ERRORID") == 2 and _requests(seen) == []  # MPU2S_ERR_RANGE, nothing sent
 
 
 def test_no_reply_is_retried_then_a_timeout(plant):

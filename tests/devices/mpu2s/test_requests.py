@@ -7,9 +7,12 @@ own frames, no bus (the bus and the simulator: test_node.py)."""
 
 from __future__ import annotations
 
+from fractions import Fraction
+
 import pytest
 
 from softplc.runtime.devices.mpu2s import frames
+from softplc.runtime.devices.mpu2s.exchange import MGMT_WORDS, finish
 from softplc.runtime.devices.mpu2s.parameters import KWUGNSEK_ID, encode, parameter
 from softplc.runtime.devices.mpu2s.requests import MS, Outcome, Request, RequestEngine, Result
 
@@ -164,6 +167,43 @@ def test_a_bit_parameter_is_merged_into_the_word_read_first():
     [result] = line.results
     assert result.outcome == Outcome.OK and result.raw == 0xCF30 and result.value == 1.0
     assert f_on.bits == (15, 14)
+
+
+@pytest.mark.parametrize(
+    "key, value, word, expected",
+    [
+        ("breaker_logic", 1.0, 0x000A, 0x010A),  # ID 16 bits 11..8, 0001 Parallel (4.2.43)
+        ("amz_characteristic", 2.0, 0x0000, 0x0002),  # ID 298 bits 1+0, 10 extremely inverse (4.2.78)
+        ("ao1_source", 5.0, 0x0000, 0x0005),  # ID 192, a whole-word code 0..22 (4.2.152, A24)
+    ],
+)
+def test_a_code_comes_from_a_program_as_a_whole_number(key, value, word, expected):
+    # MPU2S_PARAM's VALUE is an LREAL: a code is a whole number in it
+    p = parameter(key)
+    line = Line()
+    line.words[p.id] = word
+    line.submit(p.id, bit=p.bits[0] if p.bits else -1, write=True, value=value)
+    line.submit(p.id, bit=p.bits[0] if p.bits else -1, write=True, value=value + 0.5)
+    line.run(2000)
+    assert line.words[p.id] == expected
+    assert [r.outcome for r in line.results] == [Outcome.OK, Outcome.RANGE]
+    assert line.results[0].value == value
+
+
+def test_a_value_read_is_exact_and_reaches_the_program_as_a_fraction():
+    # 4.2.11 gen rated voltage, U·KWUGNSEK/400 (4.2.10): the word 230 with KWUGNSEK 397 is
+    # 230·400/397 V; MPU2S_PARAM gets numerator and denominator and divides them in LREAL
+    line = Line()
+    line.words[KWUGNSEK_ID] = 397
+    line.words[296] = 230
+    line.submit(296)
+    line.run(1000)
+    [result] = line.results
+    assert result.exact == Fraction(230 * 400, 397) and result.value == 92000 / 397
+    mgmt = [1] + [0] * (MGMT_WORDS - 1)
+    finish(mgmt, False, result)
+    numerator, denominator = mgmt[3] << 16 | mgmt[4], mgmt[6] << 16 | mgmt[7]
+    assert (numerator, denominator, mgmt[0], mgmt[2]) == (92000, 397, 0, 230)
 
 
 def test_a_write_the_device_does_not_take_fails_the_read_back():

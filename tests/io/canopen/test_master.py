@@ -403,7 +403,10 @@ def test_details_give_each_node_its_states_last_error_and_emergencies_for_the_mo
         (0x1000, 0x01, "6d 00 00 00 00"),
         (0x0000, 0x00, "00 00 00 00 00"),
     ]
-    assert node["emcy"][1]["text"] == "error reset" and node["emergencies"] == 2
+    # in the LTMR's words (runtime/devices/ltmr/emcy.py)
+    assert node["emcy"][0]["text"].endswith("trip code 109 Network port comm detected error (register 451)")
+    assert node["emcy"][1]["text"] == "EMCY 0000h error reset or no error: no detected error"
+    assert node["emergencies"] == 2
     sim.unplug()  # the heartbeat stops: the node is lost, and the monitors say why
     plant.run_ms(500)
     (node,) = plant.master.details()["nodes"]
