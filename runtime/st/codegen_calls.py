@@ -143,14 +143,20 @@ class CallGen(CodeGenBase):
             return None
         w, mask = t.bits, (1 << t.bits) - 1
         if n is None and name in ("SHL", "SHR"):
-            if R.within(self._range(info.args[1]), 0, w - 1) and R.within(self._range(info.args[0]), 0, mask):
-                return f"({args[0]} << {args[1]} & {mask})" if name == "SHL" else f"({args[0]} >> {args[1]})"
+            count, value = self._range(info.args[1]), self._range(info.args[0])
+            if R.within(count, 0, w - 1) and R.within(value, 0, mask):
+                if name == "SHR":
+                    return f"({args[0]} >> {args[1]})"
+                if count is not None and value is not None and value[1] << count[1] <= mask:
+                    return f"({args[0]} << {args[1]})"  # SHL(WORD#1, j), j in 0..15: never past the width
+                return f"({args[0]} << {args[1]} & {mask})"
             return None
         if not isinstance(n, int) or isinstance(n, bool) or n < 0:
             return None
         x = args[0]
-        if not R.within(self._range(info.args[0]), 0, mask):
-            x = f"({x} & {mask})"
+        value = self._range(info.args[0])
+        if not R.within(value, 0, mask):
+            x, value = f"({x} & {mask})", (0, mask)
         if name in ("ROL", "ROR"):
             n %= w
             if n == 0:
@@ -165,6 +171,8 @@ class CallGen(CodeGenBase):
         if n >= w:
             return "0"
         if name == "SHL":
+            if value is not None and value[1] << n <= mask:
+                return f"({x} << {n})"  # SHL(w AND 16#F, 12): never past the width
             return f"({x} << {n} & {mask})"
         return f"({x} >> {n})"
 

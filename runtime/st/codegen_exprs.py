@@ -68,7 +68,8 @@ class ExprGen(CodeGenBase):
             if e.size != "X":  # d.%W1: the part, unsigned (ed.3 6.5.3)
                 width = elementary(e.ty).bits
                 return f"({self.ex(e.base)} >> {int(e.bit.const) * width} & {(1 << width) - 1})"
-            return f"({self.ex(e.base)} >> {int(e.bit.const)} & 1 != 0)"
+            # bit n of the (two's complement) value: x & 2**n, no shift first
+            return f"({self.ex(e.base)} & {1 << int(e.bit.const)} != 0)"
         if isinstance(e, A.Located):
             if e.addr.table is not None:
                 return f"_A{self.accessor(e.addr, None)}t"

@@ -39,6 +39,23 @@ def test_inlined_operations_keep_iec_results():
     assert (r.get("sn"), r.get("uw"), r.get("big"), r.get("b"), r.get("lim")) == (44, 65535, 0, 0x03, 100)
 
 
+def test_shifts_that_stay_in_the_width_and_bit_reads_of_negative_values():
+    # SHL(WORD#1, j) and SHL(w AND 16#F, 12) cannot leave the WORD (emitted without a mask);
+    # SHL(w AND 16#1F, 12) can; a bit of a negative INT or LINT is its two's complement bit
+    src = prog(
+        "w : WORD := 16#ABDD; j : INT; packed : WORD; lo : WORD; cut : WORD; i : INT := -2; l : LINT := -1;"
+        " bits : WORD; top : BOOL; b0 : BOOL;",
+        "FOR j := 0 TO 15 DO IF j MOD 3 = 0 THEN packed := packed OR SHL(WORD#1, j); END_IF END_FOR\n"
+        "lo := SHL(w AND 16#000F, 12); cut := SHL(w AND 16#001F, 12);\n"
+        "FOR j := 0 TO 15 DO IF i.15 AND NOT i.0 THEN bits := bits OR SHL(WORD#1, j); END_IF END_FOR\n"
+        "top := l.63; b0 := i.1;",
+    )
+    r = run_st(src)
+    assert r.get("packed") == sum(1 << j for j in range(0, 16, 3))
+    assert (r.get("lo"), r.get("cut")) == (0xD000, 0xD000)
+    assert (r.get("bits"), r.get("top"), r.get("b0")) == (0xFFFF, True, True)
+
+
 def test_limit_with_mn_above_mx_gives_mx_inline_folded_and_in_the_library():
     # IEC 61131-3 Table 28: LIMIT(MN, IN, MX) = MIN(MAX(IN, MN), MX), so MN > MX gives MX.
     # The inlined form gave MN, the folded constant and the library function MX.

@@ -89,6 +89,16 @@ def test_for_loop_leaves_the_variable_past_the_end_and_exit_keeps_it():
     assert r.get("i") == 13 and r.get("j") == 4 and r.get("k") == 5
 
 
+def test_for_loop_to_the_top_of_its_type_leaves_the_variable_wrapped():
+    # the value past the end of constant bounds is computed when compiling: 128 wraps in a SINT
+    src = prog(
+        "b : SINT; u : USINT; n : INT;",
+        "FOR b := 120 TO 127 DO n := n + 1; END_FOR\nFOR u := 250 TO 255 DO n := n + 1; END_FOR",
+    )
+    r = run_st(src)
+    assert (r.get("b"), r.get("u"), r.get("n")) == (-128, 0, 14)
+
+
 def test_while_repeat_continue():
     src = prog(
         "i : INT; odd : INT; n : INT;",
