@@ -109,6 +109,12 @@ class ExprGen(CodeGenBase):
             if sym.boxed:
                 return f"{sym.pyname}.value"
             return sym.pyname
+        if aggregate and self.fn.aliases is not None and sym.section != "VAR_IN_OUT" and not sym.boxed:
+            # an array, struct or FB instance of self is never rebound while a body
+            # runs (assignment copies into it): read through a local (_aliased_body)
+            reads = 2 if self.fn.loop_kinds else 1  # a read in a loop is a read many times
+            self.fn.aliases[sym.pyname] = self.fn.aliases.get(sym.pyname, 0) + reads
+            return f"\0{sym.pyname}\0"
         base = f"{self.fn.self_name}.{sym.pyname}"
         if sym.section == "VAR_IN_OUT" and not aggregate:
             return f"{base}.get()"
