@@ -60,7 +60,11 @@ class StmtGen(CodeGenBase):
                 self.pos = cond.pos if i else s.pos
                 self.emit(f"{'if' if i == 0 else 'elif'} {self.ex(cond)}:")
                 self.indent += 1
+                known = self.fn.loop_ranges
+                if i == 0:  # IF i >= 8 THEN ... samples[i - 8]: no bounds check
+                    self.fn.loop_ranges = self._narrowed(cond, dict(known))
                 self._body(body)
+                self.fn.loop_ranges = known
                 self.indent -= 1
             if s.else_body:
                 self.emit("else:")
@@ -118,6 +122,33 @@ class StmtGen(CodeGenBase):
             pass  # no JMP names it
         else:
             raise NotImplementedError(type(s).__name__)
+
+    _BOUNDS = {">=": (0, None), ">": (1, None), "<=": (None, 0), "<": (None, -1), "=": (0, 0)}
+    _MIRROR = {">=": "<=", ">": "<", "<=": ">=", "<": ">", "=": "="}
+
+    def _narrowed(self, cond: A.Expr, known: dict) -> dict:
+        """The ranges of FOR variables (read from their loop locals, constant
+        bounds) where cond is TRUE: i >= 8, 8 <= i, i < n AND i > 0 narrow
+        the range of i. A FOR variable cannot change in its loop's body."""
+        if not isinstance(cond, A.Binary):
+            return known
+        if cond.op in ("AND", "AND_THEN") and T.base_elementary(cond.ty) is T.BOOL:
+            return self._narrowed(cond.right, self._narrowed(cond.left, known))
+        op, var, const = cond.op, cond.left, cond.right
+        if not isinstance(var, A.Name):
+            op, var, const = self._MIRROR.get(op, ""), cond.right, cond.left
+        if op not in self._BOUNDS or not isinstance(var, A.Name) or id(var.sym) not in known:
+            return known
+        c = const.const
+        if not isinstance(c, int) or isinstance(c, bool):
+            return known
+        lo, hi = known[id(var.sym)]
+        dlo, dhi = self._BOUNDS[op]
+        lo = lo if dlo is None else max(lo, c + dlo)
+        hi = hi if dhi is None else min(hi, c + dhi)
+        if lo <= hi:  # else the body never runs: leave it as it was
+            known[id(var.sym)] = (lo, hi)
+        return known
 
     def _leave_loop(self, word: str) -> None:
         if self._leave_through_labels(word):
