@@ -3,11 +3,14 @@
 
     python benchmarks/bench_language.py           # full run, about 20 s
     python benchmarks/bench_language.py --quick   # smoke run, about 4 s
+    python benchmarks/bench_language.py --part 1  # only the generated code vs hand-written
 
 Part 1 runs four ST programs (numeric loops, bit/word manipulation, 100 FB
 instances, 100 method calls through an interface) and a hand-written Python implementation of the same logic, checks
 that both end in the same state and prints us/cycle and the ratio
-generated / hand-written (target: within 1.2x).
+generated / hand-written (issue 32's target: within 1.10x; a ratio
+of two times taken on the same host, so the host's timeit factor, printed
+first, does not scale it).
 
 Part 2 generates a 10,000-line ST file and times the front end phase by phase
 and compile_files() end to end (target: 10,000 lines/s, i.e. under 1 s).
@@ -26,7 +29,8 @@ import tempfile
 import time
 from pathlib import Path
 
-from language_hand import BitsHand, NumericHand, OopHand, TimersHand, s32  # benchmarks/, beside this script
+from host import timeit_factor  # benchmarks/, beside this script
+from language_hand import BitsHand, NumericHand, OopHand, TimersHand, s32
 
 from softplc.runtime.program import compile as loader
 from softplc.runtime.program import compile_files
@@ -37,7 +41,7 @@ from softplc.runtime.st.parser import parse_source
 from softplc.runtime.st.profile import get_profile
 
 HERE = Path(__file__).resolve().parent
-RATIO_TARGET = 1.2
+RATIO_TARGET = 1.10
 FRONT_END_TARGET_LINES_S = 10_000
 FRONT_END_LINES = 10_000
 
@@ -473,6 +477,7 @@ def main() -> int:
         default=None,
         help="timing rounds per program, the minimum is reported (default 40, quick 3)",
     )
+    ap.add_argument("--part", type=int, choices=(1, 2), default=None, help="run only part 1 or part 2")
     args = ap.parse_args()
     rounds = args.rounds or (3 if args.quick else 40)
     # cycles per timed chunk, about 10 ms each: short chunks are less often
@@ -481,9 +486,16 @@ def main() -> int:
 
     print(
         f"softplc ST benchmarks  (Python {sys.version.split()[0]}, "
-        f"{'quick' if args.quick else 'full'} run, {rounds} timing rounds)\n"
+        f"{'quick' if args.quick else 'full'} run, {rounds} timing rounds)"
     )
+    print(timeit_factor().line() + "\n")
+    rows = run_part1(cycles, rounds) if args.part in (None, 1) else []
+    fe = run_part2(args.quick) if args.part in (None, 2) else None
+    print_summary(rows, fe)
+    return 0
 
+
+def run_part1(cycles: dict, rounds: int) -> list:
     benches = [
         Bench("a numeric", HERE / "numeric.st", "NumericMain", NumericHand, clocked=False),
         Bench("b bits", HERE / "bits.st", "BitsMain", BitsHand, clocked=False),
@@ -506,29 +518,36 @@ def main() -> int:
         "    (of mins): the ratio of the two fastest chunks; Runner.run: the generated program\n"
         "    under the real Runner, which also arms the watchdog every cycle)\n"
     )
+    return rows
 
+
+def run_part2(quick: bool) -> dict:
     print(f"2. Front end on a generated {FRONT_END_LINES:,}-line ST file")
-    fe = bench_front_end(1 if args.quick else 3)
+    fe = bench_front_end(1 if quick else 3)
     print(f"   {fe['lines']:,} ST lines, {fe['pous']} POUs -> {fe['python lines']:,} Python lines")
     phases = ("parse", "parse library", "check", "codegen", "python compile", "total")
     for phase in (*phases, "compile_files()"):
         print(f"   {phase:<21} {fe[phase]:7.3f} s  {fe['lines'] / fe[phase]:>10,.0f} lines/s")
     print()
+    return fe
 
+
+def print_summary(rows: list, fe: dict | None) -> None:
     print("Summary")
     print(f"   {'measure':<36} {'value':>10}  {'target':>10}  result")
     for r in rows:
         ok = r["ratio"] <= RATIO_TARGET and r["same"]
         print(
             f"   {r['name'] + ': generated / hand-written':<36} {r['ratio']:>9.2f}x  "
-            f"{'<= ' + str(RATIO_TARGET) + 'x':>10}  {'met' if ok else 'MISSED'}"
+            f"{f'<= {RATIO_TARGET:.2f}x':>10}  {'met' if ok else 'MISSED'}"
             f"{'' if r['same'] else ' (results differ)'}"
         )
+    if fe is None:
+        return
     speed = fe["lines"] / fe["compile_files()"]
     ok = speed >= FRONT_END_TARGET_LINES_S
     target = f">= {FRONT_END_TARGET_LINES_S:,}"
     print(f"   {'compile_files(), 10k lines (lines/s)':<36} {speed:>10,.0f}  {target:>10}  {'met' if ok else 'MISSED'}")
-    return 0
 
 
 if __name__ == "__main__":

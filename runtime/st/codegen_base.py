@@ -88,6 +88,9 @@ class FnState:
         self.labels: dict = {}
         self.crossing: dict = {}
         self.transfers = 0
+        # aggregates of self read through a local (codegen_pous.py _aliased_body):
+        # pyname -> reads, while a body that takes them is emitted; None: not here
+        self.aliases: dict | None = None
 
     @property
     def is_function(self) -> bool:

@@ -17,7 +17,7 @@ from . import rt_varray
 from . import types as T
 from .codegen_base import CodeGenBase, elementary, py_literal
 from .native import CallSite
-from .symbols import CallInfo, copied_in_out
+from .symbols import CallInfo, VarSymbol, copied_in_out
 
 
 class CallGen(CodeGenBase):
@@ -143,14 +143,20 @@ class CallGen(CodeGenBase):
             return None
         w, mask = t.bits, (1 << t.bits) - 1
         if n is None and name in ("SHL", "SHR"):
-            if R.within(self._range(info.args[1]), 0, w - 1) and R.within(self._range(info.args[0]), 0, mask):
-                return f"({args[0]} << {args[1]} & {mask})" if name == "SHL" else f"({args[0]} >> {args[1]})"
+            count, value = self._range(info.args[1]), self._range(info.args[0])
+            if R.within(count, 0, w - 1) and R.within(value, 0, mask):
+                if name == "SHR":
+                    return f"({args[0]} >> {args[1]})"
+                if count is not None and value is not None and value[1] << count[1] <= mask:
+                    return f"({args[0]} << {args[1]})"  # SHL(WORD#1, j), j in 0..15: never past the width
+                return f"({args[0]} << {args[1]} & {mask})"
             return None
         if not isinstance(n, int) or isinstance(n, bool) or n < 0:
             return None
         x = args[0]
-        if not R.within(self._range(info.args[0]), 0, mask):
-            x = f"({x} & {mask})"
+        value = self._range(info.args[0])
+        if not R.within(value, 0, mask):
+            x, value = f"({x} & {mask})", (0, mask)
         if name in ("ROL", "ROR"):
             n %= w
             if n == 0:
@@ -165,6 +171,8 @@ class CallGen(CodeGenBase):
         if n >= w:
             return "0"
         if name == "SHL":
+            if value is not None and value[1] << n <= mask:
+                return f"({x} << {n})"  # SHL(w AND 16#F, 12): never past the width
             return f"({x} << {n} & {mask})"
         return f"({x} >> {n})"
 
@@ -255,7 +263,12 @@ class CallGen(CodeGenBase):
             return
         # an action inside its own POU: a method of the instance running
         inst = self.fn.self_name if info.instance is None else self.ex(info.instance)
-        if info.inputs or info.inouts or info.outputs or not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_.]*", inst):
+        alias = re.fullmatch("\0([A-Za-z0-9_]+)\0", inst)
+        if alias is not None and self.fn.aliases is not None:
+            # an instance of self read through its local (codegen_pous.py _aliased_body):
+            # the call reads it several times
+            self.fn.aliases[alias.group(1)] += 2
+        elif info.inputs or info.inouts or info.outputs or not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_.]*", inst):
             t = self.tmp("fb")  # an instance never changes identity: look it up once
             self.emit(f"{t} = {inst}")
             inst = t
@@ -270,6 +283,39 @@ class CallGen(CodeGenBase):
             self.indent -= 1
             return
         self._fb_call_body(info, inst)
+
+    @staticmethod
+    def _exact_class(info: CallInfo) -> str | None:
+        """The class of an FB instance that is built from its declared type
+        (a variable of a PROGRAM, FB or the globals, a struct member or an
+        array element, not reached through a VAR_IN_OUT, a reference, a
+        pointer or a FUNCTION's input, which may hold an instance of a
+        derived block): its body is called as Class.__call__(inst), which
+        Python 3.11 calls faster than the instance (no slot lookup)."""
+        e = info.instance
+        if info.kind != "fb" or e is None:
+            return None
+        t = T.resolve(e.ty)
+        if not isinstance(t, T.FBType) or t.pou is None or t.pou.kind != "FUNCTION_BLOCK":
+            return None
+        while True:
+            if e.implicit_ref is not None:
+                return None
+            sym = getattr(e, "sym", None)
+            if isinstance(e, (A.Name, A.Member)) and (
+                not isinstance(sym, VarSymbol) or sym.section == "VAR_IN_OUT" or sym.boxed
+            ):
+                return None
+            if isinstance(e, A.Name):
+                # a FUNCTION's or METHOD's input is a copy of the argument (of its class)
+                owner = sym.owner if isinstance(sym, VarSymbol) else None
+                return str(t.pou.pyname) if owner is None or owner.kind in ("PROGRAM", "FUNCTION_BLOCK") else None
+            if isinstance(e, A.Member) or (isinstance(e, A.Index) and e.via is None):
+                e = e.base
+                if not T.resolve(e.ty).is_aggregate:
+                    return None
+                continue
+            return None
 
     def _fb_call_body(self, info: CallInfo, inst: str) -> None:
         for p, a in info.inputs:
@@ -295,7 +341,11 @@ class CallGen(CodeGenBase):
             else:
                 ref = self.inout_arg(p, a)
             self.emit(f"{inst}.{p.pyname} = {ref}")
-        self.emit(self._action_invoke(info, inst) if info.kind == "action" else f"{inst}()")
+        if info.kind == "action":
+            self.emit(self._action_invoke(info, inst))
+        else:
+            cls = self._exact_class(info)
+            self.emit(f"{cls}.__call__({inst})" if cls is not None else f"{inst}()")
         for p, a in copied:
             if T.resolve(p.type).is_aggregate:
                 self.emit(f"_assign_into({self.ex(a)}, {inst}.{p.pyname})")

@@ -68,7 +68,8 @@ class ExprGen(CodeGenBase):
             if e.size != "X":  # d.%W1: the part, unsigned (ed.3 6.5.3)
                 width = elementary(e.ty).bits
                 return f"({self.ex(e.base)} >> {int(e.bit.const) * width} & {(1 << width) - 1})"
-            return f"({self.ex(e.base)} >> {int(e.bit.const)} & 1 != 0)"
+            # bit n of the (two's complement) value: x & 2**n, no shift first
+            return f"({self.ex(e.base)} & {1 << int(e.bit.const)} != 0)"
         if isinstance(e, A.Located):
             if e.addr.table is not None:
                 return f"_A{self.accessor(e.addr, None)}t"
@@ -108,6 +109,12 @@ class ExprGen(CodeGenBase):
             if sym.boxed:
                 return f"{sym.pyname}.value"
             return sym.pyname
+        if aggregate and self.fn.aliases is not None and sym.section != "VAR_IN_OUT" and not sym.boxed:
+            # an array, struct or FB instance of self is never rebound while a body
+            # runs (assignment copies into it): read through a local (_aliased_body)
+            reads = 2 if self.fn.loop_kinds else 1  # a read in a loop is a read many times
+            self.fn.aliases[sym.pyname] = self.fn.aliases.get(sym.pyname, 0) + reads
+            return f"\0{sym.pyname}\0"
         base = f"{self.fn.self_name}.{sym.pyname}"
         if sym.section == "VAR_IN_OUT" and not aggregate:
             return f"{base}.get()"

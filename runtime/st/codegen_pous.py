@@ -8,6 +8,7 @@ builds initial values from the checker's plans.
 from __future__ import annotations
 
 import itertools
+import re
 from bisect import bisect_right
 from typing import Any
 
@@ -328,7 +329,7 @@ class PouGen(SfcGen):
         if pou.sfc is not None:
             self._sfc_body(pou)
         else:
-            self._body(pou.node.body)
+            self._aliased_body(pou.node.body)
         self.indent -= 1
         for act in pou.actions.values():  # an ACTION: a method on the same variables
             self.pos = act.node.pos
@@ -337,10 +338,33 @@ class PouGen(SfcGen):
             self.emit(f"def {act.pyname}(self):")
             self.indent += 1
             self._temps_init(pou)
-            self._body(act.node.body)
+            self._aliased_body(act.node.body)
             self.indent -= 1
         self._oop_members(pou)
         self.indent -= 1
+
+    def _aliased_body(self, stmts: list) -> None:
+        """The statements of a body of self (a PROGRAM's or FB's, an action's),
+        reading the arrays, structs and FB instances of self that it reads
+        more than once (or in a loop) through locals bound first (_a_<name> = self.<name>):
+        a local is one load, an attribute two. They are never rebound while
+        the body runs (an assignment copies into them; online change and
+        retain replace them between cycles), so the local is the attribute."""
+        start, pos = len(self.out), self.pos
+        self.fn.aliases = {}
+        self._body(stmts)
+        aliases, self.fn.aliases = self.fn.aliases, None
+        if not aliases:
+            return
+        local = {name: f"_a_{name}" if n > 1 else f"{self.fn.self_name}.{name}" for name, n in aliases.items()}
+        marker = re.compile("\0([A-Za-z0-9_]+)\0")
+        for i in range(start, len(self.out)):
+            text, at = self.out[i]
+            if "\0" in text:
+                self.out[i] = (marker.sub(lambda m: local[m.group(1)], text), at)
+        pad = "    " * self.indent
+        binds = [(f"{pad}_a_{name} = {self.fn.self_name}.{name}", pos) for name, n in aliases.items() if n > 1]
+        self.out[start:start] = binds
 
     def _eno_true(self, pou: POUInfo) -> None:
         """ENO is TRUE when the body starts (IEC 61131-3 ed.3 6.6.1.6); only

@@ -22,6 +22,12 @@ from .faults import LOOP_CHECK_EVERY
 from .rt_case import CaseTable
 from .symbols import PropertyInfo, VarSymbol
 
+
+def _int_literal(code: str) -> bool:
+    """Whether the Python code is an integer literal (a constant bound)."""
+    return re.fullmatch(r"-?[0-9]+", code) is not None
+
+
 #: a CASE of more branches is a table and a tree of ifs, not an elif chain
 CASE_CHAIN = 64
 
@@ -54,7 +60,11 @@ class StmtGen(CodeGenBase):
                 self.pos = cond.pos if i else s.pos
                 self.emit(f"{'if' if i == 0 else 'elif'} {self.ex(cond)}:")
                 self.indent += 1
+                known = self.fn.loop_ranges
+                if i == 0:  # IF i >= 8 THEN ... samples[i - 8]: no bounds check
+                    self.fn.loop_ranges = self._narrowed(cond, dict(known))
                 self._body(body)
+                self.fn.loop_ranges = known
                 self.indent -= 1
             if s.else_body:
                 self.emit("else:")
@@ -113,6 +123,33 @@ class StmtGen(CodeGenBase):
         else:
             raise NotImplementedError(type(s).__name__)
 
+    _BOUNDS = {">=": (0, None), ">": (1, None), "<=": (None, 0), "<": (None, -1), "=": (0, 0)}
+    _MIRROR = {">=": "<=", ">": "<", "<=": ">=", "<": ">", "=": "="}
+
+    def _narrowed(self, cond: A.Expr, known: dict) -> dict:
+        """The ranges of FOR variables (read from their loop locals, constant
+        bounds) where cond is TRUE: i >= 8, 8 <= i, i < n AND i > 0 narrow
+        the range of i. A FOR variable cannot change in its loop's body."""
+        if not isinstance(cond, A.Binary):
+            return known
+        if cond.op in ("AND", "AND_THEN") and T.base_elementary(cond.ty) is T.BOOL:
+            return self._narrowed(cond.right, self._narrowed(cond.left, known))
+        op, var, const = cond.op, cond.left, cond.right
+        if not isinstance(var, A.Name):
+            op, var, const = self._MIRROR.get(op, ""), cond.right, cond.left
+        if op not in self._BOUNDS or not isinstance(var, A.Name) or id(var.sym) not in known:
+            return known
+        c = const.const
+        if not isinstance(c, int) or isinstance(c, bool):
+            return known
+        lo, hi = known[id(var.sym)]
+        dlo, dhi = self._BOUNDS[op]
+        lo = lo if dlo is None else max(lo, c + dlo)
+        hi = hi if dhi is None else min(hi, c + dhi)
+        if lo <= hi:  # else the body never runs: leave it as it was
+            known[id(var.sym)] = (lo, hi)
+        return known
+
     def _leave_loop(self, word: str) -> None:
         if self._leave_through_labels(word):
             return
@@ -157,14 +194,19 @@ class StmtGen(CodeGenBase):
             self.emit(f"{wd} -= 1")
             self.emit(f"if {wd} < 0: {wd} = {wd}s = _watchdog()")
 
-    def _for_iterable(self, rng: str, var_type: T.Type) -> str:
+    def _for_iterable(self, rng: str, var_type: T.Type, known: range | None = None) -> str:
         """What a FOR loop iterates over: its range, its length charged to
         the loop budget first; when that runs out, _loop checks and slices
-        a long range."""
+        a long range. known: the range, when its bounds are constants."""
         if not self.watchdog_checks:
             return rng
         left = self.tmp("b")
-        size = f"len({rng})" if elementary(var_type).bits < 64 else f"len({rng}[:{LOOP_CHECK_EVERY + 1}])"
+        if known is not None:
+            size = str(len(known))
+        elif elementary(var_type).bits < 64:
+            size = f"len({rng})"
+        else:
+            size = f"len({rng}[:{LOOP_CHECK_EVERY + 1}])"
         self.emit(f"_ctx.loop_budget = {left} = _ctx.loop_budget - {size}")
         return f"({rng} if {left} >= 0 else _loop({rng}))"
 
@@ -246,14 +288,17 @@ class StmtGen(CodeGenBase):
         it = self.tmp("i")
         rng = self.tmp("r")
         step = None
+        known = None  # the range, when the bounds are constants (and its length an int)
         if s.step is None or isinstance(s.step.const, int):
             step = 1 if s.step is None else s.step.const
             stop = f"{end} + 1" if step > 0 else f"{end} - 1"
             self.emit(f"{rng} = range({start}, {stop}{'' if step == 1 else f', {step}'})")
+            if _int_literal(start) and _int_literal(end) and step != 0 and elementary(vty).bits < 64:
+                known = range(int(start), int(end) + (1 if step > 0 else -1), step)
         else:
             step_code = self.coerce(self.ex(s.step), s.step.ty, vty, s.step)
             self.emit(f"{rng} = _for_range({start}, {end}, {step_code})")
-        self.emit(f"for {it} in {self._for_iterable(rng, vty)}:")
+        self.emit(f"for {it} in {self._for_iterable(rng, vty, known)}:")
         self.indent += 1
         local = self._loop_local_ok(var.sym, s.body)
         if local:
@@ -271,7 +316,10 @@ class StmtGen(CodeGenBase):
         self.emit("else:")
         self.indent += 1
         # IEC: after the loop the variable holds the first value past the end
-        self.emit_store(var, f"{rng}.start + len({rng}) * {rng}.step", vty, None)
+        if known is not None and R.fits(elementary(vty), (after := known.start + len(known) * known.step,) * 2):
+            self.emit_store(var, str(after), vty, None, trusted=True)
+        else:
+            self.emit_store(var, f"{rng}.start + len({rng}) * {rng}.step", vty, None)
         self.indent -= 1
 
     def _loop_local_ok(self, sym: Any, body: list) -> bool:

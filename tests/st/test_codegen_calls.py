@@ -39,6 +39,53 @@ def test_inlined_operations_keep_iec_results():
     assert (r.get("sn"), r.get("uw"), r.get("big"), r.get("b"), r.get("lim")) == (44, 65535, 0, 0x03, 100)
 
 
+def test_shifts_that_stay_in_the_width_and_bit_reads_of_negative_values():
+    # SHL(WORD#1, j) and SHL(w AND 16#F, 12) cannot leave the WORD (emitted without a mask);
+    # SHL(w AND 16#1F, 12) can; a bit of a negative INT or LINT is its two's complement bit
+    src = prog(
+        "w : WORD := 16#ABDD; j : INT; packed : WORD; lo : WORD; cut : WORD; i : INT := -2; l : LINT := -1;"
+        " bits : WORD; top : BOOL; b0 : BOOL;",
+        "FOR j := 0 TO 15 DO IF j MOD 3 = 0 THEN packed := packed OR SHL(WORD#1, j); END_IF END_FOR\n"
+        "lo := SHL(w AND 16#000F, 12); cut := SHL(w AND 16#001F, 12);\n"
+        "FOR j := 0 TO 15 DO IF i.15 AND NOT i.0 THEN bits := bits OR SHL(WORD#1, j); END_IF END_FOR\n"
+        "top := l.63; b0 := i.1;",
+    )
+    r = run_st(src)
+    assert r.get("packed") == sum(1 << j for j in range(0, 16, 3))
+    assert (r.get("lo"), r.get("cut")) == (0xD000, 0xD000)
+    assert (r.get("bits"), r.get("top"), r.get("b0")) == (0xFFFF, True, True)
+
+
+def test_fb_calls_of_variables_elements_members_and_in_outs_run_the_instances_own_body():
+    # an instance built from its declared type is called through its class; one reached
+    # through a VAR_IN_OUT may be of a derived block and runs that block's body
+    src = """
+FUNCTION_BLOCK FB_Base
+VAR_INPUT x : INT; END_VAR
+VAR_OUTPUT y : INT; END_VAR
+y := x + 1;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK FB_Twice EXTENDS FB_Base
+y := x * 2;
+END_FUNCTION_BLOCK
+TYPE Holder : STRUCT inner : FB_Base; END_STRUCT END_TYPE
+FUNCTION_BLOCK FB_Caller
+VAR_IN_OUT fb : FB_Base; END_VAR
+fb(x := 10);
+END_FUNCTION_BLOCK
+PROGRAM main
+VAR b : FB_Base; d : FB_Twice; arr : ARRAY[1..2] OF FB_Base; h : Holder; c : FB_Caller; r : ARRAY[1..5] OF INT; END_VAR
+b(x := 1); r[1] := b.y;
+arr[2](x := 2); r[2] := arr[2].y;
+h.inner(x := 3); r[3] := h.inner.y;
+d(x := 4); r[4] := d.y;
+c(fb := d); r[5] := d.y;
+END_PROGRAM
+"""
+    r = run_st(src)
+    assert r.get("r") == [2, 3, 4, 8, 20]
+
+
 def test_limit_with_mn_above_mx_gives_mx_inline_folded_and_in_the_library():
     # IEC 61131-3 Table 28: LIMIT(MN, IN, MX) = MIN(MAX(IN, MN), MX), so MN > MX gives MX.
     # The inlined form gave MN, the folded constant and the library function MX.

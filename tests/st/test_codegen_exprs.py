@@ -42,6 +42,24 @@ def test_array_index_out_of_bounds_is_a_fault_not_a_wraparound():
     assert "0" in err.value.message and "1..3" in err.value.message
 
 
+def test_an_if_on_the_for_variable_bounds_its_indices_and_nothing_else():
+    # inside IF i >= 2 THEN, a[i - 2] is in bounds (no check needed); in the ELSE it is not
+    ok = prog(
+        "a : ARRAY[0..9] OF INT; s : INT; i : INT;",
+        "FOR i := 0 TO 9 DO a[i] := i * i; END_FOR\n"
+        "FOR i := 0 TO 9 DO IF i >= 2 AND 7 > i THEN s := s + a[i - 2]; END_IF END_FOR",
+    )
+    assert run_st(ok).get("s") == sum(k * k for k in range(5))
+    bad = prog(
+        "a : ARRAY[0..9] OF INT; s : INT; i : INT;",
+        "FOR i := 0 TO 9 DO\nIF i >= 2 THEN s := s + a[i - 2]; ELSE s := s + a[i - 2]; END_IF\nEND_FOR",
+    )
+    with pytest.raises(STFault) as err:
+        run_st(bad)
+    assert err.value.kind == "bounds" and err.value.pos.line == 6
+    assert "-2" in err.value.message and "0..9" in err.value.message
+
+
 def test_array_with_non_zero_lower_bound_and_two_dimensions():
     src = prog(
         "a : ARRAY[-2..2, 1..3] OF INT; i : INT; j : INT; s : INT;",

@@ -89,6 +89,30 @@ def test_for_loop_leaves_the_variable_past_the_end_and_exit_keeps_it():
     assert r.get("i") == 13 and r.get("j") == 4 and r.get("k") == 5
 
 
+def test_for_loop_to_the_top_of_its_type_leaves_the_variable_wrapped():
+    # the value past the end of constant bounds is computed when compiling: 128 wraps in a SINT
+    src = prog(
+        "b : SINT; u : USINT; n : INT;",
+        "FOR b := 120 TO 127 DO n := n + 1; END_FOR\nFOR u := 250 TO 255 DO n := n + 1; END_FOR",
+    )
+    r = run_st(src)
+    assert (r.get("b"), r.get("u"), r.get("n")) == (-128, 0, 14)
+
+
+def test_arrays_and_instances_read_through_locals_see_every_store_into_them():
+    # a body reads the arrays and FB instances of self it uses more than once through
+    # locals: whole assignments copy into the same objects, so every read sees them
+    src = prog(
+        "a : ARRAY[0..2] OF INT; b : ARRAY[0..2] OF INT; p : POINTER TO ARRAY[0..2] OF INT;"
+        " t1 : TON; t2 : TON; s : INT; q : BOOL;",
+        "b[1] := 5; a := b; s := a[1]; b[1] := 7; s := s + a[1] * 10 + b[1] * 100;\n"
+        "p := ADR(a); p^[2] := 9; s := s + a[2] * 1000;\n"
+        "t2(IN := TRUE, PT := T#0ms); t1 := t2; q := t1.Q AND t2.Q;",
+    )
+    r = run_st(src)
+    assert (r.get("s"), r.get("a"), r.get("q")) == (5 + 50 + 700 + 9000, [0, 5, 9], True)
+
+
 def test_while_repeat_continue():
     src = prog(
         "i : INT; odd : INT; n : INT;",
