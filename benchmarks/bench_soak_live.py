@@ -200,8 +200,21 @@ class Soak:
                 raise SystemExit(self.finish_report())
             time.sleep(0.2)
         life.first_seen = self.monitor.first()
-        life.warm = "retained variable(s) restored" in life.log.read_text()
+        life.warm = self.restored(life)
         return life
+
+    @staticmethod
+    def restored(life: Life, wait_s: float = 10.0) -> bool:
+        """Whether the life's log says its retained data was restored; the
+        line may reach the file after the first value reached the monitor
+        (a life was once taken for a cold start that way)."""
+        deadline = time.monotonic() + wait_s
+        while True:
+            if "retained variable(s) restored" in life.log.read_text(errors="replace"):
+                return True
+            if time.monotonic() > deadline:
+                return False
+            time.sleep(0.2)
 
     def end_life(self, life: Life, kill: bool) -> None:
         life.rss_end = rss_kb(life.proc.pid)
