@@ -232,11 +232,21 @@ class _LazyNatives(Mapping):
 _INDEX_FORMAT = "libraries, natives, sections"
 
 
+_found: tuple | None = None  # the process's index, once found
+
+
 def _index() -> tuple:
     """((package, file) of every plugin's ST library, in registry order;
     the names of their native functions; (key, many) of the buses'
     configuration sections): from the cache, else from the loaded registry
-    (and kept)."""
+    (and kept); found once a process (its key hashes the plugins' sources)."""
+    global _found
+    if _found is None:
+        _found = _find_index()
+    return _found
+
+
+def _find_index() -> tuple:
     entries = []
     found_eps = metadata.entry_points()
     for group in (BUS_GROUP, DEVICE_GROUP):
