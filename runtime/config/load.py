@@ -182,20 +182,22 @@ def _replaced(data: dict, locs: list) -> dict:
 
 class _Document:
     """The sections of a configuration and the pass-1 model of the whole
-    document, for one state of the registry; without one (None), the core's
-    and the servers' sections alone, for a document that has no other key:
-    the buses' sections are then known by their keys only (the registry's
-    index: plugin_sections) and take their value for a file without them."""
+    document, for one state of the registry. Without one (reg None), for a
+    document of the core's and the servers' keys alone: its model has the
+    keys given (keys) and [plc], the other core and server sections are
+    checked and built as absent, and the buses' sections, known by their
+    keys only (the registry's index: plugin_sections), take their value for
+    a file without them."""
 
-    def __init__(self, reg: Registry | None) -> None:
+    def __init__(self, reg: Registry | None, keys: frozenset = frozenset()) -> None:
         self.version = reg.version if reg is not None else None
+        #: the value of each section the document cannot have, by key
+        self.absent: dict[str, Any] = {}
         if reg is not None:
             sims: list[Section] = [SimSection(reg)]
             bus_sections = [s for bus in reg.buses for s in bus.sections]
             for section in bus_sections:
                 section.bind(reg)
-            #: the value of each section the document cannot have, by key
-            self.absent: dict[str, Any] = {}
         else:
             sims, bus_sections = [], []
             self.absent = {"sim": [], **{key: [] if many else None for key, many in plugin_sections()}}
@@ -203,6 +205,8 @@ class _Document:
         # simulated devices are checked last, when the buses they sit on are known
         self.sections: list[Section] = [*CORE_SECTIONS, *SERVER_SECTIONS, *sims, *bus_sections]
         self.check_order: list[Section] = [*CORE_SECTIONS, *SERVER_SECTIONS, *bus_sections, *sims]
+        if reg is None:
+            self.sections = [s for s in self.sections if s.key in keys or s.key == "plc"]
         fields: dict[str, Any] = {}
         for section in self.sections:
             # list[model], built as a call: mypy takes no runtime value as a type argument
@@ -215,9 +219,15 @@ class _Document:
                 fields[section.key] = (annotation, Field(None, description=section.description))
         self.root = create_model("Document", __base__=Model, **fields)
 
+    def value(self, model: Any, section: Section) -> Any:
+        """The section's value in the validated model: its default where
+        the model has no such key (a section absent from a core document)."""
+        return getattr(model, section.key) if section.key in self.root.model_fields else section.default
+
 
 _document: _Document | None = None
-_core_document: _Document | None = None
+#: the documents of core and server keys, by the keys they have
+_core_documents: dict[frozenset, _Document] = {}
 #: the keys of a document checked without the registry: the core's and the servers'
 _CORE_KEYS = frozenset(s.key for s in (*CORE_SECTIONS, *SERVER_SECTIONS))
 
@@ -226,11 +236,13 @@ def _current_document(data: dict | None = None) -> _Document:
     """The document for data (None: for any data): without loading the
     buses and devices while the registry is not loaded and data has only
     the core's and the servers' keys (no bus section, no [[sim]] table)."""
-    global _document, _core_document
+    global _document
     if data is not None and not loaded() and data.keys() <= _CORE_KEYS:
-        if _core_document is None:
-            _core_document = _Document(None)
-        return _core_document
+        keys = frozenset(data)
+        doc = _core_documents.get(keys)
+        if doc is None:
+            doc = _core_documents[keys] = _Document(None, keys)
+        return doc
     reg = registry()
     if _document is None or _document.version != reg.version:
         _document = _Document(reg)
@@ -267,7 +279,7 @@ def config_from_dict(data: dict, path=None, *, base_dir=None) -> PlcConfig:
         errors = in_file_order(errors, data)
         raise ConfigError(label, [(key_text(loc), message) for loc, message in errors])
     assert model is not None
-    built = {s.key: s.build(getattr(model, s.key), ctx) for s in doc.check_order}
+    built = {s.key: s.build(doc.value(model, s), ctx) for s in doc.check_order}
     built.update(doc.absent)  # (after the servers' sections, in registry order: as a full document's)
     plc = built.pop("plc")
     core = {

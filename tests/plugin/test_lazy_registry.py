@@ -71,6 +71,7 @@ good = {
     "task": [{"name": "Fast", "interval": "5ms", "programs": ["Main"]}],
     "outputs": {"safe": {"%QX0.0": True}},
 }
+bare = {"plc": {"programs": [str(main)]}}
 bad = {"plc": {"programs": [str(main)], "spin": "10 parsecs"}, "task": [{"name": "1x", "interval": 3}]}
 
 
@@ -81,7 +82,8 @@ def loaded(data):
         return str(exc)
 
 
-lazy = [loaded(good), loaded(bad)]
+cases = [good, bad, bare, {}]
+lazy = [loaded(data) for data in cases]
 engine = build_engine(config_from_dict(good, main), virtual_time=True)
 engine.start()
 engine.run(cycles=3)
@@ -89,7 +91,8 @@ engine.stop()
 plugins = ("softplc.runtime.io.", "softplc.runtime.devices.", "can", "pymodbus", "canopen")
 heavy = sorted(m for m in sys.modules if m.startswith(plugins))
 registry()
-print(json.dumps({"heavy": heavy, "lazy": lazy, "full": [loaded(good), loaded(bad)], "cycles": engine.cycle}))
+full = [loaded(data) for data in cases]
+print(json.dumps({"heavy": heavy, "lazy": lazy, "full": full, "cycles": engine.cycle}))
 """
 
 
@@ -103,9 +106,11 @@ def test_a_configuration_without_a_bus_imports_none_and_is_the_same(tmp_path):
     assert found["heavy"] == []
     assert found["cycles"] == 3
     assert found["lazy"] == found["full"]
-    good, bad = found["lazy"]
+    good, bad, bare, empty = found["lazy"]
     assert "sections={'web': None, 'opcua': None, 'modbus_server': None, 'loopback': []" in good
     assert "plc.spin: expected a duration" in bad and "task[0].name" in bad
+    assert "tasks=[]" in bare and "retain=None" in bare and "safe_outputs=[]" in bare
+    assert "plc" in empty and "missing" in empty
 
 
 # `softplc test` without a configuration and a PLC of ST text (the plc fixture)
