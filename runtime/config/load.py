@@ -26,7 +26,7 @@ from typing import Any
 
 from pydantic import Field, ValidationError, create_model
 
-from ..plugin.registry import Registry, registry
+from ..plugin.registry import Registry, loaded, plugin_sections, registry
 from ..program.libraries import Library
 from ..program.shipped import shipped_named
 from ..st.build_decls import identifier_from_path
@@ -182,18 +182,31 @@ def _replaced(data: dict, locs: list) -> dict:
 
 class _Document:
     """The sections of a configuration and the pass-1 model of the whole
-    document, for one state of the registry."""
+    document, for one state of the registry. Without one (reg None), for a
+    document of the core's and the servers' keys alone: its model has the
+    keys given (keys) and [plc], the other core and server sections are
+    checked and built as absent, and the buses' sections, known by their
+    keys only (the registry's index: plugin_sections), take their value for
+    a file without them."""
 
-    def __init__(self, reg: Registry) -> None:
-        self.version = reg.version
-        self.sims = SimSection(reg)
-        bus_sections = [s for bus in reg.buses for s in bus.sections]
-        for section in bus_sections:
-            section.bind(reg)
+    def __init__(self, reg: Registry | None, keys: frozenset = frozenset()) -> None:
+        self.version = reg.version if reg is not None else None
+        #: the value of each section the document cannot have, by key
+        self.absent: dict[str, Any] = {}
+        if reg is not None:
+            sims: list[Section] = [SimSection(reg)]
+            bus_sections = [s for bus in reg.buses for s in bus.sections]
+            for section in bus_sections:
+                section.bind(reg)
+        else:
+            sims, bus_sections = [], []
+            self.absent = {"sim": [], **{key: [] if many else None for key, many in plugin_sections()}}
         # the document's keys in this order ("expected one of plc, retain ..."); the
         # simulated devices are checked last, when the buses they sit on are known
-        self.sections: list[Section] = [*CORE_SECTIONS, *SERVER_SECTIONS, self.sims, *bus_sections]
-        self.check_order: list[Section] = [*CORE_SECTIONS, *SERVER_SECTIONS, *bus_sections, self.sims]
+        self.sections: list[Section] = [*CORE_SECTIONS, *SERVER_SECTIONS, *sims, *bus_sections]
+        self.check_order: list[Section] = [*CORE_SECTIONS, *SERVER_SECTIONS, *bus_sections, *sims]
+        if reg is None:
+            self.sections = [s for s in self.sections if s.key in keys or s.key == "plc"]
         fields: dict[str, Any] = {}
         for section in self.sections:
             # list[model], built as a call: mypy takes no runtime value as a type argument
@@ -206,12 +219,30 @@ class _Document:
                 fields[section.key] = (annotation, Field(None, description=section.description))
         self.root = create_model("Document", __base__=Model, **fields)
 
+    def value(self, model: Any, section: Section) -> Any:
+        """The section's value in the validated model: its default where
+        the model has no such key (a section absent from a core document)."""
+        return getattr(model, section.key) if section.key in self.root.model_fields else section.default
+
 
 _document: _Document | None = None
+#: the documents of core and server keys, by the keys they have
+_core_documents: dict[frozenset, _Document] = {}
+#: the keys of a document checked without the registry: the core's and the servers'
+_CORE_KEYS = frozenset(s.key for s in (*CORE_SECTIONS, *SERVER_SECTIONS))
 
 
-def _current_document() -> _Document:
+def _current_document(data: dict | None = None) -> _Document:
+    """The document for data (None: for any data): without loading the
+    buses and devices while the registry is not loaded and data has only
+    the core's and the servers' keys (no bus section, no [[sim]] table)."""
     global _document
+    if data is not None and not loaded() and data.keys() <= _CORE_KEYS:
+        keys = frozenset(data)
+        doc = _core_documents.get(keys)
+        if doc is None:
+            doc = _core_documents[keys] = _Document(None, keys)
+        return doc
     reg = registry()
     if _document is None or _document.version != reg.version:
         _document = _Document(reg)
@@ -229,7 +260,7 @@ def config_from_dict(data: dict, path=None, *, base_dir=None) -> PlcConfig:
     base_dir = Path(os.path.abspath(base_dir))
     if not isinstance(data, dict):
         raise ConfigError(label, [("", f"expected a TOML document (got {got(data)})")])
-    doc = _current_document()
+    doc = _current_document(data)
     raw = data
     errors = _unusable(doc.root, data)
     if errors:  # the passes see none of them: None in their place, reported here
@@ -248,7 +279,8 @@ def config_from_dict(data: dict, path=None, *, base_dir=None) -> PlcConfig:
         errors = in_file_order(errors, data)
         raise ConfigError(label, [(key_text(loc), message) for loc, message in errors])
     assert model is not None
-    built = {s.key: s.build(getattr(model, s.key), ctx) for s in doc.check_order}
+    built = {s.key: s.build(doc.value(model, s), ctx) for s in doc.check_order}
+    built.update(doc.absent)  # (after the servers' sections, in registry order: as a full document's)
     plc = built.pop("plc")
     core = {
         "retain": built.pop("retain"),

@@ -1,12 +1,15 @@
 """From a configuration to a ready engine: compile the ST files, plan the
 tasks, let every registered bus make its drivers and simulated devices, and
-make the retain store. Names no bus and no device: the registry does."""
+make the retain store. Names no bus and no device: the registry does; a
+configuration with no bus section and no [[sim]] table is built without
+loading it (a bus none of whose sections a file has, and on which no device
+is simulated, adds nothing)."""
 
 from __future__ import annotations
 
 from ..config import PlcConfig
 from ..plugin.driver import DriverError
-from ..plugin.registry import registry
+from ..plugin.registry import loaded, plugin_sections, registry
 from ..plugin.seams import BuildContext
 from ..program import compile_files
 from ..st.profile import get_profile
@@ -30,7 +33,7 @@ def make_drivers(config: PlcConfig, clock=None, by_name: dict | None = None) -> 
     if by_name is not None:
         ctx.simulators = by_name
     simulators, drivers = [], []
-    for bus in registry().buses:
+    for bus in _buses(config):
         if bus.build is not None:
             try:
                 part = bus.build(config, ctx)
@@ -42,6 +45,14 @@ def make_drivers(config: PlcConfig, clock=None, by_name: dict | None = None) -> 
     if any(sim.faults for sim in config.sims):
         simulators.append(SimSchedule(clock, config.sims, ctx.simulators))
     return simulators + drivers
+
+
+def _buses(config: PlcConfig) -> list:
+    """The registered buses, or none when config has nothing any bus builds
+    and the registry is not loaded (no bus or device imported for it)."""
+    if loaded() or config.sims or any(config.sections.get(key) for key, _many in plugin_sections()):
+        return registry().buses
+    return []
 
 
 def build_engine(

@@ -17,10 +17,12 @@ Order is each plugin's ``order`` (then its name): it decides the order of
 configuration checks, of drivers in the scan and of types in messages.
 
 The compile side asks only for the plugins' ST libraries and the names of
-their native functions (``plugin_libraries``, ``plugin_natives``): those
-come from an index kept in softplc's cache (runtime/cache.py, keyed by the
-installed entry points, their distributions' versions and the contents of
-their packages), so a program that uses no bus and no device compiles
+their native functions (``plugin_libraries``, ``plugin_natives``), and a
+configuration without a bus section or a [[sim]] table only for the keys of
+the buses' sections (``plugin_sections``): those come from an index kept in
+softplc's cache (runtime/cache.py, keyed by the installed entry points and
+the contents of their packages), so a program that uses no bus and no
+device compiles, and a configuration that names none loads and runs,
 without importing one; a native function's plugin is loaded when a program
 calls it.
 """
@@ -189,6 +191,24 @@ def plugin_natives(extra: tuple[NativeFunction, ...] = ()) -> Mapping[str, Nativ
     return _LazyNatives(_index()[1], extras)
 
 
+def plugin_sections() -> tuple[tuple[str, bool], ...]:
+    """(key, many) of every bus's configuration section, in registry order
+    (registry().buses' sections), without loading a plugin when the index
+    is in the cache."""
+    if _registry is not None:
+        return _sections(_registry)
+    return _index()[2]
+
+
+def loaded() -> bool:
+    """Whether the process's registry is loaded (every plugin imported)."""
+    return _registry is not None
+
+
+def _sections(reg: Registry) -> tuple[tuple[str, bool], ...]:
+    return tuple((s.key, bool(s.many)) for bus in reg.buses for s in bus.sections)
+
+
 class _LazyNatives(Mapping):
     def __init__(self, names: tuple, extras: dict) -> None:
         self._names = frozenset(names) | frozenset(extras)
@@ -208,10 +228,25 @@ class _LazyNatives(Mapping):
         return len(self._names)
 
 
+#: what an index holds, part of its key (an index of another layout is another entry)
+_INDEX_FORMAT = "libraries, natives, sections"
+
+
+_found: tuple | None = None  # the process's index, once found
+
+
 def _index() -> tuple:
     """((package, file) of every plugin's ST library, in registry order;
-    the names of their native functions): from the cache, else from the
-    loaded registry (and kept)."""
+    the names of their native functions; (key, many) of the buses'
+    configuration sections): from the cache, else from the loaded registry
+    (and kept); found once a process (its key hashes the plugins' sources)."""
+    global _found
+    if _found is None:
+        _found = _find_index()
+    return _found
+
+
+def _find_index() -> tuple:
     entries = []
     found_eps = metadata.entry_points()
     for group in (BUS_GROUP, DEVICE_GROUP):
@@ -220,12 +255,16 @@ def _index() -> tuple:
         # file (37 of them: a fifth of `softplc check`'s start-up)
         for ep in found_eps.select(group=group):
             entries.append(repr((group, ep.name, ep.value)).encode() + _package_code(ep.module))
-    key = cache.key("plugins", *entries)
+    key = cache.key("plugins", _INDEX_FORMAT, *entries)
     found = cache.load("plugins", key)
-    if isinstance(found, tuple) and len(found) == 2:
+    if isinstance(found, tuple) and len(found) == 3:
         return found
     reg = registry()
-    found = (tuple((lib.package, lib.file) for lib in reg.libraries()), tuple(sorted(reg.natives())))
+    found = (
+        tuple((lib.package, lib.file) for lib in reg.libraries()),
+        tuple(sorted(reg.natives())),
+        _sections(reg),
+    )
     cache.store("plugins", key, found)
     return found
 

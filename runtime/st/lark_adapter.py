@@ -61,6 +61,9 @@ class SymbolInfo:
     is_term: bool
     filter_out: bool  # a quoted terminal: not among the children
 
+    def __reduce__(self) -> tuple:  # (a cached grammar: faster than the dataclass's __setstate__)
+        return SymbolInfo, (self.name, self.is_term, self.filter_out)
+
 
 @dataclass(frozen=True, slots=True)
 class RuleInfo:
@@ -74,6 +77,17 @@ class RuleInfo:
     empty_indices: tuple[bool, ...]  # placeholders of omitted [items] (see 3 above)
     template_source: str | None
 
+    def __reduce__(self) -> tuple:
+        return RuleInfo, (
+            self.origin,
+            self.expansion,
+            self.alias,
+            self.expand1,
+            self.keep_all_tokens,
+            self.empty_indices,
+            self.template_source,
+        )
+
 
 @dataclass(frozen=True, slots=True)
 class Terminal:
@@ -83,6 +97,9 @@ class Terminal:
     name: str
     literal: str | None
     regexp: str
+
+    def __reduce__(self) -> tuple:
+        return Terminal, (self.name, self.literal, self.regexp)
 
 
 # An action of the table: the next state (shift) or the rule to reduce.

@@ -54,3 +54,93 @@ def test_a_native_function_loads_its_plugin(tmp_path):
     _probe(PLAIN, tmp_path)
     found = _probe(NATIVE, tmp_path)
     assert found["x"] == 1 and "softplc.runtime.io.canopen" in found["heavy"]
+
+
+# a configuration without a bus section or a [[sim]] table: checked, built and run
+# without importing a bus or a device, and the same as with the registry loaded
+CONFIG_PROBE = """
+import json, sys
+from pathlib import Path
+from softplc.runtime.config import ConfigError, config_from_dict
+from softplc.runtime.engine.build import build_engine
+from softplc.runtime.plugin.registry import registry
+
+main = Path(sys.argv[1])
+good = {
+    "plc": {"programs": [str(main)], "on_fault": "plc"},
+    "task": [{"name": "Fast", "interval": "5ms", "programs": ["Main"]}],
+    "outputs": {"safe": {"%QX0.0": True}},
+}
+bare = {"plc": {"programs": [str(main)]}}
+bad = {"plc": {"programs": [str(main)], "spin": "10 parsecs"}, "task": [{"name": "1x", "interval": 3}]}
+
+
+def loaded(data):
+    try:
+        return repr(config_from_dict(data, main))
+    except ConfigError as exc:
+        return str(exc)
+
+
+cases = [good, bad, bare, {}]
+lazy = [loaded(data) for data in cases]
+engine = build_engine(config_from_dict(good, main), virtual_time=True)
+engine.start()
+engine.run(cycles=3)
+engine.stop()
+plugins = ("softplc.runtime.io.", "softplc.runtime.devices.", "can", "pymodbus", "canopen")
+heavy = sorted(m for m in sys.modules if m.startswith(plugins))
+registry()
+full = [loaded(data) for data in cases]
+print(json.dumps({"heavy": heavy, "lazy": lazy, "full": full, "cycles": engine.cycle}))
+"""
+
+
+def test_a_configuration_without_a_bus_imports_none_and_is_the_same(tmp_path):
+    main = tmp_path / "main.st"
+    main.write_text(PLAIN)
+    run = [sys.executable, "-c", CONFIG_PROBE, str(main)]
+    env = {**_env(), "SOFTPLC_CACHE": str(tmp_path / "cache")}
+    subprocess.run(run, capture_output=True, text=True, check=True, env=env)  # the index kept
+    found = json.loads(subprocess.run(run, capture_output=True, text=True, check=True, env=env).stdout)
+    assert found["heavy"] == []
+    assert found["cycles"] == 3
+    assert found["lazy"] == found["full"]
+    good, bad, bare, empty = found["lazy"]
+    assert "sections={'web': None, 'opcua': None, 'modbus_server': None, 'loopback': []" in good
+    assert "plc.spin: expected a duration" in bad and "task[0].name" in bad
+    assert "tasks=[]" in bare and "retain=None" in bare and "safe_outputs=[]" in bare
+    assert "plc" in empty and "missing" in empty
+
+
+# `softplc test` without a configuration and a PLC of ST text (the plc fixture)
+TESTING_PROBE = """
+import json, sys
+from softplc.runtime.testing.runner import TestSuite
+from softplc.testing import PLC
+
+suite = TestSuite.load(None, [sys.argv[1]])
+outcomes = [suite.run(case).outcome for case in suite.tests]
+plc = PLC.from_st(sys.argv[2])
+plc.step(2)
+x = plc["Main.x"]
+plc.stop()
+plugins = ("softplc.runtime.io.", "softplc.runtime.devices.", "can", "pymodbus", "canopen")
+heavy = sorted(m for m in sys.modules if m.startswith(plugins))
+print(json.dumps({"heavy": heavy, "outcomes": outcomes, "x": x}))
+"""
+
+TEST_ST = (
+    "FUNCTION_BLOCK TEST_Add\nVAR n : INT; END_VAR\nn := n + 1;\n"
+    "ASSERT_EQUAL(n, 1, 'one');\nTEST_FINISHED();\nEND_FUNCTION_BLOCK\n"
+)
+
+
+def test_st_tests_and_a_plc_of_st_text_import_no_bus(tmp_path):
+    test_file = tmp_path / "test_add.st"
+    test_file.write_text(TEST_ST)
+    run = [sys.executable, "-c", TESTING_PROBE, str(test_file), PLAIN]
+    env = {**_env(), "SOFTPLC_CACHE": str(tmp_path / "cache")}
+    subprocess.run(run, capture_output=True, text=True, check=True, env=env)  # the index kept
+    found = json.loads(subprocess.run(run, capture_output=True, text=True, check=True, env=env).stdout)
+    assert found == {"heavy": [], "outcomes": ["passed"], "x": 2}
