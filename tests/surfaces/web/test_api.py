@@ -130,7 +130,14 @@ def test_the_event_stream_sends_the_watched_values_the_forces_and_the_log(web_pl
     web.post("watch", client="t2", paths=["Main.setpoint"])
     web.post("force", path="Main.setpoint", value="3.25")
     logging.getLogger("softplc.test").warning("a line for the page")
-    seen = states(web, "t2", until=lambda s: "Main.setpoint" in s["forced"])
+    messages: list = []
+
+    def forced_and_logged(state: dict) -> bool:
+        # the log reaches the servers' process with a snapshot, maybe a later one than the force's
+        messages.extend(r["message"] for r in state["log"])
+        return "Main.setpoint" in state["forced"] and "a line for the page" in messages
+
+    seen = states(web, "t2", until=forced_and_logged)
     assert seen[-1]["forced"] == {"Main.setpoint": 3.25} and seen[-1]["values"] == {"Main.setpoint": 3.25}
     log = [r for state in seen for r in state["log"]]  # each record comes once
     assert [r["level"] for r in log if r["message"] == "a line for the page"] == ["WARNING"]
