@@ -9,6 +9,7 @@ interpreter lock held (240 ms after ten changes of the default plant)."""
 
 from __future__ import annotations
 
+import contextlib
 import gc
 import weakref
 from pathlib import Path
@@ -43,53 +44,52 @@ def _change(plc: PLC, change: OnlineChange, st: Path, extra: str) -> None:
     assert report.applied, report.errors
 
 
-def test_a_replaced_program_is_freed_without_the_garbage_collector(tmp_path):
+@contextlib.contextmanager
+def _changing(tmp_path: Path):
+    """(the PLC of SOURCE after 3 scans, its OnlineChange, the ST file)."""
     st = tmp_path / "plant.st"
     st.write_text(SOURCE.replace("{extra}", ""), encoding="utf-8")
     with PLC.from_st([st], cycle="10ms") as plc:
         plc.step(3)
         change = OnlineChange(plc.engine, plc.config)
         try:
-            _change(plc, change, st, "a : INT;")
-            first = plc.engine.program
-            assert first.read_back  # compiled in the compile process
-            main = next(p for p in first.checked.pous if p.name.upper() == "MAIN")
-            symbol, tables, program = weakref.ref(main.vars["N"]), weakref.ref(main), weakref.ref(first)
-            ns = plc.engine.ns
-            classes = [v for v in ns.values() if isinstance(v, type) and v.__module__ == ns["__name__"]]
-            code = weakref.ref(next(v for c in classes for v in vars(c).values() if isinstance(v, FunctionType)))
-            del ns, classes
-            del first, main
-            plc.step(2)
-            gc.disable()
-            _change(plc, change, st, "b : INT;")
-            # the values went on through both changes
-            assert plc["Main.n"] == 7 and plc["Main.counters[2, 1].total"] == 14
-            assert (symbol(), tables(), program(), code()) == (None, None, None, None)
+            yield plc, change, st
         finally:
             gc.enable()
             gc.unfreeze()  # the change froze the heap: this worker's later garbage is collected as before
             change.stop()
 
 
+def test_a_replaced_program_is_freed_without_the_garbage_collector(tmp_path):
+    with _changing(tmp_path) as (plc, change, st):
+        _change(plc, change, st, "a : INT;")
+        first = plc.engine.program
+        assert first.read_back  # compiled in the compile process
+        main = next(p for p in first.checked.pous if p.name.upper() == "MAIN")
+        symbol, tables, program = weakref.ref(main.vars["N"]), weakref.ref(main), weakref.ref(first)
+        ns = plc.engine.ns
+        classes = [v for v in ns.values() if isinstance(v, type) and v.__module__ == ns["__name__"]]
+        code = weakref.ref(next(v for c in classes for v in vars(c).values() if isinstance(v, FunctionType)))
+        del ns, classes
+        del first, main
+        plc.step(2)
+        gc.disable()
+        _change(plc, change, st, "b : INT;")
+        # the values went on through both changes
+        assert plc["Main.n"] == 7 and plc["Main.counters[2, 1].total"] == 14
+        assert (symbol(), tables(), program(), code()) == (None, None, None, None)
+
+
 def test_two_changes_queued_before_a_scan_both_carry_the_values(tmp_path):
     # the second change's copy was worked out against the program the first replaces
-    st = tmp_path / "plant.st"
-    st.write_text(SOURCE.replace("{extra}", ""), encoding="utf-8")
-    with PLC.from_st([st], cycle="10ms") as plc:
-        plc.step(3)
-        change = OnlineChange(plc.engine, plc.config)
-        try:
-            st.write_text(SOURCE.replace("{extra}", "a : INT := 1;"), encoding="utf-8")
-            first = change.submit("first")
-            st.write_text(SOURCE.replace("{extra}", "a : INT := 1; b : INT := 2;"), encoding="utf-8")
-            second = change.submit("second")
-            plc.step()
-            reports = [first.wait(0), second.wait(0)]
-            assert [r.applied for r in reports] == [True, True], [r.errors for r in reports]
-            assert "Main.n" in reports[1].kept and "Main.b" in reports[1].initialised
-            assert plc["Main.n"] == 4 and plc["Main.counters[2, 1].total"] == 8
-            assert (plc["Main.a"], plc["Main.b"]) == (1, 2)
-        finally:
-            gc.unfreeze()
-            change.stop()
+    with _changing(tmp_path) as (plc, change, st):
+        st.write_text(SOURCE.replace("{extra}", "a : INT := 1;"), encoding="utf-8")
+        first = change.submit("first")
+        st.write_text(SOURCE.replace("{extra}", "a : INT := 1; b : INT := 2;"), encoding="utf-8")
+        second = change.submit("second")
+        plc.step()
+        reports = [first.wait(0), second.wait(0)]
+        assert [r.applied for r in reports] == [True, True], [r.errors for r in reports]
+        assert "Main.n" in reports[1].kept and "Main.b" in reports[1].initialised
+        assert plc["Main.n"] == 4 and plc["Main.counters[2, 1].total"] == 8
+        assert (plc["Main.a"], plc["Main.b"]) == (1, 2)
