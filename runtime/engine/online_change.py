@@ -36,8 +36,6 @@ it (a located variable's initial value included).
 
 from __future__ import annotations
 
-import contextlib
-import gc
 import logging
 import re
 import threading
@@ -54,6 +52,7 @@ from ..st.diagnostics import CompileError
 from ..st.faults import fault_from_exception
 from ..st.values import assign_into, copy_value
 from .carry import Carry, global_members, members
+from .change_memory import collector_paused, dismantle
 from .compile_process import SWITCH_S, CompileProcess, CompileProcessError, switch_interval
 from .diag import DiagVariable
 from .retain import type_signature
@@ -232,11 +231,15 @@ def tasks_refused(engine, specs: list) -> str | None:
     return None
 
 
+def _new_carry(old: Program, new: Program) -> Carry:
+    """A Carry from old to new, quiet about the libraries' globals."""
+    return Carry(frozenset(n.upper() for n in new.library_globals | old.library_globals))
+
+
 def prepared_carry(old: Program, new: Program) -> Carry:
     """The Carry of a change from old to new, with what depends on the
     types only worked out (in the requester's thread, before the swap)."""
-    quiet = frozenset(n.upper() for n in new.library_globals | old.library_globals)
-    carry = Carry(quiet)
+    carry = _new_carry(old, new)
     carry.prepare(global_members(old.checked), global_members(new.checked))
     for info in new.checked.pous:
         if info.kind == "PROGRAM":
@@ -252,8 +255,7 @@ def _carry(saved: _EngineState, engine, program: Program, carry: Carry | None) -
     old_program = saved.program
     old_g, new_g = saved.ns["_G"], engine.ns["_G"]
     if carry is None:
-        quiet = frozenset(n.upper() for n in program.library_globals | old_program.library_globals)
-        carry = Carry(quiet)
+        carry = _new_carry(old_program, program)
     carry.moved[id(old_g)] = new_g
     carry.members("", global_members(old_program.checked), global_members(program.checked), old_g, new_g)
     for key, (name, info, obj) in engine.instances.items():
@@ -404,60 +406,9 @@ class ChangeRequest:
         if replaced is not None and replaced[0] is not None:
             with switch_interval(SWITCH_S):
                 if transfer.release(replaced[0]):
-                    _dismantle(replaced[1])
+                    dismantle(replaced[1])
         assert self.report is not None
         return self.report
-
-
-#: what a class keeps when it is taken apart (the rest: its methods, its slots' descriptors)
-_TYPE_OWN = frozenset({"__module__", "__qualname__", "__doc__", "__dict__", "__weakref__"})
-
-
-def _dismantle(ns: dict | None) -> None:
-    """A replaced program's module emptied, and its classes (a class is a
-    ring: its method resolution order names it, its slots' descriptors
-    too): what is left of each, a type and its bases, is some 200 bytes
-    that stay, where the whole module (its functions, its globals'
-    objects, the slots' descriptors: some 7,000 objects) would stay frozen
-    with it. Nothing runs it any more: the swap has rebound the tasks, the
-    drivers, the forces and the retain plan to the new one."""
-    if not ns:
-        return
-    name = ns.get("__name__")
-    for value in list(ns.values()):
-        if isinstance(value, type) and value.__module__ == name:
-            for attr in [a for a in vars(value) if a not in _TYPE_OWN]:
-                with contextlib.suppress(AttributeError, TypeError):
-                    delattr(value, attr)
-    ns.clear()
-
-
-@contextlib.contextmanager
-def _collector_paused(frozen: Callable[[], bool]):
-    """Python's cyclic garbage collector off while a change compiles or is
-    read back: some 100,000 objects that live a while (trees, tables, the
-    new classes), which with the collector on set off collections that walk
-    them with the interpreter lock held, the scan waiting (up to 80 ms each
-    on a 2-core machine). Then, when frozen() (a program read back from the
-    compile process, whose rings release() cuts once it is replaced): every
-    object alive moved out of the collector's sight (gc.freeze, as
-    softplc run does before the first scan), so no collection walks the new
-    program, ever; 20 changes of the default plant: 16 overruns instead of
-    136. Otherwise (a compile in this process, whose tables the libraries
-    share): one collection of the young objects."""
-    if not gc.isenabled():  # someone else's choice: kept
-        yield
-        return
-    gc.collect(0)  # what is garbage already is not frozen with the program
-    gc.disable()
-    try:
-        yield
-    finally:
-        gc.enable()
-        if frozen():
-            gc.freeze()
-        else:
-            gc.collect(1)
 
 
 class OnlineChange:
@@ -497,7 +448,7 @@ class OnlineChange:
             def read_back() -> bool:
                 return isinstance(compiled, Program) and compiled.read_back
 
-            with _collector_paused(read_back):  # and frozen or collected before it is loaded
+            with collector_paused(read_back):  # and frozen or collected before it is loaded
                 compiled = self._compiled(reason)
             with switch_interval(SWITCH_S):  # the scan waits for the interpreter lock 0.5 ms, not 5
                 prepared = compiled if isinstance(compiled, ChangeReport) else self._loaded(reason, compiled)
