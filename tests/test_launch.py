@@ -253,8 +253,8 @@ def test_hostile_configuration_values_exit_2_naming_file_and_key(tmp_path, text,
 @pytest.mark.parametrize(
     ("text", "message"),
     [
-        (_MAIN + "x = " + "[" * 5000 + "]" * 5000 + "\n", ": tables, arrays or dotted keys nested more than 32 deep"),
-        (_MAIN + "x = " + "{a = " * 2000 + "1" + "}" * 2000 + "\n", ": tables, arrays or dotted keys nested more"),
+        (_MAIN + "x = " + "[" * 5000 + "]" * 5000 + "\n", ":7:37: tables, arrays or dotted keys nested more than 32"),
+        (_MAIN + "x = " + "{a = " * 2000 + "1" + "}" * 2000 + "\n", ":7:165: tables, arrays or dotted keys"),
         (_MAIN + "[outputs]\n" + ".".join(["a"] * 5000) + " = 1\n", ": outputs.a.a.a.a.a.a.a.a.a.a.a.a.a.a.a.a."),
         (_MAIN + "priority = " + "9" * 5000 + "\n", ":7:12: an integer of 5000 digits: no key takes a number"),
         (_MAIN + '[outputs]\nsafe = { "%QL65535" = 1 }\n', ': outputs.safe."%QL65535": %QL65535 (bytes 524280'),

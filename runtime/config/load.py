@@ -92,6 +92,9 @@ def load_config(path) -> PlcConfig:
         text = data.decode("utf-8")
     except UnicodeDecodeError as exc:
         raise ConfigError(label, [("", f"not UTF-8 text (byte {exc.start}); a TOML file is UTF-8")]) from None
+    deep = _too_deep_at(text)
+    if deep is not None:  # before tomllib, which recurses per level (and a collector's callback with it)
+        raise ConfigError(label, [("", TOO_DEEP)], position=deep)
     try:
         parsed = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -114,14 +117,46 @@ TOO_DEEP = f"tables, arrays or dotted keys nested more than {MAX_DEPTH} deep: no
 MAX_INT_BITS = 64
 
 
+#: what counts in the nesting of a TOML text: a comment, a string (skipped
+#: whole), a bracket or brace; a quote that opens no whole string stops the
+#: scan (tomllib reports the file)
+_NESTING_TOKEN = re.compile(
+    r"""#[^\n]*|'''.*?'''|\"\"\"(?:\\.|[^\\])*?\"\"\"|"(?:[^"\\\n]|\\.)*"|'[^'\n]*'|([\[{])|[\]}]|(["'])""",
+    re.DOTALL,
+)
+
+
+def _too_deep_at(text: str) -> tuple | None:
+    """(line, column) of the first bracket or brace nested more than
+    MAX_DEPTH deep, or None. tomllib reads an array or inline table by
+    recursion: 5000 levels are a RecursionError inside it, and any gc
+    callback run that deep fails too ("Exception ignored in
+    sys.unraisablehook"). A value nested this deep has a key path longer
+    than MAX_DEPTH, which _unusable refuses anyway."""
+    depth = 0
+    for m in _NESTING_TOKEN.finditer(text):
+        if m.group(2):
+            return None
+        if m.group(1):
+            depth += 1
+            if depth > MAX_DEPTH:
+                return _line_column(text, m.start())
+        elif m.group().startswith(("]", "}")):
+            depth = max(0, depth - 1)
+    return None
+
+
 def _long_number(text: str) -> tuple:
     """((line, column), digits) of the longest run of digits in text."""
     best = max(re.finditer(r"[0-9][0-9_]*", text), key=lambda m: len(m.group()), default=None)
     if best is None:
         return None, 0
-    line = text.count("\n", 0, best.start()) + 1
-    column = best.start() - (text.rfind("\n", 0, best.start()) + 1) + 1
-    return (line, column), len(best.group().replace("_", ""))
+    return _line_column(text, best.start()), len(best.group().replace("_", ""))
+
+
+def _line_column(text: str, offset: int) -> tuple:
+    """(line, column) of offset in text, both from 1."""
+    return text.count("\n", 0, offset) + 1, offset - (text.rfind("\n", 0, offset) + 1) + 1
 
 
 _TOML_AT = re.compile(r"\s*\(at line (\d+), column (\d+)\)$")

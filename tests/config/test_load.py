@@ -4,6 +4,9 @@ file's errors are all reported at once, in file order."""
 
 from __future__ import annotations
 
+import subprocess
+import sys
+
 import pytest
 
 from softplc.runtime.config import (
@@ -200,18 +203,50 @@ def test_toml_duplicate_key(tmp_path):
 
 
 @pytest.mark.parametrize(
-    "body",
+    ("body", "column"),
     [
-        "x = " + "[" * 5000 + "]" * 5000,  # arrays: the TOML reader recurses into them
-        "x = " + "{a = " * 2000 + "1" + "}" * 2000,  # inline tables: likewise
+        ("x = " + "[" * 5000 + "]" * 5000, 4 + 33),  # arrays: the TOML reader recurses into them
+        ("x = " + "{a = " * 2000 + "1" + "}" * 2000, 4 + 32 * 5 + 1),  # inline tables: likewise
     ],
     ids=["arrays", "inline tables"],
 )
-def test_values_nested_too_deep_for_the_reader_are_an_error(tmp_path, body):
+def test_values_nested_too_deep_for_the_reader_are_an_error_at_the_33rd_level(tmp_path, body, column):
     path = write(tmp_path, '[plc]\nprograms = ["main.st"]\n' + body + "\n")
     with pytest.raises(ConfigError) as info:
         load_config(path)
-    assert str(info.value) == f"{path}: tables, arrays or dotted keys nested more than 32 deep: no key takes that"
+    message = "tables, arrays or dotted keys nested more than 32 deep: no key takes that"
+    assert str(info.value) == f"{path}:3:{column}: {message}"
+
+
+def test_a_deep_document_is_refused_before_the_reader_recurses(tmp_path):
+    """The reader's recursion 5000 levels deep made any collector callback
+    that ran there fail too: "Exception ignored in sys.unraisablehook:
+    RecursionError" at the head of the error (softplc's own callback times
+    the collector). A collection at every allocation makes it certain."""
+    path = write(tmp_path, '[plc]\nprograms = ["main.st"]\nx = ' + "[" * 5000 + "]" * 5000 + "\n")
+    script = (
+        "import gc, sys\n"
+        "from softplc.runtime.config import ConfigError, load_config\n"
+        "import softplc.runtime.engine.cputime  # its callback times every collection\n"
+        "gc.set_threshold(1)\n"
+        "try:\n"
+        "    load_config(sys.argv[1])\n"
+        "except ConfigError as exc:\n"
+        "    print(exc)\n"
+    )
+    proc = subprocess.run([sys.executable, "-c", script, str(path)], capture_output=True, text=True, check=True)
+    assert proc.stderr == ""
+    assert proc.stdout == f"{path}:3:37: tables, arrays or dotted keys nested more than 32 deep: no key takes that\n"
+
+
+def test_brackets_in_strings_and_comments_are_no_nesting(tmp_path):
+    deep = "[" * 40 + "{" * 40
+    body = f'# {deep}\n[[task]]\nname = \'{deep}\'\nprograms = ["""Main{deep}\\""""""]\n'
+    path = write(tmp_path, '[plc]\nprograms = ["main.st"]\n' + body)
+    with pytest.raises(ConfigError) as info:  # the task's name and its program are wrong: no more
+        load_config(path)
+    assert "nested" not in str(info.value)
+    assert [loc for loc, _ in info.value.errors][:1] == ["task[0].name"]
 
 
 def test_dotted_keys_nested_too_deep_are_an_error_at_their_key(tmp_path):
