@@ -39,12 +39,14 @@ Exit 1 when anything failed.
 
     python benchmarks/bench_soak_live.py --minutes 60          # the hour (3 kills)
     python benchmarks/bench_soak_live.py --minutes 3 --kills 1
+    python benchmarks/bench_soak_live.py --minutes 20 --without clients   # whose memory?
 """
 
 from __future__ import annotations
 
 import argparse
 import multiprocessing
+import os
 import random
 import shutil
 import signal
@@ -182,12 +184,15 @@ class Soak:
                 str(life.stats),
                 str(life.log) + ".file",
                 str(self.args.seed * 100 + n),
-                "no-faults" if self.args.baseline else "faults",
+                "no-faults" if "faults" in self.args.without else "faults",
             ],
             stdin=subprocess.DEVNULL,
             stdout=subprocess.DEVNULL,
             stderr=stderr,
             cwd=self.tmp,
+            env={**os.environ, "SOFTPLC_SOAK_TRACE_MEMORY": str(self.tmp / f"memory-{n}.txt")}
+            if self.args.trace_memory
+            else None,
         )
         stderr.close()
         life.started = time.time()
@@ -301,7 +306,7 @@ class Soak:
         args = self.args
         total = args.minutes * 60
         rng = random.Random(args.seed)
-        kill_at = [] if args.baseline else schedule_kills(rng, args.kills, total)
+        kill_at = [] if "kills" in args.without else schedule_kills(rng, args.kills, total)
         ctx = multiprocessing.get_context("spawn")
         up, stop = ctx.Event(), ctx.Event()
         import soak_live_clients
@@ -317,14 +322,15 @@ class Soak:
         self.host.start()
         life = self.start_life()
         up.set()
-        if not args.baseline:
+        if "clients" not in args.without:
             clients.start()
-        next_change = time.time() + (args.change_every if not args.baseline else 10 * total)
+        changes = "changes" not in args.without
+        next_change = time.time() + (args.change_every if changes else 10 * total)
         next_progress = time.time() + args.progress
         life_change_done = False
         while time.time() - self.t0 < total:
             now = time.time()
-            if not life_change_done and not args.baseline and now - life.started >= min(20.0, args.warm_up / 2):
+            if not life_change_done and changes and now - life.started >= min(20.0, args.warm_up / 2):
                 life_change_done = True
                 self.online_change()
             if life.rss_warm is None and now - life.started >= args.warm_up:
@@ -375,6 +381,10 @@ class Soak:
         return report(self)
 
 
+#: what --without can leave out (--baseline: all of them)
+PARTS = ("clients", "faults", "changes", "kills")
+
+
 def main(argv: list | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--minutes", type=float, default=60, help="wall minutes of the soak (default 60)")
@@ -390,11 +400,27 @@ def main(argv: list | None = None) -> int:
         action="store_true",
         help="the same PLC and servers with no client, fault, online change or kill: the host's own overruns",
     )
+    parser.add_argument(
+        "--without",
+        action="append",
+        default=[],
+        choices=PARTS,
+        help="leave one part out (again for another): to find which one memory or overruns come from",
+    )
+    parser.add_argument(
+        "--trace-memory",
+        action="store_true",
+        help="the PLC traces its allocations (tracemalloc: slower) and writes their growth to memory-N.txt",
+    )
     parser.add_argument("--keep-logs", metavar="DIR", help="copy the PLC's logs (one per life) into DIR at the end")
     args = parser.parse_args(argv)
+    if args.baseline:
+        args.without = list(PARTS)
     with tempfile.TemporaryDirectory(prefix="softplc-soak-live-") as tmp:
         what = (
-            "baseline: no client, fault, change or kill" if args.baseline else f"seed {args.seed}, {args.kills} kills"
+            "baseline: no client, fault, change or kill"
+            if args.baseline
+            else f"seed {args.seed}, {args.kills} kills" + "".join(f", without {p}" for p in args.without)
         )
         print(f"== live soak: default plant + web, OPC UA, Modbus TCP; {args.minutes:g} min, {what}", flush=True)
         try:
@@ -402,7 +428,11 @@ def main(argv: list | None = None) -> int:
         finally:
             if args.keep_logs:
                 Path(args.keep_logs).mkdir(parents=True, exist_ok=True)
-                for log in Path(tmp).glob("plc-*.log"):
+                for log in [
+                    *Path(tmp).glob("plc-*.log"),
+                    *Path(tmp).glob("clients.json"),
+                    *Path(tmp).glob("memory-*.txt"),
+                ]:
                     shutil.copy(log, args.keep_logs)
 
 

@@ -113,6 +113,7 @@ def web_client(port: int, seed: int, tally: Tally, stop: threading.Event) -> Non
     while not stop.wait(rng.uniform(*WEB_RATE_S)):
         method, path, body, ctype, expected = _web_requests(rng)
         conn = http.client.HTTPConnection("127.0.0.1", port, timeout=10)
+        answer = b""
         try:
             if method == "STREAM":
                 status = _stream(conn, rng)
@@ -120,12 +121,13 @@ def web_client(port: int, seed: int, tally: Tally, stop: threading.Event) -> Non
                 data = None if body is None else body if isinstance(body, str) else json.dumps(body)
                 conn.request(method, path, data, {"Content-Type": ctype} if data is not None else {})
                 response = conn.getresponse()
-                response.read()
+                answer = response.read()
                 status = response.status
             if status in expected:
                 tally.ok("web")
-            else:
-                tally.bad("web", f"unexpected {status}", f"{method} {path[:80]} {body!s:.80} -> {status}")
+            else:  # the answer's body says why (a 500's names the exception)
+                said = answer[:120].decode(errors="replace")
+                tally.bad("web", f"unexpected {status}", f"{method} {path[:80]} {body!s:.80} -> {status} {said}")
         except (OSError, http.client.HTTPException) as exc:
             tally.bad("web", type(exc).__name__, f"{method} {path[:80]}: {exc}")
         finally:

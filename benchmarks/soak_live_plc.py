@@ -16,6 +16,11 @@ PLC's process, where a separate client cannot reach:
   overruns, worst jitter), the histogram and the faults, written atomically
   to STATS (a JSON file): a kill -9 loses at most the last second.
 
+With SOFTPLC_SOAK_TRACE_MEMORY=FILE in its environment (--trace-memory),
+the process traces its allocations (tracemalloc, 8 frames) and writes to
+FILE, every TRACE_EVERY_S after TRACE_FROM_S, the allocations that grew
+most since then, by where they were made: where a growing RSS comes from.
+
 The engine is reached by wrapping build_engine, which run_plc looks up when
 it is called: nothing of softplc is changed.
 
@@ -35,6 +40,7 @@ from pathlib import Path
 BUCKET_NS = 10_000  # 10 us
 BUCKETS = 10_000  # up to 100 ms; later ticks in the last bucket (the max is kept exactly)
 LATE_MS, LATE_KEPT = 5, 5000  # the ticks this late are kept with their wall time (the newest)
+TRACE_FROM_S, TRACE_EVERY_S, TRACE_TOP = 90.0, 120.0, 25
 RECOVERY_S = 60.0
 FAULT_GAP_S = (20.0, 60.0)
 FAULT_LENGTH_S = (3.0, 15.0)
@@ -186,8 +192,40 @@ def instrument(engine, stats_path: Path, seed: int, faults_on: bool) -> None:
     threading.Thread(target=stats, name="soak-stats", daemon=True).start()
 
 
+def trace_memory(path: Path) -> None:
+    """Started first: the allocations made from TRACE_FROM_S on that are
+    still alive, the TRACE_TOP greatest growths by traceback, rewritten
+    to path every TRACE_EVERY_S (a thread)."""
+    import tracemalloc
+
+    tracemalloc.start(8)
+
+    def watch() -> None:
+        time.sleep(TRACE_FROM_S)
+        first = tracemalloc.take_snapshot()
+        since = time.monotonic()
+        while True:
+            time.sleep(TRACE_EVERY_S)
+            now = tracemalloc.take_snapshot()
+            growth = now.compare_to(first, "traceback")[:TRACE_TOP]
+            total = sum(s.size_diff for s in now.compare_to(first, "filename"))
+            lines = [
+                f"{(time.monotonic() - since) / 60:.1f} min after the first snapshot: {total / 1e6:+.2f} MB traced"
+            ]
+            for stat in growth:
+                lines.append(f"{stat.size_diff / 1e3:+9.1f} kB {stat.count_diff:+7d} blocks")
+                lines += [f"        {frame}" for frame in stat.traceback.format()[-16:]]
+            tmp = path.with_suffix(".tmp")
+            tmp.write_text("\n".join(lines) + "\n")
+            os.replace(tmp, path)
+
+    threading.Thread(target=watch, name="soak-memory", daemon=True).start()
+
+
 def main(argv: list) -> int:
     config, stats_path, log_file, seed, faults_on = argv
+    if os.environ.get("SOFTPLC_SOAK_TRACE_MEMORY"):
+        trace_memory(Path(os.environ["SOFTPLC_SOAK_TRACE_MEMORY"]))
     from softplc.runtime.engine import build
     from softplc.runtime.launch import run_plc
 

@@ -313,8 +313,17 @@ def report(soak) -> int:
     unexpected = {k: v for k, v in counts.items() if "unexpected" in k or (" ok" not in k and "(PLC down)" not in k)}
     for key in unexpected:
         print(f"    sample of {key}: {clients['samples'].get(key, '')}")
-        when = Counter(attribute(t, soak, 10.0) for t in clients.get("times", {}).get(key, ()))
+        times = clients.get("times", {}).get(key, ())
+        when = Counter(attribute(t, soak, 10.0) for t in times)
         print("      when (the first 50): " + ", ".join(f"{v} in {k}" for k, v in when.most_common()))
+        t0 = getattr(soak, "t0", 0.0)
+        events = [*soak.events, *((lf.started, f"life {lf.n} start") for lf in soak.lives)]
+        events += [
+            (f[k], f"bus {k}") for lf in soak.lives for f in lf.data.get("faults", ()) for k in ("on", "off") if k in f
+        ]
+        for t in times[:5]:  # each, with every event near it: a busy host does not hide a kill
+            near = sorted({f"{kind} {t - at:+.1f} s" for at, kind in events if abs(t - at) <= 30})
+            print(f"      at {t - t0:.1f} s" + (f" ({', '.join(near)})" if near else ""))
     tracebacks, kinds, first = log_lines(lives)
     print(f"log: {tracebacks} traceback(s); warnings and errors by kind ({sum(kinds.values())}):")
     for text, count in kinds.most_common(12):
