@@ -27,7 +27,7 @@ from typing import Any
 
 from ..engine.snapshot import Layout, Snapshot
 from ..io.ratelog import PeerLogFilter
-from .process import FIELDS
+from .process import FIELDS, start_failure
 from .web.logbuffer import LogBuffer
 
 #: added to the servers' niceness: they yield the CPU to the scan
@@ -241,7 +241,7 @@ def main(conn, configs: dict, permissions: dict, level: int, period_s: float) ->
         try:
             handles[key] = importlib.import_module(SERVERS[key], __package__).start(surfaces, config)
         except OSError as exc:
-            errors[key] = f"cannot listen on {config.host}:{config.port}: {exc.strerror or exc}"
+            errors[key] = start_failure(config.host, config.port, exc)
             break
         except Exception as exc:  # a bad certificate, a users file ...: the PLC reports it
             text, prefix = str(exc), f"[{key}] "  # the PLC puts the section in front

@@ -31,7 +31,7 @@ from typing import Any
 from ..config.servers import ServerConfig
 from ..engine.access import Access, Permission
 from ..engine.snapshot import SnapshotHub
-from .process import ProcessError, SurfaceProcess
+from .process import ProcessError, SurfaceProcess, start_failure
 
 log = logging.getLogger("softplc.surfaces")
 
@@ -90,9 +90,7 @@ class Surfaces:
                 self.handles[key] = module.start(self, config)
             except OSError as exc:
                 self.stop()
-                raise SurfaceError(
-                    f"[{key}] cannot listen on {config.host}:{config.port}: {exc.strerror or exc}"
-                ) from None
+                raise SurfaceError(f"[{key}] {start_failure(config.host, config.port, exc)}") from None
             log.info("%s: %s", key, self.handles[key].url)
 
     def stop(self) -> None:

@@ -63,6 +63,17 @@ class ProcessError(Exception):
     """The servers' process could not start its servers: the message says which and why."""
 
 
+def start_failure(host: str, port: int, exc: OSError) -> str:
+    """Why a server did not start, as the PLC reports it after "[key] ". A
+    TimeoutError is an OSError too, often without a message (a step of
+    asyncua's start on a host too busy for it): no "cannot listen ...: "
+    with nothing after it."""
+    if isinstance(exc, TimeoutError):
+        said = str(exc) or "a step of its start timed out"
+        return f"did not start on {host}:{port} in time: {said} (a busy host? start the PLC again)"
+    return f"cannot listen on {host}:{port}: {exc.strerror or str(exc) or type(exc).__name__}"
+
+
 @dataclass
 class RemoteHandle:
     """A server in the servers' process, as Surfaces.handles holds it."""

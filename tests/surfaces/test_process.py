@@ -11,6 +11,7 @@ import multiprocessing
 from pymodbus.client import ModbusTcpClient
 
 from softplc.runtime.surfaces.host import Surfaces
+from softplc.runtime.surfaces.process import start_failure
 
 from ..engine.conftest import Scanning, make_engine, task, wait_until
 from .modbus_server.conftest import server_config
@@ -60,3 +61,20 @@ def test_a_killed_servers_process_is_reported_and_replaced(caplog):
         surfaces.stop()
         engine.stop()
     assert not [p for p in multiprocessing.active_children() if p.name == "softplc-servers"]
+
+
+def test_a_server_start_that_timed_out_says_so_not_cannot_listen():
+    """asyncua's start on a host busy with two test suites raised a
+    TimeoutError without a message: the PLC said "[opcua] cannot listen on
+    127.0.0.1:60421: " and nothing after it."""
+    said = start_failure("127.0.0.1", 60421, TimeoutError())
+    assert (
+        said
+        == "did not start on 127.0.0.1:60421 in time: a step of its start timed out (a busy host? start the PLC again)"
+    )
+    said = start_failure("127.0.0.1", 4840, TimeoutError("opcua: the server did not start within 60.0 s"))
+    assert said.startswith("did not start on 127.0.0.1:4840 in time: opcua: the server did not start within 60.0 s")
+    assert start_failure("0.0.0.0", 502, OSError(98, "Address already in use")) == (
+        "cannot listen on 0.0.0.0:502: Address already in use"
+    )
+    assert start_failure("::1", 502, OSError()) == "cannot listen on ::1:502: OSError"
