@@ -330,6 +330,9 @@ class Soak:
         life_change_done = False
         while time.time() - self.t0 < total:
             now = time.time()
+            if life.proc.poll() is not None:  # not a kill of ours: the soak has failed
+                self.problems.append(f"life {life.n} ended by itself (exit {life.proc.returncode}); see its log")
+                break
             if not life_change_done and changes and now - life.started >= min(20.0, args.warm_up / 2):
                 life_change_done = True
                 self.online_change()
@@ -357,7 +360,11 @@ class Soak:
         if clients.is_alive():
             clients.join(30)
         up.clear()
-        self.end_life(life, kill=False)
+        if life.proc.poll() is None:
+            self.end_life(life, kill=False)
+        else:  # gone: no RSS at its end (the report shows none grown)
+            life.ended, life.rss_end = time.time(), life.rss_warm or 0
+            life.read_stats()
         self.monitor.stop()
         self.host.stop()
         self.wall = time.time() - self.t0
