@@ -27,12 +27,11 @@ from typing import Any
 
 from ..engine.snapshot import Layout, Snapshot
 from ..io.ratelog import PeerLogFilter
-from .process import FIELDS, start_failure
+from .process import CALL_TIMEOUT_S, FIELDS, PlcBusy, start_failure
 from .web.logbuffer import LogBuffer
 
 #: added to the servers' niceness: they yield the CPU to the scan
 NICE = 5
-CALL_TIMEOUT_S = 30.0
 
 
 class PlcGone(ConnectionError):
@@ -67,7 +66,10 @@ class _Link:
             self._done[call_id] = done
         try:
             self.send(("call", call_id, name, args))
-            return reply.result(timeout)
+            try:
+                return reply.result(timeout)
+            except TimeoutError:  # concurrent.futures' own, without a word
+                raise PlcBusy(f"the PLC did not answer within {timeout:g} s: busy, or stopping") from None
         except BaseException:
             self._done.pop(call_id, None)
             raise

@@ -62,9 +62,10 @@ class Surfaces:
     def urls(self) -> dict:
         return {key: handle.url for key, handle in self.handles.items()}
 
-    def call(self, function, *args) -> Any:
+    def call(self, function, *args, timeout: float | None = None) -> Any:
         """function(self, *args): a server's function run with the PLC's
-        surfaces (child.py's RemoteSurfaces sends it here)."""
+        surfaces (child.py's RemoteSurfaces sends it here; in this process
+        it is called at once, and timeout means nothing)."""
         return function(self, *args)
 
     def start(self) -> None:

@@ -45,6 +45,8 @@ from ..engine.snapshot import Snapshot
 
 log = logging.getLogger("softplc.surfaces")
 
+#: how long a server waits for the PLC to answer a call (an online change waits longer)
+CALL_TIMEOUT_S = 30.0
 START_TIMEOUT_S = 120.0  # a new interpreter importing asyncua on a busy machine
 STOP_TIMEOUT_S = 10.0
 RESTART_S = 1.0  # after the process ended on its own, the first new one this much later
@@ -61,6 +63,12 @@ CALLS: dict[str, Callable[..., Any]] = {
 
 class ProcessError(Exception):
     """The servers' process could not start its servers: the message says which and why."""
+
+
+class PlcBusy(TimeoutError):
+    """The PLC did not answer a call of the servers in time (a compile of an
+    online change longer than the call's timeout, a host too busy): the web
+    page answers 504 with this message, not a 500 of a bare TimeoutError."""
 
 
 def start_failure(host: str, port: int, exc: OSError) -> str:

@@ -19,7 +19,8 @@ value the type cannot hold, 403 a variable [web] writable does not cover,
 change under way), 413 a body over guard.MAX_BODY or a watch of more than
 MAX_WATCHED paths, 429 watches asked faster than WATCH_RATE, 503 more than
 MAX_CLIENTS event streams (or MAX_CONNECTIONS requests at once: uvicorn's
-limit), 504 no scan took the change in time; restart and online-change
+limit), 504 no scan took the change in time, or the PLC did not answer
+a call in time (process.PlcBusy: busy, or stopping); restart and online-change
 answer 403 when [web] control is false (a page that watches and writes,
 and no more). A value echoed in a message is cut. A POST must be JSON
 (Content-Type application/json): a page of another site cannot send one
@@ -50,6 +51,7 @@ from ...engine.access import AccessDenied
 from ...engine.places import PathError
 from ...engine.values import shown, without_lone_surrogates
 from ...io.ratelog import RateLimitedLog
+from ..process import CALL_TIMEOUT_S
 from . import plc
 from .guard import Guard, Rate
 from .stream import MAX_CLIENTS, Broadcaster, log
@@ -58,6 +60,8 @@ STATIC = Path(__file__).parent / "static"
 SURFACE = "web"
 #: how long a write, force or unforce waits for the scan that applies it
 APPLY_TIMEOUT_S = 5.0
+#: how long the page waits for an online change's report: a big project's compile on a slow host
+ONLINE_CHANGE_TIMEOUT_S = 300.0
 _CLIENT = re.compile(r"^[A-Za-z0-9_-]{1,64}$")
 #: paths one watch may name (the page watches what it shows: a level of the tree, 100 elements
 #: of an array at a time, and its trend)
@@ -91,7 +95,15 @@ def make_app(surfaces, config: ServerConfig, broadcaster: Broadcaster) -> Guard:
     middleware = []
     if not config.public:  # a page of another site reaching 127.0.0.1 by a name of its own (DNS rebinding)
         middleware.append(Middleware(TrustedHostMiddleware, allowed_hosts=["127.0.0.1", "localhost"]))
-    guard = Guard(Starlette(routes=routes, middleware=middleware, lifespan=lifespan), RateLimitedLog(log, burst=3))
+    limited = RateLimitedLog(log, burst=3)
+
+    async def busy(request: Request, exc: Exception) -> Response:
+        """A call the PLC did not answer in time (PlcBusy): 504 and why."""
+        limited.warning(("busy",), "web: %s %s: %s", request.method, cut(request.url.path), exc)
+        return _error(504, str(exc) or "the PLC did not answer in time")
+
+    app = Starlette(routes=routes, middleware=middleware, lifespan=lifespan, exception_handlers={TimeoutError: busy})
+    guard = Guard(app, limited)
     guard.api = api  # type: ignore[attr-defined]  # the tests reach its rates and limits
     return guard
 
@@ -140,9 +152,10 @@ class _Api:
         self.watch_rate = Rate(WATCH_RATE, WATCH_BURST)
         self.changing = False  # an online change asked by a page is under way
 
-    async def _ask(self, function, *args) -> Any:
-        """function(the PLC's surfaces, *args), run in the PLC's process, from a worker thread."""
-        return await asyncio.to_thread(self.surfaces.call, function, *args)
+    async def _ask(self, function, *args, timeout: float = CALL_TIMEOUT_S) -> Any:
+        """function(the PLC's surfaces, *args), run in the PLC's process, from
+        a worker thread; PlcBusy (504) when it does not answer within timeout."""
+        return await asyncio.to_thread(self.surfaces.call, function, *args, timeout=timeout)
 
     async def index(self, _request: Request) -> Response:
         return FileResponse(STATIC / "index.html")
@@ -264,7 +277,7 @@ class _Api:
             return _error(409, "an online change is under way: wait for its report")
         self.changing = True
         try:  # compiling takes a while: in a worker thread, the event loop keeps serving
-            report = await self._ask(plc.online_change, "web page")
+            report = await self._ask(plc.online_change, "web page", timeout=ONLINE_CHANGE_TIMEOUT_S)
         except plc.OnlineChangeOff as exc:
             return _error(404, str(exc))
         finally:
