@@ -147,6 +147,7 @@ class LtmrModel:
         self.alarms: list[int] = []  # active alarm codes, the newest last
         self.lockout_until_ns = 0  # motor transition timeout 541 after a stop
         self.current_registers = CurrentRegisters()  # publish.py's 466-469, 500-507
+        self.shown: tuple | None = None  # publish.py: what its last run read and wrote
         self._start_end_ns: int | None = None  # end of the inrush of the running start
         self._running_since_ns: int | None = None
         self._selected = 0  # reverser / two-speed: 1 = LO1, 2 = LO2, 0 = none

@@ -4,7 +4,9 @@ status 455/456, outputs 458/459, thermal capacity 465, currents 466-469 and
 
 Plain ints, no IntFlag operations: this runs at every step. The current
 registers, which change only with the current and the FLC, are worked out
-again only when those change.
+again only when those change; and nothing is worked out while everything
+publish reads (the model's state and the registers it reads or writes) is
+as the last publish left it: it would write the same values again.
 
     publish(model)        # model.registers now shows the model's state
 """
@@ -12,6 +14,7 @@ again only when those change.
 from __future__ import annotations
 
 import math
+from operator import itemgetter
 from typing import TYPE_CHECKING
 
 from .bits import STATUS1_CURRENT_SHIFT, Status1, Status2, current_ratio_field
@@ -43,7 +46,7 @@ from .registers import (
     REG_TRIP_CLASS,
     REG_TRIP_CODE,
 )
-from .thermal import NO_TRIP_EXPECTED, minimum_wait_s, time_to_trip_s
+from .thermal import NO_TRIP_EXPECTED, minimum_wait_s, steady, time_to_trip_s
 
 if TYPE_CHECKING:
     from .model import LtmrModel
@@ -62,6 +65,30 @@ _IO_OUTPUT_LO1, _IO_OUTPUT_LO2, _IO_OUTPUT_TRIP = 1 << 12, 1 << 13, 1 << 15
 _IO_INPUTS = 0x0FFF  # 459 bits 0-11 = inputs 1..12 (L3579)
 _RATIOS = (REG_AVERAGE_CURRENT_RATIO, REG_L1_CURRENT_RATIO, REG_L2_CURRENT_RATIO, REG_L3_CURRENT_RATIO)
 _CURRENTS = (REG_AVERAGE_CURRENT, REG_L1_CURRENT, REG_L2_CURRENT, REG_L3_CURRENT)
+
+
+# every register publish() reads or writes (the written ones too: an
+# output changed by someone else must be written again)
+_REGISTERS = itemgetter(
+    REG_TRIP_CODE,
+    REG_THERMAL_RESET_THRESHOLD,
+    REG_CONTROL_SETTING,
+    REG_LOGIC_INPUTS,
+    REG_FLC1,
+    REG_FLC2,
+    REG_FLC_MAX,
+    REG_TRIP_CLASS,
+    REG_STATUS_1,
+    REG_STATUS_2,
+    REG_LOGIC_OUTPUTS,
+    REG_IO_STATUS,
+    REG_THERMAL_CAPACITY,
+    REG_TIME_TO_TRIP,
+    REG_MIN_WAIT_TIME,
+    *_RATIOS,
+    *_CURRENTS,
+    *(reg + 1 for reg in _CURRENTS),
+)
 
 
 def flc_in_use_centiamps(registers: dict, flc2: bool) -> float:
@@ -91,10 +118,43 @@ class CurrentRegisters:
         return self._values
 
 
-def publish(model: LtmrModel) -> None:
+def _shown(model: LtmrModel, percent: float, now: int) -> tuple:
+    """Everything publish() reads, and the registers it writes. θ, which
+    changes at every step while the motor heats or cools, counts as 465
+    shows it (whole percent), but for what reads it finely: a thermal trip
+    (455 bit 5 against 608, 450) and an overload current (511)."""
     r = model.registers
+    theta = model.thermal
+    code = r[REG_TRIP_CODE]
+    if code == TRIP_THERMAL_OVERLOAD or (not code and steady(percent) > 1):
+        shown_theta = theta
+    else:
+        shown_theta = math.floor(theta * 100 + 1e-7)
+    return (
+        _REGISTERS(r),
+        percent,
+        shown_theta,
+        model.lo1,
+        model.lo2,
+        bool(model.alarms),
+        model.starting,
+        model.uses_flc2,
+        model.comm_lost,
+        now < model.lockout_until_ns,
+    )
+
+
+def publish(model: LtmrModel) -> None:
     now = model.t_ns or 0
     percent = model.current_percent
+    if _shown(model, percent, now) == model.shown:
+        return  # as the last publish left it: it would write the same again
+    _publish(model, percent, now)
+    model.shown = _shown(model, percent, now)
+
+
+def _publish(model: LtmrModel, percent: float, now: int) -> None:
+    r = model.registers
     code = r[REG_TRIP_CODE]
     tripped = code != 0
     lo1, lo2 = model.lo1, model.lo2
