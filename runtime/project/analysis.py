@@ -10,10 +10,11 @@ POU broken only by a library POU it calls is not compiled, its neighbours
 are. That part's Program is what `exec --partial`, `run --partial` and the
 benchmark run, and what `export-st` marks as compiled.
 
-Each file is parsed once (libraries.parse_cached, in memory: a project's
-sources change with every edit and would fill the cache folder); a round
-takes a fresh copy of the parse and prunes it, so no file is read or
-parsed again.
+Each file is parsed once (libraries.parse_cached): kept in memory, and in
+the cache folder in one entry per file (a project's sources change with
+every edit: an entry per content would fill the folder), so a check of an
+unchanged file does not parse it again; a round takes a fresh copy of the
+parse and prunes it, so no file is read or parsed again.
 """
 
 from __future__ import annotations
@@ -97,7 +98,7 @@ def _parse(path: str, text: str, profile: Profile, diags: DiagnosticBag | None) 
     into diags when given. An importer's own failure is E009 for that file
     alone: the rest of the project is still checked."""
     try:
-        files, items = parse_cached(path, text, profile, disk=False)  # (kept in memory for the rounds)
+        files, items = parse_cached(path, text, profile, slot=True)  # (in memory for the rounds, one entry a file)
     except Exception as exc:  # a bug in an importer must not lose the project
         if diags is not None:
             diags.error(

@@ -101,9 +101,10 @@ def test_a_configuration_keeps_the_program_instances_that_compile(tmp_path):
     assert [p["name"] for p in config.programs] == ["g"]
 
 
-def test_a_project_s_sources_are_not_kept_in_the_cache_folder(tmp_path, monkeypatch):
+def test_a_project_s_sources_keep_one_entry_each_in_the_cache_folder(tmp_path, monkeypatch):
     """They change with every edit: each version kept would fill the cache
-    (the libraries they use are kept, once)."""
+    (an entry per file holds the parse of its last text; the libraries
+    they use are kept, once)."""
     monkeypatch.setenv("SOFTPLC_CACHE", str(tmp_path / "cache"))
     root = twincat(tmp_path)
     main = root / "Plant" / "Plc" / "POUs" / "MAIN.TcPOU"
