@@ -26,17 +26,35 @@ SAFE_BLOCKS = 12  # 20 refused
 SAFE_CHAIN = 300
 SAFE_DEPTH = 40  # the shallowest refused shape found: 24 (21 nested REPEATs, 21 blocks); else 74
 
-_LOOPS = (A.For, A.While, A.Repeat)
 _SKIPPED = frozenset(("pos", "ty", "const", "implicit_ref", "sym", "pragmas"))
-_FIELDS: dict = {}
+_LEAF, _SEQ, _MAP, _NODE, _LOOP, _IF, _CASE = range(7)
+#: class -> (what it is, the fields to walk of a node)
+_INFO: dict[type, tuple] = {}
 
 
-def _fields(cls: type) -> tuple:
-    names = _FIELDS.get(cls)
-    if names is None:
-        names = tuple(n for c in cls.__mro__ for n in getattr(c, "__slots__", ()) if n not in _SKIPPED)
-        _FIELDS[cls] = names
-    return names
+def _info(cls: type) -> tuple:
+    info = _INFO.get(cls)
+    if info is None:
+        if issubclass(cls, A.Node):
+            fields = tuple(n for c in cls.__mro__ for n in getattr(c, "__slots__", ()) if n not in _SKIPPED)
+            kind = (
+                _LOOP
+                if issubclass(cls, (A.For, A.While, A.Repeat))
+                else _IF
+                if issubclass(cls, A.If)
+                else _CASE
+                if issubclass(cls, A.Case)
+                else _NODE
+            )
+            info = (kind, fields)
+        elif issubclass(cls, (list, tuple)):
+            info = (_SEQ, ())
+        elif issubclass(cls, dict):
+            info = (_MAP, ())
+        else:
+            info = (_LEAF, ())
+        _INFO[cls] = info
+    return info
 
 
 def too_deep(
@@ -47,30 +65,34 @@ def too_deep(
     more than chain_limit nodes and IF and CASE branches deep (the walk
     stops at the first that does)."""
     stack: list = [(sf, 0, 0, 0) for sf in files]
+    pop, push, info_of, label = stack.pop, stack.append, _INFO.get, A.Label
     while stack:
-        obj, depth, blocks, chain = stack.pop()
-        if isinstance(obj, A.Node):
+        obj, depth, blocks, chain = pop()
+        kind, fields = info_of(type(obj)) or _info(type(obj))
+        if kind >= _NODE:
             depth += 1
             chain += 1
-            if isinstance(obj, _LOOPS):
+            if kind == _LOOP:
                 blocks += 1
-            elif isinstance(obj, A.If):
+            elif kind == _IF:
                 chain += len(obj.branches)
-            elif isinstance(obj, A.Case):
+            elif kind == _CASE:
                 chain += min(len(obj.branches), CASE_CHAIN)
             if depth > depth_limit or blocks > block_limit or chain > chain_limit:
                 return True
-            for name in _fields(type(obj)):
+            for name in fields:
                 value = getattr(obj, name, None)
-                if isinstance(value, (A.Node, list, tuple, dict)):
-                    stack.append((value, depth, blocks, chain))
+                if (info_of(type(value)) or _info(type(value)))[0] != _LEAF:
+                    push((value, depth, blocks, chain))
             continue
-        values = obj.values() if isinstance(obj, dict) else obj
-        if isinstance(obj, list) and any(isinstance(v, A.Label) for v in values):
+        if kind == _LEAF:
+            continue
+        values = obj.values() if kind == _MAP else obj
+        if kind == _SEQ and type(obj) is not tuple and label in map(type, values):
             blocks += 1
             if blocks > block_limit:
                 return True
         for value in values:
-            if isinstance(value, (A.Node, list, tuple, dict)):
-                stack.append((value, depth, blocks, chain))
+            if (info_of(type(value)) or _info(type(value)))[0] != _LEAF:
+                push((value, depth, blocks, chain))
     return False
