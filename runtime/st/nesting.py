@@ -15,16 +15,18 @@ back end.
 from __future__ import annotations
 
 from . import ast as A
+from .codegen_stmts import CASE_CHAIN  # (a CASE of more branches is a tree of ifs, not an elif chain)
 
-# (codegen_stmts.CASE_CHAIN: a CASE of more branches is a tree of ifs)
-CASE_CHAIN = 64
-
-SAFE_BLOCKS = 12  # 20 refused
+# Loops and labelled statement lists in each other: 20 are refused.
+SAFE_BLOCKS = 12
+# Nodes in each other: the shallowest refused shape, 21 REPEATs in each
+# other, is 24 deep (and past SAFE_BLOCKS); without loops, 70 indices in
+# each other, 74 deep.
+SAFE_DEPTH = 40
 # An IF's ELSIFs are an elif chain, as deep for the compiler as nested IFs
-# (4,000 are refused), and a CASE's branches up to CASE_CHAIN: nodes and
-# such branches in each other.
+# (about 3,000 are refused), and a CASE's branches up to CASE_CHAIN: nodes
+# and such branches in each other.
 SAFE_CHAIN = 300
-SAFE_DEPTH = 40  # the shallowest refused shape found: 24 (21 nested REPEATs, 21 blocks); else 74
 
 _SKIPPED = frozenset(("pos", "ty", "const", "implicit_ref", "sym", "pragmas"))
 _LEAF, _SEQ, _MAP, _NODE, _LOOP, _IF, _CASE = range(7)
