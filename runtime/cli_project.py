@@ -97,7 +97,9 @@ def check_projects(paths: list, profile: str | None, all_errors: bool, natives_f
         plain = project.kind in ("files", "folder", "plcopen")
         if project.kind != "files":
             echo_err(f"{KIND_NAMES[project.kind]} {project.name}: {plural(len(project.files), 'source file')}")
-        analysis = analyse(project, profile, natives=natives, libraries=libraries, subset=project.kind != "files")
+        analysis = analyse(
+            project, profile, natives=natives, libraries=libraries, subset=project.kind != "files", check_only=True
+        )
         prof = analysis.profile.name
         if plain:
             note_other_profiles(project.files, prof, analysis.diagnostics, _checker(check_files, natives))

@@ -27,6 +27,7 @@ from ..image.memory import ProcessImage
 from ..plugin.registry import plugin_libraries, plugin_natives
 from ..plugin.seams import StLibrary
 from ..st import ast as A
+from ..st import nesting
 from ..st.checker import CheckedProgram, Checker
 from ..st.codegen import CodeGen
 from ..st.diagnostics import CompileError, DiagnosticBag, SourceSet
@@ -278,19 +279,33 @@ def _decl_spelled(files: list, words: set) -> set:
 
 
 def _front_end(
-    paths: list, profile: Profile, texts: dict | None, natives: tuple = (), libraries: tuple = (), keep: bool = False
+    paths: list,
+    profile: Profile,
+    texts: dict | None,
+    natives: tuple = (),
+    libraries: tuple = (),
+    keep: bool = False,
+    files: list | None = None,
 ):
     diags = DiagnosticBag()
     sources = SourceSet()
     user, user_words = _read_sources(paths, texts, diags, sources, profile, keep)
-    checked = _check(user, user_words, profile, natives, libraries, diags, sources)
+    checked = _check(user, user_words, profile, natives, libraries, diags, sources, files)
     return diags, sources, checked, user
 
 
 def _check(
-    user: list, user_words: set, profile: Profile, natives: tuple, libraries: tuple, diags: DiagnosticBag, sources
+    user: list,
+    user_words: set,
+    profile: Profile,
+    natives: tuple,
+    libraries: tuple,
+    diags: DiagnosticBag,
+    sources,
+    files: list | None = None,
 ) -> CheckedProgram:
-    """Check the user's parsed files with the libraries their words name."""
+    """Check the user's parsed files with the libraries their words name
+    (every file checked, library and user, appended to files when given)."""
     libraries = with_required(tuple(libraries))
     user_names = set().union(*(_decl_names(sf) for sf in user)) if user else set()
     lib_diags = DiagnosticBag()
@@ -325,6 +340,8 @@ def _check(
         Elsewhere(tuple(libraries)),
     )
     checked = checker.run(library + user, library_files=tuple(sf.path for sf in library), namespaces=namespaces)
+    if files is not None:
+        files.extend(library + user)
     diags.extend(d for d in lib_diags.items if d.is_error)
     return checked
 
@@ -363,11 +380,13 @@ def check_files(
 ):
     """Diagnostics of the files (errors and warnings, sorted) and their texts.
     Never raises for problems in the sources. Reports exactly what
-    compile_files would: the back end runs too when the front end is clean."""
+    compile_files would: the back end runs too when the front end is clean
+    and the back end may refuse the generated Python (st/nesting.py)."""
     prof = get_profile(profile) if isinstance(profile, str) else profile
     libraries = with_required(tuple(libraries))
-    diags, sources, checked, _ = _front_end(list(paths), prof, texts, natives, libraries, keep=True)
-    if not diags.has_errors:
+    files: list = []
+    diags, sources, checked, _ = _front_end(list(paths), prof, texts, natives, libraries, keep=True, files=files)
+    if not diags.has_errors and nesting.too_deep(files):
         _back_end(checked, prof, diags, _first_position(paths, texts))
     return diags.sorted(), sources
 
@@ -419,6 +438,31 @@ def build_parsed(
     if built is None:
         return None
     return _program(prof, checked, built, diags, sources, user, libraries)
+
+
+def check_parsed(
+    user: list,
+    words: set | frozenset,
+    profile: str | Profile,
+    sources: SourceSet,
+    diags: DiagnosticBag,
+    *,
+    natives: tuple = (),
+    libraries: tuple = (),
+) -> bool:
+    """What build_parsed reports into diags, without a Program: whether the
+    files compile. The back end runs only when it may refuse the generated
+    Python (E006, st/nesting.py): `softplc check` does not wait for code
+    it does not run."""
+    prof = get_profile(profile) if isinstance(profile, str) else profile
+    libraries = with_required(tuple(libraries))
+    files: list = []
+    checked = _check(user, set(words), prof, natives, libraries, diags, sources, files)
+    if diags.has_errors:
+        return False
+    if not nesting.too_deep(files):
+        return True
+    return _back_end(checked, prof, diags, A.Pos(user[0].path if user else "<input>", 1, 1)) is not None
 
 
 def _program(prof: Profile, checked, built: tuple, diags: DiagnosticBag, sources, user: list, libraries: tuple):

@@ -96,17 +96,21 @@ def parser_code() -> bytes:
     return _SALT
 
 
-def parse_cached(name: str, text: str, profile: Profile, disk: bool = True) -> tuple[list, list]:
+def parse_cached(name: str, text: str, profile: Profile, disk: bool = True, slot: bool = False) -> tuple[list, list]:
     """(SourceFiles, diagnostics) of a library file, parsed once per content:
     from memory, else from the cache folder, else parsed (and kept in both).
-    Every call returns new objects: the checker annotates them. disk=False:
-    memory only (a project's own sources, which change with every edit,
-    would fill the cache folder)."""
+    Every call returns new objects: the checker annotates them. slot: a
+    project's own source, which changes with every edit: kept in the cache
+    folder in one entry per file (its name and the profile), which holds the
+    parse of its last content (SLOT); disk=False: in memory only."""
     key = cache.key("st", parser_code(), profile.name, name, text)
     data = _PARSES.get(key)
     if data is not None:
         return pickle.loads(data)
-    data = cache.load_bytes("st", key) if disk else None
+    if slot:
+        data = _slot_load(name, profile, key) if disk else None
+    else:
+        data = cache.load_bytes("st", key) if disk else None
     if data is not None:
         try:
             parsed = pickle.loads(data)  # a damaged entry is parsed again (and rewritten)
@@ -119,7 +123,27 @@ def parse_cached(name: str, text: str, profile: Profile, disk: bool = True) -> t
         data = cache.dumps(parsed)
         if data is None:  # an expression hundreds of operators long: parsed, not kept
             return parsed
-        if disk:
+        if disk and slot:
+            cache.store_bytes(SLOT, _slot_key(name, profile), key.encode() + data)
+        elif disk:
             cache.store_bytes("st", key, data)
     _PARSES[key] = data
     return parsed
+
+
+#: the cache folder's kind of a project's own sources: an entry per file
+#: (_slot_key), the key of the content it holds (64 hex digits), then its pickle
+SLOT = "st-source"
+
+
+def _slot_key(name: str, profile: Profile) -> str:
+    return cache.key(SLOT, parser_code(), profile.name, name)
+
+
+def _slot_load(name: str, profile: Profile, key: str) -> bytes | None:
+    """The pickle the file's entry holds when it is of this content (key),
+    else None: an edited file never meets its old parse."""
+    data = cache.load_bytes(SLOT, _slot_key(name, profile))
+    if data is None or data[:64] != key.encode():
+        return None
+    return data[64:]

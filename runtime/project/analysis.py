@@ -10,10 +10,11 @@ POU broken only by a library POU it calls is not compiled, its neighbours
 are. That part's Program is what `exec --partial`, `run --partial` and the
 benchmark run, and what `export-st` marks as compiled.
 
-Each file is parsed once (libraries.parse_cached, in memory: a project's
-sources change with every edit and would fill the cache folder); a round
-takes a fresh copy of the parse and prunes it, so no file is read or
-parsed again.
+Each file is parsed once (libraries.parse_cached): kept in memory, and in
+the cache folder in one entry per file (a project's sources change with
+every edit: an entry per content would fill the folder), so a check of an
+unchanged file does not parse it again; a round takes a fresh copy of the
+parse and prunes it, so no file is read or parsed again.
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
-from ..program.compile import build_parsed
+from ..program.compile import build_parsed, check_parsed
 from ..program.libraries import parse_cached
 from ..program.loaded import Program
 from ..program.shipped import shipped_named
@@ -97,7 +98,7 @@ def _parse(path: str, text: str, profile: Profile, diags: DiagnosticBag | None) 
     into diags when given. An importer's own failure is E009 for that file
     alone: the rest of the project is still checked."""
     try:
-        files, items = parse_cached(path, text, profile, disk=False)  # (kept in memory for the rounds)
+        files, items = parse_cached(path, text, profile, slot=True)  # (in memory for the rounds, one entry a file)
     except Exception as exc:  # a bug in an importer must not lose the project
         if diags is not None:
             diags.error(
@@ -119,9 +120,11 @@ def analyse(
     natives: tuple = (),
     libraries: tuple = (),
     subset: bool = True,
+    check_only: bool = False,
 ) -> Analysis:
     """Check project; with subset, find the part that compiles (see the
-    module docstring)."""
+    module docstring). check_only: the diagnostics and what compiles, no
+    Program (`softplc check`: the back end runs only when it may report)."""
     prof = profile if isinstance(profile, Profile) else get_profile(profile or project.profile or DEFAULT.name)
     libraries = with_referenced(tuple(libraries), project)
     sources = SourceSet()
@@ -161,14 +164,22 @@ def analyse(
     compiled_diags = DiagnosticBag()
     compiled_diags.extend(parse_items.items)
     files = [sf for views in parsed.values() for sf in views]
-    program = build_parsed(files, words, prof, sources, compiled_diags, natives=natives, libraries=libraries)
+
+    def build(part: list, words: frozenset, into: DiagnosticBag) -> tuple[bool, Program | None]:
+        """(whether the files compile, their Program unless check_only)"""
+        if check_only:
+            return check_parsed(part, words, prof, sources, into, natives=natives, libraries=libraries), None
+        built = build_parsed(part, words, prof, sources, into, natives=natives, libraries=libraries)
+        return built is not None, built
+
+    clean, program = build(files, words, compiled_diags)
     diags.extend(compiled_diags.items)
     result = Analysis(project, prof, diags.sorted(), sources, units, lost={p: x for p, x in lost.items() if x})
     result.libraries = libraries
     result.texts = texts
     _check_tasks(result, program)
     result.diagnostics = sorted(result.diagnostics, key=lambda d: (d.pos.file, d.pos.line, d.pos.col, d.code))
-    if program is not None:
+    if clean:
         result.clean, result.program = True, program
         return result
     if not subset or not texts:
@@ -186,8 +197,8 @@ def analyse(
         round_diags.extend(d for d in parse_items.items if _inside(d, units, result.dropped))
         pruned = prune(fresh(), units, result.dropped)
         words = frozenset().union(*(u.words for u in kept))
-        program = build_parsed(pruned, words, prof, sources, round_diags, natives=natives, libraries=libraries)
-        if program is not None:
+        clean, program = build(pruned, words, round_diags)
+        if clean:
             result.clean, result.program = True, program
             return result
         errors = [d for d in round_diags.items if d.is_error]

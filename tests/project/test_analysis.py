@@ -101,9 +101,10 @@ def test_a_configuration_keeps_the_program_instances_that_compile(tmp_path):
     assert [p["name"] for p in config.programs] == ["g"]
 
 
-def test_a_project_s_sources_are_not_kept_in_the_cache_folder(tmp_path, monkeypatch):
+def test_a_project_s_sources_keep_one_entry_each_in_the_cache_folder(tmp_path, monkeypatch):
     """They change with every edit: each version kept would fill the cache
-    (the libraries they use are kept, once)."""
+    (an entry per file holds the parse of its last text; the libraries
+    they use are kept, once)."""
     monkeypatch.setenv("SOFTPLC_CACHE", str(tmp_path / "cache"))
     root = twincat(tmp_path)
     main = root / "Plant" / "Plc" / "POUs" / "MAIN.TcPOU"
@@ -114,3 +115,12 @@ def test_a_project_s_sources_are_not_kept_in_the_cache_folder(tmp_path, monkeypa
         assert analyse(project).clean
         counts.append(len(list((tmp_path / "cache").rglob("*.pickle"))))
     assert counts[0] == counts[1] == counts[2]
+
+
+def test_a_check_only_analysis_reports_what_a_full_one_does_without_a_program(tmp_path):
+    root = twincat(tmp_path, ("FB_Logger", LOGGER), ("FB_Broken", BROKEN), ("FB_UsesBroken", USES_BROKEN))
+    [project] = open_projects([str(root)])
+    full, checked = analyse(project), analyse(project, check_only=True)
+    assert [d.format() for d in checked.diagnostics] == [d.format() for d in full.diagnostics]
+    assert _compiled(checked) == _compiled(full) and checked.clean and checked.rounds == full.rounds
+    assert full.program is not None and checked.program is None
