@@ -15,7 +15,13 @@ master asks every guard time (an RTR at 0x700 + id, guard_due) and the node
 answers with its state and a toggle bit (guard_reply). No good answer for
 guard time x life time factor is a lost node; a reply whose toggle did not
 alternate is no good answer (a reply went missing). A lost node that
-answers again is booted afresh, as one whose heartbeat comes back.
+answers again is booted afresh, as one whose heartbeat comes back. A
+guarded node sends nothing unasked, so the master keeps asking while it
+waits for it (MISSING, and BOOTING: a reset sent while the cable was cut
+never reached it) and boots it as soon as it answers: a node booted a
+guard time ago that answers without having sent its boot-up missed the
+reset, and is reset again. Without that a drive whose cable came back
+waited the boot timeout and the retry time (2.2 s), though it was heard.
 
 Boots are rate-limited: a node is booted (reset communication, or
 configured after a boot-up it sent unasked) at most BOOT_BURST times in any
@@ -60,6 +66,10 @@ class Emergency:
     time_ns: int
 
 
+#: where a guarded node is asked (guard_due): running, and while the master waits to hear it
+_GUARDED_STATES = frozenset((NodeState.OPERATIONAL, NodeState.LOST, NodeState.MISSING, NodeState.BOOTING))
+
+
 class NodeSupervisor:
     def __init__(
         self,
@@ -89,6 +99,7 @@ class NodeSupervisor:
         self.deadline_ns: int | None = None  # boot-up wait, heartbeat watch or retry
         self.boots = 0  # boot-ups seen
         self._booted: deque[int] = deque(maxlen=BOOT_BURST)  # when the latest boots started
+        self.boot_sent_ns = 0  # when the master last sent a reset communication (BOOTING since)
         self.held_until_ns: int | None = None  # boots held off until then (BOOT_BURST reached)
         self.held_off = 0  # boots the limit held off
         self.emergencies = 0
@@ -162,6 +173,7 @@ class NodeSupervisor:
         elif not self._may_boot(now_ns):
             return self._hold(now_ns, message or "node heard again")
         self._enter(NodeState.BOOTING, now_ns + self.boot_timeout_ns, message)
+        self.boot_sent_ns = now_ns
         return "reset"
 
     def _seen(self, state_byte: int) -> None:
@@ -218,8 +230,10 @@ class NodeSupervisor:
 
     def guard_due(self, now_ns: int) -> bool:
         """Time to send a guarding request (the master sends the RTR)."""
-        if not self.guard_ns or self.state not in (NodeState.OPERATIONAL, NodeState.LOST):
+        if not self.guard_ns or self.state not in _GUARDED_STATES:
             return False
+        if self.state == NodeState.BOOTING and now_ns < self.boot_sent_ns + self.guard_ns:
+            return False  # its boot-up is due first: a request now would start its life guarding early
         if now_ns < self.next_guard_ns:
             return False
         self.next_guard_ns = now_ns + self.guard_ns
@@ -231,6 +245,9 @@ class NodeSupervisor:
         self._seen(state_byte)
         if self.state in (NodeState.LOST, NodeState.MISSING):
             return self._boot(now_ns)  # it is back: boot it afresh
+        if self.state == NodeState.BOOTING and now_ns >= self.boot_sent_ns + self.guard_ns:
+            # alive a guard time after the reset, and no boot-up: the reset never reached it
+            return self._boot(now_ns, "node answered guarding but sent no boot-up")
         if self.state != NodeState.OPERATIONAL:
             return None
         if state_byte != STATE_OPERATIONAL:

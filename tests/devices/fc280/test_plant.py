@@ -16,6 +16,7 @@ from softplc.runtime.devices.fc280.diagnostics import alarm_texts
 from softplc.runtime.devices.fc280.model import CONTROL_WORD_TIMEOUT, FIELDBUS_FAULT, OVER_CURRENT
 from softplc.runtime.devices.fc280.parameters import PROFILE_DSP402, parameter, to_raw
 from softplc.runtime.engine.sim_schedule import SimSchedule
+from softplc.runtime.io.canopen.node import NodeState
 
 # whole plants over seconds of virtual time, answers crossing sockets in real time
 pytestmark = pytest.mark.slow
@@ -146,6 +147,22 @@ def test_a_cut_cable_trips_the_drive_by_8_04_and_the_plant_recovers(plants):
     # the text of the lowest alarm bit (Tabelle 8.1): the control word timeout
     assert plant.get("Fc280Pump.FaultText") == alarm_texts(CONTROL_WORD_TIMEOUT)[0] == "Control word timeout"
     assert sim.parameter("16-90") == 0 and not sim.model.master_lost
+
+
+def test_after_a_long_cut_the_drive_is_booted_as_soon_as_it_is_heard(plants):
+    """Issue 33: after a cut longer than the boot timeout the master waited
+    for a boot-up the drive never sent (it never got the reset): 2.2 s
+    from the cable's return, though the README says a lost node is booted
+    as soon as it is heard. The master asks a guarded node while it waits."""
+    plant = _pump(plants)
+    sim = plant.sims[NODE]
+    sim.unplug()
+    plant.run_ms(10_000)  # boots tried meanwhile, none heard: MISSING, BOOTING, MISSING ...
+    # back just after a reset it did not hear: the master waited its boot timeout (2 s) for it
+    plant.run_until(lambda: plant.node_diag(NODE, "State") == NodeState.BOOTING, 5000, "a boot tried")
+    sim.plug()
+    took = plant.run_until(lambda: plant.node_diag(NODE, "Operational"), 3000, "the node back")
+    assert took <= 2 * 100 + 150, took  # a guard time to be asked (and one for a reset it missed), the boot
 
 
 EXTRA = """

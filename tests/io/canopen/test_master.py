@@ -233,6 +233,36 @@ def test_a_guarding_reply_whose_toggle_did_not_alternate_is_no_good_reply(plants
     assert sup.tick(261 * 10**6) is None and sup.state == NodeState.LOST
 
 
+def test_a_guarded_node_the_master_waits_for_is_asked_and_booted_once_it_answers():
+    """Issue 33: a guarded node sends nothing unasked; a drive whose cable
+    came back waited the boot timeout and the retry time (2.2 s) though
+    it would have answered. Now the master asks while it waits, and boots
+    it at its answer; a reset that never reached it is sent again."""
+    from softplc.runtime.io.canopen.node import NodeSupervisor
+
+    ms = 10**6
+    sup = NodeSupervisor(
+        "x",
+        5,
+        mandatory=True,
+        heartbeat_timeout_ns=0,
+        boot_timeout_ns=2000 * ms,
+        retry_ns=200 * ms,
+        guard_ns=50 * ms,
+        life_time_factor=3,
+    )
+    assert sup.tick(0) == "reset" and sup.state == NodeState.BOOTING  # the cable is cut: nobody hears it
+    assert not sup.guard_due(10 * ms)  # its boot-up is due first: no request, no early life guarding
+    assert sup.guard_reply(0x7F, 20 * ms) is None  # an answer then is no reason yet
+    assert sup.guard_due(50 * ms)  # a guard time on, no boot-up: is it there at all?
+    assert sup.guard_reply(0x7F, 52 * ms) == "reset"  # alive, never booted: the reset did not reach it
+    assert sup.state == NodeState.BOOTING and sup.boot_sent_ns == 52 * ms
+    assert sup.tick(2052 * ms) is None and sup.state == NodeState.MISSING  # gone again: no boot-up
+    assert sup.guard_due(2110 * ms)  # asked while missing, not only at the retry
+    assert sup.guard_reply(0x7F, 2111 * ms) == "reset"  # heard: booted now, not at 2252 ms
+    assert sup.heartbeat(0x00, 2115 * ms) == "configure"
+
+
 def test_a_node_without_a_heartbeat_consumer_cannot_be_given_a_master_timeout(tmp_path):
     import pytest
 
