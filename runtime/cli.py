@@ -418,13 +418,20 @@ def plot_cmd(trace: str, output: str | None, signals: str | None, units: tuple) 
     default="60s",
     show_default=True,
     metavar="DURATION",
-    help="Engine time a test may take before it fails (30s, 2m, T#500ms).",
+    help="Engine time a test may take before it fails (30s, 2m, T#500ms); a test's own "
+    "{attribute 'timeout'} goes first.",
 )
-def test_cmd(paths: tuple, junit: str | None, pattern: str | None, timeout: int) -> None:
+@click.option(
+    "--default-plant",
+    is_flag=True,
+    help="Run the tests against the embedded default plant (what softplc run runs without a CONFIG).",
+)
+def test_cmd(paths: tuple, junit: str | None, pattern: str | None, timeout: int, default_plant: bool) -> None:
     """Run the tests written in ST in FILE... (FUNCTION_BLOCKs named TEST_...
     calling ASSERT_EQUAL, ASSERT_TRUE ...), each in a fresh PLC in virtual
-    time, against the programs and simulated devices of CONFIG (a TOML file;
-    without it the tests run alone); and TcUnit's test suites, of FILE... or
+    time, against the programs and simulated devices of CONFIG (a TOML file,
+    or the default plant with --default-plant; without either the tests run
+    alone); and TcUnit's test suites, of FILE... or
     of a PROJECT (a TwinCAT .sln/.tsproj/.plcproj, a folder) run with its
     own tasks until TcUnit reports every test finished.
 
@@ -433,7 +440,14 @@ def test_cmd(paths: tuple, junit: str | None, pattern: str | None, timeout: int)
     """
     from .testing.command import run_tests
 
-    if len(paths) == 1 and is_test_project(paths[0]):
+    label: str | None = None
+    if default_plant:
+        from .config import default_config_path
+
+        if paths[0].lower().endswith(".toml"):
+            raise click.UsageError(f"--default-plant or a CONFIG ({paths[0]}): not both")
+        paths, label = (str(default_config_path()), *paths), "the default plant"
+    elif len(paths) == 1 and is_test_project(paths[0]):
         from .cli_project import test_project
 
         sys.exit(test_project(paths[0], junit=junit, pattern=pattern, timeout_ns=timeout))
@@ -444,6 +458,7 @@ def test_cmd(paths: tuple, junit: str | None, pattern: str | None, timeout: int)
             pattern=pattern,
             timeout_ns=timeout,
             report_compile_errors=lambda e: _summary(*_report(e.diagnostics, e.sources)),
+            config_label=label,
         )
     )
 

@@ -36,6 +36,19 @@ def split_arguments(paths: tuple) -> tuple:
     return None, items
 
 
+def timeouts(tests: list, timeout_ns: int) -> str:
+    """The header's word on the timeouts: --timeout's, and those of the
+    tests that have one of their own ({attribute 'timeout'}), which go first."""
+    own = sorted({case.timeout_ns for case in tests if case.timeout_ns is not None})
+    if not own:
+        return f"timeout {timeout_ns / 1e9:g} s"
+    shown = ", ".join(f"{ns / 1e9:g} s" for ns in own[:5]) + (", ..." if len(own) > 5 else "")
+    mine = sum(1 for case in tests if case.timeout_ns is not None)
+    if mine == len(tests):
+        return f"each test's own timeout ({shown})"
+    return f"timeout {timeout_ns / 1e9:g} s, {mine} of their own ({shown})"
+
+
 def selector(pattern: str | None):
     """-k for TcUnit's tests: a case-insensitive part of 'PRG_TEST.Suite@Test',
     or a glob; None without -k."""
@@ -47,7 +60,17 @@ def selector(pattern: str | None):
     return lambda path: p in path.upper()
 
 
-def run_tests(paths: tuple, *, junit: str | None, pattern: str | None, timeout_ns: int, report_compile_errors) -> int:
+def run_tests(
+    paths: tuple,
+    *,
+    junit: str | None,
+    pattern: str | None,
+    timeout_ns: int,
+    report_compile_errors,
+    config_label: str | None = None,
+) -> int:
+    """softplc test of [CONFIG] FILE...: the exit code. config_label: how
+    the header names CONFIG (the default plant's path is a package's)."""
     from ..config import ConfigError
     from ..engine.scan import EngineError
     from ..engine.tasks import TaskSetupError
@@ -82,12 +105,12 @@ def run_tests(paths: tuple, *, junit: str | None, pattern: str | None, timeout_n
         what = f" matching -k {pattern!r}" if pattern and suite.tests else ""
         _err(f"softplc test: no tests{what} in {', '.join(files)} ({NO_TESTS})")
         return EXIT_USAGE
-    where = f" against {config}" if config else ""
+    where = f" against {config_label or config}" if config else ""
     results, errors = [], []
     engine_ns, wall_s = 0, 0.0
     try:
         if tests:
-            print(f"{len(tests)} test(s) from {len(files)} file(s){where}, timeout {timeout_ns / 1e9:g} s", flush=True)
+            print(f"{len(tests)} test(s) from {len(files)} file(s){where}, {timeouts(tests, timeout_ns)}", flush=True)
             for case in tests:
                 result = suite.run(case, timeout_ns)
                 results.append(result)

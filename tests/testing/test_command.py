@@ -82,6 +82,33 @@ def test_a_failing_st_assert_names_its_place_and_both_values_and_exits_1(tmp_pat
     assert "expected: E_Light#Red" in failure.text and "actual:   E_Light#Green" in failure.text
 
 
+@pytest.mark.slow
+def test_the_default_plant_has_a_name_of_its_own(tmp_path):
+    """Issue 33: the embedded default plant had no name on softplc test's
+    command line (its TOML is inside the installed package)."""
+    proc = softplc("--default-plant", EXAMPLE, "-k", "DriveReachesSpeed", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert proc.stdout.startswith("1 test(s) from 1 file(s) against the default plant, timeout 60 s\n")
+    assert "PASS  TEST_DriveReachesSpeed" in proc.stdout
+    both = softplc("--default-plant", DEFAULT, EXAMPLE, cwd=tmp_path)
+    assert both.returncode == 2 and "--default-plant or a CONFIG" in both.stderr
+
+
+def test_the_header_names_the_timeouts_the_tests_have_of_their_own(tmp_path):
+    """Issue 33: the header said "timeout 60 s" where a test's own
+    {attribute 'timeout'} applied."""
+    path = tmp_path / "test_own.st"
+    path.write_text(
+        "FUNCTION_BLOCK TEST_Short\n{attribute 'timeout' := 'T#200ms'}\nTEST_FINISHED();\nEND_FUNCTION_BLOCK\n"
+        "FUNCTION_BLOCK TEST_Plain\nTEST_FINISHED();\nEND_FUNCTION_BLOCK\n"
+    )
+    proc = softplc(path, "--timeout", "2s")
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert proc.stdout.startswith("2 test(s) from 1 file(s), timeout 2 s, 1 of their own (0.2 s)\n")
+    alone = softplc(path, "-k", "Short")
+    assert alone.stdout.startswith("1 test(s) from 1 file(s), each test's own timeout (0.2 s)\n")
+
+
 def test_k_selects_tests_by_name(tmp_path):
     proc = softplc(FAILING, "-k", "passes")
     assert proc.returncode == 0, proc.stdout + proc.stderr
