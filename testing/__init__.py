@@ -5,6 +5,6 @@ re-exports its public names. README: "Testing a sequence offline (Python
 and pytest)".
 """
 
-from softplc.runtime.testing import PLC, EnumValue, PathError, Row, Trace, duration_ns
+from softplc.runtime.testing import PLC, EngineTime, EnumValue, PathError, Row, Trace, duration_ns
 
-__all__ = ["PLC", "EnumValue", "PathError", "Row", "Trace", "duration_ns"]
+__all__ = ["PLC", "EngineTime", "EnumValue", "PathError", "Row", "Trace", "duration_ns"]

@@ -38,7 +38,7 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:
     from ..engine.places import PathError
     from ..engine.values import EnumValue
-    from .plc import PLC, duration_ns
+    from .plc import PLC, EngineTime, duration_ns
     from .trace import Row, Trace
 
 # The names are imported on first use (PEP 562): the pytest plugins live in
@@ -46,6 +46,7 @@ if TYPE_CHECKING:
 # importing the engine, the buses and the compiler.
 _WHERE = {
     "PLC": ".plc",
+    "EngineTime": ".plc",
     "duration_ns": ".plc",
     "PathError": "..engine.places",
     "Row": ".trace",
@@ -61,4 +62,4 @@ def __getattr__(name: str) -> Any:
     return getattr(importlib.import_module(module, __name__), name)
 
 
-__all__ = ["PLC", "EnumValue", "PathError", "Row", "Trace", "duration_ns"]
+__all__ = ["PLC", "EngineTime", "EnumValue", "PathError", "Row", "Trace", "duration_ns"]

@@ -57,6 +57,26 @@ def duration_ns(value: Duration, what: str = "duration") -> int:
     return ns
 
 
+class EngineTime(timedelta):
+    """An engine time: a timedelta (T#... in a message, arithmetic with
+    other durations) with .ns, the integer nanoseconds of the trace's times
+    (trace.changes, trace.rows), so that the two compare exactly:
+
+        t = plc.run_until("Motor.ltmr.Running")
+        assert plc.trace.changes("Motor.state")[-1][0] <= t.ns
+    """
+
+    ns: int
+
+    def __new__(cls, ns: int) -> EngineTime:
+        self = super().__new__(cls, microseconds=ns / 1000)
+        self.ns = ns
+        return self
+
+    def __reduce__(self):
+        return (EngineTime, (self.ns,))
+
+
 class PLC:
     """A soft-PLC under test. Build one with ``PLC.from_config`` or
     ``PLC.from_st``; it starts with the first run (variables can be read and
@@ -160,9 +180,10 @@ class PLC:
     # ------------------------------------------------------------ time
 
     @property
-    def now(self) -> timedelta:
-        """The engine time (since the start of the run)."""
-        return timedelta(microseconds=self.engine.now_ns() / 1000)
+    def now(self) -> EngineTime:
+        """The engine time (since the start of the run): a timedelta, and
+        its .ns in the trace's unit."""
+        return EngineTime(self.engine.now_ns())
 
     @property
     def now_ns(self) -> int:
@@ -195,9 +216,10 @@ class PLC:
 
     def run_until(
         self, condition: str | Callable[[], Any], timeout: Duration = "5s", what: str | None = None
-    ) -> timedelta:
+    ) -> EngineTime:
         """Run scan by scan until condition holds; returns the engine time
-        then. condition: a callable, or the ST path of a BOOL (watched from
+        then (a timedelta; .ns: integer nanoseconds, as trace.changes
+        gives). condition: a callable, or the ST path of a BOOL (watched from
         now on). Checked before the first scan and after each. On timeout an
         AssertionError names the condition and shows the trace around it."""
         if isinstance(condition, str):

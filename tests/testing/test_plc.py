@@ -266,6 +266,18 @@ def test_run_until_returns_the_time_and_times_out_with_the_trace(plc):
         plc.run_until("Main.nothing")
 
 
+def test_run_until_s_time_is_in_the_trace_s_unit_too(plc):
+    """Issue 33: run_until gave a timedelta, trace.changes integer ns: the
+    two did not compare. The time is both: a timedelta with .ns."""
+    plc.write("Main.limit", "T#100ms")
+    plc.script([("50ms", "Main.go", True)])
+    plc.watch("Main.lamp")
+    t = plc.run_until("Main.lamp", timeout="1s")
+    assert t == timedelta(milliseconds=50) and t.ns == 50_000_000
+    assert plc.trace.changes("Main.lamp")[-1] == (t.ns, True)
+    assert plc.now.ns == plc.now_ns and plc.now - t == timedelta(0)
+
+
 def test_expect_raises_with_the_trace(plc):
     plc.watch("Main.count")
     plc.step(2)
