@@ -4,6 +4,7 @@ not load the engine)."""
 
 from __future__ import annotations
 
+import re
 import sys
 from pathlib import Path
 
@@ -12,6 +13,9 @@ import click
 from .cli_project import PARTIAL_OPTION, PROFILE_OPTION, compile_project, one_project
 from .cli_report import echo_err, report, summary
 from .durations import EXAMPLES, parse_duration_ns
+
+#: --watch's commas, but those of an index ('grid[1, 3]')
+_OUTSIDE_BRACKETS = re.compile(r",(?![^\[]*\])")
 
 
 class Duration(click.ParamType):
@@ -42,8 +46,17 @@ class Duration(click.ParamType):
     "watch",
     multiple=True,
     metavar="VAR",
-    help="Show VAR in the status line and the trace: Instance.var, a global, or an "
-    "address such as %QW1. Repeat the option or separate names with commas.",
+    help="Show VAR in the status line and the trace: Instance.var, a global, an element or a "
+    "field (CANOPEN_NODE[40].State, grid[1, 2]), or an address such as %QW1. Repeat the option "
+    "or separate names with commas.",
+)
+@click.option(
+    "--set",
+    "sets",
+    multiple=True,
+    metavar="VAR=VALUE",
+    help="Write VALUE into VAR at the first scan, as an [init] entry (over it): Main.Setpoint=40, "
+    "Motor.Auto=false, Main.t=T#2s. Repeat for several.",
 )
 @click.option(
     "--trace",
@@ -119,6 +132,7 @@ def run_cmd(
     duration: int | None,
     cycles: int | None,
     watch: tuple,
+    sets: tuple,
     traces: tuple,
     units: tuple,
     final_json: str | None,
@@ -152,7 +166,7 @@ def run_cmd(
         prepared = _project(config, profile, partial)
     elif profile is not None or partial:
         raise click.UsageError("--profile and --partial are for a project; a configuration's [plc] decides")
-    paths = [p.strip() for item in watch for p in item.split(",") if p.strip()]
+    paths = [p.strip() for item in watch for p in _OUTSIDE_BRACKETS.split(item) if p.strip()]
     sys.exit(
         run_plc(
             config,
@@ -160,6 +174,7 @@ def run_cmd(
             duration_ns=duration,
             cycles=cycles,
             watch=paths,
+            sets=list(sets),
             traces=list(traces),
             units=list(units),
             final_json=final_json,

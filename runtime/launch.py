@@ -114,10 +114,12 @@ def run_plc(
     log_max_bytes: int = 10_000_000,
     log_backups: int = 5,
     prepared: tuple | None = None,
+    sets: list | None = None,
 ) -> int:
     """Run the PLC of config (a TOML file; None: the embedded default), or
     of prepared: (PlcConfig, Program) a project gave (softplc run PROJECT)."""
     from .config import ConfigError, default_config_path, load_config
+    from .config.scenario import with_sets
     from .config.servers import web_option
     from .engine.build import build_engine
     from .engine.monitor import StatusReporter, Watch
@@ -167,6 +169,11 @@ def run_plc(
                 return _fail(str(e), EXIT_CONFIG)
         for warning in cfg.warnings:
             log.warning("%s", warning)
+        if sets:
+            try:
+                cfg = with_sets(cfg, sets)
+            except ValueError as e:
+                return _fail(f"--set {e}", EXIT_CONFIG)
         servers = {key: cfg.sections.get(key) for key in SERVERS}
         if web is not None:  # --web [HOST:]PORT: the page without a [web] section, or on another port
             try:
@@ -178,7 +185,7 @@ def run_plc(
         except CompileError as e:
             report_compile_errors(e)
             return EXIT_COMPILE
-        except (TaskSetupError, DriverError) as e:
+        except (TaskSetupError, DriverError, ConfigError) as e:
             return _fail(str(e), EXIT_CONFIG)
         engine_time.clock = engine.clock
         log.info("%s: %s start, %s clock", path, engine.start_mode, "virtual" if virtual_time else "real")

@@ -533,6 +533,58 @@ def test_retain_survives_sigkill_repeatedly(tmp_path):
     assert json.loads(cold.stdout)["Counter"]["count"] == 1
 
 
+_SCENARIO_ST = """TYPE Mode : (Off, Auto, Hand); END_TYPE
+PROGRAM Main
+VAR sp : REAL := 1.0; mode : Mode; t : TIME; seen : REAL; grid : ARRAY[1..2, 1..2] OF INT; END_VAR
+seen := sp;
+END_PROGRAM
+"""
+
+
+def test_a_scenario_from_the_file_and_the_command_line(tmp_path):
+    """Issue 33: initial values and scheduled writes from the TOML and from
+    --set, which goes over [init]; the log says what was written and when."""
+    text = (
+        _MAIN + '[init]\nMain.sp = 40\nMain.mode = "Auto"\n[[schedule]]\nat = "30ms"\nset = "Main.sp"\nvalue = 60.5\n'
+    )
+    cfg = write_config(tmp_path, text, {"p.st": _SCENARIO_ST})
+    sets = ["--set", "Main.mode=Hand", "--set", "Main.t=T#2s", "--set", "Main.grid[2, 1]=7"]
+    proc = softplc(
+        "run",
+        cfg,
+        "--virtual-time",
+        "--cycles",
+        "5",
+        "--watch",
+        "Main.seen,Main.grid[2, 1]",
+        *sets,
+        "--final-json",
+        "-",
+    )
+    assert proc.returncode == 0, proc.stderr
+    main = json.loads(proc.stdout)["Main"]
+    assert (main["sp"], main["seen"], main["mode"], main["t"]) == (60.5, 60.5, "Hand", "T#2s")
+    assert main["grid"] == [[0, 0], [7, 0]]
+    assert 'scenario: t=0.000s Main.sp := 40 (init."Main.sp")' in proc.stderr
+    assert "scenario: t=0.030s Main.sp := 60.5 (schedule[0].set)" in proc.stderr
+    bad = softplc("run", cfg, "--virtual-time", "--cycles", "1", "--set", "Main.nope=1")
+    assert bad.returncode == 2 and f"softplc: {cfg}: --set Main.nope: " in bad.stderr, bad.stderr
+    bad = softplc("run", cfg, "--virtual-time", "--cycles", "1", "--set", "Main.sp")
+    assert bad.returncode == 2 and "--set 'Main.sp': expected VAR=VALUE" in bad.stderr, bad.stderr
+
+
+def test_watch_and_trace_take_an_element_of_a_drivers_array(tmp_path):
+    """Issue 33: --watch 'CANOPEN_NODE[33].State' was "no variable"."""
+    watched = ["CANOPEN_NODE[40].Operational", "CANOPEN_NODE[20].State"]
+    trace = tmp_path / "nodes.csv"
+    proc = softplc("run", "--virtual-time", "--duration", "3s", "--watch", ",".join(watched), "--trace", trace)
+    assert proc.returncode == 0, proc.stderr
+    rows = list(csv.DictReader(trace.open()))
+    assert rows[-1]["CANOPEN_NODE[40].Operational"] == "1"  # the LTMR (node 40) booted and operational
+    assert {r["CANOPEN_NODE[20].State"] for r in rows} - {""}  # a value in every row
+    assert "CANOPEN_NODE[20].State=" in proc.stderr  # on the status line
+
+
 def test_traces_by_their_ending_csv_vcd_and_png(tmp_path):
     from matplotlib import image
 

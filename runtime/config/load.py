@@ -33,6 +33,7 @@ from ..st.build_decls import identifier_from_path
 from .errors import ConfigError, in_file_order, key_text, not_finite, translate
 from .plc import CORE_SECTIONS, DEFAULT_SPIN_NS, RetainConfig, SafeOutput, TaskConfig, with_safe_defaults
 from .relations import Relations
+from .scenario import SCENARIO_SECTIONS, ScenarioWrite
 from .section import Section
 from .servers import SERVER_SECTIONS
 from .sims import SimConfig, SimSection
@@ -57,6 +58,9 @@ class PlcConfig:
     retain: RetainConfig | None = None
     safe_outputs: list[SafeOutput] = field(default_factory=list)
     sims: list[SimConfig] = field(default_factory=list)
+    #: a scenario's writes: [init] (and --set) at the first scan, [[schedule]] at their times
+    init: list[ScenarioWrite] = field(default_factory=list)
+    schedule: list[ScenarioWrite] = field(default_factory=list)
     #: the buses' sections by TOML key (cfg.can is cfg.sections["can"])
     sections: dict[str, Any] = field(default_factory=dict)
     raw: dict = field(default_factory=dict)  # the parsed TOML
@@ -238,8 +242,9 @@ class _Document:
             self.absent = {"sim": [], **{key: [] if many else None for key, many in plugin_sections()}}
         # the document's keys in this order ("expected one of plc, retain ..."); the
         # simulated devices are checked last, when the buses they sit on are known
-        self.sections: list[Section] = [*CORE_SECTIONS, *SERVER_SECTIONS, *sims, *bus_sections]
-        self.check_order: list[Section] = [*CORE_SECTIONS, *SERVER_SECTIONS, *bus_sections, *sims]
+        core = [*CORE_SECTIONS, *SCENARIO_SECTIONS, *SERVER_SECTIONS]
+        self.sections: list[Section] = [*core, *sims, *bus_sections]
+        self.check_order: list[Section] = [*core, *bus_sections, *sims]
         if reg is None:
             self.sections = [s for s in self.sections if s.key in keys or s.key == "plc"]
         fields: dict[str, Any] = {}
@@ -264,7 +269,7 @@ _document: _Document | None = None
 #: the documents of core and server keys, by the keys they have
 _core_documents: dict[frozenset, _Document] = {}
 #: the keys of a document checked without the registry: the core's and the servers'
-_CORE_KEYS = frozenset(s.key for s in (*CORE_SECTIONS, *SERVER_SECTIONS))
+_CORE_KEYS = frozenset(s.key for s in (*CORE_SECTIONS, *SCENARIO_SECTIONS, *SERVER_SECTIONS))
 
 
 def _current_document(data: dict | None = None) -> _Document:
@@ -322,6 +327,8 @@ def config_from_dict(data: dict, path=None, *, base_dir=None) -> PlcConfig:
         "tasks": built.pop("task"),
         "safe_outputs": with_safe_defaults(built.pop("outputs"), ctx),
         "sims": built.pop("sim"),
+        "init": built.pop("init"),
+        "schedule": built.pop("schedule"),
     }
     return PlcConfig(
         path=Path(path) if path is not None else None,

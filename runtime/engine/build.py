@@ -7,7 +7,7 @@ is simulated, adds nothing)."""
 
 from __future__ import annotations
 
-from ..config import PlcConfig
+from ..config import ConfigError, PlcConfig
 from ..plugin.driver import DriverError
 from ..plugin.registry import loaded, plugin_sections, registry
 from ..plugin.seams import BuildContext
@@ -16,6 +16,7 @@ from ..st.profile import get_profile
 from .clock import RealClock, VirtualClock
 from .retain_file import RetainStore
 from .scan import Engine
+from .scenario import Scenario
 from .sim_schedule import SimSchedule
 from .tasks import plan_tasks
 
@@ -73,6 +74,11 @@ def build_engine(
         program = compile_files(config.programs, profile=config.profile, libraries=tuple(config.libraries))
     where = str(config.path) if config.path else "<config>"
     tasks = plan_tasks(program, config.tasks, where, none_ok=bool(extra_tasks)) + list(extra_tasks)
+    scenario = Scenario(config.init, config.schedule)
+    if scenario:  # [init], [[schedule]], --set: their paths and values, in an engine of the program alone
+        errors = scenario.check(Engine(program, tasks, clock=VirtualClock()))
+        if errors:
+            raise ConfigError(where, errors)
     retain_store = RetainStore(config.retain.file) if config.retain and retain else None
     clock = (
         VirtualClock()
@@ -81,7 +87,7 @@ def build_engine(
     )
     simulators: dict = {}
     drivers = make_drivers(config, clock, simulators)
-    return Engine(
+    engine = Engine(
         program,
         tasks,
         clock=clock,
@@ -93,3 +99,7 @@ def build_engine(
         retain_period_ns=config.retain.period_ns if config.retain else 1_000_000_000,
         start_mode=start_mode or config.start,
     )
+    if scenario:
+        scenario.install(engine)
+        engine.scenario = scenario
+    return engine

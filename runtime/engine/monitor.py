@@ -14,6 +14,7 @@ from typing import TextIO
 from ..image.address import default_type, parse_address
 from ..st import types as T
 from ..st.valuejson import encode_value
+from .places import PathError, Resolver
 from .snapshot import Snapshot, SnapshotHub
 
 
@@ -72,11 +73,17 @@ class Watch:
         try:
             return self.engine.variable(path)
         except KeyError:
-            names = ", ".join(name for name, _info, _obj in self.engine.instances.values())
-            raise KeyError(
-                f"no variable '{path}' (write Instance.variable for a program's variable "
-                f"-- instances: {names} -- or the name of a global variable)"
-            ) from None
+            pass
+        try:  # an element or a part of one: 'CANOPEN_NODE[40].State', 'Line.parts[2].weight'
+            return ("place", Resolver(self.engine).place(path))
+        except PathError as exc:
+            if "[" in path:  # the resolver's message says which index or name is wrong
+                raise KeyError(str(exc)) from None
+        names = ", ".join(name for name, _info, _obj in self.engine.instances.values())
+        raise KeyError(
+            f"no variable '{path}' (write Instance.variable for a program's variable "
+            f"-- instances: {names} -- or the name of a global variable)"
+        ) from None
 
     def _current(self) -> list:
         if self._resolved_at != self.engine.generation:
@@ -88,7 +95,7 @@ class Watch:
         """A SignalInfo per watched path, in order."""
         out = []
         for path, cell in zip(self.paths, self._current()):
-            out.append(signal_info(path, default_type(cell[1]) if cell[0] == "image" else cell[2]))
+            out.append(signal_info(path, _type(cell)))
         return out
 
     def raw(self) -> list:
@@ -101,8 +108,11 @@ class Watch:
                 value = self.engine.image.read(cell[1])
                 out.append(int(value) if isinstance(value, bool) else value)
                 continue
-            holder, attr, ty = cell
-            value = getattr(holder, attr)
+            if cell[0] == "place":
+                value, ty = cell[1].get(), cell[1].type
+            else:
+                holder, attr, ty = cell
+                value = getattr(holder, attr)
             if isinstance(value, bool):
                 out.append(int(value))
             elif isinstance(value, (float, str)):
@@ -129,6 +139,15 @@ class Watch:
             else:
                 out.append((path, "?"))
         return out
+
+
+def _type(cell) -> T.Type:
+    """The ST type of a watched cell: a direct address's by its size, a place's, a variable's."""
+    if cell[0] == "image":
+        return default_type(cell[1])
+    if cell[0] == "place":
+        return cell[1].type
+    return cell[2]
 
 
 class TraceWriter:

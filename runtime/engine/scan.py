@@ -27,6 +27,7 @@ import time
 from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from ..config.values import cut
 from ..image.address import default_type
@@ -42,6 +43,9 @@ from .cputime import COLLECTOR as _COLLECTOR
 from .diag import DiagVariable
 from .retain_file import ForeignRetainFile
 from .stats import TaskStats
+
+if TYPE_CHECKING:
+    from .scenario import Scenario
 
 log = logging.getLogger("softplc.engine")
 
@@ -174,6 +178,8 @@ class Engine:
         #: else (the snapshot hub waits there for a copy still being taken)
         self.before_tick: list[Callable] = []
         self.restore_report: R.RestoreReport | None = None
+        #: the writes of [init] and [[schedule]] (engine/scenario.py; build.py installs it), or None
+        self.scenario: Scenario | None = None
         self._stop_requested = False
         #: why the run stopped (request_stop's reason), None until then
         self.stop_reason: str | None = None

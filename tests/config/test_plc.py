@@ -173,7 +173,7 @@ def test_unknown_key_without_suggestion(tmp_path):
 def test_later_sections_are_unknown_for_now(tmp_path):
     assert error(tmp_path, PLC + "[mpu2s]\nx = 1\n") == (
         "mpu2s",
-        "unknown key (expected one of plc, retain, task, outputs, web, opcua, modbus_server, sim, "
+        "unknown key (expected one of plc, retain, task, outputs, init, schedule, web, opcua, modbus_server, sim, "
         "loopback, can, canopen, plaincan, modbus)",
     )
 

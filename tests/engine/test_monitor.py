@@ -65,6 +65,32 @@ def test_watch_describes_each_signal_for_the_traces(engines):
     assert w.signals()[2].levels == ("Off", "Auto")
 
 
+def test_watch_takes_array_elements_as_the_testing_api_does(engines):
+    """Issue 33: --watch 'CANOPEN_NODE[33].State' answered "no variable",
+    though the testing API's paths take indices."""
+    e = engines(SRC, [task("Main", 10, "Main")])
+    e.run(cycles=3)
+    w = Watch(e, ["Main.pair[2]", "Main.pair[1]", "Main.n"])
+    assert w.raw() == [3, 0, 3]
+    assert [(i.path, i.kind, i.type_name) for i in w.signals()][:1] == [("Main.pair[2]", "int", "INT")]
+    assert w.shown()[0] == ("Main.pair[2]", "3")
+    out = io.StringIO()
+    e.after_tick.append(TraceWriter(out, w))
+    e.run(cycles=1)
+    assert out.getvalue().splitlines()[1] == "30.0,4,4,0,4"
+
+
+@pytest.mark.parametrize(
+    ("path", "message"),
+    [("Main.pair[3]", "Main.pair[3]"), ("Main.nope[1]", "nope"), ("Main.n[1]", "Main.n[1]")],
+)
+def test_watch_of_an_element_that_is_not_there_names_it(engines, path, message):
+    e = engines(SRC, [task("Main", 10, "Main")])
+    with pytest.raises(KeyError) as info:
+        Watch(e, [path])
+    assert message in str(info.value)
+
+
 @pytest.mark.parametrize("path, error", [("Main.nope", KeyError), ("nope", KeyError), ("%QZ1", AddressError)])
 def test_watch_refuses_what_does_not_exist(engines, path, error):
     e = engines(SRC, [task("Main", 10, "Main")])
