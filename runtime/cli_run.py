@@ -47,7 +47,7 @@ class Duration(click.ParamType):
     multiple=True,
     metavar="VAR",
     help="Show VAR in the status line and the trace: Instance.var, a global, an element or a "
-    "field (CANOPEN_NODE[40].State, grid[1, 2]), or an address such as %QW1. Repeat the option "
+    "field (Line.parts[2].weight, grid[1, 2]), or an address such as %QW1. Repeat the option "
     "or separate names with commas.",
 )
 @click.option(

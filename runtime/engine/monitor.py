@@ -74,7 +74,7 @@ class Watch:
             return self.engine.variable(path)
         except KeyError:
             pass
-        try:  # an element or a part of one: 'CANOPEN_NODE[40].State', 'Line.parts[2].weight'
+        try:  # an element or a part of one: 'Line.parts[2].weight', 'grid[1, 2]'
             return ("place", Resolver(self.engine).place(path))
         except PathError as exc:
             if "[" in path:  # the resolver's message says which index or name is wrong
