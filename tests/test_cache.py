@@ -18,28 +18,9 @@ from softplc.runtime.cli import cli
 from softplc.runtime.program import libraries
 from softplc.runtime.st.profile import DEFAULT
 
+pytestmark = pytest.mark.usefixtures("own_cache")  # tests/conftest.py
+
 TEXT = "FUNCTION_BLOCK FB_Count\nVAR_INPUT x : INT; END_VAR\nVAR n : INT; END_VAR\nn := n + x;\nEND_FUNCTION_BLOCK\n"
-
-
-@pytest.fixture(autouse=True)
-def _own_cache(tmp_path, monkeypatch):
-    monkeypatch.setenv("SOFTPLC_CACHE", str(tmp_path / "cache"))
-    monkeypatch.delenv("SOFTPLC_NO_CACHE", raising=False)
-    monkeypatch.setattr(libraries, "_PARSES", {})  # (as a new process)
-
-
-@pytest.fixture
-def parses(monkeypatch) -> list:
-    """The names parse_source is called with (the parser runs, not the cache)."""
-    calls: list = []
-    real = libraries.parse_source
-
-    def counted(text, name, *args, **kwargs):
-        calls.append(name)
-        return real(text, name, *args, **kwargs)
-
-    monkeypatch.setattr(libraries, "parse_source", counted)
-    return calls
 
 
 def _entries(tmp_path: Path) -> list[str]:

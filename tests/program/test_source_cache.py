@@ -17,29 +17,10 @@ from softplc.runtime.cli import cli
 from softplc.runtime.program import libraries
 from softplc.runtime.st.profile import DEFAULT, get_profile
 
+pytestmark = pytest.mark.usefixtures("own_cache")  # tests/conftest.py
+
 GOOD = "PROGRAM main\nVAR x : INT; END_VAR\nx := x + 1;\nEND_PROGRAM\n"
 BAD = "PROGRAM main\nVAR x : INT; END_VAR\nx := y + 1;\nEND_PROGRAM\n"
-
-
-@pytest.fixture(autouse=True)
-def _own_cache(tmp_path, monkeypatch):
-    monkeypatch.setenv("SOFTPLC_CACHE", str(tmp_path / "cache"))
-    monkeypatch.delenv("SOFTPLC_NO_CACHE", raising=False)
-    monkeypatch.setattr(libraries, "_PARSES", {})  # (as a new process)
-
-
-@pytest.fixture
-def parses(monkeypatch) -> list:
-    """The names parse_source is called with (the parser runs, not the cache)."""
-    calls: list = []
-    real = libraries.parse_source
-
-    def counted(text, name, *args, **kwargs):
-        calls.append(name)
-        return real(text, name, *args, **kwargs)
-
-    monkeypatch.setattr(libraries, "parse_source", counted)
-    return calls
 
 
 def _entries(tmp_path: Path) -> list[Path]:
