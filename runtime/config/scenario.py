@@ -75,6 +75,12 @@ def _refused(value: Any) -> str | None:
     return None
 
 
+def _same_variable(path: str) -> str:
+    """The one key of the paths that name the same variable: names are
+    case-insensitive, and blanks around dots and indices mean nothing."""
+    return "".join(path.split()).upper()
+
+
 def _flattened(table: dict, prefix: str = "") -> list:
     """(path, value) of each leaf: a dotted key (Main.Setpoint = 40) is a
     table in TOML, and a path here; a STRUCT's table is its fields, each a
@@ -102,7 +108,7 @@ class InitSection(Section):
         for path, leaf in _flattened(value):
             loc = ("init", path)
             why = _refused(leaf)
-            same = seen.setdefault("".join(path.split()).upper(), loc)  # names are case-insensitive
+            same = seen.setdefault(_same_variable(path), loc)
             if why is not None:
                 ctx.error(loc, why)
             elif same != loc:
@@ -167,6 +173,6 @@ def with_sets(config: Any, sets: list) -> Any:
             raise ValueError(f"{got(item)}: expected VAR=VALUE, such as Main.Setpoint=40")
         path = path.strip()
         added.append(ScenarioWrite(f"--set {cut(path)}", path, cli_value(text.strip())))
-    given = {"".join(w.path.split()).upper() for w in added}
-    kept = [w for w in config.init if "".join(w.path.split()).upper() not in given]
+    given = {_same_variable(w.path) for w in added}
+    kept = [w for w in config.init if _same_variable(w.path) not in given]
     return dataclasses.replace(config, init=kept + added)
