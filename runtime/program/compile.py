@@ -429,12 +429,10 @@ def build_parsed(
     use, upper case (which on-demand libraries they take); sources: their
     texts, for the messages. The checker annotates the files: give fresh
     ones each time (libraries.parse_cached)."""
-    prof = get_profile(profile) if isinstance(profile, str) else profile
-    libraries = with_required(tuple(libraries))
-    checked = _check(user, set(words), prof, natives, libraries, diags, sources)
+    prof, libraries, checked = _check_parsed(user, words, profile, sources, diags, natives, libraries)
     if diags.has_errors:
         return None
-    built = _back_end(checked, prof, diags, A.Pos(user[0].path if user else "<input>", 1, 1))
+    built = _back_end(checked, prof, diags, _parsed_position(user))
     if built is None:
         return None
     return _program(prof, checked, built, diags, sources, user, libraries)
@@ -454,15 +452,29 @@ def check_parsed(
     files compile. The back end runs only when it may refuse the generated
     Python (E006, st/nesting.py): `softplc check` does not wait for code
     it does not run."""
-    prof = get_profile(profile) if isinstance(profile, str) else profile
-    libraries = with_required(tuple(libraries))
     files: list = []
-    checked = _check(user, set(words), prof, natives, libraries, diags, sources, files)
+    prof, _libraries, checked = _check_parsed(user, words, profile, sources, diags, natives, libraries, files)
     if diags.has_errors:
         return False
     if not nesting.too_deep(files):
         return True
-    return _back_end(checked, prof, diags, A.Pos(user[0].path if user else "<input>", 1, 1)) is not None
+    return _back_end(checked, prof, diags, _parsed_position(user)) is not None
+
+
+def _check_parsed(
+    user: list, words, profile: str | Profile, sources: SourceSet, diags: DiagnosticBag, natives, libraries, files=None
+) -> tuple:
+    """(the profile, the libraries with the required ones, the checked
+    program) of already parsed files: what build_parsed and check_parsed
+    both do first."""
+    prof = get_profile(profile) if isinstance(profile, str) else profile
+    libraries = with_required(tuple(libraries))
+    return prof, libraries, _check(user, set(words), prof, natives, libraries, diags, sources, files)
+
+
+def _parsed_position(user: list) -> A.Pos:
+    """Where an E006 of already parsed files points without a line of its own."""
+    return A.Pos(user[0].path if user else "<input>", 1, 1)
 
 
 def _program(prof: Profile, checked, built: tuple, diags: DiagnosticBag, sources, user: list, libraries: tuple):
