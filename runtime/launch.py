@@ -122,6 +122,7 @@ def run_plc(
     from .config.scenario import with_sets
     from .config.servers import web_option
     from .engine.build import build_engine
+    from .engine.libc_heap import steady_malloc
     from .engine.monitor import StatusReporter, Watch
     from .engine.scan import EngineError
     from .engine.tasks import TaskSetupError
@@ -133,6 +134,7 @@ def run_plc(
     from .surfaces.host import SERVERS, SurfaceError, Surfaces
     from .trace.plot import PlotUnavailable, parse_units, plot
 
+    steady_malloc()  # before its threads start: each would have an arena of its own
     plots = [t for t in traces if Path(t).suffix.lower() in PLOT_SUFFIXES]
     for t in traces:
         if Path(t).suffix.lower() not in TRACE_SUFFIXES:
