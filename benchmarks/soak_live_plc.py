@@ -17,9 +17,11 @@ PLC's process, where a separate client cannot reach:
   to STATS (a JSON file): a kill -9 loses at most the last second.
 
 With SOFTPLC_SOAK_TRACE_MEMORY=FILE in its environment (--trace-memory),
-the process traces its allocations (tracemalloc, 8 frames) and writes to
-FILE, every TRACE_EVERY_S after TRACE_FROM_S, the allocations that grew
-most since then, by where they were made: where a growing RSS comes from.
+the process traces its allocations (tracemalloc, 8 frames) from
+TRACE_FROM_S on (from the start, the compile and the servers' start under
+tracemalloc take minutes) and writes to FILE, every TRACE_EVERY_S, the
+allocations made since then that grew most, by where they were made: where
+a growing RSS comes from.
 
 The engine is reached by wrapping build_engine, which run_plc looks up when
 it is called: nothing of softplc is changed.
@@ -193,15 +195,14 @@ def instrument(engine, stats_path: Path, seed: int, faults_on: bool) -> None:
 
 
 def trace_memory(path: Path) -> None:
-    """Started first: the allocations made from TRACE_FROM_S on that are
-    still alive, the TRACE_TOP greatest growths by traceback, rewritten
-    to path every TRACE_EVERY_S (a thread)."""
+    """The allocations made from TRACE_FROM_S on that are still alive, the
+    TRACE_TOP greatest growths by traceback, rewritten to path every
+    TRACE_EVERY_S (a thread)."""
     import tracemalloc
-
-    tracemalloc.start(8)
 
     def watch() -> None:
         time.sleep(TRACE_FROM_S)
+        tracemalloc.start(8)
         first = tracemalloc.take_snapshot()
         since = time.monotonic()
         while True:
