@@ -165,6 +165,7 @@ class SnapshotHub:
         self._copy_due = threading.Event()
         self._copier: threading.Thread | None = None
         self._copier_lock = threading.Lock()  # the copier ends, or is started, never both
+        self._rewatch_due = False  # the copier resolves the paths again (scan thread: set; copier: cleared)
         self.latest: Snapshot | None = None
         if attach:  # else: capture() only, when asked (a status line of a stopped engine)
             engine.after_tick.append(self._after_tick)
@@ -244,7 +245,20 @@ class SnapshotHub:
         if engine.clock.virtual or engine.scan_thread != threading.get_ident():
             self.capture()  # a test's tick, or one outside run(): no time between scans to use
             return
+        if self._resolver.generation != engine.generation:
+            # an online change or a restart: the copier resolves the readers'
+            # paths again while the scans go on (it reads no value; 860 paths
+            # took 20-30 ms, which the next scan waited for, a 10 ms task late
+            # by two periods); the first copy of the new program follows it
+            self._requested = True
+            if not self._rewatch_due:
+                self._rewatch_due = True
+                self._wake_copier()
+            return
         self._copying.acquire()  # free: this tick began after the last copy was done
+        self._wake_copier()
+
+    def _wake_copier(self) -> None:
         with self._copier_lock:
             self._copy_due.set()
             if self._copier is None:
@@ -268,6 +282,14 @@ class SnapshotHub:
                         return
                 continue
             self._copy_due.clear()
+            if self._rewatch_due:  # the scan did not wait: no copy, no lock to give back
+                try:
+                    self._rewatch()
+                except Exception as exc:  # the paths kept; tried again after the next scan
+                    log.error("snapshot: resolving the watched paths again: %s", exc)
+                finally:
+                    self._rewatch_due = False
+                continue
             try:
                 self.capture()
             except Exception as exc:  # a snapshot lost, never the next scan
@@ -322,7 +344,9 @@ class SnapshotHub:
         dropped from the snapshots)."""
         resolver = self.resolver
         places: dict = {}
-        for paths in self._watched.values():
+        with self._lock:  # a reader may watch meanwhile (a call thread)
+            watched = list(self._watched.values())
+        for paths in watched:
             for path in paths:
                 try:
                     places[path] = resolver.place(path)

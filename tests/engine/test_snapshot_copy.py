@@ -9,7 +9,7 @@ import threading
 from softplc.runtime.engine.clock import RealClock
 from softplc.runtime.engine.snapshot import SnapshotHub
 
-from .conftest import task
+from .conftest import Scanning, task, wait_until
 
 SRC = """
 VAR_GLOBAL seen AT %QD2 : DINT; END_VAR
@@ -47,3 +47,53 @@ def test_every_snapshot_on_the_real_clock_is_the_end_of_one_scan(engines):
         assert n == snap.cycle, (snap.sequence, n, snap.cycle)
         assert snap.values["seen"] == n and {snap.values[p] for p in paths[2:]} == {n}, snap.sequence
     assert [s.values["Main.n"] for s in snaps] == sorted({s.values["Main.n"] for s in snaps})
+
+
+RESTARTED = """
+VAR_GLOBAL zero : DINT; faulted : BOOL; END_VAR
+PROGRAM Main
+VAR n : DINT; d : DINT; END_VAR
+n := n + 1;
+IF n = 20 AND NOT faulted THEN
+    faulted := TRUE;
+    d := n / zero;
+END_IF
+END_PROGRAM
+"""
+
+
+def test_after_a_restart_the_scans_go_on_while_the_paths_are_resolved_again(engines):
+    """New program instances (a restart, an online change): the watched
+    paths are resolved again by the copier while the scans go on; the
+    scan used to wait for it (20-30 ms for the default plant's 860 paths,
+    two periods of a 10 ms task). Here the resolving is held until the
+    engine has scanned 20 more times, then the snapshots follow the new
+    instance."""
+    e = engines(RESTARTED, [task("Main", 2, "Main")], clock=RealClock(spin_ns=0))
+    hub = SnapshotHub(e, period_s=0)
+    hub.watch("test", ["Main.n", "faulted"])
+    held, resolving = threading.Event(), threading.Event()
+    rewatch = hub._rewatch
+
+    def held_rewatch() -> None:  # the copier's own resolving, once the test lets it
+        resolving.set()
+        assert held.wait(20), "never let go"
+        rewatch()
+
+    hub._rewatch = held_rewatch
+    scanning = Scanning(e, pause_s=0).start()
+    try:
+        wait_until(lambda: e.faulted_tasks(), "the fault at n = 20")
+        e.request_restart()
+        assert resolving.wait(20), "the copier did not resolve the paths again"
+        at = e.cycle
+        wait_until(lambda: e.cycle >= at + 20, "20 scans while the paths are being resolved")
+        held.set()
+        snap = wait_until(
+            lambda: (s := hub.wait_fresh(5)).values["faulted"] and s.values["Main.n"] < e.cycle - 20 and s,
+            "a snapshot of the restarted instance",
+        )
+        assert snap.generation == e.generation == 1
+    finally:
+        held.set()
+        scanning.stop()
