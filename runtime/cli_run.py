@@ -68,6 +68,13 @@ class Duration(click.ParamType):
     ".vcd (GTKWave), .png/.svg/.pdf (a plot at the end). Repeat for several.",
 )
 @click.option(
+    "--bus-log",
+    type=click.Path(dir_okay=False),
+    metavar="FILE",
+    help="Record what the PLC sends and receives on every bus, in engine time: in FILE, whose ending "
+    'chooses the format, or beside it (README "Bus log" says which bus writes where).',
+)
+@click.option(
     "--unit",
     "units",
     multiple=True,
@@ -134,6 +141,7 @@ def run_cmd(
     watch: tuple,
     sets: tuple,
     traces: tuple,
+    bus_log: str | None,
     units: tuple,
     final_json: str | None,
     start_mode: str | None,
@@ -186,6 +194,7 @@ def run_cmd(
             log_max_bytes=log_max_bytes,
             log_backups=log_backups,
             prepared=prepared,
+            bus_log=bus_log,
         )
     )
 

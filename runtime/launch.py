@@ -115,6 +115,7 @@ def run_plc(
     log_backups: int = 5,
     prepared: tuple | None = None,
     sets: list | None = None,
+    bus_log: str | None = None,
 ) -> int:
     """Run the PLC of config (a TOML file; None: the embedded default), or
     of prepared: (PlcConfig, Program) a project gave (softplc run PROJECT)."""
@@ -183,7 +184,13 @@ def run_plc(
             except ValueError as e:
                 return _fail(f"--web: {e}", EXIT_CONFIG)
         try:
-            engine = build_engine(cfg, virtual_time=virtual_time, start_mode=start_mode, program=program)
+            engine = build_engine(
+                cfg,
+                virtual_time=virtual_time,
+                start_mode=start_mode,
+                program=program,
+                bus_log=Path(bus_log) if bus_log else None,
+            )
         except CompileError as e:
             report_compile_errors(e)
             return EXIT_COMPILE

@@ -7,6 +7,8 @@ is simulated, adds nothing)."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from ..config import ConfigError, PlcConfig
 from ..plugin.driver import DriverError
 from ..plugin.registry import loaded, plugin_sections, registry
@@ -21,16 +23,18 @@ from .sim_schedule import SimSchedule
 from .tasks import plan_tasks
 
 
-def make_drivers(config: PlcConfig, clock=None, by_name: dict | None = None) -> list:
+def make_drivers(config: PlcConfig, clock=None, by_name: dict | None = None, bus_log: Path | None = None) -> list:
     """The drivers and simulated devices of config, in the order the engine
     serves them: every bus's simulators first (in virtual time they move on
     to the tick's time before the drivers read the bus), then the bus
     drivers, each in registry order; the scheduled faults of [[sim]] tables
     after the simulators. The engine stops them in reverse: bus drivers
     before the simulated devices they talk to. by_name: filled with the
-    simulators by [[sim]] name."""
+    simulators by [[sim]] name; bus_log: the file every bus records its
+    wire in, or beside (BuildContext.bus_log)."""
     clock = clock if clock is not None else RealClock()
-    ctx = BuildContext(clock, get_profile(config.profile).addressing, str(config.path) if config.path else "<config>")
+    where = str(config.path) if config.path else "<config>"
+    ctx = BuildContext(clock, get_profile(config.profile).addressing, where, bus_log=bus_log)
     if by_name is not None:
         ctx.simulators = by_name
     simulators, drivers = [], []
@@ -64,12 +68,14 @@ def build_engine(
     program=None,
     extra_tasks: tuple = (),
     retain: bool = True,
+    bus_log: Path | None = None,
 ) -> Engine:
     """An Engine for config, not started. Raises CompileError for errors in
     the ST files and TaskSetupError for tasks that cannot run. program: an
     already compiled Program (tests compile once and build many engines);
     extra_tasks: TaskConfigs run beside the configured ones (a test's);
-    retain=False: no retain file is read or written (a test's plant)."""
+    retain=False: no retain file is read or written (a test's plant);
+    bus_log: every bus records its wire in this file or beside it."""
     if program is None:
         program = compile_files(config.programs, profile=config.profile, libraries=tuple(config.libraries))
     where = str(config.path) if config.path else "<config>"
@@ -86,7 +92,7 @@ def build_engine(
         else RealClock(spin_ns=config.spin_ns, realtime_priority=config.realtime_priority)
     )
     simulators: dict = {}
-    drivers = make_drivers(config, clock, simulators)
+    drivers = make_drivers(config, clock, simulators, bus_log)
     engine = Engine(
         program,
         tasks,

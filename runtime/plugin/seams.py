@@ -83,13 +83,17 @@ class BuildContext:
     file for messages, and a dict the buses of one engine share (a
     virtual-time pump every CAN endpoint uses ...). A bus hands every
     simulator it makes for a [[sim]] table to simulated(): the engine finds
-    them there by name (scheduled faults, tests)."""
+    them there by name (scheduled faults, tests). bus_log: the file
+    `softplc run --bus-log` names (None: nothing recorded); each bus
+    records its wire there or beside it, in engine time, and closes it with
+    its drivers (the README's "Bus log" says which file has what)."""
 
     clock: Any
     addressing: str
     where: str = "<config>"
     shared: dict = field(default_factory=dict)
     simulators: dict = field(default_factory=dict)  # [[sim]] name -> the simulator object
+    bus_log: Path | None = None
 
     @property
     def virtual(self) -> bool:

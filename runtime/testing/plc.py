@@ -108,6 +108,7 @@ class PLC:
         start_mode: str | None = None,
         edit: Callable[[dict], None] | None = None,
         base_dir: str | Path | None = None,
+        bus_log: str | Path | None = None,
     ) -> PLC:
         """The PLC of a configuration, with its drivers and [[sim]] devices,
         on the virtual clock unless virtual_time=False. config: a TOML file
@@ -115,6 +116,9 @@ class PLC:
         tables as a dict (relative paths from base_dir, default the current
         directory) or a loaded PlcConfig. edit gets the TOML tables to change
         before they are checked (a channel of its own, one more [[sim]] ...).
+        bus_log: record the wire there (`softplc run --bus-log`: CAN frames
+        in python-can's format of its ending, Modbus frames in
+        STEM.modbus.log beside it), complete once the PLC stops.
         Raises ConfigError, CompileError or TaskSetupError with their usual
         messages."""
         if isinstance(config, PlcConfig):
@@ -132,7 +136,8 @@ class PLC:
                 edit(data)
             base = base_dir if base_dir is not None else (None if where is not None else Path.cwd())
             cfg = config_from_dict(data, where, base_dir=base)
-        return cls(build_engine(cfg, virtual_time=virtual_time, start_mode=start_mode), cfg)
+        log = Path(bus_log) if bus_log is not None else None
+        return cls(build_engine(cfg, virtual_time=virtual_time, start_mode=start_mode, bus_log=log), cfg)
 
     @classmethod
     def from_st(
@@ -144,6 +149,7 @@ class PLC:
         profile: str = "codesys",
         tables: dict | None = None,
         virtual_time: bool = True,
+        bus_log: str | Path | None = None,
     ) -> PLC:
         """A PLC of ST sources: each a Path or a str ending in '.st' (a file;
         also a PLCopen .xml, TwinCAT .TcPOU ... and .plcproj)
@@ -151,7 +157,7 @@ class PLC:
         cycle (unless the sources declare a CONFIGURATION); tasks are
         [[task]] tables as dicts ({"name": "Fast", "interval": "5ms",
         "programs": ["Main"]}). tables: more TOML tables as a dict
-        ([[loopback]], [outputs], [[sim]] ...)."""
+        ([[loopback]], [outputs], [[sim]] ...); bus_log as from_config's."""
         items = [sources] if isinstance(sources, (str, Path)) else list(sources)
         files: list = []
         texts: dict = {}
@@ -174,7 +180,8 @@ class PLC:
             names = [name for name, kind in program.pous.items() if kind == "PROGRAM"]
             data["task"] = [{"name": "MainTask", "interval": f"{cycle_ns}ns", "programs": names}]
         cfg = config_from_dict(data, base_dir=Path.cwd())
-        engine = build_engine(cfg, virtual_time=virtual_time, program=program)
+        log = Path(bus_log) if bus_log is not None else None
+        engine = build_engine(cfg, virtual_time=virtual_time, program=program, bus_log=log)
         return cls(engine, cfg)
 
     # ------------------------------------------------------------ time

@@ -23,6 +23,7 @@ from ...plugin.seams import BuildContext, Bus, Contribution
 from .bus import BusPump, BusSettings, CanEndpoint, open_bus
 from .config import CanAttachment, CanBusConfig, CanNode, CanSection
 from .port import CanPort, shared_port
+from .wire import CanWireLog, wire_log_of
 
 
 @dataclass
@@ -46,8 +47,9 @@ def pump_of(ctx: BuildContext) -> BusPump | None:
 
 def port_of(ctx: BuildContext, bus: CanBusConfig) -> CanPort:
     """The PLC's one connection to the [[can]] bus, shared by every protocol
-    driver of the engine on it (port.py)."""
-    return shared_port(
+    driver of the engine on it (port.py); its frames recorded when the run
+    records its wire (wire.py)."""
+    port = shared_port(
         ctx.shared,
         bus.name,
         settings_of(bus),
@@ -55,10 +57,17 @@ def port_of(ctx: BuildContext, bus: CanBusConfig) -> CanPort:
         clock=ctx.clock,
         fail_fast=bus.missing_adapter == "fail",
     )
+    wire = wire_log_of(ctx, [bus.name])
+    if wire is not None and port.wire is None:
+        port.wire = wire.channel(bus.name)
+    return port
 
 
 def _build(config, ctx: BuildContext) -> Contribution:
     buses = {bus.name: bus for bus in config.can}
+    # made before the protocols' drivers ask for their ports: channels in the file's order,
+    # and the log first among the drivers, so it is closed after them
+    wire = wire_log_of(ctx, list(buses)) if buses else None
     devices = registry().sim_types()
     sims = []
     for sim in config.sims:
@@ -68,7 +77,7 @@ def _build(config, ctx: BuildContext) -> Contribution:
         context = CanSimContext(settings_of(buses[sim.at.bus]), ctx.clock, pump_of(ctx))
         assert device.simulator is not None  # the registry has no simulating device without one
         sims.append(ctx.simulated(sim, device.simulator(sim, context)))
-    return Contribution(simulators=sims)
+    return Contribution(simulators=sims, drivers=[wire] if wire is not None else [])
 
 
 BUS = Bus(name="can", order=20, sections=(CanSection(),), attachment=CanAttachment(), build=_build)
@@ -82,6 +91,7 @@ __all__ = [
     "CanNode",
     "CanPort",
     "CanSimContext",
+    "CanWireLog",
     "open_bus",
     "port_of",
     "pump_of",

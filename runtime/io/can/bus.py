@@ -84,6 +84,8 @@ class CanEndpoint:
         self.received = 0  # frames handed to the handlers
         self.send_errors = 0
         self.last_error = ""
+        #: the PLC's endpoint of a run that records its wire (wire.py): called for each frame sent and received
+        self.wire: Callable[[int, bytes, bool, bool, bool], None] | None = None
         self._handlers: list[Handler] = []
         self._notifier: can.Notifier | None = None
         self._started = False
@@ -173,6 +175,8 @@ class CanEndpoint:
             self.last_error = str(exc)
             return False
         self.sent += 1
+        if self.wire is not None:
+            self.wire(can_id, bytes(data), remote, can_id > 0x7FF, False)
         return True
 
     def poll(self) -> bool:
@@ -218,6 +222,8 @@ class CanEndpoint:
         if not self.connected or msg.is_error_frame:
             return
         self.received += 1
+        if self.wire is not None:
+            self.wire(msg.arbitration_id, bytes(msg.data), msg.is_remote_frame, msg.is_extended_id, True)
         for handler in self._handlers:
             try:
                 handler(msg)

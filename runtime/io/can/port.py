@@ -68,6 +68,7 @@ class CanPort:
         now: Callable[[], int] = clock.now_ns if clock is not None else monotonic_ns
         self.lines = RateLimitedLog(log, now)
         self.endpoint: CanEndpoint | None = None
+        self.wire: Callable[[int, bytes, bool, bool, bool], None] | None = None  # wire.py: the run records its wire
         self.error = ""  # why the bus is not open; "" when it is
         self.next_try_ns = 0  # down: when try_open() tries again
         self.tries = 0  # failed tries since the bus went down
@@ -102,6 +103,7 @@ class CanPort:
                         REOPEN_MAX_NS / 1e9,
                     )
                 self.endpoint = CanEndpoint(bus, name=f"{self.name} on {self.settings.channel}", pump=self.pump)
+                self.endpoint.wire = self.wire
                 self.endpoint.start()
             self._users += 1
             return self.endpoint

@@ -16,9 +16,11 @@ from __future__ import annotations
 import dataclasses
 import socket
 from dataclasses import dataclass
+from pathlib import Path
 
 from ...plugin.registry import registry
 from ...plugin.seams import BuildContext, Bus, Contribution, StLibrary
+from .buslog import ModbusWireLog, modbus_log_path
 from .config import ModbusAttachment, ModbusChannelConfig, ModbusConnectionConfig, ModbusSection, ModbusUnit
 from .exchange import MODBUS_EXCHANGE
 from .line import SimulatedModbusLine, UnitOnLine
@@ -101,10 +103,10 @@ def _build(config, ctx: BuildContext) -> Contribution:
                 else dataclasses.replace(conn, port=line.port)
             )
         connections.append(conn)
-    return Contribution(
-        simulators=list(lines.values()),
-        drivers=[ModbusDriver(connections, ctx.addressing, clock=ctx.clock, servers=servers)],
-    )
+    # the run records its wire: the log first among the drivers, closed after them
+    wire = ModbusWireLog(modbus_log_path(Path(ctx.bus_log)), ctx.clock) if ctx.bus_log is not None else None
+    driver = ModbusDriver(connections, ctx.addressing, clock=ctx.clock, servers=servers, wire=wire)
+    return Contribution(simulators=list(lines.values()), drivers=[wire, driver] if wire is not None else [driver])
 
 
 BUS = Bus(

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import logging
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from pymodbus.client import ModbusSerialClient, ModbusTcpClient
@@ -128,6 +129,8 @@ class ModbusLink:
         self.server = server  # in memory to a simulated line (virtual time), see wire.py
         self._client: ModbusTcpClient | ModbusSerialClient | MemoryClient | None = None
         self._tap = _Tap()  # the frames of the last request, as they crossed the wire
+        #: a run that records its wire (buslog.py): (sent at, request, answer, response time) after each request
+        self.wire: Callable[[int, bytes, bytes, float], None] | None = None
         self._replies = ReplyCheck(settings.transport)
         self._next_attempt_ns = 0
         self._backoff_s = settings.reconnect_s
@@ -231,6 +234,7 @@ class ModbusLink:
                 time.sleep(wait)
         start = time.perf_counter()
         tap = self._tap
+        tap.sent = tap.received = b""
         try:
             response = self._call(client, tx)
         except ModbusIOException as exc:
@@ -246,11 +250,14 @@ class ModbusLink:
             return Outcome(ModbusError.RESPONSE_INVALID_DATA, message=str(exc))
         finally:
             self._last_frame_end = time.perf_counter()
+            if self.wire is not None:
+                self.wire(now_ns, tap.sent, tap.received, self._last_frame_end - start)
         return self._outcome(tx, response, self._last_frame_end - start, self._check(tx, tap.sent, tap.received))
 
     def _transact_in_memory(self, client: MemoryClient, tx: Transaction, now_ns: int) -> Outcome:
         """transact() over a MemoryClient: nothing waits; a timeout is
         reported as late_s, the virtual time it costs."""
+        client.sent = client.received = b""
         try:
             response = self._call(client, tx)
         except ModbusIOException as exc:
@@ -260,6 +267,9 @@ class ModbusLink:
             return outcome
         except ModbusException as exc:
             return Outcome(ModbusError.RESPONSE_INVALID_DATA, message=str(exc))
+        finally:
+            if self.wire is not None:
+                self.wire(now_ns, client.sent, client.received, client.line_s)
         return self._outcome(tx, response, client.line_s, self._check(tx, client.sent, client.received))
 
     def _no_reply(self, tx: Transaction, sent: bytes, received: bytes, exc: Exception, line_s: float) -> Outcome:

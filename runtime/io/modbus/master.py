@@ -202,9 +202,10 @@ class ConnectionWorker:
 class ModbusDriver(Driver):
     """Driver for all [[modbus]] connections (one instance per engine)."""
 
-    def __init__(self, connections: list, addressing: str, *, clock, servers: dict | None = None) -> None:
+    def __init__(self, connections: list, addressing: str, *, clock, servers: dict | None = None, wire=None) -> None:
         """servers: connection name -> the MemoryServer of its simulated
-        line, for the connections that run in memory (virtual time)."""
+        line, for the connections that run in memory (virtual time); wire:
+        the run's ModbusWireLog (buslog.py), when it records its wire."""
         self.name = "modbus"
         image = ProcessImage(addressing)  # the layout, for the channels' byte spans
         self.clock = clock
@@ -220,6 +221,8 @@ class ModbusDriver(Driver):
                     raise DriverError(str(exc)) from None
             self.channels.extend(channels)
             link = ModbusLink(link_settings(cfg), (servers or {}).get(cfg.name))
+            if wire is not None:
+                link.wire = wire.connection(cfg.name)
             self.workers[cfg.name] = ConnectionWorker(link, channels, clock, self.lines)
         self.exchange = ModbusExchangeService(self._submit)
         self.safe = SafeWrites(self.workers.__contains__)
