@@ -29,6 +29,7 @@ from pathlib import Path
 import click
 
 from . import cache
+from .cli_log import log_cmd
 from .cli_project import ALL_ERRORS_OPTION, PARTIAL_OPTION
 from .cli_project import PROFILE_OPTION as PROJECT_PROFILE_OPTION
 from .cli_report import echo_err as _echo_err
@@ -475,6 +476,7 @@ def is_test_project(path: str) -> bool:
 
 
 cli.add_command(run_cmd)
+cli.add_command(log_cmd)
 
 
 def main(argv: list | None = None) -> None:

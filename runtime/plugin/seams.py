@@ -10,6 +10,8 @@ A bus (a driver package, runtime/io/<bus>/) declares a ``Bus``:
     natives       ST functions its services execute (st/native.py)
     libraries     ST files with its blocks and diagnostic structs, compiled
                   into a program that names something they declare
+    read_log      `softplc log`: a bus log it wrote, decoded (frame_text: a
+                  protocol's words for the frames of another bus's log)
     build         the drivers and simulators for a configuration
                   (Contribution): drivers exchange with the process image at
                   the cycle boundary, offer their services, publish their
@@ -28,7 +30,7 @@ adds one with no change to softplc.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
@@ -138,6 +140,12 @@ class Bus:
     natives: tuple[NativeFunction, ...] = ()
     libraries: tuple[StLibrary, ...] = ()
     build: Callable[[Any, BuildContext], Contribution] | None = None  # (PlcConfig, context)
+    #: `softplc log FILE`: the lines of a bus log this bus wrote (BuildContext.bus_log),
+    #: decoded with the configuration's words (PlcConfig), or None when FILE is not its
+    read_log: Callable[[Path, Any], Iterable[str] | None] | None = None
+    #: a protocol on another bus's wire (CANopen, a plain-CAN device on a [[can]] bus):
+    #: (PlcConfig) -> (bus name, frame) -> its words for the frame, or None when not its
+    frame_text: Callable[[Any], Callable[[str, Any], str | None]] | None = None
 
 
 class ParameterValueError(ValueError):

@@ -23,6 +23,7 @@ from ...plugin.seams import BuildContext, Bus, Contribution
 from .bus import BusPump, BusSettings, CanEndpoint, open_bus
 from .config import CanAttachment, CanBusConfig, CanNode, CanSection
 from .port import CanPort, shared_port
+from .readlog import read_log
 from .wire import CanWireLog, wire_log_of
 
 
@@ -80,7 +81,14 @@ def _build(config, ctx: BuildContext) -> Contribution:
     return Contribution(simulators=sims, drivers=[wire] if wire is not None else [])
 
 
-BUS = Bus(name="can", order=20, sections=(CanSection(),), attachment=CanAttachment(), build=_build)
+BUS = Bus(
+    name="can",
+    order=20,
+    sections=(CanSection(),),
+    attachment=CanAttachment(),
+    build=_build,
+    read_log=read_log,
+)
 
 __all__ = [
     "BUS",

@@ -14,6 +14,7 @@ from __future__ import annotations
 from ...plugin.seams import BuildContext, Bus, Contribution, StLibrary
 from ..can import port_of, pump_of, settings_of
 from .config import CanopenConfig, CanopenSection
+from .decode import frame_text
 from .master import CanopenDriver
 from .sdo import READ_VAR, WRITE_VAR
 from .slave import SimulatedCanopenSlave
@@ -48,6 +49,7 @@ BUS = Bus(
         StLibrary("softplc.fblocks.comm", "cia402.st"),
     ),
     build=_build,
+    frame_text=frame_text,
 )
 
 __all__ = ["BUS", "CanopenConfig", "CanopenDriver", "SimulatedCanopenSlave"]

@@ -25,6 +25,7 @@ from .config import ModbusAttachment, ModbusChannelConfig, ModbusConnectionConfi
 from .exchange import MODBUS_EXCHANGE
 from .line import SimulatedModbusLine, UnitOnLine
 from .master import ModbusDriver
+from .readlog import read_log
 from .safe import MODBUS_SAFE_WRITE
 from .unit import SILENT, ModbusRefusal, SimulatedUnit
 
@@ -117,6 +118,7 @@ BUS = Bus(
     natives=(MODBUS_EXCHANGE, MODBUS_SAFE_WRITE),
     libraries=(StLibrary("softplc.fblocks.comm", "modbus.st"),),
     build=_build,
+    read_log=read_log,
 )
 
 __all__ = [
