@@ -182,6 +182,9 @@ class Device:
     #: an EMCY of a node with one of the device's files, in words for the log:
     #: (error code, error register, manufacturer bytes) -> text
     emcy_text: Callable[[int, int, bytes], str] | None = None
+    #: a value of one of its objects in the manual's words, for `softplc log`:
+    #: (object index, sub-index, raw value) -> text, or None for an object it has no words for
+    object_text: Callable[[int, int, int], str | None] | None = None
     #: the device's safe state, for a node with one of its files: (object
     #: index, sub-index) -> the raw value an RPDO carries there while the PLC
     #: holds its outputs safe (a task fault, the stop), where [outputs] safe

@@ -33,6 +33,7 @@ from .options import Fc280Options
 from .parameters import sdo_object
 from .profile import OBJ_CONTROL_WORD, OBJ_REFERENCE, SAFE_CONTROL_WORD
 from .sim import FAULTS, Fc280Simulator
+from .words import object_text
 
 EDS = PackageFile("softplc.io_config", "eds/fc280.eds")
 
@@ -77,6 +78,7 @@ DEVICE = Device(
     ),
     parameter_object=sdo_object,
     emcy_text=emcy_text,
+    object_text=object_text,
     safe_objects=SAFE_OBJECTS,
 )
 

@@ -32,6 +32,7 @@ from .eds import ltmr_eds
 from .emcy import emcy_text
 from .registers import REG_CONTROL_1, register_to_object
 from .sim import FAULTS, LtmrSimulator
+from .words import object_text
 
 EDS = PackageFile("softplc.io_config", "eds/ltmr.eds")
 
@@ -63,6 +64,7 @@ DEVICE = Device(
     ),
     safe_objects={register_to_object(REG_CONTROL_1): int(SAFE_CONTROL_1)},  # 2008:05 = 0: motor off
     emcy_text=emcy_text,
+    object_text=object_text,
 )
 
 __all__ = ["DEVICE", "LtmrSimulator"]

@@ -36,10 +36,16 @@ class _Node:
     node_id: int
     od: object | None  # canopen's ObjectDictionary from the node's EDS (None: it did not read)
     emcy_text: Callable | None
-    pdos: dict = field(default_factory=dict)  # COB-ID -> (label, [(name, bits, signed)])
+    object_text: Callable | None  # its device's words for a value of one of its objects
+    pdos: dict = field(default_factory=dict)  # COB-ID -> (label, [(index, sub, name, bits, signed)])
 
     def who(self) -> str:
         return f"{self.name} ({self.node_id})"
+
+    def value(self, index: int, sub: int, raw: int) -> str:
+        """A value of one of its objects: the number, and its device's words for it."""
+        words = self.object_text(index, sub, raw) if self.object_text is not None else None
+        return f"{_number(raw)}: {words}" if words else _number(raw)
 
     def object_name(self, index: int, sub: int) -> str:
         entry = _entry(self.od, index, sub)
@@ -99,7 +105,13 @@ def _node(cfg) -> _Node:
     except Exception:  # an EDS canopen cannot read: the frames without the objects' names
         od = None
     device = registry().device_with_name(cfg.device) if cfg.device else None
-    node = _Node(cfg.name, cfg.node_id, od, device.emcy_text if device is not None else None)
+    node = _Node(
+        cfg.name,
+        cfg.node_id,
+        od,
+        device.emcy_text if device is not None else None,
+        device.object_text if device is not None else None,
+    )
     for direction, pdos in (("tpdo", cfg.tpdo), ("rpdo", cfg.rpdo)):
         for pdo in pdos:
             try:
@@ -111,7 +123,7 @@ def _node(cfg) -> _Node:
                 entry = _entry(od, e.index, e.subindex)
                 bits = _bits(entry)
                 signed = entry is not None and entry.data_type in _SIGNED
-                entries.append((node.object_name(e.index, e.subindex), bits, signed))
+                entries.append((e.index, e.subindex, node.object_name(e.index, e.subindex), bits, signed))
             node.pdos[cob] = (f"{direction.upper()}{pdo.number}", entries)
     return node
 
@@ -169,7 +181,8 @@ def _sdo(who: str, node: _Node | None, data: bytes, *, request: bool) -> str:
         return f"{side}: abort {what}: {abort_text(int.from_bytes(data[4:8], 'little'))}"
     expedited, sized = data[0] & 0x02, data[0] & 0x01
     size = 4 - ((data[0] >> 2) & 0x03) if expedited and sized else 4
-    value = _number(int.from_bytes(data[4 : 4 + size], "little"))
+    raw = int.from_bytes(data[4 : 4 + size], "little")
+    value = node.value(index, sub, raw) if node is not None else _number(raw)
     if request and command == 1:  # initiate download
         return f"{side}: write {what} = {value}" if expedited else f"{side}: write {what} (segmented)"
     if request and command == 2:
@@ -189,13 +202,13 @@ def _number(value: int) -> str:
 def _pdo(node: _Node, label: str, entries: list, data: bytes) -> str:
     bits_in = int.from_bytes(data, "little")
     offset, parts = 0, []
-    for name, bits, signed in entries:
+    for index, sub, name, bits, signed in entries:
         raw = (bits_in >> offset) & ((1 << bits) - 1)
         if signed and raw >> (bits - 1):
             raw -= 1 << bits
-        parts.append(f"{name} = {_number(raw)}")
+        parts.append(f"{name} = {node.value(index, sub, raw)}")
         offset += bits
-    return f"{node.who()} {label}: " + ", ".join(parts)
+    return f"{node.who()} {label}: " + " | ".join(parts)
 
 
 __all__ = ["frame_text"]

@@ -63,6 +63,14 @@ def test_pdos_name_their_mapped_objects(can_lines):
     assert re.search(r"motor \(40\) RPDO1: 2008:05 Control register 1 \[704\] = \d", text)
 
 
+def test_device_words_for_their_objects(can_lines):
+    text = "\n".join(can_lines)
+    # the program runs the pump: 16-80 = 047C, "start" in the FC profile (manual 003 Tabelle 4.7)
+    assert "2690:00 Fieldbus CTW 1 (16-80) = 1148 (0x47C): start; preset 1" in text
+    assert re.search(r"2643:00 Status word \(16-03\) = \d+ \(0x[0-9A-F]+\): control ready, drive ready", text)
+    assert "2004:02 Trip code [451] = 0: No detected error" in text  # the LTMR's DT_FaultCode 0
+
+
 def test_the_modbus_log_in_words(recorded):
     done = softplc("log", recorded.with_name("plant.modbus.log"))
     assert done.returncode == 0, done.stderr
