@@ -36,6 +36,7 @@ from .exchange import MPU2S_EXCHANGE
 from .node import Mpu2sNode, Mpu2sOptions
 from .sim import FAULTS, Mpu2sSimulator
 from .sim_options import Mpu2sSimOptions
+from .words import frame_text
 
 
 def _simulator(sim, ctx: CanSimContext) -> Mpu2sSimulator:
@@ -52,7 +53,7 @@ DEVICE = Device(
     sim_options=Mpu2sSimOptions,
     simulator=_simulator,
     sim_faults=FAULTS,
-    node_kind=PlainCanKind(options=Mpu2sOptions, build=Mpu2sNode),
+    node_kind=PlainCanKind(options=Mpu2sOptions, build=Mpu2sNode, frame_text=frame_text),
     natives=(MPU2S_EXCHANGE,),
     libraries=(
         StLibrary("softplc.fblocks.vendor", "mpu2s_codes.st"),

@@ -34,7 +34,25 @@ def _build(config, ctx: BuildContext) -> Contribution:
     return Contribution(drivers=list(drivers.values()))
 
 
-BUS = Bus(name="plaincan", order=35, sections=(PlainCanSection(),), build=_build)
+def frame_text(config):
+    """`softplc log`: each [[plaincan]] node's words for the frames of its bus (PlainCanKind.frame_text)."""
+    nodes = config.sections.get("plaincan") or []
+    by_kind = kinds(registry()) if nodes else {}
+
+    def words(bus: str, msg) -> str | None:
+        if msg.is_extended_id or msg.is_remote_frame:
+            return None
+        for cfg in nodes:
+            text = by_kind[cfg.type].frame_text if cfg.bus == bus else None
+            found = text(cfg.options, msg.arbitration_id, bytes(msg.data)) if text is not None else None
+            if found:
+                return f"{cfg.name}: {found}"
+        return None
+
+    return words
+
+
+BUS = Bus(name="plaincan", order=35, sections=(PlainCanSection(),), build=_build, frame_text=frame_text)
 
 __all__ = [
     "BUS",

@@ -112,3 +112,6 @@ class PlainCanNode(Protocol):
 class PlainCanKind:
     options: type[NodeOptions]
     build: Callable[[PlainCanNodeConfig, NodeContext], PlainCanNode]
+    #: `softplc log`: a frame of the bus in the device's words, for a node
+    #: of this kind ((its options, can id, data) -> text, or None: not its)
+    frame_text: Callable[[Any, int, bytes], str | None] | None = None
