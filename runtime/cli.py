@@ -376,21 +376,53 @@ def _pick_entry(pous: dict, entry: str | None) -> str:
     metavar="VAR=UNIT",
     help="Label a number's axis with UNIT; numbers with the same unit share an axis.",
 )
-def plot_cmd(trace: str, output: str | None, signals: str | None, units: tuple) -> None:
+@click.option(
+    "--bus-log",
+    type=click.Path(dir_okay=False),
+    metavar="FILE",
+    help="The run's bus log (`softplc run --bus-log`): its frames --mark names are marked.",
+)
+@click.option(
+    "--mark",
+    "mark_texts",
+    multiple=True,
+    metavar="TEXT",
+    help="Mark the frames whose line of `softplc log` holds TEXT ('EMCY', 'NMT start', 'unit 1: write').",
+)
+@click.option(
+    "--config",
+    type=click.Path(dir_okay=False),
+    metavar="CONFIG",
+    help="The run's TOML file, for the frames' words [default: the embedded example].",
+)
+def plot_cmd(
+    trace: str,
+    output: str | None,
+    signals: str | None,
+    units: tuple,
+    bus_log: str | None,
+    mark_texts: tuple,
+    config: str | None,
+) -> None:
     """Plot a trace of `softplc run --trace` (a .csv or .vcd file): BOOLs as
-    stacked steps, enumerations by name, numbers as lines, over engine time."""
+    stacked steps, enumerations by name, numbers as lines, over engine time;
+    with --bus-log and --mark, the frames of the run's bus log as dotted lines."""
+    from .cli_log import marks
     from .trace.plot import FORMATS, PlotUnavailable, parse_units, plot
     from .trace.series import TraceFileError, read_trace
 
     out = Path(output) if output else Path(trace).with_suffix(".png")
     if out.suffix.lower() not in FORMATS:
         raise click.UsageError(f"-o {out}: the ending says the format: {', '.join(FORMATS)}")
+    if bool(bus_log) != bool(mark_texts):
+        raise click.UsageError("--bus-log and --mark go together: the log, and which of its frames to mark")
     try:
         unit_of = parse_units(units)
         data = read_trace(trace)
         if signals:
             data = data.select([n.strip() for n in signals.split(",") if n.strip()])
-        left_out = plot(data, out, unit_of)
+        found = marks(bus_log, config, list(mark_texts)) if bus_log else []
+        left_out = plot(data, out, unit_of, marks=found)
     except (PlotUnavailable, TraceFileError, ValueError) as e:
         _echo_err(f"softplc: {e}")
         sys.exit(EXIT_USAGE)
@@ -402,6 +434,8 @@ def plot_cmd(trace: str, output: str | None, signals: str | None, units: tuple) 
         sys.exit(EXIT_USAGE)
     if left_out:
         _echo_err(f"not drawn (text): {', '.join(left_out)}")
+    if bus_log:
+        _echo_err(f"marked {len(found)} frame(s) of {bus_log}")
     _echo_err(f"wrote {out}")
 
 

@@ -8,6 +8,10 @@ Top to bottom, on one engine-time axis:
                with it, a signal without a unit has an axis of its own
                labelled with its ST type; a legend names the lines
 Text (STRINGs, arrays, structs) is not drawn; plot() returns those names.
+Marks (the frames of a bus log, `softplc plot --bus-log FILE --mark TEXT`)
+are dotted vertical lines through every panel at their engine time, each
+labelled on top with its text (the first MARK_LABELS of them; SVG groups
+named mark-0, mark-1 ...).
 """
 
 from __future__ import annotations
@@ -19,6 +23,7 @@ from .series import ANALOGUE, Trace
 FORMATS = (".png", ".svg", ".pdf")
 WIDTH_IN = 11.0
 DPI = 110
+MARK_LABELS = 40  # more labels than this would hide each other: the lines only
 
 
 class PlotUnavailable(RuntimeError):
@@ -46,8 +51,15 @@ def parse_units(items) -> dict:
     return units
 
 
-def plot(trace: Trace, out: str | Path, units: dict | None = None, title: str | None = None) -> list:
-    """Draw trace into out (its suffix picks the format). Returns the names
+def plot(
+    trace: Trace,
+    out: str | Path,
+    units: dict | None = None,
+    title: str | None = None,
+    marks: list[tuple[float, str]] | None = None,
+) -> list:
+    """Draw trace into out (its suffix picks the format), with marks
+    ((engine seconds, label): see the module's docstring). Returns the names
     of the signals left out (text). KeyError for a unit of a signal the
     trace does not have; OSError when out cannot be written."""
     require()
@@ -88,6 +100,7 @@ def plot(trace: Trace, out: str | Path, units: dict | None = None, title: str | 
         ax.grid(True, axis="x", color="0.88", linewidth=0.6)
         ax.tick_params(labelsize=8)
         ax.margins(x=0)
+    _draw_marks(axes, marks or [])
     axes[-1].set_xlabel("engine time [s]")
     fig.suptitle(title or Path(trace.source).name or "softplc trace", fontsize=10)
     fig.savefig(out)
@@ -129,3 +142,21 @@ def _draw_numbers(ax, label: str, members: list) -> None:
     # above the axis, where it hides no line
     ax.legend(loc="lower left", bbox_to_anchor=(0, 1), ncol=len(members), fontsize=7, frameon=False, borderaxespad=0.1)
     ax.grid(True, axis="y", color="0.92", linewidth=0.6)
+
+
+def _draw_marks(axes, marks: list) -> None:
+    labelled: set = set()
+    for i, (t, label) in enumerate(marks):
+        for ax in axes:
+            ax.axvline(t, color="0.35", linestyle=":", linewidth=0.8, gid=f"mark-{i}")
+        if len(labelled) < MARK_LABELS and (t, label) not in labelled:  # one label where two frames coincide
+            labelled.add((t, label))
+            axes[0].annotate(
+                label,
+                (t, 1.0),
+                xycoords=("data", "axes fraction"),
+                rotation=60,
+                fontsize=6,
+                color="0.25",
+                annotation_clip=False,
+            )
