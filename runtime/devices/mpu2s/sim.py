@@ -98,7 +98,8 @@ def _fault_class(value: object) -> int:
 
 
 def _store_overrides(s: Mpu2sScenario) -> dict[str, object]:
-    """The parameters that describe the scenario's plant (sim_store.INITIAL for the rest)."""
+    """The parameters that describe the scenario's plant, and its [[sim]]
+    parameters over them (sim_store.INITIAL for the rest)."""
     primary = int(_clamp(round(s.rated_voltage), 5, 65000))
     secondary = primary if 50 <= primary <= 480 else 100
     current = s.rated_power * 1000.0 / (math.sqrt(3.0) * s.rated_voltage)
@@ -112,6 +113,7 @@ def _store_overrides(s: Mpu2sScenario) -> dict[str, object]:
         "gen_rated_power": int(_clamp(round(s.rated_power), 5, 9999)),
         "gen_rated_current": int(_clamp(round(current), 0, 7000)),
         "gcb_closing_time": int(_clamp(s.closing_time_ms, 40, 300)),
+        **s.parameters,  # [[sim]] parameters: the user's presets over what the plant implies
     }
 
 

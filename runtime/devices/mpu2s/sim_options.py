@@ -11,7 +11,14 @@ the wires between that plant and the PLC.
     voltage_offset = 2.0              # U_gen above rated, %
     closing_time = "80ms"             # the GCB's; refuse_close = true: it never closes
     password = 1234                   # code level 2 (ID 500): writes need it first (optional)
+    parameters = { sync_df_max = 0.25, gcb_closing_time = 100 }   # chapter 4's, in their units (optional)
     wiring = { raise_f = "%QX20.0", lower_f = "%QX20.1", gcb_close = "%QX20.4", phase = "%ID20", ... }
+
+`parameters` presets the device's parameter memory (sim_store.py) by the
+parameters' keys of parameters.csv, each value in the parameter's unit
+(Hz, %, s, V ..., true/false for a switch) and checked against the manual's
+range as a write from the bus is: what a scenario starts from, over the
+values the plant's keys above imply (gcb_closing_time from closing_time ...).
 
 The wiring is the plant's hard-wired I/O, seen from the PLC: the genset's
 raise/lower inputs and the breaker's coils are PLC outputs (%QX); the
@@ -25,6 +32,7 @@ writes are refused until ID 500 got it (sim_store.py).
 
 from __future__ import annotations
 
+import difflib
 from dataclasses import dataclass, field
 from typing import Annotated, Any
 
@@ -34,6 +42,9 @@ from ...config.errors import key_text
 from ...config.relations import Relations
 from ...config.section import SimOptions
 from ...config.values import choice, duration_in, fail, int_range
+from . import parameters as P
+from .sim_store import FACTOR as P_FACTOR
+from .sim_store import VARIANT as P_VARIANT
 
 #: PLC outputs the plant reads (contacts): signal -> what it is
 OUTPUT_SIGNALS = {
@@ -67,6 +78,29 @@ def _real(low: float, high: float, what: str):
     return PlainValidator(check)
 
 
+def _parameters(value) -> dict:
+    if isinstance(value, dict):
+        return value
+    raise fail("a table of parameter = value, such as { sync_df_max = 0.25 }", value)
+
+
+def preset_refusal(key: str, value: object) -> str | None:
+    """Why [[sim]] parameters cannot preset key to value (None: it can): no
+    such parameter, a text or relay word, or a value the manual's range refuses."""
+    by_key = {p.key: p for p in P.PARAMETERS}
+    p = by_key.get(key)
+    if p is None:
+        close = difflib.get_close_matches(key, list(by_key), n=1, cutoff=0.6)
+        return "no MPU2-S parameter of that key" + (f" (did you mean '{close[0]}'?)" if close else " (parameters.csv)")
+    if p.kind in P.WORDS_OF_KIND:
+        return f"{p}: a text or relay-manager word, which [[sim]] cannot preset"
+    try:
+        P.encode(p, value, factor=P_FACTOR if p.factor_id is not None else None, variant=P_VARIANT)
+    except ValueError as exc:
+        return str(exc)
+    return None
+
+
 def _wiring(value) -> dict:
     if isinstance(value, dict) and all(isinstance(v, str) for v in value.values()):
         return value
@@ -88,6 +122,7 @@ class Mpu2sScenario:
     trip_limit: float = 20.0  # deg
     wiring: dict[str, str] = field(default_factory=dict)
     password: int | None = None  # code level 2 (ID 500), 0..9999; None: writes need none
+    parameters: dict[str, object] = field(default_factory=dict)  # parameter key -> value in its unit
 
 
 class Mpu2sSimOptions(SimOptions):
@@ -110,9 +145,18 @@ class Mpu2sSimOptions(SimOptions):
     password: Annotated[int, int_range(0, 9999)] | None = Field(
         None, description="the code level 2 password (ID 500), 0..9999"
     )
+    parameters: Annotated[dict, PlainValidator(_parameters)] = Field(
+        default_factory=dict, description="parameter key = value in its unit"
+    )
 
     @classmethod
     def check(cls, here: tuple, sim: dict, ctx: Relations) -> None:
+        presets = sim.get("parameters")
+        if isinstance(presets, dict):
+            for key, value in presets.items():
+                why = preset_refusal(key, value)
+                if why:
+                    ctx.error(here + ("parameters", key), why)
         wiring = sim.get("wiring")
         if not isinstance(wiring, dict):
             return
@@ -158,6 +202,7 @@ class Mpu2sSimOptions(SimOptions):
             trip_limit=self.trip_limit,
             wiring=dict(self.wiring),
             password=self.password,
+            parameters=dict(self.parameters),
         )
 
 
