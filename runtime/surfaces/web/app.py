@@ -19,7 +19,8 @@ value the type cannot hold, 403 a variable [web] writable does not cover,
 change under way), 413 a body over guard.MAX_BODY or a watch of more than
 MAX_WATCHED paths, 429 watches asked faster than WATCH_RATE, 503 more than
 MAX_CLIENTS event streams (or MAX_CONNECTIONS requests at once: uvicorn's
-limit), 504 no scan took the change in time, or the PLC did not answer
+limit, or the PLC's process gone: killed, or stopping, child.PlcGone),
+504 no scan took the change in time, or the PLC did not answer
 a call in time (process.PlcBusy: busy, or stopping); restart and online-change
 answer 403 when [web] control is false (a page that watches and writes,
 and no more). A value echoed in a message is cut. A POST must be JSON
@@ -102,7 +103,14 @@ def make_app(surfaces, config: ServerConfig, broadcaster: Broadcaster) -> Guard:
         limited.warning(("busy",), "web: %s %s: %s", request.method, cut(request.url.path), exc)
         return _error(504, str(exc) or "the PLC did not answer in time")
 
-    app = Starlette(routes=routes, middleware=middleware, lifespan=lifespan, exception_handlers={TimeoutError: busy})
+    async def gone(request: Request, exc: Exception) -> Response:
+        """The PLC's process ended while a request waited for it (child.PlcGone,
+        a ConnectionError: killed, stopping): 503 and why, never a 500."""
+        limited.warning(("gone",), "web: %s %s: %s", request.method, cut(request.url.path), exc)
+        return _error(503, str(exc) or "the PLC is gone")
+
+    handlers = {TimeoutError: busy, ConnectionError: gone}
+    app = Starlette(routes=routes, middleware=middleware, lifespan=lifespan, exception_handlers=handlers)
     guard = Guard(app, limited)
     guard.api = api  # type: ignore[attr-defined]  # the tests reach its rates and limits
     return guard
