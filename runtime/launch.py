@@ -24,6 +24,26 @@ TRACE_SUFFIXES = (".csv", ".vcd", *PLOT_SUFFIXES)
 log = logging.getLogger("softplc")
 
 
+#: --final-json's key of the simulators' records: no ST name can be it
+RECORDS_KEY = "[[sim]]"
+
+
+def final_data(engine) -> dict:
+    """--final-json: every program instance's variables and the globals
+    (Engine.dump), and under RECORDS_KEY each simulated device's records by
+    its [[sim]] name (what a simulator's records() gives: the MPU2-S's
+    breaker closes, the EMCYs a CANopen device sent ...), when one has any."""
+    data = engine.dump()
+    records = {}
+    for name, sim in engine.simulators.items():
+        taken = sim.records() if callable(getattr(sim, "records", None)) else None
+        if taken:
+            records[name] = taken
+    if records:
+        data[RECORDS_KEY] = records
+    return data
+
+
 def settle_heap() -> None:
     """Before the first scan: collect the garbage of the start-up, then move
     what is alive (the libraries, the servers, the program) out of the
@@ -264,7 +284,7 @@ def run_plc(
                 store.errors + store.writes,
             )
         if final_json:
-            text = json_text(engine.dump(), indent=2) + "\n"
+            text = json_text(final_data(engine), indent=2) + "\n"
             if final_json == "-":
                 sys.stdout.write(text)
             else:

@@ -67,6 +67,7 @@ from ...io.canopen.eds import shipped_eds
 from ...io.canopen.slave import UNPLUG, SimulatedCanopenSlave
 from ...plugin.seams import SimFault
 from . import emcy
+from .diagnostics import emcy_text
 from .model import Fc280Model
 from .motor import int16, round_half_away
 from .parameters import BAUD_CODES, PARAMETERS, number_of
@@ -127,6 +128,8 @@ def _baud_code(bitrate: int) -> int | None:
 class Fc280Simulator(SimulatedCanopenSlave):
     """See the module docstring. parameters: raw values by parameter number
     (arrays as lists), the drive's saved values when it is first switched on."""
+
+    emcy_text = staticmethod(emcy_text)  # its EMCYs in the manual's words, in its records
 
     def __init__(
         self,

@@ -58,7 +58,7 @@ from ...plugin.seams import SimFault
 from . import pkw
 from .bits import GENERAL_CONFIG2_RESET_MODE_MASK, NetworkPortStatus
 from .codes import CANOPEN_BAUD_CODES, FallbackStrategy, OperatingMode, ResetMode, fallback_allowed
-from .emcy import EMCY_RESET, EMCY_TRIP, ERROR_REGISTER_DETECTED, trip_payload
+from .emcy import EMCY_RESET, EMCY_TRIP, ERROR_REGISTER_DETECTED, emcy_text, trip_payload
 from .model import LtmrModel
 from .profile import PKW_INDEX, RPDO_MAPPABLE_INDICES, TPDO_MAPPABLE_INDICES, pkw_read_only
 from .registers import (
@@ -95,6 +95,7 @@ FAULTS = (UNPLUG, LOAD)
 class LtmrSimulator(SimulatedCanopenSlave):
     #: A21 leaves the abort code of a note A/B/C violation open; this one by default
     note_abort = ABORT_DEVICE_STATE
+    emcy_text = staticmethod(emcy_text)  # its EMCYs in the manual's words, in its records
 
     def __init__(
         self,

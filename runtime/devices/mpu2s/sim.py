@@ -191,6 +191,23 @@ class Mpu2sSimulator(SimulatedDevice):
     def closes(self) -> list[Close]:
         return self._plant.closes
 
+    def records(self) -> dict:
+        """--final-json: each time the breaker's contacts touched (engine
+        time, phase and voltage difference at that instant, slip, dead bus,
+        tripped by a phase past trip_limit)."""
+        closes = [
+            {
+                "t_s": c.t_ns / 1e9,
+                "phase_deg": c.phase_deg,
+                "voltage_diff_v": c.voltage_diff,
+                "slip_hz": c.slip_hz,
+                "dead_bus": c.dead_bus,
+                "tripped": c.tripped,
+            }
+            for c in self.closes
+        ]
+        return {"closes": closes} if closes else {}
+
     @property
     def authorised(self) -> bool:
         return self.store.authorised

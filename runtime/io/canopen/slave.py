@@ -37,6 +37,7 @@ from __future__ import annotations
 import logging
 import struct
 import threading
+from collections import deque
 from collections.abc import Callable
 
 import can
@@ -95,6 +96,7 @@ UNPLUG = SimFault("unplug", "the node's cable out: it neither sends nor receives
 
 # EMCY (CiA 301): 2 bytes error code, error register, 5 manufacturer bytes
 EMCY_MANUFACTURER_BYTES = 5
+EMCY_RECORDS = 1000  # the EMCYs sent a simulated slave keeps for its records (the newest)
 
 
 class _SlaveNetwork(canopen.Network):
@@ -132,6 +134,8 @@ class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
     """See the module docstring."""
 
     pump: BusPump | None  # a CAN node: its endpoint is on the bus's pump (virtual time)
+    #: the device's words for an EMCY (Device.emcy_text), for its records
+    emcy_text: Callable[[int, int, bytes], str] | None = None
 
     def __init__(
         self, node_id: int, *, eds, settings: BusSettings, clock, pump: BusPump | None = None, name: str | None = None
@@ -160,6 +164,8 @@ class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
         self._cached: dict[tuple[int, int], int] = {}  # _cached_value: stored values read every tick
         self.malformed = 0  # SDO requests refused: not 8 bytes (dropped), a segment out of sequence (aborted)
         self.lines = RateLimitedLog(log, clock.now_ns, burst=3)  # what it logs, rate limited
+        #: the EMCYs it sent, the newest EMCY_RECORDS (records(): --final-json)
+        self.emcys_sent: deque[dict] = deque(maxlen=EMCY_RECORDS)
 
     # ------------------------------------------------------------------ hooks
 
@@ -317,6 +323,20 @@ class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
                 return
             payload = struct.pack("<HB", error_code, error_register) + data.ljust(EMCY_MANUFACTURER_BYTES, b"\0")
             self._send(cob & 0x7FF, payload)
+            record = {
+                "t_s": self._clock_ns() / 1e9,
+                "code": f"{error_code:04X}h",
+                "register": f"{error_register:02X}h",
+                "data": payload[3:].hex(" ").upper(),
+            }
+            if self.emcy_text is not None and error_code:
+                record["text"] = self.emcy_text(error_code, error_register, payload[3:])
+            self.emcys_sent.append(record)
+
+    def records(self) -> dict:
+        """What happened to the simulated device, as JSON data (--final-json):
+        the EMCYs it sent, each with its engine time and the device's words."""
+        return {"emcys": list(self.emcys_sent)} if self.emcys_sent else {}
 
     def mark_changed(self, index: int, subindex: int) -> None:
         """Send the TPDOs that map this object at their next opportunity, even if
