@@ -36,6 +36,7 @@ the driver itself; it never raises from read_inputs / write_outputs.
 
 from __future__ import annotations
 
+import threading
 from dataclasses import dataclass
 
 from ..image.memory import ProcessImage
@@ -87,3 +88,36 @@ class Driver:
 
     def stop(self) -> None:
         pass
+
+
+class WireLog(Driver):
+    """A bus's log of its wire (`softplc run --bus-log`): a driver only to be
+    closed with the drivers, after its bus's (it exchanges nothing with the
+    image). A subclass writes under self.lock, counts self.frames, and
+    closes its file in close() (called once, by stop())."""
+
+    def __init__(self, name: str, path) -> None:
+        self.name = name
+        self.path = path
+        self.lock = threading.Lock()  # frames come from the scan and the buses' threads
+        self.frames = 0
+        self.closed = False
+
+    def read_inputs(self, image: ProcessImage) -> None:
+        pass
+
+    def write_outputs(self, image: ProcessImage) -> None:
+        pass
+
+    def status(self) -> DriverStatus:
+        return DriverStatus(True, f"{self.frames} frames to {self.path.name}")
+
+    def close(self) -> None:
+        raise NotImplementedError
+
+    def stop(self) -> None:
+        with self.lock:
+            if self.closed:
+                return
+            self.closed = True
+        self.close()

@@ -22,7 +22,6 @@ makes its times engine time (ASC counts from its first entry).
 
 from __future__ import annotations
 
-import threading
 from collections.abc import Callable
 from pathlib import Path
 
@@ -31,25 +30,21 @@ from can.io.asc import ASCWriter
 from can.io.generic import MessageWriter
 from can.io.logger import MESSAGE_WRITERS
 
-from ...plugin.driver import Driver, DriverError, DriverStatus
+from ...plugin.driver import DriverError, WireLog
 
 #: what an endpoint calls for a frame: (can id, data, remote, extended, received)
 Record = Callable[[int, bytes, bool, bool, bool], None]
 
 
-class CanWireLog(Driver):
-    """One file for every [[can]] bus of an engine; a driver only to be
-    closed with the drivers (it exchanges nothing with the image)."""
+class CanWireLog(WireLog):
+    """One file for every [[can]] bus of an engine."""
 
     def __init__(self, path: Path, clock, buses: list[str]) -> None:
-        self.name = "can bus log"
-        self.path = path
+        super().__init__("can bus log", path)
         self._clock = clock
         self._numbers = {name: i for i, name in enumerate(buses)}
-        self._lock = threading.Lock()  # frames come from the scan, the receive threads and the master's
-        self.frames = 0
         try:
-            self._writer: MessageWriter | None = can.Logger(str(path))
+            self._writer: MessageWriter = can.Logger(str(path))
         except ValueError:
             endings = ", ".join(sorted(MESSAGE_WRITERS))
             raise DriverError(
@@ -76,27 +71,15 @@ class CanWireLog(Driver):
                 channel=number,
                 is_rx=received,
             )
-            with self._lock:
-                if self._writer is not None:
+            with self.lock:
+                if not self.closed:
                     self._writer.on_message_received(msg)
                     self.frames += 1
 
         return record
 
-    def read_inputs(self, image) -> None:
-        pass
-
-    def write_outputs(self, image) -> None:
-        pass
-
-    def status(self) -> DriverStatus:
-        return DriverStatus(True, f"{self.frames} frames to {self.path.name}")
-
-    def stop(self) -> None:
-        with self._lock:
-            writer, self._writer = self._writer, None
-        if writer is not None:
-            writer.stop()
+    def close(self) -> None:
+        self._writer.stop()
 
 
 def wire_log_of(ctx, buses: list[str]) -> CanWireLog | None:

@@ -20,12 +20,11 @@ plus its response time (in virtual time the modelled time on the line).
 
 from __future__ import annotations
 
-import threading
 from collections.abc import Callable
 from pathlib import Path
 from typing import TextIO
 
-from ...plugin.driver import Driver, DriverError, DriverStatus
+from ...plugin.driver import DriverError, WireLog
 
 HEADER = "# softplc Modbus log: engine time (s), connection, TX (sent) or RX (received), the frame's bytes\n"
 
@@ -38,18 +37,14 @@ def modbus_log_path(bus_log: Path) -> Path:
     return bus_log.with_name(f"{bus_log.stem}.modbus.log")
 
 
-class ModbusWireLog(Driver):
-    """One file for every [[modbus]] connection of an engine; a driver only
-    to be closed with the drivers."""
+class ModbusWireLog(WireLog):
+    """One file for every [[modbus]] connection of an engine."""
 
     def __init__(self, path: Path, clock) -> None:
-        self.name = "modbus bus log"
-        self.path = path
+        super().__init__("modbus bus log", path)
         self._clock = clock
-        self._lock = threading.Lock()  # the connections' workers write from their threads
-        self.frames = 0
         try:
-            self._file: TextIO | None = open(path, "w", encoding="ascii")  # closed by stop(), with the drivers
+            self._file: TextIO = open(path, "w", encoding="ascii")  # closed by stop(), with the drivers
         except OSError as exc:
             raise DriverError(f"--bus-log: cannot write {path}: {exc.strerror or exc}") from None
         self._file.write(HEADER)
@@ -61,27 +56,15 @@ class ModbusWireLog(Driver):
             lines = [f"{sent_ns / 1e9:.6f} {name} TX {sent.hex(' ').upper()}\n"] if sent else []
             if received:
                 lines.append(f"{sent_ns / 1e9 + response_s:.6f} {name} RX {received.hex(' ').upper()}\n")
-            with self._lock:
-                if self._file is not None and lines:
+            with self.lock:
+                if not self.closed and lines:
                     self._file.writelines(lines)
                     self.frames += len(lines)
 
         return record
 
-    def read_inputs(self, image) -> None:
-        pass
-
-    def write_outputs(self, image) -> None:
-        pass
-
-    def status(self) -> DriverStatus:
-        return DriverStatus(True, f"{self.frames} frames to {self.path.name}")
-
-    def stop(self) -> None:
-        with self._lock:
-            file, self._file = self._file, None
-        if file is not None:
-            file.close()
+    def close(self) -> None:
+        self._file.close()
 
 
 __all__ = ["HEADER", "ModbusWireLog", "Record", "modbus_log_path"]
