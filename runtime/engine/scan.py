@@ -310,7 +310,11 @@ class Engine:
         if not self.started:
             self.start()
         clock = self.clock
-        end_ns = None if duration_ns is None else clock.now_ns() + duration_ns
+        now = clock.now_ns()
+        for task in self.tasks:  # what ran between start() and here (softplc run's servers, traces,
+            if task.state.cycles == 0 and task.next_ns < now:  # watcher) is no first scan's lateness
+                task.next_ns = now
+        end_ns = None if duration_ns is None else now + duration_ns
         ran = 0
         self.scan_thread = threading.get_ident()
         self.clock.claim_thread()
