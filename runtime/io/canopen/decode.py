@@ -16,6 +16,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import canopen
+from canopen.objectdictionary.datatypes import SIGNED_TYPES
 
 from ...plugin.registry import registry
 from .cia301 import COB_NMT, COB_SYNC, STATE_NAMES, abort_text
@@ -71,6 +72,7 @@ def frame_text(config) -> Callable[[str, object], str | None]:
     if co is None:
         return lambda _bus, _msg: None
     nodes = {n.node_id: _node(n) for n in co.nodes}
+    pdos = {cob: (node, label, entries) for node in nodes.values() for cob, (label, entries) in node.pdos.items()}
     master = co.node_id
 
     def words(bus: str, msg) -> str | None:
@@ -81,10 +83,9 @@ def frame_text(config) -> Callable[[str, object], str | None]:
             return _nmt(data, nodes)
         if cob == COB_SYNC:
             return "SYNC"
-        for owner in nodes.values():
-            if cob in owner.pdos:
-                label, entries = owner.pdos[cob]
-                return _pdo(owner, label, entries, data)
+        if cob in pdos:
+            owner, label, entries = pdos[cob]
+            return _pdo(owner, label, entries, data)
         function, node_id = cob & 0x780, cob & 0x7F
         node = nodes.get(node_id)
         who = node.who() if node is not None else ("the master" if node_id == master else f"node {node_id}")
@@ -121,22 +122,12 @@ def _node(cfg) -> _Node:
             entries = []
             for e in pdo.entries:
                 entry = _entry(od, e.index, e.subindex)
-                bits = _bits(entry)
-                signed = entry is not None and entry.data_type in _SIGNED
+                sized = entry is not None and entry.fixed_size
+                bits = len(entry) if sized else 16  # as the master packs it (pdo.py); 16 if the EDS cannot say
+                signed = sized and entry.data_type in SIGNED_TYPES
                 entries.append((e.index, e.subindex, node.object_name(e.index, e.subindex), bits, signed))
             node.pdos[cob] = (f"{direction.upper()}{pdo.number}", entries)
     return node
-
-
-#: CiA 301 data types: INTEGER8..64 and UNSIGNED8..64, by code
-_SIGNED = {0x02: 8, 0x03: 16, 0x04: 32, 0x15: 64}
-_UNSIGNED = {0x01: 1, 0x05: 8, 0x06: 16, 0x07: 32, 0x1B: 64}
-
-
-def _bits(entry) -> int:
-    if entry is None:
-        return 16
-    return _SIGNED.get(entry.data_type) or _UNSIGNED.get(entry.data_type) or 16
 
 
 def _nmt(data: bytes, nodes: dict) -> str:
