@@ -17,19 +17,9 @@ from pathlib import Path
 from pymodbus.framer.rtu import FramerRTU
 
 from .buslog import HEADER
+from .errors import EXCEPTION_CODES, error_text
 
 _TABLES = {1: "coils", 2: "discrete inputs", 3: "holding registers", 4: "input registers"}
-_EXCEPTIONS = {
-    1: "illegal function",
-    2: "illegal data address",
-    3: "illegal data value",
-    4: "server device failure",
-    5: "acknowledge",
-    6: "server device busy",
-    8: "memory parity error",
-    10: "gateway path unavailable",
-    11: "gateway target device failed to respond",
-}
 
 
 def read_log(path: Path, config) -> Iterator[str] | None:
@@ -113,7 +103,8 @@ def _answer(pdu: bytes, request: bytes) -> str:
     fc = pdu[0] if pdu else 0
     if fc & 0x80:
         code = pdu[1] if len(pdu) > 1 else 0
-        return f"exception {code} ({_EXCEPTIONS.get(code, 'unknown')}) to function {fc & 0x7F}"
+        words = error_text(code) if code in EXCEPTION_CODES else "no exception code of Modbus"
+        return f"exception {code} ({words}) to function {fc & 0x7F}"
     asked = request[0] if request else None
     if asked != fc:
         return f"function {fc} (no request of it before)"

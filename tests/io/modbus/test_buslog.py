@@ -77,3 +77,27 @@ def test_no_bus_log_no_file(tmp_path: Path, monkeypatch):
     finally:
         plc.stop()
     assert list(tmp_path.iterdir()) == []
+
+
+def test_an_exception_answer_is_read_in_the_words_the_link_logs(tmp_path: Path):
+    """MAP V1.1b3 7: 83h 02h answers FC 3 with "illegal data address" (errors.error_text,
+    as the link's log says it); a code Modbus does not define is named so."""
+    from ...test_cli import softplc
+
+    def rtu(body: bytes) -> str:
+        return (body + FramerRTU.compute_CRC(body).to_bytes(2, "big")).hex(" ").upper()
+
+    log = tmp_path / "run.modbus.log"
+    log.write_text(
+        HEADER
+        + f"0.000000 drives TX {rtu(bytes.fromhex('01 03 00 05 00 05'))}\n"
+        + f"0.003000 drives RX {rtu(bytes.fromhex('01 83 02'))}\n"
+        + f"0.100000 drives TX {rtu(bytes.fromhex('01 03 00 05 00 05'))}\n"
+        + f"0.103000 drives RX {rtu(bytes.fromhex('01 83 21'))}\n",
+        encoding="ascii",
+    )
+    done = softplc("log", log)
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    assert lines[1].endswith("unit 1: exception 2 (illegal data address) to function 3")
+    assert lines[3].endswith("unit 1: exception 33 (no exception code of Modbus) to function 3")
