@@ -507,15 +507,9 @@ class TelegramAssembler:
         raw = self.words[w.nr]
         if raw is None:
             return None
+        if w.coding in FIXED_CODINGS:
+            return fixed_value(w, raw)
         signed = _int16(raw) if w.signed else raw
-        if w.coding is C.FREQUENCY:
-            return float(Fraction(signed, 100))
-        if w.coding is C.COS_PHI:
-            return float(Fraction(signed, 100))
-        if w.coding is C.BATTERY:
-            return float(Fraction(signed, 10))
-        if w.coding in (C.COUNT, C.IDENT, C.ANALOG):
-            return signed
         assert w.exponent is not None
         exponent = self.exponents.get(w.exponent)
         if exponent is None:
@@ -536,6 +530,16 @@ class TelegramAssembler:
 
 
 _VALUE_CODINGS = {C.IDENT, C.FREQUENCY, C.SCALED, C.SETPOINT, C.COS_PHI, C.COUNT, C.BATTERY, C.ANALOG}
+#: the codings whose value is the word alone, no exponent or factor of the telegram: fixed_value()
+FIXED_CODINGS = {C.FREQUENCY: 100, C.COS_PHI: 100, C.BATTERY: 10, C.COUNT: 1, C.IDENT: 1, C.ANALOG: 1}
+
+
+def fixed_value(w: Word, raw: int) -> float | int:
+    """The engineering value of a word of FIXED_CODINGS (1/100 Hz, 1/100,
+    1/10 V, or the number itself), from its raw word; signed where A4 says."""
+    signed = _int16(raw) if w.signed else raw
+    divisor = FIXED_CODINGS[w.coding]
+    return float(Fraction(signed, divisor)) if divisor != 1 else signed
 
 
 def _value_keys() -> tuple[str, ...]:

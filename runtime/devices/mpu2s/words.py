@@ -9,7 +9,7 @@ words of the telegram: the program's MPU2S blocks do it)."""
 from __future__ import annotations
 
 from . import frames, parameters
-from .telegram import WORD_TABLE
+from .telegram import FIXED_CODINGS, WORD_TABLE, Word, fixed_value
 
 
 def _parameter(param_id: int) -> str:
@@ -17,12 +17,15 @@ def _parameter(param_id: int) -> str:
     return f"ID {param_id} {found[0].name_en}" if found else f"ID {param_id}"
 
 
-def _scaled(unit: str, raw: int) -> str:
-    """A word of a fixed unit ("1/100 Hz") also in that unit: 5030 (50.30 Hz)."""
-    for prefix, divisor, digits in (("1/100 ", 100, 2), ("1/10 ", 10, 1)):
-        if unit.startswith(prefix):
-            return f"{raw} ({raw / divisor:.{digits}f} {unit.removeprefix(prefix)})"
-    return str(raw)
+def _scaled(w: Word, raw: int) -> str:
+    """A word whose value needs no other word, in a unit of its own (1/100 Hz ...),
+    also as that value: 5030 (50.30 Hz)."""
+    divisor = FIXED_CODINGS.get(w.coding, 1)
+    if divisor == 1:
+        return str(raw)
+    digits = len(str(divisor)) - 1
+    unit = w.unit.removeprefix(f"1/{divisor}").strip()
+    return f"{raw} ({fixed_value(w, raw):.{digits}f}{' ' + unit if unit else ''})"
 
 
 def frame_text(options, can_id: int, data: bytes) -> str | None:
@@ -46,8 +49,7 @@ def frame_text(options, can_id: int, data: bytes) -> str | None:
         except frames.MalformedFrame as exc:
             return f"malformed telegram frame: {exc.reason}"
         named = [
-            f"Nr {w.nr} {w.english} = {_scaled(w.unit, raw)}"
-            for w, raw in zip(WORD_TABLE[3 * mux : 3 * mux + 3], words)
+            f"Nr {w.nr} {w.english} = {_scaled(w, raw)}" for w, raw in zip(WORD_TABLE[3 * mux : 3 * mux + 3], words)
         ]
         return f"telegram mux {mux}: " + " | ".join(named)
     try:
