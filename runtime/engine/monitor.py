@@ -63,6 +63,7 @@ class Watch:
         self.canonical: list = []
         self._resolved_at = None
         self._cells: list = []
+        self._resolver: Resolver | None = None  # for elements and parts, made at the first one
         for path in self.paths:  # fail early, with the path in the message
             self._resolve(path)
 
@@ -75,7 +76,8 @@ class Watch:
         except KeyError:
             pass
         try:  # an element or a part of one: 'Line.parts[2].weight', 'grid[1, 2]'
-            return ("place", Resolver(self.engine).place(path))
+            self._resolver = self._resolver.fresh() if self._resolver is not None else Resolver(self.engine)
+            return ("place", self._resolver.place(path))
         except PathError as exc:
             if "[" in path:  # the resolver's message says which index or name is wrong
                 raise KeyError(str(exc)) from None
