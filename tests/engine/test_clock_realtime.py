@@ -14,7 +14,7 @@ import sys
 
 import pytest
 
-from ..test_launch import _env, wait_for_line, write_config
+from ..launch_support import env, wait_for_line, write_config
 
 SRC = "PROGRAM Main\nVAR n : DINT; END_VAR\nn := n + 1;\nEND_PROGRAM\n"
 CONFIG = """[plc]
@@ -42,7 +42,7 @@ def _run(cfg, prefix: list) -> subprocess.Popen:
         stdout=subprocess.DEVNULL,
         stderr=subprocess.PIPE,
         text=True,
-        env=_env(),
+        env=env(),
     )
 
 
