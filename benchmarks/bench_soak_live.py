@@ -439,6 +439,7 @@ def main(argv: list | None = None) -> int:
                     *Path(tmp).glob("plc-*.log"),
                     *Path(tmp).glob("clients.json"),
                     *Path(tmp).glob("memory-*.txt"),
+                    *Path(tmp).glob("stats-*.json"),
                 ]:
                     shutil.copy(log, args.keep_logs)
 

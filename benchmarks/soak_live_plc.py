@@ -23,6 +23,10 @@ tracemalloc take minutes) and writes to FILE, every TRACE_EVERY_S, the
 allocations made since then that grew most, by where they were made: where
 a growing RSS comes from.
 
+With SOFTPLC_SOAK_NAME_THREADS=1, each thread's name is given to the
+kernel (name_threads), for `perf sched record -k CLOCK_MONOTONIC` beside
+the soak: the late ticks' monotonic times find the scan thread's wait.
+
 The engine is reached by wrapping build_engine, which run_plc looks up when
 it is called: nothing of softplc is changed.
 
@@ -64,7 +68,9 @@ class Lateness:
         self.counts = [0] * BUCKETS
         self.n = 0
         self.max_ns = 0
-        self.late_ticks: list = []  # (wall, ms) of the newest LATE_KEPT ticks late by LATE_MS or more
+        #: (wall, ms, monotonic) of the newest LATE_KEPT ticks late by LATE_MS or more
+        #: (the monotonic time is perf's with -k CLOCK_MONOTONIC: see name_threads)
+        self.late_ticks: list = []
 
     def add(self, late_ns: int) -> None:
         late_ns = max(late_ns, 0)
@@ -73,7 +79,7 @@ class Lateness:
         if late_ns > self.max_ns:
             self.max_ns = late_ns
         if late_ns >= LATE_MS * 1_000_000:
-            self.late_ticks.append((round(time.time(), 3), round(late_ns / 1e6, 2)))
+            self.late_ticks.append((round(time.time(), 3), round(late_ns / 1e6, 2), round(time.monotonic(), 4)))
             del self.late_ticks[:-LATE_KEPT]
 
     def sparse(self) -> dict:
@@ -223,8 +229,31 @@ def trace_memory(path: Path) -> None:
     threading.Thread(target=watch, name="soak-memory", daemon=True).start()
 
 
+def name_threads() -> None:
+    """Each thread's Python name given to the kernel too (prctl PR_SET_NAME,
+    15 bytes), so that `perf sched timehist` and `top -H` tell the scan from
+    the servers' threads and python-can's: Python 3.11 names none. A profile
+    function that every new thread calls once, then removes."""
+    import ctypes
+    import ctypes.util
+
+    libc = ctypes.CDLL(ctypes.util.find_library("c"), use_errno=True)
+
+    def name(label: str) -> None:
+        libc.prctl(15, label.encode("utf-8", "replace")[:15], 0, 0, 0)  # 15: PR_SET_NAME
+
+    def once(frame, event, arg) -> None:
+        sys.setprofile(None)
+        name(threading.current_thread().name)
+
+    threading.setprofile(once)
+    name("plc-main")
+
+
 def main(argv: list) -> int:
     config, stats_path, log_file, seed, faults_on = argv
+    if os.environ.get("SOFTPLC_SOAK_NAME_THREADS"):
+        name_threads()
     if os.environ.get("SOFTPLC_SOAK_TRACE_MEMORY"):
         trace_memory(Path(os.environ["SOFTPLC_SOAK_TRACE_MEMORY"]))
     from softplc.runtime.engine import build

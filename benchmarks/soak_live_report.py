@@ -210,7 +210,7 @@ def late_ticks(soak) -> Counter:
     """The ticks late by a period of the fastest task (10 ms) or more, by what was going on."""
     out: Counter = Counter()
     for life in soak.lives:
-        for wall, ms in life.data.get("late_ticks", ()):
+        for wall, ms, *_ in life.data.get("late_ticks", ()):
             if ms >= 10:
                 out[attribute(wall, soak)] += 1
     return out
