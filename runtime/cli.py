@@ -406,7 +406,9 @@ def plot_cmd(
 ) -> None:
     """Plot a trace of `softplc run --trace` (a .csv or .vcd file): BOOLs as
     stacked steps, enumerations by name, numbers as lines, over engine time;
-    with --bus-log and --mark, the frames of the run's bus log as dotted lines."""
+    the simulated devices' events the trace holds (breaker closes, EMCYs)
+    and, with --bus-log and --mark, the frames of the run's bus log, as
+    dotted lines."""
     from .cli_log import marks
     from .trace.plot import FORMATS, PlotUnavailable, parse_units, plot
     from .trace.series import TraceFileError, read_trace
@@ -422,7 +424,7 @@ def plot_cmd(
         if signals:
             data = data.select([n.strip() for n in signals.split(",") if n.strip()])
         found = marks(bus_log, config, list(mark_texts)) if bus_log else []
-        left_out = plot(data, out, unit_of, marks=found)
+        left_out = plot(data, out, unit_of, marks=sorted(data.marks + found))
     except (PlotUnavailable, TraceFileError, ValueError) as e:
         _echo_err(f"softplc: {e}")
         sys.exit(EXIT_USAGE)

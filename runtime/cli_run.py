@@ -65,7 +65,8 @@ class Duration(click.ParamType):
     type=click.Path(dir_okay=False),
     metavar="FILE",
     help="Write the watched values over engine time; the ending says how: .csv (a row per scan), "
-    ".vcd (GTKWave), .png/.svg/.pdf (a plot at the end). Repeat for several.",
+    ".vcd (GTKWave), .png/.svg/.pdf (a plot at the end); with what the simulated devices recorded "
+    "(breaker closes, EMCYs) as events. Repeat for several.",
 )
 @click.option(
     "--bus-log",

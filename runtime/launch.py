@@ -25,7 +25,7 @@ log = logging.getLogger("softplc")
 
 
 #: --final-json's key of the simulators' records: no ST name can be it
-RECORDS_KEY = "[[sim]]"
+RECORDS_KEY = "[[sim]]"  # the CSV trace's column of their events too (trace/events.py)
 
 
 def final_data(engine) -> dict:
@@ -33,12 +33,10 @@ def final_data(engine) -> dict:
     (Engine.dump), and under RECORDS_KEY each simulated device's records by
     its [[sim]] name (what a simulator's records() gives: the MPU2-S's
     breaker closes, the EMCYs a CANopen device sent ...), when one has any."""
+    from .sim.base import records_of
+
     data = engine.dump()
-    records = {}
-    for name, sim in engine.simulators.items():
-        taken = sim.records() if callable(getattr(sim, "records", None)) else None
-        if taken:
-            records[name] = taken
+    records = records_of(engine.simulators)
     if records:
         data[RECORDS_KEY] = records
     return data
@@ -296,7 +294,7 @@ def run_plc(
             trace = recorder.trace("softplc run")
             for out in plots:
                 try:
-                    left_out = plot(trace, out, unit_of, title=f"softplc run {path.name}")
+                    left_out = plot(trace, out, unit_of, title=f"softplc run {path.name}", marks=trace.marks)
                 except OSError as e:
                     return _fail(f"--trace: cannot write {out}: {e.strerror or e}", EXIT_CONFIG)
                 except ValueError as e:
@@ -330,6 +328,7 @@ def _open_traces(traces: list, watched, engine, cleanup: ExitStack):
     written) and hook its writer into the scan; returns the Recorder for
     the plots, or None."""
     from .engine.monitor import TraceWriter
+    from .trace.events import SimEvents, csv_column
     from .trace.series import Recorder
     from .trace.vcd import VcdTraceWriter
 
@@ -340,14 +339,14 @@ def _open_traces(traces: list, watched, engine, cleanup: ExitStack):
             if not Path(trace).resolve().parent.is_dir():
                 raise FileNotFoundError(2, "No such directory", trace)
             if recorder is None:
-                recorder = Recorder(watched)
+                recorder = Recorder(watched, SimEvents(engine.simulators))
                 engine.after_tick.append(recorder)
             continue
         stream = cleanup.enter_context(open(trace, "w", newline="", encoding="utf-8"))
         if suffix == ".csv":
-            engine.after_tick.append(TraceWriter(stream, watched))
+            engine.after_tick.append(TraceWriter(stream, watched, csv_column(engine.simulators)))
         else:
-            vcd_writer = VcdTraceWriter(stream, watched)
+            vcd_writer = VcdTraceWriter(stream, watched, SimEvents(engine.simulators))
             cleanup.callback(_close_vcd, vcd_writer, engine)
             engine.after_tick.append(vcd_writer)
     return recorder

@@ -72,7 +72,9 @@ def test_watch_and_trace_sample_every_scan(tmp_path):
     assert proc.returncode == 0, proc.stderr
     rows = list(csv.DictReader(trace.open()))
     assert len(rows) == 300
-    assert list(rows[0]) == ["time_ms", "cycle", "Conveyor.state", "Conveyor.speedOut", "%QX0.0", "Panel.speedPercent"]
+    watched = ["Conveyor.state", "Conveyor.speedOut", "%QX0.0", "Panel.speedPercent"]
+    assert list(rows[0]) == ["time_ms", "cycle", *watched, "[[sim]]"]  # the plant's devices' events last
+    assert not any(r["[[sim]]"] for r in rows)  # none in the first 3 s
     assert [float(r["time_ms"]) for r in rows[:3]] == [0.0, 10.0, 20.0]
     running = [r for r in rows if r["%QX0.0"] == "1"]
     assert running, "the belt never ran"

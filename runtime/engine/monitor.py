@@ -153,16 +153,24 @@ def _type(cell) -> T.Type:
 
 
 class TraceWriter:
-    """One CSV row per scan: engine time in ms, the tick number, the watched values."""
+    """One CSV row per scan: engine time in ms, the tick number, the watched
+    values; with column = (name, text_at), a last column of that name holding
+    text_at(the scan's engine time in ns) (the simulators' events:
+    trace/events.py's csv_column)."""
 
-    def __init__(self, stream: TextIO, watch: Watch) -> None:
+    def __init__(self, stream: TextIO, watch: Watch, column: tuple | None = None) -> None:
         self.stream = stream
         self.watch = watch
+        self.column = column
         self.writer = csv.writer(stream)
-        self.writer.writerow(["time_ms", "cycle"] + watch.paths)
+        self.writer.writerow(["time_ms", "cycle"] + watch.paths + ([column[0]] if column else []))
 
     def __call__(self, engine) -> None:
-        self.writer.writerow([engine.clock.now_ns() / 1e6, engine.cycle] + self.watch.raw())
+        now = engine.clock.now_ns()
+        row = [now / 1e6, engine.cycle] + self.watch.raw()
+        if self.column is not None:
+            row.append(self.column[1](now))
+        self.writer.writerow(row)
 
 
 def _us(ns: float) -> str:

@@ -47,6 +47,12 @@ class SimulatedDevice(Driver):
     def service(self, now_ns: int) -> None:
         raise NotImplementedError
 
+    def events_since(self, t_ns: int) -> list:
+        """What the device recorded after engine time t_ns, as (t_ns, text)
+        in time order (the traces' marks: trace/events.py); a device that
+        records overrides it, and records() gives the same as JSON data."""
+        return []
+
     def open(self) -> None:
         """Connect to the bus (subclasses); called by start()."""
 
@@ -77,3 +83,14 @@ class SimulatedDevice(Driver):
 
     def write_outputs(self, image: ProcessImage) -> None:
         pass
+
+
+def records_of(simulators: dict) -> dict:
+    """What the simulated devices recorded, by [[sim]] name, those with any:
+    --final-json's "[[sim]]" and the testing API's plc.records."""
+    found = {}
+    for name, sim in simulators.items():
+        taken = sim.records() if callable(getattr(sim, "records", None)) else None
+        if taken:
+            found[name] = taken
+    return found

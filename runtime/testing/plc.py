@@ -316,6 +316,15 @@ class PLC:
                 return sim
         raise KeyError(f"no simulated device {name!r} (there are: {', '.join(self.engine.simulators) or 'none'})")
 
+    @property
+    def records(self) -> dict:
+        """What the simulated devices recorded, by [[sim]] name (those with
+        any): an MPU2-S's breaker closes, a CANopen device's EMCYs sent; what
+        softplc run --final-json writes under "[[sim]]"."""
+        from ..sim.base import records_of
+
+        return records_of(self.engine.simulators)
+
     def faults_of(self, name: str) -> dict:
         """The faults the device called name takes: fault name -> SimFault (description, value, lasting)."""
         self.sim(name)

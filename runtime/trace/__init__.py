@@ -6,6 +6,9 @@ series.py  Series and Trace (samples per signal), Recorder (an after_tick
            callback that keeps the samples a plot needs), reading a trace file
 vcd.py     VcdTraceWriter (an after_tick callback) and read_vcd
 plot.py    plot(): a Trace as a figure (matplotlib, the `plot` extra)
+events.py  what the simulated devices recorded (breaker closes, EMCYs), as
+           the traces' events and marks
 
-The CSV trace itself is written by engine/monitor.py (TraceWriter).
+The CSV trace itself is written by engine/monitor.py (TraceWriter; the
+events' column given to it by events.csv_column).
 """

@@ -14,6 +14,8 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .events import EVENTS_COLUMN, column_marks
+
 KINDS = ("bool", "int", "real", "enum", "text")
 DIGITAL = ("bool", "enum")  # drawn as steps, in lanes of their own
 ANALOGUE = ("int", "real")  # drawn as lines, one axis per unit
@@ -66,6 +68,8 @@ def _same(a, b) -> bool:
 class Trace:
     series: list
     source: str = ""
+    #: (seconds, text): what the simulated devices recorded (trace/events.py)
+    marks: list = field(default_factory=list)
 
     def names(self) -> list:
         return [s.name for s in self.series]
@@ -78,26 +82,31 @@ class Trace:
             raise KeyError(
                 f"no signal {', '.join(missing)} in {self.source or 'the trace'} (it has: {', '.join(by_name)})"
             )
-        return Trace([by_name[n] for n in names], self.source)
+        return Trace([by_name[n] for n in names], self.source, self.marks)
 
 
 class Recorder:
     """An after_tick callback: samples the watched values every scan into a
-    Trace, for a plot at the end of the run."""
+    Trace, for a plot at the end of the run; with events (a SimEvents), the
+    simulators' events as its marks."""
 
-    def __init__(self, watch) -> None:
+    def __init__(self, watch, events=None) -> None:
         self.watch = watch
         self.series = [Series(i.path, i.kind, i.type_name, i.levels) for i in watch.signals()]
+        self.events = events if events is not None and events.sources else None
+        self.marks: list = []
 
     def __call__(self, engine) -> None:
         t = engine.clock.now_ns() / 1e9
         for series, value in zip(self.series, self.watch.raw()):
             series.add(t, value)
+        if self.events is not None:
+            self.marks += [(at / 1e9, f"{name}: {text}") for at, name, text in self.events.take(engine.clock.now_ns())]
 
     def trace(self, source: str = "") -> Trace:
         for series in self.series:
             series.finish()
-        return Trace(self.series, source)
+        return Trace(self.series, source, self.marks)
 
 
 def read_trace(path: str | Path) -> Trace:
@@ -120,7 +129,8 @@ def read_csv(path: str | Path) -> Trace:
     """A CSV trace of `softplc run`: time_ms, cycle, then a column per
     watched value. Its kinds are guessed from the values: only 0 and 1 is a
     BOOL, whole numbers an integer, other numbers a REAL, names an
-    enumeration (levels in order of appearance), anything else text."""
+    enumeration (levels in order of appearance), anything else text. A
+    last column EVENTS_COLUMN holds the simulators' events: the marks."""
     path = Path(path)
     try:
         with path.open(newline="", encoding="utf-8") as f:
@@ -132,19 +142,21 @@ def read_csv(path: str | Path) -> Trace:
     if not rows or rows[0][:2] != ["time_ms", "cycle"]:
         raise TraceFileError(f"{path}: not a CSV trace of softplc run (the first line must start time_ms,cycle)")
     names = rows[0][2:]
+    events = names[-1] == EVENTS_COLUMN if names else False
+    names = names[:-1] if events else names
     times: list = []
     columns: list = [[] for _ in names]
     for lineno, row in enumerate(rows[1:], start=2):
-        if len(row) != len(names) + 2:
-            raise TraceFileError(f"{path}:{lineno}: {len(row)} values, the header names {len(names) + 2}")
+        if len(row) != len(names) + 2 + events:
+            raise TraceFileError(f"{path}:{lineno}: {len(row)} values, the header names {len(names) + 2 + events}")
         try:
             times.append(float(row[0]) / 1e3)
         except ValueError:
             raise TraceFileError(f"{path}:{lineno}: time_ms {row[0]!r} is not a number") from None
         for column, text in zip(columns, row[2:]):
             column.append(text)
-    trace = Trace([_column_series(name, column, times) for name, column in zip(names, columns)], str(path))
-    return trace
+    series = [_column_series(name, column, times) for name, column in zip(names, columns)]
+    return Trace(series, str(path), column_marks([row[-1] for row in rows[1:]]) if events else [])
 
 
 def _column_series(name: str, texts: list, times: list) -> Series:

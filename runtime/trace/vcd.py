@@ -20,12 +20,14 @@ and the CSV's time_ms. The variables, by ST type:
 from __future__ import annotations
 
 import datetime as _dt
+import re
 from pathlib import Path
 from typing import TextIO
 
 from vcd import VCDWriter
 from vcd.reader import TokenKind, tokenize
 
+from .events import JOIN, VCD_SCOPE, marks_of, timed
 from .series import Series, Trace, TraceFileError
 
 SCOPE = "softplc"
@@ -46,7 +48,7 @@ class VcdTraceWriter:
     """An after_tick callback writing the watched values' changes as VCD;
     close() at the end of the run writes the final time stamp."""
 
-    def __init__(self, stream: TextIO, watch) -> None:
+    def __init__(self, stream: TextIO, watch, events=None) -> None:
         self.watch = watch
         self.writer = VCDWriter(
             stream,
@@ -60,14 +62,33 @@ class VcdTraceWriter:
             var_type, size, convert, init = _vcd_var(info)
             var = self.writer.register_var(f"{SCOPE}.{scope}" if scope else SCOPE, name, var_type, size=size, init=init)
             self.vars.append((var, convert))
+        self.events = events if events is not None and events.sources else None
+        self.event_vars = {
+            name: self.writer.register_var(VCD_SCOPE, name, "string", size=1, init="")
+            for name in (self.events.sources if self.events else ())
+        }
         self._last_ns = 0
 
     def __call__(self, engine) -> None:
         now = engine.clock.now_ns()
-        self._last_ns = now
         change = self.writer.change
+        if self.events is not None:
+            self._write_events(self.events.take(now))
+        self._last_ns = now
         for (var, convert), value in zip(self.vars, self.watch.raw()):
             change(var, now, convert(value))
+
+    def _write_events(self, events: list) -> None:
+        """Each at its own time, or at the last time stamp written when it
+        came in between (real time: a device's thread); the events of one
+        simulator at one time stamp joined."""
+        texts: dict = {}
+        for t, name, text in events:
+            at = max(t, self._last_ns)
+            texts.setdefault((at, name), []).append(timed(t, text))
+        for (at, name), parts in texts.items():  # in time order, as take() gave them
+            self.writer.change(self.event_vars[name], at, JOIN.join(parts))
+            self._last_ns = at
 
     def close(self, end_ns: int | None = None) -> None:
         self.writer.close(max(end_ns or 0, self._last_ns))
@@ -81,12 +102,16 @@ def read_vcd(path: str | Path) -> Trace:
     BOOL, an integer a signed number, any other vector an unsigned one, a
     real a REAL, a string an enumeration (levels in order of appearance).
     Names are the dotted scope path, without the top scope `softplc`. The
-    series are stepped: a VCD has a value only where it changed."""
+    series are stepped: a VCD has a value only where it changed. The
+    strings under the top scope `sim` are the simulators' events: the
+    Trace's marks (trace/events.py)."""
     path = Path(path)
     magnitude, per_second = 1, 1e9
     scopes: list = []
     by_id: dict = {}  # id code -> (Series, var type, size)
     series: list = []
+    events: dict = {}  # id code -> simulator name (under VCD_SCOPE)
+    marks: list = []
     t = 0.0
     try:
         with path.open("rb") as f:
@@ -103,6 +128,9 @@ def read_vcd(path: str | Path) -> Trace:
                     var = token.var
                     if var.id_code in by_id:  # the same signal under a second name
                         continue
+                    if scopes == [VCD_SCOPE]:  # a simulator's events: marks
+                        events[var.id_code] = var.reference
+                        continue
                     parts = scopes[1:] if scopes[:1] == [SCOPE] else scopes
                     s = _var_series(".".join([*parts, var.reference]), var.type_.value, var.size)
                     by_id[var.id_code] = (s, var.type_.value, var.size)
@@ -111,6 +139,9 @@ def read_vcd(path: str | Path) -> Trace:
                     t = token.time_change * magnitude / per_second
                 else:
                     change = _change(token)
+                    if change is not None and change[0] in events:
+                        marks += marks_of(_unescaped(str(change[1])), events[change[0]])
+                        continue
                     entry = by_id.get(change[0]) if change is not None else None
                     if change is not None and entry is not None:
                         entry[0].add(t, _value(entry, change[1]))
@@ -125,7 +156,13 @@ def read_vcd(path: str | Path) -> Trace:
         if s.kind == "enum":
             s.levels = tuple(dict.fromkeys(s.values))
         s.finish()
-    return Trace(series, str(path))
+    return Trace(series, str(path), marks)
+
+
+def _unescaped(text: str) -> str:
+    """A VCD string as written: pyvcd writes a blank (and other bytes a VCD
+    value cannot hold) as \\xHH."""
+    return re.sub(r"\\x([0-9a-fA-F]{2})", lambda m: chr(int(m.group(1), 16)), text)
 
 
 def _change(token) -> tuple | None:

@@ -208,6 +208,20 @@ class Mpu2sSimulator(SimulatedDevice):
         ]
         return {"closes": closes} if closes else {}
 
+    def events_since(self, t_ns: int) -> list:
+        """The breaker's closes after t_ns, for the traces."""
+        closes = self.closes
+        if not closes or closes[-1].t_ns <= t_ns:
+            return []
+        new = []
+        for c in reversed(closes):
+            if c.t_ns <= t_ns:
+                break
+            what = "dead bus" if c.dead_bus else f"phase {c.phase_deg:.1f} deg"
+            text = f"breaker closed: {what}, dU {c.voltage_diff:.1f} V, slip {c.slip_hz:.3f} Hz"
+            new.append((c.t_ns, text + (", tripped (phase past the trip limit)" if c.tripped else "")))
+        return new[::-1]
+
     @property
     def authorised(self) -> bool:
         return self.store.authorised

@@ -130,6 +130,10 @@ class _SlaveNode(canopen.LocalNode):
         network.subscribe(self.sdo.rx_cobid, self.sdo.on_request)
 
 
+def _record_ns(record: dict) -> int:
+    return round(record["t_s"] * 1e9)
+
+
 class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
     """See the module docstring."""
 
@@ -336,7 +340,23 @@ class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
     def records(self) -> dict:
         """What happened to the simulated device, as JSON data (--final-json):
         the EMCYs it sent, each with its engine time and the device's words."""
-        return {"emcys": list(self.emcys_sent)} if self.emcys_sent else {}
+        with self._lock:
+            return {"emcys": list(self.emcys_sent)} if self.emcys_sent else {}
+
+    def events_since(self, t_ns: int) -> list:
+        """The EMCYs sent after t_ns, for the traces: "EMCY 1000h thermal overload (register 01h)"."""
+        sent = self.emcys_sent
+        if not sent or _record_ns(sent[-1]) <= t_ns:  # every scan of a trace asks: the common answer first
+            return []
+        with self._lock:
+            new = []
+            for record in reversed(sent):
+                at = _record_ns(record)
+                if at <= t_ns:
+                    break
+                words = record.get("text") or ("error reset" if record["code"] == "0000h" else f"data {record['data']}")
+                new.append((at, f"EMCY {record['code']} {words} (register {record['register']})"))
+        return new[::-1]
 
     def mark_changed(self, index: int, subindex: int) -> None:
         """Send the TPDOs that map this object at their next opportunity, even if

@@ -39,6 +39,21 @@ def test_the_example_reads_the_device_synchronises_closes_and_loads(plants):
     close = _close(plant)
     assert not close.tripped and not close.dead_bus
     assert abs(close.phase_deg) < 10.0
+    # the testing API's records: what --final-json writes under "[[sim]]"
+    ((name, records),) = plant.plc.records.items()
+    assert plant.plc.sim(name) is plant.sim
+    assert records == {
+        "closes": [
+            {
+                "t_s": close.t_ns / 1e9,
+                "phase_deg": close.phase_deg,
+                "voltage_diff_v": close.voltage_diff,
+                "slip_hz": close.slip_hz,
+                "dead_bus": False,
+                "tripped": False,
+            }
+        ]
+    }
     plant.run_until(lambda: plant.state == "Running", 60_000, "loaded")
     assert plant.get("Genset.mpu.P_KW") == pytest.approx(250.0, abs=25.0)
     assert plant.sim.plant.p_kw == pytest.approx(250.0, abs=40.0)
