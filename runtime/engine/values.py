@@ -54,6 +54,11 @@ class EnumValue(str):
         obj.value = value
         return obj
 
+    def __reduce__(self) -> tuple:
+        """Pickled as its three parts (str's own reduction would lose them):
+        a value a sweep's worker process or pytest-xdist sends back."""
+        return (EnumValue, (self.name, self.type_name, self.value))
+
     def __eq__(self, other: object) -> bool:
         if isinstance(other, EnumValue):
             return self.type_name.upper() == other.type_name.upper() and self.value == other.value

@@ -7,12 +7,14 @@ from __future__ import annotations
 
 import json
 import math
+import pickle
 
 import pytest
 
 from softplc.runtime.engine.access import Access, Permission
 from softplc.runtime.engine.places import PathError
 from softplc.runtime.engine.retain_file import RetainStore, read_file, write_file
+from softplc.runtime.engine.values import EnumValue
 
 from .conftest import MS, compile_st, make_engine, task
 
@@ -160,3 +162,11 @@ def test_a_retained_string_with_a_lone_surrogate_from_an_older_version_is_repair
     ]
     json.dumps(e.dump(), ensure_ascii=False).encode("utf-8")
     e.stop()
+
+
+def test_an_enumerator_read_from_the_plc_pickles_with_its_type_and_number():
+    # what a sweep's worker process, or a pytest-xdist worker, sends back
+    running = EnumValue("Running", "E_State", 3)
+    back = pickle.loads(pickle.dumps(running))
+    assert (back.name, back.type_name, back.value) == ("Running", "E_State", 3)
+    assert back == running and back == "running" and back == 3 and str(back) == "Running"
