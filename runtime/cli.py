@@ -7,6 +7,7 @@
                                              time and print its variables as JSON
     softplc run [CONFIG]                     run the PLC (see run --help)
     softplc plot TRACE [-o OUT.png]          plot a trace of run --trace
+    softplc sweep CONFIG --matrix S.toml     run many scenarios of CONFIG (a table of results)
 
 Exit codes (stable, scripts rely on them):
     0  success
@@ -36,6 +37,7 @@ from .cli_report import echo_err as _echo_err
 from .cli_report import report as _report
 from .cli_report import summary as _summary
 from .cli_run import Duration, run_cmd
+from .cli_sweep import sweep_cmd
 from .durations import EXAMPLES, parse_duration_ns
 from .plugin.registry import PluginError
 from .st.profile import DEFAULT, PROFILES
@@ -513,6 +515,7 @@ def is_test_project(path: str) -> bool:
 
 cli.add_command(run_cmd)
 cli.add_command(log_cmd)
+cli.add_command(sweep_cmd)
 
 
 def main(argv: list | None = None) -> None:
