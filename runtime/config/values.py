@@ -162,6 +162,17 @@ def int_range(lo: int, hi: int | None = None):
     return PlainValidator(check)
 
 
+def real_range(lo: float, hi: float, what: str = "a number"):
+    """A number (an integer is taken too) from lo to hi, as a float; what says which, in the message."""
+
+    def check(value) -> float:
+        if isinstance(value, int | float) and not isinstance(value, bool) and lo <= value <= hi:
+            return float(value)
+        raise fail(f"{what} from {lo} to {hi}", value)
+
+    return PlainValidator(check)
+
+
 IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*", re.A)
 
 

@@ -6,8 +6,8 @@ from __future__ import annotations
 import pytest
 
 from softplc.runtime.config import ConfigError, SimConfig, load_config
+from softplc.runtime.devices.ltmr.sim_options import LtmrPresets
 from softplc.runtime.io.can import CanNode
-from softplc.runtime.sim.options import Registers
 
 from .support import CAN, NODE, PLC, SIM, error, errors, load, pdo, plant, write
 
@@ -19,11 +19,11 @@ def test_sims(tmp_path):
         tmp_path,
         PLC + CAN + '[[sim]]\ntype = "LTMR"\nnode_id = 40\n'
         'registers = { "682" = 2, "0652" = 50 }\n'
-        '[[sim]]\ntype = "ltmr"\nname = "spare"\nbus = "can0"\nnode_id = 41\n',
+        '[[sim]]\ntype = "ltmr"\nname = "spare"\nbus = "can0"\nnode_id = 41\nload = 120\n',
     )
     assert cfg.sims == [
-        SimConfig("ltmr", "ltmr40", "sim[0]", CanNode("can0", 40), Registers({682: 2, 652: 50})),
-        SimConfig("ltmr", "spare", "sim[1]", CanNode("can0", 41), Registers({})),
+        SimConfig("ltmr", "ltmr40", "sim[0]", CanNode("can0", 40), LtmrPresets({682: 2, 652: 50}, 80.0)),
+        SimConfig("ltmr", "spare", "sim[1]", CanNode("can0", 41), LtmrPresets({}, 120.0)),
     ]
     assert cfg.canopen is None  # a simulator needs no master in this PLC
 

@@ -25,13 +25,13 @@ from __future__ import annotations
 from ...io.can import CanSimContext
 from ...io.canopen.eds import render as render_eds
 from ...plugin.seams import Device, GeneratedFile, PackageFile, StLibrary
-from ...sim.options import RegisterPresets
 from . import st_codes
 from .bits import SAFE_CONTROL_1
 from .eds import ltmr_eds
 from .emcy import emcy_text
 from .registers import REG_CONTROL_1, register_to_object
 from .sim import FAULTS, LtmrSimulator
+from .sim_options import LtmrSimOptions
 from .words import object_text
 
 EDS = PackageFile("softplc.io_config", "eds/ltmr.eds")
@@ -45,6 +45,7 @@ def _simulator(sim, ctx: CanSimContext) -> LtmrSimulator:
         pump=ctx.pump,
         name=sim.name,
         registers=dict(sim.options.registers),
+        load_percent=sim.options.load_percent,
     )
 
 
@@ -53,7 +54,7 @@ DEVICE = Device(
     order=10,
     bus="can",
     sim_types=("ltmr",),
-    sim_options=RegisterPresets,
+    sim_options=LtmrSimOptions,
     simulator=_simulator,
     sim_faults=FAULTS,
     libraries=(StLibrary("softplc.fblocks.vendor", "ltmr.st"), StLibrary("softplc.fblocks.vendor", "ltmr_codes.st")),

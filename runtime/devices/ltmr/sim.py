@@ -58,6 +58,7 @@ from ...plugin.seams import SimFault
 from . import pkw
 from .bits import GENERAL_CONFIG2_RESET_MODE_MASK, NetworkPortStatus
 from .codes import CANOPEN_BAUD_CODES, FallbackStrategy, OperatingMode, ResetMode, fallback_allowed
+from .defaults import DEFAULT_LOAD_PERCENT
 from .emcy import EMCY_RESET, EMCY_TRIP, ERROR_REGISTER_DETECTED, emcy_text, trip_payload
 from .model import LtmrModel
 from .profile import PKW_INDEX, RPDO_MAPPABLE_INDICES, TPDO_MAPPABLE_INDICES, pkw_read_only
@@ -108,6 +109,7 @@ class LtmrSimulator(SimulatedCanopenSlave):
         product_code: int = 0x30,
         registers: dict | None = None,
         eds=None,
+        load_percent: float = DEFAULT_LOAD_PERCENT,
     ) -> None:
         pkw_read_only(product_code)  # ValueError for an unknown product code
         with shipped_eds("ltmr.eds") if eds is None else contextlib.nullcontext(eds) as path:
@@ -123,7 +125,7 @@ class LtmrSimulator(SimulatedCanopenSlave):
             identity.value = product_code
         initial = {REG_NODE_ADDRESS: node_id, REG_NETWORK_BAUD_RATE: _baud_code(settings.bitrate)}
         initial.update(registers or {})
-        self.model = LtmrModel(initial)
+        self.model = LtmrModel(initial, load_percent=load_percent)
         self._pkw_function_byte = 0  # toggle + function code of the last request seen
         self._emcy_trip_code = 0  # the trip the last EMCY told about
         self._load_before = self.model.load_percent  # the load a lasting "load" fault goes back to

@@ -41,7 +41,7 @@ from pydantic import Field, PlainValidator
 from ...config.errors import key_text
 from ...config.relations import Relations
 from ...config.section import SimOptions
-from ...config.values import choice, duration_in, fail, int_range
+from ...config.values import choice, duration_in, fail, int_range, real_range
 from . import parameters as P
 from .sim_store import FACTOR as P_FACTOR
 from .sim_store import VARIANT as P_VARIANT
@@ -67,15 +67,6 @@ INPUT_SIGNALS = {
     "u_gen": ("generator voltage L1-L2, V", "REAL"),
     "u_bus": ("busbar voltage L1-L2, V", "REAL"),
 }
-
-
-def _real(low: float, high: float, what: str):
-    def check(value) -> float:
-        if isinstance(value, (int, float)) and not isinstance(value, bool) and low <= value <= high:
-            return float(value)
-        raise fail(f"{what} from {low} to {high}", value)
-
-    return PlainValidator(check)
 
 
 def _parameters(value) -> dict:
@@ -127,18 +118,18 @@ class Mpu2sScenario:
 
 class Mpu2sSimOptions(SimOptions):
     busbar: Annotated[str, choice(("live", "dead"))] = Field("live", description="'live' or 'dead'")
-    bus_frequency: Annotated[float, _real(40.0, 70.0, "a frequency in Hz")] = Field(50.0, description="Hz")
-    bus_voltage: Annotated[float, _real(0.0, 65000.0, "a voltage in V")] = Field(400.0, description="V")
-    slip: Annotated[float, _real(-5.0, 5.0, "a slip in Hz")] = Field(0.3, description="f_gen - f_bus at start, Hz")
-    voltage_offset: Annotated[float, _real(-20.0, 20.0, "a percentage")] = Field(
+    bus_frequency: Annotated[float, real_range(40.0, 70.0, "a frequency in Hz")] = Field(50.0, description="Hz")
+    bus_voltage: Annotated[float, real_range(0.0, 65000.0, "a voltage in V")] = Field(400.0, description="V")
+    slip: Annotated[float, real_range(-5.0, 5.0, "a slip in Hz")] = Field(0.3, description="f_gen - f_bus at start, Hz")
+    voltage_offset: Annotated[float, real_range(-20.0, 20.0, "a percentage")] = Field(
         0.0, description="U_gen above rated at start, %"
     )
-    rated_frequency: Annotated[float, _real(40.0, 70.0, "a frequency in Hz")] = Field(50.0, description="Hz")
-    rated_voltage: Annotated[float, _real(1.0, 65000.0, "a voltage in V")] = Field(400.0, description="V")
-    rated_power: Annotated[float, _real(1.0, 9999.0, "a power in kW")] = Field(500.0, description="kW")
+    rated_frequency: Annotated[float, real_range(40.0, 70.0, "a frequency in Hz")] = Field(50.0, description="Hz")
+    rated_voltage: Annotated[float, real_range(1.0, 65000.0, "a voltage in V")] = Field(400.0, description="V")
+    rated_power: Annotated[float, real_range(1.0, 9999.0, "a power in kW")] = Field(500.0, description="kW")
     closing_time: Annotated[int, PlainValidator(duration_in("ms"))] = Field(80, description="a duration such as 80ms")
     refuse_close: bool = Field(False, description="true or false")
-    trip_limit: Annotated[float, _real(1.0, 180.0, "an angle in degrees")] = Field(
+    trip_limit: Annotated[float, real_range(1.0, 180.0, "an angle in degrees")] = Field(
         20.0, description="the largest |phase| a close survives, deg"
     )
     wiring: Annotated[dict, PlainValidator(_wiring)] = Field(default_factory=dict, description="signal = address")
