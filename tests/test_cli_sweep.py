@@ -91,3 +91,11 @@ def test_a_program_that_does_not_compile_exits_1_once(tmp_path):
     done = softplc("sweep", config, "--matrix", sweep)
     assert done.returncode == 1, done.stderr
     assert "bad.st:2:" in done.stderr
+
+
+def test_a_configuration_that_is_not_toml_exits_2_naming_it(tmp_path):
+    config = tmp_path / "plant.toml"
+    config.write_text("[plc\n", encoding="utf-8")
+    done = softplc("sweep", config, "--matrix", write(tmp_path, '[matrix]\n"init.Main.x" = [1]\n'))
+    assert done.returncode == 2, done.stderr
+    assert "plant.toml" in done.stderr and "Traceback" not in done.stderr

@@ -20,7 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from ..config.errors import ConfigError
-from ..config.load import config_from_dict
+from ..config.load import config_from_dict, load_config
 from .expr import Scope, check, evaluate
 from .matrix import Scenario, Sweep, SweepError
 
@@ -43,8 +43,9 @@ def jobs(sweep: Sweep, config: str | Path) -> list:
     """A Job per scenario; SweepError (a key that goes nowhere) or ConfigError
     (a value the configuration refuses), naming the scenario, before any runs."""
     path = Path(config)
+    cfg = load_config(path)  # ConfigError for a file that is not a configuration, TOML included
+    names = {sim.name.upper(): i for i, sim in enumerate(cfg.sims)}
     tables = tomllib.loads(path.read_text(encoding="utf-8"))
-    names = _sim_names(tables, path)
     out = []
     for scenario in sweep.scenarios:
         data = place(tables, scenario, names, sweep.file)
@@ -56,12 +57,6 @@ def jobs(sweep: Sweep, config: str | Path) -> list:
             Job(scenario.index, scenario.params, data, str(path.parent), sweep.duration_ns, sweep.values, sweep.expect)
         )
     return out
-
-
-def _sim_names(tables: dict, path: Path) -> dict:
-    """NAME (upper case) -> index in [[sim]], by the names the configuration gives them."""
-    cfg = config_from_dict(copy.deepcopy(tables), path)
-    return {sim.name.upper(): i for i, sim in enumerate(cfg.sims)}
 
 
 def place(tables: dict, scenario: Scenario, sim_names: dict, file: str) -> dict:

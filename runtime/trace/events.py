@@ -8,8 +8,8 @@ after t_ns as (t_ns, text), in time order (sim/base.py). The trace files
 carry them beside the watched values:
 
   CSV   a last column named EVENTS_COLUMN ("[[sim]]", as --final-json's key
-        of the records: no ST name can be it), on the row of the scan that
-        followed each event: "gen 3.214500 s: breaker closed ..." (several
+        of the records: no ST name can be it), on the row of the first scan
+        at or after each event: "gen 3.214500 s: breaker closed ..." (several
         joined by JOIN);
   VCD   a string variable per simulator under the top scope VCD_SCOPE
         ("sim", beside "softplc"): "3.214500 s: breaker closed ..." at the
