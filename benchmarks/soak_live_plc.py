@@ -12,6 +12,8 @@ PLC's process, where a separate client cannot reach:
 * how late each tick began after its release (Engine.tick wrapped, as
   bench_surfaces.py does), in a histogram of fixed size (10 us buckets up to
   100 ms: nothing grows with the run, so the RSS figure is the PLC's);
+* the garbage collections of 1 ms or more, with their monotonic time and
+  thread (a collection holds the interpreter lock throughout);
 * every second, the engine's own counters (scans, per task cycles,
   overruns, worst jitter), the histogram and the faults, written atomically
   to STATS (a JSON file): a kill -9 loses at most the last second.
@@ -35,6 +37,7 @@ it is called: nothing of softplc is changed.
 
 from __future__ import annotations
 
+import gc
 import json
 import os
 import random
@@ -46,6 +49,7 @@ from pathlib import Path
 BUCKET_NS = 10_000  # 10 us
 BUCKETS = 10_000  # up to 100 ms; later ticks in the last bucket (the max is kept exactly)
 LATE_MS, LATE_KEPT = 5, 5000  # the ticks this late are kept with their wall time (the newest)
+COLLECTION_MS = 1.0  # the garbage collections this long are kept (their monotonic time)
 TRACE_FROM_S, TRACE_EVERY_S, TRACE_TOP = 90.0, 120.0, 25
 RECOVERY_S = 60.0
 FAULT_GAP_S = (20.0, 60.0)
@@ -84,6 +88,27 @@ class Lateness:
 
     def sparse(self) -> dict:
         return {str(i): c for i, c in enumerate(self.counts) if c}
+
+
+class Collections:
+    """The garbage collections of COLLECTION_MS or more, the newest LATE_KEPT:
+    (monotonic start, ms, generation, collected, thread name). A collection
+    holds the interpreter lock throughout, in whichever thread allocated."""
+
+    def __init__(self) -> None:
+        self.kept: list = []
+        self._start = 0.0
+        gc.callbacks.append(self._phase)
+
+    def _phase(self, phase: str, info: dict) -> None:
+        if phase == "start":
+            self._start = time.monotonic()
+            return
+        ms = (time.monotonic() - self._start) * 1e3
+        if ms >= COLLECTION_MS:
+            name = threading.current_thread().name
+            self.kept.append((round(self._start, 4), round(ms, 2), info["generation"], info["collected"], name))
+            del self.kept[:-LATE_KEPT]
 
 
 class Faults:
@@ -156,6 +181,7 @@ def _write_json(path: Path, data: dict) -> None:
 def instrument(engine, stats_path: Path, seed: int, faults_on: bool) -> None:
     """Wrap the tick, start the fault and the stats threads (daemons)."""
     late = Lateness()
+    collections = Collections()
     tick, release, now = engine.tick, engine.next_release, engine.clock.now_ns
 
     def timed() -> None:
@@ -186,6 +212,7 @@ def instrument(engine, stats_path: Path, seed: int, faults_on: bool) -> None:
                 "late_n": late.n,
                 "late_max_ns": late.max_ns,
                 "late_ticks": list(late.late_ticks),
+                "collections": list(collections.kept),
                 "faults": list(faults.done),
                 "runtime_faults": len(engine.faults),
             }
