@@ -315,22 +315,25 @@ class Engine:
             if task.state.cycles == 0 and task.next_ns < now:  # watcher) is no first scan's lateness
                 task.next_ns = now
         end_ns = None if duration_ns is None else now + duration_ns
-        ran = 0
         self.scan_thread = threading.get_ident()
-        self.clock.claim_thread()
         try:
-            while not self._stop_requested and (cycles is None or ran < cycles):
-                release = self.next_release()
-                if end_ns is not None and release >= end_ns:
-                    clock.sleep_until(end_ns)
-                    break
-                clock.sleep_until(release)
-                if self._stop_requested:  # asked for while sleeping: no new scan
-                    break
-                self.tick()
-                ran += 1
+            with clock.scanning():  # the real clock: the priority, a short switch interval
+                return self._scan(cycles, end_ns)
         finally:
             self.scan_thread = None
+
+    def _scan(self, cycles: int | None, end_ns: int | None) -> int:
+        clock, ran = self.clock, 0
+        while not self._stop_requested and (cycles is None or ran < cycles):
+            release = self.next_release()
+            if end_ns is not None and release >= end_ns:
+                clock.sleep_until(end_ns)
+                break
+            clock.sleep_until(release)
+            if self._stop_requested:  # asked for while sleeping: no new scan
+                break
+            self.tick()
+            ran += 1
         return ran
 
     def next_release(self) -> int:
