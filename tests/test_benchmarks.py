@@ -34,6 +34,7 @@ def test_there_are_benchmarks():
         "bench_spin.py",
         "bench_startup.py",
         "bench_surfaces.py",
+        "bench_sweep.py",
     ]
 
 

@@ -9,9 +9,9 @@ from __future__ import annotations
 import pytest
 
 from softplc.runtime.config import SimConfig
+from softplc.runtime.devices.ltmr.sim_options import LtmrPresets
 from softplc.runtime.io.can import CanBusConfig, CanNode
 from softplc.runtime.io.canopen.config import CanopenConfig, CanopenNodeConfig, PdoConfig, PdoEntryConfig
-from softplc.runtime.sim.options import Registers
 
 from ...config.support import CAN, CANOPEN_BITRATES, EDS, PLC, SIM, addr, error, errors, load, pdo, plant
 
@@ -66,7 +66,7 @@ def test_canopen_defaults(tmp_path):
             )
         ],
     )
-    assert cfg.sims == [SimConfig("ltmr", "ltmr40", "sim[0]", CanNode("can0", 40), Registers({}))]
+    assert cfg.sims == [SimConfig("ltmr", "ltmr40", "sim[0]", CanNode("can0", 40), LtmrPresets({}))]
 
 
 def test_file_without_can_sections(tmp_path):

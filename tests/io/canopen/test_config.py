@@ -10,6 +10,7 @@ from __future__ import annotations
 import pytest
 
 from softplc.runtime.config import SafeOutput, SimConfig, load_config
+from softplc.runtime.devices.ltmr.sim_options import LtmrPresets
 from softplc.runtime.io.can import CanBusConfig, CanNode
 from softplc.runtime.io.canopen.config import (
     CanopenConfig,
@@ -18,7 +19,6 @@ from softplc.runtime.io.canopen.config import (
     PdoEntryConfig,
     SdoWriteConfig,
 )
-from softplc.runtime.sim.options import Registers
 
 from ...config.support import CAN, EDS, EXAMPLES, NODE, PLC, ST, addr, error, errors, load, pdo, plant
 
@@ -111,7 +111,7 @@ def test_example_canopen():
             )
         ],
     )
-    assert cfg.sims == [SimConfig("ltmr", "ltmr40", "sim[0]", CanNode("can0", 40), Registers({682: 0}))]
+    assert cfg.sims == [SimConfig("ltmr", "ltmr40", "sim[0]", CanNode("can0", 40), LtmrPresets({682: 0}))]
     assert cfg.safe_outputs == [SafeOutput(addr("%QW100"), 0, 'outputs.safe."%QW100"')]
 
 

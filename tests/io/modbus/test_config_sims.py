@@ -7,6 +7,7 @@ from __future__ import annotations
 import pytest
 
 from softplc.runtime.config import ConfigError, SimConfig, load_config
+from softplc.runtime.devices.ltmr.sim_options import LtmrPresets
 from softplc.runtime.io.can import CanNode
 from softplc.runtime.io.modbus import ModbusUnit
 from softplc.runtime.sim.options import Registers
@@ -28,7 +29,7 @@ def test_modbus_sims(tmp_path):
         + '[[sim]]\ntype = "db1"\nmodbus = "gateway"\nunit = 1\n',
     )
     assert cfg.sims == [
-        SimConfig("ltmr", "ltmr40", "sim[0]", CanNode("can0", 40), Registers({})),
+        SimConfig("ltmr", "ltmr40", "sim[0]", CanNode("can0", 40), LtmrPresets({})),
         SimConfig("da1", "da1_1", "sim[1]", ModbusUnit("drives", 1), Registers({505: 20, 17: 3})),
         SimConfig("de11", "pump", "sim[2]", ModbusUnit("gateway", 247), Registers({})),
         SimConfig("db1", "db1_1", "sim[3]", ModbusUnit("gateway", 1), Registers({})),
