@@ -24,6 +24,7 @@ from ..config.load import config_from_dict, load_config
 from .expr import Scope, check, evaluate
 from .matrix import Scenario, Sweep, SweepError
 
+ASSERTIONS_SHOWN = 5  # a scenario's failed assertions in its row, the first ones
 #: the result row's own columns, before the values
 SCENARIO, PASSED, FAILED, FAULT, RECORDS = "scenario", "passed", "failed", "fault", "records"
 
@@ -115,10 +116,21 @@ def run_job(job: Job) -> dict:
 
 
 def _run(job: Job) -> dict:
+    from ..engine.build import build_engine
+    from ..program import compile_files
     from ..sim.base import records_of
+    from ..testing.natives import NATIVES, SERVICE, Recorder
     from ..testing.plc import PLC
+    from ..testing.runner import simulated
 
-    plc = PLC.from_config(job.tables, base_dir=job.base_dir)
+    cfg = config_from_dict(job.tables, base_dir=job.base_dir)
+    # the assertions of softplc test (ASSERT_EQUAL ...) may be in the plant's own programs
+    program = compile_files(cfg.programs, profile=cfg.profile, natives=NATIVES, libraries=tuple(cfg.libraries))
+    # cold, no retain file: every scenario starts the same, and none writes another's file
+    engine = build_engine(cfg, virtual_time=True, start_mode="cold", program=program, retain=False)
+    recorder = Recorder(engine.clock, simulated(cfg, engine))
+    engine.ctx.services[SERVICE] = recorder
+    plc = PLC(engine, cfg)
     try:
         plc.run_for(job.duration_ns)
         faults = plc.engine.faults
@@ -126,6 +138,7 @@ def _run(job: Job) -> dict:
         records = records_of(plc.engine.simulators)
         scope = Scope(plc.read, records, job.params, fault)
         failed = [f"runtime fault: {fault}"] if fault else []
+        failed += [_assertion(f) for f in recorder.failures[:ASSERTIONS_SHOWN]]
         failed += [why for why in (check(text, scope) for text in job.expect) if why]
         values = {text: _plain(evaluate(text, scope)) for text in job.values}
     finally:
@@ -150,3 +163,12 @@ def _plain(value: Any) -> Any:
     if hasattr(value, "total_seconds"):  # TIME
         return value.total_seconds()
     return str(value)
+
+
+def _assertion(failure) -> str:
+    """A failed ASSERT_... of the program, on one line."""
+    said = f": {failure.message}" if failure.message else ""
+    return (
+        f"{failure.site}: {failure.function} failed{said} (expected {failure.expected}, actual {failure.actual}, "
+        f"at {failure.time_ns / 1e9:g} s)"
+    )

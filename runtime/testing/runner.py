@@ -153,18 +153,7 @@ class TestSuite:
         )
 
     def _simulated(self, engine) -> dict:
-        """The engine's simulated devices, with their devices' faults (SIM_FAULT)."""
-        if not self.config.sims:
-            return {}  # (the registry is not loaded for a plant without them)
-        types = registry().sim_types()
-        out = {}
-        for sim in self.config.sims:
-            simulator = engine.simulators.get(sim.name)
-            device = types.get(sim.type)
-            if simulator is not None and device is not None:
-                faults = {f.name: f for f in device.sim_faults}
-                out[sim.name.upper()] = Simulated(sim.name, simulator, faults)
-        return out
+        return simulated(self.config, engine)
 
     def run(self, case: TestCase, timeout_ns: int = DEFAULT_TIMEOUT_NS) -> TestResult:
         """Run one test in a fresh engine (cold start, no retain file).
@@ -233,3 +222,19 @@ class _Quiet:
 
     def __exit__(self, *exc) -> None:
         self.log.setLevel(self.level)
+
+
+def simulated(config: PlcConfig, engine) -> dict:
+    """The engine's simulated devices, with their devices' faults (SIM_FAULT):
+    what a Recorder needs (a test's, a sweep's scenario's)."""
+    if not config.sims:
+        return {}  # (the registry is not loaded for a plant without them)
+    types = registry().sim_types()
+    out = {}
+    for sim in config.sims:
+        simulator = engine.simulators.get(sim.name)
+        device = types.get(sim.type)
+        if simulator is not None and device is not None:
+            faults = {f.name: f for f in device.sim_faults}
+            out[sim.name.upper()] = Simulated(sim.name, simulator, faults)
+    return out

@@ -77,3 +77,30 @@ def test_the_genset_closes_in_phase_at_every_slip_and_breaker_time(case):
     assert result.values["records.mpu2s1.closes[0].phase_deg"] == close["phase_deg"]
     assert abs(close["phase_deg"]) < 10.0 and not close["tripped"]
     assert result.row["sim.mpu2s1.slip"] == case.params["sim.mpu2s1.slip"]
+
+
+ASSERTING = """PROGRAM Main
+VAR limit : INT := 10; level : INT; END_VAR
+level := level + 1;
+ASSERT_TRUE(level < limit, 'the level stays below the limit');
+END_PROGRAM
+"""
+
+
+def test_the_program_s_own_assertions_decide_too(tmp_path):
+    from softplc.runtime.sweep import execute
+
+    (tmp_path / "p.st").write_text(ASSERTING, encoding="utf-8")
+    config = tmp_path / "plant.toml"
+    config.write_text(
+        '[plc]\nprograms = ["p.st"]\n[[task]]\nname = "Main"\ninterval = "10ms"\nprograms = ["Main"]\n',
+        encoding="utf-8",
+    )
+    sweep = sweep_from_dict({"duration": "1s", "matrix": {"init.Main.limit": [1000, 50]}}, "s.toml")
+    rows = execute.run(jobs(sweep, config), workers=1)
+    assert [r["passed"] for r in rows] == [True, False]
+    assert rows[0]["failed"] == ""
+    first = rows[1]["failed"].split("; ")[0]
+    assert "p.st:4:" in first and "ASSERT_TRUE failed: the level stays below the limit" in first
+    assert "at 0.49 s" in first  # the 50th scan, at 490 ms: level 50
+    assert len(rows[1]["failed"].split("; ")) == 5  # the first five of 52
