@@ -73,7 +73,7 @@ class Duration(click.ParamType):
     type=click.Path(dir_okay=False),
     metavar="FILE",
     help="Record what the PLC sends and receives on every bus, in engine time: in FILE, whose ending "
-    'chooses the format, or beside it (README "Bus log" says which bus writes where).',
+    'chooses the format, or beside it (docs/guide/simulation.md "Bus log" says which bus writes where).',
 )
 @click.option(
     "--unit",
@@ -108,7 +108,7 @@ class Duration(click.ParamType):
     metavar="[HOST:]PORT",
     callback=lambda ctx, param, value: _listen(value),
     help="Serve the web monitor on PORT (0: any free one; 127.0.0.1 unless HOST says otherwise), "
-    'with the [web] section\'s settings or, without one, its defaults (README "Web monitor").',
+    'with the [web] section\'s settings or, without one, its defaults (docs/guide/surfaces.md "Web monitor").',
 )
 @click.option(
     "--log-file",
@@ -162,7 +162,7 @@ def run_cmd(
 
     SIGUSR1 (or typing `restart` on a terminal) restarts tasks stopped by a
     runtime fault; SIGHUP compiles the ST files and swaps them in (online
-    change: README "Online change"). Exit codes: 0 stopped cleanly, 1 compile errors, 2 bad
+    change: docs/guide/running.md "Online change"). Exit codes: 0 stopped cleanly, 1 compile errors, 2 bad
     configuration or option, 3 a runtime fault happened during the run (or the retained data
     could not be saved at the stop).
     """

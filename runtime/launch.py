@@ -357,7 +357,7 @@ def _close_vcd(writer, engine) -> None:
 
 
 def _online_change(engine, cfg, wanted: bool | None, virtual_time: bool):
-    """The online change (README "Online change"), its file watcher not
+    """The online change (docs/guide/running.md "Online change"), its file watcher not
     started yet, or None. On by default in real time, where the PLC runs a
     machine and is edited while it runs; off by default in virtual time,
     where a run is a simulation that must give the same result each time

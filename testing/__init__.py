@@ -1,8 +1,8 @@
 """softplc.testing: the API for testing a PLC offline, under its short name.
 
 The code is softplc.runtime.testing (runtime/testing/); this package only
-re-exports its public names. README: "Testing a sequence offline (Python
-and pytest)".
+re-exports its public names. docs/guide/testing.md: "Testing a sequence offline
+(Python and pytest)".
 """
 
 from softplc.runtime.sweep.cases import SweepCase, SweepResult, sweep_cases, sweep_params

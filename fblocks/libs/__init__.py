@@ -161,7 +161,7 @@ SHIPPED: tuple[LibrarySpec, ...] = (
         profile="twincat",
         natives="softplc.fblocks.libs.tcunit.natives",
     ),
-    # Beckhoff TwinCAT 3 (fblocks/libs/tc2_*: README "Libraries softplc ships")
+    # Beckhoff TwinCAT 3 (fblocks/libs/tc2_*: docs/guide/running.md "Libraries softplc ships")
     LibrarySpec(
         "Tc2_Standard",
         "softplc.fblocks.libs.tc2_standard",

@@ -147,7 +147,7 @@ class _Opcua(Model):
     port: Port = Field(4840, description="a TCP port, 0 for any free one")
     writable: Patterns = Field((), description='an array of patterns such as ["Main.Setpoint"]')
     period: Period = Field(100_000_000, description=f"a duration such as {DURATION_EXAMPLES}")
-    # the server's own keys (surfaces/opcua, README "OPC UA")
+    # the server's own keys (surfaces/opcua, docs/guide/surfaces.md "OPC UA")
     namespace: str = Field("urn:softplc", description='a namespace URI such as "urn:softplc"')
     max_variables: Annotated[int, int_range(1, 1_000_000)] = Field(10_000, description="an integer")
     anonymous: bool = Field(True, description="true or false")

@@ -1,7 +1,7 @@
 """Online change: a newly compiled program swapped into the running engine
 between two scans, its variables keeping their values (engine/carry.py has
 the rules), without a scan run twice. The compile shares the interpreter
-lock with the scan: scans may start late while it runs (see the README).
+lock with the scan: scans may start late while it runs (docs/guide/running.md "Online change").
 
     change = OnlineChange(engine, config)   # softplc run makes one
     change.start()                          # watches the ST files; SIGHUP calls wake()

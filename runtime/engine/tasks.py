@@ -1,7 +1,7 @@
 """Which tasks run which program instances: from the TOML configuration,
 from the ST CONFIGURATION/RESOURCE/TASK, or the default.
 
-Scheduling policy (README, "Tasks"): every task is released at t = 0 and
+Scheduling policy (docs/guide/running.md "Tasks"): every task is released at t = 0 and
 then every interval. At each tick the engine reads inputs, runs every task
 that is due in priority order (0 first; equal priorities in declaration
 order), then writes outputs. A task whose cycle runs past its next release

@@ -17,7 +17,7 @@ alone is no character: no STRING or WSTRING holds one, UTF-8 and UTF-16
 cannot encode it, and an OPC UA or JSON reader would fail on it). A REAL or
 LREAL takes NaN and infinities only when the caller allows them
 (``finite=False``, the test API): every surface of a server writes finite
-numbers only (README "Seeing and changing a running PLC"). The value echoed
+numbers only (docs/guide/surfaces.md "Seeing and changing a running PLC"). The value echoed
 in a message is cut (config/values.py ``got``, ``cut``).
 """
 

@@ -88,7 +88,7 @@ class BuildContext:
     them there by name (scheduled faults, tests). bus_log: the file
     `softplc run --bus-log` names (None: nothing recorded); each bus
     records its wire there or beside it, in engine time, and closes it with
-    its drivers (the README's "Bus log" says which file has what)."""
+    its drivers (the docs/guide/simulation.md "Bus log" says which file has what)."""
 
     clock: Any
     addressing: str

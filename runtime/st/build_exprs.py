@@ -69,7 +69,7 @@ class ExprBuilder(BuilderBase):
         (all operators associate to the left)."""
         file = self.file
         if len(c) // 2 > MAX_OPERATORS:  # operand, op, operand, ...: len(c) // 2 operators
-            # a bound on the time and memory one expression takes (README, "Limits")
+            # a bound on the time and memory one expression takes (docs/reference/language.md "Limits")
             self.ctx.report(
                 "E006",
                 f"expression too long (more than {MAX_OPERATORS:,} operators)",

@@ -134,7 +134,7 @@ def same_type(a: T.Type, b: T.Type) -> bool:
 def is_flexible(e: A.Expr) -> bool:
     """An untyped numeric literal (or a constant expression of them) that
     takes the type its context needs. A chain a + b + c ... is walked down
-    its left side in a loop, not a call per operator (README, "Limits")."""
+    its left side in a loop, not a call per operator (docs/reference/language.md "Limits")."""
     spine: list[A.Binary] = []
     while isinstance(e, A.Binary) and e.flexible is None:
         spine.append(e)

@@ -1,4 +1,4 @@
-"""The compiler's limits, in one place (README, "Limits").
+"""The compiler's limits, in one place (docs/reference/language.md "Limits").
 
 Each keeps the time and memory a compilation (and the building of the
 variables when the program is loaded) may take bounded, whatever the

@@ -4,7 +4,7 @@ scattered flags.
 
 The parser (only for comments: it takes every dialect's syntax and notes it
 in the AST), the checker, the code generator and the process image read the
-profile; nothing else decides dialect behaviour. README.md "Profiles" has
+profile; nothing else decides dialect behaviour. docs/guide/porting.md "Profiles" has
 the switches per profile in a table.
 """
 

@@ -11,9 +11,9 @@ run_until), read / write / force by ST path with ST types (values.py), the
 simulated devices and their faults, scripted inputs, the trace of watched
 values (trace.py). pytest_plugin.py: the fixtures plc and plc_factory and
 the marker softplc, installed as a pytest plugin with the package.
-README: "Testing a sequence offline (Python and pytest)".
+docs/guide/testing.md "Testing a sequence offline (Python and pytest)".
 
-Tests written in ST (README: "Tests in ST: softplc test"): test
+Tests written in ST (docs/guide/testing.md "Tests in ST: softplc test"): test
 FUNCTION_BLOCKs with ASSERT_* calls, run in virtual time against the
 configured plant by ``softplc test`` and by pytest.
 

@@ -12,7 +12,7 @@ simulated devices at hand, a trace of watched values.
         plc.fault("ltmr40", "load", 400)                     # a jam
         plc.run_until(lambda: plc["Motor.state"] == "Tripped", timeout="10s")
 
-README "Testing a sequence offline (Python and pytest)" is the guide.
+docs/guide/testing.md "Testing a sequence offline (Python and pytest)" is the guide.
 """
 
 from __future__ import annotations

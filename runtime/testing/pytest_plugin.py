@@ -14,7 +14,7 @@ tables as a dict, or None: the embedded default plant), or st (ST files or texts
 profile, tables), plus watch, virtual_time (default True), edit, start_mode. A
 failed test that used a PLC shows the rows of its trace around the end in
 the report ("softplc trace"). SOFTPLC_NO_CACHE=1 in the environment keeps
-the PLCs' compilations off softplc's cache (README, "The cache"), as
+the PLCs' compilations off softplc's cache (docs/reference/commands.md "The cache"), as
 ``softplc --no-cache`` does.
 """
 

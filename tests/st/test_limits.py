@@ -58,9 +58,9 @@ def test_beyond_a_limit_the_command_line_reports_a_coded_error_not_a_crash(name,
         assert all(len(line) < 200 for line in proc.stderr.splitlines())
 
 
-def test_the_readme_lists_each_limit_with_the_value_in_limits_py():
-    readme = (REPO / "README.md").read_text(encoding="utf-8")
-    section = readme.split("\n## Limits\n", 1)[1].split("\n## ", 1)[0]
+def test_the_manual_lists_each_limit_with_the_value_in_limits_py():
+    page = (REPO / "docs" / "reference" / "language.md").read_text(encoding="utf-8")
+    section = page.split("\n## Limits\n", 1)[1].split("\n## ", 1)[0]
     numbers = {int(n.replace(",", "")) for n in re.findall(r"\d[\d,]*", section)}
     for name in (
         "MAX_SOURCE_CHARS",

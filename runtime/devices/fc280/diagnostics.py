@@ -33,7 +33,7 @@ from dataclasses import dataclass
 EMCY_NO_ERROR = 0x0000
 EMCY_GENERIC = 0x1000
 # Tabelle 8.9 prints "Kurzschluss" for both 2130h and 2240h and has no row for an earth
-# fault (16-90 bit 2 "Erdschluss"): decided (README, A5) 2130h short circuit, 2240h earth
+# fault (16-90 bit 2 "Erdschluss"): decided (docs/contradictions.md, A5) 2130h short circuit, 2240h earth
 # fault, as CiA 402 names 2240h "earth leakage (device internal)" and 2130h "short circuit"
 EMCY_SHORT_CIRCUIT = 0x2130
 EMCY_SWITCH_ON_OVERCURRENT = 0x2213

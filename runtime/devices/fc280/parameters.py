@@ -10,7 +10,7 @@ number g-nn read as the decimal g*100 + nn; sub-index 0 (an array parameter
 uses its element's sub-index). Conversion index (§6.1.1, Tabelle 6.2): the
 actual value is the raw value times the factor.
 
-Decided where the manual contradicts itself (README, "Danfoss FC 280"):
+Decided where the manual contradicts itself (docs/contradictions.md "Danfoss FC 280 — digest 003"):
 - Conversion index -6 is printed as 0.00001, the same as -5 (digest 003
   A34): taken as 0.000001, the only reading that keeps the table regular.
 - Conversion index 67 is 1/60 (RPM parameters 8-90, 8-91): applied as

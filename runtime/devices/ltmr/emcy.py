@@ -8,7 +8,7 @@ line the CANopen master logs for one. Pure: no bus.
 Manuals 000/001 give no EMCY codes and no manufacturer bytes (digest 001
 A22, digest 000 #23): only the error register 1001h, "Detected error (1) or
 no detected error (0)" (manual 001 L806), and the error history 1003h, "bits
-00-15 = code of the detected error" (manual 000 L1070). Decided (README,
+00-15 = code of the detected error" (manual 000 L1070). Decided (docs/contradictions.md,
 A22): CiA 301's layout and codes, 1000h "generic error" for a trip and
 0000h "error reset or no error" for its reset; the manufacturer bytes carry
 the trip code (register 451 "Trip code", DT_FaultCode, L2043-2145) as a U16

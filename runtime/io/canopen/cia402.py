@@ -8,7 +8,7 @@ controller sees it through the controlword (6040h) and the statusword
 
 The masks and commands are CiA 402's (digest 003 §3.2 [S]); the FC 280
 manual prints the same transitions (manual 003 §4.3.2, Tabelle 4.3), with
-three contradictions this module decides (README, "Danfoss FC 280"):
+three contradictions this module decides (docs/contradictions.md "Danfoss FC 280 — digest 003"):
 
 - The fault state is printed as 0x023F, which the standard masks read as
   "fault reaction active" (only 0x0238 reads as "fault"; digest 003 A20):

@@ -1,5 +1,5 @@
 """The Modbus TCP server ([modbus_server]): the process image for HMIs and
-SCADA, in OpenPLC's mapping (mapping.py; README "Modbus TCP server").
+SCADA, in OpenPLC's mapping (mapping.py; docs/guide/surfaces.md "Modbus TCP server").
 
     [modbus_server]
     port = 5020            # host = "127.0.0.1", writable = ["%Q*", "%M*"], unit = 0 (any)

@@ -1,5 +1,5 @@
 """Where the four Modbus tables live in the process image: OpenPLC's fixed
-mapping (README "Modbus TCP server" has the table).
+mapping (docs/guide/surfaces.md "Modbus TCP server" has the table).
 
     coil n               %QX(n div 8).(n mod 8)   coils 0..65535
     discrete input n     %IX(n div 8).(n mod 8)   discrete inputs 0..65535

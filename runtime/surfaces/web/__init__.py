@@ -1,7 +1,7 @@
 """The web monitor: a page served by the servers' process ([web] in the
 configuration, or `softplc run --web [HOST:]PORT`) showing the tasks, the
 drivers and their nodes, a live variable tree with write, force and
-unforce, a trend chart and the log (README "Web monitor").
+unforce, a trend chart and the log (docs/guide/surfaces.md "Web monitor").
 
     handle = start(surfaces, config)   # surfaces: child.RemoteSurfaces (or host.Surfaces); config: [web]
     handle.url, handle.stop()
