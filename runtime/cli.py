@@ -413,7 +413,8 @@ def plot_cmd(
     dotted lines."""
     from .cli_log import marks
     from .trace.plot import FORMATS, PlotUnavailable, parse_units, plot
-    from .trace.series import TraceFileError, read_trace
+    from .trace.reading import read_trace
+    from .trace.series import TraceFileError
 
     out = Path(output) if output else Path(trace).with_suffix(".png")
     if out.suffix.lower() not in FORMATS:

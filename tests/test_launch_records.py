@@ -13,7 +13,7 @@ import pytest
 
 from softplc.runtime.config import default_config_path
 from softplc.runtime.launch import RECORDS_KEY
-from softplc.runtime.trace.series import read_trace
+from softplc.runtime.trace.reading import read_trace
 
 from .test_cli import softplc
 

@@ -3,8 +3,9 @@ variables over engine time as VCD (GTKWave) and as a plot (PNG, SVG, PDF),
 and the reading of CSV and VCD traces back for `softplc plot`.
 
 series.py  Series and Trace (samples per signal), Recorder (an after_tick
-           callback that keeps the samples a plot needs), reading a trace file
+           callback that keeps the samples a plot needs), read_csv
 vcd.py     VcdTraceWriter (an after_tick callback) and read_vcd
+reading.py read_trace: a CSV or a VCD, by its ending
 plot.py    plot(): a Trace as a figure (matplotlib, the `plot` extra)
 events.py  what the simulated devices recorded (breaker closes, EMCYs), as
            the traces' events and marks

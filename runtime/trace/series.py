@@ -109,19 +109,6 @@ class Recorder:
         return Trace(self.series, source, self.marks)
 
 
-def read_trace(path: str | Path) -> Trace:
-    """A CSV trace (`--trace FILE.csv`) or a VCD trace; TraceFileError when it cannot be read."""
-    path = Path(path)
-    suffix = path.suffix.lower()
-    if suffix == ".csv":
-        return read_csv(path)
-    if suffix == ".vcd":
-        from .vcd import read_vcd
-
-        return read_vcd(path)
-    raise TraceFileError(f"{path}: not a trace softplc reads (give a .csv or .vcd file)")
-
-
 _NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 
 

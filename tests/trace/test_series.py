@@ -6,7 +6,8 @@ from __future__ import annotations
 import pytest
 
 from softplc.runtime.engine.monitor import TraceWriter, Watch
-from softplc.runtime.trace.series import Recorder, Series, TraceFileError, read_csv, read_trace
+from softplc.runtime.trace.reading import read_trace
+from softplc.runtime.trace.series import Recorder, Series, TraceFileError, read_csv
 
 from .conftest import MS, SRC, WATCHED, task
 
