@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 from operator import itemgetter
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 from .bits import STATUS1_CURRENT_SHIFT, Status1, Status2, current_ratio_field
 from .codes import TRIP_THERMAL_OVERLOAD
@@ -48,8 +48,32 @@ from .registers import (
 )
 from .thermal import NO_TRIP_EXPECTED, minimum_wait_s, steady, time_to_trip_s
 
-if TYPE_CHECKING:
-    from .model import LtmrModel
+
+class LtmrModel(Protocol):
+    """What publish() reads and writes of the model (model.py's LtmrModel):
+    the registers, the motor's and the thermal image's state, and the
+    memos of its last run."""
+
+    registers: dict
+    thermal: float  # θ, a fraction of the trip level
+    lo1: bool
+    lo2: bool
+    comm_lost: bool
+    t_ns: int | None
+    alarms: list[int]
+    lockout_until_ns: int
+    current_registers: CurrentRegisters
+    shown: tuple | None
+
+    @property
+    def starting(self) -> bool: ...
+
+    @property
+    def current_percent(self) -> float: ...
+
+    @property
+    def uses_flc2(self) -> bool: ...
+
 
 _S1_CONTROLLER_POWER, _S1_READY, _S1_ON = int(Status1.CONTROLLER_POWER), int(Status1.READY), int(Status1.ON)
 _S1_TRIPPED, _S1_ALARM = int(Status1.TRIP | Status1.TRIPPED), int(Status1.ALARM)
