@@ -32,14 +32,11 @@ from __future__ import annotations
 
 import struct
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 from .errors import EXCEPTION_CODES, ModbusError
 from .functions import FUNCTIONS
+from .messages import Transaction
 from .wire import CODEC_FRAMES, framer
-
-if TYPE_CHECKING:
-    from .link import Transaction
 
 
 @dataclass(frozen=True)

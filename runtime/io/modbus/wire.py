@@ -27,7 +27,7 @@ Time, decided here and kept by the link and the worker (master.py):
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 from pymodbus.client.mixin import ModbusClientMixin
 from pymodbus.constants import ExcCodes
@@ -36,10 +36,26 @@ from pymodbus.framer import FramerBase, FramerRTU, FramerSocket
 from pymodbus.pdu import DecodePDU, ExceptionResponse, ModbusPDU
 
 from ...sim.null_modem import keep_recent
+from .messages import LinkSettings
 
-if TYPE_CHECKING:
-    from .line import SimulatedModbusLine
-    from .link import LinkSettings
+
+class Line(Protocol):
+    """What the in-memory server reads of its simulated line (line.py's
+    SimulatedModbusLine): its name, RTU or TCP framing, its cable (a
+    MemoryCable when the bytes cross in memory) and whether every unit is
+    silent."""
+
+    @property
+    def name(self) -> str: ...
+
+    @property
+    def transport(self) -> str: ...
+
+    @property
+    def cable(self) -> object: ...
+
+    @property
+    def silent(self) -> bool: ...
 
 
 def framer(transport: str, server: bool) -> FramerBase:
@@ -149,7 +165,7 @@ class MemoryServer:
     """The line's end: one request frame in, the answer frame (or None: no
     answer) out, as pymodbus's ServerRequestHandler answers it."""
 
-    def __init__(self, line: SimulatedModbusLine, context) -> None:
+    def __init__(self, line: Line, context) -> None:
         self.line = line
         self.context = context  # the line's units as pymodbus's datastore (line._Line)
         self.codec = Codec(line.transport, server=True)
