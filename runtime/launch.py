@@ -150,7 +150,8 @@ def run_plc(
     from .st.diagnostics import CompileError
     from .st.faults import STFault
     from .st.valuejson import json_text
-    from .surfaces.host import SERVERS, SurfaceError, Surfaces
+    from .surfaces.host import SurfaceError, Surfaces
+    from .surfaces.pipe import SERVERS
     from .trace.plot import PlotUnavailable, parse_units, plot
 
     steady_malloc()  # before its threads start: each would have an arena of its own

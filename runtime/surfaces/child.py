@@ -27,7 +27,7 @@ from typing import Any
 
 from ..engine.snapshot import Layout, Snapshot
 from ..io.ratelog import PeerLogFilter
-from .process import CALL_TIMEOUT_S, FIELDS, PlcBusy, start_failure
+from .pipe import CALL_TIMEOUT_S, FIELDS, SERVERS, PlcBusy, start_failure
 from .web.logbuffer import LogBuffer
 
 #: added to the servers' niceness: they yield the CPU to the scan
@@ -235,7 +235,6 @@ def main(conn, configs: dict, permissions: dict, level: int, period_s: float) ->
     stop = threading.Event()
     reader = threading.Thread(target=_receive, args=(link, surfaces.hub, stop), name="plc", daemon=True)
     reader.start()
-    from .host import SERVERS  # host imports process, which names this module
 
     handles: dict = {}
     errors: dict = {}

@@ -31,14 +31,10 @@ from typing import Any
 from ..config.servers import ServerConfig
 from ..engine.access import Access, Permission
 from ..engine.snapshot import SnapshotHub
-from .process import ProcessError, SurfaceProcess, start_failure
+from .pipe import OWN_PROCESS, SERVERS, start_failure
+from .process import ProcessError, SurfaceProcess
 
 log = logging.getLogger("softplc.surfaces")
-
-#: section key -> module (relative to this package) offering start(surfaces, config)
-SERVERS = {"web": ".web", "opcua": ".opcua", "modbus_server": ".modbus_server"}
-#: the servers run in the servers' process (the others in the PLC's)
-OWN_PROCESS = frozenset(("web", "opcua", "modbus_server"))
 
 
 class SurfaceError(Exception):

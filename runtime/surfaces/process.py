@@ -42,17 +42,15 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..engine.snapshot import Snapshot
+from .pipe import FIELDS
 
 log = logging.getLogger("softplc.surfaces")
 
 #: how long a server waits for the PLC to answer a call (an online change waits longer)
-CALL_TIMEOUT_S = 30.0
 START_TIMEOUT_S = 120.0  # a new interpreter importing asyncua on a busy machine
 STOP_TIMEOUT_S = 10.0
 RESTART_S = 1.0  # after the process ended on its own, the first new one this much later
 RESTART_MAX_S = 30.0
-#: the Snapshot fields sent with each capture (the layout goes apart)
-FIELDS = tuple(f for f in Snapshot.__dataclass_fields__ if f != "layout")
 #: what the servers' process may call on the PLC's side (besides Surfaces.call)
 CALLS: dict[str, Callable[..., Any]] = {
     "watch": lambda s, reader, paths: s.hub.watch(reader, paths),
@@ -63,23 +61,6 @@ CALLS: dict[str, Callable[..., Any]] = {
 
 class ProcessError(Exception):
     """The servers' process could not start its servers: the message says which and why."""
-
-
-class PlcBusy(TimeoutError):
-    """The PLC did not answer a call of the servers in time (a compile of an
-    online change longer than the call's timeout, a host too busy): the web
-    page answers 504 with this message, not a 500 of a bare TimeoutError."""
-
-
-def start_failure(host: str, port: int, exc: OSError) -> str:
-    """Why a server did not start, as the PLC reports it after "[key] ". A
-    TimeoutError is an OSError too, often without a message (a step of
-    asyncua's start on a host too busy for it): no "cannot listen ...: "
-    with nothing after it."""
-    if isinstance(exc, TimeoutError):
-        said = str(exc) or "a step of its start timed out"
-        return f"did not start on {host}:{port} in time: {said} (a busy host? start the PLC again)"
-    return f"cannot listen on {host}:{port}: {exc.strerror or str(exc) or type(exc).__name__}"
 
 
 @dataclass

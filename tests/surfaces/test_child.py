@@ -7,7 +7,7 @@ import multiprocessing
 import pytest
 
 from softplc.runtime.surfaces.child import _Link
-from softplc.runtime.surfaces.process import PlcBusy
+from softplc.runtime.surfaces.pipe import PlcBusy
 
 
 def test_a_call_the_plc_does_not_answer_in_time_says_so():

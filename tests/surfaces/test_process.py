@@ -11,7 +11,7 @@ import multiprocessing
 from pymodbus.client import ModbusTcpClient
 
 from softplc.runtime.surfaces.host import Surfaces
-from softplc.runtime.surfaces.process import start_failure
+from softplc.runtime.surfaces.pipe import start_failure
 
 from ..engine.conftest import Scanning, make_engine, task, wait_until
 from .modbus_server.conftest import server_config

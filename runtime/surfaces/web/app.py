@@ -21,7 +21,7 @@ MAX_WATCHED paths, 429 watches asked faster than WATCH_RATE, 503 more than
 MAX_CLIENTS event streams (or MAX_CONNECTIONS requests at once: uvicorn's
 limit, or the PLC's process gone: killed, or stopping, child.PlcGone),
 504 no scan took the change in time, or the PLC did not answer
-a call in time (process.PlcBusy: busy, or stopping); restart and online-change
+a call in time (pipe.PlcBusy: busy, or stopping); restart and online-change
 answer 403 when [web] control is false (a page that watches and writes,
 and no more). A value echoed in a message is cut. A POST must be JSON
 (Content-Type application/json): a page of another site cannot send one
@@ -52,7 +52,7 @@ from ...engine.access import AccessDenied
 from ...engine.places import PathError
 from ...engine.values import shown, without_lone_surrogates
 from ...io.ratelog import RateLimitedLog
-from ..process import CALL_TIMEOUT_S
+from ..pipe import CALL_TIMEOUT_S
 from . import plc
 from .guard import Guard, Rate
 from .stream import MAX_CLIENTS, Broadcaster, log

@@ -12,7 +12,8 @@ import httpx
 import pytest
 
 from softplc.runtime.config.servers import ServerConfig
-from softplc.runtime.surfaces.host import OWN_PROCESS, Surfaces
+from softplc.runtime.surfaces.host import Surfaces
+from softplc.runtime.surfaces.pipe import OWN_PROCESS
 from softplc.testing import PLC
 
 from ...engine.conftest import Scanning, wait_until
