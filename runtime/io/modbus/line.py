@@ -26,8 +26,8 @@ The models run on the engine's clock: virtual time moves them at each tick
 
 from __future__ import annotations
 
-import asyncio
 import threading
+from collections.abc import Callable
 
 from pymodbus.constants import ExcCodes
 from pymodbus.datastore import ModbusServerContext
@@ -38,6 +38,7 @@ from pymodbus.server import ModbusSerialServer, ModbusTcpServer
 from ...plugin.driver import DriverError
 from ...sim.base import SimulatedDevice
 from ...sim.null_modem import NullModem
+from ..loop_thread import LoopThread
 from .unit import SILENT, ModbusRefusal, SimulatedUnit
 from .wire import MemoryCable, MemoryServer
 
@@ -94,9 +95,8 @@ class SimulatedModbusLine(SimulatedDevice):
         self.muted: set[int] = set()  # unit ids that do not answer (the SILENT fault)
         self.requests = 0
         self._lock = threading.Lock()
-        self._loop: asyncio.AbstractEventLoop | None = None
+        self._runner: LoopThread | None = None  # real time, on a port: the server's thread
         self._server: ModbusTcpServer | ModbusSerialServer | None = None
-        self._thread: threading.Thread | None = None
 
     def unit(self, unit: int):
         """The model at a unit id."""
@@ -139,29 +139,13 @@ class SimulatedModbusLine(SimulatedDevice):
     def open(self) -> None:
         if self.server is not None:
             return  # in memory: the master's link calls server.exchange()
-        started = threading.Event()
-        failure: list = []
+        self._runner = LoopThread(f"sim {self.name}")
+        try:
+            self._runner.start(self._serve, timeout_s=5)
+        except Exception as exc:
+            raise DriverError(f"sim {self.name}: the Modbus server did not start: {exc}") from None
 
-        def run() -> None:
-            loop = asyncio.new_event_loop()
-            self._loop = loop
-            asyncio.set_event_loop(loop)
-            try:
-                loop.run_until_complete(self._serve(started))
-            except Exception as exc:  # reported to start() below
-                failure.append(exc)
-                started.set()
-            finally:
-                loop.close()
-
-        self._thread = threading.Thread(target=run, name=f"sim {self.name}", daemon=True)
-        self._thread.start()
-        if not started.wait(5) or failure:
-            raise DriverError(
-                f"sim {self.name}: the Modbus server did not start" + (f": {failure[0]}" if failure else "")
-            )
-
-    async def _serve(self, started: threading.Event) -> None:
+    async def _serve(self, ready: Callable[[], None]) -> None:
         line = _Line(self)
         server: ModbusTcpServer | ModbusSerialServer
         if self.transport == "tcp":
@@ -187,19 +171,19 @@ class SimulatedModbusLine(SimulatedDevice):
             )
         self._server = server
         await server.serve_forever(background=True)
-        started.set()
+        ready()
         await server.serving
 
     def close(self) -> None:
-        if self._server is not None and self._loop is not None:
-            future = asyncio.run_coroutine_threadsafe(self._server.shutdown(), self._loop)
+        runner, self._runner = self._runner, None
+        if self._server is not None and runner is not None and runner.alive:
             try:
-                future.result(timeout=5)
+                runner.run(self._server.shutdown(), timeout_s=5)
             except Exception:  # already down
                 pass
-        if self._thread is not None:
-            self._thread.join(timeout=5)
-        self._server = self._thread = None
+        if runner is not None:
+            runner.join(timeout_s=5)
+        self._server = None
         if isinstance(self.cable, NullModem):
             self.cable.close()
             self.cable = None

@@ -37,12 +37,13 @@ from __future__ import annotations
 import asyncio
 import logging
 import struct
-import threading
 import time
+from collections.abc import Callable
 
 from ...config.values import cut
 from ...engine.access import AccessDenied, denied
 from ...engine.places import PathError
+from ...io.loop_thread import LoopThread
 from ...io.ratelog import RateLimitedLog
 from . import protocol as P
 from .mapping import COILS, DISCRETE_INPUTS, HOLDING_REGISTERS, INPUT_REGISTERS, Mapping, OutOfRange
@@ -216,9 +217,8 @@ class ModbusServer:
         self.port = config.port
         self.connections: list[_Connection] = []
         self.refused = 0  # connections closed at once: all places taken
-        self._loop: asyncio.AbstractEventLoop | None = None
+        self._runner: LoopThread | None = None
         self._server: asyncio.Server | None = None
-        self._thread: threading.Thread | None = None
         self._stopping: asyncio.Event | None = None
 
     @property
@@ -227,37 +227,24 @@ class ModbusServer:
         return f"modbus-tcp://{host}:{self.port}"
 
     def start(self) -> ModbusServer:
-        started = threading.Event()
-        failure: list = []
-
-        def run() -> None:
-            loop = asyncio.new_event_loop()
-            self._loop = loop
-            asyncio.set_event_loop(loop)
-            try:
-                loop.run_until_complete(self._serve(started))
-            except Exception as exc:  # reported by start() below
-                failure.append(exc)
-                started.set()
-            finally:
-                _finish(loop)
-
-        self._thread = threading.Thread(target=run, name="softplc-modbus-server", daemon=True)
-        self._thread.start()
-        if not started.wait(10) or failure:
-            self._thread.join(timeout=5)
-            self._thread = None
-            if failure and isinstance(failure[0], OSError):
-                raise failure[0]
-            raise OSError(f"the Modbus server did not start{': ' + str(failure[0]) if failure else ''}")
+        """Listening (OSError when it cannot: the port taken, a start that
+        timed out)."""
+        runner = self._runner = LoopThread("softplc-modbus-server")
+        try:
+            runner.start(self._serve, timeout_s=10)
+        except OSError:
+            runner.join(timeout_s=5)
+            raise
+        except Exception as exc:
+            raise OSError(f"the Modbus server did not start: {exc}") from exc
         return self
 
-    async def _serve(self, started: threading.Event) -> None:
+    async def _serve(self, ready: Callable[[], None]) -> None:
         self._stopping = asyncio.Event()
         server = await asyncio.start_server(self._client, self.host, self.port, limit=P.MAX_PDU + _MBAP.size)
         self._server = server
         self.port = server.sockets[0].getsockname()[1]
-        started.set()
+        ready()
         async with server:
             await self._stopping.wait()
         for conn in list(self.connections):
@@ -321,22 +308,11 @@ class ModbusServer:
             self.limited.flush()
 
     def stop(self) -> None:
-        """Close the listener and every client connection, end the thread."""
-        loop, thread, stopping = self._loop, self._thread, self._stopping
-        if loop is not None and stopping is not None and thread is not None and thread.is_alive():
-            loop.call_soon_threadsafe(stopping.set)
-        if thread is not None:
-            thread.join(timeout=5)
-        self._server = self._thread = None
-
-
-def _finish(loop: asyncio.AbstractEventLoop) -> None:
-    """Cancel what the connections left running (a request waiting for a
-    scan), then close the loop: no task outlives the server."""
-    pending = asyncio.all_tasks(loop)
-    for task in pending:
-        task.cancel()
-    loop.run_until_complete(asyncio.gather(*pending, return_exceptions=True))
-    loop.run_until_complete(loop.shutdown_asyncgens())
-    loop.run_until_complete(loop.shutdown_default_executor())
-    loop.close()
+        """Close the listener and every client connection, end the thread
+        (what the connections left running is cancelled: LoopThread)."""
+        runner, stopping = self._runner, self._stopping
+        if runner is not None:
+            if stopping is not None:
+                runner.call_soon(stopping.set)
+            runner.join(timeout_s=5)
+        self._server = self._runner = None

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import asyncio
 import logging
-import threading
+from collections.abc import Callable
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
@@ -26,6 +26,7 @@ from typing import Any
 from asyncua import Server, ua
 
 from ...config.servers import ServerConfig
+from ...io.loop_thread import LoopThread
 from .security import load_credentials
 from .space import add_enums, add_tree, tree_items, variant
 from .tree import READER, Tree, Variable, published
@@ -71,52 +72,29 @@ class OpcuaServer:
         self._signatures: dict = {}  # NodeId -> what the node is (space.add_tree), for an online change
         self._generation = -1
         self._seen = 0  # the sequence of the last snapshot published
-        self._loop = asyncio.new_event_loop()
         self._stopping: asyncio.Event | None = None
-        self._ready = threading.Event()
-        self._error: BaseException | None = None
-        self._thread = threading.Thread(target=self._run, name="opcua", daemon=True)
+        self._runner = LoopThread("opcua", on_error=lambda exc: log.error("opcua: the server stopped: %s", exc))
 
     # ------------------------------------------------------------ the caller's thread
 
     def start(self) -> OpcuaServer:
-        self._thread.start()
-        if not self._ready.wait(START_TIMEOUT_S):
+        try:
+            self._runner.start(self._main, START_TIMEOUT_S)
+        except TimeoutError:
             self.stop()
-            raise TimeoutError(f"opcua: the server did not start within {START_TIMEOUT_S} s")
-        if self._error is not None:
-            self._thread.join()
-            self._loop.close()
-            raise self._error
+            raise TimeoutError(f"opcua: the server did not start within {START_TIMEOUT_S} s") from None
         return self
 
     def stop(self) -> None:
-        if self._thread.is_alive():
-            stopping = self._stopping
-            if stopping is not None:
-                self._loop.call_soon_threadsafe(stopping.set)
-            self._thread.join()
-        if not self._loop.is_closed():
-            self._loop.close()
+        stopping = self._stopping
+        if stopping is not None:
+            self._runner.call_soon(stopping.set)
+        self._runner.join()
         self.surfaces.hub.unwatch(READER)
 
     # ------------------------------------------------------------ the server's thread
 
-    def _run(self) -> None:
-        asyncio.set_event_loop(self._loop)
-        try:
-            self._loop.run_until_complete(self._main())
-        except BaseException as exc:  # reported to start(), or logged once running
-            if not self._ready.is_set():
-                self._error = exc
-            else:
-                log.error("opcua: the server stopped: %s", exc)
-        finally:
-            # asyncua resolves the host in the loop's default executor: its thread ends here
-            self._loop.run_until_complete(self._loop.shutdown_default_executor())
-            self._ready.set()
-
-    async def _main(self) -> None:
+    async def _main(self, ready: Callable[[], None]) -> None:
         self._stopping = asyncio.Event()
         server = self._server = await self._make_server()
         self._idx = await server.register_namespace(self.namespace)
@@ -126,7 +104,7 @@ class OpcuaServer:
             port = server.bserver.port if server.bserver is not None else self.config.port
             self.url = f"opc.tcp://{self.config.host}:{port}{PATH}"
             _fix_endpoint_urls(server, self.url)
-            self._ready.set()
+            ready()
             await self._publish_loop()
         finally:
             await server.stop()
