@@ -35,8 +35,8 @@ from typing import Any
 
 from ..st import refs, rt_sfc
 from ..st import types as T
-from ..st.valuejson import SKIPPED_SECTIONS
 from ..st.values import assign_into
+from .members import own_globals, own_members
 from .retain import type_signature
 
 _SFC_SLOT = "_sfc"  # st/codegen_sfc.py: the action control blocks of an SFC POU
@@ -55,26 +55,12 @@ class Carried:
 
 def members(holder_type: T.Type | None, pou=None) -> dict:
     """UPPER name -> (name, python attribute, type) of the carried members
-    of an FB or struct type, or of a POU (pou=POUInfo)."""
-    if pou is None and isinstance(holder_type, T.FBType):
-        pou = holder_type.pou
-    if pou is not None:
-        return {
-            key: (v.name, v.pyname, v.type)
-            for key, v in pou.vars.items()
-            if v.section not in SKIPPED_SECTIONS and v.location is None and not v.constant
-        }
-    if isinstance(holder_type, T.StructType):
-        return {f.name.upper(): (f.name, f.pyname, f.type) for f in holder_type.fields.values()}
-    return {}
+    of an FB or struct type, or of a POU (pou=POUInfo): members.own_members."""
+    return {m[0].upper(): m for m in own_members(holder_type, pou)}
 
 
 def global_members(checked) -> dict:
-    return {
-        g.name.upper(): (g.name, g.pyname, g.type)
-        for g in checked.globals
-        if g.location is None and not g.constant and g.section not in SKIPPED_SECTIONS
-    }
+    return {m[0].upper(): m for m in own_globals(checked)}
 
 
 class Carry:

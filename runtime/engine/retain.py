@@ -48,7 +48,7 @@ from typing import Any
 
 from ..st import types as T
 from ..st.rtlib import string_length
-from ..st.valuejson import SKIPPED_SECTIONS
+from .members import own_members, owned
 from .values import lone_surrogate, without_lone_surrogates
 
 RETAIN = "RETAIN"
@@ -91,17 +91,9 @@ def type_signature(t: T.Type) -> str:
 
 def _members(t: T.StructType | T.FBType) -> list:
     """(name, python attribute, type) of the members of a STRUCT or FB type
-    that belong to its retained state, in declaration order."""
-    if isinstance(t, T.StructType):
-        return [(f.name, f.pyname, f.type) for f in t.fields.values()]
-    pou = t.pou
-    if pou is None:
-        return []
-    return [
-        (v.name, v.pyname, v.type)
-        for v in pou.vars.values()
-        if v.section not in SKIPPED_SECTIONS and v.location is None
-    ]
+    that belong to its retained state, in declaration order (members.py's
+    rule: a CONSTANT member is the program's, and is not kept)."""
+    return own_members(t)
 
 
 # ================================================================ snapshot codecs
@@ -327,7 +319,7 @@ def plan_retain(checked, instances: dict, globals_obj) -> list:
 
 
 def _visit(plan: list, path: str, sym, holder, active: set) -> None:
-    if sym.section in SKIPPED_SECTIONS or sym.location is not None or sym.constant:
+    if not owned(sym):
         return
     kind = _kind(sym)
     if kind is not None:

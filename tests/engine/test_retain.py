@@ -764,3 +764,32 @@ def test_store_reports_a_failed_write_and_retries(tmp_path):
     store.submit(small_data(3))
     store.close()
     assert read_file(path).cycle == 3
+
+
+LIMITED = """
+FUNCTION_BLOCK Limited
+VAR CONSTANT limit : INT := {limit}; END_VAR
+VAR count : INT; END_VAR
+count := MIN(count + 1, limit);
+END_FUNCTION_BLOCK
+
+PROGRAM Main
+VAR PERSISTENT lim : Limited; END_VAR
+lim();
+END_PROGRAM
+"""
+
+
+def test_a_constant_of_a_kept_instance_is_the_new_program_s_not_the_file_s(tmp_path):
+    # members.py: a CONSTANT is the program's, never the instance's state: a warm start keeps
+    # the persistent FB's count, and its limit is what the new program says
+    path = tmp_path / "plc.retain"
+    old = Plc(LIMITED.format(limit=10))
+    old.run(25)
+    assert old.get("lim.count") == 10
+    save(old, path)
+    new, report = start(path, "warm", LIMITED.format(limit=20))
+    assert "Main.lim" in report.restored
+    assert new.get("lim.count") == 10 and new.get("lim.limit") == 20
+    new.run(15)
+    assert new.get("lim.count") == 20
