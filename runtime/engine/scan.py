@@ -32,7 +32,7 @@ from typing import TYPE_CHECKING
 from ..config.values import cut
 from ..image.address import default_type
 from ..image.memory import ProcessImage
-from ..program import ExecContext, Program, TaskState, locate
+from ..program import ExecContext, Program, locate
 from ..st import rt_oop
 from ..st import types as T
 from ..st.faults import STFault, fault_from_exception
@@ -42,7 +42,7 @@ from .clock import VirtualClock
 from .cputime import COLLECTOR as _COLLECTOR
 from .diag import DiagVariable
 from .retain_file import ForeignRetainFile
-from .stats import TaskStats
+from .tasks import Task
 
 if TYPE_CHECKING:
     from .scenario import Scenario
@@ -66,43 +66,6 @@ class FaultRecord:
 
     def __str__(self) -> str:
         return f"task {self.task}: {self.fault}"
-
-
-class Task:
-    """A task at run time: its configuration, program instances, next release and statistics."""
-
-    def __init__(self, spec, order: int) -> None:
-        self.spec = spec
-        self.name = spec.name
-        self.order = order
-        self.interval_ns = spec.interval_ns  # None: freewheeling
-        self.pause_ns = spec.pause_ns
-        self.priority = spec.priority
-        self.watchdog_ns = spec.watchdog_ns
-        self.sensitivity = spec.sensitivity
-        # The cooperative check on loop back-edges faults a single cycle at
-        # once when it runs longer than time x sensitivity (as CODESYS).
-        self.budget_s = float("inf") if spec.watchdog_ns is None else spec.watchdog_ns * spec.sensitivity / 1e9
-        self.instances: list = []  # (instance name, POUInfo, object)
-        self.calls: list = []
-        self.next_ns = 0
-        self.late_cycles = 0  # consecutive cycles longer than the watchdog time
-        self.fault: STFault | None = None
-        self.stats = TaskStats()
-        #: what a program asks of its task (ExecContext.begin_task): index in the configuration's order
-        self.state = TaskState(order + 1, spec.name, spec.interval_ns or 0, spec.priority)
-
-    def describe(self) -> str:
-        every = (
-            f"every {self.interval_ns / 1e6:g} ms"
-            if self.interval_ns is not None
-            else f"freewheeling (pause {self.pause_ns / 1e6:g} ms)"
-        )
-        wd = (
-            "no watchdog" if self.watchdog_ns is None else f"watchdog {self.watchdog_ns / 1e6:g} ms x{self.sensitivity}"
-        )
-        names = ", ".join(name for name, _info, _obj in self.instances)
-        return f"task {self.name}: {every}, priority {self.priority}, {wd}: {names}"
 
 
 class Engine:

@@ -1,5 +1,6 @@
 """Which tasks run which program instances: from the TOML configuration,
-from the ST CONFIGURATION/RESOURCE/TASK, or the default.
+from the ST CONFIGURATION/RESOURCE/TASK, or the default (plan_tasks); and a
+task at run time (Task: its instances, next release, statistics).
 
 Scheduling policy (docs/guide/running.md "Tasks"): every task is released at t = 0 and
 then every interval. At each tick the engine reads inputs, runs every task
@@ -17,6 +18,9 @@ import difflib
 from ..config import DEFAULT_PAUSE_NS, ProgramInstance, TaskConfig, default_watchdog_ns
 from ..config.plc import MIN_INTERVAL_NS, MIN_INTERVAL_TEXT
 from ..config.values import cut
+from ..program import TaskState
+from ..st.faults import STFault
+from .stats import TaskStats
 
 DEFAULT_INTERVAL_NS = 10_000_000  # CODESYS's MainTask: 10 ms
 
@@ -127,3 +131,40 @@ def _from_st_configuration(program, configs: list) -> list:
     if not active:
         raise TaskSetupError(f"{cfg.node.pos}: CONFIGURATION {cfg.name} assigns no PROGRAM to a task")
     return active
+
+
+class Task:
+    """A task at run time: its configuration, program instances, next release and statistics."""
+
+    def __init__(self, spec, order: int) -> None:
+        self.spec = spec
+        self.name = spec.name
+        self.order = order
+        self.interval_ns = spec.interval_ns  # None: freewheeling
+        self.pause_ns = spec.pause_ns
+        self.priority = spec.priority
+        self.watchdog_ns = spec.watchdog_ns
+        self.sensitivity = spec.sensitivity
+        # The cooperative check on loop back-edges faults a single cycle at
+        # once when it runs longer than time x sensitivity (as CODESYS).
+        self.budget_s = float("inf") if spec.watchdog_ns is None else spec.watchdog_ns * spec.sensitivity / 1e9
+        self.instances: list = []  # (instance name, POUInfo, object)
+        self.calls: list = []
+        self.next_ns = 0
+        self.late_cycles = 0  # consecutive cycles longer than the watchdog time
+        self.fault: STFault | None = None
+        self.stats = TaskStats()
+        #: what a program asks of its task (ExecContext.begin_task): index in the configuration's order
+        self.state = TaskState(order + 1, spec.name, spec.interval_ns or 0, spec.priority)
+
+    def describe(self) -> str:
+        every = (
+            f"every {self.interval_ns / 1e6:g} ms"
+            if self.interval_ns is not None
+            else f"freewheeling (pause {self.pause_ns / 1e6:g} ms)"
+        )
+        wd = (
+            "no watchdog" if self.watchdog_ns is None else f"watchdog {self.watchdog_ns / 1e6:g} ms x{self.sensitivity}"
+        )
+        names = ", ".join(name for name, _info, _obj in self.instances)
+        return f"task {self.name}: {every}, priority {self.priority}, {wd}: {names}"
