@@ -10,8 +10,7 @@ RealClock    the wall (monotonic) clock: sleeps until `spin_ns` before a
              benchmarks/bench_spin.py in benchmarks/README.md). With
              realtime_priority the scan thread runs under SCHED_FIFO
              ([plc] realtime_priority): no process of normal priority
-             delays its wake-up. While the scan runs, Python's switch
-             interval is SCAN_SWITCH_S (see RealClock.scanning).
+             delays its wake-up.
 VirtualClock jumps straight to the next deadline: a 10-minute sequence runs
              in milliseconds and always the same way. Simulators read the
              same clock.
@@ -28,26 +27,16 @@ PeriodicService  a real-time thread that serves a bus or a simulated
 
 from __future__ import annotations
 
-import contextlib
 import logging
 import os
-import sys
 import threading
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 
 from ..config import DEFAULT_SPIN_NS
 from ..program.context import VIRTUAL_EPOCH_NS
 
 log = logging.getLogger(__name__)
-
-#: Python's switch interval while a scan runs on the real clock: how long a
-#: thread waiting for the interpreter lock (the scan, at its release) waits
-#: before the thread that holds it must let go. Python's default, 5 ms, was
-#: the wait of most late ticks of the live soak (issue 31: `perf sched` saw
-#: the scan woken exactly 5 ms after its release by the servers' call
-#: threads, a simulator, the online change's reader).
-SCAN_SWITCH_S = 0.001
 
 
 def _threads() -> list[int]:
@@ -67,11 +56,6 @@ class VirtualClock:
 
     def claim_thread(self) -> None:
         """Virtual time needs no priority: nothing waits for the wall clock."""
-
-    @contextlib.contextmanager
-    def scanning(self) -> Iterator[None]:
-        """Nothing to change: see RealClock.scanning."""
-        yield
 
     def now_ns(self) -> int:
         return self._now
@@ -121,25 +105,6 @@ class RealClock:
             )
             return
         log.info("the PLC runs under SCHED_FIFO, the scan at priority %d", self.realtime_priority)
-
-    @contextlib.contextmanager
-    def scanning(self) -> Iterator[None]:
-        """While the calling thread (the scan's) runs the engine: claim_thread,
-        and Python's switch interval at most SCAN_SWITCH_S, restored after.
-        Every thread of the process takes turns at the interpreter lock; a
-        thread that computes (a server's request, a simulator, the online
-        change reading a program back) keeps it until the waiting scan has
-        asked for a switch interval, then lets go at its next bytecode. The
-        scan, which sleeps most of its period, is the one that waits: at
-        1 ms it starts at most about that late behind such a thread, where
-        it was 5 ms (each of the times it takes the lock again in a tick)."""
-        self.claim_thread()
-        before = sys.getswitchinterval()
-        sys.setswitchinterval(min(before, SCAN_SWITCH_S))
-        try:
-            yield
-        finally:
-            sys.setswitchinterval(before)
 
     def now_ns(self) -> int:
         return time.perf_counter_ns() - self._t0

@@ -279,9 +279,9 @@ class Engine:
                 task.next_ns = now
         end_ns = None if duration_ns is None else now + duration_ns
         self.scan_thread = threading.get_ident()
+        clock.claim_thread()
         try:
-            with clock.scanning():  # the real clock: the priority, a short switch interval
-                return self._scan(cycles, end_ns)
+            return self._scan(cycles, end_ns)
         finally:
             self.scan_thread = None
 
