@@ -35,7 +35,6 @@ producer and consumer, node and life guarding) is slave_errors.py's.
 from __future__ import annotations
 
 import logging
-import struct
 import threading
 from collections import deque
 from collections.abc import Callable
@@ -53,7 +52,6 @@ from .cia301 import (
     ABORT_BAD_COMMAND,
     ABORT_NO_SUBINDEX,
     ABORT_VALUE_RANGE,
-    COB_ID_INVALID,
     COB_NMT,
     CONSUMER_HEARTBEAT,
     NMT_PRE_OPERATIONAL,
@@ -70,12 +68,12 @@ from .cia301 import (
     STATE_STOPPED,
     TPDO_COMM,
     TPDO_MAP,
-    cob_emcy,
     cob_heartbeat,
     cob_sdo_rx,
     cob_sdo_tx,
 )
 from .library_log import route_library_log
+from .slave_emcy import EMCY_RECORDS, ERROR_HISTORY, EmcyMixin
 from .slave_errors import ERROR_BEHAVIOUR, ERROR_TO_STOPPED, ErrorControlMixin
 from .slave_pdo import PDO_SLOTS, PdoMixin, PdoTables, TpdoState
 
@@ -86,17 +84,9 @@ MS = 1_000_000
 # CiA 301 object dictionary areas and objects
 COMMUNICATION_AREA = (0x1000, 0x1FFF)
 APPLICATION_AREA = (0x2000, 0x9FFF)
-ERROR_REGISTER = 0x1001
-ERROR_HISTORY = 0x1003
-SYNC_COB_ID = 0x1005
-EMCY_COB_ID = 0x1014
 
 #: every simulated CANopen slave takes it (SimulatedCanopenSlave.inject)
 UNPLUG = SimFault("unplug", "the node's cable out: it neither sends nor receives (a lost node)", lasting=True)
-
-# EMCY (CiA 301): 2 bytes error code, error register, 5 manufacturer bytes
-EMCY_MANUFACTURER_BYTES = 5
-EMCY_RECORDS = 1000  # the EMCYs sent a simulated slave keeps for its records (the newest)
 
 
 class _SlaveNetwork(canopen.Network):
@@ -130,11 +120,7 @@ class _SlaveNode(canopen.LocalNode):
         network.subscribe(self.sdo.rx_cobid, self.sdo.on_request)
 
 
-def _record_ns(record: dict) -> int:
-    return round(record["t_s"] * 1e9)
-
-
-class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
+class SimulatedCanopenSlave(EmcyMixin, ErrorControlMixin, PdoMixin, SimulatedDevice):
     """See the module docstring."""
 
     pump: BusPump | None  # a CAN node: its endpoint is on the bus's pump (virtual time)
@@ -309,54 +295,6 @@ class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
             finally:
                 self._local_writes -= 1
                 self._flush_writes(self._clock_ns())
-
-    def send_emcy(self, error_code: int, error_register: int, manufacturer_bytes: bytes = b"") -> None:
-        """Produce an emergency (CiA 301): keeps 0x1001 and the 0x1003 history;
-        error code 0x0000 is "error reset" and is not added to the history."""
-        with self._lock:
-            data = bytes(manufacturer_bytes)
-            if len(data) > EMCY_MANUFACTURER_BYTES:
-                raise ValueError(f"an EMCY carries {EMCY_MANUFACTURER_BYTES} manufacturer bytes, not {len(data)}")
-            if ERROR_REGISTER in self.od:
-                self._store(ERROR_REGISTER, 0, error_register)
-            if error_code:
-                self._push_error_history(error_code)
-            cob = self._value(EMCY_COB_ID, 0) if EMCY_COB_ID in self.od else cob_emcy(self.node_id)
-            # CiA 301: no EMCY in Stopped; bit 31 of 0x1014 switches the EMCY off
-            if cob & COB_ID_INVALID or self._state in (STATE_STOPPED, STATE_BOOTUP):
-                return
-            payload = struct.pack("<HB", error_code, error_register) + data.ljust(EMCY_MANUFACTURER_BYTES, b"\0")
-            self._send(cob & 0x7FF, payload)
-            record = {
-                "t_s": self._clock_ns() / 1e9,
-                "code": f"{error_code:04X}h",
-                "register": f"{error_register:02X}h",
-                "data": payload[3:].hex(" ").upper(),
-            }
-            if self.emcy_text is not None and error_code:
-                record["text"] = self.emcy_text(error_code, error_register, payload[3:])
-            self.emcys_sent.append(record)
-
-    def records(self) -> dict:
-        """What happened to the simulated device, as JSON data (--final-json):
-        the EMCYs it sent, each with its engine time and the device's words."""
-        with self._lock:
-            return {"emcys": list(self.emcys_sent)} if self.emcys_sent else {}
-
-    def events_since(self, t_ns: int) -> list:
-        """The EMCYs sent after t_ns, for the traces: "EMCY 1000h thermal overload (register 01h)"."""
-        sent = self.emcys_sent
-        if not sent or _record_ns(sent[-1]) <= t_ns:  # every scan of a trace asks: the common answer first
-            return []
-        with self._lock:
-            new = []
-            for record in reversed(sent):
-                at = _record_ns(record)
-                if at <= t_ns:
-                    break
-                words = record.get("text") or ("error reset" if record["code"] == "0000h" else f"data {record['data']}")
-                new.append((at, f"EMCY {record['code']} {words} (register {record['register']})"))
-        return new[::-1]
 
     def mark_changed(self, index: int, subindex: int) -> None:
         """Send the TPDOs that map this object at their next opportunity, even if
@@ -601,17 +539,3 @@ class SimulatedCanopenSlave(ErrorControlMixin, PdoMixin, SimulatedDevice):
         for index in [i for i in self.node.data_store if first <= i <= last]:
             del self.node.data_store[index]
         self._cached.clear()
-
-    def _push_error_history(self, error_code: int) -> None:
-        """0x1003: newest first, as many entries as the EDS gives; bits 16-23
-        additional information, all 0 (manual 001 §4)."""
-        obj = self.od.get(ERROR_HISTORY)
-        if obj is None:
-            return
-        subs = sorted(s for s in obj.subindices if s)
-        count = min(self._value(ERROR_HISTORY, 0), len(subs))
-        history = [error_code & 0xFFFF] + [self._value(ERROR_HISTORY, s) for s in subs[:count]]
-        history = history[: len(subs)]
-        for sub, value in zip(subs, history):
-            self._store(ERROR_HISTORY, sub, value)
-        self._store(ERROR_HISTORY, 0, len(history))
