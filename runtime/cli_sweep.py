@@ -107,9 +107,10 @@ def sweep_cmd(
 def _compile_once(job) -> None:
     """The first scenario built and stopped: a compile error (the same for
     all) or a bad device table is said once, before any worker starts."""
-    from .testing.plc import PLC
+    from .sweep.scenario import build
 
-    PLC.from_config(job.tables, base_dir=job.base_dir).stop()
+    plc, _recorder = build(job)
+    plc.stop()
 
 
 def _progress():

@@ -99,3 +99,19 @@ def test_a_configuration_that_is_not_toml_exits_2_naming_it(tmp_path):
     done = softplc("sweep", config, "--matrix", write(tmp_path, '[matrix]\n"init.Main.x" = [1]\n'))
     assert done.returncode == 2, done.stderr
     assert "plant.toml" in done.stderr and "Traceback" not in done.stderr
+
+
+def test_the_program_s_own_assertions_from_the_command_line(tmp_path):
+    # the first scenario is built before the workers start: with the assertions softplc test has
+    (tmp_path / "p.st").write_text(
+        "PROGRAM Main\nVAR limit : INT := 10; level : INT; END_VAR\nlevel := level + 1;\n"
+        "ASSERT_TRUE(level < limit, 'below the limit');\nEND_PROGRAM\n",
+        encoding="utf-8",
+    )
+    config = tmp_path / "plant.toml"
+    config.write_text('[plc]\nprograms = ["p.st"]\n[[task]]\nname = "Main"\ninterval = "10ms"\nprograms = ["Main"]\n')
+    sweep = write(tmp_path, 'duration = "1s"\n[matrix]\n"init.Main.limit" = [1000, 50]\n')
+    done = softplc("sweep", config, "--matrix", sweep, "-j", "1")
+    assert done.returncode == 3, done.stderr
+    assert "1 passed, 1 failed" in done.stderr
+    assert "ASSERT_TRUE failed: below the limit" in done.stderr

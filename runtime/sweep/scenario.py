@@ -81,13 +81,14 @@ def place(tables: dict, scenario: Scenario, sim_names: dict, file: str) -> dict:
 
 def _set(table: Any, parts: list, value: Any, key: str, file: str) -> None:
     for part in parts[:-1]:
-        table = _step(table, part, key, file, create=True)
+        table = _step(table, part, key, file)
     if isinstance(table, list):
         raise SweepError(file, key, f"{'.'.join(parts[:-1])} is an array of tables: name one (by name or number)")
     table[parts[-1]] = value
 
 
-def _step(table: Any, part: str, key: str, file: str, create: bool) -> Any:
+def _step(table: Any, part: str, key: str, file: str) -> Any:
+    """The table under part: an array's by its name or number, a table's (made when missing)."""
     if isinstance(table, list):
         for i, item in enumerate(table):
             if (part.isdigit() and int(part) == i) or (
@@ -115,10 +116,11 @@ def run_job(job: Job) -> dict:
         return _run(job)
 
 
-def _run(job: Job) -> dict:
+def build(job: Job) -> tuple:
+    """The scenario's PLC (testing API), not started, and the Recorder of
+    its assertions; CompileError or TaskSetupError as softplc run has them."""
     from ..engine.build import build_engine
     from ..program import compile_files
-    from ..sim.base import records_of
     from ..testing.natives import NATIVES, SERVICE, Recorder
     from ..testing.plc import PLC
     from ..testing.runner import simulated
@@ -130,7 +132,13 @@ def _run(job: Job) -> dict:
     engine = build_engine(cfg, virtual_time=True, start_mode="cold", program=program, retain=False)
     recorder = Recorder(engine.clock, simulated(cfg, engine))
     engine.ctx.services[SERVICE] = recorder
-    plc = PLC(engine, cfg)
+    return PLC(engine, cfg), recorder
+
+
+def _run(job: Job) -> dict:
+    from ..sim.base import records_of
+
+    plc, recorder = build(job)
     try:
         plc.run_for(job.duration_ns)
         faults = plc.engine.faults
