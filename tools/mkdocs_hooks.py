@@ -9,6 +9,9 @@ generated from the code at each build, so that they cannot drift from it.
     reference/diagnostics.md     every diagnostic code's page (check --explain)
     reference/function-blocks.md every shipped ST library's POUs and their
                                  interface, from the ST declarations
+    reference/devices.md         every registered device: its package's own
+                                 description (the manual, the digest), bus,
+                                 [[sim]] type, keys and faults, ST libraries
 
 `mkdocs build --strict` (.ci/run) builds them; they are not in the repository.
 """
@@ -185,6 +188,46 @@ def diagnostics() -> str:
     return "\n".join(out) + "\n"
 
 
+# ------------------------------------------------------------------ devices
+
+
+def devices() -> str:
+    import inspect
+
+    from softplc.runtime.plugin.registry import registry
+
+    out = [
+        "# Devices",
+        "",
+        "Every registered device, generated from its package: what it is and the manual and digest",
+        "it follows (the package's own description), the bus it sits on, its `[[sim]]` type, keys",
+        "and faults, and its ST libraries. The guides say how each is used",
+        "([Buses and devices](../guide/buses.md), [Simulated devices](../guide/simulation.md)).",
+        "",
+    ]
+    for device in registry().devices:
+        module = inspect.getmodule(device.simulator) if device.simulator else None
+        out += [f"## {device.name}", ""]
+        doc = inspect.getdoc(module) if module is not None else None
+        if doc:
+            out += ["```text", doc, "```", ""]
+        out += [f"Bus: `{device.bus}`; `[[sim]]` type: {', '.join(f'`{t}`' for t in device.sim_types) or 'none'}.", ""]
+        if device.libraries:
+            names = ", ".join(f"`{lib.package.split('.')[-1]}/{lib.file}`" for lib in device.libraries)
+            out += [f"ST libraries (in softplc.fblocks): {names}.", ""]
+        if device.sim_options is not None:
+            out += ["### Its own `[[sim]]` keys", ""]
+            _model_table(f"sim.{device.name}", device.sim_options, out, set())
+        if device.sim_faults:
+            out += ["### Its faults (`[[sim]] faults`, `plc.fault`)", ""]
+            out += ["| fault | value | lasting | what |", "|---|---|---|---|"]
+            for f in device.sim_faults:
+                lasting = "yes" if f.lasting else "no"
+                out.append(f"| `{f.name}` | {_cell(f.value)} | {lasting} | {_cell(f.description)} |")
+            out.append("")
+    return "\n".join(out) + "\n"
+
+
 # ---------------------------------------------------------- function blocks
 
 
@@ -199,4 +242,5 @@ GENERATED = {
     "reference/cli.md": cli,
     "reference/diagnostics.md": diagnostics,
     "reference/function-blocks.md": function_blocks,
+    "reference/devices.md": devices,
 }
