@@ -74,3 +74,9 @@ def write_config(tmp_path, text: str, programs: dict) -> Path:
     cfg = tmp_path / "plant.toml"
     cfg.write_text(text)
     return cfg
+
+
+#: a program that divides by zero in its third scan (a runtime fault of task Main)
+FAULTS_AT_SCAN_3 = (
+    "PROGRAM Main\nVAR n, d : INT; END_VAR\nn := n + 1;\nIF n = 3 THEN\n    n := n / d;\nEND_IF\nEND_PROGRAM\n"
+)

@@ -13,7 +13,7 @@ import sys
 
 import pytest
 
-from .launch_support import REPO, env, no_orphans, spawn, wait_for_line, write_config  # noqa: F401  # no_orphans: autouse
+from .launch_support import FAULTS_AT_SCAN_3, REPO, env, no_orphans, spawn, wait_for_line, write_config  # noqa: F401  # no_orphans: autouse
 from .test_cli import softplc
 
 # each test starts softplc in a process of its own
@@ -224,16 +224,7 @@ def test_unknown_watch_variable(tmp_path):
 
 
 def test_runtime_fault_exit_code_and_message(tmp_path):
-    cfg = write_config(
-        tmp_path,
-        '[plc]\nprograms = ["p.st"]\n',
-        {
-            "p.st": (
-                "PROGRAM Main\nVAR n, d : INT; END_VAR\nn := n + 1;\nIF n = 3 THEN\n    n := n / d;\nEND_IF\n"
-                "END_PROGRAM\n"
-            )
-        },
-    )
+    cfg = write_config(tmp_path, '[plc]\nprograms = ["p.st"]\n', {"p.st": FAULTS_AT_SCAN_3})
     out = tmp_path / "final.json"
     proc = softplc("run", cfg, "--virtual-time", "--cycles", "10", "--final-json", out)
     assert proc.returncode == 3, proc.stderr

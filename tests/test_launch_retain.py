@@ -18,7 +18,7 @@ import pytest
 
 from softplc.runtime.engine.retain_file import read_file
 
-from .launch_support import env, no_orphans, spawn, wait_for_line, write_config  # noqa: F401  # no_orphans: autouse
+from .launch_support import FAULTS_AT_SCAN_3, env, no_orphans, spawn, wait_for_line, write_config  # noqa: F401  # no_orphans: autouse
 from .test_cli import softplc
 
 # each test starts softplc in a process of its own
@@ -173,16 +173,7 @@ def test_a_signal_stops_a_task_inside_a_long_loop(tmp_path, sig):
 
 @pytest.mark.realtime  # the real clock runs the PLC
 def test_sigusr1_restarts_a_faulted_task(tmp_path):
-    cfg = write_config(
-        tmp_path,
-        '[plc]\nprograms = ["p.st"]\n',
-        {
-            "p.st": (
-                "PROGRAM Main\nVAR n, d : INT; END_VAR\nn := n + 1;\nIF n = 3 THEN\n    n := n / d;\nEND_IF\n"
-                "END_PROGRAM\n"
-            )
-        },
-    )
+    cfg = write_config(tmp_path, '[plc]\nprograms = ["p.st"]\n', {"p.st": FAULTS_AT_SCAN_3})
     proc = spawn("run", cfg)
     wait_for_line(proc, "stopped by a runtime fault")
     proc.send_signal(signal.SIGUSR1)
