@@ -267,7 +267,7 @@ def name_threads() -> None:
     libc = ctypes.CDLL(ctypes.util.find_library("c"), use_errno=True)
 
     def name(label: str) -> None:
-        libc.prctl(15, label.encode("utf-8", "replace")[:15], 0, 0, 0)  # 15: PR_SET_NAME
+        libc.prctl(15, label.removeprefix("softplc-").encode("utf-8", "replace")[:15], 0, 0, 0)  # 15: PR_SET_NAME
 
     def once(frame, event, arg) -> None:
         sys.setprofile(None)

@@ -41,9 +41,9 @@ import threading
 from ..program import compile as compile_module
 from ..program import compile_files, transfer
 from ..st.diagnostics import CompileError
+from .lock_share import background
 
 _HEADER = struct.Struct("!Q")
-SWITCH_S = 0.0005  # the switch interval while the PLC's process reads a program back
 NICE = 10  # the child's niceness: a compile never takes the CPU from the scan
 
 
@@ -66,18 +66,6 @@ def _write(stream, message: object) -> None:
     data = pickle.dumps(message, protocol=5)
     stream.write(_HEADER.pack(len(data)) + data)
     stream.flush()
-
-
-@contextlib.contextmanager
-def switch_interval(seconds: float):
-    """The interpreter's switch interval lowered meanwhile: a thread that
-    waits for the lock (the scan) gets it after this long, not 5 ms."""
-    before = sys.getswitchinterval()
-    sys.setswitchinterval(min(before, seconds))
-    try:
-        yield
-    finally:
-        sys.setswitchinterval(before)
 
 
 def _request(config, number: int, warm: bool = False) -> dict:
@@ -146,7 +134,7 @@ class CompileProcess:
             raise CompileError(answer[1], answer[2])
         if kind != "program":
             raise CompileProcessError(f"the compile process failed: {answer[1]}")
-        with switch_interval(SWITCH_S):
+        with background():  # the scan waits for the interpreter lock 0.5 ms, not 5
             return transfer.loads(answer[1])
 
     def _stop(self) -> None:

@@ -53,8 +53,9 @@ from ..st.faults import fault_from_exception
 from ..st.values import assign_into, copy_value
 from .carry import Carry, global_members, members
 from .change_memory import collector_paused, dismantle
-from .compile_process import SWITCH_S, CompileProcess, CompileProcessError, switch_interval
+from .compile_process import CompileProcess, CompileProcessError
 from .diag import DiagVariable
+from .lock_share import background
 from .retain import type_signature
 from .tasks import TaskSetupError, plan_tasks
 
@@ -404,7 +405,7 @@ class ChangeRequest:
             )
         replaced, self.replaced = self.replaced, None
         if replaced is not None and replaced[0] is not None:
-            with switch_interval(SWITCH_S):
+            with background():
                 if transfer.release(replaced[0]):
                     dismantle(replaced[1])
         assert self.report is not None
@@ -450,7 +451,7 @@ class OnlineChange:
 
             with collector_paused(read_back):  # and frozen or collected before it is loaded
                 compiled = self._compiled(reason)
-            with switch_interval(SWITCH_S):  # the scan waits for the interpreter lock 0.5 ms, not 5
+            with background():  # the scan waits for the interpreter lock 0.5 ms, not 5
                 prepared = compiled if isinstance(compiled, ChangeReport) else self._loaded(reason, compiled)
                 if isinstance(prepared, ChangeReport):
                     return request.refused(prepared)

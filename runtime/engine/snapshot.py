@@ -42,6 +42,7 @@ from typing import Any
 
 from ..st import types as T
 from ..st.valuejson import encode_value
+from .lock_share import background
 from .places import PathError, Place, Resolver
 
 log = logging.getLogger("softplc.engine")
@@ -346,12 +347,13 @@ class SnapshotHub:
         places: dict = {}
         with self._lock:  # a reader may watch meanwhile (a call thread)
             watched = list(self._watched.values())
-        for paths in watched:
-            for path in paths:
-                try:
-                    places[path] = resolver.place(path)
-                except PathError:
-                    continue
+        with background():  # 860 paths: 20-30 ms, the scans going on
+            for paths in watched:
+                for path in paths:
+                    try:
+                        places[path] = resolver.place(path)
+                    except PathError:
+                        continue
         with self._lock:
             self._set_places(places)
 
