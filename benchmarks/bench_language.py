@@ -34,11 +34,11 @@ from language_hand import BitsHand, NumericHand, OopHand, TimersHand, s32
 
 from softplc.runtime.program import compile as loader
 from softplc.runtime.program import compile_files
-from softplc.runtime.st.checker import Checker
-from softplc.runtime.st.codegen import CodeGen
+from softplc.runtime.st.check.checker import Checker
+from softplc.runtime.st.codegen.codegen import CodeGen
 from softplc.runtime.st.diagnostics import DiagnosticBag
-from softplc.runtime.st.parser import parse_source
 from softplc.runtime.st.profile import get_profile
+from softplc.runtime.st.syntax.parser import parse_source
 
 HERE = Path(__file__).resolve().parent
 RATIO_TARGET = 1.10

@@ -30,7 +30,7 @@ from pathlib import Path
 
 from softplc.runtime.program import compile_files
 from softplc.runtime.program.loaded import Program
-from softplc.runtime.st.codegen import CodeGen
+from softplc.runtime.st.codegen.codegen import CodeGen
 
 HERE = Path(__file__).resolve().parent
 

@@ -103,15 +103,28 @@ def key(kind: str, *parts: str | bytes) -> str:
 
 
 def code_hash(*files: Path) -> bytes:
-    """A hash of source files' names and contents: part of a key when the
-    value is built by that code (an edited checkout keeps the same version)."""
+    """A hash of source files' paths (inside softplc) and contents: part of
+    a key when the value is built by that code (an edited checkout keeps the
+    same version; a module moved to another package changes the key: the
+    pickles name classes by module)."""
     h = hashlib.sha256()
     for f in sorted(files):
+        name = _inside(f).encode()
         try:
-            h.update(f.name.encode() + b"\0" + f.read_bytes() + b"\0")
+            h.update(name + b"\0" + f.read_bytes() + b"\0")
         except OSError:
-            h.update(f.name.encode() + b"\0?\0")
+            h.update(name + b"\0?\0")
     return h.digest()
+
+
+_ROOT = Path(__file__).resolve().parent.parent  # the softplc package
+
+
+def _inside(f: Path) -> str:
+    try:
+        return f.resolve().relative_to(_ROOT).as_posix()
+    except ValueError:  # not softplc's (a plugin's file)
+        return f.name
 
 
 def path(kind: str, key: str) -> Path:

@@ -48,6 +48,24 @@ def test_a_changed_text_or_another_version_misses(tmp_path, monkeypatch, parses)
     assert len(parses) == 3 and len(_entries(tmp_path)) == 3
 
 
+def test_a_module_moved_to_another_package_changes_the_code_hash(tmp_path, monkeypatch):
+    """The pickles name classes by module: a module of the same name and text
+    in another package (runtime/st/ split into stages) must not meet the old
+    entries, so the code's hash knows where each file is inside softplc."""
+    root = tmp_path / "softplc"
+    monkeypatch.setattr(cache, "_ROOT", root)
+    before, after = root / "st" / "parser.py", root / "st" / "syntax" / "parser.py"
+    for f in (before, after):
+        f.parent.mkdir(parents=True, exist_ok=True)
+        f.write_text("class Parser: pass\n")
+    assert cache.code_hash(before) != cache.code_hash(after)
+    outside = [tmp_path / f"plugin{n}" / "tables.py" for n in (1, 2)]  # not softplc's: name and text
+    for f in outside:
+        f.parent.mkdir(exist_ok=True)
+        f.write_text("x = 1\n")
+    assert cache.code_hash(outside[0]) == cache.code_hash(outside[1])
+
+
 def test_a_damaged_entry_is_ignored_and_written_again(tmp_path, monkeypatch, parses):
     libraries.parse_cached("lib.st", TEXT, DEFAULT)
     [name] = _entries(tmp_path)

@@ -14,7 +14,7 @@ Each entry names its parameters with a *typespec*:
 
   'POINTER TO BYTE'                   any pointer (ADR(x) of a variable, array,
                                       structure or string): the impl gets a byte
-                                      view of its target (st/rt_bytes.py), as
+                                      view of its target (st/rtlib/rt_bytes.py), as
                                       Tc2_System's MEMCPY reads memory
 
 ``extensible`` means the last parameter repeats (ADD(a, b, c), MUX(k, a, b,
@@ -30,7 +30,7 @@ Where the width is part of the meaning the impl wraps: conversions, TRUNC,
 shifts and rotations, NOT on bit strings, BCD.
 
 Choices where IEC and CODESYS are silent are documented at the functions in
-runtime/st/rtlib.py; the ones made here:
+runtime/st/rtlib/rtlib.py; the ones made here:
   MUX   K beyond the last input selects the last input (CODESYS: "If K is
         greater than the number of other inputs (n), then CODESYS passes on
         the last value (INn)"); a negative K selects IN0.
@@ -44,8 +44,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from softplc.runtime.st import rtlib
 from softplc.runtime.st import types as T
+from softplc.runtime.st.rtlib import rtlib
 
 
 @dataclass(frozen=True)

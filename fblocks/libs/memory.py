@@ -2,10 +2,10 @@
 and a size (Tc2_System MEMCPY, Tc2_Utilities F_CRC16_CCITT ...).
 
 softplc has no flat memory: a pointer stays bound to the variable it points
-into (runtime/st/refs.py), and a function parameter written ``POINTER TO
+into (runtime/st/rtlib/refs.py), and a function parameter written ``POINTER TO
 BYTE`` (fblocks/iec/functions.py) receives any pointer as a byte view of
 its target, laid out as CODESYS and TwinCAT lay it out on x64
-(runtime/st/rt_bytes.py: little-endian, IEEE 754, structures padded as
+(runtime/st/rtlib/rt_bytes.py: little-endian, IEEE 754, structures padded as
 runtime/st/sizes.py says). So MEMCPY(ADR(st), ADR(arr), SIZEOF(st)) copies
 a structure's bytes into an array of bytes and back, as on the PLC.
 
@@ -20,9 +20,9 @@ variable the pointer points into.
 
 from __future__ import annotations
 
-from softplc.runtime.st import rt_bytes
 from softplc.runtime.st.faults import RangeFault
-from softplc.runtime.st.refs import BytePtr
+from softplc.runtime.st.rtlib import rt_bytes
+from softplc.runtime.st.rtlib.refs import BytePtr
 
 _BYTE = rt_bytes.IntLeaf(1, False)
 

@@ -7,7 +7,7 @@ and their W-prefixed WSTRING variants with the same names.
 IEC 61131-3 names them IN1, IN2, L, P (fblocks/iec/functions.py); a program
 that chose one of those libraries calls them with the vendor's names
 (CONCAT(STR1 := a, STR2 := b)), as the vendor's compiler wants. The
-behaviour is the IEC functions' (runtime/st/rt_strings.py): the vendors'
+behaviour is the IEC functions' (runtime/st/rtlib/rt_strings.py): the vendors'
 documentation gives the same examples (MID('SUSI', 2, 2) = 'US',
 REPLACE('SUXYSI', 'K', 2, 2) = 'SKYSI'). CONCAT takes more than two
 strings, as softplc's IEC CONCAT does (STR3 ...).
@@ -18,7 +18,7 @@ strings, as softplc's IEC CONCAT does (STR3 ...).
 from __future__ import annotations
 
 from softplc.fblocks.iec.functions import StdFunc
-from softplc.runtime.st import rt_strings as S
+from softplc.runtime.st.rtlib import rt_strings as S
 
 
 def standard_string_functions() -> dict:

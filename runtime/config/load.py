@@ -29,7 +29,7 @@ from pydantic import Field, ValidationError, create_model
 from ..plugin.registry import Registry, loaded, plugin_sections, registry
 from ..program.libraries import Library
 from ..program.shipped import shipped_named
-from ..st.build_decls import identifier_from_path
+from ..st.syntax.build_decls import identifier_from_path
 from .errors import ConfigError, in_file_order, key_text, not_finite, translate
 from .plc import CORE_SECTIONS, DEFAULT_SPIN_NS, RetainConfig, SafeOutput, TaskConfig, with_safe_defaults
 from .relations import Relations

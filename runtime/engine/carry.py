@@ -33,13 +33,13 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..st import refs, rt_sfc
 from ..st import types as T
+from ..st.rtlib import refs, rt_sfc
 from ..st.values import assign_into
 from .members import own_globals, own_members
 from .retain import type_signature
 
-_SFC_SLOT = "_sfc"  # st/codegen_sfc.py: the action control blocks of an SFC POU
+_SFC_SLOT = "_sfc"  # st/codegen/codegen_sfc.py: the action control blocks of an SFC POU
 
 
 @dataclass

@@ -7,7 +7,7 @@ A thread that waits for the lock asks its holder to let go after the
 switch interval, Python's 5 ms: a scan that wakes while a call thread
 resolves a thousand paths starts late by that much, or by a multiple of
 it when other threads take the lock first (a live soak's late ticks were
-that, docs/guide/running.md). Inside background() the interval is
+that: docs/architecture.md, "One scan"). Inside background() the interval is
 SWITCH_S, so the scan waits about that long; outside, it is Python's
 again, so that the scan itself is rarely asked to let go in its own run
 (a shorter interval everywhere made more overruns, not fewer).

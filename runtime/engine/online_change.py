@@ -46,10 +46,10 @@ from pathlib import Path
 from typing import Any
 
 from ..program import Program, transfer
-from ..st import rt_oop
 from ..st import types as T
 from ..st.diagnostics import CompileError
 from ..st.faults import fault_from_exception
+from ..st.rtlib import rt_oop
 from ..st.values import assign_into, copy_value
 from .carry import Carry, global_members, members
 from .change_memory import collector_paused, dismantle

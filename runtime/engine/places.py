@@ -142,7 +142,7 @@ class Resolver:
 
     def _without_list(self, steps: list) -> list:
         """GVL.speed names the global speed of the list GVL (the file GVL.st,
-        st/namespaces.py), unless a global is called GVL."""
+        st/check/namespaces.py), unless a global is called GVL."""
         first, second = steps[0], steps[1] if len(steps) > 1 else None
         names = self.engine.program.checked.global_lists.get(first.upper())
         if not names or not isinstance(second, str) or second.upper() not in names:

@@ -47,7 +47,7 @@ from operator import attrgetter
 from typing import Any
 
 from ..st import types as T
-from ..st.rtlib import string_length
+from ..st.rtlib.rtlib import string_length
 from .members import own_members, owned
 from .values import lone_surrogate, without_lone_surrogates
 

@@ -33,9 +33,9 @@ from ..config.values import cut
 from ..image.address import default_type
 from ..image.memory import ProcessImage
 from ..program import ExecContext, Program, locate
-from ..st import rt_oop
 from ..st import types as T
 from ..st.faults import STFault, fault_from_exception
+from ..st.rtlib import rt_oop
 from ..st.valuejson import encode_instance
 from . import retain as R
 from .clock import VirtualClock

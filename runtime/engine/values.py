@@ -32,8 +32,8 @@ from typing import Any
 from ..config.values import cut, got
 from ..durations import parse_duration_ns
 from ..st import types as T
-from ..st.literals import LiteralError, parse_based, parse_hash_literal
-from ..st.rtlib import iec_literal, string_length
+from ..st.rtlib.rtlib import iec_literal, string_length
+from ..st.syntax.literals import LiteralError, parse_based, parse_hash_literal
 from ..st.valuejson import SKIPPED_SECTIONS
 
 

@@ -14,9 +14,9 @@ from __future__ import annotations
 
 import re
 
-from ..st import literals
 from ..st import types as T
 from ..st.ast import LocatedAddress
+from ..st.syntax import literals
 
 EXAMPLES = "examples: %QX0.0, %IW2, %MD3200, %MW3250:X0"
 

@@ -27,14 +27,14 @@ from ..image.memory import ProcessImage
 from ..plugin.registry import plugin_libraries, plugin_natives
 from ..plugin.seams import StLibrary
 from ..st import ast as A
-from ..st import nesting
-from ..st.checker import CheckedProgram, Checker
-from ..st.codegen import CodeGen
+from ..st.check.checker import CheckedProgram, Checker
+from ..st.codegen import nesting
+from ..st.codegen.codegen import CodeGen
 from ..st.diagnostics import CompileError, DiagnosticBag, SourceSet
 from ..st.importers import source_files
 from ..st.limits import MAX_SOURCE_CHARS
-from ..st.pragmas import attribute_value
 from ..st.profile import DEFAULT, Profile, get_profile
+from ..st.syntax.pragmas import attribute_value
 from .libraries import parse_cached, parser_code
 from .loaded import Program
 from .reparse import parse_views
@@ -381,7 +381,7 @@ def check_files(
     """Diagnostics of the files (errors and warnings, sorted) and their texts.
     Never raises for problems in the sources. Reports exactly what
     compile_files would: the back end runs too when the front end is clean
-    and the back end may refuse the generated Python (st/nesting.py)."""
+    and the back end may refuse the generated Python (st/codegen/nesting.py)."""
     prof = get_profile(profile) if isinstance(profile, str) else profile
     libraries = with_required(tuple(libraries))
     files: list = []
@@ -450,7 +450,7 @@ def check_parsed(
 ) -> bool:
     """What build_parsed reports into diags, without a Program: whether the
     files compile. The back end runs only when it may refuse the generated
-    Python (E006, st/nesting.py): `softplc check` does not wait for code
+    Python (E006, st/codegen/nesting.py): `softplc check` does not wait for code
     it does not run."""
     files: list = []
     prof, _libraries, checked = _check_parsed(user, words, profile, sources, diags, natives, libraries, files)

@@ -22,10 +22,10 @@ from dataclasses import dataclass
 from itertools import chain
 
 from ..image.memory import ProcessImage
-from ..st import rtlib
 from ..st import types as T
 from ..st.faults import LOOP_CHECK_EVERY, StopRequested, WatchdogFault
 from ..st.native import CLOCK
+from ..st.rtlib import rtlib
 
 #: the date of a virtual clock's zero, UTC nanoseconds since 1970-01-01:
 #: 2000-01-01 00:00:00. Virtual time runs the same way every time, so its

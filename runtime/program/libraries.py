@@ -24,10 +24,10 @@ from pathlib import Path
 from .. import cache
 from ..st.diagnostics import DiagnosticBag
 from ..st.importers import is_source, st_views
-from ..st.parser import parse_source
 from ..st.profile import Profile
+from ..st.syntax.parser import parse_source
 
-_GRAMMAR = Path(__file__).resolve().parent.parent / "st" / "grammar.lark"
+_ST = Path(__file__).resolve().parent.parent / "st"
 _PARSES: dict[str, bytes] = {}  # key -> pickled (list of SourceFiles, diagnostics)
 
 
@@ -77,12 +77,12 @@ def _skipped(rel: Path) -> bool:
 
 def _version_salt() -> bytes:
     """What makes an old parse invalid besides the text: the language's
-    code (the grammar, the lexer and parser, the AST and its builders) and
+    code (all of runtime/st/: the grammar, the lexer and parser, the AST
+    and its builders, what they build on, where each module is) and
     the importers' (an imported file's parse is what its importer wrote,
     and a newer softplc imports more: a cached parse of a PLCopen file
     from before its FBD bodies were read would keep them out)."""
-    st = _GRAMMAR.parent
-    return cache.code_hash(*st.glob("*.py"), *st.glob("*.lark"), *(st / "importers").glob("*.py"))
+    return cache.code_hash(*_ST.rglob("*.py"), *_ST.rglob("*.lark"))
 
 
 _SALT: bytes | None = None

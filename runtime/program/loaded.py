@@ -9,12 +9,13 @@ import time
 from typing import Any
 
 from ..image.memory import ProcessImage
-from ..st import refs, rt_oop, rt_sfc, rtlib, values
-from ..st.checker import CheckedProgram
-from ..st.codegen import GeneratedModule
+from ..st import values
+from ..st.check.checker import CheckedProgram
+from ..st.codegen.codegen import GeneratedModule
 from ..st.diagnostics import Diagnostic, SourceSet
 from ..st.faults import RangeFault, fault_from_exception, out_of_bounds, out_of_range
 from ..st.profile import Profile
+from ..st.rtlib import refs, rt_oop, rt_sfc, rtlib
 from .context import ExecContext, TaskState
 from .variables import locate
 
@@ -202,7 +203,7 @@ class Program:
         """What a task calls each cycle for the program instance obj of the
         CONFIGURATION (named instance): obj itself, or obj with its
         VAR_CONFIG settings applied now and its configured addresses
-        copied around each call (st/codegen_config.py)."""
+        copied around each call (st/codegen/codegen_config.py)."""
         configure = ns.get("_VAR_CONFIG", {}).get(instance.upper())
         if configure is None:
             return obj

@@ -3,7 +3,7 @@
 `softplc check` of files with errors checks them again under every other
 profile (check_summary.note_other_profiles) and for a dialect hint: five
 parses of the same text. The parse depends on the profile only through
-whether (* *) comments nest (st/parser.py), so a file is parsed once for
+whether (* *) comments nest (st/syntax/parser.py), so a file is parsed once for
 each answer and every later check gets a fresh copy (the checker annotates
 the AST) from the pickle kept here, in memory only, at most _MAX_BYTES of
 them, the oldest dropped first. Only checks keep them (check_files).
@@ -18,8 +18,8 @@ from collections.abc import Callable
 
 from ..st.diagnostics import DiagnosticBag
 from ..st.importers import st_views
-from ..st.parser import parse_source
 from ..st.profile import Profile
+from ..st.syntax.parser import parse_source
 
 _MAX_BYTES = 64 * 1024 * 1024
 _KEPT: OrderedDict[tuple, bytes] = OrderedDict()

@@ -5,7 +5,7 @@ runtime fills (PLC_DIAG and the drivers' diagnostics)."""
 from __future__ import annotations
 
 from ..st import types as T
-from ..st.rtlib import cut_string
+from ..st.rtlib.rtlib import cut_string
 
 
 def locate(path: str, roots) -> tuple:

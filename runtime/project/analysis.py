@@ -29,8 +29,8 @@ from ..program.shipped import shipped_named
 from ..st.ast import Pos
 from ..st.diagnostics import Diagnostic, DiagnosticBag, SourceSet
 from ..st.limits import MAX_SOURCE_CHARS
-from ..st.parser import parse_source
 from ..st.profile import DEFAULT, Profile, get_profile
+from ..st.syntax.parser import parse_source
 from .model import Project
 from .units import Unit, Units, prune
 

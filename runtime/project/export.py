@@ -16,9 +16,9 @@ import bisect
 import re
 from dataclasses import dataclass, field
 
-from ..st.build_decls import identifier_from_path
 from ..st.diagnostics import DiagnosticBag
 from ..st.importers import st_plain_lines
+from ..st.syntax.build_decls import identifier_from_path
 from .analysis import Analysis
 
 _UNSAFE = re.compile(r"[^A-Za-z0-9_ .,/\\#@+-]")

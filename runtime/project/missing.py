@@ -27,8 +27,8 @@ from pathlib import Path
 
 from ..program.shipped import catalogue, shipped
 from ..st.ast import Pos
+from ..st.check.namespaces import LIBRARY_NAMESPACES
 from ..st.diagnostics import Diagnostic
-from ..st.namespaces import LIBRARY_NAMESPACES
 from .units import Units
 
 NOT_FOUND = ""  # the group of names no table knows

@@ -13,7 +13,10 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from .ast_sfc import SfcNetwork
 
 
 @dataclass(frozen=True, slots=True)
@@ -575,49 +578,3 @@ class Jump(Stmt):
 
     label: str
     target: Label | None = field(default=None, repr=False)
-
-
-# ---------------------------------------------------------------- SFC (IEC 61131-3 ed.3 6.7)
-
-
-@dataclass(slots=True, eq=False)
-class SfcAssoc(Node):
-    """``action(qualifier, time, indicator ...)`` in a step: args as written
-    (the checker reads the qualifier, the time and the indicators)."""
-
-    action: str
-    args: list  # Expr
-
-
-@dataclass(slots=True, eq=False)
-class SfcStep(Node):
-    name: str
-    initial: bool
-    assocs: list  # SfcAssoc
-
-
-@dataclass(slots=True, eq=False)
-class SfcTransition(Node):
-    """TRANSITION [name] [(PRIORITY := n)] FROM sources TO targets, with its
-    condition either an expression (``:= expr;``) or ST statements that
-    assign the transition's name (``: ... END_TRANSITION``)."""
-
-    name: str | None
-    priority: Expr | None
-    sources: list  # (step name, Pos)
-    targets: list  # (step name, Pos)
-    cond: Expr | None = None
-    body: list | None = None
-
-
-@dataclass(slots=True, eq=False)
-class SfcAction(Node):
-    name: str
-    body: list  # statements
-
-
-@dataclass(slots=True, eq=False)
-class SfcNetwork(Node):
-    steps: list  # SfcStep, in source order
-    transitions: list  # SfcTransition, in source order
-    actions: list  # SfcAction

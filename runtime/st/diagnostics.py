@@ -24,7 +24,7 @@ Code ranges (keep them stable, users search for them):
   E090-E099  configuration, resources, tasks (E094: a VAR_CONFIG path)
   E140-E149  object-oriented ST (checker_oop.py): EXTENDS/IMPLEMENTS, members,
              ABSTRACT, FINAL, access, interfaces, THIS/SUPER, PROPERTY, FB_init
-  E150-E159  SFC (st/checker_sfc.py); W150 a step no transition reaches
+  E150-E159  SFC (st/check/checker_sfc.py); W150 a step no transition reaches
   E160-E162  references and pointers (checker_refs.py, checker_pointers.py,
              sizes.py): E160 a reference to a REFERENCE TO, E161 pointer
              arithmetic not supported, E162 SIZEOF without a size
@@ -33,7 +33,7 @@ Code ranges (keep them stable, users search for them):
   E180-E189  imported files (st/importers/): E180 XML not well-formed, E181
              refused XML, E182 a language or object not imported, E183 an
              element that cannot become ST, E184-E189 the project's structure
-  E190-E199  IL, instruction list (st/il.py)
+  E190-E199  IL, instruction list (st/syntax/il.py)
   E200-E209  FBD and LD networks (st/importers/: graphical bodies)
   E210-E219  graphical SFC (st/importers/sfc*.py); W210, W212 what CODESYS
              writes beside TC6 about an SFC and softplc does not honour

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import re
 
-from .lexer import strip_comments
+from .syntax.lexer import strip_comments
 
 # (profile, what the user reads, pattern): in the order the hint lists them.
 _MARKERS = (

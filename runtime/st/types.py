@@ -217,7 +217,7 @@ class EnumType(Type):
     spelled: dict  # UPPER name -> name as declared
     base: ElementaryType = INT
     default: int | None = None  # TYPE E : (a, b) := b; -- else the first value
-    # CODESYS/TwinCAT attributes before its TYPE (st/pragmas.py)
+    # CODESYS/TwinCAT attributes before its TYPE (st/syntax/pragmas.py)
     qualified_only: bool = False  # its values only as E.a (or E#a)
     strict: bool = False  # no arithmetic, no integer assigned (where the profile allows them)
     to_string: bool = False  # TO_STRING/TO_WSTRING give a value's name, not its number

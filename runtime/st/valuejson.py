@@ -39,7 +39,7 @@ import struct
 from typing import Any
 
 from . import types as T
-from .rtlib import iec_literal
+from .rtlib.rtlib import iec_literal
 
 # Sections whose variables are not part of an instance's own state.
 SKIPPED_SECTIONS = frozenset({"VAR_IN_OUT", "VAR_EXTERNAL", "VAR_TEMP"})

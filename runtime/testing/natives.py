@@ -27,7 +27,7 @@ from typing import Any
 
 from ..st import native as N
 from ..st.native import CallSite, NativeFunction, Param
-from ..st.rt_text import iec_literal
+from ..st.rtlib.rt_text import iec_literal
 
 SERVICE = "st_test"
 

@@ -22,7 +22,7 @@ from softplc.runtime.engine.retain import RetainData
 from softplc.runtime.engine.retain_file import ForeignRetainFile, RetainFileError, RetainStore, read_file, write_file
 from softplc.runtime.image.memory import ProcessImage
 from softplc.runtime.program import ExecContext, compile_files
-from softplc.runtime.st import rtlib
+from softplc.runtime.st.rtlib import rtlib
 
 from .retain_child import block as child_block
 

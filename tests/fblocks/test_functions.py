@@ -8,9 +8,9 @@ import pytest
 
 from softplc.fblocks.iec.functions import STANDARD_FUNCTIONS as F
 from softplc.fblocks.iec.functions import StdFunc, parse_typespec
-from softplc.runtime.st import rtlib
 from softplc.runtime.st import types as T
 from softplc.runtime.st.faults import RangeFault
+from softplc.runtime.st.rtlib import rtlib
 
 STRING = T.StringType(80)
 WSTRING = T.StringType(80, wide=True)

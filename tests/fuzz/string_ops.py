@@ -9,7 +9,7 @@ declared length (6.4.2).
 A WSTRING counts UTF-16 code units (6.3.3), and its alphabet holds
 characters beyond U+FFFF (2 units each): its reference slices the UTF-16
 units themselves (len(s.encode('utf-16-le')) // 2 of them). softplc's rule
-for a position inside a surrogate pair (runtime/st/rt_strings.py): a part
+for a position inside a surrogate pair (runtime/st/rtlib/rt_strings.py): a part
 taken (LEFT, RIGHT, MID, what DELETE and REPLACE keep, a store's cut) leaves
 out a character it holds half of; an insertion point (INSERT, REPLACE of 0
 units) inside a pair goes before it."""

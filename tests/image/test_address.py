@@ -9,7 +9,7 @@ from softplc.runtime.image import address, memory
 from softplc.runtime.image.address import AddressError, default_type, parse_address, region
 from softplc.runtime.image.memory import ProcessImage
 from softplc.runtime.st import types as T
-from softplc.runtime.st.literals import parse_located
+from softplc.runtime.st.syntax.literals import parse_located
 
 # ---------------------------------------------------------------- parse_address
 

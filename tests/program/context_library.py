@@ -6,7 +6,7 @@ of the engine (the date, the running task) and of memory."""
 from __future__ import annotations
 
 from softplc.fblocks.iec.functions import StdFunc
-from softplc.runtime.st.refs import BytePtr
+from softplc.runtime.st.rtlib.refs import BytePtr
 
 FUNCTIONS = {
     "DATE_NS": StdFunc("DATE_NS", (), "LINT", lambda ctx: ctx.date_ns(), context=True),

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from softplc.runtime.program.compile import _library_sources
-from softplc.runtime.st.lexer import strip_comments
+from softplc.runtime.st.syntax.lexer import strip_comments
 
 
 def test_the_libraries_read_alike_whether_comments_nest_or_not():

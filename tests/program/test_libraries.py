@@ -185,7 +185,7 @@ def test_a_parse_is_kept_no_longer_than_the_importer_that_made_it(tmp_path, monk
     softplc whose importers read more (FBD bodies) must parse again."""
     st = tmp_path / "st"
     shutil.copytree(Path(libraries.__file__).resolve().parents[1] / "st", st)
-    monkeypatch.setattr(libraries, "_GRAMMAR", st / "grammar.lark")
+    monkeypatch.setattr(libraries, "_ST", st)
     before = libraries._version_salt()
     assert libraries._version_salt() == before
     plcopen = st / "importers" / "plcopen.py"

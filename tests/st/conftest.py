@@ -6,10 +6,10 @@ import pytest
 
 from softplc.fblocks.iec.functions import STANDARD_FUNCTIONS
 from softplc.runtime.program import check_files, compile_files
-from softplc.runtime.st.checker import Checker
+from softplc.runtime.st.check.checker import Checker
 from softplc.runtime.st.diagnostics import DiagnosticBag
-from softplc.runtime.st.parser import parse_source
 from softplc.runtime.st.profile import get_profile
+from softplc.runtime.st.syntax.parser import parse_source
 
 
 def prog(decls: str, body: str) -> str:

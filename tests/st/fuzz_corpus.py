@@ -237,7 +237,7 @@ d := q - ADR(arr); n := SIZEOF(Pair);
 END_PROGRAM
 """,
     ),
-    # IL bodies (st/il.py): operators with modifiers, parentheses, calls,
+    # IL bodies (st/syntax/il.py): operators with modifiers, parentheses, calls,
     # jumps across labels with the current result, an IL action
     (
         "matiec",

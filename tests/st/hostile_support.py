@@ -11,7 +11,7 @@ import re
 import tokenize
 
 from softplc.runtime.program import compile_files
-from softplc.runtime.st.rtlib import iec_literal
+from softplc.runtime.st.rtlib.rtlib import iec_literal
 from softplc.runtime.st.types import StringType
 
 # ---------------------------------------------------------------- helpers

@@ -11,7 +11,7 @@ import sys
 import time
 
 from softplc.runtime.st.diagnostics import DiagnosticBag
-from softplc.runtime.st.parser import parse_source
+from softplc.runtime.st.syntax.parser import parse_source
 
 FB = """(* Motor control block {n}: start/stop with interlocks, ramp and fault handling *)
 FUNCTION_BLOCK Motor{n}

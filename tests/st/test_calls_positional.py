@@ -1,4 +1,4 @@
-"""Non-formal (positional) calls that include outputs (runtime/st/checker_calls.py
+"""Non-formal (positional) calls that include outputs (runtime/st/check/checker_calls.py
 _positional_params): a program and the values its variables hold after a cycle.
 
 IEC 61131-3 ed.3 6.6.1.4.2: a non-formal call lists its arguments in the order

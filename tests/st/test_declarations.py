@@ -14,7 +14,7 @@ from .conftest import run_st
 
 def test_pragmas_are_kept_on_the_ast():
     from softplc.runtime.st.diagnostics import DiagnosticBag
-    from softplc.runtime.st.parser import parse_source
+    from softplc.runtime.st.syntax.parser import parse_source
 
     sf = parse_source(
         "{attribute 'hide'}\nPROGRAM p\nVAR {attribute 'x'} a : INT; END_VAR\nEND_PROGRAM\n", "p.st", DiagnosticBag()

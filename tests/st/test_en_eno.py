@@ -1,4 +1,4 @@
-"""EN/ENO on functions and function blocks (runtime/st/checker_eno.py,
+"""EN/ENO on functions and function blocks (runtime/st/check/checker_eno.py,
 codegen_eno.py).
 
 IEC 61131-3 ed.3 6.6.1.6 and Table 18: when EN is FALSE at the call, the

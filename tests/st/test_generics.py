@@ -1,4 +1,4 @@
-"""Generic inputs of user-written functions (runtime/st/checker_generics.py).
+"""Generic inputs of user-written functions (runtime/st/check/checker_generics.py).
 
 IEC 61131-3 ed.3 leaves generic types in user-declared POUs to the
 implementation; CODESYS and TwinCAT accept ``x : ANY_NUM`` as an input of

@@ -1,4 +1,4 @@
-"""ACTIONs inherited through EXTENDS (runtime/st/oop.py find_action,
+"""ACTIONs inherited through EXTENDS (runtime/st/check/oop.py find_action,
 checker_actions.py, codegen_oop.py _action_invoke).
 
 CODESYS "Extension of a Function Block": the derived block receives its

@@ -1,5 +1,5 @@
 """EXTENDS, SUPER^, ABSTRACT, FINAL and access specifiers
-(runtime/st/checker_oop.py, codegen_oop.py). IEC 61131-3 ed.3 6.6.5.2-6.6.5.7;
+(runtime/st/check/checker_oop.py, codegen_oop.py). IEC 61131-3 ed.3 6.6.5.2-6.6.5.7;
 CODESYS help "Extending a function block" and "Object: Method": the derived
 block inherits the base's variables and methods, overrides a method by
 declaring it again with the same signature, calls the base's with SUPER^.M();

@@ -1,4 +1,4 @@
-"""INTERFACEs (runtime/st/checker_oop.py, codegen_oop.py, rt_oop.py).
+"""INTERFACEs (runtime/st/check/checker_oop.py, codegen_oop.py, rt_oop.py).
 IEC 61131-3 ed.3 6.6.6: an interface declares methods (CODESYS and TwinCAT
 also properties); a FUNCTION_BLOCK IMPLEMENTS one or several; a variable of
 an interface type designates an instance of such a block (or none: it is 0

@@ -1,4 +1,4 @@
-"""FB_init, FB_exit, FB_reinit (runtime/st/checker_oop.py, codegen_oop.py,
+"""FB_init, FB_exit, FB_reinit (runtime/st/check/checker_oop.py, codegen_oop.py,
 rt_oop.py). CODESYS help "Method: FB_Init, FB_Reinit, FB_Exit" and TwinCAT
 "Behavior with derived function blocks": FB_init(bInitRetains, bInCopyCode)
 runs when an instance is initialised, after its variables have their

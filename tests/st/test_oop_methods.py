@@ -1,4 +1,4 @@
-"""METHODs of FUNCTION_BLOCKs and THIS^ (runtime/st/checker_oop.py,
+"""METHODs of FUNCTION_BLOCKs and THIS^ (runtime/st/check/checker_oop.py,
 codegen_oop.py): IEC 61131-3 ed.3 6.6.5 and the CODESYS help "Object:
 Method". A method's VAR, VAR_INPUT, VAR_OUTPUT and VAR_TEMP live in the call
 (as a FUNCTION's); VAR_INST lives in the instance; the method's name is its

@@ -1,4 +1,4 @@
-"""Polymorphism through parameters (runtime/st/oop.py extends_fb, used by
+"""Polymorphism through parameters (runtime/st/check/oop.py extends_fb, used by
 checker_calls.py, checker_refs.py and conversions.py).
 
 CODESYS "Extension of a Function Block" / TwinCAT "EXTENDS": an instance of

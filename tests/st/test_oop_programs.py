@@ -1,4 +1,4 @@
-"""METHODs and PROPERTYs of PROGRAMs (runtime/st/checker_oop.py
+"""METHODs and PROPERTYs of PROGRAMs (runtime/st/check/checker_oop.py
 program_named, codegen_oop.py).
 
 CODESYS ("Object Method", "Object Property"): a PROGRAM may have methods

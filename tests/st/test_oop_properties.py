@@ -1,4 +1,4 @@
-"""PROPERTY with GET and SET (runtime/st/checker_oop.py, codegen_oop.py).
+"""PROPERTY with GET and SET (runtime/st/check/checker_oop.py, codegen_oop.py).
 CODESYS help "Object: Property" (TwinCAT the same): reading inst.P calls
 the GET accessor, inst.P := v calls SET; inside both the property's name is
 the value (the result of GET, the input of SET); inside the block it is

@@ -1,5 +1,5 @@
 """Partial access of bit strings and integers: x.%X0, x.%B0, x.%W1,
-x.%D0, x.%L0 (runtime/st/checker_exprs.py, codegen_exprs.py,
+x.%D0, x.%L0 (runtime/st/check/checker_exprs.py, codegen_exprs.py,
 codegen_stmts.py).
 
 IEC 61131-3 ed.3 6.5.3 and Table 16 (CODESYS and TwinCAT alike): the

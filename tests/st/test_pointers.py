@@ -1,4 +1,4 @@
-"""Pointer arithmetic (CODESYS POINTER TO, runtime/st/checker_pointers.py,
+"""Pointer arithmetic (CODESYS POINTER TO, runtime/st/check/checker_pointers.py,
 codegen_pointers.py, refs.py ElemPtr/ObjPtr): a program and the values its
 variables hold after the cycles run.
 

@@ -1,4 +1,4 @@
-"""Byte pointers into strings (st/rt_bytes.py, refs.BytePtr): a program and
+"""Byte pointers into strings (st/rtlib/rt_bytes.py, refs.BytePtr): a program and
 the values its variables hold after a cycle.
 
 CODESYS keeps a STRING(n) in n+1 bytes, its characters and a terminating 0

@@ -1,4 +1,4 @@
-"""Byte views of numbers, arrays and structures (st/rt_bytes.py): a POINTER
+"""Byte views of numbers, arrays and structures (st/rtlib/rt_bytes.py): a POINTER
 TO BYTE, WORD, DWORD ... over a value of another type reads and writes its
 bytes as x86 CODESYS lays them out, little-endian, IEEE 754 for REAL and
 LREAL, structures padded as st/sizes.py says (CODESYS "Attribute:

@@ -1,5 +1,5 @@
 """SFC in its textual form: parsing and the checker's diagnostics
-(runtime/st/build_sfc.py, checker_sfc.py; IEC 61131-3 ed.3 6.7)."""
+(runtime/st/syntax/build_sfc.py, checker_sfc.py; IEC 61131-3 ed.3 6.7)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""SFC execution (runtime/st/rt_sfc.py, codegen_sfc.py), RuSTy-style: a
+"""SFC execution (runtime/st/rtlib/rt_sfc.py, codegen_sfc.py), RuSTy-style: a
 program and the values it has after N cycles, in virtual time (10 ms a
 cycle, the first at t = 0). The rules are IEC 61131-3 ed.3 6.7.5 (rules of
 evolution) and 6.7.4 (actions and their control; ed.2 2.6.5, 2.6.4)."""

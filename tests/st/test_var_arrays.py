@@ -1,5 +1,5 @@
 """Variable-length arrays: ARRAY[*] parameters with LOWER_BOUND and
-UPPER_BOUND (runtime/st/checker_arrays.py, rt_varray.py).
+UPPER_BOUND (runtime/st/check/checker_arrays.py, rt_varray.py).
 
 IEC 61131-3 ed.3 6.5.4 and CODESYS/TwinCAT ("Array with variable length"):
 an ARRAY[*] is declared in VAR_IN_OUT of a FUNCTION, FUNCTION_BLOCK or

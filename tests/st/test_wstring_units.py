@@ -3,7 +3,7 @@ on them): a WSTRING[4] holds 4 units, a character beyond U+FFFF ($D83D$DE00,
 U+1F600) counts 2 in the declared length, in LEN and in every position of
 the string functions. Issue 31: a WSTRING[1] held "$D83D$DE00", LEN of it
 was 1, and a WSTRING[4] held 'a😀bc' (5 units). A cut or a position inside
-a pair never splits it (runtime/st/rt_strings.py). A STRING counts
+a pair never splits it (runtime/st/rtlib/rt_strings.py). A STRING counts
 characters, as before."""
 
 from __future__ import annotations

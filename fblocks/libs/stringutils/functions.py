@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from softplc.fblocks.iec.functions import StdFunc
 from softplc.fblocks.libs import memory
-from softplc.runtime.st import rt_strings as S
+from softplc.runtime.st.rtlib import rt_strings as S
 
 _PTR = "POINTER TO BYTE"
 

@@ -15,7 +15,7 @@ from decimal import ROUND_DOWN, ROUND_HALF_UP, Context, Decimal
 
 from softplc.fblocks.iec.functions import StdFunc
 from softplc.fblocks.libs import filetime, memory
-from softplc.runtime.st import rt_bytes
+from softplc.runtime.st.rtlib import rt_bytes
 
 from . import format_string as F
 

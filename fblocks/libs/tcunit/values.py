@@ -27,11 +27,11 @@ from itertools import product
 
 from softplc.runtime.st import sizes
 from softplc.runtime.st import types as T
-from softplc.runtime.st.refs import CellRef
-from softplc.runtime.st.rt_bytes import layout_of
-from softplc.runtime.st.rt_numeric import f32
-from softplc.runtime.st.rt_text import iec_literal
-from softplc.runtime.st.rt_varray import VarArray
+from softplc.runtime.st.rtlib.refs import CellRef
+from softplc.runtime.st.rtlib.rt_bytes import layout_of
+from softplc.runtime.st.rtlib.rt_numeric import f32
+from softplc.runtime.st.rtlib.rt_text import iec_literal
+from softplc.runtime.st.rtlib.rt_varray import VarArray
 
 WSTRING_EXPECTED = "Not possible to print EXP unicode WSTRING value"
 WSTRING_ACTUAL = "Not possible to print ACT unicode WSTRING value"

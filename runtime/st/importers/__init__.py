@@ -8,8 +8,8 @@ replaces a project file (.plcproj) by the sources it lists."""
 from __future__ import annotations
 
 from ..diagnostics import DiagnosticBag
-from ..il import lowered_for_reading
-from ..st_grammar import grammar
+from ..syntax.il import lowered_for_reading
+from ..syntax.st_grammar import grammar
 from . import fbd, ld  # noqa: F401  (they register the FBD and LD body languages)
 from .bodies import LANGUAGES
 from .codesys23 import codesys23_views, is_codesys23
@@ -95,7 +95,7 @@ def st_plain_lines(path: str, text: str, diags: DiagnosticBag) -> list[list[tupl
 
 def st_export(path: str, text: str, diags: DiagnosticBag) -> str:
     """An imported file as one plain ST text to read (softplc export-st),
-    its IL bodies as the ST they are lowered to (st/il.py); an ST file as it
+    its IL bodies as the ST they are lowered to (st/syntax/il.py); an ST file as it
     is."""
     reader = _reader(path, text)
     if reader is not None:

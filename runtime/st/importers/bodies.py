@@ -89,7 +89,7 @@ def st_body(lang: PosElement, out: BodyOut) -> None:
 
 def il_body(lang: PosElement, out: BodyOut) -> None:
     """<IL><xhtml:p>text</xhtml:p></IL>: put where it stands, like ST; the
-    parser lowers it to ST (st/il.py): it follows the POU's VAR blocks, or
+    parser lowers it to ST (st/syntax/il.py): it follows the POU's VAR blocks, or
     the ACTION header, in the view."""
     st_body(lang, out)
 

@@ -30,7 +30,7 @@ import re
 
 from ..ast import Pos
 from ..diagnostics import DiagnosticBag
-from ..lexer import strip_comments
+from ..syntax.lexer import strip_comments
 from .view import LineView
 
 # Markers that only a CODESYS 2.3 export writes (a .TXT is read as one when

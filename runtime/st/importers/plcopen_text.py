@@ -22,8 +22,8 @@ from __future__ import annotations
 import re
 from decimal import Decimal
 
-from ..lexer import strip_comments
-from ..st_grammar import grammar
+from ..syntax.lexer import strip_comments
+from ..syntax.st_grammar import grammar
 from .bodies import ImportProblem
 from .xmlsafe import PosElement
 

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from ..rt_sfc import QUALIFIERS, TIMED
+from ..rtlib.rt_sfc import QUALIFIERS, TIMED
 from .bodies import BodyOut
 from .sfc_codesys import codesys_step
 from .xmlsafe import PosElement

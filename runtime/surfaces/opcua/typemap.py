@@ -31,7 +31,7 @@ from asyncua import ua
 
 from ...engine.values import without_lone_surrogates
 from ...st import types as T
-from ...st.rtlib import iec_literal
+from ...st.rtlib.rtlib import iec_literal
 
 VT = ua.VariantType
 INTEGER_VARIANTS = frozenset((VT.SByte, VT.Byte, VT.Int16, VT.UInt16, VT.Int32, VT.UInt32, VT.Int64, VT.UInt64))

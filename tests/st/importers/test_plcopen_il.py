@@ -1,5 +1,5 @@
 """IL bodies in PLCopen XML (st/importers/bodies.py puts them into the view,
-the parser lowers them: st/il.py): a Beremiz-style project whose POUs and
+the parser lowers them: st/syntax/il.py): a Beremiz-style project whose POUs and
 action are IL runs as its ST twin; export-st writes the lowered ST, which
 runs the same; problems point into the XML."""
 
@@ -13,7 +13,7 @@ from softplc.runtime.program import check_files, compile_files
 from softplc.runtime.st.diagnostics import DiagnosticBag
 from softplc.runtime.st.faults import STFault
 from softplc.runtime.st.importers import st_export, st_views
-from softplc.runtime.st.parser import parse_source
+from softplc.runtime.st.syntax.parser import parse_source
 
 HERE = Path(__file__).parent
 XML = HERE / "il_project.xml"
