@@ -1,5 +1,5 @@
 """The architecture's promises that a test can keep (docs/architecture.md):
-the core names no bus and no device, no module is over 800 lines, every
+the core names no bus and no device, no module is over 600 lines, every
 package folder is installed. The import layers are import-linter's contracts
 in pyproject.toml (.ci/run)."""
 
@@ -12,10 +12,14 @@ import tokenize
 import tomllib
 from pathlib import Path
 
-import pytest
-
 REPO = Path(__file__).resolve().parents[1]
 SOURCES = sorted(p for folder in ("runtime", "fblocks") for p in (REPO / folder).rglob("*.py"))
+#: every module of the repository: the code, its tests, the benchmarks, the tools
+MODULES = sorted(
+    p
+    for folder in ("runtime", "fblocks", "testing", "tests", "benchmarks", "tools")
+    for p in (REPO / folder).rglob("*.py")
+)
 
 # Only a bus's, a device's or a simulator's own package may name a bus or a
 # device; so may a module whose own path names the thing. The Modbus TCP
@@ -76,10 +80,10 @@ def test_the_rule_sees_what_it_looks_for(tmp_path):
     assert [hit.split(": ", 1)[1] for hit in names_in_code(code, tmp_path)] == ['"canopen"', "sdo_timeout"]
 
 
-@pytest.mark.parametrize("path", SOURCES, ids=lambda p: str(p.relative_to(REPO)))
-def test_no_module_is_over_800_lines(path):
-    lines = len(path.read_text(encoding="utf-8").splitlines())
-    assert lines <= 800, f"{lines} lines: split it by concern (aim for 600)"
+def test_no_module_is_over_600_lines():
+    sizes = {str(p.relative_to(REPO)): len(p.read_text(encoding="utf-8").splitlines()) for p in MODULES}
+    assert len(sizes) > 600  # the code and its tests, all seen
+    assert {path: n for path, n in sizes.items() if n > 600} == {}, "split these by concern"
 
 
 def test_every_package_folder_is_installed():

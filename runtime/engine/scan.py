@@ -32,15 +32,15 @@ from typing import TYPE_CHECKING
 from ..config.values import cut
 from ..image.address import default_type
 from ..image.memory import ProcessImage
-from ..program import ExecContext, Program, locate
+from ..program import ExecContext, Program
 from ..st import types as T
 from ..st.faults import STFault, fault_from_exception
 from ..st.rtlib import rt_oop
-from ..st.valuejson import encode_instance
 from . import retain as R
 from .clock import VirtualClock
 from .cputime import COLLECTOR as _COLLECTOR
 from .diag import DiagVariable
+from .inspection import Inspection
 from .retain_file import ForeignRetainFile
 from .tasks import Task
 
@@ -68,7 +68,7 @@ class FaultRecord:
         return f"task {self.task}: {self.fault}"
 
 
-class Engine:
+class Engine(Inspection):
     def __init__(
         self,
         program: Program,
@@ -546,56 +546,6 @@ class Engine:
                 log.error("%s (retrying every period)", store.last_error)
             else:
                 log.info("the retain file is written again")
-
-    # ------------------------------------------------------------ inspection
-
-    def force(self, key: str, apply: Callable[[], None]) -> None:
-        """Hold a value against the program, as a PLC's force does: apply()
-        stores it, now and in every scan after the drivers read the inputs
-        and again after the tasks ran, so neither a bus nor the program
-        changes what the next scan and the drivers see. key names the forced
-        variable or address; a new force of the same key replaces the old."""
-        self.forces[key] = apply
-        apply()
-
-    def unforce(self, key: str) -> bool:
-        """Release a force; the variable keeps its value until someone writes it. False if key was not forced."""
-        self.forced_values.pop(key, None)
-        return self.forces.pop(key, None) is not None
-
-    def variable(self, path: str):
-        """(holder, attribute, Type) of 'Instance.var.field' or 'GlobalVar.field'.
-        Works before start(): the program is loaded first."""
-        self.load()
-        first, _, rest = path.partition(".")
-        entry = self.instances.get(first.upper())
-        if entry is not None and rest:
-            return locate(rest, (entry[2],))
-        return self.program.locate(path, (self.ns["_G"],))  # GVL.x too
-
-    def get(self, path: str):
-        """The value of a variable ('Main.count', 'G_total') or of a direct address ('%QW0')."""
-        if path.startswith("%"):
-            return self.image.read(path)
-        holder, attr, _ty = self.variable(path)
-        return getattr(holder, attr)
-
-    def set(self, path: str, value) -> None:
-        """Force a variable (tests and simulators; no type conversion)."""
-        if path.startswith("%"):
-            self.image.write(path, value)
-            return
-        holder, attr, _ty = self.variable(path)
-        setattr(holder, attr, value)
-
-    def dump(self) -> dict:
-        """Every program instance's variables and the globals, as `softplc exec` prints them."""
-        self.load()
-        out = {name: encode_instance(obj) for name, _info, obj in self.instances.values()}
-        globals_ = encode_instance(self.ns["_G"], skip=self.program.library_globals)
-        if globals_:
-            out["VAR_GLOBAL"] = globals_
-        return out
 
     def now_ns(self) -> int:
         return self.clock.now_ns()

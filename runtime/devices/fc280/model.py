@@ -33,17 +33,10 @@ from collections.abc import Callable, Mapping, Sequence
 from fractions import Fraction
 
 from .control import (
-    DSP_AT_REFERENCE,
-    DSP_REMOTE,
     DSP_RESET,
-    DSP_RUNNING,
-    DSP_SPEED_LIMIT,
-    DSP_TARGET_REACHED,
-    DSP_WARNING,
     RELAY_CTW_BIT_11,
     RELAY_CTW_BIT_12,
     SETUP_EXTERNAL,
-    STATE_BITS,
     DspState,
     dsp_next,
     fc_commands,
@@ -51,8 +44,9 @@ from .control import (
 )
 from .motor import COAST, RAMP_STOP, Motion, int16, ramp, round_half_away
 from .parameters import PROFILE_DSP402, parameter
-from .profile import REFERENCE_100, ControlWord, StatusWord
+from .profile import REFERENCE_100, ControlWord
 from .settings import Settings
+from .status import dsp_status_word, fc_status_word
 from .store import SECTIONS_OF_SUB, ParameterStore, Refusal, Refused
 
 S = 1_000_000_000
@@ -67,14 +61,6 @@ CONTROL_WORD_TIMEOUT = 0x00000010  # both words, "Steuerwort-Timeout"
 OVER_CURRENT = 0x00000020  # 16-90
 FIELDBUS_FAULT = 0x00400000  # 16-90 "Feldbus-Fehl.", 16-92 warning 34 "Feldbus-Fehler"
 DRIVE_INITIALISED = 0x20000000  # 16-90, Alarm 80 (§3.1.5 HINWEIS)
-# Warnings the FC status word shows in bits 13-15 (Tabelle 4.10; simulator choice of the bits):
-VOLTAGE_WARNINGS = 0x00001000 | 0x00002000 | 0x08000000  # DC link low/high, voltage limit
-TORQUE_WARNINGS = 0x00000040 | 0x02000000  # torque limit, current limit
-TIMER_WARNINGS = 0x00000100 | 0x00000200  # motor ETR, inverter overload
-# The status word bits as plain ints (IntFlag operators are slow on the tick's path)
-_SW = {flag.name: int(flag) for flag in StatusWord}
-_SW_LIMITS = {VOLTAGE_WARNINGS: "VOLTAGE_LIMIT", TORQUE_WARNINGS: "TORQUE_LIMIT", TIMER_WARNINGS: "THERMAL_TIMER"}
-_SW_WARNING_BITS = tuple((bits, _SW[name]) for bits, name in _SW_LIMITS.items())
 
 
 class Fc280Model:
@@ -544,28 +530,7 @@ class Fc280Model:
         return self._fc_status_word(self.motion(), self.warnings(), self.settings())
 
     def _fc_status_word(self, m: Motion, warnings: dict[str, int], s: Settings) -> int:
-        out = self.out
-        if self.tripped:
-            sw = _SW["TRIP"] | (_SW["TRIP_LOCK"] if self.trip_lock else 0)
-        else:
-            sw = _SW["CONTROL_READY"] | _SW["DRIVE_READY"]
-            if not m.coast:
-                sw |= _SW["ENABLED"]
-        if any(warnings.values()):
-            sw |= _SW["WARNING"]
-        if m.run and out == m.target:
-            sw |= _SW["AT_REFERENCE"]
-        if s.bus_control:
-            sw |= _SW["BUS_CONTROL"]
-        if abs(out) < s.f_max:
-            sw |= _SW["IN_FREQUENCY_LIMIT"]
-        if m.run or out != 0:
-            sw |= _SW["RUNNING"]
-        warning_word = warnings["16-92"]
-        for bits, flag in _SW_WARNING_BITS:
-            if warning_word & bits:
-                sw |= flag
-        return sw
+        return fc_status_word(m, warnings, s, self.out, self.tripped, self.trip_lock)
 
     def dsp_status_word(self) -> int:
         """6041h: the state's word of Tabelle 4.3 and the bits of Tabelle 4.6;
@@ -573,19 +538,8 @@ class Fc280Model:
         state = self.dsp_state
         if state == DspState.START:
             return 0
-        m = self.motion()
-        s = self.settings()
-        out = self.out
-        sw = STATE_BITS[state] | (DSP_REMOTE if s.bus_control else 0)
-        if any(self.warnings().values()):
-            sw |= DSP_WARNING
-        if state == DspState.OPERATION_ENABLED and m.run and m.reference and out == m.target:
-            sw |= DSP_AT_REFERENCE | DSP_TARGET_REACHED
-        if out != 0 and abs(out) >= s.f_max:
-            sw |= DSP_SPEED_LIMIT
-        if m.run or out != 0:
-            sw |= DSP_RUNNING
-        return sw
+        warned = any(self.warnings().values())
+        return dsp_status_word(state, self.motion(), self.settings(), self.out, warned)
 
     def main_actual_value(self) -> int:
         """16-05 HIW, object 2645h: the output frequency scaled as the reference (§4.4.4)."""
