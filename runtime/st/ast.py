@@ -13,10 +13,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
-
-if TYPE_CHECKING:
-    from .ast_sfc import SfcNetwork
+from typing import Any
 
 
 @dataclass(frozen=True, slots=True)
@@ -361,7 +358,8 @@ class POU(Node):
     pragmas: list = field(default_factory=list)
     external: bool = False  # declared only (body provided natively)
     actions: list = field(default_factory=list)  # Action, written inside the POU or given to it
-    sfc: SfcNetwork | None = None  # the body is an SFC network (then body is [])
+    # an ast_sfc.SfcNetwork when the body is SFC (then body is []); Any: ast_sfc builds on this module
+    sfc: Any = None
     # Object-oriented ST (FUNCTION_BLOCK only; checker_oop.py): ABSTRACT,
     # FINAL, PUBLIC ... as written (upper-case), EXTENDS (the base's name
     # and position), IMPLEMENTS (names and positions), METHODs, PROPERTYs.
