@@ -121,34 +121,48 @@ class RealClock:
 
 class PeriodicService:
     """Real time: calls service(now_ns) every period_s from its own daemon
-    thread, now_ns read from the engine's clock. (In virtual time the engine
-    calls advance_to at each tick instead, and no thread runs.) An exception
-    in service is logged and the loop goes on: a peer on a bus must survive
-    a bad frame or a bug in one step."""
+    thread, now_ns read from the engine's clock, and at once when wake() is
+    called (new outputs to send, say). (In virtual time the engine calls
+    advance_to at each tick instead, and no thread runs.) An exception in
+    service is logged and the loop goes on: a peer on a bus must survive a
+    bad frame or a bug in one step.
 
-    def __init__(self, name: str, clock, service: Callable[[int], None], period_s: float = 0.001) -> None:
+    The period is what the service needs, not finer: every wake-up of a
+    thread takes the interpreter lock from the scan for a moment, and a
+    1 kHz thread asks for it a thousand times a second (issue 31)."""
+
+    def __init__(self, name: str, clock, service: Callable[[int], None], period_s: float = 0.005) -> None:
         self.name = name
         self.clock = clock
         self.service = service
         self.period_s = period_s
-        self._stop = threading.Event()
+        self._stop = False
+        self._wake = threading.Event()
         self._thread: threading.Thread | None = None
 
     def start(self) -> None:
-        self._stop.clear()
+        self._stop = False
+        self._wake.clear()
         self._thread = threading.Thread(target=self._run, name=self.name, daemon=True)
         self._thread.start()
 
+    def wake(self) -> None:
+        """Run the service now rather than at the end of its period."""
+        self._wake.set()
+
     def stop(self) -> None:
-        self._stop.set()
+        self._stop = True
+        self._wake.set()
         if self._thread is not None:
             self._thread.join(timeout=2.0)
             self._thread = None
 
     def _run(self) -> None:
-        while not self._stop.is_set():
+        wake = self._wake
+        while not self._stop:
             try:
                 self.service(self.clock.now_ns())
             except Exception:
                 log.exception("%s: service step failed", self.name)
-            self._stop.wait(self.period_s)
+            wake.wait(self.period_s)
+            wake.clear()

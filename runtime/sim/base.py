@@ -33,8 +33,10 @@ class Pump(Protocol):
 
 
 class SimulatedDevice(Driver):
-    #: real time: how often service() runs
-    service_period_s = 0.001
+    #: real time: how often service() runs. The models integrate over the
+    #: time since the last call and frames answer in their handlers, so 5 ms
+    #: costs no accuracy; a thread at 1 kHz cost the live scan (issue 31).
+    service_period_s = 0.005
 
     def __init__(self, name: str, *, clock, pump: Pump | None = None) -> None:
         self.name = name

@@ -32,6 +32,7 @@ of its own, never in the scan.
 
 from __future__ import annotations
 
+import contextlib
 import importlib
 import logging
 import multiprocessing
@@ -53,6 +54,10 @@ STOP_TIMEOUT_S = 10.0
 RESTART_S = 1.0  # after the process ended on its own, the first new one this much later
 RESTART_MAX_S = 30.0
 #: what the servers' process may call on the PLC's side (besides Surfaces.call)
+#: the calls that compute in the call thread (paths resolved, a tree level
+#: built), by name or, for "call", by the function's name
+_COMPUTING = frozenset({"watch", "check", "info", "tree_level", "checked"})
+
 CALLS: dict[str, Callable[..., Any]] = {
     "watch": lambda s, reader, paths: s.hub.watch(reader, paths),
     "unwatch": lambda s, reader: s.hub.unwatch(reader),
@@ -276,8 +281,12 @@ class SurfaceProcess:
                 ready.set()
 
     def _call(self, call_id: int | None, name: str, args: tuple) -> None:
+        # Watching a thousand paths, a tree: the scan waits for the lock 0.5 ms,
+        # not 5. Not while a call waits (an online change, a fresh snapshot): the
+        # interval would stay lowered for every other thread meanwhile.
+        computing = (args[1] if name == "call" else name) in _COMPUTING
         try:
-            with background():  # watching a thousand paths, a tree: the scan waits 0.5 ms, not 5
+            with background() if computing else contextlib.nullcontext():
                 result = self._carry_out(call_id, name, args)
         except Exception as exc:  # the caller raises it, in the servers' process
             self._reply("reply", call_id, False, exc)
