@@ -21,8 +21,9 @@ clock for the real one, 2000-01-01 for the virtual one unless it is given
 (program/context.py VIRTUAL_EPOCH_NS), so that virtual time runs the same
 way on every day too.
 PeriodicService  a real-time thread that serves a bus or a simulated
-             device every period on a clock (in virtual time the engine
-             advances them at each tick instead).
+             device each time the scan goes idle, and every period when
+             none does (in virtual time the engine advances them at each
+             tick instead).
 """
 
 from __future__ import annotations
@@ -74,6 +75,7 @@ class RealClock:
         self._t0 = time.perf_counter_ns()
         self.epoch_ns = time.time_ns()  # the date now, at the clock's zero
         self._claimed: set = set()  # the threads given the priority (or told they cannot have it)
+        self._idle: tuple[Callable[[], None], ...] = ()  # on_idle's callbacks
 
     def claim_thread(self) -> None:
         """With realtime_priority: the calling thread (the scan's) under
@@ -109,7 +111,15 @@ class RealClock:
     def now_ns(self) -> int:
         return time.perf_counter_ns() - self._t0
 
+    def on_idle(self, callback: Callable[[], None], add: bool = True) -> None:
+        """Call callback (or no longer, add=False) each time the scan goes
+        idle, before it sleeps until its next release (PeriodicService.wake)."""
+        idle = tuple(c for c in self._idle if c != callback)
+        self._idle = (*idle, callback) if add else idle
+
     def sleep_until(self, deadline_ns: int) -> None:
+        for wake in self._idle:
+            wake()
         target = deadline_ns + self._t0
         counter = time.perf_counter_ns
         remaining = target - counter()
@@ -120,18 +130,21 @@ class RealClock:
 
 
 class PeriodicService:
-    """Real time: calls service(now_ns) every period_s from its own daemon
-    thread, now_ns read from the engine's clock, and at once when wake() is
-    called (new outputs to send, say). (In virtual time the engine calls
-    advance_to at each tick instead, and no thread runs.) An exception in
-    service is logged and the loop goes on: a peer on a bus must survive a
-    bad frame or a bug in one step.
+    """Real time: calls service(now_ns) from its own daemon thread, now_ns
+    read from the engine's clock: each time the scan goes idle (the clock's
+    on_idle), when wake() is called, and every period_s when neither came.
+    (In virtual time the engine calls advance_to at each tick instead, and
+    no thread runs.) An exception in service is logged and the loop goes on:
+    a peer on a bus must survive a bad frame or a bug in one step.
 
-    The period is what the service needs, not finer: every wake-up of a
-    thread takes the interpreter lock from the scan for a moment, and a
-    1 kHz thread asks for it a thousand times a second (issue 31)."""
+    Why at the scan's idle (issue 31): the services share Python's lock
+    with the scan. Served on their own timers, at 1 kHz or 200 Hz, they were
+    often running at the moment a scan was released, one after the other,
+    and the scan waited for the lock behind them. Served as the scan goes
+    idle, they run while it sleeps; the period is a fallback for when no
+    scan runs (or the tasks are slow), not a rate."""
 
-    def __init__(self, name: str, clock, service: Callable[[int], None], period_s: float = 0.005) -> None:
+    def __init__(self, name: str, clock, service: Callable[[int], None], period_s: float = 0.02) -> None:
         self.name = name
         self.clock = clock
         self.service = service
@@ -145,12 +158,18 @@ class PeriodicService:
         self._wake.clear()
         self._thread = threading.Thread(target=self._run, name=self.name, daemon=True)
         self._thread.start()
+        on_idle = getattr(self.clock, "on_idle", None)
+        if on_idle is not None:
+            on_idle(self.wake)
 
     def wake(self) -> None:
         """Run the service now rather than at the end of its period."""
         self._wake.set()
 
     def stop(self) -> None:
+        on_idle = getattr(self.clock, "on_idle", None)
+        if on_idle is not None:
+            on_idle(self.wake, add=False)
         self._stop = True
         self._wake.set()
         if self._thread is not None:

@@ -33,10 +33,10 @@ class Pump(Protocol):
 
 
 class SimulatedDevice(Driver):
-    #: real time: how often service() runs. The models integrate over the
-    #: time since the last call and frames answer in their handlers, so 5 ms
-    #: costs no accuracy; a thread at 1 kHz cost the live scan (issue 31).
-    service_period_s = 0.005
+    #: real time: service() runs each time the scan goes idle, and after this
+    #: long without one (PeriodicService). The models integrate over the time
+    #: since the last call and frames are answered in their handlers.
+    service_period_s = 0.02
 
     def __init__(self, name: str, *, clock, pump: Pump | None = None) -> None:
         self.name = name

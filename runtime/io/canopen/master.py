@@ -71,7 +71,7 @@ log = logging.getLogger(__name__)
 
 #: the most lines per node and kind of event (reset, operational, lost ...) in the log per 10 s
 EVENT_BURST = 3
-SERVICE_PERIOD_S = 0.005  # real time: the service thread's period (_service_period_s)
+SERVICE_PERIOD_S = 0.02  # real time: the service thread's longest wait (_service_period_s)
 
 
 class _EndpointNetwork(canopen.Network):
@@ -239,8 +239,8 @@ class CanopenDriver(Driver):
             self._service.start()
 
     def _service_period_s(self) -> float:
-        """Every 5 ms (or SYNC period if shorter), and at once on new RPDO
-        data (write_outputs): heartbeats late by 5 ms at most, outputs not."""
+        """At each idle of the scan (after its write_outputs: new RPDO data goes
+        out then), and every 20 ms or SYNC period, if shorter, without one."""
         sync_s = self.config.sync_us / 1e6
         return min(SERVICE_PERIOD_S, sync_s) if sync_s else SERVICE_PERIOD_S
 
@@ -571,10 +571,7 @@ class CanopenDriver(Driver):
     def write_outputs(self, image: ProcessImage) -> None:
         packed = {binding: binding.pack(image) for node in self.nodes.values() for binding, _s in node.rpdos}
         with self._io:
-            changed = packed != self._tx_data
             self._tx_data.update(packed)
-        if changed and self._service is not None:
-            self._service.wake()  # new outputs go out now, not at the end of the service's period
 
     def status(self) -> DriverStatus:
         if not self._bus_ok:
