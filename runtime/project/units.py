@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass, field
+from typing import Any
 
 from ..st import ast as A
 
@@ -20,7 +21,6 @@ from ..st import ast as A
 POU_KINDS = ("PROGRAM", "FUNCTION_BLOCK", "FUNCTION", "INTERFACE")
 # Fields of AST nodes that hold no names the code uses.
 _SKIP = frozenset(("pos", "ty", "const", "sym", "target", "impl", "implicit_ref", "pragmas", "spelling", "name_pos"))
-_FIELDS: dict[type, tuple] = {}
 
 
 @dataclass
@@ -68,13 +68,35 @@ class Unit:
         return next((types[key] for _spans, types in reversed(self.scopes) if key in types), None)
 
 
-def _fields(node: object) -> tuple:
-    t = type(node)
-    names = _FIELDS.get(t)
-    if names is None:
-        names = tuple(f.name for f in dataclasses.fields(t) if f.name not in _SKIP)  # type: ignore[arg-type]
-        _FIELDS[t] = names
-    return names
+# What _names does with a value of each type, decided once a type: (what,
+# fields), what one of _SKIP_IT, _SEQUENCE, _MAPPING or the node's kind of
+# name for the ones that hold one (_NODE for the others)
+_SKIP_IT, _SEQUENCE, _MAPPING, _NODE, _NAME, _MEMBER, _TYPE, _ENUM, _POU, _INTERFACE, _CONFIG, _ACTION = range(12)
+_KINDS = (
+    (A.Name, _NAME),
+    (A.Member, _MEMBER),
+    (A.NamedType, _TYPE),
+    (A.EnumLiteral, _ENUM),
+    (A.POU, _POU),
+    (A.Interface, _INTERFACE),
+    (A.ProgramConfig, _CONFIG),
+    (A.Action, _ACTION),
+)
+_PLANS: dict[type, tuple[int, tuple]] = {}
+
+
+def _plan(t: type) -> tuple[int, tuple]:
+    if issubclass(t, (list, tuple)):
+        plan: tuple[int, tuple] = (_SEQUENCE, ())
+    elif issubclass(t, dict):
+        plan = (_MAPPING, ())
+    elif not dataclasses.is_dataclass(t) or issubclass(t, type):
+        plan = (_SKIP_IT, ())
+    else:
+        kind = next((k for cls, k in _KINDS if issubclass(t, cls)), _NODE)
+        plan = (kind, tuple(f.name for f in dataclasses.fields(t) if f.name not in _SKIP))
+    _PLANS[t] = plan
+    return plan
 
 
 def _names(root: object) -> tuple[set, set]:
@@ -82,40 +104,47 @@ def _names(root: object) -> tuple[set, set]:
     names: set = set()
     types: set = set()
     stack = [root]
+    plans = _PLANS
+    push, pop, extend = stack.append, stack.pop, stack.extend
     while stack:
-        n = stack.pop()
-        if isinstance(n, (list, tuple)):
-            stack.extend(n)
+        n: Any = pop()
+        t = type(n)
+        plan = plans.get(t) or _plan(t)
+        kind = plan[0]
+        if kind == _SKIP_IT:
             continue
-        if isinstance(n, dict):
-            stack.extend(n.values())
+        if kind == _SEQUENCE:
+            extend(n)
             continue
-        if not dataclasses.is_dataclass(n) or isinstance(n, type):
+        if kind == _MAPPING:
+            extend(n.values())
             continue
-        if isinstance(n, A.Name):
+        if kind == _NAME:
             names.add(n.name.upper())
             if n.qualifier:
                 names.add(n.qualifier.upper())
-        elif isinstance(n, A.Member):
+        elif kind == _MEMBER:
             names.add(n.name.upper())
-        elif isinstance(n, A.NamedType):
+        elif kind == _TYPE:
             types.update(part.upper() for part in n.name.split("."))
-        elif isinstance(n, A.EnumLiteral) and n.type_name:
-            types.add(n.type_name.upper())
-        elif isinstance(n, A.POU):
+        elif kind == _ENUM:
+            if n.type_name:
+                types.add(n.type_name.upper())
+        elif kind == _POU:
             if n.extends:
                 types.add(str(n.extends[0]).upper())
             types.update(str(name).upper() for name, _pos in n.implements)
-        elif isinstance(n, A.Interface):
+        elif kind == _INTERFACE:
             types.update(str(name).upper() for name, _pos in n.bases)
-        elif isinstance(n, A.ProgramConfig):
+        elif kind == _CONFIG:
             types.add(n.type_name.upper())
-        elif isinstance(n, A.Action) and n.pou_name:
-            types.add(n.pou_name.upper())
-        for f in _fields(n):
+        elif kind == _ACTION:
+            if n.pou_name:
+                types.add(n.pou_name.upper())
+        for f in plan[1]:
             value = getattr(n, f, None)
             if value is not None and not isinstance(value, (str, int, float, bool)):
-                stack.append(value)
+                push(value)
     return names, types
 
 
