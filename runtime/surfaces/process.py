@@ -53,11 +53,10 @@ START_TIMEOUT_S = 120.0  # a new interpreter importing asyncua on a busy machine
 STOP_TIMEOUT_S = 10.0
 RESTART_S = 1.0  # after the process ended on its own, the first new one this much later
 RESTART_MAX_S = 30.0
-#: what the servers' process may call on the PLC's side (besides Surfaces.call)
 #: the calls that compute in the call thread (paths resolved, a tree level
 #: built), by name or, for "call", by the function's name
 _COMPUTING = frozenset({"watch", "check", "info", "tree_level", "checked"})
-
+#: what the servers' process may call on the PLC's side (besides Surfaces.call)
 CALLS: dict[str, Callable[..., Any]] = {
     "watch": lambda s, reader, paths: s.hub.watch(reader, paths),
     "unwatch": lambda s, reader: s.hub.unwatch(reader),
