@@ -53,9 +53,11 @@ START_TIMEOUT_S = 120.0  # a new interpreter importing asyncua on a busy machine
 STOP_TIMEOUT_S = 10.0
 RESTART_S = 1.0  # after the process ended on its own, the first new one this much later
 RESTART_MAX_S = 30.0
-#: the calls that compute in the call thread (paths resolved, a tree level
-#: built), by name or, for "call", by the function's name
-_COMPUTING = frozenset({"watch", "check", "info", "tree_level", "checked"})
+#: the calls that wait in the call thread (for a fresh snapshot, a compile
+#: and the scan that swaps it in), by name or, for "call", by the function's
+#: name; every other call computes there (paths resolved, a tree level
+#: built, a watch list laid out again, writes checked)
+_WAITING = frozenset({"current", "online_change"})
 #: what the servers' process may call on the PLC's side (besides Surfaces.call)
 CALLS: dict[str, Callable[..., Any]] = {
     "watch": lambda s, reader, paths: s.hub.watch(reader, paths),
@@ -228,8 +230,9 @@ class SurfaceProcess:
                 raise OSError("the servers' process is not running")
             if snap.sequence <= self._sent:
                 return
-            if snap.layout is not self._layout:
-                self._send_layout(snap.layout)
+            if snap.layout is not self._layout:  # after a watch or a change: hundreds of paths and types pickled
+                with background():
+                    self._send_layout(snap.layout)
                 self._layout = snap.layout
             records: list = []
             if self._logs is not None:
@@ -280,12 +283,14 @@ class SurfaceProcess:
                 ready.set()
 
     def _call(self, call_id: int | None, name: str, args: tuple) -> None:
-        # Watching a thousand paths, a tree: the scan waits for the lock 0.5 ms,
-        # not 5. Not while a call waits (an online change, a fresh snapshot): the
-        # interval would stay lowered for every other thread meanwhile.
-        computing = (args[1] if name == "call" else name) in _COMPUTING
+        # Watching a thousand paths, a tree, an unwatch, writes: the scan waits
+        # for the lock 0.5 ms, not 5 (a live soak caught a call thread outside
+        # background() holding it 10 ms). Not while a call waits (an online
+        # change, a fresh snapshot): the interval would stay lowered for every
+        # other thread meanwhile (what those compute runs in background() itself).
+        waiting = (args[1] if name == "call" else name) in _WAITING
         try:
-            with background() if computing else contextlib.nullcontext():
+            with contextlib.nullcontext() if waiting else background():
                 result = self._carry_out(call_id, name, args)
         except Exception as exc:  # the caller raises it, in the servers' process
             self._reply("reply", call_id, False, exc)
