@@ -76,6 +76,7 @@ class RealClock:
         self.epoch_ns = time.time_ns()  # the date now, at the clock's zero
         self._claimed: set = set()  # the threads given the priority (or told they cannot have it)
         self._idle: tuple[Callable[[], None], ...] = ()  # on_idle's callbacks
+        self._idle_lock = threading.Lock()
 
     def claim_thread(self) -> None:
         """With realtime_priority: the calling thread (the scan's) under
@@ -114,8 +115,9 @@ class RealClock:
     def on_idle(self, callback: Callable[[], None], add: bool = True) -> None:
         """Call callback (or no longer, add=False) each time the scan goes
         idle, before it sleeps until its next release (PeriodicService.wake)."""
-        idle = tuple(c for c in self._idle if c != callback)
-        self._idle = (*idle, callback) if add else idle
+        with self._idle_lock:  # (from any thread: the scan reads the tuple, never this lock)
+            idle = tuple(c for c in self._idle if c != callback)
+            self._idle = (*idle, callback) if add else idle
 
     def sleep_until(self, deadline_ns: int) -> None:
         for wake in self._idle:
