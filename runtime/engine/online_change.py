@@ -50,7 +50,7 @@ from ..st.faults import fault_from_exception
 from ..st.rtlib import rt_oop
 from .carry import Carry, global_members, members
 from .change_forces import rebind_forces
-from .change_memory import collector_paused, dismantle
+from .change_memory import collector_paused, dismantle, freeze_new_program
 from .compile_process import CompileProcess, CompileProcessError
 from .diag import DiagVariable
 from .lock_share import background
@@ -317,6 +317,8 @@ class ChangeRequest:
             with background():
                 if transfer.release(replaced[0]):
                     dismantle(replaced[1])
+            if self.report is not None and self.report.applied and getattr(self._engine.program, "read_back", False):
+                freeze_new_program()
         assert self.report is not None
         return self.report
 

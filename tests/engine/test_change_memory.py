@@ -93,3 +93,16 @@ def test_two_changes_queued_before_a_scan_both_carry_the_values(tmp_path):
         assert "Main.n" in reports[1].kept and "Main.b" in reports[1].initialised
         assert plc["Main.n"] == 4 and plc["Main.counters[2, 1].total"] == 8
         assert (plc["Main.a"], plc["Main.b"]) == (1, 2)
+
+
+def test_the_new_program_is_moved_out_of_the_collectors_walks_once_applied(tmp_path):
+    # its module's classes and its instances, made after the read-back was
+    # frozen, no longer walked by every collection of the middle generation
+    with _changing(tmp_path) as (plc, change, st):
+        _change(plc, change, st, "a : INT;")
+        assert plc.engine.program.read_back
+        main = plc.engine.instances["MAIN"][2]
+        walked = {id(o) for o in gc.get_objects()}  # generations 0 to 2: not the frozen ones
+        assert id(main) not in walked and id(type(main)) not in walked
+        plc.step()
+        assert plc["Main.n"] == 5 and plc["Main.counters[2, 1].total"] == 10

@@ -8,14 +8,18 @@ from __future__ import annotations
 
 import gc
 import threading
+import time
 from pathlib import Path
 
 from softplc.runtime.engine.carry import Carry, members
-from softplc.runtime.engine.online_change import OnlineChange
+from softplc.runtime.engine.clock import RealClock
+from softplc.runtime.engine.online_change import ChangeRequest, OnlineChange
 from softplc.runtime.launch import settle_heap
-from softplc.runtime.program import compile_files
+from softplc.runtime.program import compile_files, transfer
 from softplc.runtime.st import types as T
 from softplc.testing import PLC
+
+from .conftest import Scanning, compile_st, task, wait_until
 
 BLOCKS = """
 FUNCTION_BLOCK Acc
@@ -106,3 +110,50 @@ def test_softplc_run_freezes_the_start_up_heap_out_of_the_collectors_walks():
         assert gc.get_freeze_count() > before  # a full collection later walks only what came since
     finally:
         gc.unfreeze()
+
+
+SLOW = """
+PROGRAM Main
+VAR n : DINT; i : DINT; s : DINT; {extra} END_VAR
+n := n + 1;
+FOR i := 1 TO 200000 DO s := s + 1; END_FOR
+END_PROGRAM
+"""
+
+
+def _read_back(source: str, extra: str = ""):
+    """A program as the compile process gives it (release() takes such a one apart)."""
+    return transfer.loads(transfer.dumps(compile_st(source.replace("{extra}", extra))))
+
+
+def test_the_replaced_program_is_taken_apart_once_the_scan_has_gone_to_sleep(engines, monkeypatch):
+    """The scan a change is applied before runs its tasks; the requester
+    takes the replaced program apart (transfer.release, dismantle: some 7 ms
+    for the default plant) after that scan, while the scan thread sleeps.
+    It did so beside those tasks, as soon as the swap was done, and made
+    them late by as much (a live soak: 20 ms, two overruns). Here a scan is
+    a long loop, many switch intervals long."""
+    engine = engines(_read_back(SLOW), [task("Main", 200, "Main", watchdog_ms=None)], clock=RealClock(spin_ns=0))
+    ends: list = []  # (generation, when) at the end of each scan
+    engine.after_tick.append(lambda e: ends.append((e.generation, time.perf_counter())))
+    torn: list = []
+    release = transfer.release
+
+    def recorded(program) -> bool:
+        torn.append(time.perf_counter())
+        return release(program)
+
+    monkeypatch.setattr(transfer, "release", recorded)
+    scanning = Scanning(engine, pause_s=0).start()
+    try:
+        wait_until(lambda: engine.cycle >= 2, "two scans")
+        new = _read_back(SLOW, "m : INT := 3;")
+        request = ChangeRequest("test", new, new.module(engine.ctx))
+        engine.between_scans.append(request)
+        report = request.wait(20)
+        assert report.applied, report.errors
+        swapped_scan_end = next(when for generation, when in ends if generation == 1)
+        assert len(torn) == 1 and torn[0] > swapped_scan_end
+        assert engine.get("Main.m") == 3
+    finally:
+        scanning.stop()
