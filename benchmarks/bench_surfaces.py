@@ -153,7 +153,12 @@ def web_client(url: str, name: str, paths: list, stop: threading.Event, seen: li
     conn.request("GET", f"/api/events?client={name}")
     response = conn.getresponse()
     while not stop.is_set():
-        line = response.fp.readline()
+        try:
+            line = response.fp.readline()
+        except TimeoutError:  # no event in 10 s: the run has ended (the engine no longer scans)
+            if stop.is_set():
+                break
+            raise
         if not line:
             break
         if line.startswith(b"data:"):
