@@ -188,11 +188,14 @@ class Monitor:
 
 
 def attribute(wall: float, soak, window_s: float = 3.0) -> str:
-    """What was going on at wall: other processes on the host busy, a life's
-    start-up, an online change, a kill, a bus fault's cut or mend."""
+    """What was going on at wall: other processes on the host busy, the
+    hypervisor running other guests, a life's start-up, an online change, a
+    kill, a bus fault's cut or mend."""
     host = getattr(soak, "host", None)
     if host is not None and host.busy(wall):
         return "a second when other processes used 0.2 cores or more"
+    if host is not None and host.stole(wall) > 0:
+        return "a second when the hypervisor took CPU time (steal)"
     for when, kind in soak.events:
         if 0 <= wall - when <= window_s:
             return f"{window_s:g} s after an online change" if kind == "change" else f"{window_s:g} s after a kill"
