@@ -328,7 +328,14 @@ class Soak:
         next_change = time.time() + (args.change_every if changes else 10 * total)
         next_progress = time.time() + args.progress
         life_change_done = False
-        while time.time() - self.t0 < total:
+        cut: list = []  # SIGINT (Ctrl-C) or SIGTERM: end here, with the report of what ran
+
+        def cut_short(signum, _frame) -> None:
+            cut.append(signal.Signals(signum).name)
+
+        for signum in (signal.SIGINT, signal.SIGTERM):
+            signal.signal(signum, cut_short)
+        while time.time() - self.t0 < total and not cut:
             now = time.time()
             if life.proc.poll() is not None:  # not a kill of ours: the soak has failed
                 self.problems.append(f"life {life.n} ended by itself (exit {life.proc.returncode}); see its log")
@@ -354,6 +361,9 @@ class Soak:
                 next_progress = now + args.progress
                 self.progress(life)
             time.sleep(0.5)
+        if cut:
+            minutes = (time.time() - self.t0) / 60
+            self.problems.append(f"cut short by {cut[0]} after {minutes:.1f} of {args.minutes:g} min")
         if life.rss_warm is None:
             life.rss_warm = rss_kb(life.proc.pid)
         stop.set()
