@@ -11,7 +11,9 @@ PLC's process, where a separate client cannot reach:
   within RECOVERY_S;
 * how late each tick began after its release (Engine.tick wrapped, as
   bench_surfaces.py does), in a histogram of fixed size (10 us buckets up to
-  100 ms: nothing grows with the run, so the RSS figure is the PLC's);
+  100 ms: nothing grows with the run, so the RSS figure is the PLC's), and
+  the ticks that took 5 ms or more (the tasks of such a tick start late: an
+  online change's swap, the lock held by another thread), the newest kept;
 * the garbage collections of 1 ms or more, with their monotonic time and
   thread (a collection holds the interpreter lock throughout);
 * every second, the engine's own counters (scans, per task cycles,
@@ -181,12 +183,18 @@ def _write_json(path: Path, data: dict) -> None:
 def instrument(engine, stats_path: Path, seed: int, faults_on: bool) -> None:
     """Wrap the tick, start the fault and the stats threads (daemons)."""
     late = Lateness()
+    long_ticks: list = []  # (wall, ms, monotonic at its end) of the ticks that took LATE_MS or more
     collections = Collections()
     tick, release, now = engine.tick, engine.next_release, engine.clock.now_ns
 
     def timed() -> None:
-        late.add(now() - release())
+        begin = now()
+        late.add(begin - release())
         tick()
+        took = now() - begin
+        if took >= LATE_MS * 1_000_000:  # a swap, a lock held elsewhere: the tasks of this tick started late
+            long_ticks.append((round(time.time(), 3), round(took / 1e6, 2), round(time.monotonic(), 4)))
+            del long_ticks[:-LATE_KEPT]
 
     engine.tick = timed
     faults = Faults(engine, random.Random(seed))
@@ -212,6 +220,7 @@ def instrument(engine, stats_path: Path, seed: int, faults_on: bool) -> None:
                 "late_n": late.n,
                 "late_max_ns": late.max_ns,
                 "late_ticks": list(late.late_ticks),
+                "long_ticks": list(long_ticks),
                 "collections": list(collections.kept),
                 "faults": list(faults.done),
                 "runtime_faults": len(engine.faults),

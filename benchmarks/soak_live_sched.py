@@ -5,6 +5,7 @@ kernel's scheduler events (perf) read at the late ticks' times.
         -o soak.perf &                                         # beside the soak
     SOFTPLC_SOAK_NAME_THREADS=1 python benchmarks/bench_soak_live.py --minutes 30 --keep-logs DIR
     python benchmarks/soak_live_sched.py soak.perf DIR/stats-*.json [--late-ms 7]
+    python benchmarks/soak_live_sched.py soak.perf DIR/stats-*.json --long   # the long ticks
 
 A tick was due at R (its release) and began at T = R + late (soak_live_plc.py
 keeps each tick late by 5 ms or more with its CLOCK_MONOTONIC time). Between
@@ -45,11 +46,13 @@ _WAKING = re.compile(r"comm=(.*?) pid=(\d+) prio=\d+ target_cpu=(\d+)")
 MARGIN_S = 0.002
 
 
-def late_ticks(paths: list, late_ms: float) -> list:
-    """(release, start, late ms) of every kept tick late by late_ms or more, in time order."""
+def late_ticks(paths: list, late_ms: float, key: str = "late_ticks") -> list:
+    """(release, start, late ms) of every kept tick late by late_ms or more,
+    in time order; key "long_ticks": (begin, end, ms) of the ticks that took
+    that long (the scan thread's time inside a tick: a swap, a lock)."""
     ticks = []
     for path in paths:
-        for entry in json.loads(Path(path).read_text()).get("late_ticks", ()):
+        for entry in json.loads(Path(path).read_text()).get(key, ()):
             if len(entry) >= 3 and entry[1] >= late_ms:
                 start = entry[2]
                 ticks.append((start - entry[1] / 1e3, start, entry[1]))
@@ -147,8 +150,9 @@ def main(argv: list | None = None) -> int:
     parser.add_argument("perf_data")
     parser.add_argument("stats", nargs="+", help="the soak's stats-N.json (bench_soak_live.py --keep-logs)")
     parser.add_argument("--late-ms", type=float, default=7.0, help="the ticks at least this late (default 7)")
+    parser.add_argument("--long", action="store_true", help="the ticks that took --late-ms or more instead")
     args = parser.parse_args(argv)
-    ticks = late_ticks(args.stats, args.late_ms)
+    ticks = late_ticks(args.stats, args.late_ms, "long_ticks" if args.long else "late_ticks")
     if not ticks:
         print(f"no tick late by {args.late_ms:g} ms or more in {', '.join(args.stats)}")
         return 0
