@@ -73,6 +73,7 @@ def events(perf_data: str, windows: list):
     los = [lo for lo, _ in windows]
     his = [hi for _, hi in windows]
     cmd = ["perf", "script", "-i", perf_data, "-F", "comm,tid,cpu,time,event,trace"]
+    cmd += ["--time", f"{min(los):.6f},{max(his):.6f}"]  # perf skips what lies outside every window
     with subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True) as proc:
         assert proc.stdout is not None
         for line in proc.stdout:
