@@ -54,6 +54,14 @@ def _tree(procs: dict, root: int) -> set:
     return out
 
 
+def _around(samples: dict, wall: float) -> float:
+    """The greater of the samples taken in the second of wall and in the
+    next (a sample, keyed by the second it was taken in, covers the second
+    before it)."""
+    second = int(wall)
+    return max(samples.get(second, 0.0), samples.get(second + 1, 0.0))
+
+
 class HostLoad:
     """others[int(wall second)] = cores used by processes outside the tree
     of root; stolen[int(wall second)] = cores the hypervisor took."""
@@ -89,14 +97,12 @@ class HostLoad:
             before, steal, t0 = now_procs, now_steal, t1
 
     def busy(self, wall: float, cores: float = 0.2) -> bool:
-        """Whether others used at least cores in the second of wall or the one before."""
-        second = int(wall)
-        return max(self.others.get(second, 0.0), self.others.get(second + 1, 0.0)) >= cores
+        """Whether others used at least cores around wall (_around)."""
+        return _around(self.others, wall) >= cores
 
     def stole(self, wall: float) -> float:
-        """The cores the hypervisor took in the second of wall or the one after (its sample)."""
-        second = int(wall)
-        return max(self.stolen.get(second, 0.0), self.stolen.get(second + 1, 0.0))
+        """The cores the hypervisor took around wall (_around)."""
+        return _around(self.stolen, wall)
 
     def summary(self) -> str:
         if not self.others:

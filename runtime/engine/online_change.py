@@ -311,15 +311,15 @@ class ChangeRequest:
                 self.reason,
                 errors=[f"not applied yet: no scan within {timeout:g} s (it is applied at the next one)"],
             )
+        assert self.report is not None
         replaced, self.replaced = self.replaced, None
         if replaced is not None and replaced[0] is not None:
             _scan_idle(self._engine)
             with background():
                 if transfer.release(replaced[0]):
                     dismantle(replaced[1])
-            if self.report is not None and self.report.applied and getattr(self._engine.program, "read_back", False):
+            if self.report.applied and getattr(self._engine.program, "read_back", False):
                 freeze_new_program()
-        assert self.report is not None
         return self.report
 
 

@@ -77,7 +77,7 @@ def _singletons() -> dict:
         if mod_name.startswith("softplc.") and mod is not None
     )
     walked, named = _SINGLETONS
-    if len(walked) != len(modules) or any(a is not b for (_a, a), (_b, b) in zip(walked, modules)):
+    if walked != modules:  # (modules compare by identity)
         named = {}
         for mod_name, mod in modules:
             for name, value in list(vars(mod).items()):
