@@ -13,19 +13,21 @@ from collections.abc import Callable
 _TYPE_OWN = frozenset({"__module__", "__qualname__", "__doc__", "__dict__", "__weakref__"})
 
 
-def dismantle(ns: dict | None) -> None:
+def dismantle(ns: dict | None, pace: Callable[[], None] = lambda: None) -> None:
     """A replaced program's module emptied, and its classes (a class is a
     ring: its method resolution order names it, its slots' descriptors
     too): what is left of each, a type and its bases, is some 200 bytes
     that stay, where the whole module (its functions, its globals'
     objects, the slots' descriptors: some 7,000 objects) would stay frozen
     with it. Nothing runs it any more: the swap has rebound the tasks, the
-    drivers, the forces and the retain plan to the new one."""
+    drivers, the forces and the retain plan to the new one. pace() is
+    called before each class (lock_share.pause: while the scan sleeps)."""
     if not ns:
         return
     name = ns.get("__name__")
     for value in list(ns.values()):
         if isinstance(value, type) and value.__module__ == name:
+            pace()
             for attr in [a for a in vars(value) if a not in _TYPE_OWN]:
                 with contextlib.suppress(AttributeError, TypeError):
                     delattr(value, attr)

@@ -36,6 +36,7 @@ from collections.abc import Callable
 
 from ..config import DEFAULT_SPIN_NS
 from ..program.context import VIRTUAL_EPOCH_NS
+from .lock_share import scan_sleeps
 
 log = logging.getLogger(__name__)
 
@@ -114,7 +115,8 @@ class RealClock:
 
     def on_idle(self, callback: Callable[[], None], add: bool = True) -> None:
         """Call callback (or no longer, add=False) each time the scan goes
-        idle, before it sleeps until its next release (PeriodicService.wake)."""
+        idle, before it sleeps until its next release (PeriodicService.wake).
+        Background work waits for the same moment (lock_share.scan_sleeps)."""
         with self._idle_lock:  # (from any thread: the scan reads the tuple, never this lock)
             idle = tuple(c for c in self._idle if c != callback)
             self._idle = (*idle, callback) if add else idle
@@ -123,6 +125,7 @@ class RealClock:
         for wake in self._idle:
             wake()
         target = deadline_ns + self._t0
+        scan_sleeps(target - self.spin_ns)  # background work may run until shortly before the scan wakes
         counter = time.perf_counter_ns
         remaining = target - counter()
         if remaining > self.spin_ns:

@@ -17,26 +17,95 @@ work begins and put back when the last one ends, whatever their order.
 
     with background():
         places = [resolver.place(p) for p in paths]
+
+The lock has no priority, though: when it is let go, whichever thread
+the system wakes first takes it. Right after an online change three
+threads compute at once (the servers' call thread resolving its watch,
+the snapshot copier resolving its paths, the change's own thread) and a
+live soak's scan got about a quarter of the turns, late by a period. So
+background work also gives way to the scan: the real clock tells the
+gate, each time the scan goes idle, until when it sleeps (scan_sleeps),
+and background work runs in that window only. It waits at the start of
+background() and at each pause() of its loops (a path resolved, a class
+taken apart) from shortly before the scan's release until the scan goes
+idle again; the scan then finds the lock free but for what one step of
+background work takes. A scan that leaves no window (its tasks overrun)
+keeps the gate shut for at most STARVE_S: then background work runs
+beside it again, as it did before, until a window comes. A pause() in
+the scan's own thread, or with no scan on the real clock, never waits.
+
+    for path in paths:
+        pause()                    # never while holding a lock the scan takes
+        places[path] = resolver.place(path)
 """
 
 from __future__ import annotations
 
+import math
 import sys
 import threading
+import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 
 SWITCH_S = 0.0005  # the switch interval while background work runs
+MARGIN_NS = 500_000  # background work stops this long before the scan wakes (a step ends within it)
+STARVE_S = 0.1  # no window from the scan for this long: background work runs beside it
+
+_gate = threading.Condition(threading.Lock())
+_open_until: float = math.inf  # perf_counter_ns() until which background work may run
+_opened_ns = 0  # when the scan last opened a window
+_scan: int | None = None  # the thread that sleeps in scan_sleeps (its pause() never waits)
 
 _lock = threading.Lock()
 _running = 0  # the background() blocks under way, in every thread
 _saved = 0.0  # the interval before the first of them
 
 
+def scan_sleeps(wake_ns: int) -> None:
+    """The scan thread goes idle until time.perf_counter_ns() is wake_ns
+    (the real clock, before it sleeps): background work may run until
+    MARGIN_NS before that. No window when that is past already."""
+    global _open_until, _opened_ns, _scan
+    _scan = threading.get_ident()
+    now = time.perf_counter_ns()
+    until = wake_ns - MARGIN_NS
+    if until > now:
+        with _gate:
+            _open_until, _opened_ns = until, now
+            _gate.notify_all()
+
+
+def scan_ends() -> None:
+    """No more scans on the real clock (engine.run returns): the gate open."""
+    global _open_until, _scan
+    with _gate:
+        _open_until, _scan = math.inf, None
+        _gate.notify_all()
+
+
+def _open() -> bool:
+    now = time.perf_counter_ns()
+    return now < _open_until or now - _opened_ns > STARVE_S * 1e9
+
+
+def pause() -> None:
+    """Wait while the scan runs or is about to (see the module docstring):
+    a step of background work, never while holding a lock the scan takes."""
+    if time.perf_counter_ns() < _open_until or threading.get_ident() == _scan:
+        return
+    with _gate:
+        _gate.wait_for(_open, STARVE_S)
+
+
 @contextmanager
-def background(seconds: float = SWITCH_S) -> Iterator[None]:
-    """The interpreter's switch interval at most seconds meanwhile (see the module docstring)."""
+def background(seconds: float = SWITCH_S, paced: bool = True) -> Iterator[None]:
+    """The interpreter's switch interval at most seconds meanwhile, once the
+    gate lets it begin (paced; see the module docstring): not paced when
+    the scan may be waiting for this work."""
     global _running, _saved
+    if paced:
+        pause()
     with _lock:
         if _running == 0:
             _saved = sys.getswitchinterval()

@@ -53,7 +53,7 @@ from .change_forces import rebind_forces
 from .change_memory import collector_paused, dismantle, freeze_new_program
 from .compile_process import CompileProcess, CompileProcessError
 from .diag import DiagVariable
-from .lock_share import background
+from .lock_share import background, pause
 from .tasks import TaskSetupError, plan_tasks
 
 log = logging.getLogger("softplc.online_change")
@@ -241,6 +241,7 @@ def prepared_carry(old: Program, new: Program) -> Carry:
     carry.prepare(global_members(old.checked), global_members(new.checked))
     for info in new.checked.pous:
         if info.kind == "PROGRAM":
+            pause()  # the requester's thread: while the scan sleeps
             try:
                 before = old.pou(info.name)
             except KeyError:
@@ -316,8 +317,8 @@ class ChangeRequest:
         if replaced is not None and replaced[0] is not None:
             _scan_idle(self._engine)
             with background():
-                if transfer.release(replaced[0]):
-                    dismantle(replaced[1])
+                if transfer.release(replaced[0], pause):
+                    dismantle(replaced[1], pause)
             if self.report.applied and getattr(self._engine.program, "read_back", False):
                 freeze_new_program()
         return self.report

@@ -41,6 +41,7 @@ from .clock import VirtualClock
 from .cputime import COLLECTOR as _COLLECTOR
 from .diag import DiagVariable
 from .inspection import Inspection
+from .lock_share import scan_ends
 from .retain_file import ForeignRetainFile
 from .tasks import Task
 
@@ -284,6 +285,8 @@ class Engine(Inspection):
             return self._scan(cycles, end_ns)
         finally:
             self.scan_thread = None
+            if not clock.virtual:
+                scan_ends()  # background work no longer waits for a scan's idle
 
     def _scan(self, cycles: int | None, end_ns: int | None) -> int:
         clock, ran = self.clock, 0

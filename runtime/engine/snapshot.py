@@ -42,7 +42,7 @@ from typing import Any
 
 from ..st import types as T
 from ..st.valuejson import encode_value
-from .lock_share import background
+from .lock_share import background, pause
 from .places import PathError, Place, Resolver
 
 log = logging.getLogger("softplc.engine")
@@ -183,8 +183,13 @@ class SnapshotHub:
     def watch(self, reader: str, paths) -> list:
         """Make paths part of every snapshot for reader (replacing what it
         watched before). Returns the paths as resolved (canonical spelling);
-        PathError names the first path that names no variable."""
-        resolved = [self.resolver.place(p) for p in paths]
+        PathError names the first path that names no variable. (A call
+        thread's: each path waits for the scan's idle, lock_share.pause.)"""
+        resolver = self.resolver
+        resolved = []
+        for path in paths:
+            pause()
+            resolved.append(resolver.place(path))
         with self._lock:  # the new layout is made here, not under the capture's lock: the scan never waits for it
             self._watched[reader] = tuple(p.path for p in resolved)
             places = dict(self._places)
@@ -285,7 +290,7 @@ class SnapshotHub:
             self._copy_due.clear()
             if self._rewatch_due:  # the scan did not wait: no copy, no lock to give back
                 try:
-                    self._rewatch()
+                    self._rewatch(paced=True)
                 except Exception as exc:  # the paths kept; tried again after the next scan
                     log.error("snapshot: resolving the watched paths again: %s", exc)
                 finally:
@@ -339,17 +344,21 @@ class SnapshotHub:
             self._fresh.notify_all()
         return snap
 
-    def _rewatch(self) -> None:
+    def _rewatch(self, paced: bool = False) -> None:
         """After an online change or a restart the places point at the old
         objects: resolve every reader's paths again (a path that is gone is
-        dropped from the snapshots)."""
+        dropped from the snapshots). paced: each path waits for the scan's
+        idle (lock_share.pause): the copier's, which the scan never waits
+        for; not a capture's, which it may wait for."""
         resolver = self.resolver
         places: dict = {}
         with self._lock:  # a reader may watch meanwhile (a call thread)
             watched = list(self._watched.values())
-        with background():  # 860 paths: 20-30 ms, the scans going on
+        with background(paced=paced):  # 860 paths: 20-30 ms, the scans going on
             for paths in watched:
                 for path in paths:
+                    if paced:
+                        pause()
                     try:
                         places[path] = resolver.place(path)
                     except PathError:

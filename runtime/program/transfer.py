@@ -36,6 +36,7 @@ import marshal
 import pickle
 import sys
 import types
+from collections.abc import Callable
 
 from ..st.ast import Pos
 from ..st.types import Type
@@ -147,11 +148,12 @@ _POU_LINKS = {"node": None, "result": None, "fbtype": None, "fb": None, "base": 
 _POU_TABLES = ("vars", "actions", "methods", "properties")
 
 
-def release(program) -> bool:
+def release(program, pace: Callable[[], None] = lambda: None) -> bool:
     """Cut the rings of a Program loads() read back and that nothing runs
     any more (an online change replaced it); a Program of this process's
     own compile is left alone (its libraries' tables are shared with the
-    next compile). True when it was cut."""
+    next compile). True when it was cut. pace() is called before each POU
+    (the engine's lock_share.pause: while the scan sleeps)."""
     if not getattr(program, "read_back", False):
         return False
     pending = list(program.checked.pous)
@@ -161,6 +163,7 @@ def release(program) -> bool:
         if id(pou) in seen:
             continue
         seen.add(id(pou))
+        pace()
         for table in _POU_TABLES:
             members = getattr(pou, table)
             pending += [m for m in members.values() if isinstance(m, type(pou))]

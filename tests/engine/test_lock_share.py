@@ -3,8 +3,22 @@ Python's again when the last one ends, whatever the order they end in."""
 
 import sys
 import threading
+import time
 
-from softplc.runtime.engine.lock_share import SWITCH_S, background
+import pytest
+
+from softplc.runtime.engine import lock_share
+from softplc.runtime.engine.clock import RealClock
+from softplc.runtime.engine.lock_share import SWITCH_S, background, pause
+
+from .conftest import task
+
+PROGRAM = """
+PROGRAM Main
+VAR n : DINT; END_VAR
+n := n + 1;
+END_PROGRAM
+"""
 
 
 def test_the_interval_is_lowered_inside_and_put_back_after():
@@ -51,3 +65,94 @@ def test_an_exception_inside_puts_the_interval_back():
     except ValueError:
         pass
     assert sys.getswitchinterval() == before
+
+
+# ---------------------------------------------------------------- the gate: background work in the scan's idle
+
+
+@pytest.fixture
+def gate(monkeypatch):
+    """The gate as a scan leaves it; open again afterwards. STARVE_S long:
+    here a shut gate stays shut until the test's scan opens it."""
+    monkeypatch.setattr(lock_share, "STARVE_S", 60.0)
+    yield
+    lock_share.scan_ends()
+
+
+def _shut() -> None:
+    """What the scan thread does when it goes idle for 1 ms: the window
+    closes at once (MARGIN_NS before it wakes) and stays shut, as while it runs."""
+    lock_share.scan_sleeps(time.perf_counter_ns() + lock_share.MARGIN_NS + 1_000_000)
+    time.sleep(0.002)
+
+
+def _paused_in_thread() -> tuple[threading.Thread, threading.Event]:
+    went_on = threading.Event()
+
+    def work() -> None:
+        with background():
+            went_on.set()
+
+    thread = threading.Thread(target=work, daemon=True)
+    thread.start()
+    return thread, went_on
+
+
+def test_background_work_waits_while_the_scan_runs_and_goes_on_when_it_sleeps(gate):
+    _shut()
+    thread, went_on = _paused_in_thread()
+    assert not went_on.wait(0.2)  # the scan "runs": it has not gone idle since
+    lock_share.scan_sleeps(time.perf_counter_ns() + 10_000_000_000)  # idle for 10 s
+    assert went_on.wait(5)
+    thread.join(5)
+
+
+def test_work_begun_in_the_scan_idle_goes_on_step_after_step(gate):
+    lock_share.scan_sleeps(time.perf_counter_ns() + 10_000_000_000)  # idle for 10 s
+    steps = []
+
+    def work() -> None:
+        for n in range(1000):
+            pause()
+            steps.append(n)
+
+    thread = threading.Thread(target=work, daemon=True)
+    thread.start()
+    thread.join(5)  # one wait would be STARVE_S: a minute
+    assert len(steps) == 1000
+
+
+def test_the_scan_s_own_thread_never_waits(gate):
+    _shut()  # this thread is the scan's now
+    with background():  # a program read back by the scan itself, a capture of a test's tick
+        pause()
+        # (had it waited, STARVE_S: a minute)
+
+
+def test_the_gate_opens_when_the_engine_stops_scanning(gate):
+    _shut()
+    thread, went_on = _paused_in_thread()
+    assert not went_on.wait(0.1)
+    lock_share.scan_ends()
+    assert went_on.wait(5)
+    thread.join(5)
+
+
+def test_a_scan_that_leaves_no_window_holds_background_work_back_for_starve_s_only(monkeypatch):
+    monkeypatch.setattr(lock_share, "STARVE_S", 0.05)
+    try:
+        _shut()
+        lock_share.scan_sleeps(time.perf_counter_ns() - 1)  # late already: no window, the gate stays shut
+        thread, went_on = _paused_in_thread()
+        assert went_on.wait(5)  # after 50 ms, beside the scan, as before there was a gate
+        thread.join(5)
+    finally:
+        lock_share.scan_ends()
+
+
+def test_a_real_time_scan_leaves_the_gate_open_when_it_ends(gate, engines):
+    engine = engines(PROGRAM, [task("Main", 10, "Main")], clock=RealClock(spin_ns=0))
+    engine.run(cycles=3)
+    thread, went_on = _paused_in_thread()
+    assert went_on.wait(5)
+    thread.join(5)

@@ -139,9 +139,9 @@ def test_the_replaced_program_is_taken_apart_once_the_scan_has_gone_to_sleep(eng
     torn: list = []
     release = transfer.release
 
-    def recorded(program) -> bool:
+    def recorded(program, *pace) -> bool:
         torn.append(time.perf_counter())
-        return release(program)
+        return release(program, *pace)
 
     monkeypatch.setattr(transfer, "release", recorded)
     scanning = Scanning(engine, pause_s=0).start()

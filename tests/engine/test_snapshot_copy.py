@@ -77,10 +77,10 @@ def test_after_a_restart_the_scans_go_on_while_the_paths_are_resolved_again(engi
     held, resolving = threading.Event(), threading.Event()
     rewatch = hub._rewatch
 
-    def held_rewatch() -> None:  # the copier's own resolving, once the test lets it
+    def held_rewatch(paced: bool = False) -> None:  # the copier's own resolving, once the test lets it
         resolving.set()
         assert held.wait(20), "never let go"
-        rewatch()
+        rewatch(paced)
 
     hub._rewatch = held_rewatch
     scanning = Scanning(e, pause_s=0).start()

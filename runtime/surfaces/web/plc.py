@@ -18,6 +18,7 @@ from __future__ import annotations
 from typing import Any
 
 from ...config.values import LONG, got
+from ...engine.lock_share import pause
 from ...engine.values import shown
 from ...st import types as T
 from . import tree
@@ -53,6 +54,7 @@ def watch(surfaces, reader: str, paths: list) -> tuple:
     hub = surfaces.hub
     resolver = hub.resolver
     for path in paths:
+        pause()  # a call thread's: while the scan sleeps
         try:
             good.append(resolver.place(path).path)
         except (KeyError, ValueError) as exc:  # PathError is a KeyError
