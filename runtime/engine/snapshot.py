@@ -251,11 +251,14 @@ class SnapshotHub:
         if engine.clock.virtual or engine.scan_thread != threading.get_ident():
             self.capture()  # a test's tick, or one outside run(): no time between scans to use
             return
-        if self._resolver.generation != engine.generation:
+        if self._rewatch_due or self._resolver.generation != engine.generation:
             # an online change or a restart: the copier resolves the readers'
             # paths again while the scans go on (it reads no value; 860 paths
             # took 20-30 ms, which the next scan waited for, a 10 ms task late
-            # by two periods); the first copy of the new program follows it
+            # by two periods); the first copy of the new program follows it.
+            # No copy is asked for until it is done: the resolver is the new
+            # program's from its start, and a scan waiting for that copy
+            # waited for the whole resolving (100 ms ticks in a live soak)
             self._requested = True
             if not self._rewatch_due:
                 self._rewatch_due = True

@@ -7,6 +7,7 @@ from __future__ import annotations
 import threading
 
 from softplc.runtime.engine.clock import RealClock
+from softplc.runtime.engine.places import Resolver
 from softplc.runtime.engine.snapshot import SnapshotHub
 
 from .conftest import Scanning, task, wait_until
@@ -62,12 +63,15 @@ END_PROGRAM
 """
 
 
-def test_after_a_restart_the_scans_go_on_while_the_paths_are_resolved_again(engines):
+def test_after_a_restart_the_scans_go_on_while_the_paths_are_resolved_again(engines, monkeypatch):
     """New program instances (a restart, an online change): the watched
     paths are resolved again by the copier while the scans go on; the
     scan used to wait for it (20-30 ms for the default plant's 860 paths,
-    two periods of a 10 ms task). Here the resolving is held until the
-    engine has scanned 20 more times, then the snapshots follow the new
+    two periods of a 10 ms task). Here the copier's resolving is held at
+    its first path, its resolver already the new program's (a scan that
+    saw that resolver asked for a copy and waited for the copier behind
+    the whole resolving: a live soak's 100 ms ticks), until the engine
+    has scanned 20 more times; then the snapshots follow the new
     instance. The new instance is told from the stopped one by its
     counting: n goes on with every scan (the stopped one's n stays at 20)
     and counts no scan from before the restart."""
@@ -75,14 +79,15 @@ def test_after_a_restart_the_scans_go_on_while_the_paths_are_resolved_again(engi
     hub = SnapshotHub(e, period_s=0)
     hub.watch("test", ["Main.n", "faulted"])
     held, resolving = threading.Event(), threading.Event()
-    rewatch = hub._rewatch
+    place = Resolver.place
 
-    def held_rewatch(paced: bool = False) -> None:  # the copier's own resolving, once the test lets it
-        resolving.set()
-        assert held.wait(20), "never let go"
-        rewatch(paced)
+    def held_place(resolver, path):  # the copier's own resolving, once the test lets it
+        if threading.current_thread().name == "softplc-snapshot":
+            resolving.set()
+            assert held.wait(20), "never let go"
+        return place(resolver, path)
 
-    hub._rewatch = held_rewatch
+    monkeypatch.setattr(Resolver, "place", held_place)
     scanning = Scanning(e, pause_s=0).start()
     try:
         wait_until(lambda: e.faulted_tasks(), "the fault at n = 20")
