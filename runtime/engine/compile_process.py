@@ -23,8 +23,10 @@ A request is the files, the profile and the libraries (pickled); the answer
 is the Program as program/transfer.py writes it (its generated module's
 code object marshal-ed: no compile() in the PLC's process), or the
 diagnostics and the source texts of a CompileError. The PLC's process then
-only reads it back (transfer.loads) with the interpreter's switch interval
-lowered, so that the scan thread takes the lock at its release time.
+only reads it back (transfer.loads), step by step in the scan's idle
+(lock_share.pause every 64 source positions) and with the interpreter's
+switch interval lowered, so that the scan thread takes the lock at its
+release time.
 """
 
 from __future__ import annotations
@@ -41,7 +43,7 @@ import threading
 from ..program import compile as compile_module
 from ..program import compile_files, transfer
 from ..st.diagnostics import CompileError
-from .lock_share import background
+from .lock_share import background, pause
 
 _HEADER = struct.Struct("!Q")
 NICE = 10  # the child's niceness: a compile never takes the CPU from the scan
@@ -135,7 +137,7 @@ class CompileProcess:
         if kind != "program":
             raise CompileProcessError(f"the compile process failed: {answer[1]}")
         with background():  # the scan waits for the interpreter lock 0.5 ms, not 5
-            return transfer.loads(answer[1])
+            return transfer.loads(answer[1], pause)  # step by step in the scan's idle
 
     def _stop(self) -> None:
         proc, self._proc = self._proc, None

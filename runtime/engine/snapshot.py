@@ -195,7 +195,7 @@ class SnapshotHub:
             places = dict(self._places)
             for place in resolved:
                 places[place.path] = place
-            self._set_places(self._prune(places))
+            self._set_places(self._prune(places), paced=True)
         with self._capturing:  # a capture under way with the old layout ends first: the next one has them
             pass
         return [p.path for p in resolved]
@@ -203,11 +203,12 @@ class SnapshotHub:
     def unwatch(self, reader: str) -> None:
         with self._lock:
             self._watched.pop(reader, None)
-            self._set_places(self._prune(dict(self._places)))
+            self._set_places(self._prune(dict(self._places)), paced=True)
 
-    def _set_places(self, places: dict) -> None:
+    def _set_places(self, places: dict, paced: bool) -> None:
+        """(Under _lock, which the scan never takes; paced: a reader's or the copier's, see _rewatch.)"""
         self._places = places
-        self._layout = _layout_of(places)  # one assignment: the scan thread sees the old layout or the new
+        self._layout = _layout_of(places, paced)  # one assignment: the scan thread sees the old layout or the new
 
     def _prune(self, places: dict) -> dict:
         wanted = {p for paths in self._watched.values() for p in paths}
@@ -367,10 +368,10 @@ class SnapshotHub:
                     except PathError:
                         continue
         with self._lock:
-            self._set_places(places)
+            self._set_places(places, paced)
 
 
-def _layout_of(places: dict) -> Layout:
+def _layout_of(places: dict, paced: bool = False) -> Layout:
     """How to read places fast. A group is the plain variables (an
     elementary, string, enumeration or subrange value) of one object, read
     with one attrgetter call, or the plain elements of one array, read with
@@ -380,6 +381,8 @@ def _layout_of(places: dict) -> Layout:
     by_holder: dict = {}
     alone = []
     for path, place in places.items():
+        if paced:
+            pause()
         plain = isinstance(T.resolve(place.type), _PLAIN)
         if plain and place.holder is not None:
             key = (id(place.holder), place.attr is None)

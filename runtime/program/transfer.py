@@ -14,7 +14,11 @@ read back is the one compile_files would have made in this process:
   * functions made by a factory (rt_wrap's wrappers, rt_convert's
     converters: closures) are sent as their code (marshal), their module
     and the values they closed over;
-  * a source position (ast.Pos, frozen with slots) is made by its class;
+  * a source position (ast.Pos, frozen with slots) is made by _pos, which
+    also calls loads()'s pace every PACE_EVERY positions: the read-back
+    of the default plant (1.5 MB, some 10,000 positions spread through
+    it) is one call into the C unpickler of 35 ms, which the PLC's
+    process makes step by step in the scan's idle (engine/lock_share);
   * code objects (the generated module's, a closure's) are marshal-ed:
     their bytecode as compiled, with its filename and flags, is loaded
     without compiling again.
@@ -35,6 +39,7 @@ import io
 import marshal
 import pickle
 import sys
+import threading
 import types
 from collections.abc import Callable
 
@@ -42,10 +47,22 @@ from ..st.ast import Pos
 from ..st.types import Type
 
 _PROTOCOL = 5
+PACE_EVERY = 64  # positions read back between two calls of loads()'s pace
+
+_loading = threading.local()  # pace, count: the loads() under way in this thread
 
 
 def _module_global(module: str, name: str):
     return getattr(importlib.import_module(module), name)
+
+
+def _pos(file, line, col, end_line, end_col) -> Pos:
+    pace = getattr(_loading, "pace", None)
+    if pace is not None:
+        _loading.count += 1
+        if _loading.count % PACE_EVERY == 0:
+            pace()
+    return Pos(file, line, col, end_line, end_col)
 
 
 def _code(data: bytes) -> types.CodeType:
@@ -95,7 +112,7 @@ class _Pickler(pickle.Pickler):
 
     def reducer_override(self, obj):
         if type(obj) is Pos:  # some 10,000 of them: by the class, not dataclasses' slow __setstate__
-            return (Pos, (obj.file, obj.line, obj.col, obj.end_line, obj.end_col))
+            return (_pos, (obj.file, obj.line, obj.col, obj.end_line, obj.end_col))
         if isinstance(obj, Type):
             named = self._named.get(id(obj))
             return (_module_global, named) if named else NotImplemented
@@ -131,13 +148,16 @@ def dumps(program) -> bytes:
         sys.setrecursionlimit(limit)
 
 
-def loads(data: bytes):
-    """The Program dumps() made (release() may take it apart once it is replaced)."""
+def loads(data: bytes, pace: Callable[[], None] | None = None):
+    """The Program dumps() made (release() may take it apart once it is
+    replaced); pace() called every PACE_EVERY source positions."""
     limit = sys.getrecursionlimit()
     sys.setrecursionlimit(max(limit, 20_000))
+    _loading.pace, _loading.count = pace, 0
     try:
         program = pickle.loads(data)
     finally:
+        _loading.pace = None
         sys.setrecursionlimit(limit)
     program.read_back = True
     return program

@@ -4,8 +4,11 @@ compiled here, with this process's type objects."""
 
 from __future__ import annotations
 
+import gc
+
 from softplc.runtime.program import compile_files, transfer
 from softplc.runtime.st import types as T
+from softplc.runtime.st.ast import Pos
 
 SOURCE = """
 TYPE Mode : (IDLE, RUN, STOP); END_TYPE
@@ -53,3 +56,20 @@ def test_its_elementary_types_are_this_process_s_own_objects():
     again = transfer.loads(transfer.dumps(program))
     declared = {v.name: v.type for v in again.pou("Main").vars.values()}
     assert declared["u"] is T.USINT and declared["r"] is T.REAL and declared["t"] is T.TIME
+
+
+def test_the_read_back_calls_its_pace_every_64_source_positions():
+    # what lets the PLC's process read a program back step by step, in the
+    # scan's idle (engine/lock_share.pause), not in one call of 35 ms
+    program = compile_files([], texts={"main.st": SOURCE})
+    data = transfer.dumps(program)
+    before = [o for o in gc.get_objects() if type(o) is Pos]  # kept alive: their ids stay theirs
+    known = {id(o) for o in before}
+    paces: list = []
+    again = transfer.loads(data, lambda: paces.append(len(paces)))
+    made = sum(1 for o in gc.get_objects() if type(o) is Pos and id(o) not in known)
+    assert made >= 2 * transfer.PACE_EVERY, made  # enough positions to pace a few times
+    assert len(paces) == made // transfer.PACE_EVERY
+    assert again.python_source == program.python_source
+    transfer.loads(data)  # without a pace: the last one is not called again
+    assert len(paces) == made // transfer.PACE_EVERY
