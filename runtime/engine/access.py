@@ -30,6 +30,7 @@ from concurrent.futures import Future
 from dataclasses import dataclass
 from typing import Any
 
+from .lock_share import pause
 from .places import Place, Resolver
 
 OPERATIONS = ("write", "force", "unforce")
@@ -121,7 +122,10 @@ class Access:
         scan sees half of it). Every one is checked first: one refused, none
         is made. The Future's result is the list of the paths as declared."""
         finite = self._finite(surface)
-        actions = [self._action(op, self.check(op, path, surface), value, finite=finite) for path, value in items]
+        actions = []
+        for path, value in items:
+            pause()  # a call thread's: each path while the scan sleeps
+            actions.append(self._action(op, self.check(op, path, surface), value, finite=finite))
         return self._schedule(lambda: [action() for action in actions])
 
     def write(self, path: str, value: Any, *, surface: str, timeout: float = 5.0) -> str:

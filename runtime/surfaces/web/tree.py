@@ -20,6 +20,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from ...engine.lock_share import pause
 from ...engine.places import PathError, Place, Resolver
 from ...engine.values import type_text
 from ...st import types as T
@@ -113,6 +114,7 @@ def _bounds(place: Place, r: T.ArrayType) -> tuple:
 
 
 def _child(name: str, place: Place) -> dict:
+    pause()  # a call thread's: each child while the scan sleeps (a level is up to LIMIT of them)
     r = T.resolve(place.type)
     item: dict = {"name": name, "path": place.path, "type": str(place.type)}
     if isinstance(r, T.ArrayType):
