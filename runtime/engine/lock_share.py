@@ -84,18 +84,20 @@ def scan_ends() -> None:
         _gate.notify_all()
 
 
-def _open() -> bool:
-    now = time.perf_counter_ns()
-    return now < _open_until or now - _opened_ns > STARVE_S * 1e9
-
-
-def pause() -> None:
+def pause(room_ns: int = 0) -> None:
     """Wait while the scan runs or is about to (see the module docstring):
-    a step of background work, never while holding a lock the scan takes."""
-    if time.perf_counter_ns() < _open_until or threading.get_ident() == _scan:
+    a step of background work, never while holding a lock the scan takes.
+    room_ns: a step that cannot be cut (a C call) and takes about that
+    long waits for a window with that much of it left."""
+    if time.perf_counter_ns() + room_ns < _open_until or threading.get_ident() == _scan:
         return
+
+    def open_() -> bool:
+        now = time.perf_counter_ns()
+        return now + room_ns < _open_until or now - _opened_ns > STARVE_S * 1e9
+
     with _gate:
-        _gate.wait_for(_open, STARVE_S)
+        _gate.wait_for(open_, STARVE_S)
 
 
 @contextmanager

@@ -14,11 +14,14 @@ read back is the one compile_files would have made in this process:
   * functions made by a factory (rt_wrap's wrappers, rt_convert's
     converters: closures) are sent as their code (marshal), their module
     and the values they closed over;
-  * a source position (ast.Pos, frozen with slots) is made by _pos, which
-    also calls loads()'s pace every PACE_EVERY positions: the read-back
-    of the default plant (1.5 MB, some 10,000 positions spread through
-    it) is one call into the C unpickler of 35 ms, which the PLC's
-    process makes step by step in the scan's idle (engine/lock_share);
+  * a source position (ast.Pos, frozen with slots) is made by _pos, and
+    every ROUTE_EVERY-th other instance of a softplc class by _new; both
+    count towards loads()'s pace, called every PACE_EVERY of them: the
+    read-back of the default plant (1.5 MB, some 10,000 positions) is one
+    call into the C unpickler of 35-50 ms, which the PLC's process makes
+    step by step in the scan's idle (engine/lock_share). (With positions
+    alone, its last 8-10 ms, the tables after the generated module's
+    code, had no step: a live soak's tick began 8.9 ms late there);
   * code objects (the generated module's, a closure's) are marshal-ed:
     their bytecode as compiled, with its filename and flags, is loaded
     without compiling again.
@@ -34,6 +37,7 @@ walks every object: 240 ms after ten changes of the default plant).
 
 from __future__ import annotations
 
+import copyreg
 import importlib
 import io
 import marshal
@@ -47,7 +51,9 @@ from ..st.ast import Pos
 from ..st.types import Type
 
 _PROTOCOL = 5
-PACE_EVERY = 64  # positions read back between two calls of loads()'s pace
+PACE_EVERY = 64  # objects made by _pos or _new between two calls of loads()'s pace
+ROUTE_EVERY = 8  # every 8th plain instance of a softplc class is made by _new
+FREE_NS_PER_BYTE = 4  # the unpickler's memo freed: about 4 ms per 1.5 MB read (2-core VM), with room
 
 _loading = threading.local()  # pace, count: the loads() under way in this thread
 
@@ -56,16 +62,27 @@ def _module_global(module: str, name: str):
     return getattr(importlib.import_module(module), name)
 
 
-def _pos(file, line, col, end_line, end_col) -> Pos:
+def _step(now: bool = False) -> None:
     pace = getattr(_loading, "pace", None)
     if pace is not None:
         _loading.count += 1
-        if _loading.count % PACE_EVERY == 0:
+        if now or _loading.count % PACE_EVERY == 0:
             pace()
+
+
+def _pos(file, line, col, end_line, end_col) -> Pos:
+    _step()
     return Pos(file, line, col, end_line, end_col)
 
 
+def _new(cls, *args):
+    """What pickle's NEWOBJ does (copyreg.__newobj__), a step of loads() too."""
+    _step()
+    return cls.__new__(cls, *args)
+
+
 def _code(data: bytes) -> types.CodeType:
+    _step(now=len(data) > 16_384)  # a module's code: 1 ms of marshal and more
     return marshal.loads(data)
 
 
@@ -109,13 +126,14 @@ class _Pickler(pickle.Pickler):
     def __init__(self, file) -> None:
         super().__init__(file, protocol=_PROTOCOL)
         self._named = _singletons()
+        self._instances = 0  # plain instances of softplc classes so far
 
     def reducer_override(self, obj):
         if type(obj) is Pos:  # some 10,000 of them: by the class, not dataclasses' slow __setstate__
             return (_pos, (obj.file, obj.line, obj.col, obj.end_line, obj.end_col))
         if isinstance(obj, Type):
             named = self._named.get(id(obj))
-            return (_module_global, named) if named else NotImplemented
+            return (_module_global, named) if named else self._routed(obj)
         if isinstance(obj, types.CodeType):
             return (_code, (marshal.dumps(obj),))
         if isinstance(obj, types.CellType):
@@ -133,7 +151,27 @@ class _Pickler(pickle.Pickler):
                     obj.__closure__,
                 ),
             )
-        return NotImplemented
+        return self._routed(obj)
+
+    def _routed(self, obj):
+        """Every ROUTE_EVERY-th plain instance of a softplc class (its
+        class's own __reduce_ex__ is object's): made by _new on the way
+        back, pickle's reduction otherwise kept (its state, its items)."""
+        cls = type(obj)
+        if (
+            isinstance(obj, type)
+            or not cls.__module__.startswith("softplc.")
+            or cls.__reduce_ex__ is not object.__reduce_ex__
+            or cls.__reduce__ is not object.__reduce__
+        ):
+            return NotImplemented
+        self._instances += 1
+        if self._instances % ROUTE_EVERY:
+            return NotImplemented
+        reduced = obj.__reduce_ex__(_PROTOCOL)
+        if not isinstance(reduced, tuple) or reduced[0] is not copyreg.__newobj__:
+            return NotImplemented
+        return (_new, *reduced[1:])
 
 
 def dumps(program) -> bytes:
@@ -148,14 +186,21 @@ def dumps(program) -> bytes:
         sys.setrecursionlimit(limit)
 
 
-def loads(data: bytes, pace: Callable[[], None] | None = None):
+def loads(data: bytes, pace: Callable[..., None] | None = None):
     """The Program dumps() made (release() may take it apart once it is
-    replaced); pace() called every PACE_EVERY source positions."""
+    replaced). pace() is called every PACE_EVERY objects made, and
+    pace(room_ns) once before the unpickler is let go: freeing its memo
+    (a reference to every object read, 4 ms for the default plant's
+    1.5 MB) is one step that cannot be cut, and wants that much time."""
     limit = sys.getrecursionlimit()
     sys.setrecursionlimit(max(limit, 20_000))
     _loading.pace, _loading.count = pace, 0
     try:
-        program = pickle.loads(data)
+        unpickler = pickle.Unpickler(io.BytesIO(data))
+        program = unpickler.load()
+        if pace is not None:
+            pace(len(data) * FREE_NS_PER_BYTE)
+        del unpickler
     finally:
         _loading.pace = None
         sys.setrecursionlimit(limit)

@@ -156,3 +156,20 @@ def test_a_real_time_scan_leaves_the_gate_open_when_it_ends(gate, engines):
     thread, went_on = _paused_in_thread()
     assert went_on.wait(5)
     thread.join(5)
+
+
+def test_a_step_that_cannot_be_cut_waits_for_a_window_with_room_for_it(gate):
+    # the unpickler's memo freed after a read-back: one C call of some 4 ms
+    lock_share.scan_sleeps(time.perf_counter_ns() + lock_share.MARGIN_NS + 50_000_000)  # 50 ms of idle
+    went_on = threading.Event()
+
+    def work() -> None:
+        pause(room_ns=5_000_000_000)  # 5 s: more than this window has
+        went_on.set()
+
+    thread = threading.Thread(target=work, daemon=True)
+    thread.start()
+    assert not went_on.wait(0.2)
+    lock_share.scan_sleeps(time.perf_counter_ns() + 10_000_000_000)  # 10 s of idle: room enough
+    assert went_on.wait(5)
+    thread.join(5)

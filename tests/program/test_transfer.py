@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import gc
 
+from softplc.runtime.engine.online_change import ChangeReport
 from softplc.runtime.program import compile_files, transfer
 from softplc.runtime.st import types as T
 from softplc.runtime.st.ast import Pos
@@ -58,18 +59,34 @@ def test_its_elementary_types_are_this_process_s_own_objects():
     assert declared["u"] is T.USINT and declared["r"] is T.REAL and declared["t"] is T.TIME
 
 
-def test_the_read_back_calls_its_pace_every_64_source_positions():
+def test_the_read_back_calls_its_pace_every_64_source_positions_and_asks_room_to_end():
     # what lets the PLC's process read a program back step by step, in the
-    # scan's idle (engine/lock_share.pause), not in one call of 35 ms
+    # scan's idle (engine/lock_share.pause), not in one call of 35 ms; the
+    # unpickler's memo, freed at the end in one go, waits for a window that
+    # has room for it (about 4 ms for the default plant's 1.5 MB)
     program = compile_files([], texts={"main.st": SOURCE})
     data = transfer.dumps(program)
     before = [o for o in gc.get_objects() if type(o) is Pos]  # kept alive: their ids stay theirs
     known = {id(o) for o in before}
-    paces: list = []
-    again = transfer.loads(data, lambda: paces.append(len(paces)))
+    calls: list = []
+    again = transfer.loads(data, lambda *room: calls.append(room))
     made = sum(1 for o in gc.get_objects() if type(o) is Pos and id(o) not in known)
     assert made >= 2 * transfer.PACE_EVERY, made  # enough positions to pace a few times
-    assert len(paces) == made // transfer.PACE_EVERY
+    steps, last = calls[:-1], calls[-1]
+    assert set(steps) == {()} and len(steps) >= made // transfer.PACE_EVERY
+    assert last == (len(data) * transfer.FREE_NS_PER_BYTE,)
     assert again.python_source == program.python_source
-    transfer.loads(data)  # without a pace: the last one is not called again
-    assert len(paces) == made // transfer.PACE_EVERY
+    transfer.loads(data)  # without a pace: nothing calls the last one again
+    assert len(calls) == len(steps) + 1
+
+
+def test_a_read_back_without_positions_is_paced_too():
+    # the tail of a real read-back (tables, no source positions) was 8-10 ms
+    # with no step; every 8th plain softplc instance is a step as well
+    inner = [ChangeReport(str(n)) for n in range(64 * 64)]
+    outer = ChangeReport("outer", errors=inner)
+    calls: list = []
+    again = transfer.loads(transfer.dumps(outer), lambda *room: calls.append(room))
+    assert [r.reason for r in again.errors] == [str(n) for n in range(64 * 64)]
+    made_by_new = (len(inner) + 1) // transfer.ROUTE_EVERY
+    assert calls[:-1] == [()] * (made_by_new // transfer.PACE_EVERY)
