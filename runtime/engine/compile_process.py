@@ -24,7 +24,7 @@ is the Program as program/transfer.py writes it (its generated module's
 code object marshal-ed: no compile() in the PLC's process), or the
 diagnostics and the source texts of a CompileError. The PLC's process then
 only reads it back (transfer.loads), step by step in the scan's idle
-(lock_share.pause every 64 source positions) and with the interpreter's
+(lock_share.pause every 64 objects made) and with the interpreter's
 switch interval lowered, so that the scan thread takes the lock at its
 release time.
 """
