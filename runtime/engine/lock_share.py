@@ -30,9 +30,10 @@ background() and at each pause() of its loops (a path resolved, a class
 taken apart) from shortly before the scan's release until the scan goes
 idle again; the scan then finds the lock free but for what one step of
 background work takes. A scan that leaves no window (its tasks overrun)
-keeps the gate shut for at most STARVE_S: then background work runs
-beside it again, as it did before, until a window comes. A pause() in
-the scan's own thread, or with no scan on the real clock, never waits.
+keeps the gate shut for at most STARVE_S after its last window closed
+(however long that window was): then background work runs beside it
+again, as it did before, until a window comes. A pause() in the scan's
+own thread, or with no scan on the real clock, never waits.
 
     for path in paths:
         pause()                    # never while holding a lock the scan takes
@@ -50,11 +51,10 @@ from contextlib import contextmanager
 
 SWITCH_S = 0.0005  # the switch interval while background work runs
 MARGIN_NS = 500_000  # background work stops this long before the scan wakes (a step ends within it)
-STARVE_S = 0.1  # no window from the scan for this long: background work runs beside it
+STARVE_S = 0.1  # the last window closed this long ago: background work runs beside the scan
 
 _gate = threading.Condition(threading.Lock())
 _open_until: float = math.inf  # perf_counter_ns() until which background work may run
-_opened_ns = 0  # when the scan last opened a window
 _scan: int | None = None  # the thread that sleeps in scan_sleeps (its pause() never waits)
 
 _lock = threading.Lock()
@@ -66,13 +66,13 @@ def scan_sleeps(wake_ns: int) -> None:
     """The scan thread goes idle until time.perf_counter_ns() is wake_ns
     (the real clock, before it sleeps): background work may run until
     MARGIN_NS before that. No window when that is past already."""
-    global _open_until, _opened_ns, _scan
+    global _open_until, _scan
     _scan = threading.get_ident()
     now = time.perf_counter_ns()
     until = wake_ns - MARGIN_NS
     if until > now:
         with _gate:
-            _open_until, _opened_ns = until, now
+            _open_until = until
             _gate.notify_all()
 
 
@@ -94,7 +94,7 @@ def pause(room_ns: int = 0) -> None:
 
     def open_() -> bool:
         now = time.perf_counter_ns()
-        return now + room_ns < _open_until or now - _opened_ns > STARVE_S * 1e9
+        return now + room_ns < _open_until or now - _open_until > STARVE_S * 1e9
 
     with _gate:
         _gate.wait_for(open_, STARVE_S)

@@ -150,6 +150,21 @@ def test_a_scan_that_leaves_no_window_holds_background_work_back_for_starve_s_on
         lock_share.scan_ends()
 
 
+def test_after_a_long_idle_the_gate_holds_while_the_scan_runs(monkeypatch):
+    # a task of a long period (here: 0.6 s idle): its tick ran with the gate
+    # open when STARVE_S was counted from the window's opening, not its close
+    monkeypatch.setattr(lock_share, "STARVE_S", 0.5)
+    try:
+        lock_share.scan_sleeps(time.perf_counter_ns() + lock_share.MARGIN_NS + 600_000_000)
+        time.sleep(0.65)  # the window closed 50 ms ago, opened 650 ms ago: the scan "runs"
+        thread, went_on = _paused_in_thread()
+        assert not went_on.wait(0.2)
+        assert went_on.wait(5)  # half a second after the close: beside the scan, as before the gate
+        thread.join(5)
+    finally:
+        lock_share.scan_ends()
+
+
 def test_a_real_time_scan_leaves_the_gate_open_when_it_ends(gate, engines):
     engine = engines(PROGRAM, [task("Main", 10, "Main")], clock=RealClock(spin_ns=0))
     engine.run(cycles=3)
