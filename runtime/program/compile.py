@@ -35,6 +35,7 @@ from ..st.importers import source_files
 from ..st.limits import MAX_SOURCE_CHARS
 from ..st.profile import DEFAULT, Profile, get_profile
 from ..st.syntax.pragmas import attribute_value
+from .collector import collector_off
 from .libraries import parse_cached, parser_code
 from .loaded import Program
 from .reparse import parse_views
@@ -371,6 +372,7 @@ def _first_position(paths: list, texts: dict | None) -> A.Pos:
     return A.Pos(names[0] if names else "<input>", 1, 1)
 
 
+@collector_off()
 def check_files(
     paths: list,
     profile: str | Profile = "codesys",
@@ -391,6 +393,7 @@ def check_files(
     return diags.sorted(), sources
 
 
+@collector_off()
 def compile_files(
     paths: list,
     profile: str | Profile = "codesys",

@@ -22,6 +22,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
+from ..program.collector import collector_off
 from ..program.compile import build_parsed, check_parsed
 from ..program.libraries import parse_cached
 from ..program.loaded import Program
@@ -113,6 +114,7 @@ def _parse(path: str, text: str, profile: Profile, diags: DiagnosticBag | None) 
     return files
 
 
+@collector_off()
 def analyse(
     project: Project,
     profile: str | Profile | None = None,
