@@ -206,14 +206,16 @@ def _read_sources(
     words: set = set()
     for name, text in files:
         sources.add(name, text)  # an imported file's own text: diagnostics show its lines
-        sfs, items, found = parse_views(name, text, profile, _words, keep)
+        sfs, items, found = parse_views(name, text, profile, words_of, keep)
         parsed.extend(sfs)
         diags.extend(items)
         words |= found
     return parsed, words
 
 
-def _words(text: str) -> set:
+def words_of(text: str) -> set:
+    """The identifiers of a text, upper case: which on-demand libraries a
+    program takes (a name in a comment takes one too: it compiles cleanly)."""
     return {w.upper() for w in _WORD.findall(text)}
 
 

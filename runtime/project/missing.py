@@ -272,6 +272,8 @@ def _declaring(units: Units, name: str, d: Diagnostic) -> list:
 def group_analysis(analysis, installed: frozenset = frozenset()) -> tuple:
     """group() for an analysis.Analysis of a project: its references, its
     own names, its kind."""
+    if not any(d.is_error for d in analysis.diagnostics):  # only errors are grouped (and the units not found for none)
+        return [], list(analysis.diagnostics)
     project = analysis.project
     lost = [name for names in analysis.lost.values() for name, _line in names]  # its POUs not imported
     own = (project.name, *(Path(f).stem for f in project.files), *lost)

@@ -124,3 +124,37 @@ def test_a_check_only_analysis_reports_what_a_full_one_does_without_a_program(tm
     assert [d.format() for d in checked.diagnostics] == [d.format() for d in full.diagnostics]
     assert _compiled(checked) == _compiled(full) and checked.clean and checked.rounds == full.rounds
     assert full.program is not None and checked.program is None
+
+
+def test_plain_files_find_their_units_when_asked_as_a_folder_does(tmp_path):
+    # files given one by one: their units found only when asked (for the
+    # errors), from a fresh parse; the same as the folder's, found at once
+    (tmp_path / "good.st").write_text(
+        "FUNCTION_BLOCK FB_Count\nVAR_INPUT go : BOOL; END_VAR\nVAR_OUTPUT n : INT; END_VAR\n"
+        "IF go THEN n := n + 1; END_IF\nEND_FUNCTION_BLOCK\n"
+        "PROGRAM Main\nVAR c : FB_Count; ton : TON; END_VAR\nc(go := TRUE);\nEND_PROGRAM\n"
+    )
+    (tmp_path / "bad.st").write_text(
+        "PROGRAM Broken\nVAR x : INT; END_VAR\nx := nStep;\nEND_PROGRAM\n"
+        "PROGRAM UsesCounter\nVAR c : FB_Count; END_VAR\nc();\nEND_PROGRAM\n"
+    )
+    [files] = open_projects([str(tmp_path / "bad.st"), str(tmp_path / "good.st")])  # (the folder's order)
+    [folder] = open_projects([str(tmp_path)])
+    assert (files.kind, folder.kind) == ("files", "folder")
+    by_files, by_folder = analyse(files), analyse(folder)
+
+    def units(a) -> list:
+        return [(u.file, u.kind, u.name, u.spans, u.uses) for u in a.units.all]
+
+    assert units(by_files) == units(by_folder)
+    assert [d.format() for d in by_files.diagnostics] == [d.format() for d in by_folder.diagnostics]
+    assert (
+        _compiled(by_files)
+        == _compiled(by_folder)
+        == {
+            "FB_Count": True,
+            "Main": True,
+            "Broken": False,  # nStep is declared nowhere
+            "UsesCounter": True,
+        }
+    )
