@@ -8,7 +8,6 @@ replaces a project file (.plcproj) by the sources it lists."""
 from __future__ import annotations
 
 from ..diagnostics import DiagnosticBag
-from ..syntax.il import lowered_for_reading
 from ..syntax.st_grammar import grammar
 from . import fbd, ld  # noqa: F401  (they register the FBD and LD body languages)
 from .bodies import LANGUAGES
@@ -99,6 +98,8 @@ def st_export(path: str, text: str, diags: DiagnosticBag) -> str:
     is."""
     reader = _reader(path, text)
     if reader is not None:
+        from ..syntax.il import lowered_for_reading
+
         views = reader(text, path, diags)
         for v in views:
             v.replace(lowered_for_reading(v.text(), grammar().lexer))

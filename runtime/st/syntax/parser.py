@@ -40,7 +40,6 @@ from .. import ast
 from ..diagnostics import DiagnosticBag
 from ..limits import MAX_ERRORS, MAX_NESTING, MAX_SOURCE_CHARS
 from ..profile import DEFAULT, Profile
-from .il import has_il, lower_il, relocate
 from .lexer import INVALID_RUN, Tok, line_col, strip_comments
 from .parse_recovery import Recovery
 from .parse_stack import GiveUp, Rejected, TooDeep
@@ -95,6 +94,8 @@ class _Parse(Recovery):
         try:
             self.text, pragmas = strip_comments(text, comment_error, self.profile.nested_comments)
             if self.il:
+                from .il import lower_il  # (IL's modules only for a file that has it: 11 ms of every start)
+
                 self.text, il_ranges, il_where = lower_il(self.text, self.path, self.diags, self.g.lexer)
             self.tokens = self.g.lexer.tokens(self.text, self._accepts, self._bad_characters, self._fits)
             if self.origins:
@@ -115,7 +116,10 @@ class _Parse(Recovery):
         if not isinstance(result, ast.SourceFile):
             result = ast.SourceFile(self.path, [], pos=ast.Pos(self.path, 1, 1))
         result.lowered.extend(il_ranges)
-        relocate(result, il_where)
+        if il_where:
+            from .il import relocate
+
+            relocate(result, il_where)
         if pragmas:
             warn_ignored(pragmas, self.path, self.diags)
             self._attach(pragmas)
@@ -211,6 +215,12 @@ class _Parse(Recovery):
                 target.external = True
 
 
+def _has_il(text: str) -> bool:
+    from .il import has_il
+
+    return has_il(text)
+
+
 def _relocated(tokens, origins: tuple):
     """The tokens, those an importer placed apart from where they come from
     at their origin (StView.origins: (line, column, orig_line, orig_column),
@@ -243,7 +253,7 @@ def parse_source(
         g, attempt = grammar(), DiagnosticBag()
         first = _Parse(text, path, attempt, g, profile, tuple(origins))
         sf = first.run()
-        if attempt.has_errors and has_il(first.text):
+        if attempt.has_errors and _has_il(first.text):
             sf = _Parse(text, path, diags, g, profile, tuple(origins), il=True).run()
         else:
             diags.extend(attempt.items)
