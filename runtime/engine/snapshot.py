@@ -190,6 +190,12 @@ class SnapshotHub:
         for path in paths:
             pause()
             resolved.append(resolver.place(path))
+        return self.watch_places(reader, resolved)
+
+    def watch_places(self, reader: str, resolved: list) -> list:
+        """watch() of places the caller has resolved already (with this
+        hub's resolver): a caller that sorts the paths that name a variable
+        from those that do not does not resolve them twice."""
         with self._lock:  # the new layout is made here, not under the capture's lock: the scan never waits for it
             self._watched[reader] = tuple(p.path for p in resolved)
             places = dict(self._places)

@@ -50,16 +50,16 @@ def watch(surfaces, reader: str, paths: list) -> tuple:
     """Watch the paths that name a variable for reader: (their canonical
     paths, {path: why not} for the others, the sequence of the latest
     snapshot: the next one has them). A snapshot is asked for at once."""
-    good, errors = [], {}
+    places, errors = [], {}
     hub = surfaces.hub
     resolver = hub.resolver
     for path in paths:
         pause()  # a call thread's: while the scan sleeps
         try:
-            good.append(resolver.place(path).path)
+            places.append(resolver.place(path))
         except (KeyError, ValueError) as exc:  # PathError is a KeyError
             errors[path if len(path) <= LONG else got(path)] = str(exc)  # a long path as a message cuts it
-    hub.watch(reader, good)
+    good = hub.watch_places(reader, places)
     latest = hub.latest
     hub.request()
     return good, errors, latest.sequence if latest is not None else 0
