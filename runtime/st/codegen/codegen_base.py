@@ -14,6 +14,7 @@ for the type checker.
 from __future__ import annotations
 
 import math
+from collections import ChainMap
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -83,6 +84,11 @@ class FnState:
         self.for_locals: dict = {}
         # ... and of those the (lowest, highest) value when the bounds are constant
         self.loop_ranges: dict = {}
+        # what the statements before tell of integer variables (codegen_facts.py):
+        # id(VarSymbol) -> (lowest, highest); None where none are kept (a list with labels)
+        self.facts: dict | None = {}
+        # ... of those, the ids of the variables a call may reach (an FB's own)
+        self.fact_reachable: set = set()
         # JMP (codegen_jumps.py): id(Label) -> (JumpFrame, index); transfers out
         # of loops waiting after the loop at a depth of loop_kinds; their count
         self.labels: dict = {}
@@ -144,8 +150,10 @@ class CodeGenBase:
         return self._acc_keys[key]
 
     def _range(self, e: A.Expr | None) -> R.Range | None:
-        """What range analysis knows of an integer expression here (ranges.py)."""
-        return R.value_range(e, self.fn.loop_ranges)
+        """What range analysis knows of an integer expression here (ranges.py):
+        the ranges of FOR variables, and the facts (codegen_facts.py)."""
+        facts = self.fn.facts
+        return R.value_range(e, ChainMap(self.fn.loop_ranges, facts) if facts else self.fn.loop_ranges)
 
     @staticmethod
     def _temp_local(v: VarSymbol) -> bool:

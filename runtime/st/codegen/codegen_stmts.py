@@ -20,7 +20,8 @@ from ..faults import LOOP_CHECK_EVERY
 from ..rtlib import rtlib
 from ..rtlib.rt_case import CaseTable
 from . import ranges as R
-from .codegen_base import CodeGenBase, elementary, py_literal
+from .codegen_base import elementary, py_literal
+from .codegen_facts import FactsGen, join
 
 
 def _int_literal(code: str) -> bool:
@@ -32,13 +33,18 @@ def _int_literal(code: str) -> bool:
 CASE_CHAIN = 64
 
 
-class StmtGen(CodeGenBase):
+class StmtGen(FactsGen):
     """Statements, conversions on store and stores."""
 
     def _body(self, stmts: list) -> None:
+        """A statement list, run once or not at all: the facts after it are
+        those that hold either way (codegen_facts.py)."""
         start = len(self.out)
+        entry = self._facts_copy()
         if any(s.__class__ is A.Label and s.jumped_to for s in stmts):
+            self.fn.facts = None  # a JMP may come back to any label: no facts
             self._dispatch(stmts)  # a JMP goes to a label here (codegen_jumps.py)
+            self.fn.facts = None if entry is None else {}
             if self.fn.crossing:
                 self._after_loop()  # EXIT, CONTINUE or JMP out of it
         else:
@@ -46,36 +52,49 @@ class StmtGen(CodeGenBase):
                 self._stmt(s)
                 if self.fn.crossing:
                     self._after_loop()
+        if entry is not None and self.fn.facts is not None:
+            self.fn.facts = join(entry, self.fn.facts)
         if len(self.out) == start:
             self.emit("pass")
 
     def _stmt(self, s: A.Stmt) -> None:
         self.pos = s.pos
         if isinstance(s, A.Assign):
+            self._facts_before([s.target, s.value])
             self._assign(s)
         elif isinstance(s, A.CallStmt):
+            self._facts_before([s.call])
             self._call_stmt(s.call)
         elif isinstance(s, A.If):
+            found = self._facts_before([cond for cond, _ in s.branches])
+            pre = self._facts_copy()
+            exits: list = []
             for i, (cond, body) in enumerate(s.branches):
                 self.pos = cond.pos if i else s.pos
+                self._facts_enter_branch(pre)
                 self.emit(f"{'if' if i == 0 else 'elif'} {self.ex(cond)}:")
                 self.indent += 1
                 known = self.fn.loop_ranges
-                if i == 0:  # IF i >= 8 THEN ... samples[i - 8]: no bounds check
-                    self.fn.loop_ranges = self._narrowed(cond, dict(known))
+                self._facts_narrow(cond, found)  # IF i >= 8 THEN ... samples[i - 8]: no bounds check
                 self._body(body)
+                exits.append(self.fn.facts)
                 self.fn.loop_ranges = known
                 self.indent -= 1
             if s.else_body:
                 self.emit("else:")
                 self.indent += 1
+                self._facts_enter_branch(pre)
                 self._body(s.else_body)
+                exits.append(self.fn.facts)
                 self.indent -= 1
+            self._facts_branches(pre, exits, bool(s.else_body))
         elif isinstance(s, A.Case):
+            self._facts_before([s.selector])
             self._case(s)
         elif isinstance(s, A.For):
             self._for(s)
         elif isinstance(s, A.While):
+            self._facts_loop()
             wd = self._loop_budget_take()
             self.emit(f"while {self.ex(s.cond)}:")
             self.indent += 1
@@ -86,7 +105,9 @@ class StmtGen(CodeGenBase):
             self.indent -= 1
             self.pos = s.pos
             self._loop_budget_give(wd)
+            self._facts_loop()
         elif isinstance(s, A.Repeat):
+            self._facts_loop()
             wd = self._loop_budget_take()
             self.emit("while True:")
             self.indent += 1
@@ -99,6 +120,7 @@ class StmtGen(CodeGenBase):
             self.indent -= 1
             self.pos = s.pos
             self._loop_budget_give(wd)
+            self._facts_loop()
         elif isinstance(s, A.Exit):
             self._leave_loop("break")
         elif isinstance(s, A.Continue):
@@ -122,33 +144,6 @@ class StmtGen(CodeGenBase):
             pass  # no JMP names it
         else:
             raise NotImplementedError(type(s).__name__)
-
-    _BOUNDS = {">=": (0, None), ">": (1, None), "<=": (None, 0), "<": (None, -1), "=": (0, 0)}
-    _MIRROR = {">=": "<=", ">": "<", "<=": ">=", "<": ">", "=": "="}
-
-    def _narrowed(self, cond: A.Expr, known: dict) -> dict:
-        """The ranges of FOR variables (read from their loop locals, constant
-        bounds) where cond is TRUE: i >= 8, 8 <= i, i < n AND i > 0 narrow
-        the range of i. A FOR variable cannot change in its loop's body."""
-        if not isinstance(cond, A.Binary):
-            return known
-        if cond.op in ("AND", "AND_THEN") and T.base_elementary(cond.ty) is T.BOOL:
-            return self._narrowed(cond.right, self._narrowed(cond.left, known))
-        op, var, const = cond.op, cond.left, cond.right
-        if not isinstance(var, A.Name):
-            op, var, const = self._MIRROR.get(op, ""), cond.right, cond.left
-        if op not in self._BOUNDS or not isinstance(var, A.Name) or id(var.sym) not in known:
-            return known
-        c = const.const
-        if not isinstance(c, int) or isinstance(c, bool):
-            return known
-        lo, hi = known[id(var.sym)]
-        dlo, dhi = self._BOUNDS[op]
-        lo = lo if dlo is None else max(lo, c + dlo)
-        hi = hi if dhi is None else min(hi, c + dhi)
-        if lo <= hi:  # else the body never runs: leave it as it was
-            known[id(var.sym)] = (lo, hi)
-        return known
 
     def _leave_loop(self, word: str) -> None:
         if self._leave_through_labels(word):
@@ -216,9 +211,21 @@ class StmtGen(CodeGenBase):
             t = self.tmp("c")
             self.emit(f"{t} = {sel}")
             sel = t
+        pre = self._facts_copy()
+        exits: list = []
         if len(s.branches) > CASE_CHAIN:
-            self._case_table(s, sel)
-            return
+            self._case_table(s, sel, pre, exits)
+        else:
+            self._case_chain(s, sel, pre, exits)
+        self._facts_branches(pre, exits, bool(s.else_body))
+
+    def _case_branch(self, body: list, pre: dict | None, exits: list) -> None:
+        """One branch of a CASE: from the facts before it (pre), its end's added to exits."""
+        self._facts_enter_branch(pre)
+        self._body(body)
+        exits.append(self.fn.facts)
+
+    def _case_chain(self, s: A.Case, sel: str, pre: dict | None, exits: list) -> None:
         first = True
         for br in s.branches:
             conds = []
@@ -231,18 +238,18 @@ class StmtGen(CodeGenBase):
             self.emit(f"{'if' if first else 'elif'} {' or '.join(conds) or 'False'}:")
             first = False
             self.indent += 1
-            self._body(br.body)
+            self._case_branch(br.body, pre, exits)
             self.indent -= 1
         if s.else_body:
             if first:
-                self._body(s.else_body)
+                self._case_branch(s.else_body, pre, exits)
             else:
                 self.emit("else:")
                 self.indent += 1
-                self._body(s.else_body)
+                self._case_branch(s.else_body, pre, exits)
                 self.indent -= 1
 
-    def _case_table(self, s: A.Case, sel: str) -> None:
+    def _case_table(self, s: A.Case, sel: str, pre: dict | None, exits: list) -> None:
         """A CASE of many branches: its branch's number from a table (rt_case),
         then a binary tree of ifs on it, as deep as log2 of the branches (an
         elif chain of 10,000 was too deep for Python's compiler)."""
@@ -253,30 +260,31 @@ class StmtGen(CodeGenBase):
                 labels.append((int(lo), int(hi), k))
         kvar = self.tmp("k")
         self.emit(f"{kvar} = {self.const(CaseTable(labels))}({sel})")
-        self._case_tree(s.branches, 0, len(s.branches), kvar, s.else_body or [])
+        self._case_tree(s.branches, (0, len(s.branches)), kvar, s.else_body or [], (pre, exits))
 
-    def _case_tree(self, branches: list, first: int, end: int, k: str, else_body: list) -> None:
+    def _case_tree(self, branches: list, span: tuple, k: str, else_body: list, facts: tuple) -> None:
+        first, end = span
         if end - first <= CASE_CHAIN // 2:
             for i in range(first, end):
                 self.pos = branches[i].pos
                 self.emit(f"{'if' if i == first else 'elif'} {k} == {i}:")
                 self.indent += 1
-                self._body(branches[i].body)
+                self._case_branch(branches[i].body, *facts)
                 self.indent -= 1
             if first == 0 and else_body:  # only the first leaf can meet -1
                 self.emit(f"elif {k} < 0:")
                 self.indent += 1
-                self._body(else_body)
+                self._case_branch(else_body, *facts)
                 self.indent -= 1
             return
         mid = (first + end) // 2
         self.emit(f"if {k} < {mid}:")
         self.indent += 1
-        self._case_tree(branches, first, mid, k, else_body)
+        self._case_tree(branches, (first, mid), k, else_body, facts)
         self.indent -= 1
         self.emit("else:")
         self.indent += 1
-        self._case_tree(branches, mid, end, k, else_body)
+        self._case_tree(branches, (mid, end), k, else_body, facts)
         self.indent -= 1
 
     def _for(self, s: A.For) -> None:
@@ -298,6 +306,7 @@ class StmtGen(CodeGenBase):
         else:
             step_code = self.coerce(self.ex(s.step), s.step.ty, vty, s.step)
             self.emit(f"{rng} = _for_range({start}, {end}, {step_code})")
+        self._facts_loop()
         self.emit(f"for {it} in {self._for_iterable(rng, vty, known)}:")
         self.indent += 1
         local = self._loop_local_ok(var.sym, s.body)
@@ -321,6 +330,7 @@ class StmtGen(CodeGenBase):
         else:
             self.emit_store(var, f"{rng}.start + len({rng}) * {rng}.step", vty, None)
         self.indent -= 1
+        self._facts_loop()
 
     def _loop_local_ok(self, sym: Any, body: list) -> bool:
         """May the body read the FOR variable from the Python loop local?
@@ -358,7 +368,10 @@ class StmtGen(CodeGenBase):
         if tty.is_aggregate:
             self.emit(f"_assign_into({self.ex(s.target)}, {self.ex(s.value)})")
             return
+        rng = self._fact_range(s.target, s.value)
         self.emit_store(s.target, self.ex(s.value), s.value.ty, s.value)
+        if rng is not None and isinstance(s.target, A.Name):
+            self._fact_set(s.target.sym, rng)
 
     def coerce(self, code: str, src: T.Type, dst: T.Type, e: A.Expr | None) -> str:
         """Convert a value of type src to the representation of dst on store
@@ -419,6 +432,7 @@ class StmtGen(CodeGenBase):
         a REFERENCE TO target takes the reference value_code (REF=)."""
         tty = target.ty
         code = value_code if trusted else self.coerce(value_code, value_ty, tty, value_expr)
+        self._facts_stored(target)
         if target.implicit_ref is not None and not bind:
             self.emit(f"{self.ref_value(target)}.set({code})")
         elif isinstance(target, (A.Name, A.Member)) and isinstance(target.sym, PropertyInfo):

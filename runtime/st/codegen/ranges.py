@@ -11,7 +11,8 @@ functions: nothing here changes the AST.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
+from typing import Any
 
 from .. import ast as A
 from .. import types as T
@@ -128,6 +129,44 @@ def _binary_range(op: str, lr: Range | None, rr: Range | None) -> Range | None:
     if op == "/" and rr[0] == rr[1] and rr[0] > 0 and lr[0] >= 0:
         return (lr[0] // rr[0], lr[1] // rr[0])
     return None
+
+
+# where `x op c` is TRUE: what it adds to c for the lowest and the highest value of x
+_BOUNDS = {">=": (0, None), ">": (1, None), "<=": (None, 0), "<": (None, -1), "=": (0, 0)}
+_MIRROR = {">=": "<=", ">": "<", "<=": ">=", "<": ">", "=": "="}
+
+
+def narrowings(cond: A.Expr, current: Callable[[Any], Range | None]) -> dict:
+    """The ranges variables have where cond is TRUE: i >= 8, 8 <= i,
+    i < n AND i > 0 narrow the range of i. current(sym): the range of a
+    variable that may be narrowed, None for one that may not. Returns
+    id(sym) -> (sym, range); a comparison no value can meet is left out
+    (the branch never runs)."""
+    out: dict = {}
+    todo = [cond]
+    while todo:
+        c = todo.pop()
+        if not isinstance(c, A.Binary):
+            continue
+        if c.op in ("AND", "AND_THEN") and T.base_elementary(c.ty) is T.BOOL:
+            todo.append(c.right)
+            todo.append(c.left)
+            continue
+        op, var, const = c.op, c.left, c.right
+        if not isinstance(var, A.Name):
+            op, var, const = _MIRROR.get(op, ""), c.right, c.left
+        k = const.const
+        if op not in _BOUNDS or not isinstance(var, A.Name) or not isinstance(k, int) or isinstance(k, bool):
+            continue
+        rng = out[id(var.sym)][1] if id(var.sym) in out else current(var.sym)
+        if rng is None:
+            continue
+        dlo, dhi = _BOUNDS[op]
+        lo = rng[0] if dlo is None else max(rng[0], k + dlo)
+        hi = rng[1] if dhi is None else min(rng[1], k + dhi)
+        if lo <= hi:
+            out[id(var.sym)] = (var.sym, (lo, hi))
+    return out
 
 
 def within(rng: Range | None, lo: int, hi: int) -> bool:
