@@ -24,6 +24,7 @@ from .codegen_config import ConfigGen
 from .codegen_eno import EnoGen
 from .codegen_exprs import ExprGen
 from .codegen_jumps import JumpGen
+from .codegen_locals import LocalsGen
 from .codegen_oop import OopGen
 from .codegen_pointers import PointerGen
 from .codegen_pous import PouGen
@@ -41,7 +42,7 @@ class GeneratedModule:
     pou_classes: dict = field(default_factory=dict)  # UPPER POU name -> python name
 
 
-class CodeGen(PouGen, StmtGen, ExprGen, PointerGen, CallGen, EnoGen, ConfigGen, JumpGen, OopGen):
+class CodeGen(PouGen, StmtGen, ExprGen, PointerGen, CallGen, EnoGen, ConfigGen, JumpGen, OopGen, LocalsGen):
     """CodeGen(checked, profile).generate() -> GeneratedModule."""
 
     def generate(self) -> GeneratedModule:

@@ -94,6 +94,10 @@ class FnState:
         self.labels: dict = {}
         self.crossing: dict = {}
         self.transfers = 0
+        # a PROGRAM's scalars held in locals while its body runs (codegen_locals.py):
+        # id(VarSymbol) -> local name; the ids of those the body stores
+        self.promoted: dict = {}
+        self.promoted_stored: set = set()
         # aggregates of self read through a local (codegen_pous.py _aliased_body):
         # pyname -> reads, while a body that takes them is emitted; None: not here
         self.aliases: dict | None = None
@@ -185,6 +189,11 @@ class CodeGenBase:
         def _loop_budget_give(self, wd: str) -> None: ...
 
         def _watchdog_tick(self, wd: str) -> None: ...
+
+        # codegen_locals
+        def _locals_begin(self, stmts: list) -> list: ...
+
+        def _locals_end(self, syms: list) -> None: ...
 
         # codegen_jumps
         def _dispatch(self, stmts: list) -> None: ...

@@ -96,6 +96,9 @@ class ExprGen(CodeGenBase):
         loop_local = self.fn.for_locals.get(id(sym))
         if loop_local is not None:
             return loop_local
+        local = self.fn.promoted.get(id(sym))
+        if local is not None:
+            return local
         if sym.location is not None:
             return f"_A{self.accessor(sym.location, T.base_elementary(sym.type))}g()"
         if sym.owner is None:

@@ -352,7 +352,9 @@ class PouGen(SfcGen):
         retain replace them between cycles), so the local is the attribute."""
         start, pos = len(self.out), self.pos
         self.fn.aliases = {}
+        promoted = self._locals_begin(stmts)
         self._body(stmts)
+        self._locals_end(promoted)
         aliases, self.fn.aliases = self.fn.aliases, None
         if not aliases:
             return

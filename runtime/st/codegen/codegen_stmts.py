@@ -474,6 +474,11 @@ class StmtGen(FactsGen):
             raise NotImplementedError(type(target).__name__)
 
     def _store_name(self, sym: VarSymbol, code: str) -> None:
+        local = self.fn.promoted.get(id(sym))
+        if local is not None:  # a PROGRAM's scalar in a local (codegen_locals.py)
+            self.fn.promoted_stored.add(id(sym))
+            self.emit(f"{local} = {code}")
+            return
         if sym.location is not None:
             idx = self.accessor(sym.location, T.base_elementary(sym.type))
             self.emit(f"_A{idx}s({code})")

@@ -1,0 +1,120 @@
+"""A PROGRAM's scalars in Python locals while its body runs.
+
+A local is one fast load; ``self.v_x`` is an attribute lookup, and a store
+into it another. A PROGRAM whose variables nothing but its own body can
+reach (codegen_facts.py: no actions, methods or properties; no reference
+taken; not located) reads each elementary variable its body uses more than
+once into a local when the body starts, works on the local, and stores it
+back in a ``finally``, so a RETURN, a fault or the watchdog still leaves
+every variable stored, as the monitor, retain and the next cycle expect::
+
+    _l_v_check = self.v_check
+    try:
+        for _i4 in _r5:
+            _l_v_check = _l_v_check + ...
+    finally:
+        self.v_check = _l_v_check
+
+Nothing outside the body can tell: between cycles (where surfaces read,
+write and force, and online change carries values) every variable is in
+its slot, and while the body runs no other code can name them.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from .. import ast as A
+from .. import types as T
+from ..check.symbols import VarSymbol
+from .codegen_base import CodeGenBase
+
+_SECTIONS = ("VAR", "VAR_INPUT", "VAR_OUTPUT")
+_SKIP = frozenset(("pos", "ty", "const", "sym", "pragmas", "qualifier", "flexible", "implicit_ref", "impl", "via"))
+_FIELDS: dict[type, tuple] = {}
+
+
+def uses(stmts: list) -> dict:
+    """id(VarSymbol) -> [sym, uses] of the names in stmts; a use inside a
+    loop counts twice (it runs many times). A loop over the tree: a chain
+    of operators may be 10,000 long."""
+    found: dict = {}
+    todo: list = [(s, 1) for s in stmts]
+    while todo:
+        node, weight = todo.pop()
+        if isinstance(node, (list, tuple)):
+            todo.extend((n, weight) for n in node)
+            continue
+        if not isinstance(node, A.Node):
+            continue
+        if node.__class__ is A.Name:
+            if isinstance(node.sym, VarSymbol):
+                entry = found.setdefault(id(node.sym), [node.sym, 0])
+                entry[1] += weight
+            continue
+        if isinstance(node, (A.For, A.While, A.Repeat)):
+            weight = 2
+        fields = _FIELDS.get(node.__class__)
+        if fields is None:
+            fields = _FIELDS[node.__class__] = tuple(
+                f
+                for f in node.__dataclass_fields__
+                if f not in _SKIP and not (f == "target" and isinstance(node, A.Call))
+            )
+        for f in fields:
+            value = getattr(node, f)
+            if value is not None and not isinstance(value, (str, int, float)):
+                todo.append((value, weight))
+    return found
+
+
+class LocalsGen(CodeGenBase):
+    """The program's scalars in locals (the module docstring)."""
+
+    def _promotable(self, sym: Any) -> bool:
+        pou = self.fn.pou
+        be = T.base_elementary(sym.type)
+        return (
+            pou is not None
+            and sym.owner is pou
+            and sym.section in _SECTIONS
+            and sym.location is None
+            and not sym.address_taken
+            and not sym.boxed
+            and not sym.constant
+            and be is not None
+            and not T.resolve(sym.type).is_aggregate
+        )
+
+    def _locals_begin(self, stmts: list) -> list:
+        """Before a PROGRAM's body: its scalars read into locals and a try
+        opened; returns them (for _locals_end)."""
+        pou = self.fn.pou
+        if pou is None or pou.kind != "PROGRAM" or pou.actions or pou.methods or pou.properties or pou.sfc:
+            return []
+        syms = [sym for sym, n in uses(stmts).values() if n > 1 and self._promotable(sym)]
+        if not syms:
+            return []
+        syms.sort(key=lambda s: s.pyname)
+        for sym in syms:
+            self.emit(f"_l_{sym.pyname} = {self.fn.self_name}.{sym.pyname}")
+        self.emit("try:")
+        self.indent += 1
+        self.fn.promoted = {id(sym): f"_l_{sym.pyname}" for sym in syms}
+        return syms
+
+    def _locals_end(self, syms: list) -> None:
+        """After the body: every local stored back, however the body ends."""
+        if not syms:
+            return
+        stored = self.fn.promoted_stored
+        self.fn.promoted = {}
+        self.indent -= 1
+        self.emit("finally:")
+        self.indent += 1
+        back = [sym for sym in syms if id(sym) in stored]
+        for sym in back:
+            self.emit(f"{self.fn.self_name}.{sym.pyname} = _l_{sym.pyname}")
+        if not back:
+            self.emit("pass")
+        self.indent -= 1
