@@ -68,6 +68,34 @@ def uses(stmts: list) -> dict:
     return found
 
 
+def _leaves(stmt: Any) -> bool:
+    """Whether a statement may leave the body or go elsewhere in it
+    (RETURN, JMP, a label)."""
+    todo = [stmt]
+    while todo:
+        node = todo.pop()
+        if isinstance(node, (A.Return, A.Jump, A.Label)):
+            return True
+        if isinstance(node, (A.If, A.Case, A.For, A.While, A.Repeat)):
+            for branch in getattr(node, "branches", ()):
+                todo.extend(branch[1] if isinstance(branch, tuple) else branch.body)
+            todo.extend(getattr(node, "body", None) or ())
+            todo.extend(getattr(node, "else_body", None) or ())
+    return False
+
+
+def stored_first(stmts: list, sym: VarSymbol) -> bool:
+    """Whether the body stores sym (`F := ...`) before anything can read
+    it or return it: the statements before that store neither name sym
+    nor leave the body (a fault before it returns nothing)."""
+    for s in stmts:
+        if isinstance(s, A.Assign) and s.op == ":=" and isinstance(s.target, A.Name) and s.target.sym is sym:
+            return id(sym) not in uses([s.value])
+        if id(sym) in uses([s]) or _leaves(s):
+            return False
+    return False
+
+
 class LocalsGen(CodeGenBase):
     """The program's scalars in locals (the module docstring)."""
 

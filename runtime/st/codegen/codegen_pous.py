@@ -16,6 +16,7 @@ from .. import ast as A
 from .. import types as T
 from ..check.symbols import POUInfo, copied_in_out
 from .codegen_base import FnState, py_literal
+from .codegen_locals import stored_first
 from .codegen_sfc import SFC_SLOT, SFC_SLOT_TYPE, SfcGen
 
 
@@ -418,9 +419,10 @@ class PouGen(SfcGen):
                 self.indent -= 1
             if v.boxed and v.section == "VAR_INPUT":
                 self.emit(f"{v.pyname} = _CellRef({v.pyname})")
-        if pou.result is not None:
-            self.emit(f"r_result = {self._default_code(pou.result.type)}")
-            if pou.result.boxed:
+        res = pou.result
+        if res is not None and (res.boxed or T.resolve(res.type).is_aggregate or not stored_first(pou.node.body, res)):
+            self.emit(f"r_result = {self._default_code(res.type)}")
+            if res.boxed:
                 self.emit("r_result = _CellRef(r_result)")
         for v in pou.vars.values():
             if v.section in ("VAR", "VAR_OUTPUT", "VAR_TEMP", "VAR_STAT"):

@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+import pytest
+
 from softplc.runtime.program import compile_files
 
 from ..conftest import prog, run_st
@@ -97,3 +99,31 @@ def test_arrays_are_built_from_runs_however_many_elements_they_have():
     pts = r.get("pts")
     assert [[p.f_x for p in row] for row in pts] == [[1, 5, 5, 5], [5, 5, 5, 0], [0, 0, 0, 0]]
     assert all(p.f_y == 2 for row in pts for p in row) and pts[0][1] is not pts[0][2]
+
+
+@pytest.mark.parametrize(
+    "body,result",
+    [
+        ("IF go THEN RETURN; END_IF F := 5;", 0),  # RETURN before the store
+        ("F := F + 5;", 5),  # read before the store
+        ("n := F + 1; F := n;", 1),
+        ("IF go THEN JMP out; END_IF F := 5; out: n := 1;", 0),  # a jump past it
+        ("n := 3; F := n * 2;", 6),  # stored first: no default needed
+        ("IF go THEN n := 1; END_IF F := n;", 1),
+        ("WHILE n < 3 DO n := n + 1; END_WHILE F := n;", 3),
+    ],
+)
+def test_a_functions_result_is_its_default_on_every_way_out_before_it_is_stored(body, result):
+    # the default is left out only where the body stores the result first (codegen_locals.stored_first)
+    src = f"""
+FUNCTION F : INT
+VAR_INPUT go : BOOL; END_VAR
+VAR n : INT; END_VAR
+{body}
+END_FUNCTION
+PROGRAM main
+VAR r : INT; END_VAR
+r := F(go := TRUE);
+END_PROGRAM
+"""
+    assert run_st(src).get("r") == result
