@@ -154,7 +154,6 @@ class Program:
             "_ptr_add": refs.ptr_add,
             "_ptr_diff": refs.ptr_diff,
             "_same_ref": refs.same_ref,
-            "_no_itf": rt_oop.no_interface,
             "_query_itf": rt_oop.query_interface,
             "_query_into": rt_oop.query_into,
             "_fb_args": rt_oop.fb_init_args,

@@ -60,6 +60,9 @@ class StopRequested(Exception):
 
 
 NULL_REFERENCE = "invalid reference: a NULL REF_TO/POINTER dereferenced, or an unbound REFERENCE TO used"
+NULL_INTERFACE = "invalid interface: it designates no function block instance (it is 0)"
+#: the Python names of methods and property accessors (st/check/checker_oop.py)
+_OOP_MEMBERS = ("m_", "pg_", "ps_")
 
 
 def out_of_bounds(index: int, lo: int, hi: int) -> int:
@@ -79,6 +82,10 @@ def _classify(exc: BaseException) -> tuple:
         return "stop", f"{exc or 'stop requested'}: the cycle was ended in a loop"
     if isinstance(exc, WatchdogFault):
         return "watchdog", str(exc) or "watchdog: the cycle took too long (endless loop?)"
+    if isinstance(exc, AttributeError) and exc.obj is None and (exc.name or "").startswith(_OOP_MEMBERS):
+        # a method or property through an interface that holds none: Python's
+        # own check (None has no m_step), no test in the generated code
+        return "reference", NULL_INTERFACE
     if isinstance(exc, (AttributeError, TypeError)) and "NoneType" in str(exc):
         return "reference", NULL_REFERENCE
     if isinstance(exc, RecursionError):

@@ -108,6 +108,25 @@ END_PROGRAM
     assert "designates no function block instance" in str(fault)
 
 
+@pytest.mark.parametrize("use", ["n := s.Name;", "s.Scale(k := 2.0);"])
+def test_a_property_or_method_through_a_null_interface_is_the_same_fault(use):
+    # Python's own AttributeError on None, classified by st/faults.py
+    src = (
+        SHAPES
+        + f"""
+PROGRAM main
+VAR s : I_Shape; n : STRING; END_VAR
+{use}
+END_PROGRAM
+"""
+    )
+    with pytest.raises(STFault) as info:
+        run_st(src)
+    fault = info.value
+    assert fault.kind == "reference" and fault.pos.line == SHAPES.count("\n") + 4
+    assert "designates no function block instance" in str(fault)
+
+
 def test_nulls_before_the_fault():
     src = (
         SHAPES

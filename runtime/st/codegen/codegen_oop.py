@@ -115,7 +115,7 @@ class OopGen(CodeGenBase):
 
     def _instance_code(self, inst: A.Expr | None) -> str:
         """The instance a member is taken of: self for THIS^/SUPER^ and
-        the block's own; through an interface, a check that it holds one."""
+        the block's own; an interface's value (None when it holds none)."""
         if inst is None:
             return self.fn.self_name
         if isinstance(inst, A.Name) and isinstance(inst.sym, POUInfo):  # Prog.M(), Prog.P
@@ -125,10 +125,9 @@ class OopGen(CodeGenBase):
                 return self.fn.self_name
             # a program no task runs is created at its first use (it exists in CODESYS)
             return f"({prog.pyname}._INST_ or {prog.pyname}())"
-        code = self.ex(inst)
-        if isinstance(T.resolve(inst.ty), T.InterfaceType):
-            return f"({code} or _no_itf())"
-        return code
+        # through an interface that holds none, None has no such method:
+        # Python's AttributeError is the NULL interface fault (st/faults.py)
+        return self.ex(inst)
 
     def _method_invoke(self, e: A.Call, info: CallInfo) -> str:
         m = info.pou

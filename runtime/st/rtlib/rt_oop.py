@@ -6,14 +6,6 @@ from __future__ import annotations
 from typing import Any
 
 from .. import types as T
-from ..faults import RangeFault
-
-
-def no_interface() -> Any:
-    """A call or property access through an interface variable that holds
-    no instance (0, NULL): a runtime fault at the ST statement (CODESYS
-    raises an exception there)."""
-    raise RangeFault("reference", "invalid interface: it designates no function block instance (it is 0)")
 
 
 def query_interface(obj: Any, name: str) -> Any:
