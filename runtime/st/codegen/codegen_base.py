@@ -94,6 +94,11 @@ class FnState:
         self.labels: dict = {}
         self.crossing: dict = {}
         self.transfers = 0
+        # array elements bound to locals (codegen_reuse.py): the ids of the
+        # variables the body takes references to (found when first asked), and
+        # the indent of the plain assignment being emitted (binding allowed)
+        self.referenced: set | None = None
+        self.bind_at: int | None = None
         # a PROGRAM's scalars held in locals while its body runs (codegen_locals.py):
         # id(VarSymbol) -> local name; the ids of those the body stores
         self.promoted: dict = {}
@@ -189,6 +194,9 @@ class CodeGenBase:
         def _loop_budget_give(self, wd: str) -> None: ...
 
         def _watchdog_tick(self, wd: str) -> None: ...
+
+        # codegen_reuse
+        def _index_read(self, e: A.Index) -> str: ...
 
         # codegen_locals
         def _locals_begin(self, stmts: list) -> list: ...

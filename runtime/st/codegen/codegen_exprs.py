@@ -52,7 +52,7 @@ class ExprGen(CodeGenBase):
                 return f"{self.ex(e.base)}.{e.sym.pyname}.get()"
             return f"{self.ex(e.base)}.{e.sym.pyname}"
         if isinstance(e, A.Index):
-            return self._index_target(e)
+            return self._index_read(e)  # codegen_reuse.py
         if isinstance(e, A.AssignExpr):  # (x := v): stored when evaluated (checker_stmts.py)
             value = self.coerce(self.ex(e.value), e.value.ty, e.target.ty, e.value)
             return f"{self.const(refs.assign_get)}({self.ref_code(e.target)}, {value})"

@@ -40,6 +40,14 @@ from ..check.symbols import CallInfo, PropertyInfo, VarSymbol
 from . import ranges as R
 from .codegen_base import CodeGenBase
 
+
+def root_name(e: Any) -> Any:
+    """The variable an lvalue is part of (a[i].x.3: a), or None."""
+    while isinstance(e, (A.Index, A.Member, A.BitAccess)):
+        e = e.base
+    return e.sym if isinstance(e, A.Name) else None
+
+
 #: a statement's expressions call code that may write variables / assign inside an expression
 CALLS, ASSIGNS = 1, 2
 
@@ -96,9 +104,16 @@ def effects(exprs: list) -> int:
 
 def join(first: dict, *others: dict) -> dict:
     """What holds after any of the ways in: each range widened over all of
-    them; a variable without a fact on one way has none."""
-    out = {}
-    for key, (lo, hi) in first.items():
+    them; a variable without a fact on one way has none; an array element
+    bound to a local (codegen_reuse.py) stays bound where every way bound it
+    to the same local."""
+    out: dict = {}
+    for key, value in first.items():
+        if isinstance(value, str):
+            if all(other.get(key) == value for other in others):
+                out[key] = value
+            continue
+        lo, hi = value
         for other in others:
             rng = other.get(key)
             if rng is None:
@@ -164,10 +179,19 @@ class FactsGen(CodeGenBase):
             return
         if isinstance(target, A.Name) and target.implicit_ref is None:
             facts.pop(id(target.sym), None)
+            self._facts_forget_array(target.sym)
         elif not isinstance(target, A.BitAccess):  # a bit's store stores its base next
+            self._facts_forget_array(root_name(target))
             self._facts_forget_reachable()
             if target.implicit_ref is not None:
                 facts.clear()
+
+    def _facts_forget_array(self, sym: Any) -> None:
+        """A store into the variable sym: its elements bound to locals go (codegen_reuse.py)."""
+        facts = self.fn.facts
+        if facts and sym is not None:
+            for key in [k for k in facts if isinstance(k, tuple) and k[1] == id(sym)]:
+                del facts[key]
 
     def _fact_range(self, target: A.Expr, value: A.Expr) -> R.Range | None:
         """The range target := value stores without a wrap, if that can be

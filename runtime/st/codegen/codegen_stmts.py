@@ -21,7 +21,8 @@ from ..rtlib import rtlib
 from ..rtlib.rt_case import CaseTable
 from . import ranges as R
 from .codegen_base import elementary, py_literal
-from .codegen_facts import FactsGen, join
+from .codegen_facts import join
+from .codegen_reuse import ReuseGen
 
 
 def _int_literal(code: str) -> bool:
@@ -33,7 +34,7 @@ def _int_literal(code: str) -> bool:
 CASE_CHAIN = 64
 
 
-class StmtGen(FactsGen):
+class StmtGen(ReuseGen):
     """Statements, conversions on store and stores."""
 
     def _body(self, stmts: list) -> None:
@@ -366,10 +367,15 @@ class StmtGen(FactsGen):
             return
         tty = T.resolve(s.target.ty)
         if tty.is_aggregate:
+            self._facts_stored(s.target)
             self.emit(f"_assign_into({self.ex(s.target)}, {self.ex(s.value)})")
             return
         rng = self._fact_range(s.target, s.value)
-        self.emit_store(s.target, self.ex(s.value), s.value.ty, s.value)
+        self.fn.bind_at = self.indent  # its reads of array elements may be bound (codegen_reuse.py)
+        try:
+            self.emit_store(s.target, self.ex(s.value), s.value.ty, s.value)
+        finally:
+            self.fn.bind_at = None
         if rng is not None and isinstance(s.target, A.Name):
             self._fact_set(s.target.sym, rng)
 

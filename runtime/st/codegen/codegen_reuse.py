@@ -1,0 +1,128 @@
+"""An array element read once for the statements that follow.
+
+``last := accs[i].Step(x); check := check + accs[i].Total;`` reads
+``accs[i]`` twice: a subtraction and a subscript each time. Where nothing
+can change the element between the two reads, the first read is bound to a
+local before its statement (``_e7 = _a_v_accs[_i4 - 1]``) and the others
+use the local. That holds for an element ``B[i]`` when:
+
+* B is an array of this POU that no call can reach (a PROGRAM without
+  actions, methods or properties; a FUNCTION's local: codegen_facts.py), not
+  located, and no reference to it or into it is taken anywhere in the body
+  (ADR, REF, REF=, VAR_IN_OUT, =>, an assignment inside an expression);
+* every index is a constant or a FOR variable read from its loop local
+  (which its loop's body cannot change), and lies inside the bounds, so the
+  read cannot fault and may run before the rest of its statement;
+* the read is part of a plain assignment, whose expressions run once where
+  the statement stands.
+
+The bound element is one of the facts (codegen_facts.py): a store into B
+forgets it, and so do a loop's start and end, the join of branches that did
+not all bind it, a list with labels, an assignment inside an expression.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from .. import ast as A
+from .. import types as T
+from ..check.symbols import CallInfo, VarSymbol
+from . import ranges as R
+from .codegen_facts import FactsGen, root_name
+
+_SECTIONS = ("VAR", "VAR_TEMP", "VAR_INPUT", "VAR_OUTPUT")
+
+
+def referenced(stmts: list) -> set:
+    """Ids of the variables a reference is taken to or into anywhere in
+    stmts: ADR, REF, REF=, VAR_IN_OUT and => arguments, assignments inside
+    expressions."""
+    found: set = set()
+    todo: list = list(stmts)
+    while todo:
+        node = todo.pop()
+        if isinstance(node, (list, tuple)):
+            todo.extend(node)
+            continue
+        if not isinstance(node, A.Node):
+            continue
+        lvalues: list = []
+        if isinstance(node, A.Call) and isinstance(node.target, CallInfo):
+            info = node.target
+            lvalues += [a for _, a in info.inouts] + [t for _, t, _ in info.outputs]
+            if info.kind == "builtin" or info.eno is not None:
+                lvalues += list(info.args) + [info.eno]
+        elif isinstance(node, A.Assign) and node.op == "REF=":
+            lvalues.append(node.value)
+        elif isinstance(node, A.AssignExpr):
+            lvalues.append(node.target)
+        found.update(id(sym) for sym in map(root_name, lvalues) if sym is not None)
+        for f in node.__dataclass_fields__:
+            if f not in ("pos", "ty", "const", "sym", "implicit_ref", "via", "impl") and not (
+                f == "target" and isinstance(node, A.Call)
+            ):
+                value = getattr(node, f)
+                if isinstance(value, (A.Node, list, tuple)):
+                    todo.append(value)
+    return found
+
+
+class ReuseGen(FactsGen):
+    """Array elements bound to locals (the module docstring)."""
+
+    def _reuse_key(self, e: A.Index) -> tuple | None:
+        base = e.base
+        if not isinstance(base, A.Name) or not self._reusable_array(base.sym):
+            return None
+        arr = T.resolve(base.ty)
+        if not isinstance(arr, T.ArrayType) or arr.variable_length:
+            return None
+        keys: list = []
+        for ix, dim in zip(e.indices, arr.dims):
+            if isinstance(ix.const, int) and not isinstance(ix.const, bool):
+                key: Any = ix.const
+            elif isinstance(ix, A.Name) and id(ix.sym) in self.fn.for_locals:
+                key = id(ix.sym)
+            else:
+                return None
+            if dim is None or not R.within(self._range(ix), dim[0], dim[1]):
+                return None  # it may fault: it stays where it is
+            keys.append(key)
+        return ("elem", id(base.sym), tuple(keys))
+
+    def _reusable_array(self, sym: Any) -> bool:
+        pou = self.fn.pou
+        if (
+            not isinstance(sym, VarSymbol)
+            or pou is None
+            or sym.owner is not pou
+            or sym.section not in _SECTIONS
+            or sym.location is not None
+            or sym.address_taken
+            or sym.boxed
+            or not self._fact_stable(sym)
+        ):
+            return False
+        if self.fn.referenced is None:
+            self.fn.referenced = referenced(pou.node.body or [])
+        return id(sym) not in self.fn.referenced
+
+    def _index_read(self, e: A.Index) -> str:
+        """An element read: a local bound before an earlier statement, or
+        bound now, or read where it stands."""
+        facts = self.fn.facts
+        key = self._reuse_key(e) if facts is not None else None
+        if key is None:
+            return self._index_target(e)
+        assert facts is not None
+        bound = facts.get(key)
+        if bound is not None:
+            return bound
+        code = self._index_target(e)
+        if self.fn.bind_at != self.indent:  # not a plain assignment's own line
+            return code
+        local = self.tmp("e")
+        self.emit(f"{local} = {code}")
+        facts[key] = local
+        return local
