@@ -53,6 +53,11 @@ CALLS, ASSIGNS = 1, 2
 
 _SECTIONS = ("VAR", "VAR_TEMP", "VAR_INPUT", "VAR_OUTPUT")
 
+#: at most this many facts at a time: a branch copies them, and a long body
+#: with thousands of assignments would copy thousands at every IF (forgetting
+#: a fact is always safe, it only keeps a wrap or a check)
+FACTS_MAX = 48
+
 
 def _pure_call(info: Any) -> bool:
     """Whether a call runs no user code and writes nothing: an operator,
@@ -153,12 +158,15 @@ class FactsGen(CodeGenBase):
             return True
         return pou.kind == "PROGRAM" and not pou.actions and not pou.methods and not pou.properties
 
-    def _facts_before(self, exprs: list) -> int:
+    def _facts_before(self, exprs: list, narrows: bool = False) -> int:
         """Forget what the expressions of the statement about to be emitted
-        may change; their effects."""
+        may change; their effects (narrows: asked for a condition that may
+        narrow, else only when there are facts to forget)."""
         facts = self.fn.facts
         if facts is None:
             return CALLS | ASSIGNS
+        if not facts and not narrows:
+            return 0
         found = effects(exprs)
         if found & ASSIGNS:
             facts.clear()
@@ -206,7 +214,7 @@ class FactsGen(CodeGenBase):
 
     def _fact_set(self, sym: VarSymbol, rng: R.Range) -> None:
         facts = self.fn.facts
-        if facts is None:
+        if facts is None or (len(facts) >= FACTS_MAX and id(sym) not in facts):
             return
         facts[id(sym)] = rng
         if not self._fact_stable(sym):

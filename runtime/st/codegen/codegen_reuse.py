@@ -29,7 +29,7 @@ from .. import ast as A
 from .. import types as T
 from ..check.symbols import CallInfo, VarSymbol
 from . import ranges as R
-from .codegen_facts import FactsGen, root_name
+from .codegen_facts import FACTS_MAX, FactsGen, root_name
 
 _SECTIONS = ("VAR", "VAR_TEMP", "VAR_INPUT", "VAR_OUTPUT")
 
@@ -120,7 +120,7 @@ class ReuseGen(FactsGen):
         if bound is not None:
             return bound
         code = self._index_target(e)
-        if self.fn.bind_at != self.indent:  # not a plain assignment's own line
+        if self.fn.bind_at != self.indent or len(facts) >= FACTS_MAX:  # not a plain assignment's own line
             return code
         local = self.tmp("e")
         self.emit(f"{local} = {code}")

@@ -41,7 +41,9 @@ class StmtGen(ReuseGen):
         """A statement list, run once or not at all: the facts after it are
         those that hold either way (codegen_facts.py)."""
         start = len(self.out)
-        entry = self._facts_copy()
+        facts = self.fn.facts
+        # what held before: None where no facts are kept, () where none is known
+        entry = dict(facts) if facts else None if facts is None else ()
         if any(s.__class__ is A.Label and s.jumped_to for s in stmts):
             self.fn.facts = None  # a JMP may come back to any label: no facts
             self._dispatch(stmts)  # a JMP goes to a label here (codegen_jumps.py)
@@ -53,8 +55,8 @@ class StmtGen(ReuseGen):
                 self._stmt(s)
                 if self.fn.crossing:
                     self._after_loop()
-        if entry is not None and self.fn.facts is not None:
-            self.fn.facts = join(entry, self.fn.facts)
+        if entry is not None and self.fn.facts:
+            self.fn.facts = join(entry, self.fn.facts) if entry else {}
         if len(self.out) == start:
             self.emit("pass")
 
@@ -67,7 +69,7 @@ class StmtGen(ReuseGen):
             self._facts_before([s.call])
             self._call_stmt(s.call)
         elif isinstance(s, A.If):
-            found = self._facts_before([cond for cond, _ in s.branches])
+            found = self._facts_before([cond for cond, _ in s.branches], narrows=True)
             pre = self._facts_copy()
             exits: list = []
             for i, (cond, body) in enumerate(s.branches):
