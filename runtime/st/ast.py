@@ -11,8 +11,9 @@ checker compares ``name.upper()``.
 
 from __future__ import annotations
 
+import reprlib
 from collections.abc import Iterable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 
@@ -37,15 +38,24 @@ class Pos:
 NOPOS = Pos("<builtin>", 0, 0)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Node:
+    """Every node of the tree: where it was written."""
+
     pos: Pos = field(default=NOPOS, kw_only=True)
+
+    @reprlib.recursive_repr()
+    def __repr__(self) -> str:
+        # one for every node, as the dataclass would write it: a __repr__
+        # generated per class cost each start 55 exec calls
+        shown = ", ".join(f"{f.name}={getattr(self, f.name)!r}" for f in fields(self) if f.repr)
+        return f"{type(self).__qualname__}({shown})"
 
 
 # ---------------------------------------------------------------- expressions
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Expr(Node):
     # Set by the checker: the resolved type (runtime.st.types.Type).
     ty: Any = field(default=None, kw_only=True, repr=False)
@@ -56,7 +66,7 @@ class Expr(Node):
     implicit_ref: Any = field(default=None, kw_only=True, repr=False)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Literal(Expr):
     """A literal with its parsed Python value.
 
@@ -76,7 +86,7 @@ class Literal(Expr):
     doubled_underscore: bool = False  # a number with '__' (16#7f__ff); by profile only
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class EnumLiteral(Expr):
     """``Color#Red`` (type_name='Color') or a bare enumerator resolved later."""
 
@@ -84,7 +94,7 @@ class EnumLiteral(Expr):
     value_name: str
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class SchneiderAddress(Expr):
     """Schneider exchange address ``ADR#0.1.SYS`` -> parts ('0', '1', 'SYS')."""
 
@@ -111,12 +121,12 @@ class LocatedAddress:
     text: str = ""
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Located(Expr):
     addr: LocatedAddress
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Name(Expr):
     name: str
     sym: Any = field(default=None, kw_only=True, repr=False)
@@ -125,7 +135,7 @@ class Name(Expr):
     qualifier: str | None = field(default=None, kw_only=True)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Member(Expr):
     """``base.name`` (struct field, FB instance variable, enum ``Type.Value``)."""
 
@@ -134,7 +144,7 @@ class Member(Expr):
     sym: Any = field(default=None, kw_only=True, repr=False)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class BitAccess(Expr):
     """``w.3`` or ``w.%X3``: bit 3 of a bit-string or integer variable;
     size "B", "W", "D" or "L" for the partial access ``d.%B0``, ``d.%W1``
@@ -145,7 +155,7 @@ class BitAccess(Expr):
     size: str = "X"
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Index(Expr):
     """``a[i]`` or ``a[i, j]`` (one expression per dimension)."""
 
@@ -156,7 +166,7 @@ class Index(Expr):
     via: Any = field(default=None, kw_only=True, repr=False)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class AssignExpr(Expr):
     """``(target := value)`` used as a value (CODESYS): the value stored."""
 
@@ -164,20 +174,20 @@ class AssignExpr(Expr):
     value: Expr
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Deref(Expr):
     """``r^``"""
 
     base: Expr
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Unary(Expr):
     op: str  # 'NOT', '-', '+'
     operand: Expr
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Binary(Expr):
     """op: 'OR', 'OR_ELSE', 'XOR', 'AND', 'AND_THEN' ('&' is 'AND'), '=', '<>',
     '<', '>', '<=', '>=', '+', '-', '*', '/', 'MOD', '**'."""
@@ -196,7 +206,7 @@ class Binary(Expr):
     flexible: bool | None = field(default=None, kw_only=True, repr=False)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Arg(Node):
     """One call argument. name is None for a positional argument.
     output=True for ``name => target`` (value is then the target expression,
@@ -219,7 +229,7 @@ class ArgList(list):
         self.trailing_comma = trailing_comma
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Call(Expr):
     """A function call, or an FB instance call (as a statement)."""
 
@@ -234,23 +244,23 @@ class Call(Expr):
 # ---------------------------------------------------------------- types (syntax)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class TypeSpec(Node):
     pass
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class NamedType(TypeSpec):
     name: str
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class StringTypeSpec(TypeSpec):
     wide: bool
     length: Expr | None = None  # STRING[80] / STRING(80); None = default
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class ArrayTypeSpec(TypeSpec):
     """ranges: list of (lo, hi) expression pairs, or None for ``*``
     (variable-length array in VAR_IN_OUT)."""
@@ -260,13 +270,13 @@ class ArrayTypeSpec(TypeSpec):
     fb_inits: list | None = None  # CODESYS OF FB_X[(n := 1), ...]: a StructInit per element
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class StructTypeSpec(TypeSpec):
     members: list  # VarDecl
     extends: TypeSpec | None = None  # CODESYS: TYPE B EXTENDS A : STRUCT ... (A's fields first)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class EnumTypeSpec(TypeSpec):
     """values: list of (name, Expr|None, Pos); base: explicit base type of a
     typed enumeration ``(a, b) INT`` or ``INT (a := 1, b := 2)``."""
@@ -275,14 +285,14 @@ class EnumTypeSpec(TypeSpec):
     base: TypeSpec | None = None
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class SubrangeTypeSpec(TypeSpec):
     base: TypeSpec
     lo: Expr
     hi: Expr
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class RefTypeSpec(TypeSpec):
     """REF_TO T (pointer=False), POINTER TO T (pointer=True) or the CODESYS
     REFERENCE TO T (reference=True)."""
@@ -295,14 +305,14 @@ class RefTypeSpec(TypeSpec):
 # ---------------------------------------------------------------- initialisers
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class ArrayInit(Node):
     """``[1, 2, 3(0)]`` -> items of (count Expr|None, initialiser)."""
 
     items: list
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class StructInit(Node):
     """``(a := 1, b := [1, 2])`` -> fields of (name, initialiser, Pos)."""
 
@@ -315,7 +325,7 @@ Initializer = Expr | ArrayInit | StructInit
 # ---------------------------------------------------------------- declarations
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class VarDecl(Node):
     name: str
     type: TypeSpec
@@ -324,7 +334,7 @@ class VarDecl(Node):
     pragmas: list = field(default_factory=list)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class VarBlock(Node):
     """kind: 'VAR', 'VAR_INPUT', 'VAR_OUTPUT', 'VAR_IN_OUT', 'VAR_GLOBAL',
     'VAR_EXTERNAL', 'VAR_TEMP', 'VAR_STAT', 'VAR_CONFIG'."""
@@ -338,7 +348,7 @@ class VarBlock(Node):
     pragmas: list = field(default_factory=list)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class TypeDecl(Node):
     name: str
     spec: TypeSpec
@@ -346,7 +356,7 @@ class TypeDecl(Node):
     pragmas: list = field(default_factory=list)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class POU(Node):
     """kind: 'PROGRAM', 'FUNCTION', 'FUNCTION_BLOCK'."""
 
@@ -370,7 +380,7 @@ class POU(Node):
     properties: list = field(default_factory=list)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Action(Node):
     """``ACTION Name: ... END_ACTION``: more code of a PROGRAM or
     FUNCTION_BLOCK, on its variables. pou_name: the POU a top-level
@@ -383,7 +393,7 @@ class Action(Node):
     name_pos: Pos = NOPOS
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Method(Node):
     """A METHOD of a FUNCTION_BLOCK or INTERFACE (an interface's has no
     body; body is then None). modifiers: upper-case ABSTRACT, FINAL, PUBLIC ..."""
@@ -395,7 +405,7 @@ class Method(Node):
     modifiers: tuple = ()
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Property(Node):
     """A PROPERTY (CODESYS, TwinCAT): its GET and SET accessors are Methods
     (None where it has none; in an INTERFACE they have no body)."""
@@ -407,7 +417,7 @@ class Property(Node):
     modifiers: tuple = ()
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Interface(Node):
     """INTERFACE name EXTENDS bases: methods and properties without bodies."""
 
@@ -417,7 +427,7 @@ class Interface(Node):
     properties: list
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class TaskDecl(Node):
     """TASK name (INTERVAL := T#10ms, PRIORITY := 1, SINGLE := x)."""
 
@@ -425,7 +435,7 @@ class TaskDecl(Node):
     params: dict  # upper-cased param name -> Expr
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class ProgramConfig(Node):
     """PROGRAM inst WITH task : Type (args);"""
 
@@ -437,7 +447,7 @@ class ProgramConfig(Node):
     trailing_comma: Pos | None = None  # as in Call
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Resource(Node):
     name: str
     on: str | None
@@ -446,14 +456,14 @@ class Resource(Node):
     programs: list
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Configuration(Node):
     name: str
     var_blocks: list
     resources: list
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class SourceFile(Node):
     """One parsed file. decls: POU, TypeDecl, VarBlock (top-level VAR_GLOBAL,
     as a CODESYS GVL), Configuration."""
@@ -475,49 +485,49 @@ class SourceFile(Node):
 # ---------------------------------------------------------------- statements
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Stmt(Node):
     pragmas: list = field(default_factory=list, kw_only=True)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Assign(Stmt):
     target: Expr
     value: Expr
     op: str = ":="  # ':=', 'S=', 'R=', 'REF='
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class CallStmt(Stmt):
     call: Call
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class If(Stmt):
     branches: list  # (cond Expr, body list)
     else_body: list | None = None
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class CaseRange(Node):
     lo: Expr
     hi: Expr
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class CaseBranch(Node):
     labels: list  # Expr or CaseRange
     body: list
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Case(Stmt):
     selector: Expr
     branches: list  # CaseBranch
     else_body: list | None = None
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class For(Stmt):
     var: Name
     start: Expr
@@ -526,34 +536,34 @@ class For(Stmt):
     body: list
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class While(Stmt):
     cond: Expr
     body: list
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Repeat(Stmt):
     body: list
     cond: Expr
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Exit(Stmt):
     pass
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Continue(Stmt):
     pass
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Return(Stmt):
     pass
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class SetReset(Stmt):
     """Schneider ``SET x;`` / ``RESET x;`` (kind 'SET' or 'RESET')."""
 
@@ -561,7 +571,7 @@ class SetReset(Stmt):
     target: Expr
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Label(Stmt):
     """``name:`` before a statement (CODESYS/TwinCAT ST). jumped_to: set by
     the checker when a JMP names it."""
@@ -570,7 +580,7 @@ class Label(Stmt):
     jumped_to: bool = False
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class Jump(Stmt):
     """``JMP name;``. target: the Label, set by the checker."""
 
