@@ -21,6 +21,7 @@ Whatever the input, the user sees a message, never a Python traceback.
 
 from __future__ import annotations
 
+import gc
 import json
 import os
 import sys
@@ -177,7 +178,31 @@ def check(files, profile: str | None, all_errors: bool, libraries: tuple, code: 
         _explain(code)
     if not files:
         raise click.UsageError("Missing argument 'FILES...'.")
-    sys.exit(check_projects(list(files), profile, all_errors, _natives_for, libraries))
+    if _console:
+        gc.disable()  # the process ends with the check (_leave): nothing to collect
+    _leave(check_projects(list(files), profile, all_errors, _natives_for, libraries))
+
+
+#: whether this process is the console script's, which main() runs and
+#: ends (not a test's CliRunner nor an application calling the commands)
+_console = False
+
+
+def _leave(rc: int) -> None:
+    """End the command with exit code rc. The console script's process
+    leaves at once once its output is flushed: no collection of the checked
+    trees and no teardown of every module, which cost `softplc check` about
+    a tenth of its time (mypy leaves the same way). Only for a command that
+    leaves nothing behind: no thread, no child, no atexit work, no file
+    half written (the cache writes each entry with an atomic rename)."""
+    if not _console:
+        sys.exit(rc)
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (BrokenPipeError, OSError):  # `softplc check ... | head`: the reader left
+            pass
+    os._exit(rc)
 
 
 def _natives_for(files: list) -> tuple:
@@ -521,6 +546,8 @@ cli.add_command(sweep_cmd)
 
 def main(argv: list | None = None) -> None:
     """Console-script entry point: never lets a Python traceback reach the user."""
+    global _console
+    _console = True
     try:
         # standalone_mode=False: we map click's exceptions to our exit codes
         # ourselves (click would turn Ctrl-C into exit 1, our "compile error").

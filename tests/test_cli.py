@@ -122,6 +122,19 @@ def test_check_ok(st):
     assert proc.stderr.splitlines() == ["profile: codesys", "0 errors, 0 warnings"]
 
 
+def test_check_leaves_with_every_line_of_its_output(tmp_path):
+    # the console script's check ends with os._exit (cli._leave): nothing written is lost
+    for k in range(10):
+        body = "".join(f"x{i} := {i};\n" for i in range(40))
+        (tmp_path / f"p{k}.st").write_text(f"PROGRAM p{k}\n{body}END_PROGRAM\n", encoding="utf-8")
+    proc = softplc("check", tmp_path)
+    assert proc.returncode == 1
+    no_traceback(proc)
+    lines = proc.stderr.splitlines()
+    assert len([line for line in lines if ": error E010: unknown name" in line]) == 400
+    assert lines[-2:] == ["400 errors, 0 warnings", "for more on a code: softplc check --explain E010"]
+
+
 def test_check_broken_file(st):
     path = st("broken.st", BROKEN)
     proc = softplc("check", path)
