@@ -132,18 +132,23 @@ def join(first: dict, *others: dict) -> dict:
 class FactsGen(CodeGenBase):
     """Facts along a body (the module docstring)."""
 
+    def _own_unreferenced(self, sym: Any) -> bool:
+        """A variable of the POU being emitted, not located, that no
+        reference reaches (REF, ADR, VAR_IN_OUT, =>)."""
+        pou = self.fn.pou
+        return (
+            isinstance(sym, VarSymbol)
+            and pou is not None
+            and sym.owner is pou
+            and sym.section in _SECTIONS
+            and sym.location is None
+            and not sym.address_taken
+            and not sym.boxed
+        )
+
     def _fact_var(self, sym: Any) -> T.ElementaryType | None:
         """The integer type of a variable that may carry facts here, or None."""
-        pou = self.fn.pou
-        if (
-            not isinstance(sym, VarSymbol)
-            or pou is None
-            or sym.owner is not pou
-            or sym.section not in _SECTIONS
-            or sym.location is not None
-            or sym.address_taken
-            or sym.boxed
-        ):
+        if not self._own_unreferenced(sym):
             return None
         be = T.base_elementary(sym.type)
         if be is None or not (be.is_intlike or be.is_time) or be.lo is None or be.hi is None:

@@ -27,11 +27,9 @@ from typing import Any
 
 from .. import ast as A
 from .. import types as T
-from ..check.symbols import CallInfo, VarSymbol
+from ..check.symbols import CallInfo
 from . import ranges as R
 from .codegen_facts import FACTS_MAX, FactsGen, root_name
-
-_SECTIONS = ("VAR", "VAR_TEMP", "VAR_INPUT", "VAR_OUTPUT")
 
 
 def referenced(stmts: list) -> set:
@@ -93,16 +91,7 @@ class ReuseGen(FactsGen):
 
     def _reusable_array(self, sym: Any) -> bool:
         pou = self.fn.pou
-        if (
-            not isinstance(sym, VarSymbol)
-            or pou is None
-            or sym.owner is not pou
-            or sym.section not in _SECTIONS
-            or sym.location is not None
-            or sym.address_taken
-            or sym.boxed
-            or not self._fact_stable(sym)
-        ):
+        if pou is None or not self._own_unreferenced(sym) or not self._fact_stable(sym):
             return False
         if self.fn.referenced is None:
             self.fn.referenced = referenced(pou.node.body or [])

@@ -72,16 +72,14 @@ def test_what_a_branch_loop_or_jump_stores_is_not_forgotten(body, x):
     assert r.get("x") == x
 
 
-def test_a_method_call_forgets_what_was_known_of_the_blocks_variables():
-    text = """
+def block_n(members: str, body: str, before: str = "", var: str = "") -> int:
+    """n of an FB_Acc with the members and body given (n : INT declared),
+    after one call from main."""
+    text = f"""{before}
 FUNCTION_BLOCK FB_Acc
-VAR n : INT; END_VAR
-METHOD Fill
-n := 32767;
-END_METHOD
-n := 0;
-THIS^.Fill();
-n := n + 1;
+VAR n : INT; {var} END_VAR
+{members}
+{body}
 END_FUNCTION_BLOCK
 PROGRAM main
 VAR a : FB_Acc; x : INT; END_VAR
@@ -89,54 +87,23 @@ a();
 x := a.n;
 END_PROGRAM
 """
-    assert run_st(text).get("x") == -32768
+    return run_st(text).get("x")
+
+
+def test_a_method_call_forgets_what_was_known_of_the_blocks_variables():
+    assert block_n("METHOD Fill\nn := 32767;\nEND_METHOD", "n := 0; THIS^.Fill(); n := n + 1;") == -32768
 
 
 def test_a_property_setter_forgets_what_was_known_of_the_blocks_variables():
-    text = """
-FUNCTION_BLOCK FB_Acc
-VAR n : INT; END_VAR
-PROPERTY Level : INT
-GET Level := n; END_GET
-SET n := 32767; END_SET
-END_PROPERTY
-n := 0;
-Level := 1;
-n := n + 1;
-END_FUNCTION_BLOCK
-PROGRAM main
-VAR a : FB_Acc; x : INT; END_VAR
-a();
-x := a.n;
-END_PROGRAM
-"""
-    assert run_st(text).get("x") == -32768
+    prop = "PROPERTY Level : INT\nGET Level := n; END_GET\nSET n := 32767; END_SET\nEND_PROPERTY"
+    assert block_n(prop, "n := 0; Level := 1; n := n + 1;") == -32768
 
 
 def test_a_call_through_a_reference_to_the_instance_forgets_its_variables():
-    # B holds a reference to A and fills A's counter while A's body runs
-    text = """
-FUNCTION_BLOCK FB_B
-VAR owner : REFERENCE TO FB_A; END_VAR
-owner.Fill();
-END_FUNCTION_BLOCK
-FUNCTION_BLOCK FB_A
-VAR n : INT; helper : FB_B; END_VAR
-METHOD Fill
-n := 32767;
-END_METHOD
-helper.owner REF= THIS^;
-n := 0;
-helper();
-n := n + 1;
-END_FUNCTION_BLOCK
-PROGRAM main
-VAR a : FB_A; x : INT; END_VAR
-a();
-x := a.n;
-END_PROGRAM
-"""
-    assert run_st(text).get("x") == -32768
+    # B holds a reference to the block and fills its counter while the block's body runs
+    helper = "FUNCTION_BLOCK FB_B\nVAR owner : REFERENCE TO FB_Acc; END_VAR\nowner.Fill();\nEND_FUNCTION_BLOCK"
+    body = "helper.owner REF= THIS^; n := 0; helper(); n := n + 1;"
+    assert block_n("METHOD Fill\nn := 32767;\nEND_METHOD", body, before=helper, var="helper : FB_B;") == -32768
 
 
 def test_a_programs_action_or_method_may_change_its_variables():
@@ -195,25 +162,8 @@ def test_an_assignment_inside_a_condition_forgets_what_was_known():
 
 
 def test_a_condition_that_calls_code_narrows_nothing():
-    text = """
-FUNCTION_BLOCK FB_Acc
-VAR n : INT; END_VAR
-METHOD Fill : BOOL
-n := 32767;
-Fill := TRUE;
-END_METHOD
-n := 0;
-IF n < 10 AND Fill() THEN
-    n := n + 1;
-END_IF
-END_FUNCTION_BLOCK
-PROGRAM main
-VAR a : FB_Acc; x : INT; END_VAR
-a();
-x := a.n;
-END_PROGRAM
-"""
-    assert run_st(text).get("x") == -32768
+    method = "METHOD Fill : BOOL\nn := 32767;\nFill := TRUE;\nEND_METHOD"
+    assert block_n(method, "n := 0;\nIF n < 10 AND Fill() THEN\n    n := n + 1;\nEND_IF") == -32768
 
 
 def test_an_index_known_in_range_is_read_and_one_maybe_out_of_range_is_checked():
