@@ -13,9 +13,10 @@ reached by a reference (REF, ADR, VAR_IN_OUT, =>: ``address_taken``). Of those,
 what a call can still reach:
 
 * a FUNCTION's or METHOD's variables and a body's VAR_TEMP are Python locals
-  no call can reach, nor can anything reach a PROGRAM's without actions or
-  methods (no other POU names a program's variables, and a program is
-  called only by its task): their facts survive every call;
+  no call can reach, nor can anything reach a PROGRAM's without actions,
+  methods, properties or SFC steps (no other POU names a program's
+  variables, and a program is called only by its task): their facts survive
+  every call;
 * an FB's own variables can be reached by a call that has a reference to the
   instance (THIS, an interface, a REFERENCE TO), or by one of its methods:
   any call that may run user code (a FUNCTION, an FB, a method, a property,
@@ -161,7 +162,7 @@ class FactsGen(CodeGenBase):
         assert pou is not None  # _fact_var said yes
         if pou.kind == "FUNCTION" or self._temp_local(sym):
             return True
-        return pou.kind == "PROGRAM" and not pou.actions and not pou.methods and not pou.properties
+        return pou.kind == "PROGRAM" and not (pou.actions or pou.methods or pou.properties or pou.sfc)
 
     def _facts_before(self, exprs: list, narrows: bool = False) -> int:
         """Forget what the expressions of the statement about to be emitted
