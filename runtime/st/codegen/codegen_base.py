@@ -120,6 +120,18 @@ class CodeGenBase:
     #: False only to measure what they cost (benchmarks/bench_loops.py)
     watchdog_checks = True
 
+    #: the facts, locals and bound elements (codegen_facts.py, codegen_locals.py,
+    #: codegen_reuse.py) and a result stored first without its default; False
+    #: only to compare against the plain code (tests/st/codegen/test_codegen_plain.py)
+    optimise = True
+
+    def _body_state(self, pou: POUInfo) -> FnState:
+        """The state for emitting a body of pou: facts kept unless not optimise."""
+        fn = FnState(pou)
+        if not self.optimise:
+            fn.facts = None
+        return fn
+
     def __init__(self, checked: CheckedProgram, profile: Profile) -> None:
         self.prog = checked
         self.profile = profile

@@ -120,6 +120,8 @@ class LocalsGen(CodeGenBase):
         pou = self.fn.pou
         if pou is None or pou.kind != "PROGRAM" or pou.actions or pou.methods or pou.properties or pou.sfc:
             return []
+        if not self.optimise:
+            return []
         syms = [sym for sym, n in uses(stmts).values() if n > 1 and self._promotable(sym)]
         if not syms:
             return []

@@ -272,7 +272,7 @@ class PouGen(SfcGen):
 
     def _fb_class(self, pou: POUInfo) -> None:
         self.pos = pou.node.pos
-        self.fn = FnState(pou)
+        self.fn = self._body_state(pou)
         self.emit("")
         self.emit(self._class_header(pou))  # class X, or class X(Base) (codegen_oop.py)
         self.indent += 1
@@ -334,7 +334,7 @@ class PouGen(SfcGen):
         self.indent -= 1
         for act in pou.actions.values():  # an ACTION: a method on the same variables
             self.pos = act.node.pos
-            self.fn = FnState(pou)
+            self.fn = self._body_state(pou)
             self.emit("")
             self.emit(f"def {act.pyname}(self):")
             self.indent += 1
@@ -395,7 +395,7 @@ class PouGen(SfcGen):
         """A FUNCTION, or (method) a METHOD or PROPERTY accessor of the
         class being emitted: the same, with self first."""
         self.pos = pou.node.pos
-        self.fn = FnState(pou)
+        self.fn = self._body_state(pou)
         inputs = pou.params("VAR_INPUT", "VAR_IN_OUT")
         outputs = pou.params("VAR_OUTPUT")
         params = []
@@ -420,7 +420,8 @@ class PouGen(SfcGen):
             if v.boxed and v.section == "VAR_INPUT":
                 self.emit(f"{v.pyname} = _CellRef({v.pyname})")
         res = pou.result
-        if res is not None and (res.boxed or T.resolve(res.type).is_aggregate or not stored_first(pou.node.body, res)):
+        plain = res is not None and (res.boxed or T.resolve(res.type).is_aggregate or not self.optimise)
+        if res is not None and (plain or not stored_first(pou.node.body, res)):
             self.emit(f"r_result = {self._default_code(res.type)}")
             if res.boxed:
                 self.emit("r_result = _CellRef(r_result)")
