@@ -22,6 +22,7 @@ its slot, and while the body runs no other code can name them.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from typing import Any
 
 from .. import ast as A
@@ -34,26 +35,20 @@ _SKIP = frozenset(("pos", "ty", "const", "sym", "pragmas", "qualifier", "flexibl
 _FIELDS: dict[type, tuple] = {}
 
 
-def uses(stmts: list) -> dict:
-    """id(VarSymbol) -> [sym, uses] of the names in stmts; a use inside a
-    loop counts twice (it runs many times). A loop over the tree: a chain
-    of operators may be 10,000 long."""
-    found: dict = {}
-    todo: list = [(s, 1) for s in stmts]
+def walk(stmts: list) -> Iterator[tuple[A.Node, bool]]:
+    """Every node of stmts (statements and their expressions; not the
+    checker's annotations), with whether it lies inside a loop. A loop over
+    the tree: a chain of operators may be 10,000 long."""
+    todo: list = [(s, False) for s in stmts]
     while todo:
-        node, weight = todo.pop()
+        node, in_loop = todo.pop()
         if isinstance(node, (list, tuple)):
-            todo.extend((n, weight) for n in node)
+            todo.extend((n, in_loop) for n in node)
             continue
         if not isinstance(node, A.Node):
             continue
-        if node.__class__ is A.Name:
-            if isinstance(node.sym, VarSymbol):
-                entry = found.setdefault(id(node.sym), [node.sym, 0])
-                entry[1] += weight
-            continue
-        if isinstance(node, (A.For, A.While, A.Repeat)):
-            weight = 2
+        yield node, in_loop
+        in_loop = in_loop or isinstance(node, (A.For, A.While, A.Repeat))
         fields = _FIELDS.get(node.__class__)
         if fields is None:
             fields = _FIELDS[node.__class__] = tuple(
@@ -63,25 +58,25 @@ def uses(stmts: list) -> dict:
             )
         for f in fields:
             value = getattr(node, f)
-            if value is not None and not isinstance(value, (str, int, float)):
-                todo.append((value, weight))
+            if isinstance(value, (A.Node, list, tuple)):
+                todo.append((value, in_loop))
+
+
+def uses(stmts: list) -> dict:
+    """id(VarSymbol) -> [sym, uses] of the names in stmts; a use inside a
+    loop counts twice (it runs many times)."""
+    found: dict = {}
+    for node, in_loop in walk(stmts):
+        if node.__class__ is A.Name and isinstance(node.sym, VarSymbol):
+            entry = found.setdefault(id(node.sym), [node.sym, 0])
+            entry[1] += 2 if in_loop else 1
     return found
 
 
-def _leaves(stmt: Any) -> bool:
+def _leaves(stmt: A.Stmt) -> bool:
     """Whether a statement may leave the body or go elsewhere in it
     (RETURN, JMP, a label)."""
-    todo = [stmt]
-    while todo:
-        node = todo.pop()
-        if isinstance(node, (A.Return, A.Jump, A.Label)):
-            return True
-        if isinstance(node, (A.If, A.Case, A.For, A.While, A.Repeat)):
-            for branch in getattr(node, "branches", ()):
-                todo.extend(branch[1] if isinstance(branch, tuple) else branch.body)
-            todo.extend(getattr(node, "body", None) or ())
-            todo.extend(getattr(node, "else_body", None) or ())
-    return False
+    return any(isinstance(node, (A.Return, A.Jump, A.Label)) for node, _ in walk([stmt]))
 
 
 def stored_first(stmts: list, sym: VarSymbol) -> bool:

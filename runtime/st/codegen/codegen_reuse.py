@@ -30,6 +30,7 @@ from .. import types as T
 from ..check.symbols import CallInfo
 from . import ranges as R
 from .codegen_facts import FACTS_MAX, FactsGen, root_name
+from .codegen_locals import walk
 
 
 def referenced(stmts: list) -> set:
@@ -37,14 +38,7 @@ def referenced(stmts: list) -> set:
     stmts: ADR, REF, REF=, VAR_IN_OUT and => arguments, assignments inside
     expressions."""
     found: set = set()
-    todo: list = list(stmts)
-    while todo:
-        node = todo.pop()
-        if isinstance(node, (list, tuple)):
-            todo.extend(node)
-            continue
-        if not isinstance(node, A.Node):
-            continue
+    for node, _ in walk(stmts):
         lvalues: list = []
         if isinstance(node, A.Call) and isinstance(node.target, CallInfo):
             info = node.target
@@ -56,13 +50,6 @@ def referenced(stmts: list) -> set:
         elif isinstance(node, A.AssignExpr):
             lvalues.append(node.target)
         found.update(id(sym) for sym in map(root_name, lvalues) if sym is not None)
-        for f in node.__dataclass_fields__:
-            if f not in ("pos", "ty", "const", "sym", "implicit_ref", "via", "impl") and not (
-                f == "target" and isinstance(node, A.Call)
-            ):
-                value = getattr(node, f)
-                if isinstance(value, (A.Node, list, tuple)):
-                    todo.append(value)
     return found
 
 
