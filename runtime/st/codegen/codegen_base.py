@@ -28,6 +28,10 @@ if TYPE_CHECKING:
     from ..check.checker import CheckedProgram
 
 
+#: the sections of a POU's own variables that its body alone may name (not VAR_IN_OUT, not globals)
+_OWN_SECTIONS = ("VAR", "VAR_TEMP", "VAR_INPUT", "VAR_OUTPUT")
+
+
 def py_literal(v: Any) -> str:
     """Python source for a parsed scalar value."""
     if isinstance(v, bool):
@@ -175,6 +179,28 @@ class CodeGenBase:
         the ranges of FOR variables, and the facts (codegen_facts.py)."""
         facts = self.fn.facts
         return R.value_range(e, ChainMap(self.fn.loop_ranges, facts) if facts else self.fn.loop_ranges)
+
+    def _own_unreferenced(self, sym: Any) -> bool:
+        """A variable of the POU being emitted, not located, that no
+        reference reaches (REF, ADR, VAR_IN_OUT, =>): only its own code
+        names it (codegen_facts.py, codegen_locals.py, codegen_reuse.py)."""
+        pou = self.fn.pou
+        return (
+            isinstance(sym, VarSymbol)
+            and pou is not None
+            and sym.owner is pou
+            and sym.section in _OWN_SECTIONS
+            and sym.location is None
+            and not sym.address_taken
+            and not sym.boxed
+        )
+
+    @staticmethod
+    def _closed_program(pou: POUInfo) -> bool:
+        """A PROGRAM whose variables no code but its body's can reach while
+        it runs: no other POU names a program's variables, a task alone
+        calls it, and it has no actions, methods, properties or SFC steps."""
+        return pou.kind == "PROGRAM" and not (pou.actions or pou.methods or pou.properties or pou.sfc)
 
     @staticmethod
     def _temp_local(v: VarSymbol) -> bool:

@@ -52,8 +52,6 @@ def root_name(e: Any) -> Any:
 #: a statement's expressions call code that may write variables / assign inside an expression
 CALLS, ASSIGNS = 1, 2
 
-_SECTIONS = ("VAR", "VAR_TEMP", "VAR_INPUT", "VAR_OUTPUT")
-
 #: at most this many facts at a time: a branch copies them, and a long body
 #: with thousands of assignments would copy thousands at every IF (forgetting
 #: a fact is always safe, it only keeps a wrap or a check)
@@ -133,20 +131,6 @@ def join(first: dict, *others: dict) -> dict:
 class FactsGen(CodeGenBase):
     """Facts along a body (the module docstring)."""
 
-    def _own_unreferenced(self, sym: Any) -> bool:
-        """A variable of the POU being emitted, not located, that no
-        reference reaches (REF, ADR, VAR_IN_OUT, =>)."""
-        pou = self.fn.pou
-        return (
-            isinstance(sym, VarSymbol)
-            and pou is not None
-            and sym.owner is pou
-            and sym.section in _SECTIONS
-            and sym.location is None
-            and not sym.address_taken
-            and not sym.boxed
-        )
-
     def _fact_var(self, sym: Any) -> T.ElementaryType | None:
         """The integer type of a variable that may carry facts here, or None."""
         if not self._own_unreferenced(sym):
@@ -162,7 +146,7 @@ class FactsGen(CodeGenBase):
         assert pou is not None  # _fact_var said yes
         if pou.kind == "FUNCTION" or self._temp_local(sym):
             return True
-        return pou.kind == "PROGRAM" and not (pou.actions or pou.methods or pou.properties or pou.sfc)
+        return self._closed_program(pou)
 
     def _facts_before(self, exprs: list, narrows: bool = False) -> int:
         """Forget what the expressions of the statement about to be emitted

@@ -30,7 +30,6 @@ from .. import types as T
 from ..check.symbols import VarSymbol
 from .codegen_base import CodeGenBase
 
-_SECTIONS = ("VAR", "VAR_INPUT", "VAR_OUTPUT")
 _SKIP = frozenset(("pos", "ty", "const", "sym", "pragmas", "qualifier", "flexible", "implicit_ref", "impl", "via"))
 _FIELDS: dict[type, tuple] = {}
 
@@ -95,17 +94,13 @@ class LocalsGen(CodeGenBase):
     """The program's scalars in locals (the module docstring)."""
 
     def _promotable(self, sym: Any) -> bool:
-        pou = self.fn.pou
-        be = T.base_elementary(sym.type)
+        """An elementary variable of the program's own, in a slot of self
+        (a VAR_TEMP that no reference reaches is a Python local already)."""
         return (
-            pou is not None
-            and sym.owner is pou
-            and sym.section in _SECTIONS
-            and sym.location is None
-            and not sym.address_taken
-            and not sym.boxed
+            self._own_unreferenced(sym)
+            and sym.section != "VAR_TEMP"
             and not sym.constant
-            and be is not None
+            and T.base_elementary(sym.type) is not None
             and not T.resolve(sym.type).is_aggregate
         )
 
@@ -113,9 +108,7 @@ class LocalsGen(CodeGenBase):
         """Before a PROGRAM's body: its scalars read into locals and a try
         opened; returns them (for _locals_end)."""
         pou = self.fn.pou
-        if pou is None or pou.kind != "PROGRAM" or pou.actions or pou.methods or pou.properties or pou.sfc:
-            return []
-        if not self.optimise:
+        if not self.optimise or pou is None or not self._closed_program(pou):
             return []
         syms = [sym for sym, n in uses(stmts).values() if n > 1 and self._promotable(sym)]
         if not syms:

@@ -420,8 +420,15 @@ class PouGen(SfcGen):
             if v.boxed and v.section == "VAR_INPUT":
                 self.emit(f"{v.pyname} = _CellRef({v.pyname})")
         res = pou.result
-        plain = res is not None and (res.boxed or T.resolve(res.type).is_aggregate or not self.optimise)
-        if res is not None and (plain or not stored_first(pou.node.body, res)):
+        # no default for a scalar result the body stores first (an aggregate's store copies into it)
+        first = (
+            self.optimise
+            and res is not None
+            and not res.boxed
+            and not T.resolve(res.type).is_aggregate
+            and stored_first(pou.node.body, res)
+        )
+        if res is not None and not first:
             self.emit(f"r_result = {self._default_code(res.type)}")
             if res.boxed:
                 self.emit("r_result = _CellRef(r_result)")
