@@ -40,6 +40,7 @@ from .. import types as T
 from ..check.symbols import CallInfo, PropertyInfo, VarSymbol
 from . import ranges as R
 from .codegen_base import CodeGenBase
+from .codegen_locals import walk
 
 
 def root_name(e: Any) -> Any:
@@ -68,41 +69,34 @@ def _pure_call(info: Any) -> bool:
     return info.kind == "std" and not any(a is not None and T.resolve(a.ty).is_ref for a in info.args)
 
 
+#: the nodes effects() knows; another (AssignExpr, or one it does not know) is assumed to call and assign
+_KNOWN = (
+    A.Binary,
+    A.Unary,
+    A.Name,
+    A.Member,
+    A.Call,
+    A.Arg,
+    A.Index,
+    A.BitAccess,
+    A.Deref,
+    A.Literal,
+    A.EnumLiteral,
+    A.Located,
+)
+
+
 def effects(exprs: list) -> int:
-    """CALLS and ASSIGNS found in expressions (a loop: a chain of operators
-    may be 10,000 long)."""
+    """CALLS and ASSIGNS found in expressions."""
     found = 0
-    todo = [e for e in exprs if e is not None]
-    while todo:
-        e = todo.pop()
-        cls = e.__class__
-        if cls is A.Binary:
-            todo.append(e.left)
-            todo.append(e.right)
-        elif cls is A.Unary:
-            todo.append(e.operand)
-        elif cls is A.Name or cls is A.Member:
-            if isinstance(e.sym, PropertyInfo):
-                found |= CALLS  # a getter or setter runs
-            if cls is A.Member:
-                todo.append(e.base)
-        elif cls is A.Call:
-            if not _pure_call(e.target):
+    for node, _ in walk([e for e in exprs if e is not None]):
+        if isinstance(node, A.Call):
+            if not _pure_call(node.target):
                 found |= CALLS
-            todo.append(e.callee)
-            todo.extend(a.value for a in e.args if a.value is not None)
-        elif cls is A.Index:
-            todo.append(e.base)
-            todo.extend(e.indices)
-        elif cls is A.BitAccess:
-            todo.append(e.base)
-            todo.append(e.bit)
-        elif cls is A.Deref:
-            todo.append(e.base)
-        elif cls is A.AssignExpr:
+        elif isinstance(node, (A.Name, A.Member)) and isinstance(node.sym, PropertyInfo):
+            found |= CALLS  # a getter or setter runs
+        elif not isinstance(node, _KNOWN):
             return found | ASSIGNS | CALLS
-        elif not isinstance(e, (A.Literal, A.EnumLiteral, A.Located)):
-            return found | ASSIGNS | CALLS  # a node this walk does not know: assume the worst
     return found
 
 
