@@ -6,10 +6,11 @@ can change the element between the two reads, the first read is bound to a
 local before its statement (``_e7 = _a_v_accs[_i4 - 1]``) and the others
 use the local. That holds for an element ``B[i]`` when:
 
-* B is an array of this POU that no call can reach (a PROGRAM without
-  actions, methods or properties; a FUNCTION's local: codegen_facts.py), not
-  located, and no reference to it or into it is taken anywhere in the body
-  (ADR, REF, REF=, VAR_IN_OUT, =>, an assignment inside an expression);
+* B is an array of this POU that no call can reach (a FUNCTION's local, or
+  a PROGRAM's without actions, methods, properties or SFC steps:
+  CodeGenBase._closed_program), not located, and no reference to it or
+  into it is taken anywhere in the body (ADR, REF, REF=, VAR_IN_OUT, =>,
+  an assignment inside an expression);
 * every index is a constant or a FOR variable read from its loop local
   (which its loop's body cannot change), and lies inside the bounds, so the
   read cannot fault and may run before the rest of its statement;
