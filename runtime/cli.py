@@ -503,7 +503,10 @@ def test_cmd(paths: tuple, junit: str | None, pattern: str | None, timeout: int,
     Exit codes: 0 every test passed, 1 a test failed, 2 bad configuration,
     ST files or option, or no test found.
     """
-    from .testing.command import run_tests
+    from .collector import collector_off
+
+    with collector_off():  # the imports of the engine and the compile side
+        from .testing.command import run_tests
 
     label: str | None = None
     if default_plant:

@@ -23,6 +23,7 @@ from pathlib import Path
 
 from ...fblocks.iec.functions import STANDARD_FUNCTIONS
 from .. import cache
+from ..collector import collector_off
 from ..image.memory import ProcessImage
 from ..plugin.registry import plugin_libraries, plugin_natives
 from ..plugin.seams import StLibrary
@@ -35,7 +36,6 @@ from ..st.importers import source_files
 from ..st.limits import MAX_SOURCE_CHARS
 from ..st.profile import DEFAULT, Profile, get_profile
 from ..st.syntax.pragmas import attribute_value
-from .collector import collector_off
 from .libraries import parse_cached, parser_code
 from .loaded import Program
 from .reparse import parse_views

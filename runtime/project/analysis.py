@@ -23,7 +23,7 @@ import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from ..program.collector import collector_off
+from ..collector import collector_off
 from ..program.compile import build_parsed, check_parsed, words_of
 from ..program.libraries import parse_cached
 from ..program.loaded import Program

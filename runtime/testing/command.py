@@ -71,6 +71,7 @@ def run_tests(
 ) -> int:
     """softplc test of [CONFIG] FILE...: the exit code. config_label: how
     the header names CONFIG (the default plant's path is a package's)."""
+    from ..collector import collector_off
     from ..config import ConfigError
     from ..engine.scan import EngineError
     from ..engine.tasks import TaskSetupError
@@ -89,7 +90,8 @@ def run_tests(
             _err(f"softplc test: {f}: no such file")
             return EXIT_USAGE
     try:
-        suite = TestSuite.load(config, files)
+        with collector_off():
+            suite = TestSuite.load(config, files)
     except ConfigError as e:
         _err(f"softplc: {e}")
         return EXIT_USAGE

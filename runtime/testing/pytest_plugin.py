@@ -40,6 +40,13 @@ def pytest_configure(config: pytest.Config) -> None:
 
 
 def _build(where: Path, *, config=None, st=None, watch=(), **options: Any) -> PLC:
+    from ..collector import collector_off
+
+    with collector_off():  # the imports, the compile and the engine's build
+        return _built(where, config=config, st=st, watch=watch, **options)
+
+
+def _built(where: Path, *, config=None, st=None, watch=(), **options: Any) -> PLC:
     from .plc import PLC
 
     if config is not None and st is not None:

@@ -5,7 +5,12 @@ trace in the report of a failed test."""
 
 from __future__ import annotations
 
+import gc
+from pathlib import Path
+
 import pytest
+
+from softplc.runtime.testing import pytest_plugin
 
 pytest_plugins = ["pytester"]
 
@@ -107,3 +112,54 @@ def test_a_bad_marker_is_a_usage_error(suite):
     result = suite.runpytest_subprocess()
     result.stdout.fnmatch_lines(["*softplc: give config or st, not both*"])
     assert result.ret != 0
+
+
+@pytest.fixture
+def passes():
+    """The garbage collector's passes while the test runs (their generations), with it on."""
+    seen: list[int] = []
+
+    def count(phase: str, info: dict) -> None:
+        if phase == "start":
+            seen.append(info["generation"])
+
+    was_on = gc.isenabled()
+    gc.enable()
+    gc.callbacks.append(count)
+    yield seen
+    gc.callbacks.remove(count)
+    if not was_on:
+        gc.disable()
+
+
+def test_the_build_runs_without_a_garbage_collection(passes, tmp_path: Path, monkeypatch):
+    """The imports, the compile and the engine's build allocate mostly what
+    stays alive: the collector is held off meanwhile (runtime/collector.py)."""
+    during: list[int] = []
+    built = pytest_plugin._built
+
+    def observed(*args, **kwargs):
+        first = len(passes)  # held off from here (a pass may have come before the build)
+        try:
+            return built(*args, **kwargs)
+        finally:
+            during.extend(passes[first:])  # still held off: the pass due comes after the build
+
+    monkeypatch.setattr(pytest_plugin, "_built", observed)
+    plc = pytest_plugin._build(tmp_path, st=PROGRAM)
+    try:
+        plc["Main.go"] = True
+        plc.step(2)
+        assert plc["Main.count"] == 2
+    finally:
+        plc.stop()
+    assert during == []
+    assert gc.isenabled()
+
+
+def test_the_same_build_would_collect_with_the_collector_on(passes, tmp_path: Path):
+    """What the test above proves: a PLC's build allocates enough to set the collector off."""
+    gc.collect()
+    plc = pytest_plugin._built(tmp_path, st=PROGRAM.replace("Main", "Other"))
+    plc.stop()
+    assert passes

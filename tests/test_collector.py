@@ -5,8 +5,8 @@ import gc
 
 import pytest
 
+from softplc.runtime.collector import collector_off
 from softplc.runtime.program import check_files, compile_files
-from softplc.runtime.program.collector import collector_off
 from softplc.runtime.st.diagnostics import CompileError
 
 GOOD = "PROGRAM Main VAR n : INT; END_VAR n := n + 1; END_PROGRAM"

@@ -1,5 +1,5 @@
 """Python's cyclic garbage collector off while a program is checked or
-compiled.
+compiled, and while softplc starts.
 
 A check or a compile makes hundreds of thousands of objects that live
 until it ends (trees read back from the parse cache, the checker's
@@ -13,9 +13,16 @@ leaves as garbage (some 100,000 in rings, for TcUnit) are collected with
 the young objects at the first collection after it: one walk instead of
 hundreds. mypy does the same with a high threshold.
 
-Used around the compile side's entry points. When the collector is off
-already (an online change in a running PLC turns it off and decides
-itself what happens after: engine/change_memory.py), it is left as it is.
+A start-up is the same: the imports of the engine and the compile side
+and the build of an engine allocate mostly what stays alive, and the
+collector ran about 100 passes over it for nothing in the pytest fixture's
+build (a tenth of its start-up). So the fixture's build and `softplc
+test`'s imports and load run with it off too.
+
+Used around the compile side's entry points and those start-ups. When
+the collector is off already (an online change in a running PLC turns it
+off and decides itself what happens after: engine/change_memory.py), it
+is left as it is.
 """
 
 from __future__ import annotations
