@@ -534,9 +534,13 @@ def test_cmd(paths: tuple, junit: str | None, pattern: str | None, timeout: int,
 def is_test_project(path: str) -> bool:
     """Whether test's one argument is a project (a folder, a TwinCAT
     .sln/.tsproj/.plcproj) rather than a test file."""
+    if Path(path).is_dir():
+        return True
+    if path.lower().endswith(".st"):
+        return False  # the usual test file, told without loading the project readers
     from .project.discover import is_project_file
 
-    return Path(path).is_dir() or is_project_file(path)
+    return is_project_file(path)
 
 
 # ---------------------------------------------------------------- entry point

@@ -7,31 +7,31 @@ replaces a project file (.plcproj) by the sources it lists."""
 
 from __future__ import annotations
 
+from importlib import import_module
+
 from ..diagnostics import DiagnosticBag
-from ..syntax.st_grammar import grammar
-from . import fbd, ld  # noqa: F401  (they register the FBD and LD body languages)
-from .bodies import LANGUAGES
-from .codesys23 import codesys23_views, is_codesys23
-from .plcopen import plcopen_views
-from .sfc import sfc_body
-from .twincat import plcproj_files, twincat_views
 from .view import StView
 
 __all__ = ["StView", "is_imported", "is_source", "source_files", "st_export", "st_plain_lines", "st_views"]
 
-LANGUAGES["SFC"] = sfc_body  # graphical SFC bodies (sfc.py)
-
+# Each importer as (module, function), imported when a file of its kind is
+# read: a program of plain ST (softplc test, the plc fixture) does not load
+# them, nor the graphical languages (bodies.py loads those on first need).
 _READERS = {
-    ".xml": plcopen_views,
-    ".tcpou": twincat_views,
-    ".tcdut": twincat_views,
-    ".tcgvl": twincat_views,
-    ".tcio": twincat_views,
-    ".exp": codesys23_views,
+    ".xml": ("plcopen", "plcopen_views"),
+    ".tcpou": ("twincat", "twincat_views"),
+    ".tcdut": ("twincat", "twincat_views"),
+    ".tcgvl": ("twincat", "twincat_views"),
+    ".tcio": ("twincat", "twincat_views"),
+    ".exp": ("codesys23", "codesys23_views"),
 }
-# Suffixes read by an importer only when the text is of its kind.
-_SNIFFED = {".txt": (is_codesys23, codesys23_views)}
-_PROJECTS = {".plcproj": plcproj_files}
+# Suffixes read by an importer only when the text is of its kind: (module, test, reader).
+_SNIFFED = {".txt": ("codesys23", "is_codesys23", "codesys23_views")}
+_PROJECTS = {".plcproj": ("twincat", "plcproj_files")}
+
+
+def _function(module: str, name: str):
+    return getattr(import_module(f"{__name__}.{module}"), name)
 
 
 def source_files(paths: list, read, diags: DiagnosticBag) -> list:
@@ -45,7 +45,7 @@ def source_files(paths: list, read, diags: DiagnosticBag) -> list:
             continue
         text = read(p)
         if text is not None:
-            out.extend(lister(text, str(p), diags))
+            out.extend(_function(*lister)(text, str(p), diags))
     return out
 
 
@@ -64,12 +64,12 @@ def _reader(path: str, text: str):
     """The importer that reads path (by its suffix, or its text), or None
     for ST."""
     low = path.lower()
-    for suffix, reader in _READERS.items():
+    for suffix, (module, reader) in _READERS.items():
         if low.endswith(suffix):
-            return reader
-    for suffix, (is_kind, reader) in _SNIFFED.items():
-        if low.endswith(suffix) and is_kind(text):
-            return reader
+            return _function(module, reader)
+    for suffix, (module, is_kind, reader) in _SNIFFED.items():
+        if low.endswith(suffix) and _function(module, is_kind)(text):
+            return _function(module, reader)
     return None
 
 
@@ -99,6 +99,7 @@ def st_export(path: str, text: str, diags: DiagnosticBag) -> str:
     reader = _reader(path, text)
     if reader is not None:
         from ..syntax.il import lowered_for_reading
+        from ..syntax.st_grammar import grammar
 
         views = reader(text, path, diags)
         for v in views:

@@ -95,6 +95,18 @@ def il_body(lang: PosElement, out: BodyOut) -> None:
 
 
 LANGUAGES: dict[str, Callable[[PosElement, BodyOut], None]] = {"ST": st_body, "IL": il_body}
+_graphical = False  # whether fbd.py, ld.py and sfc.py, which add FBD, LD and SFC, are loaded
+
+
+def _languages() -> dict[str, Callable[[PosElement, BodyOut], None]]:
+    """LANGUAGES, the graphical ones loaded on first need (they are not
+    imported with a program of plain ST)."""
+    global _graphical
+    if not _graphical:
+        from . import fbd, ld, sfc  # noqa: F401  (each adds its language to LANGUAGES)
+
+        _graphical = True
+    return LANGUAGES
 
 
 def body_language(body: PosElement | None) -> PosElement | None:
@@ -107,9 +119,9 @@ def body_language(body: PosElement | None) -> PosElement | None:
 
 
 def supported(lang: PosElement | None) -> bool:
-    return lang is not None and lang.name in LANGUAGES
+    return lang is not None and lang.name in _languages()
 
 
 def translate(lang: PosElement, out: BodyOut) -> None:
     """The body in lang's language as ST into out (supported(lang) first)."""
-    LANGUAGES[lang.name](lang, out)
+    _languages()[lang.name](lang, out)

@@ -23,7 +23,7 @@ E183, E210-E216, W210, W212 (sfc_graph.py, sfc_codesys.py).
 
 from __future__ import annotations
 
-from .bodies import BodyOut, body_language, supported, translate
+from .bodies import LANGUAGES, BodyOut, body_language, supported, translate
 from .sfc_codesys import sfc_settings
 from .sfc_graph import Assoc, Chart, Transition
 from .sfc_text import ST_FORMS, has_line_comment, one_line, st_form
@@ -314,3 +314,6 @@ def _priorities(placed: list) -> dict:
         return {}
     shared = {id(t) for g in groups for t in g}
     return {t: k + 1 for k, t in enumerate(t for t in iec if id(t) in shared)}
+
+
+LANGUAGES["SFC"] = sfc_body  # graphical SFC bodies
