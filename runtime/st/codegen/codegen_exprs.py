@@ -299,6 +299,8 @@ class ExprGen(CodeGenBase):
             e = todo.pop()
             if isinstance(e, A.AssignExpr):  # a store: evaluated as a call is
                 return True
+            if isinstance(e, (A.Name, A.Member)) and isinstance(e.sym, PropertyInfo):
+                return True  # a property's read calls its getter
             if isinstance(e, A.Call):
                 info = e.target
                 if isinstance(info, CallInfo) and info.kind == "operator":

@@ -87,6 +87,32 @@ END_PROGRAM
     assert r.get("n2") == 0  # AND_THEN short-circuits
 
 
+def test_and_or_read_a_property_on_the_right_even_when_the_left_decides():
+    """A property's getter is a call: CODESYS evaluates both operands of AND
+    and OR, so a getter with an effect runs although the left side decides."""
+    src = """
+FUNCTION_BLOCK Counter
+VAR reads : INT; END_VAR
+PROPERTY Ready : BOOL
+GET
+reads := reads + 1;
+Ready := TRUE;
+END_GET
+END_PROPERTY
+END_FUNCTION_BLOCK
+PROGRAM main
+VAR c : Counter; f : BOOL; t : BOOL := TRUE; x : BOOL; y : BOOL; z : BOOL; n : INT; END_VAR
+x := f AND c.Ready;
+y := t OR c.Ready;
+z := f AND_THEN c.Ready;
+n := c.reads;
+END_PROGRAM
+"""
+    r = run_st(src)
+    assert r.get("n") == 2  # AND and OR read it; AND_THEN does not
+    assert (r.get("x"), r.get("y"), r.get("z")) == (False, True, False)
+
+
 def test_references_and_pointers():
     src = """
 PROGRAM main
