@@ -110,6 +110,9 @@ class FnState:
         # aggregates of self read through a local (codegen_pous.py _aliased_body):
         # pyname -> reads, while a body that takes them is emitted; None: not here
         self.aliases: dict | None = None
+        # the FOR loops of such a body whose body reads the loop local, as
+        # (variable, local): a fault stores the local (codegen_pous.py _loop_faults)
+        self.loop_locals: list | None = None
 
     @property
     def is_function(self) -> bool:

@@ -344,6 +344,37 @@ class PouGen(SfcGen):
         self._oop_members(pou)
         self.indent -= 1
 
+    def _loop_faults(self, start: int, body: int, opened: bool) -> None:
+        """A FOR loop whose body reads its loop local (codegen_stmts._for)
+        stores the variable only after the loop; a fault, the watchdog or a
+        stop inside it would leave the value from before the loop, which the
+        monitor then shows. The body is wrapped in a handler that stores the
+        local of each loop still running (its local is None before the loop
+        and after it), then raises again. opened: the body is inside
+        _locals_begin's try already (the handler joins it, before its
+        finally); else a try is opened around the body's lines. Costs a None
+        per loop at the start and after each loop, nothing per pass."""
+        loops, self.fn.loop_locals = self.fn.loop_locals, None
+        if not loops:
+            return
+        pad = "    " * (self.indent - 1 if opened else self.indent)  # the function's level
+        if not opened:
+            self.out[body:] = [("    " + text if text else text, at) for text, at in self.out[body:]]
+            self.out.insert(body, (f"{pad}try:", self.pos))
+        self.out[start:start] = [(f"{pad}{it} = None", self.pos) for _var, it in loops]
+        if opened:
+            self.indent -= 1
+        self.emit("except:")  # the generated module has no builtins: everything that may raise
+        self.indent += 1
+        for var, it in loops:
+            self.emit(f"if {it} is not None:")
+            self.indent += 1
+            self.emit_store(var, it, var.ty, None, trusted=True)
+            self.indent -= 1
+        self.emit("raise")
+        if not opened:
+            self.indent -= 1
+
     def _aliased_body(self, stmts: list) -> None:
         """The statements of a body of self (a PROGRAM's or FB's, an action's),
         reading the arrays, structs and FB instances of self that it reads
@@ -353,8 +384,11 @@ class PouGen(SfcGen):
         retain replace them between cycles), so the local is the attribute."""
         start, pos = len(self.out), self.pos
         self.fn.aliases = {}
+        self.fn.loop_locals = []
         promoted = self._locals_begin(stmts)
+        body = len(self.out)
         self._body(stmts)
+        self._loop_faults(start, body, bool(promoted))
         self._locals_end(promoted)
         aliases, self.fn.aliases = self.fn.aliases, None
         if not aliases:

@@ -315,6 +315,8 @@ class StmtGen(ReuseGen):
         local = self._loop_local_ok(var.sym, s.body)
         if local:
             self.fn.for_locals[id(var.sym)] = it
+            if self.fn.loop_locals is not None:
+                self.fn.loop_locals.append((var, it))
             if step is not None and isinstance(s.start.const, int) and isinstance(s.end.const, int):
                 self.fn.loop_ranges[id(var.sym)] = (min(s.start.const, s.end.const), max(s.start.const, s.end.const))
         else:
@@ -333,6 +335,8 @@ class StmtGen(ReuseGen):
         else:
             self.emit_store(var, f"{rng}.start + len({rng}) * {rng}.step", vty, None)
         self.indent -= 1
+        if local and self.fn.loop_locals is not None:
+            self.emit(f"{it} = None")  # the loop is over: a later fault leaves the variable as it is
         self._facts_loop()
 
     def _loop_local_ok(self, sym: Any, body: list) -> bool:

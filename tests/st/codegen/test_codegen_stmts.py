@@ -180,6 +180,73 @@ def test_the_watchdog_stops_an_endless_loop_at_the_loop(loop):
     assert r.get("n") > 0
 
 
+def test_the_watchdog_leaves_the_for_variable_at_the_pass_it_stopped():
+    r = _runner(prog("n : DINT; i : DINT; l : LINT; step : DINT := -1;", ENDLESS["FOR"]), 0.02)
+    with pytest.raises(STFault):
+        r.run(1)
+    assert r.get("i") == r.get("n") - 1 > 0  # the pass that was running, not the value before the loop
+
+
+# ---------------------------------------------------------------- a fault inside a FOR loop
+# The body reads the loop variable from a Python local and the variable is
+# stored after the loop: a fault in a pass must still leave it at that pass,
+# as the monitor shows it (CODESYS shows the index that failed).
+
+SUM = """FUNCTION_BLOCK Sum
+VAR i : INT; a : ARRAY[0..3] OF INT := [1, 2, 3, 4]; s : INT; END_VAR
+s := 0;
+FOR i := 0 TO 5 DO
+  s := s + a[i];
+END_FOR
+END_FUNCTION_BLOCK
+"""
+
+
+def _faulted(source: str, entry: str = "main"):
+    r = compile_files([], texts={"f.st": source}).runner(entry)
+    with pytest.raises(STFault) as err:
+        r.run(1)
+    return r, err.value
+
+
+def test_a_fault_in_a_for_loop_leaves_the_variable_at_the_failing_pass():
+    src = prog("i : INT; a : ARRAY[0..3] OF INT := [1, 2, 3, 4]; s : INT;", "FOR i := 0 TO 5 DO s := s + a[i]; END_FOR")
+    r, fault = _faulted(src)
+    assert fault.kind == "bounds" and "index 4" in fault.message and fault.pos.line == 5
+    assert (r.get("i"), r.get("s")) == (4, 10)
+
+
+def test_in_a_function_block_too():
+    r, fault = _faulted(SUM + "PROGRAM main VAR f : Sum; END_VAR f(); END_PROGRAM\n")
+    assert "index 4" in fault.message and (fault.pos.file, fault.pos.line) == ("f.st", 5)
+    assert (r.get("f.i"), r.get("f.s")) == (4, 10)
+
+
+def test_nested_loops_leave_both_variables_at_their_pass():
+    src = prog(
+        "i : INT; j : INT; a : ARRAY[0..2, 0..2] OF INT;",
+        "FOR i := 0 TO 2 DO FOR j := 0 TO 3 DO a[i, j] := i + j; END_FOR END_FOR",
+    )
+    r, _fault = _faulted(src)
+    assert (r.get("i"), r.get("j")) == (0, 3)
+
+
+def test_a_fault_after_a_finished_loop_leaves_its_value_after_the_end():
+    src = prog("i : INT; k : INT; a : ARRAY[0..3] OF INT;", "FOR i := 0 TO 3 DO a[i] := i; END_FOR\nk := a[i];")
+    r, fault = _faulted(src)
+    assert fault.pos.line == 6 and r.get("i") == 4  # IEC: the first value past the end
+
+
+def test_without_a_fault_the_loops_end_as_before():
+    r = run_st(
+        prog(
+            "i : INT; j : INT; n : INT;",
+            "FOR i := 1 TO 3 DO n := n + i; END_FOR\nFOR j := 1 TO 9 DO IF j = 4 THEN EXIT; END_IF END_FOR",
+        )
+    )
+    assert (r.get("i"), r.get("j"), r.get("n")) == (4, 4, 6)
+
+
 # Loops too short to check on their own, but more than LOOP_CHECK_EVERY passes
 # in all: nested, or in a FUNCTION or FB called in a loop, left by EXIT or
 # RETURN. In a cycle already past its deadline (a negative watchdog time) the
