@@ -17,9 +17,11 @@ from pathlib import Path
 
 from ..st.importers import is_source
 from .model import Project
-from .plcopen_project import codesys_libraries, read_beremiz, sniff
 from .readtext import read_text
-from .twincat import names_twincat, plc_projects, read_plcproj
+
+# The PLCopen and TwinCAT readers (plcopen_project.py, twincat.py and the
+# importers they use) are imported by the functions that read such a
+# project: checking or running a file of plain ST does not load them.
 
 # Folders a project has that hold no sources of its own.
 SKIPPED = {".git", "__pycache__", ".venv", "venv", "node_modules", "_Boot", "_CompileInfo", "_Libraries", "build"}
@@ -55,6 +57,8 @@ def open_projects(paths: list) -> list[Project]:
 
 def _twincat(path: Path, root: Path) -> list[Project]:
     """One project per PLC project of a .sln, .tsproj or .plcproj."""
+    from .twincat import plc_projects, read_plcproj
+
     holder = Project("twincat", "", root, path)
     found = plc_projects(path, holder)
     if not found:
@@ -71,6 +75,8 @@ def _twincat(path: Path, root: Path) -> list[Project]:
 def _xml_file(path: Path) -> Project:
     """A PLCopen XML file: plc.xml beside a beremiz.xml is that Beremiz
     project; a CODESYS export brings the libraries it lists."""
+    from .plcopen_project import codesys_libraries, sniff
+
     if path.name.lower() == "plc.xml" and (path.parent / "beremiz.xml").is_file():
         return _beremiz(path.parent)
     project = Project("plcopen", path.stem, path.parent, path, files=[str(path)])
@@ -85,6 +91,8 @@ def _xml_file(path: Path) -> Project:
 
 
 def _beremiz(folder: Path) -> Project:
+    from .plcopen_project import read_beremiz
+
     project = Project("beremiz", folder.name, folder, folder)
     read_beremiz(folder, project)
     return project
@@ -99,6 +107,8 @@ def _walk(root: Path):
 
 
 def _folder(root: Path) -> list[Project]:
+    from .twincat import names_twincat, plc_projects, read_plcproj
+
     if (root / "plc.xml").is_file() and (root / "beremiz.xml").is_file():
         return [_beremiz(root)]
     solutions, systems, plcs, beremiz, sources = [], [], [], [], []
@@ -168,6 +178,8 @@ def _systems_of(path: Path, holder: Project) -> list[Path]:
 def _is_plain_source(path: Path) -> bool:
     """A source of a folder: ST, TwinCAT files, and XML only when it is
     PLCopen XML (a folder holds other XML: configuration, HMI, build files)."""
+    from .plcopen_project import sniff
+
     if path.suffix.lower() != ".xml":
         return True
     try:
