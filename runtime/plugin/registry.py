@@ -21,7 +21,8 @@ their native functions (``plugin_libraries``, ``plugin_natives``), and a
 configuration without a bus section or a [[sim]] table only for the keys of
 the buses' sections (``plugin_sections``): those come from an index kept in
 softplc's cache (runtime/cache.py, keyed by the installed entry points and
-the contents of their packages), so a program that uses no bus and no
+the contents of their packages; the entry points themselves are kept
+under the folders of sys.path and their times: _points), so a program that uses no bus and no
 device compiles, and a configuration that names none loads and runs,
 without importing one; a native function's plugin is loaded when a program
 calls it.
@@ -30,9 +31,10 @@ calls it.
 from __future__ import annotations
 
 import importlib.util
+import os
+import sys
 from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
-from importlib import metadata
 from pathlib import Path
 
 from .. import cache
@@ -140,6 +142,8 @@ def registry() -> Registry:
     """The process's registry, with every installed entry point loaded."""
     global _registry
     if _registry is None:
+        from importlib import metadata
+
         reg = Registry()
         for group in (BUS_GROUP, DEVICE_GROUP):
             for ep in metadata.entry_points(group=group):
@@ -247,14 +251,10 @@ def _index() -> tuple:
 
 
 def _find_index() -> tuple:
-    entries = []
-    found_eps = metadata.entry_points()
-    for group in (BUS_GROUP, DEVICE_GROUP):
-        # keyed by the entry point and its package's code, not by its
-        # distribution's name and version: each of those parses a METADATA
-        # file (37 of them: a fifth of `softplc check`'s start-up)
-        for ep in found_eps.select(group=group):
-            entries.append(repr((group, ep.name, ep.value)).encode() + _package_code(ep.module))
+    # keyed by the entry points and their packages' code, not by their
+    # distributions' names and versions: each of those parses a METADATA
+    # file (37 of them: a fifth of `softplc check`'s start-up)
+    entries = [repr((group, name, value)).encode() + _package_code(module) for group, name, value, module in _points()]
     key = cache.key("plugins", _INDEX_FORMAT, *entries)
     found = cache.load("plugins", key)
     if isinstance(found, tuple) and len(found) == 3:
@@ -266,6 +266,31 @@ def _find_index() -> tuple:
         _sections(reg),
     )
     cache.store("plugins", key, found)
+    return found
+
+
+def _points() -> list:
+    """(group, name, value, module) of every installed bus and device entry
+    point. importlib.metadata, which finds them, costs `softplc check` a
+    fifteenth of its time to import and read, so what it found is kept in
+    the cache under the folders of sys.path and the times they last
+    changed: installing or removing a distribution adds or removes its
+    .dist-info folder there, and a new key reads them again."""
+    places = []
+    for entry in sys.path:
+        try:
+            places.append(f"{entry}\0{os.stat(entry or '.').st_mtime_ns}")
+        except OSError:
+            places.append(f"{entry}\0-")
+    key = cache.key("entry-points", *places)
+    found = cache.load("entry-points", key)
+    if isinstance(found, list):
+        return found
+    from importlib import metadata
+
+    eps = metadata.entry_points()
+    found = [(g, ep.name, ep.value, ep.module) for g in (BUS_GROUP, DEVICE_GROUP) for ep in eps.select(group=g)]
+    cache.store("entry-points", key, found)
     return found
 
 

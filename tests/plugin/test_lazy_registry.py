@@ -7,8 +7,10 @@ it."""
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
+from pathlib import Path
 
 PROBE = """
 import json, sys
@@ -144,3 +146,38 @@ def test_st_tests_and_a_plc_of_st_text_import_no_bus(tmp_path):
     subprocess.run(run, capture_output=True, text=True, check=True, env=env)  # the index kept
     found = json.loads(subprocess.run(run, capture_output=True, text=True, check=True, env=env).stdout)
     assert found == {"heavy": [], "outcomes": ["passed"], "x": 2}
+
+
+# The entry points themselves are kept in the cache under the folders of
+# sys.path and their times (registry._points): found again without
+# importlib.metadata while nothing is installed or removed, and read again
+# when something is.
+POINTS_PROBE = """
+import json, sys
+from softplc.runtime.plugin.registry import plugin_libraries
+packages = sorted({lib.package for lib in plugin_libraries()})
+print(json.dumps({"packages": packages, "metadata": "importlib.metadata" in sys.modules}))
+"""
+RELAY_POINTS = "[softplc.devices]\nrelay = tests.plugin.relay:DEVICE\n"
+
+
+def _points_probe(site, cache_dir) -> dict:
+    root = str(Path(__file__).resolve().parents[2])  # where `tests.plugin.relay` imports from
+    env = {**_env(), "SOFTPLC_CACHE": str(cache_dir), "PYTHONPATH": os.pathsep.join((str(site), root))}
+    out = subprocess.run([sys.executable, "-c", POINTS_PROBE], capture_output=True, text=True, check=True, env=env)
+    return json.loads(out.stdout)
+
+
+def test_the_entry_points_are_kept_until_a_distribution_comes(tmp_path):
+    site = tmp_path / "site"
+    site.mkdir()
+    first = _points_probe(site, tmp_path / "cache")
+    assert first["metadata"] and "tests.plugin.relay" not in first["packages"]
+    again = _points_probe(site, tmp_path / "cache")
+    assert again == {"packages": first["packages"], "metadata": False}
+    dist = site / "relay_plugin-1.0.dist-info"  # installed now: its folder changes site's time
+    dist.mkdir()
+    (dist / "METADATA").write_text("Metadata-Version: 2.1\nName: relay-plugin\nVersion: 1.0\n")
+    (dist / "entry_points.txt").write_text(RELAY_POINTS)
+    found = _points_probe(site, tmp_path / "cache")
+    assert found["metadata"] and "tests.plugin.relay" in found["packages"]
