@@ -21,11 +21,11 @@ their native functions (``plugin_libraries``, ``plugin_natives``), and a
 configuration without a bus section or a [[sim]] table only for the keys of
 the buses' sections (``plugin_sections``): those come from an index kept in
 softplc's cache (runtime/cache.py, keyed by the installed entry points and
-the contents of their packages; the entry points themselves are kept
-under the folders of sys.path and their times: _points), so a program that uses no bus and no
-device compiles, and a configuration that names none loads and runs,
-without importing one; a native function's plugin is loaded when a program
-calls it.
+the contents of their packages; the entry points themselves are kept under
+the folders of sys.path and their times: _points), so a program that uses
+no bus and no device compiles, and a configuration that names none loads
+and runs, without importing one; a native function's plugin is loaded when
+a program calls it.
 """
 
 from __future__ import annotations
