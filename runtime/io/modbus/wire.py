@@ -27,6 +27,7 @@ Time, decided here and kept by the link and the worker (master.py):
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Protocol
 
 from pymodbus.client.mixin import ModbusClientMixin
@@ -244,20 +245,47 @@ class MemoryClient(ModbusClientMixin[ModbusPDU]):
         pass
 
     def execute(self, no_response_expected: bool, request: ModbusPDU) -> ModbusPDU:
-        s = self.settings
-        if s.transport == "tcp":
+        if self.settings.transport == "tcp":
             self._tid = self._tid % 0xFFFF + 1
             request.transaction_id = self._tid
-        frame = self.sent = self.codec.build(request)
+        return self.send(self.codec.build(request), request, no_response_expected)
+
+    def resend(self, request: ModbusPDU, frame: bytes, taken: Callable[[bytes], object | None]):
+        """execute(False, request) of a request sent before, whose frame
+        (framed by pymodbus then) is at hand: a TCP frame gets the next
+        transaction id. An answer that taken() accepts (not None) is what this
+        returns; any other is decoded by pymodbus as execute() does."""
+        if self.settings.transport == "tcp":
+            self._tid = self._tid % 0xFFFF + 1
+            request.transaction_id = self._tid
+            frame = self._tid.to_bytes(2, "big") + frame[2:]
+        return self.send(frame, request, False, taken)
+
+    def send(
+        self,
+        frame: bytes,
+        request: ModbusPDU,
+        no_response_expected: bool,
+        taken: Callable[[bytes], object | None] | None = None,
+    ):
+        """The request's frame on the line, retried as pymodbus's sync client
+        does; see execute() and resend()."""
+        s = self.settings
+        self.sent = frame
         self.received = b""
         self.line_s = 0.0
         for _attempt in range(s.retries + 1):
             answer = self.server.exchange(frame)
             if no_response_expected:
-                return None  # type: ignore[return-value]  # pymodbus's own contract
+                return None
             if answer:
                 self.received = answer
                 on_line = self._gap_s + (len(frame) + len(answer)) * self._s_per_byte
+                if taken is not None:
+                    result = taken(answer)
+                    if result is not None:
+                        self.line_s += on_line
+                        return result
                 try:
                     _used, pdu = self.codec.decode(answer, request.dev_id, request.transaction_id)
                 except ModbusIOException:

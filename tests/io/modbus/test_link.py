@@ -6,7 +6,8 @@ from __future__ import annotations
 
 import pytest
 
-from softplc.runtime.io.modbus.link import ModbusError
+from softplc.runtime.io.modbus.link import LinkSettings, ModbusError, ModbusLink, Transaction
+from softplc.runtime.io.modbus.wire import CODEC_FRAMES
 
 from .plant import WIRES, plant_config
 
@@ -142,3 +143,24 @@ def test_in_memory_a_silent_unit_times_out_in_virtual_time(plants, tmp_path):
     assert plant.now_ms == pytest.approx(160, abs=10)  # sent at 60 ms + 100 ms of timeout
     assert one.stats.last_error == ModbusError.RESPONSE_TIMEOUT and not one.stats.ok
     assert len(plant.line.cable.sent_by_master()) == len(sent) + len(READ_ID6)  # retries = 0: sent once
+
+
+def test_in_memory_requests_are_framed_once_and_each_write_carries_its_values(plants, tmp_path):
+    """In memory the link keeps the frames pymodbus built for the last
+    requests (link.py, _transact_in_memory) and starts afresh when it holds
+    CODEC_FRAMES of them: more writes than that, each of a new value, each
+    reach the drive with their own value; a repeated read is the same frame
+    every time and gets the answer of the moment."""
+    plant = plants(plant_config(tmp_path, "PROGRAM P\nEND_PROGRAM\n", program="P", transport="rtu"))
+    link = ModbusLink(LinkSettings("drives", "rtu", baud=115200), server=plant.line.server)
+    drive = plant.drive(1)
+    for value in range(CODEC_FRAMES + 10):  # ID 2, the speed reference in 0.1 Hz
+        outcome = link.transact(Transaction(unit=1, function=6, offset=1, values=(value,)), 0)
+        assert outcome.error == ModbusError.OK and drive.register(2) == value
+    read_id6 = Transaction(unit=1, function=3, offset=5, count=1)
+    drive.di1 = False
+    assert link.transact(read_id6, 0).values == [0]
+    plant.line.cable.clear()
+    drive.di1 = True
+    assert link.transact(read_id6, 0).values == [0x00A1]
+    assert plant.line.cable.sent_by_master() == READ_ID6
