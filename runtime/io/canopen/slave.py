@@ -469,7 +469,7 @@ class SimulatedCanopenSlave(EmcyMixin, ErrorControlMixin, PdoMixin, SimulatedDev
     def _flush_writes(self, now: int) -> None:
         written, self._written = self._written, []
         if written:
-            self._cached.clear()
+            self._forget_cached()
         for index in dict.fromkeys(written):
             self._after_write(index, now)
 
@@ -532,10 +532,16 @@ class SimulatedCanopenSlave(EmcyMixin, ErrorControlMixin, PdoMixin, SimulatedDev
         """Set a value directly, past every callback (error register, history, PKW response)."""
         var = self._variable(index, subindex)
         self.node.data_store.setdefault(index, {})[subindex] = var.encode_raw(value)
+        self._forget_cached()
+
+    def _forget_cached(self) -> None:
+        """An object changed: the cached values go, and error control looks
+        again at its next step (a heartbeat or guard time may be new)."""
         self._cached.clear()
+        self._error_quiet_until = 0
 
     def _clear_stored(self, first: int, last: int) -> None:
         """Back to the EDS values for the objects first..last."""
         for index in [i for i in self.node.data_store if first <= i <= last]:
             del self.node.data_store[index]
-        self._cached.clear()
+        self._forget_cached()

@@ -32,6 +32,7 @@ if TYPE_CHECKING:
 
 
 MS = 1_000_000
+_NEVER = 1 << 63  # later than any engine time
 GUARDING_TOGGLE = 0x80  # bit 7 of a guarding reply
 ERROR_BEHAVIOUR = 0x1029
 
@@ -87,6 +88,8 @@ class ErrorControlMixin:
         self._guarding_lost = False
         self._error_pending = False  # a communication error from before a communication reset
         self._has_guarding = GUARD_TIME in self.od and LIFE_TIME_FACTOR in self.od  # the EDS decides, once
+        #: before this time _error_control() has nothing to do (0: look again); see _error_control_due()
+        self._error_quiet_until = 0
 
     def _error_outlives_reset(self, application: bool) -> bool:
         """Before a reset: whether a communication error stays pending after it."""
@@ -104,12 +107,33 @@ class ErrorControlMixin:
         self._error_pending = pending
         period = self._heartbeat_period_ns()
         self._heartbeat_due = now + period if period else None
+        self._error_quiet_until = 0
 
     def _error_control(self, now: int) -> None:
-        """At each service step outside boot-up."""
+        """At each service step outside boot-up: skipped before the next
+        heartbeat to send or deadline to watch (_error_control_due)."""
+        if now < self._error_quiet_until:
+            return
         self._produce_heartbeat(now)
         self._watch_heartbeats(now)
         self._watch_guarding(now)
+        self._error_quiet_until = self._error_control_due()
+
+    def _error_control_due(self) -> int:
+        """The first time at which _error_control() would do anything, as
+        things stand: the next heartbeat to send, the moment a watched
+        producer's heartbeat or the master's guarding is overdue. A received
+        heartbeat or guarding request, a reset and a write of the objects
+        (_forget_cached) change that, and set _error_quiet_until to 0."""
+        due = self._heartbeat_due if self._heartbeat_due is not None else _NEVER
+        for consumer in self._heartbeat_consumers():
+            if consumer.last_ns is not None and not consumer.lost:
+                due = min(due, consumer.last_ns + consumer.timeout_ns + 1)  # lost when more than the timeout
+        if self._guarded_ns is not None and not self._guarding_lost:
+            life = self._life_time_ns()
+            if life:
+                due = min(due, self._guarded_ns + life + 1)
+        return due
 
     @property
     def heartbeat_lost(self) -> bool:
@@ -149,6 +173,7 @@ class ErrorControlMixin:
         return self._consumers
 
     def _on_heartbeat(self, producer: int, now: int) -> None:
+        self._error_quiet_until = 0
         was_lost = self.heartbeat_lost
         watched = False
         for consumer in self._heartbeat_consumers():
@@ -184,6 +209,7 @@ class ErrorControlMixin:
         bit. A node producing heartbeats does not take part in guarding."""
         if self._heartbeat_period_ns():
             return
+        self._error_quiet_until = 0
         self._send(cob_heartbeat(self.node_id), bytes([self._state | self._guard_toggle]))
         self._guard_toggle ^= GUARDING_TOGGLE
         self._guarded_ns = now
