@@ -153,6 +153,8 @@ class SnapshotHub:
         self.period_s = period_s
         engine.load()
         self._resolver = resolver if resolver is not None else Resolver(engine)
+        #: the engine.generation the watched places were resolved in (_rewatch sets it once they are)
+        self._placed_generation = self._resolver.generation
         self._watched: dict[str, tuple] = {}  # reader -> its paths
         self._places: dict[str, Place] = {}  # path -> Place, the union of the readers' paths
         self._layout: Layout = _layout_of({})  # how capture() reads them
@@ -258,7 +260,7 @@ class SnapshotHub:
         if engine.clock.virtual or engine.scan_thread != threading.get_ident():
             self.capture()  # a test's tick, or one outside run(): no time between scans to use
             return
-        if self._rewatch_due or self._resolver.generation != engine.generation:
+        if self._rewatch_due or self._placed_generation != engine.generation:
             # an online change or a restart: the copier resolves the readers'
             # paths again while the scans go on (it reads no value; 860 paths
             # took 20-30 ms, which the next scan waited for, a 10 ms task late
@@ -329,7 +331,7 @@ class SnapshotHub:
 
     def _capture(self) -> Snapshot:
         engine = self.engine
-        if self._resolver.generation != engine.generation:
+        if self._placed_generation != engine.generation:
             self._rewatch()
         layout = self._layout
         raw = layout.read()
@@ -361,6 +363,7 @@ class SnapshotHub:
         idle (lock_share.pause): the copier's, which the scan never waits
         for; not a capture's, which it may wait for."""
         resolver = self.resolver
+        generation = resolver.generation  # a failure below leaves _placed_generation: tried again
         places: dict = {}
         with self._lock:  # a reader may watch meanwhile (a call thread)
             watched = list(self._watched.values())
@@ -375,6 +378,7 @@ class SnapshotHub:
                         continue
         with self._lock:
             self._set_places(places, paced)
+            self._placed_generation = generation
 
 
 def _layout_of(places: dict, paced: bool = False) -> Layout:

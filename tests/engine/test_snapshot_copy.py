@@ -106,3 +106,38 @@ def test_after_a_restart_the_scans_go_on_while_the_paths_are_resolved_again(engi
     finally:
         held.set()
         scanning.stop()
+
+
+def test_paths_that_fail_to_resolve_after_a_restart_are_resolved_at_the_next_scan(engines, monkeypatch, caplog):
+    """The copier's resolving after a restart fails once (an unforeseen
+    error, injected at its first path): it is logged, the snapshots keep
+    the old places for a scan, and the next scan has the copier resolve
+    them again. It used to take the new program's resolver before the
+    resolving and never try again: the snapshots went on reading the
+    stopped instance (n frozen at 20) for good."""
+    e = engines(RESTARTED, [task("Main", 2, "Main")], clock=RealClock(spin_ns=0))
+    hub = SnapshotHub(e, period_s=0)
+    hub.watch("test", ["Main.n", "faulted"])
+    failures = []
+    place = Resolver.place
+
+    def failing_once(resolver, path):
+        if threading.current_thread().name == "softplc-snapshot" and not failures:
+            failures.append(path)
+            raise RuntimeError("injected: resolving failed")
+        return place(resolver, path)
+
+    monkeypatch.setattr(Resolver, "place", failing_once)
+    scanning = Scanning(e, pause_s=0).start()
+    try:
+        wait_until(lambda: e.faulted_tasks(), "the fault at n = 20")
+        e.request_restart()
+        wait_until(lambda: failures, "the copier's first resolving after the restart")
+        first = wait_until(lambda: (s := hub.wait_fresh(5)).generation == 1 and s, "a snapshot after the restart")
+        later = wait_until(
+            lambda: (s := hub.wait_fresh(5)).cycle > first.cycle + 5 and s, "a snapshot five scans later"
+        )
+        assert later.values["Main.n"] - first.values["Main.n"] == later.cycle - first.cycle  # the new instance
+    finally:
+        scanning.stop()
+    assert "injected: resolving failed" in caplog.text
