@@ -72,6 +72,11 @@ class _Tap:
         return data
 
 
+def _exception(tx: Transaction, code: int, elapsed: float = 0.0) -> Outcome:
+    """The outcome of an exception response: its code, and what it means."""
+    return Outcome(code, response_s=elapsed, message=f"unit {tx.unit} answered exception {code} ({error_text(code)})")
+
+
 class _Build(ModbusClientMixin[ModbusPDU]):
     """pymodbus's request methods, answering the request PDU they build."""
 
@@ -261,8 +266,7 @@ class ModbusLink:
             return None
         pdu = split[1]
         if pdu[0] & 0x80:
-            code = pdu[1]
-            return Outcome(code, message=f"unit {tx.unit} answered exception {code} ({error_text(code)})")
+            return _exception(tx, pdu[1])
         reads, _writes, bits = FUNCTIONS[tx.function]
         if not reads:
             return Outcome()
@@ -303,12 +307,7 @@ class ModbusLink:
         if bad is not None:
             return Outcome(bad.error, response_s=elapsed, message=bad.message)
         if response.isError():
-            code = getattr(response, "exception_code", ModbusError.UNDEFINED)
-            return Outcome(
-                int(code),
-                response_s=elapsed,
-                message=f"unit {tx.unit} answered exception {int(code)} ({error_text(code)})",
-            )
+            return _exception(tx, int(getattr(response, "exception_code", ModbusError.UNDEFINED)), elapsed)
         reads, _writes, bits = FUNCTIONS[tx.function]
         if not reads:
             return Outcome(response_s=elapsed)
