@@ -245,9 +245,7 @@ class MemoryClient(ModbusClientMixin[ModbusPDU]):
         pass
 
     def execute(self, no_response_expected: bool, request: ModbusPDU) -> ModbusPDU:
-        if self.settings.transport == "tcp":
-            self._tid = self._tid % 0xFFFF + 1
-            request.transaction_id = self._tid
+        self._number(request)
         return self.send(self.codec.build(request), request, no_response_expected)
 
     def resend(self, request: ModbusPDU, frame: bytes, taken: Callable[[bytes], object | None]):
@@ -255,11 +253,17 @@ class MemoryClient(ModbusClientMixin[ModbusPDU]):
         (framed by pymodbus then) is at hand: a TCP frame gets the next
         transaction id. An answer that taken() accepts (not None) is what this
         returns; any other is decoded by pymodbus as execute() does."""
-        if self.settings.transport == "tcp":
-            self._tid = self._tid % 0xFFFF + 1
-            request.transaction_id = self._tid
+        if self._number(request):
             frame = self._tid.to_bytes(2, "big") + frame[2:]
         return self.send(frame, request, False, taken)
+
+    def _number(self, request: ModbusPDU) -> bool:
+        """TCP: give the request the next transaction id (True); RTU has none (False)."""
+        if self.settings.transport != "tcp":
+            return False
+        self._tid = self._tid % 0xFFFF + 1
+        request.transaction_id = self._tid
+        return True
 
     def send(
         self,
