@@ -2,11 +2,12 @@
 
 A local is one fast load; ``self.v_x`` is an attribute lookup, and a store
 into it another. A PROGRAM whose variables nothing but its own body can
-reach (CodeGenBase._closed_program: no actions, methods, properties or
-SFC steps; no reference taken; not located) reads each elementary variable its body uses more than
-once into a local when the body starts, works on the local, and stores it
-back in a ``finally``, so a RETURN, a fault or the watchdog still leaves
-every variable stored, as the monitor, retain and the next cycle expect::
+reach (CodeGenBase._closed_program: no actions, methods, properties or SFC
+steps; no reference taken; not located) reads each elementary variable its
+body uses more than once into a local when the body starts, works on the
+local, and stores it back in a ``finally``, so a RETURN, a fault or the
+watchdog still leaves every variable stored, as the monitor, retain and
+the next cycle expect::
 
     _l_v_check = self.v_check
     try:
