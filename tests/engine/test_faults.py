@@ -177,6 +177,26 @@ def test_in_virtual_time_a_busy_host_is_no_watchdog_fault(engines):
     assert e.faults == [] and e.get("Waiter.n") == 2
 
 
+def test_in_virtual_time_a_cycle_that_computes_too_long_is_a_watchdog_fault(engines):
+    # The tick takes its CPU time from a reading up to a millisecond old
+    # (the first cycles come within microseconds of one another): a cycle
+    # that spends 150 ms of CPU on a 100 ms watchdog is still late.
+    e = engines(WAIT_PROGRAM, [task("Main", 10, "Waiter", watchdog_ms=100)], clock=VirtualClock())
+    cycle = iter(range(100))
+
+    def compute():
+        if next(cycle) == 3:
+            end = time.thread_time() + 0.15
+            while time.thread_time() < end:
+                pass
+
+    e.tasks[0].calls.append(compute)
+    e.run(cycles=6)
+    [record] = e.faults
+    assert record.fault.kind == "watchdog" and "longer than 100 ms" in record.fault.message
+    assert e.get("Waiter.n") == 4  # the fourth cycle was late: the task stopped after it
+
+
 def test_on_the_real_clock_a_cycle_that_waits_too_long_is_a_watchdog_fault(engines):
     e = _waiting_engine(engines, RealClock())
     e.run(cycles=1)
