@@ -275,14 +275,9 @@ def _points() -> list:
     fifteenth of its time to import and read, so what it found is kept in
     the cache under the folders of sys.path and the times they last
     changed: installing or removing a distribution adds or removes its
-    .dist-info folder there, and a new key reads them again."""
-    places = []
-    for entry in sys.path:
-        try:
-            places.append(f"{entry}\0{os.stat(entry or '.').st_mtime_ns}")
-        except OSError:
-            places.append(f"{entry}\0-")
-    key = cache.key("entry-points", *places)
+    .dist-info folder there, and a new key reads them again (_place)."""
+    installed = {os.path.realpath(p) for p in (sys.prefix, sys.base_prefix, sys.exec_prefix)}
+    key = cache.key("entry-points", *(_place(entry, installed) for entry in sys.path))
     found = cache.load("entry-points", key)
     if isinstance(found, list):
         return found
@@ -292,6 +287,40 @@ def _points() -> list:
     found = [(g, ep.name, ep.value, ep.module) for g in (BUS_GROUP, DEVICE_GROUP) for ep in eps.select(group=g)]
     cache.store("entry-points", key, found)
     return found
+
+
+def _place(entry: str, installed: set) -> str:
+    """What of a folder of sys.path says which distributions it holds. A
+    folder of the Python installation or the virtual environment
+    (site-packages, the standard library): its time, which changes only
+    when something is installed there. Any other (the current folder, which
+    `python -c` and `python -m pytest` put on sys.path, a project's folder,
+    PYTHONPATH's): the names and times of the .dist-info and .egg-info
+    folders in it and of their entry_points.txt, so that editing a
+    project's files does not read the entry points again."""
+    path = entry or "."
+    time = _mtime(path)
+    real = os.path.realpath(path)
+    if not os.path.isdir(real) or any(real == root or real.startswith(root + os.sep) for root in installed):
+        return f"{entry}\0{time}"  # a zip file, a folder of the installation, or none at all
+    infos = []
+    try:
+        with os.scandir(path) as found:
+            for item in found:
+                if item.name.endswith((".dist-info", ".egg-info")):
+                    points = _mtime(os.path.join(item.path, "entry_points.txt"))
+                    infos.append(f"{item.name}:{_mtime(item.path)}:{points}")
+    except OSError:
+        return f"{entry}\0{time}"
+    return "\0".join([entry, *sorted(infos)])
+
+
+def _mtime(path: str) -> str:
+    """A file's or folder's time, "-" when there is none."""
+    try:
+        return str(os.stat(path).st_mtime_ns)
+    except OSError:
+        return "-"
 
 
 def _package_code(module: str) -> bytes:

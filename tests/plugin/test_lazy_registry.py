@@ -175,6 +175,9 @@ def test_the_entry_points_are_kept_until_a_distribution_comes(tmp_path):
     assert first["metadata"] and "tests.plugin.relay" not in first["packages"]
     again = _points_probe(site, tmp_path / "cache")
     assert again == {"packages": first["packages"], "metadata": False}
+    (site / "notes.txt").write_text("a project's file")  # a new file is no distribution: still kept
+    (site / "pkg").mkdir()
+    assert _points_probe(site, tmp_path / "cache") == again
     dist = site / "relay_plugin-1.0.dist-info"  # installed now: its folder changes site's time
     dist.mkdir()
     (dist / "METADATA").write_text("Metadata-Version: 2.1\nName: relay-plugin\nVersion: 1.0\n")
