@@ -27,6 +27,16 @@ process's CPU time instead of the wall clock: on a busy host it moves less.
     python benchmarks/bench_examples.py --quick          # 10 s each
     python benchmarks/bench_examples.py --only default   # one configuration
     python benchmarks/bench_examples.py --profile genset # cProfile of one, top 25 by own time
+    python benchmarks/bench_examples.py --parts default  # what each part of one costs a tick
+
+--parts times each driver's phases (advance_to, read_inputs, write_outputs)
+and each task's programs with perf_counter_ns, in this process: µs per tick
+of each, their sum and the whole tick. The timing itself costs a few tenths
+of a µs per part and call (the whole tick is slower than without it), and
+a part's share in the tick is not what leaving it out would save: a part's
+code and data leave the processor's caches while the rest of the tick runs
+(benchmarks/README.md, "the same code costs three to four times more inside
+the tick than in a loop").
 """
 
 from __future__ import annotations
@@ -101,6 +111,49 @@ def run_one(path: Path, seconds: float, bare: bool, profile: bool = False) -> di
     return {"plant_s": seconds, "wall_s": wall, "ratio": seconds / wall, "cpu_ratio": seconds / cpu}
 
 
+def parts(path: Path, seconds: float) -> None:
+    """Print what each driver's phases and each task cost per tick (--parts)."""
+    import tempfile
+    from collections import Counter
+
+    spent: Counter = Counter()
+    counter = time.perf_counter_ns
+
+    def timed(call, key):
+        def run(*args):
+            t0 = counter()
+            call(*args)
+            spent[key] += counter() - t0
+
+        return run
+
+    with tempfile.TemporaryDirectory() as tmp:
+        engine = _engine(path, False, Path(tmp))
+        settle_heap()
+        engine.start()
+        try:
+            engine.run(duration_ns=int(WARM_S * 1e9))
+            for driver in engine.drivers:
+                for phase in ("advance_to", "read_inputs", "write_outputs"):
+                    setattr(driver, phase, timed(getattr(driver, phase), f"{type(driver).__name__}.{phase}"))
+            for task in engine.tasks:
+                task.calls = [timed(call, f"task {task.name}") for call in task.calls]
+            engine.tick = timed(engine.tick, "whole tick")
+            cycle = engine.cycle
+            engine.run(duration_ns=int(seconds * 1e9))
+            ticks = engine.cycle - cycle
+        finally:
+            engine.stop()
+    whole = spent.pop("whole tick")
+    print(f"{path.name}: {ticks} ticks, µs per tick (each part timed: the whole tick is slower than untimed)")
+    for key, ns in spent.most_common():
+        if ns / ticks >= 50:
+            print(f"  {key:<40} {ns / ticks / 1e3:7.1f}  {100 * ns / whole:5.1f} %")
+    rest = whole - sum(spent.values())
+    print(f"  {'the engine between the parts':<40} {rest / ticks / 1e3:7.1f}  {100 * rest / whole:5.1f} %")
+    print(f"  {'whole tick':<40} {whole / ticks / 1e3:7.1f}")
+
+
 def _child(name: str, path: Path, seconds: float, bare: bool) -> dict:
     cmd = [sys.executable, __file__, "--child", str(path), "--seconds", str(seconds)]
     if bare:
@@ -117,6 +170,7 @@ def main() -> None:
     parser.add_argument("--seconds", type=float, default=None, help="plant seconds per configuration")
     parser.add_argument("--only", action="append", default=[], help="a configuration by name (repeatable)")
     parser.add_argument("--profile", metavar="NAME", help="cProfile one configuration in this process")
+    parser.add_argument("--parts", metavar="NAME", help="what each driver and task of one costs a tick")
     parser.add_argument("--child", metavar="PATH", help=argparse.SUPPRESS)
     parser.add_argument("--bare", action="store_true", help=argparse.SUPPRESS)
     args = parser.parse_args()
@@ -127,6 +181,9 @@ def main() -> None:
     table = configs()
     if args.profile:
         run_one(table[args.profile], seconds, False, profile=True)
+        return
+    if args.parts:
+        parts(table[args.parts], seconds)
         return
     names = args.only or list(table)
     host = timeit_factor()
