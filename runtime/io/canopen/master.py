@@ -83,7 +83,8 @@ class _EndpointNetwork(canopen.Network):
         self.endpoint = endpoint
         self.lines = lines
 
-    def send_message(self, can_id: int, data: bytes, remote: bool = False) -> None:
+    def send_message(self, can_id: int, data: bytes | bytearray, remote: bool = False) -> None:
+        # canopen declares bytes, but its SDO client hands over a bytearray
         if not self.endpoint.send(can_id, bytes(data), remote=remote):
             # canopen's SDO client then waits for its timeout, as on a real bus
             self.lines.debug("not sent", "frame 0x%03X not sent: %s", can_id, self.endpoint.last_error or "unplugged")
