@@ -109,9 +109,10 @@ class Engine(Inspection):
         # clock). It reads CPU time again only for a cycle whose wall time is
         # past its watchdog; that cycle's CPU time is then the thread's since
         # the tick began, an upper bound (the drivers' work and the tasks
-        # before it in the tick count too) less at most CPU_SAMPLE_NS that the
-        # thread spent descheduled just before the tick: a verdict that errs
-        # only towards no fault, by at most that much.
+        # before it in the tick count too), but for any time the thread was
+        # descheduled between the last reading and the tick (less than
+        # CPU_SAMPLE_NS), which counts as CPU time spent before the tick:
+        # the verdict errs only towards no fault, and by less than that.
         self._tick_cpu_ns = 0
         self._cpu_read_ns = 0  # the last CPU time read (_COLLECTOR.cpu_ns) ...
         self._cpu_read_wall_ns = -CPU_SAMPLE_NS - 1  # ... at this perf_counter_ns

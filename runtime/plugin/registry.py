@@ -22,10 +22,10 @@ configuration without a bus section or a [[sim]] table only for the keys of
 the buses' sections (``plugin_sections``): those come from an index kept in
 softplc's cache (runtime/cache.py, keyed by the installed entry points and
 the contents of their packages; the entry points themselves are kept under
-the folders of sys.path and their times: _points), so a program that uses
-no bus and no device compiles, and a configuration that names none loads
-and runs, without importing one; a native function's plugin is loaded when
-a program calls it.
+the folders of sys.path and the distributions in them: _points), so a
+program that uses no bus and no device compiles, and a configuration that
+names none loads and runs, without importing one; a native function's
+plugin is loaded when a program calls it.
 """
 
 from __future__ import annotations
@@ -273,9 +273,9 @@ def _points() -> list:
     """(group, name, value, module) of every installed bus and device entry
     point. importlib.metadata, which finds them, costs `softplc check` a
     fifteenth of its time to import and read, so what it found is kept in
-    the cache under the folders of sys.path and the times they last
-    changed: installing or removing a distribution adds or removes its
-    .dist-info folder there, and a new key reads them again (_place)."""
+    the cache under the folders of sys.path and the distributions they hold
+    (_place): installing or removing one adds or removes its .dist-info
+    folder there, and a new key reads them again."""
     installed = {os.path.realpath(p) for p in (sys.prefix, sys.base_prefix, sys.exec_prefix)}
     key = cache.key("entry-points", *(_place(entry, installed) for entry in sys.path))
     found = cache.load("entry-points", key)
@@ -299,10 +299,10 @@ def _place(entry: str, installed: set) -> str:
     folders in it and of their entry_points.txt, so that editing a
     project's files does not read the entry points again."""
     path = entry or "."
-    time = _mtime(path)
+    stamp = _mtime(path)
     real = os.path.realpath(path)
     if not os.path.isdir(real) or any(real == root or real.startswith(root + os.sep) for root in installed):
-        return f"{entry}\0{time}"  # a zip file, a folder of the installation, or none at all
+        return f"{entry}\0{stamp}"  # a zip file, a folder of the installation, or none at all
     infos = []
     try:
         with os.scandir(path) as found:
@@ -311,7 +311,7 @@ def _place(entry: str, installed: set) -> str:
                     points = _mtime(os.path.join(item.path, "entry_points.txt"))
                     infos.append(f"{item.name}:{_mtime(item.path)}:{points}")
     except OSError:
-        return f"{entry}\0{time}"
+        return f"{entry}\0{stamp}"
     return "\0".join([entry, *sorted(infos)])
 
 
