@@ -49,6 +49,7 @@ import subprocess
 import sys
 import time
 import tomllib
+from contextlib import contextmanager
 from pathlib import Path
 
 from softplc.runtime.config import config_from_dict, load_config
@@ -84,9 +85,10 @@ def _engine(path: Path, bare: bool, tmp: Path):
     return build_engine(config, virtual_time=True)
 
 
-def run_one(path: Path, seconds: float, bare: bool, profile: bool = False) -> dict:
-    """Build, start as `softplc run` does, run WARM_S plant-seconds, then
-    time engine.run() for seconds more of plant time."""
+@contextmanager
+def _warmed(path: Path, bare: bool):
+    """The configuration's engine built and started as `softplc run` does,
+    after WARM_S plant-seconds; stopped at the end."""
     import tempfile
 
     with tempfile.TemporaryDirectory() as tmp:
@@ -95,16 +97,23 @@ def run_one(path: Path, seconds: float, bare: bool, profile: bool = False) -> di
         engine.start()
         try:
             engine.run(duration_ns=int(WARM_S * 1e9))
-            prof = cProfile.Profile() if profile else None
-            t0, c0 = time.perf_counter(), time.process_time()
-            if prof is not None:
-                prof.enable()
-            engine.run(duration_ns=int(seconds * 1e9))
-            if prof is not None:
-                prof.disable()
-            wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+            yield engine
         finally:
             engine.stop()
+
+
+def run_one(path: Path, seconds: float, bare: bool, profile: bool = False) -> dict:
+    """Build, start as `softplc run` does, run WARM_S plant-seconds, then
+    time engine.run() for seconds more of plant time."""
+    with _warmed(path, bare) as engine:
+        prof = cProfile.Profile() if profile else None
+        t0, c0 = time.perf_counter(), time.process_time()
+        if prof is not None:
+            prof.enable()
+        engine.run(duration_ns=int(seconds * 1e9))
+        if prof is not None:
+            prof.disable()
+        wall, cpu = time.perf_counter() - t0, time.process_time() - c0
     if prof is not None:
         pstats.Stats(prof).sort_stats("tottime").print_stats(25)
         pstats.Stats(prof).sort_stats("cumulative").print_stats(25)
@@ -113,7 +122,6 @@ def run_one(path: Path, seconds: float, bare: bool, profile: bool = False) -> di
 
 def parts(path: Path, seconds: float) -> None:
     """Print what each driver's phases and each task cost per tick (--parts)."""
-    import tempfile
     from collections import Counter
 
     spent: Counter = Counter()
@@ -127,23 +135,16 @@ def parts(path: Path, seconds: float) -> None:
 
         return run
 
-    with tempfile.TemporaryDirectory() as tmp:
-        engine = _engine(path, False, Path(tmp))
-        settle_heap()
-        engine.start()
-        try:
-            engine.run(duration_ns=int(WARM_S * 1e9))
-            for driver in engine.drivers:
-                for phase in ("advance_to", "read_inputs", "write_outputs"):
-                    setattr(driver, phase, timed(getattr(driver, phase), f"{type(driver).__name__}.{phase}"))
-            for task in engine.tasks:
-                task.calls = [timed(call, f"task {task.name}") for call in task.calls]
-            engine.tick = timed(engine.tick, "whole tick")
-            cycle = engine.cycle
-            engine.run(duration_ns=int(seconds * 1e9))
-            ticks = engine.cycle - cycle
-        finally:
-            engine.stop()
+    with _warmed(path, False) as engine:
+        for driver in engine.drivers:
+            for phase in ("advance_to", "read_inputs", "write_outputs"):
+                setattr(driver, phase, timed(getattr(driver, phase), f"{type(driver).__name__}.{phase}"))
+        for task in engine.tasks:
+            task.calls = [timed(call, f"task {task.name}") for call in task.calls]
+        engine.tick = timed(engine.tick, "whole tick")
+        cycle = engine.cycle
+        engine.run(duration_ns=int(seconds * 1e9))
+        ticks = engine.cycle - cycle
     whole = spent.pop("whole tick")
     print(f"{path.name}: {ticks} ticks, µs per tick (each part timed: the whole tick is slower than untimed)")
     for key, ns in spent.most_common():
