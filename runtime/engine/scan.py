@@ -52,7 +52,7 @@ log = logging.getLogger("softplc.engine")
 
 ON_FAULT = ("task", "plc")
 #: in virtual time, how old (wall time) the last reading of the scan thread's
-#: CPU time may be for a tick to start from it (see Engine.__init__)
+#: CPU time may be for a tick to count from it (see Engine.__init__)
 CPU_SAMPLE_NS = 1_000_000
 START_MODES = ("warm", "cold")
 
@@ -102,20 +102,16 @@ class Engine(Inspection):
         # descheduled test process is no slow program). CPU time is a system
         # call (a microsecond in a loop, three or four inside a tick, whose
         # caches it disturbs), wall time is not. So the engine reads CPU time
-        # at a tick's start only when the last reading is more than
-        # CPU_SAMPLE_NS of wall time old, and otherwise takes that reading
-        # plus the wall time since (_tick_cpu_ns: never below the thread's
-        # true CPU time then, as CPU time never runs ahead of the wall
-        # clock). It reads CPU time again only for a cycle whose wall time is
-        # past its watchdog; that cycle's CPU time is then the thread's since
-        # the tick began, an upper bound (the drivers' work and the tasks
-        # before it in the tick count too), but for any time the thread was
-        # descheduled between the last reading and the tick (less than
-        # CPU_SAMPLE_NS), which counts as CPU time spent before the tick:
-        # the verdict errs only towards no fault, and by less than that.
+        # at a tick's start only when its last reading is more than
+        # CPU_SAMPLE_NS of wall time old, and otherwise starts from that
+        # reading (_tick_cpu_ns). It reads CPU time again only for a cycle
+        # whose wall time is past its watchdog; that cycle's CPU time is then
+        # the thread's since that reading, an upper bound: the drivers' work
+        # and the tasks before it in the tick count too, and whatever the
+        # thread computed in at most CPU_SAMPLE_NS before the tick. Time the
+        # thread was descheduled never counts.
         self._tick_cpu_ns = 0
-        self._cpu_read_ns = 0  # the last CPU time read (_COLLECTOR.cpu_ns) ...
-        self._cpu_read_wall_ns = -CPU_SAMPLE_NS - 1  # ... at this perf_counter_ns
+        self._cpu_read_wall_ns = -CPU_SAMPLE_NS - 1  # perf_counter_ns when _tick_cpu_ns was read
         if self.clock.virtual:
             self.ctx.timer = _COLLECTOR.cpu_s
         # the date and the clock the functions that read them see (F_GetSystemTime)
@@ -336,9 +332,8 @@ class Engine(Inspection):
         if self.clock.virtual:
             wall = time.perf_counter_ns()
             if wall - self._cpu_read_wall_ns > CPU_SAMPLE_NS:
-                self._cpu_read_ns = _COLLECTOR.cpu_ns()
+                self._tick_cpu_ns = _COLLECTOR.cpu_ns()
                 self._cpu_read_wall_ns = wall
-            self._tick_cpu_ns = self._cpu_read_ns + (wall - self._cpu_read_wall_ns)
             # Virtual time: the bus work due by now happens first, in this
             # thread, so the inputs read below are the same on every run.
             for driver in self.drivers:

@@ -178,9 +178,9 @@ def test_in_virtual_time_a_busy_host_is_no_watchdog_fault(engines):
 
 
 def test_in_virtual_time_a_cycle_that_computes_too_long_is_a_watchdog_fault(engines):
-    # The tick takes its CPU time from a reading up to a millisecond old
-    # (the first cycles come within microseconds of one another): a cycle
-    # that spends 150 ms of CPU on a 100 ms watchdog is still late.
+    # The tick counts CPU time from a reading up to a millisecond old (the
+    # first cycles come within microseconds of one another): a cycle that
+    # spends 150 ms of CPU on a 100 ms watchdog is late.
     e = engines(WAIT_PROGRAM, [task("Main", 10, "Waiter", watchdog_ms=100)], clock=VirtualClock())
     cycle = iter(range(100))
 
