@@ -481,13 +481,31 @@ class PouGen(SfcGen):
     def _function_epilogue(self) -> None:
         pou = self.fn.pou
         assert pou is not None  # only a FUNCTION's body ends with an epilogue
-        for v in pou.params("VAR_OUTPUT"):
+        outputs = pou.params("VAR_OUTPUT")
+        for v in outputs:
             val = f"{v.pyname}.value" if v.boxed else v.pyname
             self.emit(f"if _o_{v.pyname} is not None: _o_{v.pyname}.set({val})")
-        if pou.result is not None:
-            self.emit("return r_result.value" if pou.result.boxed else "return r_result")
-        else:
+        if pou.result is None:
             self.emit("return False")
+        elif pou.result.boxed:
+            self.emit("return r_result.value")
+        elif not outputs and self._return_stored():
+            pass
+        else:
+            self.emit("return r_result")
+
+    def _return_stored(self) -> bool:
+        """`Name := x;` just before the return (the body's last statement,
+        or the one before RETURN): `return x` instead of `r_result = x`
+        followed by `return r_result`. The line before, at the same indent,
+        is the statement run just before (Python has no jumps into a block);
+        it keeps its ST position, which a fault in x reports."""
+        head = "    " * self.indent + "r_result = "
+        if not self.out or not self.out[-1][0].startswith(head):
+            return False
+        line, pos = self.out[-1]
+        self.out[-1] = ("    " * self.indent + "return " + line[len(head) :], pos)
+        return True
 
     def _globals_class(self) -> None:
         self.pos = None

@@ -127,3 +127,53 @@ r := F(go := TRUE);
 END_PROGRAM
 """
     assert run_st(src).get("r") == result
+
+
+@pytest.mark.parametrize(
+    "body,result",
+    [
+        ("F := n + 2;", 3),  # the last statement: returned at once
+        ("IF go THEN F := 7; RETURN; END_IF F := 9;", 7),  # before RETURN, and last
+        ("IF NOT go THEN F := 7; RETURN; END_IF F := 9;", 9),
+        ("F := 4; IF go THEN F := F * 10; END_IF", 40),  # last in a branch: stored, then returned
+        ("F := 4; o := F + 1;", 4),  # a VAR_OUTPUT is set before the return
+        ("F := 4; WHILE n < 3 DO n := n + 1; F := n; END_WHILE", 3),
+    ],
+)
+def test_a_result_stored_just_before_the_return_is_the_result(body, result):
+    src = f"""
+FUNCTION F : INT
+VAR_INPUT go : BOOL; END_VAR
+VAR_OUTPUT o : INT; END_VAR
+VAR n : INT := 1; END_VAR
+{body}
+END_FUNCTION
+PROGRAM main
+VAR r : INT; out : INT; END_VAR
+r := F(go := TRUE, o => out);
+END_PROGRAM
+"""
+    assert run_st(src).get("r") == result
+
+
+def test_a_method_returns_its_last_store_without_a_result_variable():
+    src = """
+FUNCTION_BLOCK Acc
+VAR sum : DINT; END_VAR
+METHOD Step : DINT
+VAR_INPUT x : DINT; END_VAR
+sum := sum + x;
+Step := sum;
+END_METHOD
+END_FUNCTION_BLOCK
+PROGRAM main
+VAR a : Acc; r : DINT; END_VAR
+r := a.Step(x := 5) + a.Step(x := 2);
+END_PROGRAM
+"""
+    program = compile_files([], texts={"test.st": src})
+    [step] = [part for part in program.python_source.split("def ") if part.startswith("m_step")]
+    assert "r_result" not in step and "return self.v_sum" in step
+    r = program.runner("main")
+    r.run(1)
+    assert r.get("r") == 12  # 5, then 7
