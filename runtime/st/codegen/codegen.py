@@ -60,6 +60,7 @@ class CodeGen(PouGen, StmtGen, ExprGen, PointerGen, CallGen, EnoGen, ConfigGen, 
             classes[pou.name.upper()] = pou.pyname
         self._globals_class()
         self._var_config()
+        self._unbind_unread()  # codegen_reuse.py
         text_lines = []
         linemap = {}
         for i, (text, pos) in enumerate(self.out, start=1):

@@ -151,6 +151,7 @@ class CodeGenBase:
         self._acc_keys: dict = {}
         self._tmp = 0
         self.fn = FnState(None)
+        self._stores_read: set[str] = set()  # locals of stored elements a read used (codegen_reuse.py)
         self._ref_inits: list = []  # (target, REF() call, pos, type) to emit after the other initial values
 
     def emit(self, line: str) -> None:

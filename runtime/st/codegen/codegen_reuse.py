@@ -17,6 +17,10 @@ use the local. That holds for an element ``B[i]`` when:
 * the read is part of a plain assignment, whose expressions run once where
   the statement stands.
 
+A plain assignment into such an element binds it too: ``avg[i] := sum / 8.0;
+IF avg[i] < lo THEN lo := avg[i]; END_IF`` stores ``_a_v_avg[_i4] = _e7 =
+...`` and reads ``_e7`` after it (a literal it stores is read as itself).
+
 The bound element is one of the facts (codegen_facts.py): a store into B
 forgets it, and so do a loop's start and end, the join of branches that did
 not all bind it, a list with labels, an assignment inside an expression.
@@ -24,6 +28,7 @@ not all bind it, a list with labels, an assignment inside an expression.
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 from .. import ast as A
@@ -32,6 +37,12 @@ from ..check.symbols import CallInfo
 from . import ranges as R
 from .codegen_facts import FACTS_MAX, FactsGen, root_name
 from .codegen_locals import walk
+
+# a stored value that later reads repeat instead of a local (a negative one
+# in parentheses: -1 ** 2 is not (-1) ** 2)
+_LITERAL = re.compile(r"[0-9][0-9_.]*(e[+-]?[0-9]+)?|True|False")
+_NEGATIVE = re.compile(r"-[0-9][0-9_.]*(e[+-]?[0-9]+)?")
+_BOUND = re.compile("\1(_e[0-9]+)\1 = ")
 
 
 def referenced(stmts: list) -> set:
@@ -95,6 +106,7 @@ class ReuseGen(FactsGen):
         assert facts is not None
         bound = facts.get(key)
         if bound is not None:
+            self._stores_read.add(bound)
             return bound
         code = self._index_target(e)
         if self.fn.bind_at != self.indent or len(facts) >= FACTS_MAX:  # not a plain assignment's own line
@@ -103,3 +115,39 @@ class ReuseGen(FactsGen):
         self.emit(f"{local} = {code}")
         facts[key] = local
         return local
+
+    def _bind_stored(self, target: A.Index) -> None:
+        """target := value was just emitted as ``B[i] = code``: the element
+        now holds what code gave, which the statements after it read from a
+        local bound in the same line (``B[i] = _e7 = code``)."""
+        facts = self.fn.facts
+        if facts is None or target.implicit_ref is not None or len(facts) >= FACTS_MAX:
+            return
+        key = self._reuse_key(target)
+        if key is None:
+            return
+        line, pos = self.out[-1]
+        split = line.find(" = ")  # its index is a constant or a FOR variable: no " = " in it
+        pad = "    " * self.indent
+        if split < 0 or not line.startswith(pad) or line[len(pad)] == " " or not line[:split].endswith("]"):
+            return
+        head, code = line[: split + 3], line[split + 3 :]
+        if _LITERAL.fullmatch(code) or _NEGATIVE.fullmatch(code):
+            facts[key] = code if code[0] != "-" else f"({code})"
+            return
+        local = self.tmp("e")
+        self.out[-1] = (f"{head}\1{local}\1 = {code}", pos)
+        facts[key] = local
+
+    def _unbind_unread(self) -> None:
+        """The module is complete: a local bound by _bind_stored stays in its
+        line if a read used it, else goes (until now the local was marked in
+        its line, between two \\1, as lines move and are re-indented)."""
+        read = self._stores_read
+
+        def keep(m: re.Match) -> str:
+            return f"{m.group(1)} = " if m.group(1) in read else ""
+
+        for i, (text, pos) in enumerate(self.out):
+            if "\1" in text:
+                self.out[i] = (_BOUND.sub(keep, text), pos)

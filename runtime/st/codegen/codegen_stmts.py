@@ -384,6 +384,8 @@ class StmtGen(ReuseGen):
             self.fn.bind_at = None
         if rng is not None and isinstance(s.target, A.Name):
             self._fact_set(s.target.sym, rng)
+        elif isinstance(s.target, A.Index):
+            self._bind_stored(s.target)  # codegen_reuse.py
 
     def coerce(self, code: str, src: T.Type, dst: T.Type, e: A.Expr | None) -> str:
         """Convert a value of type src to the representation of dst on store
