@@ -103,6 +103,9 @@ class FnState:
         # the indent of the plain assignment being emitted (binding allowed)
         self.referenced: set | None = None
         self.bind_at: int | None = None
+        # expressions bound to a local before the FOR loop whose body repeats
+        # them (codegen_hoist.py): id(Expr) -> local name
+        self.hoisted: dict = {}
         # a PROGRAM's scalars held in locals while its body runs (codegen_locals.py):
         # id(VarSymbol) -> local name; the ids of those the body stores
         self.promoted: dict = {}

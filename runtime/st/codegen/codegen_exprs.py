@@ -28,6 +28,10 @@ class ExprGen(CodeGenBase):
     """Expressions and references."""
 
     def ex(self, e: A.Expr) -> str:
+        if self.fn.hoisted:
+            moved = self.fn.hoisted.get(id(e))
+            if moved is not None:  # computed before its FOR loop (codegen_hoist.py)
+                return moved
         if type(e) is A.Index and e.via is not None:  # p[i]: (p + i elements)^
             return self.ex(e.via)
         if e.implicit_ref is not None:  # a REFERENCE TO stands for its target

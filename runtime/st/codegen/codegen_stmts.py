@@ -22,7 +22,7 @@ from ..rtlib.rt_case import CaseTable
 from . import ranges as R
 from .codegen_base import elementary, py_literal
 from .codegen_facts import join
-from .codegen_reuse import ReuseGen
+from .codegen_hoist import HoistGen
 
 
 def _int_literal(code: str) -> bool:
@@ -34,7 +34,7 @@ def _int_literal(code: str) -> bool:
 CASE_CHAIN = 64
 
 
-class StmtGen(ReuseGen):
+class StmtGen(HoistGen):
     """Statements, conversions on store and stores."""
 
     def _body(self, stmts: list) -> None:
@@ -310,6 +310,7 @@ class StmtGen(ReuseGen):
             step_code = self.coerce(self.ex(s.step), s.step.ty, vty, s.step)
             self.emit(f"{rng} = _for_range({start}, {end}, {step_code})")
         self._facts_loop()
+        moved = self._hoist(s)  # codegen_hoist.py
         self.emit(f"for {it} in {self._for_iterable(rng, vty, known)}:")
         self.indent += 1
         local = self._loop_local_ok(var.sym, s.body)
@@ -324,6 +325,8 @@ class StmtGen(ReuseGen):
         self.fn.loop_kinds.append(("for", (var, it, local)))
         self._body(s.body)
         self.fn.loop_kinds.pop()
+        for node in moved:
+            del self.fn.hoisted[node]
         self.fn.for_locals.pop(id(var.sym), None)
         self.fn.loop_ranges.pop(id(var.sym), None)
         self.indent -= 1
