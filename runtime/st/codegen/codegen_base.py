@@ -154,7 +154,9 @@ class CodeGenBase:
         self._acc_keys: dict = {}
         self._tmp = 0
         self.fn = FnState(None)
-        self._stores_read: set[str] = set()  # locals of stored elements a read used (codegen_reuse.py)
+        # element stores bound to a local, and the locals of those a read used (codegen_reuse.py)
+        self._stores_bound = 0
+        self._stores_read: set[str] = set()
         self._ref_inits: list = []  # (target, REF() call, pos, type) to emit after the other initial values
 
     def emit(self, line: str) -> None:

@@ -30,29 +30,12 @@ from .. import types as T
 from ..check.symbols import VarSymbol
 from .codegen_facts import root_name
 from .codegen_locals import walk
-from .codegen_reuse import ReuseGen, referenced
+from .codegen_reuse import ReuseGen, lvalues
 
 _OPS = frozenset(("+", "-", "*"))
 # what a moved expression's Python may be: names, integer literals, parentheses, + - * & and spaces
 _PLAIN = re.compile(r"[A-Za-z0-9_ ()+\-*&]+")
 _CALL = re.compile(r"[A-Za-z0-9_]\s*\(")
-
-
-def _stored(body: list) -> set:
-    """Ids of the variables body stores to or takes a reference to."""
-    found = referenced(body)
-    for node, _ in walk(body):
-        target = None
-        if isinstance(node, (A.Assign, A.AssignExpr, A.SetReset)):
-            target = node.target
-        elif isinstance(node, A.For):
-            target = node.var
-        elif isinstance(node, A.Label):
-            return {None}  # a jump target: no expression moves (see _invariants)
-        sym = root_name(target) if target is not None else None
-        if sym is not None:
-            found.add(id(sym))
-    return found
 
 
 class HoistGen(ReuseGen):
@@ -71,18 +54,27 @@ class HoistGen(ReuseGen):
 
     def _invariants(self, s: A.For) -> list:
         """The largest integer expressions of s's body that do not change while it runs."""
-        stored = _stored(s.body)
-        if None in stored:
-            return []
-        stored.add(id(s.var.sym))  # the loop's own variable
-        hoisted = self.fn.hoisted
+        stored = {id(s.var.sym)}  # the variables the body stores to or references, and the loop's own
         parent: dict = {}
         order: list = []
-        for node, _ in walk(s.body):
+        for node, _ in walk(s.body):  # one pass: a long body is walked once per loop around it
             order.append(node)
-            for child in (getattr(node, "left", None), getattr(node, "right", None), getattr(node, "operand", None)):
-                if isinstance(child, A.Expr):
-                    parent[id(child)] = node
+            if isinstance(node, A.Binary):
+                parent[id(node.left)] = parent[id(node.right)] = node
+            elif isinstance(node, A.Unary):
+                parent[id(node.operand)] = node
+            elif isinstance(node, A.Label):
+                return []  # a jump target
+            targets = lvalues(node)
+            if isinstance(node, (A.Assign, A.AssignExpr, A.SetReset)):
+                targets.append(node.target)
+            elif isinstance(node, A.For):
+                targets.append(node.var)
+            for target in targets:
+                sym = root_name(target)
+                if sym is not None:
+                    stored.add(id(sym))
+        hoisted = self.fn.hoisted
         same: dict = {}  # id(expression) -> True when it is the same at every pass
         for node in reversed(order):  # operands before their operator
             if id(node) in hoisted:

@@ -45,23 +45,30 @@ _NEGATIVE = re.compile(r"-[0-9][0-9_.]*(e[+-]?[0-9]+)?")
 _BOUND = re.compile("\1(_e[0-9]+)\1 = ")
 
 
+def lvalues(node: A.Node) -> list:
+    """The expressions node takes a reference to or stores into besides its
+    target: VAR_IN_OUT and => arguments (and a builtin's or an ENO's), the
+    value of REF=, the target of an assignment inside an expression."""
+    found: list = []
+    if isinstance(node, A.Call) and isinstance(node.target, CallInfo):
+        info = node.target
+        found += [a for _, a in info.inouts] + [t for _, t, _ in info.outputs]
+        if info.kind == "builtin" or info.eno is not None:
+            found += list(info.args) + [info.eno]
+    elif isinstance(node, A.Assign) and node.op == "REF=":
+        found.append(node.value)
+    elif isinstance(node, A.AssignExpr):
+        found.append(node.target)
+    return found
+
+
 def referenced(stmts: list) -> set:
     """Ids of the variables a reference is taken to or into anywhere in
     stmts: ADR, REF, REF=, VAR_IN_OUT and => arguments, assignments inside
     expressions."""
     found: set = set()
     for node, _ in walk(stmts):
-        lvalues: list = []
-        if isinstance(node, A.Call) and isinstance(node.target, CallInfo):
-            info = node.target
-            lvalues += [a for _, a in info.inouts] + [t for _, t, _ in info.outputs]
-            if info.kind == "builtin" or info.eno is not None:
-                lvalues += list(info.args) + [info.eno]
-        elif isinstance(node, A.Assign) and node.op == "REF=":
-            lvalues.append(node.value)
-        elif isinstance(node, A.AssignExpr):
-            lvalues.append(node.target)
-        found.update(id(sym) for sym in map(root_name, lvalues) if sym is not None)
+        found.update(id(sym) for sym in map(root_name, lvalues(node)) if sym is not None)
     return found
 
 
@@ -137,6 +144,7 @@ class ReuseGen(FactsGen):
             return
         local = self.tmp("e")
         self.out[-1] = (f"{head}\1{local}\1 = {code}", pos)
+        self._stores_bound += 1
         facts[key] = local
 
     def _unbind_unread(self) -> None:
@@ -144,10 +152,14 @@ class ReuseGen(FactsGen):
         line if a read used it, else goes (until now the local was marked in
         its line, between two \\1, as lines move and are re-indented)."""
         read = self._stores_read
+        left = self._stores_bound
 
         def keep(m: re.Match) -> str:
             return f"{m.group(1)} = " if m.group(1) in read else ""
 
         for i, (text, pos) in enumerate(self.out):
+            if not left:
+                break
             if "\1" in text:
                 self.out[i] = (_BOUND.sub(keep, text), pos)
+                left -= text.count("\1") // 2
