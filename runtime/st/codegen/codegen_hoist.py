@@ -114,8 +114,10 @@ class HoistGen(ReuseGen):
             return []
         moved = []
         for node in self._invariants(s):
+            lines = len(self.out)
             code = self.ex(node)
-            if not _PLAIN.fullmatch(code) or _CALL.search(code):
+            if len(self.out) != lines or not _PLAIN.fullmatch(code) or _CALL.search(code):
+                del self.out[lines:]  # (plain arithmetic emits nothing before it)
                 continue
             local = self.tmp("h")
             self.emit(f"{local} = {code}")

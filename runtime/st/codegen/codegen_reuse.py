@@ -136,7 +136,7 @@ class ReuseGen(FactsGen):
         line, pos = self.out[-1]
         split = line.find(" = ")  # its index is a constant or a FOR variable: no " = " in it
         pad = "    " * self.indent
-        if split < 0 or not line.startswith(pad) or line[len(pad)] == " " or not line[:split].endswith("]"):
+        if split < 0 or not line.startswith(pad) or line[len(pad) : len(pad) + 1] == " " or line[split - 1] != "]":
             return
         head, code = line[: split + 3], line[split + 3 :]
         if _LITERAL.fullmatch(code) or _NEGATIVE.fullmatch(code):
