@@ -115,18 +115,26 @@ def test_arrays_are_built_from_runs_however_many_elements_they_have():
 )
 def test_a_functions_result_is_its_default_on_every_way_out_before_it_is_stored(body, result):
     # the default is left out only where the body stores the result first (codegen_locals.stored_first)
+    assert _result_of_f(body) == result
+
+
+def _result_of_f(body: str, n: int = 0) -> int:
+    """F(go := TRUE) of a FUNCTION F : INT with the body, an input go, a
+    local n starting at n, and an output o if the body stores one."""
+    output = "o :=" in body
     src = f"""
 FUNCTION F : INT
 VAR_INPUT go : BOOL; END_VAR
-VAR n : INT; END_VAR
+{"VAR_OUTPUT o : INT; END_VAR" if output else ""}
+VAR n : INT := {n}; END_VAR
 {body}
 END_FUNCTION
 PROGRAM main
-VAR r : INT; END_VAR
-r := F(go := TRUE);
+VAR r : INT; out : INT; END_VAR
+r := F(go := TRUE{", o => out" if output else ""});
 END_PROGRAM
 """
-    assert run_st(src).get("r") == result
+    return run_st(src).get("r")
 
 
 @pytest.mark.parametrize(
@@ -141,19 +149,7 @@ END_PROGRAM
     ],
 )
 def test_a_result_stored_just_before_the_return_is_the_result(body, result):
-    src = f"""
-FUNCTION F : INT
-VAR_INPUT go : BOOL; END_VAR
-VAR_OUTPUT o : INT; END_VAR
-VAR n : INT := 1; END_VAR
-{body}
-END_FUNCTION
-PROGRAM main
-VAR r : INT; out : INT; END_VAR
-r := F(go := TRUE, o => out);
-END_PROGRAM
-"""
-    assert run_st(src).get("r") == result
+    assert _result_of_f(body, n=1) == result
 
 
 def test_a_method_returns_its_last_store_without_a_result_variable():

@@ -38,6 +38,19 @@ def test_an_element_read_twice_in_a_loop_is_read_once():
         ("x := a[2]; Fill(v := a[2]); y := a[2];", 50),  # VAR_IN_OUT
         ("x := a[2]; y := (a[2] := 25) + a[2];", 50),  # an assignment inside an expression
         ("x := a[2]; t(IN := TRUE, Q => f[2]); x := a[2]; IF f[2] THEN y := 50; END_IF", 50),  # =>
+        # stored, then read (from the store, until something changes it again); clamped in
+        # branches: what each branch stored, or what was stored before
+        ("a[2] := 70; IF a[2] > 50 THEN a[2] := 50; ELSIF a[2] < 0 THEN a[2] := -1; END_IF y := a[2];", 50),
+        ("a[2] := -7; IF a[2] > 50 THEN a[2] := 50; ELSIF a[2] < 0 THEN a[2] := -1; END_IF y := a[2];", -1),
+        ("a[2] := 7; IF a[2] > 50 THEN a[2] := 50; ELSIF a[2] < 0 THEN a[2] := -1; END_IF y := a[2];", 7),
+        ("a[2] := -3; y := a[2] ** 2;", 9),  # a negative literal stored: (-3) ** 2
+        ("a[2] := -3; y := -a[2];", 3),
+        ("FOR i := 1 TO 3 DO a[i] := i; a[2] := 9; x := x + a[i]; END_FOR y := x;", 1 + 9 + 3),  # i = 2: a[2]
+        ("FOR i := 1 TO 3 DO a[i] := i; k := 2; a[k] := 9; x := x + a[i]; END_FOR y := x;", 1 + 9 + 3),
+        ("a[2] := 5; x := a[2]; Fill(v := a[2]); y := a[2] + x;", 55),  # VAR_IN_OUT
+        ("a[2] := 5; WHILE k < 2 DO a[2] := a[2] + 1; k := k + 1; END_WHILE y := a[2];", 7),
+        ("a[2] := 5; a := b; y := a[2];", 7),  # the whole array
+        ("FOR i := 1 TO 3 DO a[i] := 100 * i; a[i] := a[i] + 1; y := y + a[i]; END_FOR", 603),
     ],
 )
 def test_an_element_changed_between_two_reads_is_read_again(body, y):
@@ -87,35 +100,3 @@ def test_an_element_stored_is_read_from_the_store_by_the_statements_after_it():
     assert local.startswith("_e") and body.count(local) == 4  # bound, compared, then read twice
     r = run_st(text)
     assert (r.get("lo"), r.get("hi")) == (0.25, 0.75)
-
-
-@pytest.mark.parametrize(
-    "body,y",
-    [
-        # clamped in branches: what each branch stored, or what was stored before
-        ("a[2] := 70; IF a[2] > 50 THEN a[2] := 50; ELSIF a[2] < 0 THEN a[2] := -1; END_IF y := a[2];", 50),
-        ("a[2] := -7; IF a[2] > 50 THEN a[2] := 50; ELSIF a[2] < 0 THEN a[2] := -1; END_IF y := a[2];", -1),
-        ("a[2] := 7; IF a[2] > 50 THEN a[2] := 50; ELSIF a[2] < 0 THEN a[2] := -1; END_IF y := a[2];", 7),
-        ("a[2] := -3; y := a[2] ** 2;", 9),  # a negative literal stored: (-3) ** 2
-        ("a[2] := -3; y := -a[2];", 3),
-        ("FOR i := 1 TO 3 DO a[i] := i; a[2] := 9; x := x + a[i]; END_FOR y := x;", 1 + 9 + 3),  # i = 2: a[2]
-        ("FOR i := 1 TO 3 DO a[i] := i; k := 2; a[k] := 9; x := x + a[i]; END_FOR y := x;", 1 + 9 + 3),
-        ("a[2] := 5; x := a[2]; Fill(v := a[2]); y := a[2] + x;", 55),  # VAR_IN_OUT
-        ("a[2] := 5; WHILE k < 2 DO a[2] := a[2] + 1; k := k + 1; END_WHILE y := a[2];", 7),
-        ("a[2] := 5; a := b; y := a[2];", 7),  # the whole array
-        ("FOR i := 1 TO 3 DO a[i] := 100 * i; a[i] := a[i] + 1; y := y + a[i]; END_FOR", 603),
-    ],
-)
-def test_an_element_stored_and_changed_again_is_read_again(body, y):
-    text = f"""
-FUNCTION Fill : BOOL
-VAR_IN_OUT v : INT; END_VAR
-v := 50;
-Fill := TRUE;
-END_FUNCTION
-PROGRAM main
-VAR {DECLS} b : ARRAY[1..3] OF INT := [5, 7, 9]; END_VAR
-{body}
-END_PROGRAM
-"""
-    assert run_st(text).get("y") == y
