@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+from contextlib import contextmanager
+
 import pytest
 
 from softplc.fblocks.iec.functions import STANDARD_FUNCTIONS
 from softplc.runtime.program import check_files, compile_files
 from softplc.runtime.st.check.checker import Checker
+from softplc.runtime.st.codegen.codegen import CodeGen
 from softplc.runtime.st.diagnostics import DiagnosticBag
 from softplc.runtime.st.profile import get_profile
 from softplc.runtime.st.syntax.parser import parse_source
@@ -16,6 +19,19 @@ def prog(decls: str, body: str) -> str:
     """A PROGRAM main with the declarations decls (in one VAR block) and
     the statements body; its first statement is on line 5."""
     return f"PROGRAM main\nVAR\n{decls}\nEND_VAR\n{body}\nEND_PROGRAM\n"
+
+
+@contextmanager
+def plain_codegen():
+    """The code generator without its optimisations (CodeGen.optimise), to
+    compare the optimised code with; a cached module is still used unless
+    the caller also disables the cache."""
+    before = CodeGen.optimise
+    CodeGen.optimise = False
+    try:
+        yield
+    finally:
+        CodeGen.optimise = before
 
 
 def run_st(

@@ -6,28 +6,14 @@ reference, a call) and checks the result against the plain generator's
 
 from __future__ import annotations
 
-from contextlib import contextmanager
-
 import pytest
 
 from softplc.runtime import cache
 from softplc.runtime.program import compile_files
-from softplc.runtime.st.codegen.codegen import CodeGen
 
-from ..conftest import prog, run_st
+from ..conftest import plain_codegen, prog, run_st
 
 DECLS = "i, j, k, m, x, y : DINT; d : DINT := 0; go : BOOL := TRUE; a : ARRAY[0..9] OF DINT;"
-
-
-@contextmanager
-def plain():
-    """The generator without its optimisations, and no cached module."""
-    CodeGen.optimise = False
-    try:
-        with cache.disabled():
-            yield
-    finally:
-        CodeGen.optimise = True
 
 
 def _body(text: str) -> str:
@@ -76,7 +62,7 @@ VAR {DECLS} END_VAR
 END_PROGRAM
 """
     assert run_st(text).get("x") == x
-    with plain():
+    with plain_codegen(), cache.disabled():
         runner = compile_files([], texts={"test.st": text}).runner("main")
     runner.run(1)
     assert runner.get("x") == x

@@ -6,8 +6,6 @@ methods, compiled with the facts, locals and bound elements
 
 from __future__ import annotations
 
-from contextlib import contextmanager
-
 import pytest
 
 hypothesis = pytest.importorskip("hypothesis")
@@ -16,8 +14,8 @@ from hypothesis import strategies as st  # noqa: E402
 
 from softplc.runtime import cache  # noqa: E402
 from softplc.runtime.program import compile_files  # noqa: E402
-from softplc.runtime.st.codegen.codegen import CodeGen  # noqa: E402
 
+from ..conftest import plain_codegen  # noqa: E402
 from ..fuzz_support import fuzz_settings  # noqa: E402
 
 TARGETS = ("a", "b", "c", "d", "arr[1]", "arr[4]")
@@ -118,16 +116,6 @@ def stmts(draw, depth: int, in_for: bool = False, action: bool = False) -> str:
     return "\n".join(out)
 
 
-@contextmanager
-def plain():
-    before = CodeGen.optimise
-    CodeGen.optimise = False
-    try:
-        yield
-    finally:
-        CodeGen.optimise = before
-
-
 def final_state(text: str, cycles: int = 4) -> dict:
     with cache.disabled():  # the two compiles must not share a cached module
         runner = compile_files([], texts={"plain.st": text}).runner("main")
@@ -144,6 +132,6 @@ def test_the_optimised_program_ends_where_the_plain_one_does(body, with_action, 
         action = "ACTION main.Bump:\na := 32767; arr[2] := 32767; d := 2147483647;\nEND_ACTION\n"
     text = f"{BLOCK}\nPROGRAM main\nVAR {DECLS} END_VAR\n{body}\nEND_PROGRAM\n{action}"
     optimised = final_state(text)
-    with plain():
+    with plain_codegen():
         expected = final_state(text)
     assert optimised == expected, text
