@@ -42,15 +42,14 @@ class HoistGen(ReuseGen):
     """Loop-invariant integer arithmetic moved before its FOR loop (the module docstring)."""
 
     def _local_name(self, sym: Any) -> bool:
-        """Whether the body reads sym from a Python local no other code reaches."""
-        if not isinstance(sym, VarSymbol) or sym.location is not None or sym.boxed or sym.address_taken:
-            return False
-        fn = self.fn
-        if id(sym) in fn.for_locals or id(sym) in fn.promoted:
-            return True
-        if sym.owner is not fn.pou or sym.owner is None:
-            return False
-        return self._temp_local(sym) or (fn.is_function and sym.section in ("VAR", "VAR_INPUT", "VAR_TEMP"))
+        """Whether the body reads sym from a Python local, which nothing but
+        the body's own statements can change: what _read_name (codegen_exprs.py)
+        gives for it is a bare name (a FOR loop's local, a PROGRAM's promoted
+        scalar, a VAR_TEMP, a FUNCTION's own variable), not an attribute,
+        a cell or an accessor."""
+        if not isinstance(sym, VarSymbol) or sym.location is not None or T.resolve(sym.type).is_aggregate:
+            return False  # (an accessor is bound, an aggregate counted, on reading: not asked)
+        return self._read_name(sym).isidentifier()
 
     def _invariants(self, s: A.For) -> list:
         """The largest integer expressions of s's body that do not change while it runs."""
