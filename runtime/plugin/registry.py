@@ -299,10 +299,9 @@ def _place(entry: str, installed: set) -> str:
     folders in it and of their entry_points.txt, so that editing a
     project's files does not read the entry points again."""
     path = entry or "."
-    stamp = _mtime(path)
     real = os.path.realpath(path)
     if not os.path.isdir(real) or any(real == root or real.startswith(root + os.sep) for root in installed):
-        return f"{entry}\0{stamp}"  # a zip file, a folder of the installation, or none at all
+        return f"{entry}\0{_mtime(path)}"  # a zip file, a folder of the installation, or none at all
     infos = []
     try:
         with os.scandir(path) as found:
@@ -311,7 +310,7 @@ def _place(entry: str, installed: set) -> str:
                     points = _mtime(os.path.join(item.path, "entry_points.txt"))
                     infos.append(f"{item.name}:{_mtime(item.path)}:{points}")
     except OSError:
-        return f"{entry}\0{stamp}"
+        return f"{entry}\0{_mtime(path)}"
     return "\0".join([entry, *sorted(infos)])
 
 
