@@ -61,7 +61,7 @@ from .node import Emergency, NodeState, NodeSupervisor
 from .pdo import PdoBinding, TxSchedule
 from .sdo import SERVICE as SDO_SERVICE
 from .sdo import SchneiderSdoService, SdoJob, SdoWorker
-from .views import NodeView, node_details, view_of
+from .views import NodeView, node_details, nodes_status, view_of
 
 if TYPE_CHECKING:
     from .diag import CanopenDiag
@@ -145,7 +145,10 @@ class CanopenDriver(Driver):
         self._lock = threading.RLock()  # supervision (see the module docstring)
         self._io = threading.Lock()  # the scan's buffers and views: held for a copy only
         self._outbox = Outbox(self._put)  # (COB-ID, data, remote) decided under _lock, not yet sent
-        self._views: tuple[NodeView, ...] = tuple(view_of(n.sup, n.cfg.mandatory) for n in self.nodes.values())
+        self._node_list = tuple(self.nodes.values())
+        self._rpdo_bindings = tuple(binding for node in self._node_list for binding, _s in node.rpdos)
+        self._views: tuple[NodeView, ...] = tuple(view_of(n.sup, n.cfg.mandatory) for n in self._node_list)
+        self._operational = sum(v.operational for v in self._views)  # of _views: CANOPEN_MASTER's count
         self._tpdo_by_cob: dict[int, PdoBinding] = {}
         self._tpdo_node: dict[int, _Node] = {}  # COB-ID -> the node whose TPDO it is
         self._rx_fresh: dict[PdoBinding, bytes] = {}
@@ -450,14 +453,18 @@ class CanopenDriver(Driver):
         """The nodes' views for the scan (views.py), swapped in whole when a
         supervisor changed (_lock held)."""
         views = self._views
-        if all(v.version == n.sup.version for v, n in zip(views, self.nodes.values(), strict=True)):
+        for view, node in zip(views, self._node_list):  # a loop, not all(): this runs at every service
+            if view.version != node.sup.version:
+                break
+        else:
             return
         fresh = tuple(
             v if v.version == n.sup.version else view_of(n.sup, n.cfg.mandatory)
-            for v, n in zip(views, self.nodes.values(), strict=True)
+            for v, n in zip(views, self._node_list, strict=True)
         )
         with self._io:
             self._views = fresh
+            self._operational = sum(v.operational for v in fresh)
 
     def _malformed(self, node: _Node | None, can_id: int, data: bytes, rule: str) -> None:
         """A frame of the wrong length: counted (on its node, if it is one of
@@ -549,20 +556,20 @@ class CanopenDriver(Driver):
     def read_inputs(self, image: ProcessImage) -> None:
         with self._io:
             fresh, self._rx_fresh = self._rx_fresh, {}
-            views = self._views
+            views, operational = self._views, self._operational
         for binding, data in fresh.items():
             binding.unpack(data, image)
         self.sdo_service.collect()
         if self._diag is not None:
-            self._diag.update(views, self._master_view(views))
+            self._diag.update(views, self._master_view(views, operational))
 
-    def _master_view(self, views: tuple[NodeView, ...]) -> tuple:
+    def _master_view(self, views: tuple[NodeView, ...], operational: int) -> tuple:
         """CANOPEN_MASTER's fields, in diag.MASTER_FIELDS order."""
         ep = self.endpoint
         return (
             self._bus_ok,
             len(views),
-            sum(v.operational for v in views),
+            operational,
             ep.received if ep else 0,
             ep.sent if ep else 0,
             ep.send_errors if ep else 0,
@@ -570,22 +577,16 @@ class CanopenDriver(Driver):
         )
 
     def write_outputs(self, image: ProcessImage) -> None:
-        packed = {binding: binding.pack(image) for node in self.nodes.values() for binding, _s in node.rpdos}
-        with self._io:
-            self._tx_data.update(packed)
+        sent = self._tx_data  # only this thread writes it: read without the lock
+        packed = {b: data for b in self._rpdo_bindings if sent.get(b) != (data := b.pack(image))}  # the changed
+        if packed:
+            with self._io:
+                sent.update(packed)
 
     def status(self) -> DriverStatus:
         if not self._bus_ok:
             return DriverStatus(False, f"canopen: bus down ({self.port.describe_down(self.clock.now_ns())})")
-        views = self._views
-        bad = [v for v in views if v.mandatory and not v.operational]
-        up = sum(v.operational for v in views)
-        malformed = f", {self.malformed} malformed" if self.malformed else ""
-        if bad:
-            v = bad[0]
-            why = v.message or v.state.name.lower()
-            return DriverStatus(False, f"canopen: {up}/{len(views)} up{malformed}; {v.name} ({v.node_id}): {why}")
-        return DriverStatus(True, f"canopen: {up}/{len(views)} up{malformed}")
+        return DriverStatus(*nodes_status(self._views, self.malformed))
 
     def details(self) -> dict:
         """For the monitors: each node's state, the NMT state its heartbeat

@@ -60,6 +60,19 @@ def view_of(sup: NodeSupervisor, mandatory: bool) -> NodeView:
     )
 
 
+def nodes_status(views: tuple[NodeView, ...], malformed: int) -> tuple[bool, str]:
+    """The driver's status line with the bus up: (ok, text); not ok while a
+    mandatory node is not operational, which the text names, with why."""
+    bad = [v for v in views if v.mandatory and not v.operational]
+    up = sum(v.operational for v in views)
+    counted = f", {malformed} malformed" if malformed else ""
+    if bad:
+        v = bad[0]
+        why = v.message or v.state.name.lower()
+        return False, f"canopen: {up}/{len(views)} up{counted}; {v.name} ({v.node_id}): {why}"
+    return True, f"canopen: {up}/{len(views)} up{counted}"
+
+
 def node_details(view: NodeView, emcy_text: Callable | None) -> dict:
     """A node for the monitors (Driver.details)."""
     nmt = None if view.nmt_state is None else STATE_NAMES.get(view.nmt_state & 0x7F, f"0x{view.nmt_state:02X}")

@@ -88,9 +88,11 @@ def test_heartbeat_loss_is_seen_by_the_program_and_the_node_recovers_by_itself(p
     assert not plant.master.status().ok
     assert "heartbeat lost" in plant.master.status().message
     assert "canopen: 0/1 up; motor (40): heartbeat lost" in status_line(plant.engine)  # what the operator sees
+    assert (plant.get("CANOPEN_MASTER.NodesConfigured"), plant.get("CANOPEN_MASTER.NodesOperational")) == (1, 0)
     sim.plug()
     plant.run_until(lambda: plant.get("Watch.operational"), 2000, "node 40 operational again")
     assert plant.master.status().ok
+    assert (plant.get("CANOPEN_MASTER.NodesConfigured"), plant.get("CANOPEN_MASTER.NodesOperational")) == (1, 1)
     assert plant.node_diag(40, "Boots") >= 2
 
 
