@@ -32,6 +32,7 @@ def test_there_are_benchmarks():
         "bench_soak.py",
         "bench_soak_live.py",
         "bench_spin.py",
+        "bench_split.py",
         "bench_startup.py",
         "bench_surfaces.py",
         "bench_sweep.py",
@@ -161,3 +162,79 @@ def test_native_is_skipped_without_a_compiler():
     assert (
         done.stdout == "bench_native: skipped: no C compiler 'no-such-cc-softplc' on PATH (the C reference needs one)\n"
     )
+
+
+def _bench_split():
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("bench_split", BENCHMARKS[0].parent / "bench_split.py")
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+_TICK = "_scan (runtime/engine/scan.py:310);Engine.tick (runtime/engine/scan.py:340)"
+
+
+def test_split_puts_each_sample_in_its_kind():
+    """benchmarks/bench_split.py sorts py-spy's raw stacks (frames as py-spy
+    writes them) by the innermost frame of ours or of a library: the
+    standard library and the image's accessors count for their caller."""
+    stacks = [
+        # a REAL rounded for a program: the runtime library, called from the generated code
+        (
+            _TICK + ";Engine._run_task (runtime/engine/scan.py:394);P_conveyor.__call__ (<softplc-1>:3139)"
+            ";f32 (runtime/st/rtlib/rt_numeric.py:33)",
+            7,
+            "ST programs",
+        ),
+        # the DA1's ramp in exact fractions, under the Modbus line's service
+        (
+            _TICK + ";SimulatedDevice.advance_to (runtime/sim/base.py:73);SimulatedModbusLine.service "
+            "(runtime/io/modbus/line.py:136);EatonDriveModel.advance (runtime/devices/eaton/model.py:280)"
+            ";EatonDriveModel._integrate (runtime/devices/eaton/model.py:412);Fraction.__eq__ (fractions.py:682)",
+            5,
+            "device models",
+        ),
+        # pymodbus's CRC, under our Modbus link
+        (
+            _TICK + ";ModbusDriver.advance_to (runtime/io/modbus/master.py:268);ModbusLink.transact "
+            "(runtime/io/modbus/link.py:190);FramerRTU.compute_CRC (pymodbus/framer/rtu.py:130)",
+            3,
+            "protocol libraries",
+        ),
+        # the LTMR's simulated slave (its sim.py is the bus side), in an installed package
+        (
+            _TICK + ";SimulatedDevice.advance_to (softplc/runtime/sim/base.py:73);LtmrSimulator.run_device "
+            "(softplc/runtime/devices/ltmr/sim.py:187)",
+            2,
+            "our bus plumbing",
+        ),
+        # an image accessor called by the CANopen master: the master's
+        (
+            _TICK + ";CanopenDriver.write_outputs (runtime/io/canopen/master.py:581);PdoBinding.pack "
+            "(runtime/io/canopen/pdo.py:188);ProcessImage.accessor.<locals>.get_int (runtime/image/memory.py:152)",
+            4,
+            "our bus plumbing",
+        ),
+        (
+            _TICK + ";Engine._run_task (runtime/engine/scan.py:382);TaskStats.record (runtime/engine/stats.py:37)",
+            6,
+            "engine",
+        ),
+        (_TICK, 1, "engine"),
+        # outside the ticks (the start-up): not counted
+        ("<module> (bench_split.py:1);build_engine (runtime/engine/build.py:80)", 50, None),
+    ]
+    module = _bench_split()
+    for stack, _count, kind in stacks:
+        assert module.kind_of(stack.split(";")) == kind, stack
+    raw = "\n".join(f"{stack} {count}" for stack, count, _kind in stacks) + "\n"
+    assert module.split(raw) == {
+        "ST programs": 7,
+        "device models": 5,
+        "protocol libraries": 3,
+        "our bus plumbing": 6,
+        "engine": 7,
+    }
