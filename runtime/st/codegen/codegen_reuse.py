@@ -40,8 +40,9 @@ from .codegen_locals import walk
 
 # a stored value that later reads repeat instead of a local (a negative one
 # in parentheses: -1 ** 2 is not (-1) ** 2)
-_LITERAL = re.compile(r"[0-9][0-9_.]*(e[+-]?[0-9]+)?|True|False")
-_NEGATIVE = re.compile(r"-[0-9][0-9_.]*(e[+-]?[0-9]+)?")
+_NUMBER = r"[0-9][0-9_.]*(e[+-]?[0-9]+)?"
+_LITERAL = re.compile(rf"{_NUMBER}|True|False")
+_NEGATIVE = re.compile(rf"-{_NUMBER}")
 _BOUND = re.compile("\1(_e[0-9]+)\1 = ")
 
 
