@@ -44,6 +44,7 @@ from collections import Counter
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+import bench_examples
 from bench_examples import TARGET_DEFAULT, TARGET_EXAMPLE, configs, run_one
 from host import timeit_factor
 
@@ -98,7 +99,8 @@ def sample(path: Path, seconds: float, py_spy: str, rate: int) -> Counter:
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "raw.txt"
         cmd = [py_spy, "record", "--rate", str(rate), "--format", "raw", "--output", str(out), "--"]
-        cmd += [sys.executable, __file__, "--child", str(path), "--seconds", str(seconds)]
+        # bench_examples' own child: the configuration warmed and run as its table runs it
+        cmd += [sys.executable, bench_examples.__file__, "--child", str(path), "--seconds", str(seconds)]
         done = subprocess.run(cmd, capture_output=True, text=True, timeout=3600)
         if done.returncode != 0 or not out.exists():
             raise SystemExit(f"py-spy failed ({done.returncode}): {done.stderr.strip()[-500:]}")
@@ -110,11 +112,7 @@ def main() -> None:
     parser.add_argument("--config", default="default", help="a shipped configuration by name (bench_examples)")
     parser.add_argument("--seconds", type=float, default=600.0, help="plant seconds sampled")
     parser.add_argument("--rate", type=int, default=1000, help="py-spy's samples per second")
-    parser.add_argument("--child", metavar="PATH", help=argparse.SUPPRESS)
     args = parser.parse_args()
-    if args.child:
-        run_one(Path(args.child), args.seconds, False)
-        return
     py_spy = shutil.which("py-spy") or shutil.which("py-spy", path=str(Path(sys.executable).parent))
     if py_spy is None:
         raise SystemExit("bench_split needs py-spy, a sampling profiler: pip install py-spy")
